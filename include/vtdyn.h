@@ -1,0 +1,106 @@
+/* vtdyn — inverse dynamic analysis of rigid multibody systems by the velocity
+ * transformation technique (Lee, Yang, Jeon, KSME 1996). The umbrella header.
+ *
+ * Use:
+ *     vt_builder *b;  vt_builder_create(&b, NULL);
+ *     vt_body_def link = vt_default_body_def();
+ *     link.mass = 100;  ...;  int id = vt_builder_add_body(b, &link);
+ *     vt_model *m;  vt_builder_build(b, &m);  vt_builder_free(b);
+ *     vt_data *d;   vt_data_create(&d, m);
+ *     ... set d->q, d->qd ...
+ *     vt_kinematics(m, d); vt_mass_matrix(m, d); vt_forces(m, d);
+ *
+ * Every function that can fail returns a vt_status (0 ok, negative error); the detail is in
+ * vt_builder_message() or d->message. The library never prints, exits or aborts.
+ * Conventions (units, frames, layouts) are stated at the top of vtdyn/types.h.
+ */
+#ifndef VTDYN_H
+#define VTDYN_H
+
+#include "vtdyn/types.h"
+#include "vtdyn/euler.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Text for a status code (never NULL).
+const char *vt_status_string(vt_status status);
+
+/* ---- model building (src/model.c) ------------------------------------------------- */
+
+/// Defaults: gravity (0, -9.81, 0).
+vt_model_def vt_default_model_def(void);
+/// Defaults: revolute joint about z to the ground at the origin, 1 kg point mass.
+vt_body_def vt_default_body_def(void);
+
+/// Starts a builder. def may be NULL for the defaults.
+/// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY, VT_ERR_NONFINITE (gravity).
+vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
+/// Validates and adds a body. Returns its id (1, 2, ...) or a negative vt_status, with the
+/// reason in vt_builder_message(). Non-unit axes and orientations are normalized; zero ones
+/// are refused. A refused body leaves the builder as it was.
+int vt_builder_add_body(vt_builder *builder, const vt_body_def *def);
+/// Message of the last failure (empty string if none).
+const char *vt_builder_message(const vt_builder *builder);
+/// Builds the immutable model; the builder stays valid and may be freed.
+/// Statuses: VT_ERR_NULL, VT_ERR_EMPTY_MODEL, VT_ERR_NO_MEMORY.
+vt_status vt_builder_build(vt_model **model, vt_builder *builder);
+void vt_builder_free(vt_builder *builder);
+void vt_model_free(vt_model *model);
+
+/// Allocates the data of a model (one block) and resets it (vt_data_reset).
+vt_status vt_data_create(vt_data **data, const vt_model *model);
+/// q = q0, q̇ = 0, xfrc = 0, time = 0.
+vt_status vt_data_reset(const vt_model *model, vt_data *data);
+void vt_data_free(vt_data *data);
+
+/// Adds to d->xfrc a force f (N) and moment n (N·m), both global, applied at the point
+/// `point` of body `body` (m, body axes from its centre of mass); f or n may be NULL.
+/// Needs the body's orientation: call after vt_kinematics().
+vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
+                            const double point[3], const double f[3], const double n[3]);
+
+/// q_out = q advanced by the velocity v over h: scalar coordinates move by h v, spherical
+/// relative Euler parameters by the exact rotation exp(h ω) (normalized), a base body's
+/// x by h ẋ (then its Euler parameters normalized). q_out may alias q.
+vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
+                         const double *v, double h);
+
+/* ---- stages: each reads the model and fills its part of the data ------------------ */
+
+/// From d->q and d->qd: x, A, ω, joint axes and points, S (15)-(18), ẋ = S q̇ and Ṡq̇.
+/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE, VT_ERR_QUATERNION.
+vt_status vt_kinematics(const vt_model *model, vt_data *data);
+
+/// R, q̇ = R ẋ, assembled from Table 1 (20)-(21). Needs vt_kinematics().
+vt_status vt_inverse_transform(const vt_model *model, vt_data *data);
+
+/// M^i = diag(m I, 4 G^T J' G) and M* = S^T M S (3). Needs vt_kinematics().
+vt_status vt_mass_matrix(const vt_model *model, vt_data *data);
+
+/// F (gravity and d->xfrc, (7)), h and Q = S^T [F - M Ṡq̇ + h] (4). Needs vt_kinematics().
+vt_status vt_forces(const vt_model *model, vt_data *data);
+
+/* ---- force transforms ---------------------------------------------------------------- */
+
+/// Eq (7): the Cartesian force on a body with Euler parameters p of a force f and moment n
+/// (global) applied at s (global vector from the body's origin to the point):
+/// F = [f; 2 E^T s̃ f + 2 E^T n]. F has 7 entries.
+void vt_cartesian_force(double F[7], const double p[4], const double s[3],
+                        const double f[3], const double n[3]);
+
+/// Eq (10): Q = S^T F for a Cartesian force F (7n) → Q (nv). Needs vt_kinematics().
+vt_status vt_generalized_force(double *Q, const vt_model *model, vt_data *data,
+                               const double *F);
+
+/// Eq (14): F_eq = R^T Q for a generalized force Q (nv) → F_eq (7n).
+/// Needs vt_inverse_transform().
+vt_status vt_equivalent_force(double *Feq, const vt_model *model, vt_data *data,
+                              const double *Q);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

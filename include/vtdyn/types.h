@@ -1,0 +1,173 @@
+/* vtdyn — public types: statuses, definition structs, the model and the data.
+ *
+ * Conventions, stated once:
+ * - SI units: m, kg, s, N, N·m, rad.
+ * - Euler parameters are scalar first, p = [p0 p1 p2 p3], unit norm.
+ * - Matrices are column-major; a matrix argument or field names its leading dimension.
+ * - Body 0 is the ground. Moving bodies are numbered 1..nbody and every body's reference
+ *   (parent) body has a smaller number, so outward passes count up and inward passes down.
+ * - Per-body arrays have nbody+1 entries, entry 0 being the ground. The paper's stacked
+ *   Cartesian vectors (x, ẋ, F, rows of S, columns of R) have 7*nbody entries and skip the
+ *   ground: body i occupies entries 7*(i-1) .. 7*(i-1)+6, r^i first, then p^i.
+ * - The position vector q (nq entries) and the velocity vector q̇ (nv entries) differ in
+ *   length: a spherical joint keeps its relative orientation as 4 Euler parameters but has 3
+ *   rates (relative angular velocity in the reference body's axes); a base (floating) body
+ *   has q = x^i (7) and q̇ = ẋ^i (7).
+ * - A joint reaction is the force and moment that the reference body exerts on the body at
+ *   the joint point; actuating efforts are reported beside reactions, never inside them.
+ */
+#ifndef VTDYN_TYPES_H
+#define VTDYN_TYPES_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Status of a call: 0 is success, negative values are errors.
+typedef enum vt_status {
+    VT_OK = 0,
+    VT_ERR_NULL = -1,                  ///< a required pointer argument is NULL
+    VT_ERR_NO_MEMORY = -2,             ///< an allocation failed
+    VT_ERR_NONFINITE = -3,             ///< NaN or Inf in a definition or state
+    VT_ERR_MASS = -4,                  ///< mass not positive
+    VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric
+    VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment
+    VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3
+    VT_ERR_AXIS_ZERO = -8,             ///< a joint axis has (near) zero length
+    VT_ERR_AXES_NOT_PERPENDICULAR = -9,///< universal joint axes not perpendicular
+    VT_ERR_PARENT = -10,               ///< reference body is not an earlier body (base: not ground)
+    VT_ERR_JOINT_TYPE = -11,           ///< unknown joint type
+    VT_ERR_TOO_MANY_BODIES = -12,      ///< more than VT_MAX_BODIES bodies
+    VT_ERR_QUATERNION = -13,           ///< Euler parameters of (near) zero norm
+    VT_ERR_EMPTY_MODEL = -14,          ///< a model needs at least one moving body
+    VT_ERR_BAD_INDEX = -15,            ///< a body or coordinate index out of range
+    VT_ERR_MODEL_MISMATCH = -16,       ///< the data struct was made for another model
+    VT_ERR_LAPACK = -17                ///< LAPACK reported an error (info in the message)
+} vt_status;
+
+/// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
+/// R (nv x 7n) of the reference path below about 400 MB.
+#define VT_MAX_BODIES 1000
+
+/// Joint of a body to its reference body: the six rows of the paper's Table 1.
+typedef enum vt_joint_type {
+    VT_JOINT_BASE = 0,       ///< floating: q = x = [r; p] (7), q̇ = ẋ (7); reference must be ground
+    VT_JOINT_REVOLUTE,       ///< 1 angle about axis1
+    VT_JOINT_UNIVERSAL,      ///< angle about axis1 (fixed on reference), then about axis2 (fixed on body)
+    VT_JOINT_SPHERICAL,      ///< q: relative Euler parameters (4); q̇: relative angular velocity (3)
+    VT_JOINT_TRANSLATIONAL,  ///< 1 translation along axis1
+    VT_JOINT_CYLINDRICAL,    ///< angle about axis1, then translation along axis1
+    VT_JOINT_TYPE_COUNT
+} vt_joint_type;
+
+/// Options of the whole model.
+typedef struct vt_model_def {
+    double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
+} vt_model_def;
+
+/// A moving body and the joint that connects it to its reference body.
+/// Fill from vt_default_body_def() and set only what the scene needs.
+typedef struct vt_body_def {
+    int parent;                 ///< reference body id, 0 = ground, else an earlier body; default 0
+    vt_joint_type joint;        ///< joint to the reference body; default VT_JOINT_REVOLUTE
+    double mass;                ///< kg, > 0; default 1
+    double inertia[9];          ///< kg·m², about the centre of mass in body axes, 3x3 column-major;
+                                ///< default 0 (a point mass)
+    double joint_parent[3];     ///< m, joint point on the reference body, in its body axes from its
+                                ///< centre of mass (global coordinates if the reference is ground); default 0
+    double joint_child[3];      ///< m, joint point on this body, in its body axes from its centre of mass;
+                                ///< default 0
+    double axis1[3];            ///< first joint axis, reference-body axes at q = 0; normalized; default (0,0,1)
+    double axis2[3];            ///< universal only: second axis (fixed on this body), reference-body axes at
+                                ///< q = 0, perpendicular to axis1; normalized; default (1,0,0)
+    double orientation[4];      ///< Euler parameters of this body's axes relative to the reference body's
+                                ///< at q = 0 (for a base body: ignored); normalized; default (1,0,0,0)
+} vt_body_def;
+
+/// The immutable model. Built by vt_builder_build(); read-only afterwards.
+typedef struct vt_model {
+    int nbody;               ///< number of moving bodies n (ids 1..n)
+    int nq;                  ///< length of q
+    int nv;                  ///< length of q̇ (and of Q, rows of M*)
+    int nx;                  ///< 7 * nbody: length of the Cartesian vector x
+    double gravity[3];       ///< m/s², global
+
+    /* per body, nbody+1 entries, entry 0 = ground */
+    int *body_parent;        ///< reference body id (nbody+1); -1 for the ground
+    int *body_joint;         ///< vt_joint_type of the joint to the reference body (nbody+1)
+    int *body_qadr;          ///< first index of the joint's coordinates in q (nbody+1)
+    int *body_nq;            ///< number of joint position coordinates (nbody+1)
+    int *body_vadr;          ///< first index of the joint's rates in q̇ (nbody+1)
+    int *body_nv;            ///< number of joint rates (nbody+1)
+    double *body_mass;       ///< kg (nbody+1)
+    double *body_inertia;    ///< kg·m², body axes about the centre of mass, 3x3 col-major (9 x (nbody+1))
+    double *body_jpar;       ///< m, joint point on the reference body, its axes (3 x (nbody+1))
+    double *body_jchild;     ///< m, joint point on the body, its axes (3 x (nbody+1))
+    double *body_axis;       ///< unit axis1 and axis2 in reference axes at q = 0 (6 x (nbody+1))
+    double *body_quat0;      ///< orientation relative to the reference at q = 0 (4 x (nbody+1))
+
+    /* the tree's reference (path) structure */
+    int *body_pathadr;       ///< start of the body's path list in path_dof (nbody+1)
+    int *body_pathnum;       ///< number of rates on the path from the root to the body (nbody+1)
+    int *path_dof;           ///< rate indices of every path, ascending within a path (npath)
+    int npath;               ///< total length of path_dof
+    int maxpath;             ///< largest body_pathnum
+    int *dof_body;           ///< body whose joint owns each rate (nv)
+
+    double *q0;              ///< reference configuration: zero angles and translations, unit
+                             ///< Euler parameters (nq)
+} vt_model;
+
+/// The data of one model: inputs, every result, and all scratch space. Allocated once by
+/// vt_data_create(); no stage allocates. Fields are grouped by the stage that fills them.
+typedef struct vt_data {
+    const vt_model *model;   ///< the model this data was made for
+
+    /* state and loads: set by the caller */
+    double time;             ///< s
+    double *q;               ///< generalized positions (nq)
+    double *qd;              ///< generalized velocities (nv)
+    double *xfrc;            ///< applied force (N) and moment (N·m) on each body, global, moment about
+                             ///< the centre of mass: [f; n] (6 x (nbody+1)); see vt_add_point_load()
+
+    /* vt_kinematics(): positions, velocities, S and Ṡq̇ */
+    double *x;               ///< Cartesian coordinates [r; p] (7n), eq (1)
+    double *xd;              ///< Cartesian velocities ẋ = S q̇ (7n)
+    double *A;               ///< rotation body → global, 3x3 col-major (9 x (nbody+1))
+    double *omega;           ///< angular velocity, global, rad/s (3 x (nbody+1))
+    double *jaxis;           ///< current global unit axes e_k of each body's joint (9 x (nbody+1))
+    double *jsij;            ///< s^{ij}: reference origin → joint point on reference, global (3 x (nbody+1))
+    double *jd;              ///< d^i = -s^{ji} + Σ ε_k q_k e_k, eq (17), global (3 x (nbody+1))
+    double *jpoint;          ///< joint point on the body, global position (3 x (nbody+1))
+    double *S;               ///< velocity transformation, ẋ = S q̇ (7n x nv, leading dimension 7n)
+    double *Sdqd;            ///< Ṡ q̇ (7n): the Cartesian accelerations at q̈ = 0
+
+    /* vt_inverse_transform(): R */
+    double *R;               ///< inverse velocity transformation, q̇ = R ẋ (nv x 7n, leading dimension nv)
+
+    /* vt_mass_matrix(): M and M* */
+    double *Mp;              ///< rotational block 4 G^T J' G of each body's M^i (16 x (nbody+1))
+    double *Mstar;           ///< M* = S^T M S, eq (3) (nv x nv, leading dimension nv)
+
+    /* vt_forces(): F, h and Q */
+    double *F;               ///< Cartesian applied force: gravity and xfrc, eq (7),(9) (7n)
+    double *h;               ///< -Ṁẋ + (∂T/∂x)^T: per body [0; -8 Ġ^T J' G ṗ] (7n)
+    double *Q;               ///< Q = S^T [F - M Ṡq̇ + h], eq (4) (nv)
+
+    /* scratch owned by the stages */
+    double *work;            ///< scratch of the stages (nwork)
+    size_t nwork;            ///< entries in work
+
+    char message[256];       ///< detail of the last failed call on this data
+} vt_data;
+
+/// Incremental model builder (opaque).
+typedef struct vt_builder vt_builder;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

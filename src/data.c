@@ -1,0 +1,168 @@
+/* The data of a model: one allocation laid out once, never resized (sizes are fixed when the
+ * model is built). Also the state helpers that are not a stage of the method: applied point
+ * loads, (7), and advancing q along q̇ on the Euler-parameter sphere,
+ *   ṗ = ½ E^T ω  ⇒  p(t + h) = [cos(h|ω|/2); sin(h|ω|/2) ω/|ω|] ⊗ p(t)   for constant ω.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+static void *take(char *base, size_t *used, size_t bytes)
+{
+    *used = (*used + 15u) & ~(size_t)15u;
+    void *p = base ? base + *used : NULL;
+    *used += bytes;
+    return p;
+}
+
+/* Scratch used by the stages, the largest of: gathered S block and M S block
+ * (2 x 7 x maxpath) with the path block of M* (maxpath²); accelerations α (3 (n+1));
+ * S^T products (8 maxpath + 8) with a Cartesian vector (7n). */
+static size_t work_size(const vt_model *m)
+{
+    const size_t k = (size_t)m->maxpath, nb = (size_t)m->nbody + 1, nx = (size_t)m->nx;
+    size_t w = 14 * k + k * k;
+    if (3 * nb > w) w = 3 * nb;
+    if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
+    return w;
+}
+
+static size_t layout(const vt_model *m, vt_data *d, char *base)
+{
+    const size_t n = (size_t)m->nbody, nb = n + 1, nx = 7 * n, nv = (size_t)m->nv;
+    size_t used = sizeof(vt_data);
+    d->q = take(base, &used, (size_t)m->nq * sizeof(double));
+    d->qd = take(base, &used, nv * sizeof(double));
+    d->xfrc = take(base, &used, 6 * nb * sizeof(double));
+    d->x = take(base, &used, nx * sizeof(double));
+    d->xd = take(base, &used, nx * sizeof(double));
+    d->A = take(base, &used, 9 * nb * sizeof(double));
+    d->omega = take(base, &used, 3 * nb * sizeof(double));
+    d->jaxis = take(base, &used, 9 * nb * sizeof(double));
+    d->jsij = take(base, &used, 3 * nb * sizeof(double));
+    d->jd = take(base, &used, 3 * nb * sizeof(double));
+    d->jpoint = take(base, &used, 3 * nb * sizeof(double));
+    d->S = take(base, &used, nx * nv * sizeof(double));
+    d->Sdqd = take(base, &used, nx * sizeof(double));
+    d->R = take(base, &used, nv * nx * sizeof(double));
+    d->Mp = take(base, &used, 16 * nb * sizeof(double));
+    d->Mstar = take(base, &used, nv * nv * sizeof(double));
+    d->F = take(base, &used, nx * sizeof(double));
+    d->h = take(base, &used, nx * sizeof(double));
+    d->Q = take(base, &used, nv * sizeof(double));
+    d->nwork = work_size(m);
+    d->work = take(base, &used, d->nwork * sizeof(double));
+    return used;
+}
+
+vt_status vt_data_create(vt_data **data, const vt_model *m)
+{
+    if (!data || !m) return VT_ERR_NULL;
+    *data = NULL;
+    vt_data probe;
+    const size_t bytes = layout(m, &probe, NULL);
+    char *block = calloc(1, bytes); /* zero: the structural zeros of S and R stay zero */
+    if (!block) return VT_ERR_NO_MEMORY;
+    vt_data *d = (vt_data *)block;
+    layout(m, d, block);
+    d->model = m;
+    /* the ground: identity rotation, at rest */
+    d->A[0] = d->A[4] = d->A[8] = 1.0;
+    vt_data_reset(m, d);
+    *data = d;
+    return VT_OK;
+}
+
+void vt_data_free(vt_data *d)
+{
+    free(d);
+}
+
+vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who)
+{
+    if (!m || !d) return VT_ERR_NULL;
+    if (d->model != m)
+        return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "%s: data made for another model", who);
+    return VT_OK;
+}
+
+vt_status vt_data_reset(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_data_reset");
+    if (st) return st;
+    memcpy(d->q, m->q0, (size_t)m->nq * sizeof(double));
+    memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+    memset(d->xfrc, 0, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+    d->time = 0.0;
+    d->message[0] = '\0';
+    return VT_OK;
+}
+
+vt_status vt_add_point_load(const vt_model *m, vt_data *d, int body, const double point[3],
+                            const double f[3], const double n[3])
+{
+    vt_status st = vt_check_pair(m, d, "vt_add_point_load");
+    if (st) return st;
+    if (body < 1 || body > m->nbody)
+        return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_add_point_load: body %d not in 1..%d",
+                       body, m->nbody);
+    if (!point && f)
+        return vt_fail(d->message, VT_ERR_NULL, "vt_add_point_load: point is NULL");
+    if ((f && (!vt_all_finite(f, 3) || !vt_all_finite(point, 3))) || (n && !vt_all_finite(n, 3)))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_add_point_load: NaN or Inf in the load on body %d", body);
+    double *w = d->xfrc + 6 * body;
+    if (f) {
+        /* moment about the centre of mass: s × f with s = A s' (the s̃ f of (7)) */
+        double s[3];
+        vt_mulmat3(s, d->A + 9 * body, point);
+        vt_axpy3(w, 1.0, f);
+        vt_addcross3(w + 3, s, f);
+    }
+    if (n) vt_axpy3(w + 3, 1.0, n);
+    return VT_OK;
+}
+
+/* p ← exp(h ω) ⊗ p, normalized */
+static void rotate_quat(double p[4], const double w[3], double h)
+{
+    const double a = sqrt(vt_dot3(w, w)) * h;
+    if (a != 0.0) {
+        double r[4], u[3] = {w[0], w[1], w[2]};
+        const double inv = 1.0 / sqrt(vt_dot3(w, w));
+        u[0] *= inv; u[1] *= inv; u[2] *= inv;
+        vt_quat_axis_angle(r, u, a);
+        vt_quat_mul(p, r, p);
+    }
+    const double s = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
+    if (s > 0.0)
+        for (int k = 0; k < 4; k++) p[k] /= s;
+}
+
+vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, const double *v, double h)
+{
+    if (!q_out || !m || !q || !v) return VT_ERR_NULL;
+    if (!isfinite(h) || !vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
+    if (q_out != q) memcpy(q_out, q, (size_t)m->nq * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) {
+        double *qi = q_out + m->body_qadr[i];
+        const double *vi = v + m->body_vadr[i];
+        switch (m->body_joint[i]) {
+        case VT_JOINT_SPHERICAL:
+            rotate_quat(qi, vi, h);
+            break;
+        case VT_JOINT_BASE: {
+            double E[12], w[3];
+            vt_euler_E(E, qi + 3);
+            vt_mulE(w, E, vi + 3);
+            w[0] *= 2; w[1] *= 2; w[2] *= 2; /* ω = 2 E ṗ */
+            vt_axpy3(qi, h, vi);
+            rotate_quat(qi + 3, w, h);
+            break;
+        }
+        default:
+            for (int k = 0; k < m->body_nq[i]; k++) qi[k] += h * vi[k];
+        }
+    }
+    return VT_OK;
+}

@@ -1,0 +1,53 @@
+/* Euler-parameter kinematics: the paper's eq (8) and method.md "Coordinates".
+ *
+ *   p = [p0; e],  e = [p1 p2 p3]
+ *   E(p) = [-e, ẽ + p0 I]:  rows [-p1  p0 -p3  p2], [-p2  p3  p0 -p1], [-p3 -p2  p1  p0]
+ *   G(p) = [-e, -ẽ + p0 I]: rows [-p1  p0  p3 -p2], [-p2 -p3  p0  p1], [-p3  p2 -p1  p0]
+ *   A(p) = E(p) G(p)^T     (body → global)
+ * (The printed (8) carries a stray transpose: E is 3x4.)
+ */
+#include "internal.h"
+
+void vt_euler_E(double E[12], const double p[4])
+{
+    /* column-major 3x4: E[row + 3*col] */
+    E[0] = -p[1]; E[1] = -p[2]; E[2] = -p[3];
+    E[3] = p[0];  E[4] = p[3];  E[5] = -p[2];
+    E[6] = -p[3]; E[7] = p[0];  E[8] = p[1];
+    E[9] = p[2];  E[10] = -p[1]; E[11] = p[0];
+}
+
+void vt_euler_G(double G[12], const double p[4])
+{
+    G[0] = -p[1]; G[1] = -p[2]; G[2] = -p[3];
+    G[3] = p[0];  G[4] = -p[3]; G[5] = p[2];
+    G[6] = p[3];  G[7] = p[0];  G[8] = -p[1];
+    G[9] = -p[2]; G[10] = p[1]; G[11] = p[0];
+}
+
+void vt_euler_A(double A[9], const double p[4])
+{
+    /* A = E G^T, written out: (p0² − e·e) I + 2 e e^T + 2 p0 ẽ */
+    const double p0 = p[0], p1 = p[1], p2 = p[2], p3 = p[3];
+    const double s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
+    A[0] = s + 2 * p1 * p1;      A[3] = 2 * (p1 * p2 - p0 * p3); A[6] = 2 * (p1 * p3 + p0 * p2);
+    A[1] = 2 * (p1 * p2 + p0 * p3); A[4] = s + 2 * p2 * p2;      A[7] = 2 * (p2 * p3 - p0 * p1);
+    A[2] = 2 * (p1 * p3 - p0 * p2); A[5] = 2 * (p2 * p3 + p0 * p1); A[8] = s + 2 * p3 * p3;
+}
+
+void vt_quat_mul(double r[4], const double a[4], const double b[4])
+{
+    double t[4];
+    t[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
+    t[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
+    t[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
+    t[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
+    r[0] = t[0]; r[1] = t[1]; r[2] = t[2]; r[3] = t[3];
+}
+
+void vt_quat_axis_angle(double p[4], const double u[3], double angle)
+{
+    const double s = sin(0.5 * angle);
+    p[0] = cos(0.5 * angle);
+    p[1] = s * u[0]; p[2] = s * u[1]; p[3] = s * u[2];
+}

@@ -1,0 +1,92 @@
+/* Forces: the paper's (4), (7), (9), (10) and method.md "Equations of motion".
+ *
+ *   F^i = [f; 2 E^T s̃ f + 2 E^T n]          force f, moment n at body point s (7)
+ *         gravity adds [m^i g; 0]; d->xfrc holds f and the moment about the centre of mass
+ *   h^i = −Ṁ^i ẋ^i + (∂T^i/∂x^i)^T = [0; −8 Ġ^T J' G ṗ]
+ *   Q   = S^T [F − M Ṡq̇ + h]                 (4)
+ *   Q   = S^T F for a Cartesian force alone  (10)
+ * As in mass.c, S^T acts body by body on the columns of the body's path only.
+ */
+#include <string.h>
+
+#include "internal.h"
+
+void vt_cartesian_force(double F[7], const double p[4], const double s[3], const double f[3],
+                        const double n[3])
+{
+    double E[12], t[3];
+    vt_cross3(t, s, f);
+    vt_axpy3(t, 1.0, n);
+    vt_copy3(F, f);
+    vt_euler_E(E, p);
+    vt_mulE_t(F + 3, E, t);
+    for (int k = 3; k < 7; k++) F[k] *= 2.0;
+}
+
+/* Q = S^T G for a Cartesian vector G (7n) */
+static void apply_St(double *Q, const vt_model *m, vt_data *d, const double *G)
+{
+    double *Si = d->work, *Qk = Si + 7 * m->maxpath;
+    memset(Q, 0, (size_t)m->nv * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) {
+        const int k = m->body_pathnum[i];
+        const int *path = m->path_dof + m->body_pathadr[i];
+        vt_gather_S(Si, m, d, i);
+        cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, G + vt_xoff(i), 1, 0.0, Qk, 1);
+        for (int c = 0; c < k; c++) Q[path[c]] += Qk[c];
+    }
+}
+
+vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const double *F)
+{
+    vt_status st = vt_check_pair(m, d, "vt_generalized_force");
+    if (st) return st;
+    if (!Q || !F) return vt_fail(d->message, VT_ERR_NULL, "vt_generalized_force: NULL argument");
+    if (!vt_all_finite(F, m->nx))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_generalized_force: NaN or Inf in F");
+    apply_St(Q, m, d, F);
+    return VT_OK;
+}
+
+vt_status vt_forces(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_forces");
+    if (st) return st;
+    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: NaN or Inf in xfrc");
+    double *g = d->work + 8 * m->maxpath + 8; /* past apply_St's scratch */
+    for (int i = 1; i <= m->nbody; i++) {
+        const int o = vt_xoff(i);
+        const double *p = d->x + o + 3, *pd = d->xd + o + 3, *w = d->xfrc + 6 * i;
+        const double mass = m->body_mass[i];
+        double E[12], G[12], Gd[12], u[3], v[3];
+        double *F = d->F + o, *h = d->h + o;
+
+        vt_euler_E(E, p);
+        for (int r = 0; r < 3; r++) F[r] = mass * m->gravity[r] + w[r];
+        vt_mulE_t(F + 3, E, w + 3);
+        for (int r = 3; r < 7; r++) F[r] *= 2.0;
+
+        /* h_p = −8 Ġ^T J' G ṗ, Ġ = G(ṗ) */
+        vt_euler_G(G, p);
+        vt_euler_G(Gd, pd);
+        vt_mulE(u, G, pd);
+        vt_mulmat3(v, m->body_inertia + 9 * i, u);
+        memset(h, 0, 3 * sizeof(double));
+        vt_mulE_t(h + 3, Gd, v);
+        for (int r = 3; r < 7; r++) h[r] *= -8.0;
+
+        /* g = F − M Ṡq̇ + h */
+        const double *a = d->Sdqd + o;
+        for (int r = 0; r < 3; r++) g[o + r] = F[r] - mass * a[r];
+        double Mp[16];
+        vt_rot_mass(Mp, m->body_inertia + 9 * i, p);
+        for (int r = 0; r < 4; r++) {
+            double s = 0.0;
+            for (int c = 0; c < 4; c++) s += Mp[r + 4 * c] * a[3 + c];
+            g[o + 3 + r] = F[3 + r] - s + h[3 + r];
+        }
+    }
+    apply_St(d->Q, m, d, g);
+    return VT_OK;
+}

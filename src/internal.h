@@ -1,0 +1,106 @@
+/* vtdyn — internal helpers shared by the stage files: 3-vector algebra, the BLAS/LAPACK
+ * entry points we use, and checks common to every stage. Never installed. */
+#ifndef VTDYN_INTERNAL_H
+#define VTDYN_INTERNAL_H
+
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include <cblas.h>
+
+#include "vtdyn.h"
+
+/* LAPACK (Fortran interface; the trailing size_t are the hidden lengths of the character
+ * arguments, as gfortran passes them). */
+void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
+            double *w, double *work, const int *lwork, int *info, size_t ljobz, size_t luplo);
+
+/* Cartesian block of body i (1..n) in the paper's stacked 7n vectors. */
+static inline int vt_xoff(int body) { return 7 * (body - 1); }
+
+static inline void vt_copy3(double r[3], const double a[3])
+{
+    r[0] = a[0]; r[1] = a[1]; r[2] = a[2];
+}
+static inline double vt_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+/* r = a × b; r must not alias a or b */
+static inline void vt_cross3(double r[3], const double a[3], const double b[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+/* r += s a */
+static inline void vt_axpy3(double r[3], double s, const double a[3])
+{
+    r[0] += s * a[0]; r[1] += s * a[1]; r[2] += s * a[2];
+}
+/* r += a × b */
+static inline void vt_addcross3(double r[3], const double a[3], const double b[3])
+{
+    double t[3];
+    vt_cross3(t, a, b);
+    r[0] += t[0]; r[1] += t[1]; r[2] += t[2];
+}
+/* r = M a for a 3x3 column-major M; r must not alias a */
+static inline void vt_mulmat3(double r[3], const double M[9], const double a[3])
+{
+    r[0] = M[0] * a[0] + M[3] * a[1] + M[6] * a[2];
+    r[1] = M[1] * a[0] + M[4] * a[1] + M[7] * a[2];
+    r[2] = M[2] * a[0] + M[5] * a[1] + M[8] * a[2];
+}
+/* r = M^T a for a 3x3 column-major M; r must not alias a */
+static inline void vt_mulmat3t(double r[3], const double M[9], const double a[3])
+{
+    r[0] = M[0] * a[0] + M[1] * a[1] + M[2] * a[2];
+    r[1] = M[3] * a[0] + M[4] * a[1] + M[5] * a[2];
+    r[2] = M[6] * a[0] + M[7] * a[1] + M[8] * a[2];
+}
+/* r = E^T a (4) for a 3x4 column-major E */
+static inline void vt_mulE_t(double r[4], const double E[12], const double a[3])
+{
+    for (int k = 0; k < 4; k++) r[k] = E[3 * k] * a[0] + E[3 * k + 1] * a[1] + E[3 * k + 2] * a[2];
+}
+/* r = E a (3) for a 3x4 column-major E and a 4-vector a */
+static inline void vt_mulE(double r[3], const double E[12], const double a[4])
+{
+    for (int k = 0; k < 3; k++) r[k] = E[k] * a[0] + E[3 + k] * a[1] + E[6 + k] * a[2] + E[9 + k] * a[3];
+}
+
+static inline int vt_all_finite(const double *a, int n)
+{
+    for (int k = 0; k < n; k++)
+        if (!isfinite(a[k])) return 0;
+    return 1;
+}
+
+/* Writes a formatted message into buf (size 256) and returns status. */
+vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Common argument check of every stage: non-NULL, data made for this model. */
+vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who);
+
+/* Rotational (0) or translational (1) kind of each joint rate, and which of the joint's
+ * axes it uses; base rates are reported separately. */
+enum { VT_DOF_ROT, VT_DOF_TRANS, VT_DOF_BASE_R, VT_DOF_BASE_P };
+int vt_dof_kind(int joint_type, int k, int *axis);
+
+/* Mp = 4 G^T J' G (4x4 column-major), the rotational block of M^i (mass.c) */
+void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
+/* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (mass.c) */
+void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
+
+/* Mp = 4 G^T J' G (4x4 column-major), the rotational block of M^i (mass.c) */
+void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
+/* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (mass.c) */
+void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
+
+#endif

@@ -1,0 +1,277 @@
+/* Kinematics and the velocity transformation S: the paper's (15)-(18), method.md
+ * "Velocity transformation S".
+ *
+ * Body i, reference body j, joint axes e_k (global), ε_k = 1 for a translational rate,
+ * 0 for a rotational one (18):
+ *   positions    A^i = A^j A_J(q^i) A0^i,   r^i = r^j + s^{ij} + Σ ε_k q_k e_k − s^{ji}
+ *                s^{ij} = A^j s'^{ij},  s^{ji} = A^i s'^{ji},  d^i = −s^{ji} + Σ ε_k q_k e_k   (17)
+ *   velocities   ω^i = ω^j + Σ (1 − ε_k) q̇_k e_k                                           (16)
+ *                v^i = v^j + ω̃^j s^{ij} + Σ ε_k q̇_k e_k + ω̃^i d^i                          (15)
+ *                ṗ^i = ½ E^{iT} ω^i
+ *   S, column of rate k of joint b, in the rows of every body i whose path holds b:
+ *                rotational axis e through the joint point P_b:  ṙ^i += e × (r^i − P_b),
+ *                                                                ṗ^i += ½ E^{iT} e
+ *                translational axis e:                           ṙ^i += e
+ *                base body b (q = x^b): its own block is I7; below it ω^b = 2 E^b ṗ^b
+ *   Ṡq̇ = ẍ at q̈ = 0, from the time derivative of the position relations
+ *   (e fixed on j: ė = ω̃^j e; e2 of a universal joint is fixed on i: ė2 = ω̃^i e2):
+ *                α^i = α^j + Σ (1 − ε_k)(q̈_k e_k + q̇_k ė_k)
+ *                a^i = a^j + α̃^j s^{ij} + ω̃^j ω̃^j s^{ij} + Σ ε_k (q̈_k e_k + 2 q̇_k ė_k + q_k ë_k)
+ *                      − α̃^i s^{ji} − ω̃^i ω̃^i s^{ji}
+ *                p̈^i = ½ E^{iT} α^i − ¼ (ω^i·ω^i) p^i
+ */
+#include <string.h>
+
+#include "internal.h"
+
+static const double zero3[3] = {0, 0, 0};
+static const double unit_quat[4] = {1, 0, 0, 0};
+
+static vt_status check_state(const vt_model *m, vt_data *d)
+{
+    for (int k = 0; k < m->nq; k++)
+        if (!isfinite(d->q[k]))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: q[%d] = %g", k, d->q[k]);
+    for (int k = 0; k < m->nv; k++)
+        if (!isfinite(d->qd[k]))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: qd[%d] = %g", k, d->qd[k]);
+    for (int i = 1; i <= m->nbody; i++) {
+        const int jt = m->body_joint[i];
+        if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE) continue;
+        const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_BASE ? 3 : 0);
+        const double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+        if (!(s > 1e-24))
+            return vt_fail(d->message, VT_ERR_QUATERNION,
+                           "vt_kinematics: body %d: Euler parameters of zero norm", i);
+    }
+    return VT_OK;
+}
+
+/* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body */
+static void positions(const vt_model *m, vt_data *d)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i], jt = m->body_joint[i];
+        const double *qi = d->q + m->body_qadr[i];
+        const double *rj = j ? d->x + vt_xoff(j) : zero3;
+        const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
+        const double *Aj = d->A + 9 * j;
+        const double *ax1 = m->body_axis + 6 * i, *ax2 = ax1 + 3;
+        double *ri = d->x + vt_xoff(i), *pi = ri + 3, *Ai = d->A + 9 * i;
+        double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i, *di = d->jd + 3 * i;
+        double *P = d->jpoint + 3 * i;
+
+        memset(e, 0, 9 * sizeof(double));
+        if (jt == VT_JOINT_BASE) {
+            memcpy(ri, qi, 7 * sizeof(double));
+            vt_euler_A(Ai, pi);
+            memset(sij, 0, 3 * sizeof(double));
+            memset(di, 0, 3 * sizeof(double));
+            vt_copy3(P, ri);
+            continue;
+        }
+        double pJ[4] = {1, 0, 0, 0}, t[3] = {0, 0, 0};
+        switch (jt) {
+        case VT_JOINT_REVOLUTE:
+        case VT_JOINT_CYLINDRICAL:
+            vt_quat_axis_angle(pJ, ax1, qi[0]);
+            vt_mulmat3(e, Aj, ax1);
+            if (jt == VT_JOINT_CYLINDRICAL) vt_axpy3(t, qi[1], e);
+            break;
+        case VT_JOINT_UNIVERSAL: {
+            double p1[4], p2[4], A1[9], a2[3];
+            vt_quat_axis_angle(p1, ax1, qi[0]);
+            vt_quat_axis_angle(p2, ax2, qi[1]);
+            vt_quat_mul(pJ, p1, p2);
+            vt_mulmat3(e, Aj, ax1);
+            vt_euler_A(A1, p1);
+            vt_mulmat3(a2, A1, ax2); /* e2 rides on the body: turned by the first angle */
+            vt_mulmat3(e + 3, Aj, a2);
+            break;
+        }
+        case VT_JOINT_SPHERICAL: {
+            const double s = sqrt(qi[0] * qi[0] + qi[1] * qi[1] + qi[2] * qi[2] + qi[3] * qi[3]);
+            for (int k = 0; k < 4; k++) pJ[k] = qi[k] / s;
+            memcpy(e, Aj, 9 * sizeof(double)); /* triad: the reference body's axes */
+            break;
+        }
+        default: /* translational */
+            vt_mulmat3(e, Aj, ax1);
+            vt_axpy3(t, qi[0], e);
+            break;
+        }
+        vt_quat_mul(pi, pj, pJ);
+        vt_quat_mul(pi, pi, m->body_quat0 + 4 * i);
+        vt_euler_A(Ai, pi);
+
+        double sji[3];
+        vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
+        vt_mulmat3(sji, Ai, m->body_jchild + 3 * i);
+        for (int k = 0; k < 3; k++) {
+            di[k] = t[k] - sji[k];
+            ri[k] = rj[k] + sij[k] + di[k];
+            P[k] = ri[k] + sji[k];
+        }
+    }
+}
+
+/* ω (16), v (15), ṗ = ½ E^T ω */
+static void velocities(const vt_model *m, vt_data *d)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i], jt = m->body_joint[i];
+        const double *qdi = d->qd + m->body_vadr[i];
+        const double *wj = d->omega + 3 * j;
+        const double *vj = j ? d->xd + vt_xoff(j) : zero3;
+        const double *pi = d->x + vt_xoff(i) + 3;
+        double *wi = d->omega + 3 * i, *vi = d->xd + vt_xoff(i), *pdi = vi + 3;
+        double E[12];
+        vt_euler_E(E, pi);
+        if (jt == VT_JOINT_BASE) {
+            memcpy(vi, qdi, 7 * sizeof(double));
+            vt_mulE(wi, E, pdi);
+            wi[0] *= 2; wi[1] *= 2; wi[2] *= 2;
+            continue;
+        }
+        const double *e = d->jaxis + 9 * i;
+        vt_copy3(wi, wj);
+        vt_copy3(vi, vj);
+        vt_addcross3(vi, wj, d->jsij + 3 * i);
+        for (int k = 0; k < m->body_nv[i]; k++) {
+            int ax;
+            if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) vt_axpy3(wi, qdi[k], e + 3 * ax);
+            else vt_axpy3(vi, qdi[k], e + 3 * ax);
+        }
+        vt_addcross3(vi, wi, d->jd + 3 * i);
+        vt_mulE_t(pdi, E, wi);
+        for (int k = 0; k < 4; k++) pdi[k] *= 0.5;
+    }
+}
+
+/* The non-zero blocks of S: body i's rows, the columns of its path. */
+static void fill_S(const vt_model *m, vt_data *d)
+{
+    const int ld = m->nx;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *ri = d->x + vt_xoff(i), *pi = ri + 3;
+        double Ei[12];
+        vt_euler_E(Ei, pi);
+        for (int b = i; b != 0; b = m->body_parent[b]) {
+            const int jt = m->body_joint[b];
+            const double *e = d->jaxis + 9 * b;
+            double Eb[12];
+            if (jt == VT_JOINT_BASE) vt_euler_E(Eb, d->x + vt_xoff(b) + 3);
+            for (int k = 0; k < m->body_nv[b]; k++) {
+                double *c = d->S + (size_t)(m->body_vadr[b] + k) * (size_t)ld + (size_t)vt_xoff(i);
+                double w[3] = {0, 0, 0}, rel[3];
+                int ax;
+                memset(c, 0, 7 * sizeof(double));
+                switch (vt_dof_kind(jt, k, &ax)) {
+                case VT_DOF_ROT:
+                    vt_copy3(w, e + 3 * ax);
+                    for (int r = 0; r < 3; r++) rel[r] = ri[r] - d->jpoint[3 * b + r];
+                    vt_cross3(c, w, rel);
+                    break;
+                case VT_DOF_TRANS:
+                    vt_copy3(c, e + 3 * ax);
+                    break;
+                case VT_DOF_BASE_R:
+                    c[ax] = 1.0;
+                    break;
+                default: /* VT_DOF_BASE_P */
+                    if (b == i) {
+                        c[3 + ax] = 1.0;
+                        break;
+                    }
+                    for (int r = 0; r < 3; r++) w[r] = 2.0 * Eb[3 * ax + r]; /* ω^b per ṗ^b_ax */
+                    for (int r = 0; r < 3; r++) rel[r] = ri[r] - d->x[vt_xoff(b) + r];
+                    vt_cross3(c, w, rel);
+                    break;
+                }
+                if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) {
+                    vt_mulE_t(c + 3, Ei, w);
+                    for (int r = 3; r < 7; r++) c[r] *= 0.5;
+                }
+            }
+        }
+    }
+}
+
+/* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
+ * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
+static void accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+{
+    memset(alpha, 0, 3 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i], jt = m->body_joint[i];
+        const double *qi = d->q + m->body_qadr[i], *qdi = d->qd + m->body_vadr[i];
+        const double *qddi = qdd ? qdd + m->body_vadr[i] : NULL;
+        const double *wj = d->omega + 3 * j, *wi = d->omega + 3 * i;
+        const double *alj = alpha + 3 * j;
+        const double *aj = j ? out + vt_xoff(j) : zero3;
+        const double *ri = d->x + vt_xoff(i), *pi = ri + 3;
+        double *ali = alpha + 3 * i, *ai = out + vt_xoff(i), *pddi = ai + 3;
+        double E[12];
+        vt_euler_E(E, pi);
+        if (jt == VT_JOINT_BASE) {
+            if (qddi) memcpy(ai, qddi, 7 * sizeof(double));
+            else memset(ai, 0, 7 * sizeof(double));
+            vt_mulE(ali, E, pddi); /* α = 2 E p̈ + 2 Ė ṗ, and Ė ṗ = E(ṗ) ṗ = 0 */
+            ali[0] *= 2; ali[1] *= 2; ali[2] *= 2;
+            continue;
+        }
+        const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
+        double sji[3], t[3];
+        for (int r = 0; r < 3; r++) sji[r] = d->jpoint[3 * i + r] - ri[r];
+
+        vt_copy3(ali, alj);
+        vt_copy3(ai, aj);
+        vt_addcross3(ai, alj, sij);
+        vt_cross3(t, wj, sij);
+        vt_addcross3(ai, wj, t);
+        for (int k = 0; k < m->body_nv[i]; k++) {
+            int ax;
+            const int kind = vt_dof_kind(jt, k, &ax);
+            const double *ek = e + 3 * ax;
+            const double qddk = qddi ? qddi[k] : 0.0;
+            double ed[3];
+            if (kind == VT_DOF_ROT) {
+                /* ė: the universal's second axis rides on the body, all others on the reference */
+                vt_cross3(ed, (jt == VT_JOINT_UNIVERSAL && k == 1) ? wi : wj, ek);
+                vt_axpy3(ali, qddk, ek);
+                vt_axpy3(ali, qdi[k], ed);
+            } else {
+                double edd[3];
+                const double qk = qi[jt == VT_JOINT_CYLINDRICAL ? 1 : 0];
+                vt_cross3(ed, wj, ek);
+                vt_cross3(edd, alj, ek);
+                vt_addcross3(edd, wj, ed);
+                vt_axpy3(ai, qddk, ek);
+                vt_axpy3(ai, 2.0 * qdi[k], ed);
+                vt_axpy3(ai, qk, edd);
+            }
+        }
+        double u[3];
+        vt_cross3(u, ali, sji);
+        for (int r = 0; r < 3; r++) ai[r] -= u[r];
+        vt_cross3(t, wi, sji);
+        vt_cross3(u, wi, t);
+        for (int r = 0; r < 3; r++) ai[r] -= u[r];
+        vt_mulE_t(pddi, E, ali);
+        const double w2 = vt_dot3(wi, wi);
+        for (int r = 0; r < 4; r++) pddi[r] = 0.5 * pddi[r] - 0.25 * w2 * pi[r];
+    }
+}
+
+vt_status vt_kinematics(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_kinematics");
+    if (st) return st;
+    st = check_state(m, d);
+    if (st) return st;
+    positions(m, d);
+    velocities(m, d);
+    fill_S(m, d);
+    accelerations(m, d, NULL, d->Sdqd, d->work);
+    return VT_OK;
+}

@@ -1,0 +1,348 @@
+/* The model: bodies, joints and the tree's reference (path) structure.
+ *
+ * Body i (1..n) has Cartesian coordinates x^i = [r^i; p^i] (1) and relative coordinates q^i
+ * of its joint to its reference body j < i (Table 1). The coordinates per joint kind:
+ *   base          q = [r; p] (7), q̇ = [ṙ; ṗ] (7)     (reference must be the ground)
+ *   revolute      θ about e1                          (1, 1)
+ *   universal     θ1 about e1 (on j), θ2 about e2 (on i) (2, 2), e1 ⟂ e2
+ *   spherical     relative Euler parameters (4), relative angular velocity in j's axes (3)
+ *   translational s along e1                          (1, 1)
+ *   cylindrical   θ about e1, then s along e1          (2, 2)
+ * The path of body i is the list of rates of the joints between the ground and i: the
+ * columns of S that are non-zero in body i's rows (S is block lower triangular in tree order,
+ * the paper's "reference matrix").
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+
+#include "internal.h"
+
+struct vt_builder {
+    vt_model_def def;
+    vt_body_def *bodies;  /* validated and normalized definitions (cap) */
+    int n, cap;
+    char message[256];
+};
+
+static const int joint_nq[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 4, 1, 2};
+static const int joint_nv[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 3, 1, 2};
+
+const char *vt_status_string(vt_status status)
+{
+    switch (status) {
+    case VT_OK: return "ok";
+    case VT_ERR_NULL: return "a required pointer is NULL";
+    case VT_ERR_NO_MEMORY: return "out of memory";
+    case VT_ERR_NONFINITE: return "NaN or Inf in the input";
+    case VT_ERR_MASS: return "mass must be positive";
+    case VT_ERR_INERTIA_ASYMMETRIC: return "inertia matrix not symmetric";
+    case VT_ERR_INERTIA_NOT_PSD: return "inertia matrix not positive semi-definite";
+    case VT_ERR_INERTIA_TRIANGLE: return "principal moments of inertia violate the triangle inequality";
+    case VT_ERR_AXIS_ZERO: return "joint axis of zero length";
+    case VT_ERR_AXES_NOT_PERPENDICULAR: return "universal joint axes not perpendicular";
+    case VT_ERR_PARENT: return "reference body must be an earlier body (the ground for a base body)";
+    case VT_ERR_JOINT_TYPE: return "unknown joint type";
+    case VT_ERR_TOO_MANY_BODIES: return "too many bodies";
+    case VT_ERR_QUATERNION: return "Euler parameters of zero norm";
+    case VT_ERR_EMPTY_MODEL: return "the model has no moving body";
+    case VT_ERR_BAD_INDEX: return "index out of range";
+    case VT_ERR_MODEL_MISMATCH: return "data struct belongs to another model";
+    case VT_ERR_LAPACK: return "LAPACK reported an error";
+    }
+    return "unknown status";
+}
+
+vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
+{
+    if (buf) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(buf, 256, fmt, ap);
+        va_end(ap);
+    }
+    return status;
+}
+
+int vt_dof_kind(int joint_type, int k, int *axis)
+{
+    *axis = 0;
+    switch (joint_type) {
+    case VT_JOINT_BASE: *axis = k < 3 ? k : k - 3; return k < 3 ? VT_DOF_BASE_R : VT_DOF_BASE_P;
+    case VT_JOINT_REVOLUTE: return VT_DOF_ROT;
+    case VT_JOINT_UNIVERSAL: *axis = k; return VT_DOF_ROT;
+    case VT_JOINT_SPHERICAL: *axis = k; return VT_DOF_ROT;
+    case VT_JOINT_TRANSLATIONAL: return VT_DOF_TRANS;
+    default: /* cylindrical: θ then s, both along axis 0 */
+        return k == 0 ? VT_DOF_ROT : VT_DOF_TRANS;
+    }
+}
+
+vt_model_def vt_default_model_def(void)
+{
+    vt_model_def d;
+    d.gravity[0] = 0.0;
+    d.gravity[1] = -9.81;
+    d.gravity[2] = 0.0;
+    return d;
+}
+
+vt_body_def vt_default_body_def(void)
+{
+    vt_body_def d;
+    memset(&d, 0, sizeof d);
+    d.parent = 0;
+    d.joint = VT_JOINT_REVOLUTE;
+    d.mass = 1.0;
+    d.axis1[2] = 1.0;
+    d.axis2[0] = 1.0;
+    d.orientation[0] = 1.0;
+    return d;
+}
+
+vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def)
+{
+    if (!builder) return VT_ERR_NULL;
+    *builder = NULL;
+    vt_model_def md = def ? *def : vt_default_model_def();
+    if (!vt_all_finite(md.gravity, 3)) return VT_ERR_NONFINITE;
+    vt_builder *b = calloc(1, sizeof *b);
+    if (!b) return VT_ERR_NO_MEMORY;
+    b->def = md;
+    *builder = b;
+    return VT_OK;
+}
+
+const char *vt_builder_message(const vt_builder *builder)
+{
+    return builder ? builder->message : "builder is NULL";
+}
+
+void vt_builder_free(vt_builder *builder)
+{
+    if (!builder) return;
+    free(builder->bodies);
+    free(builder);
+}
+
+/* Normalizes a in place; refuses a length below 1e-12. */
+static int normalize(double *a, int n)
+{
+    double s = 0.0;
+    for (int k = 0; k < n; k++) s += a[k] * a[k];
+    s = sqrt(s);
+    if (!(s > 1e-12)) return 0;
+    for (int k = 0; k < n; k++) a[k] /= s;
+    return 1;
+}
+
+/* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two. Zero is a
+ * point mass and allowed. Principal moments from LAPACK's dsyev. */
+static vt_status check_inertia(char *msg, int id, const double J[9])
+{
+    const double scale = fabs(J[0]) + fabs(J[4]) + fabs(J[8]) + fabs(J[1]) + fabs(J[2]) + fabs(J[5]);
+    const double tol = 1e-12 * scale;
+    if (fabs(J[1] - J[3]) > tol || fabs(J[2] - J[6]) > tol || fabs(J[5] - J[7]) > tol)
+        return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
+                       "body %d: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",
+                       id, J[3], J[1], J[6], J[2], J[7], J[5]);
+    if (scale == 0.0) return VT_OK;
+    double a[9], w[3], work[16];
+    memcpy(a, J, sizeof a);
+    const int n = 3, lwork = 16;
+    int info = 0;
+    dsyev_("N", "L", &n, a, &n, w, work, &lwork, &info, 1, 1);
+    if (info != 0)
+        return vt_fail(msg, VT_ERR_LAPACK, "body %d: dsyev info %d on the inertia matrix", id, info);
+    if (w[0] < -tol)
+        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "body %d: principal moment %g < 0", id, w[0]);
+    if (w[0] + w[1] < w[2] - tol)
+        return vt_fail(msg, VT_ERR_INERTIA_TRIANGLE,
+                       "body %d: principal moments %g + %g < %g", id, w[0], w[1], w[2]);
+    return VT_OK;
+}
+
+static vt_status validate_body(char *msg, int id, vt_body_def *d)
+{
+    if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
+        return vt_fail(msg, VT_ERR_JOINT_TYPE, "body %d: joint type %d unknown", id, (int)d->joint);
+    if (d->parent < 0 || d->parent >= id)
+        return vt_fail(msg, VT_ERR_PARENT, "body %d: reference body %d is not an earlier body",
+                       id, d->parent);
+    if (d->joint == VT_JOINT_BASE && d->parent != 0)
+        return vt_fail(msg, VT_ERR_PARENT, "body %d: a base body must have the ground (0) as reference, not %d",
+                       id, d->parent);
+    if (!isfinite(d->mass) || !vt_all_finite(d->inertia, 9) || !vt_all_finite(d->joint_parent, 3) ||
+        !vt_all_finite(d->joint_child, 3) || !vt_all_finite(d->axis1, 3) ||
+        !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
+        return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN or Inf in its definition", id);
+    if (!(d->mass > 0.0))
+        return vt_fail(msg, VT_ERR_MASS, "body %d: mass %g kg is not positive", id, d->mass);
+    vt_status st = check_inertia(msg, id, d->inertia);
+    if (st) return st;
+    const int uses_axis1 = d->joint != VT_JOINT_BASE && d->joint != VT_JOINT_SPHERICAL;
+    if (uses_axis1 && !normalize(d->axis1, 3))
+        return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis1 has zero length", id);
+    if (d->joint == VT_JOINT_UNIVERSAL) {
+        if (!normalize(d->axis2, 3))
+            return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis2 has zero length", id);
+        const double c = vt_dot3(d->axis1, d->axis2);
+        if (fabs(c) > 1e-9)
+            return vt_fail(msg, VT_ERR_AXES_NOT_PERPENDICULAR,
+                           "body %d: universal axes not perpendicular (cosine %g)", id, c);
+    }
+    if (d->joint == VT_JOINT_BASE) {
+        d->orientation[0] = 1.0;
+        d->orientation[1] = d->orientation[2] = d->orientation[3] = 0.0;
+    } else if (!normalize(d->orientation, 4)) {
+        return vt_fail(msg, VT_ERR_QUATERNION, "body %d: orientation has zero norm", id);
+    }
+    return VT_OK;
+}
+
+int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
+{
+    if (!b) return VT_ERR_NULL;
+    if (!def) return vt_fail(b->message, VT_ERR_NULL, "body definition is NULL");
+    const int id = b->n + 1;
+    if (id > VT_MAX_BODIES)
+        return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "body %d: at most %d bodies", id, VT_MAX_BODIES);
+    vt_body_def d = *def;
+    vt_status st = validate_body(b->message, id, &d);
+    if (st) return st;
+    if (b->n == b->cap) {
+        int cap = b->cap ? 2 * b->cap : 8;
+        vt_body_def *nb = realloc(b->bodies, (size_t)cap * sizeof *nb);
+        if (!nb) return vt_fail(b->message, VT_ERR_NO_MEMORY, "body %d: out of memory", id);
+        b->bodies = nb;
+        b->cap = cap;
+    }
+    b->bodies[b->n++] = d;
+    b->message[0] = '\0';
+    return id;
+}
+
+void vt_model_free(vt_model *m)
+{
+    free(m); /* one block */
+}
+
+/* Carves aligned arrays from one block; with base == NULL only counts the bytes. */
+typedef struct { char *base; size_t used; } arena;
+static void *take(arena *a, size_t bytes)
+{
+    a->used = (a->used + 15u) & ~(size_t)15u;
+    void *p = a->base ? a->base + a->used : NULL;
+    a->used += bytes;
+    return p;
+}
+
+static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath)
+{
+    const size_t nb = (size_t)n + 1;
+    m->body_parent = take(a, nb * sizeof(int));
+    m->body_joint = take(a, nb * sizeof(int));
+    m->body_qadr = take(a, nb * sizeof(int));
+    m->body_nq = take(a, nb * sizeof(int));
+    m->body_vadr = take(a, nb * sizeof(int));
+    m->body_nv = take(a, nb * sizeof(int));
+    m->body_mass = take(a, nb * sizeof(double));
+    m->body_inertia = take(a, 9 * nb * sizeof(double));
+    m->body_jpar = take(a, 3 * nb * sizeof(double));
+    m->body_jchild = take(a, 3 * nb * sizeof(double));
+    m->body_axis = take(a, 6 * nb * sizeof(double));
+    m->body_quat0 = take(a, 4 * nb * sizeof(double));
+    m->body_pathadr = take(a, nb * sizeof(int));
+    m->body_pathnum = take(a, nb * sizeof(int));
+    m->path_dof = take(a, (size_t)(npath ? npath : 1) * sizeof(int));
+    m->dof_body = take(a, (size_t)nv * sizeof(int));
+    m->q0 = take(a, (size_t)nq * sizeof(double));
+}
+
+vt_status vt_builder_build(vt_model **model, vt_builder *b)
+{
+    if (!model) return VT_ERR_NULL;
+    *model = NULL;
+    if (!b) return VT_ERR_NULL;
+    const int n = b->n;
+    if (n == 0) return vt_fail(b->message, VT_ERR_EMPTY_MODEL, "the model has no moving body");
+
+    /* sizes: coordinates and path lengths */
+    int nq = 0, nv = 0, npath = 0;
+    int *depth_nv = calloc((size_t)n + 1, sizeof(int)); /* rates on the path to each body */
+    if (!depth_nv) return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory");
+    for (int i = 1; i <= n; i++) {
+        const vt_body_def *d = &b->bodies[i - 1];
+        nq += joint_nq[d->joint];
+        nv += joint_nv[d->joint];
+        depth_nv[i] = depth_nv[d->parent] + joint_nv[d->joint];
+        npath += depth_nv[i];
+    }
+
+    arena a = {NULL, sizeof(vt_model)};
+    vt_model tmp;
+    layout_model(&a, &tmp, n, nv, nq, npath);
+    char *block = calloc(1, a.used);
+    if (!block) {
+        free(depth_nv);
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory (%zu bytes)", a.used);
+    }
+    vt_model *m = (vt_model *)block;
+    a.base = block;
+    a.used = sizeof(vt_model);
+    layout_model(&a, m, n, nv, nq, npath);
+
+    m->nbody = n;
+    m->nq = nq;
+    m->nv = nv;
+    m->nx = 7 * n;
+    m->npath = npath;
+    memcpy(m->gravity, b->def.gravity, sizeof m->gravity);
+
+    m->body_parent[0] = -1;
+    m->body_joint[0] = -1;
+    m->body_quat0[0] = 1.0;
+    int qadr = 0, vadr = 0, padr = 0;
+    m->maxpath = 0;
+    for (int i = 1; i <= n; i++) {
+        const vt_body_def *d = &b->bodies[i - 1];
+        const int jt = d->joint;
+        m->body_parent[i] = d->parent;
+        m->body_joint[i] = jt;
+        m->body_qadr[i] = qadr;
+        m->body_nq[i] = joint_nq[jt];
+        m->body_vadr[i] = vadr;
+        m->body_nv[i] = joint_nv[jt];
+        m->body_mass[i] = d->mass;
+        memcpy(m->body_inertia + 9 * i, d->inertia, 9 * sizeof(double));
+        memcpy(m->body_jpar + 3 * i, d->joint_parent, 3 * sizeof(double));
+        memcpy(m->body_jchild + 3 * i, d->joint_child, 3 * sizeof(double));
+        memcpy(m->body_axis + 6 * i, d->axis1, 3 * sizeof(double));
+        memcpy(m->body_axis + 6 * i + 3, d->axis2, 3 * sizeof(double));
+        memcpy(m->body_quat0 + 4 * i, d->orientation, 4 * sizeof(double));
+        for (int k = 0; k < joint_nv[jt]; k++) m->dof_body[vadr + k] = i;
+
+        /* reference configuration: zero angles and translations, unit Euler parameters */
+        if (jt == VT_JOINT_BASE) m->q0[qadr + 3] = 1.0;
+        if (jt == VT_JOINT_SPHERICAL) m->q0[qadr] = 1.0;
+
+        /* path: the parent's path, then this joint's own rates (ascending, since every
+         * ancestor's rates come before this body's) */
+        const int j = d->parent;
+        m->body_pathadr[i] = padr;
+        m->body_pathnum[i] = depth_nv[i];
+        if (j > 0) {
+            memcpy(m->path_dof + padr, m->path_dof + m->body_pathadr[j],
+                   (size_t)m->body_pathnum[j] * sizeof(int));
+            padr += m->body_pathnum[j];
+        }
+        for (int k = 0; k < joint_nv[jt]; k++) m->path_dof[padr++] = vadr + k;
+        if (depth_nv[i] > m->maxpath) m->maxpath = depth_nv[i];
+
+        qadr += joint_nq[jt];
+        vadr += joint_nv[jt];
+    }
+    free(depth_nv);
+    *model = m;
+    return VT_OK;
+}

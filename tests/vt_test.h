@@ -1,0 +1,81 @@
+/* Shared by the CMocka test files: includes, a double compare, and quantities computed
+ * independently of the library (energies from body velocities, dense products). */
+#ifndef VT_TEST_H
+#define VT_TEST_H
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "scenes.h"
+
+/* CMocka 1.1.5 has no floating-point compare: this one prints both values. */
+#define assert_near(a, b, tol)                                                                 \
+    do {                                                                                       \
+        const double a_ = (a), b_ = (b), t_ = (tol);                                           \
+        if (!(fabs(a_ - b_) <= t_))                                                            \
+            fail_msg("%s = %.17g, %s = %.17g: |diff| %.3g > %.3g", #a, a_, #b, b_,             \
+                     fabs(a_ - b_), t_);                                                       \
+    } while (0)
+
+#define assert_ok(call)                                                                        \
+    do {                                                                                       \
+        const vt_status s_ = (call);                                                           \
+        if (s_ != VT_OK) fail_msg("%s -> %d (%s)", #call, (int)s_, vt_status_string(s_));      \
+    } while (0)
+
+/* LAPACK, for independent checks */
+void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
+
+static inline double vt_test_maxabs(const double *a, int n)
+{
+    double s = 0.0;
+    for (int k = 0; k < n; k++)
+        if (fabs(a[k]) > s) s = fabs(a[k]);
+    return s;
+}
+
+/* Σ ½ m v·v + ½ ω·(A J' A^T) ω from the bodies' own velocities (d->xd, d->omega). */
+static inline double vt_test_kinetic_energy(const vt_model *m, const vt_data *d)
+{
+    double T = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *v = d->xd + 7 * (i - 1), *w = d->omega + 3 * i, *A = d->A + 9 * i;
+        const double *J = m->body_inertia + 9 * i;
+        double wb[3], Jwb[3];
+        for (int r = 0; r < 3; r++) wb[r] = A[3 * r] * w[0] + A[3 * r + 1] * w[1] + A[3 * r + 2] * w[2];
+        for (int r = 0; r < 3; r++) Jwb[r] = J[r] * wb[0] + J[r + 3] * wb[1] + J[r + 6] * wb[2];
+        T += 0.5 * m->body_mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+             0.5 * (wb[0] * Jwb[0] + wb[1] * Jwb[1] + wb[2] * Jwb[2]);
+    }
+    return T;
+}
+
+/* V = −Σ m g·r */
+static inline double vt_test_potential_energy(const vt_model *m, const vt_data *d)
+{
+    double V = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *r = d->x + 7 * (i - 1);
+        V -= m->body_mass[i] * (m->gravity[0] * r[0] + m->gravity[1] * r[1] + m->gravity[2] * r[2]);
+    }
+    return V;
+}
+
+/* y = S v (dense, every entry) */
+static inline void vt_test_S_times(double *y, const vt_model *m, const vt_data *d, const double *v)
+{
+    for (int r = 0; r < m->nx; r++) {
+        double s = 0.0;
+        for (int c = 0; c < m->nv; c++) s += d->S[r + (size_t)c * (size_t)m->nx] * v[c];
+        y[r] = s;
+    }
+}
+
+#endif
