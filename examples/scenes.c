@@ -92,11 +92,13 @@ static void random_rotation(double A[9], uint64_t *s)
     vt_euler_A(A, p);
 }
 
-vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, int with_base)
+vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, unsigned kinds)
 {
-    static const vt_joint_type kinds[6] = {VT_JOINT_BASE, VT_JOINT_REVOLUTE, VT_JOINT_UNIVERSAL,
-                                           VT_JOINT_SPHERICAL, VT_JOINT_TRANSLATIONAL,
-                                           VT_JOINT_CYLINDRICAL};
+    vt_joint_type allowed[VT_JOINT_TYPE_COUNT];
+    int nallowed = 0;
+    for (int k = 0; k < VT_JOINT_TYPE_COUNT; k++)
+        if (kinds & (1u << k)) allowed[nallowed++] = (vt_joint_type)k;
+    if (nallowed == 0) return VT_ERR_JOINT_TYPE;
     vt_builder *b;
     vt_status st = vt_builder_create(&b, NULL);
     if (st) return st;
@@ -104,7 +106,7 @@ vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, int with_
     for (int i = 1; i <= n && st == VT_OK; i++) {
         vt_body_def d = vt_default_body_def();
         /* cycle through the kinds so every one appears; base bodies hang from the ground */
-        d.joint = with_base ? kinds[(i - 1) % 6] : kinds[1 + (i - 1) % 5];
+        d.joint = allowed[(i - 1) % nallowed];
         d.parent = d.joint == VT_JOINT_BASE ? 0 : (int)(vt_rand_uniform(&s, 0.0, 1.0) * i) % i;
         d.mass = vt_rand_uniform(&s, 0.5, 3.0);
         /* principal moments (b+c, a+c, a+b) satisfy the triangle inequality */

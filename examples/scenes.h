@@ -18,10 +18,15 @@ vt_status vt_scene_double_link(vt_model **model);
  * whose axes cycle x, y, z. */
 vt_status vt_scene_chain(vt_model **model, int n);
 
-/* A random tree of n bodies that uses every joint kind (base bodies hang from the ground;
- * with_base = 0 leaves them out): random parents, masses, principal inertias, joint points,
- * axes and orientations at q = 0. Deterministic in seed. */
-vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, int with_base);
+/* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
+ * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
+ * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */
+#define VT_SCENE_ALL_JOINTS 0x3Fu
+#define VT_SCENE_NO_BASE (VT_SCENE_ALL_JOINTS & ~(1u << VT_JOINT_BASE))
+/* joints whose coordinates are all scalar (q̇ is the time derivative of q) */
+#define VT_SCENE_SCALAR_JOINTS ((1u << VT_JOINT_REVOLUTE) | (1u << VT_JOINT_UNIVERSAL) | \
+                                (1u << VT_JOINT_TRANSLATIONAL) | (1u << VT_JOINT_CYLINDRICAL))
+vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, unsigned kinds);
 
 /* A random state: angles in [−π, π], translations in [−1, 1], random unit Euler parameters,
  * rates in [−2, 2] (base bodies: ṗ = ½ E^T ω, tangent to the unit sphere). */

@@ -6,7 +6,7 @@ static void test_create_reset_mismatch(void **state)
     (void)state;
     vt_model *m1 = NULL, *m2 = NULL;
     vt_data *d = NULL;
-    assert_ok(vt_scene_random_tree(&m1, 7, 8, 1));
+    assert_ok(vt_scene_random_tree(&m1, 7, 8, VT_SCENE_ALL_JOINTS));
     assert_ok(vt_scene_double_link(&m2));
     assert_ok(vt_data_create(&d, m1));
     for (int k = 0; k < m1->nq; k++) assert_near(d->q[k], m1->q0[k], 0.0);
@@ -67,7 +67,7 @@ static void test_integrate_q(void **state)
     (void)state;
     vt_model *m = NULL;
     vt_data *d = NULL;
-    assert_ok(vt_scene_random_tree(&m, 11, 12, 1));
+    assert_ok(vt_scene_random_tree(&m, 11, 12, VT_SCENE_ALL_JOINTS));
     assert_ok(vt_data_create(&d, m));
     uint64_t s = 9;
     vt_scene_random_state(m, d, &s);

@@ -9,9 +9,9 @@ typedef struct {
     double *q, *v, *qa, *qb, *xa, *xb, *Sa, *Sb, *y;
 } fixture;
 
-static void setup(fixture *f, uint64_t seed, int n, int with_base)
+static void setup(fixture *f, uint64_t seed, int n, unsigned kinds)
 {
-    assert_ok(vt_scene_random_tree(&f->m, seed, n, with_base));
+    assert_ok(vt_scene_random_tree(&f->m, seed, n, kinds));
     assert_ok(vt_data_create(&f->d, f->m));
     const size_t nq = (size_t)f->m->nq, nv = (size_t)f->m->nv, nx = (size_t)f->m->nx;
     f->q = malloc(nq * sizeof(double));  f->v = malloc(nv * sizeof(double));
@@ -62,10 +62,10 @@ static void check_S_along(fixture *f, const double *v, double tol)
     for (int r = 0; r < m->nx; r++) assert_near((f->xa[r] - f->xb[r]) / (2 * h), f->y[r], tol);
 }
 
-static void run_S_fd(uint64_t seed, int n, int with_base)
+static void run_S_fd(uint64_t seed, int n, unsigned kinds)
 {
     fixture f;
-    setup(&f, seed, n, with_base);
+    setup(&f, seed, n, kinds);
     const vt_model *m = f.m;
     double *e = calloc((size_t)m->nv, sizeof(double));
     /* column by column, except a base body's ṗ columns, whose normal part is not a motion */
@@ -84,8 +84,8 @@ static void run_S_fd(uint64_t seed, int n, int with_base)
 static void test_S_finite_differences(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 4; seed++) run_S_fd(seed, 12, 1);
-    for (uint64_t seed = 5; seed <= 7; seed++) run_S_fd(seed, 10, 0);
+    for (uint64_t seed = 1; seed <= 4; seed++) run_S_fd(seed, 12, VT_SCENE_ALL_JOINTS);
+    for (uint64_t seed = 5; seed <= 7; seed++) run_S_fd(seed, 10, VT_SCENE_NO_BASE);
 }
 
 static void test_Sdot_qdot_finite_differences(void **state)
@@ -93,7 +93,7 @@ static void test_Sdot_qdot_finite_differences(void **state)
     (void)state;
     for (uint64_t seed = 1; seed <= 6; seed++) {
         fixture f;
-        setup(&f, seed, 12, seed % 2);
+        setup(&f, seed, 12, seed % 2 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE);
         const vt_model *m = f.m;
         const double h = 1e-6;
         assert_ok(vt_integrate_q(f.qa, m, f.q, f.v, h));
@@ -118,7 +118,7 @@ static void test_velocities_equal_S_qdot(void **state)
     (void)state;
     for (uint64_t seed = 1; seed <= 6; seed++) {
         fixture f;
-        setup(&f, seed, 15, 1);
+        setup(&f, seed, 15, VT_SCENE_ALL_JOINTS);
         const vt_model *m = f.m;
         eval(&f, f.q, NULL, NULL);
         vt_test_S_times(f.y, m, f.d, f.v);
@@ -142,7 +142,7 @@ static void test_joint_closure(void **state)
 {
     (void)state;
     fixture f;
-    setup(&f, 3, 18, 1);
+    setup(&f, 3, 18, VT_SCENE_ALL_JOINTS);
     const vt_model *m = f.m;
     vt_data *d = f.d;
     eval(&f, f.q, NULL, NULL);
@@ -183,7 +183,7 @@ static void test_sparsity_follows_paths(void **state)
 {
     (void)state;
     fixture f;
-    setup(&f, 4, 14, 1);
+    setup(&f, 4, 14, VT_SCENE_ALL_JOINTS);
     const vt_model *m = f.m;
     eval(&f, f.q, NULL, NULL);
     for (int i = 1; i <= m->nbody; i++)
@@ -200,7 +200,7 @@ static void test_bad_state(void **state)
 {
     (void)state;
     fixture f;
-    setup(&f, 2, 8, 1);
+    setup(&f, 2, 8, VT_SCENE_ALL_JOINTS);
     const vt_model *m = f.m;
     f.d->q[m->nq - 1] = NAN;
     assert_int_equal(vt_kinematics(m, f.d), VT_ERR_NONFINITE);

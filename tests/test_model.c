@@ -144,7 +144,7 @@ static void test_sizes_and_paths(void **state)
     static const int nq[6] = {7, 1, 2, 4, 1, 2}, nv[6] = {7, 1, 2, 3, 1, 2};
     for (uint64_t seed = 1; seed <= 5; seed++) {
         vt_model *m = NULL;
-        assert_ok(vt_scene_random_tree(&m, seed, 12, 1));
+        assert_ok(vt_scene_random_tree(&m, seed, 12, VT_SCENE_ALL_JOINTS));
         int sq = 0, sv = 0;
         for (int i = 1; i <= m->nbody; i++) {
             const int jt = m->body_joint[i];
