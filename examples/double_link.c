@@ -26,7 +26,7 @@ int main(int argc, char **argv)
     const double theta = deg * 3.14159265358979323846 / 180.0;
     vt_model *m;
     vt_data *d;
-    vt_status st = vt_scene_double_link(&m);
+    vt_status st = vt_scene_double_link(&m, 0);
     if (st) {
         fprintf(stderr, "double_link: %s\n", vt_status_string(st));
         return 1;

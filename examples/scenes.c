@@ -47,7 +47,7 @@ static void rod_inertia(double J[9], double mass, double length)
     J[4] = J[8] = mass * length * length / 12.0;
 }
 
-vt_status vt_scene_double_link(vt_model **model)
+vt_status vt_scene_double_link(vt_model **model, int lock)
 {
     vt_builder *b;
     vt_status st = vt_builder_create(&b, NULL);
@@ -61,6 +61,11 @@ vt_status vt_scene_double_link(vt_model **model)
         link.parent = id;
         link.joint_parent[0] = 0.5 * VT_DL_LENGTH;
         id = vt_builder_add_body(b, &link);
+    }
+    if (id > 0 && lock) {
+        vt_drive_def drive = vt_default_drive_def();
+        drive.body = 2; /* q2 = 0 */
+        id = vt_builder_add_drive(b, &drive);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }

@@ -9,10 +9,11 @@
 /* The paper's double link (Fig. 4): two uniform slender links, 2 m and 100 kg each, joined
  * to the ground and to each other by revolute joints about z; body frames at the links'
  * centres with x along the link; at q = 0 both lie along +x from the origin; y up,
- * gravity (0, −9.81, 0). The angle fallen below x is θ = −q1. */
+ * gravity (0, −9.81, 0). The angle fallen below x is θ = −q1. With lock != 0, drive 0 keeps
+ * joint 2 at q2 = 0 (the paper's "q² = const.") and the pair falls as one 4 m rod. */
 #define VT_DL_LENGTH 2.0
 #define VT_DL_MASS 100.0
-vt_status vt_scene_double_link(vt_model **model);
+vt_status vt_scene_double_link(vt_model **model, int lock);
 
 /* A spatial serial chain of n uniform rods (1 kg, 0.5 m along x) joined by revolute joints
  * whose axes cycle x, y, z. */

@@ -67,6 +67,34 @@ vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
 vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
                          const double *v, double h);
 
+/* ---- time functions (src/functions.c) ---------------------------------------------- */
+
+vt_function vt_function_constant(double c);
+/// c[0] + c[1] t + ... + c[ncoef-1] t^(ncoef-1); ncoef in 1..VT_POLY_MAX (checked when a drive
+/// using it is added).
+vt_function vt_function_polynomial(int ncoef, const double *c);
+/// a + b sin(omega t + phase)
+vt_function vt_function_sine(double a, double b, double omega, double phase);
+/// f, f', f'' from callback(t, out, user)
+vt_function vt_function_user(vt_function_callback callback, void *user);
+/// out = [f(t), f'(t), f''(t)], exact for the built-in kinds.
+/// Statuses: VT_ERR_NULL, VT_ERR_BAD_DRIVE (malformed function), VT_ERR_CALLBACK,
+/// VT_ERR_NONFINITE (a value that is not finite). out is untouched on failure.
+vt_status vt_function_eval(double out[3], const vt_function *f, double t);
+
+/* ---- drives and cut joints (src/model.c) -------------------------------------------- */
+
+/// Defaults: joint drive of body 1's first rate, constant 0; axis z; identity orientation.
+vt_drive_def vt_default_drive_def(void);
+/// Defaults: revolute cut joint between the ground (a) and body 1 (b), at the origins, axis z.
+vt_cut_joint_def vt_default_cut_joint_def(void);
+/// Validates and adds a drive on bodies already added. Returns the drive's index (0, 1, ...)
+/// or a negative vt_status (VT_ERR_BAD_DRIVE, VT_ERR_BAD_INDEX, VT_ERR_NONFINITE, ...).
+int vt_builder_add_drive(vt_builder *builder, const vt_drive_def *def);
+/// Validates and adds a cut joint between bodies already added. Returns its index or a
+/// negative vt_status (VT_ERR_BAD_CUT_JOINT, VT_ERR_BAD_INDEX, VT_ERR_AXIS_ZERO, ...).
+int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);
+
 /* ---- stages: each reads the model and fills its part of the data ------------------ */
 
 /// From d->q and d->qd: x, A, ω, joint axes and points, S (15)-(18), ẋ = S q̇ and Ṡq̇.
@@ -81,6 +109,29 @@ vt_status vt_mass_matrix(const vt_model *model, vt_data *data);
 
 /// F (gravity and d->xfrc, (7)), h and Q = S^T [F - M Ṡq̇ + h] (4). Needs vt_kinematics().
 vt_status vt_forces(const vt_model *model, vt_data *data);
+
+/// Φ, Φ_x, Φ_q = Φ_x S (22), Φ_t and γ (23) of every constraint row at d->time.
+/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value).
+vt_status vt_constraints(const vt_model *model, vt_data *data);
+
+/// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, with LAPACK's symmetric
+/// indefinite (Bunch–Kaufman) factorization of the equilibrated matrix; d->rcond is its
+/// condition estimate. Needs vt_mass_matrix(), vt_forces(), vt_constraints().
+/// Statuses: VT_ERR_DEPENDENT_CONSTRAINTS (the message names the rows), VT_ERR_SINGULAR,
+/// VT_ERR_LAPACK. On failure qdd and lambda are left as they were.
+vt_status vt_solve(const vt_model *model, vt_data *data);
+
+/// ẍ, the drives' efforts (24) and the joint reactions (25)-(28), inward from the tree's ends,
+/// cut joints from their multipliers. Needs vt_solve().
+vt_status vt_reactions(const vt_model *model, vt_data *data);
+
+/// The whole instant: vt_kinematics, vt_mass_matrix, vt_forces, vt_constraints, vt_solve,
+/// vt_reactions (R is left to vt_inverse_transform, which only (14) needs).
+vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
+
+/// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
+/// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24). Needs vt_solve().
+vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
 
 /* ---- force transforms ---------------------------------------------------------------- */
 

@@ -17,15 +17,35 @@ static void *take(char *base, size_t *used, size_t bytes)
 }
 
 /* Scratch used by the stages, the largest of: gathered S block and M S block
- * (2 x 7 x maxpath) with the path block of M* (maxpath²); accelerations α (3 (n+1));
+ * (2 x 7 x maxpath) with the path block of M* (maxpath²); accelerations α with two wrenches
+ * per body (15 (n+1));
  * S^T products (8 maxpath + 8) with a Cartesian vector (7n). */
 static size_t work_size(const vt_model *m)
 {
     const size_t k = (size_t)m->maxpath, nb = (size_t)m->nbody + 1, nx = (size_t)m->nx;
     size_t w = 14 * k + k * k;
-    if (3 * nb > w) w = 3 * nb;
+    if (15 * nb > w) w = 15 * nb; /* reactions: α, applied and children's wrenches */
     if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
     return w;
+}
+
+/* LAPACK workspace of the solve, from LAPACK's own workspace queries: dsytrf on the
+ * augmented matrix, dgeqp3 on Φ_q^T (nv x nc) plus its copy and τ, and 3 N for dsyequb,
+ * dsycon and dlansy. */
+static int lapack_work_size(const vt_model *m)
+{
+    const int N = m->nv + m->nc, nv = m->nv, nc = m->nc;
+    int info = 0, lw = -1, need = 3 * N;
+    double q = 0.0, dummy = 0.0;
+    int idummy = 0;
+    dsytrf_("L", &N, &dummy, &N, &idummy, &q, &lw, &info, 1);
+    if (info == 0 && (int)q > need) need = (int)q;
+    if (nc > 0) {
+        dgeqp3_(&nv, &nc, &dummy, &nv, &idummy, &dummy, &q, &lw, &info);
+        const int qr = (info == 0 ? (int)q : 3 * nc + 1) + nv * nc + nc;
+        if (qr > need) need = qr;
+    }
+    return need + 1;
 }
 
 static size_t layout(const vt_model *m, vt_data *d, char *base)
@@ -51,8 +71,35 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->F = take(base, &used, nx * sizeof(double));
     d->h = take(base, &used, nx * sizeof(double));
     d->Q = take(base, &used, nv * sizeof(double));
+    const size_t nc = (size_t)m->nc, nd = (size_t)m->ndrive, nk = (size_t)m->ncut, N = nv + nc;
+    d->Phi = take(base, &used, nc * sizeof(double));
+    d->Phix = take(base, &used, 14 * nc * sizeof(double));
+    d->Phiq = take(base, &used, nc * nv * sizeof(double));
+    d->Phit = take(base, &used, nc * sizeof(double));
+    d->gamma = take(base, &used, nc * sizeof(double));
+    d->qdd = take(base, &used, nv * sizeof(double));
+    d->lambda = take(base, &used, nc * sizeof(double));
+    d->xdd = take(base, &used, nx * sizeof(double));
+    d->drive_effort = take(base, &used, nd * sizeof(double));
+    d->drive_force = take(base, &used, 3 * nd * sizeof(double));
+    d->drive_moment = take(base, &used, 3 * nd * sizeof(double));
+    d->jnt_force = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_moment = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_force_body = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_moment_body = take(base, &used, 3 * nb * sizeof(double));
+    d->cut_force = take(base, &used, 3 * nk * sizeof(double));
+    d->cut_moment = take(base, &used, 3 * nk * sizeof(double));
+    d->cut_force_body = take(base, &used, 3 * nk * sizeof(double));
+    d->cut_moment_body = take(base, &used, 3 * nk * sizeof(double));
     d->nwork = work_size(m);
     d->work = take(base, &used, d->nwork * sizeof(double));
+    d->kkt = take(base, &used, N * N * sizeof(double));
+    d->kkt_rhs = take(base, &used, N * sizeof(double));
+    d->kkt_scale = take(base, &used, N * sizeof(double));
+    d->nlwork = lapack_work_size(m);
+    d->lwork = take(base, &used, (size_t)d->nlwork * sizeof(double));
+    d->ipiv = take(base, &used, N * sizeof(int));
+    d->liwork = take(base, &used, N * sizeof(int));
     return used;
 }
 

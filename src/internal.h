@@ -103,4 +103,45 @@ void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
 /* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (mass.c) */
 void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 
+/* Kinematics (kinematics.c): ẍ = S q̈ + Ṡ q̇ into out (7n) (q̈ = 0 if qdd is NULL), with the
+ * angular accelerations into alpha (3 x (nbody+1)). */
+void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
+
+/* Row of R (Table 1) for rate `dof`: its entries on x^j (rj, 7) and on x^i (ri, 7). */
+void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double ri[7]);
+
+/* Validates a time function (functions.c); msg may be NULL. */
+vt_status vt_function_check(char *msg, const vt_function *f);
+
+/* Kinds of constraint row (model.c builds them, constraints.c evaluates them). */
+enum {
+    VT_ROW_JOINT,   /* q_k − f(t) = 0                                          joint drive */
+    VT_ROW_POINT,   /* c·(P_b − P_a) − f(t) = 0, c global                      point drive, cut joints */
+    VT_ROW_DOT,     /* (A_a u')·(A_b v') = 0                                   cut joints */
+    VT_ROW_LINE,    /* (A_a u')·(P_b − P_a) = 0                                cut joints */
+    VT_ROW_ORIENT,  /* 2 (G(p_d) p)_k = 0                                      orientation drive */
+    VT_ROW_NORM     /* p^T p − 1 = 0                                           base body */
+};
+/* Which kind of object owns a row: drive, cut joint or base body. */
+enum { VT_OWNER_DRIVE, VT_OWNER_CUT, VT_OWNER_BASE };
+int vt_row_owner_kind(const vt_model *m, int row);
+/* Rows of a cut joint of this kind. */
+int vt_cut_nrows(int joint_type);
+/* Number of rows that belong to drives (they come first). */
+int vt_drive_rows(const vt_model *m);
+
+/* LAPACK routines of the solve (solve.c) */
+void dsyequb_(const char *uplo, const int *n, const double *a, const int *lda, double *s, double *scond,
+              double *amax, double *work, int *info, size_t luplo);
+void dsytrf_(const char *uplo, const int *n, double *a, const int *lda, int *ipiv, double *work,
+             const int *lwork, int *info, size_t luplo);
+void dsytrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda,
+             const int *ipiv, double *b, const int *ldb, int *info, size_t luplo);
+void dsycon_(const char *uplo, const int *n, const double *a, const int *lda, const int *ipiv,
+             const double *anorm, double *rcond, double *work, int *iwork, int *info, size_t luplo);
+double dlansy_(const char *norm, const char *uplo, const int *n, const double *a, const int *lda,
+               double *work, size_t lnorm, size_t luplo);
+void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt, double *tau,
+             double *work, const int *lwork, int *info);
+
 #endif

@@ -15,47 +15,50 @@
 
 #include "internal.h"
 
+void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double ri[7])
+{
+    const int i = m->dof_body[dof], j = m->body_parent[i], jt = m->body_joint[i];
+    const double *e = d->jaxis + 9 * i;
+    double Ei[12], Ej[12], u[3];
+    int ax;
+    memset(ri, 0, 7 * sizeof(double));
+    memset(rj, 0, 7 * sizeof(double));
+    vt_euler_E(Ei, d->x + vt_xoff(i) + 3);
+    if (j) vt_euler_E(Ej, d->x + vt_xoff(j) + 3);
+    switch (vt_dof_kind(jt, dof - m->body_vadr[i], &ax)) {
+    case VT_DOF_ROT:
+        vt_mulE_t(ri + 3, Ei, e + 3 * ax);
+        if (j) vt_mulE_t(rj + 3, Ej, e + 3 * ax);
+        for (int c = 3; c < 7; c++) { ri[c] *= 2.0; rj[c] *= -2.0; }
+        break;
+    case VT_DOF_TRANS:
+        vt_copy3(ri, e + 3 * ax);
+        vt_cross3(u, e + 3 * ax, d->jd + 3 * i);
+        vt_mulE_t(ri + 3, Ei, u);
+        if (j) {
+            for (int c = 0; c < 3; c++) rj[c] = -e[3 * ax + c];
+            vt_cross3(u, e + 3 * ax, d->jsij + 3 * i);
+            vt_mulE_t(rj + 3, Ej, u);
+        }
+        for (int c = 3; c < 7; c++) { ri[c] *= 2.0; rj[c] *= 2.0; }
+        break;
+    case VT_DOF_BASE_R: ri[ax] = 1.0; break;
+    default: ri[3 + ax] = 1.0; break;
+    }
+}
+
 vt_status vt_inverse_transform(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_transform");
     if (st) return st;
     const size_t ld = (size_t)m->nv;
-    for (int i = 1; i <= m->nbody; i++) {
-        const int j = m->body_parent[i], jt = m->body_joint[i];
-        const double *e = d->jaxis + 9 * i;
-        double Ei[12], Ej[12];
-        vt_euler_E(Ei, d->x + vt_xoff(i) + 3);
-        if (j) vt_euler_E(Ej, d->x + vt_xoff(j) + 3);
-        for (int k = 0; k < m->body_nv[i]; k++) {
-            const size_t row = (size_t)(m->body_vadr[i] + k);
-            double *Ri = d->R + row + (size_t)vt_xoff(i) * ld;      /* R_ii, stride ld */
-            double *Rj = j ? d->R + row + (size_t)vt_xoff(j) * ld : NULL;
-            double ri[7] = {0}, rj[7] = {0}, u[3];
-            int ax;
-            switch (vt_dof_kind(jt, k, &ax)) {
-            case VT_DOF_ROT:
-                vt_mulE_t(ri + 3, Ei, e + 3 * ax);
-                if (j) vt_mulE_t(rj + 3, Ej, e + 3 * ax);
-                for (int c = 3; c < 7; c++) { ri[c] *= 2.0; rj[c] *= -2.0; }
-                break;
-            case VT_DOF_TRANS:
-                vt_copy3(ri, e + 3 * ax);
-                vt_cross3(u, e + 3 * ax, d->jd + 3 * i);
-                vt_mulE_t(ri + 3, Ei, u);
-                if (j) {
-                    for (int c = 0; c < 3; c++) rj[c] = -e[3 * ax + c];
-                    vt_cross3(u, e + 3 * ax, d->jsij + 3 * i);
-                    vt_mulE_t(rj + 3, Ej, u);
-                }
-                for (int c = 3; c < 7; c++) { ri[c] *= 2.0; rj[c] *= 2.0; }
-                break;
-            case VT_DOF_BASE_R: ri[ax] = 1.0; break;
-            default: ri[3 + ax] = 1.0; break;
-            }
-            for (int c = 0; c < 7; c++) Ri[(size_t)c * ld] = ri[c];
-            if (Rj)
-                for (int c = 0; c < 7; c++) Rj[(size_t)c * ld] = rj[c];
-        }
+    for (int dof = 0; dof < m->nv; dof++) {
+        const int i = m->dof_body[dof], j = m->body_parent[i];
+        double ri[7], rj[7];
+        vt_R_row(m, d, dof, rj, ri);
+        for (int c = 0; c < 7; c++) d->R[(size_t)dof + (size_t)(vt_xoff(i) + c) * ld] = ri[c];
+        if (j)
+            for (int c = 0; c < 7; c++) d->R[(size_t)dof + (size_t)(vt_xoff(j) + c) * ld] = rj[c];
     }
     return VT_OK;
 }

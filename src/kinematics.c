@@ -199,7 +199,7 @@ static void fill_S(const vt_model *m, vt_data *d)
 
 /* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
  * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
-static void accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
 {
     memset(alpha, 0, 3 * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
@@ -272,6 +272,6 @@ vt_status vt_kinematics(const vt_model *m, vt_data *d)
     positions(m, d);
     velocities(m, d);
     fill_S(m, d);
-    accelerations(m, d, NULL, d->Sdqd, d->work);
+    vt_accelerations(m, d, NULL, d->Sdqd, d->work);
     return VT_OK;
 }

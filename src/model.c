@@ -22,8 +22,14 @@ struct vt_builder {
     vt_model_def def;
     vt_body_def *bodies;  /* validated and normalized definitions (cap) */
     int n, cap;
+    vt_drive_def *drives;
+    int ndrive, capdrive;
+    vt_cut_joint_def *cuts;
+    int ncut, capcut;
     char message[256];
 };
+
+static const int cut_rows[VT_JOINT_TYPE_COUNT] = {0, 5, 4, 3, 5, 4};
 
 static const int joint_nq[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 4, 1, 2};
 static const int joint_nv[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 3, 1, 2};
@@ -49,6 +55,11 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_BAD_INDEX: return "index out of range";
     case VT_ERR_MODEL_MISMATCH: return "data struct belongs to another model";
     case VT_ERR_LAPACK: return "LAPACK reported an error";
+    case VT_ERR_BAD_DRIVE: return "drive definition cannot be used";
+    case VT_ERR_BAD_CUT_JOINT: return "cut joint definition cannot be used";
+    case VT_ERR_CALLBACK: return "a user callback returned an error";
+    case VT_ERR_SINGULAR: return "augmented system singular or ill-conditioned";
+    case VT_ERR_DEPENDENT_CONSTRAINTS: return "constraint rows linearly dependent";
     }
     return "unknown status";
 }
@@ -84,6 +95,32 @@ vt_model_def vt_default_model_def(void)
     d.gravity[0] = 0.0;
     d.gravity[1] = -9.81;
     d.gravity[2] = 0.0;
+    d.rcond_min = 1e-12;
+    return d;
+}
+
+vt_drive_def vt_default_drive_def(void)
+{
+    vt_drive_def d;
+    memset(&d, 0, sizeof d);
+    d.type = VT_DRIVE_JOINT;
+    d.body = 1;
+    d.f = vt_function_constant(0.0);
+    d.axis[2] = 1.0;
+    d.orientation[0] = 1.0;
+    return d;
+}
+
+vt_cut_joint_def vt_default_cut_joint_def(void)
+{
+    vt_cut_joint_def d;
+    memset(&d, 0, sizeof d);
+    d.joint = VT_JOINT_REVOLUTE;
+    d.body_a = 0;
+    d.body_b = 1;
+    d.axis1[2] = 1.0;
+    d.axis2[0] = 1.0;
+    d.orientation[0] = 1.0;
     return d;
 }
 
@@ -105,7 +142,7 @@ vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def)
     if (!builder) return VT_ERR_NULL;
     *builder = NULL;
     vt_model_def md = def ? *def : vt_default_model_def();
-    if (!vt_all_finite(md.gravity, 3)) return VT_ERR_NONFINITE;
+    if (!vt_all_finite(md.gravity, 3) || !isfinite(md.rcond_min)) return VT_ERR_NONFINITE;
     vt_builder *b = calloc(1, sizeof *b);
     if (!b) return VT_ERR_NO_MEMORY;
     b->def = md;
@@ -122,6 +159,8 @@ void vt_builder_free(vt_builder *builder)
 {
     if (!builder) return;
     free(builder->bodies);
+    free(builder->drives);
+    free(builder->cuts);
     free(builder);
 }
 
@@ -222,6 +261,232 @@ int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
     return id;
 }
 
+/* Grows a builder array; 0 on failure. */
+static int grow(void **arr, int *cap, int n, size_t size)
+{
+    if (n < *cap) return 1;
+    int nc = *cap ? 2 * *cap : 8;
+    void *p = realloc(*arr, (size_t)nc * size);
+    if (!p) return 0;
+    *arr = p;
+    *cap = nc;
+    return 1;
+}
+
+static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_def *d)
+{
+    if ((int)d->type < 0 || d->type >= VT_DRIVE_TYPE_COUNT)
+        return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: unknown type %d", k, (int)d->type);
+    if (d->body < 1 || d->body > b->n)
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "drive %d: body %d is not a body added so far (1..%d)", k,
+                       d->body, b->n);
+    const vt_body_def *body = &b->bodies[d->body - 1];
+    switch (d->type) {
+    case VT_DRIVE_JOINT:
+        if (d->index < 0 || d->index >= joint_nv[body->joint])
+            return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: body %d's joint has no rate %d", k, d->body, d->index);
+        if (body->joint == VT_JOINT_SPHERICAL)
+            return vt_fail(msg, VT_ERR_BAD_DRIVE,
+                           "drive %d: a spherical joint has no scalar coordinate; use an orientation drive", k);
+        if (body->joint == VT_JOINT_BASE && d->index >= 3)
+            return vt_fail(msg, VT_ERR_BAD_DRIVE,
+                           "drive %d: a base body's Euler parameters are not driven one by one; use an orientation drive", k);
+        break;
+    case VT_DRIVE_POINT:
+        if (d->index < 0 || d->index > 2)
+            return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: component %d is not 0 (x), 1 (y) or 2 (z)", k, d->index);
+        if (!vt_all_finite(d->point, 3))
+            return vt_fail(msg, VT_ERR_NONFINITE, "drive %d: point not finite", k);
+        break;
+    default: /* orientation */
+        if (!vt_all_finite(d->axis, 3) || !vt_all_finite(d->orientation, 4))
+            return vt_fail(msg, VT_ERR_NONFINITE, "drive %d: axis or orientation not finite", k);
+        if (!d->orientation_callback) {
+            if (!normalize(d->axis, 3)) return vt_fail(msg, VT_ERR_AXIS_ZERO, "drive %d: axis of zero length", k);
+            if (!normalize(d->orientation, 4))
+                return vt_fail(msg, VT_ERR_QUATERNION, "drive %d: orientation of zero norm", k);
+        }
+        break;
+    }
+    if (d->type != VT_DRIVE_ORIENTATION || !d->orientation_callback) {
+        char fmsg[256];
+        vt_status st = vt_function_check(fmsg, &d->f);
+        if (st) return vt_fail(msg, st, "drive %d: %s", k, fmsg);
+    }
+    return VT_OK;
+}
+
+int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
+{
+    if (!b) return VT_ERR_NULL;
+    if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
+    vt_drive_def d = *def;
+    vt_status st = validate_drive(b, b->message, b->ndrive, &d);
+    if (st) return st;
+    if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d))
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "drive %d: out of memory", b->ndrive);
+    b->drives[b->ndrive] = d;
+    b->message[0] = '\0';
+    return b->ndrive++;
+}
+
+static vt_status validate_cut(const vt_builder *b, char *msg, int k, vt_cut_joint_def *d)
+{
+    if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
+        return vt_fail(msg, VT_ERR_JOINT_TYPE, "cut joint %d: joint type %d unknown", k, (int)d->joint);
+    if (d->joint == VT_JOINT_BASE)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: a base (floating) joint constrains nothing", k);
+    if (d->body_a < 0 || d->body_a > b->n || d->body_b < 1 || d->body_b > b->n)
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "cut joint %d: bodies %d and %d not both added so far (b: 1..%d, a: 0..%d)",
+                       k, d->body_a, d->body_b, b->n, b->n);
+    if (d->body_a == d->body_b)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: joins body %d to itself", k, d->body_a);
+    if (!vt_all_finite(d->point_a, 3) || !vt_all_finite(d->point_b, 3) || !vt_all_finite(d->axis1, 3) ||
+        !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
+        return vt_fail(msg, VT_ERR_NONFINITE, "cut joint %d: NaN or Inf in its definition", k);
+    if (d->joint != VT_JOINT_SPHERICAL && !normalize(d->axis1, 3))
+        return vt_fail(msg, VT_ERR_AXIS_ZERO, "cut joint %d: axis1 has zero length", k);
+    if (d->joint == VT_JOINT_UNIVERSAL) {
+        if (!normalize(d->axis2, 3)) return vt_fail(msg, VT_ERR_AXIS_ZERO, "cut joint %d: axis2 has zero length", k);
+        const double c = vt_dot3(d->axis1, d->axis2);
+        if (fabs(c) > 1e-9)
+            return vt_fail(msg, VT_ERR_AXES_NOT_PERPENDICULAR, "cut joint %d: universal axes not perpendicular (cosine %g)", k, c);
+    }
+    if (!normalize(d->orientation, 4)) return vt_fail(msg, VT_ERR_QUATERNION, "cut joint %d: orientation of zero norm", k);
+    return VT_OK;
+}
+
+int vt_builder_add_cut_joint(vt_builder *b, const vt_cut_joint_def *def)
+{
+    if (!b) return VT_ERR_NULL;
+    if (!def) return vt_fail(b->message, VT_ERR_NULL, "cut joint definition is NULL");
+    vt_cut_joint_def d = *def;
+    vt_status st = validate_cut(b, b->message, b->ncut, &d);
+    if (st) return st;
+    if (!grow((void **)&b->cuts, &b->capcut, b->ncut, sizeof d))
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "cut joint %d: out of memory", b->ncut);
+    b->cuts[b->ncut] = d;
+    b->message[0] = '\0';
+    return b->ncut++;
+}
+
+int vt_cut_nrows(int joint_type)
+{
+    return cut_rows[joint_type];
+}
+
+int vt_drive_rows(const vt_model *m)
+{
+    if (m->ndrive == 0) return 0;
+    const int last = m->ndrive - 1;
+    return m->drive_row[last] + (m->drive[last].type == VT_DRIVE_ORIENTATION ? 3 : 1);
+}
+
+int vt_row_owner_kind(const vt_model *m, int row)
+{
+    if (row < vt_drive_rows(m)) return VT_OWNER_DRIVE;
+    if (m->ncut && row < m->cut_row[m->ncut - 1] + cut_rows[m->cut[m->ncut - 1].joint]) return VT_OWNER_CUT;
+    return VT_OWNER_BASE;
+}
+
+/* two unit vectors h1, h2 with (u, h1, h2) orthonormal */
+static void perpendiculars(double h1[3], double h2[3], const double u[3])
+{
+    const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+    vt_cross3(h1, u, fabs(u[0]) < 0.6 ? ex : ey);
+    normalize(h1, 3);
+    vt_cross3(h2, u, h1);
+}
+
+/* v_b = A0^T v_a: a vector of a's axes carried onto b's axes in the assembled pose */
+static void onto_b(double vb[3], const double q0[4], const double va[3])
+{
+    double A0[9];
+    vt_euler_A(A0, q0);
+    vt_mulmat3t(vb, A0, va);
+}
+
+static int add_row(vt_model *m, int r, int kind, int a, int b, int owner)
+{
+    m->con_kind[r] = kind;
+    m->con_body[2 * r] = a;
+    m->con_body[2 * r + 1] = b;
+    m->con_owner[r] = owner;
+    return r + 1;
+}
+
+/* the constraint rows of every drive, cut joint and base body (order: drives, cuts, bases) */
+static void build_rows(vt_model *m)
+{
+    int r = 0;
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *d = &m->drive[k];
+        m->drive_row[k] = r;
+        switch (d->type) {
+        case VT_DRIVE_JOINT:
+            m->con_dof[r] = m->body_vadr[d->body] + d->index;
+            r = add_row(m, r, VT_ROW_JOINT, m->body_parent[d->body], d->body, k);
+            break;
+        case VT_DRIVE_POINT:
+            m->con_vec[6 * r + d->index] = 1.0;
+            memcpy(m->con_point + 6 * r + 3, d->point, 3 * sizeof(double));
+            r = add_row(m, r, VT_ROW_POINT, 0, d->body, k);
+            break;
+        default:
+            for (int c = 0; c < 3; c++) {
+                m->con_dof[r] = c;
+                r = add_row(m, r, VT_ROW_ORIENT, 0, d->body, k);
+            }
+        }
+    }
+    for (int k = 0; k < m->ncut; k++) {
+        const vt_cut_joint_def *c = &m->cut[k];
+        const int a = c->body_a, b = c->body_b, jt = c->joint;
+        double h1[3], h2[3], u1b[3], u2b[3], h2b[3];
+        m->cut_row[k] = r;
+        if (jt != VT_JOINT_SPHERICAL) perpendiculars(h1, h2, c->axis1);
+        onto_b(u1b, c->orientation, c->axis1);
+        onto_b(u2b, c->orientation, c->axis2);
+        const int first = r;
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL) {
+            for (int e = 0; e < 3; e++) { /* the two joint points coincide */
+                m->con_vec[6 * r + e] = 1.0;
+                r = add_row(m, r, VT_ROW_POINT, a, b, k);
+            }
+        }
+        if (jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_CYLINDRICAL || jt == VT_JOINT_TRANSLATIONAL) {
+            for (int e = 0; e < 2; e++) { /* b's axis stays parallel to a's */
+                memcpy(m->con_vec + 6 * r, e ? h2 : h1, 3 * sizeof(double));
+                memcpy(m->con_vec + 6 * r + 3, u1b, 3 * sizeof(double));
+                r = add_row(m, r, VT_ROW_DOT, a, b, k);
+            }
+        }
+        if (jt == VT_JOINT_UNIVERSAL) { /* the cross: axis1 on a ⟂ axis2 on b */
+            memcpy(m->con_vec + 6 * r, c->axis1, 3 * sizeof(double));
+            memcpy(m->con_vec + 6 * r + 3, u2b, 3 * sizeof(double));
+            r = add_row(m, r, VT_ROW_DOT, a, b, k);
+        }
+        if (jt == VT_JOINT_CYLINDRICAL || jt == VT_JOINT_TRANSLATIONAL) {
+            for (int e = 0; e < 2; e++) { /* b's point stays on a's axis line */
+                memcpy(m->con_vec + 6 * r, e ? h2 : h1, 3 * sizeof(double));
+                r = add_row(m, r, VT_ROW_LINE, a, b, k);
+            }
+        }
+        if (jt == VT_JOINT_TRANSLATIONAL) { /* no turn about the axis */
+            onto_b(h2b, c->orientation, h2);
+            memcpy(m->con_vec + 6 * r, h1, 3 * sizeof(double));
+            memcpy(m->con_vec + 6 * r + 3, h2b, 3 * sizeof(double));
+            r = add_row(m, r, VT_ROW_DOT, a, b, k);
+        }
+        for (int q = first; q < r; q++) {
+            memcpy(m->con_point + 6 * q, c->point_a, 3 * sizeof(double));
+            memcpy(m->con_point + 6 * q + 3, c->point_b, 3 * sizeof(double));
+        }
+    }
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE) r = add_row(m, r, VT_ROW_NORM, 0, i, i);
+}
+
 void vt_model_free(vt_model *m)
 {
     free(m); /* one block */
@@ -237,8 +502,19 @@ static void *take(arena *a, size_t bytes)
     return p;
 }
 
-static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath)
+static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc)
 {
+    const size_t nd = (size_t)(ndrive ? ndrive : 1), nk = (size_t)(ncut ? ncut : 1), ncc = (size_t)(nc ? nc : 1);
+    m->drive = take(a, nd * sizeof(vt_drive_def));
+    m->drive_row = take(a, nd * sizeof(int));
+    m->cut = take(a, nk * sizeof(vt_cut_joint_def));
+    m->cut_row = take(a, nk * sizeof(int));
+    m->con_kind = take(a, ncc * sizeof(int));
+    m->con_body = take(a, 2 * ncc * sizeof(int));
+    m->con_owner = take(a, ncc * sizeof(int));
+    m->con_dof = take(a, ncc * sizeof(int));
+    m->con_vec = take(a, 6 * ncc * sizeof(double));
+    m->con_point = take(a, 6 * ncc * sizeof(double));
     const size_t nb = (size_t)n + 1;
     m->body_parent = take(a, nb * sizeof(int));
     m->body_joint = take(a, nb * sizeof(int));
@@ -268,7 +544,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     if (n == 0) return vt_fail(b->message, VT_ERR_EMPTY_MODEL, "the model has no moving body");
 
     /* sizes: coordinates and path lengths */
-    int nq = 0, nv = 0, npath = 0;
+    int nq = 0, nv = 0, npath = 0, nc = 0;
     int *depth_nv = calloc((size_t)n + 1, sizeof(int)); /* rates on the path to each body */
     if (!depth_nv) return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory");
     for (int i = 1; i <= n; i++) {
@@ -277,11 +553,14 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         nv += joint_nv[d->joint];
         depth_nv[i] = depth_nv[d->parent] + joint_nv[d->joint];
         npath += depth_nv[i];
+        nc += d->joint == VT_JOINT_BASE;
     }
+    for (int k = 0; k < b->ndrive; k++) nc += b->drives[k].type == VT_DRIVE_ORIENTATION ? 3 : 1;
+    for (int k = 0; k < b->ncut; k++) nc += cut_rows[b->cuts[k].joint];
 
     arena a = {NULL, sizeof(vt_model)};
     vt_model tmp;
-    layout_model(&a, &tmp, n, nv, nq, npath);
+    layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc);
     char *block = calloc(1, a.used);
     if (!block) {
         free(depth_nv);
@@ -290,7 +569,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     vt_model *m = (vt_model *)block;
     a.base = block;
     a.used = sizeof(vt_model);
-    layout_model(&a, m, n, nv, nq, npath);
+    layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc);
 
     m->nbody = n;
     m->nq = nq;
@@ -298,6 +577,12 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->nx = 7 * n;
     m->npath = npath;
     memcpy(m->gravity, b->def.gravity, sizeof m->gravity);
+    m->rcond_min = b->def.rcond_min;
+    m->ndrive = b->ndrive;
+    m->ncut = b->ncut;
+    m->nc = nc;
+    if (b->ndrive) memcpy(m->drive, b->drives, (size_t)b->ndrive * sizeof(vt_drive_def));
+    if (b->ncut) memcpy(m->cut, b->cuts, (size_t)b->ncut * sizeof(vt_cut_joint_def));
 
     m->body_parent[0] = -1;
     m->body_joint[0] = -1;
@@ -343,6 +628,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         vadr += joint_nv[jt];
     }
     free(depth_nv);
+    build_rows(m);
     *model = m;
     return VT_OK;
 }

@@ -7,7 +7,7 @@ static void test_create_reset_mismatch(void **state)
     vt_model *m1 = NULL, *m2 = NULL;
     vt_data *d = NULL;
     assert_ok(vt_scene_random_tree(&m1, 7, 8, VT_SCENE_ALL_JOINTS));
-    assert_ok(vt_scene_double_link(&m2));
+    assert_ok(vt_scene_double_link(&m2, 0));
     assert_ok(vt_data_create(&d, m1));
     for (int k = 0; k < m1->nq; k++) assert_near(d->q[k], m1->q0[k], 0.0);
     uint64_t s = 5;
@@ -35,7 +35,7 @@ static void test_point_load_bad_input_changes_nothing(void **state)
     (void)state;
     vt_model *m = NULL;
     vt_data *d = NULL;
-    assert_ok(vt_scene_double_link(&m));
+    assert_ok(vt_scene_double_link(&m, 0));
     assert_ok(vt_data_create(&d, m));
     assert_ok(vt_kinematics(m, d));
     const double s[3] = {1, 0, 0}, f[3] = {0, -10, 0}, bad[3] = {0, NAN, 0};

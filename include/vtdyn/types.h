@@ -44,7 +44,14 @@ typedef enum vt_status {
     VT_ERR_EMPTY_MODEL = -14,          ///< a model needs at least one moving body
     VT_ERR_BAD_INDEX = -15,            ///< a body or coordinate index out of range
     VT_ERR_MODEL_MISMATCH = -16,       ///< the data struct was made for another model
-    VT_ERR_LAPACK = -17                ///< LAPACK reported an error (info in the message)
+    VT_ERR_LAPACK = -17,               ///< LAPACK reported an error (info in the message)
+    VT_ERR_BAD_DRIVE = -18,            ///< a drive definition that cannot be used (message says why)
+    VT_ERR_BAD_CUT_JOINT = -19,        ///< a cut-joint definition that cannot be used
+    VT_ERR_CALLBACK = -20,             ///< a user time function or orientation callback returned an error
+    VT_ERR_SINGULAR = -21,             ///< augmented system (5) singular or ill-conditioned (rcond below
+                                       ///< rcond_min): the drives do not fix the motion, or a body
+                                       ///< without inertia moves freely
+    VT_ERR_DEPENDENT_CONSTRAINTS = -22 ///< constraint rows Φ_q linearly dependent (rows named in the message)
 } vt_status;
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
@@ -65,7 +72,79 @@ typedef enum vt_joint_type {
 /// Options of the whole model.
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
+    double rcond_min;   ///< smallest accepted reciprocal condition estimate of the equilibrated
+                        ///< augmented matrix of (5); default 1e-12
 } vt_model_def;
+
+/// Prescribed function of time f(t), evaluated exactly with f' and f''.
+typedef enum vt_function_type {
+    VT_FUNCTION_CONSTANT = 0,  ///< f = c[0]
+    VT_FUNCTION_POLYNOMIAL,    ///< f = c[0] + c[1] t + ... + c[ncoef-1] t^(ncoef-1)
+    VT_FUNCTION_SINE,          ///< f = c[0] + c[1] sin(c[2] t + c[3])
+    VT_FUNCTION_CALLBACK       ///< f, f', f'' from a user function
+} vt_function_type;
+
+/// User time function: writes f, f' and f'' at time t (s) into out; returns 0 on success,
+/// anything else is an error that the library reports as VT_ERR_CALLBACK.
+typedef int (*vt_function_callback)(double t, double out[3], void *user);
+
+#define VT_POLY_MAX 8  ///< most coefficients of a polynomial time function
+
+/// A time function; make it with vt_function_constant() and friends.
+typedef struct vt_function {
+    vt_function_type type;
+    int ncoef;                    ///< polynomial: number of coefficients (1..VT_POLY_MAX)
+    double c[VT_POLY_MAX];        ///< coefficients, see vt_function_type
+    vt_function_callback callback;///< VT_FUNCTION_CALLBACK only
+    void *user;                   ///< passed to callback
+} vt_function;
+
+/// User orientation: writes the prescribed Euler parameters p (global, unit), angular
+/// velocity w (rad/s, global) and angular acceleration wdot (rad/s², global) at time t;
+/// returns 0 on success.
+typedef int (*vt_orientation_callback)(double t, double p[4], double w[3], double wdot[3], void *user);
+
+/// Kinds of drive (driving constraint).
+typedef enum vt_drive_type {
+    VT_DRIVE_JOINT = 0,    ///< a rate's coordinate of a body's joint follows f(t): q_k − f(t) = 0
+    VT_DRIVE_POINT,        ///< one global component of a body point follows f(t), (30)-(34)
+    VT_DRIVE_ORIENTATION,  ///< a body's orientation follows p_d(t): 2 G(p_d) p = 0 (3 rows)
+    VT_DRIVE_TYPE_COUNT
+} vt_drive_type;
+
+/// A drive. Fill from vt_default_drive_def().
+typedef struct vt_drive_def {
+    vt_drive_type type;    ///< default VT_DRIVE_JOINT
+    int body;              ///< driven body (joint drive: the body whose joint is driven); default 1
+    int index;             ///< joint drive: which rate of the joint (0-based; not a spherical joint's
+                           ///< nor a base body's Euler parameters); point drive: component 0 = x,
+                           ///< 1 = y, 2 = z; default 0
+    double point[3];       ///< point drive: the point, m, body axes from the centre of mass; default 0
+    vt_function f;         ///< joint drive: rad or m; point drive: m; orientation drive: the angle (rad)
+                           ///< turned about `axis`; default constant 0
+    double axis[3];        ///< orientation drive: global axis of the prescribed turn; normalized; default z
+    double orientation[4]; ///< orientation drive: orientation at angle 0 (global Euler parameters):
+                           ///< p_d(t) = [rotation f(t) about axis] ⊗ orientation; default identity
+    vt_orientation_callback orientation_callback; ///< orientation drive: if set, gives p_d(t) instead
+    void *user;            ///< passed to orientation_callback
+} vt_drive_def;
+
+/// A cut joint: closes a loop between body_a (in the role of the reference body) and body_b,
+/// with the joint kinds of Table 1 except base. Equations: spherical 3 (points coincide),
+/// revolute 5 (and axes parallel), universal 4 (points coincide, axis1 on a ⟂ axis2 on b),
+/// cylindrical 4 (axes parallel, b's point on a's axis line), translational 5 (cylindrical and
+/// no turn about the axis). Fill from vt_default_cut_joint_def().
+typedef struct vt_cut_joint_def {
+    vt_joint_type joint;   ///< default VT_JOINT_REVOLUTE
+    int body_a;            ///< 0 = ground allowed; default 0
+    int body_b;            ///< ≠ body_a; default 1
+    double point_a[3];     ///< m, joint point on a, a's axes from its centre of mass (global for ground)
+    double point_b[3];     ///< m, joint point on b, b's axes from its centre of mass
+    double axis1[3];       ///< first axis, a's axes; normalized; default z
+    double axis2[3];       ///< universal: second axis (on b) in a's axes when assembled; default x
+    double orientation[4]; ///< b's axes relative to a's when assembled (carries the axes onto b);
+                           ///< default identity
+} vt_cut_joint_def;
 
 /// A moving body and the joint that connects it to its reference body.
 /// Fill from vt_default_body_def() and set only what the scene needs.
@@ -118,6 +197,22 @@ typedef struct vt_model {
 
     double *q0;              ///< reference configuration: zero angles and translations, unit
                              ///< Euler parameters (nq)
+
+    /* drives, cut joints and constraint rows */
+    double rcond_min;        ///< see vt_model_def
+    int ndrive;              ///< number of drives
+    int ncut;                ///< number of cut joints
+    int nc;                  ///< number of constraint rows (drives, cut joints, one p^T p − 1 per base body)
+    vt_drive_def *drive;     ///< the drives, validated and normalized (ndrive)
+    int *drive_row;          ///< first constraint row of each drive (ndrive)
+    vt_cut_joint_def *cut;   ///< the cut joints, validated and normalized (ncut)
+    int *cut_row;            ///< first constraint row of each cut joint (ncut)
+    int *con_kind;           ///< kind of each row (internal enumeration) (nc)
+    int *con_body;           ///< the two bodies of each row: a (0 = ground) then b (2 x nc)
+    int *con_owner;          ///< the drive, cut joint or base body a row belongs to (nc)
+    int *con_dof;            ///< joint-drive rows: the driven rate; orientation rows: 0..2 (nc)
+    double *con_vec;         ///< direction on a (a's axes, or global) then on b (b's axes) (6 x nc)
+    double *con_point;       ///< point on a then on b, each in its body's axes (6 x nc)
 } vt_model;
 
 /// The data of one model: inputs, every result, and all scratch space. Allocated once by
@@ -156,9 +251,46 @@ typedef struct vt_data {
     double *h;               ///< -Ṁẋ + (∂T/∂x)^T: per body [0; -8 Ġ^T J' G ṗ] (7n)
     double *Q;               ///< Q = S^T [F - M Ṡq̇ + h], eq (4) (nv)
 
+    /* vt_constraints(): Φ(x, t), Φ_x, Φ_q = Φ_x S (22), Φ_t, γ (23) */
+    double *Phi;             ///< constraint values (nc)
+    double *Phix;            ///< Φ_x of each row on its bodies a and b: [Φ_{x^a} Φ_{x^b}] (14 x nc)
+    double *Phiq;            ///< Φ_q (nc x nv, leading dimension nc)
+    double *Phit;            ///< ∂Φ/∂t (nc)
+    double *gamma;           ///< γ = −Φ̈ at q̈ = 0 (nc)
+
+    /* vt_solve(): the augmented system (5) */
+    double *qdd;             ///< q̈ (nv)
+    double *lambda;          ///< Lagrange multipliers λ (nc)
+    double rcond;            ///< reciprocal condition estimate of the equilibrated augmented matrix
+
+    /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
+    double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
+    double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
+                             ///< point drive: force along its component (N); orientation drive: 0 (ndrive)
+    double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N
+    double *drive_moment;    ///< moment the drive exerts on its body about the drive's point (the joint
+                             ///< point for a joint drive, the body point for a point drive, the centre
+                             ///< of mass for an orientation drive) (3 x ndrive), N·m
+    double *jnt_force;       ///< reaction force of the reference body on the body at the joint point
+                             ///< (3 x (nbody+1)), N
+    double *jnt_moment;      ///< reaction moment, about the joint point (3 x (nbody+1)), N·m
+    double *jnt_force_body;  ///< the same in the body's axes, (27) (3 x (nbody+1))
+    double *jnt_moment_body; ///< the same in the body's axes, (28) (3 x (nbody+1))
+    double *cut_force;       ///< cut joint: force of body_a on body_b at point_b (3 x ncut), N
+    double *cut_moment;      ///< cut joint: moment of body_a on body_b about point_b (3 x ncut), N·m
+    double *cut_force_body;  ///< the same in body_b's axes (3 x ncut)
+    double *cut_moment_body; ///< the same in body_b's axes (3 x ncut)
+
     /* scratch owned by the stages */
     double *work;            ///< scratch of the stages (nwork)
     size_t nwork;            ///< entries in work
+    double *kkt;             ///< augmented matrix of (5), factorized ((nv+nc)^2)
+    double *kkt_rhs;         ///< its right side and solution (nv+nc)
+    double *kkt_scale;       ///< equilibration (nv+nc)
+    double *lwork;           ///< LAPACK workspace (nlwork)
+    int nlwork;              ///< entries in lwork
+    int *ipiv;               ///< pivots (nv+nc)
+    int *liwork;             ///< LAPACK integer workspace (nv+nc)
 
     char message[256];       ///< detail of the last failed call on this data
 } vt_data;

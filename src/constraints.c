@@ -1,0 +1,270 @@
+/* Constraints in Cartesian form Φ(x, t) = 0: the paper's (21) (the second one), (22), (23)
+ * and method.md "Constraints and drives".
+ *
+ *   Φ_q = Φ_x S                                                     (22)
+ *   γ   = −Φ̇_x ẋ − Φ̇_t − Φ_x Ṡ q̇ = −Φ̈ evaluated at q̈ = 0           (23)
+ * Φ_x is kept in the E-form: along admissible ṗ, ∂(A s')/∂p = −2 s̃ E, so a row whose rate is
+ * Φ̇ = jv·v + jw·ω on a body has Φ_x = [jv^T, 2 jw^T E] there. Rows, with P = r + A s' a body
+ * point, u = A u' a body vector, d = P_b − P_a, and (·)0 the accelerations at q̈ = 0:
+ *   joint drive    q_k − f(t)                 Φ_x = the row of R (Table 1), since δq = R δx (12)
+ *                                             Φ_t = −f', γ = f''
+ *   point          c·(P_b − P_a) − f(t)       jv = ±c, jw = s × c;  γ = f'' − c·(P̈_b − P̈_a)0   (30)-(34)
+ *   dot            u_a·v_b                    jw_a = u × v, jw_b = v × u;  γ = −(ü·v + 2 u̇·v̇ + u·v̈)0
+ *   line           u_a·d                      jv = ±u, jw_b = s_b × u, jw_a = u × d − s_a × u
+ *                                             γ = −(ü·d + 2 u̇·ḋ + u·d̈)0
+ *   orientation    2 G(p_d) p  (3 rows)       Φ_p = 2 G(p_d), Φ_t = 2 G(ṗ_d) p,
+ *                                             γ = −[2 G(p̈_d) p + 4 G(ṗ_d) ṗ + 2 G(p_d) p̈0]
+ *                  (G(a) b is the vector part of a* ⊗ b: zero when p = p_d)
+ *   normalization  p^T p − 1 (base body)      Φ_p = 2 p^T, γ = −2 ṗ·ṗ
+ * The prescribed orientation of a built-in orientation drive: p_d = [f(t) about axis] ⊗ p0,
+ * ω_d = f' axis, ω̇_d = f'' axis, ṗ_d = ½ E^T ω_d, p̈_d = ½ E^T ω̇_d − ¼ |ω_d|² p_d.
+ */
+#include <string.h>
+
+#include "internal.h"
+
+/* Motion of one body as a row sees it; the ground is at rest with identity axes. */
+typedef struct {
+    int id;
+    const double *r, *p, *A, *w, *v;
+    double E[12], a0[3], al0[3], pd[4], pdd0[4];
+} body_state;
+
+static const double zero3[3] = {0, 0, 0};
+static const double ident9[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id)
+{
+    (void)m;
+    b->id = id;
+    if (id == 0) {
+        static const double unit[4] = {1, 0, 0, 0};
+        b->r = zero3; b->p = unit; b->A = ident9; b->w = zero3; b->v = zero3;
+        memset(b->E, 0, sizeof b->E);
+        memset(b->a0, 0, sizeof b->a0);
+        memset(b->al0, 0, sizeof b->al0);
+        memset(b->pd, 0, sizeof b->pd);
+        memset(b->pdd0, 0, sizeof b->pdd0);
+        return;
+    }
+    const int o = vt_xoff(id);
+    b->r = d->x + o;
+    b->p = d->x + o + 3;
+    b->A = d->A + 9 * id;
+    b->w = d->omega + 3 * id;
+    b->v = d->xd + o;
+    vt_euler_E(b->E, b->p);
+    vt_copy3(b->a0, d->Sdqd + o);
+    memcpy(b->pd, d->xd + o + 3, sizeof b->pd);
+    memcpy(b->pdd0, d->Sdqd + o + 3, sizeof b->pdd0);
+    vt_mulE(b->al0, b->E, b->pdd0); /* α = 2 E p̈ (2 Ė ṗ = 0) */
+    for (int k = 0; k < 3; k++) b->al0[k] *= 2.0;
+}
+
+/* a body point: position, velocity, acceleration at q̈ = 0; s = A s' */
+static void point_motion(const body_state *b, const double sp[3], double s[3], double P[3], double vP[3], double aP[3])
+{
+    double t[3];
+    vt_mulmat3(s, b->A, sp);
+    for (int k = 0; k < 3; k++) P[k] = b->r[k] + s[k];
+    vt_copy3(vP, b->v);
+    vt_addcross3(vP, b->w, s);
+    vt_copy3(aP, b->a0);
+    vt_addcross3(aP, b->al0, s);
+    vt_cross3(t, b->w, s);
+    vt_addcross3(aP, b->w, t);
+}
+
+/* a body vector: u, u̇, ü at q̈ = 0 */
+static void vector_motion(const body_state *b, const double up[3], double u[3], double ud[3], double udd[3])
+{
+    vt_mulmat3(u, b->A, up);
+    vt_cross3(ud, b->w, u);
+    vt_cross3(udd, b->al0, u);
+    vt_addcross3(udd, b->w, ud);
+}
+
+/* Φ_x of a row on one body from its rate coefficients: [jv; 2 E^T jw] */
+static void phix_from(double *px, const body_state *b, const double jv[3], const double jw[3])
+{
+    if (b->id == 0) {
+        memset(px, 0, 7 * sizeof(double));
+        return;
+    }
+    vt_copy3(px, jv);
+    vt_mulE_t(px + 3, b->E, jw);
+    for (int k = 3; k < 7; k++) px[k] *= 2.0;
+}
+
+/* p_d, ṗ_d, p̈_d of an orientation drive at time t */
+static vt_status prescribed_orientation(char *msg, int k, const vt_drive_def *dr, double t, double pdes[4],
+                                        double pdes_d[4], double pdes_dd[4])
+{
+    double w[3], wd[3], E[12];
+    if (dr->orientation_callback) {
+        double p[4];
+        if (dr->orientation_callback(t, p, w, wd, dr->user) != 0)
+            return vt_fail(msg, VT_ERR_CALLBACK, "vt_constraints: drive %d: orientation callback failed at t = %g", k, t);
+        if (!vt_all_finite(p, 4) || !vt_all_finite(w, 3) || !vt_all_finite(wd, 3))
+            return vt_fail(msg, VT_ERR_NONFINITE, "vt_constraints: drive %d: orientation callback returned NaN or Inf", k);
+        const double n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
+        if (!(n > 1e-12)) return vt_fail(msg, VT_ERR_QUATERNION, "vt_constraints: drive %d: orientation of zero norm", k);
+        for (int c = 0; c < 4; c++) pdes[c] = p[c] / n;
+    } else {
+        double f[3], r[4];
+        vt_status st = vt_function_eval(f, &dr->f, t);
+        if (st) return vt_fail(msg, st, "vt_constraints: drive %d: time function failed at t = %g (%s)", k, t, vt_status_string(st));
+        vt_quat_axis_angle(r, dr->axis, f[0]);
+        vt_quat_mul(pdes, r, dr->orientation);
+        for (int c = 0; c < 3; c++) { w[c] = f[1] * dr->axis[c]; wd[c] = f[2] * dr->axis[c]; }
+    }
+    vt_euler_E(E, pdes);
+    vt_mulE_t(pdes_d, E, w);
+    vt_mulE_t(pdes_dd, E, wd);
+    const double w2 = vt_dot3(w, w);
+    for (int c = 0; c < 4; c++) {
+        pdes_d[c] *= 0.5;
+        pdes_dd[c] = 0.5 * pdes_dd[c] - 0.25 * w2 * pdes[c];
+    }
+    return VT_OK;
+}
+
+static double dot4(const double a[4], const double b[4])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+}
+
+/* row k (0..2) of G(a) b */
+static double G_row(const double a[4], const double b[4], int k)
+{
+    double G[12];
+    vt_euler_G(G, a);
+    return G[k] * b[0] + G[3 + k] * b[1] + G[6 + k] * b[2] + G[9 + k] * b[3];
+}
+
+vt_status vt_constraints(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_constraints");
+    if (st) return st;
+    const double t = d->time;
+    if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
+    double pdes[4] = {1, 0, 0, 0}, pdes_d[4] = {0}, pdes_dd[4] = {0};
+    const int drive_rows = vt_drive_rows(m);
+
+    for (int r = 0; r < m->nc; r++) {
+        const int kind = m->con_kind[r], owner = m->con_owner[r];
+        body_state A, B;
+        load_body(&A, m, d, m->con_body[2 * r]);
+        load_body(&B, m, d, m->con_body[2 * r + 1]);
+        const double *va = m->con_vec + 6 * r, *vb = va + 3, *sa = m->con_point + 6 * r, *sb = sa + 3;
+        double *pxa = d->Phix + 14 * r, *pxb = pxa + 7;
+        double f[3] = {0, 0, 0}, jv[3], jw[3];
+        if ((kind == VT_ROW_JOINT || kind == VT_ROW_POINT) && r < drive_rows) {
+            st = vt_function_eval(f, &m->drive[owner].f, t);
+            if (st)
+                return vt_fail(d->message, st, "vt_constraints: drive %d: time function failed at t = %g (%s)",
+                               owner, t, vt_status_string(st));
+        }
+        switch (kind) {
+        case VT_ROW_JOINT: {
+            const int dof = m->con_dof[r], i = m->dof_body[dof];
+            d->Phi[r] = d->q[m->body_qadr[i] + dof - m->body_vadr[i]] - f[0];
+            d->Phit[r] = -f[1];
+            d->gamma[r] = f[2];
+            vt_R_row(m, d, dof, pxa, pxb);
+            if (A.id == 0) memset(pxa, 0, 7 * sizeof(double));
+            break;
+        }
+        case VT_ROW_POINT: {
+            double s[3], Pa[3], vPa[3], aPa[3], Pb[3], vPb[3], aPb[3];
+            point_motion(&A, sa, s, Pa, vPa, aPa);
+            vt_cross3(jw, s, va);
+            for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
+            phix_from(pxa, &A, jv, jw);
+            point_motion(&B, sb, s, Pb, vPb, aPb);
+            vt_cross3(jw, s, va);
+            phix_from(pxb, &B, va, jw);
+            double dP[3], daP[3];
+            for (int k = 0; k < 3; k++) { dP[k] = Pb[k] - Pa[k]; daP[k] = aPb[k] - aPa[k]; }
+            d->Phi[r] = vt_dot3(va, dP) - f[0];
+            d->Phit[r] = -f[1];
+            d->gamma[r] = f[2] - vt_dot3(va, daP);
+            break;
+        }
+        case VT_ROW_DOT: {
+            double u[3], ud[3], udd[3], v[3], vd[3], vdd[3];
+            vector_motion(&A, va, u, ud, udd);
+            vector_motion(&B, vb, v, vd, vdd);
+            memset(jv, 0, sizeof jv);
+            vt_cross3(jw, u, v);
+            phix_from(pxa, &A, jv, jw);
+            vt_cross3(jw, v, u);
+            phix_from(pxb, &B, jv, jw);
+            d->Phi[r] = vt_dot3(u, v);
+            d->Phit[r] = 0.0;
+            d->gamma[r] = -(vt_dot3(udd, v) + 2.0 * vt_dot3(ud, vd) + vt_dot3(u, vdd));
+            break;
+        }
+        case VT_ROW_LINE: {
+            double u[3], ud[3], udd[3], s_a[3], s_b[3], Pa[3], vPa[3], aPa[3], Pb[3], vPb[3], aPb[3];
+            double dd[3], ddd[3], dddd[3];
+            vector_motion(&A, va, u, ud, udd);
+            point_motion(&A, sa, s_a, Pa, vPa, aPa);
+            point_motion(&B, sb, s_b, Pb, vPb, aPb);
+            for (int k = 0; k < 3; k++) { dd[k] = Pb[k] - Pa[k]; ddd[k] = vPb[k] - vPa[k]; dddd[k] = aPb[k] - aPa[k]; }
+            double t1[3], t2[3];
+            vt_cross3(t1, u, dd);
+            vt_cross3(t2, s_a, u);
+            for (int k = 0; k < 3; k++) { jv[k] = -u[k]; jw[k] = t1[k] - t2[k]; }
+            phix_from(pxa, &A, jv, jw);
+            vt_cross3(jw, s_b, u);
+            phix_from(pxb, &B, u, jw);
+            d->Phi[r] = vt_dot3(u, dd);
+            d->Phit[r] = 0.0;
+            d->gamma[r] = -(vt_dot3(udd, dd) + 2.0 * vt_dot3(ud, ddd) + vt_dot3(u, dddd));
+            break;
+        }
+        case VT_ROW_ORIENT: {
+            const int k = m->con_dof[r];
+            if (k == 0) {
+                st = prescribed_orientation(d->message, owner, &m->drive[owner], t, pdes, pdes_d, pdes_dd);
+                if (st) return st;
+            }
+            double G[12];
+            vt_euler_G(G, pdes);
+            memset(pxa, 0, 7 * sizeof(double));
+            memset(pxb, 0, 3 * sizeof(double));
+            for (int c = 0; c < 4; c++) pxb[3 + c] = 2.0 * G[3 * c + k];
+            d->Phi[r] = 2.0 * G_row(pdes, B.p, k);
+            d->Phit[r] = 2.0 * G_row(pdes_d, B.p, k);
+            d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
+            break;
+        }
+        default: { /* VT_ROW_NORM */
+            memset(pxa, 0, 7 * sizeof(double));
+            memset(pxb, 0, 3 * sizeof(double));
+            for (int c = 0; c < 4; c++) pxb[3 + c] = 2.0 * B.p[c];
+            d->Phi[r] = dot4(B.p, B.p) - 1.0;
+            d->Phit[r] = 0.0;
+            d->gamma[r] = -2.0 * dot4(B.pd, B.pd);
+            break;
+        }
+        }
+    }
+
+    /* Φ_q = Φ_x S (22), body by body on the body's path columns */
+    const int nc = m->nc;
+    double *Si = d->work, *row = Si + 7 * m->maxpath;
+    memset(d->Phiq, 0, (size_t)nc * (size_t)m->nv * sizeof(double));
+    for (int r = 0; r < nc; r++)
+        for (int side = 0; side < 2; side++) {
+            const int b = m->con_body[2 * r + side];
+            if (b == 0) continue;
+            const int k = m->body_pathnum[b];
+            const int *path = m->path_dof + m->body_pathadr[b];
+            vt_gather_S(Si, m, d, b);
+            cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, d->Phix + 14 * r + 7 * side, 1, 0.0, row, 1);
+            for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
+        }
+    return VT_OK;
+}

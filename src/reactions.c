@@ -1,0 +1,181 @@
+/* Actuating efforts and joint reactions: the paper's (24)-(28) and method.md "Joint
+ * reactions".
+ *
+ * The Cartesian force of constraint row r on body k is Φ_{x^k}^T λ_r; written as a force f and
+ * a moment n about the centre of mass, [f; 2 E^T n] (24), so f = Φ_r^T λ and n = ½ E Φ_p^T λ
+ * (E E^T = I). A drive's effort is the sum over its rows, moved to the drive's point.
+ *
+ * Body i obeys M^i ẍ^i = F_d^i + F_r^i + F_e^i + h^i (25) with ẍ = S q̈ + Ṡ q̇. Premultiplied by
+ * diag(I, ½E) that is Newton–Euler about the centre of mass:
+ *   m a = f_e + f_d + f_i − Σ_c f_c
+ *   J α + ω̃ J ω = n_e + n_d + n_i + (P_i − r_i) × f_i − Σ_c [n_c + (P_c − r_i) × f_c]
+ * where (f_i, n_i) is the reaction of the reference body on body i at its joint point P_i and
+ * c runs over i's children (26). Inward from the tree's ends (bodies counted down) each
+ * reaction is what remains once inertia, applied forces, efforts and the children's
+ * reactions are balanced; it is then added into the parent. Reported in global axes and in
+ * the body's axes, f' = A^T f, n' = A^T n (27)-(28). The drives' efforts are among the
+ * applied forces, never inside the reactions: a revolute reaction moment has no axial part.
+ */
+#include <string.h>
+
+#include "internal.h"
+
+/* wrench of row r on side (0 = a, 1 = b), about the body's centre of mass */
+static void row_wrench(const vt_model *m, const vt_data *d, int r, int side, double f[3], double n[3])
+{
+    const int k = m->con_body[2 * r + side];
+    const double *px = d->Phix + 14 * r + 7 * side, lam = d->lambda[r];
+    double E[12], t[4];
+    vt_euler_E(E, d->x + vt_xoff(k) + 3);
+    for (int c = 0; c < 3; c++) f[c] = px[c] * lam;
+    for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * lam;
+    vt_mulE(n, E, t);
+}
+
+/* sum of the wrenches of rows [r0, r1) on side `side`, moved to the point P of body k */
+static void rows_wrench_at(const vt_model *m, const vt_data *d, int r0, int r1, int side, const double P[3],
+                           double f[3], double n[3])
+{
+    double fr[3], nr[3], s[3];
+    memset(f, 0, 3 * sizeof(double));
+    memset(n, 0, 3 * sizeof(double));
+    if (r0 >= r1) return;
+    const int k = m->con_body[2 * r0 + side];
+    for (int r = r0; r < r1; r++) {
+        row_wrench(m, d, r, side, fr, nr);
+        vt_axpy3(f, 1.0, fr);
+        vt_axpy3(n, 1.0, nr);
+    }
+    for (int c = 0; c < 3; c++) s[c] = P[c] - d->x[vt_xoff(k) + c];
+    double t[3];
+    vt_cross3(t, s, f);
+    for (int c = 0; c < 3; c++) n[c] -= t[c];
+}
+
+static int drive_nrows(const vt_drive_def *dr)
+{
+    return dr->type == VT_DRIVE_ORIENTATION ? 3 : 1;
+}
+
+vt_status vt_reactions(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_reactions");
+    if (st) return st;
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1;
+    double *alpha = d->work, *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
+    vt_accelerations(m, d, d->qdd, d->xdd, alpha);
+
+    /* applied: gravity, xfrc, and every drive and cut-joint row (normalization rows of base
+     * bodies exert nothing: their moment ½ E (2 p λ) is zero) */
+    memset(cf, 0, 6 * nb * sizeof(double));
+    for (int i = 1; i <= n; i++) {
+        double *w = fe + 6 * i;
+        for (int c = 0; c < 3; c++) w[c] = m->body_mass[i] * m->gravity[c] + d->xfrc[6 * i + c];
+        for (int c = 0; c < 3; c++) w[3 + c] = d->xfrc[6 * i + 3 + c];
+    }
+    for (int r = 0; r < m->nc; r++) {
+        if (m->con_kind[r] == VT_ROW_NORM) continue;
+        for (int side = 0; side < 2; side++) {
+            const int k = m->con_body[2 * r + side];
+            if (k == 0) continue;
+            double f[3], nn[3];
+            row_wrench(m, d, r, side, f, nn);
+            vt_axpy3(fe + 6 * k, 1.0, f);
+            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
+        }
+    }
+
+    /* efforts of the drives (24), at the drive's point */
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *dr = &m->drive[k];
+        const int r0 = m->drive_row[k], b = dr->body;
+        double P[3];
+        if (dr->type == VT_DRIVE_JOINT) {
+            vt_copy3(P, d->jpoint + 3 * b);
+        } else if (dr->type == VT_DRIVE_POINT) {
+            vt_mulmat3(P, d->A + 9 * b, dr->point);
+            vt_axpy3(P, 1.0, d->x + vt_xoff(b));
+        } else {
+            vt_copy3(P, d->x + vt_xoff(b));
+        }
+        rows_wrench_at(m, d, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
+    }
+
+    /* cut joints: the rows' wrench on body_b, at its joint point */
+    for (int k = 0; k < m->ncut; k++) {
+        const vt_cut_joint_def *c = &m->cut[k];
+        const int r0 = m->cut_row[k];
+        const int rend = r0 + vt_cut_nrows(c->joint);
+        double P[3];
+        vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
+        vt_axpy3(P, 1.0, d->x + vt_xoff(c->body_b));
+        double *f = d->cut_force + 3 * k, *mo = d->cut_moment + 3 * k;
+        rows_wrench_at(m, d, r0, rend, 1, P, f, mo);
+        vt_mulmat3t(d->cut_force_body + 3 * k, d->A + 9 * c->body_b, f);
+        vt_mulmat3t(d->cut_moment_body + 3 * k, d->A + 9 * c->body_b, mo);
+    }
+
+    /* tree joints, inward (26) */
+    for (int i = n; i >= 1; i--) {
+        const int j = m->body_parent[i];
+        const double *ri = d->x + vt_xoff(i), *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
+        const double *w = d->omega + 3 * i, *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+        double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
+        double wb[3], ab[3], Jw[3], Ja[3], t[3], s[3], Nc[3];
+        /* J α + ω̃ J ω with J = A J' A^T, in body axes then back */
+        vt_mulmat3t(wb, Ai, w);
+        vt_mulmat3t(ab, Ai, al);
+        vt_mulmat3(Jw, Jb, wb);
+        vt_mulmat3(Ja, Jb, ab);
+        vt_addcross3(Ja, wb, Jw);
+        vt_mulmat3(Nc, Ai, Ja);
+        for (int c = 0; c < 3; c++) {
+            f[c] = m->body_mass[i] * a[c] - fe[6 * i + c] + cf[6 * i + c];
+            Nc[c] += -fe[6 * i + 3 + c] + cf[6 * i + 3 + c];
+            s[c] = d->jpoint[3 * i + c] - ri[c];
+        }
+        vt_cross3(t, s, f);
+        for (int c = 0; c < 3; c++) mo[c] = Nc[c] - t[c];
+        vt_mulmat3t(d->jnt_force_body + 3 * i, Ai, f);
+        vt_mulmat3t(d->jnt_moment_body + 3 * i, Ai, mo);
+        if (j) { /* into the parent: f and its moment about the parent's centre of mass */
+            const double *rj = d->x + vt_xoff(j);
+            for (int c = 0; c < 3; c++) s[c] = d->jpoint[3 * i + c] - rj[c];
+            vt_cross3(t, s, f);
+            for (int c = 0; c < 3; c++) {
+                cf[6 * j + c] += f[c];
+                cf[6 * j + 3 + c] += mo[c] + t[c];
+            }
+        }
+    }
+    return VT_OK;
+}
+
+vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
+{
+    vt_status st;
+    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
+        (st = vt_constraints(m, d)) || (st = vt_solve(m, d)))
+        return st;
+    return vt_reactions(m, d);
+}
+
+vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int k)
+{
+    vt_status st = vt_check_pair(m, d, "vt_drive_cartesian_force");
+    if (st) return st;
+    if (!F) return vt_fail(d->message, VT_ERR_NULL, "vt_drive_cartesian_force: F is NULL");
+    if (k < 0 || k >= m->ndrive)
+        return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_drive_cartesian_force: drive %d not in 0..%d", k, m->ndrive - 1);
+    memset(F, 0, (size_t)m->nx * sizeof(double));
+    const int r0 = m->drive_row[k];
+    for (int r = r0; r < r0 + drive_nrows(&m->drive[k]); r++)
+        for (int side = 0; side < 2; side++) {
+            const int b = m->con_body[2 * r + side];
+            if (b == 0) continue;
+            for (int c = 0; c < 7; c++) F[vt_xoff(b) + c] += d->Phix[14 * r + 7 * side + c] * d->lambda[r];
+        }
+    return VT_OK;
+}
