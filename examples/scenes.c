@@ -99,14 +99,20 @@ static void random_rotation(double A[9], uint64_t *s)
 
 vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, unsigned kinds)
 {
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    return finish(model, b, vt_scene_random_bodies(b, seed, n, kinds));
+}
+
+vt_status vt_scene_random_bodies(vt_builder *b, uint64_t seed, int n, unsigned kinds)
+{
     vt_joint_type allowed[VT_JOINT_TYPE_COUNT];
     int nallowed = 0;
     for (int k = 0; k < VT_JOINT_TYPE_COUNT; k++)
         if (kinds & (1u << k)) allowed[nallowed++] = (vt_joint_type)k;
     if (nallowed == 0) return VT_ERR_JOINT_TYPE;
-    vt_builder *b;
-    vt_status st = vt_builder_create(&b, NULL);
-    if (st) return st;
+    vt_status st = VT_OK;
     uint64_t s = seed;
     for (int i = 1; i <= n && st == VT_OK; i++) {
         vt_body_def d = vt_default_body_def();
@@ -140,7 +146,7 @@ vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, unsigned 
         const int id = vt_builder_add_body(b, &d);
         if (id < 0) st = (vt_status)id;
     }
-    return finish(model, b, st);
+    return st;
 }
 
 void vt_scene_random_state(const vt_model *m, vt_data *d, uint64_t *s)
@@ -181,4 +187,77 @@ void vt_scene_random_state(const vt_model *m, vt_data *d, uint64_t *s)
             }
         }
     }
+}
+
+vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
+{
+    static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    int id = 0;
+    for (int k = 0; k < 3 && id >= 0; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.mass = mass[k];
+        rod_inertia(link.inertia, mass[k], len[k]);
+        link.joint_child[0] = -0.5 * len[k];
+        if (k == 1) { /* coupler: spherical joint at the crank's tip */
+            link.parent = 1;
+            link.joint = VT_JOINT_SPHERICAL;
+            link.joint_parent[0] = 0.5 * VT_FB_A;
+        }
+        if (k == 2) link.joint_parent[0] = VT_FB_D; /* rocker pivot on the ground */
+        id = vt_builder_add_body(b, &link);
+    }
+    if (id > 0) {
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.joint = VT_JOINT_UNIVERSAL;
+        cut.body_a = 3;
+        cut.body_b = 2;
+        cut.point_a[0] = 0.5 * VT_FB_C;
+        cut.point_b[0] = 0.5 * VT_FB_B;
+        cut.axis2[0] = 0.0; /* with b's axes taken as a's: the coupler's y */
+        cut.axis2[1] = 1.0;
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    if (id >= 0) {
+        vt_drive_def drive = vt_default_drive_def();
+        drive.body = 1;
+        drive.f = crank;
+        id = vt_builder_add_drive(b, &drive);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double w2, double th[2], double w[2])
+{
+    /* crank tip B, rocker pivot O4; C on both circles |C − B| = b, |C − O4| = c */
+    const double Bx = VT_FB_A * cos(th2), By = VT_FB_A * sin(th2);
+    const double ex = VT_FB_D - Bx, ey = -By, L = sqrt(ex * ex + ey * ey);
+    const double x = (L * L + VT_FB_B * VT_FB_B - VT_FB_C * VT_FB_C) / (2.0 * L);
+    const double h2 = VT_FB_B * VT_FB_B - x * x;
+    if (h2 < 0.0 || L == 0.0) return -1;
+    const double h = sqrt(h2), ux = ex / L, uy = ey / L;
+    double Cx = Bx + x * ux - h * uy, Cy = By + x * uy + h * ux;
+    if (Cy < 0.0) { Cx = Bx + x * ux + h * uy; Cy = By + x * uy - h * ux; }
+    const double th3 = atan2(Cy - By, Cx - Bx), th4 = atan2(Cy, Cx - VT_FB_D);
+    /* rates: a ω2 k×e2 + b ω3 k×e3 = c ω4 k×e4 (two equations) */
+    const double a11 = -VT_FB_B * sin(th3), a12 = VT_FB_C * sin(th4);
+    const double a21 = VT_FB_B * cos(th3), a22 = -VT_FB_C * cos(th4);
+    const double r1 = VT_FB_A * w2 * sin(th2), r2 = -VT_FB_A * w2 * cos(th2);
+    const double det = a11 * a22 - a12 * a21;
+    if (det == 0.0) return -1;
+    const double w3 = (r1 * a22 - a12 * r2) / det, w4 = (a11 * r2 - a21 * r1) / det;
+    const double z[3] = {0, 0, 1};
+    d->q[m->body_qadr[1]] = th2;
+    vt_quat_axis_angle(d->q + m->body_qadr[2], z, th3 - th2);
+    d->q[m->body_qadr[3]] = th4;
+    d->qd[m->body_vadr[1]] = w2;
+    d->qd[m->body_vadr[2]] = 0.0;
+    d->qd[m->body_vadr[2] + 1] = 0.0;
+    d->qd[m->body_vadr[2] + 2] = w3 - w2;
+    d->qd[m->body_vadr[3]] = w4;
+    if (th) { th[0] = th3; th[1] = th4; }
+    if (w) { w[0] = w3; w[1] = w4; }
+    return 0;
 }

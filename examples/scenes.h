@@ -19,6 +19,24 @@ vt_status vt_scene_double_link(vt_model **model, int lock);
  * whose axes cycle x, y, z. */
 vt_status vt_scene_chain(vt_model **model, int n);
 
+/* A four-bar linkage laid out in the XY plane, built exactly constrained in space as RSUR:
+ * crank (body 1, revolute about z at the origin), coupler (body 2, spherical joint at the
+ * crank's tip), rocker (body 3, revolute about z at (VT_FB_D, 0, 0)); the loop is closed by a
+ * universal cut joint (cut 0) from the rocker's tip (axis z on the rocker) to the coupler's
+ * tip (axis y of the coupler). Uniform rods along their body x: crank VT_FB_A m, 1 kg;
+ * coupler VT_FB_B m, 3 kg; rocker VT_FB_C m, 2 kg (a crank-rocker). Drive 0 turns the crank:
+ * q1 = crank(t). */
+#define VT_FB_A 0.5
+#define VT_FB_B 1.5
+#define VT_FB_C 1.0
+#define VT_FB_D 1.2
+vt_status vt_scene_fourbar(vt_model **model, vt_function crank);
+
+/* Planar assembly of that four-bar at crank angle th2 and rate w2 (open branch, rocker tip
+ * above the ground line): sets d->q, d->qd. Writes the coupler and rocker angles and rates
+ * (global, about z) into th[2], w[2] if not NULL. Returns 0, or -1 where the loop cannot close. */
+int vt_scene_fourbar_assemble(const vt_model *model, vt_data *data, double th2, double w2, double th[2], double w[2]);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */
@@ -28,6 +46,8 @@ vt_status vt_scene_chain(vt_model **model, int n);
 #define VT_SCENE_SCALAR_JOINTS ((1u << VT_JOINT_REVOLUTE) | (1u << VT_JOINT_UNIVERSAL) | \
                                 (1u << VT_JOINT_TRANSLATIONAL) | (1u << VT_JOINT_CYLINDRICAL))
 vt_status vt_scene_random_tree(vt_model **model, uint64_t seed, int n, unsigned kinds);
+/* The same bodies added to a builder, to add drives and cut joints before building. */
+vt_status vt_scene_random_bodies(vt_builder *builder, uint64_t seed, int n, unsigned kinds);
 
 /* A random state: angles in [−π, π], translations in [−1, 1], random unit Euler parameters,
  * rates in [−2, 2] (base bodies: ṗ = ½ E^T ω, tangent to the unit sphere). */
