@@ -1,0 +1,552 @@
+/* src/reactions.c: efforts (24) and reactions (25)-(28) against the paper's exact double-link
+ * solution (29), a planar Newton–Euler solution of a four-bar, the power balance of every
+ * effort, Newton–Euler balance of every body, and the reaction's orthogonality to a joint's
+ * free directions. */
+#include "vt_test.h"
+
+extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b,
+                   const int *ldb, int *info);
+
+/* ---- the paper's double link, joint 2 locked --------------------------------------- */
+
+static void test_double_link_exact(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    for (double th = 0.0; th <= 1.5; th += 0.125) {
+        const double s = sin(th), c = cos(th);
+        d->q[0] = -th;
+        d->q[1] = 0.0;
+        d->qd[0] = -sqrt(7.3575 * s); /* θ̇² = 7.3575 sin θ */
+        d->qd[1] = 0.0;
+        assert_ok(vt_inverse_dynamics(m, d));
+        /* θ̈ = 3.67875 cos θ, θ = −q1 */
+        assert_near(-d->qdd[0], 3.67875 * c, 1e-10 * 3.67875);
+        assert_near(d->qdd[1], 0.0, 1e-10 * 3.67875);
+        /* (29): the ground on link 1 at joint 1 */
+        assert_near(d->jnt_force[3 + 0], -2207.25 * sin(2 * th), 1e-10 * 4905.0);
+        assert_near(d->jnt_force[3 + 1], 4905.0 * s * s + 490.5 * c * c, 1e-10 * 4905.0);
+        assert_near(d->jnt_force[3 + 2], 0.0, 1e-10 * 4905.0);
+        /* link 1 on link 2 at joint 2 */
+        assert_near(d->jnt_force[6 + 0], -1655.4375 * sin(2 * th), 1e-10 * 3188.25);
+        assert_near(d->jnt_force[6 + 1], 3188.25 * s * s - 122.625 * c * c, 1e-10 * 3188.25);
+        /* the locking torque, 245.25 |cos θ| (about −z here) */
+        assert_near(fabs(d->drive_effort[0]), 245.25 * c, 1e-10 * 245.25);
+        assert_near(d->drive_moment[2], d->drive_effort[0], 1e-12 * 245.25);
+        /* revolute reactions carry no moment about their axis; in the plane none at all */
+        for (int i = 1; i <= 2; i++)
+            for (int k = 0; k < 3; k++) assert_near(d->jnt_moment[3 * i + k], 0.0, 1e-10 * 245.25);
+        /* body-axes components (27): link 1 lies along −θ */
+        assert_near(d->jnt_force_body[3 + 0], c * d->jnt_force[3] - s * d->jnt_force[4], 1e-9);
+        assert_near(d->jnt_force_body[3 + 1], s * d->jnt_force[3] + c * d->jnt_force[4], 1e-9);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* ---- a model with every joint kind, drives of every kind and cut joints --------------- */
+
+/* Random tree, some joints driven, a point and an orientation drive on base body 1; with cuts, a spherical
+ * and a cylindrical cut joint on body 7 (a free base body, so no row depends on the others),
+ * placed so that they hold at the random state the data is left in. */
+static vt_model *build_mixed(uint64_t seed, int n, int with_cuts, vt_data **data)
+{
+    vt_model *probe;
+    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_ALL_JOINTS));
+    vt_data *pd_;
+    assert_ok(vt_data_create(&pd_, probe));
+    uint64_t st = seed * 3;
+    vt_scene_random_state(probe, pd_, &st);
+    assert_ok(vt_kinematics(probe, pd_));
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_ALL_JOINTS));
+    uint64_t s = seed + 7;
+    for (int i = 2; i <= n; i += 2) { /* drive some joints, leave others free */
+        const int jt = probe->body_joint[i];
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE) continue;
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = i;
+        dr.f = vt_function_sine(0.1, 0.4, 2.0 + i, 0.0);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    vt_drive_def pd = vt_default_drive_def();
+    pd.type = VT_DRIVE_POINT;
+    pd.body = 1; /* the base body, whose orientation alone is driven */
+    pd.index = 1;
+    pd.point[0] = 0.3;
+    pd.f = vt_function_sine(0.0, 0.2, 3.0, 0.0);
+    assert_true(vt_builder_add_drive(b, &pd) >= 0);
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    od.body = 1; /* the base body */
+    od.f = vt_function_sine(0.0, 0.5, 1.0, 0.0);
+    assert_true(vt_builder_add_drive(b, &od) >= 0);
+    if (with_cuts) {
+        assert_int_equal(probe->body_joint[7], VT_JOINT_BASE);
+        const int a = n - 1;
+        const double *r7 = pd_->x + 7 * 6, *A7 = pd_->A + 9 * 7, *ra = pd_->x + 7 * (a - 1), *Aa = pd_->A + 9 * a;
+        vt_cut_joint_def cj = vt_default_cut_joint_def();
+        cj.joint = VT_JOINT_SPHERICAL;
+        cj.body_a = a;
+        cj.body_b = 7;
+        double P[3], rel[3];
+        for (int k = 0; k < 3; k++) cj.point_b[k] = vt_rand_uniform(&s, -0.3, 0.3);
+        for (int k = 0; k < 3; k++) P[k] = r7[k] + A7[k] * cj.point_b[0] + A7[k + 3] * cj.point_b[1] + A7[k + 6] * cj.point_b[2];
+        for (int k = 0; k < 3; k++) rel[k] = P[k] - ra[k];
+        for (int k = 0; k < 3; k++) cj.point_a[k] = Aa[3 * k] * rel[0] + Aa[3 * k + 1] * rel[1] + Aa[3 * k + 2] * rel[2];
+        assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
+        /* cylindrical to the ground: along a random line through another point of body 7 */
+        cj.joint = VT_JOINT_CYLINDRICAL;
+        cj.body_a = 0;
+        for (int k = 0; k < 3; k++) cj.point_b[k] = vt_rand_uniform(&s, -0.3, 0.3);
+        for (int k = 0; k < 3; k++) cj.point_a[k] = r7[k] + A7[k] * cj.point_b[0] + A7[k + 3] * cj.point_b[1] + A7[k + 6] * cj.point_b[2];
+        vt_rand_unit(cj.axis1, 3, &s);
+        memcpy(cj.orientation, r7 + 3, 4 * sizeof(double)); /* b's axes relative to the ground's */
+        assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(data, m));
+    memcpy((*data)->q, pd_->q, (size_t)m->nq * sizeof(double));
+    memcpy((*data)->qd, pd_->qd, (size_t)m->nv * sizeof(double));
+    (*data)->time = 0.3;
+    vt_data_free(pd_);
+    vt_model_free(probe);
+    if (with_cuts) { /* the cut joints hold at this state */
+        assert_ok(vt_kinematics(m, *data));
+        assert_ok(vt_constraints(m, *data));
+        for (int r = m->cut_row[0]; r < m->nc - 2; r++) assert_near((*data)->Phi[r], 0.0, 1e-12);
+    }
+    return m;
+}
+
+static void point_velocity(double v[3], const vt_data *d, int body, const double P[3])
+{
+    if (body == 0) {
+        v[0] = v[1] = v[2] = 0.0;
+        return;
+    }
+    const double *r = d->x + 7 * (body - 1), *w = d->omega + 3 * body, *rd = d->xd + 7 * (body - 1);
+    const double s[3] = {P[0] - r[0], P[1] - r[1], P[2] - r[2]};
+    v[0] = rd[0] + w[1] * s[2] - w[2] * s[1];
+    v[1] = rd[1] + w[2] * s[0] - w[0] * s[2];
+    v[2] = rd[2] + w[0] * s[1] - w[1] * s[0];
+}
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* power of a wrench (f, n at P) on body b, reacted by body a at the same point */
+static double wrench_power(const vt_data *d, int a, int b, const double P[3], const double f[3], const double n[3])
+{
+    double va[3], vb[3];
+    const double zero[3] = {0, 0, 0};
+    point_velocity(va, d, a, P);
+    point_velocity(vb, d, b, P);
+    const double *wa = a ? d->omega + 3 * a : zero, *wb = d->omega + 3 * b;
+    return f[0] * (vb[0] - va[0]) + f[1] * (vb[1] - va[1]) + f[2] * (vb[2] - va[2]) +
+           n[0] * (wb[0] - wa[0]) + n[1] * (wb[1] - wa[1]) + n[2] * (wb[2] - wa[2]);
+}
+
+static double energy(const vt_model *m, vt_data *d)
+{
+    assert_ok(vt_kinematics(m, d));
+    return vt_test_kinetic_energy(m, d) + vt_test_potential_energy(m, d);
+}
+
+/* Σ (power of every effort and cut-joint force) = d(T + V)/dt along (q̇, q̈) */
+static void test_power_balance(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+        vt_data *d;
+        vt_model *m = build_mixed(seed, 12, seed % 2, &d);
+        assert_ok(vt_inverse_dynamics(m, d));
+        double P = 0.0;
+        for (int k = 0; k < m->ndrive; k++) {
+            const vt_drive_def *dr = &m->drive[k];
+            const int b = dr->body, a = dr->type == VT_DRIVE_JOINT ? m->body_parent[b] : 0;
+            double Pt[3];
+            if (dr->type == VT_DRIVE_JOINT) {
+                memcpy(Pt, d->jpoint + 3 * b, sizeof Pt);
+                /* the effort along its coordinate does the same power: τ q̇ */
+                const double pw = wrench_power(d, a, b, Pt, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+                assert_near(pw, d->drive_effort[k] * d->qd[m->body_vadr[b] + dr->index], 1e-9 * (1 + fabs(pw)));
+            } else if (dr->type == VT_DRIVE_POINT) {
+                const double *A = d->A + 9 * b, *r = d->x + 7 * (b - 1);
+                for (int c = 0; c < 3; c++) Pt[c] = r[c] + A[c] * dr->point[0] + A[c + 3] * dr->point[1] + A[c + 6] * dr->point[2];
+            } else {
+                memcpy(Pt, d->x + 7 * (b - 1), sizeof Pt);
+            }
+            P += wrench_power(d, a, b, Pt, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        }
+        for (int k = 0; k < m->ncut; k++) {
+            const vt_cut_joint_def *c = &m->cut[k];
+            const double *A = d->A + 9 * c->body_b, *r = d->x + 7 * (c->body_b - 1);
+            double Pt[3];
+            for (int e = 0; e < 3; e++) Pt[e] = r[e] + A[e] * c->point_b[0] + A[e + 3] * c->point_b[1] + A[e + 6] * c->point_b[2];
+            P += wrench_power(d, c->body_a, c->body_b, Pt, d->cut_force + 3 * k, d->cut_moment + 3 * k);
+        }
+        const int nq = m->nq, nv = m->nv;
+        double *q = malloc((size_t)nq * sizeof(double)), *v = malloc((size_t)nv * sizeof(double));
+        double *a = malloc((size_t)nv * sizeof(double));
+        memcpy(q, d->q, (size_t)nq * sizeof(double));
+        memcpy(v, d->qd, (size_t)nv * sizeof(double));
+        memcpy(a, d->qdd, (size_t)nv * sizeof(double));
+        const double h = 1e-5;
+        double Eh[2];
+        for (int sgn = 0; sgn < 2; sgn++) {
+            const double t = sgn ? h : -h;
+            assert_ok(vt_integrate_q(d->q, m, q, v, t));
+            for (int c = 0; c < nv; c++) d->qd[c] = v[c] + t * a[c];
+            Eh[sgn] = energy(m, d);
+        }
+        assert_near(P, (Eh[1] - Eh[0]) / (2 * h), 1e-6 * (1 + fabs(P)));
+        free(q); free(v); free(a);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
+/* every body: m a = Σ f, J α + ω̃ J ω = Σ n about its centre of mass, with gravity, the
+ * drives' efforts, the cut joints' forces, its own joint's reaction and its children's */
+static void test_newton_euler_every_body(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+        vt_data *d;
+        vt_model *m = build_mixed(seed + 10, 12, 1, &d);
+        assert_ok(vt_inverse_dynamics(m, d));
+        const int n = m->nbody;
+        double *F = calloc(6 * ((size_t)n + 1), sizeof(double));
+        double fmax = 0.0;
+        /* add a wrench (f, n at P) to body b about its centre of mass */
+#define ADD(b, P, f, nn, sgn)                                                                           \
+    do {                                                                                                \
+        if ((b) > 0) {                                                                                  \
+            const double *r_ = d->x + 7 * ((b) - 1);                                                    \
+            const double s_[3] = {(P)[0] - r_[0], (P)[1] - r_[1], (P)[2] - r_[2]};                      \
+            double *w_ = F + 6 * (b);                                                                   \
+            for (int c_ = 0; c_ < 3; c_++) w_[c_] += (sgn) * (f)[c_];                                   \
+            w_[3] += (sgn) * ((nn)[0] + s_[1] * (f)[2] - s_[2] * (f)[1]);                               \
+            w_[4] += (sgn) * ((nn)[1] + s_[2] * (f)[0] - s_[0] * (f)[2]);                               \
+            w_[5] += (sgn) * ((nn)[2] + s_[0] * (f)[1] - s_[1] * (f)[0]);                               \
+            fmax = fmax > fabs((f)[0]) + fabs((f)[1]) + fabs((f)[2]) ? fmax : fabs((f)[0]) + fabs((f)[1]) + fabs((f)[2]); \
+        }                                                                                               \
+    } while (0)
+        for (int i = 1; i <= n; i++) {
+            const double g[3] = {m->body_mass[i] * m->gravity[0], m->body_mass[i] * m->gravity[1], m->body_mass[i] * m->gravity[2]};
+            const double zero[3] = {0, 0, 0};
+            ADD(i, d->x + 7 * (i - 1), g, zero, 1.0);
+            ADD(i, d->jpoint + 3 * i, d->jnt_force + 3 * i, d->jnt_moment + 3 * i, 1.0);
+            ADD(m->body_parent[i], d->jpoint + 3 * i, d->jnt_force + 3 * i, d->jnt_moment + 3 * i, -1.0);
+        }
+        for (int k = 0; k < m->ndrive; k++) {
+            const vt_drive_def *dr = &m->drive[k];
+            double Pt[3];
+            const int b = dr->body;
+            if (dr->type == VT_DRIVE_JOINT) memcpy(Pt, d->jpoint + 3 * b, sizeof Pt);
+            else if (dr->type == VT_DRIVE_POINT) {
+                const double *A = d->A + 9 * b, *r = d->x + 7 * (b - 1);
+                for (int c = 0; c < 3; c++) Pt[c] = r[c] + A[c] * dr->point[0] + A[c + 3] * dr->point[1] + A[c + 6] * dr->point[2];
+            } else memcpy(Pt, d->x + 7 * (b - 1), sizeof Pt);
+            ADD(b, Pt, d->drive_force + 3 * k, d->drive_moment + 3 * k, 1.0);
+            if (dr->type == VT_DRIVE_JOINT) ADD(m->body_parent[b], Pt, d->drive_force + 3 * k, d->drive_moment + 3 * k, -1.0);
+        }
+        for (int k = 0; k < m->ncut; k++) {
+            const vt_cut_joint_def *c = &m->cut[k];
+            const double *A = d->A + 9 * c->body_b, *r = d->x + 7 * (c->body_b - 1);
+            double Pt[3];
+            for (int e = 0; e < 3; e++) Pt[e] = r[e] + A[e] * c->point_b[0] + A[e + 3] * c->point_b[1] + A[e + 6] * c->point_b[2];
+            ADD(c->body_b, Pt, d->cut_force + 3 * k, d->cut_moment + 3 * k, 1.0);
+            ADD(c->body_a, Pt, d->cut_force + 3 * k, d->cut_moment + 3 * k, -1.0);
+        }
+#undef ADD
+        /* inertia side, from ẍ = S q̈ + Ṡ q̇ (dense) and α = 2 E p̈ */
+        for (int i = 1; i <= n; i++) {
+            const int o = 7 * (i - 1);
+            double xdd[7] = {0}, E[12], al[3] = {0}, J[9], Jw[3], Ja[3];
+            for (int r = 0; r < 7; r++) {
+                xdd[r] = d->Sdqd[o + r];
+                for (int c = 0; c < m->nv; c++) xdd[r] += d->S[o + r + (size_t)c * (size_t)m->nx] * d->qdd[c];
+            }
+            vt_euler_E(E, d->x + o + 3);
+            for (int r = 0; r < 3; r++)
+                for (int k = 0; k < 4; k++) al[r] += 2 * E[r + 3 * k] * xdd[3 + k];
+            const double *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
+            for (int r = 0; r < 3; r++)
+                for (int c = 0; c < 3; c++) {
+                    double v = 0.0;
+                    for (int a = 0; a < 3; a++)
+                        for (int b = 0; b < 3; b++) v += A[r + 3 * a] * Jb[a + 3 * b] * A[c + 3 * b];
+                    J[r + 3 * c] = v;
+                }
+            for (int r = 0; r < 3; r++) {
+                Jw[r] = J[r] * w[0] + J[r + 3] * w[1] + J[r + 6] * w[2];
+                Ja[r] = J[r] * al[0] + J[r + 3] * al[1] + J[r + 6] * al[2];
+            }
+            const double need[6] = {m->body_mass[i] * xdd[0], m->body_mass[i] * xdd[1], m->body_mass[i] * xdd[2],
+                                    Ja[0] + w[1] * Jw[2] - w[2] * Jw[1], Ja[1] + w[2] * Jw[0] - w[0] * Jw[2],
+                                    Ja[2] + w[0] * Jw[1] - w[1] * Jw[0]};
+            for (int r = 0; r < 6; r++) assert_near(F[6 * i + r], need[r], 1e-10 * fmax);
+        }
+        free(F);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
+/* reactions have no component along a joint's free directions (efforts are reported apart) */
+static void test_reaction_orthogonality(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 6; seed++) {
+        vt_data *d;
+        vt_model *m = build_mixed(seed + 20, 14, seed % 2, &d);
+        const vt_status st = vt_inverse_dynamics(m, d);
+        if (st) fail_msg("seed %d: %s", (int)seed, d->message);
+        double scale = 0.0;
+        for (int i = 1; i <= m->nbody; i++)
+            for (int k = 0; k < 3; k++) scale = fmax(scale, fabs(d->jnt_force[3 * i + k]) + fabs(d->jnt_moment[3 * i + k]));
+        const double tol = 1e-10 * scale;
+        for (int i = 1; i <= m->nbody; i++) {
+            const double *f = d->jnt_force + 3 * i, *n = d->jnt_moment + 3 * i, *e = d->jaxis + 9 * i;
+            switch (m->body_joint[i]) {
+            case VT_JOINT_REVOLUTE: assert_near(dot3(n, e), 0.0, tol); break;
+            case VT_JOINT_UNIVERSAL:
+                assert_near(dot3(n, e), 0.0, tol);
+                assert_near(dot3(n, e + 3), 0.0, tol);
+                break;
+            case VT_JOINT_SPHERICAL:
+                for (int k = 0; k < 3; k++) assert_near(n[k], 0.0, tol);
+                break;
+            case VT_JOINT_TRANSLATIONAL: assert_near(dot3(f, e), 0.0, tol); break;
+            case VT_JOINT_CYLINDRICAL:
+                assert_near(dot3(f, e), 0.0, tol);
+                assert_near(dot3(n, e), 0.0, tol);
+                break;
+            default: /* base: no joint, nothing transmitted */
+                for (int k = 0; k < 3; k++) {
+                    assert_near(f[k], 0.0, tol);
+                    assert_near(n[k], 0.0, tol);
+                }
+            }
+        }
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
+/* Φ_x^T λ of a joint drive is R^T Φ_q^T λ (14); of a point drive [f; 2 E^T s̃ f] (24) */
+static void test_drive_cartesian_force(void **state)
+{
+    (void)state;
+    vt_data *d;
+    vt_model *m = build_mixed(3, 10, 0, &d);
+    assert_ok(vt_inverse_dynamics(m, d));
+    assert_ok(vt_inverse_transform(m, d));
+    double *F = malloc((size_t)m->nx * sizeof(double)), *G = malloc((size_t)m->nx * sizeof(double));
+    double *Q = calloc((size_t)m->nv, sizeof(double));
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *dr = &m->drive[k];
+        assert_ok(vt_drive_cartesian_force(F, m, d, k));
+        if (dr->type == VT_DRIVE_JOINT) {
+            const int c = m->body_vadr[dr->body] + dr->index;
+            Q[c] = d->drive_effort[k];
+            assert_ok(vt_equivalent_force(G, m, d, Q));
+            Q[c] = 0.0;
+        } else if (dr->type == VT_DRIVE_POINT) {
+            memset(G, 0, (size_t)m->nx * sizeof(double));
+            const int b = dr->body;
+            double sg[3];
+            const double *A = d->A + 9 * b, zero[3] = {0, 0, 0};
+            for (int c = 0; c < 3; c++) sg[c] = A[c] * dr->point[0] + A[c + 3] * dr->point[1] + A[c + 6] * dr->point[2];
+            double f[3] = {0, 0, 0};
+            f[dr->index] = d->drive_effort[k];
+            vt_cartesian_force(G + 7 * (b - 1), d->x + 7 * (b - 1) + 3, sg, f, zero);
+        } else {
+            continue;
+        }
+        for (int r = 0; r < m->nx; r++) assert_near(F[r], G[r], 1e-10 * (1 + fabs(G[r])));
+    }
+    assert_int_equal(vt_drive_cartesian_force(F, m, d, m->ndrive), VT_ERR_BAD_INDEX);
+    free(F); free(G); free(Q);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* ---- the four-bar against a planar Newton–Euler solution --------------------------------- */
+
+typedef struct { double th[3], w[3], al[3]; } planar_motion; /* crank, coupler, rocker */
+
+static void cross_z(double out[2], double w, const double r[2]) { out[0] = -w * r[1]; out[1] = w * r[0]; }
+
+/* planar kinematics and 9x9 Newton–Euler: F1 ground→crank at O2, F2 crank→coupler at B,
+ * F3 rocker→coupler at C, F4 ground→rocker at O4, T ground→crank */
+static void planar_solution(const planar_motion *pm, double x[9], double g)
+{
+    const double a = VT_FB_A, b = VT_FB_B, c = VT_FB_C, dd = VT_FB_D, L[3] = {a, b, c}, mass[3] = {1, 3, 2};
+    double e[3][2], B[2], C[2], G[3][2], acc[3][2];
+    for (int k = 0; k < 3; k++) { e[k][0] = cos(pm->th[k]); e[k][1] = sin(pm->th[k]); }
+    B[0] = a * e[0][0]; B[1] = a * e[0][1];
+    C[0] = dd + c * e[2][0]; C[1] = c * e[2][1];
+    for (int k = 0; k < 2; k++) {
+        G[0][k] = 0.5 * a * e[0][k];
+        G[1][k] = B[k] + 0.5 * b * e[1][k];
+        G[2][k] = (k == 0 ? dd : 0.0) + 0.5 * c * e[2][k];
+    }
+    /* a point at distance l along e_k of a link turning with (w, α) about a point of acceleration a0 */
+    double t[2], aB[2];
+    cross_z(t, pm->al[0], e[0]);
+    for (int k = 0; k < 2; k++) aB[k] = a * (t[k] - pm->w[0] * pm->w[0] * e[0][k]);
+    for (int k = 0; k < 2; k++) acc[0][k] = 0.5 * aB[k];
+    cross_z(t, pm->al[1], e[1]);
+    for (int k = 0; k < 2; k++) acc[1][k] = aB[k] + 0.5 * b * (t[k] - pm->w[1] * pm->w[1] * e[1][k]);
+    cross_z(t, pm->al[2], e[2]);
+    for (int k = 0; k < 2; k++) acc[2][k] = 0.5 * c * (t[k] - pm->w[2] * pm->w[2] * e[2][k]);
+    double A[81] = {0}, rhs[9];
+    /* unknown order: F1x F1y F2x F2y F3x F3y F4x F4y T; equations per body: fx, fy, moment */
+#define EQ(row, col, v) A[(row) + 9 * (col)] += (v)
+#define MOM(row, col, r) do { EQ(row, col, -(r)[1]); EQ(row, (col) + 1, (r)[0]); } while (0)
+    double r[2];
+    const double O2[2] = {0, 0}, O4[2] = {dd, 0};
+    /* crank: F1 − F2 + m g = m a; T + (O2−G1)×F1 − (B−G1)×F2 = I α */
+    EQ(0, 0, 1); EQ(0, 2, -1); EQ(1, 1, 1); EQ(1, 3, -1);
+    r[0] = O2[0] - G[0][0]; r[1] = O2[1] - G[0][1]; MOM(2, 0, r);
+    r[0] = -(B[0] - G[0][0]); r[1] = -(B[1] - G[0][1]); MOM(2, 2, r);
+    EQ(2, 8, 1);
+    /* coupler: F2 + F3 + m g = m a; (B−G2)×F2 + (C−G2)×F3 = I α */
+    EQ(3, 2, 1); EQ(3, 4, 1); EQ(4, 3, 1); EQ(4, 5, 1);
+    r[0] = B[0] - G[1][0]; r[1] = B[1] - G[1][1]; MOM(5, 2, r);
+    r[0] = C[0] - G[1][0]; r[1] = C[1] - G[1][1]; MOM(5, 4, r);
+    /* rocker: F4 − F3 + m g = m a; (O4−G3)×F4 − (C−G3)×F3 = I α */
+    EQ(6, 6, 1); EQ(6, 4, -1); EQ(7, 7, 1); EQ(7, 5, -1);
+    r[0] = O4[0] - G[2][0]; r[1] = O4[1] - G[2][1]; MOM(8, 6, r);
+    r[0] = -(C[0] - G[2][0]); r[1] = -(C[1] - G[2][1]); MOM(8, 4, r);
+#undef MOM
+#undef EQ
+    for (int k = 0; k < 3; k++) {
+        rhs[3 * k] = mass[k] * acc[k][0];
+        rhs[3 * k + 1] = mass[k] * (acc[k][1] + g); /* F − m (0, −g) = m a */
+        rhs[3 * k + 2] = mass[k] * L[k] * L[k] / 12.0 * pm->al[k];
+    }
+    int n = 9, one = 1, ipiv[9], info = 0;
+    dgesv_(&n, &one, A, &n, ipiv, rhs, &n, &info);
+    assert_int_equal(info, 0);
+    memcpy(x, rhs, sizeof rhs);
+}
+
+/* planar accelerations of coupler and rocker from the crank's */
+static void planar_motion_at(planar_motion *pm, double th2, double w2, double al2, const double th[2], const double w[2])
+{
+    const double a = VT_FB_A, b = VT_FB_B, c = VT_FB_C;
+    pm->th[0] = th2; pm->th[1] = th[0]; pm->th[2] = th[1];
+    pm->w[0] = w2; pm->w[1] = w[0]; pm->w[2] = w[1];
+    const double s2 = sin(th2), c2 = cos(th2), s3 = sin(th[0]), c3 = cos(th[0]), s4 = sin(th[1]), c4 = cos(th[1]);
+    const double A11 = -b * s3, A12 = c * s4, A21 = b * c3, A22 = -c * c4;
+    const double r1 = a * al2 * s2 + a * w2 * w2 * c2 + b * w[0] * w[0] * c3 - c * w[1] * w[1] * c4;
+    const double r2 = -a * al2 * c2 + a * w2 * w2 * s2 + b * w[0] * w[0] * s3 - c * w[1] * w[1] * s4;
+    const double det = A11 * A22 - A12 * A21;
+    pm->al[0] = al2;
+    pm->al[1] = (r1 * A22 - A12 * r2) / det;
+    pm->al[2] = (A11 * r2 - A21 * r1) / det;
+}
+
+static double planar_energy(const planar_motion *pm, double g)
+{
+    const double a = VT_FB_A, b = VT_FB_B, c = VT_FB_C, L[3] = {a, b, c}, mass[3] = {1, 3, 2};
+    double v[3][2], y[3];
+    const double e0[2] = {cos(pm->th[0]), sin(pm->th[0])}, e1[2] = {cos(pm->th[1]), sin(pm->th[1])},
+                 e2[2] = {cos(pm->th[2]), sin(pm->th[2])};
+    for (int k = 0; k < 2; k++) {
+        const double vB = a * pm->w[0] * (k ? e0[0] : -e0[1]);
+        v[0][k] = 0.5 * vB;
+        v[1][k] = vB + 0.5 * b * pm->w[1] * (k ? e1[0] : -e1[1]);
+        v[2][k] = 0.5 * c * pm->w[2] * (k ? e2[0] : -e2[1]);
+    }
+    y[0] = 0.5 * a * e0[1]; y[1] = a * e0[1] + 0.5 * b * e1[1]; y[2] = 0.5 * c * e2[1];
+    double E = 0.0;
+    for (int k = 0; k < 3; k++)
+        E += 0.5 * mass[k] * (v[k][0] * v[k][0] + v[k][1] * v[k][1]) +
+             0.5 * mass[k] * L[k] * L[k] / 12.0 * pm->w[k] * pm->w[k] + mass[k] * g * y[k];
+    return E;
+}
+
+static void test_fourbar(void **state)
+{
+    (void)state;
+    const double coef[3] = {0.3, 2.0, 1.5}; /* θ2 = 0.3 + 2 t + 1.5 t² */
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_fourbar(&m, vt_function_polynomial(3, coef)));
+    assert_int_equal(m->nc, 5);
+    assert_ok(vt_data_create(&d, m));
+    const double g = 9.81;
+    for (double t = 0.0; t < 2.0; t += 0.17) {
+        const double th2 = coef[0] + coef[1] * t + coef[2] * t * t, w2 = coef[1] + 2 * coef[2] * t, al2 = 2 * coef[2];
+        double th[2], w[2];
+        assert_int_equal(vt_scene_fourbar_assemble(m, d, th2, w2, th, w), 0);
+        d->time = t;
+        assert_ok(vt_inverse_dynamics(m, d));
+        /* the assembly closes the loop in position and velocity */
+        for (int r = 0; r < m->nc; r++) {
+            double vel = d->Phit[r];
+            for (int c = 0; c < m->nv; c++) vel += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->qd[c];
+            assert_near(d->Phi[r], 0.0, 1e-12);
+            assert_near(vel, 0.0, 1e-12);
+        }
+        planar_motion pm;
+        planar_motion_at(&pm, th2, w2, al2, th, w);
+        double x[9];
+        planar_solution(&pm, x, g);
+        const double tol = 1e-9 * (1 + vt_test_maxabs(x, 9));
+        assert_near(d->drive_effort[0], x[8], tol);             /* crank torque */
+        assert_near(d->jnt_force[3 * 1 + 0], x[0], tol);        /* ground on crank */
+        assert_near(d->jnt_force[3 * 1 + 1], x[1], tol);
+        assert_near(d->jnt_force[3 * 2 + 0], x[2], tol);        /* crank on coupler (spherical) */
+        assert_near(d->jnt_force[3 * 2 + 1], x[3], tol);
+        assert_near(d->cut_force[0], x[4], tol);                /* rocker on coupler (universal cut) */
+        assert_near(d->cut_force[1], x[5], tol);
+        assert_near(d->jnt_force[3 * 3 + 0], x[6], tol);        /* ground on rocker */
+        assert_near(d->jnt_force[3 * 3 + 1], x[7], tol);
+        /* nothing out of the plane, and no reaction moments in a planar mechanism */
+        for (int i = 1; i <= 3; i++) {
+            assert_near(d->jnt_force[3 * i + 2], 0.0, tol);
+            for (int k = 0; k < 3; k++) assert_near(d->jnt_moment[3 * i + k], 0.0, tol);
+        }
+        assert_near(d->cut_force[2], 0.0, tol);
+        for (int k = 0; k < 3; k++) assert_near(d->cut_moment[k], 0.0, tol);
+        /* the crank torque against the energy balance of the planar motion: T ω2 = d(T+V)/dt */
+        const double h = 1e-5;
+        double E[2];
+        for (int sgn = 0; sgn < 2; sgn++) {
+            const double tt = t + (sgn ? h : -h);
+            const double a2 = coef[0] + coef[1] * tt + coef[2] * tt * tt, b2 = coef[1] + 2 * coef[2] * tt;
+            double th_[2], w_[2];
+            assert_int_equal(vt_scene_fourbar_assemble(m, d, a2, b2, th_, w_), 0);
+            planar_motion p2;
+            planar_motion_at(&p2, a2, b2, al2, th_, w_);
+            E[sgn] = planar_energy(&p2, g);
+        }
+        assert_near(x[8] * w2, (E[1] - E[0]) / (2 * h), 1e-6 * (1 + fabs(x[8] * w2)));
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_double_link_exact),
+        cmocka_unit_test(test_power_balance),
+        cmocka_unit_test(test_newton_euler_every_body),
+        cmocka_unit_test(test_reaction_orthogonality),
+        cmocka_unit_test(test_drive_cartesian_force),
+        cmocka_unit_test(test_fourbar),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,217 @@
+/* src/solve.c: the augmented system (5) against second methods (a fully joint-driven chain:
+ * q̈ = f'', λ = M* q̈ − Q; a free tree: M* q̈ = Q by Cholesky), and every failure status:
+ * singular system, dependent rows, bad drive and cut-joint definitions. */
+#include "vt_test.h"
+
+static void dpotrs_solve(int n, double *A, double *b)
+{
+    int info = 0, one = 1;
+    dpotrf_("L", &n, A, &n, &info, 1);
+    assert_int_equal(info, 0);
+    extern void dpotrs_(const char *, const int *, const int *, const double *, const int *, double *,
+                        const int *, int *, size_t);
+    dpotrs_("L", &n, &one, A, &n, b, &n, &info, 1);
+    assert_int_equal(info, 0);
+}
+
+/* every coordinate of a spatial chain driven by a sine: q̈ = f'' and efforts = M* q̈ − Q */
+static void test_fully_joint_driven_chain(void **state)
+{
+    (void)state;
+    const int n = 7;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, 21, n, VT_SCENE_SCALAR_JOINTS));
+    vt_model *probe;
+    assert_ok(vt_scene_random_tree(&probe, 21, n, VT_SCENE_SCALAR_JOINTS));
+    for (int i = 1; i <= n; i++)
+        for (int k = 0; k < probe->body_nv[i]; k++) {
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = i;
+            dr.index = k;
+            dr.f = vt_function_sine(0.1 * i, 0.5 + 0.1 * k, 1.0 + i, 0.2 * k);
+            assert_int_equal(vt_builder_add_drive(b, &dr), probe->body_vadr[i] + k);
+        }
+    vt_model_free(probe);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    const int nv = m->nv;
+    for (double t = 0.0; t < 1.0; t += 0.23) {
+        double f[3];
+        d->time = t;
+        for (int k = 0; k < m->ndrive; k++) {
+            assert_ok(vt_function_eval(f, &m->drive[k].f, t));
+            d->q[k] = f[0];
+            d->qd[k] = f[1];
+        }
+        assert_ok(vt_inverse_dynamics(m, d));
+        for (int k = 0; k < nv; k++) {
+            assert_ok(vt_function_eval(f, &m->drive[k].f, t));
+            assert_near(d->qdd[k], f[2], 1e-12 * (1 + fabs(f[2])));
+        }
+        const double scale = 1.0 + vt_test_maxabs(d->Q, nv);
+        for (int a = 0; a < nv; a++) {
+            double s = -d->Q[a];
+            for (int c = 0; c < nv; c++) s += d->Mstar[a + (size_t)c * (size_t)nv] * d->qdd[c];
+            assert_near(d->drive_effort[a], s, 1e-11 * scale);
+        }
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* without constraints (5) is M* q̈ = Q: against a Cholesky solve */
+static void test_free_tree(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_random_tree(&m, 8, 12, VT_SCENE_NO_BASE));
+    assert_int_equal(m->nc, 0);
+    assert_ok(vt_data_create(&d, m));
+    uint64_t s = 4;
+    vt_scene_random_state(m, d, &s);
+    assert_ok(vt_inverse_dynamics(m, d));
+    const int nv = m->nv;
+    double *A = malloc((size_t)nv * (size_t)nv * sizeof(double)), *x = malloc((size_t)nv * sizeof(double));
+    memcpy(A, d->Mstar, (size_t)nv * (size_t)nv * sizeof(double));
+    memcpy(x, d->Q, (size_t)nv * sizeof(double));
+    dpotrs_solve(nv, A, x);
+    for (int k = 0; k < nv; k++) assert_near(d->qdd[k], x[k], 1e-10 * (1 + vt_test_maxabs(x, nv)));
+    assert_true(d->rcond > 1e-6);
+    free(A); free(x);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+static vt_model *pendulum_with(int ndrives_on_joint, double inertia)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def(); /* point mass on the axis: no inertia about it */
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = inertia;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    for (int k = 0; k < ndrives_on_joint; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        assert_int_equal(vt_builder_add_drive(b, &dr), k);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void test_failures(void **state)
+{
+    (void)state;
+    /* singular: a body that nothing drives and that has no inertia about its free axis */
+    vt_model *m = pendulum_with(0, 0.0);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    d->qdd[0] = 42.0;
+    assert_int_equal(vt_inverse_dynamics(m, d), VT_ERR_SINGULAR);
+    assert_non_null(strstr(d->message, "rcond"));
+    assert_near(d->qdd[0], 42.0, 0.0); /* untouched */
+    vt_data_free(d);
+    vt_model_free(m);
+
+    /* dependent rows: the same coordinate driven twice; the message names the row */
+    m = pendulum_with(2, 1.0);
+    assert_ok(vt_data_create(&d, m));
+    d->lambda[0] = 7.0;
+    assert_int_equal(vt_inverse_dynamics(m, d), VT_ERR_DEPENDENT_CONSTRAINTS);
+    assert_non_null(strstr(d->message, "rank 1 of 2"));
+    assert_non_null(strstr(d->message, "drive"));
+    assert_near(d->lambda[0], 7.0, 0.0);
+    vt_data_free(d);
+    vt_model_free(m);
+
+    /* the same body driven well: solvable */
+    m = pendulum_with(1, 1.0);
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_inverse_dynamics(m, d));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+static void test_bad_definitions(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body.parent = 1;
+    body.joint = VT_JOINT_SPHERICAL;
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    body.parent = 0;
+    body.joint = VT_JOINT_BASE;
+    assert_int_equal(vt_builder_add_body(b, &body), 3);
+
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 4;
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_INDEX);
+    dr.body = 1; dr.index = 1; /* a revolute joint has one rate */
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    dr.body = 2; dr.index = 0; /* spherical */
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    assert_non_null(strstr(vt_builder_message(b), "orientation drive"));
+    dr.body = 3; dr.index = 4; /* a base body's Euler parameter */
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_POINT; dr.index = 3;
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    dr.index = 0; dr.point[1] = NAN;
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_NONFINITE);
+    dr = vt_default_drive_def();
+    dr.f = vt_function_polynomial(VT_POLY_MAX + 1, NULL);
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    dr.f = vt_function_user(NULL, NULL);
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_ORIENTATION; dr.axis[2] = 0.0;
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_AXIS_ZERO);
+    dr.type = (vt_drive_type)9;
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+
+    vt_cut_joint_def cj = vt_default_cut_joint_def();
+    cj.joint = VT_JOINT_BASE;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_BAD_CUT_JOINT);
+    cj.joint = VT_JOINT_REVOLUTE; cj.body_a = 1; cj.body_b = 1;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_BAD_CUT_JOINT);
+    cj.body_b = 7;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_BAD_INDEX);
+    cj.body_b = 2; cj.axis1[2] = 0.0;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_AXIS_ZERO);
+    cj = vt_default_cut_joint_def();
+    cj.joint = VT_JOINT_UNIVERSAL; cj.axis2[2] = 1.0;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_AXES_NOT_PERPENDICULAR);
+
+    /* refused definitions left nothing behind: the first good ones get index 0 */
+    assert_int_equal(vt_builder_add_drive(b, &(vt_drive_def){.type = VT_DRIVE_POINT, .body = 2, .index = 1,
+                                                             .f = vt_function_constant(0.0)}), 0);
+    cj = vt_default_cut_joint_def();
+    cj.body_b = 2;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    assert_int_equal(m->ndrive, 1);
+    assert_int_equal(m->ncut, 1);
+    assert_int_equal(m->nc, 1 + 5 + 1); /* point drive, revolute cut, p^T p of the base body */
+    vt_builder_free(b);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fully_joint_driven_chain),
+        cmocka_unit_test(test_free_tree),
+        cmocka_unit_test(test_failures),
+        cmocka_unit_test(test_bad_definitions),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
