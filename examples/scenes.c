@@ -261,3 +261,68 @@ int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double 
     if (w) { w[0] = w3; w[1] = w4; }
     return 0;
 }
+
+vt_status vt_scene_five_link(vt_model **model)
+{
+    static const double len[5] = {0.4, 0.5, 0.5, 0.2, 0.2}, mass[5] = {2.0, 1.5, 1.5, 0.5, 0.5};
+    vt_model_def md = vt_default_model_def();
+    md.gravity[1] = 0.0;
+    md.gravity[2] = -9.81;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    int id = 0;
+    for (int k = 0; k < 5 && id >= 0; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.parent = k;
+        link.mass = mass[k];
+        const double I = mass[k] * len[k] * len[k] / 12.0;
+        memset(link.axis1, 0, sizeof link.axis1);
+        if (k == 0) { /* column along z */
+            link.inertia[0] = link.inertia[4] = I;
+            link.joint_child[2] = -0.5 * len[0];
+            link.axis1[2] = 1.0;
+        } else {
+            link.inertia[4] = link.inertia[8] = I;
+            link.joint_child[0] = -0.5 * len[k];
+            if (k == 1) link.joint_parent[2] = 0.5 * len[0];
+            else link.joint_parent[0] = 0.5 * len[k - 1];
+            link.axis1[k == 4 ? 2 : 1] = 1.0;
+        }
+        id = vt_builder_add_body(b, &link);
+    }
+    /* (30)-(34): tip x, tip y, joint-5 point y, tip z, joint-5 point z */
+    static const int body[5] = {5, 5, 4, 5, 4}, comp[5] = {0, 1, 1, 2, 2};
+    const double w = 2.0 * VT_PI;
+    for (int k = 0; k < 5 && id >= 0; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.type = VT_DRIVE_POINT;
+        dr.body = body[k];
+        dr.index = comp[k];
+        dr.point[0] = 0.1; /* the far end of link 4 or link 5 */
+        if (comp[k] == 0) dr.f = vt_function_sine(VT_FL_C1, 0.3, w, 0.5 * VT_PI);
+        else if (comp[k] == 1) dr.f = vt_function_sine(0.0, 0.3, w, 0.0);
+        else dr.f = vt_function_constant(VT_FL_CE);
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+void vt_scene_five_link_guess(const vt_model *m, vt_data *d, double t)
+{
+    const double w = 2.0 * VT_PI, a = 0.5, bl = 0.5;
+    const double px = VT_FL_C1 - 0.2 + 0.3 * cos(w * t), py = 0.3 * sin(w * t);
+    const double psi = atan2(py, px), rho = sqrt(px * px + py * py);
+    const double X = rho - 0.2, Y = 0.4 - VT_FL_CE; /* to the end of link 3: out and down from joint 2 */
+    const double D2 = X * X + Y * Y;
+    double c3 = (D2 - a * a - bl * bl) / (2 * a * bl);
+    c3 = c3 > 1 ? 1 : (c3 < -1 ? -1 : c3);
+    const double q3 = -acos(c3);
+    const double q2 = atan2(Y, X) - atan2(bl * sin(q3), a + bl * cos(q3));
+    double *q = d->q;
+    q[m->body_qadr[1]] = psi;
+    q[m->body_qadr[2]] = q2;
+    q[m->body_qadr[3]] = q3;
+    q[m->body_qadr[4]] = -(q2 + q3);
+    q[m->body_qadr[5]] = -psi;
+}

@@ -37,6 +37,25 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank);
  * (global, about z) into th[2], w[2] if not NULL. Returns 0, or -1 where the loop cannot close. */
 int vt_scene_fourbar_assemble(const vt_model *model, vt_data *data, double th2, double w2, double th[2], double w[2]);
 
+/* The paper's five-link arm (Figs. 9-10). The paper gives no geometry; this one is ours:
+ *   link 1  column along its z, 0.4 m, 2 kg, revolute about the global z at the origin (yaw)
+ *   link 2  along its x, 0.5 m, 1.5 kg, revolute about link 1's y at its top (pitch)
+ *   link 3  along its x, 0.5 m, 1.5 kg, revolute about link 2's y at its end (pitch)
+ *   link 4  along its x, 0.2 m, 0.5 kg, revolute about link 3's y at its end (pitch)
+ *   link 5  along its x, 0.2 m, 0.5 kg, revolute about link 4's z at its end (yaw)
+ * all uniform slender rods, at q = 0 straight out along +x at height 0.4 m; gravity −9.81 z.
+ * The five point drives (30)-(34), (31) corrected: the tip (end of link 5) and the point
+ * joining links 4 and 5 share y = 0.3 sin 2πt and z = C_e, and the tip's x = C_1 + 0.3 cos 2πt:
+ * link 5 stays parallel to X while the tip draws a circle of radius 0.3 m in the plane
+ * z = C_e, with C_1 = 0.8 m and C_e = 0.1 m. On that circle the joint point is 0.3..0.9 m from
+ * the yaw axis and the elbow (links 2 and 3) reaches 0.32..0.76 m of its 1 m: never stretched,
+ * never folded, so the drives fix the motion everywhere (no singular pose). */
+#define VT_FL_C1 0.8
+#define VT_FL_CE 0.1
+vt_status vt_scene_five_link(vt_model **model);
+/* q of the five-link arm at time t from its inverse kinematics (elbow up): a start for Newton. */
+void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */

@@ -48,6 +48,9 @@ const char *vt_builder_message(const vt_builder *builder);
 vt_status vt_builder_build(vt_model **model, vt_builder *builder);
 void vt_builder_free(vt_builder *builder);
 void vt_model_free(vt_model *model);
+/// A new model with the same bodies and cut joints and no drives: the model of the forward
+/// check. Free it with vt_model_free().
+vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
 /// Allocates the data of a model (one block) and resets it (vt_data_reset).
 vt_status vt_data_create(vt_data **data, const vt_model *model);
@@ -132,6 +135,41 @@ vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
 /// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24). Needs vt_solve().
 vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
+
+/* ---- analyses over time (src/kinematic.c, src/trajectory.c, src/integrate.c) ---------- */
+
+/// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
+/// 1e-12 in at most 30 iterations, forward check on.
+vt_run_options vt_default_run_options(void);
+
+/// Allocates a trajectory of nrow rows for the model (all arrays in one block).
+vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
+void vt_trajectory_free(vt_trajectory *trajectory);
+
+/// One instant of a kinematic analysis at d->time: Newton–Raphson on Φ(q, t) = 0 from d->q
+/// (steps from LAPACK's dgels: exact for as many rows as rates, least-norm for fewer), then
+/// q̇ corrected to Φ_q q̇ = −Φ_t the same way, then vt_inverse_dynamics(). d->q and d->qd are
+/// replaced by the consistent values; on failure they are restored.
+/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, and those of the stages.
+vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
+
+/// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
+/// output time vt_kinematic_solve(), from the previous solution (the first from d->q).
+/// With opt->forward_check, the forward check integrates the model without drives under
+/// the drives' generalized forces, evaluated exactly at every time IDA asks for.
+/// Statuses: VT_ERR_NOT_FULLY_DRIVEN, VT_ERR_BAD_OPTION, VT_ERR_IDA, VT_ERR_ABORTED, ...
+vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
+                                vt_trajectory *trajectory);
+
+/// Dynamic analysis: the index-1 form of (5) handed to SUNDIALS IDA, unknowns q, q̇ and λ,
+///   q' − T(q) q̇ = 0,   M* q̈ − Q − Φ_q^T λ = 0,   Φ_q q̈ − γ = 0,
+/// from d->q, d->qd at opt->t0, first made consistent (vt_kinematic_solve). With
+/// opt->forward_check the forward model runs in the same IDA system, driven by the drives'
+/// generalized forces taken from the driven run's λ at the same time: the efforts are a
+/// continuous function of time with the driven run's own accuracy.
+/// Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in d->message), ...
+vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
+                              vt_trajectory *trajectory);
 
 /* ---- force transforms ---------------------------------------------------------------- */
 

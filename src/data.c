@@ -31,7 +31,7 @@ static size_t work_size(const vt_model *m)
 
 /* LAPACK workspace of the solve, from LAPACK's own workspace queries: dsytrf on the
  * augmented matrix, dgeqp3 on Φ_q^T (nv x nc) plus its copy and τ, and 3 N for dsyequb,
- * dsycon and dlansy. */
+ * dsycon and dlansy, dgels on Φ_q. */
 static int lapack_work_size(const vt_model *m)
 {
     const int N = m->nv + m->nc, nv = m->nv, nc = m->nc;
@@ -44,6 +44,10 @@ static int lapack_work_size(const vt_model *m)
         dgeqp3_(&nv, &nc, &dummy, &nv, &idummy, &dummy, &q, &lw, &info);
         const int qr = (info == 0 ? (int)q : 3 * nc + 1) + nv * nc + nc;
         if (qr > need) need = qr;
+        /* dgels on Φ_q (nc x nv) for the Newton and velocity corrections */
+        const int one = 1, ldb = nc > nv ? nc : nv;
+        dgels_("N", &nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &q, &lw, &info, 1);
+        if (info == 0 && (int)q > need) need = (int)q;
     }
     return need + 1;
 }
@@ -55,6 +59,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->q = take(base, &used, (size_t)m->nq * sizeof(double));
     d->qd = take(base, &used, nv * sizeof(double));
     d->xfrc = take(base, &used, 6 * nb * sizeof(double));
+    d->qfrc = take(base, &used, nv * sizeof(double));
     d->x = take(base, &used, nx * sizeof(double));
     d->xd = take(base, &used, nx * sizeof(double));
     d->A = take(base, &used, 9 * nb * sizeof(double));
@@ -80,6 +85,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->qdd = take(base, &used, nv * sizeof(double));
     d->lambda = take(base, &used, nc * sizeof(double));
     d->xdd = take(base, &used, nx * sizeof(double));
+    d->qfrc_drive = take(base, &used, nv * sizeof(double));
     d->drive_effort = take(base, &used, nd * sizeof(double));
     d->drive_force = take(base, &used, 3 * nd * sizeof(double));
     d->drive_moment = take(base, &used, 3 * nd * sizeof(double));
@@ -100,6 +106,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->lwork = take(base, &used, (size_t)d->nlwork * sizeof(double));
     d->ipiv = take(base, &used, N * sizeof(int));
     d->liwork = take(base, &used, N * sizeof(int));
+    d->qsave = take(base, &used, ((size_t)m->nq + nv) * sizeof(double));
     return used;
 }
 
@@ -141,6 +148,8 @@ vt_status vt_data_reset(const vt_model *m, vt_data *d)
     memcpy(d->q, m->q0, (size_t)m->nq * sizeof(double));
     memset(d->qd, 0, (size_t)m->nv * sizeof(double));
     memset(d->xfrc, 0, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+    memset(d->qfrc, 0, (size_t)m->nv * sizeof(double));
+    d->ida_flag = 0;
     d->time = 0.0;
     d->message[0] = '\0';
     return VT_OK;

@@ -3,7 +3,7 @@
  *   F^i = [f; 2 E^T s̃ f + 2 E^T n]          force f, moment n at body point s (7)
  *         gravity adds [m^i g; 0]; d->xfrc holds f and the moment about the centre of mass
  *   h^i = −Ṁ^i ẋ^i + (∂T^i/∂x^i)^T = [0; −8 Ġ^T J' G ṗ]
- *   Q   = S^T [F − M Ṡq̇ + h]                 (4)
+ *   Q   = S^T [F − M Ṡq̇ + h] (+ qfrc, a generalized force the caller applies)   (4)
  *   Q   = S^T F for a Cartesian force alone  (10)
  * As in mass.c, S^T acts body by body on the columns of the body's path only.
  */
@@ -52,8 +52,8 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_forces");
     if (st) return st;
-    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)))
-        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: NaN or Inf in xfrc");
+    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: NaN or Inf in xfrc or qfrc");
     double *g = d->work + 8 * m->maxpath + 8; /* past apply_St's scratch */
     for (int i = 1; i <= m->nbody; i++) {
         const int o = vt_xoff(i);
@@ -88,5 +88,6 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
         }
     }
     apply_St(d->Q, m, d, g);
+    for (int c = 0; c < m->nv; c++) d->Q[c] += d->qfrc[c];
     return VT_OK;
 }

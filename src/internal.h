@@ -141,7 +141,25 @@ void dsycon_(const char *uplo, const int *n, const double *a, const int *lda, co
              const double *anorm, double *rcond, double *work, int *iwork, int *info, size_t luplo);
 double dlansy_(const char *norm, const char *uplo, const int *n, const double *a, const int *lda,
                double *work, size_t lnorm, size_t luplo);
+void dgels_(const char *trans, const int *m, const int *n, const int *nrhs, double *a, const int *lda,
+            double *b, const int *ldb, double *work, const int *lwork, int *info, size_t ltrans);
 void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt, double *tau,
              double *work, const int *lwork, int *info);
+
+/* Efforts of the drives from d->lambda (reactions.c), and the forward check's loads */
+void vt_drive_efforts(const vt_model *m, vt_data *d);
+void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
+                          int as_loads);
+
+/* Trajectory rows (trajectory.c) */
+void vt_trajectory_store(vt_trajectory *tr, const vt_model *m, const vt_data *d, int row);
+void vt_trajectory_store_forward(vt_trajectory *tr, const vt_model *mf, const vt_data *df, int row);
+void vt_trajectory_reset(vt_trajectory *tr);
+vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr, const char *who);
+
+/* The forward check with IDA (integrate.c): integrates the model without drives (mf, df)
+ * from the driven state at opt->t0, with df->qfrc = the drives' generalized force at each
+ * time, evaluated exactly by vt_kinematic_solve() on dk (fully driven models). */
+vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr);
 
 #endif

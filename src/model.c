@@ -60,6 +60,11 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_CALLBACK: return "a user callback returned an error";
     case VT_ERR_SINGULAR: return "augmented system singular or ill-conditioned";
     case VT_ERR_DEPENDENT_CONSTRAINTS: return "constraint rows linearly dependent";
+    case VT_ERR_NEWTON: return "Newton-Raphson on the constraints did not converge";
+    case VT_ERR_NOT_FULLY_DRIVEN: return "the drives do not fix every degree of freedom";
+    case VT_ERR_IDA: return "SUNDIALS IDA failed";
+    case VT_ERR_ABORTED: return "stopped by the progress callback";
+    case VT_ERR_BAD_OPTION: return "run option out of range";
     }
     return "unknown status";
 }
@@ -631,4 +636,37 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     build_rows(m);
     *model = m;
     return VT_OK;
+}
+
+vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
+{
+    if (!out || !m) return VT_ERR_NULL;
+    *out = NULL;
+    vt_model_def md = vt_default_model_def();
+    memcpy(md.gravity, m->gravity, sizeof md.gravity);
+    md.rcond_min = m->rcond_min;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    for (int i = 1; i <= m->nbody && st == VT_OK; i++) {
+        vt_body_def d = vt_default_body_def();
+        d.parent = m->body_parent[i];
+        d.joint = (vt_joint_type)m->body_joint[i];
+        d.mass = m->body_mass[i];
+        memcpy(d.inertia, m->body_inertia + 9 * i, sizeof d.inertia);
+        memcpy(d.joint_parent, m->body_jpar + 3 * i, sizeof d.joint_parent);
+        memcpy(d.joint_child, m->body_jchild + 3 * i, sizeof d.joint_child);
+        memcpy(d.axis1, m->body_axis + 6 * i, sizeof d.axis1);
+        memcpy(d.axis2, m->body_axis + 6 * i + 3, sizeof d.axis2);
+        memcpy(d.orientation, m->body_quat0 + 4 * i, sizeof d.orientation);
+        const int id = vt_builder_add_body(b, &d);
+        if (id < 0) st = (vt_status)id;
+    }
+    for (int k = 0; k < m->ncut && st == VT_OK; k++) {
+        const int id = vt_builder_add_cut_joint(b, &m->cut[k]);
+        if (id < 0) st = (vt_status)id;
+    }
+    if (st == VT_OK) st = vt_builder_build(out, b);
+    vt_builder_free(b);
+    return st;
 }

@@ -57,6 +57,63 @@ static int drive_nrows(const vt_drive_def *dr)
     return dr->type == VT_DRIVE_ORIENTATION ? 3 : 1;
 }
 
+/* The drives' efforts (24) from d->lambda: each drive's force and moment on its body at the
+ * drive's point, its effort along its coordinate or component, and Φ_q^T λ over the drives. */
+void vt_drive_efforts(const vt_model *m, vt_data *d)
+{
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *dr = &m->drive[k];
+        const int r0 = m->drive_row[k], b = dr->body;
+        double P[3];
+        if (dr->type == VT_DRIVE_JOINT) {
+            vt_copy3(P, d->jpoint + 3 * b);
+        } else if (dr->type == VT_DRIVE_POINT) {
+            vt_mulmat3(P, d->A + 9 * b, dr->point);
+            vt_axpy3(P, 1.0, d->x + vt_xoff(b));
+        } else {
+            vt_copy3(P, d->x + vt_xoff(b));
+        }
+        rows_wrench_at(m, d, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
+    }
+
+    /* the drives' generalized force Φ_q^T λ over their rows */
+    memset(d->qfrc_drive, 0, (size_t)m->nv * sizeof(double));
+    for (int r = 0; r < vt_drive_rows(m); r++)
+        for (int c = 0; c < m->nv; c++) d->qfrc_drive[c] += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->lambda[r];
+
+}
+
+/* The forward check's loads on the model without drives, on top of the applied loads xfrc0:
+ * as_loads = 0: the drives' generalized force Φ_q^T λ (joint torques and forces, the paper's
+ * Figs. 6-8 and 10); as_loads = 1: each drive's own load — a joint drive's effort on its
+ * coordinate, a body drive's force and moment at the same body point. */
+void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
+                          int as_loads)
+{
+    memcpy(df->xfrc, xfrc0, 6 * ((size_t)mf->nbody + 1) * sizeof(double));
+    if (!as_loads) {
+        memcpy(df->qfrc, d->qfrc_drive, (size_t)mf->nv * sizeof(double));
+        return;
+    }
+    memset(df->qfrc, 0, (size_t)mf->nv * sizeof(double));
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *dr = &m->drive[k];
+        const int b = dr->body;
+        const double *f = d->drive_force + 3 * k, *n = d->drive_moment + 3 * k;
+        if (dr->type == VT_DRIVE_JOINT) {
+            df->qfrc[mf->body_vadr[b] + dr->index] += d->drive_effort[k];
+            continue;
+        }
+        double s[3] = {0, 0, 0};
+        if (dr->type == VT_DRIVE_POINT) vt_mulmat3(s, df->A + 9 * b, dr->point);
+        double *w = df->xfrc + 6 * b;
+        vt_axpy3(w, 1.0, f);
+        vt_axpy3(w + 3, 1.0, n);
+        vt_addcross3(w + 3, s, f);
+    }
+}
+
 vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions");
@@ -74,6 +131,25 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
         for (int c = 0; c < 3; c++) w[c] = m->body_mass[i] * m->gravity[c] + d->xfrc[6 * i + c];
         for (int c = 0; c < 3; c++) w[3 + c] = d->xfrc[6 * i + 3 + c];
     }
+    /* an applied generalized force acts between a joint's two bodies: its Cartesian form is
+     * R^T qfrc (14), on the body [f; 2 E^T n] and on its reference body the rest of the row */
+    for (int c = 0; c < m->nv; c++) {
+        if (d->qfrc[c] == 0.0) continue;
+        const int i = m->dof_body[c], j = m->body_parent[i];
+        double rj[7], ri[7];
+        vt_R_row(m, d, c, rj, ri);
+        for (int side = 0; side < 2; side++) {
+            const int k = side ? i : j;
+            const double *row = side ? ri : rj;
+            if (k == 0) continue;
+            double E[12], t4[4], nn[3];
+            vt_euler_E(E, d->x + vt_xoff(k) + 3);
+            for (int e = 0; e < 4; e++) t4[e] = 0.5 * row[3 + e] * d->qfrc[c];
+            vt_mulE(nn, E, t4);
+            vt_axpy3(fe + 6 * k, d->qfrc[c], row);
+            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
+        }
+    }
     for (int r = 0; r < m->nc; r++) {
         if (m->con_kind[r] == VT_ROW_NORM) continue;
         for (int side = 0; side < 2; side++) {
@@ -86,22 +162,7 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
         }
     }
 
-    /* efforts of the drives (24), at the drive's point */
-    for (int k = 0; k < m->ndrive; k++) {
-        const vt_drive_def *dr = &m->drive[k];
-        const int r0 = m->drive_row[k], b = dr->body;
-        double P[3];
-        if (dr->type == VT_DRIVE_JOINT) {
-            vt_copy3(P, d->jpoint + 3 * b);
-        } else if (dr->type == VT_DRIVE_POINT) {
-            vt_mulmat3(P, d->A + 9 * b, dr->point);
-            vt_axpy3(P, 1.0, d->x + vt_xoff(b));
-        } else {
-            vt_copy3(P, d->x + vt_xoff(b));
-        }
-        rows_wrench_at(m, d, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
-        d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
-    }
+    vt_drive_efforts(m, d);
 
     /* cut joints: the rows' wrench on body_b, at its joint point */
     for (int k = 0; k < m->ncut; k++) {

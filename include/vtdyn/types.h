@@ -51,7 +51,13 @@ typedef enum vt_status {
     VT_ERR_SINGULAR = -21,             ///< augmented system (5) singular or ill-conditioned (rcond below
                                        ///< rcond_min): the drives do not fix the motion, or a body
                                        ///< without inertia moves freely
-    VT_ERR_DEPENDENT_CONSTRAINTS = -22 ///< constraint rows Φ_q linearly dependent (rows named in the message)
+    VT_ERR_DEPENDENT_CONSTRAINTS = -22,///< constraint rows Φ_q linearly dependent (rows named in the message)
+    VT_ERR_NEWTON = -23,               ///< Newton–Raphson on Φ(q, t) = 0 did not converge (residual in message)
+    VT_ERR_NOT_FULLY_DRIVEN = -24,     ///< a kinematic analysis needs as many constraint rows as rates
+    VT_ERR_IDA = -25,                  ///< SUNDIALS IDA failed: its return code in ida_flag, its message
+                                       ///< in the data's message
+    VT_ERR_ABORTED = -26,              ///< the progress callback asked to stop
+    VT_ERR_BAD_OPTION = -27            ///< a run option out of range (message says which)
 } vt_status;
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
@@ -226,6 +232,7 @@ typedef struct vt_data {
     double *qd;              ///< generalized velocities (nv)
     double *xfrc;            ///< applied force (N) and moment (N·m) on each body, global, moment about
                              ///< the centre of mass: [f; n] (6 x (nbody+1)); see vt_add_point_load()
+    double *qfrc;            ///< applied generalized force, added to Q (nv); default 0
 
     /* vt_kinematics(): positions, velocities, S and Ṡq̇ */
     double *x;               ///< Cartesian coordinates [r; p] (7n), eq (1)
@@ -265,6 +272,8 @@ typedef struct vt_data {
 
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
+    double *qfrc_drive;      ///< generalized force of all drives, Φ_q^T λ over the drives' rows (nv):
+                             ///< the joint torques and forces that produce the motion
     double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
                              ///< point drive: force along its component (N); orientation drive: 0 (ndrive)
     double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N
@@ -291,9 +300,72 @@ typedef struct vt_data {
     int nlwork;              ///< entries in lwork
     int *ipiv;               ///< pivots (nv+nc)
     int *liwork;             ///< LAPACK integer workspace (nv+nc)
+    double *qsave;           ///< copy of q and q̇ kept by calls that restore them on failure (nq+nv)
+    int ida_flag;            ///< return code of the last failing IDA call (0 if none)
 
     char message[256];       ///< detail of the last failed call on this data
 } vt_data;
+
+/// Progress of a run: called at every output time; a non-zero return stops the run
+/// (VT_ERR_ABORTED).
+typedef int (*vt_progress_callback)(double t, double t_end, void *user);
+
+/// Options of an analysis over time. Fill from vt_default_run_options().
+typedef struct vt_run_options {
+    double t0;               ///< s, start; default 0
+    double t1;               ///< s, end (> t0); default 1
+    int nout;                ///< output intervals: rows at t0 + k (t1 − t0)/nout, k = 0..nout; default 100
+    double rtol;             ///< IDA relative tolerance; default 1e-8
+    double atol;             ///< IDA absolute tolerance; default 1e-10
+    double max_step;         ///< s, IDA's largest step; 0 = no limit (default)
+    long max_steps;          ///< IDA's most steps between two outputs; default 100000
+    double newton_tol;       ///< Newton–Raphson stops at max |Φ| ≤ newton_tol (m or rad); default 1e-12
+    int newton_maxit;        ///< most Newton iterations per instant; default 30
+    int forward_check;       ///< 1: also run the forward check (drives removed, efforts applied); default 1
+    int forward_as_loads;    ///< forward check: 0 applies the drives' generalized force Φ_q^T λ (joint
+                             ///< torques, the paper's check; default); 1 applies each drive's own load
+                             ///< (a point drive's force at its point), so the reactions compare too
+    vt_progress_callback progress; ///< optional, NULL by default
+    void *user;              ///< passed to progress
+} vt_run_options;
+
+/// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
+/// Every array is column-major with one column per row (output time).
+typedef struct vt_trajectory {
+    const vt_model *model;   ///< the model it was made for
+    int nrow;                ///< rows allocated
+    int nfilled;             ///< rows written by the last run
+    double *t;               ///< s (nrow)
+    double *q;               ///< driven run (nq x nrow)
+    double *qd;              ///< (nv x nrow)
+    double *qdd;             ///< (nv x nrow)
+    double *lambda;          ///< (nc x nrow)
+    double *qfrc_drive;      ///< Φ_q^T λ of the drives (nv x nrow)
+    double *drive_effort;    ///< (ndrive x nrow)
+    double *drive_force;     ///< (3 ndrive x nrow)
+    double *drive_moment;    ///< (3 ndrive x nrow)
+    double *jnt_force;       ///< (3 (nbody+1) x nrow)
+    double *jnt_moment;      ///< (3 (nbody+1) x nrow)
+    double *cut_force;       ///< (3 ncut x nrow)
+    double *cut_moment;      ///< (3 ncut x nrow)
+    double *phi_norm;        ///< max |Φ| of the driven run (nrow)
+    double *phid_norm;       ///< max |Φ_q q̇ + Φ_t| of the driven run (nrow)
+    /* forward check: the drives removed, their efforts applied (vt_run_options.forward_as_loads) */
+    double *q_fwd;           ///< (nq x nrow)
+    double *qd_fwd;          ///< (nv x nrow)
+    double *jnt_force_fwd;   ///< (3 (nbody+1) x nrow)
+    double *jnt_moment_fwd;  ///< (3 (nbody+1) x nrow)
+    double *cut_force_fwd;   ///< (3 ncut x nrow)
+    double *cut_moment_fwd;  ///< (3 ncut x nrow)
+    double fwd_err_q;        ///< max over rows and coordinates of |q_fwd − q|
+    double fwd_err_qd;       ///< max |q̇_fwd − q̇|
+    double fwd_err_force;    ///< max |reaction force (forward) − reaction force (driven)|, N
+    double fwd_err_moment;   ///< the same for reaction moments, N·m
+    long steps;              ///< IDA steps of the driven run (0 for a kinematic analysis)
+    long res_evals;          ///< IDA residual evaluations of the driven run
+    long steps_fwd;          ///< IDA steps of the forward check
+    long res_evals_fwd;      ///< its residual evaluations
+} vt_trajectory;
 
 /// Incremental model builder (opaque).
 typedef struct vt_builder vt_builder;

@@ -1,0 +1,342 @@
+/* Dynamic analysis and the forward check with SUNDIALS IDA: the index-1 form of (5).
+ *
+ * Unknowns y = [q; v; λ] (nq + nv + nc), v = q̇ the rates; residual F(t, y, y') = 0 with
+ *   q' − T(q) v                  T = I, except a spherical joint: p' = ½ E(p)^T v  (method.md)
+ *   M*(q) v' − Q(q, v, t) − Φ_q^T λ          (2)
+ *   Φ_q v' − γ                               (5), second row
+ * q and v are differential, λ algebraic (excluded from IDA's error test). The residual
+ * follows SUNDIALS's rules: 0 ok, > 0 recoverable (a stage refused the state: IDA retries with
+ * a smaller step). Consistent initial values are computed, not guessed: q and v projected onto
+ * Φ = 0 and Φ_q v = −Φ_t (vt_kinematic_solve), then q̈ and λ from (5).
+ *
+ * Forward check (the paper's Figs. 6-8, 10): the model without drives (cut joints and p^T p = 1
+ * kept) under the drives' efforts: by default their generalized force Φ_q,d^T λ_d as qfrc (the
+ * joint torques, as the paper applies them); with forward_as_loads each drive's own load (a
+ * point drive's force at its body point, ...), the same physical loads, so that the reactions
+ * must agree as well (with joint torques only a joint-driven model's do). For a partly
+ * driven model both systems share one IDA run, y = [y_driven; y_forward], and the efforts come
+ * from the driven block's λ at the same t: a continuous function of time with the driven run's
+ * own accuracy (no interpolation). For a fully driven model they are exact: the kinematic
+ * solution at every t that IDA asks for.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "internal.h"
+
+typedef struct {
+    const vt_model *m;  /* driven block (NULL when Q_d is exact) */
+    vt_data *d;
+    const vt_model *mf; /* forward block (NULL without the forward check) */
+    vt_data *df;
+    vt_data *dk;        /* exact Q_d (fully driven) */
+    vt_data *msg;       /* where IDA's messages go */
+    const double *xfrc0;/* applied loads of the driven run, kept in the forward one */
+    int as_loads;       /* vt_run_options.forward_as_loads */
+    double newton_tol;
+    int newton_maxit;
+    int nd;             /* size of the driven block in y */
+} dae;
+
+static int block_size(const vt_model *m)
+{
+    return m->nq + m->nv + m->nc;
+}
+
+/* q' = T(q) v */
+static void qdot_from_v(const vt_model *m, const double *q, const double *v, double *qd)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int qa = m->body_qadr[i], va = m->body_vadr[i];
+        if (m->body_joint[i] == VT_JOINT_SPHERICAL) {
+            double E[12];
+            vt_euler_E(E, q + qa);
+            vt_mulE_t(qd + qa, E, v + va);
+            for (int k = 0; k < 4; k++) qd[qa + k] *= 0.5;
+        } else {
+            for (int k = 0; k < m->body_nq[i]; k++) qd[qa + k] = v[va + k];
+        }
+    }
+}
+
+static int block_residual(const vt_model *m, vt_data *d, double t, const double *y, const double *yp, double *r)
+{
+    const int nq = m->nq, nv = m->nv, nc = m->nc;
+    memcpy(d->q, y, (size_t)nq * sizeof(double));
+    memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
+    d->time = t;
+    if (vt_kinematics(m, d) || vt_mass_matrix(m, d) || vt_forces(m, d) || vt_constraints(m, d)) return 1;
+    const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
+    double *rq = r, *rv = r + nq, *rl = r + nq + nv;
+    qdot_from_v(m, y, y + nq, rq);
+    for (int k = 0; k < nq; k++) rq[k] = qp[k] - rq[k];
+    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, vp, 1, 0.0, rv, 1);
+    for (int k = 0; k < nv; k++) rv[k] -= d->Q[k];
+    if (nc > 0) {
+        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, -1.0, d->Phiq, nc, lam, 1, 1.0, rv, 1);
+        cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, vp, 1, 0.0, rl, 1);
+        for (int k = 0; k < nc; k++) rl[k] -= d->gamma[k];
+    }
+    return vt_all_finite(r, nq + nv + nc) ? 0 : 1;
+}
+
+static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)
+{
+    dae *p = user;
+    const double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
+    double *r = N_VGetArrayPointer(rr);
+    if (p->m && block_residual(p->m, p->d, t, y, yp, r)) return 1;
+    if (!p->mf) return 0;
+    const vt_model *m = p->dk ? p->dk->model : p->m;
+    vt_data *src = p->dk ? p->dk : p->d;
+    if (p->dk) {
+        p->dk->time = t;
+        if (vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)) return 1;
+    } else { /* the efforts of the driven block's current λ */
+        memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
+        vt_drive_efforts(m, p->d);
+    }
+    /* the forward block's positions first: body drives' loads act at its body points */
+    memcpy(p->df->q, y + p->nd, (size_t)p->mf->nq * sizeof(double));
+    memcpy(p->df->qd, y + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
+    if (vt_kinematics(p->mf, p->df)) return 1;
+    vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+    return block_residual(p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd);
+}
+
+static void on_ida_error(int code, const char *module, const char *function, char *msg, void *user)
+{
+    dae *p = user;
+    (void)module;
+    snprintf(p->msg->message, sizeof p->msg->message, "IDA %s (%d): %s", function, code, msg);
+}
+
+/* y and y' of one block at a consistent state in d: [q; v; λ], [T(q) v; q̈; 0] */
+static void block_initial(const vt_model *m, const vt_data *d, double *y, double *yp)
+{
+    const int nq = m->nq, nv = m->nv, nc = m->nc;
+    memcpy(y, d->q, (size_t)nq * sizeof(double));
+    memcpy(y + nq, d->qd, (size_t)nv * sizeof(double));
+    memcpy(y + nq + nv, d->lambda, (size_t)nc * sizeof(double));
+    qdot_from_v(m, d->q, d->qd, yp);
+    memcpy(yp + nq, d->qdd, (size_t)nv * sizeof(double));
+    memset(yp + nq + nv, 0, (size_t)nc * sizeof(double));
+}
+
+static void block_ids(const vt_model *m, double *id)
+{
+    for (int k = 0; k < m->nq + m->nv; k++) id[k] = 1.0;
+    for (int k = 0; k < m->nc; k++) id[m->nq + m->nv + k] = 0.0;
+}
+
+/* the state of a block of y into its data, then the whole instant (efforts, reactions) */
+static vt_status block_output(const vt_model *m, vt_data *d, double t, const double *y)
+{
+    memcpy(d->q, y, (size_t)m->nq * sizeof(double));
+    memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
+    d->time = t;
+    return vt_inverse_dynamics(m, d);
+}
+
+/* rows 1..nout: integrate, and at every output store the driven and the forward rows */
+static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N, const double *y0,
+                     const double *yp0, const double *ids)
+{
+    vt_data *md = p->msg;
+    SUNContext ctx = NULL;
+    N_Vector y = NULL, yp = NULL, id = NULL;
+    SUNMatrix A = NULL;
+    SUNLinearSolver LS = NULL;
+    void *mem = NULL;
+    vt_status st = VT_OK;
+    int flag = 0;
+    const char *call = "SUNContext_Create";
+#define CHECK(expr, name)                                                                             \
+    do {                                                                                              \
+        call = name;                                                                                  \
+        if ((flag = (expr)) < 0) goto ida_failed;                                                     \
+    } while (0)
+    CHECK(SUNContext_Create(NULL, &ctx), "SUNContext_Create");
+    y = N_VNew_Serial(N, ctx);
+    yp = N_VNew_Serial(N, ctx);
+    id = N_VNew_Serial(N, ctx);
+    A = SUNDenseMatrix(N, N, ctx);
+    mem = IDACreate(ctx);
+    call = "allocation of IDA's vectors, matrix and memory";
+    if (!y || !yp || !id || !A || !mem) {
+        flag = -1;
+        goto ida_failed;
+    }
+    LS = SUNLinSol_Dense(y, A, ctx);
+    if (!LS) {
+        call = "SUNLinSol_Dense";
+        flag = -1;
+        goto ida_failed;
+    }
+    memcpy(N_VGetArrayPointer(y), y0, (size_t)N * sizeof(double));
+    memcpy(N_VGetArrayPointer(yp), yp0, (size_t)N * sizeof(double));
+    memcpy(N_VGetArrayPointer(id), ids, (size_t)N * sizeof(double));
+    CHECK(IDASetErrHandlerFn(mem, on_ida_error, p), "IDASetErrHandlerFn");
+    CHECK(IDAInit(mem, residual, opt->t0, y, yp), "IDAInit");
+    CHECK(IDASStolerances(mem, opt->rtol, opt->atol), "IDASStolerances");
+    CHECK(IDASetUserData(mem, p), "IDASetUserData");
+    CHECK(IDASetLinearSolver(mem, LS, A), "IDASetLinearSolver");
+    CHECK(IDASetId(mem, id), "IDASetId");
+    CHECK(IDASetSuppressAlg(mem, SUNTRUE), "IDASetSuppressAlg");
+    CHECK(IDASetMaxNumSteps(mem, opt->max_steps), "IDASetMaxNumSteps");
+    if (opt->max_step > 0.0) CHECK(IDASetMaxStep(mem, opt->max_step), "IDASetMaxStep");
+    CHECK(IDASetStopTime(mem, opt->t1), "IDASetStopTime");
+
+    for (int k = 1; k <= opt->nout; k++) {
+        const double tout = k == opt->nout ? opt->t1 : opt->t0 + (opt->t1 - opt->t0) * k / opt->nout;
+        double tret = 0.0;
+        CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
+        const double *yv = N_VGetArrayPointer(y);
+        if (p->m) {
+            if ((st = block_output(p->m, p->d, tret, yv))) goto done;
+            vt_trajectory_store(tr, p->m, p->d, k);
+        }
+        if (p->mf) {
+            const vt_model *m = p->dk ? p->dk->model : p->m;
+            vt_data *src = p->dk ? p->dk : p->d;
+            if (p->dk) { /* exact efforts: the kinematic row already stored at this time */
+                p->dk->time = tret;
+                if ((st = vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit))) {
+                    vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
+                    goto done;
+                }
+            }
+            memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
+            if ((st = vt_kinematics(p->mf, p->df))) goto done;
+            vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+            if ((st = block_output(p->mf, p->df, tret, yv + p->nd))) {
+                vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->df->message);
+                goto done;
+            }
+            vt_trajectory_store_forward(tr, p->mf, p->df, k);
+        }
+        if (opt->progress && opt->progress(tret, opt->t1, opt->user)) {
+            st = vt_fail(md->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
+            goto done;
+        }
+    }
+    {
+        long nst = 0, nre = 0;
+        IDAGetNumSteps(mem, &nst);
+        IDAGetNumResEvals(mem, &nre);
+        if (p->m) { tr->steps = nst; tr->res_evals = nre; }
+        if (p->mf) { tr->steps_fwd = nst; tr->res_evals_fwd = nre; }
+    }
+    goto done;
+ida_failed:
+    md->ida_flag = flag;
+    {
+        char *name = IDAGetReturnFlagName(flag);
+        char detail[200];
+        snprintf(detail, sizeof detail, "%.150s", md->message);
+        snprintf(md->message, sizeof md->message, "%.40s returned %d (%.30s)%s%.150s", call, flag, name ? name : "?",
+                 detail[0] ? ": " : "", detail);
+        free(name);
+    }
+    st = VT_ERR_IDA;
+done:
+#undef CHECK
+    if (mem) IDAFree(&mem);
+    if (LS) SUNLinSolFree(LS);
+    if (A) SUNMatDestroy(A);
+    if (id) N_VDestroy(id);
+    if (yp) N_VDestroy(yp);
+    if (y) N_VDestroy(y);
+    if (ctx) SUNContext_Free(&ctx);
+    return st;
+}
+
+/* the forward model and its data, started from the state in d (efforts already computed) */
+static vt_status forward_setup(const vt_model *m, const vt_data *d, const double *xfrc0, int as_loads, vt_model **mf,
+                               vt_data **df)
+{
+    vt_status st = vt_model_without_drives(mf, m);
+    if (st) return st;
+    if ((st = vt_data_create(df, *mf))) return st;
+    memcpy((*df)->q, d->q, (size_t)m->nq * sizeof(double));
+    memcpy((*df)->qd, d->qd, (size_t)m->nv * sizeof(double));
+    (*df)->time = d->time;
+    if ((st = vt_kinematics(*mf, *df))) return st;
+    vt_apply_drive_loads(*mf, *df, m, d, xfrc0, as_loads);
+    return vt_inverse_dynamics(*mf, *df);
+}
+
+vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr)
+{
+    vt_model *mf = NULL;
+    vt_data *df = NULL;
+    double *buf = NULL;
+    vt_status st = vt_kinematic_solve(m, dk, opt->newton_tol, opt->newton_maxit);
+    if (st == VT_OK) st = forward_setup(m, dk, d->xfrc, opt->forward_as_loads, &mf, &df);
+    if (st) {
+        vt_fail(d->message, st, "forward check: setup failed: %s", df ? df->message : dk->message);
+        goto out;
+    }
+    vt_trajectory_store_forward(tr, mf, df, 0);
+    const int N = block_size(mf);
+    buf = malloc(3 * (size_t)N * sizeof(double));
+    if (!buf) {
+        st = vt_fail(d->message, VT_ERR_NO_MEMORY, "forward check: out of memory");
+        goto out;
+    }
+    block_initial(mf, df, buf, buf + N);
+    block_ids(mf, buf + 2 * N);
+    dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0};
+    st = run(&p, opt, tr, N, buf, buf + N, buf + 2 * N);
+out:
+    free(buf);
+    vt_data_free(df);
+    vt_model_free(mf);
+    return st;
+}
+
+vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr)
+{
+    vt_status st = vt_check_run(m, d, opt, tr, "vt_dynamic_analysis");
+    if (st) return st;
+    vt_trajectory_reset(tr);
+    d->ida_flag = 0;
+    d->time = opt->t0;
+    if ((st = vt_kinematic_solve(m, d, opt->newton_tol, opt->newton_maxit))) return st;
+    vt_trajectory_store(tr, m, d, 0);
+    vt_model *mf = NULL;
+    vt_data *df = NULL;
+    double *buf = NULL;
+    if (opt->forward_check) {
+        if ((st = forward_setup(m, d, d->xfrc, opt->forward_as_loads, &mf, &df))) {
+            vt_fail(d->message, st, "vt_dynamic_analysis: forward check setup: %s", df ? df->message : vt_status_string(st));
+            goto out;
+        }
+        vt_trajectory_store_forward(tr, mf, df, 0);
+    }
+    const int nd = block_size(m), N = nd + (mf ? block_size(mf) : 0);
+    buf = malloc(3 * (size_t)N * sizeof(double));
+    if (!buf) {
+        st = vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_dynamic_analysis: out of memory");
+        goto out;
+    }
+    block_initial(m, d, buf, buf + N);
+    block_ids(m, buf + 2 * N);
+    if (mf) {
+        block_initial(mf, df, buf + nd, buf + N + nd);
+        block_ids(mf, buf + 2 * N + nd);
+    }
+    dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, nd};
+    st = run(&p, opt, tr, N, buf, buf + N, buf + 2 * N);
+out:
+    free(buf);
+    vt_data_free(df);
+    vt_model_free(mf);
+    return st;
+}
