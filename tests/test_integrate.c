@@ -1,0 +1,163 @@
+/* src/integrate.c: the dynamic analysis and its forward check against the paper's exact
+ * double link (29) and its first integral; a free four-bar (cut joint, spherical joint)
+ * against energy conservation; IDA's failures reaching the caller with IDA's own code. */
+#include <ida/ida.h>
+
+#include "vt_test.h"
+
+static void tip(double out[2], const vt_model *m, vt_data *d, const double *q)
+{
+    memcpy(d->q, q, (size_t)m->nq * sizeof(double));
+    assert_ok(vt_kinematics(m, d));
+    out[0] = d->x[7] + d->A[18];
+    out[1] = d->x[8] + d->A[19];
+}
+
+static void test_double_link(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d, *dt;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dt, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 1.9;
+    opt.nout = 190;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    opt.max_step = 0.005;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, 191);
+    double dev = 0.0;
+    for (int k = 0; k < tr->nfilled; k++) {
+        const double th = -tr->q[2 * k], thd = -tr->qd[2 * k], s = sin(th), c = cos(th);
+        const double *f1 = tr->jnt_force + 9 * k + 3;
+        assert_near(f1[0], -2207.25 * sin(2 * th), 1e-8 * 1962.0);
+        assert_near(f1[1], 4905.0 * s * s + 490.5 * c * c, 1e-8 * 1962.0);
+        assert_near(thd * thd, 7.3575 * s, 1e-8);               /* the first integral */
+        assert_near(-tr->qdd[2 * k], 3.67875 * c, 1e-8);
+        assert_near(fabs(tr->drive_effort[k]), 245.25 * fabs(c), 1e-8 * 245.25);
+        double p[2], pf[2];
+        tip(p, m, dt, tr->q + 2 * k);
+        tip(pf, m, dt, tr->q_fwd + 2 * k);
+        dev = fmax(dev, hypot(pf[0] - p[0], pf[1] - p[1]));
+        /* the forward run's reactions: joint 2's torque applied, the same reactions */
+        for (int e = 0; e < 9; e++) assert_near(tr->jnt_force_fwd[9 * k + e], tr->jnt_force[9 * k + e], 1e-6);
+    }
+    assert_true(dev <= 1e-7);
+    assert_near(-tr->q[2 * 190], 3.1395, 1e-3); /* it swings through the bottom, nearly to the far side */
+    assert_true(tr->steps > 0 && tr->res_evals >= tr->steps);
+    vt_trajectory_free(tr);
+    vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* a four-bar swinging freely under gravity: T + V is conserved, the loop stays closed */
+static void test_free_fourbar(void **state)
+{
+    (void)state;
+    vt_model *driven, *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_fourbar(&driven, vt_function_constant(0.0)));
+    assert_ok(vt_model_without_drives(&m, driven));
+    assert_int_equal(m->ndrive, 0);
+    assert_int_equal(m->nc, 4);
+    assert_ok(vt_data_create(&d, m));
+    assert_int_equal(vt_scene_fourbar_assemble(m, d, 0.6, 1.0, NULL, NULL), 0);
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 2.0;
+    opt.nout = 40;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+    double E0 = 0.0;
+    for (int k = 0; k < tr->nfilled; k++) {
+        memcpy(d->q, tr->q + (size_t)k * (size_t)m->nq, (size_t)m->nq * sizeof(double));
+        memcpy(d->qd, tr->qd + (size_t)k * (size_t)m->nv, (size_t)m->nv * sizeof(double));
+        assert_ok(vt_kinematics(m, d));
+        const double E = vt_test_kinetic_energy(m, d) + vt_test_potential_energy(m, d);
+        if (k == 0) E0 = E;
+        assert_near(E, E0, 1e-6 * (1 + fabs(E0)));
+        assert_true(tr->phi_norm[k] < 1e-7);
+        assert_true(tr->phid_norm[k] < 1e-7);
+    }
+    /* it moved: the crank turned */
+    assert_true(fabs(tr->q[(size_t)40 * (size_t)m->nq] - tr->q[0]) > 0.1);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+    vt_model_free(driven);
+}
+
+static int fails_late(double t, double out[3], void *user)
+{
+    (void)user;
+    out[0] = out[1] = out[2] = 0.0;
+    return t > 0.5 ? 1 : 0;
+}
+
+static void test_ida_failures(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 10;
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    /* too few steps allowed: IDA's IDA_TOO_MUCH_WORK reaches the caller with IDA's message */
+    opt.max_steps = 2;
+    assert_int_equal(vt_dynamic_analysis(m, d, &opt, tr), VT_ERR_IDA);
+    assert_int_equal(d->ida_flag, IDA_TOO_MUCH_WORK);
+    assert_non_null(strstr(d->message, "IDA_TOO_MUCH_WORK"));
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+
+    /* a drive whose time function fails after t = 0.5: the residual keeps failing */
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.inertia[4] = link.inertia[8] = 0.1;
+    link.joint_child[0] = -0.5;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    link.parent = 1;
+    link.joint_parent[0] = 0.5;
+    assert_int_equal(vt_builder_add_body(b, &link), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 2;
+    dr.f = vt_function_user(fails_late, NULL);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    opt = vt_default_run_options();
+    opt.nout = 10;
+    const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+    assert_int_equal(st, VT_ERR_IDA);
+    assert_true(d->ida_flag < 0);
+    assert_true(strlen(d->message) > 0);
+    assert_true(tr->nfilled >= 5 && tr->nfilled <= 7); /* the rows up to t = 0.5 were written */
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_double_link),
+        cmocka_unit_test(test_free_fourbar),
+        cmocka_unit_test(test_ida_failures),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,153 @@
+/* src/kinematic.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
+ * the forward check), q̇ and q̈ against differences of the Newton solutions in time, and the
+ * failure statuses (not fully driven, Newton that does not converge, abort, bad options). */
+#include "vt_test.h"
+
+static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
+{
+    memcpy(d->q, q, (size_t)m->nq * sizeof(double));
+    assert_ok(vt_kinematics(m, d));
+    for (int k = 0; k < 3; k++) out[k] = d->x[7 * 4 + k] + 0.1 * d->A[9 * 5 + k];
+}
+
+static void test_five_link_circle_and_forward_check(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d, *dt;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dt, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 100;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    vt_scene_five_link_guess(m, d, 0.0);
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, 101);
+    double dev = 0.0;
+    for (int k = 0; k < tr->nfilled; k++) {
+        const double t = tr->t[k], w = 2.0 * 3.14159265358979323846;
+        double p[3], pf[3];
+        tip_of(p, m, dt, tr->q + 5 * k);
+        assert_near(p[0], VT_FL_C1 + 0.3 * cos(w * t), 1e-10);
+        assert_near(p[1], 0.3 * sin(w * t), 1e-10);
+        assert_near(p[2], VT_FL_CE, 1e-10);
+        tip_of(pf, m, dt, tr->q_fwd + 5 * k);
+        dev = fmax(dev, sqrt((pf[0] - p[0]) * (pf[0] - p[0]) + (pf[1] - p[1]) * (pf[1] - p[1]) + (pf[2] - p[2]) * (pf[2] - p[2])));
+        /* the torques are the joint-space form of the drives' forces: M* q̈ − Q */
+        assert_near(tr->phi_norm[k], 0.0, 1e-12);
+        assert_near(tr->phid_norm[k], 0.0, 1e-10);
+    }
+    assert_true(dev <= 1e-6);
+    assert_true(dev > 0.0); /* a separate integration: not the driven run copied */
+    assert_true(tr->steps_fwd > 0);
+    vt_trajectory_free(tr);
+    vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* q̇ and q̈ of the Newton solutions against central differences of q(t) and q̇(t) */
+static void test_rates_against_differences(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    const double h = 1e-5;
+    for (double t = 0.05; t < 1.0; t += 0.21) {
+        double q[3][5], v[3][5], a[5];
+        for (int s = 0; s < 3; s++) {
+            vt_scene_five_link_guess(m, d, t + (s - 1) * h);
+            d->time = t + (s - 1) * h;
+            assert_ok(vt_kinematic_solve(m, d, 1e-13, 30));
+            memcpy(q[s], d->q, sizeof q[s]);
+            memcpy(v[s], d->qd, sizeof v[s]);
+            if (s == 1) memcpy(a, d->qdd, sizeof a);
+        }
+        for (int k = 0; k < 5; k++) {
+            assert_near(v[1][k], (q[2][k] - q[0][k]) / (2 * h), 1e-6 * (1 + fabs(v[1][k])));
+            assert_near(a[k], (v[2][k] - v[0][k]) / (2 * h), 1e-5 * (1 + fabs(a[k])));
+        }
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+static int stop_now(double t, double t_end, void *user)
+{
+    (void)t_end;
+    *(double *)user = t;
+    return t > 0.25;
+}
+
+static void test_failures(void **state)
+{
+    (void)state;
+    vt_model *m, *dl;
+    vt_data *d, *dd;
+    vt_trajectory *tr, *trd;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 10;
+    opt.forward_check = 0;
+
+    /* Newton from a poor start with one iteration: the residual is reported, q restored */
+    vt_scene_five_link_guess(m, d, 0.0);
+    for (int k = 0; k < m->nq; k++) d->q[k] += 0.2;
+    double q0[5];
+    memcpy(q0, d->q, sizeof q0);
+    assert_int_equal(vt_kinematic_solve(m, d, 1e-12, 1), VT_ERR_NEWTON);
+    assert_non_null(strstr(d->message, "max |Φ|"));
+    assert_memory_equal(q0, d->q, sizeof q0);
+
+    /* the progress callback stops the run */
+    double when = 0.0;
+    opt.progress = stop_now;
+    opt.user = &when;
+    vt_scene_five_link_guess(m, d, 0.0);
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_ABORTED);
+    assert_near(when, 0.3, 1e-12);
+    opt.progress = NULL;
+
+    /* bad options */
+    opt.nout = 11; /* needs 12 rows */
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+    opt.nout = 10;
+    opt.t1 = opt.t0;
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+    opt.t1 = 1.0;
+    opt.newton_tol = 0.0;
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+    opt.newton_tol = 1e-12;
+
+    /* a partly driven model is refused */
+    assert_ok(vt_scene_double_link(&dl, 1));
+    assert_ok(vt_data_create(&dd, dl));
+    assert_ok(vt_trajectory_create(&trd, dl, 11));
+    assert_int_equal(vt_kinematic_analysis(dl, dd, &opt, trd), VT_ERR_NOT_FULLY_DRIVEN);
+    /* a trajectory of another model is refused */
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, trd), VT_ERR_MODEL_MISMATCH);
+    vt_trajectory_free(trd);
+    vt_data_free(dd);
+    vt_model_free(dl);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_five_link_circle_and_forward_check),
+        cmocka_unit_test(test_rates_against_differences),
+        cmocka_unit_test(test_failures),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,70 @@
+/* src/trajectory.c: allocation, defaults, and the forward check's error norms measured
+ * against a hand-made difference. */
+#include "vt_test.h"
+
+static void test_create_and_defaults(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_trajectory *tr = NULL;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_int_equal(vt_trajectory_create(&tr, m, 0), VT_ERR_BAD_OPTION);
+    assert_null(tr);
+    assert_int_equal(vt_trajectory_create(NULL, m, 3), VT_ERR_NULL);
+    assert_ok(vt_trajectory_create(&tr, m, 3));
+    assert_int_equal(tr->nrow, 3);
+    assert_int_equal(tr->nfilled, 0);
+    assert_ptr_equal(tr->model, m);
+    /* every array is writable over its full size */
+    for (int k = 0; k < 3 * m->nq; k++) tr->q[k] = tr->q_fwd[k] = 1.0;
+    for (int k = 0; k < 3 * 3 * (m->nbody + 1); k++) tr->jnt_force[k] = tr->jnt_moment_fwd[k] = 2.0;
+    vt_trajectory_free(tr);
+    vt_trajectory_free(NULL);
+    const vt_run_options o = vt_default_run_options();
+    assert_near(o.t0, 0.0, 0.0);
+    assert_near(o.t1, 1.0, 0.0);
+    assert_int_equal(o.nout, 100);
+    assert_true(o.rtol > 0 && o.atol > 0 && o.newton_tol > 0 && o.forward_check == 1);
+    vt_model_free(m);
+}
+
+/* the self-check norms are the largest differences between the two runs */
+static void test_forward_error_norms(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 20;
+    opt.t1 = 0.5;
+    assert_ok(vt_trajectory_create(&tr, m, 21));
+    assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+    double eq = 0.0, ev = 0.0, ef = 0.0, em = 0.0;
+    for (int k = 0; k < tr->nfilled; k++) {
+        for (int c = 0; c < m->nq; c++) eq = fmax(eq, fabs(tr->q_fwd[2 * k + c] - tr->q[2 * k + c]));
+        for (int c = 0; c < m->nv; c++) ev = fmax(ev, fabs(tr->qd_fwd[2 * k + c] - tr->qd[2 * k + c]));
+        for (int c = 0; c < 9; c++) {
+            ef = fmax(ef, fabs(tr->jnt_force_fwd[9 * k + c] - tr->jnt_force[9 * k + c]));
+            em = fmax(em, fabs(tr->jnt_moment_fwd[9 * k + c] - tr->jnt_moment[9 * k + c]));
+        }
+    }
+    assert_near(tr->fwd_err_q, eq, 0.0);
+    assert_near(tr->fwd_err_qd, ev, 0.0);
+    assert_near(tr->fwd_err_force, ef, 0.0);
+    assert_near(tr->fwd_err_moment, em, 0.0);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_create_and_defaults),
+        cmocka_unit_test(test_forward_error_norms),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
