@@ -272,30 +272,39 @@ static vt_status forward_setup(const vt_model *m, const vt_data *d, const double
     return vt_inverse_dynamics(*mf, *df);
 }
 
+/* y0, y'0 and the ids of the blocks present in p (driven first), then the run */
+static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
+{
+    const int nd = p->m ? block_size(p->m) : 0, N = nd + (p->mf ? block_size(p->mf) : 0);
+    double *buf = malloc(3 * (size_t)N * sizeof(double));
+    if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
+    if (p->m) {
+        block_initial(p->m, p->d, buf, buf + N);
+        block_ids(p->m, buf + 2 * N);
+    }
+    if (p->mf) {
+        block_initial(p->mf, p->df, buf + nd, buf + N + nd);
+        block_ids(p->mf, buf + 2 * N + nd);
+    }
+    p->nd = nd;
+    const vt_status st = run(p, opt, tr, N, buf, buf + N, buf + 2 * N);
+    free(buf);
+    return st;
+}
+
 vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr)
 {
     vt_model *mf = NULL;
     vt_data *df = NULL;
-    double *buf = NULL;
     vt_status st = vt_kinematic_solve(m, dk, opt->newton_tol, opt->newton_maxit);
     if (st == VT_OK) st = forward_setup(m, dk, d->xfrc, opt->forward_as_loads, &mf, &df);
     if (st) {
-        vt_fail(d->message, st, "forward check: setup failed: %s", df ? df->message : dk->message);
-        goto out;
+        vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);
+    } else {
+        vt_trajectory_store_forward(tr, mf, df, 0);
+        dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0};
+        st = start(&p, opt, tr);
     }
-    vt_trajectory_store_forward(tr, mf, df, 0);
-    const int N = block_size(mf);
-    buf = malloc(3 * (size_t)N * sizeof(double));
-    if (!buf) {
-        st = vt_fail(d->message, VT_ERR_NO_MEMORY, "forward check: out of memory");
-        goto out;
-    }
-    block_initial(mf, df, buf, buf + N);
-    block_ids(mf, buf + 2 * N);
-    dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0};
-    st = run(&p, opt, tr, N, buf, buf + N, buf + 2 * N);
-out:
-    free(buf);
     vt_data_free(df);
     vt_model_free(mf);
     return st;
@@ -312,30 +321,13 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     vt_trajectory_store(tr, m, d, 0);
     vt_model *mf = NULL;
     vt_data *df = NULL;
-    double *buf = NULL;
-    if (opt->forward_check) {
-        if ((st = forward_setup(m, d, d->xfrc, opt->forward_as_loads, &mf, &df))) {
-            vt_fail(d->message, st, "vt_dynamic_analysis: forward check setup: %s", df ? df->message : vt_status_string(st));
-            goto out;
-        }
-        vt_trajectory_store_forward(tr, mf, df, 0);
+    if (opt->forward_check && (st = forward_setup(m, d, d->xfrc, opt->forward_as_loads, &mf, &df))) {
+        vt_fail(d->message, st, "vt_dynamic_analysis: forward check set-up: %s", df ? df->message : vt_status_string(st));
+    } else {
+        if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
+        dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0};
+        st = start(&p, opt, tr);
     }
-    const int nd = block_size(m), N = nd + (mf ? block_size(mf) : 0);
-    buf = malloc(3 * (size_t)N * sizeof(double));
-    if (!buf) {
-        st = vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_dynamic_analysis: out of memory");
-        goto out;
-    }
-    block_initial(m, d, buf, buf + N);
-    block_ids(m, buf + 2 * N);
-    if (mf) {
-        block_initial(mf, df, buf + nd, buf + N + nd);
-        block_ids(mf, buf + 2 * N + nd);
-    }
-    dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, nd};
-    st = run(&p, opt, tr, N, buf, buf + N, buf + 2 * N);
-out:
-    free(buf);
     vt_data_free(df);
     vt_model_free(mf);
     return st;

@@ -149,16 +149,10 @@ static void test_newton_euler(void **state)
         velocity_part(&f, Qv);
         for (int i = 1; i <= m->nbody; i++) {
             const int o = 7 * (i - 1);
-            const double *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
+            const double *w = d->omega + 3 * i;
             double E[12], J[9], al[3] = {0}, Jw[3], Ja[3], tq[3], fr[3];
             vt_euler_E(E, d->x + o + 3);
-            for (int r = 0; r < 3; r++)
-                for (int c = 0; c < 3; c++) {
-                    double s = 0.0;
-                    for (int a = 0; a < 3; a++)
-                        for (int b = 0; b < 3; b++) s += A[r + 3 * a] * Jb[a + 3 * b] * A[c + 3 * b];
-                    J[r + 3 * c] = s;
-                }
+            vt_test_global_inertia(J, m, d, i);
             for (int r = 0; r < 3; r++)
                 for (int k = 0; k < 4; k++) al[r] += 2 * E[r + 3 * k] * d->Sdqd[o + 3 + k];
             for (int r = 0; r < 3; r++) {

@@ -116,15 +116,8 @@ static void test_rotational_block(void **state)
     setup(&m, &d, 5, 9, VT_SCENE_ALL_JOINTS);
     for (int i = 1; i <= m->nbody; i++) {
         /* 4 E^T J E with J = A J' A^T */
-        const double *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
         double J[9], E[12];
-        for (int r = 0; r < 3; r++)
-            for (int c = 0; c < 3; c++) {
-                double s = 0.0;
-                for (int a = 0; a < 3; a++)
-                    for (int b = 0; b < 3; b++) s += A[r + 3 * a] * Jb[a + 3 * b] * A[c + 3 * b];
-                J[r + 3 * c] = s;
-            }
+        vt_test_global_inertia(J, m, d, i);
         vt_euler_E(E, d->x + 7 * (i - 1) + 3);
         for (int r = 0; r < 4; r++)
             for (int c = 0; c < 4; c++) {

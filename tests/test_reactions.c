@@ -277,14 +277,8 @@ static void test_newton_euler_every_body(void **state)
             vt_euler_E(E, d->x + o + 3);
             for (int r = 0; r < 3; r++)
                 for (int k = 0; k < 4; k++) al[r] += 2 * E[r + 3 * k] * xdd[3 + k];
-            const double *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
-            for (int r = 0; r < 3; r++)
-                for (int c = 0; c < 3; c++) {
-                    double v = 0.0;
-                    for (int a = 0; a < 3; a++)
-                        for (int b = 0; b < 3; b++) v += A[r + 3 * a] * Jb[a + 3 * b] * A[c + 3 * b];
-                    J[r + 3 * c] = v;
-                }
+            const double *w = d->omega + 3 * i;
+            vt_test_global_inertia(J, m, d, i);
             for (int r = 0; r < 3; r++) {
                 Jw[r] = J[r] * w[0] + J[r + 3] * w[1] + J[r + 6] * w[2];
                 Ja[r] = J[r] * al[0] + J[r + 3] * al[1] + J[r + 6] * al[2];

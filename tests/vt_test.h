@@ -57,6 +57,19 @@ static inline double vt_test_kinetic_energy(const vt_model *m, const vt_data *d)
     return T;
 }
 
+/* J = A J' A^T: body i's inertia about its centre of mass in global axes */
+static inline void vt_test_global_inertia(double J[9], const vt_model *m, const vt_data *d, int i)
+{
+    const double *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            double s = 0.0;
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) s += A[r + 3 * a] * Jb[a + 3 * b] * A[c + 3 * b];
+            J[r + 3 * c] = s;
+        }
+}
+
 /* V = −Σ m g·r */
 static inline double vt_test_potential_energy(const vt_model *m, const vt_data *d)
 {
