@@ -70,7 +70,14 @@ vt_status vt_scene_double_link(vt_model **model, int lock)
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
-vt_status vt_scene_chain(vt_model **model, int n)
+void vt_scene_chain_state(int k, double *q, double *qd, double *qdd)
+{
+    *q = 0.3 * sin(1.3 * k + 0.2);
+    *qd = 0.5 * cos(0.7 * k);
+    *qdd = 0.4 * sin(0.9 * k + 1.0);
+}
+
+vt_status vt_scene_chain(vt_model **model, int n, int drives)
 {
     vt_builder *b;
     vt_status st = vt_builder_create(&b, NULL);
@@ -80,12 +87,49 @@ vt_status vt_scene_chain(vt_model **model, int n)
         vt_body_def link = vt_default_body_def();
         link.parent = i - 1;
         rod_inertia(link.inertia, link.mass, len);
+        link.inertia[0] = 2e-4;
         link.joint_parent[0] = i > 1 ? 0.5 * len : 0.0;
         link.joint_child[0] = -0.5 * len;
         memset(link.axis1, 0, sizeof link.axis1);
         link.axis1[(i - 1) % 3] = 1.0;
         const int id = vt_builder_add_body(b, &link);
         if (id < 0) st = (vt_status)id;
+    }
+    if (st == VT_OK && drives == VT_CHAIN_JOINT_DRIVEN) {
+        for (int i = 1; i <= n && st == VT_OK; i++) {
+            double c[3];
+            vt_scene_chain_state(i - 1, &c[0], &c[1], &c[2]);
+            c[2] *= 0.5;
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = i;
+            dr.f = vt_function_polynomial(3, c);
+            const int id = vt_builder_add_drive(b, &dr);
+            if (id < 0) st = (vt_status)id;
+        }
+    }
+    if (st == VT_OK && drives == VT_CHAIN_TIP_DRIVE) {
+        /* the tip's y at the reference state, from a model without the drive */
+        vt_model *free_chain = NULL;
+        vt_data *d;
+        st = vt_scene_chain(&free_chain, n, VT_CHAIN_FREE);
+        if (st == VT_OK && (st = vt_data_create(&d, free_chain)) == VT_OK) {
+            double dummy;
+            for (int k = 0; k < n; k++) vt_scene_chain_state(k, &d->q[k], &dummy, &dummy);
+            st = vt_kinematics(free_chain, d);
+            const double y0 = d->x[7 * (n - 1) + 1] + 0.5 * len * d->A[9 * n + 1];
+            vt_data_free(d);
+            vt_drive_def dr = vt_default_drive_def();
+            dr.type = VT_DRIVE_POINT;
+            dr.body = n;
+            dr.index = 1;
+            dr.point[0] = 0.5 * len;
+            dr.f = vt_function_sine(y0, 0.05, 2.0 * VT_PI, 0.0);
+            if (st == VT_OK) {
+                const int id = vt_builder_add_drive(b, &dr);
+                if (id < 0) st = (vt_status)id;
+            }
+        }
+        if (free_chain) vt_model_free(free_chain);
     }
     return finish(model, b, st);
 }

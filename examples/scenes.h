@@ -15,9 +15,22 @@
 #define VT_DL_MASS 100.0
 vt_status vt_scene_double_link(vt_model **model, int lock);
 
-/* A spatial serial chain of n uniform rods (1 kg, 0.5 m along x) joined by revolute joints
- * whose axes cycle x, y, z. */
-vt_status vt_scene_chain(vt_model **model, int n);
+/* A spatial serial chain of n links joined by revolute joints whose axes cycle x, y, z (joint
+ * k = 1..n about body axis (k−1) mod 3, given in the parent's axes; all axes aligned at q = 0).
+ * Link k: 1 kg, 0.5 m along its x, centre of mass at its middle, inertia about it
+ * diag(2e-4, 1/48, 1/48) kg·m² (a slender rod of radius 0.02 m); joint 1 at the origin, joint
+ * k > 1 at the far end of link k−1; gravity (0, −9.81, 0). The benchmarks' scene.
+ *   drives = VT_CHAIN_FREE          no drive
+ *            VT_CHAIN_JOINT_DRIVEN  every joint driven: q_k(t) = q + q̇ t + ½ q̈ t² with the
+ *                                   values of vt_scene_chain_state() (so at t = 0 the state
+ *                                   and accelerations are exactly those)
+ *            VT_CHAIN_TIP_DRIVE     one point drive: the y of the last link's tip follows
+ *                                   y0 + 0.05 sin(2π t) with y0 its value at the state */
+enum { VT_CHAIN_FREE, VT_CHAIN_JOINT_DRIVEN, VT_CHAIN_TIP_DRIVE };
+vt_status vt_scene_chain(vt_model **model, int n, int drives);
+/* the chain's reference state of joint k = 0..n−1: q = 0.3 sin(1.3 k + 0.2),
+ * q̇ = 0.5 cos(0.7 k), q̈ = 0.4 sin(0.9 k + 1) */
+void vt_scene_chain_state(int k, double *q, double *qd, double *qdd);
 
 /* A four-bar linkage laid out in the XY plane, built exactly constrained in space as RSUR:
  * crank (body 1, revolute about z at the origin), coupler (body 2, spherical joint at the
