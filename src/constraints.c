@@ -142,10 +142,47 @@ static double G_row(const double a[4], const double b[4], int k)
     return G[k] * b[0] + G[3 + k] * b[1] + G[6 + k] * b[2] + G[9 + k] * b[3];
 }
 
+/* Φ_q = Φ_x S (22), body by body on the body's path columns: from the dense S (gathered), or
+ * column by column from the rates' twists (the recursive path, which has no dense S) */
+static void phiq(const vt_model *m, vt_data *d, int dense)
+{
+    const int nc = m->nc;
+    double *Si = d->work, *row = Si + 7 * m->maxpath;
+    memset(d->Phiq, 0, (size_t)nc * (size_t)m->nv * sizeof(double));
+    for (int r = 0; r < nc; r++)
+        for (int side = 0; side < 2; side++) {
+            const int b = m->con_body[2 * r + side];
+            if (b == 0) continue;
+            const int k = m->body_pathnum[b];
+            const int *path = m->path_dof + m->body_pathadr[b];
+            const double *px = d->Phix + 14 * r + 7 * side;
+            if (dense) {
+                vt_gather_S(Si, m, d, b);
+                cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
+                for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
+            } else {
+                double E[12], col[7];
+                vt_euler_E(E, d->x + vt_xoff(b) + 3);
+                for (int c = 0; c < k; c++) {
+                    vt_S_column(col, m, d, b, E, path[c]);
+                    double v = 0.0;
+                    for (int e = 0; e < 7; e++) v += px[e] * col[e];
+                    d->Phiq[r + (size_t)path[c] * (size_t)nc] += v;
+                }
+            }
+        }
+}
+
 vt_status vt_constraints(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_constraints");
     if (st) return st;
+    return vt_constraints_impl(m, d, 1);
+}
+
+vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
+{
+    vt_status st;
     const double t = d->time;
     if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
     double pdes[4] = {1, 0, 0, 0}, pdes_d[4] = {0}, pdes_dd[4] = {0};
@@ -252,19 +289,6 @@ vt_status vt_constraints(const vt_model *m, vt_data *d)
         }
     }
 
-    /* Φ_q = Φ_x S (22), body by body on the body's path columns */
-    const int nc = m->nc;
-    double *Si = d->work, *row = Si + 7 * m->maxpath;
-    memset(d->Phiq, 0, (size_t)nc * (size_t)m->nv * sizeof(double));
-    for (int r = 0; r < nc; r++)
-        for (int side = 0; side < 2; side++) {
-            const int b = m->con_body[2 * r + side];
-            if (b == 0) continue;
-            const int k = m->body_pathnum[b];
-            const int *path = m->path_dof + m->body_pathadr[b];
-            vt_gather_S(Si, m, d, b);
-            cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, d->Phix + 14 * r + 7 * side, 1, 0.0, row, 1);
-            for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
-        }
+    phiq(m, d, dense);
     return VT_OK;
 }

@@ -107,6 +107,15 @@ void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
  * angular accelerations into alpha (3 x (nbody+1)). */
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
 
+/* Positions, velocities and Ṡq̇ without the dense S (kinematics.c); the state is checked. */
+vt_status vt_kinematics_tree(const vt_model *m, vt_data *d);
+/* Twist of a rate about the global origin, and a column of S in body i's rows (kinematics.c) */
+void vt_dof_twist(const vt_model *m, const vt_data *d, int dof, double w[3], double v[3]);
+void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
+
+/* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
+vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);
+
 /* Row of R (Table 1) for rate `dof`: its entries on x^j (rj, 7) and on x^i (ri, 7). */
 void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double ri[7]);
 

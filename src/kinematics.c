@@ -8,7 +8,9 @@
  *   velocities   ω^i = ω^j + Σ (1 − ε_k) q̇_k e_k                                           (16)
  *                v^i = v^j + ω̃^j s^{ij} + Σ ε_k q̇_k e_k + ω̃^i d^i                          (15)
  *                ṗ^i = ½ E^{iT} ω^i
- *   S, column of rate k of joint b, in the rows of every body i whose path holds b:
+ *   S, column of rate k of joint b, in the rows of every body i whose path holds b, from the
+ *   rate's twist (w, v) about the global origin (vt_dof_twist): ṙ^i += v + w × r^i,
+ *   ṗ^i += ½ E^{iT} w; that is
  *                rotational axis e through the joint point P_b:  ṙ^i += e × (r^i − P_b),
  *                                                                ṗ^i += ½ E^{iT} e
  *                translational axis e:                           ṙ^i += e
@@ -148,52 +150,65 @@ static void velocities(const vt_model *m, vt_data *d)
     }
 }
 
+/* Twist of rate `dof` about the global origin O: angular part w, velocity of the point at O
+ * v. Rotational axis e through the joint point P: (e, P × e); translational e: (0, e); a base
+ * body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, r^b × ω). */
+void vt_dof_twist(const vt_model *m, const vt_data *d, int dof, double w[3], double v[3])
+{
+    const int b = m->dof_body[dof], jt = m->body_joint[b];
+    const double *e = d->jaxis + 9 * b;
+    int ax;
+    switch (vt_dof_kind(jt, dof - m->body_vadr[b], &ax)) {
+    case VT_DOF_ROT:
+        vt_copy3(w, e + 3 * ax);
+        vt_cross3(v, d->jpoint + 3 * b, w);
+        break;
+    case VT_DOF_TRANS:
+        w[0] = w[1] = w[2] = 0.0;
+        vt_copy3(v, e + 3 * ax);
+        break;
+    case VT_DOF_BASE_R:
+        w[0] = w[1] = w[2] = 0.0;
+        v[0] = v[1] = v[2] = 0.0;
+        v[ax] = 1.0;
+        break;
+    default: { /* VT_DOF_BASE_P */
+        double E[12];
+        vt_euler_E(E, d->x + vt_xoff(b) + 3);
+        for (int r = 0; r < 3; r++) w[r] = 2.0 * E[3 * ax + r];
+        vt_cross3(v, d->x + vt_xoff(b), w);
+        break;
+    }
+    }
+}
+
+/* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × r^i, ṗ^i = ½ E^{iT} w,
+ * except a base body's own ṗ, which is q̇ itself (S's block I). Ei = E(p^i). */
+void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof)
+{
+    if (m->body_joint[i] == VT_JOINT_BASE && m->dof_body[dof] == i && dof - m->body_vadr[i] >= 3) {
+        memset(c, 0, 7 * sizeof(double));
+        c[3 + dof - m->body_vadr[i] - 3] = 1.0;
+        return;
+    }
+    double w[3], v[3];
+    vt_dof_twist(m, d, dof, w, v);
+    vt_copy3(c, v);
+    vt_addcross3(c, w, d->x + vt_xoff(i));
+    vt_mulE_t(c + 3, Ei, w);
+    for (int r = 3; r < 7; r++) c[r] *= 0.5;
+}
+
 /* The non-zero blocks of S: body i's rows, the columns of its path. */
 static void fill_S(const vt_model *m, vt_data *d)
 {
-    const int ld = m->nx;
+    const size_t ld = (size_t)m->nx;
     for (int i = 1; i <= m->nbody; i++) {
-        const double *ri = d->x + vt_xoff(i), *pi = ri + 3;
         double Ei[12];
-        vt_euler_E(Ei, pi);
-        for (int b = i; b != 0; b = m->body_parent[b]) {
-            const int jt = m->body_joint[b];
-            const double *e = d->jaxis + 9 * b;
-            double Eb[12];
-            if (jt == VT_JOINT_BASE) vt_euler_E(Eb, d->x + vt_xoff(b) + 3);
-            for (int k = 0; k < m->body_nv[b]; k++) {
-                double *c = d->S + (size_t)(m->body_vadr[b] + k) * (size_t)ld + (size_t)vt_xoff(i);
-                double w[3] = {0, 0, 0}, rel[3];
-                int ax;
-                memset(c, 0, 7 * sizeof(double));
-                switch (vt_dof_kind(jt, k, &ax)) {
-                case VT_DOF_ROT:
-                    vt_copy3(w, e + 3 * ax);
-                    for (int r = 0; r < 3; r++) rel[r] = ri[r] - d->jpoint[3 * b + r];
-                    vt_cross3(c, w, rel);
-                    break;
-                case VT_DOF_TRANS:
-                    vt_copy3(c, e + 3 * ax);
-                    break;
-                case VT_DOF_BASE_R:
-                    c[ax] = 1.0;
-                    break;
-                default: /* VT_DOF_BASE_P */
-                    if (b == i) {
-                        c[3 + ax] = 1.0;
-                        break;
-                    }
-                    for (int r = 0; r < 3; r++) w[r] = 2.0 * Eb[3 * ax + r]; /* ω^b per ṗ^b_ax */
-                    for (int r = 0; r < 3; r++) rel[r] = ri[r] - d->x[vt_xoff(b) + r];
-                    vt_cross3(c, w, rel);
-                    break;
-                }
-                if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) {
-                    vt_mulE_t(c + 3, Ei, w);
-                    for (int r = 3; r < 7; r++) c[r] *= 0.5;
-                }
-            }
-        }
+        vt_euler_E(Ei, d->x + vt_xoff(i) + 3);
+        const int *path = m->path_dof + m->body_pathadr[i];
+        for (int c = 0; c < m->body_pathnum[i]; c++)
+            vt_S_column(d->S + (size_t)path[c] * ld + (size_t)vt_xoff(i), m, d, i, Ei, path[c]);
     }
 }
 
@@ -263,15 +278,21 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
     }
 }
 
+vt_status vt_kinematics_tree(const vt_model *m, vt_data *d)
+{
+    vt_status st = check_state(m, d);
+    if (st) return st;
+    positions(m, d);
+    velocities(m, d);
+    vt_accelerations(m, d, NULL, d->Sdqd, d->work);
+    return VT_OK;
+}
+
 vt_status vt_kinematics(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_kinematics");
     if (st) return st;
-    st = check_state(m, d);
-    if (st) return st;
-    positions(m, d);
-    velocities(m, d);
+    if ((st = vt_kinematics_tree(m, d))) return st;
     fill_S(m, d);
-    vt_accelerations(m, d, NULL, d->Sdqd, d->work);
     return VT_OK;
 }

@@ -490,6 +490,20 @@ static void build_rows(vt_model *m)
     }
     for (int i = 1; i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE) r = add_row(m, r, VT_ROW_NORM, 0, i, i);
+
+    /* joint drives by rate; fully joint-driven when each rate has exactly one and no other row */
+    for (int c = 0; c < m->nv; c++) m->dof_drive[c] = -1;
+    int once = m->nc == m->nv;
+    for (int row = 0; row < m->nc; row++) {
+        if (m->con_kind[row] != VT_ROW_JOINT) {
+            once = 0;
+            continue;
+        }
+        const int c = m->con_dof[row];
+        if (m->dof_drive[c] >= 0) once = 0;
+        m->dof_drive[c] = m->con_owner[row];
+    }
+    m->joint_driven = once;
 }
 
 void vt_model_free(vt_model *m)
@@ -520,6 +534,7 @@ static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath
     m->con_dof = take(a, ncc * sizeof(int));
     m->con_vec = take(a, 6 * ncc * sizeof(double));
     m->con_point = take(a, 6 * ncc * sizeof(double));
+    m->dof_drive = take(a, (size_t)(nv ? nv : 1) * sizeof(int));
     const size_t nb = (size_t)n + 1;
     m->body_parent = take(a, nb * sizeof(int));
     m->body_joint = take(a, nb * sizeof(int));

@@ -219,6 +219,9 @@ typedef struct vt_model {
     int *con_dof;            ///< joint-drive rows: the driven rate; orientation rows: 0..2 (nc)
     double *con_vec;         ///< direction on a (a's axes, or global) then on b (b's axes) (6 x nc)
     double *con_point;       ///< point on a then on b, each in its body's axes (6 x nc)
+    int *dof_drive;          ///< the joint drive of each rate, −1 if none (nv)
+    int joint_driven;        ///< 1 when every rate has exactly one joint drive and there is no other
+                             ///< constraint row: efforts then come without factorizing anything
 } vt_model;
 
 /// The data of one model: inputs, every result, and all scratch space. Allocated once by

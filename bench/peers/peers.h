@@ -1,0 +1,33 @@
+/* C interface to the peer libraries (Pinocchio, MuJoCo) used by the vtdyn benchmarks.
+ * Each peer computes inverse dynamics (joint torques) and every joint reaction wrench
+ * for the same scenes as vtdyn. A peer's constructor exists only when that peer is
+ * built (VT_HAVE_PINOCCHIO / VT_HAVE_MUJOCO); the other functions always exist. */
+#ifndef VT_BENCH_PEERS_H
+#define VT_BENCH_PEERS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct vt_peer vt_peer;   /* opaque */
+/* scene: VT_PEER_CHAIN (n links), VT_PEER_DOUBLE_LINK, VT_PEER_FOURBAR (n ignored for the last two) */
+enum { VT_PEER_CHAIN = 0, VT_PEER_DOUBLE_LINK = 1, VT_PEER_FOURBAR = 2 };
+/* NULL if the scene is not supported by that peer */
+vt_peer *vt_peer_pinocchio(int scene, int n, const double *q, const double *qd, const double *qdd);
+vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd);
+int vt_peer_nmethods(const vt_peer *p);
+const char *vt_peer_method(const vt_peer *p, int method);   /* e.g. "pinocchio_rnea", "pinocchio_rnea_world", "pinocchio_crba_cholesky", "mujoco_inverse", "mujoco_rne_post" */
+void vt_peer_run(vt_peer *p, int method);                    /* one full evaluation; no allocation */
+void vt_peer_torques(const vt_peer *p, double *tau);         /* joint torques of the last run (n) */
+/* reaction of the parent on link k (1-based) at that link's joint point, world axes: force f, moment n about the joint point; includes whatever the peer includes (say in a comment whether the actuator torque is inside n)
+ * Both peers: n is the whole moment transmitted through the joint, so the actuator (joint) torque
+ * IS inside n: its component along the joint axis equals the joint torque of link k's joint.
+ * Gravity and inertia of the subtree carried by link k are inside f and n (both peers). */
+void vt_peer_reaction(const vt_peer *p, int k, double f[3], double n[3]);
+void vt_peer_free(vt_peer *p);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* VT_BENCH_PEERS_H */

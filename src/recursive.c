@@ -1,0 +1,196 @@
+/* The recursive (O(n) and O(n·depth)) evaluation of the same method, without the dense S.
+ *
+ * Every rate a has a twist s_a = (w_a, v_a) about the global origin O (vt_dof_twist): the
+ * column of S of every body below it is ṙ = v_a + w_a × r, ṗ = ½ E^T w_a (15)-(16). A wrench
+ * (n_O, f) about O pairs with it as power s_a · W = w_a · n_O + v_a · f, so S^T F, summed over a
+ * subtree, is the projection of the subtree's wrench (10).
+ *
+ *   body wrench needed   W_k = (J α + ω × J ω − n_e + r × f,  f = m a − f_e)   about O
+ *                        (f_e: gravity and xfrc; n_e: xfrc's moment about the centre of mass)
+ *   subtree              W̄_i = W_i + Σ_children W̄_c                       (inward pass)
+ *   composite inertia    Ī_i = Σ_subtree [J − m c̃ c̃, m c̃; −m c̃, m I]  about O, (m, h = m c, J_O)
+ *   M* (3)               M*_ab = s_b · (Ī_i s_a),  i the body of rate a, b on i's path
+ *                        (Ī s = (J_O w + h × v, m v + w × h))
+ *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
+ *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
+ * With every rate driven by one joint drive (the model's joint_driven), q̈ = f''(t) is known
+ * and nothing is factorized: the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's Φ_q^T λ with
+ * unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point P_i less the
+ * joint's actuation (τ + qfrc) along its axes. Otherwise M* and Q as above, Φ_q = Φ_x S from
+ * the twists, the augmented system (5) and the reactions (25)-(28) as in the dense path.
+ */
+#include <string.h>
+
+#include "internal.h"
+
+/* W = needed wrench of body i about O, given its accelerations a (3) and α (3) */
+static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i, const double *a, const double *al)
+{
+    const double *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
+    const double *r = d->x + vt_xoff(i), *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+    double wb[3], ab[3], Jw[3], Ja[3];
+    vt_mulmat3t(wb, Ai, w);
+    vt_mulmat3t(ab, Ai, al);
+    vt_mulmat3(Jw, Jb, wb);
+    vt_mulmat3(Ja, Jb, ab);
+    vt_addcross3(Ja, wb, Jw);
+    vt_mulmat3(W, Ai, Ja); /* J α + ω × J ω, body axes and back */
+    for (int c = 0; c < 3; c++) {
+        W[3 + c] = mass * (a[c] - m->gravity[c]) - xf[c];
+        W[c] -= xf[3 + c];
+    }
+    vt_addcross3(W, r, W + 3);
+}
+
+/* subtree sums, inward: W̄_parent += W̄_i */
+static void subtree_sum(const vt_model *m, double *W, int stride)
+{
+    for (int i = m->nbody; i >= 1; i--) {
+        const int j = m->body_parent[i];
+        if (j > 0)
+            for (int c = 0; c < stride; c++) W[stride * j + c] += W[stride * i + c];
+    }
+}
+
+static double pair(const double w[3], const double v[3], const double W[6])
+{
+    return vt_dot3(w, W) + vt_dot3(v, W + 3);
+}
+
+/* M* by composite bodies */
+static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
+{
+    const int nv = m->nv;
+    for (int i = 1; i <= m->nbody; i++) {
+        double *I = Ic + 13 * i, J[9], t[9];
+        const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+        /* J = A J' A^T, then J_O = J − m c̃ c̃ = J + m (|c|² I − c c^T) */
+        for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
+        for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
+        const double c2 = vt_dot3(c, c);
+        I[0] = mass;
+        for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
+        for (int col = 0; col < 3; col++)
+            for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] + mass * ((r == col) * c2 - c[r] * c[col]);
+    }
+    subtree_sum(m, Ic, 13);
+    memset(d->Mstar, 0, (size_t)nv * (size_t)nv * sizeof(double));
+    for (int a = 0; a < nv; a++) {
+        const int i = m->dof_body[a];
+        const double *I = Ic + 13 * i, *h = I + 1, *JO = I + 4;
+        double w[3], v[3], F[6];
+        vt_dof_twist(m, d, a, w, v);
+        vt_mulmat3(F, JO, w);
+        vt_addcross3(F, h, v);
+        for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
+        vt_addcross3(F + 3, w, h);
+        const int *path = m->path_dof + m->body_pathadr[i];
+        for (int k = 0; k < m->body_pathnum[i]; k++) {
+            const int b = path[k];
+            if (b > a) break; /* ascending: the rest are later rates of i's own joint */
+            double wb[3], vb[3];
+            vt_dof_twist(m, d, b, wb, vb);
+            const double v2 = pair(wb, vb, F);
+            d->Mstar[a + (size_t)b * (size_t)nv] = v2;
+            d->Mstar[b + (size_t)a * (size_t)nv] = v2;
+        }
+    }
+}
+
+/* Q = qfrc − S^T (needed wrenches at q̈ = 0) */
+static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int o = vt_xoff(i);
+        double E[12], al[3];
+        vt_euler_E(E, d->x + o + 3);
+        vt_mulE(al, E, d->Sdqd + o + 3); /* α = 2 E p̈ */
+        for (int k = 0; k < 3; k++) al[k] *= 2.0;
+        body_wrench(W + 6 * i, m, d, i, d->Sdqd + o, al);
+    }
+    subtree_sum(m, W, 6);
+    for (int a = 0; a < m->nv; a++) {
+        double w[3], v[3];
+        vt_dof_twist(m, d, a, w, v);
+        d->Q[a] = d->qfrc[a] - pair(w, v, W + 6 * m->dof_body[a]);
+    }
+    /* a base body's own ṗ rates: (4) in p also has h's normal part, p^T h_p = 2 ω^T J ω (the
+     * Newton–Euler form above is its tangential part); p^T p = 1's multiplier takes it up, but
+     * Q and λ then equal the dense path's */
+    for (int i = 1; i <= m->nbody; i++) {
+        if (m->body_joint[i] != VT_JOINT_BASE) continue;
+        const double *w = d->omega + 3 * i, *p = d->x + vt_xoff(i) + 3, *A = d->A + 9 * i;
+        double wb[3], Jw[3];
+        vt_mulmat3t(wb, A, w);
+        vt_mulmat3(Jw, m->body_inertia + 9 * i, wb);
+        const double c = 2.0 * vt_dot3(wb, Jw);
+        for (int k = 0; k < 4; k++) d->Q[m->body_vadr[i] + 3 + k] += c * p[k];
+    }
+}
+
+/* Every rate driven by a joint drive: q̈ = f'', efforts and reactions in one inward pass. */
+static vt_status joint_driven(const vt_model *m, vt_data *d)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1;
+    double *alpha = d->work, *W = alpha + 3 * nb;
+    for (int c = 0; c < m->nv; c++) {
+        const int k = m->dof_drive[c], row = m->drive_row[k];
+        double f[3];
+        vt_status st = vt_function_eval(f, &m->drive[k].f, d->time);
+        if (st)
+            return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
+                           d->time);
+        const int i = m->dof_body[c];
+        d->Phi[row] = d->q[m->body_qadr[i] + c - m->body_vadr[i]] - f[0];
+        d->Phit[row] = -f[1];
+        d->gamma[row] = f[2];
+        d->qdd[c] = f[2];
+    }
+    vt_accelerations(m, d, d->qdd, d->xdd, alpha);
+    for (int i = 1; i <= n; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
+    subtree_sum(m, W, 6);
+    for (int i = 1; i <= n; i++) {
+        const double *Wi = W + 6 * i, *P = d->jpoint + 3 * i, *e = d->jaxis + 9 * i;
+        double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
+        vt_copy3(f, Wi + 3);
+        vt_copy3(mo, Wi);
+        double t[3];
+        vt_cross3(t, P, f);
+        for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+        for (int k = 0; k < m->body_nv[i]; k++) {
+            const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
+            double w[3], v[3];
+            int ax;
+            vt_dof_twist(m, d, c, w, v);
+            const double tau = pair(w, v, Wi) - d->qfrc[c];
+            const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
+            d->lambda[m->drive_row[dr]] = tau;
+            d->qfrc_drive[c] = tau;
+            d->drive_effort[dr] = tau;
+            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+            for (int r = 0; r < 3; r++) {
+                df[r] = rot ? 0.0 : tau * e[3 * ax + r];
+                dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
+            }
+            vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
+        }
+        vt_mulmat3t(d->jnt_force_body + 3 * i, d->A + 9 * i, f);
+        vt_mulmat3t(d->jnt_moment_body + 3 * i, d->A + 9 * i, mo);
+    }
+    return VT_OK;
+}
+
+vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    if (st) return st;
+    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
+    if ((st = vt_kinematics_tree(m, d))) return st;
+    if (m->joint_driven) return joint_driven(m, d);
+    crba(m, d, d->work);
+    bias(m, d, d->work);
+    if ((st = vt_constraints_impl(m, d, 0)) || (st = vt_solve(m, d))) return st;
+    return vt_reactions(m, d);
+}

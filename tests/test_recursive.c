@@ -1,0 +1,201 @@
+/* src/recursive.c: the recursive evaluation against the dense reference path, to 1e-12
+ * relative, on random trees with every joint kind, with and without drives and cut joints,
+ * and on fully joint-driven chains and trees (the path that factorizes nothing). */
+#include "vt_test.h"
+
+static void compare(const double *a, const double *b, int n, double rel, const char *what)
+{
+    const double scale = 1.0 + fmax(vt_test_maxabs(a, n), vt_test_maxabs(b, n));
+    for (int k = 0; k < n; k++)
+        if (!(fabs(a[k] - b[k]) <= rel * scale))
+            fail_msg("%s[%d]: recursive %.17g, dense %.17g (scale %.3g)", what, k, a[k], b[k], scale);
+}
+
+/* run both on the same state and compare every output */
+static void both(const vt_model *m, vt_data *dr, vt_data *dd, int factorizes)
+{
+    assert_ok(vt_inverse_dynamics(m, dd));
+    assert_ok(vt_inverse_dynamics_recursive(m, dr));
+    const int nb3 = 3 * (m->nbody + 1);
+    compare(dr->x, dd->x, m->nx, 1e-12, "x");
+    compare(dr->xd, dd->xd, m->nx, 1e-12, "xd");
+    compare(dr->Sdqd, dd->Sdqd, m->nx, 1e-12, "Sdqd");
+    compare(dr->qdd, dd->qdd, m->nv, 1e-12, "qdd");
+    compare(dr->lambda, dd->lambda, m->nc, 1e-12, "lambda");
+    compare(dr->xdd, dd->xdd, m->nx, 1e-12, "xdd");
+    compare(dr->qfrc_drive, dd->qfrc_drive, m->nv, 1e-12, "qfrc_drive");
+    compare(dr->drive_effort, dd->drive_effort, m->ndrive, 1e-12, "drive_effort");
+    compare(dr->drive_force, dd->drive_force, 3 * m->ndrive, 1e-12, "drive_force");
+    compare(dr->drive_moment, dd->drive_moment, 3 * m->ndrive, 1e-12, "drive_moment");
+    compare(dr->jnt_force, dd->jnt_force, nb3, 1e-12, "jnt_force");
+    compare(dr->jnt_moment, dd->jnt_moment, nb3, 1e-12, "jnt_moment");
+    compare(dr->jnt_force_body, dd->jnt_force_body, nb3, 1e-12, "jnt_force_body");
+    compare(dr->jnt_moment_body, dd->jnt_moment_body, nb3, 1e-12, "jnt_moment_body");
+    compare(dr->cut_force, dd->cut_force, 3 * m->ncut, 1e-12, "cut_force");
+    compare(dr->cut_moment, dd->cut_moment, 3 * m->ncut, 1e-12, "cut_moment");
+    compare(dr->Phi, dd->Phi, m->nc, 1e-12, "Phi");
+    compare(dr->gamma, dd->gamma, m->nc, 1e-12, "gamma");
+    if (factorizes) {
+        compare(dr->Mstar, dd->Mstar, m->nv * m->nv, 1e-12, "Mstar");
+        compare(dr->Q, dd->Q, m->nv, 1e-12, "Q");
+        compare(dr->Phiq, dd->Phiq, m->nc * m->nv, 1e-12, "Phiq");
+    }
+}
+
+static vt_model *tree_with(uint64_t seed, int n, unsigned kinds, int drives, int cuts)
+{
+    vt_builder *b;
+    vt_model *probe;
+    assert_ok(vt_scene_random_tree(&probe, seed, n, kinds));
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, seed, n, kinds));
+    for (int i = 2; drives && i <= n; i += 2) {
+        const int jt = probe->body_joint[i];
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE) continue;
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = i;
+        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    if (cuts && probe->body_joint[7] == VT_JOINT_BASE) {
+        vt_cut_joint_def cj = vt_default_cut_joint_def();
+        cj.joint = VT_JOINT_SPHERICAL;
+        cj.body_a = 0;
+        cj.body_b = 7;
+        assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_model_free(probe);
+    return m;
+}
+
+static void test_random_trees(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 12; seed++) {
+        const unsigned kinds = seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE;
+        vt_model *m = tree_with(seed, 9 + (int)seed, kinds, seed % 2, seed % 4 == 1);
+        vt_data *dr, *dd;
+        assert_ok(vt_data_create(&dr, m));
+        assert_ok(vt_data_create(&dd, m));
+        uint64_t s = seed * 11;
+        vt_scene_random_state(m, dd, &s);
+        for (int i = 1; i <= m->nbody; i++) /* applied loads too */
+            for (int k = 0; k < 6; k++) dd->xfrc[6 * i + k] = vt_rand_uniform(&s, -3, 3);
+        for (int c = 0; c < m->nv; c++) dd->qfrc[c] = vt_rand_uniform(&s, -1, 1);
+        dd->time = 0.4;
+        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
+        memcpy(dr->xfrc, dd->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        memcpy(dr->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
+        dr->time = dd->time;
+        assert_int_equal(m->joint_driven, 0);
+        both(m, dr, dd, 1);
+        vt_data_free(dr);
+        vt_data_free(dd);
+        vt_model_free(m);
+    }
+}
+
+/* every rate driven: the inward pass alone, against the dense solve */
+static void test_joint_driven(void **state)
+{
+    (void)state;
+    for (int n = 1; n <= 40; n += 13) {
+        vt_model *m;
+        vt_data *dr, *dd;
+        assert_ok(vt_scene_chain(&m, n, VT_CHAIN_JOINT_DRIVEN));
+        assert_int_equal(m->joint_driven, 1);
+        assert_ok(vt_data_create(&dr, m));
+        assert_ok(vt_data_create(&dd, m));
+        for (int k = 0; k < n; k++) {
+            double qdd;
+            vt_scene_chain_state(k, &dd->q[k], &dd->qd[k], &qdd);
+            dr->q[k] = dd->q[k];
+            dr->qd[k] = dd->qd[k];
+            dr->qfrc[k] = dd->qfrc[k] = 0.1 * k;
+        }
+        dr->xfrc[6 * n + 1] = dd->xfrc[6 * n + 1] = -2.0; /* a load on the last link */
+        both(m, dr, dd, 0);
+        for (int k = 0; k < n; k++) { /* and q̈ is the prescribed one */
+            double q, qd, qdd;
+            vt_scene_chain_state(k, &q, &qd, &qdd);
+            assert_near(dr->qdd[k], qdd, 1e-15);
+        }
+        vt_data_free(dr);
+        vt_data_free(dd);
+        vt_model_free(m);
+    }
+    /* a random tree of scalar joints, every rate driven */
+    vt_model *probe;
+    assert_ok(vt_scene_random_tree(&probe, 5, 12, VT_SCENE_SCALAR_JOINTS));
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, 5, 12, VT_SCENE_SCALAR_JOINTS));
+    for (int c = 0; c < probe->nv; c++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = probe->dof_body[c];
+        dr.index = c - probe->body_vadr[dr.body];
+        dr.f = vt_function_sine(0.2, 0.5, 1.0 + c, 0.1 * c);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->joint_driven, 1);
+    vt_data *dr, *dd;
+    assert_ok(vt_data_create(&dr, m));
+    assert_ok(vt_data_create(&dd, m));
+    uint64_t s = 3;
+    vt_scene_random_state(m, dd, &s);
+    memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
+    memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
+    dr->time = dd->time = 0.7;
+    both(m, dr, dd, 0);
+    vt_data_free(dr);
+    vt_data_free(dd);
+    vt_model_free(m);
+    vt_model_free(probe);
+}
+
+/* the paper's scenes */
+static void test_scenes(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *dr, *dd;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_ok(vt_data_create(&dr, m));
+    assert_ok(vt_data_create(&dd, m));
+    dr->q[0] = dd->q[0] = -0.7;
+    dr->qd[0] = dd->qd[0] = -1.5;
+    both(m, dr, dd, 1);
+    vt_data_free(dr);
+    vt_data_free(dd);
+    vt_model_free(m);
+    assert_ok(vt_scene_chain(&m, 12, VT_CHAIN_TIP_DRIVE));
+    assert_ok(vt_data_create(&dr, m));
+    assert_ok(vt_data_create(&dd, m));
+    for (int k = 0; k < 12; k++) {
+        double qdd;
+        vt_scene_chain_state(k, &dd->q[k], &dd->qd[k], &qdd);
+        dr->q[k] = dd->q[k];
+        dr->qd[k] = dd->qd[k];
+    }
+    both(m, dr, dd, 1);
+    vt_data_free(dr);
+    vt_data_free(dd);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_random_trees),
+        cmocka_unit_test(test_joint_driven),
+        cmocka_unit_test(test_scenes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
