@@ -135,8 +135,8 @@ vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 /// The same instant by the recursive evaluation (src/recursive.c): no dense S, M* by composite
 /// bodies, Q by a Newton–Euler pass, Φ_q from the rates' twists; when every rate has one joint
 /// drive (model->joint_driven) the efforts and reactions come from one inward pass with nothing
-/// factorized. Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, x, A, ω, ẋ,
-/// Ṡq̇; M*, Q, Φ, Φ_q, γ when it factorizes) except S and R; agrees with it to round-off.
+/// factorized. Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω,
+/// ẋ; Ṡq̇, M*, Q, Φ_x, Φ_q when it factorizes) except S and R; agrees with it to round-off.
 vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a

@@ -112,7 +112,7 @@ static vt_status prescribed_orientation(char *msg, int k, const vt_drive_def *dr
         for (int c = 0; c < 4; c++) pdes[c] = p[c] / n;
     } else {
         double f[3], r[4];
-        vt_status st = vt_function_eval(f, &dr->f, t);
+        vt_status st = vt_function_eval_valid(f, &dr->f, t);
         if (st) return vt_fail(msg, st, "vt_constraints: drive %d: time function failed at t = %g (%s)", k, t, vt_status_string(st));
         vt_quat_axis_angle(r, dr->axis, f[0]);
         vt_quat_mul(pdes, r, dr->orientation);
@@ -197,7 +197,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
         double *pxa = d->Phix + 14 * r, *pxb = pxa + 7;
         double f[3] = {0, 0, 0}, jv[3], jw[3];
         if ((kind == VT_ROW_JOINT || kind == VT_ROW_POINT) && r < drive_rows) {
-            st = vt_function_eval(f, &m->drive[owner].f, t);
+            st = vt_function_eval_valid(f, &m->drive[owner].f, t);
             if (st)
                 return vt_fail(d->message, st, "vt_constraints: drive %d: time function failed at t = %g (%s)",
                                owner, t, vt_status_string(st));

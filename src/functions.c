@@ -79,9 +79,14 @@ vt_status vt_function_check(char *msg, const vt_function *f)
 vt_status vt_function_eval(double out[3], const vt_function *f, double t)
 {
     if (!out || !f) return VT_ERR_NULL;
-    if (!isfinite(t)) return VT_ERR_NONFINITE;
     vt_status st = vt_function_check(NULL, f);
     if (st) return st;
+    return vt_function_eval_valid(out, f, t);
+}
+
+vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t)
+{
+    if (!isfinite(t)) return VT_ERR_NONFINITE;
     double v[3] = {0, 0, 0};
     switch (f->type) {
     case VT_FUNCTION_CONSTANT:

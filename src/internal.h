@@ -91,7 +91,19 @@ vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who);
 /* Rotational (0) or translational (1) kind of each joint rate, and which of the joint's
  * axes it uses; base rates are reported separately. */
 enum { VT_DOF_ROT, VT_DOF_TRANS, VT_DOF_BASE_R, VT_DOF_BASE_P };
-int vt_dof_kind(int joint_type, int k, int *axis);
+static inline int vt_dof_kind(int joint_type, int k, int *axis)
+{
+    *axis = 0;
+    switch (joint_type) {
+    case VT_JOINT_BASE: *axis = k < 3 ? k : k - 3; return k < 3 ? VT_DOF_BASE_R : VT_DOF_BASE_P;
+    case VT_JOINT_REVOLUTE: return VT_DOF_ROT;
+    case VT_JOINT_UNIVERSAL: *axis = k; return VT_DOF_ROT;
+    case VT_JOINT_SPHERICAL: *axis = k; return VT_DOF_ROT;
+    case VT_JOINT_TRANSLATIONAL: return VT_DOF_TRANS;
+    default: /* cylindrical: θ then s, both along axis 0 */
+        return k == 0 ? VT_DOF_ROT : VT_DOF_TRANS;
+    }
+}
 
 /* Mp = 4 G^T J' G (4x4 column-major), the rotational block of M^i (mass.c) */
 void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
@@ -107,8 +119,9 @@ void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
  * angular accelerations into alpha (3 x (nbody+1)). */
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
 
-/* Positions, velocities and Ṡq̇ without the dense S (kinematics.c); the state is checked. */
-vt_status vt_kinematics_tree(const vt_model *m, vt_data *d);
+/* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
+ * state is checked. */
+vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
 /* Twist of a rate about the global origin, and a column of S in body i's rows (kinematics.c) */
 void vt_dof_twist(const vt_model *m, const vt_data *d, int dof, double w[3], double v[3]);
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
@@ -121,6 +134,8 @@ void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double
 
 /* Validates a time function (functions.c); msg may be NULL. */
 vt_status vt_function_check(char *msg, const vt_function *f);
+/* vt_function_eval for a function already validated (a model's drives) */
+vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t);
 
 /* Kinds of constraint row (model.c builds them, constraints.c evaluates them). */
 enum {

@@ -278,13 +278,13 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
     }
 }
 
-vt_status vt_kinematics_tree(const vt_model *m, vt_data *d)
+vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
 {
     vt_status st = check_state(m, d);
     if (st) return st;
     positions(m, d);
     velocities(m, d);
-    vt_accelerations(m, d, NULL, d->Sdqd, d->work);
+    if (Sdqd) vt_accelerations(m, d, NULL, d->Sdqd, d->work);
     return VT_OK;
 }
 
@@ -292,7 +292,7 @@ vt_status vt_kinematics(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_kinematics");
     if (st) return st;
-    if ((st = vt_kinematics_tree(m, d))) return st;
+    if ((st = vt_kinematics_tree(m, d, 1))) return st;
     fill_S(m, d);
     return VT_OK;
 }

@@ -80,20 +80,6 @@ vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
     return status;
 }
 
-int vt_dof_kind(int joint_type, int k, int *axis)
-{
-    *axis = 0;
-    switch (joint_type) {
-    case VT_JOINT_BASE: *axis = k < 3 ? k : k - 3; return k < 3 ? VT_DOF_BASE_R : VT_DOF_BASE_P;
-    case VT_JOINT_REVOLUTE: return VT_DOF_ROT;
-    case VT_JOINT_UNIVERSAL: *axis = k; return VT_DOF_ROT;
-    case VT_JOINT_SPHERICAL: *axis = k; return VT_DOF_ROT;
-    case VT_JOINT_TRANSLATIONAL: return VT_DOF_TRANS;
-    default: /* cylindrical: θ then s, both along axis 0 */
-        return k == 0 ? VT_DOF_ROT : VT_DOF_TRANS;
-    }
-}
-
 vt_model_def vt_default_model_def(void)
 {
     vt_model_def d;

@@ -137,7 +137,7 @@ static vt_status joint_driven(const vt_model *m, vt_data *d)
     for (int c = 0; c < m->nv; c++) {
         const int k = m->dof_drive[c], row = m->drive_row[k];
         double f[3];
-        vt_status st = vt_function_eval(f, &m->drive[k].f, d->time);
+        vt_status st = vt_function_eval_valid(f, &m->drive[k].f, d->time);
         if (st)
             return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
                            d->time);
@@ -187,7 +187,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     if (st) return st;
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
-    if ((st = vt_kinematics_tree(m, d))) return st;
+    if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) return joint_driven(m, d);
     crba(m, d, d->work);
     bias(m, d, d->work);

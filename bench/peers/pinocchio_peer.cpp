@@ -34,6 +34,13 @@
 /* header-only: the explicit instantiations live in libpinocchio_default, which is not linked */
 #undef PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION
 
+/* GCC 12 reports a false -Wmaybe-uninitialized inside its own AVX/AVX-512 intrinsics headers
+ * (the "__Y = __Y" idiom, GCC bug 105593) where Eigen's kernels are inlined into this file
+ * with -march=native; -isystem does not silence it there, and the project builds with -Werror. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 #include <cstdlib>
 #include <new>
 #include <vector>

@@ -1,0 +1,256 @@
+/* Speed of one inverse-dynamics instant: joint torques (efforts) and every joint reaction.
+ *
+ * Scenes (examples/scenes.h): the spatial chain of n revolute joints with axes cycling x, y, z,
+ * every joint driven (n = 2 .. 200); the paper's double link with its lock; the four-bar (RSUR);
+ * the 10-link chain with a point-position drive at its tip; the five-link arm. Methods:
+ * vtdyn_dense (vt_inverse_dynamics: dense S, the reference) and vtdyn_recursive
+ * (vt_inverse_dynamics_recursive), and the peers when they are built in (bench/peers/):
+ * Pinocchio and MuJoCo, on the same chain and the same q, q̇, q̈, their torques checked against
+ * ours before they are timed.
+ *
+ * Timing: every method of a row is run in turn, round after round (interleaved, so that the
+ * machine's slow stretches hit all of them alike); a round times a batch of calls sized to take
+ * about 2 ms; the figure is the median over the rounds of µs per call. Writes
+ * <outdir>/inverse_speed.csv (scene, n, method, median_us) and prints the ratios.
+ * Usage: bench_inverse [outdir] [rounds]
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "scenes.h"
+#ifdef VT_HAVE_PEERS
+#include "peers.h"
+#endif
+
+#define MAX_METHODS 12
+
+typedef struct {
+    const char *name;
+    void (*run)(void *ctx, int method);
+    void *ctx;
+    int method;
+} timed;
+
+typedef struct {
+    const vt_model *m;
+    vt_data *d;
+    int recursive;
+} vt_ctx;
+
+static void run_vt(void *ctx, int method)
+{
+    (void)method;
+    vt_ctx *c = ctx;
+    const vt_status st = c->recursive ? vt_inverse_dynamics_recursive(c->m, c->d) : vt_inverse_dynamics(c->m, c->d);
+    if (st) {
+        fprintf(stderr, "bench_inverse: %s: %s\n", vt_status_string(st), c->d->message);
+        exit(1);
+    }
+}
+
+#ifdef VT_HAVE_PEERS
+static void run_peer(void *ctx, int method)
+{
+    vt_peer_run(ctx, method);
+}
+#endif
+
+static double now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec * 1e-3;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* median µs per call of each method, interleaved rounds */
+static void time_methods(timed *t, int nt, int rounds, double *median)
+{
+    long reps[MAX_METHODS];
+    double samples[MAX_METHODS][64];
+    for (int k = 0; k < nt; k++) { /* warm up and size a batch to about 2 ms */
+        long r = 1;
+        for (;;) {
+            const double t0 = now_us();
+            for (long i = 0; i < r; i++) t[k].run(t[k].ctx, t[k].method);
+            const double dt = now_us() - t0;
+            if (dt > 2000.0 || r > (1L << 24)) break;
+            r *= dt < 200.0 ? 8 : 2;
+        }
+        reps[k] = r;
+    }
+    for (int round = 0; round < rounds; round++)
+        for (int k = 0; k < nt; k++) {
+            const double t0 = now_us();
+            for (long i = 0; i < reps[k]; i++) t[k].run(t[k].ctx, t[k].method);
+            samples[k][round] = (now_us() - t0) / (double)reps[k];
+        }
+    for (int k = 0; k < nt; k++) {
+        qsort(samples[k], (size_t)rounds, sizeof(double), cmp);
+        median[k] = rounds % 2 ? samples[k][rounds / 2] : 0.5 * (samples[k][rounds / 2 - 1] + samples[k][rounds / 2]);
+    }
+}
+
+static void set_chain_state(const vt_model *m, vt_data *d, double *qdd)
+{
+    for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd[k]);
+    d->time = 0.0;
+}
+
+static FILE *csv;
+static double fit_n[16], fit_t[16];
+static int nfit;
+
+/* one row: our two methods (and the peers on the chain); prints and writes the medians */
+static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_data *dr, int rounds)
+{
+    timed t[MAX_METHODS];
+    vt_ctx cd = {m, dd, 0}, cr = {m, dr, 1};
+    int nt = 0;
+    t[nt++] = (timed){"vtdyn_dense", run_vt, &cd, 0};
+    t[nt++] = (timed){"vtdyn_recursive", run_vt, &cr, 0};
+#ifdef VT_HAVE_PEERS
+    vt_peer *peers[2] = {NULL, NULL};
+    if (strcmp(scene, "chain") == 0) {
+        double *q = malloc((size_t)n * sizeof(double)), *qd = malloc((size_t)n * sizeof(double));
+        double *qdd = malloc((size_t)n * sizeof(double)), *tau = malloc((size_t)n * sizeof(double));
+        for (int k = 0; k < n; k++) vt_scene_chain_state(k, &q[k], &qd[k], &qdd[k]);
+        run_vt(&cr, 0);
+#ifdef VT_HAVE_PINOCCHIO
+        peers[0] = vt_peer_pinocchio(VT_PEER_CHAIN, n, q, qd, qdd);
+#endif
+#ifdef VT_HAVE_MUJOCO
+        peers[1] = vt_peer_mujoco(VT_PEER_CHAIN, n, q, qd, qdd);
+#endif
+        for (int p = 0; p < 2; p++) {
+            if (!peers[p]) continue;
+            for (int k = 0; k < vt_peer_nmethods(peers[p]) && nt < MAX_METHODS; k++) {
+                vt_peer_run(peers[p], k);
+                vt_peer_torques(peers[p], tau);
+                double err = 0.0, scale = 1e-300;
+                for (int j = 0; j < n; j++) {
+                    err = fmax(err, fabs(tau[j] - dr->qfrc_drive[j]));
+                    scale = fmax(scale, fabs(dr->qfrc_drive[j]));
+                }
+                if (err > 1e-8 * scale && strstr(vt_peer_method(peers[p], k), "crba") == NULL) {
+                    printf("  %s disagrees with vtdyn: max torque difference %.3g (scale %.3g): not timed\n",
+                           vt_peer_method(peers[p], k), err, scale);
+                    continue;
+                }
+                t[nt++] = (timed){vt_peer_method(peers[p], k), run_peer, peers[p], k};
+            }
+        }
+        free(q); free(qd); free(qdd); free(tau);
+    }
+#endif
+    double med[MAX_METHODS];
+    time_methods(t, nt, rounds, med);
+    printf("%-12s n=%3d", scene, n);
+    for (int k = 0; k < nt; k++) {
+        printf("  %s %.3f us", t[k].name, med[k]);
+        fprintf(csv, "%s,%d,%s,%.6g\n", scene, n, t[k].name, med[k]);
+    }
+    for (int k = 2; k < nt; k++) printf("  [recursive/%s %.2f]", t[k].name, med[1] / med[k]);
+    printf("  [recursive/dense %.3f]\n", med[1] / med[0]);
+    if (strcmp(scene, "chain") == 0 && nfit < 16) {
+        fit_n[nfit] = n;
+        fit_t[nfit++] = med[1];
+    }
+#ifdef VT_HAVE_PEERS
+    for (int p = 0; p < 2; p++)
+        if (peers[p]) vt_peer_free(peers[p]);
+#endif
+}
+
+static void scene_row(const char *scene, int n, vt_status (*make)(vt_model **, int), void (*state)(const vt_model *, vt_data *),
+                      int rounds)
+{
+    vt_model *m;
+    vt_data *dd, *dr;
+    if (make(&m, n) || vt_data_create(&dd, m) || vt_data_create(&dr, m)) {
+        fprintf(stderr, "bench_inverse: cannot build %s\n", scene);
+        exit(1);
+    }
+    state(m, dd);
+    state(m, dr);
+    bench_row(scene, n, m, dd, dr, rounds);
+    vt_data_free(dd);
+    vt_data_free(dr);
+    vt_model_free(m);
+}
+
+static vt_status make_chain(vt_model **m, int n) { return vt_scene_chain(m, n, VT_CHAIN_JOINT_DRIVEN); }
+static vt_status make_chain_tip(vt_model **m, int n) { return vt_scene_chain(m, n, VT_CHAIN_TIP_DRIVE); }
+static vt_status make_double_link(vt_model **m, int n) { (void)n; return vt_scene_double_link(m, 1); }
+static vt_status make_fourbar(vt_model **m, int n) { (void)n; return vt_scene_fourbar(m, vt_function_sine(0.3, 1.0, 2.0, 0.0)); }
+static vt_status make_five_link(vt_model **m, int n) { (void)n; return vt_scene_five_link(m); }
+
+static void state_chain(const vt_model *m, vt_data *d)
+{
+    double qdd[256];
+    set_chain_state(m, d, qdd);
+}
+static void state_double_link(const vt_model *m, vt_data *d)
+{
+    (void)m;
+    d->q[0] = -0.6;
+    d->qd[0] = -sqrt(7.3575 * sin(0.6));
+}
+static void state_fourbar(const vt_model *m, vt_data *d)
+{
+    vt_scene_fourbar_assemble(m, d, 0.3, 1.0, NULL, NULL);
+}
+static void state_five_link(const vt_model *m, vt_data *d)
+{
+    vt_scene_five_link_guess(m, d, 0.1);
+    d->time = 0.1;
+    vt_kinematic_solve(m, d, 1e-13, 30);
+}
+
+int main(int argc, char **argv)
+{
+    const char *outdir = argc > 1 ? argv[1] : ".";
+    const int rounds = argc > 2 ? atoi(argv[2]) : 9;
+    if (rounds < 1 || rounds > 64) {
+        fprintf(stderr, "bench_inverse: rounds must be 1..64\n");
+        return 1;
+    }
+    char path[4096];
+    snprintf(path, sizeof path, "%s/inverse_speed.csv", outdir);
+    csv = fopen(path, "w");
+    if (!csv) {
+        perror(path);
+        return 1;
+    }
+    fprintf(csv, "scene,n,method,median_us\n");
+    printf("vtdyn inverse-dynamics instant: median of %d interleaved rounds, us per call\n", rounds);
+#ifndef VT_HAVE_PEERS
+    printf("(peers not built: see bench/peers/install.sh and the README to compare with Pinocchio and MuJoCo)\n");
+#endif
+    static const int ns[] = {2, 5, 10, 20, 50, 100, 200};
+    for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++) scene_row("chain", ns[k], make_chain, state_chain, rounds);
+    scene_row("double_link", 2, make_double_link, state_double_link, rounds);
+    scene_row("fourbar", 3, make_fourbar, state_fourbar, rounds);
+    scene_row("chain_tip", 10, make_chain_tip, state_chain, rounds);
+    scene_row("five_link", 5, make_five_link, state_five_link, rounds);
+    fclose(csv);
+    /* growth of the recursive chain: least-squares slope of log t against log n */
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int k = 0; k < nfit; k++) {
+        const double x = log(fit_n[k]), y = log(fit_t[k]);
+        sx += x; sy += y; sxx += x * x; sxy += x * y;
+    }
+    const double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
+    printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..200)\n", slope);
+    printf("wrote %s\n", path);
+    return 0;
+}
