@@ -3,7 +3,7 @@
 if (!exists("csv")) csv = 'inverse_speed.csv'
 if (!exists("out")) out = 'inverse_speed.png'
 set datafile separator ','
-set terminal pngcairo size 800,520 font ',10'
+set terminal pngcairo size 800,520 font ',10' noenhanced
 set output out
 set title 'Joint torques + every joint reaction, spatial chain of n revolute joints'
 set xlabel 'n (joints)'

@@ -3,7 +3,7 @@
 if (!exists("csv")) csv = 'five_link.csv'
 if (!exists("out")) out = '.'
 set datafile separator ','
-set terminal pngcairo size 720,480 font ',10'
+set terminal pngcairo size 720,480 font ',10' noenhanced
 set grid
 
 set output out.'/five_link_fig10_tip.png'
