@@ -118,7 +118,7 @@ vt_status vt_forces(const vt_model *model, vt_data *data);
 vt_status vt_constraints(const vt_model *model, vt_data *data);
 
 /// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, with LAPACK's symmetric
-/// indefinite (Bunch–Kaufman) factorization of the equilibrated matrix; d->rcond is its
+/// indefinite (bounded Bunch–Kaufman) factorization of the equilibrated matrix; d->rcond is its
 /// condition estimate. Needs vt_mass_matrix(), vt_forces(), vt_constraints().
 /// Statuses: VT_ERR_DEPENDENT_CONSTRAINTS (the message names the rows), VT_ERR_SINGULAR,
 /// VT_ERR_LAPACK. On failure qdd and lambda are left as they were.

@@ -38,7 +38,7 @@ static int lapack_work_size(const vt_model *m)
     int info = 0, lw = -1, need = 3 * N;
     double q = 0.0, dummy = 0.0;
     int idummy = 0;
-    dsytrf_("L", &N, &dummy, &N, &idummy, &q, &lw, &info, 1);
+    dsytrf_rk_("L", &N, &dummy, &N, &dummy, &idummy, &q, &lw, &info, 1);
     if (info == 0 && (int)q > need) need = (int)q;
     if (nc > 0) {
         dgeqp3_(&nv, &nc, &dummy, &nv, &idummy, &dummy, &q, &lw, &info);
@@ -101,7 +101,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->work = take(base, &used, d->nwork * sizeof(double));
     d->kkt = take(base, &used, N * N * sizeof(double));
     d->kkt_rhs = take(base, &used, N * sizeof(double));
-    d->kkt_scale = take(base, &used, N * sizeof(double));
+    d->kkt_scale = take(base, &used, 2 * N * sizeof(double)); /* scaling, then D's off-diagonal */
     d->nlwork = lapack_work_size(m);
     d->lwork = take(base, &used, (size_t)d->nlwork * sizeof(double));
     d->ipiv = take(base, &used, N * sizeof(int));

@@ -163,6 +163,12 @@ void dsytrs_(const char *uplo, const int *n, const int *nrhs, const double *a, c
              const int *ipiv, double *b, const int *ldb, int *info, size_t luplo);
 void dsycon_(const char *uplo, const int *n, const double *a, const int *lda, const int *ipiv,
              const double *anorm, double *rcond, double *work, int *iwork, int *info, size_t luplo);
+void dsytrf_rk_(const char *uplo, const int *n, double *a, const int *lda, double *e, int *ipiv, double *work,
+                const int *lwork, int *info, size_t luplo);
+void dsytrs_3_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, const double *e,
+               const int *ipiv, double *b, const int *ldb, int *info, size_t luplo);
+void dsycon_3_(const char *uplo, const int *n, const double *a, const int *lda, const double *e, const int *ipiv,
+               const double *anorm, double *rcond, double *work, int *iwork, int *info, size_t luplo);
 double dlansy_(const char *norm, const char *uplo, const int *n, const double *a, const int *lda,
                double *work, size_t lnorm, size_t luplo);
 void dgels_(const char *trans, const int *m, const int *n, const int *nrhs, double *a, const int *lda,

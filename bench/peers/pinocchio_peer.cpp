@@ -1,14 +1,17 @@
 /* Pinocchio peer (header-only use: no libpinocchio_* is linked). Chain scene only.
  *
  * Methods
- *   0 pinocchio_rnea          rnea(model, data, q, v, a); reactions are data.f (joint frames)
- *   1 pinocchio_rnea_world    rnea, then every data.f[i] mapped to the world frame with
- *                             data.oMi[i].act() (world axes, moment about the world origin)
- *                             into a preallocated array
+ *   0 pinocchio_rnea          rnea(model, data, q, v, a); reactions are data.f (joint frames);
+ *                             reaction() rotates them to world axes outside the timed call
+ *   1 pinocchio_rnea_world    rnea, then data.oMi[i] = oMi[parent] * liMi[i] (rnea itself fills
+ *                             liMi but not oMi) and every data.f[i] mapped to the world frame with
+ *                             data.oMi[i].act() (world axes, moment about the world origin) into a
+ *                             preallocated array
  *   2 pinocchio_crba_cholesky crba + nonLinearEffects + dense Cholesky (Eigen LLT, preallocated):
  *                             forward dynamics a = M^-1 (tau - nle) with tau = the rnea torques
  *                             computed at construction (the "CRBA + dense Cholesky" reference row);
- *                             torques() then reports that tau, reaction() the last rnea's reactions.
+ *                             torques() then reports that tau and reaction() the reactions of the
+ *                             construction's rnea (this method computes none).
  *
  * Reactions: data.f[i] is the spatial force the parent exerts on body i through joint i,
  * expressed in joint i's frame (origin at the joint point), gravity and subtree inertia
@@ -74,8 +77,9 @@ struct PinPeer {
     Eigen::VectorXd acc;   /* method 2: M^-1 (tau0 - nle) */
     Eigen::LLT<Eigen::MatrixXd> llt;
     std::vector<pin::Force> fworld;  /* method 1: oMi[i].act(f[i]), i = 1..n (index 0 unused) */
+    std::vector<pin::Force> fworld0; /* the same at construction (reported after method 2) */
+    std::vector<Eigen::Vector3d> o0; /* joint positions at construction */
     int last;              /* last method run */
-    int world_valid;       /* fworld holds the last rnea's reactions */
 
     PinPeer(int n, const double *q0, const double *qd0, const double *qdd0)
     {
@@ -104,10 +108,21 @@ struct PinPeer {
         acc = Eigen::VectorXd::Zero(n);
         llt = Eigen::LLT<Eigen::MatrixXd>(n);
         fworld.assign(static_cast<size_t>(n) + 1, pin::Force::Zero());
-        pin::rnea(model, data, q, v, a);
+        run(1);
         tau0 = data.tau;
-        last = 0;
-        world_valid = 0;
+        fworld0 = fworld;
+        o0.resize(fworld.size());
+        for (size_t i = 1; i < o0.size(); i++) o0[i] = data.oMi[i].translation();
+    }
+
+    void to_world()
+    {
+        for (pin::JointIndex i = 1; i < static_cast<pin::JointIndex>(model.njoints); i++) {
+            const pin::JointIndex parent = model.parents[i];
+            if (parent > 0) data.oMi[i] = data.oMi[parent] * data.liMi[i];
+            else data.oMi[i] = data.liMi[i];
+            fworld[i] = data.oMi[i].act(data.f[i]);
+        }
     }
 
     void run(int method)
@@ -115,13 +130,10 @@ struct PinPeer {
         switch (method) {
         case 0:
             pin::rnea(model, data, q, v, a);
-            world_valid = 0;
             break;
         case 1:
             pin::rnea(model, data, q, v, a);
-            for (pin::JointIndex i = 1; i < static_cast<pin::JointIndex>(model.njoints); i++)
-                fworld[i] = data.oMi[i].act(data.f[i]);
-            world_valid = 1;
+            to_world();
             break;
         default:
             pin::crba(model, data, q);
@@ -152,16 +164,22 @@ void pin_reaction(const void *p, int k, double f[3], double n[3])
 {
     const PinPeer *s = impl(p);
     Eigen::Vector3d fw, nw;
-    if (s->world_valid) {
-        /* world axes about the world origin -> about the joint point o: n_o = n_0 - o x f */
-        const Eigen::Vector3d &o = s->data.oMi[k].translation();
-        fw = s->fworld[k].linear();
-        nw = s->fworld[k].angular() - o.cross(fw);
-    } else {
-        /* joint frame (origin at the joint point): rotate to world axes */
-        const Eigen::Matrix3d &R = s->data.oMi[k].rotation();
+    if (s->last == 0) {
+        /* joint frame (origin at the joint point): rotate to world axes, R = product of the
+         * rotations of liMi along the path (data.oMi is not filled by rnea) */
+        Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+        std::vector<pin::JointIndex> path;
+        for (pin::JointIndex i = static_cast<pin::JointIndex>(k); i > 0; i = s->model.parents[i]) path.push_back(i);
+        for (auto it = path.rbegin(); it != path.rend(); ++it) R = R * s->data.liMi[*it].rotation();
         fw = R * s->data.f[k].linear();
         nw = R * s->data.f[k].angular();
+    } else {
+        /* world axes about the world origin -> about the joint point o: n_o = n_0 - o x f, with
+         * o = the joint's world position (data.oMi, filled with fworld) */
+        const std::vector<pin::Force> &F = s->last == 1 ? s->fworld : s->fworld0;
+        const Eigen::Vector3d o = s->last == 1 ? Eigen::Vector3d(s->data.oMi[k].translation()) : s->o0[k];
+        fw = F[k].linear();
+        nw = F[k].angular() - o.cross(fw);
     }
     for (int j = 0; j < 3; j++) {
         f[j] = fw[j];

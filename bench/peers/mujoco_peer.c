@@ -1,0 +1,349 @@
+/* MuJoCo peer (C API). Scenes: chain, double link (joint 2 locked by a joint equality) and
+ * four-bar (loop closed by a connect equality).
+ *
+ * Methods
+ *   chain
+ *     0 mujoco_inverse       qpos, qvel, qacc set; mj_inverse; mj_rnePostConstraint;
+ *                            torques = qfrc_inverse
+ *     1 mujoco_rne_post      mj_kinematics, mj_comPos, mj_comVel, mj_rne(flg_acc = 1) into a
+ *                            preallocated vector (= torques), then mj_rnePostConstraint
+ *     2 mujoco_post_project  mj_kinematics, mj_comPos, mj_comVel, mj_rnePostConstraint; torques
+ *                            = projection of cfrc_int on each dof's axis (cdof . cfrc_int), the
+ *                            leanest MuJoCo path to both torques and reactions
+ *   double link: 0 mujoco_inverse (as above)
+ *   four-bar
+ *     0 mujoco_inverse       as above: with a consistent state the loop force is 0 and all three
+ *                            hinges carry torque (the open tree's torques)
+ *     1 mujoco_inverse_loop  mj_inverse, then the connect force lambda that makes the coupler and
+ *                            rocker hinge torques zero (crank-only actuation) is solved from the
+ *                            2x2 in-plane system, written into efc_force, qfrc_inverse -= J^T lambda,
+ *                            then mj_rnePostConstraint (reactions see the loop force via cfrc_ext)
+ *
+ * Reactions: mjData.cfrc_int[b] (after mj_rnePostConstraint) is the wrench the parent exerts on
+ * body b through its joint, "com-based": 6 numbers [moment(3); force(3)], world axes, the moment
+ * taken about subtree_com of b's root body (the body of b's tree that hangs from the world), not
+ * about b's own COM. reaction() converts: f = force, n_joint = moment + (c - p) x f with c that
+ * subtree COM and p the joint anchor (xanchor). The actuator/joint torque is inside n (the
+ * projection of cfrc_int on the joint axis is the whole joint-space force).
+ *
+ * Model options: no geoms (no contacts), contact/limit/frictionloss/spring/damper/actuation/
+ * sensor disabled, zero damping, armature, friction; gravity (0, -9.81, 0); the chain also has
+ * the constraint solver disabled. Equality constraints: timestep 1e-4, solref = "2e-4 1"
+ * (time constant 2 * timestep, the smallest refsafe allows, critical damping), solimp =
+ * "0.9999 0.9999 0.001 0.5 2" (impedance at mjMAXIMP everywhere).
+ */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <mujoco/mujoco.h>
+
+#include "peer_impl.h"
+
+enum { MJP_MAXMETHODS = 3 };
+
+typedef struct {
+    mjModel *m;
+    mjData *d;
+    int scene, n;            /* n = nv = number of hinges = links */
+    mjtNum *q, *qd, *qdd;    /* the state, copied into mjData by every run */
+    mjtNum *tau;             /* torques of the last run */
+    const int *body;         /* body of link k (k = 1..n) is body[k - 1]; joint of link k is k - 1 */
+    int bodyids[3];
+} mj_peer;
+
+static const char *const chain_methods[] = {"mujoco_inverse", "mujoco_rne_post", "mujoco_post_project"};
+static const char *const dl_methods[] = {"mujoco_inverse"};
+static const char *const fb_methods[] = {"mujoco_inverse", "mujoco_inverse_loop"};
+
+/* ---- XML text ---- */
+typedef struct {
+    char *s;
+    size_t len, cap;
+    int failed;
+} xbuf;
+
+static void xcat(xbuf *b, const char *fmt, ...)
+{
+    if (b->failed) return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        const int w = vsnprintf(b->s + b->len, b->cap - b->len, fmt, ap);
+        va_end(ap);
+        if (w < 0) { b->failed = 1; return; }
+        if ((size_t)w < b->cap - b->len) { b->len += (size_t)w; return; }
+        const size_t cap = 2 * b->cap + (size_t)w + 1;
+        char *s = realloc(b->s, cap);
+        if (!s) { b->failed = 1; return; }
+        b->s = s;
+        b->cap = cap;
+    }
+}
+
+static void xml_header(xbuf *b, const char *name, int constrained)
+{
+    xcat(b, "<mujoco model=\"%s\">\n", name);
+    xcat(b, "  <compiler angle=\"radian\" inertiafromgeom=\"false\" autolimits=\"true\"/>\n");
+    xcat(b, "  <option gravity=\"0 -9.81 0\" timestep=\"1e-4\" integrator=\"Euler\" jacobian=\"dense\">\n");
+    xcat(b, "    <flag contact=\"disable\" limit=\"disable\" frictionloss=\"disable\" spring=\"disable\""
+            " damper=\"disable\" actuation=\"disable\" sensor=\"disable\"%s/>\n",
+         constrained ? "" : " constraint=\"disable\"");
+    xcat(b, "  </option>\n");
+    xcat(b, "  <default>\n");
+    xcat(b, "    <joint type=\"hinge\" damping=\"0\" armature=\"0\" frictionloss=\"0\" stiffness=\"0\" limited=\"false\"/>\n");
+    xcat(b, "    <equality solref=\"2e-4 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>\n");
+    xcat(b, "  </default>\n");
+}
+
+/* chain: body k's frame is at joint k, aligned with the world at q = 0 */
+static void xml_chain(xbuf *b, int n)
+{
+    static const char *const axis[3] = {"1 0 0", "0 1 0", "0 0 1"};
+    xml_header(b, "vt_chain", 0);
+    xcat(b, "  <worldbody>\n");
+    for (int k = 1; k <= n; k++) {
+        xcat(b, "<body name=\"b%d\" pos=\"%s\">\n", k, k > 1 ? "0.5 0 0" : "0 0 0");
+        xcat(b, "<joint name=\"j%d\" axis=\"%s\" pos=\"0 0 0\"/>\n", k, axis[(k - 1) % 3]);
+        xcat(b, "<inertial pos=\"0.25 0 0\" mass=\"1\" diaginertia=\"2e-4 %.17g %.17g\"/>\n",
+             1.0 / 48.0, 1.0 / 48.0);
+    }
+    for (int k = 1; k <= n; k++) xcat(b, "</body>\n");
+    xcat(b, "  </worldbody>\n</mujoco>\n");
+}
+
+/* double link: 2 m, 100 kg uniform rods along x; axial inertia 1e-6 (MuJoCo needs a positive one) */
+static void xml_double_link(xbuf *b)
+{
+    const double J = 100.0 * 4.0 / 12.0;
+    xml_header(b, "vt_double_link", 1);
+    xcat(b, "  <worldbody>\n");
+    xcat(b, "<body name=\"b1\" pos=\"0 0 0\">\n<joint name=\"j1\" axis=\"0 0 1\"/>\n");
+    xcat(b, "<inertial pos=\"1 0 0\" mass=\"100\" diaginertia=\"1e-6 %.17g %.17g\"/>\n", J, J);
+    xcat(b, "<body name=\"b2\" pos=\"2 0 0\">\n<joint name=\"j2\" axis=\"0 0 1\"/>\n");
+    xcat(b, "<inertial pos=\"1 0 0\" mass=\"100\" diaginertia=\"1e-6 %.17g %.17g\"/>\n", J, J);
+    xcat(b, "</body>\n</body>\n  </worldbody>\n");
+    xcat(b, "  <equality>\n    <joint joint1=\"j2\" polycoef=\"0 0 0 0 0\"/>\n  </equality>\n</mujoco>\n");
+}
+
+/* four-bar: crank (0.5 m, 1 kg) at the origin, coupler (1.5 m, 3 kg) at the crank's tip, rocker
+ * (1.0 m, 2 kg) at (1.2, 0, 0); uniform rods along their x, hinges about z; q = (crank angle,
+ * coupler angle relative to the crank, rocker angle). Loop: coupler tip = rocker tip. */
+static void xml_fourbar(xbuf *b)
+{
+    static const double len[3] = {0.5, 1.5, 1.0}, mass[3] = {1.0, 3.0, 2.0};
+    double J[3];
+    for (int k = 0; k < 3; k++) J[k] = mass[k] * len[k] * len[k] / 12.0;
+    xml_header(b, "vt_fourbar", 1);
+    xcat(b, "  <worldbody>\n");
+    xcat(b, "<body name=\"crank\" pos=\"0 0 0\">\n<joint name=\"j1\" axis=\"0 0 1\"/>\n");
+    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
+         0.5 * len[0], mass[0], J[0], J[0]);
+    xcat(b, "<body name=\"coupler\" pos=\"%.17g 0 0\">\n<joint name=\"j2\" axis=\"0 0 1\"/>\n", len[0]);
+    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
+         0.5 * len[1], mass[1], J[1], J[1]);
+    xcat(b, "</body>\n</body>\n");
+    xcat(b, "<body name=\"rocker\" pos=\"1.2 0 0\">\n<joint name=\"j3\" axis=\"0 0 1\"/>\n");
+    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
+         0.5 * len[2], mass[2], J[2], J[2]);
+    xcat(b, "</body>\n  </worldbody>\n");
+    xcat(b, "  <equality>\n    <connect body1=\"coupler\" body2=\"rocker\" anchor=\"%.17g 0 0\"/>\n"
+            "  </equality>\n</mujoco>\n", len[1]);
+}
+
+/* ---- evaluation ---- */
+static void set_state(mj_peer *s)
+{
+    const size_t bytes = (size_t)s->n * sizeof(mjtNum);
+    memcpy(s->d->qpos, s->q, bytes);
+    memcpy(s->d->qvel, s->qd, bytes);
+    memcpy(s->d->qacc, s->qdd, bytes);
+}
+
+static void run_inverse(mj_peer *s)
+{
+    set_state(s);
+    mj_inverse(s->m, s->d);
+    mj_rnePostConstraint(s->m, s->d);
+    memcpy(s->tau, s->d->qfrc_inverse, (size_t)s->n * sizeof(mjtNum));
+}
+
+static void run_rne_post(mj_peer *s)
+{
+    set_state(s);
+    mj_kinematics(s->m, s->d);
+    mj_comPos(s->m, s->d);
+    mj_comVel(s->m, s->d);
+    mj_rne(s->m, s->d, 1, s->tau);
+    mj_rnePostConstraint(s->m, s->d);
+}
+
+static void run_post_project(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    set_state(s);
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    mj_comVel(m, d);
+    mj_rnePostConstraint(m, d);
+    for (int i = 0; i < m->nv; i++) {
+        const mjtNum *c = d->cdof + 6 * i, *f = d->cfrc_int + 6 * m->dof_bodyid[i];
+        s->tau[i] = c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3] + c[4] * f[4] + c[5] * f[5];
+    }
+}
+
+/* four-bar, crank-only actuation: after mj_inverse (efc_force = 0 for a consistent state, so
+ * qfrc_inverse = M qacc + bias), find the connect force lambda (in-plane x, y rows) with
+ * (qfrc_inverse - J^T lambda)[dof] = 0 for the coupler and rocker dofs (1, 2). */
+static void run_inverse_loop(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    run_inverse(s);
+    const int nv = m->nv;
+    if (d->nefc < 2) return; /* the connect rows are missing: leave the plain mj_inverse result */
+    const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv, rows 0..2 = connect x, y, z */
+    const mjtNum a11 = J[0 * nv + 1], a12 = J[1 * nv + 1], a21 = J[0 * nv + 2], a22 = J[1 * nv + 2];
+    /* M qacc + bias = qfrc_inverse + qfrc_constraint */
+    const mjtNum r1 = d->qfrc_inverse[1] + d->qfrc_constraint[1];
+    const mjtNum r2 = d->qfrc_inverse[2] + d->qfrc_constraint[2];
+    const mjtNum det = a11 * a22 - a12 * a21;
+    const mjtNum l1 = (r1 * a22 - a12 * r2) / det, l2 = (a11 * r2 - a21 * r1) / det;
+    for (int r = 0; r < d->nefc; r++) d->efc_force[r] = r == 0 ? l1 : r == 1 ? l2 : 0.0;
+    for (int i = 0; i < nv; i++) {
+        const mjtNum qc = J[0 * nv + i] * l1 + J[1 * nv + i] * l2;
+        s->tau[i] = d->qfrc_inverse[i] + d->qfrc_constraint[i] - qc;
+        d->qfrc_constraint[i] = qc;
+        d->qfrc_inverse[i] = s->tau[i];
+    }
+    mj_rnePostConstraint(m, d);
+}
+
+/* ---- vtable ---- */
+static void mjp_run(void *p, int method)
+{
+    mj_peer *s = p;
+    if (s->scene == VT_PEER_CHAIN) {
+        if (method == 0) run_inverse(s);
+        else if (method == 1) run_rne_post(s);
+        else run_post_project(s);
+    } else if (s->scene == VT_PEER_FOURBAR && method == 1) {
+        run_inverse_loop(s);
+    } else {
+        run_inverse(s);
+    }
+}
+
+static void mjp_torques(const void *p, double *tau)
+{
+    const mj_peer *s = p;
+    for (int i = 0; i < s->n; i++) tau[i] = s->tau[i];
+}
+
+static void mjp_reaction(const void *p, int k, double f[3], double n[3])
+{
+    const mj_peer *s = p;
+    const mjModel *m = s->m;
+    const mjData *d = s->d;
+    const int b = s->body[k - 1], j = m->body_jntadr[b];
+    const mjtNum *w = d->cfrc_int + 6 * b;
+    const mjtNum *c = d->subtree_com + 3 * m->body_rootid[b], *o = d->xanchor + 3 * j;
+    const mjtNum r[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
+    f[0] = w[3];
+    f[1] = w[4];
+    f[2] = w[5];
+    n[0] = w[0] + r[1] * f[2] - r[2] * f[1];
+    n[1] = w[1] + r[2] * f[0] - r[0] * f[2];
+    n[2] = w[2] + r[0] * f[1] - r[1] * f[0];
+}
+
+static void mjp_destroy(void *p)
+{
+    mj_peer *s = p;
+    if (!s) return;
+    if (s->d) mj_deleteData(s->d);
+    if (s->m) mj_deleteModel(s->m);
+    free(s->q);
+    free(s);
+}
+
+static const vt_peer_vtable chain_vtable = {3, chain_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+static const vt_peer_vtable dl_vtable = {1, dl_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+static const vt_peer_vtable fb_vtable = {2, fb_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+
+static mjModel *compile_xml(const char *xml)
+{
+    char err[1024] = "";
+    mjSpec *spec = mj_parseXMLString(xml, NULL, err, (int)sizeof err);
+    if (!spec) {
+        fprintf(stderr, "vt_peer_mujoco: %s\n", err);
+        return NULL;
+    }
+    mjModel *m = mj_compile(spec, NULL);
+    if (!m) fprintf(stderr, "vt_peer_mujoco: %s\n", mjs_getError(spec));
+    mj_deleteSpec(spec);
+    return m;
+}
+
+vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd)
+{
+    if (!q || !qd || !qdd) return NULL;
+    if (scene == VT_PEER_DOUBLE_LINK) n = 2;
+    else if (scene == VT_PEER_FOURBAR) n = 3;
+    else if (scene != VT_PEER_CHAIN || n < 1) return NULL;
+
+    xbuf b = {NULL, 0, 0, 0};
+    b.s = malloc(b.cap = 4096);
+    if (!b.s) return NULL;
+    b.s[0] = '\0';
+    if (scene == VT_PEER_CHAIN) xml_chain(&b, n);
+    else if (scene == VT_PEER_DOUBLE_LINK) xml_double_link(&b);
+    else xml_fourbar(&b);
+    mjModel *m = b.failed ? NULL : compile_xml(b.s);
+    free(b.s);
+    if (!m) return NULL;
+
+    vt_peer *p = malloc(sizeof *p);
+    mj_peer *s = calloc(1, sizeof *s);
+    if (s) s->q = malloc(4 * (size_t)n * sizeof(mjtNum));
+    if (!p || !s || !s->q || m->nv != n || m->nq != n) {
+        free(p);
+        if (s) free(s->q);
+        free(s);
+        mj_deleteModel(m);
+        return NULL;
+    }
+    s->m = m;
+    s->scene = scene;
+    s->n = n;
+    s->qd = s->q + n;
+    s->qdd = s->qd + n;
+    s->tau = s->qdd + n;
+    for (int i = 0; i < n; i++) {
+        s->q[i] = q[i];
+        s->qd[i] = qd[i];
+        s->qdd[i] = qdd[i];
+    }
+    /* link k <-> body k (bodies are numbered in XML order) */
+    if (scene == VT_PEER_FOURBAR) {
+        s->bodyids[0] = mj_name2id(m, mjOBJ_BODY, "crank");
+        s->bodyids[1] = mj_name2id(m, mjOBJ_BODY, "coupler");
+        s->bodyids[2] = mj_name2id(m, mjOBJ_BODY, "rocker");
+        s->body = s->bodyids;
+    } else {
+        s->body = m->jnt_bodyid; /* joint k - 1 is link k's, one joint per body */
+    }
+    s->d = mj_makeData(m);
+    if (!s->d) {
+        mjp_destroy(s);
+        free(p);
+        return NULL;
+    }
+    p->impl = s;
+    p->n = n;
+    p->vt = scene == VT_PEER_CHAIN ? &chain_vtable : scene == VT_PEER_DOUBLE_LINK ? &dl_vtable : &fb_vtable;
+    mjp_run(s, 0);
+    return p;
+}
