@@ -1,7 +1,8 @@
 # Time per inverse-dynamics instant against the chain's length, log-log, one curve per method.
-#   gnuplot -e "csv='build/bench/inverse_speed.csv'; out='build/bench/inverse_speed.png'" bench/inverse_speed.gp
-if (!exists("csv")) csv = 'inverse_speed.csv'
-if (!exists("out")) out = 'inverse_speed.png'
+#   gnuplot -e "dir='build/bench'" bench/inverse_speed.gp
+if (!exists("dir")) dir = '.'
+csv = dir.'/inverse_speed.csv'
+out = dir.'/inverse_speed.png'
 set datafile separator ','
 set terminal pngcairo size 800,520 font ',10' noenhanced
 set output out

@@ -370,3 +370,14 @@ void vt_scene_five_link_guess(const vt_model *m, vt_data *d, double t)
     q[m->body_qadr[4]] = -(q2 + q3);
     q[m->body_qadr[5]] = -psi;
 }
+
+vt_status vt_scene_pendulum(vt_model **model)
+{
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    vt_body_def mass = vt_default_body_def(); /* 1 kg point mass */
+    mass.joint_child[0] = -1.0;
+    const int id = vt_builder_add_body(b, &mass);
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}

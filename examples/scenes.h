@@ -69,6 +69,12 @@ vt_status vt_scene_five_link(vt_model **model);
 /* q of the five-link arm at time t from its inverse kinematics (elbow up): a start for Newton. */
 void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
 
+/* The IFToMM multibody benchmark's simple pendulum (problem A01): a 1 kg point mass on a
+ * massless 1 m link, revolute about z at the origin, gravity (0, −9.81, 0); at q = 0 the link
+ * lies along +x (horizontal): released from rest there. In joint coordinates it has no
+ * constraint row: only the integration's energy drift is left to measure. */
+vt_status vt_scene_pendulum(vt_model **model);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */

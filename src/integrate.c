@@ -42,11 +42,13 @@ typedef struct {
     double newton_tol;
     int newton_maxit;
     int nd;             /* size of the driven block in y */
+    int form;           /* vt_formulation */
+    double alpha, beta; /* Baumgarte */
 } dae;
 
-static int block_size(const vt_model *m)
+static int block_size(const vt_model *m, int form)
 {
-    return m->nq + m->nv + m->nc;
+    return m->nq + m->nv + (form == VT_FORMULATION_GGL ? 2 : 1) * m->nc;
 }
 
 /* q' = T(q) v */
@@ -65,25 +67,50 @@ static void qdot_from_v(const vt_model *m, const double *q, const double *v, dou
     }
 }
 
-static int block_residual(const vt_model *m, vt_data *d, double t, const double *y, const double *yp, double *r)
+/* The residual of one model's block; p gives the formulation:
+ *   index-1 (and projection)  q' − T v,          M* v' − Q − Φ_q^T λ,   Φ_q v' − γ
+ *   Baumgarte                 q' − T v,          M* v' − Q − Φ_q^T λ,   Φ_q v' − γ + 2α Φ̇ + β² Φ
+ *   GGL (index 2)             q' − T (v + Φ_q^T μ), M* v' − Q − Φ_q^T λ,   Φ,   Φ_q v + Φ_t
+ * with Φ̇ = Φ_q v + Φ_t; λ (and μ) algebraic. */
+static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t, const double *y, const double *yp,
+                          double *r)
 {
-    const int nq = m->nq, nv = m->nv, nc = m->nc;
+    const int nq = m->nq, nv = m->nv, nc = m->nc, ggl = p->form == VT_FORMULATION_GGL;
     memcpy(d->q, y, (size_t)nq * sizeof(double));
     memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
     d->time = t;
     if (vt_kinematics(m, d) || vt_mass_matrix(m, d) || vt_forces(m, d) || vt_constraints(m, d)) return 1;
     const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
     double *rq = r, *rv = r + nq, *rl = r + nq + nv;
-    qdot_from_v(m, y, y + nq, rq);
+    if (ggl && nc > 0) { /* T (v + Φ_q^T μ), with the rates in d->xdd as scratch */
+        double *w = d->xdd;
+        memcpy(w, y + nq, (size_t)nv * sizeof(double));
+        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, 1.0, d->Phiq, nc, lam + nc, 1, 1.0, w, 1);
+        qdot_from_v(m, y, w, rq);
+    } else {
+        qdot_from_v(m, y, y + nq, rq);
+    }
     for (int k = 0; k < nq; k++) rq[k] = qp[k] - rq[k];
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, vp, 1, 0.0, rv, 1);
     for (int k = 0; k < nv; k++) rv[k] -= d->Q[k];
     if (nc > 0) {
         cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, -1.0, d->Phiq, nc, lam, 1, 1.0, rv, 1);
-        cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, vp, 1, 0.0, rl, 1);
-        for (int k = 0; k < nc; k++) rl[k] -= d->gamma[k];
+        if (ggl) {
+            double *rm = rl + nc;
+            memcpy(rl, d->Phi, (size_t)nc * sizeof(double));
+            memcpy(rm, d->Phit, (size_t)nc * sizeof(double));
+            cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, y + nq, 1, 1.0, rm, 1);
+        } else {
+            cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, vp, 1, 0.0, rl, 1);
+            for (int k = 0; k < nc; k++) rl[k] -= d->gamma[k];
+            if (p->form == VT_FORMULATION_BAUMGARTE) {
+                const double a2 = 2.0 * p->alpha, b2 = p->beta * p->beta;
+                for (int k = 0; k < nc; k++) rl[k] += a2 * d->Phit[k] + b2 * d->Phi[k];
+                cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, a2, d->Phiq, nc, y + nq, 1, 1.0, rl, 1);
+            }
+        }
     }
-    return vt_all_finite(r, nq + nv + nc) ? 0 : 1;
+    return vt_all_finite(r, block_size(m, p->form)) ? 0 : 1;
 }
 
 static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)
@@ -91,7 +118,7 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
     dae *p = user;
     const double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
     double *r = N_VGetArrayPointer(rr);
-    if (p->m && block_residual(p->m, p->d, t, y, yp, r)) return 1;
+    if (p->m && block_residual(p, p->m, p->d, t, y, yp, r)) return 1;
     if (!p->mf) return 0;
     const vt_model *m = p->dk ? p->dk->model : p->m;
     vt_data *src = p->dk ? p->dk : p->d;
@@ -107,7 +134,7 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
     memcpy(p->df->qd, y + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
     if (vt_kinematics(p->mf, p->df)) return 1;
     vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-    return block_residual(p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd);
+    return block_residual(p, p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd);
 }
 
 static void on_ida_error(int code, const char *module, const char *function, char *msg, void *user)
@@ -117,22 +144,35 @@ static void on_ida_error(int code, const char *module, const char *function, cha
     snprintf(p->msg->message, sizeof p->msg->message, "IDA %s (%d): %s", function, code, msg);
 }
 
-/* y and y' of one block at a consistent state in d: [q; v; λ], [T(q) v; q̈; 0] */
-static void block_initial(const vt_model *m, const vt_data *d, double *y, double *yp)
+/* y and y' of one block at a consistent state in d: [q; v; λ (; μ = 0)], [T(q) v; q̈; 0] */
+static void block_initial(const vt_model *m, const vt_data *d, int form, double *y, double *yp)
 {
-    const int nq = m->nq, nv = m->nv, nc = m->nc;
+    const int nq = m->nq, nv = m->nv, nc = m->nc, na = block_size(m, form) - nq - nv;
     memcpy(y, d->q, (size_t)nq * sizeof(double));
     memcpy(y + nq, d->qd, (size_t)nv * sizeof(double));
+    memset(y + nq + nv, 0, (size_t)na * sizeof(double));
     memcpy(y + nq + nv, d->lambda, (size_t)nc * sizeof(double));
     qdot_from_v(m, d->q, d->qd, yp);
     memcpy(yp + nq, d->qdd, (size_t)nv * sizeof(double));
-    memset(yp + nq + nv, 0, (size_t)nc * sizeof(double));
+    memset(yp + nq + nv, 0, (size_t)na * sizeof(double));
 }
 
-static void block_ids(const vt_model *m, double *id)
+static void block_ids(const vt_model *m, int form, double *id)
 {
-    for (int k = 0; k < m->nq + m->nv; k++) id[k] = 1.0;
-    for (int k = 0; k < m->nc; k++) id[m->nq + m->nv + k] = 0.0;
+    const int nd = m->nq + m->nv, n = block_size(m, form);
+    for (int k = 0; k < n; k++) id[k] = k < nd ? 1.0 : 0.0;
+}
+
+/* coordinate projection of a block of y onto Φ = 0 and Φ_q v = −Φ_t (least-norm corrections,
+ * vt_kinematic_solve), with y' and λ made consistent again; nonzero on failure */
+static int block_project(const dae *p, const vt_model *m, vt_data *d, double t, double *y, double *yp)
+{
+    memcpy(d->q, y, (size_t)m->nq * sizeof(double));
+    memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
+    d->time = t;
+    if (vt_kinematic_solve(m, d, p->newton_tol, p->newton_maxit)) return 1;
+    block_initial(m, d, p->form, y, yp);
+    return 0;
 }
 
 /* the state of a block of y into its data, then the whole instant (efforts, reactions) */
@@ -150,12 +190,13 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
 {
     vt_data *md = p->msg;
     SUNContext ctx = NULL;
-    N_Vector y = NULL, yp = NULL, id = NULL;
+    N_Vector y = NULL, yp = NULL, id = NULL, atol = NULL;
     SUNMatrix A = NULL;
     SUNLinearSolver LS = NULL;
     void *mem = NULL;
     vt_status st = VT_OK;
     int flag = 0;
+    long nst_done = 0, nre_done = 0; /* steps before IDAReInit restarts the counters */
     const char *call = "SUNContext_Create";
 #define CHECK(expr, name)                                                                             \
     do {                                                                                              \
@@ -184,7 +225,17 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     memcpy(N_VGetArrayPointer(id), ids, (size_t)N * sizeof(double));
     CHECK(IDASetErrHandlerFn(mem, on_ida_error, p), "IDASetErrHandlerFn");
     CHECK(IDAInit(mem, residual, opt->t0, y, yp), "IDAInit");
-    CHECK(IDASStolerances(mem, opt->rtol, opt->atol), "IDASStolerances");
+    /* absolute tolerances: atol on q and q̇; the multipliers are out of the error test, and a
+     * loose weight keeps them from stalling the corrector's convergence test (their index-2
+     * errors are O(1/h) in GGL) */
+    atol = N_VNew_Serial(N, ctx);
+    if (!atol) {
+        call = "N_VNew_Serial";
+        flag = -1;
+        goto ida_failed;
+    }
+    for (int k = 0; k < N; k++) N_VGetArrayPointer(atol)[k] = ids[k] > 0.5 ? opt->atol : 1.0;
+    CHECK(IDASVtolerances(mem, opt->rtol, atol), "IDASVtolerances");
     CHECK(IDASetUserData(mem, p), "IDASetUserData");
     CHECK(IDASetLinearSolver(mem, LS, A), "IDASetLinearSolver");
     CHECK(IDASetId(mem, id), "IDASetId");
@@ -193,11 +244,26 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     if (opt->max_step > 0.0) CHECK(IDASetMaxStep(mem, opt->max_step), "IDASetMaxStep");
     CHECK(IDASetStopTime(mem, opt->t1), "IDASetStopTime");
 
+
     for (int k = 1; k <= opt->nout; k++) {
         const double tout = k == opt->nout ? opt->t1 : opt->t0 + (opt->t1 - opt->t0) * k / opt->nout;
         double tret = 0.0;
         CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
         const double *yv = N_VGetArrayPointer(y);
+        if (p->form == VT_FORMULATION_PROJECTION) { /* back onto the constraints, then restart IDA */
+            double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
+            if ((p->m && block_project(p, p->m, p->d, tret, yw, ypw)) ||
+                (p->mf && block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd))) {
+                st = vt_fail(md->message, VT_ERR_NEWTON, "projection at t = %g failed", tret);
+                goto done;
+            }
+            long a = 0, b = 0;
+            IDAGetNumSteps(mem, &a);
+            IDAGetNumResEvals(mem, &b);
+            nst_done += a;
+            nre_done += b;
+            CHECK(IDAReInit(mem, tret, y, yp), "IDAReInit");
+        }
         if (p->m) {
             if ((st = block_output(p->m, p->d, tret, yv))) goto done;
             vt_trajectory_store(tr, p->m, p->d, k);
@@ -230,6 +296,8 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
         long nst = 0, nre = 0;
         IDAGetNumSteps(mem, &nst);
         IDAGetNumResEvals(mem, &nre);
+        nst += nst_done;
+        nre += nre_done;
         if (p->m) { tr->steps = nst; tr->res_evals = nre; }
         if (p->mf) { tr->steps_fwd = nst; tr->res_evals_fwd = nre; }
     }
@@ -251,6 +319,7 @@ done:
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
     if (id) N_VDestroy(id);
+    if (atol) N_VDestroy(atol);
     if (yp) N_VDestroy(yp);
     if (y) N_VDestroy(y);
     if (ctx) SUNContext_Free(&ctx);
@@ -275,16 +344,16 @@ static vt_status forward_setup(const vt_model *m, const vt_data *d, const double
 /* y0, y'0 and the ids of the blocks present in p (driven first), then the run */
 static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
 {
-    const int nd = p->m ? block_size(p->m) : 0, N = nd + (p->mf ? block_size(p->mf) : 0);
+    const int nd = p->m ? block_size(p->m, p->form) : 0, N = nd + (p->mf ? block_size(p->mf, p->form) : 0);
     double *buf = malloc(3 * (size_t)N * sizeof(double));
     if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
     if (p->m) {
-        block_initial(p->m, p->d, buf, buf + N);
-        block_ids(p->m, buf + 2 * N);
+        block_initial(p->m, p->d, p->form, buf, buf + N);
+        block_ids(p->m, p->form, buf + 2 * N);
     }
     if (p->mf) {
-        block_initial(p->mf, p->df, buf + nd, buf + N + nd);
-        block_ids(p->mf, buf + 2 * N + nd);
+        block_initial(p->mf, p->df, p->form, buf + nd, buf + N + nd);
+        block_ids(p->mf, p->form, buf + 2 * N + nd);
     }
     p->nd = nd;
     const vt_status st = run(p, opt, tr, N, buf, buf + N, buf + 2 * N);
@@ -302,7 +371,8 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
         vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);
     } else {
         vt_trajectory_store_forward(tr, mf, df, 0);
-        dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0};
+        dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta};
         st = start(&p, opt, tr);
     }
     vt_data_free(df);
@@ -325,7 +395,8 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
         vt_fail(d->message, st, "vt_dynamic_analysis: forward check set-up: %s", df ? df->message : vt_status_string(st));
     } else {
         if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
-        dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0};
+        dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta};
         st = start(&p, opt, tr);
     }
     vt_data_free(df);

@@ -20,6 +20,9 @@ vt_run_options vt_default_run_options(void)
     o.newton_tol = 1e-12;
     o.newton_maxit = 30;
     o.forward_check = 1;
+    o.formulation = VT_FORMULATION_GGL;
+    o.baumgarte_alpha = 10.0;
+    o.baumgarte_beta = 10.0;
     return o;
 }
 
@@ -163,5 +166,9 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
     if (!(opt->rtol > 0.0) || !(opt->atol > 0.0) || !(opt->max_step >= 0.0) || opt->max_steps < 1 ||
         !(opt->newton_tol > 0.0) || opt->newton_maxit < 1)
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tolerances, step limits and iteration counts must be positive", who);
+    if (opt->formulation < 0 || opt->formulation >= VT_FORMULATION_COUNT || !(opt->baumgarte_alpha >= 0.0) ||
+        !(opt->baumgarte_beta >= 0.0) || !isfinite(opt->baumgarte_alpha) || !isfinite(opt->baumgarte_beta))
+        return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: formulation %d or Baumgarte parameters out of range", who,
+                       opt->formulation);
     return VT_OK;
 }

@@ -95,6 +95,50 @@ static void test_free_fourbar(void **state)
     vt_model_free(driven);
 }
 
+/* the free four-bar for 20 s at rtol 1e-6: the stabilized formulations hold the constraints,
+ * the plain index-1 form drifts; the default (GGL) keeps ‖Φ‖ ≤ 1e-5 and ‖Φ̇‖ ≤ 1e-4 */
+static void test_formulations_drift(void **state)
+{
+    (void)state;
+    vt_model *driven, *m;
+    assert_ok(vt_scene_fourbar(&driven, vt_function_constant(0.0)));
+    assert_ok(vt_model_without_drives(&m, driven));
+    const double bound_phi[VT_FORMULATION_COUNT] = {1.0, 1e-4, 1e-11, 1e-5};
+    const double bound_phid[VT_FORMULATION_COUNT] = {1.0, 1e-3, 1e-12, 1e-4};
+    double worst[VT_FORMULATION_COUNT];
+    for (int form = 0; form < VT_FORMULATION_COUNT; form++) {
+        vt_data *d;
+        vt_trajectory *tr;
+        assert_ok(vt_data_create(&d, m));
+        assert_int_equal(vt_scene_fourbar_assemble(m, d, 0.3, 12.0, NULL, NULL), 0);
+        vt_run_options opt = vt_default_run_options();
+        if (form == VT_FORMULATION_GGL) assert_int_equal(opt.formulation, VT_FORMULATION_GGL); /* the default */
+        opt.formulation = form;
+        opt.t1 = 20.0;
+        opt.nout = 40;
+        opt.rtol = 1e-6;
+        opt.atol = 1e-8;
+        opt.forward_check = 0;
+        assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+        assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+        double pm = 0.0, pdm = 0.0;
+        for (int k = 0; k < tr->nfilled; k++) {
+            pm = fmax(pm, tr->phi_norm[k]);
+            pdm = fmax(pdm, tr->phid_norm[k]);
+        }
+        if (!(pm <= bound_phi[form] && pdm <= bound_phid[form]))
+            fail_msg("formulation %d: max |Φ| %.3g, max |Φ̇| %.3g", form, pm, pdm);
+        worst[form] = pm;
+        vt_trajectory_free(tr);
+        vt_data_free(d);
+    }
+    /* stabilization matters: index-1 drifts by orders of magnitude more */
+    assert_true(worst[VT_FORMULATION_INDEX1] > 100.0 * worst[VT_FORMULATION_GGL]);
+    assert_true(worst[VT_FORMULATION_INDEX1] > 100.0 * worst[VT_FORMULATION_BAUMGARTE]);
+    vt_model_free(m);
+    vt_model_free(driven);
+}
+
 static int fails_late(double t, double out[3], void *user)
 {
     (void)user;
@@ -157,6 +201,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_double_link),
         cmocka_unit_test(test_free_fourbar),
+        cmocka_unit_test(test_formulations_drift),
         cmocka_unit_test(test_ida_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

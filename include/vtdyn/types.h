@@ -313,6 +313,17 @@ typedef struct vt_data {
 /// (VT_ERR_ABORTED).
 typedef int (*vt_progress_callback)(double t, double t_end, void *user);
 
+/// How a dynamic analysis hands (5) to IDA (see src/integrate.c).
+typedef enum vt_formulation {
+    VT_FORMULATION_INDEX1 = 0,  ///< (5) as it stands: acceleration-level constraints; Φ and Φ̇ drift
+    VT_FORMULATION_BAUMGARTE,   ///< Φ̈ + 2α Φ̇ + β² Φ = 0 in place of Φ̈ = 0
+    VT_FORMULATION_PROJECTION,  ///< index-1, with q and q̇ projected onto Φ = 0 and Φ_q q̇ = −Φ_t at
+                                ///< every output time (least-norm corrections; IDA restarted)
+    VT_FORMULATION_GGL,         ///< stabilized index-2 (Gear–Gupta–Leimkuhler): Φ = 0 and Φ_q q̇ = −Φ_t
+                                ///< enforced, q' = T (q̇ + Φ_q^T μ); λ and μ out of the error test
+    VT_FORMULATION_COUNT
+} vt_formulation;
+
 /// Options of an analysis over time. Fill from vt_default_run_options().
 typedef struct vt_run_options {
     double t0;               ///< s, start; default 0
@@ -328,6 +339,9 @@ typedef struct vt_run_options {
     int forward_as_loads;    ///< forward check: 0 applies the drives' generalized force Φ_q^T λ (joint
                              ///< torques, the paper's check; default); 1 applies each drive's own load
                              ///< (a point drive's force at its point), so the reactions compare too
+    int formulation;         ///< vt_formulation of the dynamic analysis; default VT_FORMULATION_GGL
+    double baumgarte_alpha;  ///< 1/s, Baumgarte's damping term 2α Φ̇; default 10
+    double baumgarte_beta;   ///< 1/s, Baumgarte's stiffness term β² Φ; default 10
     vt_progress_callback progress; ///< optional, NULL by default
     void *user;              ///< passed to progress
 } vt_run_options;
