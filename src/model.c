@@ -87,6 +87,7 @@ vt_model_def vt_default_model_def(void)
     d.gravity[1] = -9.81;
     d.gravity[2] = 0.0;
     d.rcond_min = 1e-12;
+    d.rcond_warn = 1e-6;
     return d;
 }
 
@@ -133,7 +134,8 @@ vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def)
     if (!builder) return VT_ERR_NULL;
     *builder = NULL;
     vt_model_def md = def ? *def : vt_default_model_def();
-    if (!vt_all_finite(md.gravity, 3) || !isfinite(md.rcond_min)) return VT_ERR_NONFINITE;
+    if (!vt_all_finite(md.gravity, 3) || !isfinite(md.rcond_min) || !isfinite(md.rcond_warn)) return VT_ERR_NONFINITE;
+    if (!(md.rcond_min >= 0.0) || md.rcond_min > 1.0 || md.rcond_warn < md.rcond_min) return VT_ERR_BAD_OPTION;
     vt_builder *b = calloc(1, sizeof *b);
     if (!b) return VT_ERR_NO_MEMORY;
     b->def = md;
@@ -584,6 +586,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->npath = npath;
     memcpy(m->gravity, b->def.gravity, sizeof m->gravity);
     m->rcond_min = b->def.rcond_min;
+    m->rcond_warn = b->def.rcond_warn;
     m->ndrive = b->ndrive;
     m->ncut = b->ncut;
     m->nc = nc;
@@ -646,6 +649,7 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
     vt_model_def md = vt_default_model_def();
     memcpy(md.gravity, m->gravity, sizeof md.gravity);
     md.rcond_min = m->rcond_min;
+    md.rcond_warn = m->rcond_warn;
     vt_builder *b;
     vt_status st = vt_builder_create(&b, &md);
     if (st) return st;

@@ -188,7 +188,11 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
-    if (m->joint_driven) return joint_driven(m, d);
+    if (m->joint_driven) { /* nothing to factorize: always well defined */
+        d->rcond = 1.0;
+        d->warning = 0;
+        return joint_driven(m, d);
+    }
     crba(m, d, d->work);
     bias(m, d, d->work);
     if ((st = vt_constraints_impl(m, d, 0)) || (st = vt_solve(m, d))) return st;

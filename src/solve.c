@@ -10,10 +10,11 @@
  * indefinite), so Cholesky does not apply and LU would ignore the symmetry. LAPACK's
  * LDL^T with bounded Bunch–Kaufman (rook) pivoting (dsytrf_rk / dsytrs_3 / dsycon_3) uses the
  * symmetry (half LU's work and storage), its 1x1/2x2 pivots are stable for indefinite matrices,
- * and the rook variant bounds the entries of L. (Measured with callgrind on the four-bar: its
- * BLAS-3 solves cost 18 % fewer instructions per instant than dsytrs/dsycon's BLAS-2 loops.) Before factorizing, dsyequb equilibrates
- * the matrix symmetrically (rows and columns mix units: kg·m², kg, m, rad), so that dsycon's
- * reciprocal condition estimate measures the mechanism rather than its units. A system whose
+ * and the rook variant bounds the entries of L (and its BLAS-3 solves cost 18 % fewer
+ * instructions per instant on the four-bar than dsytrs/dsycon's BLAS-2 loops, by callgrind).
+ * Before factorizing, the matrix is scaled symmetrically (its rows and columns mix units:
+ * kg·m², kg, m, rad) so that dsycon's reciprocal condition estimate measures the mechanism
+ * rather than its units; how, is said where it is done. A system whose
  * estimate falls below rcond_min is refused: Φ_q of full row rank with M* singular on its null
  * space means a motion without inertia that nothing fixes (VT_ERR_SINGULAR); rows of Φ_q that
  * a rank-revealing QR with column pivoting (dgeqp3 on the row-normalized Φ_q^T) finds dependent
@@ -88,12 +89,26 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     memcpy(b, d->Q, (size_t)nv * sizeof(double));
     memcpy(b + nv, d->gamma, (size_t)nc * sizeof(double));
 
-    /* symmetric equilibration */
-    double scond = 0.0, amax = 0.0;
     int info = 0;
-    dsyequb_("L", &N, K, &N, s, &scond, &amax, d->lwork, &info, 1);
-    if (info != 0 || !vt_all_finite(s, N))
-        for (int k = 0; k < N; k++) s[k] = 1.0;
+    /* symmetric scaling D K D: the rates by the mass metric, d_a = M*_aa^(-1/2), and every
+     * constraint row by one common factor, 1 / (largest row norm of Φ_q D). One factor for all
+     * rows keeps their relative sizes: a drive whose row shrinks toward a singular pose (an arm
+     * reaching its full stretch) shows in the condition estimate instead of being scaled away,
+     * as a row-by-row equilibration (LAPACK's dsyequb) would do. */
+    for (int a = 0; a < nv; a++) {
+        const double mii = d->Mstar[a + (size_t)a * (size_t)nv];
+        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
+    }
+    double rmax = 0.0;
+    for (int r = 0; r < nc; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < nv; c++) {
+            const double v = d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+            rn += v * v;
+        }
+        rmax = fmax(rmax, sqrt(rn));
+    }
+    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
     for (int c = 0; c < N; c++) {
         for (int r = c; r < N; r++) K[r + c * ld] *= s[r] * s[c];
         b[c] *= s[c];
@@ -109,6 +124,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsycon info %d", info);
     }
     d->rcond = rcond;
+    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
     if (!(rcond >= m->rcond_min)) {
         if (nc > 0 && dependent_rows(m, d, rcond) < nc) return VT_ERR_DEPENDENT_CONSTRAINTS;
         return vt_fail(d->message, VT_ERR_SINGULAR,
@@ -119,6 +135,21 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, b, &N, &info, 1);
     if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs info %d", info);
     for (int k = 0; k < N; k++) b[k] *= s[k];
+    /* one step of iterative refinement on the unscaled system (the residual from M* and Φ_q
+     * themselves, the correction from the same factors): the common row factor above can
+     * leave the scaled matrix less well balanced than a row-by-row equilibration would */
+    double *res = d->lwork;
+    memcpy(res, d->Q, (size_t)nv * sizeof(double));
+    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
+    if (nc > 0) {
+        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, -1.0, d->Phiq, nc, b + nv, 1, 1.0, res, 1);
+        memcpy(res + nv, d->gamma, (size_t)nc * sizeof(double));
+        cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, -1.0, d->Phiq, nc, b, 1, 1.0, res + nv, 1);
+    }
+    for (int k = 0; k < N; k++) res[k] *= s[k];
+    dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, res, &N, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs info %d", info);
+    for (int k = 0; k < N; k++) b[k] += res[k] * s[k];
     if (!vt_all_finite(b, N)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
     for (int r = 0; r < nc; r++) d->lambda[r] = -b[nv + r];

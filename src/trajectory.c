@@ -54,6 +54,7 @@ static size_t layout(const vt_model *m, vt_trajectory *tr, char *base, int nrow)
     tr->cut_moment = take(base, &used, 3 * nk * r);
     tr->phi_norm = take(base, &used, r);
     tr->phid_norm = take(base, &used, r);
+    tr->rcond = take(base, &used, r);
     tr->q_fwd = take(base, &used, nq * r);
     tr->qd_fwd = take(base, &used, nv * r);
     tr->jnt_force_fwd = take(base, &used, 3 * nb * r);
@@ -115,6 +116,11 @@ void vt_trajectory_store(vt_trajectory *tr, const vt_model *m, const vt_data *d,
     }
     tr->phi_norm[row] = pn;
     tr->phid_norm[row] = pdn;
+    tr->rcond[row] = d->rcond;
+    if (d->warning & VT_WARN_ILL_CONDITIONED) {
+        if (tr->nwarn == 0) tr->t_warn = d->time;
+        tr->nwarn++;
+    }
     if (row + 1 > tr->nfilled) tr->nfilled = row + 1;
 }
 
@@ -148,6 +154,8 @@ void vt_trajectory_store_forward(vt_trajectory *tr, const vt_model *mf, const vt
 void vt_trajectory_reset(vt_trajectory *tr)
 {
     tr->nfilled = 0;
+    tr->nwarn = 0;
+    tr->t_warn = NAN;
     tr->fwd_err_q = tr->fwd_err_qd = tr->fwd_err_force = tr->fwd_err_moment = 0.0;
     tr->steps = tr->res_evals = tr->steps_fwd = tr->res_evals_fwd = 0;
 }

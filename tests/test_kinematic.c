@@ -142,12 +142,78 @@ static void test_failures(void **state)
     vt_model_free(m);
 }
 
+/* Two 1 m links, the tip driven along x toward and past the reach (2 m, at t = 1): the drives
+ * stop fixing the motion. The condition estimate falls, the solve warns before the stretched
+ * pose, and the analysis stops with a clear status there instead of returning huge efforts. */
+static void test_stretched_arm(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.inertia[4] = link.inertia[8] = 1.0 / 12.0;
+    link.joint_child[0] = -0.5;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    link.parent = 1;
+    link.joint_parent[0] = 0.5;
+    assert_int_equal(vt_builder_add_body(b, &link), 2);
+    vt_drive_def tip = vt_default_drive_def();
+    tip.type = VT_DRIVE_POINT;
+    tip.body = 2;
+    tip.point[0] = 0.5;
+    const double cx[2] = {1.2, 0.8};
+    tip.f = vt_function_polynomial(2, cx); /* x = 1.2 + 0.8 t */
+    assert_int_equal(vt_builder_add_drive(b, &tip), 0);
+    tip.index = 1;
+    tip.f = vt_function_constant(0.0);
+    assert_int_equal(vt_builder_add_drive(b, &tip), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 1.2;
+    opt.nout = 120;
+    opt.forward_check = 0;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    d->q[0] = -0.9; /* elbow bent: q1 = −acos(0.6), q2 = 2 acos(0.6) */
+    d->q[1] = 1.8;
+    const vt_status st = vt_kinematic_analysis(m, d, &opt, tr);
+    /* a clear failure at the stretched pose (t = 1), not huge efforts */
+    assert_int_equal(st, VT_ERR_SINGULAR);
+    assert_non_null(strstr(d->message, "rcond"));
+    assert_int_equal(tr->nfilled, 100); /* rows up to t = 0.99 */
+    for (int k = 1; k < tr->nfilled; k++) assert_true(tr->rcond[k] < tr->rcond[k - 1]); /* falling */
+    /* toward it, t = 1 − 10^-k: the estimate falls like the distance, the efforts grow like its
+     * inverse square root, and the solve warns once the estimate passes rcond_warn */
+    double q0[2] = {tr->q[2 * 99], tr->q[2 * 99 + 1]}, last = 1.0;
+    int warned_at = 0;
+    for (int k = 2; k <= 9; k++) {
+        d->q[0] = q0[0];
+        d->q[1] = q0[1];
+        d->time = 1.0 - pow(10.0, -k);
+        assert_ok(vt_kinematic_solve(m, d, 1e-14, 50));
+        assert_true(d->rcond < last);
+        last = d->rcond;
+        if ((d->warning & VT_WARN_ILL_CONDITIONED) && !warned_at) warned_at = k;
+        assert_int_equal((d->warning & VT_WARN_ILL_CONDITIONED) != 0, d->rcond < 1e-6);
+        assert_true(isfinite(d->drive_effort[0]));
+    }
+    assert_true(warned_at >= 3 && warned_at <= 8);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_five_link_circle_and_forward_check),
         cmocka_unit_test(test_rates_against_differences),
         cmocka_unit_test(test_failures),
+        cmocka_unit_test(test_stretched_arm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -143,13 +143,16 @@ static void xml_fourbar(xbuf *b)
     xcat(b, "<body name=\"coupler\" pos=\"%.17g 0 0\">\n<joint name=\"j2\" axis=\"0 0 1\"/>\n", len[0]);
     xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
          0.5 * len[1], mass[1], J[1], J[1]);
+    xcat(b, "<site name=\"coupler_tip\" pos=\"%.17g 0 0\"/>\n", len[1]);
     xcat(b, "</body>\n</body>\n");
     xcat(b, "<body name=\"rocker\" pos=\"1.2 0 0\">\n<joint name=\"j3\" axis=\"0 0 1\"/>\n");
     xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
          0.5 * len[2], mass[2], J[2], J[2]);
+    xcat(b, "<site name=\"rocker_tip\" pos=\"%.17g 0 0\"/>\n", len[2]);
     xcat(b, "</body>\n  </worldbody>\n");
-    xcat(b, "  <equality>\n    <connect body1=\"coupler\" body2=\"rocker\" anchor=\"%.17g 0 0\"/>\n"
-            "  </equality>\n</mujoco>\n", len[1]);
+    /* sites, not body1 + anchor: the loop is open at q = 0, where MuJoCo would take body2's point */
+    xcat(b, "  <equality>\n    <connect site1=\"coupler_tip\" site2=\"rocker_tip\"/>\n"
+            "  </equality>\n</mujoco>\n");
 }
 
 /* ---- evaluation ---- */

@@ -36,6 +36,15 @@
 #endif
 /* header-only: the explicit instantiations live in libpinocchio_default, which is not linked */
 #undef PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION
+/* The peer is timed as a released build: Eigen's and Pinocchio's assert()s off in this file even
+ * when the benchmark is configured with b_ndebug=false (Meson's default, also for buildtype
+ * release); they double the rnea time at n = 100. */
+#ifndef NDEBUG
+#define NDEBUG
+#endif
+#ifndef EIGEN_NO_DEBUG
+#define EIGEN_NO_DEBUG
+#endif
 
 /* With -march=native on an AVX-512 machine GCC 12 reports, inside its own intrinsics headers
  * where Eigen's kernels get inlined into this file, a false -Wmaybe-uninitialized (the

@@ -80,7 +80,13 @@ typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
     double rcond_min;   ///< smallest accepted reciprocal condition estimate of the equilibrated
                         ///< augmented matrix of (5); default 1e-12
+    double rcond_warn;  ///< below this (and above rcond_min) vt_solve succeeds but sets
+                        ///< VT_WARN_ILL_CONDITIONED in the data's warning: a pose near a singular one,
+                        ///< where efforts grow without bound; default 1e-6
 } vt_model_def;
+
+/// Warning flags a successful call may leave in vt_data.warning.
+enum { VT_WARN_ILL_CONDITIONED = 1 };
 
 /// Prescribed function of time f(t), evaluated exactly with f' and f''.
 typedef enum vt_function_type {
@@ -206,6 +212,7 @@ typedef struct vt_model {
 
     /* drives, cut joints and constraint rows */
     double rcond_min;        ///< see vt_model_def
+    double rcond_warn;       ///< see vt_model_def
     int ndrive;              ///< number of drives
     int ncut;                ///< number of cut joints
     int nc;                  ///< number of constraint rows (drives, cut joints, one p^T p − 1 per base body)
@@ -272,6 +279,8 @@ typedef struct vt_data {
     double *qdd;             ///< q̈ (nv)
     double *lambda;          ///< Lagrange multipliers λ (nc)
     double rcond;            ///< reciprocal condition estimate of the equilibrated augmented matrix
+                             ///< (1 when nothing was factorized: a fully joint-driven recursive instant)
+    int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
 
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
@@ -367,6 +376,9 @@ typedef struct vt_trajectory {
     double *cut_moment;      ///< (3 ncut x nrow)
     double *phi_norm;        ///< max |Φ| of the driven run (nrow)
     double *phid_norm;       ///< max |Φ_q q̇ + Φ_t| of the driven run (nrow)
+    double *rcond;           ///< condition estimate of (5) at each row of the driven run (nrow)
+    int nwarn;               ///< rows whose solve warned VT_WARN_ILL_CONDITIONED
+    double t_warn;           ///< s, time of the first such row (NaN if none)
     /* forward check: the drives removed, their efforts applied (vt_run_options.forward_as_loads) */
     double *q_fwd;           ///< (nq x nrow)
     double *qd_fwd;          ///< (nv x nrow)
