@@ -273,7 +273,8 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
-int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double w2, double th[2], double w[2])
+/* planar four-bar: coupler and rocker angles and rates from the crank's (open branch) */
+static int fourbar_angles(double th2, double w2, double th[2], double w[2])
 {
     /* crank tip B, rocker pivot O4; C on both circles |C − B| = b, |C − O4| = c */
     const double Bx = VT_FB_A * cos(th2), By = VT_FB_A * sin(th2);
@@ -284,25 +285,34 @@ int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double 
     const double h = sqrt(h2), ux = ex / L, uy = ey / L;
     double Cx = Bx + x * ux - h * uy, Cy = By + x * uy + h * ux;
     if (Cy < 0.0) { Cx = Bx + x * ux + h * uy; Cy = By + x * uy - h * ux; }
-    const double th3 = atan2(Cy - By, Cx - Bx), th4 = atan2(Cy, Cx - VT_FB_D);
+    th[0] = atan2(Cy - By, Cx - Bx);
+    th[1] = atan2(Cy, Cx - VT_FB_D);
     /* rates: a ω2 k×e2 + b ω3 k×e3 = c ω4 k×e4 (two equations) */
-    const double a11 = -VT_FB_B * sin(th3), a12 = VT_FB_C * sin(th4);
-    const double a21 = VT_FB_B * cos(th3), a22 = -VT_FB_C * cos(th4);
+    const double a11 = -VT_FB_B * sin(th[0]), a12 = VT_FB_C * sin(th[1]);
+    const double a21 = VT_FB_B * cos(th[0]), a22 = -VT_FB_C * cos(th[1]);
     const double r1 = VT_FB_A * w2 * sin(th2), r2 = -VT_FB_A * w2 * cos(th2);
     const double det = a11 * a22 - a12 * a21;
     if (det == 0.0) return -1;
-    const double w3 = (r1 * a22 - a12 * r2) / det, w4 = (a11 * r2 - a21 * r1) / det;
+    w[0] = (r1 * a22 - a12 * r2) / det;
+    w[1] = (a11 * r2 - a21 * r1) / det;
+    return 0;
+}
+
+int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double w2, double th[2], double w[2])
+{
+    double a[2], r[2];
+    if (fourbar_angles(th2, w2, a, r)) return -1;
     const double z[3] = {0, 0, 1};
     d->q[m->body_qadr[1]] = th2;
-    vt_quat_axis_angle(d->q + m->body_qadr[2], z, th3 - th2);
-    d->q[m->body_qadr[3]] = th4;
+    vt_quat_axis_angle(d->q + m->body_qadr[2], z, a[0] - th2);
+    d->q[m->body_qadr[3]] = a[1];
     d->qd[m->body_vadr[1]] = w2;
     d->qd[m->body_vadr[2]] = 0.0;
     d->qd[m->body_vadr[2] + 1] = 0.0;
-    d->qd[m->body_vadr[2] + 2] = w3 - w2;
-    d->qd[m->body_vadr[3]] = w4;
-    if (th) { th[0] = th3; th[1] = th4; }
-    if (w) { w[0] = w3; w[1] = w4; }
+    d->qd[m->body_vadr[2] + 2] = r[0] - w2;
+    d->qd[m->body_vadr[3]] = r[1];
+    if (th) { th[0] = a[0]; th[1] = a[1]; }
+    if (w) { w[0] = r[0]; w[1] = r[1]; }
     return 0;
 }
 
@@ -380,4 +390,54 @@ vt_status vt_scene_pendulum(vt_model **model)
     mass.joint_child[0] = -1.0;
     const int id = vt_builder_add_body(b, &mass);
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant)
+{
+    static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = allow_redundant;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    int id = 0;
+    for (int k = 0; k < 3 && id >= 0; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.parent = k;
+        link.mass = mass[k];
+        rod_inertia(link.inertia, mass[k], len[k]);
+        /* crank and coupler from their first end; the rocker hangs from its far end C */
+        link.joint_child[0] = k == 2 ? 0.5 * len[k] : -0.5 * len[k];
+        if (k > 0) link.joint_parent[0] = 0.5 * len[k - 1];
+        id = vt_builder_add_body(b, &link);
+    }
+    if (id > 0) {
+        vt_cut_joint_def cut = vt_default_cut_joint_def(); /* revolute about z */
+        cut.body_a = 0;
+        cut.body_b = 3;
+        cut.point_a[0] = VT_FB_D;
+        cut.point_b[0] = -0.5 * VT_FB_C;
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    if (id >= 0) {
+        vt_drive_def drive = vt_default_drive_def();
+        drive.body = 1;
+        drive.f = crank;
+        id = vt_builder_add_drive(b, &drive);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+int vt_scene_fourbar_planar_assemble(const vt_model *m, vt_data *d, double th2, double w2)
+{
+    double th[2], w[2];
+    if (fourbar_angles(th2, w2, th, w)) return -1;
+    /* the rocker's body x runs from its pivot at O4 to C: relative to the coupler th4 − th3 */
+    d->q[m->body_qadr[1]] = th2;
+    d->q[m->body_qadr[2]] = th[0] - th2;
+    d->q[m->body_qadr[3]] = th[1] - th[0];
+    d->qd[m->body_vadr[1]] = w2;
+    d->qd[m->body_vadr[2]] = w[0] - w2;
+    d->qd[m->body_vadr[3]] = w[1] - w[0];
+    return 0;
 }

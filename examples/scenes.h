@@ -45,6 +45,15 @@ void vt_scene_chain_state(int k, double *q, double *qd, double *qdd);
 #define VT_FB_D 1.2
 vt_status vt_scene_fourbar(vt_model **model, vt_function crank);
 
+/* The same four-bar built the planar way, RRRR: crank, coupler and rocker in a chain of
+ * revolute joints about z, the loop closed by a revolute cut joint from the ground at
+ * (VT_FB_D, 0, 0) to the rocker's far end. In space its 5 cut rows and the crank drive have
+ * rank 3: redundant (the Grübler count says −2, the mobility is 1). With allow_redundant the
+ * model solves them in the least-squares sense (vt_model_def.allow_redundant). */
+vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant);
+/* its q and q̇ at crank angle th2 and rate w2 (the planar assembly of vt_scene_fourbar) */
+int vt_scene_fourbar_planar_assemble(const vt_model *model, vt_data *data, double th2, double w2);
+
 /* Planar assembly of that four-bar at crank angle th2 and rate w2 (open branch, rocker tip
  * above the ground line): sets d->q, d->qd. Writes the coupler and rocker angles and rates
  * (global, about z) into th[2], w[2] if not NULL. Returns 0, or -1 where the loop cannot close. */

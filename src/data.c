@@ -25,6 +25,7 @@ static size_t work_size(const vt_model *m)
     const size_t k = (size_t)m->maxpath, nb = (size_t)m->nbody + 1, nx = (size_t)m->nx;
     size_t w = 14 * k + k * k;
     if (15 * nb > w) w = 15 * nb; /* reactions: α, applied and children's wrenches */
+    if (18 * nb + 6 * (size_t)m->ncut > w) w = 18 * nb + 6 * (size_t)m->ncut; /* reaction sensitivity */
     if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
     return w;
 }
@@ -44,6 +45,13 @@ static int lapack_work_size(const vt_model *m)
         dgeqp3_(&nv, &nc, &dummy, &nv, &idummy, &dummy, &q, &lw, &info);
         const int qr = (info == 0 ? (int)q : 3 * nc + 1) + nv * nc + nc;
         if (qr > need) need = qr;
+        /* dgelsd on Φ_q^T (nv x nc): the minimum-norm multipliers of a redundant solve */
+        int iq = 0;
+        const int ldb2 = nc > nv ? nc : nv, one2 = 1;
+        double rc = -1.0;
+        int rank = 0;
+        dgelsd_(&nv, &nc, &one2, &dummy, &nv, &dummy, &ldb2, &dummy, &rc, &rank, &q, &lw, &iq, &info);
+        if (info == 0 && (int)q + nv * nc + ldb2 > need) need = (int)q + nv * nc + ldb2;
         /* dgels on Φ_q (nc x nv) for the Newton and velocity corrections */
         const int one = 1, ldb = nc > nv ? nc : nv;
         dgels_("N", &nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &q, &lw, &info, 1);
@@ -105,8 +113,14 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->nlwork = lapack_work_size(m);
     d->lwork = take(base, &used, (size_t)d->nlwork * sizeof(double));
     d->ipiv = take(base, &used, N * sizeof(int));
-    d->liwork = take(base, &used, N * sizeof(int));
+    d->liwork = take(base, &used, (N + 32 * N + 64) * sizeof(int)); /* pivots of dsycon, dgeqp3; dgelsd's iwork */
     d->qsave = take(base, &used, ((size_t)m->nq + nv) * sizeof(double));
+    d->lambda_unique = take(base, &used, (nc ? nc : 1) * sizeof(int));
+    d->jnt_unique = take(base, &used, 6 * nb * sizeof(int));
+    d->cut_unique = take(base, &used, 6 * (nk ? nk : 1) * sizeof(int));
+    d->nullvec = take(base, &used, (nc ? nc : 1) * sizeof(double));
+    d->red_work = take(base, &used, (nc * nc + nc + 1) * sizeof(double));
+    d->red_iwork = take(base, &used, (2 * nc + 1) * sizeof(int));
     return used;
 }
 

@@ -173,8 +173,16 @@ double dlansy_(const char *norm, const char *uplo, const int *n, const double *a
                double *work, size_t lnorm, size_t luplo);
 void dgels_(const char *trans, const int *m, const int *n, const int *nrhs, double *a, const int *lda,
             double *b, const int *ldb, double *work, const int *lwork, int *info, size_t ltrans);
+void dgelsd_(const int *m, const int *n, const int *nrhs, double *a, const int *lda, double *b, const int *ldb,
+             double *s, const double *rcond, int *rank, double *work, const int *lwork, int *iwork, int *info);
+void dtrtrs_(const char *uplo, const char *trans, const char *diag, const int *n, const int *nrhs, const double *a,
+             const int *lda, double *b, const int *ldb, int *info, size_t l1, size_t l2, size_t l3);
 void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt, double *tau,
              double *work, const int *lwork, int *info);
+
+/* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
+ * (Φ_q^T z = 0) changes by more than tol of its largest change (reactions.c) */
+void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, double tol);
 
 /* Efforts of the drives from d->lambda (reactions.c), and the forward check's loads */
 void vt_drive_efforts(const vt_model *m, vt_data *d);

@@ -587,6 +587,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     memcpy(m->gravity, b->def.gravity, sizeof m->gravity);
     m->rcond_min = b->def.rcond_min;
     m->rcond_warn = b->def.rcond_warn;
+    m->allow_redundant = b->def.allow_redundant != 0;
     m->ndrive = b->ndrive;
     m->ncut = b->ncut;
     m->nc = nc;
@@ -650,6 +651,7 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
     memcpy(md.gravity, m->gravity, sizeof md.gravity);
     md.rcond_min = m->rcond_min;
     md.rcond_warn = m->rcond_warn;
+    md.allow_redundant = m->allow_redundant;
     vt_builder *b;
     vt_status st = vt_builder_create(&b, &md);
     if (st) return st;

@@ -214,6 +214,76 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, double tol)
+{
+    /* the reactions that the multipliers z alone produce (no inertia, no applied load): a
+     * reaction that z changes is not unique */
+    double *saved = d->lambda;
+    d->lambda = (double *)z;
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1;
+    double *fe = d->work, *cf = fe + 6 * nb, *mag = cf + 6 * nb; /* 6 per joint, then 6 per cut */
+    memset(fe, 0, 12 * nb * sizeof(double));
+    for (int r = 0; r < m->nc; r++) {
+        if (m->con_kind[r] == VT_ROW_NORM) continue;
+        for (int side = 0; side < 2; side++) {
+            const int k = m->con_body[2 * r + side];
+            if (k == 0) continue;
+            double f[3], nn[3];
+            row_wrench(m, d, r, side, f, nn);
+            vt_axpy3(fe + 6 * k, 1.0, f);
+            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
+        }
+    }
+    double big = 0.0, *cmag = mag + 6 * nb;
+    for (int k = 0; k < m->ncut; k++) {
+        const vt_cut_joint_def *c = &m->cut[k];
+        const int r0 = m->cut_row[k];
+        double P[3], f[3], mo[3];
+        vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
+        vt_axpy3(P, 1.0, d->x + vt_xoff(c->body_b));
+        rows_wrench_at(m, d, r0, r0 + vt_cut_nrows(c->joint), 1, P, f, mo);
+        for (int e = 0; e < 3; e++) {
+            cmag[6 * k + e] = fabs(f[e]);
+            cmag[6 * k + 3 + e] = fabs(mo[e]);
+            big = fmax(big, fmax(fabs(f[e]), fabs(mo[e])));
+        }
+    }
+    for (int i = n; i >= 1; i--) {
+        const int j = m->body_parent[i];
+        const double *ri = d->x + vt_xoff(i);
+        double f[3], N[3], s[3], t[3], mo[3];
+        for (int c = 0; c < 3; c++) {
+            f[c] = -fe[6 * i + c] + cf[6 * i + c];
+            N[c] = -fe[6 * i + 3 + c] + cf[6 * i + 3 + c];
+            s[c] = d->jpoint[3 * i + c] - ri[c];
+        }
+        vt_cross3(t, s, f);
+        for (int c = 0; c < 3; c++) mo[c] = N[c] - t[c];
+        for (int e = 0; e < 3; e++) {
+            mag[6 * i + e] = fabs(f[e]);
+            mag[6 * i + 3 + e] = fabs(mo[e]);
+            big = fmax(big, fmax(fabs(f[e]), fabs(mo[e])));
+        }
+        if (j) {
+            const double *rj = d->x + vt_xoff(j);
+            for (int c = 0; c < 3; c++) s[c] = d->jpoint[3 * i + c] - rj[c];
+            vt_cross3(t, s, f);
+            for (int c = 0; c < 3; c++) {
+                cf[6 * j + c] += f[c];
+                cf[6 * j + 3 + c] += mo[c] + t[c];
+            }
+        }
+    }
+    for (int i = 1; i <= n; i++)
+        for (int e = 0; e < 6; e++)
+            if (mag[6 * i + e] > tol * big) d->jnt_unique[6 * i + e] = 0;
+    for (int k = 0; k < m->ncut; k++)
+        for (int e = 0; e < 6; e++)
+            if (cmag[6 * k + e] > tol * big) d->cut_unique[6 * k + e] = 0;
+    d->lambda = saved;
+}
+
 vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
 {
     vt_status st;

@@ -68,28 +68,25 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
     return rank;
 }
 
-vt_status vt_solve(const vt_model *m, vt_data *d)
+/* Factor and solve the augmented system of (5) restricted to the constraint rows `rows`
+ * (nr of them; all rows when rows == NULL) into b = [q̈; −λ_rows]; the condition estimate into
+ * *rcond_out. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
+static int factor_solve(const vt_model *m, vt_data *d, const int *rows, int nr, double *rcond_out)
 {
-    vt_status st = vt_check_pair(m, d, "vt_solve");
-    if (st) return st;
-    const int nv = m->nv, nc = m->nc, N = nv + nc, one = 1;
+    const int nv = m->nv, nc = m->nc, N = nv + nr, one = 1;
     const size_t ld = (size_t)N;
-    double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale;
-
-    if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
-        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
-
-    /* lower triangle: M* then Φ_q below it, zero block */
+    double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *E = d->kkt_scale + N;
+#define PHI(r, c) d->Phiq[(size_t)(rows ? rows[r] : (r)) + (size_t)(c) * (size_t)nc]
+    /* lower triangle: M* then the rows of Φ_q below it, zero block */
     for (int c = 0; c < nv; c++) {
         for (int r = c; r < nv; r++) K[r + c * ld] = d->Mstar[r + (size_t)c * (size_t)nv];
-        for (int r = 0; r < nc; r++) K[nv + r + c * ld] = d->Phiq[r + (size_t)c * (size_t)nc];
+        for (int r = 0; r < nr; r++) K[nv + r + c * ld] = PHI(r, c);
     }
     for (int c = nv; c < N; c++)
         for (int r = c; r < N; r++) K[r + c * ld] = 0.0;
     memcpy(b, d->Q, (size_t)nv * sizeof(double));
-    memcpy(b + nv, d->gamma, (size_t)nc * sizeof(double));
+    for (int r = 0; r < nr; r++) b[nv + r] = d->gamma[rows ? rows[r] : r];
 
-    int info = 0;
     /* symmetric scaling D K D: the rates by the mass metric, d_a = M*_aa^(-1/2), and every
      * constraint row by one common factor, 1 / (largest row norm of Φ_q D). One factor for all
      * rows keeps their relative sizes: a drive whose row shrinks toward a singular pose (an arm
@@ -100,40 +97,30 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
         s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
     }
     double rmax = 0.0;
-    for (int r = 0; r < nc; r++) {
+    for (int r = 0; r < nr; r++) {
         double rn = 0.0;
-        for (int c = 0; c < nv; c++) {
-            const double v = d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
-            rn += v * v;
-        }
+        for (int c = 0; c < nv; c++) rn += PHI(r, c) * s[c] * PHI(r, c) * s[c];
         rmax = fmax(rmax, sqrt(rn));
     }
-    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+    for (int r = 0; r < nr; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
     for (int c = 0; c < N; c++) {
         for (int r = c; r < N; r++) K[r + c * ld] *= s[r] * s[c];
         b[c] *= s[c];
     }
 
+    int info = 0;
     const double anorm = dlansy_("1", "L", &N, K, &N, d->lwork, 1, 1);
-    double *E = d->kkt_scale + N; /* the off-diagonal of D (rk format) */
     dsytrf_rk_("L", &N, K, &N, E, d->ipiv, d->lwork, &d->nlwork, &info, 1);
-    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrf info %d", info);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrf_rk info %d", info);
     double rcond = 0.0;
     if (info == 0) {
         dsycon_3_("L", &N, K, &N, E, d->ipiv, &anorm, &rcond, d->lwork, d->liwork, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsycon info %d", info);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsycon_3 info %d", info);
     }
-    d->rcond = rcond;
-    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
-    if (!(rcond >= m->rcond_min)) {
-        if (nc > 0 && dependent_rows(m, d, rcond) < nc) return VT_ERR_DEPENDENT_CONSTRAINTS;
-        return vt_fail(d->message, VT_ERR_SINGULAR,
-                       "vt_solve: augmented matrix of (5) has rcond %.3g < %.3g: the drives and cut joints "
-                       "leave a motion unfixed that has no inertia, or a singular pose",
-                       rcond, m->rcond_min);
-    }
+    *rcond_out = rcond;
+    if (!(rcond >= m->rcond_min)) return 1;
     dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, b, &N, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs info %d", info);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
     for (int k = 0; k < N; k++) b[k] *= s[k];
     /* one step of iterative refinement on the unscaled system (the residual from M* and Φ_q
      * themselves, the correction from the same factors): the common row factor above can
@@ -141,17 +128,132 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     double *res = d->lwork;
     memcpy(res, d->Q, (size_t)nv * sizeof(double));
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
-    if (nc > 0) {
-        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, -1.0, d->Phiq, nc, b + nv, 1, 1.0, res, 1);
-        memcpy(res + nv, d->gamma, (size_t)nc * sizeof(double));
-        cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, -1.0, d->Phiq, nc, b, 1, 1.0, res + nv, 1);
+    for (int r = 0; r < nr; r++) {
+        double v = d->gamma[rows ? rows[r] : r];
+        for (int c = 0; c < nv; c++) {
+            res[c] -= PHI(r, c) * b[nv + r];
+            v -= PHI(r, c) * b[c];
+        }
+        res[nv + r] = v;
     }
+#undef PHI
     for (int k = 0; k < N; k++) res[k] *= s[k];
     dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, res, &N, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs info %d", info);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
     for (int k = 0; k < N; k++) b[k] += res[k] * s[k];
     if (!vt_all_finite(b, N)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    return 0;
+}
+
+/* Redundant rows: q̈ from the independent rows (the first `rank` pivots of the QR left in
+ * lwork by dependent_rows), then the minimum-norm λ of Φ_q^T λ = M* q̈ − Q over all rows
+ * (LAPACK's dgelsd), the residual max |Φ_q q̈ − γ|, and which multipliers and reactions are not
+ * unique: those that change along the null directions z of Φ_q^T (from the QR:
+ * z = P [−R11^{-1} R12; I] in the row-normalized space). */
+static void mark_unique(const vt_model *m, vt_data *d)
+{
+    for (int r = 0; r < m->nc; r++) d->lambda_unique[r] = 1;
+    for (int i = 0; i < 6 * (m->nbody + 1); i++) d->jnt_unique[i] = 1;
+    for (int k = 0; k < 6 * m->ncut; k++) d->cut_unique[k] = 1;
+}
+
+static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
+{
+    const int nv = m->nv, nc = m->nc, nfree = nc - rank, one = 1;
+    const double *A = d->lwork; /* the QR of the row-normalized Φ_q^T left by dependent_rows */
+    double *X = d->red_work, *rownorm = X + (size_t)rank * (size_t)nfree;
+    int *perm = d->red_iwork, *indep = perm + nc;
+    for (int k = 0; k < nc; k++) perm[k] = d->liwork[k] - 1;
+    for (int i = 0; i < rank; i++) indep[i] = perm[i];
+    for (int r = 0; r < nc; r++) {
+        double sn = 0.0;
+        for (int c = 0; c < nv; c++) sn += d->Phiq[r + (size_t)c * (size_t)nc] * d->Phiq[r + (size_t)c * (size_t)nc];
+        rownorm[r] = sqrt(sn);
+    }
+    /* X = R11^{-1} R12 */
+    for (int j = 0; j < nfree; j++)
+        for (int i = 0; i < rank; i++) X[i + (size_t)j * (size_t)rank] = A[i + (size_t)(rank + j) * (size_t)nv];
+    int info = 0;
+    if (rank > 0 && nfree > 0) {
+        dtrtrs_("U", "N", "N", &rank, &nfree, A, &nv, X, &rank, &info, 1, 1, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dtrtrs info %d", info);
+    }
+    /* q̈ from the independent rows */
+    double rcond = 0.0;
+    const int st = factor_solve(m, d, indep, rank, &rcond);
+    if (st < 0) return (vt_status)st;
+    d->rcond = rcond;
+    if (st == 1)
+        return vt_fail(d->message, VT_ERR_SINGULAR,
+                       "vt_solve: Φ_q has rank %d of %d rows, and its independent rows leave rcond %.3g < %.3g",
+                       rank, nc, rcond, m->rcond_min);
+    memcpy(d->qdd, d->kkt_rhs, (size_t)nv * sizeof(double));
+    double resid = 0.0;
+    for (int r = 0; r < nc; r++) {
+        double v = -d->gamma[r];
+        for (int c = 0; c < nv; c++) v += d->Phiq[r + (size_t)c * (size_t)nc] * d->qdd[c];
+        resid = fmax(resid, fabs(v));
+    }
+    d->residual = resid;
+    /* minimum-norm λ of Φ_q^T λ = g = M* q̈ − Q (dgelsd, SVD based) */
+    const int ldb = nc > nv ? nc : nv;
+    double *At = d->kkt, *g = At + (size_t)nv * (size_t)nc, *sv = g + ldb;
+    for (int r = 0; r < nc; r++)
+        for (int c = 0; c < nv; c++) At[c + (size_t)r * (size_t)nv] = d->Phiq[r + (size_t)c * (size_t)nc];
+    for (int k = 0; k < nv; k++) g[k] = -d->Q[k];
+    for (int k = nv; k < ldb; k++) g[k] = 0.0;
+    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, d->qdd, 1, 1.0, g, 1);
+    const double rc = 1e-10;
+    int rk = 0;
+    dgelsd_(&nv, &nc, &one, At, &nv, g, &ldb, sv, &rc, &rk, d->lwork, &d->nlwork, d->liwork, &info);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
+    memcpy(d->lambda, g, (size_t)nc * sizeof(double));
+    /* the null directions z of Φ_q^T: which multipliers and reactions they change */
+    mark_unique(m, d);
+    for (int j = 0; j < nfree; j++) {
+        double *z = d->nullvec, zmax = 0.0;
+        memset(z, 0, (size_t)nc * sizeof(double));
+        for (int i = 0; i < rank; i++) z[perm[i]] = -X[i + (size_t)j * (size_t)rank];
+        z[perm[rank + j]] = 1.0;
+        for (int r = 0; r < nc; r++) { /* back from the row-normalized space */
+            if (rownorm[r] > 0.0) z[r] /= rownorm[r];
+            zmax = fmax(zmax, fabs(z[r]));
+        }
+        for (int r = 0; r < nc; r++)
+            if (fabs(z[r]) > 1e-9 * zmax) d->lambda_unique[r] = 0;
+        vt_reaction_sensitivity(m, d, z, 1e-9);
+    }
+    d->rank = rank;
+    d->warning |= VT_WARN_REDUNDANT;
+    return VT_OK;
+}
+
+vt_status vt_solve(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_solve");
+    if (st) return st;
+    const int nv = m->nv, nc = m->nc;
+    if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
+    double rcond = 0.0;
+    const int r = factor_solve(m, d, NULL, nc, &rcond);
+    if (r < 0) return (vt_status)r;
+    d->rcond = rcond;
+    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
+    if (r == 1) {
+        const int rank = nc > 0 ? dependent_rows(m, d, rcond) : nc;
+        if (rank < nc && m->allow_redundant) return redundant_solve(m, d, rank);
+        if (rank < nc) return VT_ERR_DEPENDENT_CONSTRAINTS;
+        return vt_fail(d->message, VT_ERR_SINGULAR,
+                       "vt_solve: augmented matrix of (5) has rcond %.3g < %.3g: the drives and cut joints "
+                       "leave a motion unfixed that has no inertia, or a singular pose",
+                       rcond, m->rcond_min);
+    }
+    d->rank = nc;
+    d->residual = 0.0;
+    mark_unique(m, d);
+    const double *b = d->kkt_rhs;
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
-    for (int r = 0; r < nc; r++) d->lambda[r] = -b[nv + r];
+    for (int k = 0; k < nc; k++) d->lambda[k] = -b[nv + k];
     return VT_OK;
 }

@@ -205,6 +205,72 @@ static void test_bad_definitions(void **state)
     vt_model_free(m);
 }
 
+/* A planar four-bar closed by a spatial revolute cut joint: rank 3 of 6 rows. Refused by
+ * default; with allow_redundant the motion and the crank torque equal those of the exactly
+ * constrained RSUR build of the same mechanism, the in-plane reactions too, and the
+ * out-of-plane reaction components are reported as not unique (Wojtyra 2005). */
+static void test_redundant_fourbar(void **state)
+{
+    (void)state;
+    const double coef[3] = {0.3, 2.0, 1.5};
+    vt_model *strict, *red, *rsur;
+    assert_ok(vt_scene_fourbar_planar(&strict, vt_function_polynomial(3, coef), 0));
+    assert_ok(vt_scene_fourbar_planar(&red, vt_function_polynomial(3, coef), 1));
+    assert_ok(vt_scene_fourbar(&rsur, vt_function_polynomial(3, coef)));
+    vt_data *ds, *dr, *du;
+    assert_ok(vt_data_create(&ds, strict));
+    assert_ok(vt_data_create(&dr, red));
+    assert_ok(vt_data_create(&du, rsur));
+    for (double t = 0.0; t < 1.5; t += 0.31) {
+        const double th2 = coef[0] + coef[1] * t + coef[2] * t * t, w2 = coef[1] + 2 * coef[2] * t;
+        assert_int_equal(vt_scene_fourbar_planar_assemble(strict, ds, th2, w2), 0);
+        assert_int_equal(vt_scene_fourbar_planar_assemble(red, dr, th2, w2), 0);
+        double th[2], w[2];
+        assert_int_equal(vt_scene_fourbar_assemble(rsur, du, th2, w2, th, w), 0);
+        ds->time = dr->time = du->time = t;
+        assert_int_equal(vt_inverse_dynamics(strict, ds), VT_ERR_DEPENDENT_CONSTRAINTS);
+        assert_non_null(strstr(ds->message, "rank 3 of 6"));
+        assert_ok(vt_inverse_dynamics(red, dr));
+        assert_ok(vt_inverse_dynamics(rsur, du));
+        assert_int_equal(dr->rank, 3);
+        assert_true(dr->warning & VT_WARN_REDUNDANT);
+        assert_true(dr->residual < 1e-12);
+        /* the motion: crank, coupler and rocker angular accelerations */
+        const double a2 = dr->qdd[0], a3 = dr->qdd[0] + dr->qdd[1], a4 = a3 + dr->qdd[2];
+        assert_near(a2, du->qdd[0], 1e-10);
+        assert_near(a3, du->qdd[0] + du->qdd[3], 1e-10); /* RSUR: crank + spherical's z rate */
+        assert_near(a4, du->qdd[4], 1e-10);
+        /* the effort */
+        assert_near(dr->drive_effort[0], du->drive_effort[0], 1e-9 * (1 + fabs(du->drive_effort[0])));
+        assert_int_equal(dr->lambda_unique[0], 1); /* the drive's multiplier is unique */
+        /* in-plane reactions: ground on crank, crank on coupler, ground on rocker */
+        const double tol = 1e-9 * (1 + vt_test_maxabs(du->jnt_force, 12));
+        for (int e = 0; e < 2; e++) {
+            assert_near(dr->jnt_force[3 + e], du->jnt_force[3 + e], tol);
+            assert_near(dr->jnt_force[6 + e], du->jnt_force[6 + e], tol);
+            assert_near(dr->cut_force[e], du->jnt_force[9 + e], tol);
+        }
+        /* which components are unique: in-plane force and the moment about z are; the force
+         * along z and the moments in the plane are not (at the cut and along the loop) */
+        for (int i = 1; i <= 3; i++) {
+            assert_int_equal(dr->jnt_unique[6 * i + 0], 1);
+            assert_int_equal(dr->jnt_unique[6 * i + 1], 1);
+            assert_int_equal(dr->jnt_unique[6 * i + 5], 1);
+        }
+        assert_int_equal(dr->cut_unique[2], 0);
+        assert_true(dr->cut_unique[3] == 0 || dr->cut_unique[4] == 0);
+        int free_rows = 0;
+        for (int r = 0; r < red->nc; r++) free_rows += dr->lambda_unique[r] == 0;
+        assert_true(free_rows >= 3);
+    }
+    vt_data_free(ds);
+    vt_data_free(dr);
+    vt_data_free(du);
+    vt_model_free(strict);
+    vt_model_free(red);
+    vt_model_free(rsur);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -212,6 +278,7 @@ int main(void)
         cmocka_unit_test(test_free_tree),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_bad_definitions),
+        cmocka_unit_test(test_redundant_fourbar),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

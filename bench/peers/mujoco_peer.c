@@ -41,8 +41,6 @@
 
 #include "peer_impl.h"
 
-enum { MJP_MAXMETHODS = 3 };
-
 typedef struct {
     mjModel *m;
     mjData *d;
@@ -204,9 +202,14 @@ static void run_inverse_loop(mj_peer *s)
 {
     const mjModel *m = s->m;
     mjData *d = s->d;
-    run_inverse(s);
     const int nv = m->nv;
-    if (d->nefc < 2) return; /* the connect rows are missing: leave the plain mj_inverse result */
+    set_state(s);
+    mj_inverse(m, d);
+    if (d->nefc < 2) { /* the connect rows are missing: leave the plain mj_inverse result */
+        mj_rnePostConstraint(m, d);
+        memcpy(s->tau, d->qfrc_inverse, (size_t)nv * sizeof(mjtNum));
+        return;
+    }
     const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv, rows 0..2 = connect x, y, z */
     const mjtNum a11 = J[0 * nv + 1], a12 = J[1 * nv + 1], a21 = J[0 * nv + 2], a22 = J[1 * nv + 2];
     /* M qacc + bias = qfrc_inverse + qfrc_constraint */

@@ -1,7 +1,16 @@
 /* C interface to the peer libraries (Pinocchio, MuJoCo) used by the vtdyn benchmarks.
  * Each peer computes inverse dynamics (joint torques) and every joint reaction wrench
  * for the same scenes as vtdyn. A peer's constructor exists only when that peer is
- * built (VT_HAVE_PINOCCHIO / VT_HAVE_MUJOCO); the other functions always exist. */
+ * built (VT_HAVE_PINOCCHIO / VT_HAVE_MUJOCO); the other functions always exist.
+ *
+ * Scenes and coordinates (q, qd, qdd are copied at construction):
+ *   chain        n links, q[k] = angle of joint k + 1 (both peers); torques: n values
+ *   double link  MuJoCo only; q = (joint 1, joint 2), joint 2 locked by an equality, so pass
+ *                q[1] = qd[1] = qdd[1] = 0; torques: (drive torque, locking torque at joint 2)
+ *   four-bar     MuJoCo only; 3 hinge coordinates: q = (crank angle, coupler angle relative to
+ *                the crank, rocker angle), angles from +x about +z; the state must satisfy the
+ *                loop closure; torques: 3 values (see mujoco_peer.c for the methods); links
+ *                k = 1, 2, 3 are crank, coupler, rocker */
 #ifndef VT_BENCH_PEERS_H
 #define VT_BENCH_PEERS_H
 

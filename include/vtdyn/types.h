@@ -83,10 +83,17 @@ typedef struct vt_model_def {
     double rcond_warn;  ///< below this (and above rcond_min) vt_solve succeeds but sets
                         ///< VT_WARN_ILL_CONDITIONED in the data's warning: a pose near a singular one,
                         ///< where efforts grow without bound; default 1e-6
+    int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved in the
+                        ///< least-squares / minimum-norm sense instead of refused; the motion and the
+                        ///< efforts stay unique, the multipliers and some reactions do not (see
+                        ///< vt_data.rank, lambda_unique, jnt_unique, cut_unique); default 0
 } vt_model_def;
 
 /// Warning flags a successful call may leave in vt_data.warning.
-enum { VT_WARN_ILL_CONDITIONED = 1 };
+enum {
+    VT_WARN_ILL_CONDITIONED = 1, ///< the condition estimate of (5) is below rcond_warn
+    VT_WARN_REDUNDANT = 2        ///< dependent rows were solved in the least-squares sense (allow_redundant)
+};
 
 /// Prescribed function of time f(t), evaluated exactly with f' and f''.
 typedef enum vt_function_type {
@@ -213,6 +220,7 @@ typedef struct vt_model {
     /* drives, cut joints and constraint rows */
     double rcond_min;        ///< see vt_model_def
     double rcond_warn;       ///< see vt_model_def
+    int allow_redundant;     ///< see vt_model_def
     int ndrive;              ///< number of drives
     int ncut;                ///< number of cut joints
     int nc;                  ///< number of constraint rows (drives, cut joints, one p^T p − 1 per base body)
@@ -281,6 +289,12 @@ typedef struct vt_data {
     double rcond;            ///< reciprocal condition estimate of the equilibrated augmented matrix
                              ///< (1 when nothing was factorized: a fully joint-driven recursive instant)
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
+    int rank;                ///< rank of Φ_q found by the last vt_solve (nc when the rows are independent)
+    double residual;         ///< max |Φ_q q̈ − γ| over all rows after a redundant solve (0 otherwise)
+    int *lambda_unique;      ///< 0 where a multiplier is not unique (redundant rows), else 1 (nc)
+    int *jnt_unique;         ///< per reaction component (fx fy fz nx ny nz, global): 0 where a tree
+                             ///< joint's reaction is not unique, else 1 (6 x (nbody+1))
+    int *cut_unique;         ///< the same for the cut joints (6 x ncut)
 
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
@@ -311,7 +325,10 @@ typedef struct vt_data {
     double *lwork;           ///< LAPACK workspace (nlwork)
     int nlwork;              ///< entries in lwork
     int *ipiv;               ///< pivots (nv+nc)
-    int *liwork;             ///< LAPACK integer workspace (nv+nc)
+    int *liwork;             ///< LAPACK integer workspace (33 (nv+nc) + 64)
+    double *nullvec;         ///< a multiplier direction with Φ_q^T z = 0 (redundant solve) (nc)
+    double *red_work;        ///< redundant solve: R11^{-1} R12 and row norms (nc x nc + nc)
+    int *red_iwork;          ///< redundant solve: pivots (2 nc)
     double *qsave;           ///< copy of q and q̇ kept by calls that restore them on failure (nq+nv)
     int ida_flag;            ///< return code of the last failing IDA call (0 if none)
 
