@@ -22,7 +22,8 @@
 #include <time.h>
 
 #include "scenes.h"
-#ifdef VT_HAVE_PEERS
+#if defined(VT_HAVE_MUJOCO) || defined(VT_HAVE_PINOCCHIO)
+#define VT_HAVE_PEERS 1
 #include "peers.h"
 #endif
 

@@ -532,6 +532,157 @@ static void test_fourbar(void **state)
     vt_model_free(m);
 }
 
+/* A double link of arbitrary link length L and masses m1, m2 (uniform rods), joint 2 locked:
+ * the pair pivots as one rigid body with mass M = m1 + m2, centre of mass at x_c from the pivot
+ * and inertia I_p about it, so θ̇² = 2 M g x_c sin θ / I_p, θ̈ = M g x_c cos θ / I_p and the
+ * ground's force on link 1 is f = M a_c − M g. Accuracy must hold relative to the scene's scale
+ * for masses from 1e-6 to 1e6 (and ratios between the links that large) and lengths from 1e-3
+ * to 1e3 m. */
+static void test_extreme_scales(void **state)
+{
+    (void)state;
+    const double lengths[3] = {1e-3, 1.0, 1e3};
+    const double masses[4][2] = {{1e-6, 1e-6}, {1e6, 1e6}, {1.0, 1e-6}, {1e-6, 1e6}};
+    for (int li = 0; li < 3; li++)
+        for (int mi = 0; mi < 4; mi++) {
+            const double L = lengths[li], m1 = masses[mi][0], m2 = masses[mi][1], g = 9.81;
+            vt_builder *b;
+            assert_ok(vt_builder_create(&b, NULL));
+            vt_body_def link = vt_default_body_def();
+            link.mass = m1;
+            link.inertia[4] = link.inertia[8] = m1 * L * L / 12.0;
+            link.joint_child[0] = -0.5 * L;
+            assert_int_equal(vt_builder_add_body(b, &link), 1);
+            link.parent = 1;
+            link.mass = m2;
+            link.inertia[4] = link.inertia[8] = m2 * L * L / 12.0;
+            link.joint_parent[0] = 0.5 * L;
+            assert_int_equal(vt_builder_add_body(b, &link), 2);
+            vt_drive_def lock = vt_default_drive_def();
+            lock.body = 2;
+            assert_int_equal(vt_builder_add_drive(b, &lock), 0);
+            vt_model *m;
+            assert_ok(vt_builder_build(&m, b));
+            vt_builder_free(b);
+            vt_data *d;
+            assert_ok(vt_data_create(&d, m));
+            const double M = m1 + m2, xc = (m1 * 0.5 * L + m2 * 1.5 * L) / M;
+            const double Ip = m1 * L * L / 3.0 + m2 * (L * L / 12.0 + 2.25 * L * L);
+            for (double th = 0.1; th < 1.5; th += 0.35) {
+                const double s = sin(th), c = cos(th), thd2 = 2 * M * g * xc * s / Ip, thdd = M * g * xc * c / Ip;
+                d->q[0] = -th;
+                d->q[1] = 0.0;
+                d->qd[0] = -sqrt(thd2);
+                d->qd[1] = 0.0;
+                assert_ok(vt_inverse_dynamics(m, d));
+                assert_near(-d->qdd[0], thdd, 1e-9 * (g / L));
+                /* centre of mass at xc (cos θ, −sin θ): a_c = xc [−θ̈ sin − θ̇² cos, −θ̈ cos + θ̇² sin] */
+                const double fx = M * xc * (-thdd * s - thd2 * c), fy = M * xc * (-thdd * c + thd2 * s) + M * g;
+                assert_near(d->jnt_force[3], fx, 1e-9 * M * g);
+                assert_near(d->jnt_force[4], fy, 1e-9 * M * g);
+                assert_true(d->rcond > 1e-12);
+            }
+            vt_data_free(d);
+            vt_model_free(m);
+        }
+}
+
+/* a spherical joint driven through the pose where Z–Y–X angles lock (Y at 90°): the Euler
+ * parameters have no such pose, so the efforts stay smooth, and they equal the rigid body's
+ * Euler equation about the pivot, n = I_p α + ω × I_p ω − c × m g */
+static int zyx_turn(double t, double p[4], double w[3], double wd[3], void *user)
+{
+    (void)user;
+    const double rz = 0.5, ry = 0.5 * 3.14159265358979323846, rx = 0.3; /* Y passes 90° at t = 1 */
+    const double ez[3] = {0, 0, 1}, ey[3] = {0, 1, 0}, ex[3] = {1, 0, 0};
+    double pz[4], py[4], px[4], pzy[4], Az[9], Azy[9], y1[3], x2[3];
+    vt_quat_axis_angle(pz, ez, rz * t);
+    vt_quat_axis_angle(py, ey, ry * t);
+    vt_quat_axis_angle(px, ex, rx * t);
+    vt_quat_mul(pzy, pz, py);
+    vt_quat_mul(p, pzy, px);
+    vt_euler_A(Az, pz);
+    vt_euler_A(Azy, pzy);
+    for (int k = 0; k < 3; k++) {
+        y1[k] = Az[3 + k];   /* Az e_y */
+        x2[k] = Azy[k];      /* Azy e_x */
+        w[k] = rz * ez[k] + ry * y1[k] + rx * x2[k];
+    }
+    /* ω̇ = ry (rz z × y1) + rx ((rz z + ry y1) × x2) */
+    const double a[3] = {rz * ez[0] + ry * y1[0], rz * ez[1] + ry * y1[1], rz * ez[2] + ry * y1[2]};
+    wd[0] = ry * rz * (ez[1] * y1[2] - ez[2] * y1[1]) + rx * (a[1] * x2[2] - a[2] * x2[1]);
+    wd[1] = ry * rz * (ez[2] * y1[0] - ez[0] * y1[2]) + rx * (a[2] * x2[0] - a[0] * x2[2]);
+    wd[2] = ry * rz * (ez[0] * y1[1] - ez[1] * y1[0]) + rx * (a[0] * x2[1] - a[1] * x2[0]);
+    return 0;
+}
+
+static void test_spherical_through_gimbal_lock(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_SPHERICAL;
+    body.mass = 2.0;
+    body.inertia[0] = 0.1; body.inertia[4] = 0.2; body.inertia[8] = 0.25;
+    body.joint_child[0] = -0.3; body.joint_child[1] = 0.1; /* pivot off the centre of mass */
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    od.orientation_callback = zyx_turn;
+    assert_int_equal(vt_builder_add_drive(b, &od), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 2.0;
+    opt.nout = 200;
+    opt.forward_check = 0;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nwarn, 0);
+    double prev[3] = {0, 0, 0}, pprev[3] = {0, 0, 0}, big = 0.0, jump = 0.0;
+    for (int k = 0; k < tr->nfilled; k++) {
+        /* the state of the row, and the Euler equation about the pivot */
+        memcpy(d->q, tr->q + 4 * k, 4 * sizeof(double));
+        memcpy(d->qd, tr->qd + 3 * k, 3 * sizeof(double));
+        d->time = tr->t[k];
+        assert_ok(vt_inverse_dynamics(m, d));
+        double J[9], c[3], Ip[9], w[3], al[3], Iw[3], Ia[3], n[3];
+        vt_test_global_inertia(J, m, d, 1);
+        for (int e = 0; e < 3; e++) c[e] = d->x[e] - d->jpoint[3 + e]; /* pivot → centre of mass */
+        const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+        for (int col = 0; col < 3; col++)
+            for (int r = 0; r < 3; r++) Ip[r + 3 * col] = J[r + 3 * col] + 2.0 * ((r == col) * c2 - c[r] * c[col]);
+        double pw[4];
+        zyx_turn(d->time, pw, w, al, NULL);
+        for (int r = 0; r < 3; r++) {
+            Iw[r] = Ip[r] * w[0] + Ip[r + 3] * w[1] + Ip[r + 6] * w[2];
+            Ia[r] = Ip[r] * al[0] + Ip[r + 3] * al[1] + Ip[r + 6] * al[2];
+        }
+        const double mg[3] = {0, -9.81 * 2.0, 0};
+        n[0] = Ia[0] + w[1] * Iw[2] - w[2] * Iw[1] - (c[1] * mg[2] - c[2] * mg[1]);
+        n[1] = Ia[1] + w[2] * Iw[0] - w[0] * Iw[2] - (c[2] * mg[0] - c[0] * mg[2]);
+        n[2] = Ia[2] + w[0] * Iw[1] - w[1] * Iw[0] - (c[0] * mg[1] - c[1] * mg[0]);
+        for (int e = 0; e < 3; e++) {
+            assert_near(d->drive_moment[e], n[e], 1e-9 * (1 + fabs(n[e])));
+            assert_near(d->jnt_moment[3 + e], 0.0, 1e-9); /* a spherical joint carries no moment */
+            big = fmax(big, fabs(n[e]));
+            if (k >= 2) jump = fmax(jump, fabs(n[e] - 2 * prev[e] + pprev[e]));
+            pprev[e] = prev[e];
+            prev[e] = n[e];
+        }
+    }
+    /* smooth: second differences of the effort over 0.01 s stay small */
+    assert_true(jump < 1e-2 * big);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -541,6 +692,8 @@ int main(void)
         cmocka_unit_test(test_reaction_orthogonality),
         cmocka_unit_test(test_drive_cartesian_force),
         cmocka_unit_test(test_fourbar),
+        cmocka_unit_test(test_extreme_scales),
+        cmocka_unit_test(test_spherical_through_gimbal_lock),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
