@@ -29,7 +29,7 @@
 
 #include "scenes.h"
 
-static const char *form_name[VT_FORMULATION_COUNT] = {"index1", "baumgarte", "projection", "ggl"};
+static const char *form_name[VT_FORMULATION_COUNT] = {"index1", "baumgarte", "projection", "ggl", "ode"};
 
 static double cpu_now(void)
 {

@@ -6,7 +6,7 @@ dr = dir.'/drift.csv'
 set datafile separator ','
 set terminal pngcairo size 1100,480 font ',10' noenhanced
 set grid
-forms = 'index1 baumgarte projection ggl'
+forms = 'index1 baumgarte projection ggl ode'
 sel(scene, form) = sprintf("< awk -F, 'NR==1 || ($1==\"%s\" && $2==\"%s\")' %s", scene, form, wp)
 
 set output dir.'/work_precision.png'

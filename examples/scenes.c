@@ -441,3 +441,52 @@ int vt_scene_fourbar_planar_assemble(const vt_model *m, vt_data *d, double th2, 
     d->qd[m->body_vadr[3]] = w[1] - w[0];
     return 0;
 }
+
+vt_status vt_scene_nfourbar(vt_model **model, int N)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = 1;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    vt_body_def rod = vt_default_body_def();
+    rod_inertia(rod.inertia, 1.0, 1.0);
+    rod.joint_child[0] = -0.5;
+    int id = vt_builder_add_body(b, &rod); /* crank 0 */
+    for (int k = 1; k <= N && id > 0; k++) { /* couplers, each from the previous link's far end */
+        rod.parent = k;
+        rod.joint_parent[0] = 0.5;
+        id = vt_builder_add_body(b, &rod);
+    }
+    for (int k = 1; k <= N && id > 0; k++) { /* cranks 1..N from the ground */
+        rod.parent = 0;
+        rod.joint_parent[0] = (double)k;
+        id = vt_builder_add_body(b, &rod);
+    }
+    for (int k = 1; k <= N && id >= 0; k++) {
+        vt_cut_joint_def cut = vt_default_cut_joint_def(); /* revolute about z */
+        cut.body_a = N + 1 + k;  /* crank k */
+        cut.body_b = 1 + k;      /* coupler k */
+        cut.point_a[0] = 0.5;
+        cut.point_b[0] = 0.5;
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+void vt_scene_nfourbar_start(const vt_model *m, vt_data *d, int N, double w)
+{
+    const double up = 0.5 * VT_PI;
+    d->q[m->body_qadr[1]] = up;
+    d->qd[m->body_vadr[1]] = w;
+    d->q[m->body_qadr[2]] = -up; /* coupler 1 horizontal: it translates */
+    d->qd[m->body_vadr[2]] = -w;
+    for (int k = 2; k <= N; k++) {
+        d->q[m->body_qadr[1 + k]] = 0.0;
+        d->qd[m->body_vadr[1 + k]] = 0.0;
+    }
+    for (int k = 1; k <= N; k++) {
+        d->q[m->body_qadr[N + 1 + k]] = up;
+        d->qd[m->body_vadr[N + 1 + k]] = w;
+    }
+}

@@ -84,6 +84,17 @@ void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
  * constraint row: only the integration's energy drift is left to measure. */
 vt_status vt_scene_pendulum(vt_model **model);
 
+/* The IFToMM multibody benchmark's N-four-bar (problem A02): N parallelogram four-bars in a
+ * row sharing links, every link a 1 m, 1 kg uniform rod, revolute joints about z, gravity
+ * (0, −9.81, 0). Cranks 0..N hang from ground pivots at (k, 0, 0); the couplers 1..N join their
+ * tips. Tree: crank 0 (body 1), couplers 1..N (bodies 2..N+1) in a chain from its tip, cranks
+ * 1..N (bodies N+2..2N+1) from the ground; cut joint k−1 (revolute) joins crank k's tip to
+ * coupler k's far end. Every cut row set is redundant in space (planar mechanism) and the
+ * horizontal pose (cranks and couplers in one line) is singular: the model allows redundant
+ * rows. vt_scene_nfourbar_start(): cranks vertical, turning at w rad/s, couplers horizontal. */
+vt_status vt_scene_nfourbar(vt_model **model, int N);
+void vt_scene_nfourbar_start(const vt_model *model, vt_data *data, int N, double w);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */

@@ -52,6 +52,8 @@ static int lapack_work_size(const vt_model *m)
         int rank = 0;
         dgelsd_(&nv, &nc, &one2, &dummy, &nv, &dummy, &ldb2, &dummy, &rc, &rank, &q, &lw, &iq, &info);
         if (info == 0 && (int)q + nv * nc + ldb2 > need) need = (int)q + nv * nc + ldb2;
+        dgelsd_(&nc, &nv, &one2, &dummy, &nc, &dummy, &ldb2, &dummy, &rc, &rank, &q, &lw, &iq, &info);
+        if (info == 0 && (int)q > need) need = (int)q; /* and on Φ_q itself (projections) */
         /* dgels on Φ_q (nc x nv) for the Newton and velocity corrections */
         const int one = 1, ldb = nc > nv ? nc : nv;
         dgels_("N", &nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &q, &lw, &info, 1);

@@ -48,6 +48,7 @@ typedef struct {
 
 static int block_size(const vt_model *m, int form)
 {
+    if (form == VT_FORMULATION_ODE) return m->nq + m->nv;
     return m->nq + m->nv + (form == VT_FORMULATION_GGL ? 2 : 1) * m->nc;
 }
 
@@ -71,6 +72,7 @@ static void qdot_from_v(const vt_model *m, const double *q, const double *v, dou
  *   index-1 (and projection)  q' − T v,          M* v' − Q − Φ_q^T λ,   Φ_q v' − γ
  *   Baumgarte                 q' − T v,          M* v' − Q − Φ_q^T λ,   Φ_q v' − γ + 2α Φ̇ + β² Φ
  *   GGL (index 2)             q' − T (v + Φ_q^T μ), M* v' − Q − Φ_q^T λ,   Φ,   Φ_q v + Φ_t
+ *   ODE                       q' − T v,          v' − q̈   with q̈ from vt_solve, γ − 2α Φ̇ − β² Φ
  * with Φ̇ = Φ_q v + Φ_t; λ (and μ) algebraic. */
 static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t, const double *y, const double *yp,
                           double *r)
@@ -80,6 +82,19 @@ static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t,
     memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
     d->time = t;
     if (vt_kinematics(m, d) || vt_mass_matrix(m, d) || vt_forces(m, d) || vt_constraints(m, d)) return 1;
+    if (p->form == VT_FORMULATION_ODE) { /* q' − T q̇, q̇' − q̈(q, q̇, t) with γ − 2α Φ̇ − β² Φ */
+        const double a2 = 2.0 * p->alpha, b2 = p->beta * p->beta;
+        for (int k = 0; k < nc; k++) {
+            double phid = d->Phit[k];
+            for (int c = 0; c < nv; c++) phid += d->Phiq[k + (size_t)c * (size_t)nc] * y[nq + c];
+            d->gamma[k] -= a2 * phid + b2 * d->Phi[k];
+        }
+        if (vt_solve(m, d)) return 1;
+        qdot_from_v(m, y, y + nq, r);
+        for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
+        for (int k = 0; k < nv; k++) r[nq + k] = yp[nq + k] - d->qdd[k];
+        return vt_all_finite(r, nq + nv) ? 0 : 1;
+    }
     const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
     double *rq = r, *rv = r + nq, *rl = r + nq + nv;
     if (ggl && nc > 0) { /* T (v + Φ_q^T μ), with the rates in d->xdd as scratch */
@@ -151,7 +166,7 @@ static void block_initial(const vt_model *m, const vt_data *d, int form, double 
     memcpy(y, d->q, (size_t)nq * sizeof(double));
     memcpy(y + nq, d->qd, (size_t)nv * sizeof(double));
     memset(y + nq + nv, 0, (size_t)na * sizeof(double));
-    memcpy(y + nq + nv, d->lambda, (size_t)nc * sizeof(double));
+    if (na >= nc) memcpy(y + nq + nv, d->lambda, (size_t)nc * sizeof(double));
     qdot_from_v(m, d->q, d->qd, yp);
     memcpy(yp + nq, d->qdd, (size_t)nv * sizeof(double));
     memset(yp + nq + nv, 0, (size_t)na * sizeof(double));

@@ -35,8 +35,23 @@ static vt_status solve_phiq(const vt_model *m, vt_data *d, int velocities, doubl
     int info = 0;
     dgels_("N", &nc, &nv, &one, A, &nc, B, &ldb, d->lwork, &d->nlwork, &info, 1);
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgels info %d", info);
-    if (info > 0)
+    if (info > 0 && m->allow_redundant) { /* dependent rows: the least-norm least-squares step (SVD) */
+        memcpy(A, d->Phiq, (size_t)nc * (size_t)nv * sizeof(double));
+        for (int r = 0; r < nc; r++) {
+            double v = velocities ? -d->Phit[r] : -d->Phi[r];
+            if (velocities)
+                for (int c = 0; c < nv; c++) v -= d->Phiq[r + (size_t)c * (size_t)nc] * d->qd[c];
+            B[r] = v;
+        }
+        for (int r = nc; r < ldb; r++) B[r] = 0.0;
+        const double rc = 1e-10;
+        int rank = 0;
+        double *sv = d->kkt_scale;
+        dgelsd_(&nc, &nv, &one, A, &nc, B, &ldb, sv, &rc, &rank, d->lwork, &d->nlwork, d->liwork, &info);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgelsd info %d", info);
+    } else if (info > 0) {
         return vt_fail(d->message, VT_ERR_SINGULAR, "vt_kinematic_solve: Φ_q rank deficient at t = %g", d->time);
+    }
     memcpy(x, B, (size_t)nv * sizeof(double));
     return VT_OK;
 }

@@ -347,6 +347,9 @@ typedef enum vt_formulation {
                                 ///< every output time (least-norm corrections; IDA restarted)
     VT_FORMULATION_GGL,         ///< stabilized index-2 (Gear–Gupta–Leimkuhler): Φ = 0 and Φ_q q̇ = −Φ_t
                                 ///< enforced, q' = T (q̇ + Φ_q^T μ); λ and μ out of the error test
+    VT_FORMULATION_ODE,         ///< q̈ from vt_solve at every residual (Baumgarte's terms in γ), IDA on
+                                ///< q and q̇ only: carries through poses where rows become dependent
+                                ///< when the model allows redundant rows
     VT_FORMULATION_COUNT
 } vt_formulation;
 
