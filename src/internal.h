@@ -71,6 +71,15 @@ static inline void vt_mulE(double r[3], const double E[12], const double a[4])
     for (int k = 0; k < 3; k++) r[k] = E[k] * a[0] + E[3 + k] * a[1] + E[6 + k] * a[2] + E[9 + k] * a[3];
 }
 
+/* r = ½ E(p)^T w = ½ [0; w] ⊗ p: the rate of Euler parameters p turning at w (global) */
+static inline void vt_quat_rate(double r[4], const double p[4], const double w[3])
+{
+    r[0] = -0.5 * (w[0] * p[1] + w[1] * p[2] + w[2] * p[3]);
+    r[1] = 0.5 * (w[0] * p[0] + w[1] * p[3] - w[2] * p[2]);
+    r[2] = 0.5 * (w[1] * p[0] + w[2] * p[1] - w[0] * p[3]);
+    r[3] = 0.5 * (w[2] * p[0] + w[0] * p[2] - w[1] * p[1]);
+}
+
 static inline int vt_all_finite(const double *a, int n)
 {
     for (int k = 0; k < n; k++)

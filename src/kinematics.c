@@ -103,7 +103,8 @@ static void positions(const vt_model *m, vt_data *d)
             break;
         }
         vt_quat_mul(pi, pj, pJ);
-        vt_quat_mul(pi, pi, m->body_quat0 + 4 * i);
+        const double *p0 = m->body_quat0 + 4 * i;
+        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) vt_quat_mul(pi, pi, p0);
         vt_euler_A(Ai, pi);
 
         double sji[3];
@@ -127,9 +128,9 @@ static void velocities(const vt_model *m, vt_data *d)
         const double *vj = j ? d->xd + vt_xoff(j) : zero3;
         const double *pi = d->x + vt_xoff(i) + 3;
         double *wi = d->omega + 3 * i, *vi = d->xd + vt_xoff(i), *pdi = vi + 3;
-        double E[12];
-        vt_euler_E(E, pi);
         if (jt == VT_JOINT_BASE) {
+            double E[12];
+            vt_euler_E(E, pi);
             memcpy(vi, qdi, 7 * sizeof(double));
             vt_mulE(wi, E, pdi);
             wi[0] *= 2; wi[1] *= 2; wi[2] *= 2;
@@ -145,8 +146,7 @@ static void velocities(const vt_model *m, vt_data *d)
             else vt_axpy3(vi, qdi[k], e + 3 * ax);
         }
         vt_addcross3(vi, wi, d->jd + 3 * i);
-        vt_mulE_t(pdi, E, wi);
-        for (int k = 0; k < 4; k++) pdi[k] *= 0.5;
+        vt_quat_rate(pdi, pi, wi);
     }
 }
 
@@ -226,9 +226,9 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
         const double *aj = j ? out + vt_xoff(j) : zero3;
         const double *ri = d->x + vt_xoff(i), *pi = ri + 3;
         double *ali = alpha + 3 * i, *ai = out + vt_xoff(i), *pddi = ai + 3;
-        double E[12];
-        vt_euler_E(E, pi);
         if (jt == VT_JOINT_BASE) {
+            double E[12];
+            vt_euler_E(E, pi);
             if (qddi) memcpy(ai, qddi, 7 * sizeof(double));
             else memset(ai, 0, 7 * sizeof(double));
             vt_mulE(ali, E, pddi); /* α = 2 E p̈ + 2 Ė ṗ, and Ė ṗ = E(ṗ) ṗ = 0 */
@@ -272,9 +272,9 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
         vt_cross3(t, wi, sji);
         vt_cross3(u, wi, t);
         for (int r = 0; r < 3; r++) ai[r] -= u[r];
-        vt_mulE_t(pddi, E, ali);
+        vt_quat_rate(pddi, pi, ali);
         const double w2 = vt_dot3(wi, wi);
-        for (int r = 0; r < 4; r++) pddi[r] = 0.5 * pddi[r] - 0.25 * w2 * pi[r];
+        for (int r = 0; r < 4; r++) pddi[r] -= 0.25 * w2 * pi[r];
     }
 }
 
