@@ -90,7 +90,8 @@ struct PinPeer {
     std::vector<Eigen::Vector3d> o0; /* joint positions at construction */
     int last;              /* last method run */
 
-    PinPeer(int n, const double *q0, const double *qd0, const double *qdd0)
+    /* llt sized in place: copying an LLT copies its not yet set ComputationInfo */
+    PinPeer(int n, const double *q0, const double *qd0, const double *qdd0) : llt(n)
     {
         model.gravity = pin::Motion(Eigen::Vector3d(0.0, -9.81, 0.0), Eigen::Vector3d::Zero());
         /* link k: 1 kg, 0.5 m along its x, COM at +0.25, inertia about the COM diag(2e-4, 1/48, 1/48) */
@@ -115,7 +116,6 @@ struct PinPeer {
         v = Eigen::Map<const Eigen::VectorXd>(qd0, n);
         a = Eigen::Map<const Eigen::VectorXd>(qdd0, n);
         acc = Eigen::VectorXd::Zero(n);
-        llt = Eigen::LLT<Eigen::MatrixXd>(n);
         fworld.assign(static_cast<size_t>(n) + 1, pin::Force::Zero());
         run(1);
         tau0 = data.tau;
