@@ -52,6 +52,23 @@ static void rows_wrench_at(const vt_model *m, const vt_data *d, int r0, int r1, 
     for (int c = 0; c < 3; c++) n[c] -= t[c];
 }
 
+/* every drive and cut-joint row's wrench on its bodies, added into fe (6 x (nbody+1)); the
+ * normalization rows of base bodies exert nothing (their moment ½ E (2 p λ) is zero) */
+static void add_row_wrenches(const vt_model *m, const vt_data *d, double *fe)
+{
+    for (int r = 0; r < m->nc; r++) {
+        if (m->con_kind[r] == VT_ROW_NORM) continue;
+        for (int side = 0; side < 2; side++) {
+            const int k = m->con_body[2 * r + side];
+            if (k == 0) continue;
+            double f[3], nn[3];
+            row_wrench(m, d, r, side, f, nn);
+            vt_axpy3(fe + 6 * k, 1.0, f);
+            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
+        }
+    }
+}
+
 static int drive_nrows(const vt_drive_def *dr)
 {
     return dr->type == VT_DRIVE_ORIENTATION ? 3 : 1;
@@ -150,17 +167,7 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
             vt_axpy3(fe + 6 * k + 3, 1.0, nn);
         }
     }
-    for (int r = 0; r < m->nc; r++) {
-        if (m->con_kind[r] == VT_ROW_NORM) continue;
-        for (int side = 0; side < 2; side++) {
-            const int k = m->con_body[2 * r + side];
-            if (k == 0) continue;
-            double f[3], nn[3];
-            row_wrench(m, d, r, side, f, nn);
-            vt_axpy3(fe + 6 * k, 1.0, f);
-            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
-        }
-    }
+    add_row_wrenches(m, d, fe);
 
     vt_drive_efforts(m, d);
 
@@ -224,17 +231,7 @@ void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, dou
     const size_t nb = (size_t)n + 1;
     double *fe = d->work, *cf = fe + 6 * nb, *mag = cf + 6 * nb; /* 6 per joint, then 6 per cut */
     memset(fe, 0, 12 * nb * sizeof(double));
-    for (int r = 0; r < m->nc; r++) {
-        if (m->con_kind[r] == VT_ROW_NORM) continue;
-        for (int side = 0; side < 2; side++) {
-            const int k = m->con_body[2 * r + side];
-            if (k == 0) continue;
-            double f[3], nn[3];
-            row_wrench(m, d, r, side, f, nn);
-            vt_axpy3(fe + 6 * k, 1.0, f);
-            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
-        }
-    }
+    add_row_wrenches(m, d, fe);
     double big = 0.0, *cmag = mag + 6 * nb;
     for (int k = 0; k < m->ncut; k++) {
         const vt_cut_joint_def *c = &m->cut[k];
