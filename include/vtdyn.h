@@ -11,7 +11,12 @@
  *     vt_kinematics(m, d); vt_mass_matrix(m, d); vt_forces(m, d);
  *
  * Every function that can fail returns a vt_status (0 ok, negative error); the detail is in
- * vt_builder_message() or d->message. The library never prints, exits or aborts.
+ * vt_builder_message() or d->message. The library never prints, exits or aborts. A failed call
+ * leaves the caller's inputs (a builder's definitions, d->q, d->qd, d->xfrc, d->qfrc, d->time)
+ * as they were (vt_kinematic_solve restores q and q̇ it would have corrected); the outputs of
+ * the failed stage are undefined, except vt_solve's q̈ and λ, which are left as they were. Warnings
+ * of successful calls are flags in d->warning. One model may be shared by threads, each with its
+ * own vt_data: there is no global state.
  * Conventions (units, frames, layouts) are stated at the top of vtdyn/types.h.
  */
 #ifndef VTDYN_H
