@@ -90,9 +90,10 @@ struct PinPeer {
     std::vector<Eigen::Vector3d> o0; /* joint positions at construction */
     int last;              /* last method run */
 
-    /* llt sized in place: copying an LLT copies its not yet set ComputationInfo */
-    PinPeer(int n, const double *q0, const double *qd0, const double *qdd0) : llt(n)
+    /* the chain of n links */
+    static pin::Model make_chain(int n)
     {
+        pin::Model model;
         model.gravity = pin::Motion(Eigen::Vector3d(0.0, -9.81, 0.0), Eigen::Vector3d::Zero());
         /* link k: 1 kg, 0.5 m along its x, COM at +0.25, inertia about the COM diag(2e-4, 1/48, 1/48) */
         const pin::Inertia link(1.0, Eigen::Vector3d(0.25, 0.0, 0.0),
@@ -111,7 +112,14 @@ struct PinPeer {
             model.appendBodyToJoint(id, link, pin::SE3::Identity());
             parent = id;
         }
-        data = pin::Data(model);
+        return model;
+    }
+
+    /* data and llt built in place: copying an Eigen LLT (Data holds some) reads its
+     * ComputationInfo before any compute() has set it */
+    PinPeer(int n, const double *q0, const double *qd0, const double *qdd0)
+        : model(make_chain(n)), data(model), llt(n)
+    {
         q = Eigen::Map<const Eigen::VectorXd>(q0, n);
         v = Eigen::Map<const Eigen::VectorXd>(qd0, n);
         a = Eigen::Map<const Eigen::VectorXd>(qdd0, n);
