@@ -135,7 +135,7 @@ vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def)
     *builder = NULL;
     vt_model_def md = def ? *def : vt_default_model_def();
     if (!vt_all_finite(md.gravity, 3) || !isfinite(md.rcond_min) || !isfinite(md.rcond_warn)) return VT_ERR_NONFINITE;
-    if (!(md.rcond_min >= 0.0) || md.rcond_min > 1.0 || md.rcond_warn < md.rcond_min) return VT_ERR_BAD_OPTION;
+    if (!(md.rcond_min > 0.0) || md.rcond_min > 1.0 || md.rcond_warn < md.rcond_min) return VT_ERR_BAD_OPTION;
     vt_builder *b = calloc(1, sizeof *b);
     if (!b) return VT_ERR_NO_MEMORY;
     b->def = md;

@@ -185,6 +185,10 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
         vt_mulmat3t(d->cut_moment_body + 3 * k, d->A + 9 * c->body_b, mo);
     }
 
+    if (!vt_all_finite(d->drive_force, 3 * m->ndrive) || !vt_all_finite(d->drive_moment, 3 * m->ndrive) ||
+        !vt_all_finite(d->cut_force, 3 * m->ncut) || !vt_all_finite(d->cut_moment, 3 * m->ncut))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_reactions: an effort overflowed (an ill-posed instant?)");
+
     /* tree joints, inward (26) */
     for (int i = n; i >= 1; i--) {
         const int j = m->body_parent[i];
@@ -208,6 +212,10 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
         for (int c = 0; c < 3; c++) mo[c] = Nc[c] - t[c];
         vt_mulmat3t(d->jnt_force_body + 3 * i, Ai, f);
         vt_mulmat3t(d->jnt_moment_body + 3 * i, Ai, mo);
+        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE,
+                           "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",
+                           i, fabs(d->xdd[vt_xoff(i)]));
         if (j) { /* into the parent: f and its moment about the parent's centre of mass */
             const double *rj = d->x + vt_xoff(j);
             for (int c = 0; c < 3; c++) s[c] = d->jpoint[3 * i + c] - rj[c];

@@ -177,6 +177,8 @@ static vt_status joint_driven(const vt_model *m, vt_data *d)
         }
         vt_mulmat3t(d->jnt_force_body + 3 * i, d->A + 9 * i, f);
         vt_mulmat3t(d->jnt_moment_body + 3 * i, d->A + 9 * i, mo);
+        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     }
     return VT_OK;
 }

@@ -113,6 +113,13 @@ static void test_limits_and_null(void **state)
     md.gravity[2] = NAN;
     assert_int_equal(vt_builder_create(&b, &md), VT_ERR_NONFINITE);
     assert_null(b);
+    md = vt_default_model_def();
+    md.rcond_min = 0.0; /* would accept singular systems: refused (found by the fuzzer) */
+    assert_int_equal(vt_builder_create(&b, &md), VT_ERR_BAD_OPTION);
+    md.rcond_min = 1e-6;
+    md.rcond_warn = 1e-8; /* a warning threshold below the refusal one */
+    assert_int_equal(vt_builder_create(&b, &md), VT_ERR_BAD_OPTION);
+    assert_null(b);
     assert_ok(vt_builder_create(&b, NULL));
     assert_int_equal(vt_builder_build(&m, b), VT_ERR_EMPTY_MODEL);
     assert_null(m);
