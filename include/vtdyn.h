@@ -177,9 +177,10 @@ vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_r
 /// Dynamic analysis: the index-1 form of (5) handed to SUNDIALS IDA, unknowns q, q̇ and λ,
 ///   q' − T(q) q̇ = 0,   M* q̈ − Q − Φ_q^T λ = 0,   Φ_q q̈ − γ = 0,
 /// from d->q, d->qd at opt->t0, first made consistent (vt_kinematic_solve). With
-/// opt->forward_check the forward model runs in the same IDA system, driven by the drives'
-/// generalized forces taken from the driven run's λ at the same time: the efforts are a
-/// continuous function of time with the driven run's own accuracy.
+/// opt->forward_check the forward model (drives removed, their efforts applied) is integrated
+/// as well: by default separately, after the driven run, with the efforts of the driven state
+/// interpolated (cubic Hermite over the driven run's steps; error in tr->fwd_interp_err); with
+/// opt->forward_independent = 0 in the same IDA system, the efforts from the driven λ.
 /// Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in d->message), ...
 vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                               vt_trajectory *trajectory);

@@ -14,9 +14,11 @@
  * joint torques, as the paper applies them); with forward_as_loads each drive's own load (a
  * point drive's force at its body point, ...), the same physical loads, so that the reactions
  * must agree as well (with joint torques only a joint-driven model's do). For a partly
- * driven model both systems share one IDA run, y = [y_driven; y_forward], and the efforts come
- * from the driven block's λ at the same t: a continuous function of time with the driven run's
- * own accuracy (no interpolation). For a fully driven model they are exact: the kinematic
+ * driven model the driven run keeps every step (t, y, y') and a separate forward run takes the
+ * efforts at any t from the driven state's cubic Hermite interpolant between two steps, solved
+ * again; the interpolant's error is measured against IDA's own at each step's middle. (Or, with
+ * forward_independent = 0, both share one IDA run, y = [y_driven; y_forward], the efforts from
+ * the driven block's λ at the same t.) For a fully driven model they are exact: the kinematic
  * solution at every t that IDA asks for.
  */
 #include <stdio.h>
@@ -29,6 +31,34 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "internal.h"
+
+/* The driven run's steps, kept for an independent forward run: t, y = [q; v] and y' at every
+ * step IDA takes; between steps y is the cubic Hermite interpolant of the two ends. */
+typedef struct {
+    int cap, n, dim;
+    double *t, *y, *yp; /* (cap), (dim x cap), (dim x cap) */
+    double *tmp;        /* an interpolated y (dim) */
+    double err;         /* largest |Hermite − IDA's own interpolant| at step midpoints */
+} history;
+
+static void hermite(const history *h, double t, double *out)
+{
+    int lo = 0, hi = h->n - 1;
+    if (t <= h->t[0]) hi = 1;
+    else if (t >= h->t[h->n - 1]) lo = h->n - 2;
+    else
+        while (hi - lo > 1) { /* bisection: t[lo] <= t < t[hi] */
+            const int mid = (lo + hi) / 2;
+            if (h->t[mid] <= t) lo = mid;
+            else hi = mid;
+        }
+    const double t0 = h->t[lo], dt = h->t[lo + 1] - t0, sv = (t - t0) / dt;
+    const double h00 = (2 * sv - 3) * sv * sv + 1, h10 = ((sv - 2) * sv + 1) * sv, h01 = (3 - 2 * sv) * sv * sv,
+                 h11 = (sv - 1) * sv * sv;
+    const double *y0 = h->y + (size_t)lo * (size_t)h->dim, *y1 = y0 + h->dim;
+    const double *d0 = h->yp + (size_t)lo * (size_t)h->dim, *d1 = d0 + h->dim;
+    for (int c = 0; c < h->dim; c++) out[c] = h00 * y0[c] + h10 * dt * d0[c] + h01 * y1[c] + h11 * dt * d1[c];
+}
 
 typedef struct {
     const vt_model *m;  /* driven block (NULL when Q_d is exact) */
@@ -44,6 +74,8 @@ typedef struct {
     int nd;             /* size of the driven block in y */
     int form;           /* vt_formulation */
     double alpha, beta; /* Baumgarte */
+    history *rec;       /* driven run: record its steps here */
+    history *src;       /* forward run: the driven steps, efforts from their interpolant */
 } dae;
 
 static int block_size(const vt_model *m, int form)
@@ -137,7 +169,13 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
     if (!p->mf) return 0;
     const vt_model *m = p->dk ? p->dk->model : p->m;
     vt_data *src = p->dk ? p->dk : p->d;
-    if (p->dk) {
+    if (p->src) { /* the driven run's state at t, interpolated, and its efforts */
+        hermite(p->src, t, p->src->tmp);
+        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
+        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
+        p->dk->time = t;
+        if (vt_inverse_dynamics(m, p->dk)) return 1;
+    } else if (p->dk) {
         p->dk->time = t;
         if (vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)) return 1;
     } else { /* the efforts of the driven block's current λ */
@@ -205,7 +243,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
 {
     vt_data *md = p->msg;
     SUNContext ctx = NULL;
-    N_Vector y = NULL, yp = NULL, id = NULL, atol = NULL;
+    N_Vector y = NULL, yp = NULL, id = NULL, atol = NULL, yint = NULL; /* yint: IDA's own interpolant */
     SUNMatrix A = NULL;
     SUNLinearSolver LS = NULL;
     void *mem = NULL;
@@ -260,10 +298,59 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     CHECK(IDASetStopTime(mem, opt->t1), "IDASetStopTime");
 
 
+    history *h = p->rec;
+    if (h) {
+        yint = N_VNew_Serial(N, ctx);
+        if (!yint) {
+            call = "N_VNew_Serial";
+            flag = -1;
+            goto ida_failed;
+        }
+        h->n = 0;
+        h->err = 0.0;
+    }
+    double tstep = opt->t0;
     for (int k = 1; k <= opt->nout; k++) {
         const double tout = k == opt->nout ? opt->t1 : opt->t0 + (opt->t1 - opt->t0) * k / opt->nout;
         double tret = 0.0;
-        CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
+        if (h) { /* one step at a time, every step recorded, the outputs from IDA's interpolant */
+            if (h->n == 0) { /* the start */
+                h->t[0] = opt->t0;
+                memcpy(h->y, y0, (size_t)h->dim * sizeof(double));
+                memcpy(h->yp, yp0, (size_t)h->dim * sizeof(double));
+                h->n = 1;
+            }
+            long taken = 0;
+            while (tstep < tout) {
+                if (++taken > opt->max_steps) { /* IDA's own mxstep limit does not apply to one-step mode */
+                    md->ida_flag = IDA_TOO_MUCH_WORK;
+                    st = vt_fail(md->message, VT_ERR_IDA,
+                                 "IDASolve: IDA_TOO_MUCH_WORK: %ld steps taken before t = %g (at t = %g)",
+                                 opt->max_steps, tout, tstep);
+                    goto done;
+                }
+                CHECK(IDASolve(mem, opt->t1, &tstep, y, yp, IDA_ONE_STEP), "IDASolve");
+                if (h->n == h->cap) {
+                    st = vt_fail(md->message, VT_ERR_BAD_OPTION,
+                                 "forward check: the driven run took more than history_steps = %d steps", h->cap);
+                    goto done;
+                }
+                h->t[h->n] = tstep;
+                memcpy(h->y + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(y), (size_t)h->dim * sizeof(double));
+                memcpy(h->yp + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(yp), (size_t)h->dim * sizeof(double));
+                h->n++;
+                /* the interpolation's error, against IDA's own interpolant at the step's middle */
+                CHECK(IDAGetDky(mem, 0.5 * (h->t[h->n - 2] + tstep), 0, yint), "IDAGetDky");
+                hermite(h, 0.5 * (h->t[h->n - 2] + tstep), h->tmp);
+                for (int c = 0; c < h->dim; c++)
+                    h->err = fmax(h->err, fabs(h->tmp[c] - N_VGetArrayPointer(yint)[c]));
+            }
+            CHECK(IDAGetDky(mem, tout, 0, yint), "IDAGetDky");
+            tret = tout;
+            memcpy(N_VGetArrayPointer(y), N_VGetArrayPointer(yint), (size_t)N * sizeof(double));
+        } else {
+            CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
+        }
         const double *yv = N_VGetArrayPointer(y);
         if (p->form == VT_FORMULATION_PROJECTION) { /* back onto the constraints, then restart IDA */
             double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
@@ -286,7 +373,16 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
         if (p->mf) {
             const vt_model *m = p->dk ? p->dk->model : p->m;
             vt_data *src = p->dk ? p->dk : p->d;
-            if (p->dk) { /* exact efforts: the kinematic row already stored at this time */
+            if (p->src) { /* the driven run's interpolated state and its efforts */
+                hermite(p->src, tret, p->src->tmp);
+                memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
+                memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
+                p->dk->time = tret;
+                if ((st = vt_inverse_dynamics(m, p->dk))) {
+                    vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
+                    goto done;
+                }
+            } else if (p->dk) { /* exact efforts: the kinematic row already stored at this time */
                 p->dk->time = tret;
                 if ((st = vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit))) {
                     vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
@@ -335,6 +431,7 @@ done:
     if (A) SUNMatDestroy(A);
     if (id) N_VDestroy(id);
     if (atol) N_VDestroy(atol);
+    if (yint) N_VDestroy(yint);
     if (yp) N_VDestroy(yp);
     if (y) N_VDestroy(y);
     if (ctx) SUNContext_Free(&ctx);
@@ -387,7 +484,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     } else {
         vt_trajectory_store_forward(tr, mf, df, 0);
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL};
         st = start(&p, opt, tr);
     }
     vt_data_free(df);
@@ -405,15 +502,53 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     if ((st = vt_kinematic_solve(m, d, opt->newton_tol, opt->newton_maxit))) return st;
     vt_trajectory_store(tr, m, d, 0);
     vt_model *mf = NULL;
-    vt_data *df = NULL;
+    vt_data *df = NULL, *dk = NULL;
+    history h = {0, 0, 0, NULL, NULL, NULL, NULL, 0.0};
+    double *hbuf = NULL;
     if (opt->forward_check && (st = forward_setup(m, d, d->xfrc, opt->forward_as_loads, &mf, &df))) {
         vt_fail(d->message, st, "vt_dynamic_analysis: forward check set-up: %s", df ? df->message : vt_status_string(st));
-    } else {
-        if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
-        dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta};
-        st = start(&p, opt, tr);
+        goto out;
     }
+    if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
+    if (!mf || !opt->forward_independent) { /* the driven run, and the forward one in the same system */
+        dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL};
+        st = start(&p, opt, tr);
+        goto out;
+    }
+    /* independent forward check: the driven run first, every step kept; then the forward run,
+     * its efforts from the driven state interpolated at each time it asks for */
+    h.cap = opt->history_steps;
+    h.dim = m->nq + m->nv;
+    const size_t per = 1 + 2 * (size_t)h.dim;
+    hbuf = malloc(((size_t)h.cap * per + (size_t)h.dim) * sizeof(double));
+    if (!hbuf || (st = vt_data_create(&dk, m))) {
+        st = vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_dynamic_analysis: out of memory for %d steps", h.cap);
+        goto out;
+    }
+    h.t = hbuf;
+    h.y = h.t + h.cap;
+    h.yp = h.y + (size_t)h.cap * (size_t)h.dim;
+    h.tmp = h.yp + (size_t)h.cap * (size_t)h.dim;
+    memcpy(dk->xfrc, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+    memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
+    {
+        dae p = {m, d, NULL, NULL, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL};
+        if ((st = start(&p, opt, tr))) goto out;
+    }
+    {
+        const long steps = tr->steps, res = tr->res_evals;
+        dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h};
+        st = start(&p, opt, tr);
+        tr->steps = steps;
+        tr->res_evals = res;
+        tr->fwd_interp_err = h.err;
+    }
+out:
+    free(hbuf);
+    vt_data_free(dk);
     vt_data_free(df);
     vt_model_free(mf);
     return st;

@@ -20,6 +20,8 @@ vt_run_options vt_default_run_options(void)
     o.newton_tol = 1e-12;
     o.newton_maxit = 30;
     o.forward_check = 1;
+    o.forward_independent = 1;
+    o.history_steps = 100000;
     o.formulation = VT_FORMULATION_GGL;
     o.baumgarte_alpha = 10.0;
     o.baumgarte_beta = 10.0;
@@ -156,7 +158,7 @@ void vt_trajectory_reset(vt_trajectory *tr)
     tr->nfilled = 0;
     tr->nwarn = 0;
     tr->t_warn = NAN;
-    tr->fwd_err_q = tr->fwd_err_qd = tr->fwd_err_force = tr->fwd_err_moment = 0.0;
+    tr->fwd_err_q = tr->fwd_err_qd = tr->fwd_err_force = tr->fwd_err_moment = tr->fwd_interp_err = 0.0;
     tr->steps = tr->res_evals = tr->steps_fwd = tr->res_evals_fwd = 0;
 }
 
@@ -172,7 +174,7 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: nout %d needs 1..%d (the trajectory's rows − 1)", who,
                        opt->nout, tr->nrow - 1);
     if (!(opt->rtol > 0.0) || !(opt->atol > 0.0) || !(opt->max_step >= 0.0) || opt->max_steps < 1 ||
-        !(opt->newton_tol > 0.0) || opt->newton_maxit < 1)
+        !(opt->newton_tol > 0.0) || opt->newton_maxit < 1 || opt->history_steps < 2)
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tolerances, step limits and iteration counts must be positive", who);
     if (opt->formulation < 0 || opt->formulation >= VT_FORMULATION_COUNT || !(opt->baumgarte_alpha >= 0.0) ||
         !(opt->baumgarte_beta >= 0.0) || !isfinite(opt->baumgarte_alpha) || !isfinite(opt->baumgarte_beta))

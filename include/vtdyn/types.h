@@ -365,6 +365,13 @@ typedef struct vt_run_options {
     double newton_tol;       ///< Newton–Raphson stops at max |Φ| ≤ newton_tol (m or rad); default 1e-12
     int newton_maxit;        ///< most Newton iterations per instant; default 30
     int forward_check;       ///< 1: also run the forward check (drives removed, efforts applied); default 1
+    int forward_independent; ///< forward check of a dynamic analysis: 1 runs it after the driven run, as
+                             ///< a separate IDA integration with the efforts taken from the driven run's
+                             ///< steps (cubic Hermite interpolation; its error, measured against IDA's own
+                             ///< interpolant, in vt_trajectory.fwd_interp_err) (default); 0 integrates both
+                             ///< in one IDA system, the efforts from the driven λ at the same time
+    int history_steps;       ///< most driven steps kept for an independent forward check; default 100000
+                             ///< (memory: 8 (1 + 2 (nq + nv)) bytes a step)
     int forward_as_loads;    ///< forward check: 0 applies the drives' generalized force Φ_q^T λ (joint
                              ///< torques, the paper's check; default); 1 applies each drive's own load
                              ///< (a point drive's force at its point), so the reactions compare too
@@ -410,6 +417,8 @@ typedef struct vt_trajectory {
     double fwd_err_qd;       ///< max |q̇_fwd − q̇|
     double fwd_err_force;    ///< max |reaction force (forward) − reaction force (driven)|, N
     double fwd_err_moment;   ///< the same for reaction moments, N·m
+    double fwd_interp_err;   ///< independent forward check: largest error of the interpolated driven state
+                             ///< (q, q̇) against IDA's own interpolant at the steps' midpoints
     long steps;              ///< IDA steps of the driven run (0 for a kinematic analysis)
     long res_evals;          ///< IDA residual evaluations of the driven run
     long steps_fwd;          ///< IDA steps of the forward check
