@@ -139,6 +139,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         o.max_steps = 60;
         o.formulation = (int)(byte(&b) % 6);
         o.forward_check = (int)(byte(&b) % 2);
+        o.forward_independent = (int)(byte(&b) % 2);
         if (vt_trajectory_create(&tr, m, 3) == VT_OK) {
             if (m->nc == m->nv && byte(&b) % 2) vt_kinematic_analysis(m, d, &o, tr);
             else vt_dynamic_analysis(m, d, &o, tr);

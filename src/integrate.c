@@ -179,7 +179,8 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         p->dk->time = t;
         if (vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)) return 1;
     } else { /* the efforts of the driven block's current λ */
-        memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
+        /* (the ODE form has no λ in y: its residual's vt_solve left them in d already) */
+        if (p->form != VT_FORMULATION_ODE) memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
         vt_drive_efforts(m, p->d);
     }
     /* the forward block's positions first: body drives' loads act at its body points */

@@ -186,6 +186,32 @@ static void test_nfourbar_through_singular_pose(void **state)
     }
 }
 
+/* The forward check in one IDA system with each formulation (the ODE form has no λ among the
+ * unknowns: found by the fuzzer reading past y there) and independently: the forward run follows */
+static void test_forward_modes(void **state)
+{
+    (void)state;
+    vt_model *m;
+    assert_ok(vt_scene_double_link(&m, 1));
+    for (int indep = 0; indep < 2; indep++)
+        for (int form = 0; form < VT_FORMULATION_COUNT; form++) {
+            vt_data *d;
+            vt_trajectory *tr;
+            assert_ok(vt_data_create(&d, m));
+            vt_run_options opt = vt_default_run_options();
+            opt.t1 = 0.5;
+            opt.nout = 10;
+            opt.formulation = form;
+            opt.forward_independent = indep;
+            assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+            assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+            if (!(tr->fwd_err_q < 1e-6)) fail_msg("independent %d, formulation %d: forward q error %.3g", indep, form, tr->fwd_err_q);
+            vt_trajectory_free(tr);
+            vt_data_free(d);
+        }
+    vt_model_free(m);
+}
+
 static int fails_late(double t, double out[3], void *user)
 {
     (void)user;
@@ -251,6 +277,7 @@ int main(void)
         cmocka_unit_test(test_free_fourbar),
         cmocka_unit_test(test_formulations_drift),
         cmocka_unit_test(test_nfourbar_through_singular_pose),
+        cmocka_unit_test(test_forward_modes),
         cmocka_unit_test(test_ida_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
