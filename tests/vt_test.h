@@ -81,6 +81,15 @@ static inline double vt_test_potential_energy(const vt_model *m, const vt_data *
     return V;
 }
 
+/* T + V of row k of a trajectory (its state loaded into d) */
+static inline double vt_test_row_energy(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k)
+{
+    memcpy(d->q, tr->q + (size_t)k * (size_t)m->nq, (size_t)m->nq * sizeof(double));
+    memcpy(d->qd, tr->qd + (size_t)k * (size_t)m->nv, (size_t)m->nv * sizeof(double));
+    if (vt_kinematics(m, d) != VT_OK) return NAN;
+    return vt_test_kinetic_energy(m, d) + vt_test_potential_energy(m, d);
+}
+
 /* y = S v (dense, every entry) */
 static inline void vt_test_S_times(double *y, const vt_model *m, const vt_data *d, const double *v)
 {
