@@ -186,6 +186,11 @@ void dgelsd_(const int *m, const int *n, const int *nrhs, double *a, const int *
              double *s, const double *rcond, int *rank, double *work, const int *lwork, int *iwork, int *info);
 void dtrtrs_(const char *uplo, const char *trans, const char *diag, const int *n, const int *nrhs, const double *a,
              const int *lda, double *b, const int *ldb, int *info, size_t l1, size_t l2, size_t l3);
+void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
+void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+             const int *ldb, int *info, size_t l);
+void dpocon_(const char *uplo, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
+             double *work, int *iwork, int *info, size_t l);
 void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt, double *tau,
              double *work, const int *lwork, int *info);
 

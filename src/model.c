@@ -492,6 +492,11 @@ static void build_rows(vt_model *m)
         m->dof_drive[c] = m->con_owner[row];
     }
     m->joint_driven = once;
+    /* every row a joint drive on its own rate (some rates free): (5) reduces to the free rates */
+    int rows_ok = m->nc > 0 && m->nc < m->nv;
+    for (int row = 0; row < m->nc && rows_ok; row++)
+        if (m->con_kind[row] != VT_ROW_JOINT || m->drive_row[m->dof_drive[m->con_dof[row]]] != row) rows_ok = 0;
+    m->joint_rows_only = rows_ok;
 }
 
 void vt_model_free(vt_model *m)

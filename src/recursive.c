@@ -14,7 +14,8 @@
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
  * With every rate driven by one joint drive (the model's joint_driven), q̈ = f''(t) is known
- * and nothing is factorized: the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's Φ_q^T λ with
+ * and nothing is factorized (when only some rates are, joint_rows_only, the free rates' q̈ come
+ * from M*_FF first, then the same inward pass): the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's Φ_q^T λ with
  * unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point P_i less the
  * joint's actuation (τ + qfrc) along its axes. Otherwise M* and Q as above, Φ_q = Φ_x S from
  * the twists, the augmented system (5) and the reactions (25)-(28) as in the dense path.
@@ -129,13 +130,13 @@ static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
 }
 
 /* Every rate driven by a joint drive: q̈ = f'', efforts and reactions in one inward pass. */
-static vt_status joint_driven(const vt_model *m, vt_data *d)
+/* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
+static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 {
-    const int n = m->nbody;
-    const size_t nb = (size_t)n + 1;
-    double *alpha = d->work, *W = alpha + 3 * nb;
     for (int c = 0; c < m->nv; c++) {
-        const int k = m->dof_drive[c], row = m->drive_row[k];
+        const int k = m->dof_drive[c];
+        if (k < 0) continue;
+        const int row = m->drive_row[k];
         double f[3];
         vt_status st = vt_function_eval_valid(f, &m->drive[k].f, d->time);
         if (st)
@@ -147,6 +148,16 @@ static vt_status joint_driven(const vt_model *m, vt_data *d)
         d->gamma[row] = f[2];
         d->qdd[c] = f[2];
     }
+    return VT_OK;
+}
+
+/* with q̈ known for every rate: one inward pass for the joint drives' efforts τ = s · W̄ − qfrc
+ * and every reaction (actuation — a drive's τ and an applied qfrc — is not reaction) */
+static vt_status inward(const vt_model *m, vt_data *d)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1;
+    double *alpha = d->work, *W = alpha + 3 * nb;
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     for (int i = 1; i <= n; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
     subtree_sum(m, W, 6);
@@ -160,19 +171,22 @@ static vt_status joint_driven(const vt_model *m, vt_data *d)
         for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
         for (int k = 0; k < m->body_nv[i]; k++) {
             const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
-            double w[3], v[3];
             int ax;
-            vt_dof_twist(m, d, c, w, v);
-            const double tau = pair(w, v, Wi) - d->qfrc[c];
             const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
-            d->lambda[m->drive_row[dr]] = tau;
-            d->qfrc_drive[c] = tau;
-            d->drive_effort[dr] = tau;
-            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
-            for (int r = 0; r < 3; r++) {
-                df[r] = rot ? 0.0 : tau * e[3 * ax + r];
-                dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
+            double tau = 0.0;
+            if (dr >= 0) {
+                double w[3], v[3];
+                vt_dof_twist(m, d, c, w, v);
+                tau = pair(w, v, Wi) - d->qfrc[c];
+                d->lambda[m->drive_row[dr]] = tau;
+                d->drive_effort[dr] = tau;
+                double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+                for (int r = 0; r < 3; r++) {
+                    df[r] = rot ? 0.0 : tau * e[3 * ax + r];
+                    dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
+                }
             }
+            d->qfrc_drive[c] = tau;
             vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
         }
         vt_mulmat3t(d->jnt_force_body + 3 * i, d->A + 9 * i, f);
@@ -193,7 +207,16 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     if (m->joint_driven) { /* nothing to factorize: always well defined */
         d->rcond = 1.0;
         d->warning = 0;
-        return joint_driven(m, d);
+        if ((st = drive_accelerations(m, d))) return st;
+        return inward(m, d);
+    }
+    if (m->joint_rows_only) { /* q̈ of the free rates from M*_FF (vt_solve), then the inward pass */
+        crba(m, d, d->work);
+        bias(m, d, d->work);
+        memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double)); /* unit rows (R S = I) */
+        for (int r = 0; r < m->nc; r++) d->Phiq[r + (size_t)m->con_dof[r] * (size_t)m->nc] = 1.0;
+        if ((st = drive_accelerations(m, d)) || (st = vt_solve(m, d))) return st;
+        return inward(m, d);
     }
     crba(m, d, d->work);
     bias(m, d, d->work);

@@ -228,6 +228,58 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
     return VT_OK;
 }
 
+/* Every row a joint drive q_k = f_k(t) on a rate of its own: those rates' q̈ are γ, and (5)
+ * reduces to the free rates F, M*_FF q̈_F = Q_F − M*_FD q̈_D, with M*_FF symmetric positive
+ * definite: LAPACK's Cholesky (dpotrf/dpotrs) and its condition estimate (dpocon) on the
+ * mass-metric scaled matrix; then λ_D = (M* q̈ − Q)_D. The same solution as (5), a fraction of
+ * the work. Returns 0, 1 (below rcond_min) or a negative vt_status. */
+static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
+{
+    const int nv = m->nv, nc = m->nc, nf = nv - nc, one = 1;
+    int *freev = d->liwork + nv + nc;                    /* past dpocon's iwork (nf) */
+    double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *qdd = d->xdd; /* xdd: free until vt_reactions */
+    for (int c = 0; c < nv; c++) qdd[c] = 0.0;
+    int k = 0;
+    for (int c = 0; c < nv; c++)
+        if (m->dof_drive[c] < 0) freev[k++] = c;
+    for (int r = 0; r < nc; r++) qdd[m->con_dof[r]] = d->gamma[r];
+    for (int a = 0; a < nf; a++) {
+        const double mii = d->Mstar[freev[a] + (size_t)freev[a] * (size_t)nv];
+        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
+    }
+    for (int j = 0; j < nf; j++)
+        for (int i = j; i < nf; i++)
+            K[i + (size_t)j * (size_t)nf] = d->Mstar[freev[i] + (size_t)freev[j] * (size_t)nv] * s[i] * s[j];
+    for (int i = 0; i < nf; i++) {
+        double v = d->Q[freev[i]];
+        for (int r = 0; r < nc; r++) v -= d->Mstar[freev[i] + (size_t)m->con_dof[r] * (size_t)nv] * d->gamma[r];
+        b[i] = v * s[i];
+    }
+    int info = 0;
+    const double anorm = dlansy_("1", "L", &nf, K, &nf, d->lwork, 1, 1);
+    dpotrf_("L", &nf, K, &nf, &info, 1);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrf info %d", info);
+    double rcond = 0.0;
+    if (info == 0) {
+        dpocon_("L", &nf, K, &nf, &anorm, &rcond, d->lwork, d->liwork, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
+    }
+    *rcond_out = rcond;
+    if (!(rcond >= m->rcond_min)) return 1;
+    dpotrs_("L", &nf, &one, K, &nf, b, &nf, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+    for (int i = 0; i < nf; i++) qdd[freev[i]] = b[i] * s[i];
+    if (!vt_all_finite(qdd, nv)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    memcpy(d->qdd, qdd, (size_t)nv * sizeof(double));
+    for (int r = 0; r < nc; r++) {
+        const int c = m->con_dof[r];
+        double v = -d->Q[c];
+        for (int j = 0; j < nv; j++) v += d->Mstar[c + (size_t)j * (size_t)nv] * qdd[j];
+        d->lambda[r] = v;
+    }
+    return 0;
+}
+
 vt_status vt_solve(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_solve");
@@ -236,6 +288,20 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
     double rcond = 0.0;
+    if (m->joint_rows_only) {
+        const int r = joint_rows_solve(m, d, &rcond);
+        if (r < 0) return (vt_status)r;
+        d->rcond = rcond;
+        d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
+        if (r == 1)
+            return vt_fail(d->message, VT_ERR_SINGULAR,
+                           "vt_solve: the free rates' mass matrix has rcond %.3g < %.3g: a motion without inertia "
+                           "that no drive fixes", rcond, m->rcond_min);
+        d->rank = nc;
+        d->residual = 0.0;
+        mark_unique(m, d);
+        return VT_OK;
+    }
     const int r = factor_solve(m, d, NULL, nc, &rcond);
     if (r < 0) return (vt_status)r;
     d->rcond = rcond;

@@ -237,6 +237,8 @@ typedef struct vt_model {
     int *dof_drive;          ///< the joint drive of each rate, −1 if none (nv)
     int joint_driven;        ///< 1 when every rate has exactly one joint drive and there is no other
                              ///< constraint row: efforts then come without factorizing anything
+    int joint_rows_only;     ///< 1 when every row is a joint drive on a rate of its own and some rates
+                             ///< are free: (5) is solved on the free rates alone (Cholesky)
 } vt_model;
 
 /// The data of one model: inputs, every result, and all scratch space. Allocated once by
