@@ -164,14 +164,6 @@ int vt_cut_nrows(int joint_type);
 int vt_drive_rows(const vt_model *m);
 
 /* LAPACK routines of the solve (solve.c) */
-void dsyequb_(const char *uplo, const int *n, const double *a, const int *lda, double *s, double *scond,
-              double *amax, double *work, int *info, size_t luplo);
-void dsytrf_(const char *uplo, const int *n, double *a, const int *lda, int *ipiv, double *work,
-             const int *lwork, int *info, size_t luplo);
-void dsytrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda,
-             const int *ipiv, double *b, const int *ldb, int *info, size_t luplo);
-void dsycon_(const char *uplo, const int *n, const double *a, const int *lda, const int *ipiv,
-             const double *anorm, double *rcond, double *work, int *iwork, int *info, size_t luplo);
 void dsytrf_rk_(const char *uplo, const int *n, double *a, const int *lda, double *e, int *ipiv, double *work,
                 const int *lwork, int *info, size_t luplo);
 void dsytrs_3_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, const double *e,
@@ -193,6 +185,13 @@ void dpocon_(const char *uplo, const int *n, const double *a, const int *lda, co
              double *work, int *iwork, int *info, size_t l);
 void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt, double *tau,
              double *work, const int *lwork, int *info);
+void dgetf2_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
+             double *b, const int *ldb, int *info, size_t ltrans);
+void dgecon_(const char *norm, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
+             double *work, int *iwork, int *info, size_t lnorm);
+double dlange_(const char *norm, const int *m, const int *n, const double *a, const int *lda, double *work,
+               size_t lnorm);
 
 /* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
  * (Φ_q^T z = 0) changes by more than tol of its largest change (reactions.c) */

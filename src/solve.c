@@ -280,6 +280,53 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
     return 0;
 }
 
+/* As many independent constraint rows as rates (a kinematically determined mechanism: the
+ * drives fix the whole motion, as the crank of a four-bar does): Φ_q is square and (5) splits
+ * into its two block rows,
+ *
+ *   Φ_q q̈ = γ,        Φ_q^T λ = M* q̈ − Q,                                   (5), (2)
+ *
+ * one LU factorization of Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes the
+ * blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), the
+ * mass metric of factor_solve) serving both solves (dgetrs, then its transpose). M* is not
+ * factorized at all: a quarter of the augmented matrix's size, an eighth of its work. The two
+ * solves in sequence amplify errors by cond(Φ_q D) each, so the reported estimate is dgecon's
+ * squared, the scale of the augmented matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)).
+ * Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
+static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
+{
+    const int n = m->nv, one = 1;
+    double *A = d->kkt, *s = d->kkt_scale, *x = d->kkt_rhs, *g = d->kkt_rhs + n;
+    for (int a = 0; a < n; a++) {
+        const double mii = d->Mstar[a + (size_t)a * (size_t)n];
+        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
+    }
+    for (int c = 0; c < n; c++)
+        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+    int info = 0;
+    const double anorm = dlange_("1", &n, &n, A, &n, d->lwork, 1);
+    dgetf2_(&n, &n, A, &n, d->ipiv, &info);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    double rcond = 0.0;
+    if (info == 0) {
+        dgecon_("1", &n, A, &n, &anorm, &rcond, d->lwork, d->liwork, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
+    }
+    *rcond_out = rcond * rcond;
+    if (!(*rcond_out >= m->rcond_min)) return 1;
+    memcpy(x, d->gamma, (size_t)n * sizeof(double));
+    dgetrs_("N", &n, &one, A, &n, d->ipiv, x, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    for (int a = 0; a < n; a++) x[a] *= s[a];                       /* q̈ = D y */
+    memcpy(g, d->Q, (size_t)n * sizeof(double));
+    cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, x, 1, -1.0, g, 1);
+    for (int a = 0; a < n; a++) g[a] *= s[a];                       /* (Φ_q D)^T λ = D g */
+    dgetrs_("T", &n, &one, A, &n, d->ipiv, g, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    if (!vt_all_finite(x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    return 0;
+}
+
 vt_status vt_solve(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_solve");
@@ -302,7 +349,8 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
         mark_unique(m, d);
         return VT_OK;
     }
-    const int r = factor_solve(m, d, NULL, nc, &rcond);
+    const int square = nc == nv && nc > 0;
+    const int r = square ? square_solve(m, d, &rcond) : factor_solve(m, d, NULL, nc, &rcond);
     if (r < 0) return (vt_status)r;
     d->rcond = rcond;
     d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
@@ -318,8 +366,8 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     d->rank = nc;
     d->residual = 0.0;
     mark_unique(m, d);
-    const double *b = d->kkt_rhs;
+    const double *b = d->kkt_rhs; /* [q̈; λ] from square_solve, [q̈; −λ] from factor_solve */
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
-    for (int k = 0; k < nc; k++) d->lambda[k] = -b[nv + k];
+    for (int k = 0; k < nc; k++) d->lambda[k] = square ? b[nv + k] : -b[nv + k];
     return VT_OK;
 }

@@ -271,11 +271,76 @@ static void test_redundant_fourbar(void **state)
     vt_model_free(rsur);
 }
 
+/* as many rows as rates (the RSUR four-bar, the crank driven): (5) is solved through an LU of
+ * Φ_q alone; against the whole augmented matrix by a general LU (dgesv), and its condition
+ * estimate against the exact one of the scaled Φ_q (explicit inverse), squared */
+static void test_square_constraints(void **state)
+{
+    (void)state;
+    extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_fourbar(&m, vt_function_sine(0.3, 1.0, 2.0, 0.0)));
+    assert_int_equal(m->nc, m->nv);
+    assert_ok(vt_data_create(&d, m));
+    const int nv = m->nv, N = 2 * nv, one = 1;
+    double K[400], x[20], A[100], Ainv[100];
+    int ipiv[20], info = 0;
+    for (double th = 0.2; th < 6.2; th += 0.7) {
+        assert_int_equal(vt_scene_fourbar_assemble(m, d, th, 1.3, NULL, NULL), 0);
+        assert_ok(vt_inverse_dynamics(m, d));
+        for (int c = 0; c < N; c++)
+            for (int r = 0; r < N; r++) {
+                double v = 0.0;
+                if (r < nv && c < nv) v = d->Mstar[r + c * nv];
+                else if (r >= nv && c < nv) v = d->Phiq[(r - nv) + c * nv];
+                else if (r < nv && c >= nv) v = d->Phiq[(c - nv) + r * nv];
+                K[r + c * N] = v;
+            }
+        for (int k = 0; k < nv; k++) {
+            x[k] = d->Q[k];
+            x[nv + k] = d->gamma[k];
+        }
+        dgesv_(&N, &one, K, &N, ipiv, x, &N, &info);
+        assert_int_equal(info, 0);
+        const double qs = 1.0 + vt_test_maxabs(x, nv), ls = 1.0 + vt_test_maxabs(x + nv, nv);
+        for (int k = 0; k < nv; k++) {
+            assert_near(d->qdd[k], x[k], 1e-11 * qs);
+            assert_near(d->lambda[k], -x[nv + k], 1e-11 * ls);
+        }
+        /* exact 1-norm condition of Φ_q D, D = diag(M*_aa^(-1/2)) */
+        double an = 0.0, in = 0.0;
+        for (int c = 0; c < nv; c++) {
+            double cs = 0.0;
+            for (int r = 0; r < nv; r++) {
+                A[r + c * nv] = d->Phiq[r + c * nv] / sqrt(d->Mstar[c + c * nv]);
+                Ainv[r + c * nv] = r == c;
+                cs += fabs(A[r + c * nv]);
+            }
+            an = fmax(an, cs);
+        }
+        dgesv_(&nv, &nv, A, &nv, ipiv, Ainv, &nv, &info);
+        assert_int_equal(info, 0);
+        for (int c = 0; c < nv; c++) {
+            double cs = 0.0;
+            for (int r = 0; r < nv; r++) cs += fabs(Ainv[r + c * nv]);
+            in = fmax(in, cs);
+        }
+        const double exact = 1.0 / (an * in);
+        /* Hager's estimator gives a lower bound of ‖A^-1‖, usually within a factor 3 */
+        assert_true(d->rcond >= exact * exact * (1.0 - 1e-12));
+        assert_true(d->rcond <= 9.0 * exact * exact);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fully_joint_driven_chain),
         cmocka_unit_test(test_free_tree),
+        cmocka_unit_test(test_square_constraints),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_bad_definitions),
         cmocka_unit_test(test_redundant_fourbar),
