@@ -490,3 +490,54 @@ void vt_scene_nfourbar_start(const vt_model *m, vt_data *d, int N, double w)
         d->qd[m->body_vadr[N + 1 + k]] = w;
     }
 }
+
+vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut_kind, int drive, vt_function f)
+{
+    /* the corners, each rod's direction and each joint's axis (global = body axes at q = 0) */
+    static const double corner[6][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, {0, 0, 1}};
+    static const int axis[6] = {1, 2, 0, 1, 2, 0}; /* y, z, x, y, z, x */
+    if (cut_kind != VT_JOINT_REVOLUTE && cut_kind != VT_JOINT_UNIVERSAL) return VT_ERR_BAD_CUT_JOINT;
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = cut_kind == VT_JOINT_REVOLUTE;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    const double It = (1.0 + 0.01) / 12.0, Il = 2.0 * 0.01 / 12.0; /* m (L² + a²) / 12, m 2a² / 12 */
+    double com[6][3];
+    int id = 0;
+    for (int k = 0; k < 5 && id >= 0; k++) {
+        vt_body_def rod = vt_default_body_def();
+        int dir = 0;
+        for (int c = 0; c < 3; c++) {
+            com[k][c] = 0.5 * (corner[k][c] + corner[k + 1][c]);
+            if (corner[k + 1][c] != corner[k][c]) dir = c;
+        }
+        for (int c = 0; c < 3; c++) rod.inertia[4 * c] = c == dir ? Il : It;
+        rod.parent = k;
+        for (int c = 0; c < 3; c++) {
+            rod.joint_parent[c] = corner[k][c] - (k > 0 ? com[k - 1][c] : 0.0);
+            rod.joint_child[c] = corner[k][c] - com[k][c];
+            rod.axis1[c] = c == axis[k];
+        }
+        id = vt_builder_add_body(b, &rod);
+    }
+    if (id > 0) {
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.joint = cut_kind;
+        cut.body_a = 0;
+        cut.body_b = 5;
+        for (int c = 0; c < 3; c++) {
+            cut.point_a[c] = corner[5][c];
+            cut.point_b[c] = corner[5][c] - com[4][c];
+            cut.axis1[c] = c == axis[5];
+            cut.axis2[c] = c == 2;
+        }
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    if (id >= 0 && drive) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.f = f;
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}

@@ -95,6 +95,17 @@ vt_status vt_scene_pendulum(vt_model **model);
 vt_status vt_scene_nfourbar(vt_model **model, int N);
 void vt_scene_nfourbar_start(const vt_model *model, vt_data *data, int N, double w);
 
+/* IFToMM benchmark A04, Bricard's mechanism: five 1 m, 1 kg rods (square section 0.1 m) and
+ * six revolute joints, consecutive axes perpendicular, gravity (0, −9.81, 0). At q = 0 the
+ * joints sit on six corners of the unit cube, (0,0,0) → (1,0,0) → (1,1,0) → (1,1,1) → (0,1,1)
+ * → (0,0,1), axes y, z, x, y, z and x; rods 1..5 run between consecutive corners, the ground
+ * link from (0,0,1) to (0,0,0). Grübler counts 0 degrees of freedom, the mechanism has 1.
+ * cut: VT_JOINT_REVOLUTE closes the loop at (0,0,1) as the sixth revolute (5 rows for 5 rates:
+ * one dependent, the model allows redundant rows); VT_JOINT_UNIVERSAL closes it with a
+ * universal joint (axes x on the ground, z on rod 5: 4 independent rows), the non-redundant
+ * model of the same motion. drive: when nonzero, rod 1's joint angle follows f. */
+vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut, int drive, vt_function f);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */

@@ -33,7 +33,7 @@ static size_t work_size(const vt_model *m)
 /* LAPACK workspace of the solve, from LAPACK's own workspace queries: dsytrf on the
  * augmented matrix, dgeqp3 on Φ_q^T (nv x nc) plus its copy and τ, and 3 N for dsyequb,
  * dsycon and dlansy, dgels on Φ_q. */
-static int lapack_work_size(const vt_model *m)
+static int lapack_work_size(const vt_model *m, size_t *niwork)
 {
     const int N = m->nv + m->nc, nv = m->nv, nc = m->nc;
     int info = 0, lw = -1, need = 3 * N;
@@ -45,13 +45,14 @@ static int lapack_work_size(const vt_model *m)
         dgeqp3_(&nv, &nc, &dummy, &nv, &idummy, &dummy, &q, &lw, &info);
         const int qr = (info == 0 ? (int)q : 3 * nc + 1) + nv * nc + nc;
         if (qr > need) need = qr;
-        /* dgelsd on Φ_q^T (nv x nc): the minimum-norm multipliers of a redundant solve */
+        /* dgelsd on the augmented matrix (N x N): the minimum-norm solve of redundant rows */
         int iq = 0;
         const int ldb2 = nc > nv ? nc : nv, one2 = 1;
         double rc = -1.0;
         int rank = 0;
-        dgelsd_(&nv, &nc, &one2, &dummy, &nv, &dummy, &ldb2, &dummy, &rc, &rank, &q, &lw, &iq, &info);
-        if (info == 0 && (int)q + nv * nc + ldb2 > need) need = (int)q + nv * nc + ldb2;
+        dgelsd_(&N, &N, &one2, &dummy, &N, &dummy, &N, &dummy, &rc, &rank, &q, &lw, &iq, &info);
+        if (info == 0 && (int)q > need) need = (int)q;
+        if (info == 0 && (size_t)iq > *niwork) *niwork = (size_t)iq;
         dgelsd_(&nc, &nv, &one2, &dummy, &nc, &dummy, &ldb2, &dummy, &rc, &rank, &q, &lw, &iq, &info);
         if (info == 0 && (int)q > need) need = (int)q; /* and on Φ_q itself (projections) */
         /* dgels on Φ_q (nc x nv) for the Newton and velocity corrections */
@@ -112,10 +113,11 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->kkt = take(base, &used, N * N * sizeof(double));
     d->kkt_rhs = take(base, &used, N * sizeof(double));
     d->kkt_scale = take(base, &used, 2 * N * sizeof(double)); /* scaling, then D's off-diagonal */
-    d->nlwork = lapack_work_size(m);
+    size_t niwork = 33 * N + 64; /* pivots of dsycon, dgeqp3; dgelsd's iwork (raised by its query) */
+    d->nlwork = lapack_work_size(m, &niwork);
     d->lwork = take(base, &used, (size_t)d->nlwork * sizeof(double));
     d->ipiv = take(base, &used, N * sizeof(int));
-    d->liwork = take(base, &used, (N + 32 * N + 64) * sizeof(int)); /* pivots of dsycon, dgeqp3; dgelsd's iwork */
+    d->liwork = take(base, &used, niwork * sizeof(int));
     d->qsave = take(base, &used, ((size_t)m->nq + nv) * sizeof(double));
     d->lambda_unique = take(base, &used, (nc ? nc : 1) * sizeof(int));
     d->jnt_unique = take(base, &used, 6 * nb * sizeof(int));

@@ -18,7 +18,9 @@
  * estimate falls below rcond_min is refused: Φ_q of full row rank with M* singular on its null
  * space means a motion without inertia that nothing fixes (VT_ERR_SINGULAR); rows of Φ_q that
  * a rank-revealing QR with column pivoting (dgeqp3 on the row-normalized Φ_q^T) finds dependent
- * are named (VT_ERR_DEPENDENT_CONSTRAINTS).
+ * are named (VT_ERR_DEPENDENT_CONSTRAINTS). Two other paths, each said where it is done: as
+ * many rows as rates (LU of Φ_q alone, square_solve) and, for models that allow redundant
+ * rows, the minimum-norm least-squares solution by SVD (redundant_solve).
  */
 #include <stdio.h>
 #include <string.h>
@@ -39,7 +41,7 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
 static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
 {
     const int nv = m->nv, nc = m->nc;
-    double *A = d->lwork, *tau = A + (size_t)nv * (size_t)nc, *work = tau + nc;
+    double *A = d->lwork, *tau_qr = A + (size_t)nv * (size_t)nc, *work = tau_qr + nc;
     int *jpvt = d->liwork;
     const int lwork = d->nlwork - nv * nc - nc;
     for (int r = 0; r < nc; r++) {
@@ -50,12 +52,15 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
         jpvt[r] = 0;
     }
     int info = 0;
-    dgeqp3_(&nv, &nc, A, &nv, jpvt, tau, work, &lwork, &info);
+    dgeqp3_(&nv, &nc, A, &nv, jpvt, tau_qr, work, &lwork, &info);
     if (info != 0) return nc;
     const int kmax = nv < nc ? nv : nc;
     const double r11 = kmax > 0 ? fabs(A[0]) : 0.0;
     int rank = 0;
-    while (rank < kmax && fabs(A[rank + (size_t)rank * (size_t)nv]) > 1e-9 * r11) rank++;
+    /* the augmented matrix's condition goes as the square of Φ_q's: rows are dependent to the
+     * precision rcond_min asks for when R's diagonal falls below sqrt(rcond_min) of its first */
+    const double tau = sqrt(m->rcond_min);
+    while (rank < kmax && fabs(A[rank + (size_t)rank * (size_t)nv]) > tau * r11) rank++;
     if (rank == nc) return rank;
     int len = snprintf(d->message, sizeof d->message,
                        "vt_solve: rcond %.3g; Φ_q has rank %d of %d rows; dependent:", rcond, rank, nc);
@@ -68,15 +73,14 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
     return rank;
 }
 
-/* Factor and solve the augmented system of (5) restricted to the constraint rows `rows`
- * (nr of them; all rows when rows == NULL) into b = [q̈; −λ_rows]; the condition estimate into
+/* Factor and solve the augmented system of (5) into b = [q̈; −λ]; the condition estimate into
  * *rcond_out. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
-static int factor_solve(const vt_model *m, vt_data *d, const int *rows, int nr, double *rcond_out)
+static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
-    const int nv = m->nv, nc = m->nc, N = nv + nr, one = 1;
+    const int nv = m->nv, nc = m->nc, nr = nc, N = nv + nr, one = 1;
     const size_t ld = (size_t)N;
     double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *E = d->kkt_scale + N;
-#define PHI(r, c) d->Phiq[(size_t)(rows ? rows[r] : (r)) + (size_t)(c) * (size_t)nc]
+#define PHI(r, c) d->Phiq[(size_t)(r) + (size_t)(c) * (size_t)nc]
     /* lower triangle: M* then the rows of Φ_q below it, zero block */
     for (int c = 0; c < nv; c++) {
         for (int r = c; r < nv; r++) K[r + c * ld] = d->Mstar[r + (size_t)c * (size_t)nv];
@@ -85,7 +89,7 @@ static int factor_solve(const vt_model *m, vt_data *d, const int *rows, int nr, 
     for (int c = nv; c < N; c++)
         for (int r = c; r < N; r++) K[r + c * ld] = 0.0;
     memcpy(b, d->Q, (size_t)nv * sizeof(double));
-    for (int r = 0; r < nr; r++) b[nv + r] = d->gamma[rows ? rows[r] : r];
+    for (int r = 0; r < nr; r++) b[nv + r] = d->gamma[r];
 
     /* symmetric scaling D K D: the rates by the mass metric, d_a = M*_aa^(-1/2), and every
      * constraint row by one common factor, 1 / (largest row norm of Φ_q D). One factor for all
@@ -129,7 +133,7 @@ static int factor_solve(const vt_model *m, vt_data *d, const int *rows, int nr, 
     memcpy(res, d->Q, (size_t)nv * sizeof(double));
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
     for (int r = 0; r < nr; r++) {
-        double v = d->gamma[rows ? rows[r] : r];
+        double v = d->gamma[r];
         for (int c = 0; c < nv; c++) {
             res[c] -= PHI(r, c) * b[nv + r];
             v -= PHI(r, c) * b[c];
@@ -145,11 +149,15 @@ static int factor_solve(const vt_model *m, vt_data *d, const int *rows, int nr, 
     return 0;
 }
 
-/* Redundant rows: q̈ from the independent rows (the first `rank` pivots of the QR left in
- * lwork by dependent_rows), then the minimum-norm λ of Φ_q^T λ = M* q̈ − Q over all rows
- * (LAPACK's dgelsd), the residual max |Φ_q q̈ − γ|, and which multipliers and reactions are not
- * unique: those that change along the null directions z of Φ_q^T (from the QR:
- * z = P [−R11^{-1} R12; I] in the row-normalized space). */
+/* Redundant rows: the minimum-norm least-squares solution of the whole augmented system (5),
+ * scaled as in factor_solve, by LAPACK's SVD-based dgelsd with singular values below 1e-9 of
+ * the largest taken as zero. q̈ is unique (M* is positive definite on Φ_q's null space) and
+ * λ comes out of minimum norm; with consistent γ both satisfy (5) exactly, and where γ is
+ * slightly inconsistent (constraint drift during a time analysis) the least-squares q̈ still
+ * depends continuously on the state, which an integrator needs. Then the residual
+ * max |Φ_q q̈ − γ|, and which multipliers and reactions are not unique: those that change
+ * along the null directions z of Φ_q^T, from the QR of dependent_rows
+ * (z = P [−R11^{-1} R12; I] in the row-normalized space). */
 static void mark_unique(const vt_model *m, vt_data *d)
 {
     for (int r = 0; r < m->nc; r++) d->lambda_unique[r] = 1;
@@ -159,18 +167,17 @@ static void mark_unique(const vt_model *m, vt_data *d)
 
 static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
 {
-    const int nv = m->nv, nc = m->nc, nfree = nc - rank, one = 1;
+    const int nv = m->nv, nc = m->nc, nfree = nc - rank, N = nv + nc, one = 1;
     const double *A = d->lwork; /* the QR of the row-normalized Φ_q^T left by dependent_rows */
     double *X = d->red_work, *rownorm = X + (size_t)rank * (size_t)nfree;
-    int *perm = d->red_iwork, *indep = perm + nc;
+    int *perm = d->red_iwork;
     for (int k = 0; k < nc; k++) perm[k] = d->liwork[k] - 1;
-    for (int i = 0; i < rank; i++) indep[i] = perm[i];
     for (int r = 0; r < nc; r++) {
         double sn = 0.0;
         for (int c = 0; c < nv; c++) sn += d->Phiq[r + (size_t)c * (size_t)nc] * d->Phiq[r + (size_t)c * (size_t)nc];
         rownorm[r] = sqrt(sn);
     }
-    /* X = R11^{-1} R12 */
+    /* X = R11^{-1} R12 (before dgelsd reuses the workspace) */
     for (int j = 0; j < nfree; j++)
         for (int i = 0; i < rank; i++) X[i + (size_t)j * (size_t)rank] = A[i + (size_t)(rank + j) * (size_t)nv];
     int info = 0;
@@ -178,16 +185,43 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
         dtrtrs_("U", "N", "N", &rank, &nfree, A, &nv, X, &rank, &info, 1, 1, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dtrtrs info %d", info);
     }
-    /* q̈ from the independent rows */
-    double rcond = 0.0;
-    const int st = factor_solve(m, d, indep, rank, &rcond);
-    if (st < 0) return (vt_status)st;
-    d->rcond = rcond;
-    if (st == 1)
+    /* the whole scaled augmented matrix, both triangles */
+    double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *sv = d->kkt_scale + N;
+    const size_t ld = (size_t)N;
+    for (int a = 0; a < nv; a++) {
+        const double mii = d->Mstar[a + (size_t)a * (size_t)nv];
+        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
+    }
+    double rmax = 0.0;
+    for (int r = 0; r < nc; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < nv; c++) rn += d->Phiq[r + (size_t)c * (size_t)nc] * s[c] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+        rmax = fmax(rmax, sqrt(rn));
+    }
+    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+    for (int c = 0; c < N; c++)
+        for (int r = 0; r < N; r++) {
+            double v = 0.0;
+            if (r < nv && c < nv) v = d->Mstar[r + (size_t)c * (size_t)nv];
+            else if (r >= nv && c < nv) v = d->Phiq[(r - nv) + (size_t)c * (size_t)nc];
+            else if (r < nv) v = d->Phiq[(c - nv) + (size_t)r * (size_t)nc];
+            K[r + c * ld] = v * s[r] * s[c];
+        }
+    for (int k = 0; k < nv; k++) b[k] = d->Q[k] * s[k];
+    for (int r = 0; r < nc; r++) b[nv + r] = d->gamma[r] * s[nv + r];
+    const double rc = m->rcond_min; /* the dependent rows of Φ_q leave singular values ~ R_kk² */
+    int rk = 0;
+    dgelsd_(&N, &N, &one, K, &N, b, &N, sv, &rc, &rk, d->lwork, &d->nlwork, d->liwork, &info);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
+    d->rcond = rk > 0 ? sv[rk - 1] / sv[0] : 0.0;
+    if (rk < nv)
         return vt_fail(d->message, VT_ERR_SINGULAR,
-                       "vt_solve: Φ_q has rank %d of %d rows, and its independent rows leave rcond %.3g < %.3g",
-                       rank, nc, rcond, m->rcond_min);
-    memcpy(d->qdd, d->kkt_rhs, (size_t)nv * sizeof(double));
+                       "vt_solve: Φ_q has rank %d of %d rows, and the augmented matrix keeps rank %d of %d "
+                       "(rcond %.3g): a motion without inertia that nothing fixes", rank, nc, rk, N, d->rcond);
+    for (int k = 0; k < N; k++) b[k] *= s[k];
+    if (!vt_all_finite(b, N)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    memcpy(d->qdd, b, (size_t)nv * sizeof(double));
+    for (int r = 0; r < nc; r++) d->lambda[r] = -b[nv + r];
     double resid = 0.0;
     for (int r = 0; r < nc; r++) {
         double v = -d->gamma[r];
@@ -195,19 +229,6 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
         resid = fmax(resid, fabs(v));
     }
     d->residual = resid;
-    /* minimum-norm λ of Φ_q^T λ = g = M* q̈ − Q (dgelsd, SVD based) */
-    const int ldb = nc > nv ? nc : nv;
-    double *At = d->kkt, *g = At + (size_t)nv * (size_t)nc, *sv = g + ldb;
-    for (int r = 0; r < nc; r++)
-        for (int c = 0; c < nv; c++) At[c + (size_t)r * (size_t)nv] = d->Phiq[r + (size_t)c * (size_t)nc];
-    for (int k = 0; k < nv; k++) g[k] = -d->Q[k];
-    for (int k = nv; k < ldb; k++) g[k] = 0.0;
-    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, d->qdd, 1, 1.0, g, 1);
-    const double rc = 1e-10;
-    int rk = 0;
-    dgelsd_(&nv, &nc, &one, At, &nv, g, &ldb, sv, &rc, &rk, d->lwork, &d->nlwork, d->liwork, &info);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
-    memcpy(d->lambda, g, (size_t)nc * sizeof(double));
     /* the null directions z of Φ_q^T: which multipliers and reactions they change */
     mark_unique(m, d);
     for (int j = 0; j < nfree; j++) {
@@ -224,7 +245,7 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
         vt_reaction_sensitivity(m, d, z, 1e-9);
     }
     d->rank = rank;
-    d->warning |= VT_WARN_REDUNDANT;
+    d->warning = (d->rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0) | VT_WARN_REDUNDANT;
     return VT_OK;
 }
 
@@ -349,8 +370,14 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
         mark_unique(m, d);
         return VT_OK;
     }
+    if (m->allow_redundant && nc > 0) {
+        /* rank first: near a redundant model's constraint manifold Φ_q is only nearly
+         * rank-deficient, and solving its near-dependent rows exactly would amplify the drift */
+        const int rank = dependent_rows(m, d, NAN);
+        if (rank < nc) return redundant_solve(m, d, rank);
+    }
     const int square = nc == nv && nc > 0;
-    const int r = square ? square_solve(m, d, &rcond) : factor_solve(m, d, NULL, nc, &rcond);
+    const int r = square ? square_solve(m, d, &rcond) : factor_solve(m, d, &rcond);
     if (r < 0) return (vt_status)r;
     d->rcond = rcond;
     d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;

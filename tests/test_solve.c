@@ -271,6 +271,62 @@ static void test_redundant_fourbar(void **state)
     vt_model_free(rsur);
 }
 
+/* IFToMM A04, Bricard's mechanism: six revolute joints on a loop of six links, Grübler count
+ * 0, mobility 1. Closed by a revolute cut joint its Φ_q has rank 4 of 5 rows (5 of 6 with rod
+ * 1 driven): refused by default, solved with allow_redundant; closed by a universal joint (4
+ * independent rows) it is the non-redundant model of the same motion. Along a driven motion
+ * (the positions by the kinematic solve, continued from the cube pose) the accelerations,
+ * the drive's torque and every reaction component reported unique agree between the two;
+ * the cut joint's moments about the axes the universal joint leaves free are not unique. */
+static void test_bricard(void **state)
+{
+    (void)state;
+    const vt_function f = vt_function_sine(0.0, -0.3, 1.5, 0.0);
+    vt_model *red, *uni;
+    vt_data *dr, *du;
+    assert_ok(vt_scene_bricard(&red, VT_JOINT_REVOLUTE, 1, f));
+    assert_ok(vt_scene_bricard(&uni, VT_JOINT_UNIVERSAL, 1, f));
+    assert_int_equal(red->nc, 6);
+    assert_int_equal(uni->nc, 5);
+    assert_ok(vt_data_create(&dr, red));
+    assert_ok(vt_data_create(&du, uni));
+    for (int k = 0; k <= 20; k++) {
+        dr->time = du->time = 0.05 * k;
+        assert_ok(vt_kinematic_solve(red, dr, 1e-13, 30));
+        assert_ok(vt_kinematic_solve(uni, du, 1e-13, 30));
+        for (int j = 0; j < 5; j++) {
+            assert_near(dr->q[j], du->q[j], 1e-10);
+            assert_near(dr->qd[j], du->qd[j], 1e-10);
+        }
+        assert_ok(vt_inverse_dynamics(red, dr));
+        assert_ok(vt_inverse_dynamics(uni, du));
+        assert_int_equal(dr->rank, 5);
+        assert_true(dr->warning & VT_WARN_REDUNDANT);
+        assert_false(du->warning & VT_WARN_REDUNDANT);
+        assert_true(dr->residual < 1e-12);
+        for (int j = 0; j < 5; j++) assert_near(dr->qdd[j], du->qdd[j], 1e-9 * (1 + vt_test_maxabs(du->qdd, 5)));
+        assert_near(dr->drive_effort[0], du->drive_effort[0], 1e-9 * (1 + fabs(du->drive_effort[0])));
+        assert_int_equal(dr->lambda_unique[0], 1);
+        const double tol = 1e-8 * (1 + vt_test_maxabs(du->jnt_force, 18) + vt_test_maxabs(du->jnt_moment, 18));
+        int nonunique = 0;
+        for (int i = 1; i <= 5; i++)
+            for (int c = 0; c < 3; c++) {
+                if (dr->jnt_unique[6 * i + c]) assert_near(dr->jnt_force[3 * i + c], du->jnt_force[3 * i + c], tol);
+                if (dr->jnt_unique[6 * i + 3 + c]) assert_near(dr->jnt_moment[3 * i + c], du->jnt_moment[3 * i + c], tol);
+                nonunique += !dr->jnt_unique[6 * i + c] + !dr->jnt_unique[6 * i + 3 + c];
+            }
+        for (int c = 0; c < 3; c++)
+            if (dr->cut_unique[c]) assert_near(dr->cut_force[c], du->cut_force[c], tol);
+        assert_true(nonunique > 0);
+        assert_true(dr->cut_unique[3 + 1] == 0 || dr->cut_unique[3 + 2] == 0);
+        for (int c = 0; c < 6; c++) assert_int_equal(du->cut_unique[c], 1);
+    }
+    vt_data_free(dr);
+    vt_data_free(du);
+    vt_model_free(red);
+    vt_model_free(uni);
+}
+
 /* as many rows as rates (the RSUR four-bar, the crank driven): (5) is solved through an LU of
  * Φ_q alone; against the whole augmented matrix by a general LU (dgesv), and its condition
  * estimate against the exact one of the scaled Φ_q (explicit inverse), squared */
@@ -344,6 +400,7 @@ int main(void)
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_bad_definitions),
         cmocka_unit_test(test_redundant_fourbar),
+        cmocka_unit_test(test_bricard),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
