@@ -329,7 +329,7 @@ static void test_bricard(void **state)
 
 /* as many rows as rates (the RSUR four-bar, the crank driven): (5) is solved through an LU of
  * Φ_q alone; against the whole augmented matrix by a general LU (dgesv), and its condition
- * estimate against the exact one of the scaled Φ_q (explicit inverse), squared */
+ * reciprocal condition against the exact one of the scaled Φ_q (explicit inverse), squared */
 static void test_square_constraints(void **state)
 {
     (void)state;
@@ -383,10 +383,63 @@ static void test_square_constraints(void **state)
             in = fmax(in, cs);
         }
         const double exact = 1.0 / (an * in);
-        /* Hager's estimator gives a lower bound of ‖A^-1‖, usually within a factor 3 */
-        assert_true(d->rcond >= exact * exact * (1.0 - 1e-12));
-        assert_true(d->rcond <= 9.0 * exact * exact);
+        /* small systems get the exact condition (from the inverse), not an estimate */
+        assert_near(d->rcond, exact * exact, 1e-9 * exact * exact);
     }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* the augmented path's reciprocal condition (a chain with one point drive at its tip: 1 row,
+ * 6 rates) against the exact 1-norm condition of the scaled matrix of (5): rates scaled by
+ * M*_aa^(-1/2), the constraint rows by one common factor (the largest scaled row norm) */
+static void test_augmented_condition(void **state)
+{
+    (void)state;
+    extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_chain(&m, 6, VT_CHAIN_TIP_DRIVE));
+    assert_ok(vt_data_create(&d, m));
+    const int nv = m->nv, nc = m->nc, N = nv + nc;
+    assert_true(nc > 0 && N <= 16);
+    for (int k = 0; k < nv; k++) {
+        double qdd;
+        vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd);
+    }
+    assert_ok(vt_inverse_dynamics(m, d));
+    double K[256], X[256], sc[16], rmax = 0.0;
+    int ipiv[16], info = 0;
+    for (int a = 0; a < nv; a++) sc[a] = 1.0 / sqrt(d->Mstar[a + a * nv]);
+    for (int r = 0; r < nc; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < nv; c++) rn += pow(d->Phiq[r + c * nc] * sc[c], 2);
+        rmax = fmax(rmax, sqrt(rn));
+    }
+    for (int r = 0; r < nc; r++) sc[nv + r] = 1.0 / rmax;
+    for (int c = 0; c < N; c++)
+        for (int r = 0; r < N; r++) {
+            double v = 0.0;
+            if (r < nv && c < nv) v = d->Mstar[r + c * nv];
+            else if (r >= nv && c < nv) v = d->Phiq[(r - nv) + c * nc];
+            else if (r < nv) v = d->Phiq[(c - nv) + r * nc];
+            K[r + c * N] = v * sc[r] * sc[c];
+            X[r + c * N] = r == c;
+        }
+    double an = 0.0, xn = 0.0;
+    for (int c = 0; c < N; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < N; r++) cs += fabs(K[r + c * N]);
+        an = fmax(an, cs);
+    }
+    dgesv_(&N, &N, K, &N, ipiv, X, &N, &info);
+    assert_int_equal(info, 0);
+    for (int c = 0; c < N; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < N; r++) cs += fabs(X[r + c * N]);
+        xn = fmax(xn, cs);
+    }
+    assert_near(d->rcond, 1.0 / (an * xn), 1e-9 / (an * xn));
     vt_data_free(d);
     vt_model_free(m);
 }
@@ -397,6 +450,7 @@ int main(void)
         cmocka_unit_test(test_fully_joint_driven_chain),
         cmocka_unit_test(test_free_tree),
         cmocka_unit_test(test_square_constraints),
+        cmocka_unit_test(test_augmented_condition),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_bad_definitions),
         cmocka_unit_test(test_redundant_fourbar),
