@@ -142,35 +142,52 @@ static double G_row(const double a[4], const double b[4], int k)
     return G[k] * b[0] + G[3 + k] * b[1] + G[6 + k] * b[2] + G[9 + k] * b[3];
 }
 
-/* Φ_q = Φ_x S (22), body by body on the body's path columns: from the dense S (gathered), or
- * column by column from the rates' twists (the recursive path, which has no dense S) */
-static void phiq(const vt_model *m, vt_data *d, int dense)
+/* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
+ * (gathered), or column by column from the rates' twists (the recursive path, which has no
+ * dense S) */
+static void phiq_row(const vt_model *m, vt_data *d, int r, int dense)
 {
     const int nc = m->nc;
     double *Si = d->work, *row = Si + 7 * m->maxpath;
-    memset(d->Phiq, 0, (size_t)nc * (size_t)m->nv * sizeof(double));
-    for (int r = 0; r < nc; r++)
-        for (int side = 0; side < 2; side++) {
-            const int b = m->con_body[2 * r + side];
-            if (b == 0) continue;
-            const int k = m->body_pathnum[b];
-            const int *path = m->path_dof + m->body_pathadr[b];
-            const double *px = d->Phix + 14 * r + 7 * side;
-            if (dense) {
-                vt_gather_S(Si, m, d, b);
-                cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
-                for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
-            } else {
-                double E[12], col[7];
-                vt_euler_E(E, d->x + vt_xoff(b) + 3);
-                for (int c = 0; c < k; c++) {
-                    vt_S_column(col, m, d, b, E, path[c]);
-                    double v = 0.0;
-                    for (int e = 0; e < 7; e++) v += px[e] * col[e];
-                    d->Phiq[r + (size_t)path[c] * (size_t)nc] += v;
-                }
+    for (int side = 0; side < 2; side++) {
+        const int b = m->con_body[2 * r + side];
+        if (b == 0) continue;
+        const int k = m->body_pathnum[b];
+        const int *path = m->path_dof + m->body_pathadr[b];
+        const double *px = d->Phix + 14 * r + 7 * side;
+        if (dense) {
+            vt_gather_S(Si, m, d, b);
+            cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
+            for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
+        } else {
+            double E[12], col[7];
+            vt_euler_E(E, d->x + vt_xoff(b) + 3);
+            for (int c = 0; c < k; c++) {
+                vt_S_column(col, m, d, b, E, path[c]);
+                double v = 0.0;
+                for (int e = 0; e < 7; e++) v += px[e] * col[e];
+                d->Phiq[r + (size_t)path[c] * (size_t)nc] += v;
             }
         }
+    }
+}
+
+/* The recursive path's Φ_q for a row whose rate on body b is Φ̇ = jv·v_b + jw·ω_b (v_b the
+ * centre of mass's velocity): with each rate's twist (ω_c, v_c) about the global origin,
+ * v_b = v_c + ω_c × r_b, so Φ_q[r, c] = jv·v_c + (jw + r_b × jv)·ω_c — no E, no 7-vectors.
+ * It equals Φ_x S: along the rates (2 E^T jw)·ṗ = jw·ω, ω = 2 E ṗ (16), for a base body's
+ * own ṗ too (its twist is ω = 2 E e_k about r_b). */
+static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3])
+{
+    if (b == 0) return;
+    double jwo[3], w[3], v[3];
+    vt_cross3(jwo, d->x + vt_xoff(b), jv);
+    for (int k = 0; k < 3; k++) jwo[k] += jw[k];
+    const int *path = m->path_dof + m->body_pathadr[b];
+    for (int c = 0; c < m->body_pathnum[b]; c++) {
+        vt_dof_twist(m, d, path[c], w, v);
+        d->Phiq[r + (size_t)path[c] * (size_t)m->nc] += vt_dot3(jv, v) + vt_dot3(jwo, w);
+    }
 }
 
 vt_status vt_constraints(const vt_model *m, vt_data *d)
@@ -187,6 +204,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
     if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
     double pdes[4] = {1, 0, 0, 0}, pdes_d[4] = {0}, pdes_dd[4] = {0};
     const int drive_rows = vt_drive_rows(m);
+    memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
 
     for (int r = 0; r < m->nc; r++) {
         const int kind = m->con_kind[r], owner = m->con_owner[r];
@@ -210,6 +228,8 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->gamma[r] = f[2];
             vt_R_row(m, d, dof, pxa, pxb);
             if (A.id == 0) memset(pxa, 0, 7 * sizeof(double));
+            if (dense) phiq_row(m, d, r, 1);
+            else d->Phiq[r + (size_t)dof * (size_t)m->nc] = 1.0; /* R S = I */
             break;
         }
         case VT_ROW_POINT: {
@@ -218,9 +238,11 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             vt_cross3(jw, s, va);
             for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
             phix_from(pxa, &A, jv, jw);
+            if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
             point_motion(&B, sb, s, Pb, vPb, aPb);
             vt_cross3(jw, s, va);
             phix_from(pxb, &B, va, jw);
+            if (!dense) phiq_twist(m, d, r, B.id, va, jw);
             double dP[3], daP[3];
             for (int k = 0; k < 3; k++) { dP[k] = Pb[k] - Pa[k]; daP[k] = aPb[k] - aPa[k]; }
             d->Phi[r] = vt_dot3(va, dP) - f[0];
@@ -235,8 +257,10 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             memset(jv, 0, sizeof jv);
             vt_cross3(jw, u, v);
             phix_from(pxa, &A, jv, jw);
+            if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
             vt_cross3(jw, v, u);
             phix_from(pxb, &B, jv, jw);
+            if (!dense) phiq_twist(m, d, r, B.id, jv, jw);
             d->Phi[r] = vt_dot3(u, v);
             d->Phit[r] = 0.0;
             d->gamma[r] = -(vt_dot3(udd, v) + 2.0 * vt_dot3(ud, vd) + vt_dot3(u, vdd));
@@ -254,8 +278,10 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             vt_cross3(t2, s_a, u);
             for (int k = 0; k < 3; k++) { jv[k] = -u[k]; jw[k] = t1[k] - t2[k]; }
             phix_from(pxa, &A, jv, jw);
+            if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
             vt_cross3(jw, s_b, u);
             phix_from(pxb, &B, u, jw);
+            if (!dense) phiq_twist(m, d, r, B.id, u, jw);
             d->Phi[r] = vt_dot3(u, dd);
             d->Phit[r] = 0.0;
             d->gamma[r] = -(vt_dot3(udd, dd) + 2.0 * vt_dot3(ud, ddd) + vt_dot3(u, dddd));
@@ -275,6 +301,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->Phi[r] = 2.0 * G_row(pdes, B.p, k);
             d->Phit[r] = 2.0 * G_row(pdes_d, B.p, k);
             d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
+            phiq_row(m, d, r, dense);
             break;
         }
         default: { /* VT_ROW_NORM */
@@ -284,11 +311,11 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->Phi[r] = dot4(B.p, B.p) - 1.0;
             d->Phit[r] = 0.0;
             d->gamma[r] = -2.0 * dot4(B.pd, B.pd);
+            phiq_row(m, d, r, dense);
             break;
         }
         }
+        if (dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1);
     }
-
-    phiq(m, d, dense);
     return VT_OK;
 }

@@ -77,11 +77,12 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
  * itself, the factors applied to the identity in one multi-right-hand-side solve (as much work
  * as the factorization), costs fewer instructions than LAPACK's estimators (dgecon, dsycon_3:
  * iterations of overflow-guarded triangular solves, dlatrs) and is exact, not a bound. The
- * inverse goes to lwork; returns 0 when it does not fit (the caller then estimates). */
+ * inverse goes to lwork, with `extra` columns free after it; returns 0 when they do not fit
+ * (the caller then estimates). */
 #define EXACT_RCOND_N 16
-static int small_inverse(vt_data *d, int n)
+static int small_inverse(vt_data *d, int n, int extra)
 {
-    if (n > EXACT_RCOND_N || (size_t)n * (size_t)n > (size_t)d->nlwork) return 0;
+    if (n > EXACT_RCOND_N || (size_t)n * (size_t)(n + extra) > (size_t)d->nlwork) return 0;
     double *X = d->lwork;
     memset(X, 0, (size_t)n * (size_t)n * sizeof(double));
     for (int k = 0; k < n; k++) X[k + (size_t)k * (size_t)n] = 1.0;
@@ -143,8 +144,10 @@ static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
     dsytrf_rk_("L", &N, K, &N, E, d->ipiv, d->lwork, &d->nlwork, &info, 1);
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrf_rk info %d", info);
     double rcond = 0.0;
-    if (info == 0 && small_inverse(d, N)) {
-        dsytrs_3_("L", &N, &N, K, &N, E, d->ipiv, d->lwork, &N, &info, 1);
+    const int inverse = info == 0 && small_inverse(d, N, 2);
+    double *X = d->lwork, *t = d->lwork + (size_t)N * (size_t)N;
+    if (inverse) {
+        dsytrs_3_("L", &N, &N, K, &N, E, d->ipiv, X, &N, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
         rcond = rcond_from_inverse(d->lwork, N, anorm);
     } else if (info == 0) {
@@ -153,13 +156,20 @@ static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
     }
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return 1;
-    dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, b, &N, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
+    /* with the inverse at hand (small systems) each solve is a product, else a solve with the
+     * factors */
+    if (inverse) {
+        memcpy(t, b, (size_t)N * sizeof(double));
+        cblas_dgemv(CblasColMajor, CblasNoTrans, N, N, 1.0, X, N, t, 1, 0.0, b, 1);
+    } else {
+        dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, b, &N, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
+    }
     for (int k = 0; k < N; k++) b[k] *= s[k];
     /* one step of iterative refinement on the unscaled system (the residual from M* and Φ_q
      * themselves, the correction from the same factors): the common row factor above can
      * leave the scaled matrix less well balanced than a row-by-row equilibration would */
-    double *res = d->lwork;
+    double *res = inverse ? t + N : d->lwork;
     memcpy(res, d->Q, (size_t)nv * sizeof(double));
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
     for (int r = 0; r < nr; r++) {
@@ -172,8 +182,13 @@ static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
     }
 #undef PHI
     for (int k = 0; k < N; k++) res[k] *= s[k];
-    dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, res, &N, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
+    if (inverse) {
+        cblas_dgemv(CblasColMajor, CblasNoTrans, N, N, 1.0, X, N, res, 1, 0.0, t, 1);
+        memcpy(res, t, (size_t)N * sizeof(double));
+    } else {
+        dsytrs_3_("L", &N, &one, K, &N, E, d->ipiv, res, &N, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
+    }
     for (int k = 0; k < N; k++) b[k] += res[k] * s[k];
     if (!vt_all_finite(b, N)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
@@ -339,7 +354,8 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  *
  * one LU factorization of Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes the
  * blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), the
- * mass metric of factor_solve) serving both solves (dgetrs, then its transpose). M* is not
+ * mass metric of factor_solve) serving both solves (dgetrs, then its transpose; or products
+ * with the inverse that small systems compute for their condition anyway). M* is not
  * factorized at all: a quarter of the augmented matrix's size, an eighth of its work. The two
  * solves in sequence amplify errors by cond(Φ_q D) each, so the reported reciprocal condition is
  * squared, the scale of the augmented matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)).
@@ -359,7 +375,8 @@ static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
     dgetf2_(&n, &n, A, &n, d->ipiv, &info);
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     double rcond = 0.0;
-    if (info == 0 && small_inverse(d, n)) {
+    const int inverse = info == 0 && small_inverse(d, n, 1);
+    if (inverse) {
         dgetrs_("N", &n, &n, A, &n, d->ipiv, d->lwork, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
         rcond = rcond_from_inverse(d->lwork, n, anorm);
@@ -369,15 +386,26 @@ static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
     }
     *rcond_out = rcond * rcond;
     if (!(*rcond_out >= m->rcond_min)) return 1;
-    memcpy(x, d->gamma, (size_t)n * sizeof(double));
-    dgetrs_("N", &n, &one, A, &n, d->ipiv, x, &n, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-    for (int a = 0; a < n; a++) x[a] *= s[a];                       /* q̈ = D y */
-    memcpy(g, d->Q, (size_t)n * sizeof(double));
-    cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, x, 1, -1.0, g, 1);
-    for (int a = 0; a < n; a++) g[a] *= s[a];                       /* (Φ_q D)^T λ = D g */
-    dgetrs_("T", &n, &one, A, &n, d->ipiv, g, &n, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    /* y = (Φ_q D)^-1 γ, q̈ = D y; then (Φ_q D)^T λ = D (M* q̈ − Q): with the inverse at hand
+     * (small systems) two products, else two solves with the LU factors */
+    if (inverse) {
+        cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->lwork, n, d->gamma, 1, 0.0, x, 1);
+    } else {
+        memcpy(x, d->gamma, (size_t)n * sizeof(double));
+        dgetrs_("N", &n, &one, A, &n, d->ipiv, x, &n, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    }
+    for (int a = 0; a < n; a++) x[a] *= s[a];
+    double *h = inverse ? d->lwork + (size_t)n * (size_t)n : g;
+    memcpy(h, d->Q, (size_t)n * sizeof(double));
+    cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, x, 1, -1.0, h, 1);
+    for (int a = 0; a < n; a++) h[a] *= s[a];
+    if (inverse) {
+        cblas_dgemv(CblasColMajor, CblasTrans, n, n, 1.0, d->lwork, n, h, 1, 0.0, g, 1);
+    } else {
+        dgetrs_("T", &n, &one, A, &n, d->ipiv, g, &n, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    }
     if (!vt_all_finite(x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
 }
