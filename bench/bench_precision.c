@@ -9,6 +9,19 @@
  *                run's largest tip deviation from the driven run, m (its forward model has no
  *                constraint, so the four formulations coincide there)
  * for each formulation: index1, baumgarte (α = β = 10/s), projection, ggl.
+ * With MuJoCo (built with -Dmujoco_dir=..., VT_HAVE_MUJOCO): its forward simulation of the same
+ * double link (bench/peers/mujoco_peer.c: two hinges, joint 2 locked by MuJoCo's soft joint
+ * equality, solref "2e-4 1" raised by refsafe to 2 dt for dt > 1e-4, solimp "0.9999 0.9999 0.001
+ * 0.5 2"), from the same start (horizontal, at rest), rows double_link,mujoco_rk4 and
+ * double_link,mujoco_euler (semi-implicit Euler, MuJoCo's default): for these the rtol column
+ * holds the time step dt (1e-2 .. 1e-5 s), steps = mj_step calls, residual_evals = dynamics
+ * evaluations (4 a step for RK4, 1 for Euler), cpu_s = the whole stepping loop; the error is
+ * vtdyn's, on the same rows t = 0, 0.01, .., 1.9 s (the reaction is MuJoCo's cfrc_int of link 1
+ * after mj_rnePostConstraint at that state, moved to the joint point as for bench_inverse).
+ * The soft lock puts a floor of about 1.1e-5 under MuJoCo's error, whatever dt: its impedance
+ * (at most 0.9999) lets joint 2 take 1e-4 of its free acceleration, so the joint-1 reaction at
+ * t = 0 is 490.479 N against 490.5 N; the first integral alone (printed, not in the CSV) goes
+ * down as dt^2 with RK4 (the lock's deviation, time constant 2 dt) to ~2e-11 at dt <= 1e-4.
  *
  * Drift (<outdir>/drift.csv: scene, formulation, t_s, phi_norm, phidot_norm, energy_error) at
  * rtol 1e-6, atol 1e-8, one row every 0.5 s:
@@ -28,6 +41,9 @@
 #include <time.h>
 
 #include "scenes.h"
+#ifdef VT_HAVE_MUJOCO
+#include "peers.h"
+#endif
 
 static const char *form_name[VT_FORMULATION_COUNT] = {"index1", "baumgarte", "projection", "ggl", "ode"};
 
@@ -68,6 +84,55 @@ static void row_state(const vt_model *m, vt_data *d, const vt_trajectory *tr, in
     memcpy(d->qd, (fwd ? tr->qd_fwd : tr->qd) + (size_t)k * (size_t)m->nv, (size_t)m->nv * sizeof(double));
 }
 
+/* double link, one output row: the larger of the joint-1 reaction f1's (world) error against (29)
+ * over the weight and the first integral θ̇² − 7.3575 sin θ's error over 7.3575 (this one also in
+ * *motion when not NULL); θ = −q1 (the link falls) */
+static double dl_row_error(double q1, double qd1, const double *f1, double *motion)
+{
+    const double th = -q1, thd = -qd1, s = sin(th), c = cos(th);
+    const double e = fmax(fabs(f1[0] + 2207.25 * sin(2 * th)), fabs(f1[1] - 4905.0 * s * s - 490.5 * c * c)) / 1962.0;
+    const double em = fabs(thd * thd - 7.3575 * s) / 7.3575;
+    if (motion) *motion = em;
+    return fmax(e, em);
+}
+
+#ifdef VT_HAVE_MUJOCO
+/* MuJoCo's forward simulation of the double link, dt swept, Euler and RK4 */
+static void work_precision_mujoco(FILE *f)
+{
+    enum { NOUT = 190 };
+    static const double dts[] = {1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5};
+    static double q[2 * (NOUT + 1)], qd[2 * (NOUT + 1)], fr[6 * (NOUT + 1)];
+    const double zero[2] = {0.0, 0.0}; /* vtdyn's start: q = 0 (horizontal), at rest */
+    vt_peer *p = vt_peer_mujoco(VT_PEER_DOUBLE_LINK, 2, zero, zero, zero);
+    if (!p) {
+        fprintf(stderr, "bench_precision: MuJoCo double link: no model\n");
+        return;
+    }
+    for (int integ = VT_PEER_RK4; integ >= VT_PEER_EULER; integ--)
+        for (size_t i = 0; i < sizeof dts / sizeof dts[0]; i++) {
+            const double c0 = cpu_now();
+            const long steps = vt_peer_mujoco_simulate(p, dts[i], integ, 1.9, NOUT, q, qd, fr);
+            const double cpu = cpu_now() - c0;
+            if (steps < 0) {
+                fprintf(stderr, "bench_precision: MuJoCo double link: simulation refused dt %g\n", dts[i]);
+                exit(1);
+            }
+            double err = 0.0, motion = 0.0, em;
+            for (int k = 0; k <= NOUT; k++) {
+                err = fmax(err, dl_row_error(q[2 * k], qd[2 * k], fr + 6 * k, &em));
+                motion = fmax(motion, em);
+            }
+            const char *name = integ == VT_PEER_RK4 ? "mujoco_rk4" : "mujoco_euler";
+            fprintf(f, "double_link,%s,%.0e,%.6g,%ld,%ld,%.6e\n", name, dts[i], cpu, steps,
+                    steps * (integ == VT_PEER_RK4 ? 4 : 1), err);
+            printf("  %-12s dt %.0e: double link error %.2e (first integral alone %.2e), %.4f s cpu\n", name,
+                   dts[i], err, motion, cpu);
+        }
+    vt_peer_free(p);
+}
+#endif
+
 static void work_precision(FILE *f)
 {
     vt_model *dl, *fl;
@@ -91,12 +156,8 @@ static void work_precision(FILE *f)
             double c0 = cpu_now();
             if ((st = vt_dynamic_analysis(dl, d, &o, tr))) die("double link", st, d);
             double cpu = cpu_now() - c0, err = 0.0, err_dl;
-            for (int k = 0; k < tr->nfilled; k++) {
-                const double th = -tr->q[2 * k], thd = -tr->qd[2 * k], s = sin(th), c = cos(th);
-                const double *f1 = tr->jnt_force + 9 * k + 3;
-                err = fmax(err, fmax(fabs(f1[0] + 2207.25 * sin(2 * th)), fabs(f1[1] - 4905.0 * s * s - 490.5 * c * c)) / 1962.0);
-                err = fmax(err, fabs(thd * thd - 7.3575 * s) / 7.3575);
-            }
+            for (int k = 0; k < tr->nfilled; k++)
+                err = fmax(err, dl_row_error(tr->q[2 * k], tr->qd[2 * k], tr->jnt_force + 9 * k + 3, NULL));
             fprintf(f, "double_link,%s,%.0e,%.6g,%ld,%ld,%.6e\n", form_name[form], rtol, cpu, tr->steps, tr->res_evals, err);
             err_dl = err;
             vt_trajectory_free(tr);
@@ -131,6 +192,9 @@ static void work_precision(FILE *f)
         }
     vt_model_free(dl);
     vt_model_free(fl);
+#ifdef VT_HAVE_MUJOCO
+    work_precision_mujoco(f);
+#endif
 }
 
 static void drift_run(FILE *f, const char *scene, const vt_model *m, double t1, int form, void (*start)(const vt_model *, vt_data *))

@@ -8,15 +8,26 @@ set terminal pngcairo size 1100,480 font ',10' noenhanced
 set grid
 forms = 'index1 baumgarte projection ggl ode'
 sel(scene, form) = sprintf("< awk -F, 'NR==1 || ($1==\"%s\" && $2==\"%s\")' %s", scene, form, wp)
+# MuJoCo's curves (bench_precision built with -Dmujoco_dir): whichever of mujoco_rk4 and
+# mujoco_euler the CSV has, on the double-link panel; their rtol column is the time step
+mj = system(sprintf("awk -F, '$1==\"double_link\" && $2 ~ /^mujoco_/ {print $2}' %s | sort -ru | tr '\n' ' '", wp))
+mjtitle(f) = f eq 'mujoco_rk4' ? 'MuJoCo RK4, soft lock' : 'MuJoCo Euler (default), soft lock'
+mjcolor(f) = f eq 'mujoco_rk4' ? 0x000000 : 0xb22222
+mjpoint(f) = f eq 'mujoco_rk4' ? 4 : 6
 
 set output dir.'/work_precision.png'
-set multiplot layout 1,2 title 'CPU time against achieved error (IDA rtol 1e-3 .. 1e-12)'
+set multiplot layout 1,2 title 'CPU time against achieved error (IDA rtol 1e-3 .. 1e-12'.(words(mj) > 0 ? '; MuJoCo: time step 1e-2 .. 1e-5 s)' : ')')
 set logscale xy
 set xlabel 'error'
 set ylabel 'CPU time (s)'
-set key top right
+set key top left
 set title 'double link: reaction vs (29) and first integral, relative'
-plot for [f in forms] sel('double_link', f) using 'error':'cpu_s' with linespoints lw 2 title f
+set offsets 0, 0, graph 0.3, 0  # room above the curves for the key
+plot for [f in forms] sel('double_link', f) using 'error':'cpu_s' with linespoints lw 2 title f, \
+     for [f in mj] sel('double_link', f) using 'error':'cpu_s' with linespoints lw 2 dt 2 pt mjpoint(f) \
+         lc rgb mjcolor(f) title mjtitle(f)
+set key top right
+set offsets 0, 0, 0, 0
 set title 'five-link arm: forward-check tip deviation, m'
 plot for [f in forms] sel('five_link', f) using 'error':'cpu_s' with linespoints lw 2 title f
 unset multiplot

@@ -318,7 +318,15 @@ int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double 
 
 vt_status vt_scene_five_link(vt_model **model)
 {
+    return vt_scene_five_link_payload(model, 0.0, 1.0);
+}
+
+vt_status vt_scene_five_link_payload(vt_model **model, double payload, double period)
+{
     static const double len[5] = {0.4, 0.5, 0.5, 0.2, 0.2}, mass[5] = {2.0, 1.5, 1.5, 0.5, 0.5};
+    if (!(payload >= 0.0 && payload < INFINITY && period > 0.0 && period < INFINITY)) return VT_ERR_BAD_OPTION;
+    /* link 5 with the point mass at its tip: the centre moves c toward the tip (parallel axes) */
+    const double c5 = payload * 0.5 * len[4] / (mass[4] + payload);
     vt_model_def md = vt_default_model_def();
     md.gravity[1] = 0.0;
     md.gravity[2] = -9.81;
@@ -330,7 +338,11 @@ vt_status vt_scene_five_link(vt_model **model)
         vt_body_def link = vt_default_body_def();
         link.parent = k;
         link.mass = mass[k];
-        const double I = mass[k] * len[k] * len[k] / 12.0;
+        double I = mass[k] * len[k] * len[k] / 12.0;
+        if (k == 4) {
+            link.mass += payload;
+            I += mass[k] * c5 * c5 + payload * (0.5 * len[k] - c5) * (0.5 * len[k] - c5);
+        }
         memset(link.axis1, 0, sizeof link.axis1);
         if (k == 0) { /* column along z */
             link.inertia[0] = link.inertia[4] = I;
@@ -338,7 +350,7 @@ vt_status vt_scene_five_link(vt_model **model)
             link.axis1[2] = 1.0;
         } else {
             link.inertia[4] = link.inertia[8] = I;
-            link.joint_child[0] = -0.5 * len[k];
+            link.joint_child[0] = -0.5 * len[k] - (k == 4 ? c5 : 0.0);
             if (k == 1) link.joint_parent[2] = 0.5 * len[0];
             else link.joint_parent[0] = 0.5 * len[k - 1];
             link.axis1[k == 4 ? 2 : 1] = 1.0;
@@ -347,13 +359,13 @@ vt_status vt_scene_five_link(vt_model **model)
     }
     /* (30)-(34): tip x, tip y, joint-5 point y, tip z, joint-5 point z */
     static const int body[5] = {5, 5, 4, 5, 4}, comp[5] = {0, 1, 1, 2, 2};
-    const double w = 2.0 * VT_PI;
+    const double w = 2.0 * VT_PI / period;
     for (int k = 0; k < 5 && id >= 0; k++) {
         vt_drive_def dr = vt_default_drive_def();
         dr.type = VT_DRIVE_POINT;
         dr.body = body[k];
         dr.index = comp[k];
-        dr.point[0] = 0.1; /* the far end of link 4 or link 5 */
+        dr.point[0] = body[k] == 5 ? 0.1 - c5 : 0.1; /* the far end of link 4 or link 5 */
         if (comp[k] == 0) dr.f = vt_function_sine(VT_FL_C1, 0.3, w, 0.5 * VT_PI);
         else if (comp[k] == 1) dr.f = vt_function_sine(0.0, 0.3, w, 0.0);
         else dr.f = vt_function_constant(VT_FL_CE);

@@ -75,6 +75,14 @@ int vt_scene_fourbar_assemble(const vt_model *model, vt_data *data, double th2, 
 #define VT_FL_C1 0.8
 #define VT_FL_CE 0.1
 vt_status vt_scene_five_link(vt_model **model);
+/* The same arm carrying a payload: a point mass of `payload` kg (>= 0) fixed at the tip, so that
+ * link 5 becomes the rod and the point together (mass 0.5 + payload, centre of mass moved
+ * c = 0.1 payload / (0.5 + payload) m toward the tip, inertia by parallel axes; its joint and
+ * drive points keep their places on the link), and the circle drawn in `period` s (the drives'
+ * ω = 2π/period). vt_scene_five_link() is vt_scene_five_link_payload(m, 0, 1), bitwise.
+ * VT_ERR_BAD_OPTION for a negative or non-finite payload or a period that is not > 0. Its q at
+ * time t: vt_scene_five_link_guess(m, d, t / period). */
+vt_status vt_scene_five_link_payload(vt_model **model, double payload, double period);
 /* q of the five-link arm at time t from its inverse kinematics (elbow up): a start for Newton. */
 void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
 

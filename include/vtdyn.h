@@ -5,7 +5,7 @@
  *     vt_builder *b;  vt_builder_create(&b, NULL);
  *     vt_body_def link = vt_default_body_def();
  *     link.mass = 100;  ...;  int id = vt_builder_add_body(b, &link);
- *     vt_model *m;  vt_builder_build(b, &m);  vt_builder_free(b);
+ *     vt_model *m;  vt_builder_build(&m, b);  vt_builder_free(b);
  *     vt_data *d;   vt_data_create(&d, m);
  *     ... set d->q, d->qd ...
  *     vt_kinematics(m, d); vt_mass_matrix(m, d); vt_forces(m, d);
@@ -13,15 +13,18 @@
  * Every function that can fail returns a vt_status (0 ok, negative error); the detail is in
  * vt_builder_message() or d->message. The library never prints, exits or aborts. A failed call
  * leaves the caller's inputs (a builder's definitions, d->q, d->qd, d->xfrc, d->qfrc, d->time)
- * as they were (vt_kinematic_solve restores q and q̇ it would have corrected); the outputs of
- * the failed stage are undefined, except vt_solve's q̈ and λ, which are left as they were. Warnings
- * of successful calls are flags in d->warning. One model may be shared by threads, each with its
+ * as they were (vt_kinematic_solve restores q and q̇ it would have corrected; the analyses over
+ * time use q, q̇ and time as their working state); the outputs of the failed stage are
+ * undefined, except vt_solve's q̈ and λ, which are left as they were. Warnings of successful
+ * calls are flags in d->warning. One model may be shared by threads, each with its
  * own vt_data: there is no global state.
- * Conventions (units, frames, layouts) are stated at the top of vtdyn/types.h.
+ * Conventions (units, frames, layouts) are stated at the top of vtdyn/types.h; docs/guide.md
+ * walks through the whole use with tested programs.
  */
 #ifndef VTDYN_H
 #define VTDYN_H
 
+#include "vtdyn/version.h"
 #include "vtdyn/types.h"
 #include "vtdyn/euler.h"
 
@@ -31,12 +34,16 @@ extern "C" {
 
 /// Text for a status code (never NULL).
 const char *vt_status_string(vt_status status);
+/// The library's semantic version, "MAJOR.MINOR.PATCH" (never NULL). Equals VT_VERSION_STRING
+/// when the headers and the library come from the same build.
+const char *vt_version(void);
 
 /* ---- model building (src/model.c) ------------------------------------------------- */
 
-/// Defaults: gravity (0, -9.81, 0).
+/// Defaults: gravity (0, -9.81, 0), rcond_min 1e-12, rcond_warn 1e-6, allow_redundant 0.
 vt_model_def vt_default_model_def(void);
-/// Defaults: revolute joint about z to the ground at the origin, 1 kg point mass.
+/// Defaults: revolute joint about z (axis1; axis2 x) to the ground, both joint points (0, 0, 0),
+/// orientation identity, 1 kg point mass (inertia 0).
 vt_body_def vt_default_body_def(void);
 
 /// Starts a builder. def may be NULL for the defaults.
@@ -49,35 +56,64 @@ vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
 int vt_builder_add_body(vt_builder *builder, const vt_body_def *def);
 /// Message of the last failure (empty string if none).
 const char *vt_builder_message(const vt_builder *builder);
-/// Builds the immutable model; the builder stays valid and may be freed.
+/// Builds the immutable model (one allocation, the caller's: vt_model_free()); the builder
+/// stays valid (it may build again, or be freed). On failure *model is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_EMPTY_MODEL, VT_ERR_NO_MEMORY.
 vt_status vt_builder_build(vt_model **model, vt_builder *builder);
+/// Frees a builder; NULL does nothing. Models built from it stay valid.
 void vt_builder_free(vt_builder *builder);
+/// Frees a model; NULL does nothing. Data and trajectories made for it must not be used after.
 void vt_model_free(vt_model *model);
 /// A new model with the same bodies and cut joints and no drives: the model of the forward
-/// check. Free it with vt_model_free().
+/// check. Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
-/// Allocates the data of a model (one block) and resets it (vt_data_reset).
+/// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with
+/// vt_data_init(). Free it with vt_data_free(). On failure *data is NULL.
+/// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 vt_status vt_data_create(vt_data **data, const vt_model *model);
-/// q = q0, q̇ = 0, xfrc = 0, time = 0.
+/// The state at rest in the reference configuration: q = q0, q̇ = 0, xfrc = 0, qfrc = 0,
+/// time = 0; clears warning, ida_flag and message. Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH.
 vt_status vt_data_reset(const vt_model *model, vt_data *data);
+/// Releases data made by vt_data_create(); does nothing for NULL or for data laid out by
+/// vt_data_init() in the caller's buffer (that memory stays the caller's to reuse or drop).
 void vt_data_free(vt_data *data);
+
+/// Alignment, in bytes, of the start of a vt_data laid out by vt_data_init().
+#define VT_DATA_ALIGN 64
+/// Bytes a model's data needs in a caller-provided buffer, including up to VT_DATA_ALIGN − 1
+/// bytes of alignment slack: a buffer of this size at any address is enough (one aligned to
+/// VT_DATA_ALIGN needs VT_DATA_ALIGN − 1 bytes fewer). Fixed by the model. 0 for a NULL model.
+size_t vt_data_size(const vt_model *model);
+/// Lays the data of a model out in `buffer` (size bytes, owned by the caller) for builds that
+/// must not allocate after start-up: the same data as vt_data_create() (zeroed, the ground at
+/// identity, then vt_data_reset()), starting at the buffer's first VT_DATA_ALIGN boundary, and
+/// allocates nothing. *data points into the buffer, which must outlive it and not be used for
+/// anything else meanwhile; vt_data_free() on it does nothing. Instants (vt_inverse_dynamics(),
+/// vt_inverse_dynamics_recursive(), vt_kinematic_solve() and the stages) then allocate nothing;
+/// the analyses over time still allocate at their start (IDA's memory, the forward check's
+/// model and data, the driven steps' history) and free it at their end.
+/// Statuses: VT_ERR_NULL (data, model or buffer NULL), VT_ERR_BAD_SIZE (the buffer cannot hold
+/// the data: nothing is written to it). On failure *data is NULL (if data is not NULL).
+vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
 
 /// Adds to d->xfrc a force f (N) and moment n (N·m), both global, applied at the point
 /// `point` of body `body` (m, body axes from its centre of mass); f or n may be NULL.
-/// Needs the body's orientation: call after vt_kinematics().
+/// Needs the body's orientation: call after vt_kinematics(). Statuses: VT_ERR_NULL (point NULL
+/// with f given), VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX (body not in 1..nbody), VT_ERR_NONFINITE.
 vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
                             const double point[3], const double f[3], const double n[3]);
 
 /// q_out = q advanced by the velocity v over h: scalar coordinates move by h v, spherical
 /// relative Euler parameters by the exact rotation exp(h ω) (normalized), a base body's
-/// x by h ẋ (then its Euler parameters normalized). q_out may alias q.
+/// x by h ẋ (then its Euler parameters normalized). q_out may alias q. q and q_out have nq
+/// entries, v has nv. Statuses: VT_ERR_NULL, VT_ERR_NONFINITE (q, v or h).
 vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
                          const double *v, double h);
 
 /* ---- time functions (src/functions.c) ---------------------------------------------- */
 
+/// f = c (a time function is a value: copy it into a drive's f).
 vt_function vt_function_constant(double c);
 /// c[0] + c[1] t + ... + c[ncoef-1] t^(ncoef-1); ncoef in 1..VT_POLY_MAX (checked when a drive
 /// using it is added).
@@ -111,16 +147,19 @@ int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);
 vt_status vt_kinematics(const vt_model *model, vt_data *data);
 
 /// R, q̇ = R ẋ, assembled from Table 1 (20)-(21). Needs vt_kinematics().
+/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH (as every stage).
 vt_status vt_inverse_transform(const vt_model *model, vt_data *data);
 
 /// M^i = diag(m I, 4 G^T J' G) and M* = S^T M S (3). Needs vt_kinematics().
 vt_status vt_mass_matrix(const vt_model *model, vt_data *data);
 
-/// F (gravity and d->xfrc, (7)), h and Q = S^T [F - M Ṡq̇ + h] (4). Needs vt_kinematics().
+/// F (gravity and d->xfrc, (7)), h and Q = S^T [F - M Ṡq̇ + h] (4), plus d->qfrc.
+/// Needs vt_kinematics(). Statuses: VT_ERR_NONFINITE (xfrc or qfrc).
 vt_status vt_forces(const vt_model *model, vt_data *data);
 
 /// Φ, Φ_x, Φ_q = Φ_x S (22), Φ_t and γ (23) of every constraint row at d->time.
-/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value).
+/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value),
+/// VT_ERR_QUATERNION (an orientation callback's p_d of zero norm).
 vt_status vt_constraints(const vt_model *model, vt_data *data);
 
 /// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, with LAPACK's symmetric
@@ -131,11 +170,13 @@ vt_status vt_constraints(const vt_model *model, vt_data *data);
 vt_status vt_solve(const vt_model *model, vt_data *data);
 
 /// ẍ, the drives' efforts (24) and the joint reactions (25)-(28), inward from the tree's ends,
-/// cut joints from their multipliers. Needs vt_solve().
+/// cut joints from their multipliers. Needs vt_solve(). Statuses: VT_ERR_NONFINITE (an effort
+/// or reaction overflowed: an ill-posed instant).
 vt_status vt_reactions(const vt_model *model, vt_data *data);
 
 /// The whole instant: vt_kinematics, vt_mass_matrix, vt_forces, vt_constraints, vt_solve,
-/// vt_reactions (R is left to vt_inverse_transform, which only (14) needs).
+/// vt_reactions (R is left to vt_inverse_transform, which only (14) needs). Statuses: those of
+/// the stages; the first failure stops it. q, q̇ must satisfy the constraints (not corrected).
 vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 
 /// The same instant by the recursive evaluation (src/recursive.c): no dense S, M* by composite
@@ -143,34 +184,44 @@ vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 /// drive (model->joint_driven) the efforts and reactions come from one inward pass with nothing
 /// factorized. Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω,
 /// ẋ; Ṡq̇, M*, Q, Φ_x, Φ_q when it factorizes) except S and R; agrees with it to round-off.
+/// Statuses: those of vt_inverse_dynamics().
 vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
-/// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24). Needs vt_solve().
+/// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24), into the caller's F (7n entries, body i at
+/// 7(i−1)). Needs vt_solve(). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (drive not in 0..ndrive−1).
 vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
 
 /* ---- analyses over time (src/kinematic.c, src/trajectory.c, src/integrate.c) ---------- */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
-/// 1e-12 in at most 30 iterations, forward check on.
+/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS).
 vt_run_options vt_default_run_options(void);
 
-/// Allocates a trajectory of nrow rows for the model (all arrays in one block).
+/// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
+/// with nout output intervals needs nrow ≥ nout + 1. On failure *trajectory is NULL.
+/// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY.
 vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
+/// Frees a trajectory; NULL does nothing.
 void vt_trajectory_free(vt_trajectory *trajectory);
 
 /// One instant of a kinematic analysis at d->time: Newton–Raphson on Φ(q, t) = 0 from d->q
 /// (steps from LAPACK's dgels: exact for as many rows as rates, least-norm for fewer), then
 /// q̇ corrected to Φ_q q̇ = −Φ_t the same way, then vt_inverse_dynamics(). d->q and d->qd are
 /// replaced by the consistent values; on failure they are restored.
-/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, and those of the stages.
+/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, VT_ERR_BAD_OPTION (tol or
+/// maxit not positive), and those of the stages.
 vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
 /// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
 /// output time vt_kinematic_solve(), from the previous solution (the first from d->q).
 /// With opt->forward_check, the forward check integrates the model without drives under
-/// the drives' generalized forces, evaluated exactly at every time IDA asks for.
-/// Statuses: VT_ERR_NOT_FULLY_DRIVEN, VT_ERR_BAD_OPTION, VT_ERR_IDA, VT_ERR_ABORTED, ...
+/// the drives' generalized forces, evaluated exactly at every time IDA asks for (in a build
+/// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
+/// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
+/// Rows written before a failure stay in the trajectory (tr->nfilled).
+/// Statuses: VT_ERR_NOT_FULLY_DRIVEN, VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of
+/// another model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages.
 vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                                 vt_trajectory *trajectory);
 
@@ -181,9 +232,16 @@ vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_r
 /// as well: by default separately, after the driven run, with the efforts of the driven state
 /// interpolated (cubic Hermite over the driven run's steps; error in tr->fwd_interp_err); with
 /// opt->forward_independent = 0 in the same IDA system, the efforts from the driven λ.
-/// Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in d->message), ...
+/// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's
+/// (after a failure, a state the run was trying). Rows written before a failure stay in the
+/// trajectory (tr->nfilled). Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in
+/// d->message), VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH, VT_ERR_NEWTON (consistent initial
+/// values, or a projection), VT_ERR_ABORTED, VT_ERR_NO_MEMORY, and those of the stages.
+/// Only in builds with SUNDIALS (VT_HAVE_SUNDIALS, vtdyn/version.h).
+#if VT_HAVE_SUNDIALS
 vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                               vt_trajectory *trajectory);
+#endif
 
 /* ---- force transforms ---------------------------------------------------------------- */
 
@@ -193,12 +251,13 @@ vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run
 void vt_cartesian_force(double F[7], const double p[4], const double s[3],
                         const double f[3], const double n[3]);
 
-/// Eq (10): Q = S^T F for a Cartesian force F (7n) → Q (nv). Needs vt_kinematics().
+/// Eq (10): Q = S^T F for a Cartesian force F (7n) → Q (nv), the caller's arrays.
+/// Needs vt_kinematics(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (F).
 vt_status vt_generalized_force(double *Q, const vt_model *model, vt_data *data,
                                const double *F);
 
 /// Eq (14): F_eq = R^T Q for a generalized force Q (nv) → F_eq (7n).
-/// Needs vt_inverse_transform().
+/// Needs vt_inverse_transform(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (Q).
 vt_status vt_equivalent_force(double *Feq, const vt_model *model, vt_data *data,
                               const double *Q);
 

@@ -1,8 +1,10 @@
-/* The data of a model: one allocation laid out once, never resized (sizes are fixed when the
- * model is built). Also the state helpers that are not a stage of the method: applied point
- * loads, (7), and advancing q along q̇ on the Euler-parameter sphere,
+/* The data of a model: one block laid out once, never resized (sizes are fixed when the
+ * model is built), allocated by vt_data_create() or the caller's own (vt_data_init()). Also
+ * the state helpers that are not a stage of the method: applied point loads, (7), and
+ * advancing q along q̇ on the Euler-parameter sphere,
  *   ṗ = ½ E^T ω  ⇒  p(t + h) = [cos(h|ω|/2); sin(h|ω|/2) ω/|ω|] ⊗ p(t)   for constant ω.
  */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,17 +130,36 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     return used;
 }
 
-vt_status vt_data_create(vt_data **data, const vt_model *m)
+/* Bytes from the buffer's start to its first VT_DATA_ALIGN boundary: the struct starts on a
+ * cache line and every array, 16-byte aligned relative to it (take), is aligned for any type. */
+static size_t align_pad(const void *buffer)
 {
-    if (!data || !m) return VT_ERR_NULL;
-    *data = NULL;
+    const uintptr_t a = (uintptr_t)buffer % VT_DATA_ALIGN;
+    return a ? (size_t)(VT_DATA_ALIGN - a) : 0;
+}
+
+size_t vt_data_size(const vt_model *m)
+{
+    if (!m) return 0;
     vt_data probe;
-    const size_t bytes = layout(m, &probe, NULL);
-    char *block = calloc(1, bytes); /* zero: the structural zeros of S and R stay zero */
-    if (!block) return VT_ERR_NO_MEMORY;
-    vt_data *d = (vt_data *)block;
-    layout(m, d, block);
+    return layout(m, &probe, NULL) + (VT_DATA_ALIGN - 1); /* any start can be aligned */
+}
+
+/* The one path that lays out a data struct: vt_data_create() allocates the buffer and calls it. */
+vt_status vt_data_init(vt_data **data, const vt_model *m, void *buffer, size_t size)
+{
+    if (!data) return VT_ERR_NULL;
+    *data = NULL;
+    if (!m || !buffer) return VT_ERR_NULL;
+    vt_data probe;
+    const size_t bytes = layout(m, &probe, NULL), pad = align_pad(buffer);
+    if (size < pad || size - pad < bytes) return VT_ERR_BAD_SIZE; /* the buffer is left untouched */
+    char *base = (char *)buffer + pad;
+    memset(base, 0, bytes); /* zero: the structural zeros of S and R stay zero */
+    vt_data *d = (vt_data *)base;
+    layout(m, d, base);
     d->model = m;
+    d->block = NULL; /* the caller's memory: vt_data_free() leaves it alone */
     /* the ground: identity rotation, at rest */
     d->A[0] = d->A[4] = d->A[8] = 1.0;
     vt_data_reset(m, d);
@@ -146,9 +167,25 @@ vt_status vt_data_create(vt_data **data, const vt_model *m)
     return VT_OK;
 }
 
+vt_status vt_data_create(vt_data **data, const vt_model *m)
+{
+    if (!data || !m) return VT_ERR_NULL;
+    *data = NULL;
+    const size_t bytes = vt_data_size(m);
+    void *block = malloc(bytes); /* vt_data_init zeroes what it uses */
+    if (!block) return VT_ERR_NO_MEMORY;
+    const vt_status st = vt_data_init(data, m, block, bytes);
+    if (st) {
+        free(block);
+        return st;
+    }
+    (*data)->block = block;
+    return VT_OK;
+}
+
 void vt_data_free(vt_data *d)
 {
-    free(d);
+    if (d && d->block) free(d->block); /* NULL for data in the caller's buffer: not ours to free */
 }
 
 vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who)

@@ -98,6 +98,11 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
 {
     vt_status st = vt_check_run(m, d, opt, tr, "vt_kinematic_analysis");
     if (st) return st;
+#if !VT_HAVE_SUNDIALS
+    if (opt->forward_check)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_kinematic_analysis: the forward check needs SUNDIALS IDA, and this build has none");
+#endif
     if (m->nc != m->nv)
         return vt_fail(d->message, VT_ERR_NOT_FULLY_DRIVEN,
                        "vt_kinematic_analysis: %d constraint rows for %d rates; a dynamic analysis handles the rest",
@@ -110,6 +115,7 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         if (opt->progress && opt->progress(d->time, opt->t1, opt->user))
             return vt_fail(d->message, VT_ERR_ABORTED, "vt_kinematic_analysis: stopped at t = %g", d->time);
     }
+#if VT_HAVE_SUNDIALS
     if (!opt->forward_check) return VT_OK;
     /* the forward check starts from the first row's state */
     vt_data *dk;
@@ -120,4 +126,7 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
     st = vt_forward_exact(m, d, dk, opt, tr);
     vt_data_free(dk);
     return st;
+#else
+    return VT_OK;
+#endif
 }

@@ -65,8 +65,14 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_IDA: return "SUNDIALS IDA failed";
     case VT_ERR_ABORTED: return "stopped by the progress callback";
     case VT_ERR_BAD_OPTION: return "run option out of range";
+    case VT_ERR_BAD_SIZE: return "caller-provided buffer too small";
     }
     return "unknown status";
+}
+
+const char *vt_version(void)
+{
+    return VT_VERSION_STRING;
 }
 
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
@@ -83,11 +89,13 @@ vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
 vt_model_def vt_default_model_def(void)
 {
     vt_model_def d;
+    memset(&d, 0, sizeof d); /* every field has a default, also those added later */
     d.gravity[0] = 0.0;
     d.gravity[1] = -9.81;
     d.gravity[2] = 0.0;
     d.rcond_min = 1e-12;
     d.rcond_warn = 1e-6;
+    d.allow_redundant = 0;
     return d;
 }
 

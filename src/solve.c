@@ -62,8 +62,11 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
     const double tau = sqrt(m->rcond_min);
     while (rank < kmax && fabs(A[rank + (size_t)rank * (size_t)nv]) > tau * r11) rank++;
     if (rank == nc) return rank;
-    int len = snprintf(d->message, sizeof d->message,
-                       "vt_solve: rcond %.3g; Φ_q has rank %d of %d rows; dependent:", rcond, rank, nc);
+    /* rcond is NaN when the rank is checked first (models that allow redundant rows) */
+    int len = isnan(rcond) ? snprintf(d->message, sizeof d->message,
+                                      "vt_solve: Φ_q has rank %d of %d rows; dependent:", rank, nc)
+                           : snprintf(d->message, sizeof d->message,
+                                      "vt_solve: rcond %.3g; Φ_q has rank %d of %d rows; dependent:", rcond, rank, nc);
     for (int k = rank; k < nc && len < (int)sizeof d->message - 40; k++) {
         char name[64];
         const int row = jpvt[k] - 1;

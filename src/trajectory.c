@@ -19,7 +19,7 @@ vt_run_options vt_default_run_options(void)
     o.max_steps = 100000;
     o.newton_tol = 1e-12;
     o.newton_maxit = 30;
-    o.forward_check = 1;
+    o.forward_check = VT_HAVE_SUNDIALS; /* the forward check integrates with IDA */
     o.forward_independent = 1;
     o.history_steps = 100000;
     o.formulation = VT_FORMULATION_GGL;

@@ -178,9 +178,22 @@ static void test_sizes_and_paths(void **state)
     }
 }
 
+/* vt_version() and the header's macros against meson's project version (passed by
+ * tests/meson.build as VT_TEST_PROJECT_VERSION) */
+static void test_version(void **state)
+{
+    (void)state;
+    assert_string_equal(vt_version(), VT_TEST_PROJECT_VERSION);
+    assert_string_equal(VT_VERSION_STRING, VT_TEST_PROJECT_VERSION);
+    char parts[64];
+    snprintf(parts, sizeof parts, "%d.%d.%d", VT_VERSION_MAJOR, VT_VERSION_MINOR, VT_VERSION_PATCH);
+    assert_string_equal(parts, VT_TEST_PROJECT_VERSION);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_version),
         cmocka_unit_test(test_validation_errors),
         cmocka_unit_test(test_allowed_and_normalized),
         cmocka_unit_test(test_limits_and_null),

@@ -34,6 +34,9 @@ static void both(const vt_model *m, vt_data *dr, vt_data *dd, int factorizes)
     compare(dr->cut_moment, dd->cut_moment, 3 * m->ncut, 1e-12, "cut_moment");
     compare(dr->Phi, dd->Phi, m->nc, 1e-12, "Phi");
     compare(dr->gamma, dd->gamma, m->nc, 1e-12, "gamma");
+    assert_int_equal(dr->rank, dd->rank); /* and the same uniqueness flags (vt_solve's) */
+    for (int r = 0; r < m->nc; r++) assert_int_equal(dr->lambda_unique[r], dd->lambda_unique[r]);
+    for (int k = 6; k < 6 * (m->nbody + 1); k++) assert_int_equal(dr->jnt_unique[k], dd->jnt_unique[k]);
     if (factorizes) {
         compare(dr->Sdqd, dd->Sdqd, m->nx, 1e-12, "Sdqd");
         compare(dr->Mstar, dd->Mstar, m->nv * m->nv, 1e-12, "Mstar");

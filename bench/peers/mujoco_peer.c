@@ -31,7 +31,16 @@
  * the constraint solver disabled. Equality constraints: timestep 1e-4, solref = "2e-4 1"
  * (time constant 2 * timestep, the smallest refsafe allows, critical damping), solimp =
  * "0.9999 0.9999 0.001 0.5 2" (impedance at mjMAXIMP everywhere).
+ *
+ * Forward simulation (vt_peer_mujoco_simulate, the work-precision benchmark): the same model and
+ * constraint settings, with opt.timestep = dt and opt.integrator = Euler (MuJoCo's default,
+ * semi-implicit) or RK4 for the run. solref's time constant 2e-4 is kept: for dt > 1e-4 refsafe
+ * raises it to 2 dt, so the lock gets softer as the step grows (MuJoCo's own behaviour). Each
+ * step is mj_step; on the output rows it is split into its parts, mj_forward, then (for the
+ * reactions at that state) mj_rnePostConstraint, then mj_Euler or mj_RungeKutta(m, d, 4): what
+ * mj_step does, without its mj_check* tests, so no dynamics is evaluated twice.
  */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -293,13 +302,9 @@ static mjModel *compile_xml(const char *xml)
     return m;
 }
 
-vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd)
+/* the scene's model (n = links of the chain), NULL on failure */
+static mjModel *scene_model(int scene, int n)
 {
-    if (!q || !qd || !qdd) return NULL;
-    if (scene == VT_PEER_DOUBLE_LINK) n = 2;
-    else if (scene == VT_PEER_FOURBAR) n = 3;
-    else if (scene != VT_PEER_CHAIN || n < 1) return NULL;
-
     xbuf b = {NULL, 0, 0, 0};
     b.s = malloc(b.cap = 4096);
     if (!b.s) return NULL;
@@ -309,6 +314,17 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     else xml_fourbar(&b);
     mjModel *m = b.failed ? NULL : compile_xml(b.s);
     free(b.s);
+    return m;
+}
+
+vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd)
+{
+    if (!q || !qd || !qdd) return NULL;
+    if (scene == VT_PEER_DOUBLE_LINK) n = 2;
+    else if (scene == VT_PEER_FOURBAR) n = 3;
+    else if (scene != VT_PEER_CHAIN || n < 1) return NULL;
+
+    mjModel *m = scene_model(scene, n);
     if (!m) return NULL;
 
     vt_peer *p = malloc(sizeof *p);
@@ -352,4 +368,51 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     p->vt = scene == VT_PEER_CHAIN ? &chain_vtable : scene == VT_PEER_DOUBLE_LINK ? &dl_vtable : &fb_vtable;
     mjp_run(s, 0);
     return p;
+}
+
+long vt_peer_mujoco_simulate(vt_peer *p, double dt, int integrator, double t1, int nout, double *q, double *qd,
+                             double *f)
+{
+    if (!p || (p->vt != &chain_vtable && p->vt != &dl_vtable && p->vt != &fb_vtable)) return -1;
+    if (!(dt > 0.0) || !(t1 > 0.0) || nout < 1 || (integrator != VT_PEER_EULER && integrator != VT_PEER_RK4))
+        return -1;
+    mj_peer *s = p->impl;
+    mjModel *m = s->m;
+    mjData *d = s->d;
+    const int n = s->n;
+    /* whole steps between the rows, and rows that fall on steps */
+    const long every = lround(t1 / nout / dt), nsteps = every * nout;
+    if (every < 1 || fabs((double)nsteps * dt - t1) > 1e-9 * t1) return -1;
+
+    const mjtNum timestep = m->opt.timestep;
+    const int integ = m->opt.integrator;
+    m->opt.timestep = dt;
+    m->opt.integrator = integrator == VT_PEER_RK4 ? mjINT_RK4 : mjINT_EULER;
+    mj_resetData(m, d);
+    memcpy(d->qpos, s->q, (size_t)n * sizeof(mjtNum));
+    memcpy(d->qvel, s->qd, (size_t)n * sizeof(mjtNum));
+    for (long i = 0;; i++) {
+        if (i % every) {
+            mj_step(m, d);
+            continue;
+        }
+        /* a row: mj_step split into its parts, the reactions taken between them */
+        const long k = i / every;
+        mj_forward(m, d);
+        mj_rnePostConstraint(m, d);
+        for (int j = 0; j < n; j++) {
+            if (q) q[k * n + j] = d->qpos[j];
+            if (qd) qd[k * n + j] = d->qvel[j];
+            if (f) {
+                double nj[3];
+                mjp_reaction(s, j + 1, f + 3 * (k * n + j), nj);
+            }
+        }
+        if (i == nsteps) break;
+        if (integrator == VT_PEER_RK4) mj_RungeKutta(m, d, 4);
+        else mj_Euler(m, d);
+    }
+    m->opt.timestep = timestep;
+    m->opt.integrator = integ;
+    return nsteps;
 }

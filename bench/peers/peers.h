@@ -1,7 +1,8 @@
 /* C interface to the peer libraries (Pinocchio, MuJoCo) used by the vtdyn benchmarks.
  * Each peer computes inverse dynamics (joint torques) and every joint reaction wrench
- * for the same scenes as vtdyn. A peer's constructor exists only when that peer is
- * built (VT_HAVE_PINOCCHIO / VT_HAVE_MUJOCO); the other functions always exist.
+ * for the same scenes as vtdyn; MuJoCo also simulates them forward (vt_peer_mujoco_simulate).
+ * A peer's constructor exists only when that peer is built (VT_HAVE_PINOCCHIO /
+ * VT_HAVE_MUJOCO); the other functions always exist.
  *
  * Scenes and coordinates (q, qd, qdd are copied at construction):
  *   chain        n links, q[k] = angle of joint k + 1 (both peers); torques: n values
@@ -34,6 +35,19 @@ void vt_peer_torques(const vt_peer *p, double *tau);         /* joint torques of
  * Gravity and inertia of the subtree carried by link k are inside f and n (both peers). */
 void vt_peer_reaction(const vt_peer *p, int k, double f[3], double n[3]);
 void vt_peer_free(vt_peer *p);
+
+/* MuJoCo only (exists when VT_HAVE_MUJOCO): forward simulation of a MuJoCo peer's scene from its
+ * q and qd (qdd unused) with mj_step, time step dt, integrator VT_PEER_EULER (MuJoCo's default,
+ * semi-implicit Euler) or VT_PEER_RK4, up to t1. Rows k = 0..nout at t = k t1 / nout (t1 / nout
+ * must be a whole number of steps), each after mj_forward and mj_rnePostConstraint at that state:
+ * q and qd ((nout + 1) x n, MuJoCo's qpos and qvel) and f ((nout + 1) x 3n: for links 1..n the
+ * reaction force of vt_peer_reaction); any of the three may be NULL. Returns the number of steps
+ * (mj_step equivalents; RK4 evaluates the dynamics 4 times a step, Euler once), or -1 when p is not
+ * a MuJoCo peer or an argument is bad. The model's timestep and integrator are restored afterwards;
+ * the peer's last-run results (torques, reactions) are overwritten. */
+enum { VT_PEER_EULER = 0, VT_PEER_RK4 = 1 };
+long vt_peer_mujoco_simulate(vt_peer *p, double dt, int integrator, double t1, int nout, double *q, double *qd,
+                             double *f);
 
 #ifdef __cplusplus
 }

@@ -27,7 +27,7 @@ extern "C" {
 
 /// Status of a call: 0 is success, negative values are errors.
 typedef enum vt_status {
-    VT_OK = 0,
+    VT_OK = 0,                         ///< success
     VT_ERR_NULL = -1,                  ///< a required pointer argument is NULL
     VT_ERR_NO_MEMORY = -2,             ///< an allocation failed
     VT_ERR_NONFINITE = -3,             ///< NaN or Inf in a definition or state
@@ -57,7 +57,8 @@ typedef enum vt_status {
     VT_ERR_IDA = -25,                  ///< SUNDIALS IDA failed: its return code in ida_flag, its message
                                        ///< in the data's message
     VT_ERR_ABORTED = -26,              ///< the progress callback asked to stop
-    VT_ERR_BAD_OPTION = -27            ///< a run option out of range (message says which)
+    VT_ERR_BAD_OPTION = -27,           ///< a run option out of range (message says which)
+    VT_ERR_BAD_SIZE = -28              ///< a caller-provided buffer is too small (see vt_data_size())
 } vt_status;
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
@@ -72,7 +73,7 @@ typedef enum vt_joint_type {
     VT_JOINT_SPHERICAL,      ///< q: relative Euler parameters (4); q̇: relative angular velocity (3)
     VT_JOINT_TRANSLATIONAL,  ///< 1 translation along axis1
     VT_JOINT_CYLINDRICAL,    ///< angle about axis1, then translation along axis1
-    VT_JOINT_TYPE_COUNT
+    VT_JOINT_TYPE_COUNT      ///< number of joint kinds (not a kind)
 } vt_joint_type;
 
 /// Options of the whole model.
@@ -111,7 +112,7 @@ typedef int (*vt_function_callback)(double t, double out[3], void *user);
 
 /// A time function; make it with vt_function_constant() and friends.
 typedef struct vt_function {
-    vt_function_type type;
+    vt_function_type type;        ///< which kind (the meaning of c)
     int ncoef;                    ///< polynomial: number of coefficients (1..VT_POLY_MAX)
     double c[VT_POLY_MAX];        ///< coefficients, see vt_function_type
     vt_function_callback callback;///< VT_FUNCTION_CALLBACK only
@@ -128,7 +129,7 @@ typedef enum vt_drive_type {
     VT_DRIVE_JOINT = 0,    ///< a rate's coordinate of a body's joint follows f(t): q_k − f(t) = 0
     VT_DRIVE_POINT,        ///< one global component of a body point follows f(t), (30)-(34)
     VT_DRIVE_ORIENTATION,  ///< a body's orientation follows p_d(t): 2 G(p_d) p = 0 (3 rows)
-    VT_DRIVE_TYPE_COUNT
+    VT_DRIVE_TYPE_COUNT    ///< number of drive kinds (not a kind)
 } vt_drive_type;
 
 /// A drive. Fill from vt_default_drive_def().
@@ -157,8 +158,9 @@ typedef struct vt_cut_joint_def {
     vt_joint_type joint;   ///< default VT_JOINT_REVOLUTE
     int body_a;            ///< 0 = ground allowed; default 0
     int body_b;            ///< ≠ body_a; default 1
-    double point_a[3];     ///< m, joint point on a, a's axes from its centre of mass (global for ground)
-    double point_b[3];     ///< m, joint point on b, b's axes from its centre of mass
+    double point_a[3];     ///< m, joint point on a, a's axes from its centre of mass (global for ground);
+                           ///< default 0
+    double point_b[3];     ///< m, joint point on b, b's axes from its centre of mass; default 0
     double axis1[3];       ///< first axis, a's axes; normalized; default z
     double axis2[3];       ///< universal: second axis (on b) in a's axes when assembled; default x
     double orientation[4]; ///< b's axes relative to a's when assembled (carries the axes onto b);
@@ -242,17 +244,21 @@ typedef struct vt_model {
 } vt_model;
 
 /// The data of one model: inputs, every result, and all scratch space. Allocated once by
-/// vt_data_create(); no stage allocates. Fields are grouped by the stage that fills them.
+/// vt_data_create(), or laid out in the caller's buffer by vt_data_init(); no stage allocates.
+/// Fields are grouped by the stage that fills them.
 typedef struct vt_data {
     const vt_model *model;   ///< the model this data was made for
+    void *block;             ///< the allocation vt_data_free() releases (vt_data_create()); NULL when
+                             ///< the memory is the caller's (vt_data_init()): vt_data_free() then does nothing
 
     /* state and loads: set by the caller */
-    double time;             ///< s
+    double time;             ///< s, the instant: drives' time functions are evaluated here
     double *q;               ///< generalized positions (nq)
     double *qd;              ///< generalized velocities (nv)
     double *xfrc;            ///< applied force (N) and moment (N·m) on each body, global, moment about
                              ///< the centre of mass: [f; n] (6 x (nbody+1)); see vt_add_point_load()
-    double *qfrc;            ///< applied generalized force, added to Q (nv); default 0
+    double *qfrc;            ///< applied generalized force per rate (N·m or N), added to Q; acts on
+                             ///< the rate's body and, opposite, on its reference body (nv); default 0
 
     /* vt_kinematics(): positions, velocities, S and Ṡq̇ */
     double *x;               ///< Cartesian coordinates [r; p] (7n), eq (1)
@@ -287,11 +293,12 @@ typedef struct vt_data {
 
     /* vt_solve(): the augmented system (5) */
     double *qdd;             ///< q̈ (nv)
-    double *lambda;          ///< Lagrange multipliers λ (nc)
+    double *lambda;          ///< Lagrange multipliers λ of M* q̈ = Q + Φ_q^T λ (2), one per constraint
+                             ///< row: drives, then cut joints, then base bodies' p^T p − 1 (nc)
     double rcond;            ///< reciprocal condition estimate of the equilibrated augmented matrix
                              ///< (1 when nothing was factorized: a fully joint-driven recursive instant)
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
-    int rank;                ///< rank of Φ_q found by the last vt_solve (nc when the rows are independent)
+    int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent)
     double residual;         ///< max |Φ_q q̈ − γ| over all rows after a redundant solve (0 otherwise)
     int *lambda_unique;      ///< 0 where a multiplier is not unique (redundant rows), else 1 (nc)
     int *jnt_unique;         ///< per reaction component (fx fy fz nx ny nz, global): 0 where a tree
@@ -334,7 +341,8 @@ typedef struct vt_data {
     double *qsave;           ///< copy of q and q̇ kept by calls that restore them on failure (nq+nv)
     int ida_flag;            ///< return code of the last failing IDA call (0 if none)
 
-    char message[256];       ///< detail of the last failed call on this data
+    char message[256];       ///< detail of the last failed call on this data (a successful call need
+                             ///< not clear it: read it after a failure)
 } vt_data;
 
 /// Progress of a run: called at every output time; a non-zero return stops the run
@@ -352,7 +360,7 @@ typedef enum vt_formulation {
     VT_FORMULATION_ODE,         ///< q̈ from vt_solve at every residual (Baumgarte's terms in γ), IDA on
                                 ///< q and q̇ only: carries through poses where rows become dependent
                                 ///< when the model allows redundant rows
-    VT_FORMULATION_COUNT
+    VT_FORMULATION_COUNT        ///< number of formulations (not one)
 } vt_formulation;
 
 /// Options of an analysis over time. Fill from vt_default_run_options().
@@ -390,31 +398,32 @@ typedef struct vt_trajectory {
     const vt_model *model;   ///< the model it was made for
     int nrow;                ///< rows allocated
     int nfilled;             ///< rows written by the last run
-    double *t;               ///< s (nrow)
-    double *q;               ///< driven run (nq x nrow)
+    double *t;               ///< s, output times (nrow)
+    /* the driven run, each column as the vt_data field of the same name at that time */
+    double *q;               ///< (nq x nrow)
     double *qd;              ///< (nv x nrow)
     double *qdd;             ///< (nv x nrow)
     double *lambda;          ///< (nc x nrow)
-    double *qfrc_drive;      ///< Φ_q^T λ of the drives (nv x nrow)
-    double *drive_effort;    ///< (ndrive x nrow)
-    double *drive_force;     ///< (3 ndrive x nrow)
-    double *drive_moment;    ///< (3 ndrive x nrow)
-    double *jnt_force;       ///< (3 (nbody+1) x nrow)
-    double *jnt_moment;      ///< (3 (nbody+1) x nrow)
-    double *cut_force;       ///< (3 ncut x nrow)
-    double *cut_moment;      ///< (3 ncut x nrow)
+    double *qfrc_drive;      ///< Φ_q^T λ of the drives, N·m or N (nv x nrow)
+    double *drive_effort;    ///< N·m or N (ndrive x nrow)
+    double *drive_force;     ///< N, global (3 ndrive x nrow)
+    double *drive_moment;    ///< N·m, global (3 ndrive x nrow)
+    double *jnt_force;       ///< N, global (3 (nbody+1) x nrow)
+    double *jnt_moment;      ///< N·m, global, about the joint point (3 (nbody+1) x nrow)
+    double *cut_force;       ///< N, global (3 ncut x nrow)
+    double *cut_moment;      ///< N·m, global, about point_b (3 ncut x nrow)
     double *phi_norm;        ///< max |Φ| of the driven run (nrow)
     double *phid_norm;       ///< max |Φ_q q̇ + Φ_t| of the driven run (nrow)
     double *rcond;           ///< condition estimate of (5) at each row of the driven run (nrow)
     int nwarn;               ///< rows whose solve warned VT_WARN_ILL_CONDITIONED
     double t_warn;           ///< s, time of the first such row (NaN if none)
     /* forward check: the drives removed, their efforts applied (vt_run_options.forward_as_loads) */
-    double *q_fwd;           ///< (nq x nrow)
-    double *qd_fwd;          ///< (nv x nrow)
-    double *jnt_force_fwd;   ///< (3 (nbody+1) x nrow)
-    double *jnt_moment_fwd;  ///< (3 (nbody+1) x nrow)
-    double *cut_force_fwd;   ///< (3 ncut x nrow)
-    double *cut_moment_fwd;  ///< (3 ncut x nrow)
+    double *q_fwd;           ///< the forward run's q (nq x nrow)
+    double *qd_fwd;          ///< its q̇ (nv x nrow)
+    double *jnt_force_fwd;   ///< its reactions, N (3 (nbody+1) x nrow)
+    double *jnt_moment_fwd;  ///< N·m (3 (nbody+1) x nrow)
+    double *cut_force_fwd;   ///< N (3 ncut x nrow)
+    double *cut_moment_fwd;  ///< N·m (3 ncut x nrow)
     double fwd_err_q;        ///< max over rows and coordinates of |q_fwd − q|
     double fwd_err_qd;       ///< max |q̇_fwd − q̇|
     double fwd_err_force;    ///< max |reaction force (forward) − reaction force (driven)|, N

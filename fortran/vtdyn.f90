@@ -1,0 +1,679 @@
+! vtdyn — Fortran bindings to the C library (ISO_C_BINDING, Fortran 2018).
+!
+! One module, `vtdyn`, that mirrors include/vtdyn.h: every public function of the C API as a
+! bind(C) interface with the C name, and every public struct as a bind(C) derived type with
+! the same name, the same fields in the same order (tests/test_fortran_layout checks each
+! field's offset against the C compiler's). Compile this file with your program and link the
+! C library:
+!
+!     gfortran -c vtdyn.f90 && gfortran my_program.f90 vtdyn.o $(pkg-config --libs vtdyn)
+!
+! Conventions are C's, stated once in include/vtdyn/types.h (units SI, Euler parameters scalar
+! first, column-major matrices). Values inside the structs keep the C numbering: body ids are
+! 1..n with 0 the ground, drive and cut-joint indices and a drive's `index` start at 0.
+!
+!   - The model, the data, a builder and a trajectory are C objects: hold them as type(c_ptr)
+!     and pass those by value. To read their fields, c_f_pointer the type(c_ptr) to the mirror:
+!         type(vt_data), pointer :: d;   call c_f_pointer(dp, d)
+!     and the arrays they point to with vt_array / vt_body_array (the shapes are in types.h):
+!         call vt_array(q, d%q, m%nq)                        ! q(1:nq)
+!         call vt_body_array(jf, d%jnt_force, 3, m%nbody)    ! jf(1:3, 0:nbody), column i = body i
+!     These are views of the C memory: writing q(1) sets the C data's q[0].
+!   - Definition structs are plain values: start from the defaults and set what you need,
+!         type(vt_body_def) :: link;   link = vt_default_body_def();   link%mass = 100
+!     (2-D fields are flat as in C: inertia(1:9) is the 3x3 column-major matrix).
+!   - Fortran names ignore case, so two C names change: vt_data's Q (the generalized force,
+!     beside q) is Qgen here, and the vt_function_type values VT_FUNCTION_CONSTANT ... are
+!     VT_FUNC_CONSTANT, VT_FUNC_POLYNOMIAL, VT_FUNC_SINE, VT_FUNC_CALLBACK (beside the
+!     functions vt_function_constant() ...).
+!   - Optional C pointers are OPTIONAL arguments (vt_builder_create's def, vt_add_point_load's
+!     f and n): leave them out for NULL.
+!   - Strings: vt_string() turns a C string (vt_status_string, vt_builder_message, vt_version)
+!     into a Fortran one; vt_message(d) gives d%message.
+! vt_dynamic_analysis exists only in a library built with SUNDIALS (VT_HAVE_SUNDIALS).
+module vtdyn
+  use, intrinsic :: iso_c_binding
+  implicit none
+
+  ! ---- constants of include/vtdyn/types.h -----------------------------------------------
+  ! vt_status: 0 is success, negative values are errors (vt_status_string names them)
+  integer(c_int), parameter :: VT_OK = 0, VT_ERR_NULL = -1, VT_ERR_NO_MEMORY = -2, &
+      VT_ERR_NONFINITE = -3, VT_ERR_MASS = -4, VT_ERR_INERTIA_ASYMMETRIC = -5, &
+      VT_ERR_INERTIA_NOT_PSD = -6, VT_ERR_INERTIA_TRIANGLE = -7, VT_ERR_AXIS_ZERO = -8, &
+      VT_ERR_AXES_NOT_PERPENDICULAR = -9, VT_ERR_PARENT = -10, VT_ERR_JOINT_TYPE = -11, &
+      VT_ERR_TOO_MANY_BODIES = -12, VT_ERR_QUATERNION = -13, VT_ERR_EMPTY_MODEL = -14, &
+      VT_ERR_BAD_INDEX = -15, VT_ERR_MODEL_MISMATCH = -16, VT_ERR_LAPACK = -17, &
+      VT_ERR_BAD_DRIVE = -18, VT_ERR_BAD_CUT_JOINT = -19, VT_ERR_CALLBACK = -20, &
+      VT_ERR_SINGULAR = -21, VT_ERR_DEPENDENT_CONSTRAINTS = -22, VT_ERR_NEWTON = -23, &
+      VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
+      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28
+  integer(c_int), parameter :: VT_MAX_BODIES = 1000
+  ! vt_joint_type
+  integer(c_int), parameter :: VT_JOINT_BASE = 0, VT_JOINT_REVOLUTE = 1, VT_JOINT_UNIVERSAL = 2, &
+      VT_JOINT_SPHERICAL = 3, VT_JOINT_TRANSLATIONAL = 4, VT_JOINT_CYLINDRICAL = 5, &
+      VT_JOINT_TYPE_COUNT = 6
+  ! warning flags in vt_data%warning
+  integer(c_int), parameter :: VT_WARN_ILL_CONDITIONED = 1, VT_WARN_REDUNDANT = 2
+  ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
+  integer(c_int), parameter :: VT_FUNC_CONSTANT = 0, VT_FUNC_POLYNOMIAL = 1, VT_FUNC_SINE = 2, &
+      VT_FUNC_CALLBACK = 3
+  integer(c_int), parameter :: VT_POLY_MAX = 8
+  ! vt_drive_type
+  integer(c_int), parameter :: VT_DRIVE_JOINT = 0, VT_DRIVE_POINT = 1, VT_DRIVE_ORIENTATION = 2, &
+      VT_DRIVE_TYPE_COUNT = 3
+  ! vt_formulation
+  integer(c_int), parameter :: VT_FORMULATION_INDEX1 = 0, VT_FORMULATION_BAUMGARTE = 1, &
+      VT_FORMULATION_PROJECTION = 2, VT_FORMULATION_GGL = 3, VT_FORMULATION_ODE = 4, &
+      VT_FORMULATION_COUNT = 5
+  integer(c_int), parameter :: VT_DATA_ALIGN = 64
+
+  ! ---- the structs: same names, fields and order as include/vtdyn/types.h, where each
+  ! field's meaning, unit and shape are stated. Enumerations are integer(c_int), pointers
+  ! type(c_ptr), callbacks type(c_funptr) (make them with c_funloc of a bind(C) procedure).
+
+  type, bind(C) :: vt_model_def
+    real(c_double)         :: gravity(3)
+    real(c_double)         :: rcond_min
+    real(c_double)         :: rcond_warn
+    integer(c_int)         :: allow_redundant
+  end type vt_model_def
+
+  type, bind(C) :: vt_function
+    integer(c_int)         :: type
+    integer(c_int)         :: ncoef
+    real(c_double)         :: c(VT_POLY_MAX)
+    type(c_funptr)         :: callback
+    type(c_ptr)            :: user
+  end type vt_function
+
+  type, bind(C) :: vt_drive_def
+    integer(c_int)         :: type
+    integer(c_int)         :: body
+    integer(c_int)         :: index
+    real(c_double)         :: point(3)
+    type(vt_function)      :: f
+    real(c_double)         :: axis(3)
+    real(c_double)         :: orientation(4)
+    type(c_funptr)         :: orientation_callback
+    type(c_ptr)            :: user
+  end type vt_drive_def
+
+  type, bind(C) :: vt_cut_joint_def
+    integer(c_int)         :: joint
+    integer(c_int)         :: body_a
+    integer(c_int)         :: body_b
+    real(c_double)         :: point_a(3)
+    real(c_double)         :: point_b(3)
+    real(c_double)         :: axis1(3)
+    real(c_double)         :: axis2(3)
+    real(c_double)         :: orientation(4)
+  end type vt_cut_joint_def
+
+  type, bind(C) :: vt_body_def
+    integer(c_int)         :: parent
+    integer(c_int)         :: joint
+    real(c_double)         :: mass
+    real(c_double)         :: inertia(9)
+    real(c_double)         :: joint_parent(3)
+    real(c_double)         :: joint_child(3)
+    real(c_double)         :: axis1(3)
+    real(c_double)         :: axis2(3)
+    real(c_double)         :: orientation(4)
+  end type vt_body_def
+
+  type, bind(C) :: vt_model
+    integer(c_int)         :: nbody
+    integer(c_int)         :: nq
+    integer(c_int)         :: nv
+    integer(c_int)         :: nx
+    real(c_double)         :: gravity(3)
+    type(c_ptr)            :: body_parent
+    type(c_ptr)            :: body_joint
+    type(c_ptr)            :: body_qadr
+    type(c_ptr)            :: body_nq
+    type(c_ptr)            :: body_vadr
+    type(c_ptr)            :: body_nv
+    type(c_ptr)            :: body_mass
+    type(c_ptr)            :: body_inertia
+    type(c_ptr)            :: body_jpar
+    type(c_ptr)            :: body_jchild
+    type(c_ptr)            :: body_axis
+    type(c_ptr)            :: body_quat0
+    type(c_ptr)            :: body_pathadr
+    type(c_ptr)            :: body_pathnum
+    type(c_ptr)            :: path_dof
+    integer(c_int)         :: npath
+    integer(c_int)         :: maxpath
+    type(c_ptr)            :: dof_body
+    type(c_ptr)            :: q0
+    real(c_double)         :: rcond_min
+    real(c_double)         :: rcond_warn
+    integer(c_int)         :: allow_redundant
+    integer(c_int)         :: ndrive
+    integer(c_int)         :: ncut
+    integer(c_int)         :: nc
+    type(c_ptr)            :: drive
+    type(c_ptr)            :: drive_row
+    type(c_ptr)            :: cut
+    type(c_ptr)            :: cut_row
+    type(c_ptr)            :: con_kind
+    type(c_ptr)            :: con_body
+    type(c_ptr)            :: con_owner
+    type(c_ptr)            :: con_dof
+    type(c_ptr)            :: con_vec
+    type(c_ptr)            :: con_point
+    type(c_ptr)            :: dof_drive
+    integer(c_int)         :: joint_driven
+    integer(c_int)         :: joint_rows_only
+  end type vt_model
+
+  type, bind(C) :: vt_data
+    type(c_ptr)            :: model
+    type(c_ptr)            :: block
+    real(c_double)         :: time
+    type(c_ptr)            :: q
+    type(c_ptr)            :: qd
+    type(c_ptr)            :: xfrc
+    type(c_ptr)            :: qfrc
+    type(c_ptr)            :: x
+    type(c_ptr)            :: xd
+    type(c_ptr)            :: A
+    type(c_ptr)            :: omega
+    type(c_ptr)            :: jaxis
+    type(c_ptr)            :: jsij
+    type(c_ptr)            :: jd
+    type(c_ptr)            :: jpoint
+    type(c_ptr)            :: S
+    type(c_ptr)            :: Sdqd
+    type(c_ptr)            :: R
+    type(c_ptr)            :: Mp
+    type(c_ptr)            :: Mstar
+    type(c_ptr)            :: F
+    type(c_ptr)            :: h
+    type(c_ptr)            :: Qgen
+    type(c_ptr)            :: Phi
+    type(c_ptr)            :: Phix
+    type(c_ptr)            :: Phiq
+    type(c_ptr)            :: Phit
+    type(c_ptr)            :: gamma
+    type(c_ptr)            :: qdd
+    type(c_ptr)            :: lambda
+    real(c_double)         :: rcond
+    integer(c_int)         :: warning
+    integer(c_int)         :: rank
+    real(c_double)         :: residual
+    type(c_ptr)            :: lambda_unique
+    type(c_ptr)            :: jnt_unique
+    type(c_ptr)            :: cut_unique
+    type(c_ptr)            :: xdd
+    type(c_ptr)            :: qfrc_drive
+    type(c_ptr)            :: drive_effort
+    type(c_ptr)            :: drive_force
+    type(c_ptr)            :: drive_moment
+    type(c_ptr)            :: jnt_force
+    type(c_ptr)            :: jnt_moment
+    type(c_ptr)            :: jnt_force_body
+    type(c_ptr)            :: jnt_moment_body
+    type(c_ptr)            :: cut_force
+    type(c_ptr)            :: cut_moment
+    type(c_ptr)            :: cut_force_body
+    type(c_ptr)            :: cut_moment_body
+    type(c_ptr)            :: work
+    integer(c_size_t)      :: nwork
+    type(c_ptr)            :: kkt
+    type(c_ptr)            :: kkt_rhs
+    type(c_ptr)            :: kkt_scale
+    type(c_ptr)            :: lwork
+    integer(c_int)         :: nlwork
+    type(c_ptr)            :: ipiv
+    type(c_ptr)            :: liwork
+    type(c_ptr)            :: nullvec
+    type(c_ptr)            :: red_work
+    type(c_ptr)            :: red_iwork
+    type(c_ptr)            :: qsave
+    integer(c_int)         :: ida_flag
+    character(kind=c_char) :: message(256)
+  end type vt_data
+
+  type, bind(C) :: vt_run_options
+    real(c_double)         :: t0
+    real(c_double)         :: t1
+    integer(c_int)         :: nout
+    real(c_double)         :: rtol
+    real(c_double)         :: atol
+    real(c_double)         :: max_step
+    integer(c_long)        :: max_steps
+    real(c_double)         :: newton_tol
+    integer(c_int)         :: newton_maxit
+    integer(c_int)         :: forward_check
+    integer(c_int)         :: forward_independent
+    integer(c_int)         :: history_steps
+    integer(c_int)         :: forward_as_loads
+    integer(c_int)         :: formulation
+    real(c_double)         :: baumgarte_alpha
+    real(c_double)         :: baumgarte_beta
+    type(c_funptr)         :: progress
+    type(c_ptr)            :: user
+  end type vt_run_options
+
+  type, bind(C) :: vt_trajectory
+    type(c_ptr)            :: model
+    integer(c_int)         :: nrow
+    integer(c_int)         :: nfilled
+    type(c_ptr)            :: t
+    type(c_ptr)            :: q
+    type(c_ptr)            :: qd
+    type(c_ptr)            :: qdd
+    type(c_ptr)            :: lambda
+    type(c_ptr)            :: qfrc_drive
+    type(c_ptr)            :: drive_effort
+    type(c_ptr)            :: drive_force
+    type(c_ptr)            :: drive_moment
+    type(c_ptr)            :: jnt_force
+    type(c_ptr)            :: jnt_moment
+    type(c_ptr)            :: cut_force
+    type(c_ptr)            :: cut_moment
+    type(c_ptr)            :: phi_norm
+    type(c_ptr)            :: phid_norm
+    type(c_ptr)            :: rcond
+    integer(c_int)         :: nwarn
+    real(c_double)         :: t_warn
+    type(c_ptr)            :: q_fwd
+    type(c_ptr)            :: qd_fwd
+    type(c_ptr)            :: jnt_force_fwd
+    type(c_ptr)            :: jnt_moment_fwd
+    type(c_ptr)            :: cut_force_fwd
+    type(c_ptr)            :: cut_moment_fwd
+    real(c_double)         :: fwd_err_q
+    real(c_double)         :: fwd_err_qd
+    real(c_double)         :: fwd_err_force
+    real(c_double)         :: fwd_err_moment
+    real(c_double)         :: fwd_interp_err
+    integer(c_long)        :: steps
+    integer(c_long)        :: res_evals
+    integer(c_long)        :: steps_fwd
+    integer(c_long)        :: res_evals_fwd
+  end type vt_trajectory
+
+
+  ! ---- the functions of include/vtdyn.h and include/vtdyn/euler.h -------------------------
+  interface
+    ! text for a status code (a C string: vt_string() converts it)
+    function vt_status_string(status) bind(C, name='vt_status_string')
+      import :: c_int, c_ptr
+      integer(c_int), value :: status
+      type(c_ptr) :: vt_status_string
+    end function
+    function vt_version() bind(C, name='vt_version')
+      import :: c_ptr
+      type(c_ptr) :: vt_version
+    end function
+
+    ! model building
+    function vt_default_model_def() bind(C, name='vt_default_model_def')
+      import :: vt_model_def
+      type(vt_model_def) :: vt_default_model_def
+    end function
+    function vt_default_body_def() bind(C, name='vt_default_body_def')
+      import :: vt_body_def
+      type(vt_body_def) :: vt_default_body_def
+    end function
+    function vt_builder_create(builder, def) bind(C, name='vt_builder_create')
+      import :: c_int, c_ptr, vt_model_def
+      type(c_ptr), intent(out) :: builder
+      type(vt_model_def), intent(in), optional :: def
+      integer(c_int) :: vt_builder_create
+    end function
+    function vt_builder_add_body(builder, def) bind(C, name='vt_builder_add_body')
+      import :: c_int, c_ptr, vt_body_def
+      type(c_ptr), value :: builder
+      type(vt_body_def), intent(in) :: def
+      integer(c_int) :: vt_builder_add_body
+    end function
+    function vt_builder_message(builder) bind(C, name='vt_builder_message')
+      import :: c_ptr
+      type(c_ptr), value :: builder
+      type(c_ptr) :: vt_builder_message
+    end function
+    function vt_builder_build(model, builder) bind(C, name='vt_builder_build')
+      import :: c_int, c_ptr
+      type(c_ptr), intent(out) :: model
+      type(c_ptr), value :: builder
+      integer(c_int) :: vt_builder_build
+    end function
+    subroutine vt_builder_free(builder) bind(C, name='vt_builder_free')
+      import :: c_ptr
+      type(c_ptr), value :: builder
+    end subroutine
+    subroutine vt_model_free(model) bind(C, name='vt_model_free')
+      import :: c_ptr
+      type(c_ptr), value :: model
+    end subroutine
+    function vt_model_without_drives(out, model) bind(C, name='vt_model_without_drives')
+      import :: c_int, c_ptr
+      type(c_ptr), intent(out) :: out
+      type(c_ptr), value :: model
+      integer(c_int) :: vt_model_without_drives
+    end function
+    function vt_data_create(data, model) bind(C, name='vt_data_create')
+      import :: c_int, c_ptr
+      type(c_ptr), intent(out) :: data
+      type(c_ptr), value :: model
+      integer(c_int) :: vt_data_create
+    end function
+    function vt_data_reset(model, data) bind(C, name='vt_data_reset')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_data_reset
+    end function
+    subroutine vt_data_free(data) bind(C, name='vt_data_free')
+      import :: c_ptr
+      type(c_ptr), value :: data
+    end subroutine
+    function vt_data_size(model) bind(C, name='vt_data_size')
+      import :: c_size_t, c_ptr
+      type(c_ptr), value :: model
+      integer(c_size_t) :: vt_data_size
+    end function
+    function vt_data_init(data, model, buffer, size) bind(C, name='vt_data_init')
+      import :: c_int, c_ptr, c_size_t
+      type(c_ptr), intent(out) :: data
+      type(c_ptr), value :: model, buffer
+      integer(c_size_t), value :: size
+      integer(c_int) :: vt_data_init
+    end function
+    function vt_add_point_load(model, data, body, point, f, n) bind(C, name='vt_add_point_load')
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model, data
+      integer(c_int), value :: body
+      real(c_double), intent(in) :: point(3)
+      real(c_double), intent(in), optional :: f(3), n(3)
+      integer(c_int) :: vt_add_point_load
+    end function
+    function vt_integrate_q(q_out, model, q, v, h) bind(C, name='vt_integrate_q')
+      import :: c_int, c_ptr, c_double
+      real(c_double), intent(inout) :: q_out(*)
+      type(c_ptr), value :: model
+      real(c_double), intent(in) :: q(*), v(*)
+      real(c_double), value :: h
+      integer(c_int) :: vt_integrate_q
+    end function
+
+    ! time functions
+    function vt_function_constant(c) bind(C, name='vt_function_constant')
+      import :: c_double, vt_function
+      real(c_double), value :: c
+      type(vt_function) :: vt_function_constant
+    end function
+    function vt_function_polynomial(ncoef, c) bind(C, name='vt_function_polynomial')
+      import :: c_int, c_double, vt_function
+      integer(c_int), value :: ncoef
+      real(c_double), intent(in) :: c(*)
+      type(vt_function) :: vt_function_polynomial
+    end function
+    function vt_function_sine(a, b, omega, phase) bind(C, name='vt_function_sine')
+      import :: c_double, vt_function
+      real(c_double), value :: a, b, omega, phase
+      type(vt_function) :: vt_function_sine
+    end function
+    function vt_function_user(callback, user) bind(C, name='vt_function_user')
+      import :: c_funptr, c_ptr, vt_function
+      type(c_funptr), value :: callback
+      type(c_ptr), value :: user
+      type(vt_function) :: vt_function_user
+    end function
+    function vt_function_eval(out, f, t) bind(C, name='vt_function_eval')
+      import :: c_int, c_double, vt_function
+      real(c_double), intent(out) :: out(3)
+      type(vt_function), intent(in) :: f
+      real(c_double), value :: t
+      integer(c_int) :: vt_function_eval
+    end function
+
+    ! drives and cut joints
+    function vt_default_drive_def() bind(C, name='vt_default_drive_def')
+      import :: vt_drive_def
+      type(vt_drive_def) :: vt_default_drive_def
+    end function
+    function vt_default_cut_joint_def() bind(C, name='vt_default_cut_joint_def')
+      import :: vt_cut_joint_def
+      type(vt_cut_joint_def) :: vt_default_cut_joint_def
+    end function
+    function vt_builder_add_drive(builder, def) bind(C, name='vt_builder_add_drive')
+      import :: c_int, c_ptr, vt_drive_def
+      type(c_ptr), value :: builder
+      type(vt_drive_def), intent(in) :: def
+      integer(c_int) :: vt_builder_add_drive
+    end function
+    function vt_builder_add_cut_joint(builder, def) bind(C, name='vt_builder_add_cut_joint')
+      import :: c_int, c_ptr, vt_cut_joint_def
+      type(c_ptr), value :: builder
+      type(vt_cut_joint_def), intent(in) :: def
+      integer(c_int) :: vt_builder_add_cut_joint
+    end function
+
+    ! stages: each reads the model and fills its part of the data
+    function vt_kinematics(model, data) bind(C, name='vt_kinematics')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_kinematics
+    end function
+    function vt_inverse_transform(model, data) bind(C, name='vt_inverse_transform')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_inverse_transform
+    end function
+    function vt_mass_matrix(model, data) bind(C, name='vt_mass_matrix')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_mass_matrix
+    end function
+    function vt_forces(model, data) bind(C, name='vt_forces')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_forces
+    end function
+    function vt_constraints(model, data) bind(C, name='vt_constraints')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_constraints
+    end function
+    function vt_solve(model, data) bind(C, name='vt_solve')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_solve
+    end function
+    function vt_reactions(model, data) bind(C, name='vt_reactions')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_reactions
+    end function
+    function vt_inverse_dynamics(model, data) bind(C, name='vt_inverse_dynamics')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_inverse_dynamics
+    end function
+    function vt_inverse_dynamics_recursive(model, data) bind(C, name='vt_inverse_dynamics_recursive')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_inverse_dynamics_recursive
+    end function
+    function vt_drive_cartesian_force(F, model, data, drive) bind(C, name='vt_drive_cartesian_force')
+      import :: c_int, c_ptr, c_double
+      real(c_double), intent(out) :: F(*)
+      type(c_ptr), value :: model, data
+      integer(c_int), value :: drive
+      integer(c_int) :: vt_drive_cartesian_force
+    end function
+
+    ! analyses over time
+    function vt_default_run_options() bind(C, name='vt_default_run_options')
+      import :: vt_run_options
+      type(vt_run_options) :: vt_default_run_options
+    end function
+    function vt_trajectory_create(trajectory, model, nrow) bind(C, name='vt_trajectory_create')
+      import :: c_int, c_ptr
+      type(c_ptr), intent(out) :: trajectory
+      type(c_ptr), value :: model
+      integer(c_int), value :: nrow
+      integer(c_int) :: vt_trajectory_create
+    end function
+    subroutine vt_trajectory_free(trajectory) bind(C, name='vt_trajectory_free')
+      import :: c_ptr
+      type(c_ptr), value :: trajectory
+    end subroutine
+    function vt_kinematic_solve(model, data, tol, maxit) bind(C, name='vt_kinematic_solve')
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model, data
+      real(c_double), value :: tol
+      integer(c_int), value :: maxit
+      integer(c_int) :: vt_kinematic_solve
+    end function
+    function vt_kinematic_analysis(model, data, opt, trajectory) bind(C, name='vt_kinematic_analysis')
+      import :: c_int, c_ptr, vt_run_options
+      type(c_ptr), value :: model, data
+      type(vt_run_options), intent(in) :: opt
+      type(c_ptr), value :: trajectory
+      integer(c_int) :: vt_kinematic_analysis
+    end function
+    function vt_dynamic_analysis(model, data, opt, trajectory) bind(C, name='vt_dynamic_analysis')
+      import :: c_int, c_ptr, vt_run_options
+      type(c_ptr), value :: model, data
+      type(vt_run_options), intent(in) :: opt
+      type(c_ptr), value :: trajectory
+      integer(c_int) :: vt_dynamic_analysis
+    end function
+
+    ! force transforms
+    subroutine vt_cartesian_force(F, p, s, f_, n) bind(C, name='vt_cartesian_force')
+      import :: c_double
+      real(c_double), intent(out) :: F(7)
+      real(c_double), intent(in) :: p(4), s(3), f_(3), n(3)
+    end subroutine
+    function vt_generalized_force(Q, model, data, F) bind(C, name='vt_generalized_force')
+      import :: c_int, c_ptr, c_double
+      real(c_double), intent(out) :: Q(*)
+      type(c_ptr), value :: model, data
+      real(c_double), intent(in) :: F(*)
+      integer(c_int) :: vt_generalized_force
+    end function
+    function vt_equivalent_force(Feq, model, data, Q) bind(C, name='vt_equivalent_force')
+      import :: c_int, c_ptr, c_double
+      real(c_double), intent(out) :: Feq(*)
+      type(c_ptr), value :: model, data
+      real(c_double), intent(in) :: Q(*)
+      integer(c_int) :: vt_equivalent_force
+    end function
+
+    ! Euler parameters (include/vtdyn/euler.h)
+    subroutine vt_euler_E(E, p) bind(C, name='vt_euler_E')
+      import :: c_double
+      real(c_double), intent(out) :: E(12)
+      real(c_double), intent(in) :: p(4)
+    end subroutine
+    subroutine vt_euler_G(G, p) bind(C, name='vt_euler_G')
+      import :: c_double
+      real(c_double), intent(out) :: G(12)
+      real(c_double), intent(in) :: p(4)
+    end subroutine
+    subroutine vt_euler_A(A, p) bind(C, name='vt_euler_A')
+      import :: c_double
+      real(c_double), intent(out) :: A(9)
+      real(c_double), intent(in) :: p(4)
+    end subroutine
+    subroutine vt_quat_mul(r, a, b) bind(C, name='vt_quat_mul')
+      import :: c_double
+      real(c_double), intent(out) :: r(4)
+      real(c_double), intent(in) :: a(4), b(4)
+    end subroutine
+    subroutine vt_quat_axis_angle(p, u, angle) bind(C, name='vt_quat_axis_angle')
+      import :: c_double
+      real(c_double), intent(out) :: p(4)
+      real(c_double), intent(in) :: u(3)
+      real(c_double), value :: angle
+    end subroutine
+  end interface
+
+  ! views of the C data's arrays (see the top of this file)
+  interface vt_array
+    module procedure vt_array_real1, vt_array_real2, vt_array_int1
+  end interface vt_array
+
+contains
+
+  ! a C string (NUL-terminated) as a Fortran string; '' for a NULL pointer
+  function vt_string(p) result(s)
+    type(c_ptr), intent(in) :: p
+    character(len=:), allocatable :: s
+    character(kind=c_char), pointer :: chars(:)
+    integer :: k, n
+    interface
+      function c_strlen(str) bind(C, name='strlen')
+        import :: c_ptr, c_size_t
+        type(c_ptr), value :: str
+        integer(c_size_t) :: c_strlen
+      end function
+    end interface
+    if (.not. c_associated(p)) then
+      s = ''
+      return
+    end if
+    n = int(c_strlen(p))
+    call c_f_pointer(p, chars, [n])
+    allocate(character(len=n) :: s)
+    do k = 1, n
+      s(k:k) = chars(k)
+    end do
+  end function vt_string
+
+  ! the data's message (detail of its last failed call)
+  function vt_message(d) result(s)
+    type(vt_data), intent(in) :: d
+    character(len=:), allocatable :: s
+    integer :: k, n
+    n = 0
+    do k = 1, size(d%message)
+      if (d%message(k) == c_null_char) exit
+      n = k
+    end do
+    allocate(character(len=n) :: s)
+    do k = 1, n
+      s(k:k) = d%message(k)
+    end do
+  end function vt_message
+
+  ! a(1:n) viewing the n doubles at p
+  subroutine vt_array_real1(a, p, n)
+    real(c_double), pointer, intent(out) :: a(:)
+    type(c_ptr), intent(in) :: p
+    integer(c_int), intent(in) :: n
+    call c_f_pointer(p, a, [n])
+  end subroutine vt_array_real1
+
+  ! a(1:rows, 1:cols) viewing a column-major matrix at p (leading dimension rows)
+  subroutine vt_array_real2(a, p, rows, cols)
+    real(c_double), pointer, intent(out) :: a(:, :)
+    type(c_ptr), intent(in) :: p
+    integer(c_int), intent(in) :: rows, cols
+    call c_f_pointer(p, a, [rows, cols])
+  end subroutine vt_array_real2
+
+  ! a(1:n) viewing the n ints at p
+  subroutine vt_array_int1(a, p, n)
+    integer(c_int), pointer, intent(out) :: a(:)
+    type(c_ptr), intent(in) :: p
+    integer(c_int), intent(in) :: n
+    call c_f_pointer(p, a, [n])
+  end subroutine vt_array_int1
+
+  ! a(1:rows, 0:nbody) viewing a per-body array (rows x (nbody+1)): column i is body i, 0 the ground
+  subroutine vt_body_array(a, p, rows, nbody)
+    real(c_double), pointer, intent(out) :: a(:, :)
+    type(c_ptr), intent(in) :: p
+    integer(c_int), intent(in) :: rows, nbody
+    real(c_double), pointer :: flat(:, :)
+    call c_f_pointer(p, flat, [rows, nbody + 1])
+    a(1:, 0:) => flat
+  end subroutine vt_body_array
+
+end module vtdyn

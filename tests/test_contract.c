@@ -1,0 +1,346 @@
+/* The error contract of the public interface, function by function (issue "Hardening"):
+ * NULL pointers, a data struct made for another model, NaN or Inf in every state input and in
+ * time functions, user callbacks that fail, bad indices and run options. Each call must
+ * return its distinct status (never crash), say why in the message, and leave the caller's
+ * inputs bitwise as they were. Every status has its own text. */
+#include "vt_test.h"
+
+/* the caller-owned inputs of a data struct, to compare bitwise after a failed call */
+typedef struct {
+    double q[64], qd[64], xfrc[64], qfrc[64], qdd[64], lambda[64], time;
+} inputs;
+
+static void snapshot(inputs *s, const vt_model *m, const vt_data *d)
+{
+    memset(s, 0, sizeof *s);
+    memcpy(s->q, d->q, (size_t)m->nq * sizeof(double));
+    memcpy(s->qd, d->qd, (size_t)m->nv * sizeof(double));
+    memcpy(s->xfrc, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+    memcpy(s->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
+    memcpy(s->qdd, d->qdd, (size_t)m->nv * sizeof(double));
+    memcpy(s->lambda, d->lambda, (size_t)m->nc * sizeof(double));
+    s->time = d->time;
+}
+
+static void assert_unchanged(const inputs *before, const vt_model *m, const vt_data *d)
+{
+    inputs now;
+    snapshot(&now, m, d);
+    assert_memory_equal(before, &now, sizeof now);
+}
+
+/* every function that takes a model and its data, called the same way */
+typedef vt_status (*stage_fn)(const vt_model *, vt_data *);
+static vt_status kinematic_solve(const vt_model *m, vt_data *d) { return vt_kinematic_solve(m, d, 1e-12, 20); }
+static vt_status point_load(const vt_model *m, vt_data *d)
+{
+    const double p[3] = {0, 0, 0}, f[3] = {1, 0, 0};
+    return vt_add_point_load(m, d, 1, p, f, NULL);
+}
+static vt_status drive_force(const vt_model *m, vt_data *d)
+{
+    double F[64];
+    return vt_drive_cartesian_force(F, m, d, 0);
+}
+static vt_status generalized(const vt_model *m, vt_data *d)
+{
+    double F[64] = {0}, Q[64];
+    return vt_generalized_force(Q, m, d, F);
+}
+static vt_status equivalent(const vt_model *m, vt_data *d)
+{
+    double Q[64] = {0}, F[64];
+    return vt_equivalent_force(F, m, d, Q);
+}
+static const struct {
+    const char *name;
+    stage_fn fn;
+} stages[] = {
+    {"vt_kinematics", vt_kinematics},
+    {"vt_inverse_transform", vt_inverse_transform},
+    {"vt_mass_matrix", vt_mass_matrix},
+    {"vt_forces", vt_forces},
+    {"vt_constraints", vt_constraints},
+    {"vt_solve", vt_solve},
+    {"vt_reactions", vt_reactions},
+    {"vt_inverse_dynamics", vt_inverse_dynamics},
+    {"vt_inverse_dynamics_recursive", vt_inverse_dynamics_recursive},
+    {"vt_kinematic_solve", kinematic_solve},
+    {"vt_data_reset", vt_data_reset},
+    {"vt_add_point_load", point_load},
+    {"vt_drive_cartesian_force", drive_force},
+    {"vt_generalized_force", generalized},
+    {"vt_equivalent_force", equivalent},
+};
+#define NSTAGES (sizeof stages / sizeof stages[0])
+
+/* the double link with its lock: one drive, a consistent state */
+static void make(vt_model **m, vt_data **d)
+{
+    assert_ok(vt_scene_double_link(m, 1));
+    assert_ok(vt_data_create(d, *m));
+    (*d)->q[0] = -0.6;
+    (*d)->qd[0] = -sqrt(7.3575 * sin(0.6));
+    assert_ok(vt_inverse_dynamics(*m, *d));
+}
+
+static void test_null_and_mismatch(void **state)
+{
+    (void)state;
+    vt_model *m, *other;
+    vt_data *d, *od;
+    make(&m, &d);
+    assert_ok(vt_scene_fourbar(&other, vt_function_constant(0.3)));
+    assert_ok(vt_data_create(&od, other));
+    for (size_t k = 0; k < NSTAGES; k++) {
+        inputs before;
+        snapshot(&before, m, d);
+        assert_int_equal(stages[k].fn(NULL, d), VT_ERR_NULL);
+        assert_int_equal(stages[k].fn(m, NULL), VT_ERR_NULL);
+        d->message[0] = '\0';
+        const vt_status st = stages[k].fn(m, od);
+        if (st != VT_ERR_MODEL_MISMATCH) fail_msg("%s with another model's data: %d", stages[k].name, (int)st);
+        assert_non_null(strstr(od->message, "another model"));
+        assert_unchanged(&before, m, d);
+    }
+    /* outputs and other pointers */
+    double buf[64] = {0};
+    const double p[3] = {0, 0, 0};
+    assert_int_equal(vt_generalized_force(NULL, m, d, buf), VT_ERR_NULL);
+    assert_int_equal(vt_generalized_force(buf, m, d, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_equivalent_force(NULL, m, d, buf), VT_ERR_NULL);
+    assert_int_equal(vt_equivalent_force(buf, m, d, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_drive_cartesian_force(NULL, m, d, 0), VT_ERR_NULL);
+    assert_int_equal(vt_integrate_q(NULL, m, d->q, d->qd, 0.1), VT_ERR_NULL);
+    assert_int_equal(vt_integrate_q(buf, m, NULL, d->qd, 0.1), VT_ERR_NULL);
+    assert_int_equal(vt_integrate_q(buf, m, d->q, NULL, 0.1), VT_ERR_NULL);
+    assert_int_equal(vt_integrate_q(buf, NULL, d->q, d->qd, 0.1), VT_ERR_NULL);
+    assert_int_equal(vt_add_point_load(m, d, 1, NULL, p, NULL), VT_ERR_NULL);
+    const vt_function f = vt_function_constant(1.0);
+    assert_int_equal(vt_function_eval(NULL, &f, 0.0), VT_ERR_NULL);
+    assert_int_equal(vt_function_eval(buf, NULL, 0.0), VT_ERR_NULL);
+    vt_trajectory *tr = NULL;
+    assert_int_equal(vt_trajectory_create(NULL, m, 3), VT_ERR_NULL);
+    assert_int_equal(vt_trajectory_create(&tr, NULL, 3), VT_ERR_NULL);
+    assert_ok(vt_trajectory_create(&tr, m, 3));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 2;
+    assert_int_equal(vt_kinematic_analysis(NULL, d, &opt, tr), VT_ERR_NULL);
+    assert_int_equal(vt_kinematic_analysis(m, NULL, &opt, tr), VT_ERR_NULL);
+    assert_int_equal(vt_kinematic_analysis(m, d, NULL, tr), VT_ERR_NULL);
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, NULL), VT_ERR_NULL);
+#if VT_HAVE_SUNDIALS
+    assert_int_equal(vt_dynamic_analysis(NULL, d, &opt, tr), VT_ERR_NULL);
+    assert_int_equal(vt_dynamic_analysis(m, NULL, &opt, tr), VT_ERR_NULL);
+    assert_int_equal(vt_dynamic_analysis(m, d, NULL, tr), VT_ERR_NULL);
+    assert_int_equal(vt_dynamic_analysis(m, d, &opt, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_dynamic_analysis(m, od, &opt, tr), VT_ERR_MODEL_MISMATCH);
+#endif
+    vt_model *md = NULL;
+    assert_int_equal(vt_model_without_drives(NULL, m), VT_ERR_NULL);
+    assert_int_equal(vt_model_without_drives(&md, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_data_create(NULL, m), VT_ERR_NULL);
+    vt_data *dn = (vt_data *)buf;
+    assert_int_equal(vt_data_create(&dn, NULL), VT_ERR_NULL);
+    /* the free functions accept NULL */
+    vt_builder_free(NULL);
+    vt_model_free(NULL);
+    vt_data_free(NULL);
+    vt_trajectory_free(NULL);
+    assert_non_null(vt_builder_message(NULL));
+    vt_trajectory_free(tr);
+    vt_data_free(od);
+    vt_model_free(other);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* NaN and Inf in each state input: the entry points that read it refuse with
+ * VT_ERR_NONFINITE and leave every input, and q̈ and λ, as they were */
+static void test_nonfinite_states(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    make(&m, &d);
+    const double bad[2] = {NAN, INFINITY};
+    stage_fn entry[3] = {vt_inverse_dynamics, vt_inverse_dynamics_recursive, kinematic_solve};
+    for (int which = 0; which < 5; which++)
+        for (int b = 0; b < 2; b++)
+            for (int e = 0; e < 3; e++) {
+                double *slot = which == 0 ? &d->q[0] : which == 1 ? &d->qd[0] : which == 2 ? &d->xfrc[6 + 1]
+                             : which == 3 ? &d->qfrc[1] : &d->time;
+                const double keep = *slot;
+                *slot = bad[b];
+                inputs before;
+                snapshot(&before, m, d);
+                const vt_status st = entry[e](m, d);
+                if (st != VT_ERR_NONFINITE)
+                    fail_msg("input %d = %g, entry %d: status %d (%s)", which, bad[b], e, (int)st, d->message);
+                assert_true(strlen(d->message) > 0);
+                assert_unchanged(&before, m, d);
+                *slot = keep;
+            }
+    /* the stages on their own refuse a non-finite q or q̇ as well */
+    for (int which = 0; which < 2; which++) {
+        double *slot = which ? &d->qd[0] : &d->q[0];
+        const double keep = *slot;
+        *slot = NAN;
+        assert_int_equal(vt_kinematics(m, d), VT_ERR_NONFINITE);
+        *slot = keep;
+    }
+    double out[8];
+    assert_int_equal(vt_integrate_q(out, m, d->q, d->qd, NAN), VT_ERR_NONFINITE);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* a time function that fails, one that returns NaN, and a polynomial with NaN coefficients */
+static int failing(double t, double out[3], void *user)
+{
+    (void)t;
+    (void)out;
+    (void)user;
+    return 7;
+}
+static int nan_at_half(double t, double out[3], void *user)
+{
+    (void)user;
+    out[0] = t > 0.5 ? NAN : 0.1 * t;
+    out[1] = 0.1;
+    out[2] = 0.0;
+    return 0;
+}
+
+static void test_time_functions(void **state)
+{
+    (void)state;
+    double out[3] = {1, 2, 3};
+    const vt_function f1 = vt_function_user(failing, NULL), f2 = vt_function_user(nan_at_half, NULL);
+    assert_int_equal(vt_function_eval(out, &f1, 0.0), VT_ERR_CALLBACK);
+    assert_int_equal(vt_function_eval(out, &f2, 0.7), VT_ERR_NONFINITE);
+    assert_true(out[0] == 1 && out[1] == 2 && out[2] == 3); /* untouched */
+    const double c[2] = {NAN, 1.0};
+    const vt_function p = vt_function_polynomial(2, c);
+    assert_int_not_equal(vt_function_eval(out, &p, 0.0), VT_OK);
+    const vt_function big = vt_function_polynomial(VT_POLY_MAX + 1, c);
+    assert_int_equal(vt_function_eval(out, &big, 0.0), VT_ERR_BAD_DRIVE);
+
+    /* in a model: the drive's failure reaches the caller with the drive named, inputs kept */
+    for (int k = 0; k < 2; k++) {
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_body_def link = vt_default_body_def();
+        link.inertia[4] = link.inertia[8] = 0.1;
+        assert_int_equal(vt_builder_add_body(b, &link), 1);
+        vt_drive_def dr = vt_default_drive_def();
+        dr.f = k ? f2 : f1;
+        assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+        vt_model *m;
+        vt_data *d;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        assert_ok(vt_data_create(&d, m));
+        d->time = 0.7;
+        d->qdd[0] = 42.0;
+        d->lambda[0] = -42.0;
+        inputs before;
+        snapshot(&before, m, d);
+        const stage_fn entry[3] = {vt_inverse_dynamics, vt_inverse_dynamics_recursive, kinematic_solve};
+        for (int e = 0; e < 3; e++) {
+            const vt_status st = entry[e](m, d);
+            assert_int_equal(st, k ? VT_ERR_NONFINITE : VT_ERR_CALLBACK);
+            assert_non_null(strstr(d->message, "drive 0"));
+            assert_unchanged(&before, m, d);
+        }
+        vt_trajectory *tr;
+        assert_ok(vt_trajectory_create(&tr, m, 11));
+        vt_run_options opt = vt_default_run_options();
+        opt.nout = 10;
+        opt.forward_check = 0;
+        assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), k ? VT_ERR_NONFINITE : VT_ERR_CALLBACK);
+        vt_trajectory_free(tr);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
+/* indices out of range and run options out of range */
+static void test_indices_and_options(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    make(&m, &d);
+    const double p[3] = {0, 0, 0}, f[3] = {1, 0, 0};
+    double F[64];
+    inputs before;
+    snapshot(&before, m, d);
+    assert_int_equal(vt_add_point_load(m, d, 0, p, f, NULL), VT_ERR_BAD_INDEX);
+    assert_int_equal(vt_add_point_load(m, d, m->nbody + 1, p, f, NULL), VT_ERR_BAD_INDEX);
+    assert_int_equal(vt_drive_cartesian_force(F, m, d, -1), VT_ERR_BAD_INDEX);
+    assert_int_equal(vt_drive_cartesian_force(F, m, d, m->ndrive), VT_ERR_BAD_INDEX);
+    const double fnan[3] = {NAN, 0, 0};
+    assert_int_equal(vt_add_point_load(m, d, 1, p, fnan, NULL), VT_ERR_NONFINITE);
+    assert_unchanged(&before, m, d);
+    vt_trajectory *tr;
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    vt_trajectory *none = tr;
+    assert_int_equal(vt_trajectory_create(&none, m, 0), VT_ERR_BAD_OPTION);
+    assert_null(none);
+    vt_run_options bad[8];
+    for (int k = 0; k < 8; k++) {
+        bad[k] = vt_default_run_options();
+        bad[k].nout = 10;
+    }
+    bad[0].t1 = bad[0].t0;        /* empty interval */
+    bad[1].t1 = NAN;
+    bad[2].nout = 0;
+    bad[3].nout = 11;             /* more rows than the trajectory has */
+    bad[4].rtol = 0.0;
+    bad[5].atol = -1.0;
+    bad[6].max_steps = 0;
+    bad[7].rtol = NAN;
+    for (int k = 0; k < 8; k++) {
+        snapshot(&before, m, d);
+        assert_int_equal(vt_kinematic_analysis(m, d, &bad[k], tr), VT_ERR_BAD_OPTION);
+        assert_true(strlen(d->message) > 0);
+#if VT_HAVE_SUNDIALS
+        assert_int_equal(vt_dynamic_analysis(m, d, &bad[k], tr), VT_ERR_BAD_OPTION);
+#endif
+        assert_unchanged(&before, m, d);
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* every status has a text of its own; unknown codes get one too */
+static void test_status_strings(void **state)
+{
+    (void)state;
+    const char *seen[64];
+    int n = 0;
+    for (int s = VT_OK; s >= VT_ERR_BAD_SIZE; s--) {
+        const char *t = vt_status_string((vt_status)s);
+        assert_non_null(t);
+        assert_true(strlen(t) > 1);
+        for (int k = 0; k < n; k++)
+            if (strcmp(t, seen[k]) == 0) fail_msg("status %d shares its text with another: %s", s, t);
+        seen[n++] = t;
+    }
+    assert_non_null(vt_status_string((vt_status)-1000));
+    assert_non_null(vt_status_string((vt_status)1000));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_null_and_mismatch),
+        cmocka_unit_test(test_nonfinite_states),
+        cmocka_unit_test(test_time_functions),
+        cmocka_unit_test(test_indices_and_options),
+        cmocka_unit_test(test_status_strings),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

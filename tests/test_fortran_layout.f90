@@ -1,0 +1,194 @@
+! The Fortran mirrors of the C structs (fortran/vtdyn.f90) against the C compiler's layout
+! (tests/fortran_layout.c): each struct's size and every field's offset, in declaration order.
+! Also the by-value struct returns of the defaults, read through the mirrors. Prints one line
+! per struct; exits non-zero (error stop) on the first difference.
+program test_fortran_layout
+  use, intrinsic :: iso_c_binding
+  use vtdyn
+  implicit none
+  interface
+    function vt_test_layout(which, k) bind(C, name='vt_test_layout')
+      import :: c_int, c_size_t
+      integer(c_int), value :: which, k
+      integer(c_size_t) :: vt_test_layout
+    end function
+  end interface
+  type(vt_model_def), target :: x_model_def
+  type(vt_function), target :: x_function
+  type(vt_drive_def), target :: x_drive_def
+  type(vt_cut_joint_def), target :: x_cut_joint_def
+  type(vt_body_def), target :: x_body_def
+  type(vt_model), target :: x_model
+  type(vt_data), target :: x_data
+  type(vt_run_options), target :: x_run_options
+  type(vt_trajectory), target :: x_trajectory
+  integer :: nfail
+
+  nfail = 0
+    call check(0_c_int, 'vt_model_def', c_sizeof(x_model_def), a(c_loc(x_model_def)), [ &
+         a(c_loc(x_model_def%gravity)), a(c_loc(x_model_def%rcond_min)), a(c_loc(x_model_def%rcond_warn)), &
+         a(c_loc(x_model_def%allow_redundant))])
+    call check(1_c_int, 'vt_function', c_sizeof(x_function), a(c_loc(x_function)), [ &
+         a(c_loc(x_function%type)), a(c_loc(x_function%ncoef)), a(c_loc(x_function%c)), &
+         a(c_loc(x_function%callback)), a(c_loc(x_function%user))])
+    call check(2_c_int, 'vt_drive_def', c_sizeof(x_drive_def), a(c_loc(x_drive_def)), [ &
+         a(c_loc(x_drive_def%type)), a(c_loc(x_drive_def%body)), a(c_loc(x_drive_def%index)), &
+         a(c_loc(x_drive_def%point)), a(c_loc(x_drive_def%f)), a(c_loc(x_drive_def%axis)), &
+         a(c_loc(x_drive_def%orientation)), a(c_loc(x_drive_def%orientation_callback)), &
+         a(c_loc(x_drive_def%user))])
+    call check(3_c_int, 'vt_cut_joint_def', c_sizeof(x_cut_joint_def), a(c_loc(x_cut_joint_def)), [ &
+         a(c_loc(x_cut_joint_def%joint)), a(c_loc(x_cut_joint_def%body_a)), a(c_loc(x_cut_joint_def%body_b)), &
+         a(c_loc(x_cut_joint_def%point_a)), a(c_loc(x_cut_joint_def%point_b)), &
+         a(c_loc(x_cut_joint_def%axis1)), a(c_loc(x_cut_joint_def%axis2)), &
+         a(c_loc(x_cut_joint_def%orientation))])
+    call check(4_c_int, 'vt_body_def', c_sizeof(x_body_def), a(c_loc(x_body_def)), [ &
+         a(c_loc(x_body_def%parent)), a(c_loc(x_body_def%joint)), a(c_loc(x_body_def%mass)), &
+         a(c_loc(x_body_def%inertia)), a(c_loc(x_body_def%joint_parent)), a(c_loc(x_body_def%joint_child)), &
+         a(c_loc(x_body_def%axis1)), a(c_loc(x_body_def%axis2)), a(c_loc(x_body_def%orientation))])
+    call check(5_c_int, 'vt_model', c_sizeof(x_model), a(c_loc(x_model)), [ &
+         a(c_loc(x_model%nbody)), a(c_loc(x_model%nq)), a(c_loc(x_model%nv)), a(c_loc(x_model%nx)), &
+         a(c_loc(x_model%gravity)), a(c_loc(x_model%body_parent)), a(c_loc(x_model%body_joint)), &
+         a(c_loc(x_model%body_qadr)), a(c_loc(x_model%body_nq)), a(c_loc(x_model%body_vadr)), &
+         a(c_loc(x_model%body_nv)), a(c_loc(x_model%body_mass)), a(c_loc(x_model%body_inertia)), &
+         a(c_loc(x_model%body_jpar)), a(c_loc(x_model%body_jchild)), a(c_loc(x_model%body_axis)), &
+         a(c_loc(x_model%body_quat0)), a(c_loc(x_model%body_pathadr)), a(c_loc(x_model%body_pathnum)), &
+         a(c_loc(x_model%path_dof)), a(c_loc(x_model%npath)), a(c_loc(x_model%maxpath)), &
+         a(c_loc(x_model%dof_body)), a(c_loc(x_model%q0)), a(c_loc(x_model%rcond_min)), &
+         a(c_loc(x_model%rcond_warn)), a(c_loc(x_model%allow_redundant)), a(c_loc(x_model%ndrive)), &
+         a(c_loc(x_model%ncut)), a(c_loc(x_model%nc)), a(c_loc(x_model%drive)), a(c_loc(x_model%drive_row)), &
+         a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%con_kind)), &
+         a(c_loc(x_model%con_body)), a(c_loc(x_model%con_owner)), a(c_loc(x_model%con_dof)), &
+         a(c_loc(x_model%con_vec)), a(c_loc(x_model%con_point)), a(c_loc(x_model%dof_drive)), &
+         a(c_loc(x_model%joint_driven)), a(c_loc(x_model%joint_rows_only))])
+    call check(6_c_int, 'vt_data', c_sizeof(x_data), a(c_loc(x_data)), [ &
+         a(c_loc(x_data%model)), a(c_loc(x_data%block)), a(c_loc(x_data%time)), a(c_loc(x_data%q)), &
+         a(c_loc(x_data%qd)), a(c_loc(x_data%xfrc)), a(c_loc(x_data%qfrc)), a(c_loc(x_data%x)), &
+         a(c_loc(x_data%xd)), a(c_loc(x_data%A)), a(c_loc(x_data%omega)), a(c_loc(x_data%jaxis)), &
+         a(c_loc(x_data%jsij)), a(c_loc(x_data%jd)), a(c_loc(x_data%jpoint)), a(c_loc(x_data%S)), &
+         a(c_loc(x_data%Sdqd)), a(c_loc(x_data%R)), a(c_loc(x_data%Mp)), a(c_loc(x_data%Mstar)), &
+         a(c_loc(x_data%F)), a(c_loc(x_data%h)), a(c_loc(x_data%Qgen)), a(c_loc(x_data%Phi)), &
+         a(c_loc(x_data%Phix)), a(c_loc(x_data%Phiq)), a(c_loc(x_data%Phit)), a(c_loc(x_data%gamma)), &
+         a(c_loc(x_data%qdd)), a(c_loc(x_data%lambda)), a(c_loc(x_data%rcond)), a(c_loc(x_data%warning)), &
+         a(c_loc(x_data%rank)), a(c_loc(x_data%residual)), a(c_loc(x_data%lambda_unique)), &
+         a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), a(c_loc(x_data%xdd)), &
+         a(c_loc(x_data%qfrc_drive)), a(c_loc(x_data%drive_effort)), a(c_loc(x_data%drive_force)), &
+         a(c_loc(x_data%drive_moment)), a(c_loc(x_data%jnt_force)), a(c_loc(x_data%jnt_moment)), &
+         a(c_loc(x_data%jnt_force_body)), a(c_loc(x_data%jnt_moment_body)), a(c_loc(x_data%cut_force)), &
+         a(c_loc(x_data%cut_moment)), a(c_loc(x_data%cut_force_body)), a(c_loc(x_data%cut_moment_body)), &
+         a(c_loc(x_data%work)), a(c_loc(x_data%nwork)), a(c_loc(x_data%kkt)), a(c_loc(x_data%kkt_rhs)), &
+         a(c_loc(x_data%kkt_scale)), a(c_loc(x_data%lwork)), a(c_loc(x_data%nlwork)), a(c_loc(x_data%ipiv)), &
+         a(c_loc(x_data%liwork)), a(c_loc(x_data%nullvec)), a(c_loc(x_data%red_work)), &
+         a(c_loc(x_data%red_iwork)), a(c_loc(x_data%qsave)), a(c_loc(x_data%ida_flag)), &
+         a(c_loc(x_data%message))])
+    call check(7_c_int, 'vt_run_options', c_sizeof(x_run_options), a(c_loc(x_run_options)), [ &
+         a(c_loc(x_run_options%t0)), a(c_loc(x_run_options%t1)), a(c_loc(x_run_options%nout)), &
+         a(c_loc(x_run_options%rtol)), a(c_loc(x_run_options%atol)), a(c_loc(x_run_options%max_step)), &
+         a(c_loc(x_run_options%max_steps)), a(c_loc(x_run_options%newton_tol)), &
+         a(c_loc(x_run_options%newton_maxit)), a(c_loc(x_run_options%forward_check)), &
+         a(c_loc(x_run_options%forward_independent)), a(c_loc(x_run_options%history_steps)), &
+         a(c_loc(x_run_options%forward_as_loads)), a(c_loc(x_run_options%formulation)), &
+         a(c_loc(x_run_options%baumgarte_alpha)), a(c_loc(x_run_options%baumgarte_beta)), &
+         a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user))])
+    call check(8_c_int, 'vt_trajectory', c_sizeof(x_trajectory), a(c_loc(x_trajectory)), [ &
+         a(c_loc(x_trajectory%model)), a(c_loc(x_trajectory%nrow)), a(c_loc(x_trajectory%nfilled)), &
+         a(c_loc(x_trajectory%t)), a(c_loc(x_trajectory%q)), a(c_loc(x_trajectory%qd)), &
+         a(c_loc(x_trajectory%qdd)), a(c_loc(x_trajectory%lambda)), a(c_loc(x_trajectory%qfrc_drive)), &
+         a(c_loc(x_trajectory%drive_effort)), a(c_loc(x_trajectory%drive_force)), &
+         a(c_loc(x_trajectory%drive_moment)), a(c_loc(x_trajectory%jnt_force)), &
+         a(c_loc(x_trajectory%jnt_moment)), a(c_loc(x_trajectory%cut_force)), &
+         a(c_loc(x_trajectory%cut_moment)), a(c_loc(x_trajectory%phi_norm)), a(c_loc(x_trajectory%phid_norm)), &
+         a(c_loc(x_trajectory%rcond)), a(c_loc(x_trajectory%nwarn)), a(c_loc(x_trajectory%t_warn)), &
+         a(c_loc(x_trajectory%q_fwd)), a(c_loc(x_trajectory%qd_fwd)), a(c_loc(x_trajectory%jnt_force_fwd)), &
+         a(c_loc(x_trajectory%jnt_moment_fwd)), a(c_loc(x_trajectory%cut_force_fwd)), &
+         a(c_loc(x_trajectory%cut_moment_fwd)), a(c_loc(x_trajectory%fwd_err_q)), &
+         a(c_loc(x_trajectory%fwd_err_qd)), a(c_loc(x_trajectory%fwd_err_force)), &
+         a(c_loc(x_trajectory%fwd_err_moment)), a(c_loc(x_trajectory%fwd_interp_err)), &
+         a(c_loc(x_trajectory%steps)), a(c_loc(x_trajectory%res_evals)), a(c_loc(x_trajectory%steps_fwd)), &
+         a(c_loc(x_trajectory%res_evals_fwd))])
+
+  ! the defaults, returned by value from C (a struct return through bind(C))
+  x_body_def = vt_default_body_def()
+  call expect(same([x_body_def%mass], [1]) .and. x_body_def%joint == VT_JOINT_REVOLUTE .and. x_body_def%parent == 0 &
+      .and. same(x_body_def%axis1, [0, 0, 1]) .and. same(x_body_def%orientation, [1, 0, 0, 0]) &
+      .and. same(x_body_def%inertia, [0, 0, 0, 0, 0, 0, 0, 0, 0]), 'vt_default_body_def')
+  x_model_def = vt_default_model_def()
+  call expect(same(x_model_def%gravity, [0.0_c_double, -9.81_c_double, 0.0_c_double]) &
+      .and. same([x_model_def%rcond_min], [1e-12_c_double]) .and. x_model_def%allow_redundant == 0, &
+      'vt_default_model_def')
+  x_drive_def = vt_default_drive_def()
+  call expect(x_drive_def%type == VT_DRIVE_JOINT .and. x_drive_def%body == 1 .and. x_drive_def%index == 0 &
+      .and. x_drive_def%f%type == VT_FUNC_CONSTANT .and. same(x_drive_def%axis, [0, 0, 1]) &
+      .and. .not. c_associated(x_drive_def%orientation_callback), 'vt_default_drive_def')
+  x_function = vt_function_sine(1.0_c_double, 2.0_c_double, 3.0_c_double, 4.0_c_double)
+  call expect(x_function%type == VT_FUNC_SINE .and. same(x_function%c(1:4), [1, 2, 3, 4]), 'vt_function_sine')
+  x_cut_joint_def = vt_default_cut_joint_def()
+  call expect(x_cut_joint_def%joint == VT_JOINT_REVOLUTE .and. x_cut_joint_def%body_a == 0 &
+      .and. x_cut_joint_def%body_b == 1 .and. same(x_cut_joint_def%axis2, [1, 0, 0]), 'vt_default_cut_joint_def')
+  x_run_options = vt_default_run_options()
+  call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
+      .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL, &
+      'vt_default_run_options')
+  call expect(vt_string(vt_status_string(VT_ERR_BAD_SIZE)) /= vt_string(vt_status_string(VT_ERR_BAD_OPTION)), &
+      'vt_status_string')
+
+  if (nfail > 0) then
+    print '(i0, a)', nfail, ' mismatches'
+    error stop 1
+  end if
+  print '(a)', 'all layouts and defaults agree'
+
+contains
+
+  pure integer(c_intptr_t) function a(p)
+    type(c_ptr), intent(in) :: p
+    a = transfer(p, 0_c_intptr_t)
+  end function a
+
+  subroutine check(which, name, nbytes, base, field)
+    integer(c_int), intent(in) :: which
+    character(len=*), intent(in) :: name
+    integer(c_size_t), intent(in) :: nbytes
+    integer(c_intptr_t), intent(in) :: base, field(:)
+    integer(c_int) :: k
+    if (nbytes /= vt_test_layout(which, 0_c_int)) then
+      print '(a, a, i0, a, i0)', name, ': size ', nbytes, ' in Fortran, C ', vt_test_layout(which, 0_c_int)
+      nfail = nfail + 1
+    end if
+    do k = 1, int(size(field), c_int)
+      if (field(k) - base /= int(vt_test_layout(which, k), c_intptr_t)) then
+        print '(a, a, i0, a, i0, a, i0)', name, ': field ', k, ' at offset ', field(k) - base, ' in Fortran, C ', &
+            vt_test_layout(which, k)
+        nfail = nfail + 1
+      end if
+    end do
+    if (vt_test_layout(which, int(size(field), c_int) + 1_c_int) /= -1_c_size_t) then
+      print '(a, a, i0, a)', name, ': C has more fields than the ', size(field), ' of the Fortran mirror'
+      nfail = nfail + 1
+    end if
+    print '(a, a, i0, a, i0, a)', name, ': ', size(field), ' fields, ', nbytes, ' bytes'
+  end subroutine check
+
+  ! exact equality of values that are exact in binary (written so: -Wcompare-reals flags ==)
+  pure logical function same(x, y)
+    real(c_double), intent(in) :: x(:)
+    class(*), intent(in) :: y(:)
+    select type (y)
+    type is (integer)
+      same = all(abs(x - real(y, c_double)) <= 0)
+    type is (real(c_double))
+      same = all(abs(x - y) <= 0)
+    class default
+      same = .false.
+    end select
+  end function same
+
+  subroutine expect(ok, what)
+    logical, intent(in) :: ok
+    character(len=*), intent(in) :: what
+    if (.not. ok) then
+      print '(a, a)', what, ': values read through the mirror differ from the C defaults'
+      nfail = nfail + 1
+    end if
+  end subroutine expect
+
+end program test_fortran_layout
