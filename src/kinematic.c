@@ -47,6 +47,9 @@ static vt_status solve_phiq(const vt_model *m, vt_data *d, int velocities, doubl
         const double rc = 1e-10;
         int rank = 0;
         double *sv = d->kkt_scale;
+        /* LAPACK's dgelsd stops the program (xerbla) on a NaN norm: refuse non-finite input */
+        if (!vt_all_finite(A, nc * nv) || !vt_all_finite(B, ldb))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematic_solve: NaN or Inf in Φ_q or Φ");
         dgelsd_(&nc, &nv, &one, A, &nc, B, &ldb, sv, &rc, &rank, d->lwork, &d->nlwork, d->liwork, &info);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgelsd info %d", info);
     } else if (info > 0) {

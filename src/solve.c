@@ -259,6 +259,9 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
     for (int r = 0; r < nc; r++) b[nv + r] = d->gamma[r] * s[nv + r];
     const double rc = m->rcond_min; /* the dependent rows of Φ_q leave singular values ~ R_kk² */
     int rk = 0;
+    /* LAPACK's dgelsd stops the program (xerbla) on a NaN norm: refuse non-finite input here */
+    if (!vt_all_finite(K, N * N) || !vt_all_finite(b, N))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in the scaled M* or Φ_q (overflow)");
     dgelsd_(&N, &N, &one, K, &N, b, &N, sv, &rc, &rk, d->lwork, &d->nlwork, d->liwork, &info);
     if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
     d->rcond = rk > 0 ? sv[rk - 1] / sv[0] : 0.0;
