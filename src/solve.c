@@ -103,6 +103,32 @@ static double rcond_from_inverse(const double *X, int n, double anorm)
     return anorm > 0.0 && xn > 0.0 ? 1.0 / (anorm * xn) : 0.0;
 }
 
+/* The symmetric scaling D of (5): the rates by the mass metric, d_a = M*_aa^(-1/2), into
+ * s[0..nv); with rows, every constraint row by one common factor, 1 / (largest row norm of
+ * Φ_q D), into s[nv..nv+nc). One factor for all rows keeps their relative sizes: a drive whose
+ * row shrinks toward a singular pose (an arm reaching its full stretch) shows in the condition
+ * estimate instead of being scaled away, as a row-by-row equilibration (LAPACK's dsyequb)
+ * would do. */
+static void scaling(const vt_model *m, const vt_data *d, double *s, int rows)
+{
+    const int nv = m->nv, nc = m->nc;
+    for (int a = 0; a < nv; a++) {
+        const double mii = d->Mstar[a + (size_t)a * (size_t)nv];
+        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
+    }
+    if (!rows) return;
+    double rmax = 0.0;
+    for (int r = 0; r < nc; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < nv; c++) {
+            const double v = d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+            rn += v * v;
+        }
+        rmax = fmax(rmax, sqrt(rn));
+    }
+    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+}
+
 /* Factor and solve the augmented system of (5) into b = [q̈; −λ]; the condition estimate into
  * *rcond_out. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
 static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
@@ -121,22 +147,8 @@ static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
     memcpy(b, d->Q, (size_t)nv * sizeof(double));
     for (int r = 0; r < nr; r++) b[nv + r] = d->gamma[r];
 
-    /* symmetric scaling D K D: the rates by the mass metric, d_a = M*_aa^(-1/2), and every
-     * constraint row by one common factor, 1 / (largest row norm of Φ_q D). One factor for all
-     * rows keeps their relative sizes: a drive whose row shrinks toward a singular pose (an arm
-     * reaching its full stretch) shows in the condition estimate instead of being scaled away,
-     * as a row-by-row equilibration (LAPACK's dsyequb) would do. */
-    for (int a = 0; a < nv; a++) {
-        const double mii = d->Mstar[a + (size_t)a * (size_t)nv];
-        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
-    }
-    double rmax = 0.0;
-    for (int r = 0; r < nr; r++) {
-        double rn = 0.0;
-        for (int c = 0; c < nv; c++) rn += PHI(r, c) * s[c] * PHI(r, c) * s[c];
-        rmax = fmax(rmax, sqrt(rn));
-    }
-    for (int r = 0; r < nr; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+    /* symmetric scaling D K D (scaling()) */
+    scaling(m, d, s, 1);
     for (int c = 0; c < N; c++) {
         for (int r = c; r < N; r++) K[r + c * ld] *= s[r] * s[c];
         b[c] *= s[c];
@@ -236,17 +248,7 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
     /* the whole scaled augmented matrix, both triangles */
     double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *sv = d->kkt_scale + N;
     const size_t ld = (size_t)N;
-    for (int a = 0; a < nv; a++) {
-        const double mii = d->Mstar[a + (size_t)a * (size_t)nv];
-        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
-    }
-    double rmax = 0.0;
-    for (int r = 0; r < nc; r++) {
-        double rn = 0.0;
-        for (int c = 0; c < nv; c++) rn += d->Phiq[r + (size_t)c * (size_t)nc] * s[c] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
-        rmax = fmax(rmax, sqrt(rn));
-    }
-    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+    scaling(m, d, s, 1);
     for (int c = 0; c < N; c++)
         for (int r = 0; r < N; r++) {
             double v = 0.0;
@@ -370,10 +372,7 @@ static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
     const int n = m->nv, one = 1;
     double *A = d->kkt, *s = d->kkt_scale, *x = d->kkt_rhs, *g = d->kkt_rhs + n;
-    for (int a = 0; a < n; a++) {
-        const double mii = d->Mstar[a + (size_t)a * (size_t)n];
-        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
-    }
+    scaling(m, d, s, 0);
     for (int c = 0; c < n; c++)
         for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
     int info = 0;
