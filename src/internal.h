@@ -178,7 +178,7 @@ void dgelsd_(const int *m, const int *n, const int *nrhs, double *a, const int *
              double *s, const double *rcond, int *rank, double *work, const int *lwork, int *iwork, int *info);
 void dtrtrs_(const char *uplo, const char *trans, const char *diag, const int *n, const int *nrhs, const double *a,
              const int *lda, double *b, const int *ldb, int *info, size_t l1, size_t l2, size_t l3);
-void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
+void dpotf2_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
 void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
              const int *ldb, int *info, size_t l);
 void dpocon_(const char *uplo, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,

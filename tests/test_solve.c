@@ -390,43 +390,29 @@ static void test_square_constraints(void **state)
     vt_model_free(m);
 }
 
-/* the augmented path's reciprocal condition (a chain with one point drive at its tip: 1 row,
- * 6 rates) against the exact 1-norm condition of the scaled matrix of (5): rates scaled by
- * M*_aa^(-1/2), the constraint rows by one common factor (the largest scaled row norm) */
+/* the augmented path's reciprocal condition (a free tree, nc = 0: M* q̈ = Q by the symmetric
+ * indefinite factorization) against the exact 1-norm condition of the scaled matrix D M* D */
 static void test_augmented_condition(void **state)
 {
     (void)state;
     extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
     vt_model *m;
     vt_data *d;
-    assert_ok(vt_scene_chain(&m, 6, VT_CHAIN_TIP_DRIVE));
+    assert_ok(vt_scene_random_tree(&m, 5, 5, VT_SCENE_SCALAR_JOINTS));
+    assert_int_equal(m->nc, 0);
     assert_ok(vt_data_create(&d, m));
-    const int nv = m->nv, nc = m->nc, N = nv + nc;
-    assert_true(nc > 0 && N <= 16);
-    for (int k = 0; k < nv; k++) {
-        double qdd;
-        vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd);
-    }
+    uint64_t seed = 9;
+    vt_scene_random_state(m, d, &seed);
     assert_ok(vt_inverse_dynamics(m, d));
-    double K[256], X[256], sc[16], rmax = 0.0;
+    const int N = m->nv;
+    assert_true(N <= 16);
+    double K[256], X[256], an = 0.0, xn = 0.0;
     int ipiv[16], info = 0;
-    for (int a = 0; a < nv; a++) sc[a] = 1.0 / sqrt(d->Mstar[a + a * nv]);
-    for (int r = 0; r < nc; r++) {
-        double rn = 0.0;
-        for (int c = 0; c < nv; c++) rn += pow(d->Phiq[r + c * nc] * sc[c], 2);
-        rmax = fmax(rmax, sqrt(rn));
-    }
-    for (int r = 0; r < nc; r++) sc[nv + r] = 1.0 / rmax;
     for (int c = 0; c < N; c++)
         for (int r = 0; r < N; r++) {
-            double v = 0.0;
-            if (r < nv && c < nv) v = d->Mstar[r + c * nv];
-            else if (r >= nv && c < nv) v = d->Phiq[(r - nv) + c * nc];
-            else if (r < nv) v = d->Phiq[(c - nv) + r * nc];
-            K[r + c * N] = v * sc[r] * sc[c];
+            K[r + c * N] = d->Mstar[r + c * N] / sqrt(d->Mstar[r + r * N] * d->Mstar[c + c * N]);
             X[r + c * N] = r == c;
         }
-    double an = 0.0, xn = 0.0;
     for (int c = 0; c < N; c++) {
         double cs = 0.0;
         for (int r = 0; r < N; r++) cs += fabs(K[r + c * N]);
@@ -444,6 +430,161 @@ static void test_augmented_condition(void **state)
     vt_model_free(m);
 }
 
+/* fewer rows than rates (a chain with a point drive at its tip, and a random tree with two
+ * point drives): the Schur-complement solve against the whole augmented matrix by a general LU
+ * (dgesv), and its reported condition against its definition computed here independently: the
+ * exact 1-norm condition of S = Φ̃ M̃^-1 Φ̃^T (M̃ = D M* D, Φ̃ = c Φ_q D, c = 1 / largest row
+ * norm of Φ_q D) times the squared ratio of the smallest to the largest Cholesky pivot of M̃ */
+static void test_schur(void **state)
+{
+    (void)state;
+    extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+    for (int scene = 0; scene < 3; scene++) {
+        vt_model *m;
+        vt_data *d;
+        if (scene == 0) {
+            assert_ok(vt_scene_chain(&m, 6, VT_CHAIN_TIP_DRIVE));
+        } else if (scene == 2) {
+            /* M* singular: the third body is a point mass on its own joint's axis, its rate
+             * fixed by a joint drive only; the Schur solve hands over to the augmented one */
+            vt_builder *b;
+            assert_ok(vt_builder_create(&b, NULL));
+            vt_body_def link = vt_default_body_def();
+            link.inertia[4] = link.inertia[8] = 1.0 / 12.0;
+            link.joint_child[0] = -0.5;
+            assert_int_equal(vt_builder_add_body(b, &link), 1);
+            link.parent = 1;
+            link.joint_parent[0] = 0.5;
+            assert_int_equal(vt_builder_add_body(b, &link), 2);
+            vt_body_def dot = vt_default_body_def();
+            dot.parent = 2;
+            dot.joint_parent[0] = 0.5;
+            assert_int_equal(vt_builder_add_body(b, &dot), 3);
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = 3;
+            dr.f = vt_function_sine(0.0, 0.3, 2.0, 0.0);
+            assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+            dr = vt_default_drive_def();
+            dr.type = VT_DRIVE_POINT;
+            dr.body = 2;
+            dr.index = 1;
+            dr.point[0] = 0.5;
+            dr.f = vt_function_sine(0.5, 0.2, 1.0, 0.0);
+            assert_int_equal(vt_builder_add_drive(b, &dr), 1);
+            assert_ok(vt_builder_build(&m, b));
+            vt_builder_free(b);
+        } else {
+            vt_builder *b;
+            assert_ok(vt_builder_create(&b, NULL));
+            assert_ok(vt_scene_random_bodies(b, 31, 6, VT_SCENE_SCALAR_JOINTS));
+            for (int k = 0; k < 2; k++) {
+                vt_drive_def dr = vt_default_drive_def();
+                dr.type = VT_DRIVE_POINT;
+                dr.body = 6;
+                dr.index = k;
+                dr.f = vt_function_sine(0.1, 0.2, 1.0 + k, 0.0);
+                assert_true(vt_builder_add_drive(b, &dr) >= 0);
+            }
+            assert_ok(vt_builder_build(&m, b));
+            vt_builder_free(b);
+        }
+        assert_ok(vt_data_create(&d, m));
+        const int nv = m->nv, nc = m->nc, N = nv + nc, one = 1;
+        assert_true(nc > 0 && nc < nv && N <= 20);
+        if (scene == 0) {
+            for (int k = 0; k < nv; k++) {
+                double qdd;
+                vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd);
+            }
+        } else if (scene == 2) {
+            d->q[0] = 0.4;
+            d->q[1] = 0.9;
+            d->qd[0] = 0.3;
+            d->qd[1] = -0.5;
+            d->qd[2] = 0.6;
+        } else {
+            uint64_t seed = 3;
+            vt_scene_random_state(m, d, &seed);
+        }
+        assert_ok(vt_inverse_dynamics(m, d));
+        /* the augmented system, solved whole */
+        double K[400], x[20], sc[20], L[256], P[64], S[64], X[64];
+        int ipiv[20], info = 0;
+        for (int c = 0; c < N; c++)
+            for (int r = 0; r < N; r++) {
+                double v = 0.0;
+                if (r < nv && c < nv) v = d->Mstar[r + c * nv];
+                else if (r >= nv && c < nv) v = d->Phiq[(r - nv) + c * nc];
+                else if (r < nv) v = d->Phiq[(c - nv) + r * nc];
+                K[r + c * N] = v;
+            }
+        for (int k = 0; k < nv; k++) x[k] = d->Q[k];
+        for (int k = 0; k < nc; k++) x[nv + k] = d->gamma[k];
+        dgesv_(&N, &one, K, &N, ipiv, x, &N, &info);
+        assert_int_equal(info, 0);
+        for (int k = 0; k < nv; k++) assert_near(d->qdd[k], x[k], 1e-10 * (1 + vt_test_maxabs(x, nv)));
+        for (int k = 0; k < nc; k++) assert_near(d->lambda[k], -x[nv + k], 1e-10 * (1 + vt_test_maxabs(x + nv, nc)));
+        if (scene == 2) { /* the augmented path: its own condition is tested above */
+            assert_true(d->Mstar[2 + 2 * nv] == 0.0);
+            vt_data_free(d);
+            vt_model_free(m);
+            continue;
+        }
+        /* its condition, by definition */
+        double rmax = 0.0;
+        for (int a = 0; a < nv; a++) sc[a] = 1.0 / sqrt(d->Mstar[a + a * nv]);
+        for (int r = 0; r < nc; r++) {
+            double rn = 0.0;
+            for (int c = 0; c < nv; c++) rn += pow(d->Phiq[r + c * nc] * sc[c], 2);
+            rmax = fmax(rmax, sqrt(rn));
+        }
+        for (int c = 0; c < nv; c++)
+            for (int r = 0; r < nv; r++) L[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
+        dpotrf_("L", &nv, L, &nv, &info, 1);
+        assert_int_equal(info, 0);
+        double lmin = 1e300, lmax = 0.0;
+        for (int k = 0; k < nv; k++) {
+            lmin = fmin(lmin, L[k + k * nv]);
+            lmax = fmax(lmax, L[k + k * nv]);
+        }
+        /* S = P M̃^-1 P^T with P = Φ̃, by solving M̃ W = P^T column by column (dgesv on a copy) */
+        double Mt[256], W[128];
+        for (int c = 0; c < nv; c++)
+            for (int r = 0; r < nv; r++) Mt[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
+        for (int r = 0; r < nc; r++)
+            for (int a = 0; a < nv; a++) {
+                P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
+                W[a + r * nv] = P[r + a * nc];
+            }
+        dgesv_(&nv, &nc, Mt, &nv, ipiv, W, &nv, &info);
+        assert_int_equal(info, 0);
+        for (int i = 0; i < nc; i++)
+            for (int j = 0; j < nc; j++) {
+                double v = 0.0;
+                for (int a = 0; a < nv; a++) v += P[i + a * nc] * W[a + j * nv];
+                S[i + j * nc] = v;
+                X[i + j * nc] = i == j;
+            }
+        double sn = 0.0, xn = 0.0;
+        for (int c = 0; c < nc; c++) {
+            double cs = 0.0;
+            for (int r = 0; r < nc; r++) cs += fabs(S[r + c * nc]);
+            sn = fmax(sn, cs);
+        }
+        dgesv_(&nc, &nc, S, &nc, ipiv, X, &nc, &info);
+        assert_int_equal(info, 0);
+        for (int c = 0; c < nc; c++) {
+            double cs = 0.0;
+            for (int r = 0; r < nc; r++) cs += fabs(X[r + c * nc]);
+            xn = fmax(xn, cs);
+        }
+        const double expect = (lmin / lmax) * (lmin / lmax) / (sn * xn);
+        assert_near(d->rcond, expect, 1e-8 * expect);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -451,6 +592,7 @@ int main(void)
         cmocka_unit_test(test_free_tree),
         cmocka_unit_test(test_square_constraints),
         cmocka_unit_test(test_augmented_condition),
+        cmocka_unit_test(test_schur),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_bad_definitions),
         cmocka_unit_test(test_redundant_fourbar),
