@@ -6,7 +6,8 @@
  * vtdyn_dense (vt_inverse_dynamics: dense S, the reference) and vtdyn_recursive
  * (vt_inverse_dynamics_recursive), and the peers when they are built in (bench/peers/):
  * Pinocchio and MuJoCo, on the same chain and the same q, q̇, q̈, their torques checked against
- * ours before they are timed.
+ * ours before they are timed (MuJoCo also on the double link, the four-bar and the tip-driven
+ * chain).
  *
  * Timing: every method of a row is run in turn, round after round (interleaved, so that the
  * machine's slow stretches hit all of them alike); a round times a batch of calls sized to take
@@ -121,7 +122,8 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
     t[nt++] = (timed){"vtdyn_recursive", run_vt, &cr, 0};
 #ifdef VT_HAVE_PEERS
     /* the peers on the same scene and state: the chain (both), the double link and the
-     * four-bar (MuJoCo, with its equality constraints); q̈ from our own solve */
+     * four-bar (MuJoCo, with its equality constraints), the tip-driven chain (MuJoCo, the tip
+     * force solved from mj_inverse); q̈ from our own solve */
     vt_peer *peers[2] = {NULL, NULL};
     int pscene = -1, np = n;
     double q[256], qd[256], qdd[256], ours[256], tau[256];
@@ -149,6 +151,15 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
         qdd[0] = dr->qdd[0]; qdd[1] = dr->qdd[3]; qdd[2] = dr->qdd[4];
         ours[0] = dr->drive_effort[0];
         ours[1] = ours[2] = 0.0;
+    } else if (strcmp(scene, "chain_tip") == 0) {
+        pscene = VT_PEER_CHAIN_TIP;
+        for (int k = 0; k < n; k++) {
+            q[k] = dr->q[k];
+            qd[k] = dr->qd[k];
+            qdd[k] = dr->qdd[k];
+            ours[k] = 0.0; /* no joint is actuated */
+        }
+        ours[n] = dr->drive_effort[0]; /* the tip force along global y */
     }
     if (pscene >= 0) {
 #ifdef VT_HAVE_PINOCCHIO
@@ -163,14 +174,16 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
                 vt_peer_run(peers[p], k);
                 vt_peer_torques(peers[p], tau);
                 double err = 0.0, scale = 1e-300;
-                const int ncmp = pscene == VT_PEER_FOURBAR ? 1 : np; /* the four-bar: the crank torque */
+                /* the four-bar: the crank torque; the chain tip: the n joint torques left (zero) and
+                 * the tip force */
+                const int ncmp = pscene == VT_PEER_FOURBAR ? 1 : pscene == VT_PEER_CHAIN_TIP ? np + 1 : np;
                 for (int j = 0; j < ncmp; j++) {
                     err = fmax(err, fabs(tau[j] - ours[j]));
                     scale = fmax(scale, fabs(ours[j]));
                 }
                 /* exact constraints agree to round-off; MuJoCo's soft equality constraints to
                  * their softness */
-                const double tol = pscene == VT_PEER_CHAIN ? 1e-8 : 1e-3;
+                const double tol = pscene == VT_PEER_CHAIN || pscene == VT_PEER_CHAIN_TIP ? 1e-8 : 1e-3;
                 if (err > tol * scale && strstr(vt_peer_method(peers[p], k), "crba") == NULL) {
                     printf("  %s disagrees with vtdyn: max torque difference %.3g (scale %.3g): not timed\n",
                            vt_peer_method(peers[p], k), err, scale);

@@ -1,5 +1,6 @@
-/* MuJoCo peer (C API). Scenes: chain, double link (joint 2 locked by a joint equality) and
- * four-bar (loop closed by a connect equality).
+/* MuJoCo peer (C API). Scenes: chain, double link (joint 2 locked by a joint equality),
+ * four-bar (loop closed by a connect equality) and chain tip (the chain model, driven only by a
+ * force at the tip).
  *
  * Methods
  *   chain
@@ -18,6 +19,15 @@
  *                            rocker hinge torques zero (crank-only actuation) is solved from the
  *                            2x2 in-plane system, written into efc_force, qfrc_inverse -= J^T lambda,
  *                            then mj_rnePostConstraint (reactions see the loop force via cfrc_ext)
+ *   chain tip
+ *     0 mujoco_inverse_tip   mj_inverse (qfrc_inverse = M qacc + bias, no constraint), then the
+ *                            tip force F along global y that produces all of it: least squares
+ *                            F = J_y . qfrc_inverse / J_y . J_y, J_y the y row of mj_jac at the
+ *                            tip; the residual qfrc_inverse - J_y^T F (round-off when qacc is
+ *                            vtdyn's solution) are the torques, F the extra value; F goes into
+ *                            xfrc_applied of the last body (force and its moment about the body's
+ *                            COM), which mj_rnePostConstraint includes in cfrc_ext, so the
+ *                            reactions carry it; mj_inverse does not read xfrc_applied
  *
  * Reactions: mjData.cfrc_int[b] (after mj_rnePostConstraint) is the wrench the parent exerts on
  * body b through its joint, "com-based": 6 numbers [moment(3); force(3)], world axes, the moment
@@ -55,7 +65,8 @@ typedef struct {
     mjData *d;
     int scene, n;            /* n = nv = number of hinges = links */
     mjtNum *q, *qd, *qdd;    /* the state, copied into mjData by every run */
-    mjtNum *tau;             /* torques of the last run */
+    mjtNum *tau;             /* torques of the last run (chain tip: n + 1, the tip force last) */
+    mjtNum *jac;             /* chain tip: mj_jac's translation rows (3 x n) */
     const int *body;         /* body of link k (k = 1..n) is body[k - 1]; joint of link k is k - 1 */
     int bodyids[3];
 } mj_peer;
@@ -63,6 +74,7 @@ typedef struct {
 static const char *const chain_methods[] = {"mujoco_inverse", "mujoco_rne_post", "mujoco_post_project"};
 static const char *const dl_methods[] = {"mujoco_inverse"};
 static const char *const fb_methods[] = {"mujoco_inverse", "mujoco_inverse_loop"};
+static const char *const tip_methods[] = {"mujoco_inverse_tip"};
 
 /* ---- XML text ---- */
 typedef struct {
@@ -236,6 +248,39 @@ static void run_inverse_loop(mj_peer *s)
     mj_rnePostConstraint(m, d);
 }
 
+/* chain tip: the force F along global y at the tip of the last link (0.5 m along its x from its
+ * joint, the body's origin) that, alone, produces qfrc_inverse = M qacc + bias */
+static void run_inverse_tip(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    const int nv = m->nv, b = s->body[nv - 1];
+    set_state(s);
+    mj_inverse(m, d);
+    const mjtNum *o = d->xpos + 3 * b, *R = d->xmat + 9 * b;
+    const mjtNum tip[3] = {o[0] + 0.5 * R[0], o[1] + 0.5 * R[3], o[2] + 0.5 * R[6]};
+    mj_jac(m, d, s->jac, NULL, tip, b);
+    const mjtNum *Jy = s->jac + nv;
+    mjtNum jj = 0.0, jf = 0.0;
+    for (int i = 0; i < nv; i++) {
+        jj += Jy[i] * Jy[i];
+        jf += Jy[i] * d->qfrc_inverse[i];
+    }
+    const mjtNum F = jf / jj;
+    for (int i = 0; i < nv; i++) s->tau[i] = d->qfrc_inverse[i] - Jy[i] * F;
+    s->tau[nv] = F;
+    /* xfrc_applied: force (0, F, 0) at the body's COM and the moment (tip - COM) x (0, F, 0) */
+    mjtNum *x = d->xfrc_applied + 6 * b;
+    const mjtNum *c = d->xipos + 3 * b;
+    x[0] = 0.0;
+    x[1] = F;
+    x[2] = 0.0;
+    x[3] = -(tip[2] - c[2]) * F;
+    x[4] = 0.0;
+    x[5] = (tip[0] - c[0]) * F;
+    mj_rnePostConstraint(m, d);
+}
+
 /* ---- vtable ---- */
 static void mjp_run(void *p, int method)
 {
@@ -246,6 +291,8 @@ static void mjp_run(void *p, int method)
         else run_post_project(s);
     } else if (s->scene == VT_PEER_FOURBAR && method == 1) {
         run_inverse_loop(s);
+    } else if (s->scene == VT_PEER_CHAIN_TIP) {
+        run_inverse_tip(s);
     } else {
         run_inverse(s);
     }
@@ -254,7 +301,8 @@ static void mjp_run(void *p, int method)
 static void mjp_torques(const void *p, double *tau)
 {
     const mj_peer *s = p;
-    for (int i = 0; i < s->n; i++) tau[i] = s->tau[i];
+    const int nt = s->scene == VT_PEER_CHAIN_TIP ? s->n + 1 : s->n;
+    for (int i = 0; i < nt; i++) tau[i] = s->tau[i];
 }
 
 static void mjp_reaction(const void *p, int k, double f[3], double n[3])
@@ -287,6 +335,7 @@ static void mjp_destroy(void *p)
 static const vt_peer_vtable chain_vtable = {3, chain_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable dl_vtable = {1, dl_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable fb_vtable = {2, fb_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+static const vt_peer_vtable tip_vtable = {1, tip_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 
 static mjModel *compile_xml(const char *xml)
 {
@@ -309,7 +358,7 @@ static mjModel *scene_model(int scene, int n)
     b.s = malloc(b.cap = 4096);
     if (!b.s) return NULL;
     b.s[0] = '\0';
-    if (scene == VT_PEER_CHAIN) xml_chain(&b, n);
+    if (scene == VT_PEER_CHAIN || scene == VT_PEER_CHAIN_TIP) xml_chain(&b, n);
     else if (scene == VT_PEER_DOUBLE_LINK) xml_double_link(&b);
     else xml_fourbar(&b);
     mjModel *m = b.failed ? NULL : compile_xml(b.s);
@@ -322,14 +371,14 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     if (!q || !qd || !qdd) return NULL;
     if (scene == VT_PEER_DOUBLE_LINK) n = 2;
     else if (scene == VT_PEER_FOURBAR) n = 3;
-    else if (scene != VT_PEER_CHAIN || n < 1) return NULL;
+    else if ((scene != VT_PEER_CHAIN && scene != VT_PEER_CHAIN_TIP) || n < 1) return NULL;
 
     mjModel *m = scene_model(scene, n);
     if (!m) return NULL;
 
     vt_peer *p = malloc(sizeof *p);
     mj_peer *s = calloc(1, sizeof *s);
-    if (s) s->q = malloc(4 * (size_t)n * sizeof(mjtNum));
+    if (s) s->q = malloc((7 * (size_t)n + 1) * sizeof(mjtNum));
     if (!p || !s || !s->q || m->nv != n || m->nq != n) {
         free(p);
         if (s) free(s->q);
@@ -343,6 +392,7 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     s->qd = s->q + n;
     s->qdd = s->qd + n;
     s->tau = s->qdd + n;
+    s->jac = s->tau + n + 1;
     for (int i = 0; i < n; i++) {
         s->q[i] = q[i];
         s->qd[i] = qd[i];
@@ -365,7 +415,8 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     }
     p->impl = s;
     p->n = n;
-    p->vt = scene == VT_PEER_CHAIN ? &chain_vtable : scene == VT_PEER_DOUBLE_LINK ? &dl_vtable : &fb_vtable;
+    p->vt = scene == VT_PEER_CHAIN ? &chain_vtable : scene == VT_PEER_DOUBLE_LINK ? &dl_vtable
+          : scene == VT_PEER_CHAIN_TIP ? &tip_vtable : &fb_vtable;
     mjp_run(s, 0);
     return p;
 }
