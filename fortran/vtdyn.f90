@@ -54,6 +54,8 @@ module vtdyn
       VT_JOINT_TYPE_COUNT = 6
   ! warning flags in vt_data%warning
   integer(c_int), parameter :: VT_WARN_ILL_CONDITIONED = 1, VT_WARN_REDUNDANT = 2
+  ! redundant rows: directions below this fraction of the largest singular value are dropped
+  real(c_double), parameter :: VT_REDUNDANT_TOL = 1.0e-3_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
   integer(c_int), parameter :: VT_FUNC_CONSTANT = 0, VT_FUNC_POLYNOMIAL = 1, VT_FUNC_SINE = 2, &
       VT_FUNC_CALLBACK = 3

@@ -57,6 +57,11 @@ static int lapack_work_size(const vt_model *m, size_t *niwork)
         if (info == 0 && (size_t)iq > *niwork) *niwork = (size_t)iq;
         dgelsd_(&nc, &nv, &one2, &dummy, &nc, &dummy, &ldb2, &dummy, &rc, &rank, &q, &lw, &iq, &info);
         if (info == 0 && (int)q > need) need = (int)q; /* and on Φ_q itself (projections) */
+        /* dgesvd on the scaled Φ_q (nc x nv) with its copy, U, V^T and σ: redundant rows */
+        const int k = nc < nv ? nc : nv;
+        dgesvd_("S", "S", &nc, &nv, &dummy, &nc, &dummy, &dummy, &nc, &dummy, &k, &q, &lw, &info, 1, 1);
+        const int svd = (info == 0 ? (int)q : 5 * (nc + nv)) + nc * nv + nc * k + k * nv + k;
+        if (svd > need) need = svd;
         /* dgels on Φ_q (nc x nv) for the Newton and velocity corrections */
         const int one = 1, ldb = nc > nv ? nc : nv;
         dgels_("N", &nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &q, &lw, &info, 1);

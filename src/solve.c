@@ -38,7 +38,7 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
 
 /* Rank of Φ_q by QR with column pivoting of its row-normalized transpose; the pivots past the
  * rank are the dependent rows. Returns the rank; the message lists those rows. */
-static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
+static int dependent_rows(const vt_model *m, vt_data *d, double rcond, double tau)
 {
     const int nv = m->nv, nc = m->nc;
     double *A = d->lwork, *tau_qr = A + (size_t)nv * (size_t)nc, *work = tau_qr + nc;
@@ -57,9 +57,6 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond)
     const int kmax = nv < nc ? nv : nc;
     const double r11 = kmax > 0 ? fabs(A[0]) : 0.0;
     int rank = 0;
-    /* the augmented matrix's condition goes as the square of Φ_q's: rows are dependent to the
-     * precision rcond_min asks for when R's diagonal falls below sqrt(rcond_min) of its first */
-    const double tau = sqrt(m->rcond_min);
     while (rank < kmax && fabs(A[rank + (size_t)rank * (size_t)nv]) > tau * r11) rank++;
     if (rank == nc) return rank;
     /* rcond is NaN when the rank is checked first (models that allow redundant rows) */
@@ -209,12 +206,17 @@ static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
     return 0;
 }
 
-/* Redundant rows: the minimum-norm least-squares solution of the whole augmented system (5),
- * scaled as in factor_solve, by LAPACK's SVD-based dgelsd with singular values below 1e-9 of
- * the largest taken as zero. q̈ is unique (M* is positive definite on Φ_q's null space) and
- * λ comes out of minimum norm; with consistent γ both satisfy (5) exactly, and where γ is
- * slightly inconsistent (constraint drift during a time analysis) the least-squares q̈ still
- * depends continuously on the state, which an integrator needs. Then the residual
+/* Redundant rows (models that allow them): the constraint rows reduced to their independent
+ * directions, then (5) on those. With the scaling of factor_solve, Φ̃ = c Φ_q D = U Σ V^T
+ * (LAPACK dgesvd); the directions with σ ≥ VT_REDUNDANT_TOL σ_max (1e-3) are kept as the rows
+ * R = Σ_r V_r^T with right-hand side U_r^T c γ, the others dropped; the reduced system
+ * [M̃ R^T; R 0] [ỹ; −μ] = [D Q; U_r^T c γ] is solved by dgelsd (minimum norm, for an M* singular
+ * on directions R fixes), q̈ = D ỹ and λ = c U_r μ, of minimum norm. With exactly dependent rows
+ * and consistent γ this is (5) itself. Where a row is about to become dependent (a singular
+ * pose, as the IFToMM N-four-bar's horizontal one) or drift makes γ slightly inconsistent, the
+ * nearly dependent direction is dropped instead of amplified by 1/σ², which is what carries a
+ * time analysis through the pose; the price is a constraint held in the least-squares sense
+ * within that band (Baumgarte's terms of the ODE form close it after). Then the residual
  * max |Φ_q q̈ − γ|, and which multipliers and reactions are not unique: those that change
  * along the null directions z of Φ_q^T, from the QR of dependent_rows
  * (z = P [−R11^{-1} R12; I] in the row-normalized space). */
@@ -245,40 +247,69 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
         dtrtrs_("U", "N", "N", &rank, &nfree, A, &nv, X, &rank, &info, 1, 1, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dtrtrs info %d", info);
     }
-    /* the whole scaled augmented matrix, both triangles */
+    /* the scaled rows Φ̃ = c Φ_q D and their SVD U Σ V^T (dgesvd); the directions with
+     * σ < VT_REDUNDANT_TOL σ_max are dropped, the others kept as the rows Σ_r V_r^T with the
+     * right-hand side U_r^T c γ: the least-squares constraint on the rows' independent
+     * directions, bounded where a row is about to become dependent (a singular pose) and whatever
+     * drift makes γ inconsistent */
     double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *sv = d->kkt_scale + N;
-    const size_t ld = (size_t)N;
     scaling(m, d, s, 1);
-    for (int c = 0; c < N; c++)
-        for (int r = 0; r < N; r++) {
-            double v = 0.0;
-            if (r < nv && c < nv) v = d->Mstar[r + (size_t)c * (size_t)nv];
-            else if (r >= nv && c < nv) v = d->Phiq[(r - nv) + (size_t)c * (size_t)nc];
-            else if (r < nv) v = d->Phiq[(c - nv) + (size_t)r * (size_t)nc];
-            K[r + c * ld] = v * s[r] * s[c];
-        }
-    for (int k = 0; k < nv; k++) b[k] = d->Q[k] * s[k];
-    for (int r = 0; r < nc; r++) b[nv + r] = d->gamma[r] * s[nv + r];
-    const double rc = m->rcond_min; /* the dependent rows of Φ_q leave singular values ~ R_kk² */
-    int rk = 0;
-    /* LAPACK's dgelsd stops the program (xerbla) on a NaN norm: refuse non-finite input here */
-    if (!vt_all_finite(K, N * N) || !vt_all_finite(b, N))
+    const double c = s[nv];
+    const int k = nc < nv ? nc : nv;
+    double *P = d->lwork, *U = P + (size_t)nc * (size_t)nv, *VT = U + (size_t)nc * (size_t)k, *sig = VT + (size_t)k * (size_t)nv;
+    int lw = d->nlwork - (nc * nv + nc * k + k * nv + k);
+    for (int a = 0; a < nv; a++)
+        for (int r = 0; r < nc; r++) P[r + (size_t)a * (size_t)nc] = c * d->Phiq[r + (size_t)a * (size_t)nc] * s[a];
+    /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
+    if (!vt_all_finite(P, nc * nv) || !vt_all_finite(s, nv) || !vt_all_finite(d->Mstar, nv * nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in the scaled M* or Φ_q (overflow)");
-    dgelsd_(&N, &N, &one, K, &N, b, &N, sv, &rc, &rk, d->lwork, &d->nlwork, d->liwork, &info);
+    dgesvd_("S", "S", &nc, &nv, P, &nc, sig, U, &nc, VT, &k, sig + k, &lw, &info, 1, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgesvd info %d", info);
+    int nr = 0;
+    while (nr < k && sig[nr] > VT_REDUNDANT_TOL * sig[0]) nr++;
+    double *Ur = rownorm + nc; /* U_r kept past X and rownorm: dgelsd reuses lwork */
+    memcpy(Ur, U, (size_t)nc * (size_t)nr * sizeof(double));
+    /* the reduced augmented matrix [M̃ R^T; R 0], R = Σ_r V_r^T, both triangles */
+    const int Nr = nv + nr;
+    const size_t ld = (size_t)Nr;
+    for (int j = 0; j < Nr; j++)
+        for (int i = 0; i < Nr; i++) {
+            double v = 0.0;
+            if (i < nv && j < nv) v = d->Mstar[i + (size_t)j * (size_t)nv] * s[i] * s[j];
+            else if (i >= nv && j < nv) v = sig[i - nv] * VT[(i - nv) + (size_t)j * (size_t)k];
+            else if (i < nv && j >= nv) v = sig[j - nv] * VT[(j - nv) + (size_t)i * (size_t)k];
+            K[i + j * ld] = v;
+        }
+    for (int a = 0; a < nv; a++) b[a] = d->Q[a] * s[a];
+    for (int i = 0; i < nr; i++) {
+        double v = 0.0;
+        for (int r = 0; r < nc; r++) v += Ur[r + (size_t)i * (size_t)nc] * c * d->gamma[r];
+        b[nv + i] = v;
+    }
+    const double rc = m->rcond_min; /* M̃ alone may still be singular on directions R fixes */
+    int rk = 0;
+    dgelsd_(&Nr, &Nr, &one, K, &Nr, b, &Nr, sv, &rc, &rk, d->lwork, &d->nlwork, d->liwork, &info);
     if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
     d->rcond = rk > 0 ? sv[rk - 1] / sv[0] : 0.0;
-    if (rk < nv)
+    if (rk < Nr)
         return vt_fail(d->message, VT_ERR_SINGULAR,
-                       "vt_solve: Φ_q has rank %d of %d rows, and the augmented matrix keeps rank %d of %d "
-                       "(rcond %.3g): a motion without inertia that nothing fixes", rank, nc, rk, N, d->rcond);
-    for (int k = 0; k < N; k++) b[k] *= s[k];
-    if (!vt_all_finite(b, N)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+                       "vt_solve: Φ_q has rank %d of %d rows, and the reduced augmented matrix keeps rank %d of %d "
+                       "(rcond %.3g): a motion without inertia that nothing fixes", nr, nc, rk, Nr, d->rcond);
+    /* q̈ = D ỹ; λ = c U_r μ (minimum norm: in the range of U_r), with b = [ỹ; −μ] */
+    for (int a = 0; a < nv; a++) b[a] *= s[a];
+    for (int r = 0; r < nc; r++) {
+        double v = 0.0;
+        for (int i = 0; i < nr; i++) v += Ur[r + (size_t)i * (size_t)nc] * b[nv + i];
+        sv[r] = -c * v;
+    }
+    if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))
+        return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
-    for (int r = 0; r < nc; r++) d->lambda[r] = -b[nv + r];
+    memcpy(d->lambda, sv, (size_t)nc * sizeof(double));
     double resid = 0.0;
     for (int r = 0; r < nc; r++) {
         double v = -d->gamma[r];
-        for (int c = 0; c < nv; c++) v += d->Phiq[r + (size_t)c * (size_t)nc] * d->qdd[c];
+        for (int a = 0; a < nv; a++) v += d->Phiq[r + (size_t)a * (size_t)nc] * d->qdd[a];
         resid = fmax(resid, fabs(v));
     }
     d->residual = resid;
@@ -518,7 +549,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     if (m->allow_redundant && nc > 0) {
         /* rank first: near a redundant model's constraint manifold Φ_q is only nearly
          * rank-deficient, and solving its near-dependent rows exactly would amplify the drift */
-        const int rank = dependent_rows(m, d, NAN);
+        const int rank = dependent_rows(m, d, NAN, VT_REDUNDANT_TOL);
         if (rank < nc) return redundant_solve(m, d, rank);
     }
     const int square = nc == nv && nc > 0;
@@ -530,7 +561,9 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     d->rcond = rcond;
     d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
     if (r == 1) {
-        const int rank = nc > 0 ? dependent_rows(m, d, rcond) : nc;
+        /* the augmented matrix's condition goes as the square of Φ_q's: rows are dependent to the
+         * precision rcond_min asks for when R's diagonal falls below sqrt(rcond_min) of its first */
+        const int rank = nc > 0 ? dependent_rows(m, d, rcond, sqrt(m->rcond_min)) : nc;
         if (rank < nc && m->allow_redundant) return redundant_solve(m, d, rank);
         if (rank < nc) return VT_ERR_DEPENDENT_CONSTRAINTS;
         return vt_fail(d->message, VT_ERR_SINGULAR,

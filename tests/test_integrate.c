@@ -156,24 +156,30 @@ static void test_nfourbar_through_singular_pose(void **state)
         vt_scene_nfourbar_start(m, d, N, 1.0);
         vt_run_options opt = vt_default_run_options();
         opt.formulation = VT_FORMULATION_ODE;
-        opt.t1 = 1.0;
-        opt.nout = 50;
+        opt.t1 = 2.5;
+        opt.nout = 125;
         opt.rtol = 1e-8;
         opt.atol = 1e-10;
         opt.forward_check = 0;
         assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
         assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
-        double E0 = 0.0;
-        int passed = 0;
+        assert_int_equal(tr->nfilled, opt.nout + 1);
+        double E0 = 0.0, phimax = 0.0, phidmax = 0.0, dEmax = 0.0;
         for (int k = 0; k < tr->nfilled; k++) {
             const double E = vt_test_row_energy(m, d, tr, k);
             if (k == 0) E0 = E;
-            assert_near(E, E0, 1e-4 * (1 + fabs(E0)));
-            assert_true(tr->phi_norm[k] < 1e-8);
-            assert_true(tr->phid_norm[k] < 1e-7);
-            passed |= tr->q[(size_t)k * (size_t)m->nq] > 3.14159265358979323846 + 0.1; /* crank past horizontal */
+            dEmax = fmax(dEmax, fabs(E - E0));
+            phimax = fmax(phimax, tr->phi_norm[k]);
+            phidmax = fmax(phidmax, tr->phid_norm[k]);
+            /* the parallelogram branch: every crank keeps turning forward, all at one angle */
+            const double *q = tr->q + (size_t)k * (size_t)m->nq;
+            assert_true(tr->qd[(size_t)k * (size_t)m->nv] > 0.5);
+            for (int c = 1; c <= N; c++) assert_near(q[m->body_qadr[N + 1 + c]], q[0], 1e-3);
         }
-        assert_true(passed);
+        /* through both horizontal poses (crank at π and 2π), energy kept and loops closed */
+        assert_true(tr->q[(size_t)opt.nout * (size_t)m->nq] > 2.0 * 3.14159265358979323846 + 1.0);
+        if (!(dEmax < 1e-4 * (1 + fabs(E0))) || !(phimax < 1e-4) || !(phidmax < 1e-3))
+            fail_msg("N = %d: energy error %.3g of %.3g J, max |Φ| %.3g, max |Φ̇| %.3g", N, dEmax, E0, phimax, phidmax);
         vt_trajectory_free(tr);
         vt_data_free(d);
         vt_model_free(m);

@@ -77,6 +77,12 @@ typedef enum vt_joint_type {
 } vt_joint_type;
 
 /// Options of the whole model.
+/// Models that allow redundant rows (vt_model_def.allow_redundant): constraint directions whose
+/// singular value (of Φ_q scaled by the mass metric) falls below this fraction of the largest
+/// count as dependent, and are dropped from the solve of (5): exactly dependent rows, and near a
+/// singular pose the direction about to become dependent.
+#define VT_REDUNDANT_TOL 1e-3
+
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
     double rcond_min;   ///< smallest accepted reciprocal condition estimate of the equilibrated
