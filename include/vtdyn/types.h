@@ -85,8 +85,8 @@ typedef enum vt_joint_type {
 
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
-    double rcond_min;   ///< smallest accepted reciprocal condition estimate of the equilibrated
-                        ///< augmented matrix of (5); default 1e-12
+    double rcond_min;   ///< smallest accepted reciprocal condition of the scaled system of (5) that
+                        ///< vt_solve factorizes (see vt_data.rcond); default 1e-12
     double rcond_warn;  ///< below this (and above rcond_min) vt_solve succeeds but sets
                         ///< VT_WARN_ILL_CONDITIONED in the data's warning: a pose near a singular one,
                         ///< where efforts grow without bound; default 1e-6
@@ -301,8 +301,13 @@ typedef struct vt_data {
     double *qdd;             ///< q̈ (nv)
     double *lambda;          ///< Lagrange multipliers λ of M* q̈ = Q + Φ_q^T λ (2), one per constraint
                              ///< row: drives, then cut joints, then base bodies' p^T p − 1 (nc)
-    double rcond;            ///< reciprocal condition estimate of the equilibrated augmented matrix
-                             ///< (1 when nothing was factorized: a fully joint-driven recursive instant)
+    double rcond;            ///< reciprocal 1-norm condition of the scaled system vt_solve factorized
+                             ///< (exact below 17 unknowns, LAPACK's estimate above): the augmented
+                             ///< matrix of (5); with as many rows as rates Φ_q's, squared; with fewer,
+                             ///< the Schur complement Φ M*^-1 Φ^T's times the squared ratio of M*'s
+                             ///< smallest to largest Cholesky pivot; with only joint-drive rows the
+                             ///< free rates' M*; 1 when nothing was factorized (a fully joint-driven
+                             ///< recursive instant). In every case it falls toward a singular pose.
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
     int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent)
     double residual;         ///< max |Φ_q q̈ − γ| over all rows after a redundant solve (0 otherwise)
