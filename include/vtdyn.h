@@ -162,9 +162,13 @@ vt_status vt_forces(const vt_model *model, vt_data *data);
 /// VT_ERR_QUATERNION (an orientation callback's p_d of zero norm).
 vt_status vt_constraints(const vt_model *model, vt_data *data);
 
-/// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, with LAPACK's symmetric
-/// indefinite (bounded Bunch–Kaufman) factorization of the equilibrated matrix; d->rcond is its
-/// condition estimate. Needs vt_mass_matrix(), vt_forces(), vt_constraints().
+/// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, scaled by the mass metric, by
+/// the cheapest LAPACK path that fits: only joint-drive rows, Cholesky on the free rates; as many
+/// rows as rates, one LU of Φ_q; fewer, the Schur complement (two Cholesky factorizations) when
+/// M* is well conditioned; otherwise the symmetric indefinite (bounded Bunch–Kaufman)
+/// factorization of the whole matrix; redundant rows (allow_redundant), an SVD of Φ_q first.
+/// d->rcond is the condition of what was factorized (see vt_data.rcond).
+/// Needs vt_mass_matrix(), vt_forces(), vt_constraints().
 /// Statuses: VT_ERR_DEPENDENT_CONSTRAINTS (the message names the rows), VT_ERR_SINGULAR,
 /// VT_ERR_LAPACK. On failure qdd and lambda are left as they were.
 vt_status vt_solve(const vt_model *model, vt_data *data);
