@@ -130,7 +130,8 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->jnt_unique = take(base, &used, 6 * nb * sizeof(int));
     d->cut_unique = take(base, &used, 6 * (nk ? nk : 1) * sizeof(int));
     d->nullvec = take(base, &used, (nc ? nc : 1) * sizeof(double));
-    d->red_work = take(base, &used, (nc * nc + nc + 1) * sizeof(double));
+    /* X = R11^-1 R12 (rank x (nc - rank) <= nc^2 / 4), row norms (nc), U_r (nc x nr <= nc^2) */
+    d->red_work = take(base, &used, (2 * nc * nc + nc + 1) * sizeof(double));
     d->red_iwork = take(base, &used, (2 * nc + 1) * sizeof(int));
     return used;
 }
