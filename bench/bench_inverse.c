@@ -2,11 +2,13 @@
  *
  * Scenes (examples/scenes.h): the spatial chain of n revolute joints with axes cycling x, y, z,
  * every joint driven (n = 2 .. 200); the paper's double link with its lock; the four-bar (RSUR);
- * the 10-link chain with a point-position drive at its tip; the five-link arm. Methods:
+ * the same four-bar built RUSR (universal joint on the coupler, spherical cut joint), which is
+ * literally MuJoCo's model of it; the 10-link chain with a point-position drive at its tip; the
+ * five-link arm. Methods:
  * vtdyn_dense (vt_inverse_dynamics: dense S, the reference) and vtdyn_recursive
  * (vt_inverse_dynamics_recursive), and the peers when they are built in (bench/peers/):
  * Pinocchio and MuJoCo, on the same chain and the same q, q̇, q̈, their torques checked against
- * ours before they are timed (MuJoCo also on the double link, the four-bar and the tip-driven
+ * ours before they are timed (MuJoCo also on the double link, both four-bars and the tip-driven
  * chain).
  *
  * Timing: every method of a row is run in turn, round after round (interleaved, so that the
@@ -122,7 +124,7 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
     t[nt++] = (timed){"vtdyn_recursive", run_vt, &cr, 0};
 #ifdef VT_HAVE_PEERS
     /* the peers on the same scene and state: the chain (both), the double link and the
-     * four-bar (MuJoCo, with its equality constraints), the tip-driven chain (MuJoCo, the tip
+     * four-bars (MuJoCo, with its equality constraints), the tip-driven chain (MuJoCo, the tip
      * force solved from mj_inverse); q̈ from our own solve */
     vt_peer *peers[2] = {NULL, NULL};
     int pscene = -1, np = n;
@@ -151,6 +153,19 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
         qdd[0] = dr->qdd[0]; qdd[1] = dr->qdd[3]; qdd[2] = dr->qdd[4];
         ours[0] = dr->drive_effort[0];
         ours[1] = ours[2] = 0.0;
+    } else if (strcmp(scene, "fourbar_rusr") == 0) {
+        /* the same coordinates: crank, the universal's two angles (about z, then the tilt), rocker */
+        pscene = VT_PEER_FOURBAR_RUSR;
+        np = 4;
+        const int qi[4] = {m->body_qadr[1], m->body_qadr[2], m->body_qadr[2] + 1, m->body_qadr[3]};
+        const int vi[4] = {m->body_vadr[1], m->body_vadr[2], m->body_vadr[2] + 1, m->body_vadr[3]};
+        for (int k = 0; k < 4; k++) {
+            q[k] = dr->q[qi[k]];
+            qd[k] = dr->qd[vi[k]];
+            qdd[k] = dr->qdd[vi[k]];
+            ours[k] = 0.0; /* only the crank is actuated */
+        }
+        ours[0] = dr->drive_effort[0];
     } else if (strcmp(scene, "chain_tip") == 0) {
         pscene = VT_PEER_CHAIN_TIP;
         for (int k = 0; k < n; k++) {
@@ -174,8 +189,8 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
                 vt_peer_run(peers[p], k);
                 vt_peer_torques(peers[p], tau);
                 double err = 0.0, scale = 1e-300;
-                /* the four-bar: the crank torque; the chain tip: the n joint torques left (zero) and
-                 * the tip force */
+                /* the four-bar: the crank torque; the RUSR four-bar: the crank torque and the 3 torques
+                 * left (zero); the chain tip: the n joint torques left (zero) and the tip force */
                 const int ncmp = pscene == VT_PEER_FOURBAR ? 1 : pscene == VT_PEER_CHAIN_TIP ? np + 1 : np;
                 for (int j = 0; j < ncmp; j++) {
                     err = fmax(err, fabs(tau[j] - ours[j]));
@@ -235,6 +250,11 @@ static vt_status make_chain(vt_model **m, int n) { return vt_scene_chain(m, n, V
 static vt_status make_chain_tip(vt_model **m, int n) { return vt_scene_chain(m, n, VT_CHAIN_TIP_DRIVE); }
 static vt_status make_double_link(vt_model **m, int n) { (void)n; return vt_scene_double_link(m, 1); }
 static vt_status make_fourbar(vt_model **m, int n) { (void)n; return vt_scene_fourbar(m, vt_function_sine(0.3, 1.0, 2.0, 0.0)); }
+static vt_status make_fourbar_rusr(vt_model **m, int n)
+{
+    (void)n;
+    return vt_scene_fourbar_rusr(m, vt_function_sine(0.3, 1.0, 2.0, 0.0));
+}
 static vt_status make_five_link(vt_model **m, int n) { (void)n; return vt_scene_five_link(m); }
 
 static void state_chain(const vt_model *m, vt_data *d)
@@ -251,6 +271,10 @@ static void state_double_link(const vt_model *m, vt_data *d)
 static void state_fourbar(const vt_model *m, vt_data *d)
 {
     vt_scene_fourbar_assemble(m, d, 0.3, 1.0, NULL, NULL);
+}
+static void state_fourbar_rusr(const vt_model *m, vt_data *d)
+{
+    vt_scene_fourbar_rusr_assemble(m, d, 0.3, 1.0, NULL, NULL);
 }
 static void state_five_link(const vt_model *m, vt_data *d)
 {
@@ -283,6 +307,7 @@ int main(int argc, char **argv)
     for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++) scene_row("chain", ns[k], make_chain, state_chain, rounds);
     scene_row("double_link", 2, make_double_link, state_double_link, rounds);
     scene_row("fourbar", 3, make_fourbar, state_fourbar, rounds);
+    scene_row("fourbar_rusr", 4, make_fourbar_rusr, state_fourbar_rusr, rounds);
     scene_row("chain_tip", 10, make_chain_tip, state_chain, rounds);
     scene_row("five_link", 5, make_five_link, state_five_link, rounds);
     fclose(csv);

@@ -273,6 +273,46 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
+vt_status vt_scene_fourbar_rusr(vt_model **model, vt_function crank)
+{
+    static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    int id = 0;
+    for (int k = 0; k < 3 && id >= 0; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.mass = mass[k];
+        rod_inertia(link.inertia, mass[k], len[k]);
+        link.joint_child[0] = -0.5 * len[k];
+        if (k == 1) { /* coupler: universal joint at the crank's tip, z on the crank, then the coupler's y */
+            link.parent = 1;
+            link.joint = VT_JOINT_UNIVERSAL;
+            link.joint_parent[0] = 0.5 * VT_FB_A;
+            link.axis2[0] = 0.0;
+            link.axis2[1] = 1.0;
+        }
+        if (k == 2) link.joint_parent[0] = VT_FB_D; /* rocker pivot on the ground */
+        id = vt_builder_add_body(b, &link);
+    }
+    if (id > 0) { /* the rocker's tip and the coupler's tip coincide (3 rows) */
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.joint = VT_JOINT_SPHERICAL;
+        cut.body_a = 3;
+        cut.body_b = 2;
+        cut.point_a[0] = 0.5 * VT_FB_C;
+        cut.point_b[0] = 0.5 * VT_FB_B;
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    if (id >= 0) {
+        vt_drive_def drive = vt_default_drive_def();
+        drive.body = 1;
+        drive.f = crank;
+        id = vt_builder_add_drive(b, &drive);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
 /* planar four-bar: coupler and rocker angles and rates from the crank's (open branch) */
 static int fourbar_angles(double th2, double w2, double th[2], double w[2])
 {
@@ -310,6 +350,24 @@ int vt_scene_fourbar_assemble(const vt_model *m, vt_data *d, double th2, double 
     d->qd[m->body_vadr[2]] = 0.0;
     d->qd[m->body_vadr[2] + 1] = 0.0;
     d->qd[m->body_vadr[2] + 2] = r[0] - w2;
+    d->qd[m->body_vadr[3]] = r[1];
+    if (th) { th[0] = a[0]; th[1] = a[1]; }
+    if (w) { w[0] = r[0]; w[1] = r[1]; }
+    return 0;
+}
+
+int vt_scene_fourbar_rusr_assemble(const vt_model *m, vt_data *d, double th2, double w2, double th[2], double w[2])
+{
+    double a[2], r[2];
+    if (fourbar_angles(th2, w2, a, r)) return -1;
+    /* the universal's angles: the coupler's turn about z relative to the crank, then no tilt */
+    d->q[m->body_qadr[1]] = th2;
+    d->q[m->body_qadr[2]] = a[0] - th2;
+    d->q[m->body_qadr[2] + 1] = 0.0;
+    d->q[m->body_qadr[3]] = a[1];
+    d->qd[m->body_vadr[1]] = w2;
+    d->qd[m->body_vadr[2]] = r[0] - w2;
+    d->qd[m->body_vadr[2] + 1] = 0.0;
     d->qd[m->body_vadr[3]] = r[1];
     if (th) { th[0] = a[0]; th[1] = a[1]; }
     if (w) { w[0] = r[0]; w[1] = r[1]; }

@@ -59,6 +59,22 @@ int vt_scene_fourbar_planar_assemble(const vt_model *model, vt_data *data, doubl
  * (global, about z) into th[2], w[2] if not NULL. Returns 0, or -1 where the loop cannot close. */
 int vt_scene_fourbar_assemble(const vt_model *model, vt_data *data, double th2, double w2, double th[2], double w[2]);
 
+/* The same four-bar built RUSR, the mechanism MuJoCo's peer models (bench/peers): crank (body 1,
+ * revolute about z at the origin), coupler (body 2, universal joint at the crank's tip: first
+ * axis z on the crank, then the coupler's y, which tilts the coupler out of the plane), rocker
+ * (body 3, revolute about z at (VT_FB_D, 0, 0)); the loop is closed by a spherical cut joint
+ * (cut 0) from the rocker's tip to the coupler's tip. The same links, masses, inertias and
+ * gravity as vt_scene_fourbar. Drive 0 turns the crank: q1 = crank(t). 4 rates, 3 cut rows and
+ * the drive: square, and of full rank in the planar poses (the tilt rate alone moves the
+ * coupler's tip along z). */
+vt_status vt_scene_fourbar_rusr(vt_model **model, vt_function crank);
+/* its q and q̇ at crank angle th2 and rate w2 (the planar assembly of vt_scene_fourbar_assemble):
+ * the universal's angles are the coupler's angle about z relative to the crank and tilt 0.
+ * Writes th[2], w[2] as vt_scene_fourbar_assemble does; returns 0, or -1 where the loop cannot
+ * close. */
+int vt_scene_fourbar_rusr_assemble(const vt_model *model, vt_data *data, double th2, double w2, double th[2],
+                                   double w[2]);
+
 /* The paper's five-link arm (Figs. 9-10). The paper gives no geometry; this one is ours:
  *   link 1  column along its z, 0.4 m, 2 kg, revolute about the global z at the origin (yaw)
  *   link 2  along its x, 0.5 m, 1.5 kg, revolute about link 1's y at its top (pitch)

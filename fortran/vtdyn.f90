@@ -185,6 +185,7 @@ module vtdyn
     type(c_ptr)            :: jsij
     type(c_ptr)            :: jd
     type(c_ptr)            :: jpoint
+    type(c_ptr)            :: twist
     type(c_ptr)            :: S
     type(c_ptr)            :: Sdqd
     type(c_ptr)            :: R

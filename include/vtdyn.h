@@ -187,7 +187,10 @@ vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 /// bodies, Q by a Newton–Euler pass, Φ_q from the rates' twists; when every rate has one joint
 /// drive (model->joint_driven) the efforts and reactions come from one inward pass with nothing
 /// factorized. Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω,
-/// ẋ; Ṡq̇, M*, Q, Φ_x, Φ_q when it factorizes) except S and R; agrees with it to round-off.
+/// ẋ; Ṡq̇, Φ_x, Φ_q when it factorizes; M* and Q when it factorizes M*) except S and R, and
+/// agrees with it to round-off. With as many independent rows as rates (no base body, no
+/// allow_redundant) q̈ comes from Φ_q alone and M* q̈ − Q from an inward Newton–Euler pass: M*
+/// and Q are not formed.
 /// Statuses: those of vt_inverse_dynamics().
 vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 

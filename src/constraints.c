@@ -75,6 +75,26 @@ static void point_motion(const body_state *b, const double sp[3], double s[3], d
     vt_addcross3(aP, b->w, t);
 }
 
+/* point_motion remembered across the rows of one cut joint or drive, which share their points */
+typedef struct {
+    int id;
+    double sp[3], s[3], P[3], vP[3], aP[3];
+} point_memo;
+
+static void point_motion_memo(point_memo *c, const body_state *b, const double sp[3], double s[3], double P[3],
+                              double vP[3], double aP[3])
+{
+    if (c->id != b->id || c->sp[0] != sp[0] || c->sp[1] != sp[1] || c->sp[2] != sp[2]) {
+        c->id = b->id;
+        vt_copy3(c->sp, sp);
+        point_motion(b, sp, c->s, c->P, c->vP, c->aP);
+    }
+    vt_copy3(s, c->s);
+    vt_copy3(P, c->P);
+    vt_copy3(vP, c->vP);
+    vt_copy3(aP, c->aP);
+}
+
 /* a body vector: u, u̇, ü at q̈ = 0 */
 static void vector_motion(const body_state *b, const double up[3], double u[3], double ud[3], double udd[3])
 {
@@ -180,13 +200,13 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense)
 static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3])
 {
     if (b == 0) return;
-    double jwo[3], w[3], v[3];
+    double jwo[3];
     vt_cross3(jwo, d->x + vt_xoff(b), jv);
     for (int k = 0; k < 3; k++) jwo[k] += jw[k];
     const int *path = m->path_dof + m->body_pathadr[b];
     for (int c = 0; c < m->body_pathnum[b]; c++) {
-        vt_dof_twist(m, d, path[c], w, v);
-        d->Phiq[r + (size_t)path[c] * (size_t)m->nc] += vt_dot3(jv, v) + vt_dot3(jwo, w);
+        const double *w = d->twist + 6 * path[c];
+        d->Phiq[r + (size_t)path[c] * (size_t)m->nc] += vt_dot3(jv, w + 3) + vt_dot3(jwo, w);
     }
 }
 
@@ -206,11 +226,12 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
     const int drive_rows = vt_drive_rows(m);
     memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
 
+    body_state A = {.id = -1}, B = {.id = -1}; /* loaded when a row's bodies change */
+    point_memo ma = {.id = -1}, mb = {.id = -1};
     for (int r = 0; r < m->nc; r++) {
         const int kind = m->con_kind[r], owner = m->con_owner[r];
-        body_state A, B;
-        load_body(&A, m, d, m->con_body[2 * r]);
-        load_body(&B, m, d, m->con_body[2 * r + 1]);
+        if (A.id != m->con_body[2 * r]) load_body(&A, m, d, m->con_body[2 * r]), ma.id = -1;
+        if (B.id != m->con_body[2 * r + 1]) load_body(&B, m, d, m->con_body[2 * r + 1]), mb.id = -1;
         const double *va = m->con_vec + 6 * r, *vb = va + 3, *sa = m->con_point + 6 * r, *sb = sa + 3;
         double *pxa = d->Phix + 14 * r, *pxb = pxa + 7;
         double f[3] = {0, 0, 0}, jv[3], jw[3];
@@ -234,12 +255,12 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
         }
         case VT_ROW_POINT: {
             double s[3], Pa[3], vPa[3], aPa[3], Pb[3], vPb[3], aPb[3];
-            point_motion(&A, sa, s, Pa, vPa, aPa);
+            point_motion_memo(&ma, &A, sa, s, Pa, vPa, aPa);
             vt_cross3(jw, s, va);
             for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
             phix_from(pxa, &A, jv, jw);
             if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
-            point_motion(&B, sb, s, Pb, vPb, aPb);
+            point_motion_memo(&mb, &B, sb, s, Pb, vPb, aPb);
             vt_cross3(jw, s, va);
             phix_from(pxb, &B, va, jw);
             if (!dense) phiq_twist(m, d, r, B.id, va, jw);
@@ -270,8 +291,8 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             double u[3], ud[3], udd[3], s_a[3], s_b[3], Pa[3], vPa[3], aPa[3], Pb[3], vPb[3], aPb[3];
             double dd[3], ddd[3], dddd[3];
             vector_motion(&A, va, u, ud, udd);
-            point_motion(&A, sa, s_a, Pa, vPa, aPa);
-            point_motion(&B, sb, s_b, Pb, vPb, aPb);
+            point_motion_memo(&ma, &A, sa, s_a, Pa, vPa, aPa);
+            point_motion_memo(&mb, &B, sb, s_b, Pb, vPb, aPb);
             for (int k = 0; k < 3; k++) { dd[k] = Pb[k] - Pa[k]; ddd[k] = vPb[k] - vPa[k]; dddd[k] = aPb[k] - aPa[k]; }
             double t1[3], t2[3];
             vt_cross3(t1, u, dd);

@@ -20,8 +20,9 @@ static void *take(char *base, size_t *used, size_t bytes)
 
 /* Scratch used by the stages, the largest of: gathered S block and M S block
  * (2 x 7 x maxpath) with the path block of M* (maxpath²); accelerations α with two wrenches
- * per body (15 (n+1));
- * S^T products (8 maxpath + 8) with a Cartesian vector (7n). */
+ * per body (15 (n+1)); the reaction sensitivity's (18 (n+1) + 6 ncut);
+ * S^T products (8 maxpath + 8) with a Cartesian vector (7n); and on top of that, every
+ * constraint row's wrench on its two bodies (12 nc). */
 static size_t work_size(const vt_model *m)
 {
     const size_t k = (size_t)m->maxpath, nb = (size_t)m->nbody + 1, nx = (size_t)m->nx;
@@ -29,7 +30,7 @@ static size_t work_size(const vt_model *m)
     if (15 * nb > w) w = 15 * nb; /* reactions: α, applied and children's wrenches */
     if (18 * nb + 6 * (size_t)m->ncut > w) w = 18 * nb + 6 * (size_t)m->ncut; /* reaction sensitivity */
     if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
-    return w;
+    return w + 12 * (size_t)m->nc; /* on top: the rows' wrenches (reactions.c) */
 }
 
 /* LAPACK workspace of the solve, from LAPACK's own workspace queries: dsytrf on the
@@ -86,6 +87,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->jsij = take(base, &used, 3 * nb * sizeof(double));
     d->jd = take(base, &used, 3 * nb * sizeof(double));
     d->jpoint = take(base, &used, 3 * nb * sizeof(double));
+    d->twist = take(base, &used, 6 * nv * sizeof(double));
     d->S = take(base, &used, nx * nv * sizeof(double));
     d->Sdqd = take(base, &used, nx * sizeof(double));
     d->R = take(base, &used, nv * nx * sizeof(double));

@@ -80,6 +80,14 @@ static inline void vt_quat_rate(double r[4], const double p[4], const double w[3
     r[3] = 0.5 * (w[2] * p[0] + w[0] * p[2] - w[1] * p[1]);
 }
 
+/* r = E(p) a (3) for Euler parameters p and a 4-vector a, without forming E (euler.c) */
+static inline void vt_mulEp(double r[3], const double p[4], const double a[4])
+{
+    r[0] = -p[1] * a[0] + p[0] * a[1] - p[3] * a[2] + p[2] * a[3];
+    r[1] = -p[2] * a[0] + p[3] * a[1] + p[0] * a[2] - p[1] * a[3];
+    r[2] = -p[3] * a[0] - p[2] * a[1] + p[1] * a[2] + p[0] * a[3];
+}
+
 static inline int vt_all_finite(const double *a, int n)
 {
     for (int k = 0; k < n; k++)
@@ -119,21 +127,23 @@ void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
 /* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (mass.c) */
 void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 
-/* Mp = 4 G^T J' G (4x4 column-major), the rotational block of M^i (mass.c) */
-void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
-/* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (mass.c) */
-void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
-
 /* Kinematics (kinematics.c): ẍ = S q̈ + Ṡ q̇ into out (7n) (q̈ = 0 if qdd is NULL), with the
  * angular accelerations into alpha (3 x (nbody+1)). */
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
+/* The same from d->Sdqd and d->twist (both current): alpha needs 9 x (nbody+1). */
+void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
 
 /* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
  * state is checked. */
 vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
-/* Twist of a rate about the global origin, and a column of S in body i's rows (kinematics.c) */
-void vt_dof_twist(const vt_model *m, const vt_data *d, int dof, double w[3], double v[3]);
+/* A column of S in body i's rows, from the rate's twist d->twist (kinematics.c) */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
+
+/* vt_solve's square path in two halves for the recursive evaluation (solve.c) */
+int vt_solve_square_begin(const vt_model *m, vt_data *d, const double *mdiag, double *rcond);
+vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond);
+/* vt_reactions; have_accel: ẍ (d->xdd) and α (the first 3 (nbody+1) of d->work) are current */
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel);
 
 /* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);

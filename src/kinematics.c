@@ -9,7 +9,7 @@
  *                v^i = v^j + ω̃^j s^{ij} + Σ ε_k q̇_k e_k + ω̃^i d^i                          (15)
  *                ṗ^i = ½ E^{iT} ω^i
  *   S, column of rate k of joint b, in the rows of every body i whose path holds b, from the
- *   rate's twist (w, v) about the global origin (vt_dof_twist): ṙ^i += v + w × r^i,
+ *   rate's twist (w, v) about the global origin (d->twist): ṙ^i += v + w × r^i,
  *   ṗ^i += ½ E^{iT} w; that is
  *                rotational axis e through the joint point P_b:  ṙ^i += e × (r^i − P_b),
  *                                                                ṗ^i += ½ E^{iT} e
@@ -150,35 +150,38 @@ static void velocities(const vt_model *m, vt_data *d)
     }
 }
 
-/* Twist of rate `dof` about the global origin O: angular part w, velocity of the point at O
- * v. Rotational axis e through the joint point P: (e, P × e); translational e: (0, e); a base
- * body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, r^b × ω). */
-void vt_dof_twist(const vt_model *m, const vt_data *d, int dof, double w[3], double v[3])
+/* Twist of every rate about the global origin O, into d->twist: angular part w, velocity of
+ * the point at O v. Rotational axis e through the joint point P: (e, P × e); translational e:
+ * (0, e); a base body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, r^b × ω). */
+static void twists(const vt_model *m, vt_data *d)
 {
-    const int b = m->dof_body[dof], jt = m->body_joint[b];
-    const double *e = d->jaxis + 9 * b;
-    int ax;
-    switch (vt_dof_kind(jt, dof - m->body_vadr[b], &ax)) {
-    case VT_DOF_ROT:
-        vt_copy3(w, e + 3 * ax);
-        vt_cross3(v, d->jpoint + 3 * b, w);
-        break;
-    case VT_DOF_TRANS:
-        w[0] = w[1] = w[2] = 0.0;
-        vt_copy3(v, e + 3 * ax);
-        break;
-    case VT_DOF_BASE_R:
-        w[0] = w[1] = w[2] = 0.0;
-        v[0] = v[1] = v[2] = 0.0;
-        v[ax] = 1.0;
-        break;
-    default: { /* VT_DOF_BASE_P */
-        double E[12];
-        vt_euler_E(E, d->x + vt_xoff(b) + 3);
-        for (int r = 0; r < 3; r++) w[r] = 2.0 * E[3 * ax + r];
-        vt_cross3(v, d->x + vt_xoff(b), w);
-        break;
-    }
+    for (int dof = 0; dof < m->nv; dof++) {
+        const int b = m->dof_body[dof], jt = m->body_joint[b];
+        const double *e = d->jaxis + 9 * b;
+        double *w = d->twist + 6 * dof, *v = w + 3;
+        int ax;
+        switch (vt_dof_kind(jt, dof - m->body_vadr[b], &ax)) {
+        case VT_DOF_ROT:
+            vt_copy3(w, e + 3 * ax);
+            vt_cross3(v, d->jpoint + 3 * b, w);
+            break;
+        case VT_DOF_TRANS:
+            w[0] = w[1] = w[2] = 0.0;
+            vt_copy3(v, e + 3 * ax);
+            break;
+        case VT_DOF_BASE_R:
+            w[0] = w[1] = w[2] = 0.0;
+            v[0] = v[1] = v[2] = 0.0;
+            v[ax] = 1.0;
+            break;
+        default: { /* VT_DOF_BASE_P */
+            double E[12];
+            vt_euler_E(E, d->x + vt_xoff(b) + 3);
+            for (int r = 0; r < 3; r++) w[r] = 2.0 * E[3 * ax + r];
+            vt_cross3(v, d->x + vt_xoff(b), w);
+            break;
+        }
+        }
     }
 }
 
@@ -191,8 +194,7 @@ void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const 
         c[3 + dof - m->body_vadr[i] - 3] = 1.0;
         return;
     }
-    double w[3], v[3];
-    vt_dof_twist(m, d, dof, w, v);
+    const double *w = d->twist + 6 * dof, *v = w + 3;
     vt_copy3(c, v);
     vt_addcross3(c, w, d->x + vt_xoff(i));
     vt_mulE_t(c + 3, Ei, w);
@@ -278,11 +280,48 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
     }
 }
 
+/* ẍ = S q̈ + Ṡq̇ from the stored Ṡq̇ (d->Sdqd) and the rates' twists, outward: the twist of
+ * accelerations T^i = T^j + Σ_own q̈_a s_a (a sum of twists about O) gives
+ *   α^i = α0^i + T_w,   a^i = a0^i + T_v + T_w × r^i,   p̈^i = p̈0^i + ½ E^{iT} T_w
+ * with α0 = 2 E p̈0 (E p = 0, E E^T = I); a base body's own ṗ rates enter its p̈ as themselves
+ * (S's block I), whose part along p the twist form leaves out: p̈ += p (p · q̈_p). */
+void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+{
+    double *T = alpha + 3 * ((size_t)m->nbody + 1); /* 6 x (nbody+1) */
+    memset(T, 0, 6 * sizeof(double));
+    memset(alpha, 0, 3 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i], o = vt_xoff(i);
+        double *Ti = T + 6 * i, *ali = alpha + 3 * i, *ai = out + o;
+        const double *ri = d->x + o, *pi = ri + 3, *a0 = d->Sdqd + o;
+        memcpy(Ti, T + 6 * j, 6 * sizeof(double));
+        for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
+            const double *s = d->twist + 6 * a;
+            vt_axpy3(Ti, qdd[a], s);
+            vt_axpy3(Ti + 3, qdd[a], s + 3);
+        }
+        vt_mulEp(ali, pi, a0 + 3);
+        for (int c = 0; c < 3; c++) {
+            ali[c] = 2.0 * ali[c] + Ti[c];
+            ai[c] = a0[c] + Ti[3 + c];
+        }
+        vt_addcross3(ai, Ti, ri);
+        vt_quat_rate(ai + 3, pi, Ti); /* ½ E^T T_w */
+        for (int c = 0; c < 4; c++) ai[3 + c] += a0[3 + c];
+        if (m->body_joint[i] == VT_JOINT_BASE) {
+            const double *qp = qdd + m->body_vadr[i] + 3;
+            const double pq = pi[0] * qp[0] + pi[1] * qp[1] + pi[2] * qp[2] + pi[3] * qp[3];
+            for (int c = 0; c < 4; c++) ai[3 + c] += pq * pi[c];
+        }
+    }
+}
+
 vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
 {
     vt_status st = check_state(m, d);
     if (st) return st;
     positions(m, d);
+    twists(m, d);
     velocities(m, d);
     if (Sdqd) vt_accelerations(m, d, NULL, d->Sdqd, d->work);
     return VT_OK;

@@ -20,53 +20,59 @@
 
 #include "internal.h"
 
-/* wrench of row r on side (0 = a, 1 = b), about the body's centre of mass */
-static void row_wrench(const vt_model *m, const vt_data *d, int r, int side, double f[3], double n[3])
+/* Every row's wrench on its two bodies for the multipliers lam, about each body's centre of
+ * mass, [f_a n_a f_b n_b] (12 x nc), into the top 12 nc of d->work (data.c sizes it; the
+ * stages use the rest); the ground's side and the normalization rows of base bodies (their
+ * moment ½ E (2 p λ) is zero) are zero. */
+static const double *row_wrenches(const vt_model *m, vt_data *d, const double *lam)
 {
-    const int k = m->con_body[2 * r + side];
-    const double *px = d->Phix + 14 * r + 7 * side, lam = d->lambda[r];
-    double E[12], t[4];
-    vt_euler_E(E, d->x + vt_xoff(k) + 3);
-    for (int c = 0; c < 3; c++) f[c] = px[c] * lam;
-    for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * lam;
-    vt_mulE(n, E, t);
+    double *rw = d->work + d->nwork - 12 * (size_t)m->nc, E[2][12];
+    int last[2] = {-1, -1}; /* E of the body last seen on each side: a joint's rows share it */
+    for (int r = 0; r < m->nc; r++)
+        for (int side = 0; side < 2; side++) {
+            const int k = m->con_body[2 * r + side];
+            double *f = rw + 12 * r + 6 * side, *n = f + 3, t[4];
+            if (k == 0 || m->con_kind[r] == VT_ROW_NORM) {
+                memset(f, 0, 6 * sizeof(double));
+                continue;
+            }
+            if (k != last[side]) vt_euler_E(E[side], d->x + vt_xoff(k) + 3), last[side] = k;
+            const double *px = d->Phix + 14 * r + 7 * side;
+            for (int c = 0; c < 3; c++) f[c] = px[c] * lam[r];
+            for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * lam[r];
+            vt_mulE(n, E[side], t);
+        }
+    return rw;
 }
 
-/* sum of the wrenches of rows [r0, r1) on side `side`, moved to the point P of body k */
-static void rows_wrench_at(const vt_model *m, const vt_data *d, int r0, int r1, int side, const double P[3],
-                           double f[3], double n[3])
+/* sum of the wrenches rw of rows [r0, r1) on side `side`, moved to the point P of their body */
+static void rows_wrench_at(const vt_model *m, const vt_data *d, const double *rw, int r0, int r1, int side,
+                           const double P[3], double f[3], double n[3])
 {
-    double fr[3], nr[3], s[3];
+    double s[3], t[3];
     memset(f, 0, 3 * sizeof(double));
     memset(n, 0, 3 * sizeof(double));
     if (r0 >= r1) return;
     const int k = m->con_body[2 * r0 + side];
     for (int r = r0; r < r1; r++) {
-        row_wrench(m, d, r, side, fr, nr);
-        vt_axpy3(f, 1.0, fr);
-        vt_axpy3(n, 1.0, nr);
+        vt_axpy3(f, 1.0, rw + 12 * r + 6 * side);
+        vt_axpy3(n, 1.0, rw + 12 * r + 6 * side + 3);
     }
     for (int c = 0; c < 3; c++) s[c] = P[c] - d->x[vt_xoff(k) + c];
-    double t[3];
     vt_cross3(t, s, f);
     for (int c = 0; c < 3; c++) n[c] -= t[c];
 }
 
-/* every drive and cut-joint row's wrench on its bodies, added into fe (6 x (nbody+1)); the
- * normalization rows of base bodies exert nothing (their moment ½ E (2 p λ) is zero) */
-static void add_row_wrenches(const vt_model *m, const vt_data *d, double *fe)
+/* every drive and cut-joint row's wrench rw on its bodies, added into fe (6 x (nbody+1)) */
+static void add_row_wrenches(const vt_model *m, const double *rw, double *fe)
 {
-    for (int r = 0; r < m->nc; r++) {
-        if (m->con_kind[r] == VT_ROW_NORM) continue;
+    for (int r = 0; r < m->nc; r++)
         for (int side = 0; side < 2; side++) {
             const int k = m->con_body[2 * r + side];
             if (k == 0) continue;
-            double f[3], nn[3];
-            row_wrench(m, d, r, side, f, nn);
-            vt_axpy3(fe + 6 * k, 1.0, f);
-            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
+            vt_axpy3(fe + 6 * k, 1.0, rw + 12 * r + 6 * side);
+            vt_axpy3(fe + 6 * k + 3, 1.0, rw + 12 * r + 6 * side + 3);
         }
-    }
 }
 
 static int drive_nrows(const vt_drive_def *dr)
@@ -75,9 +81,11 @@ static int drive_nrows(const vt_drive_def *dr)
 }
 
 /* The drives' efforts (24) from d->lambda: each drive's force and moment on its body at the
- * drive's point, its effort along its coordinate or component, and Φ_q^T λ over the drives. */
-void vt_drive_efforts(const vt_model *m, vt_data *d)
+ * drive's point, its effort along its coordinate or component, and Φ_q^T λ over the drives.
+ * rw: the rows' wrenches (row_wrenches), or NULL to compute them. */
+static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
 {
+    if (!rw) rw = row_wrenches(m, d, d->lambda);
     for (int k = 0; k < m->ndrive; k++) {
         const vt_drive_def *dr = &m->drive[k];
         const int r0 = m->drive_row[k], b = dr->body;
@@ -90,7 +98,7 @@ void vt_drive_efforts(const vt_model *m, vt_data *d)
         } else {
             vt_copy3(P, d->x + vt_xoff(b));
         }
-        rows_wrench_at(m, d, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        rows_wrench_at(m, d, rw, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
         d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
     }
 
@@ -98,7 +106,11 @@ void vt_drive_efforts(const vt_model *m, vt_data *d)
     memset(d->qfrc_drive, 0, (size_t)m->nv * sizeof(double));
     for (int r = 0; r < vt_drive_rows(m); r++)
         for (int c = 0; c < m->nv; c++) d->qfrc_drive[c] += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->lambda[r];
+}
 
+void vt_drive_efforts(const vt_model *m, vt_data *d)
+{
+    drive_efforts(m, d, NULL);
 }
 
 /* The forward check's loads on the model without drives, on top of the applied loads xfrc0:
@@ -135,10 +147,15 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions");
     if (st) return st;
+    return vt_reactions_impl(m, d, 0);
+}
+
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel)
+{
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1;
     double *alpha = d->work, *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
-    vt_accelerations(m, d, d->qdd, d->xdd, alpha);
+    if (!have_accel) vt_accelerations_add(m, d, d->qdd, d->xdd, alpha); /* its 6 (n+1) of scratch past α: fe, cf */
 
     /* applied: gravity, xfrc, and every drive and cut-joint row (normalization rows of base
      * bodies exert nothing: their moment ½ E (2 p λ) is zero) */
@@ -167,9 +184,9 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
             vt_axpy3(fe + 6 * k + 3, 1.0, nn);
         }
     }
-    add_row_wrenches(m, d, fe);
-
-    vt_drive_efforts(m, d);
+    const double *rw = row_wrenches(m, d, d->lambda);
+    add_row_wrenches(m, rw, fe);
+    drive_efforts(m, d, rw);
 
     /* cut joints: the rows' wrench on body_b, at its joint point */
     for (int k = 0; k < m->ncut; k++) {
@@ -180,7 +197,7 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
         vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
         vt_axpy3(P, 1.0, d->x + vt_xoff(c->body_b));
         double *f = d->cut_force + 3 * k, *mo = d->cut_moment + 3 * k;
-        rows_wrench_at(m, d, r0, rend, 1, P, f, mo);
+        rows_wrench_at(m, d, rw, r0, rend, 1, P, f, mo);
         vt_mulmat3t(d->cut_force_body + 3 * k, d->A + 9 * c->body_b, f);
         vt_mulmat3t(d->cut_moment_body + 3 * k, d->A + 9 * c->body_b, mo);
     }
@@ -233,13 +250,12 @@ void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, dou
 {
     /* the reactions that the multipliers z alone produce (no inertia, no applied load): a
      * reaction that z changes is not unique */
-    double *saved = d->lambda;
-    d->lambda = (double *)z;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1;
     double *fe = d->work, *cf = fe + 6 * nb, *mag = cf + 6 * nb; /* 6 per joint, then 6 per cut */
     memset(fe, 0, 12 * nb * sizeof(double));
-    add_row_wrenches(m, d, fe);
+    const double *rw = row_wrenches(m, d, z);
+    add_row_wrenches(m, rw, fe);
     double big = 0.0, *cmag = mag + 6 * nb;
     for (int k = 0; k < m->ncut; k++) {
         const vt_cut_joint_def *c = &m->cut[k];
@@ -247,7 +263,7 @@ void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, dou
         double P[3], f[3], mo[3];
         vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
         vt_axpy3(P, 1.0, d->x + vt_xoff(c->body_b));
-        rows_wrench_at(m, d, r0, r0 + vt_cut_nrows(c->joint), 1, P, f, mo);
+        rows_wrench_at(m, d, rw, r0, r0 + vt_cut_nrows(c->joint), 1, P, f, mo);
         for (int e = 0; e < 3; e++) {
             cmag[6 * k + e] = fabs(f[e]);
             cmag[6 * k + 3 + e] = fabs(mo[e]);
@@ -286,7 +302,6 @@ void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, dou
     for (int k = 0; k < m->ncut; k++)
         for (int e = 0; e < 6; e++)
             if (cmag[6 * k + e] > tol * big) d->cut_unique[6 * k + e] = 0;
-    d->lambda = saved;
 }
 
 vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)

@@ -1,6 +1,6 @@
 /* The recursive (O(n) and O(n·depth)) evaluation of the same method, without the dense S.
  *
- * Every rate a has a twist s_a = (w_a, v_a) about the global origin O (vt_dof_twist): the
+ * Every rate a has a twist s_a = (w_a, v_a) about the global origin O (d->twist, from the kinematics): the
  * column of S of every body below it is ṙ = v_a + w_a × r, ṗ = ½ E^T w_a (15)-(16). A wrench
  * (n_O, f) about O pairs with it as power s_a · W = w_a · n_O + v_a · f, so S^T F, summed over a
  * subtree, is the projection of the subtree's wrench (10).
@@ -58,10 +58,9 @@ static double pair(const double w[3], const double v[3], const double W[6])
     return vt_dot3(w, W) + vt_dot3(v, W + 3);
 }
 
-/* M* by composite bodies */
-static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
+/* composite inertias about O, summed over subtrees: (m, h = m c, J_O) per body */
+static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (nbody+1) */)
 {
-    const int nv = m->nv;
     for (int i = 1; i <= m->nbody; i++) {
         double *I = Ic + 13 * i, J[9], t[9];
         const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
@@ -75,23 +74,34 @@ static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
             for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] + mass * ((r == col) * c2 - c[r] * c[col]);
     }
     subtree_sum(m, Ic, 13);
+}
+
+/* F = Ī s for a composite inertia I (13) and a twist s = (w, v) about O */
+static void inertia_twist(double F[6], const double *I, const double *s)
+{
+    const double *h = I + 1, *JO = I + 4, *w = s, *v = s + 3;
+    vt_mulmat3(F, JO, w);
+    vt_addcross3(F, h, v);
+    for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
+    vt_addcross3(F + 3, w, h);
+}
+
+/* M* by composite bodies */
+static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
+{
+    const int nv = m->nv;
+    composite(m, d, Ic);
     memset(d->Mstar, 0, (size_t)nv * (size_t)nv * sizeof(double));
     for (int a = 0; a < nv; a++) {
         const int i = m->dof_body[a];
-        const double *I = Ic + 13 * i, *h = I + 1, *JO = I + 4;
-        double w[3], v[3], F[6];
-        vt_dof_twist(m, d, a, w, v);
-        vt_mulmat3(F, JO, w);
-        vt_addcross3(F, h, v);
-        for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
-        vt_addcross3(F + 3, w, h);
+        double F[6];
+        inertia_twist(F, Ic + 13 * i, d->twist + 6 * a);
         const int *path = m->path_dof + m->body_pathadr[i];
         for (int k = 0; k < m->body_pathnum[i]; k++) {
             const int b = path[k];
             if (b > a) break; /* ascending: the rest are later rates of i's own joint */
-            double wb[3], vb[3];
-            vt_dof_twist(m, d, b, wb, vb);
-            const double v2 = pair(wb, vb, F);
+            const double *wb = d->twist + 6 * b;
+            const double v2 = pair(wb, wb + 3, F);
             d->Mstar[a + (size_t)b * (size_t)nv] = v2;
             d->Mstar[b + (size_t)a * (size_t)nv] = v2;
         }
@@ -103,17 +113,15 @@ static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
 {
     for (int i = 1; i <= m->nbody; i++) {
         const int o = vt_xoff(i);
-        double E[12], al[3];
-        vt_euler_E(E, d->x + o + 3);
-        vt_mulE(al, E, d->Sdqd + o + 3); /* α = 2 E p̈ */
+        double al[3];
+        vt_mulEp(al, d->x + o + 3, d->Sdqd + o + 3); /* α = 2 E p̈ */
         for (int k = 0; k < 3; k++) al[k] *= 2.0;
         body_wrench(W + 6 * i, m, d, i, d->Sdqd + o, al);
     }
     subtree_sum(m, W, 6);
     for (int a = 0; a < m->nv; a++) {
-        double w[3], v[3];
-        vt_dof_twist(m, d, a, w, v);
-        d->Q[a] = d->qfrc[a] - pair(w, v, W + 6 * m->dof_body[a]);
+        const double *w = d->twist + 6 * a;
+        d->Q[a] = d->qfrc[a] - pair(w, w + 3, W + 6 * m->dof_body[a]);
     }
     /* a base body's own ṗ rates: (4) in p also has h's normal part, p^T h_p = 2 ω^T J ω (the
      * Newton–Euler form above is its tangential part); p^T p = 1's multiplier takes it up, but
@@ -175,9 +183,8 @@ static vt_status inward(const vt_model *m, vt_data *d)
             const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
             double tau = 0.0;
             if (dr >= 0) {
-                double w[3], v[3];
-                vt_dof_twist(m, d, c, w, v);
-                tau = pair(w, v, Wi) - d->qfrc[c];
+                const double *w = d->twist + 6 * c;
+                tau = pair(w, w + 3, Wi) - d->qfrc[c];
                 d->lambda[m->drive_row[dr]] = tau;
                 d->drive_effort[dr] = tau;
                 double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
@@ -195,6 +202,50 @@ static vt_status inward(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     }
     return VT_OK;
+}
+
+/* Square Φ_q (as many rows as rates, e.g. the crank-driven four-bar): q̈ = Φ_q^-1 γ needs only
+ * M*'s diagonal, for the scaling, and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
+ * the needed wrenches W at the full accelerations, one inward pass as for joint drives: neither
+ * M* nor Q is formed. Where Φ_q is ill-conditioned, the general path diagnoses it. */
+static vt_status square_instant(const vt_model *m, vt_data *d)
+{
+    const int nv = m->nv;
+    const size_t nb = (size_t)m->nbody + 1;
+    double *Ic = d->work, rcond = 0.0;
+    composite(m, d, Ic);
+    for (int a = 0; a < nv; a++) {
+        const double *s = d->twist + 6 * a;
+        double F[6];
+        inertia_twist(F, Ic + 13 * m->dof_body[a], s);
+        d->kkt_scale[a] = pair(s, s + 3, F); /* M*_aa */
+    }
+    const int r = vt_solve_square_begin(m, d, d->kkt_scale, &rcond);
+    if (r < 0) return (vt_status)r;
+    vt_status st;
+    if (r == 1) {
+        crba(m, d, d->work);
+        bias(m, d, d->work);
+        if ((st = vt_solve(m, d))) return st;
+        return vt_reactions_impl(m, d, 0);
+    }
+    double *alpha = d->work, *W = alpha + 9 * nb; /* α, then vt_accelerations_add's 6 (n+1) */
+    vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha);
+    for (int i = 1; i <= m->nbody; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
+    subtree_sum(m, W, 6);
+    for (int a = 0; a < nv; a++) {
+        const double *s = d->twist + 6 * a;
+        d->kkt_rhs[nv + a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
+    }
+    if ((st = vt_solve_square_end(m, d, rcond))) return st;
+    return vt_reactions_impl(m, d, 1);
+}
+
+static int has_base(const vt_model *m)
+{
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE) return 1;
+    return 0;
 }
 
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
@@ -222,8 +273,11 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         if ((st = drive_accelerations(m, d)) || (st = vt_solve(m, d))) return st;
         return inward(m, d);
     }
+    if ((st = vt_constraints_impl(m, d, 0))) return st;
+    /* square, exactly constrained, no base body (whose ṗ rates carry (4)'s normal part): */
+    if (m->nc == m->nv && !m->allow_redundant && !has_base(m)) return square_instant(m, d);
     crba(m, d, d->work);
     bias(m, d, d->work);
-    if ((st = vt_constraints_impl(m, d, 0)) || (st = vt_solve(m, d))) return st;
-    return vt_reactions(m, d);
+    if ((st = vt_solve(m, d))) return st;
+    return vt_reactions_impl(m, d, 0);
 }

@@ -80,9 +80,13 @@ static int dependent_rows(const vt_model *m, vt_data *d, double rcond, double ta
  * inverse goes to lwork, with `extra` columns free after it; returns 0 when they do not fit
  * (the caller then estimates). */
 #define EXACT_RCOND_N 16
+static int small_fits(const vt_data *d, int n, int extra)
+{
+    return n <= EXACT_RCOND_N && (size_t)n * (size_t)(n + extra) <= (size_t)d->nlwork;
+}
 static int small_inverse(vt_data *d, int n, int extra)
 {
-    if (n > EXACT_RCOND_N || (size_t)n * (size_t)(n + extra) > (size_t)d->nlwork) return 0;
+    if (!small_fits(d, n, extra)) return 0;
     double *X = d->lwork;
     memset(X, 0, (size_t)n * (size_t)n * sizeof(double));
     for (int k = 0; k < n; k++) X[k + (size_t)k * (size_t)n] = 1.0;
@@ -105,14 +109,20 @@ static double rcond_from_inverse(const double *X, int n, double anorm)
  * Φ_q D), into s[nv..nv+nc). One factor for all rows keeps their relative sizes: a drive whose
  * row shrinks toward a singular pose (an arm reaching its full stretch) shows in the condition
  * estimate instead of being scaled away, as a row-by-row equilibration (LAPACK's dsyequb)
- * would do. */
+ * would do. scaling_diag: the rates' part from M*'s diagonal mdiag[a stride] (s may be mdiag
+ * itself with stride 1). */
+static void scaling_diag(const vt_model *m, const double *mdiag, int stride, double *s)
+{
+    for (int a = 0; a < m->nv; a++) {
+        const double mii = mdiag[(size_t)a * (size_t)stride];
+        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
+    }
+}
+
 static void scaling(const vt_model *m, const vt_data *d, double *s, int rows)
 {
     const int nv = m->nv, nc = m->nc;
-    for (int a = 0; a < nv; a++) {
-        const double mii = d->Mstar[a + (size_t)a * (size_t)nv];
-        s[a] = mii > 0.0 ? 1.0 / sqrt(mii) : 1.0;
-    }
+    scaling_diag(m, d->Mstar, nv + 1, s);
     if (!rows) return;
     double rmax = 0.0;
     for (int r = 0; r < nc; r++) {
@@ -403,11 +413,11 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * solves in sequence amplify errors by cond(Φ_q D) each, so the reported reciprocal condition is
  * squared, the scale of the augmented matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)).
  * Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
-static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
+static int square_first(const vt_model *m, vt_data *d, const double *mdiag, int stride, double *rcond_out)
 {
-    const int n = m->nv, one = 1;
-    double *A = d->kkt, *s = d->kkt_scale, *x = d->kkt_rhs, *g = d->kkt_rhs + n;
-    scaling(m, d, s, 0);
+    const int n = m->nv;
+    double *A = d->kkt, *s = d->kkt_scale, *x = d->kkt_rhs;
+    scaling_diag(m, mdiag, stride, s);
     for (int c = 0; c < n; c++)
         for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
     int info = 0;
@@ -416,8 +426,10 @@ static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     double rcond = 0.0;
     const int inverse = info == 0 && small_inverse(d, n, 1);
-    if (inverse) {
-        dgetrs_("N", &n, &n, A, &n, d->ipiv, d->lwork, &n, &info, 1);
+    if (inverse) { /* the inverse and y in one solve: [I, γ] */
+        const int ncol = n + 1;
+        memcpy(d->lwork + (size_t)n * (size_t)n, d->gamma, (size_t)n * sizeof(double));
+        dgetrs_("N", &n, &ncol, A, &n, d->ipiv, d->lwork, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
         rcond = rcond_from_inverse(d->lwork, n, anorm);
     } else if (info == 0) {
@@ -426,28 +438,48 @@ static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
     }
     *rcond_out = rcond * rcond;
     if (!(*rcond_out >= m->rcond_min)) return 1;
-    /* y = (Φ_q D)^-1 γ, q̈ = D y; then (Φ_q D)^T λ = D (M* q̈ − Q): with the inverse at hand
-     * (small systems) two products, else two solves with the LU factors */
+    /* y = (Φ_q D)^-1 γ, q̈ = D y: with the inverse at hand (small systems) from the same
+     * solve, else with the LU factors */
     if (inverse) {
-        cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->lwork, n, d->gamma, 1, 0.0, x, 1);
+        memcpy(x, d->lwork + (size_t)n * (size_t)n, (size_t)n * sizeof(double));
     } else {
+        const int one = 1;
         memcpy(x, d->gamma, (size_t)n * sizeof(double));
         dgetrs_("N", &n, &one, A, &n, d->ipiv, x, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     }
     for (int a = 0; a < n; a++) x[a] *= s[a];
-    double *h = inverse ? d->lwork + (size_t)n * (size_t)n : g;
-    memcpy(h, d->Q, (size_t)n * sizeof(double));
-    cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, x, 1, -1.0, h, 1);
-    for (int a = 0; a < n; a++) h[a] *= s[a];
-    if (inverse) {
+    return 0;
+}
+
+/* second half: (Φ_q D)^T λ = D h for h = M* q̈ − Q given in kkt_rhs[n..2n), λ there */
+static int square_second(const vt_model *m, vt_data *d)
+{
+    const int n = m->nv, one = 1;
+    double *A = d->kkt, *s = d->kkt_scale, *g = d->kkt_rhs + n;
+    int info = 0;
+    for (int a = 0; a < n; a++) g[a] *= s[a];
+    if (small_fits(d, n, 1)) { /* the inverse is in lwork (square_first) */
+        double *h = d->lwork + (size_t)n * (size_t)n;
+        memcpy(h, g, (size_t)n * sizeof(double));
         cblas_dgemv(CblasColMajor, CblasTrans, n, n, 1.0, d->lwork, n, h, 1, 0.0, g, 1);
     } else {
         dgetrs_("T", &n, &one, A, &n, d->ipiv, g, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     }
-    if (!vt_all_finite(x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    if (!vt_all_finite(d->kkt_rhs, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
+}
+
+static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
+{
+    const int n = m->nv;
+    const int r = square_first(m, d, d->Mstar, n + 1, rcond_out);
+    if (r) return r;
+    double *x = d->kkt_rhs, *h = d->kkt_rhs + n; /* h = M* q̈ − Q */
+    memcpy(h, d->Q, (size_t)n * sizeof(double));
+    cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, x, 1, -1.0, h, 1);
+    return square_second(m, d);
 }
 
 /* Fewer rows than rates, M* well conditioned (the usual case: a chain whose tip follows a
@@ -500,8 +532,11 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
     dpotf2_("L", &nc, S, &nc, &info, 1);
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
     double rcond = 0.0;
-    if (info == 0 && small_inverse(d, nc, 0)) {
-        dpotrs_("L", &nc, &nc, S, &nc, d->lwork, &nc, &info, 1);
+    const int inverse = info == 0 && small_inverse(d, nc, 1);
+    if (inverse) { /* S^-1 and λ̃ in one solve: [I, c γ − Y^T z] */
+        const int ncol = nc + 1;
+        memcpy(d->lwork + (size_t)nc * (size_t)nc, lam, (size_t)nc * sizeof(double));
+        dpotrs_("L", &nc, &ncol, S, &nc, d->lwork, &nc, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
         rcond = rcond_from_inverse(d->lwork, nc, snorm);
     } else if (info == 0) {
@@ -511,9 +546,13 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
     rcond *= (lmin / lmax) * (lmin / lmax);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return 1;
-    const int one = 1;
-    dpotrs_("L", &nc, &one, S, &nc, lam, &nc, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+    if (inverse) {
+        memcpy(lam, d->lwork + (size_t)nc * (size_t)nc, (size_t)nc * sizeof(double));
+    } else {
+        const int one = 1;
+        dpotrs_("L", &nc, &one, S, &nc, lam, &nc, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+    }
     /* ỹ = L^-T (z + Y λ̃) */
     memcpy(x, z, (size_t)nv * sizeof(double));
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nc, 1.0, Y, nv, lam, 1, 1.0, x, 1);
@@ -577,5 +616,33 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     const double *b = d->kkt_rhs;
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
     for (int k = 0; k < nc; k++) d->lambda[k] = direct ? b[nv + k] : -b[nv + k];
+    return VT_OK;
+}
+
+/* The recursive path's square systems (recursive.c), vt_solve's square path in two halves with
+ * M* q̈ − Q computed between them by a Newton–Euler pass instead of from M* and Q (neither is
+ * formed). vt_solve_square_begin: mdiag (nv) holds M*'s diagonal, which sets the scaling D
+ * (it may be d->kkt_scale); q̈ goes to d->kkt_rhs[0..nv), the condition to *rcond. Returns 0,
+ * 1 (ill-conditioned: the caller falls back to vt_solve, which diagnoses it) or a negative
+ * vt_status. vt_solve_square_end: with h = M* q̈ − Q in d->kkt_rhs[nv..2 nv), λ, and everything
+ * vt_solve sets on success. */
+int vt_solve_square_begin(const vt_model *m, vt_data *d, const double *mdiag, double *rcond)
+{
+    if (!vt_all_finite(d->gamma, m->nc))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
+    return square_first(m, d, mdiag, 1, rcond);
+}
+
+vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond)
+{
+    const int r = square_second(m, d);
+    if (r) return (vt_status)r;
+    d->rcond = rcond;
+    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
+    d->rank = m->nc;
+    d->residual = 0.0;
+    mark_unique(m, d);
+    memcpy(d->qdd, d->kkt_rhs, (size_t)m->nv * sizeof(double));
+    memcpy(d->lambda, d->kkt_rhs + m->nv, (size_t)m->nc * sizeof(double));
     return VT_OK;
 }

@@ -273,6 +273,8 @@ static void test_newton_euler_every_body(void **state)
             for (int r = 0; r < 7; r++) {
                 xdd[r] = d->Sdqd[o + r];
                 for (int c = 0; c < m->nv; c++) xdd[r] += d->S[o + r + (size_t)c * (size_t)m->nx] * d->qdd[c];
+                /* the reported ẍ (from the rates' twists) is this dense product */
+                assert_near(d->xdd[o + r], xdd[r], 1e-12 * (1.0 + fabs(xdd[r]) + vt_test_maxabs(d->qdd, m->nv)));
             }
             vt_euler_E(E, d->x + o + 3);
             for (int r = 0; r < 3; r++)
@@ -532,6 +534,82 @@ static void test_fourbar(void **state)
     vt_model_free(m);
 }
 
+/* The four-bar built RUSR (universal joint at the crank's tip, spherical cut joint at the rocker's
+ * tip) against the RSUR build: both are exactly constrained in space and move in the plane, so the
+ * crank torque, the accelerations and the in-plane reactions at the ground pivots (statically
+ * determinate in the plane) must agree, on both paths; the planar kinematics give the angular
+ * accelerations of coupler and rocker independently of either model. */
+static void test_fourbar_rusr(void **state)
+{
+    (void)state;
+    const vt_function crank = vt_function_sine(0.3, 2.5, 1.7, 0.4); /* θ2 = 0.3 + 2.5 sin(1.7 t + 0.4) */
+    vt_model *ms, *mu;
+    assert_ok(vt_scene_fourbar(&ms, crank));
+    assert_ok(vt_scene_fourbar_rusr(&mu, crank));
+    assert_int_equal(mu->nv, 4);
+    assert_int_equal(mu->nc, 4);
+    assert_int_equal(mu->ncut, 1);
+    assert_int_equal(mu->body_joint[2], VT_JOINT_UNIVERSAL);
+    vt_data *ds, *du;
+    assert_ok(vt_data_create(&ds, ms));
+    assert_ok(vt_data_create(&du, mu));
+    const int vs2 = ms->body_vadr[2], vs3 = ms->body_vadr[3], vu2 = mu->body_vadr[2], vu3 = mu->body_vadr[3];
+    for (double t = 0.0; t < 4.0; t += 0.23) {
+        double f[3];
+        assert_ok(vt_function_eval(f, &crank, t));
+        double th[2], w[2], thu[2], wu[2];
+        assert_int_equal(vt_scene_fourbar_assemble(ms, ds, f[0], f[1], th, w), 0);
+        assert_int_equal(vt_scene_fourbar_rusr_assemble(mu, du, f[0], f[1], thu, wu), 0);
+        for (int k = 0; k < 2; k++) {
+            assert_true(thu[k] == th[k]);
+            assert_true(wu[k] == w[k]);
+        }
+        planar_motion pm;
+        planar_motion_at(&pm, f[0], f[1], f[2], th, w);
+        ds->time = du->time = t;
+        for (int recursive = 0; recursive < 2; recursive++) {
+            if (recursive) {
+                assert_ok(vt_inverse_dynamics_recursive(ms, ds));
+                assert_ok(vt_inverse_dynamics_recursive(mu, du));
+            } else {
+                assert_ok(vt_inverse_dynamics(ms, ds));
+                assert_ok(vt_inverse_dynamics(mu, du));
+            }
+            /* square and of full rank, no warning; the assembly closes the loop in position and velocity */
+            assert_int_equal(du->rank, 4);
+            assert_int_equal(du->warning, 0);
+            for (int r = 0; r < mu->nc; r++) {
+                double vel = du->Phit[r];
+                for (int c = 0; c < mu->nv; c++) vel += du->Phiq[r + (size_t)c * (size_t)mu->nc] * du->qd[c];
+                assert_near(du->Phi[r], 0.0, 1e-12);
+                assert_near(vel, 0.0, 1e-12);
+            }
+            /* crank torque to 1e-10 relative */
+            const double T = ds->drive_effort[0];
+            assert_near(du->drive_effort[0], T, 1e-10 * (1.0 + fabs(T)));
+            /* q̈: the crank's α; coupler α_z = α2 + the relative rate's derivative (spherical: the
+             * z component in the crank's axes, whose z is the global z; universal: its first angle);
+             * rocker α_z; no tilt */
+            const double al[3] = {ds->qdd[0], ds->qdd[0] + ds->qdd[vs2 + 2], ds->qdd[vs3]};
+            const double alu[3] = {du->qdd[0], du->qdd[0] + du->qdd[vu2], du->qdd[vu3]};
+            const double as = 1.0 + vt_test_maxabs(pm.al, 3);
+            for (int k = 0; k < 3; k++) {
+                assert_near(alu[k], al[k], 1e-10 * as);
+                assert_near(alu[k], pm.al[k], 1e-9 * as);
+            }
+            assert_near(du->qdd[vu2 + 1], 0.0, 1e-10 * as);
+            /* in-plane reactions of the ground on crank and rocker */
+            const double fs = 1.0 + fmax(vt_test_maxabs(ds->jnt_force + 3, 3), vt_test_maxabs(ds->jnt_force + 9, 3));
+            for (int i = 1; i <= 3; i += 2)
+                for (int k = 0; k < 2; k++) assert_near(du->jnt_force[3 * i + k], ds->jnt_force[3 * i + k], 1e-10 * fs);
+        }
+    }
+    vt_data_free(du);
+    vt_data_free(ds);
+    vt_model_free(mu);
+    vt_model_free(ms);
+}
+
 /* A double link of arbitrary link length L and masses m1, m2 (uniform rods), joint 2 locked:
  * the pair pivots as one rigid body with mass M = m1 + m2, centre of mass at x_c from the pivot
  * and inertia I_p about it, so θ̇² = 2 M g x_c sin θ / I_p, θ̈ = M g x_c cos θ / I_p and the
@@ -692,6 +770,7 @@ int main(void)
         cmocka_unit_test(test_reaction_orthogonality),
         cmocka_unit_test(test_drive_cartesian_force),
         cmocka_unit_test(test_fourbar),
+        cmocka_unit_test(test_fourbar_rusr),
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_spherical_through_gimbal_lock),
     };

@@ -1,5 +1,6 @@
 /* MuJoCo peer (C API). Scenes: chain, double link (joint 2 locked by a joint equality),
- * four-bar (loop closed by a connect equality) and chain tip (the chain model, driven only by a
+ * four-bar (loop closed by a connect equality), the spatial RUSR four-bar (two hinges on the
+ * coupler, loop closed by a connect equality) and chain tip (the chain model, driven only by a
  * force at the tip).
  *
  * Methods
@@ -19,6 +20,12 @@
  *                            rocker hinge torques zero (crank-only actuation) is solved from the
  *                            2x2 in-plane system, written into efc_force, qfrc_inverse -= J^T lambda,
  *                            then mj_rnePostConstraint (reactions see the loop force via cfrc_ext)
+ *   RUSR four-bar
+ *     0 mujoco_inverse_loop  mj_inverse, then the connect force lambda (all 3 rows) that makes the
+ *                            torques of dofs 1, 2, 3 (coupler about z, coupler tilt, rocker) zero,
+ *                            from the 3x3 system J[:, 1:4]^T lambda = (M qacc + bias)[1:4] (Cramer's
+ *                            rule); the rest as for the four-bar: tau = M qacc + bias - J^T lambda,
+ *                            efc_force = lambda, then mj_rnePostConstraint
  *   chain tip
  *     0 mujoco_inverse_tip   mj_inverse (qfrc_inverse = M qacc + bias, no constraint), then the
  *                            tip force F along global y that produces all of it: least squares
@@ -63,7 +70,7 @@
 typedef struct {
     mjModel *m;
     mjData *d;
-    int scene, n;            /* n = nv = number of hinges = links */
+    int scene, n;            /* n = nv = number of hinges = links (the RUSR four-bar: 4 hinges, 3 links) */
     mjtNum *q, *qd, *qdd;    /* the state, copied into mjData by every run */
     mjtNum *tau;             /* torques of the last run (chain tip: n + 1, the tip force last) */
     mjtNum *jac;             /* chain tip: mj_jac's translation rows (3 x n) */
@@ -74,6 +81,7 @@ typedef struct {
 static const char *const chain_methods[] = {"mujoco_inverse", "mujoco_rne_post", "mujoco_post_project"};
 static const char *const dl_methods[] = {"mujoco_inverse"};
 static const char *const fb_methods[] = {"mujoco_inverse", "mujoco_inverse_loop"};
+static const char *const rusr_methods[] = {"mujoco_inverse_loop"};
 static const char *const tip_methods[] = {"mujoco_inverse_tip"};
 
 /* ---- XML text ---- */
@@ -174,6 +182,37 @@ static void xml_fourbar(xbuf *b)
             "  </equality>\n</mujoco>\n");
 }
 
+/* RUSR four-bar: the same links as xml_fourbar; the coupler carries two hinges at the crank's tip,
+ * z and then y. MuJoCo applies a body's joints in order, each about its axis in the body's frame
+ * as turned by the joints before it: the coupler's orientation relative to the crank is
+ * R(z, q1) R(y, q2), the y axis turned by the first angle, as vtdyn's universal joint (first axis
+ * on the crank, second on the coupler). q = (crank angle, coupler angle about z relative to the
+ * crank, coupler tilt about its y, rocker angle). Loop: coupler tip = rocker tip (3 rows). */
+static void xml_fourbar_rusr(xbuf *b)
+{
+    static const double len[3] = {0.5, 1.5, 1.0}, mass[3] = {1.0, 3.0, 2.0};
+    double J[3];
+    for (int k = 0; k < 3; k++) J[k] = mass[k] * len[k] * len[k] / 12.0;
+    xml_header(b, "vt_fourbar_rusr", 1);
+    xcat(b, "  <worldbody>\n");
+    xcat(b, "<body name=\"crank\" pos=\"0 0 0\">\n<joint name=\"j1\" axis=\"0 0 1\"/>\n");
+    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
+         0.5 * len[0], mass[0], J[0], J[0]);
+    xcat(b, "<body name=\"coupler\" pos=\"%.17g 0 0\">\n<joint name=\"j2\" axis=\"0 0 1\"/>\n"
+            "<joint name=\"j3\" axis=\"0 1 0\"/>\n", len[0]);
+    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
+         0.5 * len[1], mass[1], J[1], J[1]);
+    xcat(b, "<site name=\"coupler_tip\" pos=\"%.17g 0 0\"/>\n", len[1]);
+    xcat(b, "</body>\n</body>\n");
+    xcat(b, "<body name=\"rocker\" pos=\"1.2 0 0\">\n<joint name=\"j4\" axis=\"0 0 1\"/>\n");
+    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
+         0.5 * len[2], mass[2], J[2], J[2]);
+    xcat(b, "<site name=\"rocker_tip\" pos=\"%.17g 0 0\"/>\n", len[2]);
+    xcat(b, "</body>\n  </worldbody>\n");
+    xcat(b, "  <equality>\n    <connect site1=\"coupler_tip\" site2=\"rocker_tip\"/>\n"
+            "  </equality>\n</mujoco>\n");
+}
+
 /* ---- evaluation ---- */
 static void set_state(mj_peer *s)
 {
@@ -248,6 +287,53 @@ static void run_inverse_loop(mj_peer *s)
     mj_rnePostConstraint(m, d);
 }
 
+/* determinant of a 3x3 matrix, by its first row (A not const: C11 does not convert mjtNum (*)[3]
+ * to const mjtNum (*)[3]) */
+static mjtNum det3(mjtNum A[3][3])
+{
+    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
+
+/* RUSR four-bar, crank-only actuation: after mj_inverse, M qacc + bias = qfrc_inverse +
+ * qfrc_constraint; the connect force lambda (rows x, y, z) with (M qacc + bias - J^T lambda)[dof] = 0
+ * for dofs 1, 2, 3 solves the 3x3 system A lambda = r, A[i][j] = J[j][i + 1], by Cramer's rule. */
+static void run_inverse_loop_rusr(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    const int nv = m->nv;
+    set_state(s);
+    mj_inverse(m, d);
+    if (d->nefc < 3) { /* the connect rows are missing: leave the plain mj_inverse result */
+        mj_rnePostConstraint(m, d);
+        memcpy(s->tau, d->qfrc_inverse, (size_t)nv * sizeof(mjtNum));
+        return;
+    }
+    const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv, rows 0..2 = connect x, y, z */
+    mjtNum A[3][3], r[3], l[3];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) A[i][j] = J[j * nv + i + 1];
+        r[i] = d->qfrc_inverse[i + 1] + d->qfrc_constraint[i + 1];
+    }
+    /* λ_j = det(A with column j replaced by r) / det A */
+    const mjtNum det = det3(A);
+    for (int j = 0; j < 3; j++) {
+        mjtNum Aj[3][3];
+        memcpy(Aj, A, sizeof Aj);
+        for (int i = 0; i < 3; i++) Aj[i][j] = r[i];
+        l[j] = det3(Aj) / det;
+    }
+    for (int k = 0; k < d->nefc; k++) d->efc_force[k] = k < 3 ? l[k] : 0.0;
+    for (int i = 0; i < nv; i++) {
+        const mjtNum qc = J[0 * nv + i] * l[0] + J[1 * nv + i] * l[1] + J[2 * nv + i] * l[2];
+        s->tau[i] = d->qfrc_inverse[i] + d->qfrc_constraint[i] - qc;
+        d->qfrc_constraint[i] = qc;
+        d->qfrc_inverse[i] = s->tau[i];
+    }
+    mj_rnePostConstraint(m, d);
+}
+
 /* chain tip: the force F along global y at the tip of the last link (0.5 m along its x from its
  * joint, the body's origin) that, alone, produces qfrc_inverse = M qacc + bias */
 static void run_inverse_tip(mj_peer *s)
@@ -291,6 +377,8 @@ static void mjp_run(void *p, int method)
         else run_post_project(s);
     } else if (s->scene == VT_PEER_FOURBAR && method == 1) {
         run_inverse_loop(s);
+    } else if (s->scene == VT_PEER_FOURBAR_RUSR) {
+        run_inverse_loop_rusr(s);
     } else if (s->scene == VT_PEER_CHAIN_TIP) {
         run_inverse_tip(s);
     } else {
@@ -335,6 +423,7 @@ static void mjp_destroy(void *p)
 static const vt_peer_vtable chain_vtable = {3, chain_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable dl_vtable = {1, dl_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable fb_vtable = {2, fb_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+static const vt_peer_vtable rusr_vtable = {1, rusr_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable tip_vtable = {1, tip_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 
 static mjModel *compile_xml(const char *xml)
@@ -360,6 +449,7 @@ static mjModel *scene_model(int scene, int n)
     b.s[0] = '\0';
     if (scene == VT_PEER_CHAIN || scene == VT_PEER_CHAIN_TIP) xml_chain(&b, n);
     else if (scene == VT_PEER_DOUBLE_LINK) xml_double_link(&b);
+    else if (scene == VT_PEER_FOURBAR_RUSR) xml_fourbar_rusr(&b);
     else xml_fourbar(&b);
     mjModel *m = b.failed ? NULL : compile_xml(b.s);
     free(b.s);
@@ -371,6 +461,7 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     if (!q || !qd || !qdd) return NULL;
     if (scene == VT_PEER_DOUBLE_LINK) n = 2;
     else if (scene == VT_PEER_FOURBAR) n = 3;
+    else if (scene == VT_PEER_FOURBAR_RUSR) n = 4;
     else if ((scene != VT_PEER_CHAIN && scene != VT_PEER_CHAIN_TIP) || n < 1) return NULL;
 
     mjModel *m = scene_model(scene, n);
@@ -399,7 +490,7 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
         s->qdd[i] = qdd[i];
     }
     /* link k <-> body k (bodies are numbered in XML order) */
-    if (scene == VT_PEER_FOURBAR) {
+    if (scene == VT_PEER_FOURBAR || scene == VT_PEER_FOURBAR_RUSR) {
         s->bodyids[0] = mj_name2id(m, mjOBJ_BODY, "crank");
         s->bodyids[1] = mj_name2id(m, mjOBJ_BODY, "coupler");
         s->bodyids[2] = mj_name2id(m, mjOBJ_BODY, "rocker");
@@ -414,9 +505,9 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
         return NULL;
     }
     p->impl = s;
-    p->n = n;
+    p->n = scene == VT_PEER_FOURBAR_RUSR ? 3 : n; /* links: the RUSR coupler has two hinges */
     p->vt = scene == VT_PEER_CHAIN ? &chain_vtable : scene == VT_PEER_DOUBLE_LINK ? &dl_vtable
-          : scene == VT_PEER_CHAIN_TIP ? &tip_vtable : &fb_vtable;
+          : scene == VT_PEER_CHAIN_TIP ? &tip_vtable : scene == VT_PEER_FOURBAR_RUSR ? &rusr_vtable : &fb_vtable;
     mjp_run(s, 0);
     return p;
 }

@@ -21,7 +21,8 @@ typedef struct vt_peer_vtable {
 struct vt_peer {
     const vt_peer_vtable *vt;
     void *impl;  /* the peer's own state */
-    int n;       /* number of joint coordinates reported by torques() and links by reaction() */
+    int n;       /* number of links reported by reaction(), and of joint coordinates reported by torques()
+                  * (not so for the chain tip, n + 1 values, and the RUSR four-bar, 4 values on 3 links) */
 };
 
 #ifdef __cplusplus

@@ -12,6 +12,15 @@
  *                the crank, rocker angle), angles from +x about +z; the state must satisfy the
  *                loop closure; torques: 3 values (see mujoco_peer.c for the methods); links
  *                k = 1, 2, 3 are crank, coupler, rocker
+ *   four-bar RUSR
+ *                MuJoCo only; the same links built spatial RUSR, as vtdyn's vt_scene_fourbar_rusr:
+ *                crank hinge z, coupler on two hinges at the crank's tip (z, then its own y: a
+ *                universal joint), rocker hinge z, loop closed by a connect equality (3 rows);
+ *                4 coordinates: q = (crank angle, coupler angle about z relative to the crank,
+ *                coupler tilt about the coupler's y, rocker angle); the state must satisfy the
+ *                loop closure; torques: 4 values, the crank torque, then the 3 others left once
+ *                the loop force is solved (none is actuated: zero up to round-off); links
+ *                k = 1, 2, 3 are crank, coupler, rocker
  *   chain tip    MuJoCo only; the chain of n links (same model and q as the chain) whose only
  *                drive is a force along global y at the tip of link n (0.5 m along its x from its
  *                joint); pass q̈ solved by vtdyn; torques: n + 1 values, the n joint torques left
@@ -25,16 +34,18 @@ extern "C" {
 #endif
 
 typedef struct vt_peer vt_peer;   /* opaque */
-/* scene: VT_PEER_CHAIN and VT_PEER_CHAIN_TIP (n links), VT_PEER_DOUBLE_LINK, VT_PEER_FOURBAR (n
- * ignored for these two) */
-enum { VT_PEER_CHAIN = 0, VT_PEER_DOUBLE_LINK = 1, VT_PEER_FOURBAR = 2, VT_PEER_CHAIN_TIP = 3 };
+/* scene: VT_PEER_CHAIN and VT_PEER_CHAIN_TIP (n links), VT_PEER_DOUBLE_LINK, VT_PEER_FOURBAR,
+ * VT_PEER_FOURBAR_RUSR (n ignored for these three) */
+enum {
+    VT_PEER_CHAIN = 0, VT_PEER_DOUBLE_LINK = 1, VT_PEER_FOURBAR = 2, VT_PEER_CHAIN_TIP = 3, VT_PEER_FOURBAR_RUSR = 4
+};
 /* NULL if the scene is not supported by that peer */
 vt_peer *vt_peer_pinocchio(int scene, int n, const double *q, const double *qd, const double *qdd);
 vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd);
 int vt_peer_nmethods(const vt_peer *p);
 const char *vt_peer_method(const vt_peer *p, int method);   /* e.g. "pinocchio_rnea", "pinocchio_rnea_world", "pinocchio_crba_cholesky", "mujoco_inverse", "mujoco_rne_post", "mujoco_inverse_tip" */
 void vt_peer_run(vt_peer *p, int method);                    /* one full evaluation; no allocation */
-void vt_peer_torques(const vt_peer *p, double *tau);         /* joint torques of the last run (n; chain tip n + 1) */
+void vt_peer_torques(const vt_peer *p, double *tau);         /* joint torques of the last run (n; chain tip n + 1; RUSR four-bar 4) */
 /* reaction of the parent on link k (1-based) at that link's joint point, world axes: force f, moment n about the joint point; includes whatever the peer includes (say in a comment whether the actuator torque is inside n)
  * Both peers: n is the whole moment transmitted through the joint, so the actuator (joint) torque
  * IS inside n: its component along the joint axis equals the joint torque of link k's joint.
@@ -49,7 +60,8 @@ void vt_peer_free(vt_peer *p);
  * q and qd ((nout + 1) x n, MuJoCo's qpos and qvel) and f ((nout + 1) x 3n: for links 1..n the
  * reaction force of vt_peer_reaction); any of the three may be NULL. Returns the number of steps
  * (mj_step equivalents; RK4 evaluates the dynamics 4 times a step, Euler once), or -1 when p is not
- * a MuJoCo peer, is a chain-tip one (its drive is not modelled forward) or an argument is bad. The model's timestep and integrator are restored afterwards;
+ * a MuJoCo peer, is a chain-tip one (its drive is not modelled forward) or an RUSR four-bar one
+ * (not supported) or an argument is bad. The model's timestep and integrator are restored afterwards;
  * the peer's last-run results (torques, reactions) are overwritten. */
 enum { VT_PEER_EULER = 0, VT_PEER_RK4 = 1 };
 long vt_peer_mujoco_simulate(vt_peer *p, double dt, int integrator, double t1, int nout, double *q, double *qd,

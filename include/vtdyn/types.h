@@ -275,6 +275,8 @@ typedef struct vt_data {
     double *jsij;            ///< s^{ij}: reference origin → joint point on reference, global (3 x (nbody+1))
     double *jd;              ///< d^i = -s^{ji} + Σ ε_k q_k e_k, eq (17), global (3 x (nbody+1))
     double *jpoint;          ///< joint point on the body, global position (3 x (nbody+1))
+    double *twist;           ///< twist of each rate about the global origin O, [ω; v] (6 x nv): body i's
+                             ///< S column is ṙ = v + ω × r^i, ṗ = ½ E^T ω (15)-(16) (vt_kinematics)
     double *S;               ///< velocity transformation, ẋ = S q̇ (7n x nv, leading dimension 7n)
     double *Sdqd;            ///< Ṡ q̇ (7n): the Cartesian accelerations at q̈ = 0
 
