@@ -27,7 +27,7 @@
 typedef struct {
     int id;
     const double *r, *p, *A, *w, *v;
-    double E[12], a0[3], al0[3], pd[4], pdd0[4];
+    double a0[3], al0[3], pd[4], pdd0[4];
 } body_state;
 
 static const double zero3[3] = {0, 0, 0};
@@ -40,7 +40,6 @@ static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id
     if (id == 0) {
         static const double unit[4] = {1, 0, 0, 0};
         b->r = zero3; b->p = unit; b->A = ident9; b->w = zero3; b->v = zero3;
-        memset(b->E, 0, sizeof b->E);
         memset(b->a0, 0, sizeof b->a0);
         memset(b->al0, 0, sizeof b->al0);
         memset(b->pd, 0, sizeof b->pd);
@@ -53,11 +52,10 @@ static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id
     b->A = d->A + 9 * id;
     b->w = d->omega + 3 * id;
     b->v = d->xd + o;
-    vt_euler_E(b->E, b->p);
     vt_copy3(b->a0, d->Sdqd + o);
     memcpy(b->pd, d->xd + o + 3, sizeof b->pd);
     memcpy(b->pdd0, d->Sdqd + o + 3, sizeof b->pdd0);
-    vt_mulE(b->al0, b->E, b->pdd0); /* α = 2 E p̈ (2 Ė ṗ = 0) */
+    vt_mulEp(b->al0, b->p, b->pdd0); /* α = 2 E p̈ (2 Ė ṗ = 0) */
     for (int k = 0; k < 3; k++) b->al0[k] *= 2.0;
 }
 
@@ -81,18 +79,14 @@ typedef struct {
     double sp[3], s[3], P[3], vP[3], aP[3];
 } point_memo;
 
-static void point_motion_memo(point_memo *c, const body_state *b, const double sp[3], double s[3], double P[3],
-                              double vP[3], double aP[3])
+static const point_memo *point_motion_memo(point_memo *c, const body_state *b, const double sp[3])
 {
     if (c->id != b->id || c->sp[0] != sp[0] || c->sp[1] != sp[1] || c->sp[2] != sp[2]) {
         c->id = b->id;
         vt_copy3(c->sp, sp);
         point_motion(b, sp, c->s, c->P, c->vP, c->aP);
     }
-    vt_copy3(s, c->s);
-    vt_copy3(P, c->P);
-    vt_copy3(vP, c->vP);
-    vt_copy3(aP, c->aP);
+    return c;
 }
 
 /* a body vector: u, u̇, ü at q̈ = 0 */
@@ -112,8 +106,8 @@ static void phix_from(double *px, const body_state *b, const double jv[3], const
         return;
     }
     vt_copy3(px, jv);
-    vt_mulE_t(px + 3, b->E, jw);
-    for (int k = 3; k < 7; k++) px[k] *= 2.0;
+    vt_quat_rate(px + 3, b->p, jw); /* ½ E^T jw */
+    for (int k = 3; k < 7; k++) px[k] *= 4.0;
 }
 
 /* p_d, ṗ_d, p̈_d of an orientation drive at time t */
@@ -254,18 +248,16 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             break;
         }
         case VT_ROW_POINT: {
-            double s[3], Pa[3], vPa[3], aPa[3], Pb[3], vPb[3], aPb[3];
-            point_motion_memo(&ma, &A, sa, s, Pa, vPa, aPa);
-            vt_cross3(jw, s, va);
+            const point_memo *pa = point_motion_memo(&ma, &A, sa), *pb = point_motion_memo(&mb, &B, sb);
+            vt_cross3(jw, pa->s, va);
             for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
             phix_from(pxa, &A, jv, jw);
             if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
-            point_motion_memo(&mb, &B, sb, s, Pb, vPb, aPb);
-            vt_cross3(jw, s, va);
+            vt_cross3(jw, pb->s, va);
             phix_from(pxb, &B, va, jw);
             if (!dense) phiq_twist(m, d, r, B.id, va, jw);
             double dP[3], daP[3];
-            for (int k = 0; k < 3; k++) { dP[k] = Pb[k] - Pa[k]; daP[k] = aPb[k] - aPa[k]; }
+            for (int k = 0; k < 3; k++) { dP[k] = pb->P[k] - pa->P[k]; daP[k] = pb->aP[k] - pa->aP[k]; }
             d->Phi[r] = vt_dot3(va, dP) - f[0];
             d->Phit[r] = -f[1];
             d->gamma[r] = f[2] - vt_dot3(va, daP);
@@ -288,12 +280,16 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             break;
         }
         case VT_ROW_LINE: {
-            double u[3], ud[3], udd[3], s_a[3], s_b[3], Pa[3], vPa[3], aPa[3], Pb[3], vPb[3], aPb[3];
+            double u[3], ud[3], udd[3];
             double dd[3], ddd[3], dddd[3];
             vector_motion(&A, va, u, ud, udd);
-            point_motion_memo(&ma, &A, sa, s_a, Pa, vPa, aPa);
-            point_motion_memo(&mb, &B, sb, s_b, Pb, vPb, aPb);
-            for (int k = 0; k < 3; k++) { dd[k] = Pb[k] - Pa[k]; ddd[k] = vPb[k] - vPa[k]; dddd[k] = aPb[k] - aPa[k]; }
+            const point_memo *pa = point_motion_memo(&ma, &A, sa), *pb = point_motion_memo(&mb, &B, sb);
+            const double *s_a = pa->s, *s_b = pb->s;
+            for (int k = 0; k < 3; k++) {
+                dd[k] = pb->P[k] - pa->P[k];
+                ddd[k] = pb->vP[k] - pa->vP[k];
+                dddd[k] = pb->aP[k] - pa->aP[k];
+            }
             double t1[3], t2[3];
             vt_cross3(t1, u, dd);
             vt_cross3(t2, s_a, u);

@@ -203,8 +203,6 @@ void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, 
              double *b, const int *ldb, int *info, size_t ltrans);
 void dgecon_(const char *norm, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
              double *work, int *iwork, int *info, size_t lnorm);
-double dlange_(const char *norm, const int *m, const int *n, const double *a, const int *lda, double *work,
-               size_t lnorm);
 
 /* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
  * (Φ_q^T z = 0) changes by more than tol of its largest change (reactions.c) */

@@ -26,8 +26,7 @@
  * moment ½ E (2 p λ) is zero) are zero. */
 static const double *row_wrenches(const vt_model *m, vt_data *d, const double *lam)
 {
-    double *rw = d->work + d->nwork - 12 * (size_t)m->nc, E[2][12];
-    int last[2] = {-1, -1}; /* E of the body last seen on each side: a joint's rows share it */
+    double *rw = d->work + d->nwork - 12 * (size_t)m->nc;
     for (int r = 0; r < m->nc; r++)
         for (int side = 0; side < 2; side++) {
             const int k = m->con_body[2 * r + side];
@@ -36,11 +35,10 @@ static const double *row_wrenches(const vt_model *m, vt_data *d, const double *l
                 memset(f, 0, 6 * sizeof(double));
                 continue;
             }
-            if (k != last[side]) vt_euler_E(E[side], d->x + vt_xoff(k) + 3), last[side] = k;
             const double *px = d->Phix + 14 * r + 7 * side;
             for (int c = 0; c < 3; c++) f[c] = px[c] * lam[r];
             for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * lam[r];
-            vt_mulE(n, E[side], t);
+            vt_mulEp(n, d->x + vt_xoff(k) + 3, t);
         }
     return rw;
 }

@@ -418,10 +418,17 @@ static int square_first(const vt_model *m, vt_data *d, const double *mdiag, int 
     const int n = m->nv;
     double *A = d->kkt, *s = d->kkt_scale, *x = d->kkt_rhs;
     scaling_diag(m, mdiag, stride, s);
-    for (int c = 0; c < n; c++)
-        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+    double anorm = 0.0; /* ‖Φ_q D‖_1, the largest column sum, as the columns are scaled */
+    for (int c = 0; c < n; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < n; r++) {
+            const double v = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+            A[r + (size_t)c * (size_t)n] = v;
+            cs += fabs(v);
+        }
+        anorm = fmax(anorm, cs);
+    }
     int info = 0;
-    const double anorm = dlange_("1", &n, &n, A, &n, d->lwork, 1);
     dgetf2_(&n, &n, A, &n, d->ipiv, &info);
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     double rcond = 0.0;
