@@ -204,6 +204,45 @@ static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double
     }
 }
 
+/* Φ_q rows r..r+2 += sign × the velocity Jacobian of the point P moving with body b: column c
+ * is v_c + w_c × P for each rate's twist (phiq_twist with jv = e_k, jw = (P − r_b) × e_k) */
+static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, const double P[3], double sign)
+{
+    if (b == 0) return;
+    const int *path = m->path_dof + m->body_pathadr[b];
+    for (int c = 0; c < m->body_pathnum[b]; c++) {
+        const double *w = d->twist + 6 * path[c];
+        double J[3];
+        vt_copy3(J, w + 3);
+        vt_addcross3(J, w, P);
+        double *col = d->Phiq + r + (size_t)path[c] * (size_t)m->nc;
+        for (int k = 0; k < 3; k++) col[k] += sign * J[k];
+    }
+}
+
+/* The three point rows of a cut joint, P_b − P_a = 0 along the global axes e_k, at once */
+static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_state *A, const body_state *B,
+                           const point_memo *pa, const point_memo *pb, int dense)
+{
+    for (int k = 0; k < 3; k++) {
+        double *pxa = d->Phix + 14 * (r + k), *pxb = pxa + 7, e[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3];
+        e[k] = 1.0;
+        jv[k] = -1.0;
+        vt_cross3(jw, e, pa->s); /* −s_a × e */
+        phix_from(pxa, A, jv, jw);
+        vt_cross3(jw, pb->s, e);
+        phix_from(pxb, B, e, jw);
+        d->Phi[r + k] = pb->P[k] - pa->P[k];
+        d->Phit[r + k] = 0.0;
+        d->gamma[r + k] = pa->aP[k] - pb->aP[k];
+        if (dense) phiq_row(m, d, r + k, 1);
+    }
+    if (!dense) {
+        point_jacobian_rows(m, d, r, A->id, pa->P, -1.0);
+        point_jacobian_rows(m, d, r, B->id, pb->P, 1.0);
+    }
+}
+
 vt_status vt_constraints(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_constraints");
@@ -248,6 +287,11 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             break;
         }
         case VT_ROW_POINT: {
+            if (r >= drive_rows && r == m->cut_row[owner]) { /* a cut joint's three point rows */
+                cut_point_rows(m, d, r, &A, &B, point_motion_memo(&ma, &A, sa), point_motion_memo(&mb, &B, sb), dense);
+                r += 2;
+                continue;
+            }
             const point_memo *pa = point_motion_memo(&ma, &A, sa), *pb = point_motion_memo(&mb, &B, sb);
             vt_cross3(jw, pa->s, va);
             for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
