@@ -233,7 +233,10 @@ void vt_scene_random_state(const vt_model *m, vt_data *d, uint64_t *s)
     }
 }
 
-vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
+/* The spatial four-bar, exactly constrained: crank, coupler and rocker rods; the coupler on a
+ * spherical joint and the loop closed by a universal one (RSUR), or the other way round (RUSR).
+ * The universal's second axis is the coupler's y in both. */
+static vt_status fourbar(vt_model **model, vt_function crank, int rusr)
 {
     static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
     vt_builder *b;
@@ -245,22 +248,24 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
         link.mass = mass[k];
         rod_inertia(link.inertia, mass[k], len[k]);
         link.joint_child[0] = -0.5 * len[k];
-        if (k == 1) { /* coupler: spherical joint at the crank's tip */
+        if (k == 1) { /* coupler at the crank's tip: spherical, or universal (z on the crank, then its y) */
             link.parent = 1;
-            link.joint = VT_JOINT_SPHERICAL;
+            link.joint = rusr ? VT_JOINT_UNIVERSAL : VT_JOINT_SPHERICAL;
             link.joint_parent[0] = 0.5 * VT_FB_A;
+            link.axis2[0] = 0.0;
+            link.axis2[1] = 1.0;
         }
         if (k == 2) link.joint_parent[0] = VT_FB_D; /* rocker pivot on the ground */
         id = vt_builder_add_body(b, &link);
     }
-    if (id > 0) {
+    if (id > 0) { /* the rocker's tip and the coupler's tip */
         vt_cut_joint_def cut = vt_default_cut_joint_def();
-        cut.joint = VT_JOINT_UNIVERSAL;
+        cut.joint = rusr ? VT_JOINT_SPHERICAL : VT_JOINT_UNIVERSAL;
         cut.body_a = 3;
         cut.body_b = 2;
         cut.point_a[0] = 0.5 * VT_FB_C;
         cut.point_b[0] = 0.5 * VT_FB_B;
-        cut.axis2[0] = 0.0; /* with b's axes taken as a's: the coupler's y */
+        cut.axis2[0] = 0.0; /* universal: with b's axes taken as a's, the coupler's y */
         cut.axis2[1] = 1.0;
         id = vt_builder_add_cut_joint(b, &cut);
     }
@@ -273,44 +278,14 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
+vt_status vt_scene_fourbar(vt_model **model, vt_function crank)
+{
+    return fourbar(model, crank, 0);
+}
+
 vt_status vt_scene_fourbar_rusr(vt_model **model, vt_function crank)
 {
-    static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
-    vt_builder *b;
-    vt_status st = vt_builder_create(&b, NULL);
-    if (st) return st;
-    int id = 0;
-    for (int k = 0; k < 3 && id >= 0; k++) {
-        vt_body_def link = vt_default_body_def();
-        link.mass = mass[k];
-        rod_inertia(link.inertia, mass[k], len[k]);
-        link.joint_child[0] = -0.5 * len[k];
-        if (k == 1) { /* coupler: universal joint at the crank's tip, z on the crank, then the coupler's y */
-            link.parent = 1;
-            link.joint = VT_JOINT_UNIVERSAL;
-            link.joint_parent[0] = 0.5 * VT_FB_A;
-            link.axis2[0] = 0.0;
-            link.axis2[1] = 1.0;
-        }
-        if (k == 2) link.joint_parent[0] = VT_FB_D; /* rocker pivot on the ground */
-        id = vt_builder_add_body(b, &link);
-    }
-    if (id > 0) { /* the rocker's tip and the coupler's tip coincide (3 rows) */
-        vt_cut_joint_def cut = vt_default_cut_joint_def();
-        cut.joint = VT_JOINT_SPHERICAL;
-        cut.body_a = 3;
-        cut.body_b = 2;
-        cut.point_a[0] = 0.5 * VT_FB_C;
-        cut.point_b[0] = 0.5 * VT_FB_B;
-        id = vt_builder_add_cut_joint(b, &cut);
-    }
-    if (id >= 0) {
-        vt_drive_def drive = vt_default_drive_def();
-        drive.body = 1;
-        drive.f = crank;
-        id = vt_builder_add_drive(b, &drive);
-    }
-    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+    return fourbar(model, crank, 1);
 }
 
 /* planar four-bar: coupler and rocker angles and rates from the crank's (open branch) */
