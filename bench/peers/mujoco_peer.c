@@ -255,78 +255,48 @@ static void run_post_project(mj_peer *s)
     }
 }
 
-/* four-bar, crank-only actuation: after mj_inverse (efc_force = 0 for a consistent state, so
- * qfrc_inverse = M qacc + bias), find the connect force lambda (in-plane x, y rows) with
- * (qfrc_inverse - J^T lambda)[dof] = 0 for the coupler and rocker dofs (1, 2). */
-static void run_inverse_loop(mj_peer *s)
+/* determinant of the leading k x k block (k = 2 or 3) of A, by its first row (A not const: C11
+ * does not convert mjtNum (*)[3] to const mjtNum (*)[3]) */
+static mjtNum det_k(int k, mjtNum A[3][3])
 {
-    const mjModel *m = s->m;
-    mjData *d = s->d;
-    const int nv = m->nv;
-    set_state(s);
-    mj_inverse(m, d);
-    if (d->nefc < 2) { /* the connect rows are missing: leave the plain mj_inverse result */
-        mj_rnePostConstraint(m, d);
-        memcpy(s->tau, d->qfrc_inverse, (size_t)nv * sizeof(mjtNum));
-        return;
-    }
-    const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv, rows 0..2 = connect x, y, z */
-    const mjtNum a11 = J[0 * nv + 1], a12 = J[1 * nv + 1], a21 = J[0 * nv + 2], a22 = J[1 * nv + 2];
-    /* M qacc + bias = qfrc_inverse + qfrc_constraint */
-    const mjtNum r1 = d->qfrc_inverse[1] + d->qfrc_constraint[1];
-    const mjtNum r2 = d->qfrc_inverse[2] + d->qfrc_constraint[2];
-    const mjtNum det = a11 * a22 - a12 * a21;
-    const mjtNum l1 = (r1 * a22 - a12 * r2) / det, l2 = (a11 * r2 - a21 * r1) / det;
-    for (int r = 0; r < d->nefc; r++) d->efc_force[r] = r == 0 ? l1 : r == 1 ? l2 : 0.0;
-    for (int i = 0; i < nv; i++) {
-        const mjtNum qc = J[0 * nv + i] * l1 + J[1 * nv + i] * l2;
-        s->tau[i] = d->qfrc_inverse[i] + d->qfrc_constraint[i] - qc;
-        d->qfrc_constraint[i] = qc;
-        d->qfrc_inverse[i] = s->tau[i];
-    }
-    mj_rnePostConstraint(m, d);
-}
-
-/* determinant of a 3x3 matrix, by its first row (A not const: C11 does not convert mjtNum (*)[3]
- * to const mjtNum (*)[3]) */
-static mjtNum det3(mjtNum A[3][3])
-{
+    if (k == 2) return A[0][0] * A[1][1] - A[0][1] * A[1][0];
     return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
            A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
 }
 
-/* RUSR four-bar, crank-only actuation: after mj_inverse, M qacc + bias = qfrc_inverse +
- * qfrc_constraint; the connect force lambda (rows x, y, z) with (M qacc + bias - J^T lambda)[dof] = 0
- * for dofs 1, 2, 3 solves the 3x3 system A lambda = r, A[i][j] = J[j][i + 1], by Cramer's rule. */
-static void run_inverse_loop_rusr(mj_peer *s)
+/* Four-bars, crank-only actuation. After mj_inverse (efc_force = 0 for a consistent state),
+ * M qacc + bias = qfrc_inverse + qfrc_constraint; the connect force lambda on its first k rows
+ * (the planar loop: x, y, k = 2; the RUSR: x, y, z, k = 3) leaves dofs 1..k unactuated:
+ * (M qacc + bias − J^T lambda)[dof] = 0, the k x k system A lambda = r, A[i][j] = J[j][i + 1],
+ * solved by Cramer's rule. */
+static void run_inverse_loop(mj_peer *s, int k)
 {
     const mjModel *m = s->m;
     mjData *d = s->d;
     const int nv = m->nv;
     set_state(s);
     mj_inverse(m, d);
-    if (d->nefc < 3) { /* the connect rows are missing: leave the plain mj_inverse result */
+    if (d->nefc < k) { /* the connect rows are missing: leave the plain mj_inverse result */
         mj_rnePostConstraint(m, d);
         memcpy(s->tau, d->qfrc_inverse, (size_t)nv * sizeof(mjtNum));
         return;
     }
     const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv, rows 0..2 = connect x, y, z */
-    mjtNum A[3][3], r[3], l[3];
-    for (int i = 0; i < 3; i++) {
-        for (int j = 0; j < 3; j++) A[i][j] = J[j * nv + i + 1];
+    mjtNum A[3][3] = {{0}}, r[3], l[3] = {0, 0, 0};
+    for (int i = 0; i < k; i++) {
+        for (int j = 0; j < k; j++) A[i][j] = J[j * nv + i + 1];
         r[i] = d->qfrc_inverse[i + 1] + d->qfrc_constraint[i + 1];
     }
-    /* λ_j = det(A with column j replaced by r) / det A */
-    const mjtNum det = det3(A);
-    for (int j = 0; j < 3; j++) {
+    const mjtNum det = det_k(k, A); /* λ_j = det(A with column j replaced by r) / det A */
+    for (int j = 0; j < k; j++) {
         mjtNum Aj[3][3];
         memcpy(Aj, A, sizeof Aj);
-        for (int i = 0; i < 3; i++) Aj[i][j] = r[i];
-        l[j] = det3(Aj) / det;
+        for (int i = 0; i < k; i++) Aj[i][j] = r[i];
+        l[j] = det_k(k, Aj) / det;
     }
-    for (int k = 0; k < d->nefc; k++) d->efc_force[k] = k < 3 ? l[k] : 0.0;
+    for (int e = 0; e < d->nefc; e++) d->efc_force[e] = e < k ? l[e] : 0.0;
     for (int i = 0; i < nv; i++) {
-        const mjtNum qc = J[0 * nv + i] * l[0] + J[1 * nv + i] * l[1] + J[2 * nv + i] * l[2];
+        const mjtNum qc = J[0 * nv + i] * l[0] + J[1 * nv + i] * l[1] + (k == 3 ? J[2 * nv + i] * l[2] : 0.0);
         s->tau[i] = d->qfrc_inverse[i] + d->qfrc_constraint[i] - qc;
         d->qfrc_constraint[i] = qc;
         d->qfrc_inverse[i] = s->tau[i];
@@ -376,9 +346,9 @@ static void mjp_run(void *p, int method)
         else if (method == 1) run_rne_post(s);
         else run_post_project(s);
     } else if (s->scene == VT_PEER_FOURBAR && method == 1) {
-        run_inverse_loop(s);
+        run_inverse_loop(s, 2);
     } else if (s->scene == VT_PEER_FOURBAR_RUSR) {
-        run_inverse_loop_rusr(s);
+        run_inverse_loop(s, 3);
     } else if (s->scene == VT_PEER_CHAIN_TIP) {
         run_inverse_tip(s);
     } else {
