@@ -188,13 +188,7 @@ static void test_stretched_arm(void **state)
     (void)state;
     vt_builder *b;
     assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def link = vt_default_body_def();
-    link.inertia[4] = link.inertia[8] = 1.0 / 12.0;
-    link.joint_child[0] = -0.5;
-    assert_int_equal(vt_builder_add_body(b, &link), 1);
-    link.parent = 1;
-    link.joint_parent[0] = 0.5;
-    assert_int_equal(vt_builder_add_body(b, &link), 2);
+    vt_test_add_rods(b, 2, 1.0, (const double[2]){1.0, 1.0});
     vt_drive_def tip = vt_default_drive_def();
     tip.type = VT_DRIVE_POINT;
     tip.body = 2;

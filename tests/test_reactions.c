@@ -626,16 +626,7 @@ static void test_extreme_scales(void **state)
             const double L = lengths[li], m1 = masses[mi][0], m2 = masses[mi][1], g = 9.81;
             vt_builder *b;
             assert_ok(vt_builder_create(&b, NULL));
-            vt_body_def link = vt_default_body_def();
-            link.mass = m1;
-            link.inertia[4] = link.inertia[8] = m1 * L * L / 12.0;
-            link.joint_child[0] = -0.5 * L;
-            assert_int_equal(vt_builder_add_body(b, &link), 1);
-            link.parent = 1;
-            link.mass = m2;
-            link.inertia[4] = link.inertia[8] = m2 * L * L / 12.0;
-            link.joint_parent[0] = 0.5 * L;
-            assert_int_equal(vt_builder_add_body(b, &link), 2);
+            vt_test_add_rods(b, 2, L, masses[mi]);
             vt_drive_def lock = vt_default_drive_def();
             lock.body = 2;
             assert_int_equal(vt_builder_add_drive(b, &lock), 0);

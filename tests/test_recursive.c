@@ -240,14 +240,7 @@ static void test_square_dependent(void **state)
     vt_model *m;
     vt_data *d;
     assert_ok(vt_builder_create(&b, NULL));
-    for (int k = 0; k < 2; k++) {
-        vt_body_def body = vt_default_body_def();
-        body.parent = k;
-        body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.1;
-        body.joint_parent[0] = k ? 0.5 : 0.0;
-        body.joint_child[0] = -0.5;
-        assert_true(vt_builder_add_body(b, &body) > 0);
-    }
+    vt_test_add_rods(b, 2, 1.0, (const double[2]){1.0, 1.0});
     for (int k = 0; k < 2; k++) {
         vt_drive_def dr = vt_default_drive_def();
         dr.body = 1;

@@ -449,13 +449,7 @@ static void test_schur(void **state)
              * fixed by a joint drive only; the Schur solve hands over to the augmented one */
             vt_builder *b;
             assert_ok(vt_builder_create(&b, NULL));
-            vt_body_def link = vt_default_body_def();
-            link.inertia[4] = link.inertia[8] = 1.0 / 12.0;
-            link.joint_child[0] = -0.5;
-            assert_int_equal(vt_builder_add_body(b, &link), 1);
-            link.parent = 1;
-            link.joint_parent[0] = 0.5;
-            assert_int_equal(vt_builder_add_body(b, &link), 2);
+            vt_test_add_rods(b, 2, 1.0, (const double[2]){1.0, 1.0});
             vt_body_def dot = vt_default_body_def();
             dot.parent = 2;
             dot.joint_parent[0] = 0.5;

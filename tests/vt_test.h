@@ -41,6 +41,21 @@ static inline double vt_test_maxabs(const double *a, int n)
     return s;
 }
 
+/* Adds to an empty builder n uniform rods of length L along their body x, masses mass[k] (kg),
+ * in a chain on revolute joints about z: body 1 at the origin, body k + 1 at body k's far end. */
+static inline void vt_test_add_rods(vt_builder *b, int n, double L, const double *mass)
+{
+    for (int k = 0; k < n; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.parent = k;
+        link.mass = mass[k];
+        link.inertia[4] = link.inertia[8] = mass[k] * L * L / 12.0;
+        link.joint_child[0] = -0.5 * L;
+        link.joint_parent[0] = k ? 0.5 * L : 0.0;
+        assert_int_equal(vt_builder_add_body(b, &link), k + 1);
+    }
+}
+
 /* Σ ½ m v·v + ½ ω·(A J' A^T) ω from the bodies' own velocities (d->xd, d->omega). */
 static inline double vt_test_kinetic_energy(const vt_model *m, const vt_data *d)
 {
