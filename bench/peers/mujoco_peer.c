@@ -155,19 +155,26 @@ static void xml_double_link(xbuf *b)
 }
 
 /* four-bar: crank (0.5 m, 1 kg) at the origin, coupler (1.5 m, 3 kg) at the crank's tip, rocker
- * (1.0 m, 2 kg) at (1.2, 0, 0); uniform rods along their x, hinges about z; q = (crank angle,
- * coupler angle relative to the crank, rocker angle). Loop: coupler tip = rocker tip. */
-static void xml_fourbar(xbuf *b)
+ * (1.0 m, 2 kg) at (1.2, 0, 0); uniform rods along their x, hinges about z. Loop: coupler tip =
+ * rocker tip (connect: 3 rows). Planar (rusr = 0): q = (crank angle, coupler angle relative to
+ * the crank, rocker angle). RUSR (rusr = 1): the coupler carries two hinges at the crank's tip, z
+ * and then y. MuJoCo applies a body's joints in order, each about its axis in the body's frame as
+ * turned by the joints before it: the coupler's orientation relative to the crank is
+ * R(z, q1) R(y, q2), the y axis turned by the first angle, as vtdyn's universal joint (first axis
+ * on the crank, second on the coupler); q = (crank angle, coupler angle about z relative to the
+ * crank, coupler tilt about its y, rocker angle). */
+static void xml_fourbar(xbuf *b, int rusr)
 {
     static const double len[3] = {0.5, 1.5, 1.0}, mass[3] = {1.0, 3.0, 2.0};
     double J[3];
     for (int k = 0; k < 3; k++) J[k] = mass[k] * len[k] * len[k] / 12.0;
-    xml_header(b, "vt_fourbar", 1);
+    xml_header(b, rusr ? "vt_fourbar_rusr" : "vt_fourbar", 1);
     xcat(b, "  <worldbody>\n");
     xcat(b, "<body name=\"crank\" pos=\"0 0 0\">\n<joint name=\"j1\" axis=\"0 0 1\"/>\n");
     xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
          0.5 * len[0], mass[0], J[0], J[0]);
     xcat(b, "<body name=\"coupler\" pos=\"%.17g 0 0\">\n<joint name=\"j2\" axis=\"0 0 1\"/>\n", len[0]);
+    if (rusr) xcat(b, "<joint name=\"j2y\" axis=\"0 1 0\"/>\n");
     xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
          0.5 * len[1], mass[1], J[1], J[1]);
     xcat(b, "<site name=\"coupler_tip\" pos=\"%.17g 0 0\"/>\n", len[1]);
@@ -178,37 +185,6 @@ static void xml_fourbar(xbuf *b)
     xcat(b, "<site name=\"rocker_tip\" pos=\"%.17g 0 0\"/>\n", len[2]);
     xcat(b, "</body>\n  </worldbody>\n");
     /* sites, not body1 + anchor: the loop is open at q = 0, where MuJoCo would take body2's point */
-    xcat(b, "  <equality>\n    <connect site1=\"coupler_tip\" site2=\"rocker_tip\"/>\n"
-            "  </equality>\n</mujoco>\n");
-}
-
-/* RUSR four-bar: the same links as xml_fourbar; the coupler carries two hinges at the crank's tip,
- * z and then y. MuJoCo applies a body's joints in order, each about its axis in the body's frame
- * as turned by the joints before it: the coupler's orientation relative to the crank is
- * R(z, q1) R(y, q2), the y axis turned by the first angle, as vtdyn's universal joint (first axis
- * on the crank, second on the coupler). q = (crank angle, coupler angle about z relative to the
- * crank, coupler tilt about its y, rocker angle). Loop: coupler tip = rocker tip (3 rows). */
-static void xml_fourbar_rusr(xbuf *b)
-{
-    static const double len[3] = {0.5, 1.5, 1.0}, mass[3] = {1.0, 3.0, 2.0};
-    double J[3];
-    for (int k = 0; k < 3; k++) J[k] = mass[k] * len[k] * len[k] / 12.0;
-    xml_header(b, "vt_fourbar_rusr", 1);
-    xcat(b, "  <worldbody>\n");
-    xcat(b, "<body name=\"crank\" pos=\"0 0 0\">\n<joint name=\"j1\" axis=\"0 0 1\"/>\n");
-    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
-         0.5 * len[0], mass[0], J[0], J[0]);
-    xcat(b, "<body name=\"coupler\" pos=\"%.17g 0 0\">\n<joint name=\"j2\" axis=\"0 0 1\"/>\n"
-            "<joint name=\"j3\" axis=\"0 1 0\"/>\n", len[0]);
-    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
-         0.5 * len[1], mass[1], J[1], J[1]);
-    xcat(b, "<site name=\"coupler_tip\" pos=\"%.17g 0 0\"/>\n", len[1]);
-    xcat(b, "</body>\n</body>\n");
-    xcat(b, "<body name=\"rocker\" pos=\"1.2 0 0\">\n<joint name=\"j4\" axis=\"0 0 1\"/>\n");
-    xcat(b, "<inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-6 %.17g %.17g\"/>\n",
-         0.5 * len[2], mass[2], J[2], J[2]);
-    xcat(b, "<site name=\"rocker_tip\" pos=\"%.17g 0 0\"/>\n", len[2]);
-    xcat(b, "</body>\n  </worldbody>\n");
     xcat(b, "  <equality>\n    <connect site1=\"coupler_tip\" site2=\"rocker_tip\"/>\n"
             "  </equality>\n</mujoco>\n");
 }
@@ -419,8 +395,8 @@ static mjModel *scene_model(int scene, int n)
     b.s[0] = '\0';
     if (scene == VT_PEER_CHAIN || scene == VT_PEER_CHAIN_TIP) xml_chain(&b, n);
     else if (scene == VT_PEER_DOUBLE_LINK) xml_double_link(&b);
-    else if (scene == VT_PEER_FOURBAR_RUSR) xml_fourbar_rusr(&b);
-    else xml_fourbar(&b);
+    else if (scene == VT_PEER_FOURBAR_RUSR) xml_fourbar(&b, 1);
+    else xml_fourbar(&b, 0);
     mjModel *m = b.failed ? NULL : compile_xml(b.s);
     free(b.s);
     return m;
