@@ -53,6 +53,13 @@ static void subtree_sum(const vt_model *m, double *W, int stride)
     }
 }
 
+/* W̄: every subtree's needed wrench about O at the accelerations d->xdd and alpha (3 x (nbody+1)) */
+static void subtree_wrenches(const vt_model *m, const vt_data *d, const double *alpha, double *W /* 6 x (nbody+1) */)
+{
+    for (int i = 1; i <= m->nbody; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
+    subtree_sum(m, W, 6);
+}
+
 static double pair(const double w[3], const double v[3], const double W[6])
 {
     return vt_dot3(w, W) + vt_dot3(v, W + 3);
@@ -167,8 +174,7 @@ static vt_status inward(const vt_model *m, vt_data *d)
     const size_t nb = (size_t)n + 1;
     double *alpha = d->work, *W = alpha + 3 * nb;
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
-    for (int i = 1; i <= n; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
-    subtree_sum(m, W, 6);
+    subtree_wrenches(m, d, alpha, W);
     for (int i = 1; i <= n; i++) {
         const double *Wi = W + 6 * i, *P = d->jpoint + 3 * i, *e = d->jaxis + 9 * i;
         double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
@@ -231,8 +237,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     }
     double *alpha = d->work, *W = alpha + 9 * nb; /* α, then vt_accelerations_add's 6 (n+1) */
     vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha);
-    for (int i = 1; i <= m->nbody; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
-    subtree_sum(m, W, 6);
+    subtree_wrenches(m, d, alpha, W);
     for (int a = 0; a < nv; a++) {
         const double *s = d->twist + 6 * a;
         d->kkt_rhs[nv + a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
