@@ -140,6 +140,8 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
 
 /* vt_solve's square path in two halves for the recursive evaluation (solve.c) */
+/* every multiplier and reaction unique (vt_solve's exact paths) */
+void vt_mark_unique(const vt_model *m, vt_data *d);
 int vt_solve_square_begin(const vt_model *m, vt_data *d, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond);
 /* vt_reactions; have_accel: ẍ (d->xdd) and α (the first 3 (nbody+1) of d->work) are current */

@@ -265,8 +265,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         d->warning = 0;
         d->rank = m->nc; /* one unit row per rate: independent, every multiplier and reaction unique */
         d->residual = 0.0;
-        for (int r = 0; r < m->nc; r++) d->lambda_unique[r] = 1;
-        for (int k = 0; k < 6 * (m->nbody + 1); k++) d->jnt_unique[k] = 1;
+        vt_mark_unique(m, d);
         if ((st = drive_accelerations(m, d))) return st;
         return inward(m, d);
     }

@@ -230,11 +230,14 @@ static int factor_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * max |Φ_q q̈ − γ|, and which multipliers and reactions are not unique: those that change
  * along the null directions z of Φ_q^T, from the QR of dependent_rows
  * (z = P [−R11^{-1} R12; I] in the row-normalized space). */
-static void mark_unique(const vt_model *m, vt_data *d)
+void vt_mark_unique(const vt_model *m, vt_data *d)
 {
-    for (int r = 0; r < m->nc; r++) d->lambda_unique[r] = 1;
-    for (int i = 0; i < 6 * (m->nbody + 1); i++) d->jnt_unique[i] = 1;
-    for (int k = 0; k < 6 * m->ncut; k++) d->cut_unique[k] = 1;
+    /* counts and pointers in locals: an int store could alias m->nbody, which would be reloaded */
+    const int nc = m->nc, nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut;
+    int *lu = d->lambda_unique, *ju = d->jnt_unique, *cu = d->cut_unique;
+    for (int r = 0; r < nc; r++) lu[r] = 1;
+    for (int i = 0; i < nj; i++) ju[i] = 1;
+    for (int k = 0; k < ncut; k++) cu[k] = 1;
 }
 
 static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
@@ -324,7 +327,7 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
     }
     d->residual = resid;
     /* the null directions z of Φ_q^T: which multipliers and reactions they change */
-    mark_unique(m, d);
+    vt_mark_unique(m, d);
     for (int j = 0; j < nfree; j++) {
         double *z = d->nullvec, zmax = 0.0;
         memset(z, 0, (size_t)nc * sizeof(double));
@@ -501,10 +504,11 @@ static int square_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * no pivoting. It applies when every pivot of L is at least 1e-4 (M̃'s unit diagonal bounds them
  * by 1 from above): below that M* is (nearly) singular on some rates, which only the constraints
  * may fix, and factor_solve takes over (return 2). The reported reciprocal condition is S's
- * (exact for nc ≤ 16, from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)²,
+ * (exact: 1 for one row, for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)²,
  * the pivots' estimate of M̃'s: it falls where the constraint rows lose independence in the
  * mass metric — a drive losing its grip. Returns 0, 1 (below rcond_min), 2 or a negative
  * vt_status. */
+#define SCHUR_FEW 3 /* rows up to which S and its right side are formed by loops */
 static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
     const int nv = m->nv, nc = m->nc, nrhs = nc + 1;
@@ -531,29 +535,55 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
     for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[a] * s[a];
     cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nv, nrhs, 1.0, L, nv, B, nv);
     const double *Y = B, *z = B + (size_t)nc * (size_t)nv;
-    /* S = Y^T Y and its right-hand side c γ − Y^T z */
-    cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, nc, nv, 1.0, Y, nv, 0.0, S, nc);
-    for (int r = 0; r < nc; r++) lam[r] = c * d->gamma[r];
-    cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
-    const double snorm = dlansy_("1", "L", &nc, S, &nc, d->lwork, 1, 1);
-    dpotf2_("L", &nc, S, &nc, &info, 1);
-    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
+    /* S = Y^T Y and its right-hand side c γ − Y^T z. With a few rows (a point drive: 1 to 3)
+     * these are a few dot products of nv terms, cheaper as loops than as BLAS calls (whose
+     * argument checks cost more than the products); one row makes S a positive number, its
+     * Cholesky factor a square root, and S's condition exactly 1. */
+    const int few = nc <= SCHUR_FEW;
+    if (few) {
+        for (int r = 0; r < nc; r++) {
+            const double *yr = Y + (size_t)r * (size_t)nv;
+            double t = c * d->gamma[r];
+            for (int a = 0; a < nv; a++) t -= yr[a] * z[a];
+            lam[r] = t;
+            for (int k = r; k < nc; k++) {
+                const double *yk = Y + (size_t)k * (size_t)nv;
+                double v = 0.0;
+                for (int a = 0; a < nv; a++) v += yk[a] * yr[a];
+                S[k + (size_t)r * (size_t)nc] = v;
+            }
+        }
+    } else {
+        cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, nc, nv, 1.0, Y, nv, 0.0, S, nc);
+        for (int r = 0; r < nc; r++) lam[r] = c * d->gamma[r];
+        cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
+    }
     double rcond = 0.0;
-    const int inverse = info == 0 && small_inverse(d, nc, 1);
-    if (inverse) { /* S^-1 and λ̃ in one solve: [I, c γ − Y^T z] */
-        const int ncol = nc + 1;
-        memcpy(d->lwork + (size_t)nc * (size_t)nc, lam, (size_t)nc * sizeof(double));
-        dpotrs_("L", &nc, &ncol, S, &nc, d->lwork, &nc, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
-        rcond = rcond_from_inverse(d->lwork, nc, snorm);
-    } else if (info == 0) {
-        dpocon_("L", &nc, S, &nc, &snorm, &rcond, d->lwork, d->liwork, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
+    int inverse = 0;
+    if (nc == 1) {
+        rcond = S[0] > 0.0 ? 1.0 : 0.0;
+    } else {
+        const double snorm = dlansy_("1", "L", &nc, S, &nc, d->lwork, 1, 1);
+        dpotf2_("L", &nc, S, &nc, &info, 1);
+        if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
+        inverse = info == 0 && small_inverse(d, nc, 1);
+        if (inverse) { /* S^-1 and λ̃ in one solve: [I, c γ − Y^T z] */
+            const int ncol = nc + 1;
+            memcpy(d->lwork + (size_t)nc * (size_t)nc, lam, (size_t)nc * sizeof(double));
+            dpotrs_("L", &nc, &ncol, S, &nc, d->lwork, &nc, &info, 1);
+            if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+            rcond = rcond_from_inverse(d->lwork, nc, snorm);
+        } else if (info == 0) {
+            dpocon_("L", &nc, S, &nc, &snorm, &rcond, d->lwork, d->liwork, &info, 1);
+            if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
+        }
     }
     rcond *= (lmin / lmax) * (lmin / lmax);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return 1;
-    if (inverse) {
+    if (nc == 1) {
+        lam[0] /= S[0];
+    } else if (inverse) {
         memcpy(lam, d->lwork + (size_t)nc * (size_t)nc, (size_t)nc * sizeof(double));
     } else {
         const int one = 1;
@@ -562,7 +592,14 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
     }
     /* ỹ = L^-T (z + Y λ̃) */
     memcpy(x, z, (size_t)nv * sizeof(double));
-    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nc, 1.0, Y, nv, lam, 1, 1.0, x, 1);
+    if (few) {
+        for (int r = 0; r < nc; r++) {
+            const double *yr = Y + (size_t)r * (size_t)nv, l = lam[r];
+            for (int a = 0; a < nv; a++) x[a] += yr[a] * l;
+        }
+    } else {
+        cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nc, 1.0, Y, nv, lam, 1, 1.0, x, 1);
+    }
     cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nv, L, nv, x, 1);
     for (int a = 0; a < nv; a++) x[a] *= s[a];
     for (int r = 0; r < nc; r++) lam[r] *= c;
@@ -589,7 +626,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
                            "that no drive fixes", rcond, m->rcond_min);
         d->rank = nc;
         d->residual = 0.0;
-        mark_unique(m, d);
+        vt_mark_unique(m, d);
         return VT_OK;
     }
     if (m->allow_redundant && nc > 0) {
@@ -619,7 +656,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     }
     d->rank = nc;
     d->residual = 0.0;
-    mark_unique(m, d);
+    vt_mark_unique(m, d);
     const double *b = d->kkt_rhs;
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
     for (int k = 0; k < nc; k++) d->lambda[k] = direct ? b[nv + k] : -b[nv + k];
@@ -648,7 +685,7 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond)
     d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
     d->rank = m->nc;
     d->residual = 0.0;
-    mark_unique(m, d);
+    vt_mark_unique(m, d);
     memcpy(d->qdd, d->kkt_rhs, (size_t)m->nv * sizeof(double));
     memcpy(d->lambda, d->kkt_rhs + m->nv, (size_t)m->nc * sizeof(double));
     return VT_OK;

@@ -430,8 +430,9 @@ static void test_augmented_condition(void **state)
     vt_model_free(m);
 }
 
-/* fewer rows than rates (a chain with a point drive at its tip, and a random tree with two
- * point drives): the Schur-complement solve against the whole augmented matrix by a general LU
+/* fewer rows than rates (a chain with a point drive at its tip: one row, S a number; a random
+ * tree with two point drives, and the same tree with four, past the rows whose S is formed by
+ * loops rather than BLAS): the Schur-complement solve against the whole augmented matrix by a general LU
  * (dgesv), and its reported condition against its definition computed here independently: the
  * exact 1-norm condition of S = Φ̃ M̃^-1 Φ̃^T (M̃ = D M* D, Φ̃ = c Φ_q D, c = 1 / largest row
  * norm of Φ_q D) times the squared ratio of the smallest to the largest Cholesky pivot of M̃ */
@@ -439,7 +440,7 @@ static void test_schur(void **state)
 {
     (void)state;
     extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
-    for (int scene = 0; scene < 3; scene++) {
+    for (int scene = 0; scene < 4; scene++) {
         vt_model *m;
         vt_data *d;
         if (scene == 0) {
@@ -471,11 +472,11 @@ static void test_schur(void **state)
             vt_builder *b;
             assert_ok(vt_builder_create(&b, NULL));
             assert_ok(vt_scene_random_bodies(b, 31, 6, VT_SCENE_SCALAR_JOINTS));
-            for (int k = 0; k < 2; k++) {
+            for (int k = 0; k < (scene == 3 ? 4 : 2); k++) { /* scene 3: body 6's x, y, z and body 4's x */
                 vt_drive_def dr = vt_default_drive_def();
                 dr.type = VT_DRIVE_POINT;
-                dr.body = 6;
-                dr.index = k;
+                dr.body = k < 3 ? 6 : 4;
+                dr.index = k % 3;
                 dr.f = vt_function_sine(0.1, 0.2, 1.0 + k, 0.0);
                 assert_true(vt_builder_add_drive(b, &dr) >= 0);
             }
@@ -485,6 +486,7 @@ static void test_schur(void **state)
         assert_ok(vt_data_create(&d, m));
         const int nv = m->nv, nc = m->nc, N = nv + nc, one = 1;
         assert_true(nc > 0 && nc < nv && N <= 20);
+        if (scene == 3) assert_int_equal(nc, 4);
         if (scene == 0) {
             for (int k = 0; k < nv; k++) {
                 double qdd;
