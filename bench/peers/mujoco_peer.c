@@ -34,7 +34,16 @@
  *                            vtdyn's solution) are the torques, F the extra value; F goes into
  *                            xfrc_applied of the last body (force and its moment about the body's
  *                            COM), which mj_rnePostConstraint includes in cfrc_ext, so the
- *                            reactions carry it; mj_inverse does not read xfrc_applied
+ *                            reactions carry it; mj_inverse does not read xfrc_applied. This
+ *                            is handed qacc, vtdyn's solution: the free motion is not solved
+ *     1 mujoco_solve_tip     the same problem as vtdyn's: given only the tip's y acceleration a
+ *                            (the drive's, computed once from the given state), solve the free
+ *                            motion exactly with MuJoCo's own factorization of M:
+ *                            mj_fwdPosition (kinematics, M, its L'DL factor), mj_fwdVelocity
+ *                            (qfrc_bias), mj_jac and mj_jacDot at the tip, mj_solveM for
+ *                            x = M^-1 (-bias) and y = M^-1 J_y^T, then
+ *                            F = (a - Jdot_y qvel - J_y x) / (J_y y), qacc = x + y F; F into
+ *                            xfrc_applied as above, then mj_rnePostConstraint
  *
  * Reactions: mjData.cfrc_int[b] (after mj_rnePostConstraint) is the wrench the parent exerts on
  * body b through its joint, "com-based": 6 numbers [moment(3); force(3)], world axes, the moment
@@ -74,6 +83,9 @@ typedef struct {
     mjtNum *q, *qd, *qdd;    /* the state, copied into mjData by every run */
     mjtNum *tau;             /* torques of the last run (chain tip: n + 1, the tip force last) */
     mjtNum *jac;             /* chain tip: mj_jac's translation rows (3 x n) */
+    mjtNum *jacd;            /* chain tip: mj_jacDot's translation rows (3 x n) */
+    mjtNum *rhs, *xy;        /* chain tip, solved: right sides and solutions of M x = y (2 x n each) */
+    mjtNum ades;             /* chain tip: the tip's y acceleration that the drive prescribes */
     const int *body;         /* body of link k (k = 1..n) is body[k - 1]; joint of link k is k - 1 */
     int bodyids[3];
 } mj_peer;
@@ -82,7 +94,7 @@ static const char *const chain_methods[] = {"mujoco_inverse", "mujoco_rne_post",
 static const char *const dl_methods[] = {"mujoco_inverse"};
 static const char *const fb_methods[] = {"mujoco_inverse", "mujoco_inverse_loop"};
 static const char *const rusr_methods[] = {"mujoco_inverse_loop"};
-static const char *const tip_methods[] = {"mujoco_inverse_tip"};
+static const char *const tip_methods[] = {"mujoco_inverse_tip", "mujoco_solve_tip"};
 
 /* ---- XML text ---- */
 typedef struct {
@@ -280,37 +292,99 @@ static void run_inverse_loop(mj_peer *s, int k)
     mj_rnePostConstraint(m, d);
 }
 
-/* chain tip: the force F along global y at the tip of the last link (0.5 m along its x from its
- * joint, the body's origin) that, alone, produces qfrc_inverse = M qacc + bias */
-static void run_inverse_tip(mj_peer *s)
+/* chain tip: the tip of the last link, 0.5 m along its x from its joint (the body's origin) */
+static void tip_point(const mj_peer *s, mjtNum tip[3])
 {
-    const mjModel *m = s->m;
-    mjData *d = s->d;
-    const int nv = m->nv, b = s->body[nv - 1];
-    set_state(s);
-    mj_inverse(m, d);
-    const mjtNum *o = d->xpos + 3 * b, *R = d->xmat + 9 * b;
-    const mjtNum tip[3] = {o[0] + 0.5 * R[0], o[1] + 0.5 * R[3], o[2] + 0.5 * R[6]};
-    mj_jac(m, d, s->jac, NULL, tip, b);
-    const mjtNum *Jy = s->jac + nv;
-    mjtNum jj = 0.0, jf = 0.0;
-    for (int i = 0; i < nv; i++) {
-        jj += Jy[i] * Jy[i];
-        jf += Jy[i] * d->qfrc_inverse[i];
-    }
-    const mjtNum F = jf / jj;
-    for (int i = 0; i < nv; i++) s->tau[i] = d->qfrc_inverse[i] - Jy[i] * F;
-    s->tau[nv] = F;
-    /* xfrc_applied: force (0, F, 0) at the body's COM and the moment (tip - COM) x (0, F, 0) */
-    mjtNum *x = d->xfrc_applied + 6 * b;
-    const mjtNum *c = d->xipos + 3 * b;
+    const int b = s->body[s->n - 1];
+    const mjtNum *o = s->d->xpos + 3 * b, *R = s->d->xmat + 9 * b;
+    tip[0] = o[0] + 0.5 * R[0];
+    tip[1] = o[1] + 0.5 * R[3];
+    tip[2] = o[2] + 0.5 * R[6];
+}
+
+/* the force (0, F, 0) at the tip into xfrc_applied of the last body: the force at its COM and
+ * its moment (tip - COM) x (0, F, 0); then the reactions */
+static void tip_force_post(mj_peer *s, const mjtNum tip[3], mjtNum F)
+{
+    const int b = s->body[s->n - 1];
+    mjtNum *x = s->d->xfrc_applied + 6 * b;
+    const mjtNum *c = s->d->xipos + 3 * b;
     x[0] = 0.0;
     x[1] = F;
     x[2] = 0.0;
     x[3] = -(tip[2] - c[2]) * F;
     x[4] = 0.0;
     x[5] = (tip[0] - c[0]) * F;
-    mj_rnePostConstraint(m, d);
+    s->tau[s->n] = F;
+    mj_rnePostConstraint(s->m, s->d);
+}
+
+/* chain tip: the force F along global y at the tip that, alone, produces qfrc_inverse = M qacc +
+ * bias (qacc given) */
+static void run_inverse_tip(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    const int nv = m->nv;
+    set_state(s);
+    mj_inverse(m, d);
+    mjtNum tip[3];
+    tip_point(s, tip);
+    mj_jac(m, d, s->jac, NULL, tip, s->body[nv - 1]);
+    const mjtNum *Jy = s->jac + nv;
+    mjtNum jj = 0.0, jf = 0.0;
+    for (int i = 0; i < nv; i++) {
+        jj += Jy[i] * Jy[i];
+        jf += Jy[i] * d->qfrc_inverse[i];
+    }
+    tip_force_post(s, tip, jf / jj);
+}
+
+/* chain tip, solved: qacc from the tip's y acceleration s->ades (the method is said at the top) */
+static void run_solve_tip(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    const int nv = m->nv;
+    set_state(s);
+    mj_fwdPosition(m, d);
+    mj_fwdVelocity(m, d);
+    mjtNum tip[3];
+    tip_point(s, tip);
+    mj_jac(m, d, s->jac, NULL, tip, s->body[nv - 1]);
+    mj_jacDot(m, d, s->jacd, NULL, tip, s->body[nv - 1]);
+    const mjtNum *Jy = s->jac + nv, *Jdy = s->jacd + nv;
+    for (int i = 0; i < nv; i++) {
+        s->rhs[i] = -d->qfrc_bias[i];
+        s->rhs[nv + i] = Jy[i];
+    }
+    mj_solveM(m, d, s->xy, s->rhs, 2);
+    const mjtNum *x = s->xy, *y = s->xy + nv;
+    mjtNum r = s->ades, jy = 0.0;
+    for (int i = 0; i < nv; i++) {
+        r -= Jdy[i] * d->qvel[i] + Jy[i] * x[i];
+        jy += Jy[i] * y[i];
+    }
+    const mjtNum F = r / jy;
+    for (int i = 0; i < nv; i++) d->qacc[i] = x[i] + y[i] * F;
+    tip_force_post(s, tip, F);
+}
+
+/* chain tip: the drive's acceleration at the given state, J_y qacc + Jdot_y qvel (once, at setup) */
+static mjtNum tip_acceleration(mj_peer *s)
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    const int nv = m->nv;
+    set_state(s);
+    mj_fwdPosition(m, d);
+    mj_fwdVelocity(m, d);
+    mjtNum tip[3], a = 0.0;
+    tip_point(s, tip);
+    mj_jac(m, d, s->jac, NULL, tip, s->body[nv - 1]);
+    mj_jacDot(m, d, s->jacd, NULL, tip, s->body[nv - 1]);
+    for (int i = 0; i < nv; i++) a += s->jac[nv + i] * s->qdd[i] + s->jacd[nv + i] * s->qd[i];
+    return a;
 }
 
 /* ---- vtable ---- */
@@ -326,7 +400,8 @@ static void mjp_run(void *p, int method)
     } else if (s->scene == VT_PEER_FOURBAR_RUSR) {
         run_inverse_loop(s, 3);
     } else if (s->scene == VT_PEER_CHAIN_TIP) {
-        run_inverse_tip(s);
+        if (method == 0) run_inverse_tip(s);
+        else run_solve_tip(s);
     } else {
         run_inverse(s);
     }
@@ -335,8 +410,14 @@ static void mjp_run(void *p, int method)
 static void mjp_torques(const void *p, double *tau)
 {
     const mj_peer *s = p;
-    const int nt = s->scene == VT_PEER_CHAIN_TIP ? s->n + 1 : s->n;
-    for (int i = 0; i < nt; i++) tau[i] = s->tau[i];
+    if (s->scene == VT_PEER_CHAIN_TIP) { /* no joint is actuated: what is left, M qacc + bias − J_y^T F */
+        const int nv = s->n;
+        mj_mulM(s->m, s->d, tau, s->d->qacc);
+        for (int i = 0; i < nv; i++) tau[i] += s->d->qfrc_bias[i] - s->jac[nv + i] * s->tau[nv];
+        tau[nv] = s->tau[nv];
+        return;
+    }
+    for (int i = 0; i < s->n; i++) tau[i] = s->tau[i];
 }
 
 static void mjp_reaction(const void *p, int k, double f[3], double n[3])
@@ -370,7 +451,7 @@ static const vt_peer_vtable chain_vtable = {3, chain_methods, mjp_run, mjp_torqu
 static const vt_peer_vtable dl_vtable = {1, dl_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable fb_vtable = {2, fb_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable rusr_vtable = {1, rusr_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
-static const vt_peer_vtable tip_vtable = {1, tip_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+static const vt_peer_vtable tip_vtable = {2, tip_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 
 static mjModel *compile_xml(const char *xml)
 {
@@ -415,7 +496,7 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
 
     vt_peer *p = malloc(sizeof *p);
     mj_peer *s = calloc(1, sizeof *s);
-    if (s) s->q = malloc((7 * (size_t)n + 1) * sizeof(mjtNum));
+    if (s) s->q = malloc((14 * (size_t)n + 1) * sizeof(mjtNum));
     if (!p || !s || !s->q || m->nv != n || m->nq != n) {
         free(p);
         if (s) free(s->q);
@@ -430,6 +511,9 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     s->qdd = s->qd + n;
     s->tau = s->qdd + n;
     s->jac = s->tau + n + 1;
+    s->jacd = s->jac + 3 * n;
+    s->rhs = s->jacd + 3 * n;
+    s->xy = s->rhs + 2 * n;
     for (int i = 0; i < n; i++) {
         s->q[i] = q[i];
         s->qd[i] = qd[i];
@@ -454,6 +538,7 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     p->n = scene == VT_PEER_FOURBAR_RUSR ? 3 : n; /* links: the RUSR coupler has two hinges */
     p->vt = scene == VT_PEER_CHAIN ? &chain_vtable : scene == VT_PEER_DOUBLE_LINK ? &dl_vtable
           : scene == VT_PEER_CHAIN_TIP ? &tip_vtable : scene == VT_PEER_FOURBAR_RUSR ? &rusr_vtable : &fb_vtable;
+    if (scene == VT_PEER_CHAIN_TIP) s->ades = tip_acceleration(s);
     mjp_run(s, 0);
     return p;
 }
