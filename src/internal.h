@@ -139,13 +139,16 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
 /* A column of S in body i's rows, from the rate's twist d->twist (kinematics.c) */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
 
-/* vt_solve's square path in two halves for the recursive evaluation (solve.c) */
 /* every multiplier and reaction unique (vt_solve's exact paths) */
 void vt_mark_unique(const vt_model *m, vt_data *d);
+/* vt_solve's square path in two halves for the recursive evaluation (solve.c) */
 int vt_solve_square_begin(const vt_model *m, vt_data *d, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond);
-/* vt_reactions; have_accel: ẍ (d->xdd) and α (the first 3 (nbody+1) of d->work) are current */
-vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel);
+/* vt_reactions without the argument checks (ẍ and α from d->qdd) */
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
+/* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar
+ * (6 x (nbody+1), recursive.c); G: scratch of 6 x (nbody+1), apart from Wbar */
+vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G);
 
 /* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);

@@ -145,24 +145,15 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions");
     if (st) return st;
-    return vt_reactions_impl(m, d, 0);
+    return vt_reactions_impl(m, d);
 }
 
-vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel)
+/* Into fe (6 x (nbody+1), added, about each body's centre of mass): every drive and cut-joint
+ * row's wrench (normalization rows of base bodies exert nothing: their moment ½ E (2 p λ) is
+ * zero) and the applied generalized forces'; on the way, the drives' efforts and the cut
+ * joints' reactions. */
+static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
 {
-    const int n = m->nbody;
-    const size_t nb = (size_t)n + 1;
-    double *alpha = d->work, *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
-    if (!have_accel) vt_accelerations_add(m, d, d->qdd, d->xdd, alpha); /* its 6 (n+1) of scratch past α: fe, cf */
-
-    /* applied: gravity, xfrc, and every drive and cut-joint row (normalization rows of base
-     * bodies exert nothing: their moment ½ E (2 p λ) is zero) */
-    memset(cf, 0, 6 * nb * sizeof(double));
-    for (int i = 1; i <= n; i++) {
-        double *w = fe + 6 * i;
-        for (int c = 0; c < 3; c++) w[c] = m->body_mass[i] * m->gravity[c] + d->xfrc[6 * i + c];
-        for (int c = 0; c < 3; c++) w[3 + c] = d->xfrc[6 * i + 3 + c];
-    }
     /* an applied generalized force acts between a joint's two bodies: its Cartesian form is
      * R^T qfrc (14), on the body [f; 2 E^T n] and on its reference body the rest of the row */
     for (int c = 0; c < m->nv; c++) {
@@ -203,6 +194,41 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel)
     if (!vt_all_finite(d->drive_force, 3 * m->ndrive) || !vt_all_finite(d->drive_moment, 3 * m->ndrive) ||
         !vt_all_finite(d->cut_force, 3 * m->ncut) || !vt_all_finite(d->cut_moment, 3 * m->ncut))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_reactions: an effort overflowed (an ill-posed instant?)");
+    return VT_OK;
+}
+
+/* every joint's reaction (f, moment mo about P_i, global) also in body axes, and checked from
+ * the tree's ends inward (an overflow shows first where it arises) */
+static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
+{
+    for (int i = m->nbody; i >= 1; i--) {
+        const double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i, *Ai = d->A + 9 * i;
+        vt_mulmat3t(d->jnt_force_body + 3 * i, Ai, f);
+        vt_mulmat3t(d->jnt_moment_body + 3 * i, Ai, mo);
+        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE,
+                           "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",
+                           i, fabs(d->xdd[vt_xoff(i)]));
+    }
+    return VT_OK;
+}
+
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1;
+    double *alpha = d->work, *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
+    vt_accelerations_add(m, d, d->qdd, d->xdd, alpha); /* its 6 (n+1) of scratch past α: fe, cf */
+
+    /* applied: gravity, xfrc, and every row and generalized force */
+    memset(cf, 0, 6 * nb * sizeof(double));
+    for (int i = 1; i <= n; i++) {
+        double *w = fe + 6 * i;
+        for (int c = 0; c < 3; c++) w[c] = m->body_mass[i] * m->gravity[c] + d->xfrc[6 * i + c];
+        for (int c = 0; c < 3; c++) w[3 + c] = d->xfrc[6 * i + 3 + c];
+    }
+    vt_status st = row_loads(m, d, fe);
+    if (st) return st;
 
     /* tree joints, inward (26) */
     for (int i = n; i >= 1; i--) {
@@ -225,12 +251,6 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel)
         }
         vt_cross3(t, s, f);
         for (int c = 0; c < 3; c++) mo[c] = Nc[c] - t[c];
-        vt_mulmat3t(d->jnt_force_body + 3 * i, Ai, f);
-        vt_mulmat3t(d->jnt_moment_body + 3 * i, Ai, mo);
-        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
-            return vt_fail(d->message, VT_ERR_NONFINITE,
-                           "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",
-                           i, fabs(d->xdd[vt_xoff(i)]));
         if (j) { /* into the parent: f and its moment about the parent's centre of mass */
             const double *rj = d->x + vt_xoff(j);
             for (int c = 0; c < 3; c++) s[c] = d->jpoint[3 * i + c] - rj[c];
@@ -241,7 +261,37 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int have_accel)
             }
         }
     }
-    return VT_OK;
+    return joint_reactions_done(m, d);
+}
+
+/* The same reactions from the subtrees' needed wrenches W̄ about O (recursive.c's square path,
+ * which has them from M* q̈ − Q): the reaction at joint i is W̄_i less the rows' and the
+ * generalized forces' wrenches G over i's subtree, about O, its moment then moved to P_i.
+ * G: scratch of 6 x (nbody+1). */
+vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G)
+{
+    const int n = m->nbody;
+    memset(G, 0, 6 * ((size_t)n + 1) * sizeof(double));
+    vt_status st = row_loads(m, d, G);
+    if (st) return st;
+    for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->x + vt_xoff(i), G + 6 * i); /* about O */
+    for (int i = n; i >= 1; i--) {
+        const int j = m->body_parent[i];
+        if (j)
+            for (int c = 0; c < 6; c++) G[6 * j + c] += G[6 * i + c];
+    }
+    for (int i = 1; i <= n; i++) {
+        const double *W = Wbar + 6 * i, *g = G + 6 * i;
+        double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
+        for (int c = 0; c < 3; c++) {
+            f[c] = W[3 + c] - g[c];
+            mo[c] = W[c] - g[3 + c];
+        }
+        double t[3];
+        vt_cross3(t, d->jpoint + 3 * i, f);
+        for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+    }
+    return joint_reactions_done(m, d);
 }
 
 void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, double tol)

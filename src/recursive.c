@@ -233,9 +233,10 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
         crba(m, d, d->work);
         bias(m, d, d->work);
         if ((st = vt_solve(m, d))) return st;
-        return vt_reactions_impl(m, d, 0);
+        return vt_reactions_impl(m, d);
     }
-    double *alpha = d->work, *W = alpha + 9 * nb; /* α, then vt_accelerations_add's 6 (n+1) */
+    /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
+    double *alpha = d->work, *G = alpha + 3 * nb, *W = alpha + 9 * nb;
     vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
     for (int a = 0; a < nv; a++) {
@@ -243,7 +244,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
         d->kkt_rhs[nv + a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
     }
     if ((st = vt_solve_square_end(m, d, rcond))) return st;
-    return vt_reactions_impl(m, d, 1);
+    return vt_reactions_subtree(m, d, W, G);
 }
 
 static int has_base(const vt_model *m)
@@ -283,5 +284,5 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     crba(m, d, d->work);
     bias(m, d, d->work);
     if ((st = vt_solve(m, d))) return st;
-    return vt_reactions_impl(m, d, 0);
+    return vt_reactions_impl(m, d);
 }
