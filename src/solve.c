@@ -469,10 +469,15 @@ static int square_second(const vt_model *m, vt_data *d)
     double *A = d->kkt, *s = d->kkt_scale, *g = d->kkt_rhs + n;
     int info = 0;
     for (int a = 0; a < n; a++) g[a] *= s[a];
-    if (small_fits(d, n, 1)) { /* the inverse is in lwork (square_first) */
+    if (small_fits(d, n, 1)) { /* the inverse X is in lwork (square_first): λ = X^T g, by loops at n ≤ 16 */
+        const double *X = d->lwork;
         double *h = d->lwork + (size_t)n * (size_t)n;
         memcpy(h, g, (size_t)n * sizeof(double));
-        cblas_dgemv(CblasColMajor, CblasTrans, n, n, 1.0, d->lwork, n, h, 1, 0.0, g, 1);
+        for (int a = 0; a < n; a++) {
+            double v = 0.0;
+            for (int r = 0; r < n; r++) v += X[r + (size_t)a * (size_t)n] * h[r];
+            g[a] = v;
+        }
     } else {
         dgetrs_("T", &n, &one, A, &n, d->ipiv, g, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
