@@ -15,6 +15,10 @@
  * reactions are balanced; it is then added into the parent. Reported in global axes and in
  * the body's axes, f' = A^T f, n' = A^T n (27)-(28). The drives' efforts are among the
  * applied forces, never inside the reactions: a revolute reaction moment has no axial part.
+ * Summed over the subtree below joint i instead of counted down body by body, the same balance
+ * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about the origin (inertia
+ * less gravity and applied loads) and G_i its rows' and generalized forces' wrenches, the
+ * moment then moved to P_i; the recursive square path has W̄ already (vt_reactions_subtree).
  */
 #include <string.h>
 

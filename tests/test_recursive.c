@@ -220,8 +220,10 @@ static void test_scenes(void **state)
                                   : vt_scene_fourbar_assemble(m, dd, th, w, NULL, NULL), 0);
             memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
             memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-            dr->qfrc[0] = dd->qfrc[0] = 0.7; /* and an applied torque on the crank */
-            dr->xfrc[6 * 2 + 2] = dd->xfrc[6 * 2 + 2] = -3.0; /* and a force on the coupler */
+            /* applied loads: a torque on every rate (the coupler's act between two moving
+             * bodies) and a force on the coupler */
+            for (int c = 0; c < m->nv; c++) dr->qfrc[c] = dd->qfrc[c] = 0.7 - 0.3 * c;
+            dr->xfrc[6 * 2 + 2] = dd->xfrc[6 * 2 + 2] = -3.0;
             both(m, dr, dd, 1);
         }
         vt_data_free(dr);
