@@ -11,6 +11,8 @@
  *   composite inertia    Ī_i = Σ_subtree [J − m c̃ c̃, m c̃; −m c̃, m I]  about O, (m, h = m c, J_O)
  *   M* (3)               M*_ab = s_b · (Ī_i s_a),  i the body of rate a, b on i's path
  *                        (Ī s = (J_O w + h × v, m v + w × h))
+ *   M*_aa alone          Σ_k m_k |v_a + w_a × c_k|² + u^T J'_k u,  u = A_k^T w_a, k below rate a
+ *                        (the square path's scaling: twice the kinetic energy of s_a)
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
  * With every rate driven by one joint drive (the model's joint_driven), q̈ = f''(t) is known
@@ -210,6 +212,28 @@ static vt_status inward(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+/* M*'s diagonal without the composite inertias: M*_aa = s_a · (Ī_i s_a) is twice the kinetic
+ * energy of the bodies k below rate a moving with its twist s_a = (w, v) alone,
+ *   M*_aa = Σ_k  m_k |v + w × c_k|² + u^T J'_k u,   u = A_k^T w,
+ * summed body by body over each body's path (no base bodies: their ṗ rates are not twists). */
+static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
+{
+    memset(diag, 0, (size_t)m->nv * sizeof(double));
+    for (int k = 1; k <= m->nbody; k++) {
+        const double *c = d->x + vt_xoff(k), *A = d->A + 9 * k, *J = m->body_inertia + 9 * k, mass = m->body_mass[k];
+        const int *path = m->path_dof + m->body_pathadr[k];
+        for (int p = 0; p < m->body_pathnum[k]; p++) {
+            const double *w = d->twist + 6 * path[p], *v = w + 3;
+            double t[3], u[3], Ju[3];
+            vt_copy3(t, v);
+            vt_addcross3(t, w, c);
+            vt_mulmat3t(u, A, w);
+            vt_mulmat3(Ju, J, u);
+            diag[path[p]] += mass * vt_dot3(t, t) + vt_dot3(u, Ju);
+        }
+    }
+}
+
 /* Square Φ_q (as many rows as rates, e.g. the crank-driven four-bar): q̈ = Φ_q^-1 γ needs only
  * M*'s diagonal, for the scaling, and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
  * the needed wrenches W at the full accelerations, one inward pass as for joint drives: neither
@@ -218,14 +242,8 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
 {
     const int nv = m->nv;
     const size_t nb = (size_t)m->nbody + 1;
-    double *Ic = d->work, rcond = 0.0;
-    composite(m, d, Ic);
-    for (int a = 0; a < nv; a++) {
-        const double *s = d->twist + 6 * a;
-        double F[6];
-        inertia_twist(F, Ic + 13 * m->dof_body[a], s);
-        d->kkt_scale[a] = pair(s, s + 3, F); /* M*_aa */
-    }
+    double rcond = 0.0;
+    mass_diagonal(m, d, d->kkt_scale);
     const int r = vt_solve_square_begin(m, d, d->kkt_scale, &rcond);
     if (r < 0) return (vt_status)r;
     vt_status st;

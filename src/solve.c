@@ -436,10 +436,8 @@ static int square_first(const vt_model *m, vt_data *d, const double *mdiag, int 
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     double rcond = 0.0;
     const int inverse = info == 0 && small_inverse(d, n, 1);
-    if (inverse) { /* the inverse and y in one solve: [I, γ] */
-        const int ncol = n + 1;
-        memcpy(d->lwork + (size_t)n * (size_t)n, d->gamma, (size_t)n * sizeof(double));
-        dgetrs_("N", &n, &ncol, A, &n, d->ipiv, d->lwork, &n, &info, 1);
+    if (inverse) { /* the inverse X */
+        dgetrs_("N", &n, &n, A, &n, d->ipiv, d->lwork, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
         rcond = rcond_from_inverse(d->lwork, n, anorm);
     } else if (info == 0) {
@@ -448,10 +446,13 @@ static int square_first(const vt_model *m, vt_data *d, const double *mdiag, int 
     }
     *rcond_out = rcond * rcond;
     if (!(*rcond_out >= m->rcond_min)) return 1;
-    /* y = (Φ_q D)^-1 γ, q̈ = D y: with the inverse at hand (small systems) from the same
-     * solve, else with the LU factors */
+    /* y = (Φ_q D)^-1 γ, q̈ = D y: with the inverse at hand (small systems) by loops, else with
+     * the LU factors */
     if (inverse) {
-        memcpy(x, d->lwork + (size_t)n * (size_t)n, (size_t)n * sizeof(double));
+        const double *X = d->lwork;
+        for (int r = 0; r < n; r++) x[r] = 0.0;
+        for (int c = 0; c < n; c++)
+            for (int r = 0; r < n; r++) x[r] += X[r + (size_t)c * (size_t)n] * d->gamma[c];
     } else {
         const int one = 1;
         memcpy(x, d->gamma, (size_t)n * sizeof(double));
