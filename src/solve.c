@@ -99,7 +99,7 @@ static double rcond_from_inverse(const double *X, int n, double anorm)
     for (int c = 0; c < n; c++) {
         double cs = 0.0;
         for (int r = 0; r < n; r++) cs += fabs(X[r + (size_t)c * (size_t)n]);
-        xn = fmax(xn, cs);
+        xn = cs > xn ? cs : xn; /* fmax without the call (a NaN is skipped by both) */
     }
     return anorm > 0.0 && xn > 0.0 ? 1.0 / (anorm * xn) : 0.0;
 }
@@ -429,7 +429,7 @@ static int square_first(const vt_model *m, vt_data *d, const double *mdiag, int 
             A[r + (size_t)c * (size_t)n] = v;
             cs += fabs(v);
         }
-        anorm = fmax(anorm, cs);
+        anorm = cs > anorm ? cs : anorm;
     }
     int info = 0;
     dgetf2_(&n, &n, A, &n, d->ipiv, &info);
@@ -522,8 +522,12 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
     double *s = d->kkt_scale, *x = d->kkt_rhs, *lam = d->kkt_rhs + nv;
     scaling(m, d, s, 1);
     const double c = s[nv];
-    for (int j = 0; j < nv; j++)
-        for (int i = j; i < nv; i++) L[i + (size_t)j * (size_t)nv] = d->Mstar[i + (size_t)j * (size_t)nv] * s[i] * s[j];
+    for (int j = 0; j < nv; j++) {
+        const double *restrict Mc = d->Mstar + (size_t)j * (size_t)nv;
+        double *restrict Lc = L + (size_t)j * (size_t)nv;
+        const double sj = s[j];
+        for (int i = j; i < nv; i++) Lc[i] = Mc[i] * s[i] * sj;
+    }
     int info = 0;
     dpotf2_("L", &nv, L, &nv, &info, 1);
     if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
@@ -532,8 +536,8 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
     for (int k = 0; k < nv; k++) {
         const double lk = L[k + (size_t)k * (size_t)nv];
         if (!(lk >= 1e-4)) return 2;
-        lmin = fmin(lmin, lk);
-        lmax = fmax(lmax, lk);
+        lmin = lk < lmin ? lk : lmin; /* not fmin/fmax: lk is a number here, and they are calls */
+        lmax = lk > lmax ? lk : lmax;
     }
     /* B = [Φ̃^T, D Q], then L^-1 B */
     for (int r = 0; r < nc; r++)
