@@ -50,8 +50,10 @@ static void subtree_sum(const vt_model *m, double *W, int stride)
 {
     for (int i = m->nbody; i >= 1; i--) {
         const int j = m->body_parent[i];
-        if (j > 0)
-            for (int c = 0; c < stride; c++) W[stride * j + c] += W[stride * i + c];
+        if (j <= 0) continue;
+        double *restrict dst = W + stride * j; /* a parent precedes its children: no overlap */
+        const double *restrict src = W + stride * i;
+        for (int c = 0; c < stride; c++) dst[c] += src[c];
     }
 }
 
@@ -80,7 +82,8 @@ static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (n
         I[0] = mass;
         for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
         for (int col = 0; col < 3; col++)
-            for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] + mass * ((r == col) * c2 - c[r] * c[col]);
+            for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
+        for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
     }
     subtree_sum(m, Ic, 13);
 }
