@@ -104,6 +104,35 @@ static double rcond_from_inverse(const double *X, int n, double anorm)
     return anorm > 0.0 && xn > 0.0 ? 1.0 / (anorm * xn) : 0.0;
 }
 
+/* Cholesky of the symmetric n x n K (its lower triangle; 1-norm anorm) and its reciprocal
+ * condition into *rcond (0 when K is not positive definite): exact from the inverse for n ≤ 16,
+ * which then also solves, dpocon's estimate above; once factorized, b (n) is solved in place.
+ * Returns 0 or a negative vt_status. */
+static int chol_solve(vt_data *d, double *K, int n, double anorm, double *b, double *rcond)
+{
+    int info = 0;
+    *rcond = 0.0;
+    dpotf2_("L", &n, K, &n, &info, 1);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
+    if (info > 0) return 0;
+    if (small_inverse(d, n, 1)) { /* K^-1 and the solution in one solve: [I, b] */
+        const int ncol = n + 1;
+        double *xb = d->lwork + (size_t)n * (size_t)n;
+        memcpy(xb, b, (size_t)n * sizeof(double));
+        dpotrs_("L", &n, &ncol, K, &n, d->lwork, &n, &info, 1);
+        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+        *rcond = rcond_from_inverse(d->lwork, n, anorm);
+        memcpy(b, xb, (size_t)n * sizeof(double));
+        return 0;
+    }
+    dpocon_("L", &n, K, &n, &anorm, rcond, d->lwork, d->liwork, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
+    const int one = 1;
+    dpotrs_("L", &n, &one, K, &n, b, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+    return 0;
+}
+
 /* The symmetric scaling D of (5): the rates by the mass metric, d_a = M*_aa^(-1/2), into
  * s[0..nv); with rows, every constraint row by one common factor, 1 / (largest row norm of
  * Φ_q D), into s[nv..nv+nc). One factor for all rows keeps their relative sizes: a drive whose
@@ -353,7 +382,7 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank)
  * the work. Returns 0, 1 (below rcond_min) or a negative vt_status. */
 static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
-    const int nv = m->nv, nc = m->nc, nf = nv - nc, one = 1;
+    const int nv = m->nv, nc = m->nc, nf = nv - nc;
     int *freev = d->liwork + nv + nc;                    /* past dpocon's iwork (nf) */
     double *K = d->kkt, *b = d->kkt_rhs, *s = d->kkt_scale, *qdd = d->xdd; /* xdd: free until vt_reactions */
     for (int c = 0; c < nv; c++) qdd[c] = 0.0;
@@ -373,23 +402,12 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
         for (int r = 0; r < nc; r++) v -= d->Mstar[freev[i] + (size_t)m->con_dof[r] * (size_t)nv] * d->gamma[r];
         b[i] = v * s[i];
     }
-    int info = 0;
     const double anorm = dlansy_("1", "L", &nf, K, &nf, d->lwork, 1, 1);
-    dpotf2_("L", &nf, K, &nf, &info, 1);
-    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
     double rcond = 0.0;
-    if (info == 0 && small_inverse(d, nf, 0)) {
-        dpotrs_("L", &nf, &nf, K, &nf, d->lwork, &nf, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
-        rcond = rcond_from_inverse(d->lwork, nf, anorm);
-    } else if (info == 0) {
-        dpocon_("L", &nf, K, &nf, &anorm, &rcond, d->lwork, d->liwork, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
-    }
+    const int st = chol_solve(d, K, nf, anorm, b, &rcond);
+    if (st) return st;
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return 1;
-    dpotrs_("L", &nf, &one, K, &nf, b, &nf, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
     for (int i = 0; i < nf; i++) qdd[freev[i]] = b[i] * s[i];
     if (!vt_all_finite(qdd, nv)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     memcpy(d->qdd, qdd, (size_t)nv * sizeof(double));
@@ -569,37 +587,17 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
         cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
-    int inverse = 0;
     if (nc == 1) {
         rcond = S[0] > 0.0 ? 1.0 : 0.0;
+        if (rcond > 0.0) lam[0] /= S[0];
     } else {
         const double snorm = dlansy_("1", "L", &nc, S, &nc, d->lwork, 1, 1);
-        dpotf2_("L", &nc, S, &nc, &info, 1);
-        if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
-        inverse = info == 0 && small_inverse(d, nc, 1);
-        if (inverse) { /* S^-1 and λ̃ in one solve: [I, c γ − Y^T z] */
-            const int ncol = nc + 1;
-            memcpy(d->lwork + (size_t)nc * (size_t)nc, lam, (size_t)nc * sizeof(double));
-            dpotrs_("L", &nc, &ncol, S, &nc, d->lwork, &nc, &info, 1);
-            if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
-            rcond = rcond_from_inverse(d->lwork, nc, snorm);
-        } else if (info == 0) {
-            dpocon_("L", &nc, S, &nc, &snorm, &rcond, d->lwork, d->liwork, &info, 1);
-            if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
-        }
+        const int st = chol_solve(d, S, nc, snorm, lam, &rcond);
+        if (st) return st;
     }
     rcond *= (lmin / lmax) * (lmin / lmax);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return 1;
-    if (nc == 1) {
-        lam[0] /= S[0];
-    } else if (inverse) {
-        memcpy(lam, d->lwork + (size_t)nc * (size_t)nc, (size_t)nc * sizeof(double));
-    } else {
-        const int one = 1;
-        dpotrs_("L", &nc, &one, S, &nc, lam, &nc, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
-    }
     /* ỹ = L^-T (z + Y λ̃) */
     memcpy(x, z, (size_t)nv * sizeof(double));
     if (few) {

@@ -340,19 +340,28 @@ static void run_inverse_tip(mj_peer *s)
     tip_force_post(s, tip, jf / jj);
 }
 
+/* chain tip: MuJoCo's forward pipeline up to the accelerations (kinematics, M and its factor,
+ * qfrc_bias), then the tip, its Jacobian and the Jacobian's derivative */
+static void tip_forward(mj_peer *s, mjtNum tip[3])
+{
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    set_state(s);
+    mj_fwdPosition(m, d);
+    mj_fwdVelocity(m, d);
+    tip_point(s, tip);
+    mj_jac(m, d, s->jac, NULL, tip, s->body[m->nv - 1]);
+    mj_jacDot(m, d, s->jacd, NULL, tip, s->body[m->nv - 1]);
+}
+
 /* chain tip, solved: qacc from the tip's y acceleration s->ades (the method is said at the top) */
 static void run_solve_tip(mj_peer *s)
 {
     const mjModel *m = s->m;
     mjData *d = s->d;
     const int nv = m->nv;
-    set_state(s);
-    mj_fwdPosition(m, d);
-    mj_fwdVelocity(m, d);
     mjtNum tip[3];
-    tip_point(s, tip);
-    mj_jac(m, d, s->jac, NULL, tip, s->body[nv - 1]);
-    mj_jacDot(m, d, s->jacd, NULL, tip, s->body[nv - 1]);
+    tip_forward(s, tip);
     const mjtNum *Jy = s->jac + nv, *Jdy = s->jacd + nv;
     for (int i = 0; i < nv; i++) {
         s->rhs[i] = -d->qfrc_bias[i];
@@ -373,16 +382,9 @@ static void run_solve_tip(mj_peer *s)
 /* chain tip: the drive's acceleration at the given state, J_y qacc + Jdot_y qvel (once, at setup) */
 static mjtNum tip_acceleration(mj_peer *s)
 {
-    const mjModel *m = s->m;
-    mjData *d = s->d;
-    const int nv = m->nv;
-    set_state(s);
-    mj_fwdPosition(m, d);
-    mj_fwdVelocity(m, d);
+    const int nv = s->m->nv;
     mjtNum tip[3], a = 0.0;
-    tip_point(s, tip);
-    mj_jac(m, d, s->jac, NULL, tip, s->body[nv - 1]);
-    mj_jacDot(m, d, s->jacd, NULL, tip, s->body[nv - 1]);
+    tip_forward(s, tip);
     for (int i = 0; i < nv; i++) a += s->jac[nv + i] * s->qdd[i] + s->jacd[nv + i] * s->qd[i];
     return a;
 }
