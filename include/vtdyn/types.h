@@ -309,7 +309,9 @@ typedef struct vt_data {
                              ///< the Schur complement Φ M*^-1 Φ^T's times the squared ratio of M*'s
                              ///< smallest to largest Cholesky pivot; with only joint-drive rows the
                              ///< free rates' M*; 1 when nothing was factorized (a fully joint-driven
-                             ///< recursive instant). In every case it falls toward a singular pose.
+                             ///< recursive instant). It falls toward a singular pose where rows
+                             ///< lose independence; not for a lone row, which the scaling normalizes
+                             ///< (its losing grip does not show here).
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
     int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent)
     double residual;         ///< max |Φ_q q̈ − γ| over all rows after a redundant solve (0 otherwise)
