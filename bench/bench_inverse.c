@@ -9,7 +9,7 @@
  * (vt_inverse_dynamics_recursive), and the peers when they are built in (bench/peers/):
  * Pinocchio and MuJoCo, on the same chain and the same q, q̇, q̈, their torques checked against
  * ours before they are timed (MuJoCo also on the double link, both four-bars and the tip-driven
- * chain).
+ * chain, there both handed our q̈ and solving q̈ itself from the tip's acceleration).
  *
  * Timing: every method of a row is run in turn, round after round (interleaved, so that the
  * machine's slow stretches hit all of them alike); a round times a batch of calls sized to take
