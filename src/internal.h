@@ -88,6 +88,18 @@ static inline void vt_mulEp(double r[3], const double p[4], const double a[4])
     r[2] = -p[3] * a[0] - p[2] * a[1] + p[1] * a[2] + p[0] * a[3];
 }
 
+/* subtree sums, inward: W_parent += W_i, stride doubles per body ((nbody+1) x stride) */
+static inline void vt_subtree_sum(const vt_model *m, double *W, int stride)
+{
+    for (int i = m->nbody; i >= 1; i--) {
+        const int j = m->body_parent[i];
+        if (j <= 0) continue;
+        double *restrict dst = W + stride * j; /* a parent precedes its children: no overlap */
+        const double *restrict src = W + stride * i;
+        for (int c = 0; c < stride; c++) dst[c] += src[c];
+    }
+}
+
 static inline int vt_all_finite(const double *a, int n)
 {
     for (int k = 0; k < n; k++)

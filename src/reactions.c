@@ -279,11 +279,7 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
     vt_status st = row_loads(m, d, G);
     if (st) return st;
     for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->x + vt_xoff(i), G + 6 * i); /* about O */
-    for (int i = n; i >= 1; i--) {
-        const int j = m->body_parent[i];
-        if (j)
-            for (int c = 0; c < 6; c++) G[6 * j + c] += G[6 * i + c];
-    }
+    vt_subtree_sum(m, G, 6);
     for (int i = 1; i <= n; i++) {
         const double *W = Wbar + 6 * i, *g = G + 6 * i;
         double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;

@@ -45,23 +45,11 @@ static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i,
     vt_addcross3(W, r, W + 3);
 }
 
-/* subtree sums, inward: W̄_parent += W̄_i */
-static void subtree_sum(const vt_model *m, double *W, int stride)
-{
-    for (int i = m->nbody; i >= 1; i--) {
-        const int j = m->body_parent[i];
-        if (j <= 0) continue;
-        double *restrict dst = W + stride * j; /* a parent precedes its children: no overlap */
-        const double *restrict src = W + stride * i;
-        for (int c = 0; c < stride; c++) dst[c] += src[c];
-    }
-}
-
 /* W̄: every subtree's needed wrench about O at the accelerations d->xdd and alpha (3 x (nbody+1)) */
 static void subtree_wrenches(const vt_model *m, const vt_data *d, const double *alpha, double *W /* 6 x (nbody+1) */)
 {
     for (int i = 1; i <= m->nbody; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
-    subtree_sum(m, W, 6);
+    vt_subtree_sum(m, W, 6);
 }
 
 static double pair(const double w[3], const double v[3], const double W[6])
@@ -85,7 +73,7 @@ static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (n
             for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
         for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
     }
-    subtree_sum(m, Ic, 13);
+    vt_subtree_sum(m, Ic, 13);
 }
 
 /* F = Ī s for a composite inertia I (13) and a twist s = (w, v) about O */
@@ -130,7 +118,7 @@ static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
         for (int k = 0; k < 3; k++) al[k] *= 2.0;
         body_wrench(W + 6 * i, m, d, i, d->Sdqd + o, al);
     }
-    subtree_sum(m, W, 6);
+    vt_subtree_sum(m, W, 6);
     for (int a = 0; a < m->nv; a++) {
         const double *w = d->twist + 6 * a;
         d->Q[a] = d->qfrc[a] - pair(w, w + 3, W + 6 * m->dof_body[a]);
@@ -215,6 +203,15 @@ static vt_status inward(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+/* M* and Q formed, (5) solved by vt_solve, the reactions inward: constraints already evaluated */
+static vt_status factorized_instant(const vt_model *m, vt_data *d)
+{
+    crba(m, d, d->work);
+    bias(m, d, d->work);
+    vt_status st = vt_solve(m, d);
+    return st ? st : vt_reactions_impl(m, d);
+}
+
 /* M*'s diagonal without the composite inertias: M*_aa = s_a · (Ī_i s_a) is twice the kinetic
  * energy of the bodies k below rate a moving with its twist s_a = (w, v) alone,
  *   M*_aa = Σ_k  m_k |v + w × c_k|² + u^T J'_k u,   u = A_k^T w,
@@ -249,13 +246,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     mass_diagonal(m, d, d->kkt_scale);
     const int r = vt_solve_square_begin(m, d, d->kkt_scale, &rcond);
     if (r < 0) return (vt_status)r;
-    vt_status st;
-    if (r == 1) {
-        crba(m, d, d->work);
-        bias(m, d, d->work);
-        if ((st = vt_solve(m, d))) return st;
-        return vt_reactions_impl(m, d);
-    }
+    if (r == 1) return factorized_instant(m, d);
     /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
     double *alpha = d->work, *G = alpha + 3 * nb, *W = alpha + 9 * nb;
     vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha);
@@ -264,8 +255,8 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
         const double *s = d->twist + 6 * a;
         d->kkt_rhs[nv + a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
     }
-    if ((st = vt_solve_square_end(m, d, rcond))) return st;
-    return vt_reactions_subtree(m, d, W, G);
+    const vt_status st = vt_solve_square_end(m, d, rcond);
+    return st ? st : vt_reactions_subtree(m, d, W, G);
 }
 
 static int has_base(const vt_model *m)
@@ -302,8 +293,5 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     if ((st = vt_constraints_impl(m, d, 0))) return st;
     /* square, exactly constrained, no base body (whose ṗ rates carry (4)'s normal part): */
     if (m->nc == m->nv && !m->allow_redundant && !has_base(m)) return square_instant(m, d);
-    crba(m, d, d->work);
-    bias(m, d, d->work);
-    if ((st = vt_solve(m, d))) return st;
-    return vt_reactions_impl(m, d);
+    return factorized_instant(m, d);
 }
