@@ -76,16 +76,6 @@ static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (n
     vt_subtree_sum(m, Ic, 13);
 }
 
-/* F = Ī s for a composite inertia I (13) and a twist s = (w, v) about O */
-static void inertia_twist(double F[6], const double *I, const double *s)
-{
-    const double *h = I + 1, *JO = I + 4, *w = s, *v = s + 3;
-    vt_mulmat3(F, JO, w);
-    vt_addcross3(F, h, v);
-    for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
-    vt_addcross3(F + 3, w, h);
-}
-
 /* M* by composite bodies */
 static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
 {
@@ -94,8 +84,13 @@ static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
     memset(d->Mstar, 0, (size_t)nv * (size_t)nv * sizeof(double));
     for (int a = 0; a < nv; a++) {
         const int i = m->dof_body[a];
+        /* F = Ī s_a = (J_O w + h × v, m v + w × h) */
+        const double *I = Ic + 13 * i, *h = I + 1, *w = d->twist + 6 * a, *v = w + 3;
         double F[6];
-        inertia_twist(F, Ic + 13 * i, d->twist + 6 * a);
+        vt_mulmat3(F, I + 4, w);
+        vt_addcross3(F, h, v);
+        for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
+        vt_addcross3(F + 3, w, h);
         const int *path = m->path_dof + m->body_pathadr[i];
         for (int k = 0; k < m->body_pathnum[i]; k++) {
             const int b = path[k];
