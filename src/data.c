@@ -30,6 +30,12 @@ static size_t work_size(const vt_model *m)
     if (15 * nb > w) w = 15 * nb; /* reactions: α, applied and children's wrenches */
     if (18 * nb + 6 * (size_t)m->ncut > w) w = 18 * nb + 6 * (size_t)m->ncut; /* reaction sensitivity */
     if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
+    /* the articulated-body solve (recursive.c): I^A, p or A for nc + 1 right sides and the
+     * composite inertias per body; U, D, u and x per rate; S and λ */
+    const size_t nv = (size_t)m->nv, nr = (size_t)m->nc + 1;
+    size_t aba = (80 + 6 * nr) * nb + (9 + 2 * nr) * nv + nr * nr;
+    if (53 * nb > aba) aba = 53 * nb; /* then its reactions: α, T, W̄, G past W⁰, I_O, Ī */
+    if (aba > w) w = aba;
     return w + 12 * (size_t)m->nc; /* on top: the rows' wrenches (reactions.c) */
 }
 

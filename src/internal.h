@@ -156,6 +156,11 @@ void vt_mark_unique(const vt_model *m, vt_data *d);
 /* vt_solve's square path in two halves for the recursive evaluation (solve.c) */
 int vt_solve_square_begin(const vt_model *m, vt_data *d, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond);
+/* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten by the
+ * factor; n ≤ 1 needs none), b solved in place, S's reciprocal condition into *rcond: 1 for
+ * n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above, 0 when S is not positive
+ * definite (nothing solved). Returns 0 or a negative vt_status (solve.c). */
+int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
 /* vt_reactions without the argument checks (ẍ and α from d->qdd) */
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar

@@ -57,22 +57,35 @@ static double pair(const double w[3], const double v[3], const double W[6])
     return vt_dot3(w, W) + vt_dot3(v, W + 3);
 }
 
+/* body i's spatial inertia about O in 13 numbers: (m, h = m c, J_O = J − m c̃ c̃), J = A J' A^T */
+static void inertia_O(double I[13], const vt_model *m, const vt_data *d, int i)
+{
+    double J[9], t[9];
+    const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+    for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
+    for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
+    const double c2 = vt_dot3(c, c);
+    I[0] = mass;
+    for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
+    for (int col = 0; col < 3; col++)
+        for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
+    for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
+}
+
+/* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
+static void inertia_mul(double F[6], const double I[13], const double w[3], const double v[3])
+{
+    const double *h = I + 1;
+    vt_mulmat3(F, I + 4, w);
+    vt_addcross3(F, h, v);
+    for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
+    vt_addcross3(F + 3, w, h);
+}
+
 /* composite inertias about O, summed over subtrees: (m, h = m c, J_O) per body */
 static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (nbody+1) */)
 {
-    for (int i = 1; i <= m->nbody; i++) {
-        double *I = Ic + 13 * i, J[9], t[9];
-        const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
-        /* J = A J' A^T, then J_O = J − m c̃ c̃ = J + m (|c|² I − c c^T) */
-        for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
-        for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
-        const double c2 = vt_dot3(c, c);
-        I[0] = mass;
-        for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
-        for (int col = 0; col < 3; col++)
-            for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
-        for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
-    }
+    for (int i = 1; i <= m->nbody; i++) inertia_O(Ic + 13 * i, m, d, i);
     vt_subtree_sum(m, Ic, 13);
 }
 
@@ -84,13 +97,9 @@ static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
     memset(d->Mstar, 0, (size_t)nv * (size_t)nv * sizeof(double));
     for (int a = 0; a < nv; a++) {
         const int i = m->dof_body[a];
-        /* F = Ī s_a = (J_O w + h × v, m v + w × h) */
-        const double *I = Ic + 13 * i, *h = I + 1, *w = d->twist + 6 * a, *v = w + 3;
+        const double *w = d->twist + 6 * a;
         double F[6];
-        vt_mulmat3(F, I + 4, w);
-        vt_addcross3(F, h, v);
-        for (int k = 0; k < 3; k++) F[3 + k] = I[0] * v[k];
-        vt_addcross3(F + 3, w, h);
+        inertia_mul(F, Ic + 13 * i, w, w + 3); /* Ī s_a */
         const int *path = m->path_dof + m->body_pathadr[i];
         for (int k = 0; k < m->body_pathnum[i]; k++) {
             const int b = path[k];
@@ -103,16 +112,20 @@ static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
     }
 }
 
+/* body i's needed wrench at q̈ = 0 (the accelerations Ṡq̇, α = 2 E p̈) */
+static void bias_wrench(double W[6], const vt_model *m, const vt_data *d, int i)
+{
+    const int o = vt_xoff(i);
+    double al[3];
+    vt_mulEp(al, d->x + o + 3, d->Sdqd + o + 3);
+    for (int k = 0; k < 3; k++) al[k] *= 2.0;
+    body_wrench(W, m, d, i, d->Sdqd + o, al);
+}
+
 /* Q = qfrc − S^T (needed wrenches at q̈ = 0) */
 static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
 {
-    for (int i = 1; i <= m->nbody; i++) {
-        const int o = vt_xoff(i);
-        double al[3];
-        vt_mulEp(al, d->x + o + 3, d->Sdqd + o + 3); /* α = 2 E p̈ */
-        for (int k = 0; k < 3; k++) al[k] *= 2.0;
-        body_wrench(W + 6 * i, m, d, i, d->Sdqd + o, al);
-    }
+    for (int i = 1; i <= m->nbody; i++) bias_wrench(W + 6 * i, m, d, i);
     vt_subtree_sum(m, W, 6);
     for (int a = 0; a < m->nv; a++) {
         const double *w = d->twist + 6 * a;
@@ -254,6 +267,180 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     return st ? st : vt_reactions_subtree(m, d, W, G);
 }
 
+/* G = body inertia I (inertia_O's form) as a full 6x6, columns of 8 (the last two zero, so that
+ * a column is two 4-wide vectors), acting on (w, v): [J_O  h̃; h̃^T  m 1] with h̃ v = h × v */
+static void inertia_full(double *restrict G, const double *restrict I)
+{
+    const double *h = I + 1, *J = I + 4;
+    for (int k = 0; k < 48; k++) G[k] = 0.0;
+    for (int c = 0; c < 3; c++)
+        for (int r = 0; r < 3; r++) G[r + 8 * c] = J[r + 3 * c];
+    G[0 + 8 * 4] = -h[2], G[0 + 8 * 5] = h[1], G[1 + 8 * 3] = h[2];
+    G[1 + 8 * 5] = -h[0], G[2 + 8 * 3] = -h[1], G[2 + 8 * 4] = h[0];
+    G[3 + 8 * 1] = h[2], G[3 + 8 * 2] = -h[1], G[4 + 8 * 0] = -h[2];
+    G[4 + 8 * 2] = h[0], G[5 + 8 * 0] = h[1], G[5 + 8 * 1] = -h[0];
+    G[3 + 8 * 3] = G[4 + 8 * 4] = G[5 + 8 * 5] = I[0];
+}
+
+/* y += a x over 8 (one column of I^A: two 4-wide vectors) */
+static inline void axpy8(double *restrict y, double a, const double *restrict x)
+{
+    for (int r = 0; r < 8; r++) y[r] += a * x[r];
+}
+
+static double dot6(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+}
+
+/* Fewer independent rows than rates, no base body: (5) by articulated bodies, without M*.
+ * Featherstone's articulated-body recursion on the twists s_a about O, each rate of a multi-rate
+ * joint a massless link of its own, solves M* x = b for several right sides b at once:
+ *   inward, body i's rates last first, I^A starting as i's inertia about O plus what its
+ *   children pass, p as i's b-wrench plus theirs:
+ *     U_a = I^A s_a,  D_a = s_a · U_a,  u_a = b_a − s_a · p,
+ *     I^A ← I^A − U_a U_a^T / D_a,  p ← p + U_a u_a / D_a          (then passed to the parent)
+ *   outward, A the parent's spatial acceleration (about O):
+ *     x_a = (u_a − U_a · A) / D_a,  A ← A + s_a x_a
+ * For b = Q (4) p starts as the bodies' needed wrenches W⁰ at q̈ = 0 and b_a = qfrc_a, since
+ * Q_a = qfrc_a − s_a · W̄⁰; for b = Φ_q^T e_r, p starts at 0. With q̈ = x⁰ + X λ (2), the rows
+ * Φ_q q̈ = γ give S λ = γ − Φ_q x⁰, S = Φ_q X = Φ_q M*^-1 Φ_q^T, the Schur complement of
+ * vt_solve's Schur path, which has S̃ = c² S: the same condition. The D_a are M*'s pivots
+ * taken leaf first (rates in descending order); the reported condition is S's times min/max of
+ * D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in (0, 1]; M*_aa = s_a · Ī s_a
+ * by composite inertias) where the Schur path has its forward Cholesky pivots'
+ * (min L_kk / max L_kk)²: both fall where a motion loses its inertia.
+ * Work (d->work): W⁰ (6) and I_O (13) per body, which the reactions use after; Ī (13), I^A (48)
+ * and p (6 (nc+1)) per body; U (8), D, u and x (nc+1 each) per rate; S and λ.
+ * Fills q̈, λ; returns 0, 1 (a scaled pivot below 1e-8, or rcond below rcond_min: the
+ * factorized instant decides and diagnoses) or a negative vt_status. */
+#define PIVOT_MIN 1e-8
+static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
+{
+    const int n = m->nbody, nv = m->nv, nc = m->nc, nr = nc + 1;
+    const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
+    double *W0 = d->work, *Ib = W0 + 6 * nb, *Ic = Ib + 13 * nb;
+    double *IA = Ic + 13 * nb;     /* 48 x nb: I^A, columns of 8 (inertia_full) */
+    double *P = IA + 48 * nb;      /* 6 nr x nb: p, then A */
+    double *U = P + sr * nb;       /* 8 x nv */
+    double *Dp = U + 8 * (size_t)nv; /* nv */
+    double *u = Dp + nv;           /* nr x nv */
+    double *X = u + (size_t)nr * (size_t)nv; /* nv x nr: x⁰, then X */
+    double *S = X + (size_t)nv * (size_t)nr; /* nc x nc */
+    double *lam = S + (size_t)nc * (size_t)nc; /* nc */
+    for (int i = 1; i <= n; i++) {
+        double *p = P + sr * (size_t)i;
+        inertia_O(Ib + 13 * i, m, d, i);
+        inertia_full(IA + 48 * i, Ib + 13 * i);
+        bias_wrench(W0 + 6 * i, m, d, i);
+        for (int k = 0; k < 6; k++) p[k] = W0[6 * i + k];
+        for (size_t k = 6; k < sr; k++) p[k] = 0.0;
+    }
+    memcpy(Ic, Ib, 13 * nb * sizeof(double));
+    vt_subtree_sum(m, Ic, 13);
+    double pmin = 1.0, pmax = 0.0;
+    for (int i = n; i >= 1; i--) {
+        double *restrict G = IA + 48 * i, *restrict p = P + sr * (size_t)i;
+        for (int a = m->body_vadr[i] + m->body_nv[i] - 1; a >= m->body_vadr[i]; a--) {
+            const double *restrict s = d->twist + 6 * a;
+            double *restrict Ua = U + 8 * a, F[6];
+            for (int r = 0; r < 8; r++) Ua[r] = 0.0;
+            for (int c = 0; c < 6; c++) axpy8(Ua, s[c], G + 8 * c);
+            const double Da = dot6(s, Ua);
+            inertia_mul(F, Ic + 13 * i, s, s + 3);
+            const double piv = Da / dot6(s, F);
+            if (!(piv >= PIVOT_MIN)) return 1;
+            pmin = piv < pmin ? piv : pmin;
+            pmax = piv > pmax ? piv : pmax;
+            const double inv = 1.0 / Da;
+            Dp[a] = Da;
+            double *restrict ua = u + (size_t)nr * (size_t)a;
+            ua[0] = d->qfrc[a] - dot6(s, p);
+            for (int k = 1; k < nr; k++) ua[k] = d->Phiq[(size_t)(k - 1) + (size_t)a * (size_t)nc] - dot6(s, p + 6 * k);
+            for (int c = 0; c < 6; c++) axpy8(G + 8 * c, -Ua[c] * inv, Ua);
+            for (int k = 0; k < nr; k++) {
+                const double t = ua[k] * inv;
+                for (int r = 0; r < 6; r++) p[6 * k + r] += Ua[r] * t;
+            }
+        }
+        const int j = m->body_parent[i];
+        if (j <= 0) continue;
+        double *restrict Gj = IA + 48 * j, *restrict pj = P + sr * (size_t)j;
+        for (int k = 0; k < 48; k++) Gj[k] += G[k];
+        for (size_t k = 0; k < sr; k++) pj[k] += p[k];
+    }
+    /* outward: A of every body for every right side (P's storage; the ground's is 0) */
+    memset(P, 0, sr * sizeof(double));
+    for (int i = 1; i <= n; i++) {
+        double *restrict Ai = P + sr * (size_t)i;
+        const int j = m->body_parent[i];
+        memcpy(Ai, P + sr * (size_t)(j > 0 ? j : 0), sr * sizeof(double));
+        for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
+            const double *restrict s = d->twist + 6 * a, *restrict Ua = U + 8 * a, *restrict ua = u + (size_t)nr * (size_t)a;
+            const double inv = 1.0 / Dp[a];
+            for (int k = 0; k < nr; k++) {
+                double *restrict Ak = Ai + 6 * k;
+                const double x = (ua[k] - dot6(Ua, Ak)) * inv;
+                X[a + (size_t)k * (size_t)nv] = x;
+                for (int r = 0; r < 6; r++) Ak[r] += x * s[r];
+            }
+        }
+    }
+    /* S λ = γ − Φ_q x⁰, S = Φ_q X (lower triangle) */
+    for (int r = 0; r < nc; r++) {
+        double t = d->gamma[r];
+        for (int a = 0; a < nv; a++) t -= d->Phiq[r + (size_t)a * (size_t)nc] * X[a];
+        lam[r] = t;
+        for (int k = 0; k <= r; k++) {
+            const double *xk = X + (size_t)(k + 1) * (size_t)nv;
+            double v = 0.0;
+            for (int a = 0; a < nv; a++) v += d->Phiq[r + (size_t)a * (size_t)nc] * xk[a];
+            S[r + (size_t)k * (size_t)nc] = v;
+        }
+    }
+    double rcond = 0.0;
+    const int st = vt_solve_spd(d, S, nc, lam, &rcond);
+    if (st) return st;
+    rcond *= pmin / pmax;
+    *rcond_out = rcond;
+    if (!(rcond >= m->rcond_min)) return 1;
+    for (int a = 0; a < nv; a++) {
+        double x = X[a];
+        for (int r = 0; r < nc; r++) x += X[a + (size_t)(r + 1) * (size_t)nv] * lam[r];
+        d->qdd[a] = x;
+    }
+    memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
+    if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(d->lambda, nc))
+        return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    return 0;
+}
+
+/* (5) by articulated bodies, then the reactions from the subtrees' needed wrenches at the full
+ * accelerations, W = W⁰ + I_O T with T the part q̈ adds to each body's spatial acceleration */
+static vt_status articulated_instant(const vt_model *m, vt_data *d)
+{
+    double rcond = 0.0;
+    const int r = articulated_solve(m, d, &rcond);
+    if (r < 0) return (vt_status)r;
+    if (r == 1) return factorized_instant(m, d);
+    d->rcond = rcond;
+    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
+    d->rank = m->nc;
+    d->residual = 0.0;
+    vt_mark_unique(m, d);
+    const size_t nb = (size_t)m->nbody + 1;
+    const double *W0 = d->work, *Ib = W0 + 6 * nb;
+    double *alpha = d->work + 32 * nb, *T = alpha + 3 * nb, *W = alpha + 9 * nb, *G = alpha + 15 * nb;
+    vt_accelerations_add(m, d, d->qdd, d->xdd, alpha);
+    for (int i = 1; i <= m->nbody; i++) {
+        double *Wi = W + 6 * i;
+        inertia_mul(Wi, Ib + 13 * i, T + 6 * i, T + 6 * i + 3);
+        for (int k = 0; k < 6; k++) Wi[k] += W0[6 * i + k];
+    }
+    vt_subtree_sum(m, W, 6);
+    return vt_reactions_subtree(m, d, W, G);
+}
+
 static int has_base(const vt_model *m)
 {
     for (int i = 1; i <= m->nbody; i++)
@@ -287,6 +474,9 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
     /* square, exactly constrained, no base body (whose ṗ rates carry (4)'s normal part): */
-    if (m->nc == m->nv && !m->allow_redundant && !has_base(m)) return square_instant(m, d);
+    if (!m->allow_redundant && !has_base(m)) {
+        if (m->nc == m->nv) return square_instant(m, d);
+        if (m->nc < m->nv) return articulated_instant(m, d);
+    }
     return factorized_instant(m, d);
 }

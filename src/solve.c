@@ -133,6 +133,17 @@ static int chol_solve(vt_data *d, double *K, int n, double anorm, double *b, dou
     return 0;
 }
 
+int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
+{
+    if (n <= 1) { /* one row: S is a number, its condition exactly 1 */
+        *rcond = n == 0 || S[0] > 0.0 ? 1.0 : 0.0;
+        if (n == 1 && *rcond > 0.0) b[0] /= S[0];
+        return 0;
+    }
+    const double snorm = dlansy_("1", "L", &n, S, &n, d->lwork, 1, 1);
+    return chol_solve(d, S, n, snorm, b, rcond);
+}
+
 /* The symmetric scaling D of (5): the rates by the mass metric, d_a = M*_aa^(-1/2), into
  * s[0..nv); with rows, every constraint row by one common factor, 1 / (largest row norm of
  * Φ_q D), into s[nv..nv+nc). One factor for all rows keeps their relative sizes: a drive whose
@@ -587,14 +598,8 @@ static int schur_solve(const vt_model *m, vt_data *d, double *rcond_out)
         cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
-    if (nc == 1) {
-        rcond = S[0] > 0.0 ? 1.0 : 0.0;
-        if (rcond > 0.0) lam[0] /= S[0];
-    } else {
-        const double snorm = dlansy_("1", "L", &nc, S, &nc, d->lwork, 1, 1);
-        const int st = chol_solve(d, S, nc, snorm, lam, &rcond);
-        if (st) return st;
-    }
+    const int st = vt_solve_spd(d, S, nc, lam, &rcond);
+    if (st) return st;
     rcond *= (lmin / lmax) * (lmin / lmax);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return 1;

@@ -1,6 +1,8 @@
 /* src/recursive.c: the recursive evaluation against the dense reference path, to 1e-12
  * relative, on random trees with every joint kind, with and without drives and cut joints,
- * and on fully joint-driven chains and trees (the path that factorizes nothing). */
+ * on fully joint-driven chains and trees (the path that factorizes nothing), square systems
+ * (the four-bars) and partly driven trees (articulated bodies, whose condition is held to the
+ * same quantity computed from the dense M* and Φ_q by LAPACK). */
 #include "vt_test.h"
 
 static void compare_at(const double *a, const double *b, int n, double rel, double scale, const char *what)
@@ -15,11 +17,87 @@ static void compare(const double *a, const double *b, int n, double rel, const c
     compare_at(a, b, n, rel, 1.0 + fmax(vt_test_maxabs(a, n), vt_test_maxabs(b, n)), what);
 }
 
-/* run both on the same state and compare every output; the intermediates the recursive path
- * forms: factorizes = 0 none (every rate joint-driven), 1 Ṡq̇ and Φ_q (square Φ_q: M* and Q are
- * never formed), 2 those and M*, Q */
-static void both(const vt_model *m, vt_data *dr, vt_data *dd, int factorizes)
+/* which evaluation vt_inverse_dynamics_recursive takes, and so which intermediates it forms:
+ * INWARD none (every rate joint-driven), SQUARE Ṡq̇ and Φ_q (square Φ_q: M* and Q are never
+ * formed), ARTICULATED the same (fewer rows than rates: articulated bodies, no M*), FACTORIZED
+ * those and M*, Q */
+enum { INWARD, SQUARE, ARTICULATED, FACTORIZED };
+static int path_of(const vt_model *m)
 {
+    if (m->joint_driven) return INWARD;
+    if (m->joint_rows_only || m->allow_redundant) return FACTORIZED;
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE) return FACTORIZED;
+    return m->nc == m->nv ? SQUARE : m->nc < m->nv ? ARTICULATED : FACTORIZED;
+}
+
+void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b, const int *ldb, int *info);
+
+/* The articulated path's condition, from the dense path's M* and Φ_q by LAPACK: the exact 1-norm
+ * condition of S = Φ_q M*^-1 Φ_q^T times min/max of M*'s pivots taken in descending rate order
+ * (the Cholesky factor of M* scaled to unit diagonal, rows and columns reversed: L_kk²) */
+static double articulated_rcond(const vt_model *m, const vt_data *dd)
+{
+    const int nv = m->nv, nc = m->nc;
+    double *K = calloc((size_t)nv * (size_t)(2 * nv + 2 * nc) + 2 * (size_t)nc * (size_t)nc, sizeof(double));
+    double *M = K + (size_t)nv * (size_t)nv, *Y = M + (size_t)nv * (size_t)nv, *S = Y + (size_t)nv * (size_t)nc;
+    double *X = S + (size_t)nc * (size_t)nc;
+    int *ipiv = calloc((size_t)nv + 1, sizeof(int)), info = 0;
+    assert_non_null(K);
+    assert_non_null(ipiv);
+    for (int c = 0; c < nv; c++)
+        for (int r = 0; r < nv; r++) {
+            const int rr = nv - 1 - r, cc = nv - 1 - c;
+            const double *Ms = dd->Mstar;
+            K[r + c * nv] = Ms[rr + cc * nv] / sqrt(Ms[rr + rr * nv] * Ms[cc + cc * nv]);
+            M[r + c * nv] = Ms[r + c * nv];
+        }
+    dpotrf_("L", &nv, K, &nv, &info, 1);
+    assert_int_equal(info, 0);
+    double pmin = 1e300, pmax = 0.0;
+    for (int k = 0; k < nv; k++) {
+        const double p = K[k + k * nv] * K[k + k * nv];
+        pmin = fmin(pmin, p);
+        pmax = fmax(pmax, p);
+    }
+    double rs = 1.0;
+    if (nc > 0) {
+        for (int r = 0; r < nc; r++)
+            for (int a = 0; a < nv; a++) Y[a + r * nv] = dd->Phiq[r + a * nc];
+        dgesv_(&nv, &nc, M, &nv, ipiv, Y, &nv, &info);
+        assert_int_equal(info, 0);
+        for (int i = 0; i < nc; i++)
+            for (int j = 0; j < nc; j++) {
+                double v = 0.0;
+                for (int a = 0; a < nv; a++) v += dd->Phiq[i + a * nc] * Y[a + j * nv];
+                S[i + j * nc] = v;
+                X[i + j * nc] = i == j;
+            }
+        double sn = 0.0, xn = 0.0;
+        for (int c = 0; c < nc; c++) {
+            double cs = 0.0;
+            for (int r = 0; r < nc; r++) cs += fabs(S[r + c * nc]);
+            sn = fmax(sn, cs);
+        }
+        dgesv_(&nc, &nc, S, &nc, ipiv, X, &nc, &info);
+        assert_int_equal(info, 0);
+        for (int c = 0; c < nc; c++) {
+            double cs = 0.0;
+            for (int r = 0; r < nc; r++) cs += fabs(X[r + c * nc]);
+            xn = fmax(xn, cs);
+        }
+        rs = 1.0 / (sn * xn);
+    }
+    free(K);
+    free(ipiv);
+    return rs * pmin / pmax;
+}
+
+/* run both on the same state and compare every output, and the intermediates that the recursive
+ * path forms (path_of) */
+static void both(const vt_model *m, vt_data *dr, vt_data *dd)
+{
+    const int path = path_of(m);
     assert_ok(vt_inverse_dynamics(m, dd));
     assert_ok(vt_inverse_dynamics_recursive(m, dr));
     const int nb3 = 3 * (m->nbody + 1);
@@ -43,19 +121,23 @@ static void both(const vt_model *m, vt_data *dr, vt_data *dd, int factorizes)
     compare(dr->cut_force, dd->cut_force, 3 * m->ncut, 1e-12, "cut_force");
     compare(dr->cut_moment, dd->cut_moment, 3 * m->ncut, 1e-12, "cut_moment");
     compare(dr->Phi, dd->Phi, m->nc, 1e-12, "Phi");
-    if (factorizes == 1) { /* the square path computes the condition of the same Φ_q D itself */
+    if (path == SQUARE) { /* the square path computes the condition of the same Φ_q D itself */
         assert_near(dr->rcond, dd->rcond, 1e-9 * dd->rcond);
         assert_int_equal(dr->warning, dd->warning);
+    }
+    if (path == ARTICULATED) {
+        const double expect = articulated_rcond(m, dd);
+        assert_near(dr->rcond, expect, 1e-9 * expect);
     }
     compare(dr->gamma, dd->gamma, m->nc, 1e-12, "gamma");
     assert_int_equal(dr->rank, dd->rank); /* and the same uniqueness flags (vt_solve's) */
     for (int r = 0; r < m->nc; r++) assert_int_equal(dr->lambda_unique[r], dd->lambda_unique[r]);
     for (int k = 6; k < 6 * (m->nbody + 1); k++) assert_int_equal(dr->jnt_unique[k], dd->jnt_unique[k]);
-    if (factorizes) {
+    if (path != INWARD) {
         compare(dr->Sdqd, dd->Sdqd, m->nx, 1e-12, "Sdqd");
         compare(dr->Phiq, dd->Phiq, m->nc * m->nv, 1e-12, "Phiq");
     }
-    if (factorizes > 1) {
+    if (path == FACTORIZED) {
         compare(dr->Mstar, dd->Mstar, m->nv * m->nv, 1e-12, "Mstar");
         compare(dr->Q, dd->Q, m->nv, 1e-12, "Q");
     }
@@ -111,7 +193,7 @@ static void test_random_trees(void **state)
         memcpy(dr->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
         dr->time = dd->time;
         assert_int_equal(m->joint_driven, 0);
-        both(m, dr, dd, m->nc == m->nv && !m->allow_redundant ? 1 : 2);
+        both(m, dr, dd);
         vt_data_free(dr);
         vt_data_free(dd);
         vt_model_free(m);
@@ -137,7 +219,8 @@ static void test_joint_driven(void **state)
             dr->qfrc[k] = dd->qfrc[k] = 0.1 * k;
         }
         dr->xfrc[6 * n + 1] = dd->xfrc[6 * n + 1] = -2.0; /* a load on the last link */
-        both(m, dr, dd, 0);
+        assert_int_equal(path_of(m), INWARD);
+        both(m, dr, dd);
         for (int k = 0; k < n; k++) { /* and q̈ is the prescribed one */
             double q, qd, qdd;
             vt_scene_chain_state(k, &q, &qd, &qdd);
@@ -172,7 +255,8 @@ static void test_joint_driven(void **state)
     memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
     memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
     dr->time = dd->time = 0.7;
-    both(m, dr, dd, 0);
+    assert_int_equal(path_of(m), INWARD);
+    both(m, dr, dd);
     vt_data_free(dr);
     vt_data_free(dd);
     vt_model_free(m);
@@ -190,7 +274,7 @@ static void test_scenes(void **state)
     assert_ok(vt_data_create(&dd, m));
     dr->q[0] = dd->q[0] = -0.7;
     dr->qd[0] = dd->qd[0] = -1.5;
-    both(m, dr, dd, m->nc == m->nv && !m->allow_redundant ? 1 : 2);
+    both(m, dr, dd);
     vt_data_free(dr);
     vt_data_free(dd);
     vt_model_free(m);
@@ -203,7 +287,8 @@ static void test_scenes(void **state)
         dr->q[k] = dd->q[k];
         dr->qd[k] = dd->qd[k];
     }
-    both(m, dr, dd, m->nc == m->nv && !m->allow_redundant ? 1 : 2);
+    assert_int_equal(path_of(m), ARTICULATED);
+    both(m, dr, dd);
     vt_data_free(dr);
     vt_data_free(dd);
     vt_model_free(m);
@@ -224,7 +309,8 @@ static void test_scenes(void **state)
              * bodies) and a force on the coupler */
             for (int c = 0; c < m->nv; c++) dr->qfrc[c] = dd->qfrc[c] = 0.7 - 0.3 * c;
             dr->xfrc[6 * 2 + 2] = dd->xfrc[6 * 2 + 2] = -3.0;
-            both(m, dr, dd, 1);
+            assert_int_equal(path_of(m), SQUARE);
+            both(m, dr, dd);
         }
         vt_data_free(dr);
         vt_data_free(dd);
@@ -232,39 +318,107 @@ static void test_scenes(void **state)
     }
 }
 
-/* square but dependent (one joint driven twice): the square shortcut hands the ill-conditioned
- * system to the general path, which names the rows, as the dense path does, and leaves q̈ and λ
- * as they were */
-static void test_square_dependent(void **state)
+/* fewer rows than rates, no base body (the articulated path), every other joint kind: random
+ * trees with joint drives, a point drive, an orientation drive and a spherical cut joint, loads
+ * on every body and rate */
+static void test_articulated(void **state)
 {
     (void)state;
-    vt_builder *b;
-    vt_model *m;
-    vt_data *d;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_test_add_rods(b, 2, 1.0, (const double[2]){1.0, 1.0});
-    for (int k = 0; k < 2; k++) {
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = 1;
-        dr.f = vt_function_sine(0.2, 1.0, 2.0, 0.0);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    for (uint64_t seed = 1; seed <= 8; seed++) {
+        const int n = 8 + (int)seed;
+        vt_builder *b;
+        vt_model *probe, *m;
+        assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_NO_BASE));
+        for (int i = 2; i <= n; i += 3) {
+            if (probe->body_joint[i] == VT_JOINT_SPHERICAL) continue;
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = i;
+            dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
+            assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        }
+        vt_drive_def pd = vt_default_drive_def();
+        pd.type = VT_DRIVE_POINT;
+        pd.body = n;
+        pd.index = (int)(seed % 3);
+        pd.point[0] = 0.2;
+        pd.f = vt_function_sine(0.05, 0.2, 1.5, 0.0);
+        assert_true(vt_builder_add_drive(b, &pd) >= 0);
+        if (seed % 3 == 0) {
+            vt_drive_def od = vt_default_drive_def();
+            od.type = VT_DRIVE_ORIENTATION;
+            od.body = 3;
+            od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
+            assert_true(vt_builder_add_drive(b, &od) >= 0);
+        }
+        if (seed % 2) {
+            vt_cut_joint_def cj = vt_default_cut_joint_def();
+            cj.joint = VT_JOINT_SPHERICAL;
+            cj.body_a = 0;
+            cj.body_b = n - 1;
+            assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
+        }
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_model_free(probe);
+        assert_int_equal(path_of(m), ARTICULATED);
+        vt_data *dr, *dd;
+        assert_ok(vt_data_create(&dr, m));
+        assert_ok(vt_data_create(&dd, m));
+        uint64_t s = seed * 7;
+        vt_scene_random_state(m, dd, &s);
+        for (int i = 1; i <= m->nbody; i++)
+            for (int k = 0; k < 6; k++) dd->xfrc[6 * i + k] = vt_rand_uniform(&s, -3, 3);
+        for (int c = 0; c < m->nv; c++) dd->qfrc[c] = vt_rand_uniform(&s, -1, 1);
+        dd->time = 0.3;
+        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
+        memcpy(dr->xfrc, dd->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        memcpy(dr->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
+        dr->time = dd->time;
+        both(m, dr, dd);
+        vt_data_free(dr);
+        vt_data_free(dd);
+        vt_model_free(m);
     }
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    assert_int_equal(m->nc, m->nv);
-    assert_ok(vt_data_create(&d, m));
-    for (int recursive = 0; recursive < 2; recursive++) {
-        d->q[0] = d->q[1] = 0.0;
-        d->qdd[0] = 42.0;
-        d->lambda[1] = 7.0;
-        const vt_status st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
-        assert_int_equal(st, VT_ERR_DEPENDENT_CONSTRAINTS);
-        assert_non_null(strstr(d->message, "rank 1 of 2"));
-        assert_near(d->qdd[0], 42.0, 0.0);
-        assert_near(d->lambda[1], 7.0, 0.0);
+}
+
+/* dependent rows (one joint driven twice), square (2 rods) and with a free rate (3 rods): the
+ * square and articulated shortcuts hand the ill-conditioned system to the general path, which
+ * names the rows, as the dense path does, and leaves q̈ and λ as they were */
+static void test_dependent(void **state)
+{
+    (void)state;
+    for (int nrod = 2; nrod <= 3; nrod++) {
+        vt_builder *b;
+        vt_model *m;
+        vt_data *d;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_test_add_rods(b, nrod, 1.0, (const double[3]){1.0, 1.0, 1.0});
+        for (int k = 0; k < 2; k++) {
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = 1;
+            dr.f = vt_function_sine(0.2, 1.0, 2.0, 0.0);
+            assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        }
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        assert_int_equal(path_of(m), nrod == 2 ? SQUARE : ARTICULATED);
+        assert_ok(vt_data_create(&d, m));
+        for (int recursive = 0; recursive < 2; recursive++) {
+            memset(d->q, 0, (size_t)m->nq * sizeof(double));
+            d->qdd[0] = 42.0;
+            d->lambda[1] = 7.0;
+            const vt_status st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
+            assert_int_equal(st, VT_ERR_DEPENDENT_CONSTRAINTS);
+            assert_non_null(strstr(d->message, "rank 1 of 2"));
+            assert_near(d->qdd[0], 42.0, 0.0);
+            assert_near(d->lambda[1], 7.0, 0.0);
+        }
+        vt_data_free(d);
+        vt_model_free(m);
     }
-    vt_data_free(d);
-    vt_model_free(m);
 }
 
 int main(void)
@@ -273,7 +427,8 @@ int main(void)
         cmocka_unit_test(test_random_trees),
         cmocka_unit_test(test_joint_driven),
         cmocka_unit_test(test_scenes),
-        cmocka_unit_test(test_square_dependent),
+        cmocka_unit_test(test_articulated),
+        cmocka_unit_test(test_dependent),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
