@@ -82,6 +82,15 @@ static void inertia_mul(double F[6], const double I[13], const double w[3], cons
     vt_addcross3(F + 3, w, h);
 }
 
+/* s · (I s) for s = (w, v): w · J_O w + 2 w · (h × v) + m v · v */
+static inline double inertia_quad(const double I[13], const double w[3], const double v[3])
+{
+    double Jw[3], hv[3];
+    vt_mulmat3(Jw, I + 4, w);
+    vt_cross3(hv, I + 1, v);
+    return vt_dot3(w, Jw) + 2.0 * vt_dot3(w, hv) + I[0] * vt_dot3(v, v);
+}
+
 /* composite inertias about O, summed over subtrees: (m, h = m c, J_O) per body */
 static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (nbody+1) */)
 {
@@ -282,15 +291,26 @@ static void inertia_full(double *restrict G, const double *restrict I)
     G[3 + 8 * 3] = G[4 + 8 * 4] = G[5 + 8 * 5] = I[0];
 }
 
+/* The inward pass is a chain of dependent steps, body after body (its time is their latency,
+ * not their count), so its sums are written as balanced trees: C keeps the order written. */
+
 /* y += a x over 8 (one column of I^A: two 4-wide vectors) */
 static inline void axpy8(double *restrict y, double a, const double *restrict x)
 {
     for (int r = 0; r < 8; r++) y[r] += a * x[r];
 }
 
+/* U = G s, G 6x6 in columns of 8 */
+static inline void mul_cols8(double *restrict U, const double *restrict G, const double *restrict s)
+{
+    for (int r = 0; r < 8; r++)
+        U[r] = (G[r] * s[0] + G[r + 8] * s[1]) + (G[r + 16] * s[2] + G[r + 24] * s[3]) +
+               (G[r + 32] * s[4] + G[r + 40] * s[5]);
+}
+
 static double dot6(const double *a, const double *b)
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+    return (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3]) + (a[4] * b[4] + a[5] * b[5]);
 }
 
 /* Fewer independent rows than rates, no base body: (5) by articulated bodies, without M*.
@@ -312,12 +332,19 @@ static double dot6(const double *a, const double *b)
  * (min L_kk / max L_kk)²: both fall where a motion loses its inertia.
  * Work (d->work): W⁰ (6) and I_O (13) per body, which the reactions use after; Ī (13), I^A (48)
  * and p (6 (nc+1)) per body; U (8), D, u and x (nc+1 each) per rate; S and λ.
- * Fills q̈, λ; returns 0, 1 (a scaled pivot below 1e-8, or rcond below rcond_min: the
- * factorized instant decides and diagnoses) or a negative vt_status. */
+ * When every row is a joint drive on a rate of its own (joint_rows_only) the driven rates' q̈
+ * are known (drive_accelerations) and no row is a right side: such a rate articulates nothing,
+ *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,
+ * the others are the free rates, M*_FF's pivots give the condition, and λ comes after from the
+ * inward pass (the drives' efforts).
+ * Fills q̈ (and λ with rows); returns 0, 1 (a scaled pivot below 1e-8, or rcond below
+ * rcond_min: the factorized instant decides and diagnoses) or a negative vt_status. */
 #define PIVOT_MIN 1e-8
 static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
-    const int n = m->nbody, nv = m->nv, nc = m->nc, nr = nc + 1;
+    /* joint rows only: the driven rates' q̈ are known (d->qdd), no row is a right side */
+    const int *drv = m->joint_rows_only ? m->dof_drive : NULL;
+    const int n = m->nbody, nv = m->nv, nc = drv ? 0 : m->nc, nr = nc + 1;
     const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
     double *W0 = d->work, *Ib = W0 + 6 * nb, *Ic = Ib + 13 * nb;
     double *IA = Ic + 13 * nb;     /* 48 x nb: I^A, columns of 8 (inertia_full) */
@@ -343,12 +370,14 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
         double *restrict G = IA + 48 * i, *restrict p = P + sr * (size_t)i;
         for (int a = m->body_vadr[i] + m->body_nv[i] - 1; a >= m->body_vadr[i]; a--) {
             const double *restrict s = d->twist + 6 * a;
-            double *restrict Ua = U + 8 * a, F[6];
-            for (int r = 0; r < 8; r++) Ua[r] = 0.0;
-            for (int c = 0; c < 6; c++) axpy8(Ua, s[c], G + 8 * c);
+            double Ua[8]; /* local: no aliasing with G, stored to U after */
+            mul_cols8(Ua, G, s);
+            if (drv && drv[a] >= 0) { /* q̈_a known: I^A passes unchanged, p += U_a q̈_a */
+                for (int r = 0; r < 6; r++) p[r] += Ua[r] * d->qdd[a];
+                continue;
+            }
             const double Da = dot6(s, Ua);
-            inertia_mul(F, Ic + 13 * i, s, s + 3);
-            const double piv = Da / dot6(s, F);
+            const double piv = Da / inertia_quad(Ic + 13 * i, s, s + 3);
             if (!(piv >= PIVOT_MIN)) return 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
@@ -358,6 +387,7 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
             ua[0] = d->qfrc[a] - dot6(s, p);
             for (int k = 1; k < nr; k++) ua[k] = d->Phiq[(size_t)(k - 1) + (size_t)a * (size_t)nc] - dot6(s, p + 6 * k);
             for (int c = 0; c < 6; c++) axpy8(G + 8 * c, -Ua[c] * inv, Ua);
+            memcpy(U + 8 * a, Ua, sizeof Ua);
             for (int k = 0; k < nr; k++) {
                 const double t = ua[k] * inv;
                 for (int r = 0; r < 6; r++) p[6 * k + r] += Ua[r] * t;
@@ -377,6 +407,11 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
         memcpy(Ai, P + sr * (size_t)(j > 0 ? j : 0), sr * sizeof(double));
         for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
             const double *restrict s = d->twist + 6 * a, *restrict Ua = U + 8 * a, *restrict ua = u + (size_t)nr * (size_t)a;
+            if (drv && drv[a] >= 0) {
+                X[a] = d->qdd[a];
+                for (int r = 0; r < 6; r++) Ai[r] += d->qdd[a] * s[r];
+                continue;
+            }
             const double inv = 1.0 / Dp[a];
             for (int k = 0; k < nr; k++) {
                 double *restrict Ak = Ai + 6 * k;
@@ -409,8 +444,8 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
         for (int r = 0; r < nc; r++) x += X[a + (size_t)(r + 1) * (size_t)nv] * lam[r];
         d->qdd[a] = x;
     }
-    memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
-    if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(d->lambda, nc))
+    if (!drv) memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
+    if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc))
         return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
 }
@@ -464,12 +499,24 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         if ((st = drive_accelerations(m, d))) return st;
         return inward(m, d);
     }
-    if (m->joint_rows_only) { /* q̈ of the free rates from M*_FF (vt_solve), then the inward pass */
-        crba(m, d, d->work);
-        bias(m, d, d->work);
+    if (m->joint_rows_only) { /* q̈ of the free rates, then the inward pass */
         memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double)); /* unit rows (R S = I) */
         for (int r = 0; r < m->nc; r++) d->Phiq[r + (size_t)m->con_dof[r] * (size_t)m->nc] = 1.0;
-        if ((st = drive_accelerations(m, d)) || (st = vt_solve(m, d))) return st;
+        if ((st = drive_accelerations(m, d))) return st;
+        double rcond = 0.0;
+        const int r = has_base(m) ? 1 : articulated_solve(m, d, &rcond); /* by articulated bodies */
+        if (r < 0) return (vt_status)r;
+        if (r == 0) {
+            d->rcond = rcond;
+            d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
+            d->rank = m->nc;
+            d->residual = 0.0;
+            vt_mark_unique(m, d);
+        } else { /* or from M*_FF (vt_solve), which also diagnoses */
+            crba(m, d, d->work);
+            bias(m, d, d->work);
+            if ((st = vt_solve(m, d))) return st;
+        }
         return inward(m, d);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;

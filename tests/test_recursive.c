@@ -25,9 +25,10 @@ enum { INWARD, SQUARE, ARTICULATED, FACTORIZED };
 static int path_of(const vt_model *m)
 {
     if (m->joint_driven) return INWARD;
-    if (m->joint_rows_only || m->allow_redundant) return FACTORIZED;
     for (int i = 1; i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE) return FACTORIZED;
+    if (m->joint_rows_only) return ARTICULATED;
+    if (m->allow_redundant) return FACTORIZED;
     return m->nc == m->nv ? SQUARE : m->nc < m->nv ? ARTICULATED : FACTORIZED;
 }
 
@@ -35,10 +36,15 @@ void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
 
 /* The articulated path's condition, from the dense path's M* and Φ_q by LAPACK: the exact 1-norm
  * condition of S = Φ_q M*^-1 Φ_q^T times min/max of M*'s pivots taken in descending rate order
- * (the Cholesky factor of M* scaled to unit diagonal, rows and columns reversed: L_kk²) */
+ * (the Cholesky factor of M* scaled to unit diagonal, rows and columns reversed: L_kk²); when
+ * every row is a joint drive, the pivots of the free rates' M*_FF alone */
 static double articulated_rcond(const vt_model *m, const vt_data *dd)
 {
-    const int nv = m->nv, nc = m->nc;
+    int *fr = calloc((size_t)m->nv, sizeof(int)), nf = 0;
+    assert_non_null(fr);
+    for (int a = 0; a < m->nv; a++)
+        if (!m->joint_rows_only || m->dof_drive[a] < 0) fr[nf++] = a;
+    const int nv = nf, nc = m->joint_rows_only ? 0 : m->nc;
     double *K = calloc((size_t)nv * (size_t)(2 * nv + 2 * nc) + 2 * (size_t)nc * (size_t)nc, sizeof(double));
     double *M = K + (size_t)nv * (size_t)nv, *Y = M + (size_t)nv * (size_t)nv, *S = Y + (size_t)nv * (size_t)nc;
     double *X = S + (size_t)nc * (size_t)nc;
@@ -47,10 +53,10 @@ static double articulated_rcond(const vt_model *m, const vt_data *dd)
     assert_non_null(ipiv);
     for (int c = 0; c < nv; c++)
         for (int r = 0; r < nv; r++) {
-            const int rr = nv - 1 - r, cc = nv - 1 - c;
+            const int rr = fr[nv - 1 - r], cc = fr[nv - 1 - c], ld = m->nv;
             const double *Ms = dd->Mstar;
-            K[r + c * nv] = Ms[rr + cc * nv] / sqrt(Ms[rr + rr * nv] * Ms[cc + cc * nv]);
-            M[r + c * nv] = Ms[r + c * nv];
+            K[r + c * nv] = Ms[rr + cc * ld] / sqrt(Ms[rr + rr * ld] * Ms[cc + cc * ld]);
+            M[r + c * nv] = Ms[r + c * ld]; /* (nc > 0: every rate free) */
         }
     dpotrf_("L", &nv, K, &nv, &info, 1);
     assert_int_equal(info, 0);
@@ -90,6 +96,7 @@ static double articulated_rcond(const vt_model *m, const vt_data *dd)
     }
     free(K);
     free(ipiv);
+    free(fr);
     return rs * pmin / pmax;
 }
 
