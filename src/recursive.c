@@ -72,6 +72,34 @@ static void inertia_O(double I[13], const vt_model *m, const vt_data *d, int i)
     for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
 }
 
+/* inertia_O and bias_wrench in one, from the global J = A J' A^T: W⁰ = (J α + ω × J ω − n_e
+ * + c × f, f = m (a − g) − f_e) about O at the accelerations Ṡq̇ (α = 2 E p̈) */
+static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i)
+{
+    const int o = vt_xoff(i);
+    const double mass = m->body_mass[i], *c = d->x + o, *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+    const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *xf = d->xfrc + 6 * i;
+    double J[9], t[9], al[3], Jw[3];
+    for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
+    for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
+    vt_mulEp(al, c + 3, a + 3);
+    for (int k = 0; k < 3; k++) al[k] *= 2.0;
+    vt_mulmat3(W, J, al);
+    vt_mulmat3(Jw, J, w);
+    vt_addcross3(W, w, Jw);
+    for (int k = 0; k < 3; k++) {
+        W[3 + k] = mass * (a[k] - m->gravity[k]) - xf[k];
+        W[k] -= xf[3 + k];
+    }
+    vt_addcross3(W, c, W + 3);
+    const double c2 = vt_dot3(c, c);
+    I[0] = mass;
+    for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
+    for (int col = 0; col < 3; col++)
+        for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
+    for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
+}
+
 /* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
 static void inertia_mul(double F[6], const double I[13], const double w[3], const double v[3])
 {
@@ -357,9 +385,8 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
     double *lam = S + (size_t)nc * (size_t)nc; /* nc */
     for (int i = 1; i <= n; i++) {
         double *p = P + sr * (size_t)i;
-        inertia_O(Ib + 13 * i, m, d, i);
+        inertia_bias(Ib + 13 * i, W0 + 6 * i, m, d, i);
         inertia_full(IA + 48 * i, Ib + 13 * i);
-        bias_wrench(W0 + 6 * i, m, d, i);
         for (int k = 0; k < 6; k++) p[k] = W0[6 * i + k];
         for (size_t k = 6; k < sr; k++) p[k] = 0.0;
     }
