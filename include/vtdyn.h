@@ -183,14 +183,16 @@ vt_status vt_reactions(const vt_model *model, vt_data *data);
 /// the stages; the first failure stops it. q, q̇ must satisfy the constraints (not corrected).
 vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 
-/// The same instant by the recursive evaluation (src/recursive.c): no dense S, M* by composite
-/// bodies, Q by a Newton–Euler pass, Φ_q from the rates' twists; when every rate has one joint
-/// drive (model->joint_driven) the efforts and reactions come from one inward pass with nothing
-/// factorized. Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω,
-/// ẋ; Ṡq̇, Φ_x, Φ_q when it factorizes; M* and Q when it factorizes M*) except S and R, and
-/// agrees with it to round-off. With as many independent rows as rates (no base body, no
-/// allow_redundant) q̈ comes from Φ_q alone and M* q̈ − Q from an inward Newton–Euler pass: M*
-/// and Q are not formed.
+/// The same instant by the recursive evaluation (src/recursive.c): no dense S, Φ_q from the
+/// rates' twists; when every rate has one joint drive (model->joint_driven) the efforts and
+/// reactions come from one inward pass with nothing factorized; with fewer independent rows than
+/// rates (no base body) q̈ and λ come from the articulated-body recursion in O(n) per row, M* not
+/// formed; with as many as rates (no base body, no allow_redundant) q̈ from Φ_q alone and M* q̈ − Q
+/// from an inward Newton–Euler pass; otherwise M* by composite bodies, Q by a Newton–Euler pass
+/// and vt_solve(). Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω,
+/// ẋ; Ṡq̇, Φ_x, Φ_q when anything is solved; M* and Q only on the last path) except S and R, and
+/// agrees with it to round-off; rcond is the same quantity except on the articulated path, where
+/// M*'s pivots are taken leaf first (see vt_data.rcond).
 /// Statuses: those of vt_inverse_dynamics().
 vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 

@@ -8,19 +8,28 @@
  *   body wrench needed   W_k = (J α + ω × J ω − n_e + r × f,  f = m a − f_e)   about O
  *                        (f_e: gravity and xfrc; n_e: xfrc's moment about the centre of mass)
  *   subtree              W̄_i = W_i + Σ_children W̄_c                       (inward pass)
- *   composite inertia    Ī_i = Σ_subtree [J − m c̃ c̃, m c̃; −m c̃, m I]  about O, (m, h = m c, J_O)
+ *   body inertia         I_k = [J − m c̃ c̃, m c̃; −m c̃, m I]  about O, (m, h = m c, J_O)
+ *                        (I s = (J_O w + h × v, m v + w × h)); composite Ī_i = Σ_subtree I_k
  *   M* (3)               M*_ab = s_b · (Ī_i s_a),  i the body of rate a, b on i's path
- *                        (Ī s = (J_O w + h × v, m v + w × h))
  *   M*_aa alone          Σ_k m_k |v_a + w_a × c_k|² + u^T J'_k u,  u = A_k^T w_a, k below rate a
  *                        (the square path's scaling: twice the kinetic energy of s_a)
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
- * With every rate driven by one joint drive (the model's joint_driven), q̈ = f''(t) is known
- * and nothing is factorized (when only some rates are, joint_rows_only, the free rates' q̈ come
- * from M*_FF first, then the same inward pass): the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's Φ_q^T λ with
- * unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point P_i less the
- * joint's actuation (τ + qfrc) along its axes. Otherwise M* and Q as above, Φ_q = Φ_x S from
- * the twists, the augmented system (5) and the reactions (25)-(28) as in the dense path.
+ *   W linear in q̈        W_k = W⁰_k + I_k T_k,  T_k = Σ_{a on k's path} s_a q̈_a
+ * The paths, by the rows the drives and cut joints give:
+ * - every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and nothing is
+ *   factorized; the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's Φ_q^T λ with unit rows,
+ *   λ = τ), and the reaction at joint i is W̄_i moved to the joint point P_i less the joint's
+ *   actuation (τ + qfrc) along its axes (inward);
+ * - fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
+ *   (articulated_solve: O(n) per right side, M* is not formed), then the reactions from
+ *   W̄ = Σ (W⁰ + I T); when every row is a joint drive (joint_rows_only) the driven rates' q̈ are
+ *   known and only the free ones are solved, then the inward pass as above;
+ * - as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q = S^T W̄ − qfrc
+ *   from one inward pass (square_instant: neither M* nor Q is formed);
+ * - otherwise (base bodies, redundant rows allowed, or the shortcuts ill-conditioned): M* and Q
+ *   as above, Φ_q = Φ_x S from the twists, the augmented system (5) by vt_solve, which also
+ *   diagnoses, and the reactions (25)-(28) as in the dense path.
  */
 #include <string.h>
 

@@ -309,7 +309,10 @@ typedef struct vt_data {
                              ///< the Schur complement Φ M*^-1 Φ^T's times the squared ratio of M*'s
                              ///< smallest to largest Cholesky pivot; with only joint-drive rows the
                              ///< free rates' M*; 1 when nothing was factorized (a fully joint-driven
-                             ///< recursive instant). It falls toward a singular pose where rows
+                             ///< recursive instant); on the recursive articulated path (fewer rows than
+                             ///< rates, no base body) S's times min/max of M*'s pivots taken leaf
+                             ///< first (the free rates' M* alone with only joint-drive rows), each
+                             ///< pivot over its diagonal entry. It falls toward a singular pose where rows
                              ///< lose independence; not for a lone row, which the scaling normalizes
                              ///< (its losing grip does not show here).
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
