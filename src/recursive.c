@@ -328,8 +328,8 @@ static void inertia_full(double *restrict G, const double *restrict I)
     G[3 + 8 * 3] = G[4 + 8 * 4] = G[5 + 8 * 5] = I[0];
 }
 
-/* The inward pass is a chain of dependent steps, body after body (its time is their latency,
- * not their count), so its sums are written as balanced trees: C keeps the order written. */
+/* Kernels of the articulated-body passes: I^A in columns of 8 (two 4-wide vectors, which the
+ * compiler uses), sums as balanced pairs (shorter dependency chains; C keeps the order written). */
 
 /* y += a x over 8 (one column of I^A: two 4-wide vectors) */
 static inline void axpy8(double *restrict y, double a, const double *restrict x)
