@@ -66,10 +66,11 @@ static double pair(const double w[3], const double v[3], const double W[6])
     return vt_dot3(w, W) + vt_dot3(v, W + 3);
 }
 
-/* body i's spatial inertia about O in 13 numbers: (m, h = m c, J_O = J − m c̃ c̃), J = A J' A^T */
-static void inertia_O(double I[13], const vt_model *m, const vt_data *d, int i)
+/* body i's spatial inertia about O in 13 numbers: (m, h = m c, J_O = J − m c̃ c̃), and J = A J' A^T
+ * (global axes, about the centre of mass) into J */
+static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_data *d, int i)
 {
-    double J[9], t[9];
+    double t[9];
     const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
     for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
     for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
@@ -81,16 +82,16 @@ static void inertia_O(double I[13], const vt_model *m, const vt_data *d, int i)
     for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
 }
 
-/* inertia_O and bias_wrench in one, from the global J = A J' A^T: W⁰ = (J α + ω × J ω − n_e
- * + c × f, f = m (a − g) − f_e) about O at the accelerations Ṡq̇ (α = 2 E p̈) */
+/* inertia_O, and body i's needed wrench at q̈ = 0 from the same global J (bias_wrench's, without
+ * its turns to body axes): W⁰ = (J α + ω × J ω − n_e + c × f, f = m (a − g) − f_e) about O at
+ * the accelerations Ṡq̇ (α = 2 E p̈) */
 static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i)
 {
     const int o = vt_xoff(i);
-    const double mass = m->body_mass[i], *c = d->x + o, *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+    const double mass = m->body_mass[i], *c = d->x + o;
     const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *xf = d->xfrc + 6 * i;
-    double J[9], t[9], al[3], Jw[3];
-    for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
-    for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
+    double J[9], al[3], Jw[3];
+    inertia_O(I, J, m, d, i);
     vt_mulEp(al, c + 3, a + 3);
     for (int k = 0; k < 3; k++) al[k] *= 2.0;
     vt_mulmat3(W, J, al);
@@ -101,12 +102,6 @@ static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_
         W[k] -= xf[3 + k];
     }
     vt_addcross3(W, c, W + 3);
-    const double c2 = vt_dot3(c, c);
-    I[0] = mass;
-    for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
-    for (int col = 0; col < 3; col++)
-        for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
-    for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
 }
 
 /* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
@@ -131,7 +126,8 @@ static inline double inertia_quad(const double I[13], const double w[3], const d
 /* composite inertias about O, summed over subtrees: (m, h = m c, J_O) per body */
 static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (nbody+1) */)
 {
-    for (int i = 1; i <= m->nbody; i++) inertia_O(Ic + 13 * i, m, d, i);
+    double J[9];
+    for (int i = 1; i <= m->nbody; i++) inertia_O(Ic + 13 * i, J, m, d, i);
     vt_subtree_sum(m, Ic, 13);
 }
 
