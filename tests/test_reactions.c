@@ -4,9 +4,6 @@
  * free directions. */
 #include "vt_test.h"
 
-extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b,
-                   const int *ldb, int *info);
-
 /* ---- the paper's double link, joint 2 locked --------------------------------------- */
 
 static void test_double_link_exact(void **state)

@@ -32,72 +32,36 @@ static int path_of(const vt_model *m)
     return m->nc == m->nv ? SQUARE : m->nc < m->nv ? ARTICULATED : FACTORIZED;
 }
 
-void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b, const int *ldb, int *info);
-
 /* The articulated path's condition, from the dense path's M* and Φ_q by LAPACK: the exact 1-norm
  * condition of S = Φ_q M*^-1 Φ_q^T times min/max of M*'s pivots taken in descending rate order
  * (the Cholesky factor of M* scaled to unit diagonal, rows and columns reversed: L_kk²); when
  * every row is a joint drive, the pivots of the free rates' M*_FF alone */
 static double articulated_rcond(const vt_model *m, const vt_data *dd)
 {
-    int *fr = calloc((size_t)m->nv, sizeof(int)), nf = 0;
+    int *fr = calloc((size_t)m->nv, sizeof(int)), nf = 0, info = 0;
     assert_non_null(fr);
     for (int a = 0; a < m->nv; a++)
         if (!m->joint_rows_only || m->dof_drive[a] < 0) fr[nf++] = a;
-    const int nv = nf, nc = m->joint_rows_only ? 0 : m->nc;
-    double *K = calloc((size_t)nv * (size_t)(2 * nv + 2 * nc) + 2 * (size_t)nc * (size_t)nc, sizeof(double));
-    double *M = K + (size_t)nv * (size_t)nv, *Y = M + (size_t)nv * (size_t)nv, *S = Y + (size_t)nv * (size_t)nc;
-    double *X = S + (size_t)nc * (size_t)nc;
-    int *ipiv = calloc((size_t)nv + 1, sizeof(int)), info = 0;
+    double *K = calloc((size_t)nf * (size_t)nf, sizeof(double));
     assert_non_null(K);
-    assert_non_null(ipiv);
-    for (int c = 0; c < nv; c++)
-        for (int r = 0; r < nv; r++) {
-            const int rr = fr[nv - 1 - r], cc = fr[nv - 1 - c], ld = m->nv;
+    for (int c = 0; c < nf; c++)
+        for (int r = 0; r < nf; r++) {
+            const int rr = fr[nf - 1 - r], cc = fr[nf - 1 - c], ld = m->nv;
             const double *Ms = dd->Mstar;
-            K[r + c * nv] = Ms[rr + cc * ld] / sqrt(Ms[rr + rr * ld] * Ms[cc + cc * ld]);
-            M[r + c * nv] = Ms[r + c * ld]; /* (nc > 0: every rate free) */
+            K[r + c * nf] = Ms[rr + cc * ld] / sqrt(Ms[rr + rr * ld] * Ms[cc + cc * ld]);
         }
-    dpotrf_("L", &nv, K, &nv, &info, 1);
+    dpotrf_("L", &nf, K, &nf, &info, 1);
     assert_int_equal(info, 0);
     double pmin = 1e300, pmax = 0.0;
-    for (int k = 0; k < nv; k++) {
-        const double p = K[k + k * nv] * K[k + k * nv];
+    for (int k = 0; k < nf; k++) {
+        const double p = K[k + k * nf] * K[k + k * nf];
         pmin = fmin(pmin, p);
         pmax = fmax(pmax, p);
     }
-    double rs = 1.0;
-    if (nc > 0) {
-        for (int r = 0; r < nc; r++)
-            for (int a = 0; a < nv; a++) Y[a + r * nv] = dd->Phiq[r + a * nc];
-        dgesv_(&nv, &nc, M, &nv, ipiv, Y, &nv, &info);
-        assert_int_equal(info, 0);
-        for (int i = 0; i < nc; i++)
-            for (int j = 0; j < nc; j++) {
-                double v = 0.0;
-                for (int a = 0; a < nv; a++) v += dd->Phiq[i + a * nc] * Y[a + j * nv];
-                S[i + j * nc] = v;
-                X[i + j * nc] = i == j;
-            }
-        double sn = 0.0, xn = 0.0;
-        for (int c = 0; c < nc; c++) {
-            double cs = 0.0;
-            for (int r = 0; r < nc; r++) cs += fabs(S[r + c * nc]);
-            sn = fmax(sn, cs);
-        }
-        dgesv_(&nc, &nc, S, &nc, ipiv, X, &nc, &info);
-        assert_int_equal(info, 0);
-        for (int c = 0; c < nc; c++) {
-            double cs = 0.0;
-            for (int r = 0; r < nc; r++) cs += fabs(X[r + c * nc]);
-            xn = fmax(xn, cs);
-        }
-        rs = 1.0 / (sn * xn);
-    }
     free(K);
-    free(ipiv);
     free(fr);
-    return rs * pmin / pmax;
+    const int rows = !m->joint_rows_only && m->nc > 0; /* joint rows only: no S */
+    return (rows ? vt_test_schur_rcond(dd->Mstar, dd->Phiq, m->nv, m->nc) : 1.0) * pmin / pmax;
 }
 
 /* run both on the same state and compare every output, and the intermediates that the recursive

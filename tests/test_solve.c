@@ -333,7 +333,6 @@ static void test_bricard(void **state)
 static void test_square_constraints(void **state)
 {
     (void)state;
-    extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
     vt_model *m;
     vt_data *d;
     assert_ok(vt_scene_fourbar(&m, vt_function_sine(0.3, 1.0, 2.0, 0.0)));
@@ -395,7 +394,6 @@ static void test_square_constraints(void **state)
 static void test_augmented_condition(void **state)
 {
     (void)state;
-    extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
     vt_model *m;
     vt_data *d;
     assert_ok(vt_scene_random_tree(&m, 5, 5, VT_SCENE_SCALAR_JOINTS));
@@ -439,7 +437,6 @@ static void test_augmented_condition(void **state)
 static void test_schur(void **state)
 {
     (void)state;
-    extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
     for (int scene = 0; scene < 4; scene++) {
         vt_model *m;
         vt_data *d;
@@ -504,7 +501,7 @@ static void test_schur(void **state)
         }
         assert_ok(vt_inverse_dynamics(m, d));
         /* the augmented system, solved whole */
-        double K[400], x[20], sc[20], L[256], P[64], S[64], X[64];
+        double K[400], x[20], sc[20], L[256], P[64];
         int ipiv[20], info = 0;
         for (int c = 0; c < N; c++)
             for (int r = 0; r < N; r++) {
@@ -543,38 +540,13 @@ static void test_schur(void **state)
             lmin = fmin(lmin, L[k + k * nv]);
             lmax = fmax(lmax, L[k + k * nv]);
         }
-        /* S = P M̃^-1 P^T with P = Φ̃, by solving M̃ W = P^T column by column (dgesv on a copy) */
-        double Mt[256], W[128];
+        /* S = P M̃^-1 P^T with P = Φ̃ (vt_test_schur_rcond: dgesv on copies) */
+        double Mt[256];
         for (int c = 0; c < nv; c++)
             for (int r = 0; r < nv; r++) Mt[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
         for (int r = 0; r < nc; r++)
-            for (int a = 0; a < nv; a++) {
-                P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
-                W[a + r * nv] = P[r + a * nc];
-            }
-        dgesv_(&nv, &nc, Mt, &nv, ipiv, W, &nv, &info);
-        assert_int_equal(info, 0);
-        for (int i = 0; i < nc; i++)
-            for (int j = 0; j < nc; j++) {
-                double v = 0.0;
-                for (int a = 0; a < nv; a++) v += P[i + a * nc] * W[a + j * nv];
-                S[i + j * nc] = v;
-                X[i + j * nc] = i == j;
-            }
-        double sn = 0.0, xn = 0.0;
-        for (int c = 0; c < nc; c++) {
-            double cs = 0.0;
-            for (int r = 0; r < nc; r++) cs += fabs(S[r + c * nc]);
-            sn = fmax(sn, cs);
-        }
-        dgesv_(&nc, &nc, S, &nc, ipiv, X, &nc, &info);
-        assert_int_equal(info, 0);
-        for (int c = 0; c < nc; c++) {
-            double cs = 0.0;
-            for (int r = 0; r < nc; r++) cs += fabs(X[r + c * nc]);
-            xn = fmax(xn, cs);
-        }
-        const double expect = (lmin / lmax) * (lmin / lmax) / (sn * xn);
+            for (int a = 0; a < nv; a++) P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
+        const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc);
         assert_near(d->rcond, expect, 1e-8 * expect);
         vt_data_free(d);
         vt_model_free(m);

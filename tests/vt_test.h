@@ -32,6 +32,48 @@
 
 /* LAPACK, for independent checks */
 void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
+void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b, const int *ldb,
+            int *info);
+
+/* The Schur complement S = P M^-1 P^T of the n x n M and the nc x n P (column-major, leading
+ * dimensions n and nc), by LAPACK's dgesv on copies, and S's exact 1-norm reciprocal condition
+ * 1 / (‖S‖₁ ‖S^-1‖₁), which it returns */
+static inline double vt_test_schur_rcond(const double *M, const double *P, int n, int nc)
+{
+    double *A = malloc(sizeof(double) * (size_t)(n * n + 2 * n * nc + 2 * nc * nc));
+    int *ipiv = malloc(sizeof(int) * (size_t)(n + nc)), info = 0;
+    assert_non_null(A);
+    assert_non_null(ipiv);
+    double *W = A + n * n, *S = W + n * nc, *X = S + nc * nc;
+    memcpy(A, M, sizeof(double) * (size_t)(n * n));
+    for (int r = 0; r < nc; r++)
+        for (int a = 0; a < n; a++) W[a + r * n] = P[r + a * nc];
+    dgesv_(&n, &nc, A, &n, ipiv, W, &n, &info);
+    assert_int_equal(info, 0);
+    for (int i = 0; i < nc; i++)
+        for (int j = 0; j < nc; j++) {
+            double v = 0.0;
+            for (int a = 0; a < n; a++) v += P[i + a * nc] * W[a + j * n];
+            S[i + j * nc] = v;
+            X[i + j * nc] = i == j;
+        }
+    double sn = 0.0, xn = 0.0;
+    for (int c = 0; c < nc; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < nc; r++) cs += fabs(S[r + c * nc]);
+        sn = fmax(sn, cs);
+    }
+    dgesv_(&nc, &nc, S, &nc, ipiv, X, &nc, &info);
+    assert_int_equal(info, 0);
+    for (int c = 0; c < nc; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < nc; r++) cs += fabs(X[r + c * nc]);
+        xn = fmax(xn, cs);
+    }
+    free(A);
+    free(ipiv);
+    return 1.0 / (sn * xn);
+}
 
 static inline double vt_test_maxabs(const double *a, int n)
 {
