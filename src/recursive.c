@@ -388,12 +388,12 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
     double *X = u + (size_t)nr * (size_t)nv; /* nv x nr: x⁰, then X */
     double *S = X + (size_t)nv * (size_t)nr; /* nc x nc */
     double *lam = S + (size_t)nc * (size_t)nc; /* nc */
+    memset(P, 0, sr * nb * sizeof(double));
     for (int i = 1; i <= n; i++) {
         double *p = P + sr * (size_t)i;
         inertia_bias(Ib + 13 * i, W0 + 6 * i, m, d, i);
         inertia_full(IA + 48 * i, Ib + 13 * i);
         for (int k = 0; k < 6; k++) p[k] = W0[6 * i + k];
-        for (size_t k = 6; k < sr; k++) p[k] = 0.0;
     }
     memcpy(Ic, Ib, 13 * nb * sizeof(double));
     vt_subtree_sum(m, Ic, 13);
@@ -429,7 +429,8 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
         if (j <= 0) continue;
         double *restrict Gj = IA + 48 * j, *restrict pj = P + sr * (size_t)j;
         for (int k = 0; k < 48; k++) Gj[k] += G[k];
-        for (size_t k = 0; k < sr; k++) pj[k] += p[k];
+        for (int k = 0; k < nr; k++)
+            for (int r = 0; r < 6; r++) pj[6 * k + r] += p[6 * k + r];
     }
     /* outward: A of every body for every right side (P's storage; the ground's is 0) */
     memset(P, 0, sr * sizeof(double));
