@@ -483,6 +483,16 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
     return 0;
 }
 
+/* what vt_solve sets on success, for a solve by articulated bodies */
+static void articulated_done(const vt_model *m, vt_data *d, double rcond)
+{
+    d->rcond = rcond;
+    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
+    d->rank = m->nc;
+    d->residual = 0.0;
+    vt_mark_unique(m, d);
+}
+
 /* (5) by articulated bodies, then the reactions from the subtrees' needed wrenches at the full
  * accelerations, W = W⁰ + I_O T with T the part q̈ adds to each body's spatial acceleration */
 static vt_status articulated_instant(const vt_model *m, vt_data *d)
@@ -491,11 +501,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     const int r = articulated_solve(m, d, &rcond);
     if (r < 0) return (vt_status)r;
     if (r == 1) return factorized_instant(m, d);
-    d->rcond = rcond;
-    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
-    d->rank = m->nc;
-    d->residual = 0.0;
-    vt_mark_unique(m, d);
+    articulated_done(m, d, rcond);
     const size_t nb = (size_t)m->nbody + 1;
     const double *W0 = d->work, *Ib = W0 + 6 * nb;
     double *alpha = d->work + 32 * nb, *T = alpha + 3 * nb, *W = alpha + 9 * nb, *G = alpha + 15 * nb;
@@ -539,13 +545,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         double rcond = 0.0;
         const int r = has_base(m) ? 1 : articulated_solve(m, d, &rcond); /* by articulated bodies */
         if (r < 0) return (vt_status)r;
-        if (r == 0) {
-            d->rcond = rcond;
-            d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
-            d->rank = m->nc;
-            d->residual = 0.0;
-            vt_mark_unique(m, d);
-        } else { /* or from M*_FF (vt_solve), which also diagnoses */
+        if (r == 0) articulated_done(m, d, rcond);
+        else { /* or from M*_FF (vt_solve), which also diagnoses */
             crba(m, d, d->work);
             bias(m, d, d->work);
             if ((st = vt_solve(m, d))) return st;
@@ -553,7 +554,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return inward(m, d);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
-    /* square, exactly constrained, no base body (whose ṗ rates carry (4)'s normal part): */
+    /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
+     * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
     if (!m->allow_redundant && !has_base(m)) {
         if (m->nc == m->nv) return square_instant(m, d);
         if (m->nc < m->nv) return articulated_instant(m, d);
