@@ -10,9 +10,10 @@
 
 #include "internal.h"
 
+/* the next array, on a cache line (VT_DATA_ALIGN: the vectorized kernels' 8-double columns) */
 static void *take(char *base, size_t *used, size_t bytes)
 {
-    *used = (*used + 15u) & ~(size_t)15u;
+    *used = (*used + (VT_DATA_ALIGN - 1)) & ~(size_t)(VT_DATA_ALIGN - 1);
     void *p = base ? base + *used : NULL;
     *used += bytes;
     return p;
@@ -30,11 +31,10 @@ static size_t work_size(const vt_model *m)
     if (15 * nb > w) w = 15 * nb; /* reactions: α, applied and children's wrenches */
     if (18 * nb + 6 * (size_t)m->ncut > w) w = 18 * nb + 6 * (size_t)m->ncut; /* reaction sensitivity */
     if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
-    /* the articulated-body solve (recursive.c): I^A, p or A for nc + 1 right sides and the
-     * composite inertias per body; U, D, u and x per rate; S and λ */
+    /* the articulated-body solve and its reactions (recursive.c): per body Ī, I^A, p and A for
+     * nc + 1 right sides, α, T, W̄, G; U, D, u and x per rate; S and λ */
     const size_t nv = (size_t)m->nv, nr = (size_t)m->nc + 1;
-    size_t aba = (80 + 6 * nr) * nb + (9 + 2 * nr) * nv + nr * nr;
-    if (53 * nb > aba) aba = 53 * nb; /* then its reactions: α, T, W̄, G past W⁰, I_O, Ī */
+    const size_t aba = (82 + 12 * nr) * nb + (9 + 2 * nr) * nv + nr * nr + 13 * 8; /* aba_layout, its 13 arrays on 8 */
     if (aba > w) w = aba;
     return w + 12 * (size_t)m->nc; /* on top: the rows' wrenches (reactions.c) */
 }
@@ -144,8 +144,8 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     return used;
 }
 
-/* Bytes from the buffer's start to its first VT_DATA_ALIGN boundary: the struct starts on a
- * cache line and every array, 16-byte aligned relative to it (take), is aligned for any type. */
+/* Bytes from the buffer's start to its first VT_DATA_ALIGN boundary: the struct and every
+ * array (take) start on a cache line. */
 static size_t align_pad(const void *buffer)
 {
     const uintptr_t a = (uintptr_t)buffer % VT_DATA_ALIGN;

@@ -327,10 +327,15 @@ static void inertia_full(double *restrict G, const double *restrict I)
 /* Kernels of the articulated-body passes: I^A in columns of 8 (two 4-wide vectors, which the
  * compiler uses), sums as balanced pairs (shorter dependency chains; C keeps the order written). */
 
-/* y += a x over 8 (one column of I^A: two 4-wide vectors) */
-static inline void axpy8(double *restrict y, double a, const double *restrict x)
+/* G −= U U^T / D (inv = 1 / D), G 6x6 in columns of 8. Rows outer: the compiler vectorizes
+ * the row loop, a column at a time (columns outer, GCC 12 vectorizes across the columns and
+ * shuffles: 5x the instructions) */
+static inline void rank1_cols8(double *restrict G, const double *restrict U, double inv)
 {
-    for (int r = 0; r < 8; r++) y[r] += a * x[r];
+    for (int r = 0; r < 8; r++) {
+        const double v = U[r] * inv;
+        for (int c = 0; c < 6; c++) G[r + 8 * c] -= v * U[c];
+    }
 }
 
 /* U = G s, G 6x6 in columns of 8 */
@@ -344,6 +349,42 @@ static inline void mul_cols8(double *restrict U, const double *restrict G, const
 static double dot6(const double *a, const double *b)
 {
     return (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3]) + (a[4] * b[4] + a[5] * b[5]);
+}
+
+/* articulated_solve's work (d->work, on a cache line; data.c sizes it), nr right sides: per body
+ * I^A (48, columns of 8), Ī (13), p and A (6 nr each); per rate U (8), D, u and x (nr each);
+ * S (nc x nc) and λ; then the reactions' α (3) with T (6), W̄ (6) and G (6) per body. Each
+ * array starts on 8 doubles (the 8-wide columns' loads stay within a cache line). */
+typedef struct {
+    double *IA, *Ic, *P, *A, *U, *D, *u, *X, *S, *lam, *alpha, *W, *G;
+} aba_work;
+
+static double *aba_next(double **at, size_t n)
+{
+    double *p = *at;
+    *at = p + ((n + 7) & ~(size_t)7);
+    return p;
+}
+
+static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
+{
+    const size_t nb = (size_t)m->nbody + 1, nv = (size_t)m->nv, nc = (size_t)nr - 1, sr = 6 * (size_t)nr;
+    double *at = d->work;
+    aba_work w;
+    w.IA = aba_next(&at, 48 * nb);
+    w.Ic = aba_next(&at, 13 * nb);
+    w.P = aba_next(&at, sr * nb);
+    w.A = aba_next(&at, sr * nb);
+    w.U = aba_next(&at, 8 * nv);
+    w.D = aba_next(&at, nv);
+    w.u = aba_next(&at, (size_t)nr * nv);
+    w.X = aba_next(&at, nv * (size_t)nr);
+    w.S = aba_next(&at, nc * nc);
+    w.lam = aba_next(&at, nc);
+    w.alpha = aba_next(&at, 9 * nb); /* T follows α (vt_accelerations_add) */
+    w.W = aba_next(&at, 6 * nb);
+    w.G = aba_next(&at, 6 * nb);
+    return w;
 }
 
 /* Fewer independent rows than rates, no base body: (5) by articulated bodies, without M*.
@@ -363,8 +404,6 @@ static double dot6(const double *a, const double *b)
  * D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in (0, 1]; M*_aa = s_a · Ī s_a
  * by composite inertias) where the Schur path has its forward Cholesky pivots'
  * (min L_kk / max L_kk)²: both fall where a motion loses its inertia.
- * Work (d->work): W⁰ (6) and I_O (13) per body, which the reactions use after; Ī (13), I^A (48)
- * and p (6 (nc+1)) per body; U (8), D, u and x (nc+1 each) per rate; S and λ.
  * When every row is a joint drive on a rate of its own (joint_rows_only) the driven rates' q̈
  * are known (drive_accelerations) and no row is a right side: such a rate articulates nothing,
  *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,
@@ -379,23 +418,14 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
     const int *drv = m->joint_rows_only ? m->dof_drive : NULL;
     const int n = m->nbody, nv = m->nv, nc = drv ? 0 : m->nc, nr = nc + 1;
     const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
-    double *W0 = d->work, *Ib = W0 + 6 * nb, *Ic = Ib + 13 * nb;
-    double *IA = Ic + 13 * nb;     /* 48 x nb: I^A, columns of 8 (inertia_full) */
-    double *P = IA + 48 * nb;      /* 6 nr x nb: p, then A */
-    double *U = P + sr * nb;       /* 8 x nv */
-    double *Dp = U + 8 * (size_t)nv; /* nv */
-    double *u = Dp + nv;           /* nr x nv */
-    double *X = u + (size_t)nr * (size_t)nv; /* nv x nr: x⁰, then X */
-    double *S = X + (size_t)nv * (size_t)nr; /* nc x nc */
-    double *lam = S + (size_t)nc * (size_t)nc; /* nc */
+    const aba_work w = aba_layout(m, d, nr);
+    double *Ic = w.Ic, *IA = w.IA, *P = w.P, *Aw = w.A, *U = w.U, *Dp = w.D, *u = w.u, *X = w.X, *S = w.S,
+           *lam = w.lam;
     memset(P, 0, sr * nb * sizeof(double));
-    for (int i = 1; i <= n; i++) {
-        double *p = P + sr * (size_t)i;
-        inertia_bias(Ib + 13 * i, W0 + 6 * i, m, d, i);
-        inertia_full(IA + 48 * i, Ib + 13 * i);
-        for (int k = 0; k < 6; k++) p[k] = W0[6 * i + k];
+    for (int i = 1; i <= n; i++) { /* p⁰ = W⁰; I^A = I_O; Ī by subtree sums of I_O */
+        inertia_bias(Ic + 13 * i, P + sr * (size_t)i, m, d, i);
+        inertia_full(IA + 48 * i, Ic + 13 * i);
     }
-    memcpy(Ic, Ib, 13 * nb * sizeof(double));
     vt_subtree_sum(m, Ic, 13);
     double pmin = 1.0, pmax = 0.0;
     for (int i = n; i >= 1; i--) {
@@ -418,7 +448,7 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
             double *restrict ua = u + (size_t)nr * (size_t)a;
             ua[0] = d->qfrc[a] - dot6(s, p);
             for (int k = 1; k < nr; k++) ua[k] = d->Phiq[(size_t)(k - 1) + (size_t)a * (size_t)nc] - dot6(s, p + 6 * k);
-            for (int c = 0; c < 6; c++) axpy8(G + 8 * c, -Ua[c] * inv, Ua);
+            rank1_cols8(G, Ua, inv);
             memcpy(U + 8 * a, Ua, sizeof Ua);
             for (int k = 0; k < nr; k++) {
                 const double t = ua[k] * inv;
@@ -432,12 +462,12 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
         for (int k = 0; k < nr; k++)
             for (int r = 0; r < 6; r++) pj[6 * k + r] += p[6 * k + r];
     }
-    /* outward: A of every body for every right side (P's storage; the ground's is 0) */
-    memset(P, 0, sr * sizeof(double));
+    /* outward: A of every body for every right side (the ground's is 0) */
+    memset(Aw, 0, sr * sizeof(double));
     for (int i = 1; i <= n; i++) {
-        double *restrict Ai = P + sr * (size_t)i;
-        const int j = m->body_parent[i];
-        memcpy(Ai, P + sr * (size_t)(j > 0 ? j : 0), sr * sizeof(double));
+        double *restrict Ai = Aw + sr * (size_t)i;
+        const double *restrict Aj = Aw + sr * (size_t)(m->body_parent[i] > 0 ? m->body_parent[i] : 0);
+        for (size_t k = 0; k < sr; k++) Ai[k] = Aj[k];
         for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
             const double *restrict s = d->twist + 6 * a, *restrict Ua = U + 8 * a, *restrict ua = u + (size_t)nr * (size_t)a;
             if (drv && drv[a] >= 0) {
@@ -493,8 +523,13 @@ static void articulated_done(const vt_model *m, vt_data *d, double rcond)
     vt_mark_unique(m, d);
 }
 
-/* (5) by articulated bodies, then the reactions from the subtrees' needed wrenches at the full
- * accelerations, W = W⁰ + I_O T with T the part q̈ adds to each body's spatial acceleration */
+/* (5) by articulated bodies, then the reactions from the subtrees' needed wrenches: the inward
+ * pass leaves, for body i, the I^A and p its subtree passes to the parent (after its own rates),
+ * and for any right side the subtree then needs W̄_i = I^A T_j + p at the parent's acceleration
+ * T_j (the outward pass: A_i = T_j + s_a x_a and u_a − U_a·T_j = D_a x_a give I^A_i T_j + p_i =
+ * I^A T_i + p before the rate's update). At the solution, p = p⁰ + Σ_r λ_r p^r and T_j is the
+ * part q̈ adds to j's spatial acceleration (vt_accelerations_add), so
+ *   W̄_i = I^A_i T_j + p⁰_i + Σ_r λ_r p^r_i    (= Σ over i's subtree of W⁰ + I_O T) */
 static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
@@ -502,17 +537,19 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     if (r < 0) return (vt_status)r;
     if (r == 1) return factorized_instant(m, d);
     articulated_done(m, d, rcond);
-    const size_t nb = (size_t)m->nbody + 1;
-    const double *W0 = d->work, *Ib = W0 + 6 * nb;
-    double *alpha = d->work + 32 * nb, *T = alpha + 3 * nb, *W = alpha + 9 * nb, *G = alpha + 15 * nb;
-    vt_accelerations_add(m, d, d->qdd, d->xdd, alpha);
+    const int nr = m->nc + 1;
+    const aba_work w = aba_layout(m, d, nr);
+    const double *T = w.alpha + 3 * ((size_t)m->nbody + 1);
+    vt_accelerations_add(m, d, d->qdd, d->xdd, w.alpha);
     for (int i = 1; i <= m->nbody; i++) {
-        double *Wi = W + 6 * i;
-        inertia_mul(Wi, Ib + 13 * i, T + 6 * i, T + 6 * i + 3);
-        for (int k = 0; k < 6; k++) Wi[k] += W0[6 * i + k];
+        double *Wi = w.W + 6 * i, IT[8];
+        const double *p = w.P + 6 * (size_t)nr * (size_t)i;
+        mul_cols8(IT, w.IA + 48 * i, T + 6 * m->body_parent[i]);
+        for (int k = 0; k < 6; k++) Wi[k] = IT[k] + p[k];
+        for (int c = 1; c < nr; c++)
+            for (int k = 0; k < 6; k++) Wi[k] += d->lambda[c - 1] * p[6 * c + k];
     }
-    vt_subtree_sum(m, W, 6);
-    return vt_reactions_subtree(m, d, W, G);
+    return vt_reactions_subtree(m, d, w.W, w.G);
 }
 
 static int has_base(const vt_model *m)
