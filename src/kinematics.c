@@ -31,12 +31,14 @@ static const double unit_quat[4] = {1, 0, 0, 0};
 
 static vt_status check_state(const vt_model *m, vt_data *d)
 {
-    for (int k = 0; k < m->nq; k++)
-        if (!isfinite(d->q[k]))
-            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: q[%d] = %g", k, d->q[k]);
-    for (int k = 0; k < m->nv; k++)
-        if (!isfinite(d->qd[k]))
-            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: qd[%d] = %g", k, d->qd[k]);
+    if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) { /* which one, for the message */
+        for (int k = 0; k < m->nq; k++)
+            if (!isfinite(d->q[k]))
+                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: q[%d] = %g", k, d->q[k]);
+        for (int k = 0; k < m->nv; k++)
+            if (!isfinite(d->qd[k]))
+                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: qd[%d] = %g", k, d->qd[k]);
+    }
     for (int i = 1; i <= m->nbody; i++) {
         const int jt = m->body_joint[i];
         if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE) continue;
