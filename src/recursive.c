@@ -312,17 +312,20 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
 
 /* G = body inertia I (inertia_O's form) as a full 6x6, columns of 8 (the last two zero, so that
  * a column is two 4-wide vectors), acting on (w, v): [J_O  h̃; h̃^T  m 1] with h̃ v = h × v */
+static inline void column8(double *restrict g, double a, double b, double c, double d, double e, double f)
+{
+    g[0] = a, g[1] = b, g[2] = c, g[3] = d, g[4] = e, g[5] = f, g[6] = 0.0, g[7] = 0.0;
+}
+
 static void inertia_full(double *restrict G, const double *restrict I)
 {
-    const double *h = I + 1, *J = I + 4;
-    for (int k = 0; k < 48; k++) G[k] = 0.0;
-    for (int c = 0; c < 3; c++)
-        for (int r = 0; r < 3; r++) G[r + 8 * c] = J[r + 3 * c];
-    G[0 + 8 * 4] = -h[2], G[0 + 8 * 5] = h[1], G[1 + 8 * 3] = h[2];
-    G[1 + 8 * 5] = -h[0], G[2 + 8 * 3] = -h[1], G[2 + 8 * 4] = h[0];
-    G[3 + 8 * 1] = h[2], G[3 + 8 * 2] = -h[1], G[4 + 8 * 0] = -h[2];
-    G[4 + 8 * 2] = h[0], G[5 + 8 * 0] = h[1], G[5 + 8 * 1] = -h[0];
-    G[3 + 8 * 3] = G[4 + 8 * 4] = G[5 + 8 * 5] = I[0];
+    const double *h = I + 1, *J = I + 4, m = I[0];
+    column8(G, J[0], J[1], J[2], 0.0, -h[2], h[1]); /* written whole: no zeroing pass (GCC's rep stos) */
+    column8(G + 8, J[3], J[4], J[5], h[2], 0.0, -h[0]);
+    column8(G + 16, J[6], J[7], J[8], -h[1], h[0], 0.0);
+    column8(G + 24, 0.0, h[2], -h[1], m, 0.0, 0.0);
+    column8(G + 32, -h[2], 0.0, h[0], 0.0, m, 0.0);
+    column8(G + 40, h[1], -h[0], 0.0, 0.0, 0.0, m);
 }
 
 /* Kernels of the articulated-body passes: I^A in columns of 8 (two 4-wide vectors, which the
