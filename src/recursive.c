@@ -413,14 +413,13 @@ static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
  *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,
  * the others are the free rates, M*_FF's pivots give the condition, and λ comes after from the
  * inward pass (the drives' efforts).
+ * articulated_solve_nr: nr right sides (nc + 1), drv the rates' joint drives when joint_rows_only.
  * Fills q̈ (and λ with rows); returns 0, 1 (a scaled pivot below 1e-8, or rcond below
  * rcond_min: the factorized instant decides and diagnoses) or a negative vt_status. */
 #define PIVOT_MIN 1e-8
-static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
+static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rcond_out, const int *drv, const int nr)
 {
-    /* joint rows only: the driven rates' q̈ are known (d->qdd), no row is a right side */
-    const int *drv = m->joint_rows_only ? m->dof_drive : NULL;
-    const int n = m->nbody, nv = m->nv, nc = drv ? 0 : m->nc, nr = nc + 1;
+    const int n = m->nbody, nv = m->nv, nc = nr - 1;
     const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
     const aba_work w = aba_layout(m, d, nr);
     double *Ic = w.Ic, *IA = w.IA, *P = w.P, *Aw = w.A, *U = w.U, *Dp = w.D, *u = w.u, *X = w.X, *S = w.S,
@@ -469,23 +468,22 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
     /* outward: A of every body for every right side (the ground's is 0) */
     memset(Aw, 0, sr * sizeof(double));
     for (int i = 1; i <= n; i++) {
-        double *restrict Ai = Aw + sr * (size_t)i;
-        const double *restrict Aj = Aw + sr * (size_t)(m->body_parent[i] > 0 ? m->body_parent[i] : 0);
-        for (size_t k = 0; k < sr; k++) Ai[k] = Aj[k];
+        double *Ai = Aw + sr * (size_t)i;
+        const double *Ain = Aw + sr * (size_t)(m->body_parent[i] > 0 ? m->body_parent[i] : 0);
         for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
-            const double *restrict s = d->twist + 6 * a, *restrict Ua = U + 8 * a, *restrict ua = u + (size_t)nr * (size_t)a;
+            const double *s = d->twist + 6 * a, *Ua = U + 8 * a, *ua = u + (size_t)nr * (size_t)a;
             if (drv && drv[a] >= 0) {
                 X[a] = d->qdd[a];
-                for (int r = 0; r < 6; r++) Ai[r] += d->qdd[a] * s[r];
-                continue;
+                for (int r = 0; r < 6; r++) Ai[r] = Ain[r] + d->qdd[a] * s[r];
+            } else {
+                const double inv = 1.0 / Dp[a];
+                for (int k = 0; k < nr; k++) {
+                    const double x = (ua[k] - dot6(Ua, Ain + 6 * k)) * inv;
+                    X[a + (size_t)k * (size_t)nv] = x;
+                    for (int r = 0; r < 6; r++) Ai[6 * k + r] = Ain[6 * k + r] + x * s[r];
+                }
             }
-            const double inv = 1.0 / Dp[a];
-            for (int k = 0; k < nr; k++) {
-                double *restrict Ak = Ai + 6 * k;
-                const double x = (ua[k] - dot6(Ua, Ak)) * inv;
-                X[a + (size_t)k * (size_t)nv] = x;
-                for (int r = 0; r < 6; r++) Ak[r] += x * s[r];
-            }
+            Ain = Ai; /* a multi-rate joint's next rate: from this one's A */
         }
     }
     /* S λ = γ − Φ_q x⁰, S = Φ_q X (lower triangle) */
@@ -515,6 +513,17 @@ static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
     if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc))
         return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
+}
+
+static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
+{
+    /* joint rows only: the driven rates' q̈ are known (d->qdd), no row is a right side */
+    const int *drv = m->joint_rows_only ? m->dof_drive : NULL;
+    const int nr = drv ? 1 : m->nc + 1;
+    /* one and two right sides (no row, one row) compiled apart: their loops over right sides unroll */
+    if (nr == 1) return articulated_solve_nr(m, d, rcond_out, drv, 1);
+    if (nr == 2) return articulated_solve_nr(m, d, rcond_out, NULL, 2);
+    return articulated_solve_nr(m, d, rcond_out, drv, nr);
 }
 
 /* what vt_solve sets on success, for a solve by articulated bodies */
