@@ -74,13 +74,15 @@ static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_dat
     double t[9];
     const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
     for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
-    for (int col = 0; col < 3; col++) vt_mulmat3(J + 3 * col, A, t + 3 * col);
-    const double c2 = vt_dot3(c, c);
-    I[0] = mass;
-    for (int k = 0; k < 3; k++) I[1 + k] = mass * c[k];
-    for (int col = 0; col < 3; col++)
-        for (int r = 0; r < 3; r++) I[4 + r + 3 * col] = J[r + 3 * col] - mass * c[r] * c[col];
-    for (int k = 0; k < 3; k++) I[4 + 4 * k] += mass * c2;
+    double u[6]; /* A t, symmetric: its upper triangle */
+    for (int col = 0, k = 0; col < 3; col++)
+        for (int r = 0; r <= col; r++, k++) u[k] = A[r] * t[3 * col] + A[r + 3] * t[1 + 3 * col] + A[r + 6] * t[2 + 3 * col];
+    J[0] = u[0], J[1] = J[3] = u[1], J[4] = u[2], J[2] = J[6] = u[3], J[5] = J[7] = u[4], J[8] = u[5];
+    const double h0 = mass * c[0], h1 = mass * c[1], h2 = mass * c[2];
+    const double o0 = h1 * c[1] + h2 * c[2], o1 = h0 * c[0] + h2 * c[2], o2 = h0 * c[0] + h1 * c[1];
+    I[0] = mass, I[1] = h0, I[2] = h1, I[3] = h2; /* J_O = J + m (|c|² 1 − c c^T) */
+    I[4] = u[0] + o0, I[5] = I[7] = u[1] - h0 * c[1], I[8] = u[2] + o1;
+    I[6] = I[10] = u[3] - h0 * c[2], I[9] = I[11] = u[4] - h1 * c[2], I[12] = u[5] + o2;
 }
 
 /* inertia_O, and body i's needed wrench at q̈ = 0 from the same global J (bias_wrench's, without
