@@ -32,9 +32,9 @@ static size_t work_size(const vt_model *m)
     if (18 * nb + 6 * (size_t)m->ncut > w) w = 18 * nb + 6 * (size_t)m->ncut; /* reaction sensitivity */
     if (8 * k + 8 + nx > w) w = 8 * k + 8 + nx;
     /* the articulated-body solve and its reactions (recursive.c): per body Ī, I^A, p and A for
-     * nc + 1 right sides, α, T, W̄, G; U, D, u and x per rate; S and λ */
+     * nc + 1 right sides, T, W̄, G; U, D, u and x per rate; S and λ */
     const size_t nv = (size_t)m->nv, nr = (size_t)m->nc + 1;
-    const size_t aba = (82 + 12 * nr) * nb + (9 + 2 * nr) * nv + nr * nr + 13 * 8; /* aba_layout, its 13 arrays on 8 */
+    const size_t aba = (79 + 12 * nr) * nb + (9 + 2 * nr) * nv + nr * nr + 13 * 8; /* aba_layout, its 13 arrays on 8 */
     if (aba > w) w = aba;
     return w + 12 * (size_t)m->nc; /* on top: the rows' wrenches (reactions.c) */
 }

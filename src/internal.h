@@ -150,8 +150,9 @@ void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 /* Kinematics (kinematics.c): ẍ = S q̈ + Ṡ q̇ into out (7n) (q̈ = 0 if qdd is NULL), with the
  * angular accelerations into alpha (3 x (nbody+1)). */
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
-/* The same from d->Sdqd and d->twist (both current): alpha needs 9 x (nbody+1). */
-void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
+/* The same from d->Sdqd and d->twist (both current), with T (6 x (nbody+1)) the twists q̈ adds
+ * to the bodies' spatial accelerations; alpha may be NULL. */
+void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, double *T);
 
 /* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
  * state is checked. */

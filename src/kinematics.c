@@ -287,14 +287,13 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
  *   α^i = α0^i + T_w,   a^i = a0^i + T_v + T_w × r^i,   p̈^i = p̈0^i + ½ E^{iT} T_w
  * with α0 = 2 E p̈0 (E p = 0, E E^T = I); a base body's own ṗ rates enter its p̈ as themselves
  * (S's block I), whose part along p the twist form leaves out: p̈ += p (p · q̈_p). */
-void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, double *T)
 {
-    double *T = alpha + 3 * ((size_t)m->nbody + 1); /* 6 x (nbody+1) */
     memset(T, 0, 6 * sizeof(double));
-    memset(alpha, 0, 3 * sizeof(double));
+    if (alpha) memset(alpha, 0, 3 * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
         const int j = m->body_parent[i], o = vt_xoff(i);
-        double *Ti = T + 6 * i, *ali = alpha + 3 * i, *ai = out + o;
+        double *Ti = T + 6 * i, *ai = out + o;
         const double *ri = d->x + o, *pi = ri + 3, *a0 = d->Sdqd + o;
         memcpy(Ti, T + 6 * j, 6 * sizeof(double));
         for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
@@ -302,11 +301,12 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
             vt_axpy3(Ti, qdd[a], s);
             vt_axpy3(Ti + 3, qdd[a], s + 3);
         }
-        vt_mulEp(ali, pi, a0 + 3);
-        for (int c = 0; c < 3; c++) {
-            ali[c] = 2.0 * ali[c] + Ti[c];
-            ai[c] = a0[c] + Ti[3 + c];
+        if (alpha) {
+            double *ali = alpha + 3 * i;
+            vt_mulEp(ali, pi, a0 + 3);
+            for (int c = 0; c < 3; c++) ali[c] = 2.0 * ali[c] + Ti[c];
         }
+        for (int c = 0; c < 3; c++) ai[c] = a0[c] + Ti[3 + c];
         vt_addcross3(ai, Ti, ri);
         vt_quat_rate(ai + 3, pi, Ti); /* ½ E^T T_w */
         for (int c = 0; c < 4; c++) ai[3 + c] += a0[3 + c];

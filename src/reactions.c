@@ -222,7 +222,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1;
     double *alpha = d->work, *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
-    vt_accelerations_add(m, d, d->qdd, d->xdd, alpha); /* its 6 (n+1) of scratch past α: fe, cf */
+    vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
     /* applied: gravity, xfrc, and every row and generalized force */
     memset(cf, 0, 6 * nb * sizeof(double));

@@ -302,7 +302,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     if (r == 1) return factorized_instant(m, d);
     /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
     double *alpha = d->work, *G = alpha + 3 * nb, *W = alpha + 9 * nb;
-    vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha);
+    vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha, G);
     subtree_wrenches(m, d, alpha, W);
     for (int a = 0; a < nv; a++) {
         const double *s = d->twist + 6 * a;
@@ -359,10 +359,10 @@ static double dot6(const double *a, const double *b)
 
 /* articulated_solve's work (d->work, on a cache line; data.c sizes it), nr right sides: per body
  * I^A (48, columns of 8), Ī (13), p and A (6 nr each); per rate U (8), D, u and x (nr each);
- * S (nc x nc) and λ; then the reactions' α (3) with T (6), W̄ (6) and G (6) per body. Each
+ * S (nc x nc) and λ; then the reactions' T (6), W̄ (6) and G (6) per body. Each
  * array starts on 8 doubles (the 8-wide columns' loads stay within a cache line). */
 typedef struct {
-    double *IA, *Ic, *P, *A, *U, *D, *u, *X, *S, *lam, *alpha, *W, *G;
+    double *IA, *Ic, *P, *A, *U, *D, *u, *X, *S, *lam, *T, *W, *G;
 } aba_work;
 
 static double *aba_next(double **at, size_t n)
@@ -387,7 +387,7 @@ static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
     w.X = aba_next(&at, nv * (size_t)nr);
     w.S = aba_next(&at, nc * nc);
     w.lam = aba_next(&at, nc);
-    w.alpha = aba_next(&at, 9 * nb); /* T follows α (vt_accelerations_add) */
+    w.T = aba_next(&at, 6 * nb);
     w.W = aba_next(&at, 6 * nb);
     w.G = aba_next(&at, 6 * nb);
     return w;
@@ -554,12 +554,11 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     articulated_done(m, d, rcond);
     const int nr = m->nc + 1;
     const aba_work w = aba_layout(m, d, nr);
-    const double *T = w.alpha + 3 * ((size_t)m->nbody + 1);
-    vt_accelerations_add(m, d, d->qdd, d->xdd, w.alpha);
+    vt_accelerations_add(m, d, d->qdd, d->xdd, NULL, w.T);
     for (int i = 1; i <= m->nbody; i++) {
         double *Wi = w.W + 6 * i, IT[8];
         const double *p = w.P + 6 * (size_t)nr * (size_t)i;
-        mul_cols8(IT, w.IA + 48 * i, T + 6 * m->body_parent[i]);
+        mul_cols8(IT, w.IA + 48 * i, w.T + 6 * m->body_parent[i]);
         for (int k = 0; k < 6; k++) Wi[k] = IT[k] + p[k];
         for (int c = 1; c < nr; c++)
             for (int k = 0; k < 6; k++) Wi[k] += d->lambda[c - 1] * p[6 * c + k];
