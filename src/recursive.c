@@ -93,18 +93,20 @@ static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_
     const int o = vt_xoff(i);
     const double mass = m->body_mass[i], *c = d->x + o;
     const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *xf = d->xfrc + 6 * i;
-    double J[9], al[3], Jw[3];
+    double J[9], al[3], Jw[3], n[3], f[3]; /* locals, W written once: it might alias the inputs */
     inertia_O(I, J, m, d, i);
     vt_mulEp(al, c + 3, a + 3);
     for (int k = 0; k < 3; k++) al[k] *= 2.0;
-    vt_mulmat3(W, J, al);
+    vt_mulmat3(n, J, al);
     vt_mulmat3(Jw, J, w);
-    vt_addcross3(W, w, Jw);
+    vt_addcross3(n, w, Jw);
     for (int k = 0; k < 3; k++) {
-        W[3 + k] = mass * (a[k] - m->gravity[k]) - xf[k];
-        W[k] -= xf[3 + k];
+        f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
+        n[k] -= xf[3 + k];
     }
-    vt_addcross3(W, c, W + 3);
+    vt_addcross3(n, c, f);
+    vt_copy3(W, n);
+    vt_copy3(W + 3, f);
 }
 
 /* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
