@@ -240,14 +240,14 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
             continue;
         }
         const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
-        double sji[3], t[3];
+        double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
         for (int r = 0; r < 3; r++) sji[r] = d->jpoint[3 * i + r] - ri[r];
 
-        vt_copy3(ali, alj);
-        vt_copy3(ai, aj);
-        vt_addcross3(ai, alj, sij);
+        vt_copy3(al, alj);
+        vt_copy3(a, aj);
+        vt_addcross3(a, alj, sij);
         vt_cross3(t, wj, sij);
-        vt_addcross3(ai, wj, t);
+        vt_addcross3(a, wj, t);
         for (int k = 0; k < m->body_nv[i]; k++) {
             int ax;
             const int kind = vt_dof_kind(jt, k, &ax);
@@ -257,28 +257,30 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
             if (kind == VT_DOF_ROT) {
                 /* ė: the universal's second axis rides on the body, all others on the reference */
                 vt_cross3(ed, (jt == VT_JOINT_UNIVERSAL && k == 1) ? wi : wj, ek);
-                vt_axpy3(ali, qddk, ek);
-                vt_axpy3(ali, qdi[k], ed);
+                vt_axpy3(al, qddk, ek);
+                vt_axpy3(al, qdi[k], ed);
             } else {
                 double edd[3];
                 const double qk = qi[jt == VT_JOINT_CYLINDRICAL ? 1 : 0];
                 vt_cross3(ed, wj, ek);
                 vt_cross3(edd, alj, ek);
                 vt_addcross3(edd, wj, ed);
-                vt_axpy3(ai, qddk, ek);
-                vt_axpy3(ai, 2.0 * qdi[k], ed);
-                vt_axpy3(ai, qk, edd);
+                vt_axpy3(a, qddk, ek);
+                vt_axpy3(a, 2.0 * qdi[k], ed);
+                vt_axpy3(a, qk, edd);
             }
         }
-        double u[3];
-        vt_cross3(u, ali, sji);
-        for (int r = 0; r < 3; r++) ai[r] -= u[r];
+        double u[3], pdd[4];
+        vt_cross3(u, al, sji);
+        for (int r = 0; r < 3; r++) a[r] -= u[r];
         vt_cross3(t, wi, sji);
         vt_cross3(u, wi, t);
-        for (int r = 0; r < 3; r++) ai[r] -= u[r];
-        vt_quat_rate(pddi, pi, ali);
+        for (int r = 0; r < 3; r++) a[r] -= u[r];
+        vt_quat_rate(pdd, pi, al);
         const double w2 = vt_dot3(wi, wi);
-        for (int r = 0; r < 4; r++) pddi[r] -= 0.25 * w2 * pi[r];
+        for (int r = 0; r < 4; r++) pddi[r] = pdd[r] - 0.25 * w2 * pi[r];
+        vt_copy3(ali, al);
+        vt_copy3(ai, a);
     }
 }
 
