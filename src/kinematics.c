@@ -295,23 +295,24 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
     if (alpha) memset(alpha, 0, 3 * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
         const int j = m->body_parent[i], o = vt_xoff(i);
-        double *Ti = T + 6 * i, *ai = out + o;
+        double *ai = out + o, t[6], a[3], pdd[4]; /* locals, stored once: out may alias the inputs */
         const double *ri = d->x + o, *pi = ri + 3, *a0 = d->Sdqd + o;
-        memcpy(Ti, T + 6 * j, 6 * sizeof(double));
-        for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
-            const double *s = d->twist + 6 * a;
-            vt_axpy3(Ti, qdd[a], s);
-            vt_axpy3(Ti + 3, qdd[a], s + 3);
+        memcpy(t, T + 6 * j, sizeof t);
+        for (int k = m->body_vadr[i]; k < m->body_vadr[i] + m->body_nv[i]; k++) {
+            const double *s = d->twist + 6 * k;
+            for (int c = 0; c < 6; c++) t[c] += qdd[k] * s[c];
         }
+        memcpy(T + 6 * i, t, sizeof t);
         if (alpha) {
             double *ali = alpha + 3 * i;
             vt_mulEp(ali, pi, a0 + 3);
-            for (int c = 0; c < 3; c++) ali[c] = 2.0 * ali[c] + Ti[c];
+            for (int c = 0; c < 3; c++) ali[c] = 2.0 * ali[c] + t[c];
         }
-        for (int c = 0; c < 3; c++) ai[c] = a0[c] + Ti[3 + c];
-        vt_addcross3(ai, Ti, ri);
-        vt_quat_rate(ai + 3, pi, Ti); /* ½ E^T T_w */
-        for (int c = 0; c < 4; c++) ai[3 + c] += a0[3 + c];
+        for (int c = 0; c < 3; c++) a[c] = a0[c] + t[3 + c];
+        vt_addcross3(a, t, ri);
+        vt_quat_rate(pdd, pi, t); /* ½ E^T T_w */
+        vt_copy3(ai, a);
+        for (int c = 0; c < 4; c++) ai[3 + c] = a0[3 + c] + pdd[c];
         if (m->body_joint[i] == VT_JOINT_BASE) {
             const double *qp = qdd + m->body_vadr[i] + 3;
             const double pq = pi[0] * qp[0] + pi[1] * qp[1] + pi[2] * qp[2] + pi[3] * qp[3];
