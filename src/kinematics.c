@@ -139,16 +139,19 @@ static void velocities(const vt_model *m, vt_data *d)
             continue;
         }
         const double *e = d->jaxis + 9 * i;
-        vt_copy3(wi, wj);
-        vt_copy3(vi, vj);
-        vt_addcross3(vi, wj, d->jsij + 3 * i);
+        double w[3], v[3]; /* locals, stored once: the outputs might alias the inputs */
+        vt_copy3(w, wj);
+        vt_copy3(v, vj);
+        vt_addcross3(v, wj, d->jsij + 3 * i);
         for (int k = 0; k < m->body_nv[i]; k++) {
             int ax;
-            if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) vt_axpy3(wi, qdi[k], e + 3 * ax);
-            else vt_axpy3(vi, qdi[k], e + 3 * ax);
+            if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) vt_axpy3(w, qdi[k], e + 3 * ax);
+            else vt_axpy3(v, qdi[k], e + 3 * ax);
         }
-        vt_addcross3(vi, wi, d->jd + 3 * i);
-        vt_quat_rate(pdi, pi, wi);
+        vt_addcross3(v, w, d->jd + 3 * i);
+        vt_copy3(wi, w);
+        vt_copy3(vi, v);
+        vt_quat_rate(pdi, pi, w);
     }
 }
 
