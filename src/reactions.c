@@ -207,8 +207,11 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
 {
     for (int i = m->nbody; i >= 1; i--) {
         const double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i, *Ai = d->A + 9 * i;
-        vt_mulmat3t(d->jnt_force_body + 3 * i, Ai, f);
-        vt_mulmat3t(d->jnt_moment_body + 3 * i, Ai, mo);
+        double fb[3], mb[3]; /* locals, stored once: the outputs might alias the inputs */
+        vt_mulmat3t(fb, Ai, f);
+        vt_mulmat3t(mb, Ai, mo);
+        vt_copy3(d->jnt_force_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_body + 3 * i, mb);
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE,
                            "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",
@@ -282,14 +285,15 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
     vt_subtree_sum(m, G, 6);
     for (int i = 1; i <= n; i++) {
         const double *W = Wbar + 6 * i, *g = G + 6 * i;
-        double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
+        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         for (int c = 0; c < 3; c++) {
             f[c] = W[3 + c] - g[c];
             mo[c] = W[c] - g[3 + c];
         }
-        double t[3];
         vt_cross3(t, d->jpoint + 3 * i, f);
         for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+        vt_copy3(d->jnt_force + 3 * i, f);
+        vt_copy3(d->jnt_moment + 3 * i, mo);
     }
     return joint_reactions_done(m, d);
 }
