@@ -360,11 +360,11 @@ static double dot6(const double *a, const double *b)
 }
 
 /* articulated_solve's work (d->work, on a cache line; data.c sizes it), nr right sides: per body
- * I^A (48, columns of 8), Ī (13), p and A (6 nr each); per rate U (8), D, u and x (nr each);
+ * I^A (48, columns of 8), Ī (13), p and A (6 nr each); per rate U (8), 1 / D, u and x (nr each);
  * S (nc x nc) and λ; then the reactions' T (6), W̄ (6) and G (6) per body. Each
  * array starts on 8 doubles (the 8-wide columns' loads stay within a cache line). */
 typedef struct {
-    double *IA, *Ic, *P, *A, *U, *D, *u, *X, *S, *lam, *T, *W, *G;
+    double *IA, *Ic, *P, *A, *U, *Dinv, *u, *X, *S, *lam, *T, *W, *G;
 } aba_work;
 
 static double *aba_next(double **at, size_t n)
@@ -384,7 +384,7 @@ static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
     w.P = aba_next(&at, sr * nb);
     w.A = aba_next(&at, sr * nb);
     w.U = aba_next(&at, 8 * nv);
-    w.D = aba_next(&at, nv);
+    w.Dinv = aba_next(&at, nv);
     w.u = aba_next(&at, (size_t)nr * nv);
     w.X = aba_next(&at, nv * (size_t)nr);
     w.S = aba_next(&at, nc * nc);
@@ -426,7 +426,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
     const int n = m->nbody, nv = m->nv, nc = nr - 1;
     const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
     const aba_work w = aba_layout(m, d, nr);
-    double *Ic = w.Ic, *IA = w.IA, *P = w.P, *Aw = w.A, *U = w.U, *Dp = w.D, *u = w.u, *X = w.X, *S = w.S,
+    double *Ic = w.Ic, *IA = w.IA, *P = w.P, *Aw = w.A, *U = w.U, *Dinv = w.Dinv, *u = w.u, *X = w.X, *S = w.S,
            *lam = w.lam;
     memset(P, 0, sr * nb * sizeof(double));
     for (int i = 1; i <= n; i++) { /* p⁰ = W⁰; I^A = I_O; Ī by subtree sums of I_O */
@@ -451,7 +451,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
             const double inv = 1.0 / Da;
-            Dp[a] = Da;
+            Dinv[a] = inv;
             double *restrict ua = u + (size_t)nr * (size_t)a;
             ua[0] = d->qfrc[a] - dot6(s, p);
             for (int k = 1; k < nr; k++) ua[k] = d->Phiq[(size_t)(k - 1) + (size_t)a * (size_t)nc] - dot6(s, p + 6 * k);
@@ -480,7 +480,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
                 X[a] = d->qdd[a];
                 for (int r = 0; r < 6; r++) Ai[r] = Ain[r] + d->qdd[a] * s[r];
             } else {
-                const double inv = 1.0 / Dp[a];
+                const double inv = Dinv[a];
                 for (int k = 0; k < nr; k++) {
                     const double x = (ua[k] - dot6(Ua, Ain + 6 * k)) * inv;
                     X[a + (size_t)k * (size_t)nv] = x;
