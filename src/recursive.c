@@ -41,18 +41,20 @@ static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i,
 {
     const double *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
     const double *r = d->x + vt_xoff(i), *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
-    double wb[3], ab[3], Jw[3], Ja[3];
+    double wb[3], ab[3], Jw[3], Ja[3], n[3], f[3]; /* locals, W written once: it might alias the inputs */
     vt_mulmat3t(wb, Ai, w);
     vt_mulmat3t(ab, Ai, al);
     vt_mulmat3(Jw, Jb, wb);
     vt_mulmat3(Ja, Jb, ab);
     vt_addcross3(Ja, wb, Jw);
-    vt_mulmat3(W, Ai, Ja); /* J α + ω × J ω, body axes and back */
+    vt_mulmat3(n, Ai, Ja); /* J α + ω × J ω, body axes and back */
     for (int c = 0; c < 3; c++) {
-        W[3 + c] = mass * (a[c] - m->gravity[c]) - xf[c];
-        W[c] -= xf[3 + c];
+        f[c] = mass * (a[c] - m->gravity[c]) - xf[c];
+        n[c] -= xf[3 + c];
     }
-    vt_addcross3(W, r, W + 3);
+    vt_addcross3(n, r, f);
+    vt_copy3(W, n);
+    vt_copy3(W + 3, f);
 }
 
 /* W̄: every subtree's needed wrench about O at the accelerations d->xdd and alpha (3 x (nbody+1)) */
