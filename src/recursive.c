@@ -227,10 +227,9 @@ static vt_status inward(const vt_model *m, vt_data *d)
     subtree_wrenches(m, d, alpha, W);
     for (int i = 1; i <= n; i++) {
         const double *Wi = W + 6 * i, *P = d->jpoint + 3 * i, *e = d->jaxis + 9 * i;
-        double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
+        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_copy3(f, Wi + 3);
         vt_copy3(mo, Wi);
-        double t[3];
         vt_cross3(t, P, f);
         for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
         for (int k = 0; k < m->body_nv[i]; k++) {
@@ -252,8 +251,13 @@ static vt_status inward(const vt_model *m, vt_data *d)
             d->qfrc_drive[c] = tau;
             vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
         }
-        vt_mulmat3t(d->jnt_force_body + 3 * i, d->A + 9 * i, f);
-        vt_mulmat3t(d->jnt_moment_body + 3 * i, d->A + 9 * i, mo);
+        double fb[3], mb[3];
+        vt_mulmat3t(fb, d->A + 9 * i, f);
+        vt_mulmat3t(mb, d->A + 9 * i, mo);
+        vt_copy3(d->jnt_force + 3 * i, f);
+        vt_copy3(d->jnt_moment + 3 * i, mo);
+        vt_copy3(d->jnt_force_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_body + 3 * i, mb);
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     }
