@@ -173,8 +173,12 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
 /* vt_reactions without the argument checks (ẍ and α from d->qdd) */
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar
- * (6 x (nbody+1), recursive.c); G: scratch of 6 x (nbody+1), apart from Wbar */
-vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G);
+ * (6 x (nbody+1), recursive.c), the rows' wrenches already taken off it with rows_in_wbar;
+ * G: scratch of 6 x (nbody+1), apart from Wbar */
+vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G, int rows_in_wbar);
+/* Every row's wrench on its two bodies, for the multipliers lam (1 each when NULL), about each
+ * body's centre of mass: [f_a n_a f_b n_b] (12 x nc) in the top 12 nc of d->work (reactions.c). */
+const double *vt_row_wrenches(const vt_model *m, vt_data *d, const double *lam);
 
 /* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);

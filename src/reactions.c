@@ -24,11 +24,11 @@
 
 #include "internal.h"
 
-/* Every row's wrench on its two bodies for the multipliers lam, about each body's centre of
- * mass, [f_a n_a f_b n_b] (12 x nc), into the top 12 nc of d->work (data.c sizes it; the
- * stages use the rest); the ground's side and the normalization rows of base bodies (their
- * moment ½ E (2 p λ) is zero) are zero. */
-static const double *row_wrenches(const vt_model *m, vt_data *d, const double *lam)
+/* Every row's wrench on its two bodies for the multipliers lam (each 1 when lam is NULL), about
+ * each body's centre of mass, [f_a n_a f_b n_b] (12 x nc), into the top 12 nc of d->work
+ * (data.c sizes it; the stages use the rest); the ground's side and the normalization rows of
+ * base bodies (their moment ½ E (2 p λ) is zero) are zero. */
+const double *vt_row_wrenches(const vt_model *m, vt_data *d, const double *lam)
 {
     double *rw = d->work + d->nwork - 12 * (size_t)m->nc;
     for (int r = 0; r < m->nc; r++)
@@ -39,9 +39,9 @@ static const double *row_wrenches(const vt_model *m, vt_data *d, const double *l
                 memset(f, 0, 6 * sizeof(double));
                 continue;
             }
-            const double *px = d->Phix + 14 * r + 7 * side;
-            for (int c = 0; c < 3; c++) f[c] = px[c] * lam[r];
-            for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * lam[r];
+            const double *px = d->Phix + 14 * r + 7 * side, l = lam ? lam[r] : 1.0;
+            for (int c = 0; c < 3; c++) f[c] = px[c] * l;
+            for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * l;
             vt_mulEp(n, d->x + vt_xoff(k) + 3, t);
         }
     return rw;
@@ -87,7 +87,7 @@ static int drive_nrows(const vt_drive_def *dr)
  * rw: the rows' wrenches (row_wrenches), or NULL to compute them. */
 static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
 {
-    if (!rw) rw = row_wrenches(m, d, d->lambda);
+    if (!rw) rw = vt_row_wrenches(m, d, d->lambda);
     for (int k = 0; k < m->ndrive; k++) {
         const vt_drive_def *dr = &m->drive[k];
         const int r0 = m->drive_row[k], b = dr->body;
@@ -152,14 +152,12 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
     return vt_reactions_impl(m, d);
 }
 
-/* Into fe (6 x (nbody+1), added, about each body's centre of mass): every drive and cut-joint
- * row's wrench (normalization rows of base bodies exert nothing: their moment ½ E (2 p λ) is
- * zero) and the applied generalized forces'; on the way, the drives' efforts and the cut
- * joints' reactions. */
-static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
+/* Into fe (6 x (nbody+1), added, about each body's centre of mass) the applied generalized
+ * forces' wrenches. An applied generalized force acts between a
+ * joint's two bodies: its Cartesian form is R^T qfrc (14), on the body [f; 2 E^T n] and on its
+ * reference body the rest of the row. */
+static void qfrc_loads(const vt_model *m, vt_data *d, double *fe)
 {
-    /* an applied generalized force acts between a joint's two bodies: its Cartesian form is
-     * R^T qfrc (14), on the body [f; 2 E^T n] and on its reference body the rest of the row */
     for (int c = 0; c < m->nv; c++) {
         if (d->qfrc[c] == 0.0) continue;
         const int i = m->dof_body[c], j = m->body_parent[i];
@@ -177,8 +175,12 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
             vt_axpy3(fe + 6 * k + 3, 1.0, nn);
         }
     }
-    const double *rw = row_wrenches(m, d, d->lambda);
-    add_row_wrenches(m, rw, fe);
+}
+
+/* The drives' efforts and the cut joints' reactions from the rows' wrenches rw (vt_row_wrenches
+ * at λ), checked */
+static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
+{
     drive_efforts(m, d, rw);
 
     /* cut joints: the rows' wrench on body_b, at its joint point */
@@ -199,6 +201,18 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
         !vt_all_finite(d->cut_force, 3 * m->ncut) || !vt_all_finite(d->cut_moment, 3 * m->ncut))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_reactions: an effort overflowed (an ill-posed instant?)");
     return VT_OK;
+}
+
+/* Into fe (6 x (nbody+1), added, about each body's centre of mass): every drive and cut-joint
+ * row's wrench (normalization rows of base bodies exert nothing: their moment ½ E (2 p λ) is
+ * zero) and the applied generalized forces'; on the way, the drives' efforts and the cut
+ * joints' reactions. */
+static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
+{
+    qfrc_loads(m, d, fe);
+    const double *rw = vt_row_wrenches(m, d, d->lambda);
+    add_row_wrenches(m, rw, fe);
+    return row_efforts(m, d, rw);
 }
 
 /* every joint's reaction (f, moment mo about P_i, global) also in body axes, and checked from
@@ -271,20 +285,30 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
     return joint_reactions_done(m, d);
 }
 
-/* The same reactions from the subtrees' needed wrenches W̄ about O (recursive.c's square path,
- * which has them from M* q̈ − Q): the reaction at joint i is W̄_i less the rows' and the
- * generalized forces' wrenches G over i's subtree, about O, its moment then moved to P_i.
+/* The same reactions from the subtrees' needed wrenches W̄ about O (recursive.c, which has them
+ * from its inward passes): the reaction at joint i is W̄_i less the rows' and the generalized
+ * forces' wrenches G over i's subtree, about O, its moment then moved to P_i. With rows_in_wbar
+ * W̄ already has the rows' wrenches taken off (the articulated path starts its row right sides
+ * from them) and G holds the generalized forces' alone, when there are any.
  * G: scratch of 6 x (nbody+1). */
-vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G)
+vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G, int rows_in_wbar)
 {
+    static const double zero6[6] = {0, 0, 0, 0, 0, 0};
     const int n = m->nbody;
-    memset(G, 0, 6 * ((size_t)n + 1) * sizeof(double));
-    vt_status st = row_loads(m, d, G);
+    const double *rw = vt_row_wrenches(m, d, d->lambda);
+    vt_status st = row_efforts(m, d, rw);
     if (st) return st;
-    for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->x + vt_xoff(i), G + 6 * i); /* about O */
-    vt_subtree_sum(m, G, 6);
+    int loads = !rows_in_wbar && m->nc > 0; /* any load for G */
+    for (int c = 0; c < m->nv && !loads; c++) loads = d->qfrc[c] != 0.0;
+    if (loads) {
+        memset(G, 0, 6 * ((size_t)n + 1) * sizeof(double));
+        qfrc_loads(m, d, G);
+        if (!rows_in_wbar) add_row_wrenches(m, rw, G);
+        for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->x + vt_xoff(i), G + 6 * i); /* about O */
+        vt_subtree_sum(m, G, 6);
+    }
     for (int i = 1; i <= n; i++) {
-        const double *W = Wbar + 6 * i, *g = G + 6 * i;
+        const double *W = Wbar + 6 * i, *g = loads ? G + 6 * i : zero6;
         double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         for (int c = 0; c < 3; c++) {
             f[c] = W[3 + c] - g[c];
@@ -306,7 +330,7 @@ void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, dou
     const size_t nb = (size_t)n + 1;
     double *fe = d->work, *cf = fe + 6 * nb, *mag = cf + 6 * nb; /* 6 per joint, then 6 per cut */
     memset(fe, 0, 12 * nb * sizeof(double));
-    const double *rw = row_wrenches(m, d, z);
+    const double *rw = vt_row_wrenches(m, d, z);
     add_row_wrenches(m, rw, fe);
     double big = 0.0, *cmag = mag + 6 * nb;
     for (int k = 0; k < m->ncut; k++) {

@@ -317,7 +317,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
         d->kkt_rhs[nv + a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
     }
     const vt_status st = vt_solve_square_end(m, d, rcond);
-    return st ? st : vt_reactions_subtree(m, d, W, G);
+    return st ? st : vt_reactions_subtree(m, d, W, G, 0);
 }
 
 /* G = body inertia I (inertia_O's form) as a full 6x6, columns of 8 (the last two zero, so that
@@ -440,6 +440,21 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
         inertia_full(IA + 48 * i, Ic + 13 * i);
     }
     vt_subtree_sum(m, Ic, 13);
+    if (nc > 0) { /* p^r: the row's wrench for λ_r = 1 on its bodies, about O, as an applied load */
+        const double *rw = vt_row_wrenches(m, d, NULL);
+        for (int r = 0; r < nc; r++)
+            for (int side = 0; side < 2; side++) {
+                const int b = m->con_body[2 * r + side];
+                if (b == 0) continue;
+                const double *f = rw + 12 * r + 6 * side, *n0 = f + 3;
+                double *p = P + sr * (size_t)b + 6 * (size_t)(r + 1), t[3];
+                vt_cross3(t, d->x + vt_xoff(b), f);
+                for (int c = 0; c < 3; c++) {
+                    p[c] -= n0[c] + t[c];
+                    p[3 + c] -= f[c];
+                }
+            }
+    }
     double pmin = 1.0, pmax = 0.0;
     for (int i = n; i >= 1; i--) {
         double *restrict G = IA + 48 * i, *restrict p = P + sr * (size_t)i;
@@ -460,7 +475,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
             Dinv[a] = inv;
             double *restrict ua = u + (size_t)nr * (size_t)a;
             ua[0] = d->qfrc[a] - dot6(s, p);
-            for (int k = 1; k < nr; k++) ua[k] = d->Phiq[(size_t)(k - 1) + (size_t)a * (size_t)nc] - dot6(s, p + 6 * k);
+            for (int k = 1; k < nr; k++) ua[k] = -dot6(s, p + 6 * k); /* b_a = 0: the row's wrench is in p */
             rank1_cols8(G, Ua, inv);
             memcpy(U + 8 * a, Ua, sizeof Ua);
             for (int k = 0; k < nr; k++) {
@@ -571,7 +586,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         for (int c = 1; c < nr; c++)
             for (int k = 0; k < 6; k++) Wi[k] += d->lambda[c - 1] * p[6 * c + k];
     }
-    return vt_reactions_subtree(m, d, w.W, w.G);
+    return vt_reactions_subtree(m, d, w.W, w.G, 1);
 }
 
 static int has_base(const vt_model *m)
