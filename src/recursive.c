@@ -411,7 +411,10 @@ static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
  *   outward, A the parent's spatial acceleration (about O):
  *     x_a = (u_a − U_a · A) / D_a,  A ← A + s_a x_a
  * For b = Q (4) p starts as the bodies' needed wrenches W⁰ at q̈ = 0 and b_a = qfrc_a, since
- * Q_a = qfrc_a − s_a · W̄⁰; for b = Φ_q^T e_r, p starts at 0. With q̈ = x⁰ + X λ (2), the rows
+ * Q_a = qfrc_a − s_a · W̄⁰; for b = Φ_q^T e_r = S^T Φ_x^T e_r, the row's own wrench w_r on its
+ * bodies (vt_row_wrenches at λ_r = 1, about O) is an applied load: p starts at −w_r there and
+ * b_a = 0, since Σ_{k below a} s_a · w_r,k = (Φ_q^T e_r)_a (10); so the I^A T + p that give the
+ * reactions come without the rows' loads. With q̈ = x⁰ + X λ (2), the rows
  * Φ_q q̈ = γ give S λ = γ − Φ_q x⁰, S = Φ_q X = Φ_q M*^-1 Φ_q^T, the Schur complement of
  * vt_solve's Schur path, which has S̃ = c² S: the same condition. The D_a are M*'s pivots
  * taken leaf first (rates in descending order); the reported condition is S's times min/max of
@@ -567,7 +570,8 @@ static void articulated_done(const vt_model *m, vt_data *d, double rcond)
  * T_j (the outward pass: A_i = T_j + s_a x_a and u_a − U_a·T_j = D_a x_a give I^A_i T_j + p_i =
  * I^A T_i + p before the rate's update). At the solution, p = p⁰ + Σ_r λ_r p^r and T_j is the
  * part q̈ adds to j's spatial acceleration (vt_accelerations_add), so
- *   W̄_i = I^A_i T_j + p⁰_i + Σ_r λ_r p^r_i    (= Σ over i's subtree of W⁰ + I_O T) */
+ *   W̄_i = I^A_i T_j + p⁰_i + Σ_r λ_r p^r_i    (= Σ over i's subtree of W⁰ + I_O T − Σ_r λ_r w_r)
+ * the rows' loads already off (the p^r start from them): vt_reactions_subtree(..., 1). */
 static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
