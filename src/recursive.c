@@ -23,7 +23,8 @@
  *   actuation (τ + qfrc) along its axes (inward);
  * - fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
  *   (articulated_solve: O(n) per right side, M* is not formed), then the reactions from
- *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum (articulated_instant);
+ *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum and without the
+ *   rows' loads (articulated_instant);
  *   when every row is a joint drive (joint_rows_only) the driven rates' q̈ are
  *   known and only the free ones are solved, then the inward pass as above;
  * - as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q = S^T W̄ − qfrc
