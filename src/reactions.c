@@ -18,7 +18,7 @@
  * Summed over the subtree below joint i instead of counted down body by body, the same balance
  * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about the origin (inertia
  * less gravity and applied loads) and G_i its rows' and generalized forces' wrenches, the
- * moment then moved to P_i; the recursive square path has W̄ already (vt_reactions_subtree).
+ * moment then moved to P_i; the recursive paths have W̄ already (vt_reactions_subtree).
  */
 #include <string.h>
 
@@ -153,9 +153,9 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
 }
 
 /* Into fe (6 x (nbody+1), added, about each body's centre of mass) the applied generalized
- * forces' wrenches. An applied generalized force acts between a
- * joint's two bodies: its Cartesian form is R^T qfrc (14), on the body [f; 2 E^T n] and on its
- * reference body the rest of the row. */
+ * forces' wrenches. An applied generalized force acts between a joint's two bodies: its
+ * Cartesian form is R^T qfrc (14), on the body [f; 2 E^T n] and on its reference body the rest
+ * of the row. */
 static void qfrc_loads(const vt_model *m, vt_data *d, double *fe)
 {
     for (int c = 0; c < m->nv; c++) {
