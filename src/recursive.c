@@ -37,25 +37,34 @@
 
 #include "internal.h"
 
+/* W = body i's needed wrench about O, (n − n_e + c × f, f = m (a − g) − f_e), from
+ * n = J α + ω × J ω and the centre of mass's acceleration a; built in locals and written once
+ * (W might alias the inputs as far as the compiler knows) */
+static inline void needed_wrench(double W[6], const vt_model *m, const vt_data *d, int i, double n[3], const double *a)
+{
+    const double *c = d->x + vt_xoff(i), *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+    double f[3];
+    for (int k = 0; k < 3; k++) {
+        f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
+        n[k] -= xf[3 + k];
+    }
+    vt_addcross3(n, c, f);
+    vt_copy3(W, n);
+    vt_copy3(W + 3, f);
+}
+
 /* W = needed wrench of body i about O, given its accelerations a (3) and α (3) */
 static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i, const double *a, const double *al)
 {
     const double *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
-    const double *r = d->x + vt_xoff(i), *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
-    double wb[3], ab[3], Jw[3], Ja[3], n[3], f[3]; /* locals, W written once: it might alias the inputs */
+    double wb[3], ab[3], Jw[3], Ja[3], n[3];
     vt_mulmat3t(wb, Ai, w);
     vt_mulmat3t(ab, Ai, al);
     vt_mulmat3(Jw, Jb, wb);
     vt_mulmat3(Ja, Jb, ab);
     vt_addcross3(Ja, wb, Jw);
     vt_mulmat3(n, Ai, Ja); /* J α + ω × J ω, body axes and back */
-    for (int c = 0; c < 3; c++) {
-        f[c] = mass * (a[c] - m->gravity[c]) - xf[c];
-        n[c] -= xf[3 + c];
-    }
-    vt_addcross3(n, r, f);
-    vt_copy3(W, n);
-    vt_copy3(W + 3, f);
+    needed_wrench(W, m, d, i, n, a);
 }
 
 /* W̄: every subtree's needed wrench about O at the accelerations d->xdd and alpha (3 x (nbody+1)) */
@@ -94,22 +103,15 @@ static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_dat
 static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i)
 {
     const int o = vt_xoff(i);
-    const double mass = m->body_mass[i], *c = d->x + o;
-    const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *xf = d->xfrc + 6 * i;
-    double J[9], al[3], Jw[3], n[3], f[3]; /* locals, W written once: it might alias the inputs */
+    const double *w = d->omega + 3 * i, *a = d->Sdqd + o;
+    double J[9], al[3], Jw[3], n[3];
     inertia_O(I, J, m, d, i);
-    vt_mulEp(al, c + 3, a + 3);
+    vt_mulEp(al, d->x + o + 3, a + 3);
     for (int k = 0; k < 3; k++) al[k] *= 2.0;
     vt_mulmat3(n, J, al);
     vt_mulmat3(Jw, J, w);
     vt_addcross3(n, w, Jw);
-    for (int k = 0; k < 3; k++) {
-        f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
-        n[k] -= xf[3 + k];
-    }
-    vt_addcross3(n, c, f);
-    vt_copy3(W, n);
-    vt_copy3(W + 3, f);
+    needed_wrench(W, m, d, i, n, a);
 }
 
 /* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
