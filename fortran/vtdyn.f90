@@ -19,6 +19,9 @@
 !         call vt_array(q, d%q, m%nq)                        ! q(1:nq)
 !         call vt_body_array(jf, d%jnt_force, 3, m%nbody)    ! jf(1:3, 0:nbody), column i = body i
 !     These are views of the C memory: writing q(1) sets the C data's q[0].
+!     The data's arena (the stages' scratch, an opaque vt_arena) is a type(c_ptr) to leave
+!     alone, and the model's internal fields (con_kind ... joint_rows_only, last in vt_model)
+!     are mirrored only to keep the layout: their meaning may change in any release.
 !   - Definition structs are plain values: start from the defaults and set what you need,
 !         type(vt_body_def) :: link;   link = vt_default_body_def();   link%mass = 100
 !     (2-D fields are flat as in C: inertia(1:9) is the 3x3 column-major matrix).
@@ -54,6 +57,13 @@ module vtdyn
       VT_JOINT_TYPE_COUNT = 6
   ! warning flags in vt_data%warning
   integer(c_int), parameter :: VT_WARN_ILL_CONDITIONED = 1, VT_WARN_REDUNDANT = 2
+  ! vt_route: the route by which the last solve found qdd and lambda (vt_data%route)
+  integer(c_int), parameter :: VT_ROUTE_NONE = 0, VT_ROUTE_JOINT_DRIVEN = 1, VT_ROUTE_FREE_RATES = 2, &
+      VT_ROUTE_SQUARE = 3, VT_ROUTE_SCHUR = 4, VT_ROUTE_ARTICULATED = 5, VT_ROUTE_AUGMENTED = 6, &
+      VT_ROUTE_REDUNDANT = 7, VT_ROUTE_COUNT = 8
+  ! fallback flags in vt_data%fallback: faster routes the last instant left, and why
+  integer(c_int), parameter :: VT_FALLBACK_SCHUR_PIVOT = 1, VT_FALLBACK_ARTICULATED_PIVOT = 2, &
+      VT_FALLBACK_ARTICULATED_CONDITION = 4, VT_FALLBACK_SQUARE_CONDITION = 8
   ! redundant rows: directions below this fraction of the largest singular value are dropped
   real(c_double), parameter :: VT_REDUNDANT_TOL = 1.0e-3_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
@@ -158,13 +168,14 @@ module vtdyn
     type(c_ptr)            :: drive_row
     type(c_ptr)            :: cut
     type(c_ptr)            :: cut_row
-    type(c_ptr)            :: con_kind
     type(c_ptr)            :: con_body
     type(c_ptr)            :: con_owner
+    type(c_ptr)            :: dof_drive
+    ! internal (types.h): read by the C library only, mirrored for the layout
+    type(c_ptr)            :: con_kind
     type(c_ptr)            :: con_dof
     type(c_ptr)            :: con_vec
     type(c_ptr)            :: con_point
-    type(c_ptr)            :: dof_drive
     integer(c_int)         :: joint_driven
     integer(c_int)         :: joint_rows_only
   end type vt_model
@@ -201,13 +212,14 @@ module vtdyn
     type(c_ptr)            :: gamma
     type(c_ptr)            :: qdd
     type(c_ptr)            :: lambda
+    integer(c_int)         :: route
+    integer(c_int)         :: fallback
     real(c_double)         :: rcond
     integer(c_int)         :: warning
     integer(c_int)         :: rank
     real(c_double)         :: residual
     type(c_ptr)            :: lambda_unique
-    type(c_ptr)            :: jnt_unique
-    type(c_ptr)            :: cut_unique
+    type(c_ptr)            :: lambda_null
     type(c_ptr)            :: xdd
     type(c_ptr)            :: qfrc_drive
     type(c_ptr)            :: drive_effort
@@ -221,19 +233,9 @@ module vtdyn
     type(c_ptr)            :: cut_moment
     type(c_ptr)            :: cut_force_body
     type(c_ptr)            :: cut_moment_body
-    type(c_ptr)            :: work
-    integer(c_size_t)      :: nwork
-    type(c_ptr)            :: kkt
-    type(c_ptr)            :: kkt_rhs
-    type(c_ptr)            :: kkt_scale
-    type(c_ptr)            :: lwork
-    integer(c_int)         :: nlwork
-    type(c_ptr)            :: ipiv
-    type(c_ptr)            :: liwork
-    type(c_ptr)            :: nullvec
-    type(c_ptr)            :: red_work
-    type(c_ptr)            :: red_iwork
-    type(c_ptr)            :: qsave
+    type(c_ptr)            :: jnt_unique
+    type(c_ptr)            :: cut_unique
+    type(c_ptr)            :: arena
     integer(c_int)         :: ida_flag
     character(kind=c_char) :: message(256)
   end type vt_data

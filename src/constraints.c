@@ -1,5 +1,5 @@
 /* Constraints in Cartesian form Φ(x, t) = 0: the paper's (21) (the second one), (22), (23)
- * and method.md "Constraints and drives".
+ * and docs/method.md "Constraints and drives".
  *
  *   Φ_q = Φ_x S                                                     (22)
  *   γ   = −Φ̇_x ẋ − Φ̇_t − Φ_x Ṡ q̇ = −Φ̈ evaluated at q̈ = 0           (23)
@@ -157,12 +157,12 @@ static double G_row(const double a[4], const double b[4], int k)
 }
 
 /* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
- * (gathered), or column by column from the rates' twists (the recursive path, which has no
- * dense S) */
-static void phiq_row(const vt_model *m, vt_data *d, int r, int dense)
+ * (gathered into Si, 7 x maxpath, with row: maxpath), or column by column from the rates'
+ * twists (the recursive path, which has no dense S) */
+static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si)
 {
     const int nc = m->nc;
-    double *Si = d->work, *row = Si + 7 * m->maxpath;
+    double *row = Si + 7 * m->maxpath;
     for (int side = 0; side < 2; side++) {
         const int b = m->con_body[2 * r + side];
         if (b == 0) continue;
@@ -222,7 +222,7 @@ static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, con
 
 /* The three point rows of a cut joint, P_b − P_a = 0 along the global axes e_k, at once */
 static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_state *A, const body_state *B,
-                           const point_memo *pa, const point_memo *pb, int dense)
+                           const point_memo *pa, const point_memo *pb, int dense, double *Si)
 {
     for (int k = 0; k < 3; k++) {
         double *pxa = d->Phix + 14 * (r + k), *pxb = pxa + 7, e[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3];
@@ -235,7 +235,7 @@ static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_stat
         d->Phi[r + k] = pb->P[k] - pa->P[k];
         d->Phit[r + k] = 0.0;
         d->gamma[r + k] = pa->aP[k] - pb->aP[k];
-        if (dense) phiq_row(m, d, r + k, 1);
+        if (dense) phiq_row(m, d, r + k, 1, Si);
     }
     if (!dense) {
         point_jacobian_rows(m, d, r, A->id, pa->P, -1.0);
@@ -257,6 +257,9 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
     if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
     double pdes[4] = {1, 0, 0, 0}, pdes_d[4] = {0}, pdes_dd[4] = {0};
     const int drive_rows = vt_drive_rows(m);
+    const size_t mark = vt_scratch_mark(d);
+    double *Si = dense ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
+    if (dense && !Si) return vt_scratch_fail(d, mark);
     memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
 
     body_state A = {.id = -1}, B = {.id = -1}; /* loaded when a row's bodies change */
@@ -271,7 +274,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
         if ((kind == VT_ROW_JOINT || kind == VT_ROW_POINT) && r < drive_rows) {
             st = vt_function_eval_valid(f, &m->drive[owner].f, t);
             if (st)
-                return vt_fail(d->message, st, "vt_constraints: drive %d: time function failed at t = %g (%s)",
+                return vt_scratch_release(d, mark), vt_fail(d->message, st, "vt_constraints: drive %d: time function failed at t = %g (%s)",
                                owner, t, vt_status_string(st));
         }
         switch (kind) {
@@ -282,13 +285,13 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->gamma[r] = f[2];
             vt_R_row(m, d, dof, pxa, pxb);
             if (A.id == 0) memset(pxa, 0, 7 * sizeof(double));
-            if (dense) phiq_row(m, d, r, 1);
+            if (dense) phiq_row(m, d, r, 1, Si);
             else d->Phiq[r + (size_t)dof * (size_t)m->nc] = 1.0; /* R S = I */
             break;
         }
         case VT_ROW_POINT: {
             if (r >= drive_rows && r == m->cut_row[owner]) { /* a cut joint's three point rows */
-                cut_point_rows(m, d, r, &A, &B, point_motion_memo(&ma, &A, sa), point_motion_memo(&mb, &B, sb), dense);
+                cut_point_rows(m, d, r, &A, &B, point_motion_memo(&ma, &A, sa), point_motion_memo(&mb, &B, sb), dense, Si);
                 r += 2;
                 continue;
             }
@@ -352,7 +355,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             const int k = m->con_dof[r];
             if (k == 0) {
                 st = prescribed_orientation(d->message, owner, &m->drive[owner], t, pdes, pdes_d, pdes_dd);
-                if (st) return st;
+                if (st) return vt_scratch_release(d, mark), st;
             }
             double G[12];
             vt_euler_G(G, pdes);
@@ -362,7 +365,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->Phi[r] = 2.0 * G_row(pdes, B.p, k);
             d->Phit[r] = 2.0 * G_row(pdes_d, B.p, k);
             d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
-            phiq_row(m, d, r, dense);
+            phiq_row(m, d, r, dense, Si);
             break;
         }
         default: { /* VT_ROW_NORM */
@@ -372,11 +375,18 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->Phi[r] = dot4(B.p, B.p) - 1.0;
             d->Phit[r] = 0.0;
             d->gamma[r] = -2.0 * dot4(B.pd, B.pd);
-            phiq_row(m, d, r, dense);
+            phiq_row(m, d, r, dense, Si);
             break;
         }
         }
-        if (dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1);
+        if (dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1, Si);
     }
+    vt_scratch_release(d, mark);
     return VT_OK;
+}
+
+/* a body's S block and its product with a row (the dense Φ_q) */
+size_t vt_constraints_scratch(const vt_model *m)
+{
+    return VT_SCRATCH_BYTES(8 * (size_t)m->maxpath, sizeof(double));
 }

@@ -1,4 +1,4 @@
-/* Forces: the paper's (4), (7), (9), (10) and method.md "Equations of motion".
+/* Forces: the paper's (4), (7), (9), (10) and docs/method.md "Equations of motion".
  *
  *   F^i = [f; 2 E^T s̃ f + 2 E^T n]          force f, moment n at body point s (7)
  *         gravity adds [m^i g; 0]; d->xfrc holds f and the moment about the centre of mass
@@ -24,9 +24,12 @@ void vt_cartesian_force(double F[7], const double p[4], const double s[3], const
 }
 
 /* Q = S^T G for a Cartesian vector G (7n) */
-static void apply_St(double *Q, const vt_model *m, vt_data *d, const double *G)
+static vt_status apply_St(double *Q, const vt_model *m, vt_data *d, const double *G)
 {
-    double *Si = d->work, *Qk = Si + 7 * m->maxpath;
+    const size_t mark = vt_scratch_mark(d);
+    double *Si = VT_SCRATCH(d, double, 7 * (size_t)m->maxpath, "S block");
+    double *Qk = VT_SCRATCH(d, double, m->maxpath, "S block^T G");
+    if (!Qk) return vt_scratch_fail(d, mark);
     memset(Q, 0, (size_t)m->nv * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
         const int k = m->body_pathnum[i];
@@ -35,6 +38,8 @@ static void apply_St(double *Q, const vt_model *m, vt_data *d, const double *G)
         cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, G + vt_xoff(i), 1, 0.0, Qk, 1);
         for (int c = 0; c < k; c++) Q[path[c]] += Qk[c];
     }
+    vt_scratch_release(d, mark);
+    return VT_OK;
 }
 
 vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const double *F)
@@ -44,8 +49,7 @@ vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const d
     if (!Q || !F) return vt_fail(d->message, VT_ERR_NULL, "vt_generalized_force: NULL argument");
     if (!vt_all_finite(F, m->nx))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_generalized_force: NaN or Inf in F");
-    apply_St(Q, m, d, F);
-    return VT_OK;
+    return apply_St(Q, m, d, F);
 }
 
 vt_status vt_forces(const vt_model *m, vt_data *d)
@@ -54,7 +58,9 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
     if (st) return st;
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: NaN or Inf in xfrc or qfrc");
-    double *g = d->work + 8 * m->maxpath + 8; /* past apply_St's scratch */
+    const size_t mark = vt_scratch_mark(d);
+    double *g = VT_SCRATCH(d, double, m->nx, "F − M Ṡq̇ + h");
+    if (!g) return vt_scratch_fail(d, mark);
     for (int i = 1; i <= m->nbody; i++) {
         const int o = vt_xoff(i);
         const double *p = d->x + o + 3, *pd = d->xd + o + 3, *w = d->xfrc + 6 * i;
@@ -87,7 +93,16 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
             g[o + 3 + r] = F[3 + r] - s + h[3 + r];
         }
     }
-    apply_St(d->Q, m, d, g);
+    st = apply_St(d->Q, m, d, g);
+    vt_scratch_release(d, mark);
+    if (st) return st;
     for (int c = 0; c < m->nv; c++) d->Q[c] += d->qfrc[c];
     return VT_OK;
+}
+
+/* F − M Ṡq̇ + h, with S^T's blocks on top */
+size_t vt_forces_scratch(const vt_model *m)
+{
+    const size_t D = sizeof(double);
+    return VT_SCRATCH_BYTES(m->nx, D) + VT_SCRATCH_BYTES(7 * (size_t)m->maxpath, D) + VT_SCRATCH_BYTES(m->maxpath, D);
 }

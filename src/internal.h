@@ -115,6 +115,84 @@ static inline int vt_all_finite(const double *a, int n)
     return !(any >> 63);
 }
 
+/* ---- the scratch arena (data.c lays it out) ---------------------------------------------
+ * A stack inside the data: a function that needs scratch marks the top, takes named
+ * allocations (each on a cache line) and releases back to its mark before it returns, so no
+ * file knows another's layout and no output array doubles as scratch. In AddressSanitizer
+ * builds everything above the top is poisoned: a read or write past an allocation, or into a
+ * released one, is reported where it happens. Sizes are fixed by the model: each source file
+ * that takes scratch bounds what it takes at once with a vt_<file>_scratch(model) function
+ * (bytes, VT_SCRATCH_BYTES per allocation), and the arena holds their sum, enough for any call
+ * chain in which a file appears once. The analyses over time take none (they allocate what
+ * they need at their start). An allocation that does not fit (a sizing bug) returns
+ * NULL, names itself in d->message and fails every later one until the release. */
+struct vt_arena {
+    char *base;   /* on a VT_DATA_ALIGN boundary */
+    size_t size;  /* bytes */
+    size_t top;   /* bytes in use */
+    int failed;   /* an allocation did not fit since the last release below it */
+};
+
+#if defined(__SANITIZE_ADDRESS__)
+#define VT_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VT_ASAN 1
+#endif
+#endif
+#ifdef VT_ASAN
+void __asan_poison_memory_region(void const volatile *addr, size_t size);
+void __asan_unpoison_memory_region(void const volatile *addr, size_t size);
+#define VT_POISON(p, n) __asan_poison_memory_region((p), (n))
+#define VT_UNPOISON(p, n) __asan_unpoison_memory_region((p), (n))
+#else
+#define VT_POISON(p, n) ((void)(p), (void)(n))
+#define VT_UNPOISON(p, n) ((void)(p), (void)(n))
+#endif
+
+/* bytes an allocation of n items of `size` bytes takes in the arena (its cache lines) */
+#define VT_SCRATCH_BYTES(n, size) ((((size_t)(n) * (size_t)(size)) + (VT_DATA_ALIGN - 1)) & ~(size_t)(VT_DATA_ALIGN - 1))
+
+static inline size_t vt_scratch_mark(const vt_data *d)
+{
+    return d->arena->top;
+}
+
+/* n items of `size` bytes, named for the message when they do not fit */
+void *vt_scratch_take(vt_data *d, size_t n, size_t size, const char *name);
+#define VT_SCRATCH(d, type, n, name) ((type *)vt_scratch_take((d), (size_t)(n), sizeof(type), (name)))
+
+/* the rest of the arena, at least `need` items of `size` bytes, as one allocation (LAPACK's
+ * workspace: its count into *count) */
+void *vt_scratch_rest(vt_data *d, size_t need, size_t size, int *count, const char *name);
+
+static inline void vt_scratch_release(vt_data *d, size_t mark)
+{
+    vt_arena *a = d->arena;
+    if (mark < a->top) VT_POISON(a->base + mark, a->top - mark);
+    a->top = mark;
+    a->failed = 0;
+}
+
+/* 1 when every allocation since the mark fitted */
+static inline int vt_scratch_ok(const vt_data *d)
+{
+    return !d->arena->failed;
+}
+
+/* releases to mark and returns the failure (the message names the allocation) */
+vt_status vt_scratch_fail(vt_data *d, size_t mark);
+
+/* each file's bound on the scratch it takes at once (bytes) */
+size_t vt_kinematics_scratch(const vt_model *m);
+size_t vt_mass_scratch(const vt_model *m);
+size_t vt_forces_scratch(const vt_model *m);
+size_t vt_constraints_scratch(const vt_model *m);
+size_t vt_solve_scratch(const vt_model *m);
+size_t vt_reactions_scratch(const vt_model *m);
+size_t vt_recursive_scratch(const vt_model *m);
+size_t vt_kinematic_solve_scratch(const vt_model *m);
+
 /* Writes a formatted message into buf (size 256) and returns status. */
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -144,7 +222,7 @@ static inline int vt_dof_kind(int joint_type, int k, int *axis)
 
 /* Mp = 4 G^T J' G (4x4 column-major), the rotational block of M^i (mass.c) */
 void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
-/* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (mass.c) */
+/* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (kinematics.c) */
 void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 
 /* Kinematics (kinematics.c): ẍ = S q̈ + Ṡ q̇ into out (7n) (q̈ = 0 if qdd is NULL), with the
@@ -160,11 +238,24 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
 /* A column of S in body i's rows, from the rate's twist d->twist (kinematics.c) */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
 
-/* every multiplier and reaction unique (vt_solve's exact paths) */
+/* every multiplier unique (vt_solve's exact routes) */
 void vt_mark_unique(const vt_model *m, vt_data *d);
-/* vt_solve's square path in two halves for the recursive evaluation (solve.c) */
-int vt_solve_square_begin(const vt_model *m, vt_data *d, const double *mdiag, double *rcond);
-vt_status vt_solve_square_end(const vt_model *m, vt_data *d, double rcond);
+/* vt_solve without the argument check and without clearing d->fallback (solve.c): the
+ * recursive evaluation's general route, after its own shortcuts have flagged their fallbacks */
+vt_status vt_solve_impl(const vt_model *m, vt_data *d);
+/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of Φ_q D
+ * and, up to 16 rates, its inverse; D; q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
+typedef struct {
+    double *A, *X, *s, *x, *h;
+    int *ipiv;
+} vt_square;
+int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);
+int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
+/* the same for the recursive evaluation: from M*'s diagonal mdiag (nv), and its outcome */
+int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
+vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
+/* dgelsd's integer workspace for an m x n problem (solve.c) */
+int vt_dgelsd_iwork(int m, int n);
 /* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten by the
  * factor; n ≤ 1 needs none), b solved in place, S's reciprocal condition into *rcond: 1 for
  * n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above, 0 when S is not positive
@@ -177,8 +268,10 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
  * G: scratch of 6 x (nbody+1), apart from Wbar */
 vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G, int rows_in_wbar);
 /* Every row's wrench on its two bodies, for the multipliers lam (1 each when NULL), about each
- * body's centre of mass: [f_a n_a f_b n_b] (12 x nc) in the top 12 nc of d->work (reactions.c). */
-const double *vt_row_wrenches(const vt_model *m, vt_data *d, const double *lam);
+ * body's centre of mass: [f_a n_a f_b n_b] into rw (12 x nc) (reactions.c). */
+void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const double *lam);
+/* jnt_unique and cut_unique from the solve's rank and null directions (reactions.c) */
+vt_status vt_reactions_unique(const vt_model *m, vt_data *d);
 
 /* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);
@@ -239,12 +332,8 @@ void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, 
 void dgecon_(const char *norm, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
              double *work, int *iwork, int *info, size_t lnorm);
 
-/* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
- * (Φ_q^T z = 0) changes by more than tol of its largest change (reactions.c) */
-void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, double tol);
-
 /* Efforts of the drives from d->lambda (reactions.c), and the forward check's loads */
-void vt_drive_efforts(const vt_model *m, vt_data *d);
+vt_status vt_drive_efforts(const vt_model *m, vt_data *d);
 void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
                           int as_loads);
 

@@ -1,4 +1,4 @@
-/* Kinematics and the velocity transformation S: the paper's (15)-(18), method.md
+/* Kinematics and the velocity transformation S: the paper's (15)-(18), docs/method.md
  * "Velocity transformation S".
  *
  * Body i, reference body j, joint axes e_k (global), ε_k = 1 for a translational rate,
@@ -219,6 +219,14 @@ static void fill_S(const vt_model *m, vt_data *d)
     }
 }
 
+/* Copies body i's rows of S on its path columns into Si (7 x k, ld 7). */
+void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i)
+{
+    const int *path = m->path_dof + m->body_pathadr[i];
+    for (int c = 0; c < m->body_pathnum[i]; c++)
+        memcpy(Si + 7 * c, d->S + (size_t)path[c] * (size_t)m->nx + (size_t)vt_xoff(i), 7 * sizeof(double));
+}
+
 /* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
  * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
@@ -331,8 +339,20 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
     positions(m, d);
     twists(m, d);
     velocities(m, d);
-    if (Sdqd) vt_accelerations(m, d, NULL, d->Sdqd, d->work);
+    if (Sdqd) {
+        const size_t mark = vt_scratch_mark(d);
+        double *alpha = VT_SCRATCH(d, double, 3 * ((size_t)m->nbody + 1), "α at q̈ = 0");
+        if (!alpha) return vt_scratch_fail(d, mark);
+        vt_accelerations(m, d, NULL, d->Sdqd, alpha);
+        vt_scratch_release(d, mark);
+    }
     return VT_OK;
+}
+
+/* the angular accelerations of Ṡq̇ */
+size_t vt_kinematics_scratch(const vt_model *m)
+{
+    return VT_SCRATCH_BYTES(3 * ((size_t)m->nbody + 1), sizeof(double));
 }
 
 vt_status vt_kinematics(const vt_model *m, vt_data *d)

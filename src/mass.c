@@ -1,4 +1,4 @@
-/* The mass matrices: the paper's (3) and method.md "Equations of motion".
+/* The mass matrices: the paper's (3) and docs/method.md "Equations of motion".
  *
  *   M^i = diag(m^i I3, 4 G^{iT} J'^i G^i)       (J' about the centre of mass, body axes)
  *   M*  = S^T M S = Σ_i S_i^T M^i S_i           (3)
@@ -20,20 +20,15 @@ void vt_rot_mass(double Mp[16], const double J[9], const double p[4])
         for (int r = 0; r < 4; r++) Mp[r + 4 * c] = 4.0 * vt_dot3(G + 3 * r, JG + 3 * c);
 }
 
-/* Copies body i's rows of S on its path columns into Si (7 x k, ld 7). */
-void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i)
-{
-    const int *path = m->path_dof + m->body_pathadr[i];
-    for (int c = 0; c < m->body_pathnum[i]; c++)
-        memcpy(Si + 7 * c, d->S + (size_t)path[c] * (size_t)m->nx + (size_t)vt_xoff(i), 7 * sizeof(double));
-}
-
 vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_mass_matrix");
     if (st) return st;
     const int nv = m->nv;
-    double *Si = d->work, *W = Si + 7 * m->maxpath, *C = W + 7 * m->maxpath;
+    const size_t k7 = 7 * (size_t)m->maxpath, mark = vt_scratch_mark(d);
+    double *Si = VT_SCRATCH(d, double, k7, "S block"), *W = VT_SCRATCH(d, double, k7, "M S block");
+    double *C = VT_SCRATCH(d, double, (size_t)m->maxpath * (size_t)m->maxpath, "M* block");
+    if (!C) return vt_scratch_fail(d, mark);
     memset(d->Mstar, 0, (size_t)nv * (size_t)nv * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
         const int k = m->body_pathnum[i];
@@ -50,5 +45,13 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
         for (int b = 0; b < k; b++)
             for (int a = 0; a < k; a++) d->Mstar[path[a] + (size_t)path[b] * (size_t)nv] += C[a + k * b];
     }
+    vt_scratch_release(d, mark);
     return VT_OK;
+}
+
+/* a body's S block, M S block and M* block */
+size_t vt_mass_scratch(const vt_model *m)
+{
+    const size_t k = (size_t)m->maxpath;
+    return 2 * VT_SCRATCH_BYTES(7 * k, sizeof(double)) + VT_SCRATCH_BYTES(k * k, sizeof(double));
 }

@@ -14,7 +14,6 @@
  */
 #include <stdlib.h>
 #include <string.h>
-#include <stdio.h>
 
 #include "internal.h"
 
@@ -33,58 +32,6 @@ static const int cut_rows[VT_JOINT_TYPE_COUNT] = {0, 5, 4, 3, 5, 4};
 
 static const int joint_nq[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 4, 1, 2};
 static const int joint_nv[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 3, 1, 2};
-
-const char *vt_status_string(vt_status status)
-{
-    switch (status) {
-    case VT_OK: return "ok";
-    case VT_ERR_NULL: return "a required pointer is NULL";
-    case VT_ERR_NO_MEMORY: return "out of memory";
-    case VT_ERR_NONFINITE: return "NaN or Inf in the input";
-    case VT_ERR_MASS: return "mass must be positive";
-    case VT_ERR_INERTIA_ASYMMETRIC: return "inertia matrix not symmetric";
-    case VT_ERR_INERTIA_NOT_PSD: return "inertia matrix not positive semi-definite";
-    case VT_ERR_INERTIA_TRIANGLE: return "principal moments of inertia violate the triangle inequality";
-    case VT_ERR_AXIS_ZERO: return "joint axis of zero length";
-    case VT_ERR_AXES_NOT_PERPENDICULAR: return "universal joint axes not perpendicular";
-    case VT_ERR_PARENT: return "reference body must be an earlier body (the ground for a base body)";
-    case VT_ERR_JOINT_TYPE: return "unknown joint type";
-    case VT_ERR_TOO_MANY_BODIES: return "too many bodies";
-    case VT_ERR_QUATERNION: return "Euler parameters of zero norm";
-    case VT_ERR_EMPTY_MODEL: return "the model has no moving body";
-    case VT_ERR_BAD_INDEX: return "index out of range";
-    case VT_ERR_MODEL_MISMATCH: return "data struct belongs to another model";
-    case VT_ERR_LAPACK: return "LAPACK reported an error";
-    case VT_ERR_BAD_DRIVE: return "drive definition cannot be used";
-    case VT_ERR_BAD_CUT_JOINT: return "cut joint definition cannot be used";
-    case VT_ERR_CALLBACK: return "a user callback returned an error";
-    case VT_ERR_SINGULAR: return "augmented system singular or ill-conditioned";
-    case VT_ERR_DEPENDENT_CONSTRAINTS: return "constraint rows linearly dependent";
-    case VT_ERR_NEWTON: return "Newton-Raphson on the constraints did not converge";
-    case VT_ERR_NOT_FULLY_DRIVEN: return "the drives do not fix every degree of freedom";
-    case VT_ERR_IDA: return "SUNDIALS IDA failed";
-    case VT_ERR_ABORTED: return "stopped by the progress callback";
-    case VT_ERR_BAD_OPTION: return "run option out of range";
-    case VT_ERR_BAD_SIZE: return "caller-provided buffer too small";
-    }
-    return "unknown status";
-}
-
-const char *vt_version(void)
-{
-    return VT_VERSION_STRING;
-}
-
-vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
-{
-    if (buf) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(buf, 256, fmt, ap);
-        va_end(ap);
-    }
-    return status;
-}
 
 vt_model_def vt_default_model_def(void)
 {

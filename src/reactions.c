@@ -1,4 +1,4 @@
-/* Actuating efforts and joint reactions: the paper's (24)-(28) and method.md "Joint
+/* Actuating efforts and joint reactions: the paper's (24)-(28) and docs/method.md "Joint
  * reactions".
  *
  * The Cartesian force of constraint row r on body k is Φ_{x^k}^T λ_r; written as a force f and
@@ -25,12 +25,10 @@
 #include "internal.h"
 
 /* Every row's wrench on its two bodies for the multipliers lam (each 1 when lam is NULL), about
- * each body's centre of mass, [f_a n_a f_b n_b] (12 x nc), into the top 12 nc of d->work
- * (data.c sizes it; the stages use the rest); the ground's side and the normalization rows of
- * base bodies (their moment ½ E (2 p λ) is zero) are zero. */
-const double *vt_row_wrenches(const vt_model *m, vt_data *d, const double *lam)
+ * each body's centre of mass, [f_a n_a f_b n_b] into rw (12 x nc); the ground's side and the
+ * normalization rows of base bodies (their moment ½ E (2 p λ) is zero) are zero. */
+void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const double *lam)
 {
-    double *rw = d->work + d->nwork - 12 * (size_t)m->nc;
     for (int r = 0; r < m->nc; r++)
         for (int side = 0; side < 2; side++) {
             const int k = m->con_body[2 * r + side];
@@ -44,7 +42,6 @@ const double *vt_row_wrenches(const vt_model *m, vt_data *d, const double *lam)
             for (int c = 0; c < 4; c++) t[c] = 0.5 * px[3 + c] * l;
             vt_mulEp(n, d->x + vt_xoff(k) + 3, t);
         }
-    return rw;
 }
 
 /* sum of the wrenches rw of rows [r0, r1) on side `side`, moved to the point P of their body */
@@ -84,10 +81,9 @@ static int drive_nrows(const vt_drive_def *dr)
 
 /* The drives' efforts (24) from d->lambda: each drive's force and moment on its body at the
  * drive's point, its effort along its coordinate or component, and Φ_q^T λ over the drives.
- * rw: the rows' wrenches (row_wrenches), or NULL to compute them. */
+ * rw: the rows' wrenches at λ (vt_row_wrenches). */
 static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
 {
-    if (!rw) rw = vt_row_wrenches(m, d, d->lambda);
     for (int k = 0; k < m->ndrive; k++) {
         const vt_drive_def *dr = &m->drive[k];
         const int r0 = m->drive_row[k], b = dr->body;
@@ -110,9 +106,15 @@ static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
         for (int c = 0; c < m->nv; c++) d->qfrc_drive[c] += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->lambda[r];
 }
 
-void vt_drive_efforts(const vt_model *m, vt_data *d)
+vt_status vt_drive_efforts(const vt_model *m, vt_data *d)
 {
-    drive_efforts(m, d, NULL);
+    const size_t mark = vt_scratch_mark(d);
+    double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
+    if (!rw) return vt_scratch_fail(d, mark);
+    vt_row_wrenches(rw, m, d, d->lambda);
+    drive_efforts(m, d, rw);
+    vt_scratch_release(d, mark);
+    return VT_OK;
 }
 
 /* The forward check's loads on the model without drives, on top of the applied loads xfrc0:
@@ -206,11 +208,11 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
 /* Into fe (6 x (nbody+1), added, about each body's centre of mass): every drive and cut-joint
  * row's wrench (normalization rows of base bodies exert nothing: their moment ½ E (2 p λ) is
  * zero) and the applied generalized forces'; on the way, the drives' efforts and the cut
- * joints' reactions. */
-static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
+ * joints' reactions. rw: scratch for the rows' wrenches (12 x nc). */
+static vt_status row_loads(const vt_model *m, vt_data *d, double *fe, double *rw)
 {
     qfrc_loads(m, d, fe);
-    const double *rw = vt_row_wrenches(m, d, d->lambda);
+    vt_row_wrenches(rw, m, d, d->lambda);
     add_row_wrenches(m, rw, fe);
     return row_efforts(m, d, rw);
 }
@@ -219,6 +221,8 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe)
  * the tree's ends inward (an overflow shows first where it arises) */
 static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
 {
+    vt_status st = vt_reactions_unique(m, d);
+    if (st) return st;
     for (int i = m->nbody; i >= 1; i--) {
         const double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i, *Ai = d->A + 9 * i;
         double fb[3], mb[3]; /* locals, stored once: the outputs might alias the inputs */
@@ -237,8 +241,11 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
 {
     const int n = m->nbody;
-    const size_t nb = (size_t)n + 1;
-    double *alpha = d->work, *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
+    const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
+    double *alpha = VT_SCRATCH(d, double, 3 * nb, "α"), *fe = VT_SCRATCH(d, double, 6 * nb, "applied wrenches");
+    double *cf = VT_SCRATCH(d, double, 6 * nb, "children's reactions");
+    double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
+    if (!rw) return vt_scratch_fail(d, mark);
     vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
     /* applied: gravity, xfrc, and every row and generalized force */
@@ -248,8 +255,8 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
         for (int c = 0; c < 3; c++) w[c] = m->body_mass[i] * m->gravity[c] + d->xfrc[6 * i + c];
         for (int c = 0; c < 3; c++) w[3 + c] = d->xfrc[6 * i + 3 + c];
     }
-    vt_status st = row_loads(m, d, fe);
-    if (st) return st;
+    vt_status st = row_loads(m, d, fe, rw);
+    if (st) return vt_scratch_release(d, mark), st;
 
     /* tree joints, inward (26) */
     for (int i = n; i >= 1; i--) {
@@ -282,6 +289,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
             }
         }
     }
+    vt_scratch_release(d, mark);
     return joint_reactions_done(m, d);
 }
 
@@ -295,9 +303,12 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
 {
     static const double zero6[6] = {0, 0, 0, 0, 0, 0};
     const int n = m->nbody;
-    const double *rw = vt_row_wrenches(m, d, d->lambda);
+    const size_t mark = vt_scratch_mark(d);
+    double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
+    if (!rw) return vt_scratch_fail(d, mark);
+    vt_row_wrenches(rw, m, d, d->lambda);
     vt_status st = row_efforts(m, d, rw);
-    if (st) return st;
+    if (st) return vt_scratch_release(d, mark), st;
     int loads = !rows_in_wbar && m->nc > 0; /* any load for G */
     for (int c = 0; c < m->nv && !loads; c++) loads = d->qfrc[c] != 0.0;
     if (loads) {
@@ -319,18 +330,22 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
         vt_copy3(d->jnt_force + 3 * i, f);
         vt_copy3(d->jnt_moment + 3 * i, mo);
     }
+    vt_scratch_release(d, mark);
     return joint_reactions_done(m, d);
 }
 
-void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, double tol)
+/* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
+ * (Φ_q^T z = 0) changes by more than tol of its largest change: the reactions that the
+ * multipliers z alone produce (no inertia, no applied load). Scratch: fe, cf (6 x (nbody+1)
+ * each), mag (6 x (nbody+1) + 6 ncut), rw (12 nc). */
+static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, double tol, double *fe, double *cf,
+                                 double *mag, double *rw)
 {
-    /* the reactions that the multipliers z alone produce (no inertia, no applied load): a
-     * reaction that z changes is not unique */
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1;
-    double *fe = d->work, *cf = fe + 6 * nb, *mag = cf + 6 * nb; /* 6 per joint, then 6 per cut */
-    memset(fe, 0, 12 * nb * sizeof(double));
-    const double *rw = vt_row_wrenches(m, d, z);
+    memset(fe, 0, 6 * nb * sizeof(double));
+    memset(cf, 0, 6 * nb * sizeof(double));
+    vt_row_wrenches(rw, m, d, z);
     add_row_wrenches(m, rw, fe);
     double big = 0.0, *cmag = mag + 6 * nb;
     for (int k = 0; k < m->ncut; k++) {
@@ -380,13 +395,35 @@ void vt_reaction_sensitivity(const vt_model *m, vt_data *d, const double *z, dou
             if (cmag[6 * k + e] > tol * big) d->cut_unique[6 * k + e] = 0;
 }
 
-vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
+/* Which reactions are unique: every one when the rows are independent (rank nc); otherwise
+ * those that no null direction of Φ_q^T, left by the redundant solve in d->lambda_null, changes. */
+vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
 {
-    vt_status st;
-    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
-        (st = vt_constraints(m, d)) || (st = vt_solve(m, d)))
-        return st;
-    return vt_reactions(m, d);
+    const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut, nnull = m->nc - d->rank;
+    int *ju = d->jnt_unique, *cu = d->cut_unique;
+    for (int i = 0; i < nj; i++) ju[i] = 1;
+    for (int k = 0; k < ncut; k++) cu[k] = 1;
+    if (nnull <= 0) return VT_OK;
+    const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
+    double *fe = VT_SCRATCH(d, double, 6 * nb, "applied wrenches"), *cf = VT_SCRATCH(d, double, 6 * nb, "children's reactions");
+    double *mag = VT_SCRATCH(d, double, 6 * nb + 6 * (size_t)m->ncut, "reaction changes");
+    double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
+    if (!rw) return vt_scratch_fail(d, mark);
+    for (int j = 0; j < nnull; j++)
+        reaction_sensitivity(m, d, d->lambda_null + (size_t)j * (size_t)m->nc, 1e-9, fe, cf, mag, rw);
+    vt_scratch_release(d, mark);
+    return VT_OK;
+}
+
+/* The scratch reactions.c takes at once: the inward pass (α, two wrenches a body, the rows'
+ * wrenches) or the uniqueness (three wrenches a body, the cuts', the rows'). */
+size_t vt_reactions_scratch(const vt_model *m)
+{
+    const size_t nb = (size_t)m->nbody + 1, rw = VT_SCRATCH_BYTES(12 * (size_t)m->nc, sizeof(double));
+    const size_t inward = VT_SCRATCH_BYTES(3 * nb, sizeof(double)) + 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double));
+    const size_t unique = 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double)) +
+                          VT_SCRATCH_BYTES(6 * nb + 6 * (size_t)m->ncut, sizeof(double));
+    return (inward > unique ? inward : unique) + rw;
 }
 
 vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int k)

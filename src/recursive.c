@@ -224,8 +224,9 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 static vt_status inward(const vt_model *m, vt_data *d)
 {
     const int n = m->nbody;
-    const size_t nb = (size_t)n + 1;
-    double *alpha = d->work, *W = alpha + 3 * nb;
+    const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
+    double *alpha = VT_SCRATCH(d, double, 3 * nb, "α"), *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
     for (int i = 1; i <= n; i++) {
@@ -262,17 +263,31 @@ static vt_status inward(const vt_model *m, vt_data *d)
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
-            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+            return vt_scratch_release(d, mark),
+                   vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     }
+    vt_scratch_release(d, mark);
+    return vt_reactions_unique(m, d);
+}
+
+/* M* by composite bodies and Q by a Newton–Euler pass */
+static vt_status mass_and_bias(const vt_model *m, vt_data *d)
+{
+    const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
+    double *Ic = VT_SCRATCH(d, double, 13 * nb, "composite inertias");
+    if (!Ic) return vt_scratch_fail(d, mark);
+    crba(m, d, Ic);
+    bias(m, d, Ic); /* its 6 (n + 1) wrenches in the same scratch */
+    vt_scratch_release(d, mark);
     return VT_OK;
 }
 
-/* M* and Q formed, (5) solved by vt_solve, the reactions inward: constraints already evaluated */
+/* M* and Q formed, (5) solved by vt_solve (which also diagnoses), the reactions inward:
+ * constraints already evaluated */
 static vt_status factorized_instant(const vt_model *m, vt_data *d)
 {
-    crba(m, d, d->work);
-    bias(m, d, d->work);
-    vt_status st = vt_solve(m, d);
+    vt_status st = mass_and_bias(m, d);
+    if (!st) st = vt_solve_impl(m, d);
     return st ? st : vt_reactions_impl(m, d);
 }
 
@@ -305,22 +320,33 @@ static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
 static vt_status square_instant(const vt_model *m, vt_data *d)
 {
     const int nv = m->nv;
-    const size_t nb = (size_t)m->nbody + 1;
+    const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
     double rcond = 0.0;
-    mass_diagonal(m, d, d->kkt_scale);
-    const int r = vt_solve_square_begin(m, d, d->kkt_scale, &rcond);
-    if (r < 0) return (vt_status)r;
-    if (r == 1) return factorized_instant(m, d);
+    double *mdiag = VT_SCRATCH(d, double, nv, "M*'s diagonal");
+    if (!mdiag) return vt_scratch_fail(d, mark);
+    mass_diagonal(m, d, mdiag);
+    vt_square sq;
+    const int r = vt_solve_square_begin(m, d, &sq, mdiag, &rcond);
+    if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
+    if (r == 1) {
+        vt_scratch_release(d, mark);
+        d->fallback |= VT_FALLBACK_SQUARE_CONDITION;
+        return factorized_instant(m, d);
+    }
     /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
-    double *alpha = d->work, *G = alpha + 3 * nb, *W = alpha + 9 * nb;
-    vt_accelerations_add(m, d, d->kkt_rhs, d->xdd, alpha, G);
+    double *alpha = VT_SCRATCH(d, double, 3 * nb, "α"), *G = VT_SCRATCH(d, double, 6 * nb, "twists of q̈, then G");
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    vt_accelerations_add(m, d, sq.x, d->xdd, alpha, G);
     subtree_wrenches(m, d, alpha, W);
     for (int a = 0; a < nv; a++) {
         const double *s = d->twist + 6 * a;
-        d->kkt_rhs[nv + a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
+        sq.h[a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
     }
-    const vt_status st = vt_solve_square_end(m, d, rcond);
-    return st ? st : vt_reactions_subtree(m, d, W, G, 0);
+    vt_status st = vt_solve_square_end(m, d, &sq, rcond);
+    if (!st) st = vt_reactions_subtree(m, d, W, G, 0);
+    vt_scratch_release(d, mark);
+    return st;
 }
 
 /* G = body inertia I (inertia_O's form) as a full 6x6, columns of 8 (the last two zero, so that
@@ -368,40 +394,44 @@ static double dot6(const double *a, const double *b)
     return (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3]) + (a[4] * b[4] + a[5] * b[5]);
 }
 
-/* articulated_solve's work (d->work, on a cache line; data.c sizes it), nr right sides: per body
- * I^A (48, columns of 8), Ī (13), p and A (6 nr each); per rate U (8), 1 / D, u and x (nr each);
- * S (nc x nc) and λ; then the reactions' T (6), W̄ (6) and G (6) per body. Each
- * array starts on 8 doubles (the 8-wide columns' loads stay within a cache line). */
+/* articulated_solve's work on the arena, nr right sides: per body I^A (48, columns of 8), Ī (13),
+ * p and A (6 nr each); per rate U (8), 1 / D, u and x (nr each); S (nc x nc) and λ; the rows'
+ * wrenches (12 nc); then the reactions' T (6), W̄ (6) and G (6) per body. Each array starts on
+ * a cache line (the 8-wide columns' loads stay within one). */
 typedef struct {
-    double *IA, *Ic, *P, *A, *U, *Dinv, *u, *X, *S, *lam, *T, *W, *G;
+    double *IA, *Ic, *P, *A, *U, *Dinv, *u, *X, *S, *lam, *rw, *T, *W, *G;
 } aba_work;
 
-static double *aba_next(double **at, size_t n)
-{
-    double *p = *at;
-    *at = p + ((n + 7) & ~(size_t)7);
-    return p;
-}
-
-static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
+/* takes the work for nr right sides; 0 or VT_ERR_NO_MEMORY (the caller releases) */
+static int aba_take(const vt_model *m, vt_data *d, int nr, aba_work *w)
 {
     const size_t nb = (size_t)m->nbody + 1, nv = (size_t)m->nv, nc = (size_t)nr - 1, sr = 6 * (size_t)nr;
-    double *at = d->work;
-    aba_work w;
-    w.IA = aba_next(&at, 48 * nb);
-    w.Ic = aba_next(&at, 13 * nb);
-    w.P = aba_next(&at, sr * nb);
-    w.A = aba_next(&at, sr * nb);
-    w.U = aba_next(&at, 8 * nv);
-    w.Dinv = aba_next(&at, nv);
-    w.u = aba_next(&at, (size_t)nr * nv);
-    w.X = aba_next(&at, nv * (size_t)nr);
-    w.S = aba_next(&at, nc * nc);
-    w.lam = aba_next(&at, nc);
-    w.T = aba_next(&at, 6 * nb);
-    w.W = aba_next(&at, 6 * nb);
-    w.G = aba_next(&at, 6 * nb);
-    return w;
+    w->IA = VT_SCRATCH(d, double, 48 * nb, "articulated inertias");
+    w->Ic = VT_SCRATCH(d, double, 13 * nb, "composite inertias");
+    w->P = VT_SCRATCH(d, double, sr * nb, "articulated bias wrenches");
+    w->A = VT_SCRATCH(d, double, sr * nb, "spatial accelerations");
+    w->U = VT_SCRATCH(d, double, 8 * nv, "U");
+    w->Dinv = VT_SCRATCH(d, double, nv, "1 / D");
+    w->u = VT_SCRATCH(d, double, (size_t)nr * nv, "u");
+    w->X = VT_SCRATCH(d, double, nv * (size_t)nr, "solutions");
+    w->S = VT_SCRATCH(d, double, nc * nc, "Schur complement");
+    w->lam = VT_SCRATCH(d, double, nc, "λ");
+    w->rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
+    w->T = VT_SCRATCH(d, double, 6 * nb, "twists of q̈");
+    w->W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    w->G = VT_SCRATCH(d, double, 6 * nb, "G");
+    return vt_scratch_ok(d) ? 0 : VT_ERR_NO_MEMORY;
+}
+
+/* what aba_take takes for nr right sides */
+static size_t aba_bytes(const vt_model *m, int nr)
+{
+    const size_t nb = (size_t)m->nbody + 1, nv = (size_t)m->nv, nc = (size_t)nr - 1, sr = 6 * (size_t)nr;
+    const size_t D = sizeof(double);
+    return VT_SCRATCH_BYTES(48 * nb, D) + VT_SCRATCH_BYTES(13 * nb, D) + 2 * VT_SCRATCH_BYTES(sr * nb, D) +
+           VT_SCRATCH_BYTES(8 * nv, D) + VT_SCRATCH_BYTES(nv, D) + 2 * VT_SCRATCH_BYTES((size_t)nr * nv, D) +
+           VT_SCRATCH_BYTES(nc * nc, D) + VT_SCRATCH_BYTES(nc, D) + VT_SCRATCH_BYTES(12 * (size_t)m->nc, D) +
+           3 * VT_SCRATCH_BYTES(6 * nb, D);
 }
 
 /* Fewer independent rows than rates, no base body: (5) by articulated bodies, without M*.
@@ -433,13 +463,13 @@ static aba_work aba_layout(const vt_model *m, vt_data *d, int nr)
  * Fills q̈ (and λ with rows); returns 0, 1 (a scaled pivot below 1e-8, or rcond below
  * rcond_min: the factorized instant decides and diagnoses) or a negative vt_status. */
 #define PIVOT_MIN 1e-8
-static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rcond_out, const int *drv, const int nr)
+static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_work *w, double *rcond_out,
+                                       const int *drv, const int nr)
 {
     const int n = m->nbody, nv = m->nv, nc = nr - 1;
     const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
-    const aba_work w = aba_layout(m, d, nr);
-    double *Ic = w.Ic, *IA = w.IA, *P = w.P, *Aw = w.A, *U = w.U, *Dinv = w.Dinv, *u = w.u, *X = w.X, *S = w.S,
-           *lam = w.lam;
+    double *Ic = w->Ic, *IA = w->IA, *P = w->P, *Aw = w->A, *U = w->U, *Dinv = w->Dinv, *u = w->u, *X = w->X,
+           *S = w->S, *lam = w->lam;
     memset(P, 0, sr * nb * sizeof(double));
     for (int i = 1; i <= n; i++) { /* p⁰ = W⁰; I^A = I_O; Ī by subtree sums of I_O */
         inertia_bias(Ic + 13 * i, P + sr * (size_t)i, m, d, i);
@@ -447,7 +477,8 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
     }
     vt_subtree_sum(m, Ic, 13);
     if (nc > 0) { /* p^r: the row's wrench for λ_r = 1 on its bodies, about O, as an applied load */
-        const double *rw = vt_row_wrenches(m, d, NULL);
+        double *rw = w->rw;
+        vt_row_wrenches(rw, m, d, NULL);
         for (int r = 0; r < nc; r++)
             for (int side = 0; side < 2; side++) {
                 const int b = m->con_body[2 * r + side];
@@ -474,7 +505,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
             }
             const double Da = dot6(s, Ua);
             const double piv = Da / inertia_quad(Ic + 13 * i, s, s + 3);
-            if (!(piv >= PIVOT_MIN)) return 1;
+            if (!(piv >= PIVOT_MIN)) return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
             const double inv = 1.0 / Da;
@@ -534,7 +565,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
     if (st) return st;
     rcond *= pmin / pmax;
     *rcond_out = rcond;
-    if (!(rcond >= m->rcond_min)) return 1;
+    if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
     for (int a = 0; a < nv; a++) {
         double x = X[a];
         for (int r = 0; r < nc; r++) x += X[a + (size_t)(r + 1) * (size_t)nv] * lam[r];
@@ -546,20 +577,27 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, double *rc
     return 0;
 }
 
-static int articulated_solve(const vt_model *m, vt_data *d, double *rcond_out)
+/* right sides of the articulated solve: Q, and one per row unless every row is a joint drive */
+static int aba_sides(const vt_model *m)
+{
+    return m->joint_rows_only ? 1 : m->nc + 1;
+}
+
+static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, double *rcond_out)
 {
     /* joint rows only: the driven rates' q̈ are known (d->qdd), no row is a right side */
     const int *drv = m->joint_rows_only ? m->dof_drive : NULL;
-    const int nr = drv ? 1 : m->nc + 1;
+    const int nr = aba_sides(m);
     /* one and two right sides (no row, one row) compiled apart: their loops over right sides unroll */
-    if (nr == 1) return articulated_solve_nr(m, d, rcond_out, drv, 1);
-    if (nr == 2) return articulated_solve_nr(m, d, rcond_out, NULL, 2);
-    return articulated_solve_nr(m, d, rcond_out, drv, nr);
+    if (nr == 1) return articulated_solve_nr(m, d, w, rcond_out, drv, 1);
+    if (nr == 2) return articulated_solve_nr(m, d, w, rcond_out, NULL, 2);
+    return articulated_solve_nr(m, d, w, rcond_out, drv, nr);
 }
 
 /* what vt_solve sets on success, for a solve by articulated bodies */
 static void articulated_done(const vt_model *m, vt_data *d, double rcond)
 {
+    d->route = VT_ROUTE_ARTICULATED;
     d->rcond = rcond;
     d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
     d->rank = m->nc;
@@ -578,12 +616,16 @@ static void articulated_done(const vt_model *m, vt_data *d, double rcond)
 static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
-    const int r = articulated_solve(m, d, &rcond);
-    if (r < 0) return (vt_status)r;
-    if (r == 1) return factorized_instant(m, d);
-    articulated_done(m, d, rcond);
     const int nr = m->nc + 1;
-    const aba_work w = aba_layout(m, d, nr);
+    const size_t mark = vt_scratch_mark(d);
+    aba_work w;
+    if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
+    const int r = articulated_solve(m, d, &w, &rcond);
+    if (r) {
+        vt_scratch_release(d, mark);
+        return r < 0 ? (vt_status)r : factorized_instant(m, d);
+    }
+    articulated_done(m, d, rcond);
     vt_accelerations_add(m, d, d->qdd, d->xdd, NULL, w.T);
     for (int i = 1; i <= m->nbody; i++) {
         double *Wi = w.W + 6 * i, IT[8];
@@ -593,7 +635,9 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         for (int c = 1; c < nr; c++)
             for (int k = 0; k < 6; k++) Wi[k] += d->lambda[c - 1] * p[6 * c + k];
     }
-    return vt_reactions_subtree(m, d, w.W, w.G, 1);
+    const vt_status st = vt_reactions_subtree(m, d, w.W, w.G, 1);
+    vt_scratch_release(d, mark);
+    return st;
 }
 
 static int has_base(const vt_model *m)
@@ -609,14 +653,17 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     if (st) return st;
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
+    d->route = VT_ROUTE_NONE;
+    d->fallback = 0;
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
+        if ((st = drive_accelerations(m, d))) return st;
+        d->route = VT_ROUTE_JOINT_DRIVEN;
         d->rcond = 1.0;
         d->warning = 0;
         d->rank = m->nc; /* one unit row per rate: independent, every multiplier and reaction unique */
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        if ((st = drive_accelerations(m, d))) return st;
         return inward(m, d);
     }
     if (m->joint_rows_only) { /* q̈ of the free rates, then the inward pass */
@@ -624,14 +671,17 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         for (int r = 0; r < m->nc; r++) d->Phiq[r + (size_t)m->con_dof[r] * (size_t)m->nc] = 1.0;
         if ((st = drive_accelerations(m, d))) return st;
         double rcond = 0.0;
-        const int r = has_base(m) ? 1 : articulated_solve(m, d, &rcond); /* by articulated bodies */
+        int r = 1;
+        if (!has_base(m)) { /* by articulated bodies */
+            const size_t mark = vt_scratch_mark(d);
+            aba_work w;
+            r = aba_take(m, d, 1, &w) ? VT_ERR_NO_MEMORY : articulated_solve(m, d, &w, &rcond);
+            vt_scratch_release(d, mark);
+        }
         if (r < 0) return (vt_status)r;
         if (r == 0) articulated_done(m, d, rcond);
-        else { /* or from M*_FF (vt_solve), which also diagnoses */
-            crba(m, d, d->work);
-            bias(m, d, d->work);
-            if ((st = vt_solve(m, d))) return st;
-        }
+        else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d))) /* or from M*_FF, which also diagnoses */
+            return st;
         return inward(m, d);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
@@ -642,4 +692,18 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         if (m->nc < m->nv) return articulated_instant(m, d);
     }
     return factorized_instant(m, d);
+}
+
+/* The scratch recursive.c takes at once: the articulated route's work (the largest, with the
+ * reactions' arrays), or the square route's (M*'s diagonal and three arrays a body; vt_solve's
+ * square state is solve.c's), or the composite inertias. */
+size_t vt_recursive_scratch(const vt_model *m)
+{
+    const size_t nb = (size_t)m->nbody + 1, D = sizeof(double);
+    size_t n = aba_bytes(m, m->nc + 1), one = aba_bytes(m, 1);
+    const size_t square = VT_SCRATCH_BYTES(m->nv, D) + VT_SCRATCH_BYTES(3 * nb, D) + 2 * VT_SCRATCH_BYTES(6 * nb, D);
+    if (one > n) n = one;
+    if (square > n) n = square;
+    if (VT_SCRATCH_BYTES(13 * nb, D) > n) n = VT_SCRATCH_BYTES(13 * nb, D);
+    return n;
 }

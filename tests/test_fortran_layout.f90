@@ -56,9 +56,9 @@ program test_fortran_layout
          a(c_loc(x_model%dof_body)), a(c_loc(x_model%q0)), a(c_loc(x_model%rcond_min)), &
          a(c_loc(x_model%rcond_warn)), a(c_loc(x_model%allow_redundant)), a(c_loc(x_model%ndrive)), &
          a(c_loc(x_model%ncut)), a(c_loc(x_model%nc)), a(c_loc(x_model%drive)), a(c_loc(x_model%drive_row)), &
-         a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%con_kind)), &
-         a(c_loc(x_model%con_body)), a(c_loc(x_model%con_owner)), a(c_loc(x_model%con_dof)), &
-         a(c_loc(x_model%con_vec)), a(c_loc(x_model%con_point)), a(c_loc(x_model%dof_drive)), &
+         a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%con_body)), &
+         a(c_loc(x_model%con_owner)), a(c_loc(x_model%dof_drive)), a(c_loc(x_model%con_kind)), &
+         a(c_loc(x_model%con_dof)), a(c_loc(x_model%con_vec)), a(c_loc(x_model%con_point)), &
          a(c_loc(x_model%joint_driven)), a(c_loc(x_model%joint_rows_only))])
     call check(6_c_int, 'vt_data', c_sizeof(x_data), a(c_loc(x_data)), [ &
          a(c_loc(x_data%model)), a(c_loc(x_data%block)), a(c_loc(x_data%time)), a(c_loc(x_data%q)), &
@@ -69,18 +69,15 @@ program test_fortran_layout
          a(c_loc(x_data%Sdqd)), a(c_loc(x_data%R)), a(c_loc(x_data%Mp)), a(c_loc(x_data%Mstar)), &
          a(c_loc(x_data%F)), a(c_loc(x_data%h)), a(c_loc(x_data%Qgen)), a(c_loc(x_data%Phi)), &
          a(c_loc(x_data%Phix)), a(c_loc(x_data%Phiq)), a(c_loc(x_data%Phit)), a(c_loc(x_data%gamma)), &
-         a(c_loc(x_data%qdd)), a(c_loc(x_data%lambda)), a(c_loc(x_data%rcond)), a(c_loc(x_data%warning)), &
-         a(c_loc(x_data%rank)), a(c_loc(x_data%residual)), a(c_loc(x_data%lambda_unique)), &
-         a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), a(c_loc(x_data%xdd)), &
+         a(c_loc(x_data%qdd)), a(c_loc(x_data%lambda)), a(c_loc(x_data%route)), a(c_loc(x_data%fallback)), &
+         a(c_loc(x_data%rcond)), a(c_loc(x_data%warning)), a(c_loc(x_data%rank)), a(c_loc(x_data%residual)), &
+         a(c_loc(x_data%lambda_unique)), a(c_loc(x_data%lambda_null)), a(c_loc(x_data%xdd)), &
          a(c_loc(x_data%qfrc_drive)), a(c_loc(x_data%drive_effort)), a(c_loc(x_data%drive_force)), &
          a(c_loc(x_data%drive_moment)), a(c_loc(x_data%jnt_force)), a(c_loc(x_data%jnt_moment)), &
          a(c_loc(x_data%jnt_force_body)), a(c_loc(x_data%jnt_moment_body)), a(c_loc(x_data%cut_force)), &
          a(c_loc(x_data%cut_moment)), a(c_loc(x_data%cut_force_body)), a(c_loc(x_data%cut_moment_body)), &
-         a(c_loc(x_data%work)), a(c_loc(x_data%nwork)), a(c_loc(x_data%kkt)), a(c_loc(x_data%kkt_rhs)), &
-         a(c_loc(x_data%kkt_scale)), a(c_loc(x_data%lwork)), a(c_loc(x_data%nlwork)), a(c_loc(x_data%ipiv)), &
-         a(c_loc(x_data%liwork)), a(c_loc(x_data%nullvec)), a(c_loc(x_data%red_work)), &
-         a(c_loc(x_data%red_iwork)), a(c_loc(x_data%qsave)), a(c_loc(x_data%ida_flag)), &
-         a(c_loc(x_data%message))])
+         a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), a(c_loc(x_data%arena)), &
+         a(c_loc(x_data%ida_flag)), a(c_loc(x_data%message))])
     call check(7_c_int, 'vt_run_options', c_sizeof(x_run_options), a(c_loc(x_run_options)), [ &
          a(c_loc(x_run_options%t0)), a(c_loc(x_run_options%t1)), a(c_loc(x_run_options%nout)), &
          a(c_loc(x_run_options%rtol)), a(c_loc(x_run_options%atol)), a(c_loc(x_run_options%max_step)), &

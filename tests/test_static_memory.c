@@ -257,7 +257,7 @@ static void test_init_bounds(void **state)
                         sizeof buf_a - (size_t)(aligned + 1 - buf_a) - need);
     /* every array inside the block, aligned for a double */
     const unsigned char *lo = (const unsigned char *)d, *hi = aligned + 1 + need;
-    const void *arrays[] = {d->q, d->qd, d->xfrc, d->S, d->R, d->Mstar, d->kkt, d->lwork, d->liwork, d->red_iwork};
+    const void *arrays[] = {d->q, d->qd, d->xfrc, d->S, d->R, d->Mstar, d->lambda_null, d->jnt_unique, d->cut_unique, d->arena};
     for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) {
         assert_true((const unsigned char *)arrays[k] > lo && (const unsigned char *)arrays[k] < hi);
         assert_int_equal((uintptr_t)arrays[k] % 16, 0);
@@ -274,9 +274,8 @@ static void test_init_bounds(void **state)
     for (int k = 0; k < 9; k++) assert_near(d->A[k], k % 4 == 0 ? 1.0 : 0.0, 0.0);
     assert_near(d->time, 0.0, 0.0);
     assert_int_equal(d->message[0], '\0');
-    assert_int_equal(d->nwork, dc->nwork);
-    assert_int_equal(d->nlwork, dc->nlwork);
-    assert_int_equal((char *)d->red_iwork - (char *)d, (char *)dc->red_iwork - (char *)dc);
+    assert_int_equal((char *)d->arena - (char *)d, (char *)dc->arena - (char *)dc); /* the scratch arena last */
+    assert_int_equal((char *)d->cut_unique - (char *)d, (char *)dc->cut_unique - (char *)dc);
     assert_int_equal((char *)d->S - (char *)d, (char *)dc->S - (char *)dc);
     for (int k = 0; k < m->nx * m->nv; k++) assert_near(d->S[k], 0.0, 0.0); /* zeroed, the 0xA5 gone */
 

@@ -102,6 +102,32 @@ enum {
     VT_WARN_REDUNDANT = 2        ///< dependent rows were solved in the least-squares sense (allow_redundant)
 };
 
+/// The route by which the last solve found q̈ and λ (vt_data.route). Which route a model and an
+/// instant take, and when a faster one gives way, is documented where it is chosen: src/solve.c
+/// (vt_solve) and src/recursive.c (vt_inverse_dynamics_recursive).
+typedef enum vt_route {
+    VT_ROUTE_NONE = 0,       ///< no solve yet, or the last one failed
+    VT_ROUTE_JOINT_DRIVEN,   ///< every rate has a joint drive: q̈ = f'', nothing factorized (recursive)
+    VT_ROUTE_FREE_RATES,     ///< every row a joint drive, some rates free: Cholesky of the free rates' M*
+    VT_ROUTE_SQUARE,         ///< as many rows as rates: LU of Φ_q
+    VT_ROUTE_SCHUR,          ///< fewer rows than rates: Cholesky of M*, then of the rows' Schur complement
+    VT_ROUTE_ARTICULATED,    ///< fewer rows than rates, or free rates: articulated bodies, O(n) (recursive)
+    VT_ROUTE_AUGMENTED,      ///< the augmented matrix of (5): symmetric indefinite LDL^T
+    VT_ROUTE_REDUNDANT,      ///< dependent rows (allow_redundant): SVD, least squares, minimum norm
+    VT_ROUTE_COUNT           ///< number of routes (not a route)
+} vt_route;
+
+/// Flags in vt_data.fallback: a faster route that the last instant tried and left for a more
+/// general one, and why. The general route then decides and diagnoses.
+enum {
+    VT_FALLBACK_SCHUR_PIVOT = 1,          ///< vt_solve's Schur route: a Cholesky pivot of the scaled M*
+                                          ///< below 1e-4 (a motion nearly without inertia)
+    VT_FALLBACK_ARTICULATED_PIVOT = 2,    ///< recursive articulated route: a pivot of M* below 1e-8 of
+                                          ///< its diagonal entry
+    VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min
+    VT_FALLBACK_SQUARE_CONDITION = 8      ///< recursive square route: rcond below rcond_min
+};
+
 /// Prescribed function of time f(t), evaluated exactly with f' and f''.
 typedef enum vt_function_type {
     VT_FUNCTION_CONSTANT = 0,  ///< f = c[0]
@@ -236,20 +262,24 @@ typedef struct vt_model {
     int *drive_row;          ///< first constraint row of each drive (ndrive)
     vt_cut_joint_def *cut;   ///< the cut joints, validated and normalized (ncut)
     int *cut_row;            ///< first constraint row of each cut joint (ncut)
-    int *con_kind;           ///< kind of each row (internal enumeration) (nc)
     int *con_body;           ///< the two bodies of each row: a (0 = ground) then b (2 x nc)
     int *con_owner;          ///< the drive, cut joint or base body a row belongs to (nc)
-    int *con_dof;            ///< joint-drive rows: the driven rate; orientation rows: 0..2 (nc)
-    double *con_vec;         ///< direction on a (a's axes, or global) then on b (b's axes) (6 x nc)
-    double *con_point;       ///< point on a then on b, each in its body's axes (6 x nc)
     int *dof_drive;          ///< the joint drive of each rate, −1 if none (nv)
-    int joint_driven;        ///< 1 when every rate has exactly one joint drive and there is no other
-                             ///< constraint row: efforts then come without factorizing anything
-    int joint_rows_only;     ///< 1 when every row is a joint drive on a rate of its own and some rates
-                             ///< are free: (5) is solved on the free rates alone (Cholesky)
+
+    /* internal: the implementation's row tables and route selectors, read by src/ only; not
+     * part of the API (their meaning may change in any release) */
+    int *con_kind;           ///< internal: kind of each row (nc)
+    int *con_dof;            ///< internal: joint-drive rows: the driven rate; orientation rows: 0..2 (nc)
+    double *con_vec;         ///< internal: direction on a then on b (6 x nc)
+    double *con_point;       ///< internal: point on a then on b (6 x nc)
+    int joint_driven;        ///< internal: every rate has exactly one joint drive, no other row
+    int joint_rows_only;     ///< internal: every row a joint drive on a rate of its own, some rates free
 } vt_model;
 
-/// The data of one model: inputs, every result, and all scratch space. Allocated once by
+/// Scratch space of the stages, inside the data (opaque; its size is fixed by the model).
+typedef struct vt_arena vt_arena;
+
+/// The data of one model: inputs, every result, and one scratch arena. Allocated once by
 /// vt_data_create(), or laid out in the caller's buffer by vt_data_init(); no stage allocates.
 /// Fields are grouped by the stage that fills them.
 typedef struct vt_data {
@@ -303,25 +333,18 @@ typedef struct vt_data {
     double *qdd;             ///< q̈ (nv)
     double *lambda;          ///< Lagrange multipliers λ of M* q̈ = Q + Φ_q^T λ (2), one per constraint
                              ///< row: drives, then cut joints, then base bodies' p^T p − 1 (nc)
-    double rcond;            ///< reciprocal 1-norm condition of the scaled system vt_solve factorized
-                             ///< (exact below 17 unknowns, LAPACK's estimate above): the augmented
-                             ///< matrix of (5); with as many rows as rates Φ_q's, squared; with fewer,
-                             ///< the Schur complement Φ M*^-1 Φ^T's times the squared ratio of M*'s
-                             ///< smallest to largest Cholesky pivot; with only joint-drive rows the
-                             ///< free rates' M*; 1 when nothing was factorized (a fully joint-driven
-                             ///< recursive instant); on the recursive articulated path (fewer rows than
-                             ///< rates, no base body) S's times min/max of M*'s pivots taken leaf
-                             ///< first (the free rates' M* alone with only joint-drive rows), each
-                             ///< pivot over its diagonal entry. It falls toward a singular pose where rows
-                             ///< lose independence; not for a lone row, which the scaling normalizes
-                             ///< (its losing grip does not show here).
+    vt_route route;          ///< the route by which the last solve found q̈ and λ (VT_ROUTE_NONE after a failure)
+    int fallback;            ///< VT_FALLBACK_* flags: faster routes the last instant left, and why (0: none)
+    double rcond;            ///< reciprocal 1-norm condition of the mass-scaled system the route factorized
+                             ///< (exact up to 16 unknowns, LAPACK's estimate above; 1 when nothing was
+                             ///< factorized); it falls toward a singular pose. What exactly each route
+                             ///< measures: src/solve.c and src/recursive.c
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
     int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent)
     double residual;         ///< max |Φ_q q̈ − γ| over all rows after a redundant solve (0 otherwise)
     int *lambda_unique;      ///< 0 where a multiplier is not unique (redundant rows), else 1 (nc)
-    int *jnt_unique;         ///< per reaction component (fx fy fz nx ny nz, global): 0 where a tree
-                             ///< joint's reaction is not unique, else 1 (6 x (nbody+1))
-    int *cut_unique;         ///< the same for the cut joints (6 x ncut)
+    double *lambda_null;     ///< redundant rows: the nc − rank multiplier directions z with Φ_q^T z = 0,
+                             ///< one column each (nc x nc, leading dimension nc; the first nc − rank used)
 
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
@@ -342,21 +365,11 @@ typedef struct vt_data {
     double *cut_moment;      ///< cut joint: moment of body_a on body_b about point_b (3 x ncut), N·m
     double *cut_force_body;  ///< the same in body_b's axes (3 x ncut)
     double *cut_moment_body; ///< the same in body_b's axes (3 x ncut)
+    int *jnt_unique;         ///< per reaction component (fx fy fz nx ny nz, global): 0 where a tree
+                             ///< joint's reaction is not unique (redundant rows), else 1 (6 x (nbody+1))
+    int *cut_unique;         ///< the same for the cut joints (6 x ncut)
 
-    /* scratch owned by the stages */
-    double *work;            ///< scratch of the stages (nwork)
-    size_t nwork;            ///< entries in work
-    double *kkt;             ///< augmented matrix of (5), factorized ((nv+nc)^2)
-    double *kkt_rhs;         ///< its right side and solution (nv+nc)
-    double *kkt_scale;       ///< equilibration (nv+nc)
-    double *lwork;           ///< LAPACK workspace (nlwork)
-    int nlwork;              ///< entries in lwork
-    int *ipiv;               ///< pivots (nv+nc)
-    int *liwork;             ///< LAPACK integer workspace (33 (nv+nc) + 64)
-    double *nullvec;         ///< a multiplier direction with Φ_q^T z = 0 (redundant solve) (nc)
-    double *red_work;        ///< redundant solve: R11^{-1} R12 and row norms (nc x nc + nc)
-    int *red_iwork;          ///< redundant solve: pivots (2 nc)
-    double *qsave;           ///< copy of q and q̇ kept by calls that restore them on failure (nq+nv)
+    vt_arena *arena;         ///< scratch of the stages: internal, sized when the data is laid out
     int ida_flag;            ///< return code of the last failing IDA call (0 if none)
 
     char message[256];       ///< detail of the last failed call on this data (a successful call need

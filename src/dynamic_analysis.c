@@ -1,7 +1,7 @@
 /* Dynamic analysis and the forward check with SUNDIALS IDA: the index-1 form of (5).
  *
  * Unknowns y = [q; v; λ] (nq + nv + nc), v = q̇ the rates; residual F(t, y, y') = 0 with
- *   q' − T(q) v                  T = I, except a spherical joint: p' = ½ E(p)^T v  (method.md)
+ *   q' − T(q) v                  T = I, except a spherical joint: p' = ½ E(p)^T v
  *   M*(q) v' − Q(q, v, t) − Φ_q^T λ          (2)
  *   Φ_q v' − γ                               (5), second row
  * q and v are differential, λ algebraic (excluded from IDA's error test). The residual
@@ -76,6 +76,7 @@ typedef struct {
     double alpha, beta; /* Baumgarte */
     history *rec;       /* driven run: record its steps here */
     history *src;       /* forward run: the driven steps, efforts from their interpolant */
+    double *w;          /* the GGL residual's v + Φ_q^T μ (nv) */
 } dae;
 
 static int block_size(const vt_model *m, int form)
@@ -129,8 +130,8 @@ static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t,
     }
     const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
     double *rq = r, *rv = r + nq, *rl = r + nq + nv;
-    if (ggl && nc > 0) { /* T (v + Φ_q^T μ), with the rates in d->xdd as scratch */
-        double *w = d->xdd;
+    if (ggl && nc > 0) { /* T (v + Φ_q^T μ) */
+        double *w = p->w;
         memcpy(w, y + nq, (size_t)nv * sizeof(double));
         cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, 1.0, d->Phiq, nc, lam + nc, 1, 1.0, w, 1);
         qdot_from_v(m, y, w, rq);
@@ -181,7 +182,7 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
     } else { /* the efforts of the driven block's current λ */
         /* (the ODE form has no λ in y: its residual's vt_solve left them in d already) */
         if (p->form != VT_FORMULATION_ODE) memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
-        vt_drive_efforts(m, p->d);
+        if (vt_drive_efforts(m, p->d)) return -1;
     }
     /* the forward block's positions first: body drives' loads act at its body points */
     memcpy(p->df->q, y + p->nd, (size_t)p->mf->nq * sizeof(double));
@@ -458,8 +459,10 @@ static vt_status forward_setup(const vt_model *m, const vt_data *d, const double
 static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
 {
     const int nd = p->m ? block_size(p->m, p->form) : 0, N = nd + (p->mf ? block_size(p->mf, p->form) : 0);
-    double *buf = malloc(3 * (size_t)N * sizeof(double));
+    const int nv = p->m ? p->m->nv : p->mf->nv;
+    double *buf = malloc((3 * (size_t)N + (size_t)nv) * sizeof(double));
     if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
+    p->w = buf + 3 * (size_t)N;
     if (p->m) {
         block_initial(p->m, p->d, p->form, buf, buf + N);
         block_ids(p->m, p->form, buf + 2 * N);
@@ -485,7 +488,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     } else {
         vt_trajectory_store_forward(tr, mf, df, 0);
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL};
         st = start(&p, opt, tr);
     }
     vt_data_free(df);
@@ -513,7 +516,7 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
     if (!mf || !opt->forward_independent) { /* the driven run, and the forward one in the same system */
         dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL};
         st = start(&p, opt, tr);
         goto out;
     }
@@ -535,13 +538,13 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
     {
         dae p = {m, d, NULL, NULL, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL, NULL};
         if ((st = start(&p, opt, tr))) goto out;
     }
     {
         const long steps = tr->steps, res = tr->res_evals;
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h, NULL};
         st = start(&p, opt, tr);
         tr->steps = steps;
         tr->res_evals = res;
@@ -554,3 +557,4 @@ out:
     vt_model_free(mf);
     return st;
 }
+

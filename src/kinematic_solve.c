@@ -1,0 +1,136 @@
+/* One instant of a kinematic analysis: the state that the drives and cut joints fix at time t.
+ *
+ *   positions    Φ(q, t) = 0:  Φ_q Δ = −Φ,  q ← q ⊕ Δ  (Newton–Raphson; ⊕ as vt_integrate_q)
+ *   velocities   Φ_q q̇ = −Φ_t                                   (time derivative of Φ = 0)
+ *   accelerations and multipliers from (5), then efforts (24) and reactions (25)-(28)
+ * Each linear step is LAPACK's dgels on Φ_q: with as many rows as rates it is the Newton step
+ * itself; with fewer (consistent initial values of a dynamic analysis) the least-norm
+ * correction, a projection onto the constraint manifold; dependent rows of a model that allows
+ * them, the least-norm least-squares step (dgelsd).
+ */
+#include <string.h>
+
+#include "internal.h"
+
+static double max_abs(const double *a, int n)
+{
+    double s = 0.0;
+    for (int k = 0; k < n; k++) s = fmax(s, fabs(a[k]));
+    return s;
+}
+
+/* b = −Φ (positions) or b = −Φ_t − Φ_q q̇ (velocities), into B (ldb ≥ nc) */
+static void phiq_rhs(const vt_model *m, const vt_data *d, int velocities, double *B, int ldb)
+{
+    const int nc = m->nc, nv = m->nv;
+    memset(B, 0, (size_t)ldb * sizeof(double));
+    for (int r = 0; r < nc; r++) {
+        double v = velocities ? -d->Phit[r] : -d->Phi[r];
+        if (velocities)
+            for (int c = 0; c < nv; c++) v -= d->Phiq[r + (size_t)c * (size_t)nc] * d->qd[c];
+        B[r] = v;
+    }
+}
+
+/* x = least-norm (or exact) solution of Φ_q x = b with b = −Φ (positions) or
+ * b = −Φ_t − Φ_q q̇ (velocities); x has nv entries */
+static vt_status solve_phiq(const vt_model *m, vt_data *d, int velocities, double *x)
+{
+    const int nc = m->nc, nv = m->nv, one = 1, ldb = nc > nv ? nc : nv;
+    const size_t mark = vt_scratch_mark(d);
+    double *A = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "Φ_q, factorized");
+    double *B = VT_SCRATCH(d, double, ldb, "right side");
+    double *sv = VT_SCRATCH(d, double, ldb, "singular values");
+    int *iwork = VT_SCRATCH(d, int, vt_dgelsd_iwork(nc, nv), "dgelsd integer workspace");
+    int lwork = 0;
+    double *work = vt_scratch_rest(d, 1, sizeof(double), &lwork, "dgels workspace");
+    if (!work) return vt_scratch_fail(d, mark);
+    memcpy(A, d->Phiq, (size_t)nc * (size_t)nv * sizeof(double));
+    phiq_rhs(m, d, velocities, B, ldb);
+    int info = 0;
+    dgels_("N", &nc, &nv, &one, A, &nc, B, &ldb, work, &lwork, &info, 1);
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgels info %d", info);
+    if (info > 0 && m->allow_redundant) { /* dependent rows: the least-norm least-squares step (SVD) */
+        memcpy(A, d->Phiq, (size_t)nc * (size_t)nv * sizeof(double));
+        phiq_rhs(m, d, velocities, B, ldb);
+        const double rc = 1e-10;
+        int rank = 0;
+        /* LAPACK's dgelsd stops the program (xerbla) on a NaN norm: refuse non-finite input */
+        if (!vt_all_finite(A, nc * nv) || !vt_all_finite(B, ldb))
+            return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematic_solve: NaN or Inf in Φ_q or Φ");
+        dgelsd_(&nc, &nv, &one, A, &nc, B, &ldb, sv, &rc, &rank, work, &lwork, iwork, &info);
+        if (info != 0)
+            return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgelsd info %d", info);
+    } else if (info > 0) {
+        return vt_scratch_release(d, mark),
+               vt_fail(d->message, VT_ERR_SINGULAR, "vt_kinematic_solve: Φ_q rank deficient at t = %g", d->time);
+    }
+    memcpy(x, B, (size_t)nv * sizeof(double));
+    vt_scratch_release(d, mark);
+    return VT_OK;
+}
+
+/* q and q̇ back to what the caller gave (qsave: nq + nv), the scratch released */
+static vt_status restore(const vt_model *m, vt_data *d, const double *qsave, size_t mark, vt_status st)
+{
+    memcpy(d->q, qsave, (size_t)m->nq * sizeof(double));
+    memcpy(d->qd, qsave + m->nq, (size_t)m->nv * sizeof(double));
+    vt_scratch_release(d, mark);
+    return st;
+}
+
+vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxit)
+{
+    vt_status st = vt_check_pair(m, d, "vt_kinematic_solve");
+    if (st) return st;
+    if (!(tol > 0.0) || maxit < 1)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_kinematic_solve: tol %g and maxit %d must be positive", tol, maxit);
+    const size_t mark = vt_scratch_mark(d);
+    double *qsave = VT_SCRATCH(d, double, (size_t)m->nq + (size_t)m->nv, "q and q̇ as given");
+    double *step = VT_SCRATCH(d, double, m->nv, "Newton step");
+    if (!step) return vt_scratch_fail(d, mark);
+    memcpy(qsave, d->q, (size_t)m->nq * sizeof(double));
+    memcpy(qsave + m->nq, d->qd, (size_t)m->nv * sizeof(double));
+    double res = 0.0;
+    int it = 0;
+    if (m->nc > 0) {
+        for (;; it++) {
+            if ((st = vt_kinematics(m, d)) || (st = vt_constraints(m, d))) return restore(m, d, qsave, mark, st);
+            res = max_abs(d->Phi, m->nc);
+            if (res <= tol) break;
+            if (it == maxit)
+                return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NEWTON,
+                                             "vt_kinematic_solve: max |Φ| = %.3g after %d iterations at t = %g", res,
+                                             maxit, d->time));
+            if ((st = solve_phiq(m, d, 0, step))) return restore(m, d, qsave, mark, st);
+            if ((st = vt_integrate_q(d->q, m, d->q, step, 1.0))) return restore(m, d, qsave, mark, st);
+        }
+        /* velocities: the correction of q̇ that makes Φ_q q̇ = −Φ_t */
+        if ((st = solve_phiq(m, d, 1, step))) return restore(m, d, qsave, mark, st);
+        for (int c = 0; c < m->nv; c++) d->qd[c] += step[c];
+    }
+    if ((st = vt_inverse_dynamics(m, d))) return restore(m, d, qsave, mark, st);
+    vt_scratch_release(d, mark);
+    return VT_OK;
+}
+
+/* q and q̇ as given and the Newton step, held across the instant; solve_phiq's arrays and LAPACK's
+ * workspaces (dgels, dgelsd) by their queries */
+size_t vt_kinematic_solve_scratch(const vt_model *m)
+{
+    const int nc = m->nc, nv = m->nv, one = 1, ldb = nc > nv ? nc : nv, lw = -1;
+    const size_t D = sizeof(double);
+    int info = 0, rank = 0, iq = 0;
+    double q = 0.0, dummy = 0.0, rc = -1.0;
+    size_t lapack = 1;
+    if (nc > 0) {
+        dgels_("N", &nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &q, &lw, &info, 1);
+        if (info == 0 && q > (double)lapack) lapack = (size_t)q;
+        dgelsd_(&nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &dummy, &rc, &rank, &q, &lw, &iq, &info);
+        if (info == 0 && q > (double)lapack) lapack = (size_t)q;
+    }
+    return VT_SCRATCH_BYTES((size_t)m->nq + (size_t)nv, D) + VT_SCRATCH_BYTES(nv, D) +
+           VT_SCRATCH_BYTES((size_t)nc * (size_t)nv, D) + 2 * VT_SCRATCH_BYTES(ldb, D) +
+           VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(nc, nv), sizeof(int)) + VT_SCRATCH_BYTES(lapack, D);
+}
+

@@ -1,0 +1,75 @@
+/* State helpers that are not a stage of the method: applied point loads, (7), and advancing q
+ * along q̇ on the Euler-parameter sphere,
+ *   ṗ = ½ E^T ω  ⇒  p(t + h) = [cos(h|ω|/2); sin(h|ω|/2) ω/|ω|] ⊗ p(t)   for constant ω.
+ */
+#include <string.h>
+
+#include "internal.h"
+
+vt_status vt_add_point_load(const vt_model *m, vt_data *d, int body, const double point[3],
+                            const double f[3], const double n[3])
+{
+    vt_status st = vt_check_pair(m, d, "vt_add_point_load");
+    if (st) return st;
+    if (body < 1 || body > m->nbody)
+        return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_add_point_load: body %d not in 1..%d",
+                       body, m->nbody);
+    if (!point && f)
+        return vt_fail(d->message, VT_ERR_NULL, "vt_add_point_load: point is NULL");
+    if ((f && (!vt_all_finite(f, 3) || !vt_all_finite(point, 3))) || (n && !vt_all_finite(n, 3)))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_add_point_load: NaN or Inf in the load on body %d", body);
+    double *w = d->xfrc + 6 * body;
+    if (f) {
+        /* moment about the centre of mass: s × f with s = A s' (the s̃ f of (7)) */
+        double s[3];
+        vt_mulmat3(s, d->A + 9 * body, point);
+        vt_axpy3(w, 1.0, f);
+        vt_addcross3(w + 3, s, f);
+    }
+    if (n) vt_axpy3(w + 3, 1.0, n);
+    return VT_OK;
+}
+
+/* p ← exp(h ω) ⊗ p, normalized */
+static void rotate_quat(double p[4], const double w[3], double h)
+{
+    const double a = sqrt(vt_dot3(w, w)) * h;
+    if (a != 0.0) {
+        double r[4], u[3] = {w[0], w[1], w[2]};
+        const double inv = 1.0 / sqrt(vt_dot3(w, w));
+        u[0] *= inv; u[1] *= inv; u[2] *= inv;
+        vt_quat_axis_angle(r, u, a);
+        vt_quat_mul(p, r, p);
+    }
+    const double s = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
+    if (s > 0.0)
+        for (int k = 0; k < 4; k++) p[k] /= s;
+}
+
+vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, const double *v, double h)
+{
+    if (!q_out || !m || !q || !v) return VT_ERR_NULL;
+    if (!isfinite(h) || !vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
+    if (q_out != q) memcpy(q_out, q, (size_t)m->nq * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) {
+        double *qi = q_out + m->body_qadr[i];
+        const double *vi = v + m->body_vadr[i];
+        switch (m->body_joint[i]) {
+        case VT_JOINT_SPHERICAL:
+            rotate_quat(qi, vi, h);
+            break;
+        case VT_JOINT_BASE: {
+            double E[12], w[3];
+            vt_euler_E(E, qi + 3);
+            vt_mulE(w, E, vi + 3);
+            w[0] *= 2; w[1] *= 2; w[2] *= 2; /* ω = 2 E ṗ */
+            vt_axpy3(qi, h, vi);
+            rotate_quat(qi + 3, w, h);
+            break;
+        }
+        default:
+            for (int k = 0; k < m->body_nq[i]; k++) qi[k] += h * vi[k];
+        }
+    }
+    return VT_OK;
+}
