@@ -16,7 +16,7 @@ void *vt_scratch_take(vt_data *d, size_t n, size_t size, const char *name)
     }
     char *p = a->base + a->top;
     a->top += VT_SCRATCH_BYTES(n, size);
-    VT_UNPOISON(p, n * size); /* the padding up to the next cache line stays poisoned */
+    if (a->poison) VT_UNPOISON(p, n * size); /* the padding up to the next cache line stays poisoned */
     return p;
 }
 

@@ -103,8 +103,9 @@ size_t vt_data_size(const vt_model *m)
     return layout(m, &probe, NULL) + (VT_DATA_ALIGN - 1); /* any start can be aligned */
 }
 
-/* The one path that lays out a data struct: vt_data_create() allocates the buffer and calls it. */
-vt_status vt_data_init(vt_data **data, const vt_model *m, void *buffer, size_t size)
+/* The one path that lays out a data struct; poison: the arena's free part poisoned in
+ * AddressSanitizer builds (our own block, not a caller's buffer) */
+static vt_status data_init(vt_data **data, const vt_model *m, void *buffer, size_t size, int poison)
 {
     if (!data) return VT_ERR_NULL;
     *data = NULL;
@@ -113,11 +114,11 @@ vt_status vt_data_init(vt_data **data, const vt_model *m, void *buffer, size_t s
     const size_t bytes = layout(m, &probe, NULL), pad = align_pad(buffer);
     if (size < pad || size - pad < bytes) return VT_ERR_BAD_SIZE; /* the buffer is left untouched */
     char *base = (char *)buffer + pad;
-    VT_UNPOISON(base, bytes); /* the buffer may hold an earlier data's poisoned arena */
-    memset(base, 0, bytes);    /* zero: the structural zeros of S and R stay zero */
+    memset(base, 0, bytes); /* zero: the structural zeros of S and R stay zero */
     vt_data *d = (vt_data *)base;
     layout(m, d, base);
-    VT_POISON(d->arena->base, d->arena->size); /* nothing taken yet */
+    d->arena->poison = poison;
+    if (poison) VT_POISON(d->arena->base, d->arena->size); /* nothing taken yet */
     d->model = m;
     d->block = NULL; /* the caller's memory: vt_data_free() leaves it alone */
     /* the ground: identity rotation, at rest */
@@ -134,7 +135,7 @@ vt_status vt_data_create(vt_data **data, const vt_model *m)
     const size_t bytes = vt_data_size(m);
     void *block = malloc(bytes); /* vt_data_init zeroes what it uses */
     if (!block) return VT_ERR_NO_MEMORY;
-    const vt_status st = vt_data_init(data, m, block, bytes);
+    const vt_status st = data_init(data, m, block, bytes, 1);
     if (st) {
         free(block);
         return st;
@@ -143,11 +144,16 @@ vt_status vt_data_create(vt_data **data, const vt_model *m)
     return VT_OK;
 }
 
+vt_status vt_data_init(vt_data **data, const vt_model *m, void *buffer, size_t size)
+{
+    return data_init(data, m, buffer, size, 0);
+}
+
 void vt_data_free(vt_data *d)
 {
-    if (!d) return;
-    VT_UNPOISON(d->arena->base, d->arena->size); /* the caller's buffer is theirs to reuse */
-    if (d->block) free(d->block); /* NULL for data in the caller's buffer: not ours to free */
+    if (!d || !d->block) return; /* NULL for data in the caller's buffer: not ours to free */
+    VT_UNPOISON(d->arena->base, d->arena->size); /* the block goes back to malloc whole */
+    free(d->block);
 }
 
 vt_status vt_data_reset(const vt_model *m, vt_data *d)

@@ -119,8 +119,9 @@ static inline int vt_all_finite(const double *a, int n)
  * A stack inside the data: a function that needs scratch marks the top, takes named
  * allocations (each on a cache line) and releases back to its mark before it returns, so no
  * file knows another's layout and no output array doubles as scratch. In AddressSanitizer
- * builds everything above the top is poisoned: a read or write past an allocation, or into a
- * released one, is reported where it happens. Sizes are fixed by the model: each source file
+ * builds everything above the top is poisoned (in data from vt_data_create(); a caller's buffer
+ * from vt_data_init() is left unpoisoned, the caller may reuse it at any time): a read or write
+ * past an allocation, or into a released one, is reported where it happens. Sizes are fixed by the model: each source file
  * that takes scratch bounds what it takes at once with a vt_<file>_scratch(model) function
  * (bytes, VT_SCRATCH_BYTES per allocation), and the arena holds their sum, enough for any call
  * chain in which a file appears once. The analyses over time take none (they allocate what
@@ -131,6 +132,7 @@ struct vt_arena {
     size_t size;  /* bytes */
     size_t top;   /* bytes in use */
     int failed;   /* an allocation did not fit since the last release below it */
+    int poison;   /* AddressSanitizer builds: poison what is not taken (vt_data_create()'s data) */
 };
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -169,7 +171,7 @@ void *vt_scratch_rest(vt_data *d, size_t need, size_t size, int *count, const ch
 static inline void vt_scratch_release(vt_data *d, size_t mark)
 {
     vt_arena *a = d->arena;
-    if (mark < a->top) VT_POISON(a->base + mark, a->top - mark);
+    if (mark < a->top && a->poison) VT_POISON(a->base + mark, a->top - mark);
     a->top = mark;
     a->failed = 0;
 }

@@ -1,4 +1,4 @@
-/* src/data.c: data creation and reset, applied point loads, and q advanced along q̇. */
+/* src/data.c: data creation and reset, and data of another model refused. */
 #include "vt_test.h"
 
 static void test_create_reset_mismatch(void **state)
@@ -30,115 +30,13 @@ static void test_create_reset_mismatch(void **state)
     vt_model_free(m2);
 }
 
-static void test_point_load_bad_input_changes_nothing(void **state)
-{
-    (void)state;
-    vt_model *m = NULL;
-    vt_data *d = NULL;
-    assert_ok(vt_scene_double_link(&m, 0));
-    assert_ok(vt_data_create(&d, m));
-    assert_ok(vt_kinematics(m, d));
-    const double s[3] = {1, 0, 0}, f[3] = {0, -10, 0}, bad[3] = {0, NAN, 0};
-    assert_ok(vt_add_point_load(m, d, 2, s, f, NULL));
-    double before[18];
-    memcpy(before, d->xfrc, sizeof before);
-    assert_int_equal(vt_add_point_load(m, d, 3, s, f, NULL), VT_ERR_BAD_INDEX);
-    assert_int_equal(vt_add_point_load(m, d, 0, s, f, NULL), VT_ERR_BAD_INDEX);
-    assert_int_equal(vt_add_point_load(m, d, 1, s, bad, NULL), VT_ERR_NONFINITE);
-    assert_int_equal(vt_add_point_load(m, d, 1, NULL, f, NULL), VT_ERR_NULL);
-    assert_memory_equal(before, d->xfrc, sizeof before);
-    /* at q = 0 link 2 lies along +x: 10 N down at 1 m from its centre is −10 N·m about z */
-    assert_near(d->xfrc[6 * 2 + 1], -10.0, 1e-15);
-    assert_near(d->xfrc[6 * 2 + 5], -10.0, 1e-15);
-    vt_data_free(d);
-    vt_model_free(m);
-}
 
-/* A of a body from q, via the kinematics */
-static void body_rotation(double A[9], const vt_model *m, vt_data *d, const double *q, int body)
-{
-    memcpy(d->q, q, (size_t)m->nq * sizeof(double));
-    assert_ok(vt_kinematics(m, d));
-    memcpy(A, d->A + 9 * body, 9 * sizeof(double));
-}
 
-static void test_integrate_q(void **state)
-{
-    (void)state;
-    vt_model *m = NULL;
-    vt_data *d = NULL;
-    assert_ok(vt_scene_random_tree(&m, 11, 12, VT_SCENE_ALL_JOINTS));
-    assert_ok(vt_data_create(&d, m));
-    uint64_t s = 9;
-    vt_scene_random_state(m, d, &s);
-    double *q = malloc((size_t)m->nq * sizeof(double)), *qp = malloc((size_t)m->nq * sizeof(double));
-    double *qm = malloc((size_t)m->nq * sizeof(double)), *v = malloc((size_t)m->nv * sizeof(double));
-    memcpy(q, d->q, (size_t)m->nq * sizeof(double));
-    memcpy(v, d->qd, (size_t)m->nv * sizeof(double));
-    const double h = 1e-5;
-    assert_ok(vt_integrate_q(qp, m, q, v, h));
-    assert_ok(vt_integrate_q(qm, m, q, v, -h));
-    for (int i = 1; i <= m->nbody; i++) {
-        const int jt = m->body_joint[i], qa = m->body_qadr[i], va = m->body_vadr[i];
-        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE) {
-            const int o = jt == VT_JOINT_BASE ? 3 : 0;
-            const double *p = qp + qa + o;
-            assert_near(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3], 1.0, 1e-14);
-            if (jt == VT_JOINT_BASE)
-                for (int k = 0; k < 7; k++) assert_near((qp[qa + k] - qm[qa + k]) / (2 * h), v[va + k], 1e-8);
-        } else {
-            for (int k = 0; k < m->body_nq[i]; k++) assert_near(qp[qa + k], q[qa + k] + h * v[va + k], 1e-15);
-        }
-    }
-    /* a spherical joint's rates are the relative angular velocity in the reference's axes:
-     * d/dt (A^{jT} A^i) = ω̃' (A^{jT} A^i) with ω' = q̇ */
-    for (int i = 1; i <= m->nbody; i++) {
-        if (m->body_joint[i] != VT_JOINT_SPHERICAL) continue;
-        const int j = m->body_parent[i];
-        double Ai[9], Aj[9], Aip[9], Ajp[9], Aim[9], Ajm[9], rel[9], relp[9], relm[9];
-        body_rotation(Ai, m, d, q, i);
-        memcpy(Aj, d->A + 9 * j, sizeof Aj);
-        body_rotation(Aip, m, d, qp, i);
-        memcpy(Ajp, d->A + 9 * j, sizeof Ajp);
-        body_rotation(Aim, m, d, qm, i);
-        memcpy(Ajm, d->A + 9 * j, sizeof Ajm);
-        for (int c = 0; c < 3; c++)
-            for (int r = 0; r < 3; r++) {
-                rel[r + 3 * c] = relp[r + 3 * c] = relm[r + 3 * c] = 0.0;
-                for (int k = 0; k < 3; k++) {
-                    rel[r + 3 * c] += Aj[k + 3 * r] * Ai[k + 3 * c];
-                    relp[r + 3 * c] += Ajp[k + 3 * r] * Aip[k + 3 * c];
-                    relm[r + 3 * c] += Ajm[k + 3 * r] * Aim[k + 3 * c];
-                }
-            }
-        /* the relative rotation of the body's axes includes the fixed A0 on the right: the
-         * derivative is still ω̃' rel */
-        const double *w = v + m->body_vadr[i];
-        for (int c = 0; c < 3; c++) {
-            const double *u = rel + 3 * c;
-            const double wu[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
-            for (int r = 0; r < 3; r++)
-                assert_near((relp[r + 3 * c] - relm[r + 3 * c]) / (2 * h), wu[r], 1e-8);
-        }
-    }
-    /* bad input: status, output untouched */
-    double *keep = malloc((size_t)m->nq * sizeof(double));
-    memcpy(keep, qp, (size_t)m->nq * sizeof(double));
-    v[0] = NAN;
-    assert_int_equal(vt_integrate_q(qp, m, q, v, h), VT_ERR_NONFINITE);
-    assert_memory_equal(keep, qp, (size_t)m->nq * sizeof(double));
-    free(keep);
-    free(q); free(qp); free(qm); free(v);
-    vt_data_free(d);
-    vt_model_free(m);
-}
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_create_reset_mismatch),
-        cmocka_unit_test(test_point_load_bad_input_changes_nothing),
-        cmocka_unit_test(test_integrate_q),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

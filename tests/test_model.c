@@ -134,16 +134,6 @@ static void test_limits_and_null(void **state)
     vt_builder_free(b);
 }
 
-static void test_status_strings_distinct(void **state)
-{
-    (void)state;
-    for (int a = VT_ERR_LAPACK; a <= 0; a++) {
-        const char *sa = vt_status_string((vt_status)a);
-        assert_non_null(sa);
-        assert_true(strlen(sa) > 0);
-        for (int c = a + 1; c <= 0; c++) assert_string_not_equal(sa, vt_status_string((vt_status)c));
-    }
-}
 
 static void test_sizes_and_paths(void **state)
 {
@@ -178,26 +168,13 @@ static void test_sizes_and_paths(void **state)
     }
 }
 
-/* vt_version() and the header's macros against meson's project version (passed by
- * tests/meson.build as VT_TEST_PROJECT_VERSION) */
-static void test_version(void **state)
-{
-    (void)state;
-    assert_string_equal(vt_version(), VT_TEST_PROJECT_VERSION);
-    assert_string_equal(VT_VERSION_STRING, VT_TEST_PROJECT_VERSION);
-    char parts[64];
-    snprintf(parts, sizeof parts, "%d.%d.%d", VT_VERSION_MAJOR, VT_VERSION_MINOR, VT_VERSION_PATCH);
-    assert_string_equal(parts, VT_TEST_PROJECT_VERSION);
-}
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_version),
         cmocka_unit_test(test_validation_errors),
         cmocka_unit_test(test_allowed_and_normalized),
         cmocka_unit_test(test_limits_and_null),
-        cmocka_unit_test(test_status_strings_distinct),
         cmocka_unit_test(test_sizes_and_paths),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

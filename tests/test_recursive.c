@@ -17,19 +17,19 @@ static void compare(const double *a, const double *b, int n, double rel, const c
     compare_at(a, b, n, rel, 1.0 + fmax(vt_test_maxabs(a, n), vt_test_maxabs(b, n)), what);
 }
 
-/* which evaluation vt_inverse_dynamics_recursive takes, and so which intermediates it forms:
- * INWARD none (every rate joint-driven), SQUARE Ṡq̇ and Φ_q (square Φ_q: M* and Q are never
- * formed), ARTICULATED the same (fewer rows than rates: articulated bodies, no M*), FACTORIZED
- * those and M*, Q */
+/* which intermediates the recursive evaluation forms on the route it recorded: INWARD none
+ * (every rate joint-driven), SQUARE Ṡq̇ and Φ_q (square Φ_q: M* and Q are never formed),
+ * ARTICULATED the same (articulated bodies, no M*), FACTORIZED those and M*, Q (vt_solve's
+ * routes, which the dense path takes too) */
 enum { INWARD, SQUARE, ARTICULATED, FACTORIZED };
-static int path_of(const vt_model *m)
+static int path_of(const vt_data *dr)
 {
-    if (m->joint_driven) return INWARD;
-    for (int i = 1; i <= m->nbody; i++)
-        if (m->body_joint[i] == VT_JOINT_BASE) return FACTORIZED;
-    if (m->joint_rows_only) return ARTICULATED;
-    if (m->allow_redundant) return FACTORIZED;
-    return m->nc == m->nv ? SQUARE : m->nc < m->nv ? ARTICULATED : FACTORIZED;
+    switch (dr->route) {
+    case VT_ROUTE_JOINT_DRIVEN: return INWARD;
+    case VT_ROUTE_ARTICULATED: return ARTICULATED;
+    case VT_ROUTE_SQUARE: return dr->fallback ? FACTORIZED : SQUARE;
+    default: return FACTORIZED;
+    }
 }
 
 /* The articulated path's condition, from the dense path's M* and Φ_q by LAPACK: the exact 1-norm
@@ -68,9 +68,13 @@ static double articulated_rcond(const vt_model *m, const vt_data *dd)
  * path forms (path_of) */
 static void both(const vt_model *m, vt_data *dr, vt_data *dd)
 {
-    const int path = path_of(m);
     assert_ok(vt_inverse_dynamics(m, dd));
     assert_ok(vt_inverse_dynamics_recursive(m, dr));
+    const int path = path_of(dr);
+    assert_true(dr->route > VT_ROUTE_NONE && dr->route < VT_ROUTE_COUNT);
+    /* when the recursive evaluation factorizes, vt_solve takes the dense path's route */
+    if (path == FACTORIZED) assert_int_equal(dr->route, dd->route);
+    assert_int_equal(dd->fallback & ~VT_FALLBACK_SCHUR_PIVOT, 0); /* the dense path's only fallback */
     const int nb3 = 3 * (m->nbody + 1);
     /* a reaction moment that is zero in exact arithmetic (a planar scene's) is the round-off of
      * the moments through the joint: measure it against them */
@@ -190,8 +194,9 @@ static void test_joint_driven(void **state)
             dr->qfrc[k] = dd->qfrc[k] = 0.1 * k;
         }
         dr->xfrc[6 * n + 1] = dd->xfrc[6 * n + 1] = -2.0; /* a load on the last link */
-        assert_int_equal(path_of(m), INWARD);
         both(m, dr, dd);
+        assert_int_equal(dr->route, VT_ROUTE_JOINT_DRIVEN);
+        assert_int_equal(dr->fallback, 0);
         for (int k = 0; k < n; k++) { /* and q̈ is the prescribed one */
             double q, qd, qdd;
             vt_scene_chain_state(k, &q, &qd, &qdd);
@@ -226,8 +231,8 @@ static void test_joint_driven(void **state)
     memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
     memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
     dr->time = dd->time = 0.7;
-    assert_int_equal(path_of(m), INWARD);
     both(m, dr, dd);
+    assert_int_equal(dr->route, VT_ROUTE_JOINT_DRIVEN);
     vt_data_free(dr);
     vt_data_free(dd);
     vt_model_free(m);
@@ -258,8 +263,10 @@ static void test_scenes(void **state)
         dr->q[k] = dd->q[k];
         dr->qd[k] = dd->qd[k];
     }
-    assert_int_equal(path_of(m), ARTICULATED);
     both(m, dr, dd);
+    assert_int_equal(dr->route, VT_ROUTE_ARTICULATED); /* the tip's one row: articulated bodies */
+    assert_int_equal(dr->fallback, 0);
+    assert_int_equal(dd->route, VT_ROUTE_SCHUR);
     vt_data_free(dr);
     vt_data_free(dd);
     vt_model_free(m);
@@ -280,8 +287,10 @@ static void test_scenes(void **state)
              * bodies) and a force on the coupler */
             for (int c = 0; c < m->nv; c++) dr->qfrc[c] = dd->qfrc[c] = 0.7 - 0.3 * c;
             dr->xfrc[6 * 2 + 2] = dd->xfrc[6 * 2 + 2] = -3.0;
-            assert_int_equal(path_of(m), SQUARE);
             both(m, dr, dd);
+            assert_int_equal(dr->route, VT_ROUTE_SQUARE);
+            assert_int_equal(dr->fallback, 0);
+            assert_int_equal(dd->route, VT_ROUTE_SQUARE);
         }
         vt_data_free(dr);
         vt_data_free(dd);
@@ -333,7 +342,6 @@ static void test_articulated(void **state)
         assert_ok(vt_builder_build(&m, b));
         vt_builder_free(b);
         vt_model_free(probe);
-        assert_int_equal(path_of(m), ARTICULATED);
         vt_data *dr, *dd;
         assert_ok(vt_data_create(&dr, m));
         assert_ok(vt_data_create(&dd, m));
@@ -349,6 +357,8 @@ static void test_articulated(void **state)
         memcpy(dr->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
         dr->time = dd->time;
         both(m, dr, dd);
+        assert_int_equal(dr->route, VT_ROUTE_ARTICULATED);
+        assert_int_equal(dr->fallback, 0);
         vt_data_free(dr);
         vt_data_free(dd);
         vt_model_free(m);
@@ -375,7 +385,6 @@ static void test_dependent(void **state)
         }
         assert_ok(vt_builder_build(&m, b));
         vt_builder_free(b);
-        assert_int_equal(path_of(m), nrod == 2 ? SQUARE : ARTICULATED);
         assert_ok(vt_data_create(&d, m));
         for (int recursive = 0; recursive < 2; recursive++) {
             memset(d->q, 0, (size_t)m->nq * sizeof(double));
@@ -386,6 +395,13 @@ static void test_dependent(void **state)
             assert_non_null(strstr(d->message, "rank 1 of 2"));
             assert_near(d->qdd[0], 42.0, 0.0);
             assert_near(d->lambda[1], 7.0, 0.0);
+            assert_int_equal(d->route, VT_ROUTE_NONE); /* no route solved it */
+            /* the recursive shortcut (square for two rods, articulated for three) gave way on its
+             * condition: the dependent rows make Φ_q (and S) singular */
+            if (recursive)
+                assert_int_equal(d->fallback, nrod == 2 ? VT_FALLBACK_SQUARE_CONDITION : VT_FALLBACK_ARTICULATED_CONDITION);
+            else
+                assert_int_equal(d->fallback, 0);
         }
         vt_data_free(d);
         vt_model_free(m);

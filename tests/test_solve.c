@@ -48,6 +48,7 @@ static void test_fully_joint_driven_chain(void **state)
             d->qd[k] = f[1];
         }
         assert_ok(vt_inverse_dynamics(m, d));
+        assert_int_equal(d->route, VT_ROUTE_SQUARE); /* as many rows as rates */
         for (int k = 0; k < nv; k++) {
             assert_ok(vt_function_eval(f, &m->drive[k].f, t));
             assert_near(d->qdd[k], f[2], 1e-12 * (1 + fabs(f[2])));
@@ -75,6 +76,7 @@ static void test_free_tree(void **state)
     uint64_t s = 4;
     vt_scene_random_state(m, d, &s);
     assert_ok(vt_inverse_dynamics(m, d));
+    assert_int_equal(d->route, VT_ROUTE_AUGMENTED); /* no rows: M* alone, LDL^T */
     const int nv = m->nv;
     double *A = malloc((size_t)nv * (size_t)nv * sizeof(double)), *x = malloc((size_t)nv * sizeof(double));
     memcpy(A, d->Mstar, (size_t)nv * (size_t)nv * sizeof(double));
@@ -114,6 +116,7 @@ static void test_failures(void **state)
     d->qdd[0] = 42.0;
     assert_int_equal(vt_inverse_dynamics(m, d), VT_ERR_SINGULAR);
     assert_non_null(strstr(d->message, "rcond"));
+    assert_int_equal(d->route, VT_ROUTE_NONE);
     assert_near(d->qdd[0], 42.0, 0.0); /* untouched */
     vt_data_free(d);
     vt_model_free(m);
@@ -133,6 +136,7 @@ static void test_failures(void **state)
     m = pendulum_with(1, 1.0);
     assert_ok(vt_data_create(&d, m));
     assert_ok(vt_inverse_dynamics(m, d));
+    assert_int_equal(d->route, VT_ROUTE_SQUARE);
     vt_data_free(d);
     vt_model_free(m);
 }
@@ -233,6 +237,8 @@ static void test_redundant_fourbar(void **state)
         assert_ok(vt_inverse_dynamics(red, dr));
         assert_ok(vt_inverse_dynamics(rsur, du));
         assert_int_equal(dr->rank, 3);
+        assert_int_equal(dr->route, VT_ROUTE_REDUNDANT);
+        assert_int_equal(du->route, VT_ROUTE_SQUARE);
         assert_true(dr->warning & VT_WARN_REDUNDANT);
         assert_true(dr->residual < 1e-12);
         /* the motion: crank, coupler and rocker angular accelerations */
@@ -301,6 +307,8 @@ static void test_bricard(void **state)
         assert_ok(vt_inverse_dynamics(red, dr));
         assert_ok(vt_inverse_dynamics(uni, du));
         assert_int_equal(dr->rank, 5);
+        assert_int_equal(dr->route, VT_ROUTE_REDUNDANT);
+        assert_int_equal(du->route, VT_ROUTE_SQUARE);
         assert_true(dr->warning & VT_WARN_REDUNDANT);
         assert_false(du->warning & VT_WARN_REDUNDANT);
         assert_true(dr->residual < 1e-12);
@@ -344,6 +352,7 @@ static void test_square_constraints(void **state)
     for (double th = 0.2; th < 6.2; th += 0.7) {
         assert_int_equal(vt_scene_fourbar_assemble(m, d, th, 1.3, NULL, NULL), 0);
         assert_ok(vt_inverse_dynamics(m, d));
+        assert_int_equal(d->route, VT_ROUTE_SQUARE);
         for (int c = 0; c < N; c++)
             for (int r = 0; r < N; r++) {
                 double v = 0.0;
@@ -402,6 +411,7 @@ static void test_augmented_condition(void **state)
     uint64_t seed = 9;
     vt_scene_random_state(m, d, &seed);
     assert_ok(vt_inverse_dynamics(m, d));
+    assert_int_equal(d->route, VT_ROUTE_AUGMENTED);
     const int N = m->nv;
     assert_true(N <= 16);
     double K[256], X[256], an = 0.0, xn = 0.0;
@@ -500,6 +510,9 @@ static void test_schur(void **state)
             vt_scene_random_state(m, d, &seed);
         }
         assert_ok(vt_inverse_dynamics(m, d));
+        /* M* singular (scene 2): the Schur route gives way to the augmented one, and says so */
+        assert_int_equal(d->route, scene == 2 ? VT_ROUTE_AUGMENTED : VT_ROUTE_SCHUR);
+        assert_int_equal(d->fallback, scene == 2 ? VT_FALLBACK_SCHUR_PIVOT : 0);
         /* the augmented system, solved whole */
         double K[400], x[20], sc[20], L[256], P[64];
         int ipiv[20], info = 0;

@@ -80,7 +80,7 @@ nosundials)
         { cat "$tmp/setup.log"; exit 1; }
     grep -q '^#define VT_HAVE_SUNDIALS 0$' "$tmp/nosun/include/vtdyn/version.h" ||
         { echo "VT_HAVE_SUNDIALS is not 0 in the generated header"; exit 1; }
-    tests=(model solve reactions recursive kinematic trajectory)
+    tests=(model solve reactions recursive kinematic_solve kinematic_analysis trajectory arena)
     meson compile -C "$tmp/nosun" -j "$jobs" consumer_c99 "${tests[@]/#/test_}" >"$tmp/build.log" ||
         { cat "$tmp/build.log"; exit 1; }
     if grep -q 'NEEDED.*sundials' <<< "$(readelf -d "$tmp/nosun/libvtdyn.so")"; then
