@@ -19,7 +19,7 @@
  * calls are flags in d->warning. One model may be shared by threads, each with its
  * own vt_data: there is no global state.
  * Conventions (units, frames, layouts) are stated at the top of vtdyn/types.h; docs/guide.md
- * walks through the whole use with tested programs.
+ * walks through the whole use with tested programs, docs/method.md states the method.
  */
 #ifndef VTDYN_H
 #define VTDYN_H
@@ -31,6 +31,8 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ---- statuses (src/status.c) ------------------------------------------------------------- */
 
 /// Text for a status code (never NULL).
 const char *vt_status_string(vt_status status);
@@ -68,6 +70,8 @@ void vt_model_free(vt_model *model);
 /// check. Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
+/* ---- the data (src/data.c) --------------------------------------------------------------- */
+
 /// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with
 /// vt_data_init(). Free it with vt_data_free(). On failure *data is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
@@ -96,6 +100,8 @@ size_t vt_data_size(const vt_model *model);
 /// Statuses: VT_ERR_NULL (data, model or buffer NULL), VT_ERR_BAD_SIZE (the buffer cannot hold
 /// the data: nothing is written to it). On failure *data is NULL (if data is not NULL).
 vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
+
+/* ---- state helpers (src/state.c) ----------------------------------------------------------- */
 
 /// Adds to d->xfrc a force f (N) and moment n (N·m), both global, applied at the point
 /// `point` of body `body` (m, body axes from its centre of mass); f or n may be NULL.
@@ -163,14 +169,12 @@ vt_status vt_forces(const vt_model *model, vt_data *data);
 vt_status vt_constraints(const vt_model *model, vt_data *data);
 
 /// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, scaled by the mass metric, by
-/// the cheapest LAPACK path that fits: only joint-drive rows, Cholesky on the free rates; as many
-/// rows as rates, one LU of Φ_q; fewer, the Schur complement (two Cholesky factorizations) when
-/// M* is well conditioned; otherwise the symmetric indefinite (bounded Bunch–Kaufman)
-/// factorization of the whole matrix; redundant rows (allow_redundant), an SVD of Φ_q first.
-/// d->rcond is the condition of what was factorized (see vt_data.rcond).
+/// the cheapest route the rows allow (LAPACK); d->route records the route, d->fallback a faster
+/// route that gave way, d->rcond the reciprocal condition of what the route factorized (rank,
+/// warning, residual and lambda_unique as documented in vt_data).
 /// Needs vt_mass_matrix(), vt_forces(), vt_constraints().
 /// Statuses: VT_ERR_DEPENDENT_CONSTRAINTS (the message names the rows), VT_ERR_SINGULAR,
-/// VT_ERR_LAPACK. On failure qdd and lambda are left as they were.
+/// VT_ERR_NONFINITE (Q or γ), VT_ERR_LAPACK. On failure qdd and lambda are left as they were.
 vt_status vt_solve(const vt_model *model, vt_data *data);
 
 /// ẍ, the drives' efforts (24) and the joint reactions (25)-(28), inward from the tree's ends,
@@ -183,17 +187,12 @@ vt_status vt_reactions(const vt_model *model, vt_data *data);
 /// the stages; the first failure stops it. q, q̇ must satisfy the constraints (not corrected).
 vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 
-/// The same instant by the recursive evaluation (src/recursive.c): no dense S, Φ_q from the
-/// rates' twists; when every rate has one joint drive (model->joint_driven) the efforts and
-/// reactions come from one inward pass with nothing factorized; with fewer independent rows than
-/// rates (no base body) q̈ and λ come from the articulated-body recursion in O(n) per row, M* not
-/// formed; with as many as rates (no base body, no allow_redundant) q̈ from Φ_q alone and M* q̈ − Q
-/// from an inward Newton–Euler pass; otherwise M* by composite bodies, Q by a Newton–Euler pass
-/// and vt_solve(). Fills what vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω,
-/// ẋ; Ṡq̇, Φ_x, Φ_q when anything is solved; M* and Q only on the last path) except S and R, and
-/// agrees with it to round-off; rcond is the same quantity except on the articulated path, where
-/// M*'s pivots are taken leaf first (see vt_data.rcond).
-/// Statuses: those of vt_inverse_dynamics().
+/// The same instant by the recursive evaluation, O(n) where the rows allow it: no dense S (and
+/// R), Φ_q from the rates' twists, M* and Q formed only on the general route. Fills what
+/// vt_inverse_dynamics() fills (q̈, λ, efforts, reactions, ẍ, x, A, ω, ẋ; Ṡq̇, Φ, Φ_x, Φ_q, γ
+/// when anything is solved; M* and Q when vt_data.route is one of vt_solve's) except S and R,
+/// and agrees with it to round-off; d->route says which route it took. Statuses: those of
+/// vt_inverse_dynamics().
 vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
@@ -201,7 +200,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 /// 7(i−1)). Needs vt_solve(). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (drive not in 0..ndrive−1).
 vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
 
-/* ---- analyses over time (src/kinematic.c, src/trajectory.c, src/integrate.c) ---------- */
+/* ---- analyses over time (src/kinematic_solve.c, src/kinematic_analysis.c, src/trajectory.c,
+ *      src/dynamic_analysis.c) ------------------------------------------------------------ */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
 /// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS).

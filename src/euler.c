@@ -1,4 +1,4 @@
-/* Euler-parameter kinematics: the paper's eq (8) and method.md "Coordinates".
+/* Euler-parameter kinematics: the paper's eq (8) and docs/method.md "Coordinates".
  *
  *   p = [p0; e],  e = [p1 p2 p3]
  *   E(p) = [-e, ẽ + p0 I]:  rows [-p1  p0 -p3  p2], [-p2  p3  p0 -p1], [-p3 -p2  p1  p0]

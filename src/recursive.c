@@ -359,7 +359,7 @@ static inline void column8(double *restrict g, double a, double b, double c, dou
 static void inertia_full(double *restrict G, const double *restrict I)
 {
     const double *h = I + 1, *J = I + 4, m = I[0];
-    column8(G, J[0], J[1], J[2], 0.0, -h[2], h[1]); /* written whole: no zeroing pass (GCC's rep stos) */
+    column8(G, J[0], J[1], J[2], 0.0, -h[2], h[1]); /* written whole: no zeroing pass */
     column8(G + 8, J[3], J[4], J[5], h[2], 0.0, -h[0]);
     column8(G + 16, J[6], J[7], J[8], -h[1], h[0], 0.0);
     column8(G + 24, 0.0, h[2], -h[1], m, 0.0, 0.0);
@@ -370,9 +370,9 @@ static void inertia_full(double *restrict G, const double *restrict I)
 /* Kernels of the articulated-body passes: I^A in columns of 8 (two 4-wide vectors, which the
  * compiler uses), sums as balanced pairs (shorter dependency chains; C keeps the order written). */
 
-/* G −= U U^T / D (inv = 1 / D), G 6x6 in columns of 8. Rows outer: the compiler vectorizes
- * the row loop, a column at a time (columns outer, GCC 12 vectorizes across the columns and
- * shuffles: 5x the instructions) */
+/* G −= U U^T / D (inv = 1 / D), G 6x6 in columns of 8. Rows outer, so that the row loop is
+ * vectorized a column at a time (columns outer invites vectorizing across columns, with
+ * shuffles) */
 static inline void rank1_cols8(double *restrict G, const double *restrict U, double inv)
 {
     for (int r = 0; r < 8; r++) {

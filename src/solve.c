@@ -10,8 +10,8 @@
  * indefinite), so Cholesky does not apply and LU would ignore the symmetry. LAPACK's
  * LDL^T with bounded Bunch–Kaufman (rook) pivoting (dsytrf_rk / dsytrs_3 / dsycon_3) uses the
  * symmetry (half LU's work and storage), its 1x1/2x2 pivots are stable for indefinite matrices,
- * and the rook variant bounds the entries of L (and its BLAS-3 solves cost 18 % fewer
- * instructions per instant on the four-bar than dsytrs/dsycon's BLAS-2 loops, by callgrind).
+ * and the rook variant bounds the entries of L (and its BLAS-3 solves are cheaper than
+ * dsytrs/dsycon's BLAS-2 loops at these sizes).
  * Before factorizing, the matrix is scaled symmetrically (its rows and columns mix units:
  * kg·m², kg, m, rad) so that dsycon's reciprocal condition estimate measures the mechanism
  * rather than its units; how, is said where it is done. A system whose

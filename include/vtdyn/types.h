@@ -380,7 +380,7 @@ typedef struct vt_data {
 /// (VT_ERR_ABORTED).
 typedef int (*vt_progress_callback)(double t, double t_end, void *user);
 
-/// How a dynamic analysis hands (5) to IDA (see src/integrate.c).
+/// How a dynamic analysis hands (5) to IDA (see src/dynamic_analysis.c).
 typedef enum vt_formulation {
     VT_FORMULATION_INDEX1 = 0,  ///< (5) as it stands: acceleration-level constraints; Φ and Φ̇ drift
     VT_FORMULATION_BAUMGARTE,   ///< Φ̈ + 2α Φ̇ + β² Φ = 0 in place of Φ̈ = 0
