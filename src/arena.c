@@ -3,21 +3,15 @@
  * arena itself is laid out by data.c. */
 #include "internal.h"
 
-void *vt_scratch_take(vt_data *d, size_t n, size_t size, const char *name)
+void *vt_scratch_refuse(vt_data *d, size_t n, size_t size, const char *name)
 {
     vt_arena *a = d->arena;
-    if (a->failed) return NULL;
-    if ((size && n > ((size_t)-1 >> 1) / size) || VT_SCRATCH_BYTES(n, size) > a->size - a->top) {
-        a->failed = 1;
+    if (!a->failed)
         vt_fail(d->message, VT_ERR_NO_MEMORY,
-                "scratch arena: '%s' (%zu bytes) does not fit (%zu of %zu bytes in use): a sizing bug in vtdyn", name,
-                n * size, a->top, a->size);
-        return NULL;
-    }
-    char *p = a->base + a->top;
-    a->top += VT_SCRATCH_BYTES(n, size);
-    if (a->poison) VT_UNPOISON(p, n * size); /* the padding up to the next cache line stays poisoned */
-    return p;
+                "scratch arena: '%s' (%zu x %zu bytes) does not fit (%zu of %zu bytes in use): a sizing bug in vtdyn", name,
+                n, size, a->top, a->size);
+    a->failed = 1;
+    return NULL;
 }
 
 void *vt_scratch_rest(vt_data *d, size_t need, size_t size, int *count, const char *name)

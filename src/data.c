@@ -33,6 +33,16 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->qd = take(base, &used, nv * sizeof(double));
     d->xfrc = take(base, &used, 6 * nb * sizeof(double));
     d->qfrc = take(base, &used, nv * sizeof(double));
+    /* the arena, beside the inputs: its header, then the sum of the files' bounds (internal.h) */
+    d->arena = take(base, &used, sizeof(vt_arena));
+    const size_t scratch = arena_size(m);
+    char *mem = take(base, &used, scratch);
+    if (base) {
+        d->arena->base = mem;
+        d->arena->size = scratch;
+        d->arena->top = 0;
+        d->arena->failed = 0;
+    }
     d->x = take(base, &used, nx * sizeof(double));
     d->xd = take(base, &used, nx * sizeof(double));
     d->A = take(base, &used, 9 * nb * sizeof(double));
@@ -75,16 +85,6 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->lambda_null = take(base, &used, (nc ? nc * nc : 1) * sizeof(double));
     d->jnt_unique = take(base, &used, 6 * nb * sizeof(int));
     d->cut_unique = take(base, &used, 6 * (nk ? nk : 1) * sizeof(int));
-    /* the arena: its header, then the sum of the files' bounds (internal.h) */
-    d->arena = take(base, &used, sizeof(vt_arena));
-    const size_t scratch = arena_size(m);
-    char *mem = take(base, &used, scratch);
-    if (base) {
-        d->arena->base = mem;
-        d->arena->size = scratch;
-        d->arena->top = 0;
-        d->arena->failed = 0;
-    }
     return used;
 }
 

@@ -160,8 +160,21 @@ static inline size_t vt_scratch_mark(const vt_data *d)
     return d->arena->top;
 }
 
-/* n items of `size` bytes, named for the message when they do not fit */
-void *vt_scratch_take(vt_data *d, size_t n, size_t size, const char *name);
+/* the allocation that does not fit: NULL, the arena failed, the message names it (arena.c) */
+void *vt_scratch_refuse(vt_data *d, size_t n, size_t size, const char *name);
+
+/* n items of `size` bytes, named for the message when they do not fit; inline, since an instant
+ * takes a dozen of them */
+static inline void *vt_scratch_take(vt_data *d, size_t n, size_t size, const char *name)
+{
+    vt_arena *a = d->arena;
+    if (a->failed || (size && n > ((size_t)-1 >> 1) / size) || VT_SCRATCH_BYTES(n, size) > a->size - a->top)
+        return vt_scratch_refuse(d, n, size, name);
+    char *p = a->base + a->top;
+    a->top += VT_SCRATCH_BYTES(n, size);
+    if (a->poison) VT_UNPOISON(p, n * size); /* the padding up to the next cache line stays poisoned */
+    return p;
+}
 #define VT_SCRATCH(d, type, n, name) ((type *)vt_scratch_take((d), (size_t)(n), sizeof(type), (name)))
 
 /* the rest of the arena, at least `need` items of `size` bytes, as one allocation (LAPACK's

@@ -242,10 +242,12 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    double *alpha = VT_SCRATCH(d, double, 3 * nb, "α"), *fe = VT_SCRATCH(d, double, 6 * nb, "applied wrenches");
-    double *cf = VT_SCRATCH(d, double, 6 * nb, "children's reactions");
+    /* α, the applied wrenches and the children's reactions one after the other (the layout the
+     * kernels were timed with) */
+    double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, applied wrenches, children's reactions");
     double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
     if (!rw) return vt_scratch_fail(d, mark);
+    double *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
     vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
     /* applied: gravity, xfrc, and every row and generalized force */
@@ -420,7 +422,7 @@ vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
 size_t vt_reactions_scratch(const vt_model *m)
 {
     const size_t nb = (size_t)m->nbody + 1, rw = VT_SCRATCH_BYTES(12 * (size_t)m->nc, sizeof(double));
-    const size_t inward = VT_SCRATCH_BYTES(3 * nb, sizeof(double)) + 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double));
+    const size_t inward = VT_SCRATCH_BYTES(15 * nb, sizeof(double));
     const size_t unique = 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double)) +
                           VT_SCRATCH_BYTES(6 * nb + 6 * (size_t)m->ncut, sizeof(double));
     return (inward > unique ? inward : unique) + rw;

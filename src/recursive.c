@@ -16,22 +16,28 @@
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
  *   W linear in q̈        W_k = W⁰_k + I_k T_k,  T_k = Σ_{a on k's path} s_a q̈_a
- * The paths, by the rows the drives and cut joints give:
- * - every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and nothing is
- *   factorized; the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's Φ_q^T λ with unit rows,
- *   λ = τ), and the reaction at joint i is W̄_i moved to the joint point P_i less the joint's
- *   actuation (τ + qfrc) along its axes (inward);
- * - fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
+ * The routes (vt_data.route), by the rows the drives and cut joints give:
+ * - JOINT_DRIVEN, every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and
+ *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's
+ *   Φ_q^T λ with unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point
+ *   P_i less the joint's actuation (τ + qfrc) along its axes (inward);
+ * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
  *   (articulated_solve: O(n) per right side, M* is not formed), then the reactions from
  *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum and without the
- *   rows' loads (articulated_instant);
- *   when every row is a joint drive (joint_rows_only) the driven rates' q̈ are
- *   known and only the free ones are solved, then the inward pass as above;
- * - as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q = S^T W̄ − qfrc
- *   from one inward pass (square_instant: neither M* nor Q is formed);
- * - otherwise (base bodies, redundant rows allowed, or the shortcuts ill-conditioned): M* and Q
- *   as above, Φ_q = Φ_x S from the twists, the augmented system (5) by vt_solve, which also
- *   diagnoses, and the reactions (25)-(28) as in the dense path.
+ *   rows' loads (articulated_instant); when every row is a joint drive (joint_rows_only) the
+ *   driven rates' q̈ are known and only the free ones are solved, then the inward pass as above.
+ *   rcond is S's exact condition (1 for one row) times min/max of M*'s pivots taken leaf first,
+ *   each over its diagonal entry (the free rates' pivots alone with only joint-drive rows); a
+ *   pivot below 1e-8 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
+ *   (VT_FALLBACK_ARTICULATED_CONDITION) hands the instant to the general route;
+ * - SQUARE, as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q =
+ *   S^T W̄ − qfrc from one inward pass (square_instant: neither M* nor Q is formed); rcond as
+ *   vt_solve's square route, and below rcond_min the general route takes over
+ *   (VT_FALLBACK_SQUARE_CONDITION);
+ * - otherwise (base bodies, redundant rows allowed, or a shortcut that gave way): M* and Q as
+ *   above, Φ_q = Φ_x S from the twists, the augmented system (5) by vt_solve's routes (FREE_RATES,
+ *   SCHUR, AUGMENTED, REDUNDANT: src/solve.c), which also diagnose, and the reactions (25)-(28)
+ *   as in the dense path.
  */
 #include <string.h>
 
@@ -225,8 +231,10 @@ static vt_status inward(const vt_model *m, vt_data *d)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    double *alpha = VT_SCRATCH(d, double, 3 * nb, "α"), *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
-    if (!W) return vt_scratch_fail(d, mark);
+    /* α (3 per body) and the subtree wrenches W (6) in one allocation: W straight after α, not on
+     * a cache line of its own, measured 5 % faster on the joint-driven chain */
+    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
+    if (!alpha) return vt_scratch_fail(d, mark);
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
     for (int i = 1; i <= n; i++) {
@@ -334,9 +342,9 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
         return factorized_instant(m, d);
     }
     /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
-    double *alpha = VT_SCRATCH(d, double, 3 * nb, "α"), *G = VT_SCRATCH(d, double, 6 * nb, "twists of q̈, then G");
-    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
-    if (!W) return vt_scratch_fail(d, mark);
+    double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, twists of q̈ then G, subtree wrenches");
+    if (!alpha) return vt_scratch_fail(d, mark);
+    double *G = alpha + 3 * nb, *W = alpha + 9 * nb; /* one after the other, as in inward */
     vt_accelerations_add(m, d, sq.x, d->xdd, alpha, G);
     subtree_wrenches(m, d, alpha, W);
     for (int a = 0; a < nv; a++) {
@@ -701,7 +709,7 @@ size_t vt_recursive_scratch(const vt_model *m)
 {
     const size_t nb = (size_t)m->nbody + 1, D = sizeof(double);
     size_t n = aba_bytes(m, m->nc + 1), one = aba_bytes(m, 1);
-    const size_t square = VT_SCRATCH_BYTES(m->nv, D) + VT_SCRATCH_BYTES(3 * nb, D) + 2 * VT_SCRATCH_BYTES(6 * nb, D);
+    const size_t square = VT_SCRATCH_BYTES(m->nv, D) + VT_SCRATCH_BYTES(15 * nb, D);
     if (one > n) n = one;
     if (square > n) n = square;
     if (VT_SCRATCH_BYTES(13 * nb, D) > n) n = VT_SCRATCH_BYTES(13 * nb, D);
