@@ -13,10 +13,12 @@
  * chain, there both handed our q̈ and solving q̈ itself from the tip's acceleration).
  *
  * Timing: every method of a row is run in turn, round after round (interleaved, so that the
- * machine's slow stretches hit all of them alike); a round times a batch of calls sized to take
- * about 2 ms; the figure is the median over the rounds of µs per call. Writes
- * <outdir>/inverse_speed.csv (scene, n, method, median_us) and prints the ratios.
- * Usage: bench_inverse [outdir] [rounds]
+ * machine's slow stretches hit all of them alike; the order is reversed every other round); a
+ * round times a batch of calls sized to take about 2 ms; the figure is the median over the
+ * rounds of µs per call, and each ratio vtdyn_recursive / method is the median of the rounds'
+ * ratios, printed with their range. Writes <outdir>/inverse_speed.csv (scene, n, method,
+ * median_us, ratio_median, ratio_min, ratio_max) and prints the ratios.
+ * Usage: bench_inverse [outdir] [rounds]   (41 rounds by default, at most 201)
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -77,11 +79,21 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* median µs per call of each method, interleaved rounds */
-static void time_methods(timed *t, int nt, int rounds, double *median)
+#define MAX_ROUNDS 201
+
+static double median_of(double *a, int n)
+{
+    qsort(a, (size_t)n, sizeof(double), cmp);
+    return n % 2 ? a[n / 2] : 0.5 * (a[n / 2 - 1] + a[n / 2]);
+}
+
+/* median µs per call of each method, interleaved rounds (order reversed every other round), and
+ * for every method k the median, smallest and largest of the rounds' ratios t_1 / t_k (method 1
+ * is vtdyn_recursive) into ratio[3 k .. 3 k + 2] */
+static void time_methods(timed *t, int nt, int rounds, double *median, double *ratio)
 {
     long reps[MAX_METHODS];
-    double samples[MAX_METHODS][64];
+    static double samples[MAX_METHODS][MAX_ROUNDS];
     for (int k = 0; k < nt; k++) { /* warm up and size a batch to about 2 ms */
         long r = 1;
         for (;;) {
@@ -94,15 +106,25 @@ static void time_methods(timed *t, int nt, int rounds, double *median)
         reps[k] = r;
     }
     for (int round = 0; round < rounds; round++)
-        for (int k = 0; k < nt; k++) {
+        for (int j = 0; j < nt; j++) {
+            const int k = round % 2 ? nt - 1 - j : j;
             const double t0 = now_us();
             for (long i = 0; i < reps[k]; i++) t[k].run(t[k].ctx, t[k].method);
             samples[k][round] = (now_us() - t0) / (double)reps[k];
         }
+    double r[MAX_ROUNDS];
     for (int k = 0; k < nt; k++) {
-        qsort(samples[k], (size_t)rounds, sizeof(double), cmp);
-        median[k] = rounds % 2 ? samples[k][rounds / 2] : 0.5 * (samples[k][rounds / 2 - 1] + samples[k][rounds / 2]);
+        double lo = 1e300, hi = 0.0;
+        for (int round = 0; round < rounds; round++) {
+            r[round] = nt > 1 ? samples[1][round] / samples[k][round] : 1.0;
+            lo = r[round] < lo ? r[round] : lo;
+            hi = r[round] > hi ? r[round] : hi;
+        }
+        ratio[3 * k] = median_of(r, rounds);
+        ratio[3 * k + 1] = lo;
+        ratio[3 * k + 2] = hi;
     }
+    for (int k = 0; k < nt; k++) median[k] = median_of(samples[k], rounds);
 }
 
 static void set_chain_state(const vt_model *m, vt_data *d, double *qdd)
@@ -211,15 +233,17 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
         }
     }
 #endif
-    double med[MAX_METHODS];
-    time_methods(t, nt, rounds, med);
+    double med[MAX_METHODS], ratio[3 * MAX_METHODS];
+    time_methods(t, nt, rounds, med, ratio);
     printf("%-12s n=%3d", scene, n);
     for (int k = 0; k < nt; k++) {
         printf("  %s %.3f us", t[k].name, med[k]);
-        fprintf(csv, "%s,%d,%s,%.6g\n", scene, n, t[k].name, med[k]);
+        fprintf(csv, "%s,%d,%s,%.6g,%.4g,%.4g,%.4g\n", scene, n, t[k].name, med[k], ratio[3 * k], ratio[3 * k + 1],
+                ratio[3 * k + 2]);
     }
-    for (int k = 2; k < nt; k++) printf("  [recursive/%s %.2f]", t[k].name, med[1] / med[k]);
-    printf("  [recursive/dense %.3f]\n", med[1] / med[0]);
+    for (int k = 2; k < nt; k++)
+        printf("  [recursive/%s %.2f (%.2f-%.2f)]", t[k].name, ratio[3 * k], ratio[3 * k + 1], ratio[3 * k + 2]);
+    printf("  [recursive/dense %.3f (%.3f-%.3f)]\n", ratio[0], ratio[1], ratio[2]);
     if (strcmp(scene, "chain") == 0 && nfit < 16) {
         fit_n[nfit] = n;
         fit_t[nfit++] = med[1];
@@ -287,9 +311,9 @@ static void state_five_link(const vt_model *m, vt_data *d)
 int main(int argc, char **argv)
 {
     const char *outdir = argc > 1 ? argv[1] : ".";
-    const int rounds = argc > 2 ? atoi(argv[2]) : 9;
-    if (rounds < 1 || rounds > 64) {
-        fprintf(stderr, "bench_inverse: rounds must be 1..64\n");
+    const int rounds = argc > 2 ? atoi(argv[2]) : 41;
+    if (rounds < 1 || rounds > MAX_ROUNDS) {
+        fprintf(stderr, "bench_inverse: rounds must be 1..%d\n", MAX_ROUNDS);
         return 1;
     }
     char path[4096];
@@ -299,7 +323,7 @@ int main(int argc, char **argv)
         perror(path);
         return 1;
     }
-    fprintf(csv, "scene,n,method,median_us\n");
+    fprintf(csv, "scene,n,method,median_us,ratio_median,ratio_min,ratio_max\n");
     printf("vtdyn inverse-dynamics instant: median of %d interleaved rounds, us per call\n", rounds);
 #ifndef VT_HAVE_PEERS
     printf("(peers not built: see bench/peers/install.sh and the README to compare with Pinocchio and MuJoCo)\n");
