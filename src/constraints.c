@@ -162,7 +162,6 @@ static double G_row(const double a[4], const double b[4], int k)
 static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si)
 {
     const int nc = m->nc;
-    double *row = Si + 7 * m->maxpath;
     for (int side = 0; side < 2; side++) {
         const int b = m->con_body[2 * r + side];
         if (b == 0) continue;
@@ -170,6 +169,7 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si
         const int *path = m->path_dof + m->body_pathadr[b];
         const double *px = d->Phix + 14 * r + 7 * side;
         if (dense) {
+            double *row = Si + 7 * m->maxpath;
             vt_gather_S(Si, m, d, b);
             cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
             for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];

@@ -1,6 +1,6 @@
 #!/bin/sh
 # A/B speed of two trees of vtdyn in one process (see the comment at the top of ab.c).
-# usage: run.sh <treeA> <treeB> [rounds]   e.g. bash bench/ab/run.sh /work/base /work/main
+# usage: run.sh <treeA> <treeB> [rounds]   e.g. bash bench/ab/run.sh ../vtdyn-old .
 # Builds both shared objects (build.sh) and the driver into a temporary directory, then runs
 # the driver pinned to CPU 1.
 set -eu
