@@ -232,7 +232,7 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
 
     int info = 0, lwork = 0, st = 0;
     double anorm = 0.0;
-    if ((st = norm1_sym(d, K, N, &anorm))) return st;
+    if ((st = norm1_sym(d, K, N, &anorm))) return vt_scratch_release(d, mark), st;
     const size_t mark_work = vt_scratch_mark(d);
     double *work = vt_scratch_rest(d, 2 * ld, sizeof(double), &lwork, "dsytrf_rk workspace");
     if (!work) return vt_scratch_fail(d, mark);
