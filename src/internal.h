@@ -255,6 +255,9 @@ void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const 
 
 /* every multiplier unique (vt_solve's exact routes) */
 void vt_mark_unique(const vt_model *m, vt_data *d);
+/* what a successful solve with independent rows records: the route, rcond and its warning,
+ * rank nc, no residual, every multiplier unique (solve.c) */
+void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
 /* vt_solve without the argument check and without clearing d->fallback (solve.c): the
  * recursive evaluation's general route, after its own shortcuts have flagged their fallbacks */
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);

@@ -602,17 +602,6 @@ static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, d
     return articulated_solve_nr(m, d, w, rcond_out, drv, nr);
 }
 
-/* what vt_solve sets on success, for a solve by articulated bodies */
-static void articulated_done(const vt_model *m, vt_data *d, double rcond)
-{
-    d->route = VT_ROUTE_ARTICULATED;
-    d->rcond = rcond;
-    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
-    d->rank = m->nc;
-    d->residual = 0.0;
-    vt_mark_unique(m, d);
-}
-
 /* (5) by articulated bodies, then the reactions from the subtrees' needed wrenches: the inward
  * pass leaves, for body i, the I^A and p its subtree passes to the parent (after its own rates),
  * and for any right side the subtree then needs W̄_i = I^A T_j + p at the parent's acceleration
@@ -633,7 +622,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         vt_scratch_release(d, mark);
         return r < 0 ? (vt_status)r : factorized_instant(m, d);
     }
-    articulated_done(m, d, rcond);
+    vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
     vt_accelerations_add(m, d, d->qdd, d->xdd, NULL, w.T);
     for (int i = 1; i <= m->nbody; i++) {
         double *Wi = w.W + 6 * i, IT[8];
@@ -687,7 +676,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
             vt_scratch_release(d, mark);
         }
         if (r < 0) return (vt_status)r;
-        if (r == 0) articulated_done(m, d, rcond);
+        if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
         else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d))) /* or from M*_FF, which also diagnoses */
             return st;
         return inward(m, d);

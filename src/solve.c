@@ -699,8 +699,7 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     return 0;
 }
 
-/* the route's outcome, for a successful solve with independent rows */
-static void solved(const vt_model *m, vt_data *d, vt_route route, double rcond)
+void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond)
 {
     d->route = route;
     d->rcond = rcond;
@@ -739,7 +738,7 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_SINGULAR,
                            "vt_solve: the free rates' mass matrix has rcond %.3g < %.3g: a motion without inertia "
                            "that no drive fixes", rcond, m->rcond_min);
-        solved(m, d, VT_ROUTE_FREE_RATES, rcond);
+        vt_solved(m, d, VT_ROUTE_FREE_RATES, rcond);
         return VT_OK;
     }
     const size_t mark = vt_scratch_mark(d);
@@ -792,7 +791,7 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d)
         vt_scratch_release(d, mark);
         return st;
     }
-    solved(m, d, route, rcond);
+    vt_solved(m, d, route, rcond);
     memcpy(d->qdd, sol, (size_t)nv * sizeof(double));
     for (int k = 0; k < nc; k++) d->lambda[k] = route == VT_ROUTE_AUGMENTED ? -sol[nv + k] : sol[nv + k];
     vt_scratch_release(d, mark);
@@ -825,7 +824,7 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 {
     const int r = vt_square_second(m, d, sq);
     if (r) return (vt_status)r;
-    solved(m, d, VT_ROUTE_SQUARE, rcond);
+    vt_solved(m, d, VT_ROUTE_SQUARE, rcond);
     memcpy(d->qdd, sq->x, (size_t)m->nv * sizeof(double));
     memcpy(d->lambda, sq->h, (size_t)m->nc * sizeof(double));
     return VT_OK;
