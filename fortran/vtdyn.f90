@@ -60,7 +60,7 @@ module vtdyn
   ! vt_route: the route by which the last solve found qdd and lambda (vt_data%route)
   integer(c_int), parameter :: VT_ROUTE_NONE = 0, VT_ROUTE_JOINT_DRIVEN = 1, VT_ROUTE_FREE_RATES = 2, &
       VT_ROUTE_SQUARE = 3, VT_ROUTE_SCHUR = 4, VT_ROUTE_ARTICULATED = 5, VT_ROUTE_AUGMENTED = 6, &
-      VT_ROUTE_REDUNDANT = 7, VT_ROUTE_COUNT = 8
+      VT_ROUTE_REDUNDANT = 7, VT_ROUTE_MOTION = 8, VT_ROUTE_COUNT = 9
   ! fallback flags in vt_data%fallback: faster routes the last instant left, and why
   integer(c_int), parameter :: VT_FALLBACK_SCHUR_PIVOT = 1, VT_FALLBACK_ARTICULATED_PIVOT = 2, &
       VT_FALLBACK_ARTICULATED_CONDITION = 4, VT_FALLBACK_SQUARE_CONDITION = 8
@@ -502,6 +502,11 @@ module vtdyn
       import :: c_int, c_ptr
       type(c_ptr), value :: model, data
       integer(c_int) :: vt_inverse_dynamics_recursive
+    end function
+    function vt_inverse_dynamics_motion(model, data) bind(C, name='vt_inverse_dynamics_motion')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data
+      integer(c_int) :: vt_inverse_dynamics_motion
     end function
     function vt_drive_cartesian_force(F, model, data, drive) bind(C, name='vt_drive_cartesian_force')
       import :: c_int, c_ptr, c_double

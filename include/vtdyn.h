@@ -195,6 +195,17 @@ vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 /// vt_inverse_dynamics().
 vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 
+/// One instant of a motion given for every rate: q in d->q, q̇ in d->qd and q̈ in d->qdd (read,
+/// not changed), at any instant, without drives or time functions (the model's drives are
+/// ignored, d->time is not read). Fills every rate's generalized force d->qfrc_drive = M* q̈ − Q
+/// (N·m or N: the joint torques and forces that produce the motion, with d->xfrc and d->qfrc
+/// applied), ẍ, x, A, ω, ẋ and every joint reaction in both frames (the actuation not
+/// included, as in vt_reactions()); d->route = VT_ROUTE_MOTION. The drives' outputs and λ are
+/// not written. Trees only: a model with cut joints or a base body is refused
+/// (VT_ERR_BAD_OPTION). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_OPTION,
+/// VT_ERR_NONFINITE (q, q̇, q̈, xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION.
+vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);
+
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
 /// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24), into the caller's F (7n entries, body i at
 /// 7(i−1)). Needs vt_solve(). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (drive not in 0..ndrive−1).

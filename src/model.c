@@ -123,13 +123,17 @@ static int normalize(double *a, int n)
     return 1;
 }
 
-/* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two. Zero is a
- * point mass and allowed. Principal moments from LAPACK's dsyev. */
+/* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two, to the relative
+ * tolerance VT_INERTIA_TOL of its largest entry (files such as URDF print inertias to a few
+ * digits: moments off the triangle inequality, or an entry of −5e-20, by round-off; a genuinely
+ * bad inertia is off by far more). Zero is a point mass and allowed. Principal moments from
+ * LAPACK's dsyev. The largest entry, not a sum, sets the scale: no overflow near DBL_MAX. */
 static vt_status check_inertia(char *msg, int id, const double J[9])
 {
-    const double scale = fabs(J[0]) + fabs(J[4]) + fabs(J[8]) + fabs(J[1]) + fabs(J[2]) + fabs(J[5]);
-    const double tol = 1e-12 * scale;
-    if (fabs(J[1] - J[3]) > tol || fabs(J[2] - J[6]) > tol || fabs(J[5] - J[7]) > tol)
+    double scale = 0.0;
+    for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
+    const double tol = VT_INERTIA_TOL * scale;
+    if (!(fabs(J[1] - J[3]) <= tol) || !(fabs(J[2] - J[6]) <= tol) || !(fabs(J[5] - J[7]) <= tol))
         return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
                        "body %d: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",
                        id, J[3], J[1], J[6], J[2], J[7], J[5]);
@@ -163,10 +167,12 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
         !vt_all_finite(d->joint_child, 3) || !vt_all_finite(d->axis1, 3) ||
         !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
         return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN or Inf in its definition", id);
-    if (!(d->mass > 0.0))
-        return vt_fail(msg, VT_ERR_MASS, "body %d: mass %g kg is not positive", id, d->mass);
+    if (!(d->mass >= 0.0)) /* zero: a massless link (a frame, a gimbal), refused only by a solve it leaves singular */
+        return vt_fail(msg, VT_ERR_MASS, "body %d: mass %g kg is negative", id, d->mass);
     vt_status st = check_inertia(msg, id, d->inertia);
     if (st) return st;
+    for (int r = 0; r < 3; r++) /* the symmetric part: off-symmetric by round-off at most */
+        for (int c = r + 1; c < 3; c++) d->inertia[r + 3 * c] = d->inertia[c + 3 * r] = 0.5 * (d->inertia[r + 3 * c] + d->inertia[c + 3 * r]);
     const int uses_axis1 = d->joint != VT_JOINT_BASE && d->joint != VT_JOINT_SPHERICAL;
     if (uses_axis1 && !normalize(d->axis1, 3))
         return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis1 has zero length", id);

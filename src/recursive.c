@@ -227,7 +227,9 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 
 /* with q̈ known for every rate: one inward pass for the joint drives' efforts τ = s · W̄ − qfrc
  * and every reaction (actuation — a drive's τ and an applied qfrc — is not reaction) */
-static vt_status inward(const vt_model *m, vt_data *d)
+/* given: the motion is given for every rate (vt_inverse_dynamics_motion): every rate's effort,
+ * the drives left alone; else the joint drives' efforts */
+static vt_status inward(const vt_model *m, vt_data *d, const int given)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
@@ -249,7 +251,10 @@ static vt_status inward(const vt_model *m, vt_data *d)
             int ax;
             const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
             double tau = 0.0;
-            if (dr >= 0) {
+            if (given) {
+                const double *w = d->twist + 6 * c;
+                tau = pair(w, w + 3, Wi) - d->qfrc[c];
+            } else if (dr >= 0) {
                 const double *w = d->twist + 6 * c;
                 tau = pair(w, w + 3, Wi) - d->qfrc[c];
                 d->lambda[m->drive_row[dr]] = tau;
@@ -661,7 +666,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         d->rank = m->nc; /* one unit row per rate: independent, every multiplier and reaction unique */
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        return inward(m, d);
+        return inward(m, d, 0);
     }
     if (m->joint_rows_only) { /* q̈ of the free rates, then the inward pass */
         memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double)); /* unit rows (R S = I) */
@@ -679,7 +684,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
         else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d))) /* or from M*_FF, which also diagnoses */
             return st;
-        return inward(m, d);
+        return inward(m, d, 0);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
     /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
@@ -703,4 +708,41 @@ size_t vt_recursive_scratch(const vt_model *m)
     if (square > n) n = square;
     if (VT_SCRATCH_BYTES(13 * nb, D) > n) n = VT_SCRATCH_BYTES(13 * nb, D);
     return n;
+}
+
+/* The motion given for every rate of a tree: q̈ is known, and one outward and one inward pass
+ * give every rate's effort τ_a = s_a · W̄_i − qfrc_a (= (M* q̈ − Q)_a) and the reactions, the
+ * actuation taken off (route VT_ROUTE_MOTION, nothing factorized). Base bodies and cut joints
+ * are refused: a base body's ṗ rates carry (4)'s normal part (its multiplier), and a loop's
+ * rates are not independent. */
+vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
+    if (st) return st;
+    d->route = VT_ROUTE_NONE;
+    d->fallback = 0;
+    if (m->ncut > 0)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_inverse_dynamics_motion: the model has %d cut joints: its rates are not independent "
+                       "(give the motion by drives)", m->ncut);
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here", i);
+    if (!vt_all_finite(d->qdd, m->nv)) {
+        for (int c = 0; c < m->nv; c++)
+            if (!isfinite(d->qdd[c]))
+                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: qdd[%d] = %g", c, d->qdd[c]);
+    }
+    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
+    if ((st = vt_kinematics_tree(m, d, 0))) return st;
+    d->rcond = 1.0;
+    d->warning = 0;
+    d->rank = m->nc;
+    d->residual = 0.0;
+    vt_mark_unique(m, d);
+    if ((st = inward(m, d, 1))) return st;
+    d->route = VT_ROUTE_MOTION;
+    return VT_OK;
 }

@@ -709,6 +709,36 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond)
     vt_mark_unique(m, d);
 }
 
+/* The bodies that make a solve singular by having nothing to move: a free rate (no joint drive)
+ * whose body and everything beyond it carry neither mass nor inertia. Written into buf (n
+ * bytes) as " (body 3, body 5 ...: no mass or inertia beyond a free joint)", empty if none. */
+static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
+{
+    buf[0] = '\0';
+    const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
+    double *w = VT_SCRATCH(d, double, nb, "subtree inertia");
+    if (!w) {
+        vt_scratch_release(d, mark);
+        return;
+    }
+    w[0] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *J = m->body_inertia + 9 * i;
+        w[i] = m->body_mass[i] + fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
+    }
+    vt_subtree_sum(m, w, 1);
+    size_t len = 0;
+    int count = 0;
+    for (int i = 1; i <= m->nbody && len + 40 < n; i++) {
+        int free_rate = 0;
+        for (int k = 0; k < m->body_nv[i]; k++) free_rate |= m->dof_drive[m->body_vadr[i] + k] < 0;
+        if (w[i] != 0.0 || !free_rate) continue;
+        len += (size_t)snprintf(buf + len, n - len, "%s body %d", count++ ? "," : " (", i);
+    }
+    if (count) snprintf(buf + len, n - len, ": no mass or inertia beyond a free joint)");
+    vt_scratch_release(d, mark);
+}
+
 /* The routes, cheapest first (the model's rows decide; vt_data.route records the one taken):
  *   FREE_RATES  every row a joint drive on a rate of its own (joint_rows_solve)
  *   REDUNDANT   allow_redundant and Φ_q found rank-deficient first (redundant_solve)
@@ -734,10 +764,13 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d)
         if (r < 0) return (vt_status)r;
         d->rcond = rcond;
         d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
-        if (r == 1)
+        if (r == 1) {
+            char who[128];
+            massless(m, d, who, sizeof who);
             return vt_fail(d->message, VT_ERR_SINGULAR,
                            "vt_solve: the free rates' mass matrix has rcond %.3g < %.3g: a motion without inertia "
-                           "that no drive fixes", rcond, m->rcond_min);
+                           "that no drive fixes%s", rcond, m->rcond_min, who);
+        }
         vt_solved(m, d, VT_ROUTE_FREE_RATES, rcond);
         return VT_OK;
     }
@@ -783,11 +816,14 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d)
             st = redundant_solve(m, d, rank, qr, jpvt);
             if (!st) d->route = VT_ROUTE_REDUNDANT;
         } else if (rank < nc) st = VT_ERR_DEPENDENT_CONSTRAINTS;
-        else
+        else {
+            char who[128];
+            massless(m, d, who, sizeof who);
             st = vt_fail(d->message, VT_ERR_SINGULAR,
                          "vt_solve: augmented matrix of (5) has rcond %.3g < %.3g: the drives and cut joints "
-                         "leave a motion unfixed that has no inertia, or a singular pose",
-                         rcond, m->rcond_min);
+                         "leave a motion unfixed that has no inertia, or a singular pose%s",
+                         rcond, m->rcond_min, who);
+        }
         vt_scratch_release(d, mark);
         return st;
     }

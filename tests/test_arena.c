@@ -93,6 +93,10 @@ static void test_released_everywhere(void **state)
         assert_empty(d, "vt_inverse_dynamics");
         assert_ok(vt_inverse_dynamics_recursive(m, d));
         assert_empty(d, "vt_inverse_dynamics_recursive");
+        if (seed % 2 == 0) { /* no base body: a given motion too */
+            assert_ok(vt_inverse_dynamics_motion(m, d));
+            assert_empty(d, "vt_inverse_dynamics_motion");
+        }
         assert_ok(vt_inverse_transform(m, d));
         double *F = calloc((size_t)m->nx, sizeof(double)), *Q = calloc((size_t)m->nv, sizeof(double));
         assert_ok(vt_generalized_force(Q, m, d, d->F));

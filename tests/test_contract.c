@@ -65,6 +65,7 @@ static const struct {
     {"vt_reactions", vt_reactions},
     {"vt_inverse_dynamics", vt_inverse_dynamics},
     {"vt_inverse_dynamics_recursive", vt_inverse_dynamics_recursive},
+    {"vt_inverse_dynamics_motion", vt_inverse_dynamics_motion},
     {"vt_kinematic_solve", kinematic_solve},
     {"vt_data_reset", vt_data_reset},
     {"vt_add_point_load", point_load},

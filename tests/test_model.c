@@ -34,7 +34,7 @@ static void test_validation_errors(void **state)
     (void)state;
     vt_body_def d;
 
-    d = vt_default_body_def(); d.mass = 0.0;
+    d = vt_default_body_def(); d.mass = -1e-300; /* negative; zero is allowed (test_real_files) */
     expect_refused(d, VT_ERR_MASS);
     d = vt_default_body_def(); d.mass = -2.0;
     expect_refused(d, VT_ERR_MASS);
@@ -169,6 +169,122 @@ static void test_sizes_and_paths(void **state)
 }
 
 
+/* What real model files contain is accepted: a massless link, and inertias off symmetric,
+ * positive semi-definite or the triangle inequality by round-off (VT_INERTIA_TOL, relative to
+ * the largest entry), the symmetric part kept; off by more than the tolerance is refused */
+static void test_real_files(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    d.mass = 0.0; /* a massless link */
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    d = vt_default_body_def();
+    d.parent = 1;
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 2.0;
+    d.inertia[3] = 0.5; d.inertia[1] = 0.5 * (1.0 + 1e-9);  /* J12, J21 off by 5e-10 */
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    d = vt_default_body_def();
+    d.parent = 2;
+    d.inertia[0] = -5e-20; d.inertia[4] = d.inertia[8] = 1e-3; /* a moment of −5e-20 kg m² */
+    assert_int_equal(vt_builder_add_body(b, &d), 3);
+    d = vt_default_body_def();
+    d.parent = 3;
+    d.inertia[0] = 1.0; d.inertia[4] = 2.0; d.inertia[8] = 3.0 * (1.0 + 1e-7); /* 1 + 2 < 3 by 3e-7 */
+    assert_int_equal(vt_builder_add_body(b, &d), 4);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    const double *J2 = m->body_inertia + 9 * 2;
+    assert_near(J2[1], J2[3], 0.0); /* stored symmetric: the mean */
+    assert_near(J2[1], 0.5 * (1.0 + 0.5e-9), 1e-16);
+    vt_model_free(m);
+    /* beyond the tolerance: refused, and the builder keeps its four bodies */
+    d = vt_default_body_def();
+    d.parent = 4;
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 2.0;
+    d.inertia[3] = 0.5; d.inertia[1] = 0.5 * (1.0 + 1e-4);
+    assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_INERTIA_ASYMMETRIC);
+    d.inertia[1] = 0.5;
+    d.inertia[0] = -1e-4;
+    assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_INERTIA_NOT_PSD);
+    d.inertia[0] = 1.0; d.inertia[3] = d.inertia[1] = 0.0; d.inertia[4] = 2.0; d.inertia[8] = 3.0 * (1.0 + 1e-4);
+    assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_INERTIA_TRIANGLE);
+    d.inertia[8] = 3.0;
+    assert_int_equal(vt_builder_add_body(b, &d), 5);
+    vt_builder_free(b);
+}
+
+/* A massless link between two hinges with crossing perpendicular axes is a universal joint: the
+ * same free motion and the same reaction at the second body as a model built with one; a
+ * massless link that moves nothing and that nothing drives makes the solve singular, and the
+ * message names it */
+static void test_massless_link(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    vt_model *hinges, *cross;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def g = vt_default_body_def();
+    g.mass = 0.0; /* the gimbal: a massless link, about z */
+    assert_int_equal(vt_builder_add_body(b, &g), 1);
+    vt_body_def rod = vt_default_body_def();
+    rod.parent = 1;
+    rod.axis1[0] = 1.0; rod.axis1[2] = 0.0; /* then about x */
+    rod.mass = 3.0;
+    rod.inertia[0] = 0.1; rod.inertia[4] = rod.inertia[8] = 0.4;
+    rod.joint_child[0] = -0.5; rod.joint_child[1] = 0.2;
+    assert_int_equal(vt_builder_add_body(b, &rod), 2);
+    assert_ok(vt_builder_build(&hinges, b));
+    vt_builder_free(b);
+    assert_ok(vt_builder_create(&b, NULL));
+    rod.parent = 0;
+    rod.joint = VT_JOINT_UNIVERSAL;
+    rod.axis1[0] = 0.0; rod.axis1[2] = 1.0;
+    rod.axis2[0] = 1.0; rod.axis2[1] = rod.axis2[2] = 0.0;
+    assert_int_equal(vt_builder_add_body(b, &rod), 1);
+    assert_ok(vt_builder_build(&cross, b));
+    vt_builder_free(b);
+    vt_data *dh, *dc;
+    assert_ok(vt_data_create(&dh, hinges));
+    assert_ok(vt_data_create(&dc, cross));
+    dh->q[0] = dc->q[0] = 0.4;
+    dh->q[1] = dc->q[1] = -0.9;
+    dh->qd[0] = dc->qd[0] = 1.1;
+    dh->qd[1] = dc->qd[1] = 0.3;
+    assert_ok(vt_inverse_dynamics(hinges, dh));
+    assert_ok(vt_inverse_dynamics(cross, dc));
+    for (int k = 0; k < 2; k++) assert_near(dh->qdd[k], dc->qdd[k], 1e-12 * (1 + fabs(dc->qdd[k])));
+    for (int k = 0; k < 3; k++) {
+        assert_near(dh->jnt_force[6 + k], dc->jnt_force[3 + k], 1e-11);
+        assert_near(dh->jnt_force[3 + k], dc->jnt_force[3 + k], 1e-11); /* the gimbal passes it on */
+    }
+    assert_ok(vt_inverse_dynamics_recursive(hinges, dh));
+    for (int k = 0; k < 2; k++) assert_near(dh->qdd[k], dc->qdd[k], 1e-12 * (1 + fabs(dc->qdd[k])));
+    vt_data_free(dh);
+    vt_data_free(dc);
+    vt_model_free(hinges);
+    vt_model_free(cross);
+    /* a massless link at the end of a chain, on a free hinge: nothing fixes its motion */
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_test_add_rods(b, 2, 1.0, (const double[2]){1.0, 1.0});
+    vt_body_def tip = vt_default_body_def();
+    tip.parent = 2;
+    tip.mass = 0.0;
+    tip.joint_parent[0] = 0.5;
+    assert_int_equal(vt_builder_add_body(b, &tip), 3);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    assert_int_equal(vt_inverse_dynamics(m, d), VT_ERR_SINGULAR);
+    assert_non_null(strstr(d->message, "body 3"));
+    assert_null(strstr(d->message, "body 2"));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -176,6 +292,8 @@ int main(void)
         cmocka_unit_test(test_allowed_and_normalized),
         cmocka_unit_test(test_limits_and_null),
         cmocka_unit_test(test_sizes_and_paths),
+        cmocka_unit_test(test_real_files),
+        cmocka_unit_test(test_massless_link),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -408,6 +408,113 @@ static void test_dependent(void **state)
     }
 }
 
+/* The motion given for every rate of a tree (vt_inverse_dynamics_motion), held to two things it
+ * does not compute itself: the efforts equal M* q̈ − Q from the dense stages (2), and applied as
+ * generalized forces to the same tree without drives, the dense path's forward solve gives back
+ * the given q̈ and the same reactions (the actuation is not reaction either way) */
+static void test_motion(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 10; seed++) {
+        vt_model *m;
+        vt_data *d, *ds, *df;
+        assert_ok(vt_scene_random_tree(&m, seed, 6 + (int)seed, VT_SCENE_NO_BASE));
+        assert_int_equal(m->ndrive + m->ncut, 0);
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&ds, m));
+        assert_ok(vt_data_create(&df, m));
+        uint64_t s = seed * 5;
+        vt_scene_random_state(m, d, &s);
+        for (int c = 0; c < m->nv; c++) {
+            d->qdd[c] = vt_rand_uniform(&s, -3, 3);
+            d->qfrc[c] = vt_rand_uniform(&s, -1, 1);
+        }
+        for (int i = 1; i <= m->nbody; i++)
+            for (int k = 0; k < 6; k++) d->xfrc[6 * i + k] = vt_rand_uniform(&s, -2, 2);
+        const size_t nq = (size_t)m->nq * sizeof(double), nv = (size_t)m->nv * sizeof(double);
+        double *qdd = malloc(nv);
+        memcpy(qdd, d->qdd, nv);
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        assert_int_equal(d->route, VT_ROUTE_MOTION);
+        assert_memory_equal(d->qdd, qdd, nv); /* an input: not changed */
+        /* (2) with the efforts as the generalized force: τ = M* q̈ − Q, M* and Q from the dense stages */
+        memcpy(ds->q, d->q, nq);
+        memcpy(ds->qd, d->qd, nv);
+        memcpy(ds->qfrc, d->qfrc, nv);
+        memcpy(ds->xfrc, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_ok(vt_kinematics(m, ds));
+        assert_ok(vt_mass_matrix(m, ds));
+        assert_ok(vt_forces(m, ds));
+        const double scale = 1.0 + vt_test_maxabs(d->qfrc_drive, m->nv);
+        for (int a = 0; a < m->nv; a++) {
+            double t = -ds->Q[a];
+            for (int b = 0; b < m->nv; b++) t += ds->Mstar[a + (size_t)b * (size_t)m->nv] * qdd[b];
+            assert_near(d->qfrc_drive[a], t, 1e-11 * scale);
+        }
+        /* forward: the same state, the efforts added to qfrc, q̈ solved by the dense path */
+        memcpy(df->q, d->q, nq);
+        memcpy(df->qd, d->qd, nv);
+        memcpy(df->xfrc, ds->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        for (int c = 0; c < m->nv; c++) df->qfrc[c] = d->qfrc[c] + d->qfrc_drive[c];
+        assert_ok(vt_inverse_dynamics(m, df));
+        compare(df->qdd, qdd, m->nv, 1e-9, "forward q̈");
+        const int nb3 = 3 * (m->nbody + 1);
+        compare(d->jnt_force, df->jnt_force, nb3, 1e-10, "jnt_force");
+        compare(d->jnt_moment, df->jnt_moment, nb3, 1e-10, "jnt_moment");
+        compare(d->jnt_force_body, df->jnt_force_body, nb3, 1e-10, "jnt_force_body");
+        compare(d->jnt_moment_body, df->jnt_moment_body, nb3, 1e-10, "jnt_moment_body");
+        compare(d->xdd, df->xdd, m->nx, 1e-9, "xdd");
+        free(qdd);
+        vt_data_free(d);
+        vt_data_free(ds);
+        vt_data_free(df);
+        vt_model_free(m);
+    }
+}
+
+/* what vt_inverse_dynamics_motion refuses: loops, base bodies, non-finite q̈; the inputs are
+ * left as they were */
+static void test_motion_refused(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_fourbar(&m, vt_function_constant(0.0))); /* a loop */
+    assert_ok(vt_data_create(&d, m));
+    assert_int_equal(vt_inverse_dynamics_motion(m, d), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(d->message, "cut joint"));
+    assert_int_equal(d->route, VT_ROUTE_NONE);
+    vt_data_free(d);
+    vt_model_free(m);
+    uint64_t seed = 1;
+    for (;; seed++) { /* a random tree with a base body */
+        assert_ok(vt_scene_random_tree(&m, seed, 6, VT_SCENE_ALL_JOINTS));
+        int base = 0;
+        for (int i = 1; i <= m->nbody; i++) base |= m->body_joint[i] == VT_JOINT_BASE;
+        if (base) break;
+        vt_model_free(m);
+    }
+    assert_ok(vt_data_create(&d, m));
+    assert_int_equal(vt_inverse_dynamics_motion(m, d), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(d->message, "base"));
+    vt_data_free(d);
+    vt_model_free(m);
+    assert_ok(vt_scene_random_tree(&m, 3, 5, VT_SCENE_NO_BASE));
+    assert_ok(vt_data_create(&d, m));
+    d->qdd[2] = NAN;
+    const double before = d->q[0];
+    assert_int_equal(vt_inverse_dynamics_motion(m, d), VT_ERR_NONFINITE);
+    assert_non_null(strstr(d->message, "qdd[2]"));
+    assert_near(d->q[0], before, 0.0);
+    vt_model *other;
+    assert_ok(vt_scene_double_link(&other, 1));
+    assert_int_equal(vt_inverse_dynamics_motion(other, d), VT_ERR_MODEL_MISMATCH);
+    assert_int_equal(vt_inverse_dynamics_motion(NULL, d), VT_ERR_NULL);
+    vt_model_free(other);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -416,6 +523,8 @@ int main(void)
         cmocka_unit_test(test_scenes),
         cmocka_unit_test(test_articulated),
         cmocka_unit_test(test_dependent),
+        cmocka_unit_test(test_motion),
+        cmocka_unit_test(test_motion_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -327,6 +327,7 @@ static void test_double_link_no_allocation(void **state)
                 collect(k ? &dense_c : &dense, m, dd[k]);
                 st[2 * k + 1] |= vt_inverse_dynamics_recursive(m, dd[k]);
                 collect(k ? &rec_c : &rec, m, dd[k]);
+                st[2 * k + 1] |= vt_inverse_dynamics_motion(m, dd[k]); /* q̈ of the recursive instant, given */
             }
         }
         const long n = disarm();

@@ -31,10 +31,10 @@ typedef enum vt_status {
     VT_ERR_NULL = -1,                  ///< a required pointer argument is NULL
     VT_ERR_NO_MEMORY = -2,             ///< an allocation failed
     VT_ERR_NONFINITE = -3,             ///< NaN or Inf in a definition or state
-    VT_ERR_MASS = -4,                  ///< mass not positive
-    VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric
-    VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment
-    VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3
+    VT_ERR_MASS = -4,                  ///< mass negative
+    VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric (to VT_INERTIA_TOL)
+    VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment (to VT_INERTIA_TOL)
+    VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3 (to VT_INERTIA_TOL)
     VT_ERR_AXIS_ZERO = -8,             ///< a joint axis has (near) zero length
     VT_ERR_AXES_NOT_PERPENDICULAR = -9,///< universal joint axes not perpendicular
     VT_ERR_PARENT = -10,               ///< reference body is not an earlier body (base: not ground)
@@ -60,6 +60,11 @@ typedef enum vt_status {
     VT_ERR_BAD_OPTION = -27,           ///< a run option out of range (message says which)
     VT_ERR_BAD_SIZE = -28              ///< a caller-provided buffer is too small (see vt_data_size())
 } vt_status;
+
+/// Relative tolerance of a body's inertia checks: symmetric, positive semi-definite and within
+/// the triangle inequality to VT_INERTIA_TOL times its largest entry (what files that print
+/// inertias to a few digits are off by); the model keeps the symmetric part.
+#define VT_INERTIA_TOL 1e-6
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
 /// R (nv x 7n) of the reference path below about 400 MB.
@@ -114,6 +119,7 @@ typedef enum vt_route {
     VT_ROUTE_ARTICULATED,    ///< fewer rows than rates, or free rates: articulated bodies, O(n) (recursive)
     VT_ROUTE_AUGMENTED,      ///< the augmented matrix of (5): symmetric indefinite LDL^T
     VT_ROUTE_REDUNDANT,      ///< dependent rows (allow_redundant): SVD, least squares, minimum norm
+    VT_ROUTE_MOTION,         ///< the motion given for every rate (vt_inverse_dynamics_motion): nothing solved
     VT_ROUTE_COUNT           ///< number of routes (not a route)
 } vt_route;
 
@@ -204,7 +210,8 @@ typedef struct vt_cut_joint_def {
 typedef struct vt_body_def {
     int parent;                 ///< reference body id, 0 = ground, else an earlier body; default 0
     vt_joint_type joint;        ///< joint to the reference body; default VT_JOINT_REVOLUTE
-    double mass;                ///< kg, > 0; default 1
+    double mass;                ///< kg, ≥ 0 (0: a massless link; a solve it leaves without inertia on a
+                                ///< free rate fails, naming it); default 1
     double inertia[9];          ///< kg·m², about the centre of mass in body axes, 3x3 column-major;
                                 ///< default 0 (a point mass)
     double joint_parent[3];     ///< m, joint point on the reference body, in its body axes from its
@@ -349,7 +356,8 @@ typedef struct vt_data {
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
     double *qfrc_drive;      ///< generalized force of all drives, Φ_q^T λ over the drives' rows (nv):
-                             ///< the joint torques and forces that produce the motion
+                             ///< the joint torques and forces that produce the motion; with the motion
+                             ///< given (vt_inverse_dynamics_motion), every rate's: M* q̈ − Q
     double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
                              ///< point drive: force along its component (N); orientation drive: 0 (ndrive)
     double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N
