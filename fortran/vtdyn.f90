@@ -49,7 +49,9 @@ module vtdyn
       VT_ERR_BAD_DRIVE = -18, VT_ERR_BAD_CUT_JOINT = -19, VT_ERR_CALLBACK = -20, &
       VT_ERR_SINGULAR = -21, VT_ERR_DEPENDENT_CONSTRAINTS = -22, VT_ERR_NEWTON = -23, &
       VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
-      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28
+      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30
+  integer(c_int), parameter :: VT_NAME_MAX = 64
+  real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   integer(c_int), parameter :: VT_MAX_BODIES = 1000
   ! vt_joint_type
   integer(c_int), parameter :: VT_JOINT_BASE = 0, VT_JOINT_REVOLUTE = 1, VT_JOINT_UNIVERSAL = 2, &
@@ -108,6 +110,8 @@ module vtdyn
     real(c_double)         :: orientation(4)
     type(c_funptr)         :: orientation_callback
     type(c_ptr)            :: user
+    type(c_ptr)            :: name
+    type(c_ptr)            :: frame
   end type vt_drive_def
 
   type, bind(C) :: vt_cut_joint_def
@@ -119,6 +123,9 @@ module vtdyn
     real(c_double)         :: axis1(3)
     real(c_double)         :: axis2(3)
     real(c_double)         :: orientation(4)
+    type(c_ptr)            :: name
+    type(c_ptr)            :: frame_a
+    type(c_ptr)            :: frame_b
   end type vt_cut_joint_def
 
   type, bind(C) :: vt_body_def
@@ -131,7 +138,20 @@ module vtdyn
     real(c_double)         :: axis1(3)
     real(c_double)         :: axis2(3)
     real(c_double)         :: orientation(4)
+    type(c_ptr)            :: name
+    type(c_ptr)            :: joint_name
+    real(c_double)         :: limit_lower(2)
+    real(c_double)         :: limit_upper(2)
+    real(c_double)         :: limit_velocity(2)
+    real(c_double)         :: limit_effort(2)
   end type vt_body_def
+
+  type, bind(C) :: vt_frame_def
+    type(c_ptr)            :: name
+    integer(c_int)         :: body
+    real(c_double)         :: point(3)
+    real(c_double)         :: orientation(4)
+  end type vt_frame_def
 
   type, bind(C) :: vt_model
     integer(c_int)         :: nbody
@@ -158,6 +178,16 @@ module vtdyn
     integer(c_int)         :: maxpath
     type(c_ptr)            :: dof_body
     type(c_ptr)            :: q0
+    type(c_ptr)            :: dof_limit
+    type(c_ptr)            :: body_name
+    type(c_ptr)            :: joint_name
+    type(c_ptr)            :: drive_name
+    type(c_ptr)            :: cut_name
+    integer(c_int)         :: nframe
+    type(c_ptr)            :: frame_name
+    type(c_ptr)            :: frame_body
+    type(c_ptr)            :: frame_point
+    type(c_ptr)            :: frame_quat
     real(c_double)         :: rcond_min
     real(c_double)         :: rcond_warn
     integer(c_int)         :: allow_redundant
@@ -455,6 +485,68 @@ module vtdyn
       type(c_ptr), value :: builder
       type(vt_cut_joint_def), intent(in) :: def
       integer(c_int) :: vt_builder_add_cut_joint
+    end function
+
+    ! frames and names: a name is a C string (a character(kind=c_char) array ending in c_null_char)
+    function vt_default_frame_def() bind(C, name='vt_default_frame_def')
+      import :: vt_frame_def
+      type(vt_frame_def) :: vt_default_frame_def
+    end function
+    function vt_builder_add_frame(builder, def) bind(C, name='vt_builder_add_frame')
+      import :: c_int, c_ptr, vt_frame_def
+      type(c_ptr), value :: builder
+      type(vt_frame_def), intent(in) :: def
+      integer(c_int) :: vt_builder_add_frame
+    end function
+    function vt_builder_find_body(builder, name) bind(C, name='vt_builder_find_body')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: builder
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_builder_find_body
+    end function
+    function vt_find_body(model, name) bind(C, name='vt_find_body')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: model
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_body
+    end function
+    function vt_find_joint(model, name) bind(C, name='vt_find_joint')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: model
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_joint
+    end function
+    function vt_find_drive(model, name) bind(C, name='vt_find_drive')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: model
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_drive
+    end function
+    function vt_find_cut_joint(model, name) bind(C, name='vt_find_cut_joint')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: model
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_cut_joint
+    end function
+    function vt_find_frame(model, name) bind(C, name='vt_find_frame')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: model
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_frame
+    end function
+    function vt_add_frame_load(model, data, frame, f, n) bind(C, name='vt_add_frame_load')
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model, data
+      integer(c_int), value :: frame
+      real(c_double), intent(in), optional :: f(3), n(3)
+      integer(c_int) :: vt_add_frame_load
+    end function
+    function vt_frame_pose(model, data, frame, position, rotation) bind(C, name='vt_frame_pose')
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model, data
+      integer(c_int), value :: frame
+      real(c_double), intent(out), optional :: position(3), rotation(9)
+      integer(c_int) :: vt_frame_pose
     end function
 
     ! stages: each reads the model and fills its part of the data

@@ -70,6 +70,23 @@ void vt_model_free(vt_model *model);
 /// check. Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
+/// Defaults: body 1, at its centre of mass, its axes; no name (a frame needs one).
+vt_frame_def vt_default_frame_def(void);
+/// Validates and adds a frame on a body already added (or the ground). Returns its index (0, 1,
+/// ...) or a negative vt_status: VT_ERR_BAD_NAME (missing, too long, or taken), VT_ERR_BAD_INDEX,
+/// VT_ERR_NONFINITE, VT_ERR_QUATERNION. A refused frame leaves the builder as it was.
+int vt_builder_add_frame(vt_builder *builder, const vt_frame_def *def);
+/// The id of the body added so far under this name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
+int vt_builder_find_body(const vt_builder *builder, const char *name);
+
+/// Lookups by name in a model: the id or index, or VT_ERR_NOT_FOUND (VT_ERR_NULL for NULL
+/// arguments). vt_find_joint gives the id of the body whose joint has that name.
+int vt_find_body(const vt_model *model, const char *name);
+int vt_find_joint(const vt_model *model, const char *name);
+int vt_find_drive(const vt_model *model, const char *name);
+int vt_find_cut_joint(const vt_model *model, const char *name);
+int vt_find_frame(const vt_model *model, const char *name);
+
 /* ---- the data (src/data.c) --------------------------------------------------------------- */
 
 /// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with
@@ -109,6 +126,15 @@ vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size
 /// with f given), VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX (body not in 1..nbody), VT_ERR_NONFINITE.
 vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
                             const double point[3], const double f[3], const double n[3]);
+
+/// vt_add_point_load() at a frame's origin (its body, its point). Statuses: those of
+/// vt_add_point_load(), VT_ERR_BAD_INDEX (frame not in 0..nframe−1, or on the ground).
+vt_status vt_add_frame_load(const vt_model *model, vt_data *data, int frame, const double f[3], const double n[3]);
+
+/// Where a frame is: its origin (m) and its axes (rotation frame → global, 3x3 column-major),
+/// both global, either may be NULL. Needs vt_kinematics() (or any instant). Statuses: VT_ERR_NULL,
+/// VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX.
+vt_status vt_frame_pose(const vt_model *model, vt_data *data, int frame, double position[3], double rotation[9]);
 
 /// q_out = q advanced by the velocity v over h: scalar coordinates move by h v, spherical
 /// relative Euler parameters by the exact rotation exp(h ω) (normalized), a base body's

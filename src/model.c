@@ -17,14 +17,22 @@
 
 #include "internal.h"
 
+typedef char vt_name[VT_NAME_MAX];
+
 struct vt_builder {
     vt_model_def def;
     vt_body_def *bodies;  /* validated and normalized definitions (cap) */
-    int n, cap;
+    vt_name *body_names, *joint_names; /* (cap each, grown with bodies) */
+    int n, cap, capnames;
     vt_drive_def *drives;
-    int ndrive, capdrive;
+    vt_name *drive_names;
+    int ndrive, capdrive, capdrivenames;
     vt_cut_joint_def *cuts;
-    int ncut, capcut;
+    vt_name *cut_names;
+    int ncut, capcut, capcutnames;
+    vt_frame_def *frames;
+    vt_name *frame_names;
+    int nframe, capframe, capframenames;
     char message[256];
 };
 
@@ -71,10 +79,23 @@ vt_cut_joint_def vt_default_cut_joint_def(void)
     return d;
 }
 
+vt_frame_def vt_default_frame_def(void)
+{
+    vt_frame_def d;
+    memset(&d, 0, sizeof d);
+    d.body = 1;
+    d.orientation[0] = 1.0;
+    return d;
+}
+
 vt_body_def vt_default_body_def(void)
 {
     vt_body_def d;
     memset(&d, 0, sizeof d);
+    for (int k = 0; k < 2; k++) {
+        d.limit_lower[k] = -HUGE_VAL;
+        d.limit_upper[k] = d.limit_velocity[k] = d.limit_effort[k] = HUGE_VAL;
+    }
     d.parent = 0;
     d.joint = VT_JOINT_REVOLUTE;
     d.mass = 1.0;
@@ -107,9 +128,45 @@ void vt_builder_free(vt_builder *builder)
 {
     if (!builder) return;
     free(builder->bodies);
+    free(builder->body_names);
+    free(builder->joint_names);
     free(builder->drives);
+    free(builder->drive_names);
     free(builder->cuts);
+    free(builder->cut_names);
+    free(builder->frames);
+    free(builder->frame_names);
     free(builder);
+}
+
+/* name into dst ("" for NULL), refused when too long or when one of the n names taken has it */
+static vt_status take_name(char *msg, vt_name dst, const char *name, const vt_name *taken_names, int n, const char *what,
+                           int id)
+{
+    const char *taken = (const char *)taken_names;
+    if (!name || !name[0]) {
+        dst[0] = '\0';
+        return VT_OK;
+    }
+    const char *end = memchr(name, '\0', VT_NAME_MAX);
+    const size_t len = end ? (size_t)(end - name) : VT_NAME_MAX;
+    if (len >= VT_NAME_MAX)
+        return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%.20s...\" longer than %d bytes", what, id, name, VT_NAME_MAX - 1);
+    for (int k = 0; k < n; k++)
+        if (strcmp(taken + (size_t)VT_NAME_MAX * (size_t)k, name) == 0)
+            return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%s\" already taken by %s %d", what, id, name, what,
+                           k + (strcmp(what, "body") == 0 || strcmp(what, "joint") == 0));
+    memcpy(dst, name, len + 1);
+    return VT_OK;
+}
+
+/* index of name among n names, or VT_ERR_NOT_FOUND */
+static int find_name(const char *names, int n, const char *name)
+{
+    if (!name || !name[0]) return VT_ERR_NOT_FOUND;
+    for (int k = 0; k < n; k++)
+        if (strcmp(names + (size_t)VT_NAME_MAX * (size_t)k, name) == 0) return k;
+    return VT_ERR_NOT_FOUND;
 }
 
 /* Normalizes a in place; refuses a length below 1e-12. */
@@ -153,6 +210,18 @@ static vt_status check_inertia(char *msg, int id, const double J[9])
     return VT_OK;
 }
 
+/* Grows a builder array; 0 on failure. */
+static int grow(void **arr, int *cap, int n, size_t size)
+{
+    if (n < *cap) return 1;
+    int nc = *cap ? 2 * *cap : 8;
+    void *p = realloc(*arr, (size_t)nc * size);
+    if (!p) return 0;
+    *arr = p;
+    *cap = nc;
+    return 1;
+}
+
 static vt_status validate_body(char *msg, int id, vt_body_def *d)
 {
     if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
@@ -190,6 +259,15 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
     } else if (!normalize(d->orientation, 4)) {
         return vt_fail(msg, VT_ERR_QUATERNION, "body %d: orientation has zero norm", id);
     }
+    for (int k = 0; k < 2; k++) { /* limits: ±∞ allowed, NaN not */
+        if (isnan(d->limit_lower[k]) || isnan(d->limit_upper[k]) || isnan(d->limit_velocity[k]) ||
+            isnan(d->limit_effort[k]))
+            return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN in the limits of rate %d", id, k);
+        if (d->limit_lower[k] > d->limit_upper[k] || d->limit_velocity[k] < 0.0 || d->limit_effort[k] < 0.0)
+            return vt_fail(msg, VT_ERR_BAD_OPTION,
+                           "body %d: limits of rate %d: lower %g > upper %g, or a negative velocity %g or effort %g", id,
+                           k, d->limit_lower[k], d->limit_upper[k], d->limit_velocity[k], d->limit_effort[k]);
+    }
     return VT_OK;
 }
 
@@ -203,29 +281,70 @@ int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
     vt_body_def d = *def;
     vt_status st = validate_body(b->message, id, &d);
     if (st) return st;
-    if (b->n == b->cap) {
-        int cap = b->cap ? 2 * b->cap : 8;
-        vt_body_def *nb = realloc(b->bodies, (size_t)cap * sizeof *nb);
-        if (!nb) return vt_fail(b->message, VT_ERR_NO_MEMORY, "body %d: out of memory", id);
-        b->bodies = nb;
-        b->cap = cap;
-    }
+    vt_name name, joint;
+    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->body_names, b->n, "body", id)) ||
+        (st = take_name(b->message, joint, d.joint_name, (const vt_name *)b->joint_names, b->n, "joint", id)))
+        return st;
+    int capn = b->capnames; /* grown together: a failure leaves the builder as it was */
+    if (!grow((void **)&b->bodies, &b->cap, b->n, sizeof d) ||
+        !grow((void **)&b->body_names, &capn, b->n, sizeof(vt_name)) ||
+        !grow((void **)&b->joint_names, &b->capnames, b->n, sizeof(vt_name)))
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "body %d: out of memory", id);
+    d.name = d.joint_name = NULL; /* the caller's memory: the builder keeps its own copies */
+    memcpy(b->body_names[b->n], name, sizeof name);
+    memcpy(b->joint_names[b->n], joint, sizeof joint);
     b->bodies[b->n++] = d;
     b->message[0] = '\0';
     return id;
 }
 
-/* Grows a builder array; 0 on failure. */
-static int grow(void **arr, int *cap, int n, size_t size)
+int vt_builder_find_body(const vt_builder *b, const char *name)
 {
-    if (n < *cap) return 1;
-    int nc = *cap ? 2 * *cap : 8;
-    void *p = realloc(*arr, (size_t)nc * size);
-    if (!p) return 0;
-    *arr = p;
-    *cap = nc;
-    return 1;
+    if (!b || !name) return VT_ERR_NULL;
+    const int k = find_name((const char *)b->body_names, b->n, name);
+    return k < 0 ? k : k + 1;
 }
+
+/* the frame of that name added so far into *body and point, or a status with the message */
+static vt_status resolve_frame(const vt_builder *b, char *msg, const char *frame, const char *what, int k, int *body,
+                               double point[3])
+{
+    const int f = find_name((const char *)b->frame_names, b->nframe, frame);
+    if (f < 0) return vt_fail(msg, VT_ERR_NOT_FOUND, "%s %d: no frame \"%.64s\" added so far", what, k, frame);
+    *body = b->frames[f].body;
+    memcpy(point, b->frames[f].point, 3 * sizeof(double));
+    return VT_OK;
+}
+
+int vt_builder_add_frame(vt_builder *b, const vt_frame_def *def)
+{
+    if (!b) return VT_ERR_NULL;
+    if (!def) return vt_fail(b->message, VT_ERR_NULL, "frame definition is NULL");
+    const int k = b->nframe;
+    vt_frame_def f = *def;
+    if (!f.name || !f.name[0]) return vt_fail(b->message, VT_ERR_BAD_NAME, "frame %d: a frame needs a name", k);
+    vt_name name;
+    vt_status st = take_name(b->message, name, f.name, (const vt_name *)b->frame_names, b->nframe, "frame", k);
+    if (st) return st;
+    if (f.body < 0 || f.body > b->n)
+        return vt_fail(b->message, VT_ERR_BAD_INDEX, "frame %d (%s): body %d is not the ground or a body added so far (1..%d)",
+                       k, name, f.body, b->n);
+    if (!vt_all_finite(f.point, 3) || !vt_all_finite(f.orientation, 4))
+        return vt_fail(b->message, VT_ERR_NONFINITE, "frame %d (%s): NaN or Inf in its definition", k, name);
+    if (!normalize(f.orientation, 4))
+        return vt_fail(b->message, VT_ERR_QUATERNION, "frame %d (%s): orientation of zero norm", k, name);
+    int capn = b->capframenames;
+    if (!grow((void **)&b->frames, &b->capframe, b->nframe, sizeof f) ||
+        !grow((void **)&b->frame_names, &capn, b->nframe, sizeof(vt_name)))
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "frame %d: out of memory", k);
+    b->capframenames = capn;
+    f.name = NULL;
+    memcpy(b->frame_names[k], name, sizeof name);
+    b->frames[b->nframe++] = f;
+    b->message[0] = '\0';
+    return k;
+}
+
 
 static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_def *d)
 {
@@ -275,10 +394,22 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
     vt_drive_def d = *def;
-    vt_status st = validate_drive(b, b->message, b->ndrive, &d);
-    if (st) return st;
-    if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d))
+    vt_status st = VT_OK;
+    if (d.frame) {
+        if (d.type != VT_DRIVE_POINT)
+            return vt_fail(b->message, VT_ERR_BAD_DRIVE, "drive %d: a frame places point drives only", b->ndrive);
+        if ((st = resolve_frame(b, b->message, d.frame, "drive", b->ndrive, &d.body, d.point))) return st;
+    }
+    if ((st = validate_drive(b, b->message, b->ndrive, &d))) return st;
+    vt_name name;
+    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->drive_names, b->ndrive, "drive", b->ndrive))) return st;
+    int capn = b->capdrivenames;
+    if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d) ||
+        !grow((void **)&b->drive_names, &capn, b->ndrive, sizeof(vt_name)))
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "drive %d: out of memory", b->ndrive);
+    b->capdrivenames = capn;
+    d.name = d.frame = NULL;
+    memcpy(b->drive_names[b->ndrive], name, sizeof name);
     b->drives[b->ndrive] = d;
     b->message[0] = '\0';
     return b->ndrive++;
@@ -315,10 +446,19 @@ int vt_builder_add_cut_joint(vt_builder *b, const vt_cut_joint_def *def)
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "cut joint definition is NULL");
     vt_cut_joint_def d = *def;
-    vt_status st = validate_cut(b, b->message, b->ncut, &d);
-    if (st) return st;
-    if (!grow((void **)&b->cuts, &b->capcut, b->ncut, sizeof d))
+    vt_status st = VT_OK;
+    if (d.frame_a && (st = resolve_frame(b, b->message, d.frame_a, "cut joint", b->ncut, &d.body_a, d.point_a))) return st;
+    if (d.frame_b && (st = resolve_frame(b, b->message, d.frame_b, "cut joint", b->ncut, &d.body_b, d.point_b))) return st;
+    if ((st = validate_cut(b, b->message, b->ncut, &d))) return st;
+    vt_name name;
+    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->cut_names, b->ncut, "cut joint", b->ncut))) return st;
+    int capn = b->capcutnames;
+    if (!grow((void **)&b->cuts, &b->capcut, b->ncut, sizeof d) ||
+        !grow((void **)&b->cut_names, &capn, b->ncut, sizeof(vt_name)))
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "cut joint %d: out of memory", b->ncut);
+    b->capcutnames = capn;
+    d.name = d.frame_a = d.frame_b = NULL;
+    memcpy(b->cut_names[b->ncut], name, sizeof name);
     b->cuts[b->ncut] = d;
     b->message[0] = '\0';
     return b->ncut++;
@@ -475,7 +615,8 @@ static void *take(arena *a, size_t bytes)
     return p;
 }
 
-static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc)
+static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc,
+                         int nframe)
 {
     const size_t nd = (size_t)(ndrive ? ndrive : 1), nk = (size_t)(ncut ? ncut : 1), ncc = (size_t)(nc ? nc : 1);
     m->drive = take(a, nd * sizeof(vt_drive_def));
@@ -507,6 +648,16 @@ static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath
     m->path_dof = take(a, (size_t)(npath ? npath : 1) * sizeof(int));
     m->dof_body = take(a, (size_t)nv * sizeof(int));
     m->q0 = take(a, (size_t)nq * sizeof(double));
+    m->dof_limit = take(a, 4 * (size_t)nv * sizeof(double));
+    const size_t nf = (size_t)(nframe ? nframe : 1);
+    m->body_name = take(a, nb * VT_NAME_MAX);
+    m->joint_name = take(a, nb * VT_NAME_MAX);
+    m->drive_name = take(a, nd * VT_NAME_MAX);
+    m->cut_name = take(a, nk * VT_NAME_MAX);
+    m->frame_name = take(a, nf * VT_NAME_MAX);
+    m->frame_body = take(a, nf * sizeof(int));
+    m->frame_point = take(a, 3 * nf * sizeof(double));
+    m->frame_quat = take(a, 4 * nf * sizeof(double));
 }
 
 vt_status vt_builder_build(vt_model **model, vt_builder *b)
@@ -534,7 +685,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
 
     arena a = {NULL, sizeof(vt_model)};
     vt_model tmp;
-    layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc);
+    layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe);
     char *block = calloc(1, a.used);
     if (!block) {
         free(depth_nv);
@@ -543,7 +694,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     vt_model *m = (vt_model *)block;
     a.base = block;
     a.used = sizeof(vt_model);
-    layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc);
+    layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe);
 
     m->nbody = n;
     m->nq = nq;
@@ -559,6 +710,26 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->nc = nc;
     if (b->ndrive) memcpy(m->drive, b->drives, (size_t)b->ndrive * sizeof(vt_drive_def));
     if (b->ncut) memcpy(m->cut, b->cuts, (size_t)b->ncut * sizeof(vt_cut_joint_def));
+    /* names (the model's own copies; a stored definition's name points at its copy) and frames */
+    for (int k = 0; k < b->ndrive; k++) {
+        memcpy(m->drive_name + (size_t)VT_NAME_MAX * (size_t)k, b->drive_names[k], VT_NAME_MAX);
+        m->drive[k].name = m->drive_name + (size_t)VT_NAME_MAX * (size_t)k;
+    }
+    for (int k = 0; k < b->ncut; k++) {
+        memcpy(m->cut_name + (size_t)VT_NAME_MAX * (size_t)k, b->cut_names[k], VT_NAME_MAX);
+        m->cut[k].name = m->cut_name + (size_t)VT_NAME_MAX * (size_t)k;
+    }
+    for (int i = 1; i <= n; i++) {
+        memcpy(m->body_name + (size_t)VT_NAME_MAX * (size_t)i, b->body_names[i - 1], VT_NAME_MAX);
+        memcpy(m->joint_name + (size_t)VT_NAME_MAX * (size_t)i, b->joint_names[i - 1], VT_NAME_MAX);
+    }
+    m->nframe = b->nframe;
+    for (int k = 0; k < b->nframe; k++) {
+        memcpy(m->frame_name + (size_t)VT_NAME_MAX * (size_t)k, b->frame_names[k], VT_NAME_MAX);
+        m->frame_body[k] = b->frames[k].body;
+        memcpy(m->frame_point + 3 * k, b->frames[k].point, 3 * sizeof(double));
+        memcpy(m->frame_quat + 4 * k, b->frames[k].orientation, 4 * sizeof(double));
+    }
 
     m->body_parent[0] = -1;
     m->body_joint[0] = -1;
@@ -581,7 +752,15 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         memcpy(m->body_axis + 6 * i, d->axis1, 3 * sizeof(double));
         memcpy(m->body_axis + 6 * i + 3, d->axis2, 3 * sizeof(double));
         memcpy(m->body_quat0 + 4 * i, d->orientation, 4 * sizeof(double));
-        for (int k = 0; k < joint_nv[jt]; k++) m->dof_body[vadr + k] = i;
+        for (int k = 0; k < joint_nv[jt]; k++) {
+            m->dof_body[vadr + k] = i;
+            double *lim = m->dof_limit + 4 * (vadr + k);
+            const int own = k < 2 && jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL;
+            lim[0] = own ? d->limit_lower[k] : -HUGE_VAL;
+            lim[1] = own ? d->limit_upper[k] : HUGE_VAL;
+            lim[2] = own ? d->limit_velocity[k] : HUGE_VAL;
+            lim[3] = own ? d->limit_effort[k] : HUGE_VAL;
+        }
 
         /* reference configuration: zero angles and translations, unit Euler parameters */
         if (jt == VT_JOINT_BASE) m->q0[qadr + 3] = 1.0;
@@ -632,7 +811,25 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
         memcpy(d.axis1, m->body_axis + 6 * i, sizeof d.axis1);
         memcpy(d.axis2, m->body_axis + 6 * i + 3, sizeof d.axis2);
         memcpy(d.orientation, m->body_quat0 + 4 * i, sizeof d.orientation);
+        d.name = m->body_name + (size_t)VT_NAME_MAX * (size_t)i;
+        d.joint_name = m->joint_name + (size_t)VT_NAME_MAX * (size_t)i;
+        for (int k = 0; k < 2 && k < m->body_nv[i]; k++) {
+            const double *lim = m->dof_limit + 4 * (m->body_vadr[i] + k);
+            d.limit_lower[k] = lim[0];
+            d.limit_upper[k] = lim[1];
+            d.limit_velocity[k] = lim[2];
+            d.limit_effort[k] = lim[3];
+        }
         const int id = vt_builder_add_body(b, &d);
+        if (id < 0) st = (vt_status)id;
+    }
+    for (int k = 0; k < m->nframe && st == VT_OK; k++) {
+        vt_frame_def f = vt_default_frame_def();
+        f.name = m->frame_name + (size_t)VT_NAME_MAX * (size_t)k;
+        f.body = m->frame_body[k];
+        memcpy(f.point, m->frame_point + 3 * k, sizeof f.point);
+        memcpy(f.orientation, m->frame_quat + 4 * k, sizeof f.orientation);
+        const int id = vt_builder_add_frame(b, &f);
         if (id < 0) st = (vt_status)id;
     }
     for (int k = 0; k < m->ncut && st == VT_OK; k++) {
@@ -642,4 +839,33 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
     if (st == VT_OK) st = vt_builder_build(out, b);
     vt_builder_free(b);
     return st;
+}
+
+int vt_find_body(const vt_model *m, const char *name)
+{
+    if (!m || !name) return VT_ERR_NULL;
+    const int k = find_name(m->body_name + VT_NAME_MAX, m->nbody, name); /* past the ground's */
+    return k < 0 ? k : k + 1;
+}
+
+int vt_find_joint(const vt_model *m, const char *name)
+{
+    if (!m || !name) return VT_ERR_NULL;
+    const int k = find_name(m->joint_name + VT_NAME_MAX, m->nbody, name);
+    return k < 0 ? k : k + 1;
+}
+
+int vt_find_drive(const vt_model *m, const char *name)
+{
+    return !m || !name ? VT_ERR_NULL : find_name(m->drive_name, m->ndrive, name);
+}
+
+int vt_find_cut_joint(const vt_model *m, const char *name)
+{
+    return !m || !name ? VT_ERR_NULL : find_name(m->cut_name, m->ncut, name);
+}
+
+int vt_find_frame(const vt_model *m, const char *name)
+{
+    return !m || !name ? VT_ERR_NULL : find_name(m->frame_name, m->nframe, name);
 }

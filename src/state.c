@@ -30,6 +30,38 @@ vt_status vt_add_point_load(const vt_model *m, vt_data *d, int body, const doubl
     return VT_OK;
 }
 
+vt_status vt_add_frame_load(const vt_model *m, vt_data *d, int frame, const double f[3], const double n[3])
+{
+    vt_status st = vt_check_pair(m, d, "vt_add_frame_load");
+    if (st) return st;
+    if (frame < 0 || frame >= m->nframe || m->frame_body[frame] == 0)
+        return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_add_frame_load: frame %d not in 0..%d, or on the ground", frame,
+                       m->nframe - 1);
+    return vt_add_point_load(m, d, m->frame_body[frame], m->frame_point + 3 * frame, f, n);
+}
+
+vt_status vt_frame_pose(const vt_model *m, vt_data *d, int frame, double position[3], double rotation[9])
+{
+    vt_status st = vt_check_pair(m, d, "vt_frame_pose");
+    if (st) return st;
+    if (frame < 0 || frame >= m->nframe)
+        return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_frame_pose: frame %d not in 0..%d", frame, m->nframe - 1);
+    const int b = m->frame_body[frame];
+    static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const double *A = b ? d->A + 9 * b : I3, *sp = m->frame_point + 3 * frame;
+    if (position) {
+        double s[3];
+        vt_mulmat3(s, A, sp);
+        for (int k = 0; k < 3; k++) position[k] = (b ? d->x[vt_xoff(b) + k] : 0.0) + s[k];
+    }
+    if (rotation) {
+        double Af[9];
+        vt_euler_A(Af, m->frame_quat + 4 * frame);
+        for (int c = 0; c < 3; c++) vt_mulmat3(rotation + 3 * c, A, Af + 3 * c); /* A_body A_frame */
+    }
+    return VT_OK;
+}
+
 /* p ← exp(h ω) ⊗ p, normalized */
 static void rotate_quat(double p[4], const double w[3], double h)
 {

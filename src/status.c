@@ -37,6 +37,8 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_ABORTED: return "stopped by the progress callback";
     case VT_ERR_BAD_OPTION: return "run option out of range";
     case VT_ERR_BAD_SIZE: return "caller-provided buffer too small";
+    case VT_ERR_BAD_NAME: return "name too long or already taken";
+    case VT_ERR_NOT_FOUND: return "no object of that name";
     }
     return "unknown status";
 }

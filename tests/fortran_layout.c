@@ -18,16 +18,23 @@ static const size_t vt_drive_def_layout[] = {sizeof(vt_drive_def),
     offsetof(vt_drive_def, type), offsetof(vt_drive_def, body), offsetof(vt_drive_def, index),
     offsetof(vt_drive_def, point), offsetof(vt_drive_def, f), offsetof(vt_drive_def, axis),
     offsetof(vt_drive_def, orientation), offsetof(vt_drive_def, orientation_callback),
-    offsetof(vt_drive_def, user), VT_END};
+    offsetof(vt_drive_def, user), offsetof(vt_drive_def, name), offsetof(vt_drive_def, frame), VT_END};
 static const size_t vt_cut_joint_def_layout[] = {sizeof(vt_cut_joint_def),
     offsetof(vt_cut_joint_def, joint), offsetof(vt_cut_joint_def, body_a), offsetof(vt_cut_joint_def, body_b),
     offsetof(vt_cut_joint_def, point_a), offsetof(vt_cut_joint_def, point_b),
     offsetof(vt_cut_joint_def, axis1), offsetof(vt_cut_joint_def, axis2),
-    offsetof(vt_cut_joint_def, orientation), VT_END};
+    offsetof(vt_cut_joint_def, orientation), offsetof(vt_cut_joint_def, name), offsetof(vt_cut_joint_def, frame_a),
+    offsetof(vt_cut_joint_def, frame_b), VT_END};
 static const size_t vt_body_def_layout[] = {sizeof(vt_body_def),
     offsetof(vt_body_def, parent), offsetof(vt_body_def, joint), offsetof(vt_body_def, mass),
     offsetof(vt_body_def, inertia), offsetof(vt_body_def, joint_parent), offsetof(vt_body_def, joint_child),
-    offsetof(vt_body_def, axis1), offsetof(vt_body_def, axis2), offsetof(vt_body_def, orientation), VT_END};
+    offsetof(vt_body_def, axis1), offsetof(vt_body_def, axis2), offsetof(vt_body_def, orientation),
+    offsetof(vt_body_def, name), offsetof(vt_body_def, joint_name), offsetof(vt_body_def, limit_lower),
+    offsetof(vt_body_def, limit_upper), offsetof(vt_body_def, limit_velocity), offsetof(vt_body_def, limit_effort),
+    VT_END};
+static const size_t vt_frame_def_layout[] = {sizeof(vt_frame_def),
+    offsetof(vt_frame_def, name), offsetof(vt_frame_def, body), offsetof(vt_frame_def, point),
+    offsetof(vt_frame_def, orientation), VT_END};
 static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, nbody), offsetof(vt_model, nq), offsetof(vt_model, nv), offsetof(vt_model, nx),
     offsetof(vt_model, gravity), offsetof(vt_model, body_parent), offsetof(vt_model, body_joint),
@@ -36,7 +43,11 @@ static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, body_jpar), offsetof(vt_model, body_jchild), offsetof(vt_model, body_axis),
     offsetof(vt_model, body_quat0), offsetof(vt_model, body_pathadr), offsetof(vt_model, body_pathnum),
     offsetof(vt_model, path_dof), offsetof(vt_model, npath), offsetof(vt_model, maxpath),
-    offsetof(vt_model, dof_body), offsetof(vt_model, q0), offsetof(vt_model, rcond_min),
+    offsetof(vt_model, dof_body), offsetof(vt_model, q0), offsetof(vt_model, dof_limit),
+    offsetof(vt_model, body_name), offsetof(vt_model, joint_name), offsetof(vt_model, drive_name),
+    offsetof(vt_model, cut_name), offsetof(vt_model, nframe), offsetof(vt_model, frame_name),
+    offsetof(vt_model, frame_body), offsetof(vt_model, frame_point), offsetof(vt_model, frame_quat),
+    offsetof(vt_model, rcond_min),
     offsetof(vt_model, rcond_warn), offsetof(vt_model, allow_redundant), offsetof(vt_model, ndrive),
     offsetof(vt_model, ncut), offsetof(vt_model, nc), offsetof(vt_model, drive),
     offsetof(vt_model, drive_row), offsetof(vt_model, cut), offsetof(vt_model, cut_row),
@@ -88,14 +99,15 @@ static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, res_evals), offsetof(vt_trajectory, steps_fwd),
     offsetof(vt_trajectory, res_evals_fwd), VT_END};
 
-/* entry k of struct `which` (0..8, in the order of table[]): 0 its size, then the fields'
+/* entry k of struct `which` (0..9, in the order of table[]): 0 its size, then the fields'
  * offsets; (size_t)-1 past the end */
 size_t vt_test_layout(int which, int k);
 size_t vt_test_layout(int which, int k)
 {
     static const size_t *const table[] = {vt_model_def_layout, vt_function_layout, vt_drive_def_layout,
                                           vt_cut_joint_def_layout, vt_body_def_layout, vt_model_layout,
-                                          vt_data_layout, vt_run_options_layout, vt_trajectory_layout};
+                                          vt_data_layout, vt_run_options_layout, vt_trajectory_layout,
+                                          vt_frame_def_layout};
     if (which < 0 || which >= (int)(sizeof table / sizeof table[0]) || k < 0) return VT_END;
     for (int i = 0; i <= k; i++)
         if (table[which][i] == VT_END) return VT_END;

@@ -18,6 +18,7 @@ program test_fortran_layout
   type(vt_drive_def), target :: x_drive_def
   type(vt_cut_joint_def), target :: x_cut_joint_def
   type(vt_body_def), target :: x_body_def
+  type(vt_frame_def), target :: x_frame_def
   type(vt_model), target :: x_model
   type(vt_data), target :: x_data
   type(vt_run_options), target :: x_run_options
@@ -35,16 +36,19 @@ program test_fortran_layout
          a(c_loc(x_drive_def%type)), a(c_loc(x_drive_def%body)), a(c_loc(x_drive_def%index)), &
          a(c_loc(x_drive_def%point)), a(c_loc(x_drive_def%f)), a(c_loc(x_drive_def%axis)), &
          a(c_loc(x_drive_def%orientation)), a(c_loc(x_drive_def%orientation_callback)), &
-         a(c_loc(x_drive_def%user))])
+         a(c_loc(x_drive_def%user)), a(c_loc(x_drive_def%name)), a(c_loc(x_drive_def%frame))])
     call check(3_c_int, 'vt_cut_joint_def', c_sizeof(x_cut_joint_def), a(c_loc(x_cut_joint_def)), [ &
          a(c_loc(x_cut_joint_def%joint)), a(c_loc(x_cut_joint_def%body_a)), a(c_loc(x_cut_joint_def%body_b)), &
          a(c_loc(x_cut_joint_def%point_a)), a(c_loc(x_cut_joint_def%point_b)), &
          a(c_loc(x_cut_joint_def%axis1)), a(c_loc(x_cut_joint_def%axis2)), &
-         a(c_loc(x_cut_joint_def%orientation))])
+         a(c_loc(x_cut_joint_def%orientation)), a(c_loc(x_cut_joint_def%name)), a(c_loc(x_cut_joint_def%frame_a)), &
+         a(c_loc(x_cut_joint_def%frame_b))])
     call check(4_c_int, 'vt_body_def', c_sizeof(x_body_def), a(c_loc(x_body_def)), [ &
          a(c_loc(x_body_def%parent)), a(c_loc(x_body_def%joint)), a(c_loc(x_body_def%mass)), &
          a(c_loc(x_body_def%inertia)), a(c_loc(x_body_def%joint_parent)), a(c_loc(x_body_def%joint_child)), &
-         a(c_loc(x_body_def%axis1)), a(c_loc(x_body_def%axis2)), a(c_loc(x_body_def%orientation))])
+         a(c_loc(x_body_def%axis1)), a(c_loc(x_body_def%axis2)), a(c_loc(x_body_def%orientation)), &
+         a(c_loc(x_body_def%name)), a(c_loc(x_body_def%joint_name)), a(c_loc(x_body_def%limit_lower)), &
+         a(c_loc(x_body_def%limit_upper)), a(c_loc(x_body_def%limit_velocity)), a(c_loc(x_body_def%limit_effort))])
     call check(5_c_int, 'vt_model', c_sizeof(x_model), a(c_loc(x_model)), [ &
          a(c_loc(x_model%nbody)), a(c_loc(x_model%nq)), a(c_loc(x_model%nv)), a(c_loc(x_model%nx)), &
          a(c_loc(x_model%gravity)), a(c_loc(x_model%body_parent)), a(c_loc(x_model%body_joint)), &
@@ -53,7 +57,11 @@ program test_fortran_layout
          a(c_loc(x_model%body_jpar)), a(c_loc(x_model%body_jchild)), a(c_loc(x_model%body_axis)), &
          a(c_loc(x_model%body_quat0)), a(c_loc(x_model%body_pathadr)), a(c_loc(x_model%body_pathnum)), &
          a(c_loc(x_model%path_dof)), a(c_loc(x_model%npath)), a(c_loc(x_model%maxpath)), &
-         a(c_loc(x_model%dof_body)), a(c_loc(x_model%q0)), a(c_loc(x_model%rcond_min)), &
+         a(c_loc(x_model%dof_body)), a(c_loc(x_model%q0)), a(c_loc(x_model%dof_limit)), &
+         a(c_loc(x_model%body_name)), a(c_loc(x_model%joint_name)), a(c_loc(x_model%drive_name)), &
+         a(c_loc(x_model%cut_name)), a(c_loc(x_model%nframe)), a(c_loc(x_model%frame_name)), &
+         a(c_loc(x_model%frame_body)), a(c_loc(x_model%frame_point)), a(c_loc(x_model%frame_quat)), &
+         a(c_loc(x_model%rcond_min)), &
          a(c_loc(x_model%rcond_warn)), a(c_loc(x_model%allow_redundant)), a(c_loc(x_model%ndrive)), &
          a(c_loc(x_model%ncut)), a(c_loc(x_model%nc)), a(c_loc(x_model%drive)), a(c_loc(x_model%drive_row)), &
          a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%con_body)), &
@@ -103,6 +111,16 @@ program test_fortran_layout
          a(c_loc(x_trajectory%fwd_err_moment)), a(c_loc(x_trajectory%fwd_interp_err)), &
          a(c_loc(x_trajectory%steps)), a(c_loc(x_trajectory%res_evals)), a(c_loc(x_trajectory%steps_fwd)), &
          a(c_loc(x_trajectory%res_evals_fwd))])
+    call check(9_c_int, 'vt_frame_def', c_sizeof(x_frame_def), a(c_loc(x_frame_def)), [ &
+         a(c_loc(x_frame_def%name)), a(c_loc(x_frame_def%body)), a(c_loc(x_frame_def%point)), &
+         a(c_loc(x_frame_def%orientation))])
+
+  ! a struct returned by value below writes C's size into the Fortran variable: with a layout
+  ! that differs, that would overwrite what lies beside it (nfail too), so stop here first
+  if (nfail > 0) then
+    print '(i0, a)', nfail, ' layout mismatches'
+    error stop 1
+  end if
 
   ! the defaults, returned by value from C (a struct return through bind(C))
   x_body_def = vt_default_body_def()
@@ -122,6 +140,9 @@ program test_fortran_layout
   x_cut_joint_def = vt_default_cut_joint_def()
   call expect(x_cut_joint_def%joint == VT_JOINT_REVOLUTE .and. x_cut_joint_def%body_a == 0 &
       .and. x_cut_joint_def%body_b == 1 .and. same(x_cut_joint_def%axis2, [1, 0, 0]), 'vt_default_cut_joint_def')
+  x_frame_def = vt_default_frame_def()
+  call expect(x_frame_def%body == 1 .and. same(x_frame_def%orientation, [1, 0, 0, 0]) &
+      .and. .not. c_associated(x_frame_def%name), 'vt_default_frame_def')
   x_run_options = vt_default_run_options()
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
       .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL, &

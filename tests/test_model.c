@@ -285,6 +285,139 @@ static void test_massless_link(void **state)
     vt_model_free(m);
 }
 
+/* Names: copied, unique among their kind, found again in the builder and in the model (and in
+ * the model without drives); a name refused leaves the builder as it was */
+static void test_names(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    char buf[VT_NAME_MAX + 8];
+    strcpy(buf, "upper_arm");
+    vt_body_def d = vt_default_body_def();
+    d.name = buf;
+    d.joint_name = "shoulder";
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    strcpy(buf, "forearm"); /* the builder kept its own copy */
+    d.parent = 1;
+    d.joint_name = "elbow";
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    d.parent = 2;
+    d.joint_name = NULL;
+    assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_BAD_NAME); /* "forearm" again */
+    assert_non_null(strstr(vt_builder_message(b), "forearm"));
+    d.name = NULL; /* unnamed */
+    d.joint_name = "shoulder";
+    assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_BAD_NAME); /* joint names are unique too */
+    memset(buf, 'x', VT_NAME_MAX);
+    buf[VT_NAME_MAX] = '\0';
+    d.name = buf; /* VT_NAME_MAX bytes: one too many */
+    d.joint_name = NULL;
+    assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_BAD_NAME);
+    buf[VT_NAME_MAX - 1] = '\0'; /* the longest allowed */
+    assert_int_equal(vt_builder_add_body(b, &d), 3);
+    d.name = NULL;
+    assert_int_equal(vt_builder_add_body(b, &d), 4); /* unnamed bodies do not collide */
+    d.parent = 3;
+    assert_int_equal(vt_builder_add_body(b, &d), 5);
+    assert_int_equal(vt_builder_find_body(b, "upper_arm"), 1);
+    assert_int_equal(vt_builder_find_body(b, "forearm"), 2);
+    assert_int_equal(vt_builder_find_body(b, "hand"), VT_ERR_NOT_FOUND);
+    assert_int_equal(vt_builder_find_body(b, ""), VT_ERR_NOT_FOUND);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 2;
+    dr.name = "elbow_motor";
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_NAME);
+    vt_cut_joint_def cj = vt_default_cut_joint_def();
+    cj.joint = VT_JOINT_SPHERICAL;
+    cj.body_b = 5;
+    cj.name = "closure";
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), 0);
+    vt_frame_def f = vt_default_frame_def();
+    f.name = "tool";
+    f.body = 5;
+    f.point[0] = 0.3;
+    assert_int_equal(vt_builder_add_frame(b, &f), 0);
+    vt_model *m, *mf;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_ok(vt_model_without_drives(&mf, m));
+    const vt_model *both[2] = {m, mf};
+    for (int k = 0; k < 2; k++) {
+        const vt_model *x = both[k];
+        assert_int_equal(vt_find_body(x, "upper_arm"), 1);
+        assert_int_equal(vt_find_body(x, "forearm"), 2);
+        assert_int_equal(vt_find_body(x, buf), 3);
+        assert_int_equal(vt_find_joint(x, "shoulder"), 1);
+        assert_int_equal(vt_find_joint(x, "elbow"), 2);
+        assert_int_equal(vt_find_joint(x, "wrist"), VT_ERR_NOT_FOUND);
+        assert_int_equal(vt_find_cut_joint(x, "closure"), 0);
+        assert_int_equal(vt_find_frame(x, "tool"), 0);
+        assert_string_equal(x->body_name + VT_NAME_MAX * 2, "forearm");
+        assert_string_equal(x->body_name + VT_NAME_MAX * 4, "");
+        assert_string_equal(x->cut[0].name, "closure"); /* the stored definition points at the model's copy */
+    }
+    assert_int_equal(vt_find_drive(m, "elbow_motor"), 0);
+    assert_string_equal(m->drive[0].name, "elbow_motor");
+    assert_int_equal(vt_find_drive(mf, "elbow_motor"), VT_ERR_NOT_FOUND); /* no drives there */
+    assert_int_equal(vt_find_body(NULL, "x"), VT_ERR_NULL);
+    assert_int_equal(vt_find_frame(m, NULL), VT_ERR_NULL);
+    vt_model_free(mf);
+    vt_model_free(m);
+}
+
+/* Joint limits: kept per rate (defaults ±∞), survive the model without drives; NaN and
+ * inconsistent limits refused */
+static void test_limits(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    d.limit_lower[0] = -1.5;
+    d.limit_upper[0] = 2.0;
+    d.limit_velocity[0] = 3.0;
+    d.limit_effort[0] = 40.0;
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    vt_body_def c = vt_default_body_def();
+    c.parent = 1;
+    c.joint = VT_JOINT_CYLINDRICAL;
+    c.limit_lower[1] = -0.1;
+    c.limit_upper[1] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &c), 2);
+    vt_body_def s = vt_default_body_def();
+    s.parent = 2;
+    s.joint = VT_JOINT_SPHERICAL;
+    assert_int_equal(vt_builder_add_body(b, &s), 3);
+    vt_body_def bad = vt_default_body_def();
+    bad.limit_lower[0] = NAN;
+    assert_int_equal(vt_builder_add_body(b, &bad), VT_ERR_NONFINITE);
+    bad = vt_default_body_def();
+    bad.limit_lower[0] = 1.0;
+    bad.limit_upper[0] = 0.5;
+    assert_int_equal(vt_builder_add_body(b, &bad), VT_ERR_BAD_OPTION);
+    bad = vt_default_body_def();
+    bad.limit_effort[1] = -1.0;
+    assert_int_equal(vt_builder_add_body(b, &bad), VT_ERR_BAD_OPTION);
+    vt_model *m, *mf;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nbody, 3);
+    assert_ok(vt_model_without_drives(&mf, m));
+    const double want[6][4] = {{-1.5, 2.0, 3.0, 40.0}, {-HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL},
+                               {-0.1, 0.1, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL},
+                               {-HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL}};
+    assert_int_equal(m->nv, 6);
+    for (int a = 0; a < 6; a++)
+        for (int k = 0; k < 4; k++) {
+            assert_true(m->dof_limit[4 * a + k] == want[a][k]);
+            assert_true(mf->dof_limit[4 * a + k] == want[a][k]);
+        }
+    vt_model_free(mf);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -294,6 +427,8 @@ int main(void)
         cmocka_unit_test(test_sizes_and_paths),
         cmocka_unit_test(test_real_files),
         cmocka_unit_test(test_massless_link),
+        cmocka_unit_test(test_names),
+        cmocka_unit_test(test_limits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -105,11 +105,90 @@ static void test_integrate_q(void **state)
     vt_model_free(m);
 }
 
+/* Frames: a frame's pose against the double link's geometry; a load and a point drive at a
+ * frame equal the same given by body and point (bitwise); a cut joint at frames equals the
+ * four-bar's; bad frames refused */
+static void test_frames(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.mass = 100.0;
+    link.inertia[4] = link.inertia[8] = 100.0 * 4.0 / 12.0;
+    link.joint_child[0] = -1.0;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    link.parent = 1;
+    link.joint_parent[0] = 1.0;
+    assert_int_equal(vt_builder_add_body(b, &link), 2);
+    vt_frame_def f = vt_default_frame_def();
+    f.name = "tip";
+    f.body = 2;
+    f.point[0] = 1.0; /* the far end of link 2 */
+    vt_quat_axis_angle(f.orientation, (const double[3]){0, 0, 1}, 0.25); /* turned 0.25 rad about z */
+    assert_int_equal(vt_builder_add_frame(b, &f), 0);
+    vt_frame_def bad = f;
+    assert_int_equal(vt_builder_add_frame(b, &bad), VT_ERR_BAD_NAME); /* "tip" taken */
+    bad.name = NULL;
+    assert_int_equal(vt_builder_add_frame(b, &bad), VT_ERR_BAD_NAME); /* a frame needs a name */
+    bad.name = "elsewhere";
+    bad.body = 3;
+    assert_int_equal(vt_builder_add_frame(b, &bad), VT_ERR_BAD_INDEX);
+    bad.body = 1;
+    bad.orientation[0] = bad.orientation[1] = bad.orientation[2] = bad.orientation[3] = 0.0;
+    assert_int_equal(vt_builder_add_frame(b, &bad), VT_ERR_QUATERNION);
+    vt_drive_def pd = vt_default_drive_def();
+    pd.type = VT_DRIVE_POINT;
+    pd.index = 1;
+    pd.frame = "tip"; /* the tip's y */
+    pd.f = vt_function_sine(-1.0, 0.5, 2.0, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &pd), 0);
+    pd.frame = "nowhere";
+    assert_int_equal(vt_builder_add_drive(b, &pd), VT_ERR_NOT_FOUND);
+    pd.type = VT_DRIVE_JOINT;
+    pd.frame = "tip";
+    assert_int_equal(vt_builder_add_drive(b, &pd), VT_ERR_BAD_DRIVE); /* frames place point drives */
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->drive[0].body, 2);
+    assert_near(m->drive[0].point[0], 1.0, 0.0);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    const double q1 = -0.4, q2 = 0.9;
+    d->q[0] = q1;
+    d->q[1] = q2;
+    assert_ok(vt_kinematics(m, d));
+    double P[3], R[9];
+    assert_ok(vt_frame_pose(m, d, 0, P, R));
+    assert_near(P[0], 2 * cos(q1) + 2 * cos(q1 + q2), 1e-14);
+    assert_near(P[1], 2 * sin(q1) + 2 * sin(q1 + q2), 1e-14);
+    assert_near(P[2], 0.0, 1e-14);
+    const double a = q1 + q2 + 0.25; /* the frame's axes: turned q1 + q2 + 0.25 about z */
+    assert_near(R[0], cos(a), 1e-14);
+    assert_near(R[1], sin(a), 1e-14);
+    assert_near(R[3], -sin(a), 1e-14);
+    assert_near(R[8], 1.0, 1e-14);
+    assert_int_equal(vt_frame_pose(m, d, 1, P, NULL), VT_ERR_BAD_INDEX);
+    /* a load at the frame equals the same load at link 2's point (1, 0, 0) */
+    const double fl[3] = {3.0, -4.0, 1.0}, nl[3] = {0.5, 0.0, -0.2};
+    assert_ok(vt_add_frame_load(m, d, 0, fl, nl));
+    double x1[12];
+    memcpy(x1, d->xfrc + 6, sizeof x1);
+    memset(d->xfrc, 0, 18 * sizeof(double));
+    assert_ok(vt_add_point_load(m, d, 2, (const double[3]){1.0, 0.0, 0.0}, fl, nl));
+    assert_memory_equal(x1, d->xfrc + 6, sizeof x1);
+    assert_int_equal(vt_add_frame_load(m, d, 5, fl, nl), VT_ERR_BAD_INDEX);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_point_load_bad_input_changes_nothing),
         cmocka_unit_test(test_integrate_q),
+        cmocka_unit_test(test_frames),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

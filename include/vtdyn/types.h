@@ -58,8 +58,14 @@ typedef enum vt_status {
                                        ///< in the data's message
     VT_ERR_ABORTED = -26,              ///< the progress callback asked to stop
     VT_ERR_BAD_OPTION = -27,           ///< a run option out of range (message says which)
-    VT_ERR_BAD_SIZE = -28              ///< a caller-provided buffer is too small (see vt_data_size())
+    VT_ERR_BAD_SIZE = -28,             ///< a caller-provided buffer is too small (see vt_data_size())
+    VT_ERR_BAD_NAME = -29,             ///< a name too long (VT_NAME_MAX) or already used by another of its kind
+    VT_ERR_NOT_FOUND = -30             ///< no body, joint, drive, cut joint or frame of that name
 } vt_status;
+
+/// Names of bodies, joints, drives, cut joints and frames: at most VT_NAME_MAX − 1 bytes, unique
+/// among their kind; an empty name (or NULL in a definition) leaves the object unnamed.
+#define VT_NAME_MAX 64
 
 /// Relative tolerance of a body's inertia checks: symmetric, positive semi-definite and within
 /// the triangle inequality to VT_INERTIA_TOL times its largest entry (what files that print
@@ -185,6 +191,9 @@ typedef struct vt_drive_def {
                            ///< p_d(t) = [rotation f(t) about axis] ⊗ orientation; default identity
     vt_orientation_callback orientation_callback; ///< orientation drive: if set, gives p_d(t) instead
     void *user;            ///< passed to orientation_callback
+    const char *name;      ///< the drive's name (copied; in a model: its own copy); default NULL
+    const char *frame;     ///< point drive: the name of a frame added so far; its body and origin
+                           ///< replace body and point (in a model: NULL); default NULL
 } vt_drive_def;
 
 /// A cut joint: closes a loop between body_a (in the role of the reference body) and body_b,
@@ -203,6 +212,10 @@ typedef struct vt_cut_joint_def {
     double axis2[3];       ///< universal: second axis (on b) in a's axes when assembled; default x
     double orientation[4]; ///< b's axes relative to a's when assembled (carries the axes onto b);
                            ///< default identity
+    const char *name;      ///< the cut joint's name (copied; in a model: its own copy); default NULL
+    const char *frame_a;   ///< the name of a frame added so far: its body and origin replace body_a
+                           ///< and point_a (the axes stay in a's body axes); NULL: as given; default NULL
+    const char *frame_b;   ///< the same for body_b and point_b; default NULL
 } vt_cut_joint_def;
 
 /// A moving body and the joint that connects it to its reference body.
@@ -223,7 +236,26 @@ typedef struct vt_body_def {
                                 ///< q = 0, perpendicular to axis1; normalized; default (1,0,0)
     double orientation[4];      ///< Euler parameters of this body's axes relative to the reference body's
                                 ///< at q = 0 (for a base body: ignored); normalized; default (1,0,0,0)
+    const char *name;           ///< the body's name (copied); NULL or "": unnamed; default NULL
+    const char *joint_name;     ///< its joint's name (copied); NULL or "": unnamed; default NULL
+    double limit_lower[2];      ///< the joint's first two rates (revolute, translational: the first one;
+                                ///< universal, cylindrical: both): lowest coordinate, rad or m; kept in
+                                ///< the model (vt_model.dof_limit), not enforced; default −∞
+    double limit_upper[2];      ///< highest coordinate (≥ limit_lower); default +∞
+    double limit_velocity[2];   ///< largest |rate|, rad/s or m/s (≥ 0); default +∞
+    double limit_effort[2];     ///< largest |effort|, N·m or N (≥ 0); default +∞
 } vt_body_def;
+
+/// A frame: a named point and orientation moving with a body (a tool point, a sensor, a file's
+/// link frame). Fill from vt_default_frame_def().
+typedef struct vt_frame_def {
+    const char *name;           ///< required, unique among the frames (copied); default NULL
+    int body;                   ///< the body it moves with, 0 = ground; default 1
+    double point[3];            ///< m, its origin: body axes from the centre of mass (global for the
+                                ///< ground); default 0
+    double orientation[4];      ///< its axes relative to the body's (Euler parameters); normalized;
+                                ///< default identity
+} vt_frame_def;
 
 /// The immutable model. Built by vt_builder_build(); read-only afterwards.
 typedef struct vt_model {
@@ -257,6 +289,19 @@ typedef struct vt_model {
 
     double *q0;              ///< reference configuration: zero angles and translations, unit
                              ///< Euler parameters (nq)
+    double *dof_limit;       ///< per rate: lowest and highest coordinate, largest |rate| and |effort|
+                             ///< from the body definitions, ±∞ where none (4 x nv)
+
+    /* names (VT_NAME_MAX bytes each, "" where unnamed) and frames */
+    char *body_name;         ///< body i's name at body_name + VT_NAME_MAX i; the ground's is "" (nbody+1)
+    char *joint_name;        ///< the name of body i's joint, the same way (nbody+1)
+    char *drive_name;        ///< (ndrive)
+    char *cut_name;          ///< (ncut)
+    int nframe;              ///< number of frames
+    char *frame_name;        ///< (nframe)
+    int *frame_body;         ///< the body each frame moves with (nframe)
+    double *frame_point;     ///< m, its origin, the body's axes from its centre of mass (3 x nframe)
+    double *frame_quat;      ///< its axes relative to the body's (4 x nframe)
 
     /* drives, cut joints and constraint rows */
     double rcond_min;        ///< see vt_model_def
