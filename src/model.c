@@ -11,6 +11,8 @@
  * The path of body i is the list of rates of the joints between the ground and i: the
  * columns of S that are non-zero in body i's rows (S is block lower triangular in tree order,
  * the paper's "reference matrix").
+ * A drive's spline time function (src/functions.c) owns its samples and their second
+ * derivatives: one block per drive in the builder, and a part of the model's one block.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +25,8 @@ struct vt_builder {
     int n, cap;
     vt_drive_def *drives;
     int ndrive, capdrive;
+    double **samples; /* per drive: its spline's t, y and f'' (3 nsample), the builder's; or NULL */
+    int capsamples;
     vt_cut_joint_def *cuts;
     int ncut, capcut;
     char message[256];
@@ -107,6 +111,8 @@ void vt_builder_free(vt_builder *builder)
 {
     if (!builder) return;
     free(builder->bodies);
+    for (int k = 0; k < builder->ndrive; k++) free(builder->samples[k]);
+    free(builder->samples);
     free(builder->drives);
     free(builder->cuts);
     free(builder);
@@ -264,16 +270,51 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
     return VT_OK;
 }
 
+/* a spline's samples copied, with their second derivatives, into a block of the builder's
+ * (t, y, f'': 3n doubles), so that the caller's arrays are free after the drive is added */
+static vt_status own_spline(char *msg, int k, vt_function *f, double **block)
+{
+    const size_t n = (size_t)f->nsample;
+    double *own = malloc(3 * n * sizeof(double)), *work = malloc(3 * n * sizeof(double));
+    if (!own || !work) {
+        free(own);
+        free(work);
+        return vt_fail(msg, VT_ERR_NO_MEMORY, "drive %d: out of memory for %zu spline samples", k, n);
+    }
+    memcpy(own, f->sample_t, n * sizeof(double));
+    memcpy(own + n, f->sample_y, n * sizeof(double));
+    char fmsg[256];
+    const vt_status st = vt_spline_d2(fmsg, f->nsample, own, own + n, own + 2 * n, work);
+    free(work);
+    if (st) {
+        free(own);
+        return vt_fail(msg, st, "drive %d: %s", k, fmsg);
+    }
+    f->sample_t = own;
+    f->sample_y = own + n;
+    f->sample_d2 = own + 2 * n;
+    *block = own;
+    return VT_OK;
+}
+
 int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
 {
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
     vt_drive_def d = *def;
+    if (d.f.type == VT_FUNCTION_SPLINE) d.f.sample_d2 = NULL; /* computed here, never trusted */
     vt_status st = validate_drive(b, b->message, b->ndrive, &d);
     if (st) return st;
-    if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d))
+    double *own = NULL;
+    const int uses_f = d.type != VT_DRIVE_ORIENTATION || !d.orientation_callback;
+    if (uses_f && d.f.type == VT_FUNCTION_SPLINE && (st = own_spline(b->message, b->ndrive, &d.f, &own))) return st;
+    if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d) ||
+        !grow((void **)&b->samples, &b->capsamples, b->ndrive, sizeof own)) {
+        free(own); /* the arrays may have grown: only their capacity, the builder's content is as it was */
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "drive %d: out of memory", b->ndrive);
+    }
     b->drives[b->ndrive] = d;
+    b->samples[b->ndrive] = own;
     b->message[0] = '\0';
     return b->ndrive++;
 }
@@ -526,9 +567,14 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     for (int k = 0; k < b->ndrive; k++) nc += b->drives[k].type == VT_DRIVE_ORIENTATION ? 3 : 1;
     for (int k = 0; k < b->ncut; k++) nc += cut_rows[b->cuts[k].joint];
 
+    size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */
+    for (int k = 0; k < b->ndrive; k++)
+        if (b->samples[k]) nsample += (size_t)b->drives[k].f.nsample;
+
     arena a = {NULL, sizeof(vt_model)};
     vt_model tmp;
     layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc);
+    take(&a, 3 * nsample * sizeof(double));
     char *block = calloc(1, a.used);
     if (!block) {
         free(depth_nv);
@@ -538,6 +584,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     a.base = block;
     a.used = sizeof(vt_model);
     layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc);
+    double *samples = take(&a, 3 * nsample * sizeof(double));
 
     m->nbody = n;
     m->nq = nq;
@@ -552,6 +599,16 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->ncut = b->ncut;
     m->nc = nc;
     if (b->ndrive) memcpy(m->drive, b->drives, (size_t)b->ndrive * sizeof(vt_drive_def));
+    for (int k = 0; k < b->ndrive; k++) { /* the model's own copy of each spline's samples */
+        if (!b->samples[k]) continue;
+        vt_function *f = &m->drive[k].f;
+        const size_t ns = (size_t)f->nsample;
+        memcpy(samples, b->samples[k], 3 * ns * sizeof(double));
+        f->sample_t = samples;
+        f->sample_y = samples + ns;
+        f->sample_d2 = samples + 2 * ns;
+        samples += 3 * ns;
+    }
     if (b->ncut) memcpy(m->cut, b->cuts, (size_t)b->ncut * sizeof(vt_cut_joint_def));
 
     m->body_parent[0] = -1;

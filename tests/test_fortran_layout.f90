@@ -30,7 +30,8 @@ program test_fortran_layout
          a(c_loc(x_model_def%allow_redundant))])
     call check(1_c_int, 'vt_function', c_sizeof(x_function), a(c_loc(x_function)), [ &
          a(c_loc(x_function%type)), a(c_loc(x_function%ncoef)), a(c_loc(x_function%c)), &
-         a(c_loc(x_function%callback)), a(c_loc(x_function%user))])
+         a(c_loc(x_function%callback)), a(c_loc(x_function%user)), a(c_loc(x_function%nsample)), &
+         a(c_loc(x_function%sample_t)), a(c_loc(x_function%sample_y)), a(c_loc(x_function%sample_d2))])
     call check(2_c_int, 'vt_drive_def', c_sizeof(x_drive_def), a(c_loc(x_drive_def)), [ &
          a(c_loc(x_drive_def%type)), a(c_loc(x_drive_def%body)), a(c_loc(x_drive_def%index)), &
          a(c_loc(x_drive_def%point)), a(c_loc(x_drive_def%f)), a(c_loc(x_drive_def%axis)), &
@@ -119,6 +120,10 @@ program test_fortran_layout
       .and. .not. c_associated(x_drive_def%orientation_callback), 'vt_default_drive_def')
   x_function = vt_function_sine(1.0_c_double, 2.0_c_double, 3.0_c_double, 4.0_c_double)
   call expect(x_function%type == VT_FUNC_SINE .and. same(x_function%c(1:4), [1, 2, 3, 4]), 'vt_function_sine')
+  x_function = vt_function_spline(3_c_int, [0.0_c_double, 1.0_c_double, 2.0_c_double], &
+      [1.0_c_double, 2.0_c_double, 4.0_c_double])
+  call expect(x_function%type == VT_FUNC_SPLINE .and. x_function%nsample == 3 &
+      .and. .not. c_associated(x_function%sample_d2), 'vt_function_spline')
   x_cut_joint_def = vt_default_cut_joint_def()
   call expect(x_cut_joint_def%joint == VT_JOINT_REVOLUTE .and. x_cut_joint_def%body_a == 0 &
       .and. x_cut_joint_def%body_b == 1 .and. same(x_cut_joint_def%axis2, [1, 0, 0]), 'vt_default_cut_joint_def')

@@ -133,7 +133,11 @@ typedef enum vt_function_type {
     VT_FUNCTION_CONSTANT = 0,  ///< f = c[0]
     VT_FUNCTION_POLYNOMIAL,    ///< f = c[0] + c[1] t + ... + c[ncoef-1] t^(ncoef-1)
     VT_FUNCTION_SINE,          ///< f = c[0] + c[1] sin(c[2] t + c[3])
-    VT_FUNCTION_CALLBACK       ///< f, f', f'' from a user function
+    VT_FUNCTION_CALLBACK,      ///< f, f', f'' from a user function
+    VT_FUNCTION_SPLINE         ///< C2 cubic interpolating spline through samples (t_k, y_k), k = 0..n−1:
+                               ///< n = 2 a straight line, n = 3 the parabola through the three, n ≥ 4
+                               ///< "not-a-knot" ends (f''' continuous at t_1 and t_{n−2}); outside
+                               ///< [t_0, t_{n−1}] the end cubics continued (see vt_function_spline())
 } vt_function_type;
 
 /// User time function: writes f, f' and f'' at time t (s) into out; returns 0 on success,
@@ -141,6 +145,10 @@ typedef enum vt_function_type {
 typedef int (*vt_function_callback)(double t, double out[3], void *user);
 
 #define VT_POLY_MAX 8  ///< most coefficients of a polynomial time function
+/// Most samples of a spline that vt_function_eval() evaluates before the spline is added to a
+/// drive (it then solves for the second derivatives in a fixed local buffer); a model's drives
+/// carry their own second derivatives and have no limit.
+#define VT_SPLINE_EVAL_MAX 64
 
 /// A time function; make it with vt_function_constant() and friends.
 typedef struct vt_function {
@@ -149,6 +157,12 @@ typedef struct vt_function {
     double c[VT_POLY_MAX];        ///< coefficients, see vt_function_type
     vt_function_callback callback;///< VT_FUNCTION_CALLBACK only
     void *user;                   ///< passed to callback
+    int nsample;                  ///< spline: number of samples n (≥ 2)
+    const double *sample_t;       ///< spline: sample times t_k, s, strictly increasing (n)
+    const double *sample_y;       ///< spline: sample values y_k, the drive's unit (n)
+    const double *sample_d2;      ///< spline: f''(t_k) (n); set by the library in a model's drives (the
+                                  ///< samples and these then live in the model), NULL from
+                                  ///< vt_function_spline() and ignored when a drive is added
 } vt_function;
 
 /// User orientation: writes the prescribed Euler parameters p (global, unit), angular
