@@ -263,6 +263,8 @@ module vtdyn
     real(c_double)         :: baumgarte_beta
     type(c_funptr)         :: progress
     type(c_ptr)            :: user
+    type(c_ptr)            :: tout      ! the address of a TARGET real(c_double) array, or c_null_ptr
+    integer(c_int)         :: ntout
   end type vt_run_options
 
   type, bind(C) :: vt_trajectory

@@ -227,7 +227,8 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *da
 vt_run_options vt_default_run_options(void);
 
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
-/// with nout output intervals needs nrow ≥ nout + 1. On failure *trajectory is NULL.
+/// with nout output intervals needs nrow ≥ nout + 1, one with ntout output times (tout)
+/// nrow ≥ ntout + 1 (row 0 is always t0). On failure *trajectory is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY.
 vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
 /// Frees a trajectory; NULL does nothing.
@@ -242,7 +243,11 @@ void vt_trajectory_free(vt_trajectory *trajectory);
 vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
 /// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
-/// output time vt_kinematic_solve(), from the previous solution (the first from d->q).
+/// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
+/// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
+/// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
+/// more entries than the trajectory's rows − 1) is refused with VT_ERR_BAD_OPTION, the message
+/// naming the entry, before anything is written.
 /// With opt->forward_check, the forward check integrates the model without drives under
 /// the drives' generalized forces, evaluated exactly at every time IDA asks for (in a build
 /// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
@@ -255,7 +260,9 @@ vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_r
 
 /// Dynamic analysis: the index-1 form of (5) handed to SUNDIALS IDA, unknowns q, q̇ and λ,
 ///   q' − T(q) q̇ = 0,   M* q̈ − Q − Φ_q^T λ = 0,   Φ_q q̈ − γ = 0,
-/// from d->q, d->qd at opt->t0, first made consistent (vt_kinematic_solve). With
+/// from d->q, d->qd at opt->t0, first made consistent (vt_kinematic_solve); rows at t0 and then
+/// at opt->tout's times when given (IDA's interpolant, its stop time the last of them), as
+/// vt_kinematic_analysis() validates them. With
 /// opt->forward_check the forward model (drives removed, their efforts applied) is integrated
 /// as well: by default separately, after the driven run, with the efforts of the driven state
 /// interpolated (cubic Hermite over the driven run's steps; error in tr->fwd_interp_err); with

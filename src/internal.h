@@ -367,6 +367,9 @@ void vt_trajectory_store(vt_trajectory *tr, const vt_model *m, const vt_data *d,
 void vt_trajectory_store_forward(vt_trajectory *tr, const vt_model *mf, const vt_data *df, int row);
 void vt_trajectory_reset(vt_trajectory *tr);
 vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr, const char *who);
+/* Output rows of a run after row 0 (nout or ntout), and the time of row k (0 = t0) */
+int vt_run_rows(const vt_run_options *opt);
+double vt_run_time(const vt_run_options *opt, int k);
 
 /* The forward check with IDA (integrate.c): integrates the model without drives (mf, df)
  * from the driven state at opt->t0, with df->qfrc = the drives' generalized force at each

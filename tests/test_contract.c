@@ -354,6 +354,39 @@ static void test_indices_and_options(void **state)
 #endif
         assert_unchanged(&before, m, d);
     }
+    /* bad lists of output times: refused naming the entry, the data and the trajectory as they were */
+    const double t_nan[3] = {0.1, NAN, 0.5}, t_down[3] = {0.1, 0.4, 0.3}, t_at0[2] = {0.0, 0.5},
+                 t_past[3] = {0.1, 0.5, 1.5}, t_ok[3] = {0.1, 0.4, 0.9}, many[11] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6,
+                                                                                    0.7, 0.8, 0.9, 0.95, 1.0};
+    const struct {
+        const double *tout;
+        int ntout;
+        const char *says;
+    } list[7] = {{t_nan, 3, "tout[1] is not finite"}, {t_down, 3, "tout[2] = 0.3 is not after the previous"},
+                 {t_at0, 2, "tout[0] = 0 is not after t0"}, {t_past, 3, "tout[2] = 1.5 is after t1"},
+                 {many, 11, "ntout 11 needs 12"}, {NULL, 3, "tout NULL"}, {t_ok, 0, "ntout 0"}};
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    for (int k = 0; k < 7; k++) {
+        vt_run_options o = vt_default_run_options();
+        o.tout = list[k].tout;
+        o.ntout = list[k].ntout;
+        tr->nfilled = 5;
+        tr->t[3] = 42.0;
+        snapshot(&before, m, d);
+        for (int a = 0; a < 1 + VT_HAVE_SUNDIALS; a++) {
+            d->message[0] = '\0';
+#if VT_HAVE_SUNDIALS
+            const vt_status st = a ? vt_dynamic_analysis(m, d, &o, tr) : vt_kinematic_analysis(m, d, &o, tr);
+#else
+            const vt_status st = vt_kinematic_analysis(m, d, &o, tr);
+#endif
+            assert_int_equal(st, VT_ERR_BAD_OPTION);
+            if (!strstr(d->message, list[k].says))
+                fail_msg("list %d: message \"%s\" lacks \"%s\"", k, d->message, list[k].says);
+            assert_unchanged(&before, m, d);
+            assert_true(tr->nfilled == 5 && tr->t[3] == 42.0);
+        }
+    }
     vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);

@@ -212,6 +212,47 @@ static void test_stretched_arm(void **state)
     vt_model_free(m);
 }
 
+#if VT_HAVE_SUNDIALS
+/* rows at irregular given times: each the kinematic solution at its time, solved independently
+ * from the scene's guess at that time; and the forward check over them */
+static void test_given_output_times(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d, *di;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&di, m));
+    const double tout[7] = {0.0137, 0.05, 0.051, 0.3, 0.62, 0.9, 0.97};
+    vt_run_options opt = vt_default_run_options();
+    opt.tout = tout;
+    opt.ntout = 7;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    assert_ok(vt_trajectory_create(&tr, m, 8));
+    vt_scene_five_link_guess(m, d, 0.0);
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, 8);
+    assert_true(tr->t[0] == 0.0);
+    for (int k = 1; k <= 7; k++) {
+        assert_true(tr->t[k] == tout[k - 1]);
+        vt_scene_five_link_guess(m, di, tout[k - 1]);
+        di->time = tout[k - 1];
+        assert_ok(vt_kinematic_solve(m, di, 1e-12, 30));
+        for (int c = 0; c < m->nq; c++) assert_near(tr->q[m->nq * k + c], di->q[c], 1e-10);
+        for (int c = 0; c < m->nv; c++) assert_near(tr->qd[m->nv * k + c], di->qd[c], 1e-9);
+        for (int c = 0; c < m->ndrive; c++)
+            assert_near(tr->drive_effort[m->ndrive * k + c], di->drive_effort[c], 1e-8 * (1 + fabs(di->drive_effort[c])));
+    }
+    assert_true(tr->fwd_err_q < 1e-6 && tr->fwd_err_q > 0.0); /* the forward check ran to the last time */
+    vt_trajectory_free(tr);
+    vt_data_free(di);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+#endif
+
 /* a 2 kg, 1 m rod pinned at one end, its joint driven by f */
 static vt_model *pendulum(const vt_function *f)
 {
@@ -305,6 +346,9 @@ int main(void)
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_stretched_arm),
         cmocka_unit_test(test_spline_drive_converges),
+#if VT_HAVE_SUNDIALS
+        cmocka_unit_test(test_given_output_times),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -413,6 +413,7 @@ typedef struct vt_run_options {
     double t0;               ///< s, start; default 0
     double t1;               ///< s, end (> t0); default 1
     int nout;                ///< output intervals: rows at t0 + k (t1 − t0)/nout, k = 0..nout; default 100
+                             ///< (ignored when tout is given)
     double rtol;             ///< IDA relative tolerance; default 1e-8
     double atol;             ///< IDA absolute tolerance; default 1e-10
     double max_step;         ///< s, IDA's largest step; 0 = no limit (default)
@@ -435,6 +436,11 @@ typedef struct vt_run_options {
     double baumgarte_beta;   ///< 1/s, Baumgarte's stiffness term β² Φ; default 10
     vt_progress_callback progress; ///< optional, NULL by default
     void *user;              ///< passed to progress
+    const double *tout;      ///< s, optional output times (ntout), in place of the uniform rows: the run
+                             ///< starts at t0, row 0 is t0 and rows 1..ntout are tout[0..ntout−1], strictly
+                             ///< increasing, in (t0, t1]; the run ends at tout[ntout−1]. The trajectory
+                             ///< needs ntout + 1 rows. Default NULL (the uniform rows of nout)
+    int ntout;               ///< number of entries of tout (≥ 1 with tout); default 0
 } vt_run_options;
 
 /// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
