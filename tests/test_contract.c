@@ -365,7 +365,6 @@ static void test_indices_and_options(void **state)
     } list[7] = {{t_nan, 3, "tout[1] is not finite"}, {t_down, 3, "tout[2] = 0.3 is not after the previous"},
                  {t_at0, 2, "tout[0] = 0 is not after t0"}, {t_past, 3, "tout[2] = 1.5 is after t1"},
                  {many, 11, "ntout 11 needs 12"}, {NULL, 3, "tout NULL"}, {t_ok, 0, "ntout 0"}};
-    assert_ok(vt_trajectory_create(&tr, m, 11));
     for (int k = 0; k < 7; k++) {
         vt_run_options o = vt_default_run_options();
         o.tout = list[k].tout;
