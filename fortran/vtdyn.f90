@@ -27,8 +27,8 @@
 !     (2-D fields are flat as in C: inertia(1:9) is the 3x3 column-major matrix).
 !   - Fortran names ignore case, so two C names change: vt_data's Q (the generalized force,
 !     beside q) is Qgen here, and the vt_function_type values VT_FUNCTION_CONSTANT ... are
-!     VT_FUNC_CONSTANT, VT_FUNC_POLYNOMIAL, VT_FUNC_SINE, VT_FUNC_CALLBACK (beside the
-!     functions vt_function_constant() ...).
+!     VT_FUNC_CONSTANT, VT_FUNC_POLYNOMIAL, VT_FUNC_SINE, VT_FUNC_CALLBACK, VT_FUNC_SPLINE
+!     (beside the functions vt_function_constant() ...).
 !   - Optional C pointers are OPTIONAL arguments (vt_builder_create's def, vt_add_point_load's
 !     f and n): leave them out for NULL.
 !   - Strings: vt_string() turns a C string (vt_status_string, vt_builder_message, vt_version)
@@ -70,8 +70,8 @@ module vtdyn
   real(c_double), parameter :: VT_REDUNDANT_TOL = 1.0e-3_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
   integer(c_int), parameter :: VT_FUNC_CONSTANT = 0, VT_FUNC_POLYNOMIAL = 1, VT_FUNC_SINE = 2, &
-      VT_FUNC_CALLBACK = 3
-  integer(c_int), parameter :: VT_POLY_MAX = 8
+      VT_FUNC_CALLBACK = 3, VT_FUNC_SPLINE = 4
+  integer(c_int), parameter :: VT_POLY_MAX = 8, VT_SPLINE_EVAL_MAX = 64
   ! vt_drive_type
   integer(c_int), parameter :: VT_DRIVE_JOINT = 0, VT_DRIVE_POINT = 1, VT_DRIVE_ORIENTATION = 2, &
       VT_DRIVE_TYPE_COUNT = 3
@@ -98,6 +98,10 @@ module vtdyn
     real(c_double)         :: c(VT_POLY_MAX)
     type(c_funptr)         :: callback
     type(c_ptr)            :: user
+    integer(c_int)         :: nsample
+    type(c_ptr)            :: sample_t
+    type(c_ptr)            :: sample_y
+    type(c_ptr)            :: sample_d2
   end type vt_function
 
   type, bind(C) :: vt_drive_def
@@ -289,6 +293,8 @@ module vtdyn
     real(c_double)         :: baumgarte_beta
     type(c_funptr)         :: progress
     type(c_ptr)            :: user
+    type(c_ptr)            :: tout      ! the address of a TARGET real(c_double) array, or c_null_ptr
+    integer(c_int)         :: ntout
   end type vt_run_options
 
   type, bind(C) :: vt_trajectory
@@ -456,6 +462,14 @@ module vtdyn
       type(c_funptr), value :: callback
       type(c_ptr), value :: user
       type(vt_function) :: vt_function_user
+    end function
+    ! t and y are kept by address until the function is added to a drive (or evaluated):
+    ! pass arrays with the TARGET attribute that stay alive until then
+    function vt_function_spline(n, t, y) bind(C, name='vt_function_spline')
+      import :: c_int, c_double, vt_function
+      integer(c_int), value :: n
+      real(c_double), intent(in) :: t(*), y(*)
+      type(vt_function) :: vt_function_spline
     end function
     function vt_function_eval(out, f, t) bind(C, name='vt_function_eval')
       import :: c_int, c_double, vt_function

@@ -154,9 +154,25 @@ vt_function vt_function_polynomial(int ncoef, const double *c);
 vt_function vt_function_sine(double a, double b, double omega, double phase);
 /// f, f', f'' from callback(t, out, user)
 vt_function vt_function_user(vt_function_callback callback, void *user);
-/// out = [f(t), f'(t), f''(t)], exact for the built-in kinds.
+/// The C2 cubic interpolating spline through the n samples (t[k], y[k]), k = 0..n−1: t in s,
+/// strictly increasing, y in the drive's unit (rad or m), n ≥ 2. Ends: n = 2 the straight line,
+/// n = 3 the parabola through the three samples, n ≥ 4 "not-a-knot" (f''' continuous at t[1]
+/// and t[n−2]: no condition imposed on the end slopes or curvatures, and every cubic polynomial
+/// is reproduced exactly). f, f', f'' are those of the piecewise cubic (f'' piecewise linear and
+/// continuous). Outside [t[0], t[n−1]] the first and last pieces' cubics are continued.
+/// The function refers to the caller's arrays, which must stay valid until it is added to a
+/// drive (vt_builder_add_drive() validates the samples, copies them and computes the second
+/// derivatives by LAPACK into the builder, and vt_builder_build() into the model: the arrays may
+/// then be freed) or while it is evaluated by vt_function_eval(). Refusals (when added or
+/// evaluated): VT_ERR_BAD_DRIVE (n < 2, t or y NULL, t not strictly increasing; the message
+/// names the sample), VT_ERR_NONFINITE (a sample not finite).
+vt_function vt_function_spline(int n, const double *t, const double *y);
+/// out = [f(t), f'(t), f''(t)], exact for the built-in kinds. A spline not yet in a model
+/// (sample_d2 NULL) has its second derivatives solved at each call in a fixed local buffer:
+/// at most VT_SPLINE_EVAL_MAX samples (a model's drives, m->drive[k].f, have no limit).
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_DRIVE (malformed function), VT_ERR_CALLBACK,
-/// VT_ERR_NONFINITE (a value that is not finite). out is untouched on failure.
+/// VT_ERR_NONFINITE (a value that is not finite), VT_ERR_BAD_SIZE (a spline not in a model with
+/// more than VT_SPLINE_EVAL_MAX samples), VT_ERR_LAPACK. out is untouched on failure.
 vt_status vt_function_eval(double out[3], const vt_function *f, double t);
 
 /* ---- drives and cut joints (src/model.c) -------------------------------------------- */
@@ -167,6 +183,9 @@ vt_drive_def vt_default_drive_def(void);
 vt_cut_joint_def vt_default_cut_joint_def(void);
 /// Validates and adds a drive on bodies already added. Returns the drive's index (0, 1, ...)
 /// or a negative vt_status (VT_ERR_BAD_DRIVE, VT_ERR_BAD_INDEX, VT_ERR_NONFINITE, ...).
+/// A spline time function's samples are copied into the builder with their second derivatives
+/// (its sample_d2 is ignored): the caller's arrays are free after the call. A refused drive
+/// leaves the builder as it was.
 int vt_builder_add_drive(vt_builder *builder, const vt_drive_def *def);
 /// Validates and adds a cut joint between bodies already added. Returns its index or a
 /// negative vt_status (VT_ERR_BAD_CUT_JOINT, VT_ERR_BAD_INDEX, VT_ERR_AXIS_ZERO, ...).
@@ -245,7 +264,8 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *da
 vt_run_options vt_default_run_options(void);
 
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
-/// with nout output intervals needs nrow ≥ nout + 1. On failure *trajectory is NULL.
+/// with nout output intervals needs nrow ≥ nout + 1, one with ntout output times (tout)
+/// nrow ≥ ntout + 1 (row 0 is always t0). On failure *trajectory is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY.
 vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
 /// Frees a trajectory; NULL does nothing.
@@ -260,7 +280,11 @@ void vt_trajectory_free(vt_trajectory *trajectory);
 vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
 /// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
-/// output time vt_kinematic_solve(), from the previous solution (the first from d->q).
+/// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
+/// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
+/// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
+/// more entries than the trajectory's rows − 1) is refused with VT_ERR_BAD_OPTION, the message
+/// naming the entry, before anything is written.
 /// With opt->forward_check, the forward check integrates the model without drives under
 /// the drives' generalized forces, evaluated exactly at every time IDA asks for (in a build
 /// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
@@ -273,7 +297,9 @@ vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_r
 
 /// Dynamic analysis: the index-1 form of (5) handed to SUNDIALS IDA, unknowns q, q̇ and λ,
 ///   q' − T(q) q̇ = 0,   M* q̈ − Q − Φ_q^T λ = 0,   Φ_q q̈ − γ = 0,
-/// from d->q, d->qd at opt->t0, first made consistent (vt_kinematic_solve). With
+/// from d->q, d->qd at opt->t0, first made consistent (vt_kinematic_solve); rows at t0 and then
+/// at opt->tout's times when given (IDA's interpolant, its stop time the last of them), as
+/// vt_kinematic_analysis() validates them. With
 /// opt->forward_check the forward model (drives removed, their efforts applied) is integrated
 /// as well: by default separately, after the driven run, with the efforts of the driven state
 /// interpolated (cubic Hermite over the driven run's steps; error in tr->fwd_interp_err); with

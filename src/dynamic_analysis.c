@@ -239,7 +239,7 @@ static vt_status block_output(const vt_model *m, vt_data *d, double t, const dou
     return vt_inverse_dynamics(m, d);
 }
 
-/* rows 1..nout: integrate, and at every output store the driven and the forward rows */
+/* rows 1..nout (or 1..ntout, at the caller's times): integrate, and at every output store the driven and the forward rows */
 static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N, const double *y0,
                      const double *yp0, const double *ids)
 {
@@ -297,7 +297,11 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     CHECK(IDASetSuppressAlg(mem, SUNTRUE), "IDASetSuppressAlg");
     CHECK(IDASetMaxNumSteps(mem, opt->max_steps), "IDASetMaxNumSteps");
     if (opt->max_step > 0.0) CHECK(IDASetMaxStep(mem, opt->max_step), "IDASetMaxStep");
-    CHECK(IDASetStopTime(mem, opt->t1), "IDASetStopTime");
+    /* the last output time: IDA never steps past it, so an independent forward check's driven
+     * history covers every time the forward run asks for (no extrapolation) */
+    const int nrow = vt_run_rows(opt);
+    const double tend = vt_run_time(opt, nrow);
+    CHECK(IDASetStopTime(mem, tend), "IDASetStopTime");
 
 
     history *h = p->rec;
@@ -312,8 +316,8 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
         h->err = 0.0;
     }
     double tstep = opt->t0;
-    for (int k = 1; k <= opt->nout; k++) {
-        const double tout = k == opt->nout ? opt->t1 : opt->t0 + (opt->t1 - opt->t0) * k / opt->nout;
+    for (int k = 1; k <= nrow; k++) {
+        const double tout = vt_run_time(opt, k);
         double tret = 0.0;
         if (h) { /* one step at a time, every step recorded, the outputs from IDA's interpolant */
             if (h->n == 0) { /* the start */
@@ -331,7 +335,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                                  opt->max_steps, tout, tstep);
                     goto done;
                 }
-                CHECK(IDASolve(mem, opt->t1, &tstep, y, yp, IDA_ONE_STEP), "IDASolve");
+                CHECK(IDASolve(mem, tend, &tstep, y, yp, IDA_ONE_STEP), "IDASolve");
                 if (h->n == h->cap) {
                     st = vt_fail(md->message, VT_ERR_BAD_OPTION,
                                  "forward check: the driven run took more than history_steps = %d steps", h->cap);
@@ -400,7 +404,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
             }
             vt_trajectory_store_forward(tr, p->mf, p->df, k);
         }
-        if (opt->progress && opt->progress(tret, opt->t1, opt->user)) {
+        if (opt->progress && opt->progress(tret, tend, opt->user)) {
             st = vt_fail(md->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
             goto done;
         }

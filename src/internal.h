@@ -18,6 +18,9 @@
 void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
             double *w, double *work, const int *lwork, int *info, size_t ljobz, size_t luplo);
 
+/* tridiagonal solve with partial pivoting (the spline's second derivatives, functions.c) */
+void dgtsv_(const int *n, const int *nrhs, double *dl, double *d, double *du, double *b, const int *ldb, int *info);
+
 /* Cartesian block of body i (1..n) in the paper's stacked 7n vectors. */
 static inline int vt_xoff(int body) { return 7 * (body - 1); }
 
@@ -299,8 +302,12 @@ void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double
 
 /* Validates a time function (functions.c); msg may be NULL. */
 vt_status vt_function_check(char *msg, const vt_function *f);
-/* vt_function_eval for a function already validated (a model's drives) */
+/* vt_function_eval for a function already validated (a model's drives: a spline's sample_d2 set) */
 vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t);
+/* A spline's second derivatives d2 (n) at its samples (functions.c), by LAPACK's dgtsv; work
+ * holds 3n doubles; the samples already validated (vt_function_check); msg may be NULL.
+ * Statuses: VT_ERR_LAPACK, VT_ERR_NONFINITE (spacings so uneven that d2 overflows). */
+vt_status vt_spline_d2(char *msg, int n, const double *t, const double *y, double *d2, double *work);
 
 /* Kinds of constraint row (model.c builds them, constraints.c evaluates them). */
 enum {
@@ -360,6 +367,9 @@ void vt_trajectory_store(vt_trajectory *tr, const vt_model *m, const vt_data *d,
 void vt_trajectory_store_forward(vt_trajectory *tr, const vt_model *mf, const vt_data *df, int row);
 void vt_trajectory_reset(vt_trajectory *tr);
 vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr, const char *who);
+/* Output rows of a run after row 0 (nout or ntout), and the time of row k (0 = t0) */
+int vt_run_rows(const vt_run_options *opt);
+double vt_run_time(const vt_run_options *opt, int k);
 
 /* The forward check with IDA (integrate.c): integrates the model without drives (mf, df)
  * from the driven state at opt->t0, with df->qfrc = the drives' generalized force at each

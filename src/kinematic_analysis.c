@@ -1,7 +1,8 @@
 /* The kinematic analysis over time: a fully driven model (as many constraint rows as rates) at
  * every output time, each instant by vt_kinematic_solve from the previous one, then the forward
  * check (src/dynamic_analysis.c): the model without drives integrated under the drives' efforts,
- * which must reproduce the motion.
+ * which must reproduce the motion. Rows at t0 and the output times (the uniform ones, or the
+ * caller's list vt_run_options.tout): each exact at its time.
  */
 #include <string.h>
 
@@ -21,11 +22,13 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
                        "vt_kinematic_analysis: %d constraint rows for %d rates; a dynamic analysis handles the rest",
                        m->nc, m->nv);
     vt_trajectory_reset(tr);
-    for (int k = 0; k <= opt->nout; k++) {
-        d->time = opt->t0 + (opt->t1 - opt->t0) * k / opt->nout;
+    const int nrow = vt_run_rows(opt);
+    const double tend = vt_run_time(opt, nrow);
+    for (int k = 0; k <= nrow; k++) { /* t0, then the uniform rows or the caller's times */
+        d->time = vt_run_time(opt, k);
         if ((st = vt_kinematic_solve(m, d, opt->newton_tol, opt->newton_maxit))) return st;
         vt_trajectory_store(tr, m, d, k);
-        if (opt->progress && opt->progress(d->time, opt->t1, opt->user))
+        if (opt->progress && opt->progress(d->time, tend, opt->user))
             return vt_fail(d->message, VT_ERR_ABORTED, "vt_kinematic_analysis: stopped at t = %g", d->time);
     }
 #if VT_HAVE_SUNDIALS

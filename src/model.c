@@ -11,6 +11,8 @@
  * The path of body i is the list of rates of the joints between the ground and i: the
  * columns of S that are non-zero in body i's rows (S is block lower triangular in tree order,
  * the paper's "reference matrix").
+ * A drive's spline time function (src/functions.c) owns its samples and their second
+ * derivatives: one block per drive in the builder, and a part of the model's one block.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +29,8 @@ struct vt_builder {
     vt_drive_def *drives;
     vt_name *drive_names;
     int ndrive, capdrive, capdrivenames;
+    double **samples; /* per drive: its spline's t, y and f'' (3 nsample), the builder's; or NULL */
+    int capsamples;
     vt_cut_joint_def *cuts;
     vt_name *cut_names;
     int ncut, capcut, capcutnames;
@@ -130,6 +134,8 @@ void vt_builder_free(vt_builder *builder)
     free(builder->bodies);
     free(builder->body_names);
     free(builder->joint_names);
+    for (int k = 0; k < builder->ndrive; k++) free(builder->samples[k]);
+    free(builder->samples);
     free(builder->drives);
     free(builder->drive_names);
     free(builder->cuts);
@@ -389,11 +395,39 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
     return VT_OK;
 }
 
+/* a spline's samples copied, with their second derivatives, into a block of the builder's
+ * (t, y, f'': 3n doubles), so that the caller's arrays are free after the drive is added */
+static vt_status own_spline(char *msg, int k, vt_function *f, double **block)
+{
+    const size_t n = (size_t)f->nsample;
+    double *own = malloc(3 * n * sizeof(double)), *work = malloc(3 * n * sizeof(double));
+    if (!own || !work) {
+        free(own);
+        free(work);
+        return vt_fail(msg, VT_ERR_NO_MEMORY, "drive %d: out of memory for %zu spline samples", k, n);
+    }
+    memcpy(own, f->sample_t, n * sizeof(double));
+    memcpy(own + n, f->sample_y, n * sizeof(double));
+    char fmsg[256];
+    const vt_status st = vt_spline_d2(fmsg, f->nsample, own, own + n, own + 2 * n, work);
+    free(work);
+    if (st) {
+        free(own);
+        return vt_fail(msg, st, "drive %d: %s", k, fmsg);
+    }
+    f->sample_t = own;
+    f->sample_y = own + n;
+    f->sample_d2 = own + 2 * n;
+    *block = own;
+    return VT_OK;
+}
+
 int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
 {
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
     vt_drive_def d = *def;
+    if (d.f.type == VT_FUNCTION_SPLINE) d.f.sample_d2 = NULL; /* computed here, never trusted */
     vt_status st = VT_OK;
     if (d.frame) {
         if (d.type != VT_DRIVE_POINT)
@@ -403,14 +437,22 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
     if ((st = validate_drive(b, b->message, b->ndrive, &d))) return st;
     vt_name name;
     if ((st = take_name(b->message, name, d.name, (const vt_name *)b->drive_names, b->ndrive, "drive", b->ndrive))) return st;
+    double *own = NULL;
+    const int uses_f = d.type != VT_DRIVE_ORIENTATION || !d.orientation_callback;
+    if (uses_f && d.f.type == VT_FUNCTION_SPLINE && (st = own_spline(b->message, b->ndrive, &d.f, &own))) return st;
     int capn = b->capdrivenames;
     if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d) ||
-        !grow((void **)&b->drive_names, &capn, b->ndrive, sizeof(vt_name)))
+        !grow((void **)&b->drive_names, &capn, b->ndrive, sizeof(vt_name)) ||
+        !grow((void **)&b->samples, &b->capsamples, b->ndrive, sizeof own)) {
+        b->capdrivenames = capn; /* only capacities may have grown: the builder's content is as it was */
+        free(own);
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "drive %d: out of memory", b->ndrive);
+    }
     b->capdrivenames = capn;
     d.name = d.frame = NULL;
     memcpy(b->drive_names[b->ndrive], name, sizeof name);
     b->drives[b->ndrive] = d;
+    b->samples[b->ndrive] = own;
     b->message[0] = '\0';
     return b->ndrive++;
 }
@@ -683,9 +725,14 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     for (int k = 0; k < b->ndrive; k++) nc += b->drives[k].type == VT_DRIVE_ORIENTATION ? 3 : 1;
     for (int k = 0; k < b->ncut; k++) nc += cut_rows[b->cuts[k].joint];
 
+    size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */
+    for (int k = 0; k < b->ndrive; k++)
+        if (b->samples[k]) nsample += (size_t)b->drives[k].f.nsample;
+
     arena a = {NULL, sizeof(vt_model)};
     vt_model tmp;
     layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe);
+    take(&a, 3 * nsample * sizeof(double));
     char *block = calloc(1, a.used);
     if (!block) {
         free(depth_nv);
@@ -695,6 +742,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     a.base = block;
     a.used = sizeof(vt_model);
     layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe);
+    double *samples = take(&a, 3 * nsample * sizeof(double));
 
     m->nbody = n;
     m->nq = nq;
@@ -709,6 +757,16 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->ncut = b->ncut;
     m->nc = nc;
     if (b->ndrive) memcpy(m->drive, b->drives, (size_t)b->ndrive * sizeof(vt_drive_def));
+    for (int k = 0; k < b->ndrive; k++) { /* the model's own copy of each spline's samples */
+        if (!b->samples[k]) continue;
+        vt_function *f = &m->drive[k].f;
+        const size_t ns = (size_t)f->nsample;
+        memcpy(samples, b->samples[k], 3 * ns * sizeof(double));
+        f->sample_t = samples;
+        f->sample_y = samples + ns;
+        f->sample_d2 = samples + 2 * ns;
+        samples += 3 * ns;
+    }
     if (b->ncut) memcpy(m->cut, b->cuts, (size_t)b->ncut * sizeof(vt_cut_joint_def));
     /* names (the model's own copies; a stored definition's name points at its copy) and frames */
     for (int k = 0; k < b->ndrive; k++) {

@@ -1,5 +1,6 @@
 /* Trajectories: the rows of an analysis over time (one allocation), the default run options,
- * and the comparison of the forward check with the driven run (the built-in self-check:
+ * the output times (row 0 at t0, then t_k = t0 + k (t1 − t0)/nout, k = 1..nout, or the caller's
+ * list t_k = tout[k − 1], k = 1..ntout), and the comparison of the forward check with the driven run (the built-in self-check:
  * max |q_fwd − q|, max |q̇_fwd − q̇| and the reactions' largest differences). */
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,8 @@ vt_run_options vt_default_run_options(void)
     o.formulation = VT_FORMULATION_GGL;
     o.baumgarte_alpha = 10.0;
     o.baumgarte_beta = 10.0;
+    o.tout = NULL; /* the uniform rows */
+    o.ntout = 0;
     return o;
 }
 
@@ -153,6 +156,19 @@ void vt_trajectory_store_forward(vt_trajectory *tr, const vt_model *mf, const vt
     tr->fwd_err_moment = fmax(tr->fwd_err_moment, maxdiff(tr->cut_moment_fwd + r * 3 * (size_t)mf->ncut, tr->cut_moment + r * 3 * (size_t)mf->ncut, 3 * (size_t)mf->ncut));
 }
 
+int vt_run_rows(const vt_run_options *opt)
+{
+    return opt->tout ? opt->ntout : opt->nout;
+}
+
+double vt_run_time(const vt_run_options *opt, int k)
+{
+    if (k == 0) return opt->t0;
+    if (opt->tout) return opt->tout[k - 1];
+    /* the last row exactly at t1, whatever the rounding of the quotient */
+    return k == opt->nout ? opt->t1 : opt->t0 + (opt->t1 - opt->t0) * k / opt->nout;
+}
+
 void vt_trajectory_reset(vt_trajectory *tr)
 {
     tr->nfilled = 0;
@@ -170,9 +186,27 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
     if (tr->model != m) return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "%s: trajectory made for another model", who);
     if (!isfinite(opt->t0) || !isfinite(opt->t1) || !(opt->t1 > opt->t0))
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: need finite t0 < t1 (t0 %g, t1 %g)", who, opt->t0, opt->t1);
-    if (opt->nout < 1 || opt->nout + 1 > tr->nrow)
+    if (opt->tout || opt->ntout) { /* the caller's output times */
+        if (!opt->tout || opt->ntout < 1)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: output times: tout %s with ntout %d (need both, ntout >= 1)",
+                           who, opt->tout ? "given" : "NULL", opt->ntout);
+        if (opt->ntout + 1 > tr->nrow)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "%s: ntout %d needs %d trajectory rows (row 0 is t0), the trajectory has %d", who, opt->ntout,
+                           opt->ntout + 1, tr->nrow);
+        for (int k = 0; k < opt->ntout; k++) {
+            const double v = opt->tout[k], before = k ? opt->tout[k - 1] : opt->t0;
+            if (!isfinite(v)) return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tout[%d] is not finite", who, k);
+            if (!(v > before))
+                return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tout[%d] = %g is not after %s = %g", who, k, v,
+                               k ? "the previous entry" : "t0", before);
+            if (v > opt->t1)
+                return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tout[%d] = %g is after t1 = %g", who, k, v, opt->t1);
+        }
+    } else if (opt->nout < 1 || opt->nout + 1 > tr->nrow) {
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: nout %d needs 1..%d (the trajectory's rows − 1)", who,
                        opt->nout, tr->nrow - 1);
+    }
     if (!(opt->rtol > 0.0) || !(opt->atol > 0.0) || !(opt->max_step >= 0.0) || opt->max_steps < 1 ||
         !(opt->newton_tol > 0.0) || opt->newton_maxit < 1 || opt->history_steps < 2)
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tolerances, step limits and iteration counts must be positive", who);

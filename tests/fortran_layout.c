@@ -13,7 +13,8 @@ static const size_t vt_model_def_layout[] = {sizeof(vt_model_def),
     offsetof(vt_model_def, allow_redundant), VT_END};
 static const size_t vt_function_layout[] = {sizeof(vt_function),
     offsetof(vt_function, type), offsetof(vt_function, ncoef), offsetof(vt_function, c),
-    offsetof(vt_function, callback), offsetof(vt_function, user), VT_END};
+    offsetof(vt_function, callback), offsetof(vt_function, user), offsetof(vt_function, nsample),
+    offsetof(vt_function, sample_t), offsetof(vt_function, sample_y), offsetof(vt_function, sample_d2), VT_END};
 static const size_t vt_drive_def_layout[] = {sizeof(vt_drive_def),
     offsetof(vt_drive_def, type), offsetof(vt_drive_def, body), offsetof(vt_drive_def, index),
     offsetof(vt_drive_def, point), offsetof(vt_drive_def, f), offsetof(vt_drive_def, axis),
@@ -80,7 +81,8 @@ static const size_t vt_run_options_layout[] = {sizeof(vt_run_options),
     offsetof(vt_run_options, forward_independent), offsetof(vt_run_options, history_steps),
     offsetof(vt_run_options, forward_as_loads), offsetof(vt_run_options, formulation),
     offsetof(vt_run_options, baumgarte_alpha), offsetof(vt_run_options, baumgarte_beta),
-    offsetof(vt_run_options, progress), offsetof(vt_run_options, user), VT_END};
+    offsetof(vt_run_options, progress), offsetof(vt_run_options, user), offsetof(vt_run_options, tout),
+    offsetof(vt_run_options, ntout), VT_END};
 static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, model), offsetof(vt_trajectory, nrow), offsetof(vt_trajectory, nfilled),
     offsetof(vt_trajectory, t), offsetof(vt_trajectory, q), offsetof(vt_trajectory, qd),

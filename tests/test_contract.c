@@ -267,6 +267,49 @@ static void test_time_functions(void **state)
     }
 }
 
+/* a spline drive with bad samples: refused with its status and a message naming the sample,
+ * the builder as it was (the next drive added gets index 0, the model has that one only) */
+static void test_spline_drives(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.inertia[4] = link.inertia[8] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    const double t[4] = {0.0, 0.5, 0.5, 1.5}, tn[4] = {0.0, 0.5, INFINITY, 1.5}, y[4] = {0.0, 0.1, 0.3, 0.2},
+                 yn[4] = {0.0, NAN, 0.3, 0.2}, tok[4] = {0.0, 0.5, 1.0, 1.5};
+    const struct {
+        vt_function f;
+        vt_status st;
+        const char *says;
+    } bad[6] = {{vt_function_spline(1, tok, y), VT_ERR_BAD_DRIVE, "1 samples"},
+                {vt_function_spline(4, t, y), VT_ERR_BAD_DRIVE, "not strictly increasing at sample 2"},
+                {vt_function_spline(4, tn, y), VT_ERR_NONFINITE, "sample 2 not finite"},
+                {vt_function_spline(4, tok, yn), VT_ERR_NONFINITE, "sample 1 not finite"},
+                {vt_function_spline(4, NULL, y), VT_ERR_BAD_DRIVE, "NULL"},
+                {vt_function_spline(4, tok, NULL), VT_ERR_BAD_DRIVE, "NULL"}};
+    vt_drive_def dr = vt_default_drive_def();
+    for (int k = 0; k < 6; k++) {
+        dr.f = bad[k].f;
+        const vt_drive_def keep = dr;
+        assert_int_equal(vt_builder_add_drive(b, &dr), bad[k].st);
+        assert_memory_equal(&dr, &keep, sizeof dr); /* the caller's definition untouched */
+        if (!strstr(vt_builder_message(b), bad[k].says) || !strstr(vt_builder_message(b), "drive 0"))
+            fail_msg("case %d: message \"%s\" lacks \"%s\"", k, vt_builder_message(b), bad[k].says);
+    }
+    dr.f = vt_function_spline(4, tok, y);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->ndrive, 1);
+    assert_int_equal(m->drive[0].f.nsample, 4);
+    for (int k = 0; k < 4; k++) assert_true(m->drive[0].f.sample_t[k] == tok[k] && m->drive[0].f.sample_y[k] == y[k]);
+    assert_true(m->drive[0].f.sample_t != tok); /* the model's own copy */
+    vt_model_free(m);
+}
+
 /* indices out of range and run options out of range */
 static void test_indices_and_options(void **state)
 {
@@ -312,6 +355,38 @@ static void test_indices_and_options(void **state)
 #endif
         assert_unchanged(&before, m, d);
     }
+    /* bad lists of output times: refused naming the entry, the data and the trajectory as they were */
+    const double t_nan[3] = {0.1, NAN, 0.5}, t_down[3] = {0.1, 0.4, 0.3}, t_at0[2] = {0.0, 0.5},
+                 t_past[3] = {0.1, 0.5, 1.5}, t_ok[3] = {0.1, 0.4, 0.9}, many[11] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6,
+                                                                                    0.7, 0.8, 0.9, 0.95, 1.0};
+    const struct {
+        const double *tout;
+        int ntout;
+        const char *says;
+    } list[7] = {{t_nan, 3, "tout[1] is not finite"}, {t_down, 3, "tout[2] = 0.3 is not after the previous"},
+                 {t_at0, 2, "tout[0] = 0 is not after t0"}, {t_past, 3, "tout[2] = 1.5 is after t1"},
+                 {many, 11, "ntout 11 needs 12"}, {NULL, 3, "tout NULL"}, {t_ok, 0, "ntout 0"}};
+    for (int k = 0; k < 7; k++) {
+        vt_run_options o = vt_default_run_options();
+        o.tout = list[k].tout;
+        o.ntout = list[k].ntout;
+        tr->nfilled = 5;
+        tr->t[3] = 42.0;
+        snapshot(&before, m, d);
+        for (int a = 0; a < 1 + VT_HAVE_SUNDIALS; a++) {
+            d->message[0] = '\0';
+#if VT_HAVE_SUNDIALS
+            const vt_status st = a ? vt_dynamic_analysis(m, d, &o, tr) : vt_kinematic_analysis(m, d, &o, tr);
+#else
+            const vt_status st = vt_kinematic_analysis(m, d, &o, tr);
+#endif
+            assert_int_equal(st, VT_ERR_BAD_OPTION);
+            if (!strstr(d->message, list[k].says))
+                fail_msg("list %d: message \"%s\" lacks \"%s\"", k, d->message, list[k].says);
+            assert_unchanged(&before, m, d);
+            assert_true(tr->nfilled == 5 && tr->t[3] == 42.0);
+        }
+    }
     vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
@@ -341,6 +416,7 @@ int main(void)
         cmocka_unit_test(test_null_and_mismatch),
         cmocka_unit_test(test_nonfinite_states),
         cmocka_unit_test(test_time_functions),
+        cmocka_unit_test(test_spline_drives),
         cmocka_unit_test(test_indices_and_options),
         cmocka_unit_test(test_status_strings),
     };

@@ -247,6 +247,46 @@ static void test_bricard_free_motion(void **state)
 
 /* The forward check in one IDA system with each formulation (the ODE form has no λ among the
  * unknowns: found by the fuzzer reading past y there) and independently: the forward run follows */
+/* rows at irregular given times (the last before t1): the double link's exact first integral
+ * and joint-1 reaction (29) at exactly those times, in both forward-check modes */
+static void test_given_output_times(void **state)
+{
+    (void)state;
+    vt_model *m;
+    assert_ok(vt_scene_double_link(&m, 1));
+    const double tout[8] = {0.013, 0.2, 0.2001, 0.5, 0.77, 1.3, 1.31, 1.85};
+    for (int indep = 0; indep < 2; indep++) {
+        vt_data *d;
+        vt_trajectory *tr;
+        assert_ok(vt_data_create(&d, m));
+        vt_run_options opt = vt_default_run_options();
+        opt.t1 = 1.9;
+        opt.tout = tout;
+        opt.ntout = 8;
+        opt.rtol = 1e-10;
+        opt.atol = 1e-12;
+        opt.max_step = 0.005;
+        opt.forward_independent = indep;
+        assert_ok(vt_trajectory_create(&tr, m, 9));
+        assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+        assert_int_equal(tr->nfilled, 9);
+        assert_true(tr->t[0] == 0.0);
+        for (int k = 0; k < 9; k++) {
+            if (k) assert_true(tr->t[k] == tout[k - 1]);
+            const double th = -tr->q[2 * k], thd = -tr->qd[2 * k], s = sin(th);
+            const double *f1 = tr->jnt_force + 9 * k + 3, c = cos(th);
+            assert_near(thd * thd, 7.3575 * s, 1e-8);
+            assert_near(f1[0], -2207.25 * sin(2 * th), 1e-8 * 1962.0);
+            assert_near(f1[1], 4905.0 * s * s + 490.5 * c * c, 1e-8 * 1962.0);
+        }
+        assert_true(d->time == tout[7]); /* the run ends at the last given time */
+        if (!(tr->fwd_err_q < 1e-6)) fail_msg("independent %d: forward q error %.3g", indep, tr->fwd_err_q);
+        vt_trajectory_free(tr);
+        vt_data_free(d);
+    }
+    vt_model_free(m);
+}
+
 static void test_forward_modes(void **state)
 {
     (void)state;
@@ -338,6 +378,7 @@ int main(void)
         cmocka_unit_test(test_nfourbar_through_singular_pose),
         cmocka_unit_test(test_bricard_free_motion),
         cmocka_unit_test(test_forward_modes),
+        cmocka_unit_test(test_given_output_times),
         cmocka_unit_test(test_ida_failures),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -31,7 +31,8 @@ program test_fortran_layout
          a(c_loc(x_model_def%allow_redundant))])
     call check(1_c_int, 'vt_function', c_sizeof(x_function), a(c_loc(x_function)), [ &
          a(c_loc(x_function%type)), a(c_loc(x_function%ncoef)), a(c_loc(x_function%c)), &
-         a(c_loc(x_function%callback)), a(c_loc(x_function%user))])
+         a(c_loc(x_function%callback)), a(c_loc(x_function%user)), a(c_loc(x_function%nsample)), &
+         a(c_loc(x_function%sample_t)), a(c_loc(x_function%sample_y)), a(c_loc(x_function%sample_d2))])
     call check(2_c_int, 'vt_drive_def', c_sizeof(x_drive_def), a(c_loc(x_drive_def)), [ &
          a(c_loc(x_drive_def%type)), a(c_loc(x_drive_def%body)), a(c_loc(x_drive_def%index)), &
          a(c_loc(x_drive_def%point)), a(c_loc(x_drive_def%f)), a(c_loc(x_drive_def%axis)), &
@@ -94,7 +95,8 @@ program test_fortran_layout
          a(c_loc(x_run_options%forward_independent)), a(c_loc(x_run_options%history_steps)), &
          a(c_loc(x_run_options%forward_as_loads)), a(c_loc(x_run_options%formulation)), &
          a(c_loc(x_run_options%baumgarte_alpha)), a(c_loc(x_run_options%baumgarte_beta)), &
-         a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user))])
+         a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user)), a(c_loc(x_run_options%tout)), &
+         a(c_loc(x_run_options%ntout))])
     call check(8_c_int, 'vt_trajectory', c_sizeof(x_trajectory), a(c_loc(x_trajectory)), [ &
          a(c_loc(x_trajectory%model)), a(c_loc(x_trajectory%nrow)), a(c_loc(x_trajectory%nfilled)), &
          a(c_loc(x_trajectory%t)), a(c_loc(x_trajectory%q)), a(c_loc(x_trajectory%qd)), &
@@ -137,6 +139,10 @@ program test_fortran_layout
       .and. .not. c_associated(x_drive_def%orientation_callback), 'vt_default_drive_def')
   x_function = vt_function_sine(1.0_c_double, 2.0_c_double, 3.0_c_double, 4.0_c_double)
   call expect(x_function%type == VT_FUNC_SINE .and. same(x_function%c(1:4), [1, 2, 3, 4]), 'vt_function_sine')
+  x_function = vt_function_spline(3_c_int, [0.0_c_double, 1.0_c_double, 2.0_c_double], &
+      [1.0_c_double, 2.0_c_double, 4.0_c_double])
+  call expect(x_function%type == VT_FUNC_SPLINE .and. x_function%nsample == 3 &
+      .and. .not. c_associated(x_function%sample_d2), 'vt_function_spline')
   x_cut_joint_def = vt_default_cut_joint_def()
   call expect(x_cut_joint_def%joint == VT_JOINT_REVOLUTE .and. x_cut_joint_def%body_a == 0 &
       .and. x_cut_joint_def%body_b == 1 .and. same(x_cut_joint_def%axis2, [1, 0, 0]), 'vt_default_cut_joint_def')
@@ -145,7 +151,8 @@ program test_fortran_layout
       .and. .not. c_associated(x_frame_def%name), 'vt_default_frame_def')
   x_run_options = vt_default_run_options()
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
-      .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL, &
+      .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL &
+      .and. .not. c_associated(x_run_options%tout) .and. x_run_options%ntout == 0, &
       'vt_default_run_options')
   call expect(vt_string(vt_status_string(VT_ERR_BAD_SIZE)) /= vt_string(vt_status_string(VT_ERR_BAD_OPTION)), &
       'vt_status_string')

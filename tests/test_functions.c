@@ -1,5 +1,7 @@
 /* src/functions.c: f' and f'' of every built-in time function against central differences
- * of f and f', exact values, and the error paths of user callbacks. */
+ * of f and f', exact values, and the error paths of user callbacks. The spline: exact on the
+ * polynomials its end conditions reproduce, its order of convergence on sin (error ratios
+ * when the spacing halves), continuity at the knots, and the model's own copy of the samples. */
 #include "vt_test.h"
 
 static void check_derivatives(const vt_function *f, double t)
@@ -76,11 +78,199 @@ static void test_callbacks_and_errors(void **state)
     assert_int_equal(vt_function_eval(NULL, &f, 0.0), VT_ERR_NULL);
 }
 
+/* a one-body model whose joint drive follows f: the builder's copy of a spline (the model's) */
+static vt_model *model_with(const vt_function *f)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.inertia[4] = link.inertia[8] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.f = *f;
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* p(t) = 0.5 − t + 2 t² − 0.7 t³ and its derivatives, truncated to degree `deg` */
+static void poly(double v[3], double t, int deg)
+{
+    const double c[4] = {0.5, -1.0, 2.0, -0.7};
+    v[0] = v[1] = v[2] = 0.0;
+    for (int k = deg; k >= 0; k--) {
+        v[2] = v[2] * t + 2.0 * v[1];
+        v[1] = v[1] * t + v[0];
+        v[0] = v[0] * t + c[k];
+    }
+}
+
+/* not-a-knot reproduces cubics (n ≥ 4), the parabola of n = 3 a quadratic, the line of n = 2 a
+ * line: f, f', f'' to round-off, inside the samples and on the continued end pieces outside */
+static void test_spline_exact(void **state)
+{
+    (void)state;
+    const double tk[9] = {-0.3, 0.1, 0.25, 0.9, 1.0, 1.6, 1.75, 2.4, 3.1};
+    for (int n = 2; n <= 9; n++) {
+        const int deg = n >= 4 ? 3 : n - 1;
+        double yk[9], v[3], e[3];
+        for (int k = 0; k < n; k++) {
+            poly(v, tk[k], deg);
+            yk[k] = v[0];
+        }
+        const vt_function f = vt_function_spline(n, tk, yk);
+        vt_model *m = model_with(&f);
+        for (double t = -1.0; t <= 4.0; t += 0.0625) {
+            poly(e, t, deg);
+            for (int route = 0; route < 2; route++) { /* standalone, then the model's copy */
+                assert_ok(vt_function_eval(v, route ? &m->drive[0].f : &f, t));
+                assert_near(v[0], e[0], 1e-12 * (1 + fabs(e[0])));
+                assert_near(v[1], e[1], 1e-11 * (1 + fabs(e[1])));
+                assert_near(v[2], e[2], 1e-10 * (1 + fabs(e[2])));
+            }
+        }
+        vt_model_free(m);
+    }
+}
+
+/* the largest errors of f, f', f'' of the spline through sin on [0, 3] at n samples, at 16
+ * points in every interval, the same fractions of it on every grid (the model's copy: no limit
+ * on n) */
+static void sin_errors(int n, double err[3])
+{
+    double *tk = malloc(2 * (size_t)n * sizeof(double)), *yk = tk + n;
+    assert_non_null(tk);
+    for (int k = 0; k < n; k++) {
+        tk[k] = 3.0 * k / (n - 1);
+        yk[k] = sin(tk[k]);
+    }
+    const vt_function f = vt_function_spline(n, tk, yk);
+    vt_model *m = model_with(&f);
+    free(tk); /* the model has its own copy */
+    err[0] = err[1] = err[2] = 0.0;
+    for (int j = 0; j < 16 * (n - 1); j++) {
+        const double t = 3.0 * (j + 0.5) / (16.0 * (n - 1));
+        double v[3];
+        assert_ok(vt_function_eval(v, &m->drive[0].f, t));
+        err[0] = fmax(err[0], fabs(v[0] - sin(t)));
+        err[1] = fmax(err[1], fabs(v[1] - cos(t)));
+        err[2] = fmax(err[2], fabs(v[2] + sin(t)));
+    }
+    vt_model_free(m);
+}
+
+static void test_spline_convergence(void **state)
+{
+    (void)state;
+    double prev[3], cur[3];
+    /* the not-a-knot ends' boundary layer keeps coarser grids' ratios above the asymptotic ones
+     * (24, 12, 5.8 from 10 to 20 intervals; 17.9, 8.9, 4.4 from 80 to 160) */
+    sin_errors(161, prev);
+    for (int n = 321; n <= 1281; n = 2 * n - 1) { /* h halves */
+        sin_errors(n, cur);
+        const double r0 = prev[0] / cur[0], r1 = prev[1] / cur[1], r2 = prev[2] / cur[2];
+        if (!(r0 > 15 && r0 < 17.5) || !(r1 > 7.5 && r1 < 8.75) || !(r2 > 3.75 && r2 < 4.4))
+            fail_msg("n %d: error ratios %.3g %.3g %.3g (expected 16, 8, 4)", n, r0, r1, r2);
+        memcpy(prev, cur, sizeof prev);
+    }
+    assert_true(cur[0] < 1e-11);
+}
+
+/* f' and f'' against central differences of f and f'; f, f', f'' continuous at the knots
+ * (the values just left of a knot, from the left piece, against the value at it) */
+static void test_spline_derivatives_and_continuity(void **state)
+{
+    (void)state;
+    const double tk[7] = {0.0, 0.3, 0.45, 1.1, 1.2, 1.9, 2.5}, yk[7] = {0.2, -0.4, 0.1, 0.9, 0.7, -0.3, 0.5};
+    const vt_function f = vt_function_spline(7, tk, yk);
+    for (double t = -0.5; t <= 3.0; t += 0.0173) check_derivatives(&f, t);
+    for (int k = 0; k < 7; k++) {
+        double at[3], left[3];
+        assert_ok(vt_function_eval(at, &f, tk[k]));
+        assert_near(at[0], yk[k], 1e-15 * (1 + fabs(yk[k]))); /* it interpolates */
+        assert_ok(vt_function_eval(left, &f, nextafter(tk[k], -INFINITY)));
+        for (int c = 0; c < 3; c++) assert_near(left[c], at[c], 1e-12 * (1 + fabs(at[c])));
+    }
+    /* the jump of f''' at an interior knot that is not t_1 or t_{n−2}: a spline, not one cubic */
+    double a[3], b[3], c[3], dd[3];
+    const double h = 1e-4;
+    assert_ok(vt_function_eval(a, &f, tk[3] - 2 * h));
+    assert_ok(vt_function_eval(b, &f, tk[3] - h));
+    assert_ok(vt_function_eval(c, &f, tk[3] + h));
+    assert_ok(vt_function_eval(dd, &f, tk[3] + 2 * h));
+    assert_true(fabs((b[2] - a[2]) - (dd[2] - c[2])) > 1e-6);
+}
+
+/* the caller's arrays freed or overwritten after the drive is added change nothing; bad
+ * samples and too many samples for a standalone evaluation are refused, out untouched */
+static void test_spline_ownership_and_errors(void **state)
+{
+    (void)state;
+    const int n = 200; /* beyond VT_SPLINE_EVAL_MAX */
+    double *tk = malloc(2 * (size_t)n * sizeof(double)), *yk = tk + n;
+    assert_non_null(tk);
+    for (int k = 0; k < n; k++) {
+        tk[k] = 0.01 * k + 0.001 * sin(k);
+        yk[k] = cos(3.0 * tk[k]);
+    }
+    vt_function f = vt_function_spline(n, tk, yk);
+    double v[3] = {1, 2, 3};
+    assert_int_equal(vt_function_eval(v, &f, 0.5), VT_ERR_BAD_SIZE);
+    assert_true(v[0] == 1 && v[1] == 2 && v[2] == 3);
+
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.inertia[4] = link.inertia[8] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.f = f;
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m1;
+    assert_ok(vt_builder_build(&m1, b)); /* before the arrays change */
+    double keep[3 * 11];
+    for (int j = 0; j <= 10; j++) assert_ok(vt_function_eval(keep + 3 * j, &m1->drive[0].f, 0.2 * j - 0.1));
+    for (int k = 0; k < n; k++) tk[k] = yk[k] = NAN; /* overwritten, then freed */
+    free(tk);
+    vt_model *m2;
+    assert_ok(vt_builder_build(&m2, b)); /* the builder's copy, after */
+    vt_builder_free(b);
+    vt_model *m3;
+    assert_ok(vt_model_without_drives(&m3, m2));
+    assert_int_equal(m3->ndrive, 0);
+    vt_model_free(m3);
+    for (int j = 0; j <= 10; j++) {
+        assert_ok(vt_function_eval(v, &m2->drive[0].f, 0.2 * j - 0.1));
+        assert_memory_equal(v, keep + 3 * j, sizeof v);
+    }
+    vt_model_free(m1);
+    vt_model_free(m2);
+
+    /* malformed samples */
+    v[0] = 1;
+    v[1] = 2;
+    v[2] = 3;
+    const double t3[3] = {0.0, 1.0, 1.0}, y3[3] = {0, 1, 2}, tn[3] = {0.0, NAN, 2.0};
+    const vt_function bad[4] = {vt_function_spline(1, t3, y3), vt_function_spline(3, t3, y3),
+                                vt_function_spline(3, tn, y3), vt_function_spline(3, NULL, y3)};
+    const vt_status want[4] = {VT_ERR_BAD_DRIVE, VT_ERR_BAD_DRIVE, VT_ERR_NONFINITE, VT_ERR_BAD_DRIVE};
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(vt_function_eval(v, &bad[k], 0.5), want[k]);
+        assert_true(v[0] == 1 && v[1] == 2 && v[2] == 3);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_builtins),
         cmocka_unit_test(test_callbacks_and_errors),
+        cmocka_unit_test(test_spline_exact),
+        cmocka_unit_test(test_spline_convergence),
+        cmocka_unit_test(test_spline_derivatives_and_continuity),
+        cmocka_unit_test(test_spline_ownership_and_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -212,6 +212,129 @@ static void test_stretched_arm(void **state)
     vt_model_free(m);
 }
 
+#if VT_HAVE_SUNDIALS
+/* rows at irregular given times: each the kinematic solution at its time, solved independently
+ * from the scene's guess at that time; and the forward check over them */
+static void test_given_output_times(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d, *di;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&di, m));
+    const double tout[7] = {0.0137, 0.05, 0.051, 0.3, 0.62, 0.9, 0.97};
+    vt_run_options opt = vt_default_run_options();
+    opt.tout = tout;
+    opt.ntout = 7;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    assert_ok(vt_trajectory_create(&tr, m, 8));
+    vt_scene_five_link_guess(m, d, 0.0);
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, 8);
+    assert_true(tr->t[0] == 0.0);
+    for (int k = 1; k <= 7; k++) {
+        assert_true(tr->t[k] == tout[k - 1]);
+        vt_scene_five_link_guess(m, di, tout[k - 1]);
+        di->time = tout[k - 1];
+        assert_ok(vt_kinematic_solve(m, di, 1e-12, 30));
+        for (int c = 0; c < m->nq; c++) assert_near(tr->q[m->nq * k + c], di->q[c], 1e-10);
+        for (int c = 0; c < m->nv; c++) assert_near(tr->qd[m->nv * k + c], di->qd[c], 1e-9);
+        for (int c = 0; c < m->ndrive; c++)
+            assert_near(tr->drive_effort[m->ndrive * k + c], di->drive_effort[c], 1e-8 * (1 + fabs(di->drive_effort[c])));
+    }
+    assert_true(tr->fwd_err_q < 1e-6 && tr->fwd_err_q > 0.0); /* the forward check ran to the last time */
+    vt_trajectory_free(tr);
+    vt_data_free(di);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+#endif
+
+/* a 2 kg, 1 m rod pinned at one end, its joint driven by f */
+static vt_model *pendulum(const vt_function *f)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def rod = vt_default_body_def();
+    rod.mass = 2.0;
+    rod.inertia[4] = rod.inertia[8] = 2.0 / 12.0;
+    rod.joint_child[0] = -0.5;
+    assert_int_equal(vt_builder_add_body(b, &rod), 1);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.f = *f;
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* the largest differences of effort and joint force between the analysis driven by the spline
+ * through n samples of θ = 0.3 sin 2t on [0, 2] and the one driven by the sine itself */
+static double spline_effort_error(int n, const vt_trajectory *exact)
+{
+    double *tk = malloc(2 * (size_t)n * sizeof(double)), *yk = tk + n;
+    assert_non_null(tk);
+    for (int k = 0; k < n; k++) {
+        tk[k] = 2.0 * k / (n - 1);
+        yk[k] = 0.3 * sin(2.0 * tk[k]);
+    }
+    const vt_function f = vt_function_spline(n, tk, yk);
+    vt_model *m = pendulum(&f);
+    free(tk);
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 41));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 2.0;
+    opt.nout = 40;
+    opt.forward_check = 0;
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    double e = 0.0;
+    for (int r = 0; r <= 40; r++) {
+        e = fmax(e, fabs(tr->drive_effort[r] - exact->drive_effort[r]));
+        for (int c = 0; c < 3; c++) e = fmax(e, fabs(tr->jnt_force[6 * r + 3 + c] - exact->jnt_force[6 * r + 3 + c]));
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+    return e;
+}
+
+/* efforts converge to the exact ones as the samples get denser: as f'', O(h²) */
+static void test_spline_drive_converges(void **state)
+{
+    (void)state;
+    const vt_function sine = vt_function_sine(0.0, 0.3, 2.0, 0.0);
+    vt_model *m = pendulum(&sine);
+    vt_data *d;
+    vt_trajectory *exact;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&exact, m, 41));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 2.0;
+    opt.nout = 40;
+    opt.forward_check = 0;
+    assert_ok(vt_kinematic_analysis(m, d, &opt, exact));
+    /* errors 0.063, 0.021, 0.0057, 0.0015, 0.00038 N for 10 .. 160 intervals: ratios 3.0, 3.6,
+     * 3.8, 3.9 toward 4 */
+    double prev = spline_effort_error(21, exact);
+    assert_true(prev < 0.05 && prev > 1e-6); /* N·m and N, beside efforts of order 10 */
+    for (int n = 41; n <= 161; n = 2 * n - 1) {
+        const double e = spline_effort_error(n, exact);
+        if (!(prev / e > 3.4 && prev / e < 4.6)) fail_msg("n %d: error %.3g, ratio %.3g (expected 4)", n, e, prev / e);
+        prev = e;
+    }
+    assert_true(prev < 5e-4);
+    vt_trajectory_free(exact);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -222,6 +345,10 @@ int main(void)
 #endif
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_stretched_arm),
+        cmocka_unit_test(test_spline_drive_converges),
+#if VT_HAVE_SUNDIALS
+        cmocka_unit_test(test_given_output_times),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

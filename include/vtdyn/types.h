@@ -145,7 +145,11 @@ typedef enum vt_function_type {
     VT_FUNCTION_CONSTANT = 0,  ///< f = c[0]
     VT_FUNCTION_POLYNOMIAL,    ///< f = c[0] + c[1] t + ... + c[ncoef-1] t^(ncoef-1)
     VT_FUNCTION_SINE,          ///< f = c[0] + c[1] sin(c[2] t + c[3])
-    VT_FUNCTION_CALLBACK       ///< f, f', f'' from a user function
+    VT_FUNCTION_CALLBACK,      ///< f, f', f'' from a user function
+    VT_FUNCTION_SPLINE         ///< C2 cubic interpolating spline through samples (t_k, y_k), k = 0..n−1:
+                               ///< n = 2 a straight line, n = 3 the parabola through the three, n ≥ 4
+                               ///< "not-a-knot" ends (f''' continuous at t_1 and t_{n−2}); outside
+                               ///< [t_0, t_{n−1}] the end cubics continued (see vt_function_spline())
 } vt_function_type;
 
 /// User time function: writes f, f' and f'' at time t (s) into out; returns 0 on success,
@@ -153,6 +157,10 @@ typedef enum vt_function_type {
 typedef int (*vt_function_callback)(double t, double out[3], void *user);
 
 #define VT_POLY_MAX 8  ///< most coefficients of a polynomial time function
+/// Most samples of a spline that vt_function_eval() evaluates before the spline is added to a
+/// drive (it then solves for the second derivatives in a fixed local buffer); a model's drives
+/// carry their own second derivatives and have no limit.
+#define VT_SPLINE_EVAL_MAX 64
 
 /// A time function; make it with vt_function_constant() and friends.
 typedef struct vt_function {
@@ -161,6 +169,12 @@ typedef struct vt_function {
     double c[VT_POLY_MAX];        ///< coefficients, see vt_function_type
     vt_function_callback callback;///< VT_FUNCTION_CALLBACK only
     void *user;                   ///< passed to callback
+    int nsample;                  ///< spline: number of samples n (≥ 2)
+    const double *sample_t;       ///< spline: sample times t_k, s, strictly increasing (n)
+    const double *sample_y;       ///< spline: sample values y_k, the drive's unit (n)
+    const double *sample_d2;      ///< spline: f''(t_k) (n); set by the library in a model's drives (the
+                                  ///< samples and these then live in the model), NULL from
+                                  ///< vt_function_spline() and ignored when a drive is added
 } vt_function;
 
 /// User orientation: writes the prescribed Euler parameters p (global, unit), angular
@@ -452,6 +466,7 @@ typedef struct vt_run_options {
     double t0;               ///< s, start; default 0
     double t1;               ///< s, end (> t0); default 1
     int nout;                ///< output intervals: rows at t0 + k (t1 − t0)/nout, k = 0..nout; default 100
+                             ///< (ignored when tout is given)
     double rtol;             ///< IDA relative tolerance; default 1e-8
     double atol;             ///< IDA absolute tolerance; default 1e-10
     double max_step;         ///< s, IDA's largest step; 0 = no limit (default)
@@ -474,6 +489,11 @@ typedef struct vt_run_options {
     double baumgarte_beta;   ///< 1/s, Baumgarte's stiffness term β² Φ; default 10
     vt_progress_callback progress; ///< optional, NULL by default
     void *user;              ///< passed to progress
+    const double *tout;      ///< s, optional output times (ntout), in place of the uniform rows: the run
+                             ///< starts at t0, row 0 is t0 and rows 1..ntout are tout[0..ntout−1], strictly
+                             ///< increasing, in (t0, t1]; the run ends at tout[ntout−1]. The trajectory
+                             ///< needs ntout + 1 rows. Default NULL (the uniform rows of nout)
+    int ntout;               ///< number of entries of tout (≥ 1 with tout); default 0
 } vt_run_options;
 
 /// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
