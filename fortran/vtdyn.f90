@@ -132,6 +132,16 @@ module vtdyn
     type(c_ptr)            :: frame_b
   end type vt_cut_joint_def
 
+  type, bind(C) :: vt_coupling_def
+    integer(c_int)         :: body_a
+    integer(c_int)         :: index_a
+    integer(c_int)         :: body_b
+    integer(c_int)         :: index_b
+    real(c_double)         :: ratio
+    real(c_double)         :: offset
+    type(c_ptr)            :: name
+  end type vt_coupling_def
+
   type, bind(C) :: vt_body_def
     integer(c_int)         :: parent
     integer(c_int)         :: joint
@@ -187,6 +197,7 @@ module vtdyn
     type(c_ptr)            :: joint_name
     type(c_ptr)            :: drive_name
     type(c_ptr)            :: cut_name
+    type(c_ptr)            :: coupling_name
     integer(c_int)         :: nframe
     type(c_ptr)            :: frame_name
     type(c_ptr)            :: frame_body
@@ -202,6 +213,9 @@ module vtdyn
     type(c_ptr)            :: drive_row
     type(c_ptr)            :: cut
     type(c_ptr)            :: cut_row
+    integer(c_int)         :: ncoupling
+    type(c_ptr)            :: coupling
+    type(c_ptr)            :: coupling_row
     type(c_ptr)            :: con_body
     type(c_ptr)            :: con_owner
     type(c_ptr)            :: dof_drive
@@ -267,6 +281,7 @@ module vtdyn
     type(c_ptr)            :: cut_moment
     type(c_ptr)            :: cut_force_body
     type(c_ptr)            :: cut_moment_body
+    type(c_ptr)            :: coupling_effort
     type(c_ptr)            :: jnt_unique
     type(c_ptr)            :: cut_unique
     type(c_ptr)            :: arena
@@ -499,6 +514,23 @@ module vtdyn
       type(c_ptr), value :: builder
       type(vt_cut_joint_def), intent(in) :: def
       integer(c_int) :: vt_builder_add_cut_joint
+    end function
+
+    function vt_default_coupling_def() bind(C, name='vt_default_coupling_def')
+      import :: vt_coupling_def
+      type(vt_coupling_def) :: vt_default_coupling_def
+    end function
+    function vt_builder_add_coupling(builder, def) bind(C, name='vt_builder_add_coupling')
+      import :: c_int, c_ptr, vt_coupling_def
+      type(c_ptr), value :: builder
+      type(vt_coupling_def), intent(in) :: def
+      integer(c_int) :: vt_builder_add_coupling
+    end function
+    function vt_find_coupling(model, name) bind(C, name='vt_find_coupling')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: model
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_coupling
     end function
 
     ! frames and names: a name is a C string (a character(kind=c_char) array ending in c_null_char)

@@ -187,6 +187,16 @@ vt_cut_joint_def vt_default_cut_joint_def(void);
 /// (its sample_d2 is ignored): the caller's arrays are free after the call. A refused drive
 /// leaves the builder as it was.
 int vt_builder_add_drive(vt_builder *builder, const vt_drive_def *def);
+/// Defaults: body 2's first rate follows body 1's, ratio 1, offset 0.
+vt_coupling_def vt_default_coupling_def(void);
+/// Validates and adds a coupling between two scalar coordinates of bodies already added. Returns
+/// its index or a negative vt_status (VT_ERR_BAD_INDEX, VT_ERR_BAD_DRIVE: a coordinate that is
+/// not scalar, or the same one twice; VT_ERR_NONFINITE, VT_ERR_BAD_NAME). A refused coupling
+/// leaves the builder as it was.
+int vt_builder_add_coupling(vt_builder *builder, const vt_coupling_def *def);
+/// The coupling of that name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
+int vt_find_coupling(const vt_model *model, const char *name);
+
 /// Validates and adds a cut joint between bodies already added. Returns its index or a
 /// negative vt_status (VT_ERR_BAD_CUT_JOINT, VT_ERR_BAD_INDEX, VT_ERR_AXIS_ZERO, ...).
 int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);

@@ -16,6 +16,8 @@
  *                                             γ = −[2 G(p̈_d) p + 4 G(ṗ_d) ṗ + 2 G(p_d) p̈0]
  *                  (G(a) b is the vector part of a* ⊗ b: zero when p = p_d)
  *   normalization  p^T p − 1 (base body)      Φ_p = 2 p^T, γ = −2 ṗ·ṗ
+ *   coupling       q_a − k q_b − c            Φ_q = e_a − k e_b directly (the coordinates of two
+ *                                             joints: up to four bodies, so no Φ_x), Φ_t = 0, γ = 0
  * The prescribed orientation of a built-in orientation drive: p_d = [f(t) about axis] ⊗ p0,
  * ω_d = f' axis, ω̇_d = f'' axis, ṗ_d = ½ E^T ω_d, p̈_d = ½ E^T ω̇_d − ¼ |ω_d|² p_d.
  */
@@ -366,6 +368,18 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             d->Phit[r] = 2.0 * G_row(pdes_d, B.p, k);
             d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
             phiq_row(m, d, r, dense, Si);
+            break;
+        }
+        case VT_ROW_COUPLING: { /* on the coordinates themselves: Φ_q = e_a − ratio e_b, Φ̈ = Φ_q q̈ (no γ) */
+            const vt_coupling_def *c = &m->coupling[owner];
+            const int a = m->body_vadr[c->body_a] + c->index_a, b = m->body_vadr[c->body_b] + c->index_b;
+            const double qa = d->q[m->body_qadr[c->body_a] + c->index_a], qb = d->q[m->body_qadr[c->body_b] + c->index_b];
+            memset(pxa, 0, 14 * sizeof(double)); /* its force acts through the rates (reactions.c) */
+            d->Phi[r] = qa - c->ratio * qb - c->offset;
+            d->Phit[r] = 0.0;
+            d->gamma[r] = 0.0;
+            d->Phiq[r + (size_t)a * (size_t)m->nc] += 1.0;
+            d->Phiq[r + (size_t)b * (size_t)m->nc] -= c->ratio;
             break;
         }
         default: { /* VT_ROW_NORM */

@@ -81,6 +81,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->cut_moment = take(base, &used, 3 * nk * sizeof(double));
     d->cut_force_body = take(base, &used, 3 * nk * sizeof(double));
     d->cut_moment_body = take(base, &used, 3 * nk * sizeof(double));
+    d->coupling_effort = take(base, &used, (size_t)m->ncoupling * sizeof(double));
     d->lambda_unique = take(base, &used, (nc ? nc : 1) * sizeof(int));
     d->lambda_null = take(base, &used, (nc ? nc * nc : 1) * sizeof(double));
     d->jnt_unique = take(base, &used, 6 * nb * sizeof(int));

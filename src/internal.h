@@ -316,10 +316,11 @@ enum {
     VT_ROW_DOT,     /* (A_a u')·(A_b v') = 0                                   cut joints */
     VT_ROW_LINE,    /* (A_a u')·(P_b − P_a) = 0                                cut joints */
     VT_ROW_ORIENT,  /* 2 (G(p_d) p)_k = 0                                      orientation drive */
-    VT_ROW_NORM     /* p^T p − 1 = 0                                           base body */
+    VT_ROW_NORM,    /* p^T p − 1 = 0                                           base body */
+    VT_ROW_COUPLING /* q_a − ratio q_b − offset = 0                            coupling */
 };
 /* Which kind of object owns a row: drive, cut joint or base body. */
-enum { VT_OWNER_DRIVE, VT_OWNER_CUT, VT_OWNER_BASE };
+enum { VT_OWNER_DRIVE, VT_OWNER_CUT, VT_OWNER_COUPLING, VT_OWNER_BASE };
 int vt_row_owner_kind(const vt_model *m, int row);
 /* Rows of a cut joint of this kind. */
 int vt_cut_nrows(int joint_type);

@@ -37,6 +37,9 @@ struct vt_builder {
     vt_frame_def *frames;
     vt_name *frame_names;
     int nframe, capframe, capframenames;
+    vt_coupling_def *couplings;
+    vt_name *coupling_names;
+    int ncoupling, capcoupling, capcouplingnames;
     char message[256];
 };
 
@@ -80,6 +83,16 @@ vt_cut_joint_def vt_default_cut_joint_def(void)
     d.axis1[2] = 1.0;
     d.axis2[0] = 1.0;
     d.orientation[0] = 1.0;
+    return d;
+}
+
+vt_coupling_def vt_default_coupling_def(void)
+{
+    vt_coupling_def d;
+    memset(&d, 0, sizeof d);
+    d.body_a = 2;
+    d.body_b = 1;
+    d.ratio = 1.0;
     return d;
 }
 
@@ -141,6 +154,8 @@ void vt_builder_free(vt_builder *builder)
     free(builder->cuts);
     free(builder->cut_names);
     free(builder->frames);
+    free(builder->couplings);
+    free(builder->coupling_names);
     free(builder->frame_names);
     free(builder);
 }
@@ -506,6 +521,52 @@ int vt_builder_add_cut_joint(vt_builder *b, const vt_cut_joint_def *def)
     return b->ncut++;
 }
 
+/* a coupling's coordinate: body in 1..n, a scalar rate of its joint */
+static vt_status coupling_side(const vt_builder *b, char *msg, int k, int body, int index, const char *side)
+{
+    if (body < 1 || body > b->n)
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "coupling %d: body_%s %d is not a body added so far (1..%d)", k, side, body,
+                       b->n);
+    const int jt = b->bodies[body - 1].joint;
+    if (index < 0 || index >= joint_nv[jt])
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "coupling %d: body %d's joint has no rate %d", k, body, index);
+    if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE)
+        return vt_fail(msg, VT_ERR_BAD_DRIVE, "coupling %d: body %d's joint has no scalar coordinate %d (spherical or base)",
+                       k, body, index);
+    return VT_OK;
+}
+
+int vt_builder_add_coupling(vt_builder *b, const vt_coupling_def *def)
+{
+    if (!b) return VT_ERR_NULL;
+    if (!def) return vt_fail(b->message, VT_ERR_NULL, "coupling definition is NULL");
+    const int k = b->ncoupling;
+    vt_coupling_def c = *def;
+    vt_status st;
+    if ((st = coupling_side(b, b->message, k, c.body_a, c.index_a, "a")) ||
+        (st = coupling_side(b, b->message, k, c.body_b, c.index_b, "b")))
+        return st;
+    if (c.body_a == c.body_b && c.index_a == c.index_b)
+        return vt_fail(b->message, VT_ERR_BAD_DRIVE, "coupling %d: couples body %d's rate %d with itself", k, c.body_a,
+                       c.index_a);
+    if (!isfinite(c.ratio) || !isfinite(c.offset))
+        return vt_fail(b->message, VT_ERR_NONFINITE, "coupling %d: ratio %g or offset %g not finite", k, c.ratio, c.offset);
+    vt_name name;
+    if ((st = take_name(b->message, name, c.name, (const vt_name *)b->coupling_names, k, "coupling", k))) return st;
+    int capn = b->capcouplingnames;
+    if (!grow((void **)&b->couplings, &b->capcoupling, k, sizeof c) ||
+        !grow((void **)&b->coupling_names, &capn, k, sizeof(vt_name))) {
+        b->capcouplingnames = capn;
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "coupling %d: out of memory", k);
+    }
+    b->capcouplingnames = capn;
+    c.name = NULL;
+    memcpy(b->coupling_names[k], name, sizeof name);
+    b->couplings[b->ncoupling++] = c;
+    b->message[0] = '\0';
+    return k;
+}
+
 int vt_cut_nrows(int joint_type)
 {
     return cut_rows[joint_type];
@@ -521,6 +582,7 @@ int vt_drive_rows(const vt_model *m)
 int vt_row_owner_kind(const vt_model *m, int row)
 {
     if (row < vt_drive_rows(m)) return VT_OWNER_DRIVE;
+    if (m->ncoupling && row >= m->coupling_row[0] && row <= m->coupling_row[m->ncoupling - 1]) return VT_OWNER_COUPLING;
     if (m->ncut && row < m->cut_row[m->ncut - 1] + cut_rows[m->cut[m->ncut - 1].joint]) return VT_OWNER_CUT;
     return VT_OWNER_BASE;
 }
@@ -619,6 +681,12 @@ static void build_rows(vt_model *m)
             memcpy(m->con_point + 6 * q + 3, c->point_b, 3 * sizeof(double));
         }
     }
+    for (int k = 0; k < m->ncoupling; k++) { /* on no body's Cartesian coordinates directly: Φ_q from the rates */
+        const vt_coupling_def *c = &m->coupling[k];
+        m->coupling_row[k] = r;
+        m->con_dof[r] = m->body_vadr[c->body_a] + c->index_a;
+        r = add_row(m, r, VT_ROW_COUPLING, 0, 0, k);
+    }
     for (int i = 1; i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE) r = add_row(m, r, VT_ROW_NORM, 0, i, i);
 
@@ -658,8 +726,12 @@ static void *take(arena *a, size_t bytes)
 }
 
 static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc,
-                         int nframe)
+                         int nframe, int ncoupling)
 {
+    const size_t nu = (size_t)(ncoupling ? ncoupling : 1);
+    m->coupling = take(a, nu * sizeof(vt_coupling_def));
+    m->coupling_row = take(a, nu * sizeof(int));
+    m->coupling_name = take(a, nu * VT_NAME_MAX);
     const size_t nd = (size_t)(ndrive ? ndrive : 1), nk = (size_t)(ncut ? ncut : 1), ncc = (size_t)(nc ? nc : 1);
     m->drive = take(a, nd * sizeof(vt_drive_def));
     m->drive_row = take(a, nd * sizeof(int));
@@ -724,6 +796,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     }
     for (int k = 0; k < b->ndrive; k++) nc += b->drives[k].type == VT_DRIVE_ORIENTATION ? 3 : 1;
     for (int k = 0; k < b->ncut; k++) nc += cut_rows[b->cuts[k].joint];
+    nc += b->ncoupling;
 
     size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */
     for (int k = 0; k < b->ndrive; k++)
@@ -731,7 +804,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
 
     arena a = {NULL, sizeof(vt_model)};
     vt_model tmp;
-    layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe);
+    layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
     take(&a, 3 * nsample * sizeof(double));
     char *block = calloc(1, a.used);
     if (!block) {
@@ -741,7 +814,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     vt_model *m = (vt_model *)block;
     a.base = block;
     a.used = sizeof(vt_model);
-    layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe);
+    layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
     double *samples = take(&a, 3 * nsample * sizeof(double));
 
     m->nbody = n;
@@ -780,6 +853,12 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     for (int i = 1; i <= n; i++) {
         memcpy(m->body_name + (size_t)VT_NAME_MAX * (size_t)i, b->body_names[i - 1], VT_NAME_MAX);
         memcpy(m->joint_name + (size_t)VT_NAME_MAX * (size_t)i, b->joint_names[i - 1], VT_NAME_MAX);
+    }
+    m->ncoupling = b->ncoupling;
+    for (int k = 0; k < b->ncoupling; k++) {
+        m->coupling[k] = b->couplings[k];
+        memcpy(m->coupling_name + (size_t)VT_NAME_MAX * (size_t)k, b->coupling_names[k], VT_NAME_MAX);
+        m->coupling[k].name = m->coupling_name + (size_t)VT_NAME_MAX * (size_t)k;
     }
     m->nframe = b->nframe;
     for (int k = 0; k < b->nframe; k++) {
@@ -894,6 +973,10 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
         const int id = vt_builder_add_cut_joint(b, &m->cut[k]);
         if (id < 0) st = (vt_status)id;
     }
+    for (int k = 0; k < m->ncoupling && st == VT_OK; k++) { /* constraints of the mechanism, not drives */
+        const int id = vt_builder_add_coupling(b, &m->coupling[k]);
+        if (id < 0) st = (vt_status)id;
+    }
     if (st == VT_OK) st = vt_builder_build(out, b);
     vt_builder_free(b);
     return st;
@@ -926,4 +1009,9 @@ int vt_find_cut_joint(const vt_model *m, const char *name)
 int vt_find_frame(const vt_model *m, const char *name)
 {
     return !m || !name ? VT_ERR_NULL : find_name(m->frame_name, m->nframe, name);
+}
+
+int vt_find_coupling(const vt_model *m, const char *name)
+{
+    return !m || !name ? VT_ERR_NULL : find_name(m->coupling_name, m->ncoupling, name);
 }

@@ -158,24 +158,41 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
  * forces' wrenches. An applied generalized force acts between a joint's two bodies: its
  * Cartesian form is R^T qfrc (14), on the body [f; 2 E^T n] and on its reference body the rest
  * of the row. */
+static void rate_load(const vt_model *m, const vt_data *d, int c, double g, double *fe)
+{
+    const int i = m->dof_body[c], j = m->body_parent[i];
+    double rj[7], ri[7];
+    vt_R_row(m, d, c, rj, ri);
+    for (int side = 0; side < 2; side++) {
+        const int k = side ? i : j;
+        const double *row = side ? ri : rj;
+        if (k == 0) continue;
+        double E[12], t4[4], nn[3];
+        vt_euler_E(E, d->x + vt_xoff(k) + 3);
+        for (int e = 0; e < 4; e++) t4[e] = 0.5 * row[3 + e] * g;
+        vt_mulE(nn, E, t4);
+        vt_axpy3(fe + 6 * k, g, row);
+        vt_axpy3(fe + 6 * k + 3, 1.0, nn);
+    }
+}
+
 static void qfrc_loads(const vt_model *m, vt_data *d, double *fe)
 {
-    for (int c = 0; c < m->nv; c++) {
-        if (d->qfrc[c] == 0.0) continue;
-        const int i = m->dof_body[c], j = m->body_parent[i];
-        double rj[7], ri[7];
-        vt_R_row(m, d, c, rj, ri);
-        for (int side = 0; side < 2; side++) {
-            const int k = side ? i : j;
-            const double *row = side ? ri : rj;
-            if (k == 0) continue;
-            double E[12], t4[4], nn[3];
-            vt_euler_E(E, d->x + vt_xoff(k) + 3);
-            for (int e = 0; e < 4; e++) t4[e] = 0.5 * row[3 + e] * d->qfrc[c];
-            vt_mulE(nn, E, t4);
-            vt_axpy3(fe + 6 * k, d->qfrc[c], row);
-            vt_axpy3(fe + 6 * k + 3, 1.0, nn);
-        }
+    for (int c = 0; c < m->nv; c++)
+        if (d->qfrc[c] != 0.0) rate_load(m, d, c, d->qfrc[c], fe);
+}
+
+/* the couplings' generalized forces for the multipliers lam (nc), λ on rate a and −ratio λ on
+ * rate b, as wrenches on the joints' bodies into fe, as qfrc_loads (a coupling's row has no
+ * Φ_x: it acts through the rates) */
+static void coupling_loads(const vt_model *m, const vt_data *d, const double *lam, double *fe)
+{
+    for (int k = 0; k < m->ncoupling; k++) {
+        const vt_coupling_def *c = &m->coupling[k];
+        const double l = lam[m->coupling_row[k]];
+        if (l == 0.0) continue;
+        rate_load(m, d, m->body_vadr[c->body_a] + c->index_a, l, fe);
+        rate_load(m, d, m->body_vadr[c->body_b] + c->index_b, -c->ratio * l, fe);
     }
 }
 
@@ -199,7 +216,9 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
         vt_mulmat3t(d->cut_moment_body + 3 * k, d->A + 9 * c->body_b, mo);
     }
 
-    if (!vt_all_finite(d->drive_force, 3 * m->ndrive) || !vt_all_finite(d->drive_moment, 3 * m->ndrive) ||
+    for (int k = 0; k < m->ncoupling; k++) d->coupling_effort[k] = d->lambda[m->coupling_row[k]];
+    if (!vt_all_finite(d->coupling_effort, m->ncoupling) || !vt_all_finite(d->drive_force, 3 * m->ndrive) ||
+        !vt_all_finite(d->drive_moment, 3 * m->ndrive) ||
         !vt_all_finite(d->cut_force, 3 * m->ncut) || !vt_all_finite(d->cut_moment, 3 * m->ncut))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_reactions: an effort overflowed (an ill-posed instant?)");
     return VT_OK;
@@ -214,6 +233,7 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe, double *rw
     qfrc_loads(m, d, fe);
     vt_row_wrenches(rw, m, d, d->lambda);
     add_row_wrenches(m, rw, fe);
+    coupling_loads(m, d, d->lambda, fe);
     return row_efforts(m, d, rw);
 }
 
@@ -349,6 +369,7 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
     memset(cf, 0, 6 * nb * sizeof(double));
     vt_row_wrenches(rw, m, d, z);
     add_row_wrenches(m, rw, fe);
+    coupling_loads(m, d, z, fe);
     double big = 0.0, *cmag = mag + 6 * nb;
     for (int k = 0; k < m->ncut; k++) {
         const vt_cut_joint_def *c = &m->cut[k];

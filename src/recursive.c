@@ -34,7 +34,7 @@
  *   S^T W̄ − qfrc from one inward pass (square_instant: neither M* nor Q is formed); rcond as
  *   vt_solve's square route, and below rcond_min the general route takes over
  *   (VT_FALLBACK_SQUARE_CONDITION);
- * - otherwise (base bodies, redundant rows allowed, or a shortcut that gave way): M* and Q as
+ * - otherwise (base bodies, couplings, redundant rows allowed, or a shortcut that gave way): M* and Q as
  *   above, Φ_q = Φ_x S from the twists, the augmented system (5) by vt_solve's routes (FREE_RATES,
  *   SCHUR, AUGMENTED, REDUNDANT: src/solve.c), which also diagnose, and the reactions (25)-(28)
  *   as in the dense path.
@@ -689,7 +689,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     if ((st = vt_constraints_impl(m, d, 0))) return st;
     /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
      * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
-    if (!m->allow_redundant && !has_base(m)) {
+    /* (and no coupling, whose force acts through two rates, not through the rows' wrenches) */
+    if (!m->allow_redundant && !has_base(m) && m->ncoupling == 0) {
         if (m->nc == m->nv) return square_instant(m, d);
         if (m->nc < m->nv) return articulated_instant(m, d);
     }
@@ -721,10 +722,10 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     if (st) return st;
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
-    if (m->ncut > 0)
+    if (m->ncut > 0 || m->ncoupling > 0)
         return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                       "vt_inverse_dynamics_motion: the model has %d cut joints: its rates are not independent "
-                       "(give the motion by drives)", m->ncut);
+                       "vt_inverse_dynamics_motion: the model has %d cut joints and %d couplings: its rates are not "
+                       "independent (give the motion by drives)", m->ncut, m->ncoupling);
     for (int i = 1; i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,

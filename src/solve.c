@@ -32,6 +32,7 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
     const int kind = vt_row_owner_kind(m, row);
     if (kind == VT_OWNER_DRIVE) snprintf(buf, n, "drive %d", m->con_owner[row]);
     else if (kind == VT_OWNER_CUT) snprintf(buf, n, "cut joint %d", m->con_owner[row]);
+    else if (kind == VT_OWNER_COUPLING) snprintf(buf, n, "coupling %d", m->con_owner[row]);
     else snprintf(buf, n, "p^T p = 1 of body %d", m->con_owner[row]);
     return buf;
 }

@@ -33,6 +33,10 @@ static const size_t vt_body_def_layout[] = {sizeof(vt_body_def),
     offsetof(vt_body_def, name), offsetof(vt_body_def, joint_name), offsetof(vt_body_def, limit_lower),
     offsetof(vt_body_def, limit_upper), offsetof(vt_body_def, limit_velocity), offsetof(vt_body_def, limit_effort),
     VT_END};
+static const size_t vt_coupling_def_layout[] = {sizeof(vt_coupling_def),
+    offsetof(vt_coupling_def, body_a), offsetof(vt_coupling_def, index_a), offsetof(vt_coupling_def, body_b),
+    offsetof(vt_coupling_def, index_b), offsetof(vt_coupling_def, ratio), offsetof(vt_coupling_def, offset),
+    offsetof(vt_coupling_def, name), VT_END};
 static const size_t vt_frame_def_layout[] = {sizeof(vt_frame_def),
     offsetof(vt_frame_def, name), offsetof(vt_frame_def, body), offsetof(vt_frame_def, point),
     offsetof(vt_frame_def, orientation), VT_END};
@@ -46,12 +50,13 @@ static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, path_dof), offsetof(vt_model, npath), offsetof(vt_model, maxpath),
     offsetof(vt_model, dof_body), offsetof(vt_model, q0), offsetof(vt_model, dof_limit),
     offsetof(vt_model, body_name), offsetof(vt_model, joint_name), offsetof(vt_model, drive_name),
-    offsetof(vt_model, cut_name), offsetof(vt_model, nframe), offsetof(vt_model, frame_name),
+    offsetof(vt_model, cut_name), offsetof(vt_model, coupling_name), offsetof(vt_model, nframe), offsetof(vt_model, frame_name),
     offsetof(vt_model, frame_body), offsetof(vt_model, frame_point), offsetof(vt_model, frame_quat),
     offsetof(vt_model, rcond_min),
     offsetof(vt_model, rcond_warn), offsetof(vt_model, allow_redundant), offsetof(vt_model, ndrive),
     offsetof(vt_model, ncut), offsetof(vt_model, nc), offsetof(vt_model, drive),
     offsetof(vt_model, drive_row), offsetof(vt_model, cut), offsetof(vt_model, cut_row),
+    offsetof(vt_model, ncoupling), offsetof(vt_model, coupling), offsetof(vt_model, coupling_row),
     offsetof(vt_model, con_body), offsetof(vt_model, con_owner), offsetof(vt_model, dof_drive),
     offsetof(vt_model, con_kind), offsetof(vt_model, con_dof), offsetof(vt_model, con_vec),
     offsetof(vt_model, con_point), offsetof(vt_model, joint_driven), offsetof(vt_model, joint_rows_only), VT_END};
@@ -70,7 +75,7 @@ static const size_t vt_data_layout[] = {sizeof(vt_data),
     offsetof(vt_data, qfrc_drive), offsetof(vt_data, drive_effort), offsetof(vt_data, drive_force),
     offsetof(vt_data, drive_moment), offsetof(vt_data, jnt_force), offsetof(vt_data, jnt_moment),
     offsetof(vt_data, jnt_force_body), offsetof(vt_data, jnt_moment_body), offsetof(vt_data, cut_force),
-    offsetof(vt_data, cut_moment), offsetof(vt_data, cut_force_body), offsetof(vt_data, cut_moment_body),
+    offsetof(vt_data, cut_moment), offsetof(vt_data, cut_force_body), offsetof(vt_data, cut_moment_body), offsetof(vt_data, coupling_effort),
     offsetof(vt_data, jnt_unique), offsetof(vt_data, cut_unique), offsetof(vt_data, arena),
     offsetof(vt_data, ida_flag), offsetof(vt_data, message), VT_END};
 static const size_t vt_run_options_layout[] = {sizeof(vt_run_options),
@@ -101,7 +106,7 @@ static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, res_evals), offsetof(vt_trajectory, steps_fwd),
     offsetof(vt_trajectory, res_evals_fwd), VT_END};
 
-/* entry k of struct `which` (0..9, in the order of table[]): 0 its size, then the fields'
+/* entry k of struct `which` (0..10, in the order of table[]): 0 its size, then the fields'
  * offsets; (size_t)-1 past the end */
 size_t vt_test_layout(int which, int k);
 size_t vt_test_layout(int which, int k)
@@ -109,7 +114,7 @@ size_t vt_test_layout(int which, int k)
     static const size_t *const table[] = {vt_model_def_layout, vt_function_layout, vt_drive_def_layout,
                                           vt_cut_joint_def_layout, vt_body_def_layout, vt_model_layout,
                                           vt_data_layout, vt_run_options_layout, vt_trajectory_layout,
-                                          vt_frame_def_layout};
+                                          vt_frame_def_layout, vt_coupling_def_layout};
     if (which < 0 || which >= (int)(sizeof table / sizeof table[0]) || k < 0) return VT_END;
     for (int i = 0; i <= k; i++)
         if (table[which][i] == VT_END) return VT_END;

@@ -1,7 +1,8 @@
 /* src/constraints.c: Φ_q = Φ_x S (22) against central differences of Φ(x(q), t) along every
  * rate, Φ_t against differences in t, and γ (23) against the second difference of Φ along a
  * motion with q̈ = 0 — for every kind of row: joint, point and orientation drives (built-in
- * and callback), cut joints of every kind, and the base bodies' p^T p = 1. */
+ * and callback), cut joints of every kind, the base bodies' p^T p = 1, and a coupling of two
+ * joint coordinates. */
 #include "vt_test.h"
 
 /* prescribed orientation with a turning axis: p = [a t about u1] ⊗ [b t about u2] */
@@ -81,6 +82,18 @@ static vt_model *build_all_kinds(uint64_t seed)
         vt_rand_unit(cj.orientation, 4, &s);
         assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
     }
+    int scalar[2] = {0, 0}; /* a coupling of two scalar coordinates, the last rate of each joint */
+    for (int i = n, k = 0; i >= 1 && k < 2; i--)
+        if (probe->body_joint[i] != VT_JOINT_SPHERICAL && probe->body_joint[i] != VT_JOINT_BASE) scalar[k++] = i;
+    assert_true(scalar[1] > 0);
+    vt_coupling_def cp = vt_default_coupling_def();
+    cp.body_a = scalar[0];
+    cp.index_a = probe->body_nv[scalar[0]] - 1;
+    cp.body_b = scalar[1];
+    cp.index_b = probe->body_nv[scalar[1]] - 1;
+    cp.ratio = -0.7;
+    cp.offset = 0.2;
+    assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
     vt_model *m;
     assert_ok(vt_builder_build(&m, b));
     vt_builder_free(b);
@@ -106,9 +119,9 @@ static void test_rows_against_finite_differences(void **state)
         vt_data *d;
         assert_ok(vt_data_create(&d, m));
         const int nq = m->nq, nv = m->nv, nc = m->nc;
-        int kinds_seen[6] = {0};
+        int kinds_seen[7] = {0}; /* joint, point, dot, line, orientation, normalization, coupling */
         for (int r = 0; r < nc; r++) kinds_seen[m->con_kind[r]]++;
-        for (int k = 0; k < 6; k++) assert_true(kinds_seen[k] > 0);
+        for (int k = 0; k < 7; k++) assert_true(kinds_seen[k] > 0);
         uint64_t s = seed * 5;
         vt_scene_random_state(m, d, &s);
         const double t0 = 0.37;

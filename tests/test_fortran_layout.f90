@@ -19,6 +19,7 @@ program test_fortran_layout
   type(vt_cut_joint_def), target :: x_cut_joint_def
   type(vt_body_def), target :: x_body_def
   type(vt_frame_def), target :: x_frame_def
+  type(vt_coupling_def), target :: x_coupling_def
   type(vt_model), target :: x_model
   type(vt_data), target :: x_data
   type(vt_run_options), target :: x_run_options
@@ -60,12 +61,14 @@ program test_fortran_layout
          a(c_loc(x_model%path_dof)), a(c_loc(x_model%npath)), a(c_loc(x_model%maxpath)), &
          a(c_loc(x_model%dof_body)), a(c_loc(x_model%q0)), a(c_loc(x_model%dof_limit)), &
          a(c_loc(x_model%body_name)), a(c_loc(x_model%joint_name)), a(c_loc(x_model%drive_name)), &
-         a(c_loc(x_model%cut_name)), a(c_loc(x_model%nframe)), a(c_loc(x_model%frame_name)), &
+         a(c_loc(x_model%cut_name)), a(c_loc(x_model%coupling_name)), a(c_loc(x_model%nframe)), &
+         a(c_loc(x_model%frame_name)), &
          a(c_loc(x_model%frame_body)), a(c_loc(x_model%frame_point)), a(c_loc(x_model%frame_quat)), &
          a(c_loc(x_model%rcond_min)), &
          a(c_loc(x_model%rcond_warn)), a(c_loc(x_model%allow_redundant)), a(c_loc(x_model%ndrive)), &
          a(c_loc(x_model%ncut)), a(c_loc(x_model%nc)), a(c_loc(x_model%drive)), a(c_loc(x_model%drive_row)), &
-         a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%con_body)), &
+         a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%ncoupling)), &
+         a(c_loc(x_model%coupling)), a(c_loc(x_model%coupling_row)), a(c_loc(x_model%con_body)), &
          a(c_loc(x_model%con_owner)), a(c_loc(x_model%dof_drive)), a(c_loc(x_model%con_kind)), &
          a(c_loc(x_model%con_dof)), a(c_loc(x_model%con_vec)), a(c_loc(x_model%con_point)), &
          a(c_loc(x_model%joint_driven)), a(c_loc(x_model%joint_rows_only))])
@@ -85,6 +88,7 @@ program test_fortran_layout
          a(c_loc(x_data%drive_moment)), a(c_loc(x_data%jnt_force)), a(c_loc(x_data%jnt_moment)), &
          a(c_loc(x_data%jnt_force_body)), a(c_loc(x_data%jnt_moment_body)), a(c_loc(x_data%cut_force)), &
          a(c_loc(x_data%cut_moment)), a(c_loc(x_data%cut_force_body)), a(c_loc(x_data%cut_moment_body)), &
+         a(c_loc(x_data%coupling_effort)), &
          a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), a(c_loc(x_data%arena)), &
          a(c_loc(x_data%ida_flag)), a(c_loc(x_data%message))])
     call check(7_c_int, 'vt_run_options', c_sizeof(x_run_options), a(c_loc(x_run_options)), [ &
@@ -113,6 +117,10 @@ program test_fortran_layout
          a(c_loc(x_trajectory%fwd_err_moment)), a(c_loc(x_trajectory%fwd_interp_err)), &
          a(c_loc(x_trajectory%steps)), a(c_loc(x_trajectory%res_evals)), a(c_loc(x_trajectory%steps_fwd)), &
          a(c_loc(x_trajectory%res_evals_fwd))])
+    call check(10_c_int, 'vt_coupling_def', c_sizeof(x_coupling_def), a(c_loc(x_coupling_def)), [ &
+         a(c_loc(x_coupling_def%body_a)), a(c_loc(x_coupling_def%index_a)), a(c_loc(x_coupling_def%body_b)), &
+         a(c_loc(x_coupling_def%index_b)), a(c_loc(x_coupling_def%ratio)), a(c_loc(x_coupling_def%offset)), &
+         a(c_loc(x_coupling_def%name))])
     call check(9_c_int, 'vt_frame_def', c_sizeof(x_frame_def), a(c_loc(x_frame_def)), [ &
          a(c_loc(x_frame_def%name)), a(c_loc(x_frame_def%body)), a(c_loc(x_frame_def%point)), &
          a(c_loc(x_frame_def%orientation))])
@@ -149,6 +157,9 @@ program test_fortran_layout
   x_frame_def = vt_default_frame_def()
   call expect(x_frame_def%body == 1 .and. same(x_frame_def%orientation, [1, 0, 0, 0]) &
       .and. .not. c_associated(x_frame_def%name), 'vt_default_frame_def')
+  x_coupling_def = vt_default_coupling_def()
+  call expect(x_coupling_def%body_a == 2 .and. x_coupling_def%body_b == 1 .and. same([x_coupling_def%ratio], [1]), &
+      'vt_default_coupling_def')
   x_run_options = vt_default_run_options()
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
       .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL &

@@ -418,6 +418,54 @@ static void test_limits(void **state)
     vt_model_free(m);
 }
 
+/* Couplings: refused when a side is not a scalar coordinate of a body added so far, couples a
+ * rate with itself, or is not finite; the builder unchanged; kept by the model without drives */
+static void test_couplings(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    d.parent = 1;
+    d.joint = VT_JOINT_SPHERICAL;
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    d.joint = VT_JOINT_CYLINDRICAL;
+    assert_int_equal(vt_builder_add_body(b, &d), 3);
+    vt_coupling_def c = vt_default_coupling_def();
+    c.body_a = 4;
+    assert_int_equal(vt_builder_add_coupling(b, &c), VT_ERR_BAD_INDEX);
+    c.body_a = 2; /* spherical */
+    assert_int_equal(vt_builder_add_coupling(b, &c), VT_ERR_BAD_DRIVE);
+    assert_non_null(strstr(vt_builder_message(b), "scalar"));
+    c.body_a = 3;
+    c.index_a = 2; /* a cylindrical joint has rates 0 and 1 */
+    assert_int_equal(vt_builder_add_coupling(b, &c), VT_ERR_BAD_INDEX);
+    c.index_a = 1;
+    c.body_b = 3;
+    c.index_b = 1;
+    assert_int_equal(vt_builder_add_coupling(b, &c), VT_ERR_BAD_DRIVE); /* itself */
+    c.body_b = 1;
+    c.index_b = 0;
+    c.ratio = NAN;
+    assert_int_equal(vt_builder_add_coupling(b, &c), VT_ERR_NONFINITE);
+    c.ratio = 0.5; /* the slide follows the first hinge, 0.5 m/rad */
+    c.name = "screw";
+    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+    assert_int_equal(vt_builder_add_coupling(b, &c), VT_ERR_BAD_NAME);
+    vt_model *m, *mf;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->ncoupling, 1);
+    assert_int_equal(m->nc, 1);
+    assert_ok(vt_model_without_drives(&mf, m));
+    assert_int_equal(mf->ncoupling, 1);
+    assert_int_equal(vt_find_coupling(mf, "screw"), 0);
+    assert_near(mf->coupling[0].ratio, 0.5, 0.0);
+    vt_model_free(mf);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -429,6 +477,7 @@ int main(void)
         cmocka_unit_test(test_massless_link),
         cmocka_unit_test(test_names),
         cmocka_unit_test(test_limits),
+        cmocka_unit_test(test_couplings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -749,6 +749,91 @@ static void test_spherical_through_gimbal_lock(void **state)
     vt_model_free(m);
 }
 
+/* Two rods on hinges at separate ground points, their angles coupled (a gear pair,
+ * q1 = k q2 + c): the free motion, the coupling's effort and the pins' reactions against the
+ * closed forms of the one-degree-of-freedom Lagrangian, with T = ½ I_O (k² + 1) q̇2² and
+ * V = m g (L/2)(sin q1 + sin q2); then the same with q2 driven (a kinematic solve) */
+static vt_model *coupled_rods(double m, double L, double k, double c, int drive)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def rod = vt_default_body_def();
+    rod.mass = m;
+    rod.inertia[4] = rod.inertia[8] = m * L * L / 12.0;
+    rod.joint_child[0] = -L / 2;
+    assert_int_equal(vt_builder_add_body(b, &rod), 1);
+    rod.joint_parent[0] = 3.0; /* the second pin at (3, 0, 0) */
+    assert_int_equal(vt_builder_add_body(b, &rod), 2);
+    vt_coupling_def cp = vt_default_coupling_def();
+    cp.body_a = 1;
+    cp.body_b = 2;
+    cp.ratio = k;
+    cp.offset = c;
+    cp.name = "gears";
+    if (drive) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = 2;
+        dr.f = vt_function_sine(0.4, 0.5, 1.7, 0.0);
+        assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    }
+    assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
+    vt_model *model;
+    assert_ok(vt_builder_build(&model, b));
+    vt_builder_free(b);
+    return model;
+}
+
+static void test_coupling(void **state)
+{
+    (void)state;
+    const double m = 2.0, L = 1.5, k = -0.6, c = 0.3, g = 9.81, IO = m * L * L / 3.0;
+    vt_model *model = coupled_rods(m, L, k, c, 0);
+    assert_int_equal(vt_find_coupling(model, "gears"), 0);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, model));
+    for (int rec = 0; rec < 2; rec++)
+        for (double q2 = -1.0; q2 <= 1.0; q2 += 0.5) {
+            const double w2 = 0.7 - 0.2 * q2, q1 = k * q2 + c, w1 = k * w2;
+            d->q[0] = q1;
+            d->q[1] = q2;
+            d->qd[0] = w1;
+            d->qd[1] = w2;
+            assert_ok(rec ? vt_inverse_dynamics_recursive(model, d) : vt_inverse_dynamics(model, d));
+            const double a2 = -m * g * (L / 2) * (k * cos(q1) + cos(q2)) / (IO * (k * k + 1.0)), a1 = k * a2;
+            assert_near(d->qdd[1], a2, 1e-12);
+            assert_near(d->qdd[0], a1, 1e-12);
+            assert_near(d->coupling_effort[0], IO * a1 + m * g * (L / 2) * cos(q1), 1e-11);
+            const double qs[2] = {q1, q2}, ws[2] = {w1, w2}, as[2] = {a1, a2};
+            for (int i = 0; i < 2; i++) { /* a pin's force: m (a_c − g), a_c the centre's acceleration */
+                const double ax = (L / 2) * (-sin(qs[i]) * as[i] - cos(qs[i]) * ws[i] * ws[i]);
+                const double ay = (L / 2) * (cos(qs[i]) * as[i] - sin(qs[i]) * ws[i] * ws[i]);
+                assert_near(d->jnt_force[3 * (i + 1)], m * ax, 1e-11);
+                assert_near(d->jnt_force[3 * (i + 1) + 1], m * (ay + g), 1e-11);
+                assert_near(d->jnt_moment[3 * (i + 1) + 2], 0.0, 1e-11); /* the gears' torque is not reaction */
+            }
+        }
+    vt_data_free(d);
+    vt_model_free(model);
+    /* q2 driven: a fully driven mechanism, solved at the drive's time; its effort by the Lagrangian */
+    model = coupled_rods(m, L, k, c, 1);
+    assert_ok(vt_data_create(&d, model));
+    d->q[1] = 0.4;
+    d->q[0] = k * 0.4 + c;
+    for (double t = 0.0; t < 2.0; t += 0.4) {
+        d->time = t;
+        assert_ok(vt_kinematic_solve(model, d, 1e-13, 30));
+        double f[3];
+        assert_ok(vt_function_eval(f, &model->drive[0].f, t));
+        assert_near(d->q[1], f[0], 1e-12);
+        assert_near(d->q[0], k * f[0] + c, 1e-12);
+        assert_near(d->qd[0], k * f[1], 1e-12);
+        const double tau = IO * (k * k + 1.0) * f[2] + m * g * (L / 2) * (k * cos(d->q[0]) + cos(d->q[1]));
+        assert_near(d->drive_effort[0], tau, 1e-10);
+    }
+    vt_data_free(d);
+    vt_model_free(model);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -761,6 +846,7 @@ int main(void)
         cmocka_unit_test(test_fourbar_rusr),
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_spherical_through_gimbal_lock),
+        cmocka_unit_test(test_coupling),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

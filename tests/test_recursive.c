@@ -472,6 +472,49 @@ static void test_motion(void **state)
     }
 }
 
+/* a coupling of two coordinates (the general route: M* and Q formed, vt_solve) against the dense
+ * path, on random trees with a joint drive and loads */
+static void test_coupled(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 2; seed <= 6; seed++) {
+        vt_model *probe;
+        assert_ok(vt_scene_random_tree(&probe, seed, 8, VT_SCENE_SCALAR_JOINTS));
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed, 8, VT_SCENE_SCALAR_JOINTS));
+        vt_coupling_def c = vt_default_coupling_def();
+        c.body_a = 7;
+        c.body_b = 3;
+        c.ratio = 1.3;
+        c.offset = -0.1;
+        assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = 5;
+        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_model_free(probe);
+        vt_data *dr_, *dd;
+        assert_ok(vt_data_create(&dr_, m));
+        assert_ok(vt_data_create(&dd, m));
+        uint64_t s = seed * 3;
+        vt_scene_random_state(m, dd, &s);
+        for (int cc = 0; cc < m->nv; cc++) dd->qfrc[cc] = vt_rand_uniform(&s, -1, 1);
+        memcpy(dr_->q, dd->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr_->qd, dd->qd, (size_t)m->nv * sizeof(double));
+        memcpy(dr_->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
+        dr_->time = dd->time = 0.3;
+        both(m, dr_, dd);
+        compare(dr_->coupling_effort, dd->coupling_effort, 1, 1e-12, "coupling_effort");
+        vt_data_free(dr_);
+        vt_data_free(dd);
+        vt_model_free(m);
+    }
+}
+
 /* what vt_inverse_dynamics_motion refuses: loops, base bodies, non-finite q̈; the inputs are
  * left as they were */
 static void test_motion_refused(void **state)
@@ -525,6 +568,7 @@ int main(void)
         cmocka_unit_test(test_dependent),
         cmocka_unit_test(test_motion),
         cmocka_unit_test(test_motion_refused),
+        cmocka_unit_test(test_coupled),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -232,6 +232,22 @@ typedef struct vt_cut_joint_def {
     const char *frame_b;   ///< the same for body_b and point_b; default NULL
 } vt_cut_joint_def;
 
+/// A coupling of two joint coordinates, q_a = ratio q_b + offset (a URDF mimic joint, a gear
+/// pair, a belt): one constraint row, Φ = q_a − ratio q_b − offset, whose multiplier is the
+/// generalized force the coupling exerts on rate a (−ratio times it on rate b), reported in
+/// vt_data.coupling_effort; like an applied generalized force it is not part of the joint
+/// reactions. Both coordinates must be scalar (not a spherical joint's or a base body's).
+/// Fill from vt_default_coupling_def().
+typedef struct vt_coupling_def {
+    int body_a;            ///< the body whose joint's coordinate follows; default 2
+    int index_a;           ///< which rate of that joint (0-based); default 0
+    int body_b;            ///< the body whose joint's coordinate leads; default 1
+    int index_b;           ///< which rate of that joint; default 0
+    double ratio;          ///< q_a per q_b (a rad/rad, m/m, m/rad or rad/m ratio); default 1
+    double offset;         ///< q_a at q_b = 0, rad or m; default 0
+    const char *name;      ///< the coupling's name (copied; in a model: its own copy); default NULL
+} vt_coupling_def;
+
 /// A moving body and the joint that connects it to its reference body.
 /// Fill from vt_default_body_def() and set only what the scene needs.
 typedef struct vt_body_def {
@@ -311,6 +327,7 @@ typedef struct vt_model {
     char *joint_name;        ///< the name of body i's joint, the same way (nbody+1)
     char *drive_name;        ///< (ndrive)
     char *cut_name;          ///< (ncut)
+    char *coupling_name;     ///< (ncoupling)
     int nframe;              ///< number of frames
     char *frame_name;        ///< (nframe)
     int *frame_body;         ///< the body each frame moves with (nframe)
@@ -323,11 +340,15 @@ typedef struct vt_model {
     int allow_redundant;     ///< see vt_model_def
     int ndrive;              ///< number of drives
     int ncut;                ///< number of cut joints
-    int nc;                  ///< number of constraint rows (drives, cut joints, one p^T p − 1 per base body)
+    int nc;                  ///< number of constraint rows (drives, cut joints, couplings, one p^T p − 1
+                             ///< per base body, in that order)
     vt_drive_def *drive;     ///< the drives, validated and normalized (ndrive)
     int *drive_row;          ///< first constraint row of each drive (ndrive)
     vt_cut_joint_def *cut;   ///< the cut joints, validated and normalized (ncut)
     int *cut_row;            ///< first constraint row of each cut joint (ncut)
+    int ncoupling;           ///< number of couplings
+    vt_coupling_def *coupling; ///< the couplings, validated (ncoupling)
+    int *coupling_row;       ///< the constraint row of each coupling (ncoupling)
     int *con_body;           ///< the two bodies of each row: a (0 = ground) then b (2 x nc)
     int *con_owner;          ///< the drive, cut joint or base body a row belongs to (nc)
     int *dof_drive;          ///< the joint drive of each rate, −1 if none (nv)
@@ -432,6 +453,8 @@ typedef struct vt_data {
     double *cut_moment;      ///< cut joint: moment of body_a on body_b about point_b (3 x ncut), N·m
     double *cut_force_body;  ///< the same in body_b's axes (3 x ncut)
     double *cut_moment_body; ///< the same in body_b's axes (3 x ncut)
+    double *coupling_effort; ///< each coupling's generalized force on its rate a, N·m or N; −ratio times
+                             ///< it acts on rate b (ncoupling)
     int *jnt_unique;         ///< per reaction component (fx fy fz nx ny nz, global): 0 where a tree
                              ///< joint's reaction is not unique (redundant rows), else 1 (6 x (nbody+1))
     int *cut_unique;         ///< the same for the cut joints (6 x ncut)

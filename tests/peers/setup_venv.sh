@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Creates (if missing) the virtual environment of the Pinocchio reference scripts in
+# tests/peers/ and installs pinned versions of Pinocchio (PyPI package `pin`) and
+# example-robot-data (the robots' URDFs and meshes) into it.
+#
+#   tests/peers/setup_venv.sh            # prints the venv's python path on success
+#
+# Environment:
+#   VT_PEERS_TEST_VENV   the venv's directory (default $HOME/.cache/vtdyn-peers/venv-test)
+#   VT_PEERS_PYTHON      the interpreter that creates it (default python3, needs >= 3.9)
+#
+# Exit status: 0 and the python path on stdout when the venv has the pinned versions;
+# 77 (meson's "skipped") with one line on stderr when the venv cannot be created, pip cannot
+# reach the index or the install fails. When the pinned versions are already there it
+# only checks them (no network, well under a second).
+set -u
+
+PIN_VERSION=4.1.0
+ERD_VERSION=6.0.0
+VENV=${VT_PEERS_TEST_VENV:-$HOME/.cache/vtdyn-peers/venv-test}
+BASE_PYTHON=${VT_PEERS_PYTHON:-python3}
+PY="$VENV/bin/python"
+
+skip() { echo "setup_venv.sh: skipped: $*" >&2; exit 77; }
+
+# The check: both distributions at the pinned versions and pinocchio importable.
+have_pinned() {
+    [ -x "$PY" ] || return 1
+    "$PY" - "$PIN_VERSION" "$ERD_VERSION" <<'PYEOF' >/dev/null 2>&1
+import sys
+from importlib.metadata import version
+if version("pin") != sys.argv[1] or version("example-robot-data") != sys.argv[2]:
+    sys.exit(1)
+import pinocchio, numpy  # noqa: F401
+PYEOF
+}
+
+if have_pinned; then
+    echo "$PY"
+    exit 0
+fi
+
+if [ ! -x "$PY" ]; then
+    command -v "$BASE_PYTHON" >/dev/null 2>&1 || skip "no $BASE_PYTHON to create $VENV"
+    mkdir -p "$(dirname "$VENV")" || skip "cannot create $(dirname "$VENV")"
+    log=$("$BASE_PYTHON" -m venv "$VENV" 2>&1) \
+        || skip "cannot create the venv $VENV: $(printf '%s' "$log" | tail -n 1)"
+fi
+
+log=$("$PY" -m pip install --disable-pip-version-check --no-input --quiet \
+        --retries 1 --timeout 30 \
+        "pin==$PIN_VERSION" "example-robot-data==$ERD_VERSION" 2>&1)
+status=$?
+if [ $status -ne 0 ]; then
+    last=$(printf '%s\n' "$log" | grep -v '^\s*$' | tail -n 1)
+    if printf '%s' "$log" | grep -qiE 'connection|network|resolve|timed out|proxy|ssl|No matching distribution'; then
+        skip "pip cannot reach the package index or find pin==$PIN_VERSION: $last"
+    fi
+    skip "pip install of pin==$PIN_VERSION example-robot-data==$ERD_VERSION failed: $last"
+fi
+
+have_pinned || skip "installed, but pin==$PIN_VERSION / example-robot-data==$ERD_VERSION do not import in $VENV"
+echo "$PY"
