@@ -42,7 +42,7 @@ fi
 
 if [ ! -x "$PY" ]; then
     command -v "$BASE_PYTHON" >/dev/null 2>&1 || skip "no $BASE_PYTHON to create $VENV"
-    mkdir -p "$(dirname "$VENV")" || skip "cannot create $(dirname "$VENV")"
+    mkdir -p "$(dirname "$VENV")" 2>/dev/null || skip "cannot create $(dirname "$VENV")"
     log=$("$BASE_PYTHON" -m venv "$VENV" 2>&1) \
         || skip "cannot create the venv $VENV: $(printf '%s' "$log" | tail -n 1)"
 fi

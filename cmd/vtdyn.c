@@ -1,0 +1,468 @@
+/* vtdyn — the library's command: a URDF robot's inverse dynamics from a CSV file.
+ *
+ *   vtdyn info MODEL.urdf
+ *   vtdyn inverse MODEL.urdf STATES.csv [-o OUT.csv]
+ *
+ * `inverse` reads one row per instant. With the columns J, J_vel and J_acc for every moving
+ * joint J (and `t` optionally) each row is a state: vt_inverse_dynamics_motion() gives every
+ * joint's effort, M* q̈ − Q, and every reaction. With `t` and the positions J alone the rows are
+ * samples of a trajectory: each joint follows the cubic spline through its samples
+ * (vt_function_spline, exact f' and f''), as a joint drive, and vt_kinematic_solve() at each
+ * sample time gives q̇ and q̈ from the splines and the drives' efforts. Out, per row: `t` when
+ * given, then per moving joint J the effort `J_effort` (N·m or N), the reaction of the parent
+ * link on the child link `J_fx J_fy J_fz J_nx J_ny J_nz` (N, N·m; global axes, the moment about
+ * the child link frame's origin, the joint's actuation not included) and the same in the child
+ * link's URDF axes, `J_fx_link … J_nz_link`.
+ * Errors name the file, the row and the column, and exit 1; an output file is written beside
+ * its name and renamed when complete, so a failed run leaves no partial file under that name.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "vtdyn.h"
+
+static const char usage[] =
+    "usage: vtdyn info MODEL.urdf\n"
+    "       vtdyn inverse MODEL.urdf STATES.csv [-o OUT.csv]\n"
+    "\n"
+    "info     the bodies (URDF links), their joints (name, kind, rates), masses and frames.\n"
+    "inverse  efforts and joint reactions, one output row per input row (stdout by default).\n"
+    "         STATES.csv: a header row, then one row per instant, comma separated. For each\n"
+    "         moving joint J of the robot (a revolute, continuous or prismatic URDF joint):\n"
+    "           J      position, rad or m (URDF's joint coordinate)\n"
+    "           J_vel  velocity, rad/s or m/s\n"
+    "           J_acc  acceleration, rad/s^2 or m/s^2\n"
+    "         and optionally t (s). Given t and the positions alone, the rows are samples of a\n"
+    "         trajectory (t increasing): velocities and accelerations come from the cubic spline\n"
+    "         through each joint's samples (not-a-knot ends).\n"
+    "         OUT.csv: t (when given), then per moving joint J\n"
+    "           J_effort                 the joint's torque or force, N m or N\n"
+    "           J_fx J_fy J_fz           the reaction force of the parent link on the child link, N,\n"
+    "           J_nx J_ny J_nz           and its moment about the child link frame's origin, N m,\n"
+    "                                    in the URDF's world axes; the joint's actuation (the\n"
+    "                                    effort) is not part of the reaction\n"
+    "           J_fx_link ... J_nz_link  the same in the child link's URDF axes\n"
+    "         Gravity is -9.81 m/s^2 along z (URDF robots are z up). The robot's root link is\n"
+    "         fixed to the world; a floating root is not supported by this command yet.\n";
+
+/* ---- messages ----------------------------------------------------------------------------- */
+
+static int fail(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("vtdyn: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return 1;
+}
+
+/* ---- CSV: the whole file, split into rows of numeric cells under a header ----------------- */
+
+typedef struct {
+    int ncol, nrow;
+    char **name;   /* header cells (ncol) */
+    double *cell;  /* nrow x ncol, row-major */
+} table;
+
+static void table_free(table *t)
+{
+    for (int c = 0; c < t->ncol; c++) free(t->name[c]);
+    free(t->name);
+    free(t->cell);
+    memset(t, 0, sizeof *t);
+}
+
+static char *trim(char *s)
+{
+    while (*s == ' ' || *s == '\t') s++;
+    char *e = s + strlen(s);
+    while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) *--e = '\0';
+    return s;
+}
+
+/* reads a CSV file of numbers under a header; 0, or 1 with the message printed */
+static int read_table(table *t, const char *path)
+{
+    memset(t, 0, sizeof *t);
+    FILE *f = fopen(path, "r");
+    if (!f) return fail("%s: %s", path, strerror(errno));
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len;
+    int row = 0, cap_rows = 0, status = 0;
+    while ((len = getline(&line, &cap, f)) >= 0) {
+        row++;
+        (void)len;
+        char *s = trim(line);
+        if (!*s) continue; /* blank lines */
+        if (!t->ncol) { /* the header */
+            for (char *p = s;;) {
+                char *comma = strchr(p, ',');
+                if (comma) *comma = '\0';
+                char **nn = realloc(t->name, (size_t)(t->ncol + 1) * sizeof *nn);
+                if (!nn) { status = fail("out of memory"); goto done; }
+                t->name = nn;
+                t->name[t->ncol] = strdup(trim(p));
+                if (!t->name[t->ncol]) { status = fail("out of memory"); goto done; }
+                t->ncol++;
+                const char *nm = t->name[t->ncol - 1];
+                if (!nm[0]) { status = fail("%s:%d: column %d has no name", path, row, t->ncol); goto done; }
+                for (int c = 0; c + 1 < t->ncol; c++)
+                    if (strcmp(t->name[c], nm) == 0) { status = fail("%s:%d: column '%s' twice", path, row, nm); goto done; }
+                if (!comma) break;
+                p = comma + 1;
+            }
+            continue;
+        }
+        if (t->nrow == cap_rows) {
+            cap_rows = cap_rows ? 2 * cap_rows : 256;
+            double *nc = realloc(t->cell, (size_t)cap_rows * (size_t)t->ncol * sizeof *nc);
+            if (!nc) { status = fail("out of memory"); goto done; }
+            t->cell = nc;
+        }
+        double *out = t->cell + (size_t)t->nrow * (size_t)t->ncol;
+        int c = 0;
+        for (char *p = s;; c++) {
+            char *comma = strchr(p, ',');
+            if (comma) *comma = '\0';
+            if (c >= t->ncol) { status = fail("%s:%d: more cells than the %d columns of the header", path, row, t->ncol); goto done; }
+            char *cell = trim(p), *end = NULL;
+            errno = 0;
+            out[c] = strtod(cell, &end);
+            if (!*cell || *end || errno == ERANGE || !isfinite(out[c])) {
+                status = fail("%s:%d: column '%s': '%s' is not a finite number", path, row, t->name[c], cell);
+                goto done;
+            }
+            if (!comma) break;
+            p = comma + 1;
+        }
+        if (c + 1 != t->ncol) { status = fail("%s:%d: %d cells for the %d columns of the header", path, row, c + 1, t->ncol); goto done; }
+        t->nrow++;
+    }
+    if (!t->ncol) status = fail("%s: no header row", path);
+    else if (!t->nrow) status = fail("%s: no data rows under the header", path);
+done:
+    free(line);
+    fclose(f);
+    if (status) table_free(t);
+    return status;
+}
+
+static int column(const table *t, const char *name)
+{
+    for (int c = 0; c < t->ncol; c++)
+        if (strcmp(t->name[c], name) == 0) return c;
+    return -1;
+}
+
+/* ---- the model ---------------------------------------------------------------------------- */
+
+static int load(vt_builder **b, const char *path)
+{
+    char msg[256] = "";
+    const vt_urdf_options opt = vt_default_urdf_options();
+    const vt_status st = vt_urdf_builder(b, path, &opt, msg);
+    if (st) return fail("%s: %s (%s)", path, msg, vt_status_string(st));
+    return 0;
+}
+
+static const char *joint_kind(int jt)
+{
+    static const char *kinds[VT_JOINT_TYPE_COUNT] = {"floating", "revolute", "universal", "spherical", "prismatic",
+                                                     "cylindrical"};
+    return jt >= 0 && jt < VT_JOINT_TYPE_COUNT ? kinds[jt] : "?";
+}
+
+static int info(const char *path)
+{
+    vt_builder *b;
+    vt_model *m;
+    if (load(&b, path)) return 1;
+    const vt_status st = vt_builder_build(&m, b);
+    if (st) {
+        fail("%s: %s", path, vt_builder_message(b));
+        vt_builder_free(b);
+        return 1;
+    }
+    vt_builder_free(b);
+    double mass = 0.0;
+    for (int i = 1; i <= m->nbody; i++) mass += m->body_mass[i];
+    printf("%s: %d moving bodies, %d coordinates, %d rates, %g kg; gravity (%g, %g, %g) m/s^2\n", path, m->nbody, m->nq,
+           m->nv, mass, m->gravity[0], m->gravity[1], m->gravity[2]);
+    printf("%-4s %-24s %-24s %-10s %5s %10s  %s\n", "id", "body (link)", "joint", "kind", "rates", "mass kg", "parent");
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i];
+        printf("%-4d %-24s %-24s %-10s %5d %10.6g  %s\n", i, m->body_name + VT_NAME_MAX * i,
+               m->joint_name + VT_NAME_MAX * i, joint_kind(m->body_joint[i]), m->body_nv[i], m->body_mass[i],
+               j ? m->body_name + VT_NAME_MAX * j : "(world)");
+        for (int k = 0; k < m->body_nv[i]; k++) {
+            const double *lim = m->dof_limit + 4 * (m->body_vadr[i] + k);
+            if (isfinite(lim[0]) || isfinite(lim[1]) || isfinite(lim[2]) || isfinite(lim[3]))
+                printf("     rate %d limits: [%g, %g], |velocity| <= %g, |effort| <= %g\n", k, lim[0], lim[1], lim[2], lim[3]);
+        }
+    }
+    printf("%d frames:\n", m->nframe);
+    for (int k = 0; k < m->nframe; k++) {
+        const int i = m->frame_body[k];
+        const double *p = m->frame_point + 3 * k;
+        printf("  %-28s on %-24s at (%.6g, %.6g, %.6g) m from its centre of mass\n", m->frame_name + VT_NAME_MAX * k,
+               i ? m->body_name + VT_NAME_MAX * i : "(world)", p[0], p[1], p[2]);
+    }
+    for (int k = 0; k < m->ncoupling; k++)
+        printf("coupling %s: %s = %g %s + %g\n", m->coupling_name + VT_NAME_MAX * k,
+               m->joint_name + VT_NAME_MAX * m->coupling[k].body_a, m->coupling[k].ratio,
+               m->joint_name + VT_NAME_MAX * m->coupling[k].body_b, m->coupling[k].offset);
+    vt_model_free(m);
+    return 0;
+}
+
+/* ---- inverse ------------------------------------------------------------------------------ */
+
+typedef struct {
+    int body, rate;       /* the joint's body and its rate */
+    int col, col_vel, col_acc;
+    int frame;            /* the child link's frame (its URDF axes), or -1 */
+    const char *name;
+} joint_cols;
+
+static void progress(int row, int nrow, double *last)
+{
+    if (!isatty(2) || nrow < 2000) return;
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    const double now = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    if (now - *last < 0.5 && row + 1 < nrow) return;
+    *last = now;
+    fprintf(stderr, "\rvtdyn: row %d of %d", row + 1, nrow);
+    if (row + 1 == nrow) fputc('\n', stderr);
+}
+
+static void write_row(FILE *out, const vt_model *m, vt_data *d, const joint_cols *jc, int nj, int has_t, double t,
+                      const double *effort)
+{
+    if (has_t) fprintf(out, "%.17g,", t);
+    for (int k = 0; k < nj; k++) {
+        const int i = jc[k].body;
+        const double *f = d->jnt_force + 3 * i, *n = d->jnt_moment + 3 * i;
+        double R[9], fl[3], nl[3];
+        if (jc[k].frame >= 0 && vt_frame_pose(m, d, jc[k].frame, NULL, R) == VT_OK) {
+            for (int c = 0; c < 3; c++) {
+                fl[c] = R[3 * c] * f[0] + R[3 * c + 1] * f[1] + R[3 * c + 2] * f[2];
+                nl[c] = R[3 * c] * n[0] + R[3 * c + 1] * n[1] + R[3 * c + 2] * n[2];
+            }
+        } else { /* no link frame: the body's own axes */
+            memcpy(fl, d->jnt_force_body + 3 * i, sizeof fl);
+            memcpy(nl, d->jnt_moment_body + 3 * i, sizeof nl);
+        }
+        fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g%s", effort[k], f[0],
+                f[1], f[2], n[0], n[1], n[2], fl[0], fl[1], fl[2], nl[0], nl[1], nl[2], k + 1 < nj ? "," : "\n");
+    }
+}
+
+static int inverse(const char *urdf, const char *states, const char *outpath)
+{
+    vt_builder *b = NULL;
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    table t;
+    joint_cols *jc = NULL;
+    double *effort = NULL;
+    FILE *out = NULL;
+    char *tmp = NULL;
+    int status = 1;
+    if (read_table(&t, states)) return 1;
+    if (load(&b, urdf)) goto done;
+    /* the moving joints, in the model's order: one column set each */
+    vt_model *probe = NULL;
+    if (vt_builder_build(&probe, b)) {
+        fail("%s: %s", urdf, vt_builder_message(b));
+        goto done;
+    }
+    int nj = 0;
+    jc = calloc((size_t)probe->nbody, sizeof *jc);
+    effort = calloc((size_t)probe->nbody + 1, sizeof *effort);
+    if (!jc || !effort) {
+        vt_model_free(probe);
+        fail("out of memory");
+        goto done;
+    }
+    const int ct = column(&t, "t");
+    int samples = -1; /* 1: positions only (samples of a trajectory), 0: states */
+    for (int i = 1; i <= probe->nbody; i++) {
+        const int jt = probe->body_joint[i];
+        const char *name = probe->joint_name + VT_NAME_MAX * i;
+        if (jt == VT_JOINT_BASE || jt == VT_JOINT_SPHERICAL || probe->body_nv[i] != 1) {
+            fail("%s: joint '%s' (%s): only revolute, continuous and prismatic joints are supported here", urdf, name,
+                 joint_kind(jt));
+            vt_model_free(probe);
+            goto done;
+        }
+        char key[VT_NAME_MAX + 8];
+        joint_cols *j = &jc[nj++];
+        j->body = i;
+        j->rate = probe->body_vadr[i];
+        j->name = name;
+        j->col = column(&t, name);
+        snprintf(key, sizeof key, "%s_vel", name);
+        j->col_vel = column(&t, key);
+        snprintf(key, sizeof key, "%s_acc", name);
+        j->col_acc = column(&t, key);
+        j->frame = vt_find_frame(probe, probe->body_name + VT_NAME_MAX * i);
+        if (j->col < 0) {
+            fail("%s: no column '%s' (the position of joint %s)", states, name, name);
+            vt_model_free(probe);
+            goto done;
+        }
+        const int full = j->col_vel >= 0 && j->col_acc >= 0, none = j->col_vel < 0 && j->col_acc < 0;
+        const int mode = full ? 0 : none ? 1 : -1;
+        if (mode < 0 || (samples >= 0 && mode != samples)) {
+            fail("%s: joint '%s': give '%s_vel' and '%s_acc' for every joint, or for none (then with 't', samples)",
+                 states, name, name, name);
+            vt_model_free(probe);
+            goto done;
+        }
+        samples = mode;
+    }
+    vt_model_free(probe);
+    if (samples == 1 && ct < 0) {
+        fail("%s: positions without velocities and accelerations are samples of a trajectory: a column 't' is needed",
+             states);
+        goto done;
+    }
+    double *ts = NULL, *ys = NULL;
+    if (samples == 1) { /* a joint drive on every joint, following the spline through its samples */
+        ts = malloc((size_t)t.nrow * sizeof *ts);
+        ys = malloc((size_t)t.nrow * sizeof *ys);
+        if (!ts || !ys) {
+            free(ts);
+            free(ys);
+            fail("out of memory");
+            goto done;
+        }
+        for (int r = 0; r < t.nrow; r++) ts[r] = t.cell[(size_t)r * (size_t)t.ncol + (size_t)ct];
+        for (int k = 0; k < nj; k++) {
+            for (int r = 0; r < t.nrow; r++) ys[r] = t.cell[(size_t)r * (size_t)t.ncol + (size_t)jc[k].col];
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = jc[k].body;
+            dr.f = vt_function_spline(t.nrow, ts, ys);
+            if (vt_builder_add_drive(b, &dr) < 0) {
+                fail("%s: column '%s' as samples: %s", states, jc[k].name, vt_builder_message(b));
+                free(ts);
+                free(ys);
+                goto done;
+            }
+        }
+        free(ys);
+    }
+    if (vt_builder_build(&m, b) || vt_data_create(&d, m)) {
+        fail("%s: %s", urdf, vt_builder_message(b));
+        free(ts);
+        goto done;
+    }
+    if (outpath) {
+        tmp = malloc(strlen(outpath) + 8);
+        if (!tmp) {
+            free(ts);
+            fail("out of memory");
+            goto done;
+        }
+        sprintf(tmp, "%s.part", outpath);
+        out = fopen(tmp, "w");
+        if (!out) {
+            free(ts);
+            fail("%s: %s", tmp, strerror(errno));
+            goto done;
+        }
+    } else {
+        out = stdout;
+    }
+    if (ct >= 0) fputs("t,", out);
+    for (int k = 0; k < nj; k++) {
+        const char *n = jc[k].name;
+        fprintf(out, "%s_effort,%s_fx,%s_fy,%s_fz,%s_nx,%s_ny,%s_nz,%s_fx_link,%s_fy_link,%s_fz_link,%s_nx_link,"
+                     "%s_ny_link,%s_nz_link%s",
+                n, n, n, n, n, n, n, n, n, n, n, n, n, k + 1 < nj ? "," : "\n");
+    }
+    double last = 0.0;
+    for (int r = 0; r < t.nrow; r++) {
+        const double *row = t.cell + (size_t)r * (size_t)t.ncol;
+        vt_status st;
+        for (int k = 0; k < nj; k++) d->q[m->body_qadr[jc[k].body]] = row[jc[k].col];
+        if (samples == 1) {
+            d->time = row[ct];
+            st = vt_kinematic_solve(m, d, 1e-12, 30);
+            for (int k = 0; k < nj && !st; k++) effort[k] = d->drive_effort[k];
+        } else {
+            for (int k = 0; k < nj; k++) {
+                d->qd[jc[k].rate] = row[jc[k].col_vel];
+                d->qdd[jc[k].rate] = row[jc[k].col_acc];
+            }
+            st = vt_inverse_dynamics_motion(m, d);
+            for (int k = 0; k < nj && !st; k++) effort[k] = d->qfrc_drive[jc[k].rate];
+        }
+        if (st) {
+            fail("%s:%d: %s (%s)", states, r + 2, d->message, vt_status_string(st));
+            free(ts);
+            goto done;
+        }
+        write_row(out, m, d, jc, nj, ct >= 0, ct >= 0 ? row[ct] : 0.0, effort);
+        progress(r, t.nrow, &last);
+    }
+    free(ts);
+    if (out != stdout) {
+        const int bad = ferror(out);
+        const int closed = fclose(out);
+        out = NULL;
+        if (bad || closed || rename(tmp, outpath)) {
+            fail("%s: %s", outpath, strerror(errno));
+            goto done;
+        }
+    } else if (fflush(stdout) || ferror(stdout)) {
+        fail("stdout: %s", strerror(errno));
+        goto done;
+    }
+    status = 0;
+done:
+    if (out && out != stdout) fclose(out);
+    if (status && tmp) remove(tmp);
+    free(tmp);
+    free(jc);
+    free(effort);
+    vt_data_free(d);
+    vt_model_free(m);
+    vt_builder_free(b);
+    table_free(&t);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (argc >= 3 && strcmp(argv[1], "inverse") == 0 && (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (argc == 3 && strcmp(argv[1], "info") == 0) return info(argv[2]);
+    if ((argc == 4 || argc == 6) && strcmp(argv[1], "inverse") == 0) {
+        const char *outpath = NULL;
+        if (argc == 6) {
+            if (strcmp(argv[4], "-o") != 0) return fail("unknown option '%s'\n%s", argv[4], usage);
+            outpath = argv[5];
+        }
+        return inverse(argv[2], argv[3], outpath);
+    }
+    fputs(usage, stderr);
+    return 2;
+}

@@ -1,0 +1,147 @@
+/* vtdyn loading a URDF robot against Pinocchio loading the same file: at every state of a
+ * reference CSV written by tests/peers/pinocchio_reference.py (Pinocchio's rnea and data.f),
+ * vt_inverse_dynamics_motion() on the model of vt_urdf_builder() must give the same joint
+ * torques and every joint's reaction without the actuation, in world axes and in the joint's
+ * (the child link's URDF) axes, the moment about the joint's origin, to a relative tolerance
+ * of the largest torque or wrench of the state.
+ *
+ *   compare_pinocchio ROBOT.urdf REFERENCE.csv [tolerance]      (default 1e-12)
+ *
+ * Fixed-base robots: the reference's joints are matched to vtdyn's by name (the URDF joint
+ * names); Pinocchio's default treats a mimic joint as an independent joint, and so does the
+ * loader here (vt_urdf_options.mimic = 0). Prints the largest relative differences; exit 0
+ * when within the tolerance, 1 otherwise, 77 (skip) for a floating base. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vtdyn.h"
+
+typedef struct {
+    int ncol, nrow;
+    char **name;
+    double *cell;
+} table;
+
+static int read_csv(table *t, const char *path)
+{
+    memset(t, 0, sizeof *t);
+    FILE *f = fopen(path, "r");
+    if (!f) return fprintf(stderr, "%s: %s\n", path, strerror(errno)), 1;
+    char *line = NULL;
+    size_t cap = 0;
+    int caprow = 0;
+    while (getline(&line, &cap, f) >= 0) {
+        line[strcspn(line, "\r\n")] = '\0';
+        if (!line[0]) continue;
+        if (!t->ncol) {
+            for (char *p = strtok(line, ","); p; p = strtok(NULL, ",")) {
+                t->name = realloc(t->name, (size_t)(t->ncol + 1) * sizeof *t->name);
+                t->name[t->ncol++] = strdup(p);
+            }
+            continue;
+        }
+        if (t->nrow == caprow) {
+            caprow = caprow ? 2 * caprow : 64;
+            t->cell = realloc(t->cell, (size_t)caprow * (size_t)t->ncol * sizeof *t->cell);
+        }
+        int c = 0;
+        for (char *p = strtok(line, ","); p && c < t->ncol; p = strtok(NULL, ","), c++)
+            t->cell[(size_t)t->nrow * (size_t)t->ncol + (size_t)c] = strtod(p, NULL);
+        if (c != t->ncol) return fprintf(stderr, "%s: row %d has %d cells\n", path, t->nrow + 2, c), fclose(f), 1;
+        t->nrow++;
+    }
+    free(line);
+    fclose(f);
+    return t->nrow ? 0 : (fprintf(stderr, "%s: no rows\n", path), 1);
+}
+
+static int col(const table *t, const char *quantity, const char *joint, const char *comp)
+{
+    char key[256];
+    snprintf(key, sizeof key, comp ? "%s:%s:%s" : "%s:%s", quantity, joint, comp);
+    for (int c = 0; c < t->ncol; c++)
+        if (strcmp(t->name[c], key) == 0) return c;
+    return -1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 3) return fprintf(stderr, "usage: compare_pinocchio ROBOT.urdf REFERENCE.csv [tolerance]\n"), 2;
+    const double tol = argc > 3 ? atof(argv[3]) : 1e-12;
+    table t;
+    if (read_csv(&t, argv[2])) return 1;
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.mimic = 0; /* as Pinocchio's default: a mimic joint is a joint of its own */
+    char msg[256] = "";
+    vt_builder *b;
+    vt_model *m;
+    vt_data *d;
+    vt_status st = vt_urdf_builder(&b, argv[1], &opt, msg);
+    if (st) return fprintf(stderr, "%s: %s\n", argv[1], msg), 1;
+    if ((st = vt_builder_build(&m, b)) || (st = vt_data_create(&d, m)))
+        return fprintf(stderr, "%s: %s\n", argv[1], vt_builder_message(b)), 1;
+    vt_builder_free(b);
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE) {
+            printf("%s: a floating base: not compared (vt_inverse_dynamics_motion takes fixed bases)\n", argv[1]);
+            return 77;
+        }
+    static const char *fc[6] = {"fx", "fy", "fz", "mx", "my", "mz"};
+    double worst_tau = 0.0, worst_w = 0.0, worst_l = 0.0;
+    int bad = 0;
+    for (int r = 0; r < t.nrow; r++) {
+        const double *row = t.cell + (size_t)r * (size_t)t.ncol;
+        double scale = 0.0;
+        for (int i = 1; i <= m->nbody; i++) { /* the state, joint by joint */
+            const char *j = m->joint_name + VT_NAME_MAX * i;
+            const int cq = col(&t, "q", j, "0"), cv = col(&t, "v", j, "0"), ca = col(&t, "a", j, "0");
+            if (cq < 0 || cv < 0 || ca < 0) return fprintf(stderr, "%s: no state of joint '%s'\n", argv[2], j), 1;
+            d->q[m->body_qadr[i]] = row[cq];
+            d->qd[m->body_vadr[i]] = row[cv];
+            d->qdd[m->body_vadr[i]] = row[ca];
+            scale = fmax(scale, fabs(row[col(&t, "tau", j, "0")]));
+            for (int k = 0; k < 6; k++) scale = fmax(scale, fabs(row[col(&t, "frw", j, fc[k])]));
+        }
+        if ((st = vt_inverse_dynamics_motion(m, d)))
+            return fprintf(stderr, "state %d: %s: %s\n", r, vt_status_string(st), d->message), 1;
+        for (int i = 1; i <= m->nbody; i++) {
+            const char *j = m->joint_name + VT_NAME_MAX * i;
+            const double e_tau = fabs(d->qfrc_drive[m->body_vadr[i]] - row[col(&t, "tau", j, "0")]) / scale;
+            worst_tau = fmax(worst_tau, e_tau);
+            double R[9];
+            const int frame = vt_find_frame(m, m->body_name + VT_NAME_MAX * i); /* the child link's axes */
+            if (frame < 0 || vt_frame_pose(m, d, frame, NULL, R))
+                return fprintf(stderr, "no link frame for body %s\n", m->body_name + VT_NAME_MAX * i), 1;
+            for (int k = 0; k < 6; k++) {
+                const double *w = k < 3 ? d->jnt_force + 3 * i : d->jnt_moment + 3 * i;
+                const int c = k % 3;
+                const double local = R[3 * c] * w[0] + R[3 * c + 1] * w[1] + R[3 * c + 2] * w[2];
+                const double ew = fabs(w[c] - row[col(&t, "frw", j, fc[k])]) / scale;
+                const double el = fabs(local - row[col(&t, "fr", j, fc[k])]) / scale;
+                worst_w = fmax(worst_w, ew);
+                worst_l = fmax(worst_l, el);
+                if (ew > tol || el > tol) {
+                    if (bad++ < 10)
+                        printf("state %d joint %s %s: vtdyn %.17g (link %.17g), Pinocchio %.17g (joint frame %.17g)\n", r,
+                               j, fc[k], w[c], local, row[col(&t, "frw", j, fc[k])], row[col(&t, "fr", j, fc[k])]);
+                }
+            }
+            if (e_tau > tol && bad++ < 10)
+                printf("state %d joint %s: torque vtdyn %.17g, Pinocchio %.17g\n", r, j, d->qfrc_drive[m->body_vadr[i]],
+                       row[col(&t, "tau", j, "0")]);
+        }
+    }
+    printf("%s: %d states, %d joints: largest relative difference: torques %.2g, reactions (world) %.2g, "
+           "reactions (joint axes) %.2g (tolerance %.2g)\n",
+           argv[1], t.nrow, m->nbody, worst_tau, worst_w, worst_l, tol);
+    vt_data_free(d);
+    vt_model_free(m);
+    for (int c = 0; c < t.ncol; c++) free(t.name[c]);
+    free(t.name);
+    free(t.cell);
+    return bad ? 1 : 0;
+}
