@@ -49,7 +49,8 @@ module vtdyn
       VT_ERR_BAD_DRIVE = -18, VT_ERR_BAD_CUT_JOINT = -19, VT_ERR_CALLBACK = -20, &
       VT_ERR_SINGULAR = -21, VT_ERR_DEPENDENT_CONSTRAINTS = -22, VT_ERR_NEWTON = -23, &
       VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
-      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30
+      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30, &
+      VT_ERR_FILE = -31, VT_ERR_XML = -32
   integer(c_int), parameter :: VT_NAME_MAX = 64
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   integer(c_int), parameter :: VT_MAX_BODIES = 1000
