@@ -170,8 +170,8 @@ static vt_status numbers(const urdf *u, const char *kind, const xmlChar *owner, 
         char *end;
         v[k] = strtod(p, &end);
         if (end == p || (*end && !is_space(*end)))
-            st = fail_at(u, VT_ERR_NONFINITE, kind, owner, node, "%s=\"%.40s\" is not %d number%s", attr,
-                         (const char *)text, n, n > 1 ? "s" : "");
+            st = fail_at(u, VT_ERR_NONFINITE, kind, owner, node, "%s=\"%.40s\" is not %s", attr, (const char *)text,
+                         n > 1 ? "three numbers" : "a number");
         else if (!isfinite(v[k]))
             st = fail_at(u, VT_ERR_NONFINITE, kind, owner, node, "%s=\"%.40s\": a number that is not finite", attr,
                          (const char *)text);
@@ -179,8 +179,8 @@ static vt_status numbers(const urdf *u, const char *kind, const xmlChar *owner, 
     }
     while (st == VT_OK && is_space(*p)) p++;
     if (st == VT_OK && *p)
-        st = fail_at(u, VT_ERR_NONFINITE, kind, owner, node, "%s=\"%.40s\" is not %d number%s", attr,
-                     (const char *)text, n, n > 1 ? "s" : "");
+        st = fail_at(u, VT_ERR_NONFINITE, kind, owner, node, "%s=\"%.40s\" is not %s", attr, (const char *)text,
+                     n > 1 ? "three numbers" : "a number");
     if (st == VT_OK) memcpy(out, v, (size_t)n * sizeof(double));
     xmlFree(text);
     return st;
