@@ -33,7 +33,9 @@
 !     f and n): leave them out for NULL.
 !   - Strings: vt_string() turns a C string (vt_status_string, vt_builder_message, vt_version)
 !     into a Fortran one; vt_message(d) gives d%message.
-! vt_dynamic_analysis exists only in a library built with SUNDIALS (VT_HAVE_SUNDIALS).
+! vt_dynamic_analysis exists only in a library built with SUNDIALS (VT_HAVE_SUNDIALS), and
+! vt_default_urdf_options, vt_urdf_builder and vt_urdf_builder_string only in one built with
+! libxml2 (VT_HAVE_URDF): calling them links only against such a library.
 module vtdyn
   use, intrinsic :: iso_c_binding
   implicit none
@@ -49,7 +51,8 @@ module vtdyn
       VT_ERR_BAD_DRIVE = -18, VT_ERR_BAD_CUT_JOINT = -19, VT_ERR_CALLBACK = -20, &
       VT_ERR_SINGULAR = -21, VT_ERR_DEPENDENT_CONSTRAINTS = -22, VT_ERR_NEWTON = -23, &
       VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
-      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30
+      VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30, &
+      VT_ERR_FILE = -31, VT_ERR_XML = -32
   integer(c_int), parameter :: VT_NAME_MAX = 64
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   integer(c_int), parameter :: VT_MAX_BODIES = 1000
@@ -91,6 +94,12 @@ module vtdyn
     real(c_double)         :: rcond_warn
     integer(c_int)         :: allow_redundant
   end type vt_model_def
+
+  ! include/vtdyn.h (VT_HAVE_URDF): the options of vt_urdf_builder; mirrored in every build
+  type, bind(C) :: vt_urdf_options
+    type(vt_model_def)     :: model
+    integer(c_int)         :: floating
+  end type vt_urdf_options
 
   type, bind(C) :: vt_function
     integer(c_int)         :: type
@@ -531,6 +540,28 @@ module vtdyn
       type(c_ptr), value :: model
       character(kind=c_char), intent(in) :: name(*)
       integer(c_int) :: vt_find_coupling
+    end function
+    ! URDF robots: only in a library built with libxml2 (VT_HAVE_URDF). path and xml are C
+    ! strings (end them with c_null_char); message, if given, receives 256 C characters
+    function vt_default_urdf_options() bind(C, name='vt_default_urdf_options')
+      import :: vt_urdf_options
+      type(vt_urdf_options) :: vt_default_urdf_options
+    end function
+    function vt_urdf_builder(builder, path, options, message) bind(C, name='vt_urdf_builder')
+      import :: c_int, c_ptr, c_char, vt_urdf_options
+      type(c_ptr), intent(out) :: builder
+      character(kind=c_char), intent(in) :: path(*)
+      type(vt_urdf_options), intent(in), optional :: options
+      character(kind=c_char), intent(out), optional :: message(*)
+      integer(c_int) :: vt_urdf_builder
+    end function
+    function vt_urdf_builder_string(builder, xml, options, message) bind(C, name='vt_urdf_builder_string')
+      import :: c_int, c_ptr, c_char, vt_urdf_options
+      type(c_ptr), intent(out) :: builder
+      character(kind=c_char), intent(in) :: xml(*)
+      type(vt_urdf_options), intent(in), optional :: options
+      character(kind=c_char), intent(out), optional :: message(*)
+      integer(c_int) :: vt_urdf_builder_string
     end function
 
     ! frames and names: a name is a C string (a character(kind=c_char) array ending in c_null_char)

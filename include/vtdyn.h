@@ -87,6 +87,42 @@ int vt_find_drive(const vt_model *model, const char *name);
 int vt_find_cut_joint(const vt_model *model, const char *name);
 int vt_find_frame(const vt_model *model, const char *name);
 
+/* ---- URDF robots (src/urdf.c; only in builds with libxml2, VT_HAVE_URDF) ------------------ */
+
+#if VT_HAVE_URDF
+/// Options of vt_urdf_builder(). Fill from vt_default_urdf_options().
+typedef struct vt_urdf_options {
+    vt_model_def model;   ///< the builder's model options; default vt_default_model_def() with gravity
+                          ///< (0, 0, −9.81): URDF robots are z up
+    int floating;         ///< 1: a root link that no joint attaches to the world gets a base (floating)
+                          ///< joint; 0 (default): it is welded to the ground
+} vt_urdf_options;
+/// Defaults: vt_default_model_def() with gravity (0, 0, −9.81) m/s², floating 0.
+vt_urdf_options vt_default_urdf_options(void);
+/// Reads a URDF file into a new builder (drives, cut joints and frames may be added after, then
+/// vt_builder_build()). Links become bodies named after the link and their joints are named after
+/// the URDF joint: revolute and continuous → VT_JOINT_REVOLUTE, prismatic → VT_JOINT_TRANSLATIONAL,
+/// floating → VT_JOINT_BASE (from the ground only); a fixed joint merges its child into its parent
+/// (masses, centre of mass and inertia combined). The ground is the link "world" (or the root,
+/// welded, with floating 0) and what fixed joints attach to it. Every link is also a frame named
+/// after it, at its link frame. Bodies are numbered breadth-first from the root, so the joint
+/// coordinates are the URDF joints' in that order, with the same sign and zero. Body axes are
+/// the link's inertial frame (docs/method.md, "URDF robots"). options may be NULL (the defaults).
+/// On failure *builder is NULL and message (256 bytes, may be NULL) says why, naming the element
+/// and its line. Statuses: VT_ERR_NULL (builder, path), VT_ERR_FILE (missing or unreadable),
+/// VT_ERR_XML (malformed XML; no <robot>), VT_ERR_PARENT (a link with two parents, a loop, a
+/// floating joint not from the ground), VT_ERR_NOT_FOUND (a joint names a missing link),
+/// VT_ERR_JOINT_TYPE (planar, unknown, mimic), VT_ERR_MASS, VT_ERR_NONFINITE (a non-finite or
+/// malformed number), VT_ERR_BAD_NAME (a missing or duplicate link or joint name), the builder's
+/// statuses (an inertia, an axis of zero length, limits), VT_ERR_BAD_OPTION (options),
+/// VT_ERR_NO_MEMORY.
+vt_status vt_urdf_builder(vt_builder **builder, const char *path, const vt_urdf_options *options, char *message);
+/// The same from a string holding the XML (for tests and embedded use); line numbers are the
+/// string's.
+vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, const vt_urdf_options *options,
+                                 char *message);
+#endif
+
 /* ---- the data (src/data.c) --------------------------------------------------------------- */
 
 /// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with

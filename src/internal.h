@@ -221,6 +221,11 @@ vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
 /* Common argument check of every stage: non-NULL, data made for this model. */
 vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who);
 
+/* A body's inertia J (3x3 column-major) as the builder accepts it: symmetric, positive
+ * semi-definite and within the triangle inequality to VT_INERTIA_TOL (model.c); the message
+ * starts with who ("body 3", a URDF link). */
+vt_status vt_check_inertia(char *msg, const char *who, const double J[9]);
+
 /* Rotational (0) or translational (1) kind of each joint rate, and which of the joint's
  * axes it uses; base rates are reported separately. */
 enum { VT_DOF_ROT, VT_DOF_TRANS, VT_DOF_BASE_R, VT_DOF_BASE_P };

@@ -14,6 +14,7 @@
  * A drive's spline time function (src/functions.c) owns its samples and their second
  * derivatives: one block per drive in the builder, and a part of the model's one block.
  */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -206,15 +207,15 @@ static int normalize(double *a, int n)
  * digits: moments off the triangle inequality, or an entry of −5e-20, by round-off; a genuinely
  * bad inertia is off by far more). Zero is a point mass and allowed. Principal moments from
  * LAPACK's dsyev. The largest entry, not a sum, sets the scale: no overflow near DBL_MAX. */
-static vt_status check_inertia(char *msg, int id, const double J[9])
+vt_status vt_check_inertia(char *msg, const char *who, const double J[9])
 {
     double scale = 0.0;
     for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
     const double tol = VT_INERTIA_TOL * scale;
     if (!(fabs(J[1] - J[3]) <= tol) || !(fabs(J[2] - J[6]) <= tol) || !(fabs(J[5] - J[7]) <= tol))
         return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
-                       "body %d: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",
-                       id, J[3], J[1], J[6], J[2], J[7], J[5]);
+                       "%s: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",
+                       who, J[3], J[1], J[6], J[2], J[7], J[5]);
     if (scale == 0.0) return VT_OK;
     double a[9], w[3], work[16];
     memcpy(a, J, sizeof a);
@@ -222,12 +223,12 @@ static vt_status check_inertia(char *msg, int id, const double J[9])
     int info = 0;
     dsyev_("N", "L", &n, a, &n, w, work, &lwork, &info, 1, 1);
     if (info != 0)
-        return vt_fail(msg, VT_ERR_LAPACK, "body %d: dsyev info %d on the inertia matrix", id, info);
+        return vt_fail(msg, VT_ERR_LAPACK, "%s: dsyev info %d on the inertia matrix", who, info);
     if (w[0] < -tol)
-        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "body %d: principal moment %g < 0", id, w[0]);
+        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "%s: principal moment %g < 0", who, w[0]);
     if (w[0] + w[1] < w[2] - tol)
         return vt_fail(msg, VT_ERR_INERTIA_TRIANGLE,
-                       "body %d: principal moments %g + %g < %g", id, w[0], w[1], w[2]);
+                       "%s: principal moments %g + %g < %g", who, w[0], w[1], w[2]);
     return VT_OK;
 }
 
@@ -259,7 +260,9 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
         return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN or Inf in its definition", id);
     if (!(d->mass >= 0.0)) /* zero: a massless link (a frame, a gimbal), refused only by a solve it leaves singular */
         return vt_fail(msg, VT_ERR_MASS, "body %d: mass %g kg is negative", id, d->mass);
-    vt_status st = check_inertia(msg, id, d->inertia);
+    char who[32];
+    snprintf(who, sizeof who, "body %d", id);
+    vt_status st = vt_check_inertia(msg, who, d->inertia);
     if (st) return st;
     for (int r = 0; r < 3; r++) /* the symmetric part: off-symmetric by round-off at most */
         for (int c = r + 1; c < 3; c++) d->inertia[r + 3 * c] = d->inertia[c + 3 * r] = 0.5 * (d->inertia[r + 3 * c] + d->inertia[c + 3 * r]);

@@ -39,6 +39,8 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_BAD_SIZE: return "caller-provided buffer too small";
     case VT_ERR_BAD_NAME: return "name too long or already taken";
     case VT_ERR_NOT_FOUND: return "no object of that name";
+    case VT_ERR_FILE: return "file cannot be opened or read";
+    case VT_ERR_XML: return "malformed XML or not the expected document";
     }
     return "unknown status";
 }

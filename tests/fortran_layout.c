@@ -106,7 +106,14 @@ static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, res_evals), offsetof(vt_trajectory, steps_fwd),
     offsetof(vt_trajectory, res_evals_fwd), VT_END};
 
-/* entry k of struct `which` (0..10, in the order of table[]): 0 its size, then the fields'
+#if VT_HAVE_URDF /* only declared in a build with libxml2: without, struct 11 has no entries */
+static const size_t vt_urdf_options_layout[] = {sizeof(vt_urdf_options),
+    offsetof(vt_urdf_options, model), offsetof(vt_urdf_options, floating), VT_END};
+#else
+static const size_t vt_urdf_options_layout[] = {VT_END};
+#endif
+
+/* entry k of struct `which` (0..11, in the order of table[]): 0 its size, then the fields'
  * offsets; (size_t)-1 past the end */
 size_t vt_test_layout(int which, int k);
 size_t vt_test_layout(int which, int k)
@@ -114,7 +121,7 @@ size_t vt_test_layout(int which, int k)
     static const size_t *const table[] = {vt_model_def_layout, vt_function_layout, vt_drive_def_layout,
                                           vt_cut_joint_def_layout, vt_body_def_layout, vt_model_layout,
                                           vt_data_layout, vt_run_options_layout, vt_trajectory_layout,
-                                          vt_frame_def_layout, vt_coupling_def_layout};
+                                          vt_frame_def_layout, vt_coupling_def_layout, vt_urdf_options_layout};
     if (which < 0 || which >= (int)(sizeof table / sizeof table[0]) || k < 0) return VT_END;
     for (int i = 0; i <= k; i++)
         if (table[which][i] == VT_END) return VT_END;

@@ -1,7 +1,8 @@
 ! The Fortran mirrors of the C structs (fortran/vtdyn.f90) against the C compiler's layout
 ! (tests/fortran_layout.c): each struct's size and every field's offset, in declaration order.
 ! Also the by-value struct returns of the defaults, read through the mirrors. Prints one line
-! per struct; exits non-zero (error stop) on the first difference.
+! per struct; exits non-zero (error stop) on the first difference. Preprocessed (-cpp): the
+! URDF options exist in C only when VT_HAVE_URDF is 1 (tests/meson.build passes it).
 program test_fortran_layout
   use, intrinsic :: iso_c_binding
   use vtdyn
@@ -24,6 +25,7 @@ program test_fortran_layout
   type(vt_data), target :: x_data
   type(vt_run_options), target :: x_run_options
   type(vt_trajectory), target :: x_trajectory
+  type(vt_urdf_options), target :: x_urdf_options
   integer :: nfail
 
   nfail = 0
@@ -124,6 +126,12 @@ program test_fortran_layout
     call check(9_c_int, 'vt_frame_def', c_sizeof(x_frame_def), a(c_loc(x_frame_def)), [ &
          a(c_loc(x_frame_def%name)), a(c_loc(x_frame_def%body)), a(c_loc(x_frame_def%point)), &
          a(c_loc(x_frame_def%orientation))])
+#if VT_HAVE_URDF
+    call check(11_c_int, 'vt_urdf_options', c_sizeof(x_urdf_options), a(c_loc(x_urdf_options)), [ &
+         a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating))])
+#else
+    print '(a, i0, a)', 'vt_urdf_options: not in this build (', c_sizeof(x_urdf_options), ' bytes in Fortran)'
+#endif
 
   ! a struct returned by value below writes C's size into the Fortran variable: with a layout
   ! that differs, that would overwrite what lies beside it (nfail too), so stop here first
@@ -160,6 +168,12 @@ program test_fortran_layout
   x_coupling_def = vt_default_coupling_def()
   call expect(x_coupling_def%body_a == 2 .and. x_coupling_def%body_b == 1 .and. same([x_coupling_def%ratio], [1]), &
       'vt_default_coupling_def')
+#if VT_HAVE_URDF
+  x_urdf_options = vt_default_urdf_options()
+  call expect(same(x_urdf_options%model%gravity, [0.0_c_double, 0.0_c_double, -9.81_c_double]) &
+      .and. same([x_urdf_options%model%rcond_min], [1e-12_c_double]) .and. x_urdf_options%floating == 0, &
+      'vt_default_urdf_options')
+#endif
   x_run_options = vt_default_run_options()
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
       .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL &

@@ -60,7 +60,10 @@ typedef enum vt_status {
     VT_ERR_BAD_OPTION = -27,           ///< a run option out of range (message says which)
     VT_ERR_BAD_SIZE = -28,             ///< a caller-provided buffer is too small (see vt_data_size())
     VT_ERR_BAD_NAME = -29,             ///< a name too long (VT_NAME_MAX) or already used by another of its kind
-    VT_ERR_NOT_FOUND = -30             ///< no body, joint, drive, cut joint or frame of that name
+    VT_ERR_NOT_FOUND = -30,            ///< no body, joint, drive, cut joint or frame of that name
+    VT_ERR_FILE = -31,                 ///< a file cannot be opened or read (the message names it and why)
+    VT_ERR_XML = -32                   ///< malformed XML, or not the document expected (no <robot>); the
+                                       ///< message gives the parser's reason and the line
 } vt_status;
 
 /// Names of bodies, joints, drives, cut joints and frames: at most VT_NAME_MAX − 1 bytes, unique

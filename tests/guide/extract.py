@@ -2,7 +2,7 @@
 """Compiles every C snippet of a Markdown guide against the in-tree headers and library.
 
 Usage: extract.py GUIDE --out DIR --lib LIBVTDYN --include DIR [--include DIR ...]
-                  [--sundials 0|1] [--cflag FLAG ...]
+                  [--sundials 0|1] [--urdf 0|1] [--cflag FLAG ...]
 The compiler is $CC (default "cc"; it may hold several words, e.g. "ccache cc").
 
 Every ```c block of GUIDE is a snippet, by these conventions:
@@ -15,6 +15,8 @@ Every ```c block of GUIDE is a snippet, by these conventions:
     use those four names (unused ones are not warned about) and `return 0;` is appended;
   - a block whose first line says "needs SUNDIALS" is skipped in a build without SUNDIALS
     (--sundials 0), where vt_dynamic_analysis() and the forward check do not exist;
+  - a block whose first line says "needs URDF" is skipped in a build without libxml2
+    (--urdf 0), where vt_urdf_builder() does not exist;
   - any other ```c block is an error, so that no snippet goes untested.
 Programs are compiled with -std=c11 -Wall -Wextra -Werror -pedantic; compiler messages point at
 the guide's own lines (#line). Sources and executables are left in DIR for inspection.
@@ -70,6 +72,7 @@ def main():
     ap.add_argument("--lib", required=True)
     ap.add_argument("--include", action="append", default=[])
     ap.add_argument("--sundials", default="1")
+    ap.add_argument("--urdf", default="1")
     ap.add_argument("--cflag", action="append", default=[])
     a = ap.parse_args()
     cc = shlex.split(os.environ.get("CC", "") or "cc")
@@ -91,6 +94,9 @@ def main():
             continue
         if "needs SUNDIALS" in first and a.sundials != "1":
             print(f"ok {k} - {where} # SKIP needs SUNDIALS")
+            continue
+        if "needs URDF" in first and a.urdf != "1":
+            print(f"ok {k} - {where} # SKIP needs URDF")
             continue
         src = os.path.join(a.out, f"snippet{k:02d}.c")
         exe = os.path.join(a.out, f"snippet{k:02d}")

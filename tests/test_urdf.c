@@ -1,0 +1,584 @@
+/* src/urdf.c: URDF robots into a builder. The paper's two examples written as URDF files
+ * (tests/urdf/, in URDF's conventions, independently of examples/scenes.c) against the C scenes,
+ * every output of an instant to 1e-12; a fixed joint merged and rotated inertial frames against
+ * a model whose inertias are combined and rotated by hand here (rotation matrices, the parallel
+ * axes); every link frame against the joint origins composed by hand; and every kind of bad
+ * input: its status, the element named, the line. */
+#include <stdio.h>
+
+#include "vt_test.h"
+
+#ifndef VT_TEST_URDF_DIR
+#error "VT_TEST_URDF_DIR: the directory of the test's URDF files (tests/meson.build)"
+#endif
+
+/* largest |a − b| over n entries relative to the largest |b| (1 when all are 0) */
+static double rel_diff(const double *a, const double *b, int n)
+{
+    double d = 0.0, s = 0.0;
+    for (int k = 0; k < n; k++) {
+        d = fmax(d, fabs(a[k] - b[k]));
+        s = fmax(s, fabs(b[k]));
+    }
+    return d / (s > 0.0 ? s : 1.0);
+}
+
+static double worst = 0.0; /* the largest relative difference against the C scenes (printed) */
+
+#define EXPECT_SAME(a, b, n, what)                                                                 \
+    do {                                                                                           \
+        const double r_ = rel_diff((a), (b), (n));                                                 \
+        worst = fmax(worst, r_);                                                                   \
+        if (!(r_ <= 1e-12)) fail_msg("%s: relative difference %.3g > 1e-12", (what), r_);          \
+    } while (0)
+
+static vt_model *load(const char *file, const vt_urdf_options *opt)
+{
+    char path[512], msg[256];
+    snprintf(path, sizeof path, "%s/%s", VT_TEST_URDF_DIR, file);
+    vt_builder *b = NULL;
+    const vt_status st = vt_urdf_builder(&b, path, opt, msg);
+    if (st != VT_OK) fail_msg("%s: %s (%s)", path, vt_status_string(st), msg);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* every output of vt_inverse_dynamics_motion() (or, with drives, vt_inverse_dynamics()) */
+static void compare_instant(const vt_model *mu, vt_data *du, const vt_model *mc, vt_data *dc, int drives)
+{
+    const int n3 = 3 * (mc->nbody + 1);
+    EXPECT_SAME(du->x, dc->x, mc->nx, "x");
+    EXPECT_SAME(du->xdd, dc->xdd, mc->nx, "xdd");
+    EXPECT_SAME(du->qfrc_drive, dc->qfrc_drive, mc->nv, "qfrc_drive");
+    EXPECT_SAME(du->jnt_force, dc->jnt_force, n3, "jnt_force");
+    EXPECT_SAME(du->jnt_moment, dc->jnt_moment, n3, "jnt_moment");
+    EXPECT_SAME(du->jnt_force_body, dc->jnt_force_body, n3, "jnt_force_body");
+    EXPECT_SAME(du->jnt_moment_body, dc->jnt_moment_body, n3, "jnt_moment_body");
+    if (drives) {
+        EXPECT_SAME(du->qdd, dc->qdd, mc->nv, "qdd");
+        EXPECT_SAME(du->lambda, dc->lambda, mc->nc, "lambda");
+        EXPECT_SAME(du->drive_effort, dc->drive_effort, mc->ndrive, "drive_effort");
+        EXPECT_SAME(du->drive_force, dc->drive_force, 3 * mc->ndrive, "drive_force");
+        EXPECT_SAME(du->drive_moment, dc->drive_moment, 3 * mc->ndrive, "drive_moment");
+    }
+    (void)mu;
+}
+
+/* The same layout: bodies, joints and rates in the same order, named after the URDF. */
+static void same_layout(const vt_model *mu, const vt_model *mc, int n)
+{
+    assert_int_equal(mu->nbody, n);
+    assert_int_equal(mc->nbody, n);
+    assert_int_equal(mu->nq, mc->nq);
+    assert_int_equal(mu->nv, mc->nv);
+    for (int i = 1; i <= n; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "link%d", i);
+        assert_int_equal(vt_find_body(mu, name), i);
+        snprintf(name, sizeof name, "joint%d", i);
+        assert_int_equal(vt_find_joint(mu, name), i);
+        assert_int_equal(mu->body_parent[i], mc->body_parent[i]);
+        assert_int_equal(mu->body_joint[i], mc->body_joint[i]);
+    }
+}
+
+/* The double link from tests/urdf/double_link.urdf (gravity y down, as the paper's) against
+ * vt_scene_double_link: the motion given at several states, and with the lock drive. */
+static void test_double_link(void **state)
+{
+    (void)state;
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.model.gravity[1] = -9.81;
+    opt.model.gravity[2] = 0.0;
+    vt_model *mu = load("double_link.urdf", &opt), *mc;
+    assert_ok(vt_scene_double_link(&mc, 0));
+    same_layout(mu, mc, 2);
+    vt_data *du, *dc;
+    assert_ok(vt_data_create(&du, mu));
+    assert_ok(vt_data_create(&dc, mc));
+    static const double st[4][6] = {{0, 0, 0, 0, 0, 0}, {-0.5, 0.3, -1.2, 0.7, 2.0, -3.0},
+                                    {2.1, -1.4, 0.4, -2.2, -0.6, 1.1}, {-3.0, 2.9, 3.3, 0.1, 0.0, 5.0}};
+    for (int s = 0; s < 4; s++) { /* q1 q2 q̇1 q̇2 q̈1 q̈2: the coordinates map 1:1 */
+        for (int k = 0; k < 2; k++) {
+            du->q[k] = dc->q[k] = st[s][k];
+            du->qd[k] = dc->qd[k] = st[s][2 + k];
+            du->qdd[k] = dc->qdd[k] = st[s][4 + k];
+        }
+        assert_ok(vt_inverse_dynamics_motion(mu, du));
+        assert_ok(vt_inverse_dynamics_motion(mc, dc));
+        compare_instant(mu, du, mc, dc, 0);
+    }
+    vt_data_free(du);
+    vt_data_free(dc);
+    vt_model_free(mc);
+    vt_model_free(mu);
+
+    /* locked: the C scene's drive added to the URDF builder */
+    vt_builder *b;
+    char msg[256];
+    assert_ok(vt_scene_double_link(&mc, 1));
+    char path[512];
+    snprintf(path, sizeof path, "%s/double_link.urdf", VT_TEST_URDF_DIR);
+    assert_ok(vt_urdf_builder(&b, path, &opt, msg));
+    assert_int_equal(vt_builder_add_drive(b, &mc->drive[0]), 0);
+    assert_ok(vt_builder_build(&mu, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(&du, mu));
+    assert_ok(vt_data_create(&dc, mc));
+    for (int s = 0; s < 3; s++) { /* fallen θ from rest: θ̇² = 7.3575 sin θ; q2 = 0 */
+        const double th = 0.3 + 0.6 * s;
+        du->q[0] = dc->q[0] = -th;
+        du->qd[0] = dc->qd[0] = -sqrt(7.3575 * sin(th));
+        assert_ok(vt_inverse_dynamics(mu, du));
+        assert_ok(vt_inverse_dynamics(mc, dc));
+        compare_instant(mu, du, mc, dc, 1);
+        assert_near(du->drive_effort[0], -245.25 * cos(th), 1e-9); /* (29) */
+    }
+    vt_data_free(du);
+    vt_data_free(dc);
+    vt_model_free(mc);
+    vt_model_free(mu);
+}
+
+/* The five-link arm from tests/urdf/five_link.urdf against vt_scene_five_link: the motion
+ * given, and the five point drives (30)-(34) at consistent states along the circle. */
+static void test_five_link(void **state)
+{
+    (void)state;
+    vt_model *mu = load("five_link.urdf", NULL), *mc;
+    assert_ok(vt_scene_five_link(&mc));
+    same_layout(mu, mc, 5);
+    assert_near(mu->gravity[2], -9.81, 0.0);
+    /* the URDF's limits on the first rate of each joint */
+    assert_near(mu->dof_limit[4 * 1 + 1], 3.14159, 0.0);
+    assert_near(mu->dof_limit[4 * 1 + 3], 100.0, 0.0);
+    assert_near(mu->dof_limit[4 * 4 + 2], 4.0, 0.0);
+    vt_data *du, *dc;
+    vt_model *mfree;
+    assert_ok(vt_model_without_drives(&mfree, mc));
+    assert_ok(vt_data_create(&du, mu));
+    assert_ok(vt_data_create(&dc, mfree));
+    uint64_t seed = 7;
+    for (int s = 0; s < 5; s++) {
+        for (int k = 0; k < 5; k++) {
+            du->q[k] = dc->q[k] = vt_rand_uniform(&seed, -3.0, 3.0);
+            du->qd[k] = dc->qd[k] = vt_rand_uniform(&seed, -2.0, 2.0);
+            du->qdd[k] = dc->qdd[k] = vt_rand_uniform(&seed, -5.0, 5.0);
+        }
+        assert_ok(vt_inverse_dynamics_motion(mu, du));
+        assert_ok(vt_inverse_dynamics_motion(mfree, dc));
+        compare_instant(mu, du, mfree, dc, 0);
+    }
+    vt_data_free(du);
+    vt_data_free(dc);
+    vt_model_free(mfree);
+    vt_model_free(mu);
+
+    /* the scene's drives added to the URDF builder */
+    char path[512], msg[256];
+    snprintf(path, sizeof path, "%s/five_link.urdf", VT_TEST_URDF_DIR);
+    vt_builder *b;
+    assert_ok(vt_urdf_builder(&b, path, NULL, msg));
+    for (int k = 0; k < mc->ndrive; k++) assert_int_equal(vt_builder_add_drive(b, &mc->drive[k]), k);
+    assert_ok(vt_builder_build(&mu, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(&du, mu));
+    assert_ok(vt_data_create(&dc, mc));
+    for (int s = 0; s < 4; s++) {
+        dc->time = 0.13 + 0.21 * s;
+        vt_scene_five_link_guess(mc, dc, dc->time);
+        assert_ok(vt_kinematic_solve(mc, dc, 1e-13, 30));
+        du->time = dc->time;
+        memcpy(du->q, dc->q, 5 * sizeof(double));
+        memcpy(du->qd, dc->qd, 5 * sizeof(double));
+        assert_ok(vt_inverse_dynamics(mu, du));
+        compare_instant(mu, du, mc, dc, 1);
+    }
+    vt_data_free(du);
+    vt_data_free(dc);
+    vt_model_free(mc);
+    vt_model_free(mu);
+}
+
+/* ---- by hand: rotation matrices and poses, independent of the library's Euler parameters ---- */
+
+/* R = Rz(y) Ry(p) Rx(r), column-major */
+static void rpy_matrix(double R[9], double r, double p, double y)
+{
+    const double cr = cos(r), sr = sin(r), cp = cos(p), sp = sin(p), cy = cos(y), sy = sin(y);
+    const double M[9] = {cy * cp, sy * cp, -sp,
+                         cy * sp * sr - sy * cr, sy * sp * sr + cy * cr, cp * sr,
+                         cy * sp * cr + sy * sr, sy * sp * cr - cy * sr, cp * cr};
+    memcpy(R, M, sizeof M);
+}
+
+/* Euler parameters of Rz(y) Ry(p) Rx(r) (the half-angle product) */
+static void rpy_quat(double q[4], double r, double p, double y)
+{
+    const double cr = cos(r / 2), sr = sin(r / 2), cp = cos(p / 2), sp = sin(p / 2), cy = cos(y / 2), sy = sin(y / 2);
+    q[0] = cr * cp * cy + sr * sp * sy;
+    q[1] = sr * cp * cy - cr * sp * sy;
+    q[2] = cr * sp * cy + sr * cp * sy;
+    q[3] = cr * cp * sy - sr * sp * cy;
+}
+
+/* rotation by angle about the unit axis u (Rodrigues) */
+static void axis_matrix(double R[9], const double u[3], double a)
+{
+    const double c = cos(a), s = sin(a), t = 1 - c;
+    const double M[9] = {t * u[0] * u[0] + c, t * u[0] * u[1] + s * u[2], t * u[0] * u[2] - s * u[1],
+                         t * u[0] * u[1] - s * u[2], t * u[1] * u[1] + c, t * u[1] * u[2] + s * u[0],
+                         t * u[0] * u[2] + s * u[1], t * u[1] * u[2] - s * u[0], t * u[2] * u[2] + c};
+    memcpy(R, M, sizeof M);
+}
+
+static void matmul(double C[9], const double A[9], const double B[9])
+{
+    double T[9];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) T[r + 3 * c] = A[r] * B[3 * c] + A[r + 3] * B[3 * c + 1] + A[r + 6] * B[3 * c + 2];
+    memcpy(C, T, sizeof T);
+}
+
+static void matvec(double y[3], const double A[9], const double x[3])
+{
+    double t[3];
+    for (int r = 0; r < 3; r++) t[r] = A[r] * x[0] + A[r + 3] * x[1] + A[r + 6] * x[2];
+    memcpy(y, t, sizeof t);
+}
+
+/* pose (R, t) ← (R, t)(Rb, tb) */
+static void compose(double R[9], double t[3], const double Rb[9], const double tb[3])
+{
+    double v[3];
+    matvec(v, R, tb);
+    for (int k = 0; k < 3; k++) t[k] += v[k];
+    matmul(R, R, Rb);
+}
+
+/* J += R I R^T + m (|d|² 1 − d d^T) */
+static void add_inertia(double J[9], const double R[9], const double I[9], double m, const double d[3])
+{
+    double RI[9], Rt[9];
+    matmul(RI, R, I);
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) Rt[r + 3 * c] = R[c + 3 * r];
+    matmul(RI, RI, Rt);
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) J[r + 3 * c] += RI[r + 3 * c] + m * ((r == c ? dd : 0.0) - d[r] * d[c]);
+}
+
+/* A two-link arm with a tool: world → arm (revolute about y through origin o1, rpy g1) →
+ * forearm (revolute about axis a2 at o2, rpy g2) → tool (fixed at o3, rpy g3). Each link's
+ * inertial frame is rotated (rpy h_k) and offset (c_k), with a full inertia I_k. */
+static const double o1[3] = {0.0, 0.0, 0.2}, g1[3] = {0.0, 0.0, 0.3};
+static const double o2[3] = {0.6, 0.05, 0.0}, g2[3] = {0.2, -0.4, 0.1}, a2[3] = {0.0, 0.6, 0.8};
+static const double o3[3] = {0.4, 0.0, 0.1}, g3[3] = {0.3, 0.2, -0.5};
+static const double h[3][3] = {{0.4, -0.3, 0.7}, {-0.2, 0.5, 0.1}, {0.6, 0.1, -0.9}};
+static const double c[3][3] = {{0.3, 0.02, -0.01}, {0.2, -0.03, 0.04}, {0.05, 0.02, 0.0}};
+static const double mass[3] = {2.0, 1.2, 0.7};
+static const double Iu[3][9] = {{0.02, 0.001, -0.002, 0.001, 0.06, 0.003, -0.002, 0.003, 0.07},
+                                {0.01, -0.002, 0.0, -0.002, 0.03, 0.001, 0.0, 0.001, 0.035},
+                                {0.004, 0.0, 0.0005, 0.0, 0.005, 0.0, 0.0005, 0.0, 0.006}};
+
+static void tool_urdf(char *xml, size_t size)
+{
+    const char *name[3] = {"arm", "forearm", "tool"};
+    int n = snprintf(xml, size, "<robot name=\"tooled\">\n  <link name=\"world\"/>\n");
+    for (int k = 0; k < 3; k++)
+        n += snprintf(xml + n, size - (size_t)n,
+                      "  <link name=\"%s\"><inertial><origin xyz=\"%.17g %.17g %.17g\" rpy=\"%.17g %.17g %.17g\"/>"
+                      "<mass value=\"%.17g\"/><inertia ixx=\"%.17g\" ixy=\"%.17g\" ixz=\"%.17g\" iyy=\"%.17g\" "
+                      "iyz=\"%.17g\" izz=\"%.17g\"/></inertial></link>\n",
+                      name[k], c[k][0], c[k][1], c[k][2], h[k][0], h[k][1], h[k][2], mass[k], Iu[k][0], Iu[k][3],
+                      Iu[k][6], Iu[k][4], Iu[k][7], Iu[k][8]);
+    snprintf(xml + n, size - (size_t)n,
+             "  <joint name=\"shoulder\" type=\"revolute\"><parent link=\"world\"/><child link=\"arm\"/>"
+             "<origin xyz=\"%.17g %.17g %.17g\" rpy=\"%.17g %.17g %.17g\"/><axis xyz=\"0 1 0\"/>"
+             "<limit lower=\"-1\" upper=\"2\" effort=\"50\" velocity=\"3\"/></joint>\n"
+             "  <joint name=\"elbow\" type=\"continuous\"><parent link=\"arm\"/><child link=\"forearm\"/>"
+             "<origin xyz=\"%.17g %.17g %.17g\" rpy=\"%.17g %.17g %.17g\"/><axis xyz=\"%.17g %.17g %.17g\"/></joint>\n"
+             "  <joint name=\"flange\" type=\"fixed\"><parent link=\"forearm\"/><child link=\"tool\"/>"
+             "<origin xyz=\"%.17g %.17g %.17g\" rpy=\"%.17g %.17g %.17g\"/></joint>\n</robot>\n",
+             o1[0], o1[1], o1[2], g1[0], g1[1], g1[2], o2[0], o2[1], o2[2], g2[0], g2[1], g2[2], a2[0], a2[1], a2[2],
+             o3[0], o3[1], o3[2], g3[0], g3[1], g3[2]);
+}
+
+/* The same robot built by hand with body axes = the link frames: the arm's inertia rotated
+ * into its link axes, the forearm and the tool combined (centre of mass, parallel axes). */
+static vt_model *tool_by_hand(void)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[1] = 0.0;
+    md.gravity[2] = -9.81;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    double R[9], R3[9], t3[3];
+    vt_body_def arm = vt_default_body_def();
+    arm.mass = mass[0];
+    rpy_matrix(R, h[0][0], h[0][1], h[0][2]);
+    add_inertia(arm.inertia, R, Iu[0], 0.0, c[0]);
+    memcpy(arm.joint_parent, o1, sizeof o1);
+    for (int k = 0; k < 3; k++) arm.joint_child[k] = -c[0][k];
+    double Rg1[9];
+    rpy_matrix(Rg1, g1[0], g1[1], g1[2]);
+    const double y[3] = {0.0, 1.0, 0.0};
+    matvec(arm.axis1, Rg1, y); /* the ground's axes */
+    rpy_quat(arm.orientation, g1[0], g1[1], g1[2]);
+    assert_int_equal(vt_builder_add_body(b, &arm), 1);
+
+    /* forearm + tool in the forearm's link frame */
+    vt_body_def fa = vt_default_body_def();
+    rpy_matrix(R3, g3[0], g3[1], g3[2]);
+    double ctool[3], Rt[9];
+    matvec(ctool, R3, c[2]);
+    for (int k = 0; k < 3; k++) ctool[k] += o3[k];
+    fa.mass = mass[1] + mass[2];
+    double com[3];
+    for (int k = 0; k < 3; k++) com[k] = (mass[1] * c[1][k] + mass[2] * ctool[k]) / fa.mass;
+    double d1[3], d2[3];
+    for (int k = 0; k < 3; k++) {
+        d1[k] = c[1][k] - com[k];
+        d2[k] = ctool[k] - com[k];
+    }
+    rpy_matrix(R, h[1][0], h[1][1], h[1][2]);
+    add_inertia(fa.inertia, R, Iu[1], mass[1], d1);
+    rpy_matrix(Rt, h[2][0], h[2][1], h[2][2]);
+    matmul(Rt, R3, Rt);
+    add_inertia(fa.inertia, Rt, Iu[2], mass[2], d2);
+    fa.parent = 1;
+    fa.joint = VT_JOINT_REVOLUTE;
+    for (int k = 0; k < 3; k++) fa.joint_parent[k] = o2[k] - c[0][k];
+    for (int k = 0; k < 3; k++) fa.joint_child[k] = -com[k];
+    double Rg2[9];
+    rpy_matrix(Rg2, g2[0], g2[1], g2[2]);
+    matvec(fa.axis1, Rg2, a2);
+    rpy_quat(fa.orientation, g2[0], g2[1], g2[2]);
+    assert_int_equal(vt_builder_add_body(b, &fa), 2);
+    (void)t3;
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* A fixed joint merged and rotated inertial frames: the efforts and the global reactions equal
+ * those of the hand-built model (whose body axes differ, so the body-axes reactions do not). */
+static void test_merged_and_rotated(void **state)
+{
+    (void)state;
+    char xml[8192], msg[256];
+    tool_urdf(xml, sizeof xml);
+    vt_builder *b;
+    if (vt_urdf_builder_string(&b, xml, NULL, msg) != VT_OK) fail_msg("%s", msg);
+    vt_model *mu, *mh = tool_by_hand();
+    assert_ok(vt_builder_build(&mu, b));
+    vt_builder_free(b);
+    assert_int_equal(mu->nbody, 2); /* the tool merged */
+    assert_int_equal(vt_find_body(mu, "tool"), VT_ERR_NOT_FOUND);
+    assert_int_equal(vt_find_joint(mu, "elbow"), 2);
+    assert_near(mu->body_mass[2], mass[1] + mass[2], 1e-15);
+    assert_near(mu->dof_limit[0], -1.0, 0.0);        /* revolute: lower, upper, velocity, effort */
+    assert_near(mu->dof_limit[3], 50.0, 0.0);
+    assert_true(isinf(mu->dof_limit[4 + 1]));        /* continuous, no <limit> */
+    vt_data *du, *dh;
+    assert_ok(vt_data_create(&du, mu));
+    assert_ok(vt_data_create(&dh, mh));
+    uint64_t seed = 3;
+    for (int s = 0; s < 5; s++) {
+        for (int k = 0; k < 2; k++) {
+            du->q[k] = dh->q[k] = s ? vt_rand_uniform(&seed, -3.0, 3.0) : 0.0;
+            du->qd[k] = dh->qd[k] = vt_rand_uniform(&seed, -2.0, 2.0);
+            du->qdd[k] = dh->qdd[k] = vt_rand_uniform(&seed, -5.0, 5.0);
+        }
+        assert_ok(vt_inverse_dynamics_motion(mu, du));
+        assert_ok(vt_inverse_dynamics_motion(mh, dh));
+        const double e = rel_diff(du->qfrc_drive, dh->qfrc_drive, 2);
+        const double f = rel_diff(du->jnt_force, dh->jnt_force, 9), n = rel_diff(du->jnt_moment, dh->jnt_moment, 9);
+        if (!(e <= 1e-12 && f <= 1e-12 && n <= 1e-12))
+            fail_msg("state %d: efforts %.3g, forces %.3g, moments %.3g relative", s, e, f, n);
+        for (int k = 0; k < 2; k++) { /* the centres of mass coincide */
+            assert_near(du->x[7 * k], dh->x[7 * k], 1e-13);
+            assert_near(du->x[7 * k + 1], dh->x[7 * k + 1], 1e-13);
+            assert_near(du->x[7 * k + 2], dh->x[7 * k + 2], 1e-13);
+        }
+    }
+    vt_data_free(du);
+    vt_data_free(dh);
+    vt_model_free(mh);
+
+    /* every link frame where the URDF puts it: the joint origins composed by hand */
+    assert_ok(vt_data_create(&du, mu));
+    for (int s = 0; s < 2; s++) {
+        const double q1 = s ? 0.7 : 0.0, q2 = s ? -1.1 : 0.0;
+        du->q[0] = q1;
+        du->q[1] = q2;
+        assert_ok(vt_kinematics(mu, du));
+        double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, t[3] = {0, 0, 0}, Rj[9], Rq[9];
+        const double zero[3] = {0, 0, 0}, y[3] = {0, 1, 0};
+        double u2[3];
+        const double n2 = sqrt(a2[0] * a2[0] + a2[1] * a2[1] + a2[2] * a2[2]);
+        for (int k = 0; k < 3; k++) u2[k] = a2[k] / n2;
+        const char *names[4] = {"world", "arm", "forearm", "tool"};
+        for (int l = 0; l < 4; l++) {
+            if (l == 1) {
+                rpy_matrix(Rj, g1[0], g1[1], g1[2]);
+                compose(R, t, Rj, o1);
+                axis_matrix(Rq, y, q1);
+                compose(R, t, Rq, zero);
+            } else if (l == 2) {
+                rpy_matrix(Rj, g2[0], g2[1], g2[2]);
+                compose(R, t, Rj, o2);
+                axis_matrix(Rq, u2, q2);
+                compose(R, t, Rq, zero);
+            } else if (l == 3) {
+                rpy_matrix(Rj, g3[0], g3[1], g3[2]);
+                compose(R, t, Rj, o3);
+            }
+            const int f = vt_find_frame(mu, names[l]);
+            assert_true(f >= 0);
+            double pos[3], rot[9];
+            assert_ok(vt_frame_pose(mu, du, f, pos, rot));
+            for (int k = 0; k < 3; k++) assert_near(pos[k], t[k], 1e-14);
+            for (int k = 0; k < 9; k++) assert_near(rot[k], R[k], 1e-14);
+        }
+    }
+    vt_data_free(du);
+    vt_model_free(mu);
+}
+
+/* a floating root (options.floating) becomes a base body; welded by default */
+static void test_floating_root(void **state)
+{
+    (void)state;
+    const char *xml = "<robot name=\"r\"><link name=\"base\"><inertial><mass value=\"3\"/>"
+                      "<inertia ixx=\"0.1\" iyy=\"0.2\" izz=\"0.25\"/></inertial></link>"
+                      "<link name=\"wheel\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" iyy=\"0.01\" izz=\"0.01\"/>"
+                      "</inertial></link><joint name=\"axle\" type=\"continuous\"><parent link=\"base\"/>"
+                      "<child link=\"wheel\"/><origin xyz=\"0 0.3 0\"/><axis xyz=\"0 1 0\"/></joint></robot>";
+    vt_urdf_options opt = vt_default_urdf_options();
+    vt_builder *b;
+    vt_model *m;
+    assert_ok(vt_urdf_builder_string(&b, xml, &opt, NULL));
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nbody, 1); /* the base welded: the ground */
+    assert_int_equal(m->frame_body[vt_find_frame(m, "base")], 0);
+    vt_model_free(m);
+    opt.floating = 1;
+    assert_ok(vt_urdf_builder_string(&b, xml, &opt, NULL));
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nbody, 2);
+    assert_int_equal(m->body_joint[1], VT_JOINT_BASE);
+    assert_int_equal(vt_find_body(m, "base"), 1);
+    assert_int_equal(m->body_parent[2], 1);
+    assert_near(m->body_jpar[3 * 2 + 1], 0.3, 0.0);
+    vt_model_free(m);
+}
+
+typedef struct {
+    const char *xml;
+    vt_status status;
+    const char *says; /* in the message */
+} bad_case;
+
+#define LINK(n) "<link name=\"" n "\"/>"
+#define JOINT(n, t, p, c) "<joint name=\"" n "\" type=\"" t "\"><parent link=\"" p "\"/><child link=\"" c "\"/></joint>"
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    static const bad_case cases[] = {
+        {"<robot name=\"r\">\n<link name=\"a\">\n</robot>", VT_ERR_XML, "line 3"},
+        {"", VT_ERR_XML, "malformed XML"},
+        {"<?xml version=\"1.0\"?>\n<model/>", VT_ERR_XML, "<model> (line 2)"},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j1", "revolute", "world", "b")
+         JOINT("j2", "revolute", "a", "b") "</robot>", VT_ERR_PARENT, "link \"b\" has two parents"},
+        {"<robot>" LINK("a") JOINT("j", "revolute", "a", "nowhere") "</robot>", VT_ERR_NOT_FOUND,
+         "child link \"nowhere\""},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j0", "fixed", "world", "world2") "</robot>",
+         VT_ERR_NOT_FOUND, "joint \"j0\""},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("ja", "revolute", "a", "b")
+         JOINT("jb", "revolute", "b", "a") "</robot>", VT_ERR_PARENT, "loop"},
+        {"<robot>" LINK("world") LINK("a") JOINT("j", "planar", "world", "a") "</robot>", VT_ERR_JOINT_TYPE,
+         "joint \"j\" (line 1): joint type \"planar\""},
+        {"<robot>" LINK("world") LINK("a") JOINT("j", "hinge", "world", "a") "</robot>", VT_ERR_JOINT_TYPE,
+         "\"hinge\" unknown"},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
+         "<joint name=\"m\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><mimic joint=\"j\"/></joint>"
+         "</robot>", VT_ERR_JOINT_TYPE, "mimic joints are not supported yet"},
+        {"<robot>\n<link name=\"a\">\n<inertial>\n<mass value=\"-2\"/></inertial></link></robot>", VT_ERR_MASS,
+         "link \"a\", <mass> (line 4)"},
+        {"<robot><link name=\"a\"><inertial><mass value=\"1.0abc\"/></inertial></link></robot>", VT_ERR_NONFINITE,
+         "value=\"1.0abc\""},
+        {"<robot><link name=\"a\"><inertial><mass value=\"nan\"/></inertial></link></robot>", VT_ERR_NONFINITE,
+         "not finite"},
+        {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
+         "<child link=\"a\"/><origin xyz=\"1 2\"/></joint></robot>", VT_ERR_NONFINITE, "<origin>"},
+        {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
+         "<child link=\"a\"/><axis xyz=\"0 0 1e999\"/></joint></robot>", VT_ERR_NONFINITE, "<axis>"},
+        {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"prismatic\"><parent link=\"world\"/>"
+         "<child link=\"a\"/><limit lower=\"0\" upper=\"1,5\"/></joint></robot>", VT_ERR_NONFINITE, "<limit>"},
+        {"<robot><link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"3\"/>"
+         "</inertial></link></robot>", VT_ERR_INERTIA_TRIANGLE, "link \"a\", <inertia>"},
+        {"<robot><link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"-1\" iyy=\"1\" izz=\"1\"/>"
+         "</inertial></link></robot>", VT_ERR_INERTIA_NOT_PSD, "<inertia>"},
+        {"<robot>" LINK("a") LINK("a") "</robot>", VT_ERR_BAD_NAME, "link \"a\" (line 1): name already taken"},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
+         JOINT("j", "revolute", "a", "b") "</robot>", VT_ERR_BAD_NAME, "joint \"j\""},
+        {"<robot><link/></robot>", VT_ERR_BAD_NAME, "needs a name"},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
+         JOINT("f", "floating", "a", "b") "</robot>", VT_ERR_PARENT, "joint \"f\""},
+        {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
+         "<child link=\"a\"/><axis xyz=\"0 0 0\"/></joint></robot>", VT_ERR_AXIS_ZERO, "joint \"j\""},
+        {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
+         "<child link=\"a\"/><limit lower=\"1\" upper=\"-1\"/></joint></robot>", VT_ERR_BAD_OPTION, "joint \"j\""},
+        {"<robot/>", VT_ERR_EMPTY_MODEL, "no <link>"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char msg[256] = "";
+        vt_builder *b = (vt_builder *)&msg; /* not NULL: must be set to NULL */
+        const vt_status st = vt_urdf_builder_string(&b, cases[k].xml, NULL, msg);
+        if (st != cases[k].status || b != NULL || !strstr(msg, cases[k].says))
+            fail_msg("case %zu: status %d (expected %d), message \"%s\" (expected to hold \"%s\")", k, (int)st,
+                     (int)cases[k].status, msg, cases[k].says);
+        assert_int_equal(vt_urdf_builder_string(&b, cases[k].xml, NULL, NULL), cases[k].status); /* no message */
+    }
+    /* files: missing, a directory; NULLs */
+    char msg[256];
+    vt_builder *b;
+    assert_int_equal(vt_urdf_builder(&b, VT_TEST_URDF_DIR "/no_such.urdf", NULL, msg), VT_ERR_FILE);
+    assert_null(b);
+    assert_non_null(strstr(msg, "no_such.urdf"));
+    assert_int_equal(vt_urdf_builder(&b, VT_TEST_URDF_DIR, NULL, msg), VT_ERR_FILE);
+    assert_int_equal(vt_urdf_builder(&b, NULL, NULL, msg), VT_ERR_NULL);
+    assert_int_equal(vt_urdf_builder(NULL, "x", NULL, msg), VT_ERR_NULL);
+    assert_int_equal(vt_urdf_builder_string(&b, NULL, NULL, msg), VT_ERR_NULL);
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.model.rcond_min = 0.0;
+    assert_int_equal(vt_urdf_builder_string(&b, "<robot><link name=\"a\"/></robot>", &opt, msg), VT_ERR_BAD_OPTION);
+    assert_null(b);
+}
+
+static int report(void **state)
+{
+    (void)state;
+    printf("largest relative difference against the C scenes: %.3g\n", worst);
+    return 0;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_double_link),
+        cmocka_unit_test(test_five_link),
+        cmocka_unit_test(test_merged_and_rotated),
+        cmocka_unit_test(test_floating_root),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, report);
+}
