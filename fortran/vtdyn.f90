@@ -99,6 +99,7 @@ module vtdyn
   type, bind(C) :: vt_urdf_options
     type(vt_model_def)     :: model
     integer(c_int)         :: floating
+    integer(c_int)         :: mimic
   end type vt_urdf_options
 
   type, bind(C) :: vt_function

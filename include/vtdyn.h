@@ -96,8 +96,11 @@ typedef struct vt_urdf_options {
                           ///< (0, 0, −9.81): URDF robots are z up
     int floating;         ///< 1: a root link that no joint attaches to the world gets a base (floating)
                           ///< joint; 0 (default): it is welded to the ground
+    int mimic;            ///< 1 (default): a mimic joint's coordinate is coupled to the joint it mimics
+                          ///< (vt_coupling_def, named after the mimic joint); 0: the tag is ignored and
+                          ///< the joint moves on its own (as Pinocchio's default loads it)
 } vt_urdf_options;
-/// Defaults: vt_default_model_def() with gravity (0, 0, −9.81) m/s², floating 0.
+/// Defaults: vt_default_model_def() with gravity (0, 0, −9.81) m/s², floating 0, mimic 1.
 vt_urdf_options vt_default_urdf_options(void);
 /// Reads a URDF file into a new builder (drives, cut joints and frames may be added after, then
 /// vt_builder_build()). Links become bodies named after the link and their joints are named after

@@ -106,6 +106,8 @@ typedef struct {
     double axis[3];     /* in J */
     int has_limit;
     double lower, upper, effort, velocity;
+    xmlNodePtr mimic;          /* <mimic joint multiplier offset>, or NULL */
+    double multiplier, offset; /* q = multiplier q_other + offset */
 } urdf_joint;
 
 typedef struct {
@@ -118,6 +120,7 @@ typedef struct {
 
 typedef struct {
     char *msg;          /* 256 bytes or NULL */
+    int mimic;          /* vt_urdf_options.mimic */
     urdf_link *link;
     urdf_joint *joint;
     urdf_body *body;
@@ -229,9 +232,10 @@ static vt_status read_link(urdf *u, urdf_link *l)
             if ((st = numbers(u, "link", l->name, I, attr[k], 1, &v[k]))) return st;
         const double J[9] = {v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5]};
         memcpy(l->inertia, J, sizeof J);
-        char buf[256];
-        if ((st = vt_check_inertia(buf, "the inertia", l->inertia)))
-            return fail_at(u, st, "link", l->name, I, "%s", buf);
+        /* checked where it counts, on the body the link is merged into (vt_builder_add_body):
+         * files carry placeholder inertias on links fixed to a heavier one (e.g. 1e-6 in all six
+         * entries, rank one), which the body's sum makes sound, and Pinocchio takes as they are;
+         * a link that is a body of its own is refused there, naming its joint */
     }
     return VT_OK;
 }
@@ -252,11 +256,22 @@ static int find_link(const urdf *u, const xmlChar *name)
 }
 
 /* Mimic joints (<mimic joint multiplier offset>): a joint coordinate tied to another's,
- * q = multiplier q_other + offset. They need joint-coupling rows, which the builder does not
- * have yet: the place where such a joint is turned into one. */
-static vt_status mimic_joint(const urdf *u, const urdf_joint *j, xmlNodePtr mimic)
+ * q = multiplier q_other + offset (defaults 1 and 0), read here and turned into a coupling
+ * (vt_builder_add_coupling) once the bodies are in the builder (add_couplings). With
+ * vt_urdf_options.mimic = 0, and on a fixed joint (no coordinate), the tag is ignored. */
+static vt_status mimic_joint(const urdf *u, urdf_joint *j, xmlNodePtr mimic)
 {
-    return fail_at(u, VT_ERR_JOINT_TYPE, "joint", j->name, mimic, "mimic joints are not supported yet");
+    j->multiplier = 1.0;
+    j->offset = 0.0;
+    if (!u->mimic || j->type == J_FIXED) return VT_OK;
+    vt_status st;
+    if (xmlHasProp(mimic, (const xmlChar *)"multiplier") &&
+        (st = numbers(u, "joint", j->name, mimic, "multiplier", 1, &j->multiplier)))
+        return st;
+    if (xmlHasProp(mimic, (const xmlChar *)"offset") && (st = numbers(u, "joint", j->name, mimic, "offset", 1, &j->offset)))
+        return st;
+    j->mimic = mimic;
+    return VT_OK;
 }
 
 /* <parent link> or <child link> of a joint: the link's index, or a status */
@@ -513,11 +528,44 @@ static vt_status add_to_builder(const urdf *u, vt_builder *bld)
     return VT_OK;
 }
 
+/* Every mimic joint's coupling: its coordinate (on its child body) follows the mimicked joint's */
+static vt_status add_couplings(const urdf *u, vt_builder *bld)
+{
+    for (int k = 0; k < u->njoint; k++) {
+        const urdf_joint *j = &u->joint[k];
+        if (!j->mimic) continue;
+        xmlChar *other = xmlGetNoNsProp(j->mimic, (const xmlChar *)"joint");
+        int o = -1;
+        for (int i = 0; other && i < u->njoint; i++)
+            if (xmlStrcmp(u->joint[i].name, other) == 0) o = i;
+        vt_status st = VT_OK;
+        if (!other) st = fail_at(u, VT_ERR_NOT_FOUND, "joint", j->name, j->mimic, "<mimic> names no joint");
+        else if (o < 0)
+            st = fail_at(u, VT_ERR_NOT_FOUND, "joint", j->name, j->mimic, "mimics \"%.64s\", not a joint of the robot",
+                         (const char *)other);
+        else if (u->joint[o].type == J_FIXED || u->joint[o].type == J_FLOATING || o == k)
+            st = fail_at(u, VT_ERR_JOINT_TYPE, "joint", j->name, j->mimic, "mimics \"%.64s\", which has no scalar coordinate",
+                         (const char *)other);
+        xmlFree(other);
+        if (st) return st;
+        vt_coupling_def c = vt_default_coupling_def();
+        c.body_a = u->link[j->child].body;
+        c.body_b = u->link[u->joint[o].child].body;
+        c.ratio = j->multiplier;
+        c.offset = j->offset;
+        c.name = (const char *)j->name;
+        const int id = vt_builder_add_coupling(bld, &c);
+        if (id < 0) return fail_at(u, (vt_status)id, "joint", j->name, j->mimic, "%s", vt_builder_message(bld));
+    }
+    return VT_OK;
+}
+
 static vt_status from_doc(vt_builder **builder, xmlDocPtr doc, const vt_urdf_options *options, char *msg)
 {
     urdf u;
     memset(&u, 0, sizeof u);
     u.msg = msg;
+    u.mimic = options->mimic != 0;
     xmlNodePtr robot = xmlDocGetRootElement(doc);
     if (!robot || xmlStrcmp(robot->name, (const xmlChar *)"robot") != 0)
         return robot ? fail_at(&u, VT_ERR_XML, "robot", NULL, robot, "not a URDF file: the root element is not <robot>")
@@ -531,6 +579,7 @@ static vt_status from_doc(vt_builder **builder, xmlDocPtr doc, const vt_urdf_opt
         mass_properties(&u);
         st = add_to_builder(&u, b);
     }
+    if (st == VT_OK) st = add_couplings(&u, b);
     for (int k = 0; k < u.nlink; k++) xmlFree(u.link[k].name);
     for (int k = 0; k < u.njoint; k++) xmlFree(u.joint[k].name);
     free(u.link);
@@ -611,6 +660,7 @@ vt_urdf_options vt_default_urdf_options(void)
     o.model.gravity[1] = 0.0;
     o.model.gravity[2] = -9.81;
     o.floating = 0;
+    o.mimic = 1;
     return o;
 }
 

@@ -108,7 +108,7 @@ static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
 
 #if VT_HAVE_URDF /* only declared in a build with libxml2: without, struct 11 has no entries */
 static const size_t vt_urdf_options_layout[] = {sizeof(vt_urdf_options),
-    offsetof(vt_urdf_options, model), offsetof(vt_urdf_options, floating), VT_END};
+    offsetof(vt_urdf_options, model), offsetof(vt_urdf_options, floating), offsetof(vt_urdf_options, mimic), VT_END};
 #else
 static const size_t vt_urdf_options_layout[] = {VT_END};
 #endif

@@ -128,7 +128,8 @@ program test_fortran_layout
          a(c_loc(x_frame_def%orientation))])
 #if VT_HAVE_URDF
     call check(11_c_int, 'vt_urdf_options', c_sizeof(x_urdf_options), a(c_loc(x_urdf_options)), [ &
-         a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating))])
+         a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating)), &
+         a(c_loc(x_urdf_options%mimic))])
 #else
     print '(a, i0, a)', 'vt_urdf_options: not in this build (', c_sizeof(x_urdf_options), ' bytes in Fortran)'
 #endif
@@ -171,7 +172,8 @@ program test_fortran_layout
 #if VT_HAVE_URDF
   x_urdf_options = vt_default_urdf_options()
   call expect(same(x_urdf_options%model%gravity, [0.0_c_double, 0.0_c_double, -9.81_c_double]) &
-      .and. same([x_urdf_options%model%rcond_min], [1e-12_c_double]) .and. x_urdf_options%floating == 0, &
+      .and. same([x_urdf_options%model%rcond_min], [1e-12_c_double]) .and. x_urdf_options%floating == 0 &
+      .and. x_urdf_options%mimic == 1, &
       'vt_default_urdf_options')
 #endif
   x_run_options = vt_default_run_options()

@@ -509,8 +509,14 @@ static void test_bad_input(void **state)
         {"<robot>" LINK("world") LINK("a") JOINT("j", "hinge", "world", "a") "</robot>", VT_ERR_JOINT_TYPE,
          "\"hinge\" unknown"},
         {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
+         "<joint name=\"m\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><mimic joint=\"zz\"/></joint>"
+         "</robot>", VT_ERR_NOT_FOUND, "mimics \"zz\""},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "fixed", "world", "a")
          "<joint name=\"m\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><mimic joint=\"j\"/></joint>"
-         "</robot>", VT_ERR_JOINT_TYPE, "mimic joints are not supported yet"},
+         "</robot>", VT_ERR_JOINT_TYPE, "no scalar coordinate"},
+        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
+         "<joint name=\"m\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>"
+         "<mimic joint=\"j\" multiplier=\"x\"/></joint></robot>", VT_ERR_NONFINITE, "multiplier"},
         {"<robot>\n<link name=\"a\">\n<inertial>\n<mass value=\"-2\"/></inertial></link></robot>", VT_ERR_MASS,
          "link \"a\", <mass> (line 4)"},
         {"<robot><link name=\"a\"><inertial><mass value=\"1.0abc\"/></inertial></link></robot>", VT_ERR_NONFINITE,
@@ -523,10 +529,11 @@ static void test_bad_input(void **state)
          "<child link=\"a\"/><axis xyz=\"0 0 1e999\"/></joint></robot>", VT_ERR_NONFINITE, "<axis>"},
         {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"prismatic\"><parent link=\"world\"/>"
          "<child link=\"a\"/><limit lower=\"0\" upper=\"1,5\"/></joint></robot>", VT_ERR_NONFINITE, "<limit>"},
-        {"<robot><link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"3\"/>"
-         "</inertial></link></robot>", VT_ERR_INERTIA_TRIANGLE, "link \"a\", <inertia>"},
-        {"<robot><link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"-1\" iyy=\"1\" izz=\"1\"/>"
-         "</inertial></link></robot>", VT_ERR_INERTIA_NOT_PSD, "<inertia>"},
+        /* an inertia is checked on the body its link is (part of): here a body of its own */
+        {"<robot>" LINK("world") "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"3\"/>"
+         "</inertial></link>" JOINT("j", "revolute", "world", "a") "</robot>", VT_ERR_INERTIA_TRIANGLE, "joint \"j\""},
+        {"<robot>" LINK("world") "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"-1\" iyy=\"1\" izz=\"1\"/>"
+         "</inertial></link>" JOINT("j", "revolute", "world", "a") "</robot>", VT_ERR_INERTIA_NOT_PSD, "principal moment"},
         {"<robot>" LINK("a") LINK("a") "</robot>", VT_ERR_BAD_NAME, "link \"a\" (line 1): name already taken"},
         {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
          JOINT("j", "revolute", "a", "b") "</robot>", VT_ERR_BAD_NAME, "joint \"j\""},
@@ -571,6 +578,74 @@ static int report(void **state)
     return 0;
 }
 
+/* Mimic joints become couplings (q_m = multiplier q_j + offset), or are ignored with mimic = 0;
+ * the coupled motion keeps the coupling at the acceleration level and equals a model whose
+ * coupling is added by hand. A placeholder inertia (rank one, 1e-6 in all six entries) on a link
+ * fixed to a heavier one is accepted: the merged body's is sound. */
+static void test_mimic_and_placeholders(void **state)
+{
+    (void)state;
+    const char *xml =
+        "<robot name=\"r\"><link name=\"world\"/>"
+        "<link name=\"a\"><inertial><origin xyz=\"0.5 0 0\"/><mass value=\"2\"/>"
+        "<inertia ixx=\"0.01\" iyy=\"0.2\" izz=\"0.2\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>"
+        "<link name=\"b\"><inertial><origin xyz=\"0.3 0 0\"/><mass value=\"1\"/>"
+        "<inertia ixx=\"0.01\" iyy=\"0.05\" izz=\"0.05\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>"
+        "<link name=\"cam\"><inertial><mass value=\"1e-6\"/>"
+        "<inertia ixx=\"1e-6\" iyy=\"1e-6\" izz=\"1e-6\" ixy=\"1e-6\" ixz=\"1e-6\" iyz=\"1e-6\"/></inertial></link>"
+        "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/><child link=\"a\"/><axis xyz=\"0 0 1\"/></joint>"
+        "<joint name=\"m\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><origin xyz=\"1 0 0\"/>"
+        "<axis xyz=\"0 1 0\"/><mimic joint=\"j\" multiplier=\"-0.5\" offset=\"0.1\"/></joint>"
+        "<joint name=\"c\" type=\"fixed\"><parent link=\"a\"/><child link=\"cam\"/><origin xyz=\"0.2 0 0\"/></joint>"
+        "</robot>";
+    vt_urdf_options opt = vt_default_urdf_options();
+    char msg[256];
+    vt_builder *b;
+    assert_int_equal(vt_urdf_builder_string(&b, xml, &opt, msg), VT_OK);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nbody, 2);
+    assert_int_equal(m->ncoupling, 1);
+    assert_int_equal(vt_find_coupling(m, "m"), 0);
+    assert_int_equal(m->coupling[0].body_a, vt_find_joint(m, "m"));
+    assert_int_equal(m->coupling[0].body_b, vt_find_joint(m, "j"));
+    assert_near(m->coupling[0].ratio, -0.5, 0.0);
+    assert_near(m->coupling[0].offset, 0.1, 0.0);
+    /* without the mimic: two free joints; the coupling added by hand gives the same instant */
+    opt.mimic = 0;
+    assert_int_equal(vt_urdf_builder_string(&b, xml, &opt, msg), VT_OK);
+    vt_model *free2;
+    assert_ok(vt_builder_build(&free2, b));
+    assert_int_equal(free2->ncoupling, 0);
+    vt_coupling_def c = vt_default_coupling_def();
+    c.body_a = vt_builder_find_body(b, "b");
+    c.body_b = vt_builder_find_body(b, "a");
+    c.ratio = -0.5;
+    c.offset = 0.1;
+    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+    vt_model *hand;
+    assert_ok(vt_builder_build(&hand, b));
+    vt_builder_free(b);
+    vt_data *d, *dh;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dh, hand));
+    d->q[0] = dh->q[0] = 0.3;
+    d->q[1] = dh->q[1] = -0.5 * 0.3 + 0.1;
+    d->qd[0] = dh->qd[0] = 0.8;
+    d->qd[1] = dh->qd[1] = -0.5 * 0.8;
+    assert_ok(vt_inverse_dynamics(m, d));
+    assert_ok(vt_inverse_dynamics(hand, dh));
+    assert_near(d->qdd[1], -0.5 * d->qdd[0], 1e-12); /* the coupling held */
+    assert_near(d->qdd[0], dh->qdd[0], 1e-12 * (1 + fabs(dh->qdd[0])));
+    assert_near(d->coupling_effort[0], dh->coupling_effort[0], 1e-12 * (1 + fabs(dh->coupling_effort[0])));
+    vt_data_free(d);
+    vt_data_free(dh);
+    vt_model_free(m);
+    vt_model_free(free2);
+    vt_model_free(hand);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -579,6 +654,7 @@ int main(void)
         cmocka_unit_test(test_merged_and_rotated),
         cmocka_unit_test(test_floating_root),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_mimic_and_placeholders),
     };
     return cmocka_run_group_tests(tests, NULL, report);
 }
