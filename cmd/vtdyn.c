@@ -85,7 +85,7 @@ static char *trim(char *s)
 {
     while (*s == ' ' || *s == '\t') s++;
     char *e = s + strlen(s);
-    while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) *--e = '\0';
+    while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
     return s;
 }
 
@@ -271,7 +271,7 @@ static void write_row(FILE *out, const vt_model *m, vt_data *d, const joint_cols
 static int inverse(const char *urdf, const char *states, const char *outpath)
 {
     vt_builder *b = NULL;
-    vt_model *m = NULL;
+    vt_model *m = NULL, *probe = NULL;
     vt_data *d = NULL;
     table t;
     joint_cols *jc = NULL;
@@ -281,8 +281,8 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     int status = 1;
     if (read_table(&t, states)) return 1;
     if (load(&b, urdf)) goto done;
-    /* the moving joints, in the model's order: one column set each */
-    vt_model *probe = NULL;
+    /* the moving joints, in the model's order: one column set each (their names point into probe,
+     * kept to the end) */
     if (vt_builder_build(&probe, b)) {
         fail("%s: %s", urdf, vt_builder_message(b));
         goto done;
@@ -291,7 +291,6 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     jc = calloc((size_t)probe->nbody, sizeof *jc);
     effort = calloc((size_t)probe->nbody + 1, sizeof *effort);
     if (!jc || !effort) {
-        vt_model_free(probe);
         fail("out of memory");
         goto done;
     }
@@ -303,7 +302,6 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
         if (jt == VT_JOINT_BASE || jt == VT_JOINT_SPHERICAL || probe->body_nv[i] != 1) {
             fail("%s: joint '%s' (%s): only revolute, continuous and prismatic joints are supported here", urdf, name,
                  joint_kind(jt));
-            vt_model_free(probe);
             goto done;
         }
         char key[VT_NAME_MAX + 8];
@@ -319,7 +317,6 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
         j->frame = vt_find_frame(probe, probe->body_name + VT_NAME_MAX * i);
         if (j->col < 0) {
             fail("%s: no column '%s' (the position of joint %s)", states, name, name);
-            vt_model_free(probe);
             goto done;
         }
         const int full = j->col_vel >= 0 && j->col_acc >= 0, none = j->col_vel < 0 && j->col_acc < 0;
@@ -327,12 +324,10 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
         if (mode < 0 || (samples >= 0 && mode != samples)) {
             fail("%s: joint '%s': give '%s_vel' and '%s_acc' for every joint, or for none (then with 't', samples)",
                  states, name, name, name);
-            vt_model_free(probe);
             goto done;
         }
         samples = mode;
     }
-    vt_model_free(probe);
     if (samples == 1 && ct < 0) {
         fail("%s: positions without velocities and accelerations are samples of a trajectory: a column 't' is needed",
              states);
@@ -439,6 +434,7 @@ done:
     free(effort);
     vt_data_free(d);
     vt_model_free(m);
+    vt_model_free(probe);
     vt_builder_free(b);
     table_free(&t);
     return status;

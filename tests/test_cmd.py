@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""The command vtdyn (cmd/vtdyn.c) on the paper's double link as a URDF file (gravity -9.81
+along z, the hinges about z: the arm moves in the horizontal plane, no gravity torque), held to
+the closed forms of a planar two-link arm (m = 100 kg, l = 2 m, centres at l/2, I = m l^2/12):
+
+    tau1 = (2 I + m lc^2 + m (l^2 + lc^2 + 2 l lc c2)) a1 + (I + m (lc^2 + l lc c2)) a2
+           - m l lc s2 (2 v1 v2 + v2^2)
+    tau2 = (I + m (lc^2 + l lc c2)) a1 + (I + m lc^2) a2 + m l lc s2 v1^2
+
+and the joint-1 reaction: the arm's total momentum rate, f = sum m a_c (gravity balanced by
+the hinge's vertical force, f_z = 2 m g). States given (to 1e-9), states as samples of a smooth
+motion (velocities and accelerations from the splines, to 1e-4 of the largest torque at the
+interior samples), the link axes' reaction, and the errors: a missing column, a bad number
+(file, row and column named, exit 1, no output file left), --help.
+
+    test_cmd.py VTDYN URDF_DIR WORKDIR
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+
+M, L, LC, G = 100.0, 2.0, 1.0, 9.81
+I = M * L * L / 12.0
+
+
+def exact(q1, q2, v1, v2, a1, a2):
+    c2, s2 = math.cos(q2), math.sin(q2)
+    m11 = 2 * I + M * LC * LC + M * (L * L + LC * LC + 2 * L * LC * c2)
+    m12 = I + M * (LC * LC + L * LC * c2)
+    m22 = I + M * LC * LC
+    t1 = m11 * a1 + m12 * a2 - M * L * LC * s2 * (2 * v1 * v2 + v2 * v2)
+    t2 = m12 * a1 + m22 * a2 + M * L * LC * s2 * v1 * v1
+    # the centres' accelerations (planar), for the ground's force on link 1
+    th1, th12 = q1, q1 + q2
+    w1, w12, al1, al12 = v1, v1 + v2, a1, a1 + a2
+
+    def acc(r, th, w, al):
+        return (-r * math.sin(th) * al - r * math.cos(th) * w * w, r * math.cos(th) * al - r * math.sin(th) * w * w)
+
+    ac1 = acc(LC, th1, w1, al1)
+    e1 = acc(L, th1, w1, al1)
+    ac2r = acc(LC, th12, w12, al12)
+    ac2 = (e1[0] + ac2r[0], e1[1] + ac2r[1])
+    f = (M * (ac1[0] + ac2[0]), M * (ac1[1] + ac2[1]), 2 * M * G)
+    return t1, t2, f
+
+
+def motion(t):
+    q1, v1, a1 = 0.5 * math.sin(1.3 * t), 0.65 * math.cos(1.3 * t), -0.845 * math.sin(1.3 * t)
+    q2, v2, a2 = 0.8 + 0.4 * math.cos(0.9 * t), -0.36 * math.sin(0.9 * t), -0.324 * math.cos(0.9 * t)
+    return q1, q2, v1, v2, a1, a2
+
+
+def run(vtdyn, *args):
+    return subprocess.run([vtdyn, *args], capture_output=True, text=True)
+
+
+def read(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return [{k: float(v) for k, v in r.items()} for r in rows]
+
+
+def main():
+    vtdyn, urdf_dir, work = sys.argv[1], sys.argv[2], sys.argv[3]
+    os.makedirs(work, exist_ok=True)
+    urdf = os.path.join(urdf_dir, "double_link.urdf")
+    failures = []
+
+    def check(ok, what):
+        if not ok:
+            failures.append(what)
+            print("FAIL:", what)
+
+    # states given
+    states = os.path.join(work, "states.csv")
+    times = [0.1 * k for k in range(12)]
+    with open(states, "w") as f:
+        f.write("t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc\n")
+        for t in times:
+            q1, q2, v1, v2, a1, a2 = motion(t)
+            f.write(",".join(repr(x) for x in (t, q1, v1, a1, q2, v2, a2)) + "\n")
+    out = os.path.join(work, "out.csv")
+    r = run(vtdyn, "inverse", urdf, states, "-o", out)
+    check(r.returncode == 0, "inverse on states: exit %d: %s" % (r.returncode, r.stderr))
+    if r.returncode == 0:
+        rows = read(out)
+        check(len(rows) == len(times), "one output row per state")
+        worst = 0.0
+        for row, t in zip(rows, times):
+            q1, q2, v1, v2, a1, a2 = motion(t)
+            t1, t2, f = exact(q1, q2, v1, v2, a1, a2)
+            scale = 1 + abs(t1) + abs(t2)
+            worst = max(worst, abs(row["joint1_effort"] - t1) / scale, abs(row["joint2_effort"] - t2) / scale)
+            fs = 1 + max(abs(x) for x in f)
+            for k, c in enumerate("xyz"):
+                worst = max(worst, abs(row["joint1_f" + c] - f[k]) / fs)
+            worst = max(worst, abs(row["joint1_nz"]) / scale)  # the hinge's torque is not reaction
+            # in link 1's axes (turned q1 about z): the force's x and y components
+            c, s = math.cos(q1), math.sin(q1)
+            worst = max(worst, abs(row["joint1_fx_link"] - (c * f[0] + s * f[1])) / fs,
+                        abs(row["joint1_fy_link"] - (-s * f[0] + c * f[1])) / fs,
+                        abs(row["joint1_fz_link"] - f[2]) / fs)
+            check(abs(row["t"] - t) == 0.0, "t copied")
+        check(worst < 1e-9, "states: largest relative difference %.3g (tolerance 1e-9)" % worst)
+        print("states: %d rows, largest relative difference from the closed forms %.3g" % (len(rows), worst))
+
+    # samples of the same motion: the splines' derivatives
+    samples = os.path.join(work, "samples.csv")
+    ts = [0.01 * k for k in range(301)]
+    with open(samples, "w") as f:
+        f.write("t,joint1,joint2\n")
+        for t in ts:
+            q1, q2, *_ = motion(t)
+            f.write("%r,%r,%r\n" % (t, q1, q2))
+    out2 = os.path.join(work, "out_samples.csv")
+    r = run(vtdyn, "inverse", urdf, samples, "-o", out2)
+    check(r.returncode == 0, "inverse on samples: exit %d: %s" % (r.returncode, r.stderr))
+    if r.returncode == 0:
+        rows = read(out2)
+        check(len(rows) == len(ts), "one output row per sample")
+        worst, big = 0.0, 0.0
+        for row, t in zip(rows, ts):
+            t1, t2, _ = exact(*motion(t))
+            big = max(big, abs(t1), abs(t2))
+        for row, t in zip(rows[5:-5], ts[5:-5]):  # the spline's ends are less accurate
+            t1, t2, _ = exact(*motion(t))
+            worst = max(worst, abs(row["joint1_effort"] - t1), abs(row["joint2_effort"] - t2))
+        check(worst < 1e-4 * big, "samples: largest difference %.3g of %.3g N m (tolerance 1e-4)" % (worst, big))
+        print("samples: %d rows, largest torque difference %.3g of %.3g N m" % (len(rows), worst, big))
+
+    # errors: named, exit 1, no output left under the name
+    bad = os.path.join(work, "bad.csv")
+    with open(bad, "w") as f:
+        f.write("joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc\n0,0,0,0,0,0\n0,0,0,0.5,abc,0\n")
+    out3 = os.path.join(work, "never.csv")
+    r = run(vtdyn, "inverse", urdf, bad, "-o", out3)
+    check(r.returncode == 1 and "bad.csv:3" in r.stderr and "joint2_vel" in r.stderr and "abc" in r.stderr,
+          "a bad number names the file, row and column: %r" % r.stderr)
+    check(not os.path.exists(out3) and not os.path.exists(out3 + ".part"), "no output file after a failure")
+    with open(bad, "w") as f:
+        f.write("joint1,joint1_vel,joint1_acc\n0,0,0\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "'joint2'" in r.stderr, "a missing column is named: %r" % r.stderr)
+    with open(bad, "w") as f:
+        f.write("joint1,joint2\n0,0\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "'t'" in r.stderr, "samples need t: %r" % r.stderr)
+    r = run(vtdyn, "inverse", os.path.join(work, "missing.urdf"), states)
+    check(r.returncode == 1 and "missing.urdf" in r.stderr, "a missing URDF is named: %r" % r.stderr)
+    r = run(vtdyn, "--help")
+    check(r.returncode == 0 and "J_effort" in r.stdout, "--help documents the columns")
+    r = run(vtdyn, "info", urdf)
+    check(r.returncode == 0 and "joint2" in r.stdout and "link2" in r.stdout, "info lists the joints")
+    print("%d checks failed" % len(failures) if failures else "every check held")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
