@@ -211,7 +211,7 @@ vt_status vt_check_inertia(char *msg, const char *who, const double J[9])
 {
     double scale = 0.0;
     for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
-    const double tol = VT_INERTIA_TOL * scale;
+    const double tol = VT_INERTIA_TOL * scale + VT_INERTIA_ABS_TOL; /* the floor: a point mass written −5e-20 */
     if (!(fabs(J[1] - J[3]) <= tol) || !(fabs(J[2] - J[6]) <= tol) || !(fabs(J[5] - J[7]) <= tol))
         return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
                        "%s: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",

@@ -212,6 +212,13 @@ static void test_real_files(void **state)
     assert_int_equal(vt_builder_add_body(b, &d), VT_ERR_INERTIA_TRIANGLE);
     d.inertia[8] = 3.0;
     assert_int_equal(vt_builder_add_body(b, &d), 5);
+    vt_body_def pm = vt_default_body_def(); /* a point mass written as a URDF file does (iCub's r_hip_2) */
+    pm.parent = 5;
+    pm.mass = 0.526;
+    pm.inertia[0] = pm.inertia[4] = -5.42101e-20; /* within VT_INERTIA_ABS_TOL */
+    assert_int_equal(vt_builder_add_body(b, &pm), 6);
+    pm.inertia[0] = pm.inertia[4] = -1e-12; /* beyond it */
+    assert_int_equal(vt_builder_add_body(b, &pm), VT_ERR_INERTIA_NOT_PSD);
     vt_builder_free(b);
 }
 

@@ -74,6 +74,8 @@ typedef enum vt_status {
 /// the triangle inequality to VT_INERTIA_TOL times its largest entry (what files that print
 /// inertias to a few digits are off by); the model keeps the symmetric part.
 #define VT_INERTIA_TOL 1e-6
+/// Absolute floor of those tolerances, kg·m²: a point mass written with moments of −5e-20.
+#define VT_INERTIA_ABS_TOL 1e-15
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
 /// R (nv x 7n) of the reference path below about 400 MB.

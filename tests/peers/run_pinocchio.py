@@ -1,0 +1,149 @@
+#!/usr/bin/env python3
+"""vtdyn against Pinocchio on the robots of example-robot-data (run by run_pinocchio.sh with the
+venv's python, which has pin and example-robot-data).
+
+    run_pinocchio.py COMPARE VTDYN WORKDIR
+
+1. UR5, Panda, Solo-12, Talos and ANYmal, each with its root welded to the world (Pinocchio's
+   buildModelFromUrdf without a root joint; vtdyn's loader by default): at 20 random states
+   (the last 4 at rest) Pinocchio's rnea and data.f (pinocchio_reference.py) against vtdyn's
+   vt_inverse_dynamics_motion (compare_pinocchio): the torques and every joint reaction, in
+   world axes and in the joint's axes, to 1e-12 of the largest of the state.
+2. The command vtdyn on UR5: the reference's states as a states file (the torques to 1e-12), and
+   samples of a smooth motion q_j(t) = a_j sin(w_j t + phi_j) as a samples file: vtdyn's torques
+   from the splines against Pinocchio's rnea with the exact derivatives, to 1e-4 of the largest
+   torque at the interior samples.
+3. Every URDF the package ships through `vtdyn info`: accepted, or refused with its reason
+   (a count, and the reasons; a crash fails the test).
+Exit 0 when every comparison holds, 1 otherwise.
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+from importlib.metadata import distribution
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+HERE = Path(__file__).resolve().parent
+ROBOTS = [
+    ("UR5", "ur_description/urdf/ur5_robot.urdf", 1),
+    ("Panda", "panda_description/urdf/panda.urdf", 2),
+    ("Solo-12", "solo_description/robots/solo12.urdf", 3),
+    ("Talos", "talos_data/robots/talos_reduced.urdf", 4),
+    ("ANYmal", "anymal_b_simple_description/robots/anymal.urdf", 5),
+]
+
+
+def robots_dir():
+    dist = distribution("example-robot-data")
+    urdfs = sorted(Path(dist.locate_file(f)) for f in dist.files or [] if str(f).endswith(".urdf"))
+    parts = urdfs[0].parts
+    return Path(*parts[: parts.index("robots") + 1]), urdfs
+
+
+def run(*args):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True)
+
+
+def main():
+    compare, vtdyn, work = sys.argv[1], sys.argv[2], Path(sys.argv[3])
+    work.mkdir(parents=True, exist_ok=True)
+    root, urdfs = robots_dir()
+    failures = []
+
+    # 1. the five robots
+    for name, rel, seed in ROBOTS:
+        urdf = root / rel
+        ref = work / ("%s.csv" % name)
+        r = run(sys.executable, HERE / "pinocchio_reference.py", urdf, "fixed", 20, seed, ref, "--static", 4)
+        if r.returncode:
+            failures.append("%s: pinocchio_reference.py: %s" % (name, r.stderr.strip()))
+            continue
+        r = run(compare, urdf, ref, "1e-12")
+        print("%s: %s" % (name, (r.stdout + r.stderr).strip()))
+        if r.returncode:
+            failures.append("%s: vtdyn and Pinocchio differ" % name)
+
+    # 2. the command on UR5
+    urdf = root / ROBOTS[0][1]
+    with open(work / "UR5.csv") as f:
+        ref = list(csv.DictReader(f))
+    joints = [c.split(":")[1] for c in ref[0] if c.startswith("q:")]
+    states = work / "ur5_states.csv"
+    with open(states, "w") as f:
+        f.write(",".join(sum(([j, j + "_vel", j + "_acc"] for j in joints), [])) + "\n")
+        for row in ref:
+            f.write(",".join(sum(([row["q:%s:0" % j], row["v:%s:0" % j], row["a:%s:0" % j]] for j in joints), []))
+                    + "\n")
+    out = work / "ur5_states_out.csv"
+    r = run(vtdyn, "inverse", urdf, states, "-o", out)
+    if r.returncode:
+        failures.append("vtdyn inverse (UR5 states): %s" % r.stderr.strip())
+    else:
+        with open(out) as f:
+            got = list(csv.DictReader(f))
+        worst = 0.0
+        for g, row in zip(got, ref):
+            tau = [float(row["tau:%s:0" % j]) for j in joints]
+            scale = max(1.0, max(abs(t) for t in tau))
+            worst = max(worst, max(abs(float(g[j + "_effort"]) - t) / scale for j, t in zip(joints, tau)))
+        print("vtdyn inverse, UR5 states file: %d rows, largest relative torque difference %.2g" % (len(got), worst))
+        if len(got) != len(ref) or worst > 1e-12:
+            failures.append("vtdyn inverse (UR5 states): %.3g" % worst)
+    model = pin.buildModelFromUrdf(str(urdf))
+    data = model.createData()
+    rng = np.random.default_rng(7)
+    amp, w, ph = rng.uniform(0.3, 1.0, model.nv), rng.uniform(0.5, 2.0, model.nv), rng.uniform(0, 2 * math.pi, model.nv)
+    times = np.linspace(0.0, 3.0, 601)
+    names = [model.names[j] for j in range(1, model.njoints)]
+    samples = work / "ur5_samples.csv"
+    expected = []
+    with open(samples, "w") as f:
+        f.write("t," + ",".join(names) + "\n")
+        for t in times:
+            q = amp * np.sin(w * t + ph)
+            v = amp * w * np.cos(w * t + ph)
+            a = -amp * w * w * np.sin(w * t + ph)
+            expected.append(pin.rnea(model, data, q, v, a).copy())
+            f.write(repr(float(t)) + "," + ",".join(repr(float(x)) for x in q) + "\n")
+    out = work / "ur5_samples_out.csv"
+    r = run(vtdyn, "inverse", urdf, samples, "-o", out)
+    if r.returncode:
+        failures.append("vtdyn inverse (UR5 samples): %s" % r.stderr.strip())
+    else:
+        with open(out) as f:
+            got = list(csv.DictReader(f))
+        big = max(abs(x) for e in expected for x in e)
+        worst = max(abs(float(g[n + "_effort"]) - e[k]) for g, e in zip(got[5:-5], expected[5:-5])
+                    for k, n in enumerate(names))
+        print("vtdyn inverse, UR5 samples file: %d samples, largest torque difference %.2g of %.3g N m"
+              % (len(got), worst, big))
+        if len(got) != len(times) or worst > 1e-4 * big:
+            failures.append("vtdyn inverse (UR5 samples): %.3g of %.3g" % (worst, big))
+
+    # 3. every URDF of the package
+    accepted, refused = 0, {}
+    for u in urdfs:
+        r = run(vtdyn, "info", u)
+        if r.returncode == 0:
+            accepted += 1
+        elif r.returncode == 1:
+            reason = r.stderr.strip().splitlines()[-1] if r.stderr.strip() else "?"
+            refused[str(u.relative_to(root))] = reason.split(": ", 2)[-1]
+        else:
+            failures.append("vtdyn info %s: exit %d (%s)" % (u, r.returncode, r.stderr.strip()))
+    print("example-robot-data: %d URDFs, %d accepted, %d refused" % (len(urdfs), accepted, len(refused)))
+    for path, reason in sorted(refused.items()):
+        print("  refused %s: %s" % (path, reason))
+
+    for f in failures:
+        print("FAIL:", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
