@@ -103,6 +103,8 @@ static int read_table(table *t, const char *path)
         row++;
         (void)len;
         char *s = trim(line);
+        if (row == 1 && (unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF)
+            s = trim(s + 3); /* a UTF-8 byte-order mark */
         if (!*s) continue; /* blank lines */
         if (!t->ncol) { /* the header */
             for (char *p = s;;) {
@@ -138,7 +140,7 @@ static int read_table(table *t, const char *path)
             char *cell = trim(p), *end = NULL;
             errno = 0;
             out[c] = strtod(cell, &end);
-            if (!*cell || *end || errno == ERANGE || !isfinite(out[c])) {
+            if (!*cell || *end || (errno == ERANGE && fabs(out[c]) == HUGE_VAL) || !isfinite(out[c])) {
                 status = fail("%s:%d: column '%s': '%s' is not a finite number", path, row, t->name[c], cell);
                 goto done;
             }
@@ -169,7 +171,8 @@ static int column(const table *t, const char *name)
 static int load(vt_builder **b, const char *path)
 {
     char msg[256] = "";
-    const vt_urdf_options opt = vt_default_urdf_options();
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */
     const vt_status st = vt_urdf_builder(b, path, &opt, msg);
     if (st) return fail("%s: %s (%s)", path, msg, vt_status_string(st));
     return 0;
@@ -278,7 +281,7 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     double *effort = NULL;
     FILE *out = NULL;
     char *tmp = NULL;
-    int status = 1;
+    int status = 1, created = 0;
     if (read_table(&t, states)) return 1;
     if (load(&b, urdf)) goto done;
     /* the moving joints, in the model's order: one column set each (their names point into probe,
@@ -371,12 +374,13 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
             goto done;
         }
         sprintf(tmp, "%s.part", outpath);
-        out = fopen(tmp, "w");
+        out = fopen(tmp, "wx"); /* ours alone: an existing one is not overwritten, nor removed below */
         if (!out) {
             free(ts);
-            fail("%s: %s", tmp, strerror(errno));
+            fail("%s: %s%s", tmp, strerror(errno), errno == EEXIST ? " (left by another run? remove it)" : "");
             goto done;
         }
+        created = 1;
     } else {
         out = stdout;
     }
@@ -417,7 +421,11 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
         const int bad = ferror(out);
         const int closed = fclose(out);
         out = NULL;
-        if (bad || closed || rename(tmp, outpath)) {
+        if (bad || closed) {
+            fail("%s: writing failed", tmp);
+            goto done;
+        }
+        if (rename(tmp, outpath)) {
             fail("%s: %s", outpath, strerror(errno));
             goto done;
         }
@@ -428,7 +436,7 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     status = 0;
 done:
     if (out && out != stdout) fclose(out);
-    if (status && tmp) remove(tmp);
+    if (status && created) remove(tmp);
     free(tmp);
     free(jc);
     free(effort);

@@ -370,7 +370,13 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
     vt_row_wrenches(rw, m, d, z);
     add_row_wrenches(m, rw, fe);
     coupling_loads(m, d, z, fe);
-    double big = 0.0, *cmag = mag + 6 * nb;
+    /* the size of the direction's loads, before they cancel on the bodies */
+    double big = 0.0, *cmag = mag + 6 * nb, loads = 0.0;
+    for (size_t k = 0; k < 12 * (size_t)m->nc; k++) loads = fabs(rw[k]) > loads ? fabs(rw[k]) : loads;
+    for (int k = 0; k < m->ncoupling; k++) {
+        const double g = fabs(z[m->coupling_row[k]]) * (fabs(m->coupling[k].ratio) > 1.0 ? fabs(m->coupling[k].ratio) : 1.0);
+        loads = g > loads ? g : loads;
+    }
     for (int k = 0; k < m->ncut; k++) {
         const vt_cut_joint_def *c = &m->cut[k];
         const int r0 = m->cut_row[k];
@@ -410,6 +416,9 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
             }
         }
     }
+    /* a direction whose loads cancel in every joint (its largest change is round-off of them)
+     * changes no reaction: nothing is marked */
+    if (!(big > tol * loads)) return;
     for (int i = 1; i <= n; i++)
         for (int e = 0; e < 6; e++)
             if (mag[6 * i + e] > tol * big) d->jnt_unique[6 * i + e] = 0;

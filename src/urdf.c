@@ -43,6 +43,8 @@
 
 #include "internal.h"
 
+#define VT_URDF_MAX_ELEMENTS (4 * VT_MAX_BODIES) /* links, and joints, in one file */
+
 /* x_outer = A(p) x_inner + t */
 typedef struct {
     double p[4];
@@ -339,6 +341,11 @@ static vt_status read_robot(urdf *u, xmlNodePtr robot)
         nl += xmlStrcmp(c->name, (const xmlChar *)"link") == 0;
         nj += xmlStrcmp(c->name, (const xmlChar *)"joint") == 0;
     }
+    /* the name checks and the tree's order are quadratic in the counts: a bound keeps a hostile
+     * file from taking minutes (a robot has at most VT_MAX_BODIES moving links) */
+    if (nl > VT_URDF_MAX_ELEMENTS || nj > VT_URDF_MAX_ELEMENTS)
+        return fail_at(u, VT_ERR_TOO_MANY_BODIES, "robot", NULL, robot, "%d links and %d joints: at most %d of each", nl,
+                       nj, VT_URDF_MAX_ELEMENTS);
     u->link = calloc((size_t)nl + 1, sizeof *u->link);
     u->joint = calloc((size_t)nj + 1, sizeof *u->joint);
     u->body = calloc((size_t)nl + 1, sizeof *u->body);

@@ -150,6 +150,18 @@ def main():
     check(r.returncode == 1 and "'t'" in r.stderr, "samples need t: %r" % r.stderr)
     r = run(vtdyn, "inverse", os.path.join(work, "missing.urdf"), states)
     check(r.returncode == 1 and "missing.urdf" in r.stderr, "a missing URDF is named: %r" % r.stderr)
+    # a byte-order mark before the header, a subnormal number; an existing .part left alone
+    with open(bad, "w", encoding="utf-8-sig") as f:
+        f.write("t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc\n0.5,1e-320,0,0,0,0,0\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 0 and r.stdout.startswith("t,joint1_effort"), "a BOM and a subnormal: %r" % r.stderr)
+    part = out3 + ".part"
+    with open(part, "w") as f:
+        f.write("someone else's\n")
+    r = run(vtdyn, "inverse", urdf, states, "-o", out3)
+    check(r.returncode == 1 and ".part" in r.stderr, "an existing .part refused: %r" % r.stderr)
+    check(open(part).read() == "someone else's\n" and not os.path.exists(out3), "an existing .part left as it was")
+    os.remove(part)
     r = run(vtdyn, "--help")
     check(r.returncode == 0 and "J_effort" in r.stdout, "--help documents the columns")
     r = run(vtdyn, "info", urdf)

@@ -834,6 +834,52 @@ static void test_coupling(void **state)
     vt_model_free(model);
 }
 
+/* A redundant row that moves no reaction: a two-link arm whose second hinge is both driven and
+ * coupled to the first (allow_redundant). The null direction of Φ_q^T changes only the split
+ * between the drives' and the coupling's efforts; every reaction stays unique, as adding the
+ * direction to λ and recomputing the reactions shows */
+static void test_unique_despite_redundant_row(void **state)
+{
+    (void)state;
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = 1;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_test_add_rods(b, 2, 1.0, (const double[2]){2.0, 2.0});
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.4, 0.1, 2.0, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    dr.body = 2;
+    dr.f = vt_function_sine(0.9, 0.2, 2.0, 0.0); /* q2 = 2 q1 + 0.1 exactly */
+    assert_int_equal(vt_builder_add_drive(b, &dr), 1);
+    vt_coupling_def c = vt_default_coupling_def();
+    c.ratio = 2.0;
+    c.offset = 0.1;
+    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    d->time = 0.3;
+    assert_ok(vt_kinematic_solve(m, d, 1e-12, 50));
+    assert_int_equal(d->rank, 2);
+    assert_int_equal(d->route, VT_ROUTE_REDUNDANT);
+    double f0[9], n0[9];
+    memcpy(f0, d->jnt_force, sizeof f0);
+    memcpy(n0, d->jnt_moment, sizeof n0);
+    for (int k = 6; k < 18; k++) assert_int_equal(d->jnt_unique[k], 1);
+    for (int r = 0; r < 3; r++) d->lambda[r] += 5.0 * d->lambda_null[r]; /* another solution */
+    assert_ok(vt_reactions(m, d));
+    for (int k = 3; k < 9; k++) {
+        assert_near(d->jnt_force[k], f0[k], 1e-10 * (1 + fabs(f0[k])));
+        assert_near(d->jnt_moment[k], n0[k], 1e-10 * (1 + fabs(n0[k])));
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -847,6 +893,7 @@ int main(void)
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_spherical_through_gimbal_lock),
         cmocka_unit_test(test_coupling),
+        cmocka_unit_test(test_unique_despite_redundant_row),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
