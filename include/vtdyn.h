@@ -295,9 +295,15 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 /// (N·m or N: the joint torques and forces that produce the motion, with d->xfrc and d->qfrc
 /// applied), ẍ, x, A, ω, ẋ and every joint reaction in both frames (the actuation not
 /// included, as in vt_reactions()); d->route = VT_ROUTE_MOTION. The drives' outputs and λ are
-/// not written. Trees only: a model with cut joints or a base body is refused
-/// (VT_ERR_BAD_OPTION). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_OPTION,
-/// VT_ERR_NONFINITE (q, q̇, q̈, xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION.
+/// not written. A tree with a base body is refused (VT_ERR_BAD_OPTION).
+/// With loops (cut joints) or couplings the rates are not independent: the rates that carry a
+/// joint drive are the given ones — each such drive's row takes its acceleration from d->qdd
+/// instead of f''(t), every other row is as in vt_inverse_dynamics() — the rest follows, and
+/// the outputs, the route and the statuses are vt_inverse_dynamics()'s (the drives' efforts,
+/// q̈ of every rate in d->qdd; q and q̇ must satisfy the constraints). Such a model without a
+/// joint drive is refused (VT_ERR_BAD_OPTION).
+/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_OPTION, VT_ERR_NONFINITE (q, q̇, q̈,
+/// xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION, and with loops those of the stages.
 vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);
 
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a

@@ -299,6 +299,10 @@ void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const doub
 /* jnt_unique and cut_unique from the solve's rank and null directions (reactions.c) */
 vt_status vt_reactions_unique(const vt_model *m, vt_data *d);
 
+/* the given motion of a mechanism with loops or couplings: the joint drives' rows take q̈ from
+ * d->qdd (instant.c) */
+vt_status vt_motion_rows(const vt_model *m, vt_data *d);
+
 /* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);
 

@@ -722,33 +722,41 @@ size_t vt_recursive_scratch(const vt_model *m)
     if (one > n) n = one;
     if (square > n) n = square;
     if (VT_SCRATCH_BYTES(13 * nb, D) > n) n = VT_SCRATCH_BYTES(13 * nb, D);
+    /* vt_motion_rows (instant.c, called from here) holds the given q̈ while the stages run */
+    if (VT_SCRATCH_BYTES(m->nv, D) > n) n = VT_SCRATCH_BYTES(m->nv, D);
     return n;
 }
 
 /* The motion given for every rate of a tree: q̈ is known, and one outward and one inward pass
  * give every rate's effort τ_a = s_a · W̄_i − qfrc_a (= (M* q̈ − Q)_a) and the reactions, the
- * actuation taken off (route VT_ROUTE_MOTION, nothing factorized). Base bodies and cut joints
- * are refused: a base body's ṗ rates carry (4)'s normal part (its multiplier), and a loop's
- * rates are not independent. */
+ * actuation taken off (route VT_ROUTE_MOTION, nothing factorized). A loop's or a coupling's
+ * rates are not independent: there the joint-driven rates are the given ones and the rest
+ * follows from the rows (vt_motion_rows, instant.c). Base bodies of a tree are refused: a base
+ * body's ṗ rates carry (4)'s normal part (its multiplier). */
 vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
     if (st) return st;
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
-    if (m->ncut > 0 || m->ncoupling > 0)
-        return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                       "vt_inverse_dynamics_motion: the model has %d cut joints and %d couplings: its rates are not "
-                       "independent (give the motion by drives)", m->ncut, m->ncoupling);
-    for (int i = 1; i <= m->nbody; i++)
-        if (m->body_joint[i] == VT_JOINT_BASE)
-            return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                           "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here", i);
     if (!vt_all_finite(d->qdd, m->nv)) {
         for (int c = 0; c < m->nv; c++)
             if (!isfinite(d->qdd[c]))
                 return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: qdd[%d] = %g", c, d->qdd[c]);
     }
+    if (m->ncut > 0 || m->ncoupling > 0) { /* loops or couplings: the joint-driven rates are the given ones */
+        int given = 0;
+        for (int r = 0; r < m->nc; r++) given += m->con_kind[r] == VT_ROW_JOINT;
+        if (!given)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "vt_inverse_dynamics_motion: the model has %d cut joints and %d couplings and no joint drive: "
+                           "drive the rates whose motion is given", m->ncut, m->ncoupling);
+        return vt_motion_rows(m, d);
+    }
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here", i);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     if ((st = vt_kinematics_tree(m, d, 0))) return st;
