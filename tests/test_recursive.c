@@ -472,31 +472,35 @@ static void test_motion(void **state)
     }
 }
 
+/* a random tree of 8 bodies, rate 7 coupled to rate 3 (q_7 = 1.3 q_3 − 0.1), body 5 joint-driven */
+static vt_model *coupled_tree(uint64_t seed)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, seed, 8, VT_SCENE_SCALAR_JOINTS));
+    vt_coupling_def c = vt_default_coupling_def();
+    c.body_a = 7;
+    c.body_b = 3;
+    c.ratio = 1.3;
+    c.offset = -0.1;
+    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 5;
+    dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
 /* a coupling of two coordinates (the general route: M* and Q formed, vt_solve) against the dense
  * path, on random trees with a joint drive and loads */
 static void test_coupled(void **state)
 {
     (void)state;
     for (uint64_t seed = 2; seed <= 6; seed++) {
-        vt_model *probe;
-        assert_ok(vt_scene_random_tree(&probe, seed, 8, VT_SCENE_SCALAR_JOINTS));
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        assert_ok(vt_scene_random_bodies(b, seed, 8, VT_SCENE_SCALAR_JOINTS));
-        vt_coupling_def c = vt_default_coupling_def();
-        c.body_a = 7;
-        c.body_b = 3;
-        c.ratio = 1.3;
-        c.offset = -0.1;
-        assert_int_equal(vt_builder_add_coupling(b, &c), 0);
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = 5;
-        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_model_free(probe);
+        vt_model *m = coupled_tree(seed);
         vt_data *dr_, *dd;
         assert_ok(vt_data_create(&dr_, m));
         assert_ok(vt_data_create(&dd, m));
@@ -582,21 +586,7 @@ static void test_motion_loops(void **state)
             vt_model_free(m);
         }
     for (uint64_t seed = 2; seed <= 6; seed++) { /* a coupling on a random tree (test_coupled's) */
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        assert_ok(vt_scene_random_bodies(b, seed, 8, VT_SCENE_SCALAR_JOINTS));
-        vt_coupling_def c = vt_default_coupling_def();
-        c.body_a = 7;
-        c.body_b = 3;
-        c.ratio = 1.3;
-        assert_int_equal(vt_builder_add_coupling(b, &c), 0);
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = 5;
-        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
+        vt_model *m = coupled_tree(seed);
         vt_data *ref;
         assert_ok(vt_data_create(&ref, m));
         uint64_t s = seed * 7;
