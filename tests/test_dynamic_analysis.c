@@ -311,13 +311,6 @@ static void test_forward_modes(void **state)
     vt_model_free(m);
 }
 
-static int fails_late(double t, double out[3], void *user)
-{
-    (void)user;
-    out[0] = out[1] = out[2] = 0.0;
-    return t > 0.5 ? 1 : 0;
-}
-
 static void test_ida_failures(void **state)
 {
     (void)state;
@@ -337,36 +330,66 @@ static void test_ida_failures(void **state)
     vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
+}
 
-    /* a drive whose time function fails after t = 0.5: the residual keeps failing */
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def link = vt_default_body_def();
-    link.inertia[4] = link.inertia[8] = 0.1;
-    link.joint_child[0] = -0.5;
-    assert_int_equal(vt_builder_add_body(b, &link), 1);
-    link.parent = 1;
-    link.joint_parent[0] = 0.5;
-    assert_int_equal(vt_builder_add_body(b, &link), 2);
-    vt_drive_def dr = vt_default_drive_def();
-    dr.body = 2;
-    dr.f = vt_function_user(fails_late, NULL);
-    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    assert_ok(vt_data_create(&d, m));
-    assert_ok(vt_trajectory_create(&tr, m, 11));
-    opt = vt_default_run_options();
-    opt.nout = 10;
-    opt.max_steps = 5000; /* IDA creeps toward t = 0.5 with ever smaller steps: its step budget stops it */
-    const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
-    assert_int_equal(st, VT_ERR_IDA);
-    assert_true(d->ida_flag < 0);
-    assert_true(strlen(d->message) > 0);
-    assert_true(tr->nfilled >= 5 && tr->nfilled <= 7); /* the rows up to t = 0.5 were written */
-    vt_trajectory_free(tr);
-    vt_data_free(d);
-    vt_model_free(m);
+/* q2 = 0.2 sin 3t up to t = 0.5; then (mode 0) the callback fails, or (mode 1) returns NaN */
+typedef struct {
+    int mode;
+    long calls, late; /* all calls, and those after t = 0.5 */
+} late_drive;
+
+static int late_drive_fn(double t, double out[3], void *user)
+{
+    late_drive *c = user;
+    c->calls++;
+    out[0] = 0.2 * sin(3.0 * t);
+    out[1] = 0.6 * cos(3.0 * t);
+    out[2] = -1.8 * sin(3.0 * t);
+    if (t <= 0.5) return 0;
+    c->late++;
+    if (c->mode == 0) return 1;
+    out[0] = NAN;
+    return 0;
+}
+
+/* A drive's time function that fails or returns NaN from t = 0.5 on (the partly driven double
+ * link): the run ends at the first failing call with VT_ERR_CALLBACK or VT_ERR_NONFINITE and a
+ * message naming the drive and a time just past 0.5, in every formulation, without the forward
+ * check and with it (one IDA system, or independent); the rows before it hold q2 = f(t). */
+static void test_drive_fails_midway(void **state)
+{
+    (void)state;
+    for (int mode = 0; mode < 2; mode++)
+        for (int form = 0; form < VT_FORMULATION_COUNT; form++)
+            for (int forward = 0; forward < 3; forward++) {
+                late_drive c = {mode, 0, 0};
+                vt_model *m;
+                vt_data *d;
+                vt_trajectory *tr;
+                assert_ok(vt_scene_double_link_driven(&m, vt_function_user(late_drive_fn, &c)));
+                assert_ok(vt_data_create(&d, m));
+                vt_run_options opt = vt_default_run_options();
+                opt.formulation = form;
+                opt.forward_check = forward > 0;
+                opt.forward_independent = forward == 2;
+                opt.t1 = 1.0;
+                opt.nout = 10;
+                opt.max_steps = 5000; /* (for the code before the fix: IDA crept toward t = 0.5) */
+                assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+                const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+                const char *at = strstr(d->message, "at t = ");
+                const double t_fail = at ? strtod(at + 7, NULL) : -1.0;
+                if (st != (mode ? VT_ERR_NONFINITE : VT_ERR_CALLBACK) || !strstr(d->message, "drive 0") ||
+                    !(t_fail > 0.5 && t_fail < 0.6) || c.late > 2 || c.calls > 2000)
+                    fail_msg("mode %d, formulation %d, forward %d: status %d (%s), %ld calls (%ld after t = 0.5): %s",
+                             mode, form, forward, st, vt_status_string(st), c.calls, c.late, d->message);
+                assert_true(tr->nfilled >= 5 && tr->nfilled <= 6); /* the rows up to t = 0.4 or 0.5 */
+                for (int k = 0; k < tr->nfilled; k++)
+                    assert_near(tr->q[2 * k + 1], 0.2 * sin(3.0 * tr->t[k]), 1e-6);
+                vt_trajectory_free(tr);
+                vt_data_free(d);
+                vt_model_free(m);
+            }
 }
 
 int main(void)
@@ -380,6 +403,7 @@ int main(void)
         cmocka_unit_test(test_forward_modes),
         cmocka_unit_test(test_given_output_times),
         cmocka_unit_test(test_ida_failures),
+        cmocka_unit_test(test_drive_fails_midway),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
