@@ -214,7 +214,7 @@ static vt_status block_residual(const dae *p, const vt_model *m, vt_data *d, dou
         for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
         for (int k = 0; k < nv; k++) r[nq + k] = yp[nq + k] - d->qdd[k];
         return vt_all_finite(r, nq + nv) ? VT_OK
-                                         : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %g is not finite", t);
+                                         : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
     }
     const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
     double *rq = r, *rv = r + nq, *rl = r + nq + nv;
@@ -248,7 +248,7 @@ static vt_status block_residual(const dae *p, const vt_model *m, vt_data *d, dou
     }
     return vt_all_finite(r, block_size(m, p->form))
                ? VT_OK
-               : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %g is not finite", t);
+               : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
 }
 
 static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)

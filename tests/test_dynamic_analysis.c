@@ -392,6 +392,66 @@ static void test_drive_fails_midway(void **state)
             }
 }
 
+static int toward_stretch(double t, double out[3], void *user)
+{
+    (void)user;
+    out[0] = 3.0 + 2.0 * t; /* the tip's x reaches the links' reach, 4 m, at t = 0.5 */
+    out[1] = 2.0;
+    out[2] = 0.0;
+    return 0;
+}
+
+/* Trial states a stage refuses stay recoverable (IDA retries with smaller steps), and when IDA
+ * gives up the refusing stage's status and message are returned, not IDA's generic failure:
+ * two 2 m links whose tip's x is driven to 3 + 2t, their full reach at t = 0.5 (the rates grow
+ * without bound toward it, the residual overflows in the trial states near it). */
+static void test_refused_states_reported(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def link = vt_default_body_def();
+    link.mass = 100.0;
+    link.inertia[4] = link.inertia[8] = 100.0 * 4.0 / 12.0;
+    link.joint_child[0] = -1.0;
+    assert_int_equal(vt_builder_add_body(b, &link), 1);
+    link.parent = 1;
+    link.joint_parent[0] = 1.0;
+    assert_int_equal(vt_builder_add_body(b, &link), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_POINT;
+    dr.body = 2;
+    dr.index = 0;
+    dr.point[0] = 1.0;
+    dr.f = vt_function_user(toward_stretch, NULL);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(&d, m));
+    d->q[0] = -0.5; /* a guess on the elbow-up branch: made consistent (tip x = 3) first */
+    d->q[1] = 1.0;
+    vt_run_options opt = vt_default_run_options();
+    opt.formulation = VT_FORMULATION_INDEX1;
+    opt.forward_check = 0;
+    opt.nout = 10;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+    if (st != VT_ERR_NONFINITE || !strstr(d->message, "refused") || !strstr(d->message, "not finite"))
+        fail_msg("status %d (%s): %s", st, vt_status_string(st), d->message);
+    assert_true(d->ida_flag < 0); /* IDA's own code is kept */
+    assert_int_equal(tr->nfilled, 5);  /* the rows up to t = 0.4 */
+    for (int k = 0; k < tr->nfilled; k++) { /* and they hold the drive: 2 cos q1 + 2 cos(q1 + q2) = 3 + 2t */
+        const double q1 = tr->q[2 * k], q2 = tr->q[2 * k + 1];
+        assert_near(2.0 * cos(q1) + 2.0 * cos(q1 + q2), 3.0 + 2.0 * tr->t[k], 1e-6);
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -404,6 +464,7 @@ int main(void)
         cmocka_unit_test(test_given_output_times),
         cmocka_unit_test(test_ida_failures),
         cmocka_unit_test(test_drive_fails_midway),
+        cmocka_unit_test(test_refused_states_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
