@@ -392,6 +392,90 @@ static void test_drive_fails_midway(void **state)
             }
 }
 
+/* p_d(t): a turn by a = 0.3 sin 2t about z, up to t = 0.5; then (mode 0) the callback fails, or
+ * (mode 1) returns NaN */
+static int late_orientation(double t, double p[4], double w[3], double wd[3], void *user)
+{
+    late_drive *c = user;
+    c->calls++;
+    const double a = 0.3 * sin(2.0 * t);
+    p[0] = cos(0.5 * a);
+    p[1] = p[2] = 0.0;
+    p[3] = sin(0.5 * a);
+    w[0] = w[1] = wd[0] = wd[1] = 0.0;
+    w[2] = 0.6 * cos(2.0 * t);
+    wd[2] = -1.2 * sin(2.0 * t);
+    if (t <= 0.5) return 0;
+    c->late++;
+    if (c->mode == 0) return 1;
+    wd[2] = INFINITY;
+    return 0;
+}
+
+/* The same with an orientation drive's callback: body 1 on a spherical joint, its orientation
+ * prescribed, and a link hinged to it swinging freely under gravity (partly driven: 3 of 4 rates) */
+static void test_orientation_callback_fails_midway(void **state)
+{
+    (void)state;
+    for (int mode = 0; mode < 2; mode++)
+        for (int form = 0; form < VT_FORMULATION_COUNT; form++)
+            for (int forward = 0; forward < 3; forward++) {
+                late_drive c = {mode, 0, 0};
+                vt_builder *b;
+                assert_ok(vt_builder_create(&b, NULL));
+                vt_body_def body = vt_default_body_def();
+                body.joint = VT_JOINT_SPHERICAL;
+                body.inertia[0] = 0.1;
+                body.inertia[4] = 0.2;
+                body.inertia[8] = 0.3;
+                assert_int_equal(vt_builder_add_body(b, &body), 1);
+                vt_body_def link = vt_default_body_def();
+                link.parent = 1;
+                link.joint_parent[0] = 0.5;
+                link.joint_child[0] = -0.5;
+                link.inertia[4] = link.inertia[8] = 0.1;
+                assert_int_equal(vt_builder_add_body(b, &link), 2);
+                vt_drive_def od = vt_default_drive_def();
+                od.type = VT_DRIVE_ORIENTATION;
+                od.body = 1;
+                od.orientation_callback = late_orientation;
+                od.user = &c;
+                assert_int_equal(vt_builder_add_drive(b, &od), 0);
+                vt_model *m;
+                vt_data *d;
+                vt_trajectory *tr;
+                assert_ok(vt_builder_build(&m, b));
+                vt_builder_free(b);
+                assert_ok(vt_data_create(&d, m));
+                vt_run_options opt = vt_default_run_options();
+                opt.formulation = form;
+                opt.forward_check = forward > 0;
+                opt.forward_independent = forward == 2;
+                opt.t1 = 1.0;
+                opt.nout = 10;
+                opt.max_steps = 5000;
+                assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+                const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+                const char *at = strstr(d->message, "at t = ");
+                const double t_fail = at ? strtod(at + 7, NULL) : -1.0;
+                if (st != (mode ? VT_ERR_NONFINITE : VT_ERR_CALLBACK) || !strstr(d->message, "drive 0") ||
+                    !strstr(d->message, "orientation callback") || !(t_fail > 0.5 && t_fail < 0.6) || c.late > 2 ||
+                    c.calls > 5000) /* (the calls before t = 0.5 are the run's work: up to 2,400 with projection) */
+                    fail_msg("mode %d, formulation %d, forward %d: status %d (%s), %ld calls (%ld after t = 0.5): %s",
+                             mode, form, forward, st, vt_status_string(st), c.calls, c.late, d->message);
+                assert_true(tr->nfilled >= 5 && tr->nfilled <= 6);
+                for (int k = 0; k < tr->nfilled; k++) { /* the rows before: body 1 turned as prescribed */
+                    const double *q = tr->q + (size_t)k * (size_t)m->nq, a = 0.3 * sin(2.0 * tr->t[k]);
+                    assert_near(fabs(q[0]), cos(0.5 * a), 1e-6);
+                    assert_near(fabs(q[1]) + fabs(q[2]), 0.0, 1e-6);
+                    assert_near(q[3] * (q[0] < 0 ? -1 : 1), sin(0.5 * a), 1e-6);
+                }
+                vt_trajectory_free(tr);
+                vt_data_free(d);
+                vt_model_free(m);
+            }
+}
+
 static int toward_stretch(double t, double out[3], void *user)
 {
     (void)user;
@@ -464,6 +548,7 @@ int main(void)
         cmocka_unit_test(test_given_output_times),
         cmocka_unit_test(test_ida_failures),
         cmocka_unit_test(test_drive_fails_midway),
+        cmocka_unit_test(test_orientation_callback_fails_midway),
         cmocka_unit_test(test_refused_states_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
