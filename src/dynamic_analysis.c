@@ -345,14 +345,15 @@ static void block_ids(const vt_model *m, int form, double *id)
 
 /* coordinate projection of a block of y onto Φ = 0 and Φ_q v = −Φ_t (least-norm corrections,
  * vt_kinematic_solve), with y' and λ made consistent again; nonzero on failure */
-static int block_project(const dae *p, const vt_model *m, vt_data *d, double t, double *y, double *yp)
+static vt_status block_project(const dae *p, const vt_model *m, vt_data *d, double t, double *y, double *yp)
 {
     memcpy(d->q, y, (size_t)m->nq * sizeof(double));
     memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
     d->time = t;
-    if (vt_kinematic_solve(m, d, p->newton_tol, p->newton_maxit)) return 1;
+    const vt_status st = vt_kinematic_solve(m, d, p->newton_tol, p->newton_maxit);
+    if (st) return st;
     block_initial(m, d, p->form, y, yp);
-    return 0;
+    return VT_OK;
 }
 
 /* the state of a block of y into its data, then the whole instant (efforts, reactions) */
@@ -490,9 +491,12 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
         const double *yv = N_VGetArrayPointer(y);
         if (p->form == VT_FORMULATION_PROJECTION) { /* back onto the constraints, then restart IDA */
             double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
-            if ((p->m && block_project(p, p->m, p->d, tret, yw, ypw)) ||
-                (p->mf && block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd))) {
-                st = vt_fail(md->message, VT_ERR_NEWTON, "projection at t = %g failed", tret);
+            const vt_data *dp = p->m ? p->d : p->df;
+            if ((p->m && (st = block_project(p, p->m, p->d, tret, yw, ypw))) ||
+                (p->mf && (dp = p->df, st = block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd)))) {
+                char why[256]; /* (dp's message may be md's) */
+                snprintf(why, sizeof why, "%s", dp->message);
+                vt_fail(md->message, st, "projection at t = %g failed: %.200s", tret, why);
                 goto done;
             }
             long a = 0, b = 0;
