@@ -563,7 +563,7 @@ ida_failed:
         if (p->s.fatal == 1)
             snprintf(md->message, sizeof md->message, "%.250s", detail);
         else
-            snprintf(md->message, sizeof md->message, "%.20s returned %d after %d refused trial states; the last, at t = %.10g: %.150s",
+            snprintf(md->message, sizeof md->message, "%.20s returned %d after %d refused trial states; the last, at t = %.10g: %.120s",
                      call, flag, p->s.refusals, p->s.t, detail);
         st = p->s.why;
         goto done;
