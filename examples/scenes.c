@@ -47,7 +47,7 @@ static void rod_inertia(double J[9], double mass, double length)
     J[4] = J[8] = mass * length * length / 12.0;
 }
 
-vt_status vt_scene_double_link(vt_model **model, int lock)
+static vt_status double_link(vt_model **model, int lock, vt_function f)
 {
     vt_builder *b;
     vt_status st = vt_builder_create(&b, NULL);
@@ -64,10 +64,21 @@ vt_status vt_scene_double_link(vt_model **model, int lock)
     }
     if (id > 0 && lock) {
         vt_drive_def drive = vt_default_drive_def();
-        drive.body = 2; /* q2 = 0 */
+        drive.body = 2; /* q2 = f(t) */
+        drive.f = f;
         id = vt_builder_add_drive(b, &drive);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_double_link(vt_model **model, int lock)
+{
+    return double_link(model, lock, vt_function_constant(0.0));
+}
+
+vt_status vt_scene_double_link_driven(vt_model **model, vt_function f)
+{
+    return double_link(model, 1, f);
 }
 
 void vt_scene_chain_state(int k, double *q, double *qd, double *qdd)

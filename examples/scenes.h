@@ -14,6 +14,9 @@
 #define VT_DL_LENGTH 2.0
 #define VT_DL_MASS 100.0
 vt_status vt_scene_double_link(vt_model **model, int lock);
+/* The double link with drive 0 turning joint 2 by f(t) (q2 = f, rad): partly driven (one drive,
+ * two rates); f = constant 0 is vt_scene_double_link(model, 1). */
+vt_status vt_scene_double_link_driven(vt_model **model, vt_function f);
 
 /* A spatial serial chain of n links joined by revolute joints whose axes cycle x, y, z (joint
  * k = 1..n about body axis (k−1) mod 3, given in the parent's axes; all axes aligned at q = 0).

@@ -151,8 +151,9 @@ size_t vt_data_size(const vt_model *model);
 /// allocates nothing. *data points into the buffer, which must outlive it and not be used for
 /// anything else meanwhile; vt_data_free() on it does nothing. Instants (vt_inverse_dynamics(),
 /// vt_inverse_dynamics_recursive(), vt_kinematic_solve() and the stages) then allocate nothing;
-/// the analyses over time still allocate at their start (IDA's memory, the forward check's
-/// model and data, the driven steps' history) and free it at their end.
+/// the analyses over time allocate only at their start (IDA's memory, the forward check's
+/// model and data, the driven steps' history), as many calls however long the run, and free
+/// it at their end.
 /// Statuses: VT_ERR_NULL (data, model or buffer NULL), VT_ERR_BAD_SIZE (the buffer cannot hold
 /// the data: nothing is written to it). On failure *data is NULL (if data is not NULL).
 vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
@@ -361,7 +362,14 @@ vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_r
 /// opt->forward_independent = 0 in the same IDA system, the efforts from the driven λ.
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's
 /// (after a failure, a state the run was trying). Rows written before a failure stay in the
-/// trajectory (tr->nfilled). Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in
+/// trajectory (tr->nfilled). A drive's time function or orientation callback that fails or
+/// returns NaN or Inf at a time IDA asks for ends the run at once with VT_ERR_CALLBACK or
+/// VT_ERR_NONFINITE, the message naming the drive and the time. A trial state a stage refuses
+/// (a singular or non-finite solve) makes IDA retry with a smaller step, at most 100 times
+/// between two outputs; if IDA then fails, the refusing stage's status and message are returned
+/// (IDA's code still in d->ida_flag). The run allocates only at its start: IDA is given its
+/// iteration matrix (the difference quotient IDA would form) without allocation.
+/// Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in
 /// d->message), VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH, VT_ERR_NEWTON (consistent initial
 /// values, or a projection), VT_ERR_ABORTED, VT_ERR_NO_MEMORY, and those of the stages.
 /// Only in builds with SUNDIALS (VT_HAVE_SUNDIALS, vtdyn/version.h).

@@ -5,9 +5,23 @@
  *   M*(q) v' − Q(q, v, t) − Φ_q^T λ          (2)
  *   Φ_q v' − γ                               (5), second row
  * q and v are differential, λ algebraic (excluded from IDA's error test). The residual
- * follows SUNDIALS's rules: 0 ok, > 0 recoverable (a stage refused the state: IDA retries with
- * a smaller step). Consistent initial values are computed, not guessed: q and v projected onto
+ * follows SUNDIALS's rules: 0 ok, > 0 recoverable, < 0 fatal. A stage that refuses a trial state
+ * (a singular or non-finite solve) is recoverable: IDA retries with a smaller step, at most
+ * VT_REFUSALS_MAX times between two outputs (IDA's own limits, 10 failures a step and max_steps,
+ * bound it as well). A failure of the user's functions at t (a drive's time function or
+ * orientation callback: they depend on t alone, so no smaller step cures it) is fatal: the run
+ * ends at once with its status and message. Either way the stage's status and message are kept
+ * and reported, not IDA's generic one.
+ * Consistent initial values are computed, not guessed: q and v projected onto
  * Φ = 0 and Φ_q v = −Φ_t (vt_kinematic_solve), then q̈ and λ from (5).
+ *
+ * The iteration matrix J = ∂F/∂y + c_j ∂F/∂y' (c_j from IDA's step): by forward differences,
+ * column j from F(t, y + δ_j e_j, y' + c_j δ_j e_j) with IDA's own increments
+ * δ_j = max(√ε max(|y_j|, |h y'_j|), 1/w_j), signed as h y'_j (w: IDA's error weights, h its
+ * step) — the Jacobian IDA's dense difference quotient forms, written straight into IDA's matrix
+ * with IDA's work vectors, so that a run allocates nothing after its start (IDA's own routine
+ * clones a vector at every Jacobian). An analytic J needs ∂(M*)/∂q, ∂Q/∂q and ∂(Φ_q^T λ)/∂q:
+ * not cheap.
  *
  * Forward check (the paper's Figs. 6-8, 10): the model without drives (cut joints and p^T p = 1
  * kept) under the drives' efforts: by default their generalized force Φ_q,d^T λ_d as qfrc (the
@@ -21,6 +35,7 @@
  * the driven block's λ at the same t.) For a fully driven model they are exact: the kinematic
  * solution at every t that IDA asks for.
  */
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -77,7 +92,76 @@ typedef struct {
     history *rec;       /* driven run: record its steps here */
     history *src;       /* forward run: the driven steps, efforts from their interpolant */
     double *w;          /* the GGL residual's v + Φ_q^T μ (nv) */
+    struct {            /* set by run() */
+        void *ida;      /* IDA's memory: the Jacobian's increments use its step and weights */
+        vt_status why;  /* the last refusal's status since the current IDASolve call began */
+        int fatal;      /* 1: the user's functions failed, 2: too many refusals; the run ends with it */
+        int refusals;   /* recoverable refusals since the current IDASolve call began */
+        double t;       /* the last refusal's time */
+        char msg[256];  /* and its message */
+    } s;
 } dae;
+
+/* recoverable refusals of trial states allowed between two outputs (or in one step of a run
+ * that keeps its history) before the run ends with the last one */
+#define VT_REFUSALS_MAX 100
+
+/* The drives' functions at t (they depend on t alone): VT_OK, or the first failure with a
+ * message naming the drive. */
+static vt_status drive_functions(const vt_model *m, double t, char *msg, size_t size)
+{
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *dr = &m->drive[k];
+        const char *name = m->drive_name ? m->drive_name + (size_t)VT_NAME_MAX * (size_t)k : "";
+        double v[3], p[4], w[3], wd[3];
+        vt_status st = VT_OK;
+        if (dr->type == VT_DRIVE_ORIENTATION && dr->orientation_callback) {
+            if (dr->orientation_callback(t, p, w, wd, dr->user) != 0) st = VT_ERR_CALLBACK;
+            else if (!vt_all_finite(p, 4) || !vt_all_finite(w, 3) || !vt_all_finite(wd, 3)) st = VT_ERR_NONFINITE;
+            if (st) {
+                snprintf(msg, size, "drive %d%s%s: orientation callback %s at t = %.17g", k, name[0] ? " " : "", name,
+                         st == VT_ERR_CALLBACK ? "failed" : "returned NaN or Inf", t);
+                return st;
+            }
+        } else if ((st = vt_function_eval_valid(v, &dr->f, t))) {
+            snprintf(msg, size, "drive %d%s%s: time function %s at t = %.17g", k, name[0] ? " " : "", name,
+                     st == VT_ERR_CALLBACK ? "failed" : st == VT_ERR_NONFINITE ? "returned NaN or Inf" : "failed",
+                     t);
+            return st;
+        }
+    }
+    return VT_OK;
+}
+
+/* A stage refused (t, y) with status st and the message in msg: kept for the report. Fatal
+ * (< 0) if the user's functions fail at t, or after VT_REFUSALS_MAX refusals; else recoverable
+ * (> 0): IDA retries with a smaller step. */
+static int refused(dae *p, vt_status st, const char *msg, double t)
+{
+    const vt_model *drv = p->dk ? p->dk->model : p->m; /* the driven model: the drives are its */
+    const vt_status user = drv ? drive_functions(drv, t, p->s.msg, sizeof p->s.msg) : VT_OK;
+    p->s.t = t;
+    if (user) {
+        p->s.why = user;
+        p->s.fatal = 1;
+        return -1;
+    }
+    p->s.why = st ? st : VT_ERR_IDA;
+    snprintf(p->s.msg, sizeof p->s.msg, "%s", msg);
+    if (++p->s.refusals > VT_REFUSALS_MAX) {
+        p->s.fatal = 2;
+        return -1;
+    }
+    return 1;
+}
+
+/* before each IDASolve call: no refusal yet */
+static void fresh(dae *p)
+{
+    p->s.why = VT_OK;
+    p->s.fatal = 0;
+    p->s.refusals = 0;
+}
 
 static int block_size(const vt_model *m, int form)
 {
@@ -107,14 +191,17 @@ static void qdot_from_v(const vt_model *m, const double *q, const double *v, dou
  *   GGL (index 2)             q' − T (v + Φ_q^T μ), M* v' − Q − Φ_q^T λ,   Φ,   Φ_q v + Φ_t
  *   ODE                       q' − T v,          v' − q̈   with q̈ from vt_solve, γ − 2α Φ̇ − β² Φ
  * with Φ̇ = Φ_q v + Φ_t; λ (and μ) algebraic. */
-static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t, const double *y, const double *yp,
-                          double *r)
+static vt_status block_residual(const dae *p, const vt_model *m, vt_data *d, double t, const double *y,
+                                const double *yp, double *r)
 {
     const int nq = m->nq, nv = m->nv, nc = m->nc, ggl = p->form == VT_FORMULATION_GGL;
     memcpy(d->q, y, (size_t)nq * sizeof(double));
     memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
     d->time = t;
-    if (vt_kinematics(m, d) || vt_mass_matrix(m, d) || vt_forces(m, d) || vt_constraints(m, d)) return 1;
+    vt_status st;
+    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
+        (st = vt_constraints(m, d)))
+        return st;
     if (p->form == VT_FORMULATION_ODE) { /* q' − T q̇, q̇' − q̈(q, q̇, t) with γ − 2α Φ̇ − β² Φ */
         const double a2 = 2.0 * p->alpha, b2 = p->beta * p->beta;
         for (int k = 0; k < nc; k++) {
@@ -122,11 +209,12 @@ static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t,
             for (int c = 0; c < nv; c++) phid += d->Phiq[k + (size_t)c * (size_t)nc] * y[nq + c];
             d->gamma[k] -= a2 * phid + b2 * d->Phi[k];
         }
-        if (vt_solve(m, d)) return 1;
+        if ((st = vt_solve(m, d))) return st;
         qdot_from_v(m, y, y + nq, r);
         for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
         for (int k = 0; k < nv; k++) r[nq + k] = yp[nq + k] - d->qdd[k];
-        return vt_all_finite(r, nq + nv) ? 0 : 1;
+        return vt_all_finite(r, nq + nv) ? VT_OK
+                                         : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
     }
     const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
     double *rq = r, *rv = r + nq, *rl = r + nq + nv;
@@ -158,7 +246,9 @@ static int block_residual(const dae *p, const vt_model *m, vt_data *d, double t,
             }
         }
     }
-    return vt_all_finite(r, block_size(m, p->form)) ? 0 : 1;
+    return vt_all_finite(r, block_size(m, p->form))
+               ? VT_OK
+               : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
 }
 
 static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)
@@ -166,7 +256,8 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
     dae *p = user;
     const double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
     double *r = N_VGetArrayPointer(rr);
-    if (p->m && block_residual(p, p->m, p->d, t, y, yp, r)) return 1;
+    vt_status st;
+    if (p->m && (st = block_residual(p, p->m, p->d, t, y, yp, r))) return refused(p, st, p->d->message, t);
     if (!p->mf) return 0;
     const vt_model *m = p->dk ? p->dk->model : p->m;
     vt_data *src = p->dk ? p->dk : p->d;
@@ -175,21 +266,55 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
         memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
         p->dk->time = t;
-        if (vt_inverse_dynamics(m, p->dk)) return 1;
+        if ((st = vt_inverse_dynamics(m, p->dk))) return refused(p, st, p->dk->message, t);
     } else if (p->dk) {
         p->dk->time = t;
-        if (vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)) return 1;
+        if ((st = vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)))
+            return refused(p, st, p->dk->message, t);
     } else { /* the efforts of the driven block's current λ */
         /* (the ODE form has no λ in y: its residual's vt_solve left them in d already) */
         if (p->form != VT_FORMULATION_ODE) memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
-        if (vt_drive_efforts(m, p->d)) return -1;
+        if ((st = vt_drive_efforts(m, p->d))) return refused(p, st, p->d->message, t);
     }
     /* the forward block's positions first: body drives' loads act at its body points */
     memcpy(p->df->q, y + p->nd, (size_t)p->mf->nq * sizeof(double));
     memcpy(p->df->qd, y + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
-    if (vt_kinematics(p->mf, p->df)) return 1;
+    if ((st = vt_kinematics(p->mf, p->df))) return refused(p, st, p->df->message, t);
     vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-    return block_residual(p, p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd);
+    if ((st = block_residual(p, p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd)))
+        return refused(p, st, p->df->message, t);
+    return 0;
+}
+
+/* J = ∂F/∂y + c_j ∂F/∂y' by IDA's dense difference quotient (see the top of the file), in IDA's
+ * matrix, with tmp1 for the perturbed residual and tmp2 for the weights: nothing allocated */
+static int jacobian(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vector rr, SUNMatrix J, void *user,
+                    N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
+{
+    dae *p = user;
+    (void)tmp3;
+    double h = 0.0;
+    if (IDAGetCurrentStep(p->s.ida, &h) < 0 || IDAGetErrWeights(p->s.ida, tmp2) < 0) return -1;
+    double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
+    const double *r = N_VGetArrayPointer(rr), *rj = N_VGetArrayPointer(tmp1), *w = N_VGetArrayPointer(tmp2);
+    const double srur = sqrt(DBL_EPSILON);
+    const sunindextype n = SUNDenseMatrix_Columns(J);
+    for (sunindextype j = 0; j < n; j++) {
+        const double yj = y[j], ypj = yp[j];
+        double inc = fmax(srur * fmax(fabs(yj), fabs(h * ypj)), 1.0 / w[j]);
+        if (h * ypj < 0.0) inc = -inc;
+        inc = (yj + inc) - yj; /* the increment as represented */
+        y[j] += inc;
+        yp[j] += cj * inc;
+        const int res = residual(t, yy, yyp, tmp1, p);
+        y[j] = yj;
+        yp[j] = ypj;
+        if (res) return res;
+        const double s = 1.0 / inc;
+        double *col = SUNDenseMatrix_Column(J, j);
+        for (sunindextype i = 0; i < n; i++) col[i] = s * (rj[i] - r[i]);
+    }
+    return 0;
 }
 
 static void on_ida_error(int code, const char *module, const char *function, char *msg, void *user)
@@ -220,14 +345,15 @@ static void block_ids(const vt_model *m, int form, double *id)
 
 /* coordinate projection of a block of y onto Φ = 0 and Φ_q v = −Φ_t (least-norm corrections,
  * vt_kinematic_solve), with y' and λ made consistent again; nonzero on failure */
-static int block_project(const dae *p, const vt_model *m, vt_data *d, double t, double *y, double *yp)
+static vt_status block_project(const dae *p, const vt_model *m, vt_data *d, double t, double *y, double *yp)
 {
     memcpy(d->q, y, (size_t)m->nq * sizeof(double));
     memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
     d->time = t;
-    if (vt_kinematic_solve(m, d, p->newton_tol, p->newton_maxit)) return 1;
+    const vt_status st = vt_kinematic_solve(m, d, p->newton_tol, p->newton_maxit);
+    if (st) return st;
     block_initial(m, d, p->form, y, yp);
-    return 0;
+    return VT_OK;
 }
 
 /* the state of a block of y into its data, then the whole instant (efforts, reactions) */
@@ -264,6 +390,8 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     id = N_VNew_Serial(N, ctx);
     A = SUNDenseMatrix(N, N, ctx);
     mem = IDACreate(ctx);
+    p->s.ida = mem;
+    fresh(p);
     call = "allocation of IDA's vectors, matrix and memory";
     if (!y || !yp || !id || !A || !mem) {
         flag = -1;
@@ -293,6 +421,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     CHECK(IDASVtolerances(mem, opt->rtol, atol), "IDASVtolerances");
     CHECK(IDASetUserData(mem, p), "IDASetUserData");
     CHECK(IDASetLinearSolver(mem, LS, A), "IDASetLinearSolver");
+    CHECK(IDASetJacFn(mem, jacobian), "IDASetJacFn");
     CHECK(IDASetId(mem, id), "IDASetId");
     CHECK(IDASetSuppressAlg(mem, SUNTRUE), "IDASetSuppressAlg");
     CHECK(IDASetMaxNumSteps(mem, opt->max_steps), "IDASetMaxNumSteps");
@@ -335,6 +464,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                                  opt->max_steps, tout, tstep);
                     goto done;
                 }
+                fresh(p);
                 CHECK(IDASolve(mem, tend, &tstep, y, yp, IDA_ONE_STEP), "IDASolve");
                 if (h->n == h->cap) {
                     st = vt_fail(md->message, VT_ERR_BAD_OPTION,
@@ -355,14 +485,18 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
             tret = tout;
             memcpy(N_VGetArrayPointer(y), N_VGetArrayPointer(yint), (size_t)N * sizeof(double));
         } else {
+            fresh(p);
             CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
         }
         const double *yv = N_VGetArrayPointer(y);
         if (p->form == VT_FORMULATION_PROJECTION) { /* back onto the constraints, then restart IDA */
             double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
-            if ((p->m && block_project(p, p->m, p->d, tret, yw, ypw)) ||
-                (p->mf && block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd))) {
-                st = vt_fail(md->message, VT_ERR_NEWTON, "projection at t = %g failed", tret);
+            const vt_data *dp = p->m ? p->d : p->df;
+            if ((p->m && (st = block_project(p, p->m, p->d, tret, yw, ypw))) ||
+                (p->mf && (dp = p->df, st = block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd)))) {
+                char why[256]; /* (dp's message may be md's) */
+                snprintf(why, sizeof why, "%s", dp->message);
+                vt_fail(md->message, st, "projection at t = %g failed: %.200s", tret, why);
                 goto done;
             }
             long a = 0, b = 0;
@@ -421,6 +555,19 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
     goto done;
 ida_failed:
     md->ida_flag = flag;
+    if (p->s.why && (p->s.fatal || flag == IDA_CONV_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_RES_FAIL ||
+                   flag == IDA_LSETUP_FAIL || flag == IDA_FIRST_RES_FAIL)) {
+        /* the residual's own failure, not IDA's generic report of it */
+        char detail[256];
+        snprintf(detail, sizeof detail, "%s", p->s.msg);
+        if (p->s.fatal == 1)
+            snprintf(md->message, sizeof md->message, "%.250s", detail);
+        else
+            snprintf(md->message, sizeof md->message, "%.20s returned %d after %d refused trial states; the last, at t = %.10g: %.120s",
+                     call, flag, p->s.refusals, p->s.t, detail);
+        st = p->s.why;
+        goto done;
+    }
     {
         char *name = IDAGetReturnFlagName(flag);
         char detail[200];
@@ -492,7 +639,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     } else {
         vt_trajectory_store_forward(tr, mf, df, 0);
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, {0}};
         st = start(&p, opt, tr);
     }
     vt_data_free(df);
@@ -520,7 +667,7 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
     if (!mf || !opt->forward_independent) { /* the driven run, and the forward one in the same system */
         dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, {0}};
         st = start(&p, opt, tr);
         goto out;
     }
@@ -542,13 +689,13 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
     {
         dae p = {m, d, NULL, NULL, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL, NULL, {0}};
         if ((st = start(&p, opt, tr))) goto out;
     }
     {
         const long steps = tr->steps, res = tr->res_evals;
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h, NULL};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h, NULL, {0}};
         st = start(&p, opt, tr);
         tr->steps = steps;
         tr->res_evals = res;

@@ -311,13 +311,6 @@ static void test_forward_modes(void **state)
     vt_model_free(m);
 }
 
-static int fails_late(double t, double out[3], void *user)
-{
-    (void)user;
-    out[0] = out[1] = out[2] = 0.0;
-    return t > 0.5 ? 1 : 0;
-}
-
 static void test_ida_failures(void **state)
 {
     (void)state;
@@ -337,33 +330,207 @@ static void test_ida_failures(void **state)
     vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
+}
 
-    /* a drive whose time function fails after t = 0.5: the residual keeps failing */
+/* q2 = 0.2 sin 3t up to t = 0.5; then (mode 0) the callback fails, or (mode 1) returns NaN */
+typedef struct {
+    int mode;
+    long calls, late; /* all calls, and those after t = 0.5 */
+} late_drive;
+
+static int late_drive_fn(double t, double out[3], void *user)
+{
+    late_drive *c = user;
+    c->calls++;
+    out[0] = 0.2 * sin(3.0 * t);
+    out[1] = 0.6 * cos(3.0 * t);
+    out[2] = -1.8 * sin(3.0 * t);
+    if (t <= 0.5) return 0;
+    c->late++;
+    if (c->mode == 0) return 1;
+    out[0] = NAN;
+    return 0;
+}
+
+/* A drive's time function that fails or returns NaN from t = 0.5 on (the partly driven double
+ * link): the run ends at the first failing call with VT_ERR_CALLBACK or VT_ERR_NONFINITE and a
+ * message naming the drive and a time just past 0.5, in every formulation, without the forward
+ * check and with it (one IDA system, or independent); the rows before it hold q2 = f(t). */
+static void test_drive_fails_midway(void **state)
+{
+    (void)state;
+    for (int mode = 0; mode < 2; mode++)
+        for (int form = 0; form < VT_FORMULATION_COUNT; form++)
+            for (int forward = 0; forward < 3; forward++) {
+                late_drive c = {mode, 0, 0};
+                vt_model *m;
+                vt_data *d;
+                vt_trajectory *tr;
+                assert_ok(vt_scene_double_link_driven(&m, vt_function_user(late_drive_fn, &c)));
+                assert_ok(vt_data_create(&d, m));
+                vt_run_options opt = vt_default_run_options();
+                opt.formulation = form;
+                opt.forward_check = forward > 0;
+                opt.forward_independent = forward == 2;
+                opt.t1 = 1.0;
+                opt.nout = 10;
+                opt.max_steps = 5000; /* (for the code before the fix: IDA crept toward t = 0.5) */
+                assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+                const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+                const char *at = strstr(d->message, "at t = ");
+                const double t_fail = at ? strtod(at + 7, NULL) : -1.0;
+                if (st != (mode ? VT_ERR_NONFINITE : VT_ERR_CALLBACK) || !strstr(d->message, "drive 0") ||
+                    !(t_fail > 0.5 && t_fail < 0.6) || c.late > 2 || c.calls > 2000)
+                    fail_msg("mode %d, formulation %d, forward %d: status %d (%s), %ld calls (%ld after t = 0.5): %s",
+                             mode, form, forward, st, vt_status_string(st), c.calls, c.late, d->message);
+                assert_true(tr->nfilled >= 5 && tr->nfilled <= 6); /* the rows up to t = 0.4 or 0.5 */
+                for (int k = 0; k < tr->nfilled; k++)
+                    assert_near(tr->q[2 * k + 1], 0.2 * sin(3.0 * tr->t[k]), 1e-6);
+                vt_trajectory_free(tr);
+                vt_data_free(d);
+                vt_model_free(m);
+            }
+}
+
+/* p_d(t): a turn by a = 0.3 sin 2t about z, up to t = 0.5; then (mode 0) the callback fails, or
+ * (mode 1) returns NaN */
+static int late_orientation(double t, double p[4], double w[3], double wd[3], void *user)
+{
+    late_drive *c = user;
+    c->calls++;
+    const double a = 0.3 * sin(2.0 * t);
+    p[0] = cos(0.5 * a);
+    p[1] = p[2] = 0.0;
+    p[3] = sin(0.5 * a);
+    w[0] = w[1] = wd[0] = wd[1] = 0.0;
+    w[2] = 0.6 * cos(2.0 * t);
+    wd[2] = -1.2 * sin(2.0 * t);
+    if (t <= 0.5) return 0;
+    c->late++;
+    if (c->mode == 0) return 1;
+    wd[2] = INFINITY;
+    return 0;
+}
+
+/* The same with an orientation drive's callback: body 1 on a spherical joint, its orientation
+ * prescribed, and a link hinged to it swinging freely under gravity (partly driven: 3 of 4 rates) */
+static void test_orientation_callback_fails_midway(void **state)
+{
+    (void)state;
+    for (int mode = 0; mode < 2; mode++)
+        for (int form = 0; form < VT_FORMULATION_COUNT; form++)
+            for (int forward = 0; forward < 3; forward++) {
+                late_drive c = {mode, 0, 0};
+                vt_builder *b;
+                assert_ok(vt_builder_create(&b, NULL));
+                vt_body_def body = vt_default_body_def();
+                body.joint = VT_JOINT_SPHERICAL;
+                body.inertia[0] = 0.1;
+                body.inertia[4] = 0.2;
+                body.inertia[8] = 0.3;
+                assert_int_equal(vt_builder_add_body(b, &body), 1);
+                vt_body_def link = vt_default_body_def();
+                link.parent = 1;
+                link.joint_parent[0] = 0.5;
+                link.joint_child[0] = -0.5;
+                link.inertia[4] = link.inertia[8] = 0.1;
+                assert_int_equal(vt_builder_add_body(b, &link), 2);
+                vt_drive_def od = vt_default_drive_def();
+                od.type = VT_DRIVE_ORIENTATION;
+                od.body = 1;
+                od.orientation_callback = late_orientation;
+                od.user = &c;
+                assert_int_equal(vt_builder_add_drive(b, &od), 0);
+                vt_model *m;
+                vt_data *d;
+                vt_trajectory *tr;
+                assert_ok(vt_builder_build(&m, b));
+                vt_builder_free(b);
+                assert_ok(vt_data_create(&d, m));
+                vt_run_options opt = vt_default_run_options();
+                opt.formulation = form;
+                opt.forward_check = forward > 0;
+                opt.forward_independent = forward == 2;
+                opt.t1 = 1.0;
+                opt.nout = 10;
+                opt.max_steps = 5000;
+                assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+                const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+                const char *at = strstr(d->message, "at t = ");
+                const double t_fail = at ? strtod(at + 7, NULL) : -1.0;
+                if (st != (mode ? VT_ERR_NONFINITE : VT_ERR_CALLBACK) || !strstr(d->message, "drive 0") ||
+                    !strstr(d->message, "orientation callback") || !(t_fail > 0.5 && t_fail < 0.6) || c.late > 2 ||
+                    c.calls > 5000) /* (the calls before t = 0.5 are the run's work: up to 2,400 with projection) */
+                    fail_msg("mode %d, formulation %d, forward %d: status %d (%s), %ld calls (%ld after t = 0.5): %s",
+                             mode, form, forward, st, vt_status_string(st), c.calls, c.late, d->message);
+                assert_true(tr->nfilled >= 5 && tr->nfilled <= 6);
+                for (int k = 0; k < tr->nfilled; k++) { /* the rows before: body 1 turned as prescribed */
+                    const double *q = tr->q + (size_t)k * (size_t)m->nq, a = 0.3 * sin(2.0 * tr->t[k]);
+                    assert_near(fabs(q[0]), cos(0.5 * a), 1e-6);
+                    assert_near(fabs(q[1]) + fabs(q[2]), 0.0, 1e-6);
+                    assert_near(q[3] * (q[0] < 0 ? -1 : 1), sin(0.5 * a), 1e-6);
+                }
+                vt_trajectory_free(tr);
+                vt_data_free(d);
+                vt_model_free(m);
+            }
+}
+
+static int toward_stretch(double t, double out[3], void *user)
+{
+    (void)user;
+    out[0] = 3.0 + 2.0 * t; /* the tip's x reaches the links' reach, 4 m, at t = 0.5 */
+    out[1] = 2.0;
+    out[2] = 0.0;
+    return 0;
+}
+
+/* Trial states a stage refuses stay recoverable (IDA retries with smaller steps), and when IDA
+ * gives up the refusing stage's status and message are returned, not IDA's generic failure:
+ * two 2 m links whose tip's x is driven to 3 + 2t, their full reach at t = 0.5 (the rates grow
+ * without bound toward it, the residual overflows in the trial states near it). */
+static void test_refused_states_reported(void **state)
+{
+    (void)state;
     vt_builder *b;
     assert_ok(vt_builder_create(&b, NULL));
     vt_body_def link = vt_default_body_def();
-    link.inertia[4] = link.inertia[8] = 0.1;
-    link.joint_child[0] = -0.5;
+    link.mass = 100.0;
+    link.inertia[4] = link.inertia[8] = 100.0 * 4.0 / 12.0;
+    link.joint_child[0] = -1.0;
     assert_int_equal(vt_builder_add_body(b, &link), 1);
     link.parent = 1;
-    link.joint_parent[0] = 0.5;
+    link.joint_parent[0] = 1.0;
     assert_int_equal(vt_builder_add_body(b, &link), 2);
     vt_drive_def dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_POINT;
     dr.body = 2;
-    dr.f = vt_function_user(fails_late, NULL);
+    dr.index = 0;
+    dr.point[0] = 1.0;
+    dr.f = vt_function_user(toward_stretch, NULL);
     assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
     assert_ok(vt_builder_build(&m, b));
     vt_builder_free(b);
     assert_ok(vt_data_create(&d, m));
-    assert_ok(vt_trajectory_create(&tr, m, 11));
-    opt = vt_default_run_options();
+    d->q[0] = -0.5; /* a guess on the elbow-up branch: made consistent (tip x = 3) first */
+    d->q[1] = 1.0;
+    vt_run_options opt = vt_default_run_options();
+    opt.formulation = VT_FORMULATION_INDEX1;
+    opt.forward_check = 0;
     opt.nout = 10;
-    opt.max_steps = 5000; /* IDA creeps toward t = 0.5 with ever smaller steps: its step budget stops it */
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
     const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
-    assert_int_equal(st, VT_ERR_IDA);
-    assert_true(d->ida_flag < 0);
-    assert_true(strlen(d->message) > 0);
-    assert_true(tr->nfilled >= 5 && tr->nfilled <= 7); /* the rows up to t = 0.5 were written */
+    if (st != VT_ERR_NONFINITE || !strstr(d->message, "refused") || !strstr(d->message, "not finite"))
+        fail_msg("status %d (%s): %s", st, vt_status_string(st), d->message);
+    assert_true(d->ida_flag < 0); /* IDA's own code is kept */
+    assert_int_equal(tr->nfilled, 5);  /* the rows up to t = 0.4 */
+    for (int k = 0; k < tr->nfilled; k++) { /* and they hold the drive: 2 cos q1 + 2 cos(q1 + q2) = 3 + 2t */
+        const double q1 = tr->q[2 * k], q2 = tr->q[2 * k + 1];
+        assert_near(2.0 * cos(q1) + 2.0 * cos(q1 + q2), 3.0 + 2.0 * tr->t[k], 1e-6);
+    }
     vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
@@ -380,6 +547,9 @@ int main(void)
         cmocka_unit_test(test_forward_modes),
         cmocka_unit_test(test_given_output_times),
         cmocka_unit_test(test_ida_failures),
+        cmocka_unit_test(test_drive_fails_midway),
+        cmocka_unit_test(test_orientation_callback_fails_midway),
+        cmocka_unit_test(test_refused_states_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
