@@ -81,7 +81,8 @@ typedef enum vt_status {
 /// R (nv x 7n) of the reference path below about 400 MB.
 #define VT_MAX_BODIES 1000
 
-/// Joint of a body to its reference body: the six rows of the paper's Table 1.
+/// Joint of a body to its reference body: the six rows of the paper's Table 1, and a 6-rate
+/// floating joint (VT_JOINT_FREE) beside the paper's 7-rate base body.
 typedef enum vt_joint_type {
     VT_JOINT_BASE = 0,       ///< floating: q = x = [r; p] (7), q̇ = ẋ (7); reference must be ground
     VT_JOINT_REVOLUTE,       ///< 1 angle about axis1
@@ -89,6 +90,17 @@ typedef enum vt_joint_type {
     VT_JOINT_SPHERICAL,      ///< q: relative Euler parameters (4); q̇: relative angular velocity (3)
     VT_JOINT_TRANSLATIONAL,  ///< 1 translation along axis1
     VT_JOINT_CYLINDRICAL,    ///< angle about axis1, then translation along axis1
+    VT_JOINT_FREE,           ///< floating with 6 rates and no constraint row, any reference body:
+                             ///< q (7) = the translation of the body's joint point (joint_child) from
+                             ///< the reference body's joint point (joint_parent), reference-body axes,
+                             ///< m (3), then the relative Euler parameters (4), as a spherical joint's;
+                             ///< q̇ (6) = that translation's rate in reference-body axes, m/s (3), then
+                             ///< the relative angular velocity in reference-body axes, rad/s (3). With
+                             ///< the ground as reference: the joint point's global position and
+                             ///< velocity and the global angular velocity. Joint drives on rates 0..2
+                             ///< only (an orientation drive turns it); its reaction is zero by
+                             ///< definition, its six efforts are its rates' generalized forces (force
+                             ///< in reference axes, moment about the joint point in reference axes)
     VT_JOINT_TYPE_COUNT      ///< number of joint kinds (not a kind)
 } vt_joint_type;
 
