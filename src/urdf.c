@@ -1,5 +1,6 @@
 /* URDF robots into a builder: the URDF frames mapped onto vtdyn's bodies and joints
- * (docs/method.md, "URDF robots"; the XML is parsed by libxml2, the numbers by strtod).
+ * (docs/method.md, "URDF robots"; the XML is parsed by libxml2, the numbers by strtod in the C
+ * locale, whatever the caller's LC_NUMERIC).
  *
  * Poses T = (R, t) map x_outer = R x_inner + t and compose as T_ab T_bc; rpy is fixed-axis roll,
  * pitch, yaw: R = Rz(y) Ry(p) Rx(r). URDF gives, per link l, its frame L and its inertial frame
@@ -34,8 +35,10 @@
  * libxml2's own errors come through a structured handler on the parser context (nothing is
  * printed, no libxml2 global is changed for the caller).
  */
+#define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 #include <errno.h>
 #include <limits.h>
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -655,8 +658,21 @@ static vt_status parse(vt_builder **builder, const char *xml, size_t size, const
         while (n > 0 && (err.text[n - 1] == '\n' || err.text[n - 1] == ' ')) err.text[--n] = '\0';
     }
     vt_status st;
-    if (err.set || !doc) st = vt_fail(msg, VT_ERR_XML, "malformed XML on line %d: %s", err.line, err.text);
-    else st = from_doc(builder, doc, &opt, msg);
+    if (err.set || !doc) {
+        st = vt_fail(msg, VT_ERR_XML, "malformed XML on line %d: %s", err.line, err.text);
+    } else {
+        /* the numbers in the C locale whatever the caller's LC_NUMERIC ("0.5", not "0,5"): this
+         * thread's locale for the read only, the caller's put back after */
+        locale_t c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+        if (!c) {
+            st = vt_fail(msg, VT_ERR_NO_MEMORY, "out of memory (the C locale for the numbers)");
+        } else {
+            const locale_t old = uselocale(c);
+            st = from_doc(builder, doc, &opt, msg);
+            uselocale(old);
+            freelocale(c);
+        }
+    }
     xmlFreeDoc(doc);
     xmlFreeParserCtxt(ctxt);
     return st;

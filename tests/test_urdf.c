@@ -4,7 +4,10 @@
  * a model whose inertias are combined and rotated by hand here (rotation matrices, the parallel
  * axes); every link frame against the joint origins composed by hand; and every kind of bad
  * input: its status, the element named, the line. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, setenv */
+#include <locale.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "vt_test.h"
 
@@ -542,6 +545,46 @@ static void test_floating_pose(void **state)
     vt_model_free(m);
 }
 
+/* The numbers are read in the C locale whatever the caller's LC_NUMERIC: under a comma-decimal
+ * locale (de_DE.UTF-8, compiled here by localedef into a temporary LOCPATH when it is not
+ * installed; skipped with a message when that fails) the five-link arm loads, and its model
+ * equals the one loaded under the C locale entry for entry. */
+static void test_comma_locale(void **state)
+{
+    (void)state;
+    vt_model *ref = load("five_link.urdf", NULL);
+    char dir[] = "/tmp/vtdyn-locale-XXXXXX", cmd[256];
+    int have = setlocale(LC_NUMERIC, "de_DE.UTF-8") != NULL;
+    int made = 0;
+    if (!have && mkdtemp(dir)) {
+        made = 1;
+        snprintf(cmd, sizeof cmd, "localedef -i de_DE -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", dir);
+        if (system(cmd) == 0 && setenv("LOCPATH", dir, 1) == 0) have = setlocale(LC_NUMERIC, "de_DE.UTF-8") != NULL;
+    }
+    if (have && strtod("0,5", NULL) != 0.5) have = 0; /* not comma-decimal after all */
+    if (!have) {
+        setlocale(LC_NUMERIC, "C");
+        print_message("    skipped: no comma-decimal locale (de_DE.UTF-8 not installed, localedef failed)\n");
+    } else {
+        vt_model *m = load("five_link.urdf", NULL);
+        setlocale(LC_NUMERIC, "C");
+        assert_int_equal(m->nbody, ref->nbody);
+        assert_memory_equal(m->body_mass, ref->body_mass, ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_inertia, ref->body_inertia, 9 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_jpar, ref->body_jpar, 3 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_jchild, ref->body_jchild, 3 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_axis, ref->body_axis, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_quat0, ref->body_quat0, 4 * ((size_t)m->nbody + 1) * sizeof(double));
+        vt_model_free(m);
+    }
+    if (made) {
+        snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+        assert_int_equal(system(cmd), 0);
+        unsetenv("LOCPATH");
+    }
+    vt_model_free(ref);
+}
+
 typedef struct {
     const char *xml;
     vt_status status;
@@ -714,6 +757,7 @@ int main(void)
         cmocka_unit_test(test_merged_and_rotated),
         cmocka_unit_test(test_floating_root),
         cmocka_unit_test(test_floating_pose),
+        cmocka_unit_test(test_comma_locale),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_mimic_and_placeholders),
     };
