@@ -8,7 +8,10 @@ venv's python, which has pin and example-robot-data).
    buildModelFromUrdf without a root joint; vtdyn's loader by default): at 20 random states
    (the last 4 at rest) Pinocchio's rnea and data.f (pinocchio_reference.py) against vtdyn's
    vt_inverse_dynamics_motion (compare_pinocchio): the torques and every joint reaction, in
-   world axes and in the joint's axes, to 1e-12 of the largest of the state.
+   world axes and in the joint's axes, to 1e-12 of the largest of the state. Then Solo-12,
+   Talos and ANYmal as free flyers (Pinocchio's JointModelFreeFlyer root; vtdyn's loader with
+   floating = 1, a free joint at the root link's origin): the same at 20 random states, the base's
+   six torques included (vtdyn's world wrench turned into the root frame) and its reaction (zero).
 2. The command vtdyn on UR5: the reference's states as a states file (the torques to 1e-12), and
    samples of a smooth motion q_j(t) = a_j sin(w_j t + phi_j) as a samples file: vtdyn's torques
    from the splines against Pinocchio's rnea with the exact derivatives, to 1e-4 of the largest
@@ -36,6 +39,7 @@ ROBOTS = [
     ("Talos", "talos_data/robots/talos_reduced.urdf", 4),
     ("ANYmal", "anymal_b_simple_description/robots/anymal.urdf", 5),
 ]
+FLOATING = ("Solo-12", "Talos", "ANYmal")
 
 
 def robots_dir():
@@ -67,6 +71,17 @@ def main():
         print("%s: %s" % (name, (r.stdout + r.stderr).strip()))
         if r.returncode:
             failures.append("%s: vtdyn and Pinocchio differ" % name)
+        if name not in FLOATING:
+            continue
+        ref = work / ("%s_free_flyer.csv" % name)
+        r = run(sys.executable, HERE / "pinocchio_reference.py", urdf, "free-flyer", 20, seed + 10, ref, "--static", 4)
+        if r.returncode:
+            failures.append("%s (free flyer): pinocchio_reference.py: %s" % (name, r.stderr.strip()))
+            continue
+        r = run(compare, "--floating", urdf, ref, "1e-12")
+        print("%s (free flyer): %s" % (name, (r.stdout + r.stderr).strip()))
+        if r.returncode:
+            failures.append("%s (free flyer): vtdyn and Pinocchio differ" % name)
 
     # 2. the command on UR5
     urdf = root / ROBOTS[0][1]
