@@ -15,7 +15,8 @@ venv's python, which has pin and example-robot-data).
 2. The command vtdyn on UR5: the reference's states as a states file (the torques to 1e-12), and
    samples of a smooth motion q_j(t) = a_j sin(w_j t + phi_j) as a samples file: vtdyn's torques
    from the splines against Pinocchio's rnea with the exact derivatives, to 1e-4 of the largest
-   torque at the interior samples.
+   torque at the interior samples. And `vtdyn inverse --floating` on Solo-12: the free-flyer
+   reference's states, the base's six efforts (link axes) and the joints' torques to 1e-12.
 3. Every URDF the package ships through `vtdyn info`: accepted, or refused with its reason
    (a count, and the reasons; a crash fails the test).
 Exit 0 when every comparison holds, 1 otherwise.
@@ -139,6 +140,42 @@ def main():
               % (len(got), worst, big))
         if len(got) != len(times) or worst > 1e-4 * big:
             failures.append("vtdyn inverse (UR5 samples): %.3g of %.3g" % (worst, big))
+
+    # the command on Solo-12 floating: the free-flyer reference's states with the root's columns
+    # (base_link_x ... base_link_alz, world axes) and its efforts in the root link's axes against
+    # Pinocchio's free-flyer tau
+    urdf = root / ROBOTS[2][1]
+    with open(work / "Solo-12_free_flyer.csv") as f:
+        ref = list(csv.DictReader(f))
+    joints = [c.split(":")[1] for c in ref[0] if c.startswith("q:") and c.endswith(":0")]
+    joints = [j for j in joints if j != "root_joint"]
+    rootcols = ["base_link_" + c for c in "x y z qw qx qy qz vx vy vz wx wy wz ax ay az alx aly alz".split()]
+    states = work / "solo_floating_states.csv"
+    with open(states, "w") as f:
+        f.write(",".join(rootcols + sum(([j, j + "_vel", j + "_acc"] for j in joints), [])) + "\n")
+        for row in ref:
+            q = [row["q:root_joint:%d" % k] for k in (0, 1, 2, 6, 3, 4, 5)]
+            base = [row["base:%s:%s" % (w, c)] for w in ("pdot", "omega", "pddot", "omegadot") for c in "xyz"]
+            f.write(",".join(q + base + sum(([row["q:%s:0" % j], row["v:%s:0" % j], row["a:%s:0" % j]]
+                                             for j in joints), [])) + "\n")
+    out = work / "solo_floating_out.csv"
+    r = run(vtdyn, "inverse", "--floating", urdf, states, "-o", out)
+    if r.returncode:
+        failures.append("vtdyn inverse --floating (Solo-12 states): %s" % r.stderr.strip())
+    else:
+        with open(out) as f:
+            got = list(csv.DictReader(f))
+        worst = 0.0
+        names = ["base_link_effort_%s_link" % c for c in ("fx", "fy", "fz", "nx", "ny", "nz")]
+        for g, row in zip(got, ref):
+            tau = [float(row["tau:root_joint:%d" % k]) for k in range(6)] + [float(row["tau:%s:0" % j]) for j in joints]
+            mine = [float(g[n]) for n in names] + [float(g[j + "_effort"]) for j in joints]
+            scale = max(1.0, max(abs(t) for t in tau))
+            worst = max(worst, max(abs(a - b) / scale for a, b in zip(mine, tau)))
+        print("vtdyn inverse --floating, Solo-12 states file: %d rows, largest relative torque difference %.2g"
+              % (len(got), worst))
+        if len(got) != len(ref) or worst > 1e-12:
+            failures.append("vtdyn inverse --floating (Solo-12 states): %.3g" % worst)
 
     # 3. every URDF of the package
     accepted, refused = 0, {}
