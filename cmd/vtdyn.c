@@ -1,7 +1,7 @@
 /* vtdyn — the library's command: a URDF robot's inverse dynamics from a CSV file.
  *
- *   vtdyn info MODEL.urdf
- *   vtdyn inverse MODEL.urdf STATES.csv [-o OUT.csv]
+ *   vtdyn info [--floating] MODEL.urdf
+ *   vtdyn inverse [--floating] MODEL.urdf STATES.csv [-o OUT.csv]
  *
  * `inverse` reads one row per instant. With the columns J, J_vel and J_acc for every moving
  * joint J (and `t` optionally) each row is a state: vt_inverse_dynamics_motion() gives every
@@ -12,12 +12,18 @@
  * given, then per moving joint J the effort `J_effort` (N·m or N), the reaction of the parent
  * link on the child link `J_fx J_fy J_fz J_nx J_ny J_nz` (N, N·m; global axes, the moment about
  * the child link frame's origin, the joint's actuation not included) and the same in the child
- * link's URDF axes, `J_fx_link … J_nz_link`.
+ * link's URDF axes, `J_fx_link … J_nz_link`. A floating root (a URDF floating joint from the
+ * world, or with --floating a root link no joint attaches to the world: a free joint,
+ * VT_JOINT_FREE) is given by its link frame's pose, velocity and acceleration in world axes
+ * (R_x … R_alz, R the joint's name, or the root link's when the joint is implicit) and gives
+ * the six efforts of its rates: the wrench the world would have to apply at the link frame's
+ * origin, `R_effort_fx … R_effort_nz` in world axes and `…_link` in the link's axes.
  * Errors name the file, the row and the column, and exit 1; an output file is written beside
  * its name and renamed when complete, so a failed run leaves no partial file under that name.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <locale.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -29,9 +35,12 @@
 #include "vtdyn.h"
 
 static const char usage[] =
-    "usage: vtdyn info MODEL.urdf\n"
-    "       vtdyn inverse MODEL.urdf STATES.csv [-o OUT.csv]\n"
+    "usage: vtdyn info [--floating] MODEL.urdf\n"
+    "       vtdyn inverse [--floating] MODEL.urdf STATES.csv [-o OUT.csv]\n"
     "\n"
+    "--floating  the robot's root link (one no joint attaches to the world) floats: a free joint\n"
+    "            from the world, with the columns below; without it the root is fixed to the world.\n"
+    "            A URDF floating joint from the world floats either way.\n"
     "info     the bodies (URDF links), their joints (name, kind, rates), masses and frames.\n"
     "inverse  efforts and joint reactions, one output row per input row (stdout by default).\n"
     "         STATES.csv: a header row, then one row per instant, comma separated. For each\n"
@@ -49,8 +58,26 @@ static const char usage[] =
     "                                    in the URDF's world axes; the joint's actuation (the\n"
     "                                    effort) is not part of the reaction\n"
     "           J_fx_link ... J_nz_link  the same in the child link's URDF axes\n"
-    "         Gravity is -9.81 m/s^2 along z (URDF robots are z up). The robot's root link is\n"
-    "         fixed to the world; a floating root is not supported by this command yet.\n";
+    "         A floating root R (the floating joint's name; with --floating and no such joint, the\n"
+    "         root link's name) has, in place of R, R_vel and R_acc, these input columns:\n"
+    "           R_x R_y R_z                 its link frame's origin, world axes, m\n"
+    "           R_qw R_qx R_qy R_qz         its link frame's orientation (unit quaternion, scalar\n"
+    "                                       first; norm within 1e-6 of 1), link axes to world axes\n"
+    "           R_vx R_vy R_vz              the origin's velocity, world axes, m/s\n"
+    "           R_wx R_wy R_wz              the link's angular velocity, world axes, rad/s\n"
+    "           R_ax R_ay R_az              the origin's acceleration, world axes, m/s^2\n"
+    "           R_alx R_aly R_alz           the link's angular acceleration, world axes, rad/s^2\n"
+    "         and these output columns (its reaction is zero: a free joint transmits nothing):\n"
+    "           R_effort_fx R_effort_fy R_effort_fz  the force, N, and the moment about the link\n"
+    "           R_effort_nx R_effort_ny R_effort_nz  frame's origin, N m, that the world would have\n"
+    "                                       to apply to the root link for the given motion (zero\n"
+    "                                       when it is a free flight), world axes\n"
+    "           R_effort_fx_link ... R_effort_nz_link  the same in the root link's URDF axes\n"
+    "         A floating root needs the states form: samples (positions alone) are refused, as\n"
+    "         there is no spline through orientations here. A floating joint between two links\n"
+    "         is refused by this command.\n"
+    "         Gravity is -9.81 m/s^2 along z (URDF robots are z up). Numbers are read with a '.'\n"
+    "         decimal point whatever the locale.\n";
 
 /* ---- messages ----------------------------------------------------------------------------- */
 
@@ -93,8 +120,17 @@ static char *trim(char *s)
 static int read_table(table *t, const char *path)
 {
     memset(t, 0, sizeof *t);
+    /* numbers with a '.' whatever LC_NUMERIC: this thread in the C locale while reading */
+    locale_t cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+    if (!cloc) return fail("out of memory (the C locale)");
+    const locale_t oldloc = uselocale(cloc);
     FILE *f = fopen(path, "r");
-    if (!f) return fail("%s: %s", path, strerror(errno));
+    if (!f) {
+        const int e = errno;
+        uselocale(oldloc);
+        freelocale(cloc);
+        return fail("%s: %s", path, strerror(e));
+    }
     char *line = NULL;
     size_t cap = 0;
     ssize_t len;
@@ -155,6 +191,8 @@ static int read_table(table *t, const char *path)
 done:
     free(line);
     fclose(f);
+    uselocale(oldloc);
+    freelocale(cloc);
     if (status) table_free(t);
     return status;
 }
@@ -168,10 +206,11 @@ static int column(const table *t, const char *name)
 
 /* ---- the model ---------------------------------------------------------------------------- */
 
-static int load(vt_builder **b, const char *path)
+static int load(vt_builder **b, const char *path, int floating)
 {
     char msg[256] = "";
     vt_urdf_options opt = vt_default_urdf_options();
+    opt.floating = floating;
     opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */
     const vt_status st = vt_urdf_builder(b, path, &opt, msg);
     if (st) return fail("%s: %s (%s)", path, msg, vt_status_string(st));
@@ -180,16 +219,16 @@ static int load(vt_builder **b, const char *path)
 
 static const char *joint_kind(int jt)
 {
-    static const char *kinds[VT_JOINT_TYPE_COUNT] = {"floating", "revolute", "universal", "spherical", "prismatic",
-                                                     "cylindrical"};
+    static const char *kinds[VT_JOINT_TYPE_COUNT] = {"base", "revolute", "universal", "spherical", "prismatic",
+                                                     "cylindrical", "floating"};
     return jt >= 0 && jt < VT_JOINT_TYPE_COUNT ? kinds[jt] : "?";
 }
 
-static int info(const char *path)
+static int info(const char *path, int floating)
 {
     vt_builder *b;
     vt_model *m;
-    if (load(&b, path)) return 1;
+    if (load(&b, path, floating)) return 1;
     const vt_status st = vt_builder_build(&m, b);
     if (st) {
         fail("%s: %s", path, vt_builder_message(b));
@@ -230,9 +269,16 @@ static int info(const char *path)
 
 /* ---- inverse ------------------------------------------------------------------------------ */
 
+/* a floating root's input columns, after its name and '_' */
+#define NFREE 19
+static const char *const free_suffix[NFREE] = {"x",  "y",  "z",  "qw", "qx", "qy", "qz", "vx",  "vy",  "vz",
+                                               "wx", "wy", "wz", "ax", "ay", "az", "alx", "aly", "alz"};
+
 typedef struct {
-    int body, rate;       /* the joint's body and its rate */
+    int body, rate;       /* the joint's body and its (first) rate */
     int col, col_vel, col_acc;
+    int free;             /* a floating root: its columns in fcol */
+    int fcol[NFREE];
     int frame;            /* the child link's frame (its URDF axes), or -1 */
     const char *name;
 } joint_cols;
@@ -255,6 +301,19 @@ static void write_row(FILE *out, const vt_model *m, vt_data *d, const joint_cols
     if (has_t) fprintf(out, "%.17g,", t);
     for (int k = 0; k < nj; k++) {
         const int i = jc[k].body;
+        if (jc[k].free) { /* the six efforts: world axes, then the link's */
+            const double *f = effort + 6 * k, *n = f + 3;
+            double R[9], fl[3], nl[3];
+            if (jc[k].frame < 0 || vt_frame_pose(m, d, jc[k].frame, NULL, R) != VT_OK)
+                memcpy(R, d->A + 9 * i, sizeof R); /* no link frame: the body's own axes */
+            for (int c = 0; c < 3; c++) {
+                fl[c] = R[3 * c] * f[0] + R[3 * c + 1] * f[1] + R[3 * c + 2] * f[2];
+                nl[c] = R[3 * c] * n[0] + R[3 * c + 1] * n[1] + R[3 * c + 2] * n[2];
+            }
+            fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g%s", f[0], f[1], f[2],
+                    n[0], n[1], n[2], fl[0], fl[1], fl[2], nl[0], nl[1], nl[2], k + 1 < nj ? "," : "\n");
+            continue;
+        }
         const double *f = d->jnt_force + 3 * i, *n = d->jnt_moment + 3 * i;
         double R[9], fl[3], nl[3];
         if (jc[k].frame >= 0 && vt_frame_pose(m, d, jc[k].frame, NULL, R) == VT_OK) {
@@ -266,12 +325,12 @@ static void write_row(FILE *out, const vt_model *m, vt_data *d, const joint_cols
             memcpy(fl, d->jnt_force_body + 3 * i, sizeof fl);
             memcpy(nl, d->jnt_moment_body + 3 * i, sizeof nl);
         }
-        fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g%s", effort[k], f[0],
+        fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g%s", effort[6 * k], f[0],
                 f[1], f[2], n[0], n[1], n[2], fl[0], fl[1], fl[2], nl[0], nl[1], nl[2], k + 1 < nj ? "," : "\n");
     }
 }
 
-static int inverse(const char *urdf, const char *states, const char *outpath)
+static int inverse(const char *urdf, const char *states, const char *outpath, int floating)
 {
     vt_builder *b = NULL;
     vt_model *m = NULL, *probe = NULL;
@@ -283,7 +342,7 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     char *tmp = NULL;
     int status = 1, created = 0;
     if (read_table(&t, states)) return 1;
-    if (load(&b, urdf)) goto done;
+    if (load(&b, urdf, floating)) goto done;
     /* the moving joints, in the model's order: one column set each (their names point into probe,
      * kept to the end) */
     if (vt_builder_build(&probe, b)) {
@@ -292,7 +351,7 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     }
     int nj = 0;
     jc = calloc((size_t)probe->nbody, sizeof *jc);
-    effort = calloc((size_t)probe->nbody + 1, sizeof *effort);
+    effort = calloc(6 * ((size_t)probe->nbody + 1), sizeof *effort);
     if (!jc || !effort) {
         fail("out of memory");
         goto done;
@@ -302,6 +361,7 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     for (int i = 1; i <= probe->nbody; i++) {
         const int jt = probe->body_joint[i];
         const char *name = probe->joint_name + VT_NAME_MAX * i;
+        if (jt == VT_JOINT_FREE) continue; /* below, once the form (states or samples) is known */
         if (jt == VT_JOINT_BASE || jt == VT_JOINT_SPHERICAL || probe->body_nv[i] != 1) {
             fail("%s: joint '%s' (%s): only revolute, continuous and prismatic joints are supported here", urdf, name,
                  joint_kind(jt));
@@ -331,6 +391,40 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
         }
         samples = mode;
     }
+    for (int i = 1; i <= probe->nbody; i++) { /* floating roots */
+        if (probe->body_joint[i] != VT_JOINT_FREE) continue;
+        const char *name = probe->joint_name + VT_NAME_MAX * i;
+        if (!name[0]) name = probe->body_name + VT_NAME_MAX * i; /* an implicit root joint: the link's name */
+        if (probe->body_parent[i] != 0) {
+            fail("%s: floating joint '%s' from link '%s': only a floating root (from the world) is supported here", urdf,
+                 name, probe->body_name + VT_NAME_MAX * probe->body_parent[i]);
+            goto done;
+        }
+        char kx[VT_NAME_MAX + 8], kv[VT_NAME_MAX + 8], ka[VT_NAME_MAX + 8];
+        snprintf(kx, sizeof kx, "%s_x", name);
+        snprintf(kv, sizeof kv, "%s_vx", name);
+        snprintf(ka, sizeof ka, "%s_ax", name);
+        if (samples == 1 || (column(&t, kx) >= 0 && column(&t, kv) < 0 && column(&t, ka) < 0)) {
+            fail("%s: positions alone (samples of a trajectory) with a floating root '%s': not supported (no spline "
+                 "through orientations); give the states: %s_x ... %s_alz and every joint's _vel and _acc",
+                 states, name, name, name);
+            goto done;
+        }
+        joint_cols *j = &jc[nj++];
+        j->body = i;
+        j->rate = probe->body_vadr[i];
+        j->name = name;
+        j->free = 1;
+        j->frame = vt_find_frame(probe, probe->body_name + VT_NAME_MAX * i);
+        for (int k = 0; k < NFREE; k++) {
+            char key[VT_NAME_MAX + 8];
+            snprintf(key, sizeof key, "%s_%s", name, free_suffix[k]);
+            if ((j->fcol[k] = column(&t, key)) < 0) {
+                fail("%s: no column '%s' (floating root %s: %s_x ... %s_alz, see --help)", states, key, name, name, name);
+                goto done;
+            }
+        }
+    }
     if (samples == 1 && ct < 0) {
         fail("%s: positions without velocities and accelerations are samples of a trajectory: a column 't' is needed",
              states);
@@ -347,7 +441,7 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
             goto done;
         }
         for (int r = 0; r < t.nrow; r++) ts[r] = t.cell[(size_t)r * (size_t)t.ncol + (size_t)ct];
-        for (int k = 0; k < nj; k++) {
+        for (int k = 0; k < nj; k++) { /* (no floating root here) */
             for (int r = 0; r < t.nrow; r++) ys[r] = t.cell[(size_t)r * (size_t)t.ncol + (size_t)jc[k].col];
             vt_drive_def dr = vt_default_drive_def();
             dr.body = jc[k].body;
@@ -387,6 +481,13 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     if (ct >= 0) fputs("t,", out);
     for (int k = 0; k < nj; k++) {
         const char *n = jc[k].name;
+        if (jc[k].free) {
+            fprintf(out, "%s_effort_fx,%s_effort_fy,%s_effort_fz,%s_effort_nx,%s_effort_ny,%s_effort_nz,"
+                         "%s_effort_fx_link,%s_effort_fy_link,%s_effort_fz_link,%s_effort_nx_link,%s_effort_ny_link,"
+                         "%s_effort_nz_link%s",
+                    n, n, n, n, n, n, n, n, n, n, n, n, k + 1 < nj ? "," : "\n");
+            continue;
+        }
         fprintf(out, "%s_effort,%s_fx,%s_fy,%s_fz,%s_nx,%s_ny,%s_nz,%s_fx_link,%s_fy_link,%s_fz_link,%s_nx_link,"
                      "%s_ny_link,%s_nz_link%s",
                 n, n, n, n, n, n, n, n, n, n, n, n, n, k + 1 < nj ? "," : "\n");
@@ -395,28 +496,51 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
     for (int r = 0; r < t.nrow; r++) {
         const double *row = t.cell + (size_t)r * (size_t)t.ncol;
         vt_status st;
-        for (int k = 0; k < nj; k++) d->q[m->body_qadr[jc[k].body]] = row[jc[k].col];
+        for (int k = 0; k < nj; k++) {
+            if (!jc[k].free) {
+                d->q[m->body_qadr[jc[k].body]] = row[jc[k].col];
+                continue;
+            }
+            const int *fc = jc[k].fcol;
+            double *q = d->q + m->body_qadr[jc[k].body], *qd = d->qd + jc[k].rate, *qdd = d->qdd + jc[k].rate;
+            double nq = 0.0;
+            for (int c = 0; c < 3; c++) q[c] = row[fc[c]];
+            for (int c = 0; c < 4; c++) nq += row[fc[3 + c]] * row[fc[3 + c]];
+            nq = sqrt(nq);
+            if (!(fabs(nq - 1.0) <= 1e-6)) {
+                fail("%s:%d: columns '%s_qw' ... '%s_qz': a quaternion of norm %.17g, not 1 (within 1e-6)", states, r + 2,
+                     jc[k].name, jc[k].name, nq);
+                goto done_ts;
+            }
+            for (int c = 0; c < 4; c++) q[3 + c] = row[fc[3 + c]] / nq;
+            for (int c = 0; c < 6; c++) {
+                qd[c] = row[fc[7 + c]];
+                qdd[c] = row[fc[13 + c]];
+            }
+        }
         if (samples == 1) {
             d->time = row[ct];
             st = vt_kinematic_solve(m, d, 1e-12, 30);
-            for (int k = 0; k < nj && !st; k++) effort[k] = d->drive_effort[k];
+            for (int k = 0; k < nj && !st; k++) effort[6 * k] = d->drive_effort[k];
         } else {
             for (int k = 0; k < nj; k++) {
+                if (jc[k].free) continue;
                 d->qd[jc[k].rate] = row[jc[k].col_vel];
                 d->qdd[jc[k].rate] = row[jc[k].col_acc];
             }
             st = vt_inverse_dynamics_motion(m, d);
-            for (int k = 0; k < nj && !st; k++) effort[k] = d->qfrc_drive[jc[k].rate];
+            for (int k = 0; k < nj && !st; k++)
+                for (int c = 0; c < (jc[k].free ? 6 : 1); c++) effort[6 * k + c] = d->qfrc_drive[jc[k].rate + c];
         }
         if (st) {
             fail("%s:%d: %s (%s)", states, r + 2, d->message, vt_status_string(st));
-            free(ts);
-            goto done;
+            goto done_ts;
         }
         write_row(out, m, d, jc, nj, ct >= 0, ct >= 0 ? row[ct] : 0.0, effort);
         progress(r, t.nrow, &last);
     }
     free(ts);
+    ts = NULL;
     if (out != stdout) {
         const int bad = ferror(out);
         const int closed = fclose(out);
@@ -434,6 +558,8 @@ static int inverse(const char *urdf, const char *states, const char *outpath)
         goto done;
     }
     status = 0;
+done_ts:
+    free(ts);
 done:
     if (out && out != stdout) fclose(out);
     if (status && created) remove(tmp);
@@ -458,15 +584,24 @@ int main(int argc, char **argv)
         fputs(usage, stdout);
         return 0;
     }
-    if (argc == 3 && strcmp(argv[1], "info") == 0) return info(argv[2]);
-    if ((argc == 4 || argc == 6) && strcmp(argv[1], "inverse") == 0) {
-        const char *outpath = NULL;
-        if (argc == 6) {
-            if (strcmp(argv[4], "-o") != 0) return fail("unknown option '%s'\n%s", argv[4], usage);
-            outpath = argv[5];
+    /* --floating anywhere after the command; the rest positional, with -o OUT */
+    const char *pos[3] = {NULL, NULL, NULL}, *outpath = NULL;
+    int npos = 0, floating = 0;
+    for (int k = 2; k < argc; k++) {
+        if (strcmp(argv[k], "--floating") == 0) {
+            floating = 1;
+        } else if (strcmp(argv[k], "-o") == 0 && k + 1 < argc && !outpath) {
+            outpath = argv[++k];
+        } else if (argv[k][0] == '-' && argv[k][1] != '\0') {
+            return fail("unknown option '%s'\n%s", argv[k], usage);
+        } else if (npos < 3) {
+            pos[npos++] = argv[k];
+        } else {
+            npos++;
         }
-        return inverse(argv[2], argv[3], outpath);
     }
+    if (argc >= 2 && strcmp(argv[1], "info") == 0 && npos == 1 && !outpath) return info(pos[0], floating);
+    if (argc >= 2 && strcmp(argv[1], "inverse") == 0 && npos == 2) return inverse(pos[0], pos[1], outpath, floating);
     fputs(usage, stderr);
     return 2;
 }

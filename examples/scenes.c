@@ -225,6 +225,11 @@ void vt_scene_random_state(const vt_model *m, vt_data *d, uint64_t *s)
             vt_rand_unit(q, 4, s);
             for (int k = 0; k < 3; k++) v[k] = vt_rand_uniform(s, -2.0, 2.0);
             break;
+        case VT_JOINT_FREE:
+            for (int k = 0; k < 3; k++) q[k] = vt_rand_uniform(s, -1.0, 1.0);
+            vt_rand_unit(q + 3, 4, s);
+            for (int k = 0; k < 6; k++) v[k] = vt_rand_uniform(s, -2.0, 2.0);
+            break;
         case VT_JOINT_TRANSLATIONAL:
             q[0] = vt_rand_uniform(s, -1.0, 1.0);
             v[0] = vt_rand_uniform(s, -2.0, 2.0);

@@ -138,6 +138,8 @@ vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut, int drive, vt_fu
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */
 #define VT_SCENE_ALL_JOINTS 0x3Fu
 #define VT_SCENE_NO_BASE (VT_SCENE_ALL_JOINTS & ~(1u << VT_JOINT_BASE))
+/* the paper's six kinds but base, and the 6-rate free joint (any reference body) */
+#define VT_SCENE_WITH_FREE (VT_SCENE_NO_BASE | (1u << VT_JOINT_FREE))
 /* joints whose coordinates are all scalar (q̇ is the time derivative of q) */
 #define VT_SCENE_SCALAR_JOINTS ((1u << VT_JOINT_REVOLUTE) | (1u << VT_JOINT_UNIVERSAL) | \
                                 (1u << VT_JOINT_TRANSLATIONAL) | (1u << VT_JOINT_CYLINDRICAL))

@@ -60,7 +60,7 @@ module vtdyn
   ! vt_joint_type
   integer(c_int), parameter :: VT_JOINT_BASE = 0, VT_JOINT_REVOLUTE = 1, VT_JOINT_UNIVERSAL = 2, &
       VT_JOINT_SPHERICAL = 3, VT_JOINT_TRANSLATIONAL = 4, VT_JOINT_CYLINDRICAL = 5, &
-      VT_JOINT_TYPE_COUNT = 6
+      VT_JOINT_FREE = 6, VT_JOINT_TYPE_COUNT = 7
   ! warning flags in vt_data%warning
   integer(c_int), parameter :: VT_WARN_ILL_CONDITIONED = 1, VT_WARN_REDUNDANT = 2
   ! vt_route: the route by which the last solve found qdd and lambda (vt_data%route)

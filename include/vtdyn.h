@@ -94,8 +94,10 @@ int vt_find_frame(const vt_model *model, const char *name);
 typedef struct vt_urdf_options {
     vt_model_def model;   ///< the builder's model options; default vt_default_model_def() with gravity
                           ///< (0, 0, −9.81): URDF robots are z up
-    int floating;         ///< 1: a root link that no joint attaches to the world gets a base (floating)
-                          ///< joint; 0 (default): it is welded to the ground
+    int floating;         ///< 1: a root link that no joint attaches to the world gets a free joint
+                          ///< (VT_JOINT_FREE) from the ground at its link frame's origin: q = that
+                          ///< origin's global position and the link frame's Euler parameters, q̇ = its
+                          ///< global velocity and angular velocity; 0 (default): it is welded to the ground
     int mimic;            ///< 1 (default): a mimic joint's coordinate is coupled to the joint it mimics
                           ///< (vt_coupling_def, named after the mimic joint); 0: the tag is ignored and
                           ///< the joint moves on its own (as Pinocchio's default loads it)
@@ -105,7 +107,9 @@ vt_urdf_options vt_default_urdf_options(void);
 /// Reads a URDF file into a new builder (drives, cut joints and frames may be added after, then
 /// vt_builder_build()). Links become bodies named after the link and their joints are named after
 /// the URDF joint: revolute and continuous → VT_JOINT_REVOLUTE, prismatic → VT_JOINT_TRANSLATIONAL,
-/// floating → VT_JOINT_BASE (from the ground only); a fixed joint merges its child into its parent
+/// floating → VT_JOINT_FREE (the joint point at the child link frame's origin, its q that frame's
+/// translation from the joint origin in the parent body's axes and its Euler parameters as a
+/// spherical joint's: docs/method.md, "URDF robots"); a fixed joint merges its child into its parent
 /// (masses, centre of mass and inertia combined). The ground is the link "world" (or the root,
 /// welded, with floating 0) and what fixed joints attach to it. Every link is also a frame named
 /// after it, at its link frame. Bodies are numbered breadth-first from the root, so the joint
@@ -113,8 +117,8 @@ vt_urdf_options vt_default_urdf_options(void);
 /// the link's inertial frame (docs/method.md, "URDF robots"). options may be NULL (the defaults).
 /// On failure *builder is NULL and message (256 bytes, may be NULL) says why, naming the element
 /// and its line. Statuses: VT_ERR_NULL (builder, path), VT_ERR_FILE (missing or unreadable),
-/// VT_ERR_XML (malformed XML; no <robot>), VT_ERR_PARENT (a link with two parents, a loop, a
-/// floating joint not from the ground), VT_ERR_NOT_FOUND (a joint names a missing link),
+/// VT_ERR_XML (malformed XML; no <robot>), VT_ERR_PARENT (a link with two parents, a loop),
+/// VT_ERR_NOT_FOUND (a joint names a missing link),
 /// VT_ERR_JOINT_TYPE (planar, unknown, mimic), VT_ERR_MASS, VT_ERR_NONFINITE (a non-finite or
 /// malformed number), VT_ERR_BAD_NAME (a missing or duplicate link or joint name), the builder's
 /// statuses (an inertia, an axis of zero length, limits), VT_ERR_BAD_OPTION (options),

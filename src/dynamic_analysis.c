@@ -174,11 +174,14 @@ static void qdot_from_v(const vt_model *m, const double *q, const double *v, dou
 {
     for (int i = 1; i <= m->nbody; i++) {
         const int qa = m->body_qadr[i], va = m->body_vadr[i];
-        if (m->body_joint[i] == VT_JOINT_SPHERICAL) {
+        const int jt = m->body_joint[i];
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE) { /* free: ṫ' = its rates, then as spherical */
+            const int o = jt == VT_JOINT_FREE ? 3 : 0;
             double E[12];
-            vt_euler_E(E, q + qa);
-            vt_mulE_t(qd + qa, E, v + va);
-            for (int k = 0; k < 4; k++) qd[qa + k] *= 0.5;
+            for (int k = 0; k < o; k++) qd[qa + k] = v[va + k];
+            vt_euler_E(E, q + qa + o);
+            vt_mulE_t(qd + qa + o, E, v + va + o);
+            for (int k = 0; k < 4; k++) qd[qa + o + k] *= 0.5;
         } else {
             for (int k = 0; k < m->body_nq[i]; k++) qd[qa + k] = v[va + k];
         }

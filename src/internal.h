@@ -238,6 +238,7 @@ static inline int vt_dof_kind(int joint_type, int k, int *axis)
     case VT_JOINT_UNIVERSAL: *axis = k; return VT_DOF_ROT;
     case VT_JOINT_SPHERICAL: *axis = k; return VT_DOF_ROT;
     case VT_JOINT_TRANSLATIONAL: return VT_DOF_TRANS;
+    case VT_JOINT_FREE: *axis = k < 3 ? k : k - 3; return k < 3 ? VT_DOF_TRANS : VT_DOF_ROT;
     default: /* cylindrical: θ then s, both along axis 0 */
         return k == 0 ? VT_DOF_ROT : VT_DOF_TRANS;
     }

@@ -9,7 +9,8 @@
  *                                              R_ij = [−e^T, 2 e^T s̃^{ij} E^j],
  *                                              R_ii = [ e^T, 2 e^T d̃^i E^i]
  * (universal: e1, e2; spherical: e1, e2, e3; cylindrical: the rotational row, then the
- * translational one). With e^T s̃ = (e × s)^T the p-parts are 2 E^T (e × s). R S = I.
+ * translational one; free: three translational rows on the reference body's axes, with d^i →
+ * r^i − P and s^{ij} → P − r^j since its translation turns with j, then the spherical rows). With e^T s̃ = (e × s)^T the p-parts are 2 E^T (e × s). R S = I.
  */
 #include <string.h>
 
@@ -31,17 +32,25 @@ void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double
         if (j) vt_mulE_t(rj + 3, Ej, e + 3 * ax);
         for (int c = 3; c < 7; c++) { ri[c] *= 2.0; rj[c] *= -2.0; }
         break;
-    case VT_DOF_TRANS:
+    case VT_DOF_TRANS: {
+        /* free: d^i → r^i − P and s^{ij} → P − r^j (t turns with j, s^{ji} with i) */
+        double dI[3], sJ[3];
+        const double *P = d->jpoint + 3 * i, *ri_ = d->x + vt_xoff(i);
+        for (int c = 0; c < 3; c++) {
+            dI[c] = jt == VT_JOINT_FREE ? ri_[c] - P[c] : d->jd[3 * i + c];
+            sJ[c] = jt == VT_JOINT_FREE ? P[c] - (j ? d->x[vt_xoff(j) + c] : 0.0) : d->jsij[3 * i + c];
+        }
         vt_copy3(ri, e + 3 * ax);
-        vt_cross3(u, e + 3 * ax, d->jd + 3 * i);
+        vt_cross3(u, e + 3 * ax, dI);
         vt_mulE_t(ri + 3, Ei, u);
         if (j) {
             for (int c = 0; c < 3; c++) rj[c] = -e[3 * ax + c];
-            vt_cross3(u, e + 3 * ax, d->jsij + 3 * i);
+            vt_cross3(u, e + 3 * ax, sJ);
             vt_mulE_t(rj + 3, Ej, u);
         }
         for (int c = 3; c < 7; c++) { ri[c] *= 2.0; rj[c] *= 2.0; }
         break;
+    }
     case VT_DOF_BASE_R: ri[ax] = 1.0; break;
     default: ri[3 + ax] = 1.0; break;
     }

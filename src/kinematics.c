@@ -21,6 +21,11 @@
  *                a^i = a^j + α̃^j s^{ij} + ω̃^j ω̃^j s^{ij} + Σ ε_k (q̈_k e_k + 2 q̇_k ė_k + q_k ë_k)
  *                      − α̃^i s^{ji} − ω̃^i ω̃^i s^{ji}
  *                p̈^i = ½ E^{iT} α^i − ¼ (ω^i·ω^i) p^i
+ * Free joint (6 rates, q = [t'; p_J], q̇ = [ṫ'; ω_rel] in the reference body's axes): the triad
+ * e_k = A^j's columns for both the translation (ε = 1, t = A^j t' = Σ q_k e_k) and the rotation
+ * (ε = 0, as spherical); the joint point P = r^j + s^{ij} + t. Since t turns with j and s^{ji}
+ * with i, (15) reads  v^i = v^j + ω̃^j (s^{ij} + t) + Σ ṫ'_k e_k − ω̃^i s^{ji}; its twists are
+ * (0, e_k) and (e_k, P × e_k), and Ṡq̇ is the a^i above with q_k the translation's components.
  */
 #include <string.h>
 
@@ -41,8 +46,8 @@ static vt_status check_state(const vt_model *m, vt_data *d)
     }
     for (int i = 1; i <= m->nbody; i++) {
         const int jt = m->body_joint[i];
-        if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE) continue;
-        const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_BASE ? 3 : 0);
+        if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE && jt != VT_JOINT_FREE) continue;
+        const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_SPHERICAL ? 0 : 3);
         const double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
         if (!(s > 1e-24))
             return vt_fail(d->message, VT_ERR_QUATERNION,
@@ -93,10 +98,13 @@ static void positions(const vt_model *m, vt_data *d)
             vt_mulmat3(e + 3, Aj, a2);
             break;
         }
-        case VT_JOINT_SPHERICAL: {
-            const double s = sqrt(qi[0] * qi[0] + qi[1] * qi[1] + qi[2] * qi[2] + qi[3] * qi[3]);
-            for (int k = 0; k < 4; k++) pJ[k] = qi[k] / s;
+        case VT_JOINT_SPHERICAL:
+        case VT_JOINT_FREE: { /* free: the translation (reference axes), then as spherical */
+            const double *qp = jt == VT_JOINT_FREE ? qi + 3 : qi;
+            const double s = sqrt(qp[0] * qp[0] + qp[1] * qp[1] + qp[2] * qp[2] + qp[3] * qp[3]);
+            for (int k = 0; k < 4; k++) pJ[k] = qp[k] / s;
             memcpy(e, Aj, 9 * sizeof(double)); /* triad: the reference body's axes */
+            if (jt == VT_JOINT_FREE) vt_mulmat3(t, Aj, qi);
             break;
         }
         default: /* translational */
@@ -148,7 +156,19 @@ static void velocities(const vt_model *m, vt_data *d)
             if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) vt_axpy3(w, qdi[k], e + 3 * ax);
             else vt_axpy3(v, qdi[k], e + 3 * ax);
         }
-        vt_addcross3(v, w, d->jd + 3 * i);
+        if (jt == VT_JOINT_FREE) { /* t turns with the reference body, s^{ji} with this one:
+                                    * ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
+            const double *ri = d->x + vt_xoff(i), *P = d->jpoint + 3 * i;
+            double dw[3], u[3];
+            for (int k = 0; k < 3; k++) {
+                dw[k] = w[k] - wj[k];
+                u[k] = ri[k] - P[k];
+            }
+            vt_addcross3(v, wj, d->jd + 3 * i);
+            vt_addcross3(v, dw, u);
+        } else {
+            vt_addcross3(v, w, d->jd + 3 * i);
+        }
         vt_copy3(wi, w);
         vt_copy3(vi, v);
         vt_quat_rate(pdi, pi, w);
@@ -272,7 +292,7 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
                 vt_axpy3(al, qdi[k], ed);
             } else {
                 double edd[3];
-                const double qk = qi[jt == VT_JOINT_CYLINDRICAL ? 1 : 0];
+                const double qk = qi[jt == VT_JOINT_CYLINDRICAL ? 1 : (jt == VT_JOINT_FREE ? k : 0)];
                 vt_cross3(ed, wj, ek);
                 vt_cross3(edd, alj, ek);
                 vt_addcross3(edd, wj, ed);

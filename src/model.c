@@ -44,10 +44,10 @@ struct vt_builder {
     char message[256];
 };
 
-static const int cut_rows[VT_JOINT_TYPE_COUNT] = {0, 5, 4, 3, 5, 4};
+static const int cut_rows[VT_JOINT_TYPE_COUNT] = {0, 5, 4, 3, 5, 4, 0};
 
-static const int joint_nq[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 4, 1, 2};
-static const int joint_nv[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 3, 1, 2};
+static const int joint_nq[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 4, 1, 2, 7};
+static const int joint_nv[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 3, 1, 2, 6};
 
 vt_model_def vt_default_model_def(void)
 {
@@ -266,7 +266,7 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
     if (st) return st;
     for (int r = 0; r < 3; r++) /* the symmetric part: off-symmetric by round-off at most */
         for (int c = r + 1; c < 3; c++) d->inertia[r + 3 * c] = d->inertia[c + 3 * r] = 0.5 * (d->inertia[r + 3 * c] + d->inertia[c + 3 * r]);
-    const int uses_axis1 = d->joint != VT_JOINT_BASE && d->joint != VT_JOINT_SPHERICAL;
+    const int uses_axis1 = d->joint != VT_JOINT_BASE && d->joint != VT_JOINT_SPHERICAL && d->joint != VT_JOINT_FREE;
     if (uses_axis1 && !normalize(d->axis1, 3))
         return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis1 has zero length", id);
     if (d->joint == VT_JOINT_UNIVERSAL) {
@@ -385,6 +385,10 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
         if (body->joint == VT_JOINT_SPHERICAL)
             return vt_fail(msg, VT_ERR_BAD_DRIVE,
                            "drive %d: a spherical joint has no scalar coordinate; use an orientation drive", k);
+        if (body->joint == VT_JOINT_FREE && d->index >= 3)
+            return vt_fail(msg, VT_ERR_BAD_DRIVE,
+                           "drive %d: a free joint's rotation rates (3..5) have no scalar coordinate; drive 0..2 "
+                           "(translation) and use an orientation drive for the rotation", k);
         if (body->joint == VT_JOINT_BASE && d->index >= 3)
             return vt_fail(msg, VT_ERR_BAD_DRIVE,
                            "drive %d: a base body's Euler parameters are not driven one by one; use an orientation drive", k);
@@ -479,8 +483,8 @@ static vt_status validate_cut(const vt_builder *b, char *msg, int k, vt_cut_join
 {
     if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
         return vt_fail(msg, VT_ERR_JOINT_TYPE, "cut joint %d: joint type %d unknown", k, (int)d->joint);
-    if (d->joint == VT_JOINT_BASE)
-        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: a base (floating) joint constrains nothing", k);
+    if (d->joint == VT_JOINT_BASE || d->joint == VT_JOINT_FREE)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: a base or free (floating) joint constrains nothing", k);
     if (d->body_a < 0 || d->body_a > b->n || d->body_b < 1 || d->body_b > b->n)
         return vt_fail(msg, VT_ERR_BAD_INDEX, "cut joint %d: bodies %d and %d not both added so far (b: 1..%d, a: 0..%d)",
                        k, d->body_a, d->body_b, b->n, b->n);
@@ -533,8 +537,9 @@ static vt_status coupling_side(const vt_builder *b, char *msg, int k, int body, 
     const int jt = b->bodies[body - 1].joint;
     if (index < 0 || index >= joint_nv[jt])
         return vt_fail(msg, VT_ERR_BAD_INDEX, "coupling %d: body %d's joint has no rate %d", k, body, index);
-    if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE)
-        return vt_fail(msg, VT_ERR_BAD_DRIVE, "coupling %d: body %d's joint has no scalar coordinate %d (spherical or base)",
+    if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE || (jt == VT_JOINT_FREE && index >= 3))
+        return vt_fail(msg, VT_ERR_BAD_DRIVE,
+                       "coupling %d: body %d's joint has no scalar coordinate %d (spherical, base, or a free joint's rotation)",
                        k, body, index);
     return VT_OK;
 }
@@ -895,7 +900,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         for (int k = 0; k < joint_nv[jt]; k++) {
             m->dof_body[vadr + k] = i;
             double *lim = m->dof_limit + 4 * (vadr + k);
-            const int own = k < 2 && jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL;
+            const int own = k < 2 && jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_FREE;
             lim[0] = own ? d->limit_lower[k] : -HUGE_VAL;
             lim[1] = own ? d->limit_upper[k] : HUGE_VAL;
             lim[2] = own ? d->limit_velocity[k] : HUGE_VAL;
@@ -905,6 +910,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         /* reference configuration: zero angles and translations, unit Euler parameters */
         if (jt == VT_JOINT_BASE) m->q0[qadr + 3] = 1.0;
         if (jt == VT_JOINT_SPHERICAL) m->q0[qadr] = 1.0;
+        if (jt == VT_JOINT_FREE) m->q0[qadr + 3] = 1.0;
 
         /* path: the parent's path, then this joint's own rates (ascending, since every
          * ancestor's rates come before this body's) */

@@ -244,6 +244,10 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
     vt_status st = vt_reactions_unique(m, d);
     if (st) return st;
     for (int i = m->nbody; i >= 1; i--) {
+        if (m->body_joint[i] == VT_JOINT_FREE) { /* transmits nothing: what the balance leaves is round-off */
+            memset(d->jnt_force + 3 * i, 0, 3 * sizeof(double));
+            memset(d->jnt_moment + 3 * i, 0, 3 * sizeof(double));
+        }
         const double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i, *Ai = d->A + 9 * i;
         double fb[3], mb[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_mulmat3t(fb, Ai, f);

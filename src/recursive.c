@@ -21,6 +21,8 @@
  *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's
  *   Φ_q^T λ with unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point
  *   P_i less the joint's actuation (τ + qfrc) along its axes (inward);
+ * (a free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
+ * normal part, so the routes below take free bodies, base bodies only the general one)
  * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
  *   (articulated_solve: O(n) per right side, M* is not formed), then the reactions from
  *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum and without the
@@ -272,6 +274,8 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
             d->qfrc_drive[c] = tau;
             vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
         }
+        if (m->body_joint[i] == VT_JOINT_FREE) /* transmits nothing: what is left is round-off */
+            f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
         double fb[3], mb[3];
         vt_mulmat3t(fb, d->A + 9 * i, f);
         vt_mulmat3t(mb, d->A + 9 * i, mo);
@@ -732,7 +736,8 @@ size_t vt_recursive_scratch(const vt_model *m)
  * actuation taken off (route VT_ROUTE_MOTION, nothing factorized). A loop's or a coupling's
  * rates are not independent: there the joint-driven rates are the given ones and the rest
  * follows from the rows (vt_motion_rows, instant.c). Base bodies of a tree are refused: a base
- * body's ṗ rates carry (4)'s normal part (its multiplier). */
+ * body's ṗ rates carry (4)'s normal part (its multiplier); a free joint (VT_JOINT_FREE), whose
+ * six rates are twists, is what a floating robot uses here. */
 vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
@@ -756,7 +761,8 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     for (int i = 1; i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                           "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here", i);
+                           "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
+                           "use VT_JOINT_FREE", i);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     if ((st = vt_kinematics_tree(m, d, 0))) return st;

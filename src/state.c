@@ -90,6 +90,10 @@ vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, cons
         case VT_JOINT_SPHERICAL:
             rotate_quat(qi, vi, h);
             break;
+        case VT_JOINT_FREE: /* translation in the reference axes, then as spherical */
+            vt_axpy3(qi, h, vi);
+            rotate_quat(qi + 3, vi + 3, h);
+            break;
         case VT_JOINT_BASE: {
             double E[12], w[3];
             vt_euler_E(E, qi + 3);

@@ -1,5 +1,6 @@
 /* URDF robots into a builder: the URDF frames mapped onto vtdyn's bodies and joints
- * (docs/method.md, "URDF robots"; the XML is parsed by libxml2, the numbers by strtod).
+ * (docs/method.md, "URDF robots"; the XML is parsed by libxml2, the numbers by strtod in the C
+ * locale, whatever the caller's LC_NUMERIC).
  *
  * Poses T = (R, t) map x_outer = R x_inner + t and compose as T_ab T_bc; rpy is fixed-axis roll,
  * pitch, yaw: R = Rz(y) Ry(p) Rx(r). URDF gives, per link l, its frame L and its inertial frame
@@ -24,15 +25,20 @@
  *     axis1        = R of T_{Bj,J} a                           (j's axes at q = 0)
  *     orientation  = R of T_{Bj,J} R_I                         (i's axes relative to j's at q = 0)
  * so that A^i = A^j A_J(q) A0 is the URDF child frame T_{g,J} Rot(a, q) carried to B by R_I, and
- * q has the URDF joint's sign and zero. Every link is a frame named after it: body its body,
- * point and orientation T_{B,l}.
+ * q has the URDF joint's sign and zero. A floating joint, and a floating root (with the ground as
+ * parent, J = identity), is a free joint (VT_JOINT_FREE) with the same joint_parent, joint_child
+ * and orientation: its q is the translation of P's origin from J's in j's axes and A_J(p); for a
+ * root, P's origin's global position and P's frame's global orientation. Every link is a frame
+ * named after it: body its body, point and orientation T_{B,l}.
  *
  * Bad input gives a status and a message naming the element and its line (xmlGetLineNo);
  * libxml2's own errors come through a structured handler on the parser context (nothing is
  * printed, no libxml2 global is changed for the caller).
  */
+#define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 #include <errno.h>
 #include <limits.h>
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -407,10 +413,6 @@ static vt_status order_tree(urdf *u, int floating)
             if (j->type == J_FIXED) {
                 c->body = l->body;
                 pose_mul(&c->in_primary, &l->in_primary, &j->origin);
-            } else if (j->type == J_FLOATING && l->body != 0) {
-                st = fail_at(u, VT_ERR_PARENT, "joint", j->name, j->node,
-                             "a floating joint must join a link to the ground (\"world\"), not to link \"%.64s\"",
-                             (const char *)l->name);
             } else {
                 c->body = ++u->nbody;
                 c->in_primary = pose_identity;
@@ -492,8 +494,10 @@ static vt_status add_to_builder(const urdf *u, vt_builder *bld)
         memcpy(def.inertia, b->inertia, sizeof def.inertia);
         def.name = (const char *)P->name;
         const urdf_joint *j = b->joint >= 0 ? &u->joint[b->joint] : NULL;
-        if (!j || j->type == J_FLOATING) {
-            def.joint = VT_JOINT_BASE;
+        if (!j) { /* a floating root: a free joint from the ground at the link frame's origin */
+            def.joint = VT_JOINT_FREE;
+            vt_copy3(def.joint_child, P->in_body.t);
+            memcpy(def.orientation, b->frame.p, sizeof def.orientation);
         } else {
             const urdf_link *p = &u->link[j->parent];
             pose J; /* T_{Bj,J} */
@@ -501,12 +505,14 @@ static vt_status add_to_builder(const urdf *u, vt_builder *bld)
             double A[9];
             vt_euler_A(A, J.p);
             def.parent = p->body;
-            def.joint = j->type == J_PRISMATIC ? VT_JOINT_TRANSLATIONAL : VT_JOINT_REVOLUTE;
+            def.joint = j->type == J_PRISMATIC ? VT_JOINT_TRANSLATIONAL
+                        : j->type == J_FLOATING ? VT_JOINT_FREE
+                                                : VT_JOINT_REVOLUTE;
             vt_copy3(def.joint_parent, J.t);
             vt_copy3(def.joint_child, P->in_body.t);
             vt_mulmat3(def.axis1, A, j->axis);
             vt_quat_mul(def.orientation, J.p, b->frame.p);
-            if (j->has_limit) {
+            if (j->has_limit && j->type != J_FLOATING) {
                 if (j->type != J_CONTINUOUS) { /* continuous: no position limits */
                     def.limit_lower[0] = j->lower;
                     def.limit_upper[0] = j->upper;
@@ -652,8 +658,21 @@ static vt_status parse(vt_builder **builder, const char *xml, size_t size, const
         while (n > 0 && (err.text[n - 1] == '\n' || err.text[n - 1] == ' ')) err.text[--n] = '\0';
     }
     vt_status st;
-    if (err.set || !doc) st = vt_fail(msg, VT_ERR_XML, "malformed XML on line %d: %s", err.line, err.text);
-    else st = from_doc(builder, doc, &opt, msg);
+    if (err.set || !doc) {
+        st = vt_fail(msg, VT_ERR_XML, "malformed XML on line %d: %s", err.line, err.text);
+    } else {
+        /* the numbers in the C locale whatever the caller's LC_NUMERIC ("0.5", not "0,5"): this
+         * thread's locale for the read only, the caller's put back after */
+        locale_t c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+        if (!c) {
+            st = vt_fail(msg, VT_ERR_NO_MEMORY, "out of memory (the C locale for the numbers)");
+        } else {
+            const locale_t old = uselocale(c);
+            st = from_doc(builder, doc, &opt, msg);
+            uselocale(old);
+            freelocale(c);
+        }
+    }
     xmlFreeDoc(doc);
     xmlFreeParserCtxt(ctxt);
     return st;

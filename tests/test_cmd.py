@@ -11,7 +11,9 @@ and the joint-1 reaction: the arm's total momentum rate, f = sum m a_c (gravity 
 the hinge's vertical force, f_z = 2 m g). States given (to 1e-9), states as samples of a smooth
 motion (velocities and accelerations from the splines, to 1e-4 of the largest torque at the
 interior samples), the link axes' reaction, and the errors: a missing column, a bad number
-(file, row and column named, exit 1, no output file left), --help.
+(file, row and column named, exit 1, no output file left), --help. A floating body (a URDF
+floating joint from the world, and a root link with --floating): its six efforts against
+Newton-Euler written here (1e-12), zero in free flight; samples and a non-unit quaternion refused.
 
     test_cmd.py VTDYN URDF_DIR WORKDIR
 """
@@ -61,6 +63,166 @@ def read(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     return [{k: float(v) for k, v in r.items()} for r in rows]
+
+
+# ---- a floating body: one rigid link, its inertial frame off and turned ----------------------
+def mat(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def tr(a):
+    return [[a[j][i] for j in range(3)] for i in range(3)]
+
+
+def mv(a, x):
+    return [sum(a[i][k] * x[k] for k in range(3)) for i in range(3)]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def rpy(r, p, y):
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    rx = [[1, 0, 0], [0, cr, -sr], [0, sr, cr]]
+    ry = [[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]]
+    rz = [[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]]
+    return mat(rz, mat(ry, rx))
+
+
+def quat_matrix(w, x, y, z):
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+
+
+def solve3(a, b):  # Cramer's rule
+    def det(m):
+        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    d = det(a)
+    out = []
+    for c in range(3):
+        m = [[b[i] if j == c else a[i][j] for j in range(3)] for i in range(3)]
+        out.append(det(m) / d)
+    return out
+
+
+FM, FC, FRPY = 2.0, [0.1, -0.05, 0.2], [0.3, 0.2, -0.1]
+FJ = [[0.3, 0.01, -0.02], [0.01, 0.4, 0.03], [-0.02, 0.03, 0.5]]  # inertial axes
+
+
+def floater_urdf(path, explicit):
+    inertial = ('<inertial><origin xyz="%r %r %r" rpy="%r %r %r"/><mass value="%r"/>'
+                '<inertia ixx="%r" ixy="%r" ixz="%r" iyy="%r" iyz="%r" izz="%r"/></inertial>'
+                % (*FC, *FRPY, FM, FJ[0][0], FJ[0][1], FJ[0][2], FJ[1][1], FJ[1][2], FJ[2][2]))
+    with open(path, "w") as f:
+        f.write('<robot name="floater">')
+        if explicit:
+            f.write('<link name="world"/><joint name="float" type="floating"><parent link="world"/>'
+                    '<child link="body"/></joint>')
+        f.write('<link name="body">%s</link></robot>\n' % inertial)
+
+
+def floater_wrench(q, v, a):
+    """the wrench at the link origin O, world axes, for the motion (q, v, a) of the link frame"""
+    R = quat_matrix(*q[3:7])
+    RI = rpy(*FRPY)
+    J = mat(R, mat(RI, mat(FJ, tr(mat(R, RI)))))
+    c = mv(R, FC)  # centre of mass from O, world
+    w, acc, al = v[3:6], a[0:3], a[3:6]
+    wc = cross(w, c)
+    ac = [acc[k] + cross(al, c)[k] + cross(w, wc)[k] for k in range(3)]
+    f = [FM * (ac[k] - (-G if k == 2 else 0.0)) for k in range(3)]
+    Jw = mv(J, w)
+    n = [mv(J, al)[k] + cross(w, Jw)[k] + cross(c, f)[k] for k in range(3)]
+    return f, n, R, J, c
+
+
+def floating(vtdyn, work, check):
+    """A floating root, implicit (--floating) and as a URDF floating joint from the world: its six
+    efforts against Newton-Euler by hand (the wrench at the link frame's origin, world and link
+    axes), zero for a free flight (a = g at the centre of mass, J alpha + w x J w = 0); samples
+    refused, a bad quaternion named"""
+    import random
+    rnd = random.Random(7)
+    for explicit in (0, 1):
+        urdf = os.path.join(work, "floater%d.urdf" % explicit)
+        floater_urdf(urdf, explicit)
+        name = "float" if explicit else "body"
+        cols = ["%s_%s" % (name, s) for s in ("x y z qw qx qy qz vx vy vz wx wy wz ax ay az alx aly alz".split())]
+        rows, expect = [], []
+        for k in range(8):
+            qv = [rnd.uniform(-1, 1) for _ in range(4)]
+            nq = math.sqrt(sum(x * x for x in qv))
+            q = [rnd.uniform(-2, 2) for _ in range(3)] + [x / nq for x in qv]
+            v = [rnd.uniform(-2, 2) for _ in range(6)]
+            a = [rnd.uniform(-5, 5) for _ in range(6)]
+            if k % 2:  # a free flight: the efforts vanish
+                R = quat_matrix(*q[3:7])
+                RI = rpy(*FRPY)
+                J = mat(R, mat(RI, mat(FJ, tr(mat(R, RI)))))
+                c = mv(R, FC)
+                w = v[3:6]
+                al = solve3(J, [-x for x in cross(w, mv(J, w))])
+                wc = cross(w, c)
+                a = [[0.0, 0.0, -G][i] - cross(al, c)[i] - cross(w, wc)[i] for i in range(3)] + al
+            f, n, R, _, _ = floater_wrench(q, v, a)
+            rows.append(q + v + a)
+            expect.append((f, n, R, k % 2))
+        states = os.path.join(work, "floater_states%d.csv" % explicit)
+        with open(states, "w") as fh:
+            fh.write(",".join(cols) + "\n")
+            for r in rows:
+                fh.write(",".join(repr(x) for x in r) + "\n")
+        args = ["inverse"] + ([] if explicit else ["--floating"]) + [urdf, states]
+        r = run(vtdyn, *args)
+        check(r.returncode == 0, "floating root (explicit %d): exit %d: %s" % (explicit, r.returncode, r.stderr))
+        if r.returncode != 0:
+            continue
+        out = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(r.stdout.splitlines())]
+        check(len(out) == len(rows), "one output row per floating state")
+        worst = 0.0
+        for row, (f, n, R, flight) in zip(out, expect):
+            got_f = [row["%s_effort_f%s" % (name, c)] for c in "xyz"]
+            got_n = [row["%s_effort_n%s" % (name, c)] for c in "xyz"]
+            got_fl = [row["%s_effort_f%s_link" % (name, c)] for c in "xyz"]
+            got_nl = [row["%s_effort_n%s_link" % (name, c)] for c in "xyz"]
+            scale = 1 + FM * G + max(abs(x) for x in f + n)
+            fl, nl = mv(tr(R), f), mv(tr(R), n)
+            for k in range(3):
+                worst = max(worst, abs(got_f[k] - f[k]) / scale, abs(got_n[k] - n[k]) / scale,
+                            abs(got_fl[k] - fl[k]) / scale, abs(got_nl[k] - nl[k]) / scale)
+                if flight:
+                    worst = max(worst, abs(got_f[k]) / scale, abs(got_n[k]) / scale)
+        check(worst < 1e-12, "floating root (explicit %d): largest relative difference %.3g" % (explicit, worst))
+        print("floating root (%s): %d rows, largest relative difference from Newton-Euler %.3g"
+              % ("URDF floating joint" if explicit else "--floating", len(out), worst))
+    # samples with a floating root: refused, named
+    urdf = os.path.join(work, "floater1.urdf")
+    samples = os.path.join(work, "floater_samples.csv")
+    with open(samples, "w") as fh:
+        fh.write("t,float_x,float_y,float_z,float_qw,float_qx,float_qy,float_qz\n0,0,0,0,1,0,0,0\n1,0,0,0,1,0,0,0\n")
+    r = run(vtdyn, "inverse", urdf, samples)
+    check(r.returncode == 1 and "floating root 'float'" in r.stderr and "samples" in r.stderr,
+          "samples with a floating root refused: %r" % r.stderr)
+    # a quaternion off the unit sphere: the row and the columns named
+    states = os.path.join(work, "floater_states1.csv")
+    lines = open(states).read().splitlines()
+    cells = lines[2].split(",")
+    cells[3] = repr(float(cells[3]) * 1.01 + 0.01)
+    lines[2] = ",".join(cells)
+    bad = os.path.join(work, "floater_bad.csv")
+    with open(bad, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "floater_bad.csv:3" in r.stderr and "float_qw" in r.stderr,
+          "a quaternion of norm not 1 named: %r" % r.stderr)
+    r = run(vtdyn, "info", "--floating", os.path.join(work, "floater0.urdf"))
+    check(r.returncode == 0 and "floating" in r.stdout, "info --floating shows the free joint: %r" % r.stdout)
+    r = run(vtdyn, "inverse", "--help")
+    check(r.returncode == 0 and "R_effort_fx" in r.stdout and "--floating" in r.stdout,
+          "--help documents the floating root's columns")
 
 
 def main():
@@ -166,6 +328,7 @@ def main():
     check(r.returncode == 0 and "J_effort" in r.stdout, "--help documents the columns")
     r = run(vtdyn, "info", urdf)
     check(r.returncode == 0 and "joint2" in r.stdout and "link2" in r.stdout, "info lists the joints")
+    floating(vtdyn, work, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0
 

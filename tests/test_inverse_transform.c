@@ -18,7 +18,7 @@ static void test_RS_identity(void **state)
     for (uint64_t seed = 1; seed <= 20; seed++) {
         vt_model *m;
         vt_data *d;
-        state_for(&m, &d, seed, 4 + (int)seed, seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE);
+        state_for(&m, &d, seed, 4 + (int)seed, seed % 4 == 0 ? VT_SCENE_WITH_FREE : seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE);
         const int nv = m->nv, nx = m->nx;
         for (int a = 0; a < nv; a++)
             for (int b = 0; b < nv; b++) {

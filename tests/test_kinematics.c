@@ -86,14 +86,16 @@ static void test_S_finite_differences(void **state)
     (void)state;
     for (uint64_t seed = 1; seed <= 4; seed++) run_S_fd(seed, 12, VT_SCENE_ALL_JOINTS);
     for (uint64_t seed = 5; seed <= 7; seed++) run_S_fd(seed, 10, VT_SCENE_NO_BASE);
+    /* free joints on any reference body (every sixth body) */
+    for (uint64_t seed = 8; seed <= 11; seed++) run_S_fd(seed, 14, VT_SCENE_WITH_FREE);
 }
 
 static void test_Sdot_qdot_finite_differences(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 6; seed++) {
+    for (uint64_t seed = 1; seed <= 9; seed++) {
         fixture f;
-        setup(&f, seed, 12, seed % 2 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE);
+        setup(&f, seed, 12, seed > 6 ? VT_SCENE_WITH_FREE : seed % 2 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE);
         const vt_model *m = f.m;
         const double h = 1e-6;
         assert_ok(vt_integrate_q(f.qa, m, f.q, f.v, h));
@@ -116,9 +118,9 @@ static void test_Sdot_qdot_finite_differences(void **state)
 static void test_velocities_equal_S_qdot(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 6; seed++) {
+    for (uint64_t seed = 1; seed <= 9; seed++) {
         fixture f;
-        setup(&f, seed, 15, VT_SCENE_ALL_JOINTS);
+        setup(&f, seed, 15, seed > 6 ? VT_SCENE_WITH_FREE : VT_SCENE_ALL_JOINTS);
         const vt_model *m = f.m;
         eval(&f, f.q, NULL, NULL);
         vt_test_S_times(f.y, m, f.d, f.v);
@@ -138,11 +140,10 @@ static void test_velocities_equal_S_qdot(void **state)
 /* every joint holds: the joint point on the body equals the joint point on the reference
  * plus the joint's translation along its axis; translations and the revolute axis are
  * the same line seen from either body */
-static void test_joint_closure(void **state)
+static void joint_closure(unsigned kinds)
 {
-    (void)state;
     fixture f;
-    setup(&f, 3, 18, VT_SCENE_ALL_JOINTS);
+    setup(&f, 3, 18, kinds);
     const vt_model *m = f.m;
     vt_data *d = f.d;
     eval(&f, f.q, NULL, NULL);
@@ -157,6 +158,21 @@ static void test_joint_closure(void **state)
         for (int r = 0; r < 3; r++) {
             Pi[r] = ri[r] + Ai[r] * sc[0] + Ai[r + 3] * sc[1] + Ai[r + 6] * sc[2];
             Pj[r] = (rj ? rj[r] : 0.0) + Aj[r] * sp[0] + Aj[r + 3] * sp[1] + Aj[r + 6] * sp[2];
+        }
+        if (jt == VT_JOINT_FREE) { /* P_i = P_j + A^j t', and A^i = A^j A(p_J) A0 */
+            double Aq[9], A0[9];
+            vt_euler_A(Aq, q + 3);
+            vt_euler_A(A0, m->body_quat0 + 4 * i);
+            for (int r = 0; r < 3; r++) {
+                assert_near(Pi[r], Pj[r] + Aj[r] * q[0] + Aj[r + 3] * q[1] + Aj[r + 6] * q[2], 1e-12);
+                for (int c = 0; c < 3; c++) {
+                    double a = 0.0;
+                    for (int k = 0; k < 3; k++)
+                        for (int l = 0; l < 3; l++) a += Aj[r + 3 * k] * Aq[k + 3 * l] * A0[l + 3 * c];
+                    assert_near(Ai[r + 3 * c], a, 1e-12);
+                }
+            }
+            continue;
         }
         double t = 0.0;
         if (jt == VT_JOINT_TRANSLATIONAL) t = q[0];
@@ -177,6 +193,13 @@ static void test_joint_closure(void **state)
         }
     }
     teardown(&f);
+}
+
+static void test_joint_closure(void **state)
+{
+    (void)state;
+    joint_closure(VT_SCENE_ALL_JOINTS);
+    joint_closure(VT_SCENE_WITH_FREE);
 }
 
 static void test_sparsity_follows_paths(void **state)

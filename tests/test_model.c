@@ -473,6 +473,55 @@ static void test_couplings(void **state)
     vt_model_free(m);
 }
 
+/* The free joint: 7 coordinates and 6 rates, no row, q0 = (0, identity); joint drives on its
+ * translation only, couplings likewise; no cut joint of that kind */
+static void test_free_joint(void **state)
+{
+    (void)state;
+    vt_builder *b = NULL;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    d.joint = VT_JOINT_REVOLUTE;
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    d.joint = VT_JOINT_FREE; /* on a moving reference body */
+    d.parent = 1;
+    d.axis1[0] = d.axis1[1] = d.axis1[2] = 0.0; /* no axis used: not refused */
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 2;
+    for (int k = 3; k < 6; k++) {
+        dr.index = k;
+        assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+        assert_non_null(strstr(vt_builder_message(b), "orientation drive"));
+    }
+    dr.index = 6;
+    assert_int_equal(vt_builder_add_drive(b, &dr), VT_ERR_BAD_DRIVE);
+    dr.index = 2;
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_coupling_def c = vt_default_coupling_def();
+    c.body_a = 2;
+    c.index_a = 4;
+    c.body_b = 1;
+    assert_true(vt_builder_add_coupling(b, &c) == VT_ERR_BAD_DRIVE);
+    c.index_a = 1;
+    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+    vt_cut_joint_def cj = vt_default_cut_joint_def();
+    cj.joint = VT_JOINT_FREE;
+    cj.body_b = 2;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_BAD_CUT_JOINT);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nq, 1 + 7);
+    assert_int_equal(m->nv, 1 + 6);
+    assert_int_equal(m->nc, 2); /* the drive and the coupling: no norm row */
+    assert_int_equal(m->body_nq[2], 7);
+    assert_int_equal(m->body_nv[2], 6);
+    const double q0[7] = {0, 0, 0, 1, 0, 0, 0};
+    for (int k = 0; k < 7; k++) assert_true(m->q0[1 + k] == q0[k]);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -485,6 +534,7 @@ int main(void)
         cmocka_unit_test(test_names),
         cmocka_unit_test(test_limits),
         cmocka_unit_test(test_couplings),
+        cmocka_unit_test(test_free_joint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

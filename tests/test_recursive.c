@@ -133,7 +133,7 @@ static vt_model *tree_with(uint64_t seed, int n, unsigned kinds, int drives, int
         dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
         assert_true(vt_builder_add_drive(b, &dr) >= 0);
     }
-    if (cuts && probe->body_joint[7] == VT_JOINT_BASE) {
+    if (cuts && (probe->body_joint[7] == VT_JOINT_BASE || probe->body_joint[7] == VT_JOINT_FREE)) {
         vt_cut_joint_def cj = vt_default_cut_joint_def();
         cj.joint = VT_JOINT_SPHERICAL;
         cj.body_a = 0;
@@ -150,8 +150,8 @@ static vt_model *tree_with(uint64_t seed, int n, unsigned kinds, int drives, int
 static void test_random_trees(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 12; seed++) {
-        const unsigned kinds = seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE;
+    for (uint64_t seed = 1; seed <= 18; seed++) { /* 13..18: free joints (square and articulated routes) */
+        const unsigned kinds = seed > 12 ? VT_SCENE_WITH_FREE : seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE;
         vt_model *m = tree_with(seed, 9 + (int)seed, kinds, seed % 2, seed % 4 == 1);
         vt_data *dr, *dd;
         assert_ok(vt_data_create(&dr, m));
@@ -415,10 +415,10 @@ static void test_dependent(void **state)
 static void test_motion(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 10; seed++) {
+    for (uint64_t seed = 1; seed <= 16; seed++) { /* 11..16: with free joints */
         vt_model *m;
         vt_data *d, *ds, *df;
-        assert_ok(vt_scene_random_tree(&m, seed, 6 + (int)seed, VT_SCENE_NO_BASE));
+        assert_ok(vt_scene_random_tree(&m, seed, 6 + (int)seed, seed > 10 ? VT_SCENE_WITH_FREE : VT_SCENE_NO_BASE));
         assert_int_equal(m->ndrive + m->ncut, 0);
         assert_ok(vt_data_create(&d, m));
         assert_ok(vt_data_create(&ds, m));
@@ -643,6 +643,241 @@ static void test_motion_refused(void **state)
     vt_model_free(m);
 }
 
+/* by hand, not the library's: y = A x (3x3 column-major), c = a × b */
+static void mul3(double y[3], const double A[9], const double x[3])
+{
+    for (int r = 0; r < 3; r++) y[r] = A[r] * x[0] + A[r + 3] * x[1] + A[r + 6] * x[2];
+}
+
+static void cross3(double c[3], const double a[3], const double b[3])
+{
+    const double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    memcpy(c, t, sizeof t);
+}
+
+/* A floating tree: root body 1 on a free joint (root_free) or the paper's base joint, and under
+ * it the bodies of a random tree (its ground-hung bodies hung from the root instead); the free
+ * joint's point is c' from the root's centre of mass (joint_child). */
+static vt_model *floating_tree(uint64_t seed, int n, int root_free, const double c[3])
+{
+    vt_model *probe;
+    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
+    vt_builder *b;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = 1.0, md.gravity[1] = -9.81, md.gravity[2] = 2.0;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def root = vt_default_body_def();
+    root.joint = root_free ? VT_JOINT_FREE : VT_JOINT_BASE;
+    root.mass = 4.0;
+    const double J[9] = {0.5, 0.05, -0.02, 0.05, 0.7, 0.03, -0.02, 0.03, 0.9};
+    memcpy(root.inertia, J, sizeof J);
+    if (root_free) memcpy(root.joint_child, c, 3 * sizeof(double));
+    assert_int_equal(vt_builder_add_body(b, &root), 1);
+    for (int i = 1; i <= probe->nbody; i++) {
+        vt_body_def d = vt_default_body_def();
+        d.parent = probe->body_parent[i] + 1;
+        d.joint = (vt_joint_type)probe->body_joint[i];
+        d.mass = probe->body_mass[i];
+        memcpy(d.inertia, probe->body_inertia + 9 * i, 9 * sizeof(double));
+        memcpy(d.joint_parent, probe->body_jpar + 3 * i, 3 * sizeof(double));
+        memcpy(d.joint_child, probe->body_jchild + 3 * i, 3 * sizeof(double));
+        memcpy(d.axis1, probe->body_axis + 6 * i, 3 * sizeof(double));
+        memcpy(d.axis2, probe->body_axis + 6 * i + 3, 3 * sizeof(double));
+        memcpy(d.orientation, probe->body_quat0 + 4 * i, 4 * sizeof(double));
+        assert_int_equal(vt_builder_add_body(b, &d), i + 1);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_model_free(probe);
+    return m;
+}
+
+/* The same floating tree with a free root and with the paper's base root: the base model's
+ * forward dynamics (dense) under a wrench (f, n about the free joint's point P) applied through
+ * its root's generalized forces, Q_r = f, Q_p = 2 E^T (n + (P − r) × f), against the free model:
+ * its rates converted by hand (P = r + A c', Ṗ = ṙ + ω × s, P̈ = r̈ + α × s + ω × (ω × s),
+ * ω = 2 E ṗ, α = 2 E p̈), its forward dynamics under (f, n) as its root's generalized forces
+ * (dense and recursive), and vt_inverse_dynamics_motion at the converted q̈, whose root efforts
+ * must be (f, n) and whose other efforts zero; the child joints' reactions agree throughout. */
+static void test_free_vs_base(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 6; seed++) {
+        const double c[3] = {0.3, -0.2, 0.15};
+        vt_model *mb = floating_tree(seed, 4 + (int)seed, 0, c), *mf = floating_tree(seed, 4 + (int)seed, 1, c);
+        assert_int_equal(mf->nv, mb->nv - 1);
+        assert_int_equal(mf->nc, 0);
+        vt_data *db, *df, *dr, *dm;
+        assert_ok(vt_data_create(&db, mb));
+        assert_ok(vt_data_create(&df, mf));
+        assert_ok(vt_data_create(&dr, mf));
+        assert_ok(vt_data_create(&dm, mf));
+        uint64_t s = seed * 13 + 5;
+        vt_scene_random_state(mb, db, &s); /* base: r, p, ṙ, ṗ tangent */
+        const int nvb = mb->nv, nvf = mf->nv, nqf = mf->nq;
+        double f[3], n[3];
+        for (int k = 0; k < 3; k++) f[k] = vt_rand_uniform(&s, -20, 20), n[k] = vt_rand_uniform(&s, -5, 5);
+        for (int c2 = 7; c2 < nvb; c2++) db->qfrc[c2] = vt_rand_uniform(&s, -1, 1);
+        /* the base's own generalized forces of the wrench */
+        double A[9], E[12], sp[3], nc[3];
+        const double *r = db->q, *p = db->q + 3;
+        vt_euler_A(A, p);
+        vt_euler_E(E, p);
+        mul3(sp, A, c);
+        cross3(nc, sp, f);
+        for (int k = 0; k < 3; k++) nc[k] += n[k]; /* about the centre of mass: n + (P − r) × f */
+        for (int k = 0; k < 3; k++) db->qfrc[k] = f[k];
+        for (int k = 0; k < 4; k++) db->qfrc[3 + k] = 2.0 * (E[3 * k] * nc[0] + E[3 * k + 1] * nc[1] + E[3 * k + 2] * nc[2]);
+        assert_ok(vt_inverse_dynamics(mb, db));
+        /* the free model's state */
+        double w[3], al[3], P[3], Pd[3], Pdd[3], t[3];
+        for (int k = 0; k < 3; k++) {
+            w[k] = al[k] = 0.0;
+            for (int l = 0; l < 4; l++) {
+                w[k] += 2.0 * E[k + 3 * l] * db->qd[3 + l];
+                al[k] += 2.0 * E[k + 3 * l] * db->qdd[3 + l];
+            }
+        }
+        cross3(t, w, sp);
+        for (int k = 0; k < 3; k++) P[k] = r[k] + sp[k], Pd[k] = db->qd[k] + t[k];
+        double u[3], u2[3];
+        cross3(u, al, sp);
+        cross3(u2, w, t);
+        for (int k = 0; k < 3; k++) Pdd[k] = db->qdd[k] + u[k] + u2[k];
+        memcpy(df->q, P, sizeof P);
+        memcpy(df->q + 3, p, 4 * sizeof(double));
+        memcpy(df->q + 7, db->q + 7, (size_t)(nqf - 7) * sizeof(double));
+        memcpy(df->qd, Pd, sizeof Pd);
+        memcpy(df->qd + 3, w, sizeof w);
+        memcpy(df->qd + 6, db->qd + 7, (size_t)(nvf - 6) * sizeof(double));
+        memcpy(df->qfrc, f, sizeof f);
+        memcpy(df->qfrc + 3, n, sizeof n);
+        memcpy(df->qfrc + 6, db->qfrc + 7, (size_t)(nvf - 6) * sizeof(double));
+        double *qdd = malloc((size_t)nvf * sizeof(double));
+        memcpy(qdd, Pdd, sizeof Pdd);
+        memcpy(qdd + 3, al, sizeof al);
+        memcpy(qdd + 6, db->qdd + 7, (size_t)(nvf - 6) * sizeof(double));
+        vt_data *all[3] = {df, dr, dm};
+        for (int k = 1; k < 3; k++) {
+            memcpy(all[k]->q, df->q, (size_t)nqf * sizeof(double));
+            memcpy(all[k]->qd, df->qd, (size_t)nvf * sizeof(double));
+            memcpy(all[k]->qfrc, df->qfrc, (size_t)nvf * sizeof(double));
+        }
+        memset(dm->qfrc, 0, 6 * sizeof(double)); /* the motion call finds the root's wrench */
+        memcpy(dm->qdd, qdd, (size_t)nvf * sizeof(double));
+        assert_ok(vt_inverse_dynamics(mf, df));
+        assert_ok(vt_inverse_dynamics_recursive(mf, dr));
+        assert_int_equal(dr->route, VT_ROUTE_ARTICULATED);
+        assert_ok(vt_inverse_dynamics_motion(mf, dm));
+        assert_int_equal(dm->route, VT_ROUTE_MOTION);
+        const int nb = mf->nbody, nb3 = 3 * (nb + 1);
+        compare(df->qdd, qdd, nvf, 1e-11, "dense free q̈ against the base's converted");
+        compare(dr->qdd, qdd, nvf, 1e-11, "recursive free q̈ against the base's converted");
+        double tau[6];
+        memcpy(tau, f, sizeof f);
+        memcpy(tau + 3, n, sizeof n);
+        compare(dm->qfrc_drive, tau, 6, 1e-11, "the root's efforts against the wrench applied");
+        const double zero[64] = {0};
+        assert_true(nvf - 6 <= 64);
+        compare_at(dm->qfrc_drive + 6, zero, nvf - 6, 1e-11, 1.0 + vt_test_maxabs(tau, 6), "the other efforts");
+        for (int k = 1; k < 3; k++) { /* every body's motion and the joints' reactions: bodies 2.. */
+            compare(all[k]->x, db->x, mf->nx, 1e-12, "x");
+            compare(all[k]->xdd, db->xdd, mf->nx, 1e-10, "xdd");
+            compare(all[k]->jnt_force + 6, db->jnt_force + 6, nb3 - 6, 1e-11, "jnt_force");
+            compare(all[k]->jnt_moment + 6, db->jnt_moment + 6, nb3 - 6, 1e-11, "jnt_moment");
+            compare(all[k]->jnt_force_body + 6, db->jnt_force_body + 6, nb3 - 6, 1e-11, "jnt_force_body");
+            compare(all[k]->jnt_moment_body + 6, db->jnt_moment_body + 6, nb3 - 6, 1e-11, "jnt_moment_body");
+        }
+        compare(df->xdd, db->xdd, mf->nx, 1e-10, "dense xdd");
+        compare(df->jnt_force + 6, db->jnt_force + 6, nb3 - 6, 1e-11, "dense jnt_force");
+        compare(df->jnt_moment + 6, db->jnt_moment + 6, nb3 - 6, 1e-11, "dense jnt_moment");
+        for (int k = 0; k < 3; k++) /* the free joint transmits nothing */
+            assert_true(dm->jnt_force[3 + k] == 0.0 && dm->jnt_moment[3 + k] == 0.0 && df->jnt_force[3 + k] == 0.0);
+        free(qdd);
+        vt_data_free(db);
+        vt_data_free(df);
+        vt_data_free(dr);
+        vt_data_free(dm);
+        vt_model_free(mb);
+        vt_model_free(mf);
+    }
+}
+
+/* One free body, its joint point c' off the centre of mass, falling and spinning: at the exact
+ * free motion (a = g, J α + ω × J ω = 0, so P̈ = g + α × s + ω × (ω × s)) the motion call's six
+ * efforts vanish; at a given q̈ they are m (a − g) and the moment J α + ω × J ω + (r − P) × m (a − g)
+ * about P, written by hand. */
+static void test_free_body(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    vt_model_def md = vt_default_model_def();
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def d = vt_default_body_def();
+    d.joint = VT_JOINT_FREE;
+    d.mass = 2.5;
+    const double J0[9] = {0.4, 0.02, 0.01, 0.02, 0.5, -0.04, 0.01, -0.04, 0.6};
+    memcpy(d.inertia, J0, sizeof J0);
+    d.joint_child[0] = 0.4, d.joint_child[1] = -0.1, d.joint_child[2] = 0.25;
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *dm;
+    assert_ok(vt_data_create(&dm, m));
+    uint64_t s = 17;
+    for (int trial = 0; trial < 10; trial++) {
+        double *q = dm->q, *v = dm->qd;
+        for (int k = 0; k < 3; k++) q[k] = vt_rand_uniform(&s, -5, 5), v[k] = vt_rand_uniform(&s, -3, 3);
+        vt_rand_unit(q + 3, 4, &s);
+        for (int k = 0; k < 3; k++) v[3 + k] = vt_rand_uniform(&s, -4, 4);
+        double A[9], J[9], T[9], sp[3], w[3], Jw[3], wJw[3], al[3], rhs[3];
+        vt_euler_A(A, q + 3);
+        for (int c = 0; c < 3; c++) mul3(T + 3 * c, A, J0 + 3 * c);
+        for (int c = 0; c < 3; c++) /* J = A J0 A^T */
+            for (int r = 0; r < 3; r++) J[r + 3 * c] = T[r] * A[c] + T[r + 3] * A[c + 3] + T[r + 6] * A[c + 6];
+        mul3(sp, A, m->body_jchild + 3);
+        memcpy(w, v + 3, sizeof w);
+        mul3(Jw, J, w);
+        cross3(wJw, w, Jw);
+        /* α = −J^-1 (ω × J ω) by LAPACK */
+        double Jc[9];
+        memcpy(Jc, J, sizeof J);
+        for (int k = 0; k < 3; k++) rhs[k] = -wJw[k];
+        int three = 3, one = 1, ipiv[3], info = 0;
+        dgesv_(&three, &one, Jc, &three, ipiv, rhs, &three, &info);
+        assert_int_equal(info, 0);
+        memcpy(al, rhs, sizeof al);
+        double t[3], u[3], u2[3];
+        cross3(t, w, sp);
+        cross3(u, al, sp);
+        cross3(u2, w, t);
+        for (int k = 0; k < 3; k++) dm->qdd[k] = m->gravity[k] + u[k] + u2[k], dm->qdd[3 + k] = al[k];
+        assert_ok(vt_inverse_dynamics_motion(m, dm));
+        const double scale = m->body_mass[1] * 9.81 + vt_test_maxabs(wJw, 3);
+        for (int k = 0; k < 6; k++) assert_near(dm->qfrc_drive[k], 0.0, 1e-13 * scale);
+        /* a given q̈: a = P̈ − α × s − ω × (ω × s) */
+        double a[3], fexp[3], nexp[3], Ja[3];
+        for (int k = 0; k < 6; k++) dm->qdd[k] = vt_rand_uniform(&s, -10, 10);
+        memcpy(al, dm->qdd + 3, sizeof al);
+        cross3(u, al, sp);
+        for (int k = 0; k < 3; k++) a[k] = dm->qdd[k] - u[k] - u2[k];
+        for (int k = 0; k < 3; k++) fexp[k] = m->body_mass[1] * (a[k] - m->gravity[k]);
+        mul3(Ja, J, al);
+        cross3(u, sp, fexp); /* (r − P) × f = −s × f */
+        for (int k = 0; k < 3; k++) nexp[k] = Ja[k] + wJw[k] - u[k];
+        assert_ok(vt_inverse_dynamics_motion(m, dm));
+        const double sc = 1.0 + vt_test_maxabs(fexp, 3) + vt_test_maxabs(nexp, 3);
+        for (int k = 0; k < 3; k++) {
+            assert_near(dm->qfrc_drive[k], fexp[k], 1e-13 * sc);
+            assert_near(dm->qfrc_drive[3 + k], nexp[k], 1e-13 * sc);
+        }
+    }
+    vt_data_free(dm);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -655,6 +890,8 @@ int main(void)
         cmocka_unit_test(test_motion_loops),
         cmocka_unit_test(test_motion_refused),
         cmocka_unit_test(test_coupled),
+        cmocka_unit_test(test_free_vs_base),
+        cmocka_unit_test(test_free_body),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -34,12 +34,11 @@ static void body_rotation(double A[9], const vt_model *m, vt_data *d, const doub
     memcpy(A, d->A + 9 * body, 9 * sizeof(double));
 }
 
-static void test_integrate_q(void **state)
+static void integrate_q(unsigned kinds)
 {
-    (void)state;
     vt_model *m = NULL;
     vt_data *d = NULL;
-    assert_ok(vt_scene_random_tree(&m, 11, 12, VT_SCENE_ALL_JOINTS));
+    assert_ok(vt_scene_random_tree(&m, 11, 12, kinds));
     assert_ok(vt_data_create(&d, m));
     uint64_t s = 9;
     vt_scene_random_state(m, d, &s);
@@ -52,10 +51,12 @@ static void test_integrate_q(void **state)
     assert_ok(vt_integrate_q(qm, m, q, v, -h));
     for (int i = 1; i <= m->nbody; i++) {
         const int jt = m->body_joint[i], qa = m->body_qadr[i], va = m->body_vadr[i];
-        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE) {
-            const int o = jt == VT_JOINT_BASE ? 3 : 0;
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE || jt == VT_JOINT_FREE) {
+            const int o = jt == VT_JOINT_SPHERICAL ? 0 : 3;
             const double *p = qp + qa + o;
             assert_near(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3], 1.0, 1e-14);
+            if (jt == VT_JOINT_FREE) /* the translation along its rates, exactly */
+                for (int k = 0; k < 3; k++) assert_near(qp[qa + k], q[qa + k] + h * v[va + k], 1e-15);
             if (jt == VT_JOINT_BASE)
                 for (int k = 0; k < 7; k++) assert_near((qp[qa + k] - qm[qa + k]) / (2 * h), v[va + k], 1e-8);
         } else {
@@ -65,7 +66,7 @@ static void test_integrate_q(void **state)
     /* a spherical joint's rates are the relative angular velocity in the reference's axes:
      * d/dt (A^{jT} A^i) = ω̃' (A^{jT} A^i) with ω' = q̇ */
     for (int i = 1; i <= m->nbody; i++) {
-        if (m->body_joint[i] != VT_JOINT_SPHERICAL) continue;
+        if (m->body_joint[i] != VT_JOINT_SPHERICAL && m->body_joint[i] != VT_JOINT_FREE) continue;
         const int j = m->body_parent[i];
         double Ai[9], Aj[9], Aip[9], Ajp[9], Aim[9], Ajm[9], rel[9], relp[9], relm[9];
         body_rotation(Ai, m, d, q, i);
@@ -85,7 +86,7 @@ static void test_integrate_q(void **state)
             }
         /* the relative rotation of the body's axes includes the fixed A0 on the right: the
          * derivative is still ω̃' rel */
-        const double *w = v + m->body_vadr[i];
+        const double *w = v + m->body_vadr[i] + (m->body_joint[i] == VT_JOINT_FREE ? 3 : 0);
         for (int c = 0; c < 3; c++) {
             const double *u = rel + 3 * c;
             const double wu[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
@@ -103,6 +104,13 @@ static void test_integrate_q(void **state)
     free(q); free(qp); free(qm); free(v);
     vt_data_free(d);
     vt_model_free(m);
+}
+
+static void test_integrate_q(void **state)
+{
+    (void)state;
+    integrate_q(VT_SCENE_ALL_JOINTS);
+    integrate_q(VT_SCENE_WITH_FREE); /* free joints: the translation, then as spherical */
 }
 
 /* Frames: a frame's pose against the double link's geometry; a load and a point drive at a

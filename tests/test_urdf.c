@@ -4,7 +4,10 @@
  * a model whose inertias are combined and rotated by hand here (rotation matrices, the parallel
  * axes); every link frame against the joint origins composed by hand; and every kind of bad
  * input: its status, the element named, the line. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, setenv */
+#include <locale.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "vt_test.h"
 
@@ -473,11 +476,113 @@ static void test_floating_root(void **state)
     assert_ok(vt_builder_build(&m, b));
     vt_builder_free(b);
     assert_int_equal(m->nbody, 2);
-    assert_int_equal(m->body_joint[1], VT_JOINT_BASE);
+    assert_int_equal(m->body_joint[1], VT_JOINT_FREE);
     assert_int_equal(vt_find_body(m, "base"), 1);
     assert_int_equal(m->body_parent[2], 1);
     assert_near(m->body_jpar[3 * 2 + 1], 0.3, 0.0);
     vt_model_free(m);
+}
+
+/* A free joint's q is its link frame's pose: a floating root (its inertial frame off and turned)
+ * and a floating joint between two links (from a turned joint origin): the link frames' poses
+ * from vt_frame_pose against the poses composed by hand from q */
+static void test_floating_pose(void **state)
+{
+    (void)state;
+    const char *xml =
+        "<robot name=\"r\"><link name=\"base\"><inertial><origin xyz=\"0.1 -0.2 0.05\" rpy=\"0.3 -0.2 0.7\"/>"
+        "<mass value=\"3\"/><inertia ixx=\"0.1\" iyy=\"0.2\" izz=\"0.25\"/></inertial></link>"
+        "<link name=\"drone\"><inertial><origin xyz=\"0.02 0 -0.03\" rpy=\"0.1 0.2 0.3\"/><mass value=\"1\"/>"
+        "<inertia ixx=\"0.01\" iyy=\"0.02\" izz=\"0.02\"/></inertial></link>"
+        "<joint name=\"tether\" type=\"floating\"><parent link=\"base\"/><child link=\"drone\"/>"
+        "<origin xyz=\"0.4 0.1 -0.2\" rpy=\"0.5 0 -0.4\"/></joint></robot>";
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.floating = 1;
+    vt_builder *b;
+    vt_model *m;
+    assert_ok(vt_urdf_builder_string(&b, xml, &opt, NULL));
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nbody, 2);
+    assert_int_equal(m->body_joint[1], VT_JOINT_FREE);
+    assert_int_equal(m->body_joint[2], VT_JOINT_FREE);
+    assert_int_equal(m->body_parent[2], 1);
+    assert_int_equal(vt_find_joint(m, "tether"), 2);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    uint64_t s = 5;
+    vt_scene_random_state(m, d, &s);
+    assert_ok(vt_kinematics(m, d));
+    double pb[3], Rb[9], pd[3], Rd[9], Rq[9], Ro[9];
+    assert_ok(vt_frame_pose(m, d, vt_find_frame(m, "base"), pb, Rb));
+    assert_ok(vt_frame_pose(m, d, vt_find_frame(m, "drone"), pd, Rd));
+    /* the root: its link frame's origin at q[0..2], its axes A(q[3..6]) */
+    vt_euler_A(Rq, d->q + 3);
+    for (int k = 0; k < 3; k++) assert_near(pb[k], d->q[k], 1e-14);
+    for (int k = 0; k < 9; k++) assert_near(Rb[k], Rq[k], 1e-14);
+    /* the tether: origin O = p_b + R_b o; the drone's origin O + A^1 t (t in the base body's
+     * axes, A^1 = R_b R_I) and axes A^1 A(p) R_I^T R_o, R_I the base's inertial rotation */
+    const double o[3] = {0.4, 0.1, -0.2};
+    double RI[9], RIt[9];
+    rpy_matrix(RI, 0.3, -0.2, 0.7);
+    rpy_matrix(Ro, 0.5, 0.0, -0.4);
+    for (int r = 0; r < 3; r++)
+        for (int c2 = 0; c2 < 3; c2++) RIt[r + 3 * c2] = RI[c2 + 3 * r];
+    const double *A1 = d->A + 9;
+    const double *t = d->q + 7;
+    vt_euler_A(Rq, d->q + 10);
+    for (int r = 0; r < 3; r++) {
+        double x = pb[r];
+        for (int k = 0; k < 3; k++) x += Rb[r + 3 * k] * o[k] + A1[r + 3 * k] * t[k];
+        assert_near(pd[r], x, 1e-14);
+    }
+    double T1[9], T2[9], T3[9];
+    matmul(T1, A1, Rq);  /* A^1 A(p) */
+    matmul(T2, RIt, Ro); /* R_I^T R_o */
+    matmul(T3, T1, T2);
+    for (int k = 0; k < 9; k++) assert_near(Rd[k], T3[k], 1e-14);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* The numbers are read in the C locale whatever the caller's LC_NUMERIC: under a comma-decimal
+ * locale (de_DE.UTF-8, compiled here by localedef into a temporary LOCPATH when it is not
+ * installed; skipped with a message when that fails) the five-link arm loads, and its model
+ * equals the one loaded under the C locale entry for entry. */
+static void test_comma_locale(void **state)
+{
+    (void)state;
+    vt_model *ref = load("five_link.urdf", NULL);
+    char dir[] = "/tmp/vtdyn-locale-XXXXXX", cmd[256];
+    int have = setlocale(LC_NUMERIC, "de_DE.UTF-8") != NULL;
+    int made = 0;
+    if (!have && mkdtemp(dir)) {
+        made = 1;
+        snprintf(cmd, sizeof cmd, "localedef -i de_DE -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", dir);
+        if (system(cmd) == 0 && setenv("LOCPATH", dir, 1) == 0) have = setlocale(LC_NUMERIC, "de_DE.UTF-8") != NULL;
+    }
+    if (have && strtod("0,5", NULL) != 0.5) have = 0; /* not comma-decimal after all */
+    if (!have) {
+        setlocale(LC_NUMERIC, "C");
+        print_message("    skipped: no comma-decimal locale (de_DE.UTF-8 not installed, localedef failed)\n");
+    } else {
+        vt_model *m = load("five_link.urdf", NULL);
+        setlocale(LC_NUMERIC, "C");
+        assert_int_equal(m->nbody, ref->nbody);
+        assert_memory_equal(m->body_mass, ref->body_mass, ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_inertia, ref->body_inertia, 9 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_jpar, ref->body_jpar, 3 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_jchild, ref->body_jchild, 3 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_axis, ref->body_axis, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        assert_memory_equal(m->body_quat0, ref->body_quat0, 4 * ((size_t)m->nbody + 1) * sizeof(double));
+        vt_model_free(m);
+    }
+    if (made) {
+        snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+        assert_int_equal(system(cmd), 0);
+        unsetenv("LOCPATH");
+    }
+    vt_model_free(ref);
 }
 
 typedef struct {
@@ -538,8 +643,6 @@ static void test_bad_input(void **state)
         {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
          JOINT("j", "revolute", "a", "b") "</robot>", VT_ERR_BAD_NAME, "joint \"j\""},
         {"<robot><link/></robot>", VT_ERR_BAD_NAME, "needs a name"},
-        {"<robot>" LINK("world") LINK("a") LINK("b") JOINT("j", "revolute", "world", "a")
-         JOINT("f", "floating", "a", "b") "</robot>", VT_ERR_PARENT, "joint \"f\""},
         {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
          "<child link=\"a\"/><axis xyz=\"0 0 0\"/></joint></robot>", VT_ERR_AXIS_ZERO, "joint \"j\""},
         {"<robot>" LINK("world") LINK("a") "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
@@ -653,6 +756,8 @@ int main(void)
         cmocka_unit_test(test_five_link),
         cmocka_unit_test(test_merged_and_rotated),
         cmocka_unit_test(test_floating_root),
+        cmocka_unit_test(test_floating_pose),
+        cmocka_unit_test(test_comma_locale),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_mimic_and_placeholders),
     };

@@ -81,7 +81,8 @@ typedef enum vt_status {
 /// R (nv x 7n) of the reference path below about 400 MB.
 #define VT_MAX_BODIES 1000
 
-/// Joint of a body to its reference body: the six rows of the paper's Table 1.
+/// Joint of a body to its reference body: the six rows of the paper's Table 1, and a 6-rate
+/// floating joint (VT_JOINT_FREE) beside the paper's 7-rate base body.
 typedef enum vt_joint_type {
     VT_JOINT_BASE = 0,       ///< floating: q = x = [r; p] (7), q̇ = ẋ (7); reference must be ground
     VT_JOINT_REVOLUTE,       ///< 1 angle about axis1
@@ -89,6 +90,17 @@ typedef enum vt_joint_type {
     VT_JOINT_SPHERICAL,      ///< q: relative Euler parameters (4); q̇: relative angular velocity (3)
     VT_JOINT_TRANSLATIONAL,  ///< 1 translation along axis1
     VT_JOINT_CYLINDRICAL,    ///< angle about axis1, then translation along axis1
+    VT_JOINT_FREE,           ///< floating with 6 rates and no constraint row, any reference body:
+                             ///< q (7) = the translation of the body's joint point (joint_child) from
+                             ///< the reference body's joint point (joint_parent), reference-body axes,
+                             ///< m (3), then the relative Euler parameters (4), as a spherical joint's;
+                             ///< q̇ (6) = that translation's rate in reference-body axes, m/s (3), then
+                             ///< the relative angular velocity in reference-body axes, rad/s (3). With
+                             ///< the ground as reference: the joint point's global position and
+                             ///< velocity and the global angular velocity. Joint drives on rates 0..2
+                             ///< only (an orientation drive turns it); its reaction is zero by
+                             ///< definition, its six efforts are its rates' generalized forces (force
+                             ///< in reference axes, moment about the joint point in reference axes)
     VT_JOINT_TYPE_COUNT      ///< number of joint kinds (not a kind)
 } vt_joint_type;
 
@@ -200,7 +212,8 @@ typedef struct vt_drive_def {
     vt_drive_type type;    ///< default VT_DRIVE_JOINT
     int body;              ///< driven body (joint drive: the body whose joint is driven); default 1
     int index;             ///< joint drive: which rate of the joint (0-based; not a spherical joint's
-                           ///< nor a base body's Euler parameters); point drive: component 0 = x,
+                           ///< nor a base body's Euler parameters nor a free joint's rotation rates
+                           ///< 3..5); point drive: component 0 = x,
                            ///< 1 = y, 2 = z; default 0
     double point[3];       ///< point drive: the point, m, body axes from the centre of mass; default 0
     vt_function f;         ///< joint drive: rad or m; point drive: m; orientation drive: the angle (rad)
@@ -216,7 +229,7 @@ typedef struct vt_drive_def {
 } vt_drive_def;
 
 /// A cut joint: closes a loop between body_a (in the role of the reference body) and body_b,
-/// with the joint kinds of Table 1 except base. Equations: spherical 3 (points coincide),
+/// with the joint kinds of Table 1 except base (and not free: neither constrains anything). Equations: spherical 3 (points coincide),
 /// revolute 5 (and axes parallel), universal 4 (points coincide, axis1 on a ⟂ axis2 on b),
 /// cylindrical 4 (axes parallel, b's point on a's axis line), translational 5 (cylindrical and
 /// no turn about the axis). Fill from vt_default_cut_joint_def().
@@ -241,7 +254,8 @@ typedef struct vt_cut_joint_def {
 /// pair, a belt): one constraint row, Φ = q_a − ratio q_b − offset, whose multiplier is the
 /// generalized force the coupling exerts on rate a (−ratio times it on rate b), reported in
 /// vt_data.coupling_effort; like an applied generalized force it is not part of the joint
-/// reactions. Both coordinates must be scalar (not a spherical joint's or a base body's).
+/// reactions. Both coordinates must be scalar (not a spherical joint's or a base body's, nor a
+/// free joint's rotation).
 /// Fill from vt_default_coupling_def().
 typedef struct vt_coupling_def {
     int body_a;            ///< the body whose joint's coordinate follows; default 2
@@ -381,8 +395,12 @@ typedef struct vt_data {
 
     /* state and loads: set by the caller */
     double time;             ///< s, the instant: drives' time functions are evaluated here
-    double *q;               ///< generalized positions (nq)
-    double *qd;              ///< generalized velocities (nv)
+    double *q;               ///< generalized positions (nq): each body's joint coordinates from
+                             ///< body_qadr (a spherical joint's and a free joint's Euler parameters
+                             ///< among them, vt_joint_type)
+    double *qd;              ///< generalized velocities (nv): each body's joint rates from body_vadr (a
+                             ///< spherical or free joint's: angular velocity components, not q's
+                             ///< derivatives)
     double *xfrc;            ///< applied force (N) and moment (N·m) on each body, global, moment about
                              ///< the centre of mass: [f; n] (6 x (nbody+1)); see vt_add_point_load()
     double *qfrc;            ///< applied generalized force per rate (N·m or N), added to Q; acts on
@@ -442,7 +460,9 @@ typedef struct vt_data {
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
     double *qfrc_drive;      ///< generalized force of all drives, Φ_q^T λ over the drives' rows (nv):
                              ///< the joint torques and forces that produce the motion; with the motion
-                             ///< given (vt_inverse_dynamics_motion), every rate's: M* q̈ − Q
+                             ///< given (vt_inverse_dynamics_motion), every rate's: M* q̈ − Q (a free
+                             ///< joint's six: the force and the moment about its joint point, in the
+                             ///< reference body's axes, N and N·m)
     double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
                              ///< point drive: force along its component (N); orientation drive: 0 (ndrive)
     double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N
@@ -450,7 +470,7 @@ typedef struct vt_data {
                              ///< point for a joint drive, the body point for a point drive, the centre
                              ///< of mass for an orientation drive) (3 x ndrive), N·m
     double *jnt_force;       ///< reaction force of the reference body on the body at the joint point
-                             ///< (3 x (nbody+1)), N
+                             ///< (3 x (nbody+1)), N; zero for a free joint (it transmits nothing)
     double *jnt_moment;      ///< reaction moment, about the joint point (3 x (nbody+1)), N·m
     double *jnt_force_body;  ///< the same in the body's axes, (27) (3 x (nbody+1))
     double *jnt_moment_body; ///< the same in the body's axes, (28) (3 x (nbody+1))

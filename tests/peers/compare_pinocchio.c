@@ -5,12 +5,19 @@
  * (the child link's URDF) axes, the moment about the joint's origin, to a relative tolerance
  * of the largest torque or wrench of the state.
  *
- *   compare_pinocchio ROBOT.urdf REFERENCE.csv [tolerance]      (default 1e-12)
+ *   compare_pinocchio [--floating] ROBOT.urdf REFERENCE.csv [tolerance]      (default 1e-12)
  *
- * Fixed-base robots: the reference's joints are matched to vtdyn's by name (the URDF joint
- * names); Pinocchio's default treats a mimic joint as an independent joint, and so does the
- * loader here (vt_urdf_options.mimic = 0). Prints the largest relative differences; exit 0
- * when within the tolerance, 1 otherwise, 77 (skip) for a floating base. */
+ * The reference's joints are matched to vtdyn's by name (the URDF joint names); Pinocchio's
+ * default treats a mimic joint as an independent joint, and so does the loader here
+ * (vt_urdf_options.mimic = 0). With --floating the reference is Pinocchio's free flyer
+ * (JointModelFreeFlyer, "root_joint") and vtdyn's root a free joint (vt_urdf_options.floating):
+ * vtdyn's q = (x, y, z, q_w, q_x, q_y, q_z) from Pinocchio's (x, y, z, q_x, q_y, q_z, q_w); its
+ * q̇ and q̈ are the root origin's velocity and classical acceleration and the angular velocity
+ * and acceleration, world axes (the reference's base:* columns; Pinocchio's v and a are in the
+ * root frame); its six efforts (world force, moment about the root origin in world axes) are
+ * turned into the root frame, R^T f and R^T n, Pinocchio's tau of the free flyer. Its reaction
+ * (zero in vtdyn) against Pinocchio's f − S τ (S = I). Prints the largest relative differences;
+ * exit 0 when within the tolerance, 1 otherwise. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
@@ -70,12 +77,15 @@ static int col(const table *t, const char *quantity, const char *joint, const ch
 
 int main(int argc, char **argv)
 {
-    if (argc < 3) return fprintf(stderr, "usage: compare_pinocchio ROBOT.urdf REFERENCE.csv [tolerance]\n"), 2;
+    const int floating = argc > 1 && strcmp(argv[1], "--floating") == 0;
+    if (floating) argv++, argc--;
+    if (argc < 3) return fprintf(stderr, "usage: compare_pinocchio [--floating] ROBOT.urdf REFERENCE.csv [tolerance]\n"), 2;
     const double tol = argc > 3 ? atof(argv[3]) : 1e-12;
     table t;
     if (read_csv(&t, argv[2])) return 1;
     vt_urdf_options opt = vt_default_urdf_options();
     opt.mimic = 0; /* as Pinocchio's default: a mimic joint is a joint of its own */
+    opt.floating = floating;
     char msg[256] = "";
     vt_builder *b;
     vt_model *m;
@@ -85,11 +95,19 @@ int main(int argc, char **argv)
     if ((st = vt_builder_build(&m, b)) || (st = vt_data_create(&d, m)))
         return fprintf(stderr, "%s: %s\n", argv[1], vt_builder_message(b)), 1;
     vt_builder_free(b);
-    for (int i = 1; i <= m->nbody; i++)
-        if (m->body_joint[i] == VT_JOINT_BASE) {
-            printf("%s: a floating base: not compared (vt_inverse_dynamics_motion takes fixed bases)\n", argv[1]);
-            return 77;
+    /* Pinocchio's name of each body's joint: the free flyer is "root_joint" */
+    const char **jname = calloc((size_t)m->nbody + 1, sizeof *jname);
+    int root = 0;
+    for (int i = 1; i <= m->nbody; i++) {
+        jname[i] = m->joint_name + VT_NAME_MAX * i;
+        if (m->body_joint[i] == VT_JOINT_FREE && m->body_parent[i] == 0 && !jname[i][0]) {
+            jname[i] = "root_joint";
+            root = i;
         }
+        if (m->body_joint[i] == VT_JOINT_BASE) return fprintf(stderr, "%s: a base body: not expected\n", argv[1]), 1;
+    }
+    if (floating != (root > 0)) return fprintf(stderr, "%s: --floating and the model's root disagree\n", argv[1]), 1;
+    static const char *xyz[3] = {"x", "y", "z"};
     static const char *fc[6] = {"fx", "fy", "fz", "mx", "my", "mz"};
     double worst_tau = 0.0, worst_w = 0.0, worst_l = 0.0;
     int bad = 0;
@@ -97,7 +115,22 @@ int main(int argc, char **argv)
         const double *row = t.cell + (size_t)r * (size_t)t.ncol;
         double scale = 0.0;
         for (int i = 1; i <= m->nbody; i++) { /* the state, joint by joint */
-            const char *j = m->joint_name + VT_NAME_MAX * i;
+            const char *j = jname[i];
+            if (i == root) { /* position, Euler parameters (scalar first), world rates */
+                double *q = d->q + m->body_qadr[i], *v = d->qd + m->body_vadr[i], *a = d->qdd + m->body_vadr[i];
+                static const char *qk[7] = {"0", "1", "2", "6", "3", "4", "5"};
+                for (int k = 0; k < 7; k++) q[k] = row[col(&t, "q", j, qk[k])];
+                for (int k = 0; k < 3; k++) {
+                    v[k] = row[col(&t, "base", "pdot", xyz[k])];
+                    v[3 + k] = row[col(&t, "base", "omega", xyz[k])];
+                    a[k] = row[col(&t, "base", "pddot", xyz[k])];
+                    a[3 + k] = row[col(&t, "base", "omegadot", xyz[k])];
+                }
+                static const char *six[6] = {"0", "1", "2", "3", "4", "5"};
+                for (int k = 0; k < 6; k++) scale = fmax(scale, fabs(row[col(&t, "tau", j, six[k])]));
+                for (int k = 0; k < 6; k++) scale = fmax(scale, fabs(row[col(&t, "frw", j, fc[k])]));
+                continue;
+            }
             const int cq = col(&t, "q", j, "0"), cv = col(&t, "v", j, "0"), ca = col(&t, "a", j, "0");
             if (cq < 0 || cv < 0 || ca < 0) return fprintf(stderr, "%s: no state of joint '%s'\n", argv[2], j), 1;
             d->q[m->body_qadr[i]] = row[cq];
@@ -109,8 +142,27 @@ int main(int argc, char **argv)
         if ((st = vt_inverse_dynamics_motion(m, d)))
             return fprintf(stderr, "state %d: %s: %s\n", r, vt_status_string(st), d->message), 1;
         for (int i = 1; i <= m->nbody; i++) {
-            const char *j = m->joint_name + VT_NAME_MAX * i;
-            const double e_tau = fabs(d->qfrc_drive[m->body_vadr[i]] - row[col(&t, "tau", j, "0")]) / scale;
+            const char *j = jname[i];
+            double e_tau = 0.0;
+            if (i == root) { /* vtdyn's world wrench at the root origin, turned into the root frame */
+                const double *tw = d->qfrc_drive + m->body_vadr[i];
+                double Rr[9];
+                static const char *rc[9] = {"00", "01", "02", "10", "11", "12", "20", "21", "22"};
+                for (int k = 0; k < 9; k++) Rr[k] = row[col(&t, "R", j, rc[k])]; /* row-major */
+                static const char *six[6] = {"0", "1", "2", "3", "4", "5"};
+                for (int k = 0; k < 6; k++) {
+                    const double *w = tw + (k < 3 ? 0 : 3);
+                    const int c = k % 3; /* (R^T w)_c = Σ_r R[r][c] w_r */
+                    const double loc = Rr[c] * w[0] + Rr[3 + c] * w[1] + Rr[6 + c] * w[2];
+                    const double e = fabs(loc - row[col(&t, "tau", j, six[k])]) / scale;
+                    if (e > tol && bad++ < 10)
+                        printf("state %d root_joint tau %d: vtdyn %.17g, Pinocchio %.17g\n", r, k, loc,
+                               row[col(&t, "tau", j, six[k])]);
+                    e_tau = fmax(e_tau, e);
+                }
+            } else {
+                e_tau = fabs(d->qfrc_drive[m->body_vadr[i]] - row[col(&t, "tau", j, "0")]) / scale;
+            }
             worst_tau = fmax(worst_tau, e_tau);
             double R[9];
             const int frame = vt_find_frame(m, m->body_name + VT_NAME_MAX * i); /* the child link's axes */
@@ -130,7 +182,7 @@ int main(int argc, char **argv)
                                j, fc[k], w[c], local, row[col(&t, "frw", j, fc[k])], row[col(&t, "fr", j, fc[k])]);
                 }
             }
-            if (e_tau > tol && bad++ < 10)
+            if (i != root && e_tau > tol && bad++ < 10)
                 printf("state %d joint %s: torque vtdyn %.17g, Pinocchio %.17g\n", r, j, d->qfrc_drive[m->body_vadr[i]],
                        row[col(&t, "tau", j, "0")]);
         }
@@ -138,6 +190,7 @@ int main(int argc, char **argv)
     printf("%s: %d states, %d joints: largest relative difference: torques %.2g, reactions (world) %.2g, "
            "reactions (joint axes) %.2g (tolerance %.2g)\n",
            argv[1], t.nrow, m->nbody, worst_tau, worst_w, worst_l, tol);
+    free(jname);
     vt_data_free(d);
     vt_model_free(m);
     for (int c = 0; c < t.ncol; c++) free(t.name[c]);

@@ -8,11 +8,15 @@ venv's python, which has pin and example-robot-data).
    buildModelFromUrdf without a root joint; vtdyn's loader by default): at 20 random states
    (the last 4 at rest) Pinocchio's rnea and data.f (pinocchio_reference.py) against vtdyn's
    vt_inverse_dynamics_motion (compare_pinocchio): the torques and every joint reaction, in
-   world axes and in the joint's axes, to 1e-12 of the largest of the state.
+   world axes and in the joint's axes, to 1e-12 of the largest of the state. Then Solo-12,
+   Talos and ANYmal as free flyers (Pinocchio's JointModelFreeFlyer root; vtdyn's loader with
+   floating = 1, a free joint at the root link's origin): the same at 20 random states, the base's
+   six torques included (vtdyn's world wrench turned into the root frame) and its reaction (zero).
 2. The command vtdyn on UR5: the reference's states as a states file (the torques to 1e-12), and
    samples of a smooth motion q_j(t) = a_j sin(w_j t + phi_j) as a samples file: vtdyn's torques
    from the splines against Pinocchio's rnea with the exact derivatives, to 1e-4 of the largest
-   torque at the interior samples.
+   torque at the interior samples. And `vtdyn inverse --floating` on Solo-12: the free-flyer
+   reference's states, the base's six efforts (link axes) and the joints' torques to 1e-12.
 3. Every URDF the package ships through `vtdyn info`: accepted, or refused with its reason
    (a count, and the reasons; a crash fails the test).
 Exit 0 when every comparison holds, 1 otherwise.
@@ -36,6 +40,7 @@ ROBOTS = [
     ("Talos", "talos_data/robots/talos_reduced.urdf", 4),
     ("ANYmal", "anymal_b_simple_description/robots/anymal.urdf", 5),
 ]
+FLOATING = ("Solo-12", "Talos", "ANYmal")
 
 
 def robots_dir():
@@ -67,6 +72,17 @@ def main():
         print("%s: %s" % (name, (r.stdout + r.stderr).strip()))
         if r.returncode:
             failures.append("%s: vtdyn and Pinocchio differ" % name)
+        if name not in FLOATING:
+            continue
+        ref = work / ("%s_free_flyer.csv" % name)
+        r = run(sys.executable, HERE / "pinocchio_reference.py", urdf, "free-flyer", 20, seed + 10, ref, "--static", 4)
+        if r.returncode:
+            failures.append("%s (free flyer): pinocchio_reference.py: %s" % (name, r.stderr.strip()))
+            continue
+        r = run(compare, "--floating", urdf, ref, "1e-12")
+        print("%s (free flyer): %s" % (name, (r.stdout + r.stderr).strip()))
+        if r.returncode:
+            failures.append("%s (free flyer): vtdyn and Pinocchio differ" % name)
 
     # 2. the command on UR5
     urdf = root / ROBOTS[0][1]
@@ -124,6 +140,42 @@ def main():
               % (len(got), worst, big))
         if len(got) != len(times) or worst > 1e-4 * big:
             failures.append("vtdyn inverse (UR5 samples): %.3g of %.3g" % (worst, big))
+
+    # the command on Solo-12 floating: the free-flyer reference's states with the root's columns
+    # (base_link_x ... base_link_alz, world axes) and its efforts in the root link's axes against
+    # Pinocchio's free-flyer tau
+    urdf = root / ROBOTS[2][1]
+    with open(work / "Solo-12_free_flyer.csv") as f:
+        ref = list(csv.DictReader(f))
+    joints = [c.split(":")[1] for c in ref[0] if c.startswith("q:") and c.endswith(":0")]
+    joints = [j for j in joints if j != "root_joint"]
+    rootcols = ["base_link_" + c for c in "x y z qw qx qy qz vx vy vz wx wy wz ax ay az alx aly alz".split()]
+    states = work / "solo_floating_states.csv"
+    with open(states, "w") as f:
+        f.write(",".join(rootcols + sum(([j, j + "_vel", j + "_acc"] for j in joints), [])) + "\n")
+        for row in ref:
+            q = [row["q:root_joint:%d" % k] for k in (0, 1, 2, 6, 3, 4, 5)]
+            base = [row["base:%s:%s" % (w, c)] for w in ("pdot", "omega", "pddot", "omegadot") for c in "xyz"]
+            f.write(",".join(q + base + sum(([row["q:%s:0" % j], row["v:%s:0" % j], row["a:%s:0" % j]]
+                                             for j in joints), [])) + "\n")
+    out = work / "solo_floating_out.csv"
+    r = run(vtdyn, "inverse", "--floating", urdf, states, "-o", out)
+    if r.returncode:
+        failures.append("vtdyn inverse --floating (Solo-12 states): %s" % r.stderr.strip())
+    else:
+        with open(out) as f:
+            got = list(csv.DictReader(f))
+        worst = 0.0
+        names = ["base_link_effort_%s_link" % c for c in ("fx", "fy", "fz", "nx", "ny", "nz")]
+        for g, row in zip(got, ref):
+            tau = [float(row["tau:root_joint:%d" % k]) for k in range(6)] + [float(row["tau:%s:0" % j]) for j in joints]
+            mine = [float(g[n]) for n in names] + [float(g[j + "_effort"]) for j in joints]
+            scale = max(1.0, max(abs(t) for t in tau))
+            worst = max(worst, max(abs(a - b) / scale for a, b in zip(mine, tau)))
+        print("vtdyn inverse --floating, Solo-12 states file: %d rows, largest relative torque difference %.2g"
+              % (len(got), worst))
+        if len(got) != len(ref) or worst > 1e-12:
+            failures.append("vtdyn inverse --floating (Solo-12 states): %.3g" % worst)
 
     # 3. every URDF of the package
     accepted, refused = 0, {}
