@@ -8,20 +8,22 @@
 #ifndef VTDYN_EULER_H
 #define VTDYN_EULER_H
 
+#include "vtdyn/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /// E(p), 3x4 column-major (12 entries).
-void vt_euler_E(double E[12], const double p[4]);
+VT_API void vt_euler_E(double E[12], const double p[4]);
 /// G(p), 3x4 column-major (12 entries).
-void vt_euler_G(double G[12], const double p[4]);
+VT_API void vt_euler_G(double G[12], const double p[4]);
 /// A(p) = E G^T, 3x3 column-major: rotation from body to global axes.
-void vt_euler_A(double A[9], const double p[4]);
+VT_API void vt_euler_A(double A[9], const double p[4]);
 /// Hamilton product r = a ⊗ b, so that A(r) = A(a) A(b). r may alias a or b.
-void vt_quat_mul(double r[4], const double a[4], const double b[4]);
+VT_API void vt_quat_mul(double r[4], const double a[4], const double b[4]);
 /// Euler parameters of a rotation by angle (rad) about the unit axis u.
-void vt_quat_axis_angle(double p[4], const double u[3], double angle);
+VT_API void vt_quat_axis_angle(double p[4], const double u[3], double angle);
 
 #ifdef __cplusplus
 }

@@ -21,6 +21,8 @@
 
 #include <stddef.h>
 
+#include "vtdyn/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
