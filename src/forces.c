@@ -49,7 +49,16 @@ vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const d
     if (!Q || !F) return vt_fail(d->message, VT_ERR_NULL, "vt_generalized_force: NULL argument");
     if (!vt_all_finite(F, m->nx))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_generalized_force: NaN or Inf in F");
-    return apply_St(Q, m, d, F);
+    /* into scratch (nv ≤ nx: within vt_forces_scratch), the caller's Q written only when finite */
+    const size_t mark = vt_scratch_mark(d);
+    double *Qs = VT_SCRATCH(d, double, m->nv, "S^T F");
+    if (!Qs) return vt_scratch_fail(d, mark);
+    if ((st = apply_St(Qs, m, d, F))) return vt_scratch_release(d, mark), st;
+    if (!vt_all_finite(Qs, m->nv))
+        return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_NONFINITE, "vt_generalized_force: S^T F overflows (F too large)");
+    memcpy(Q, Qs, (size_t)m->nv * sizeof(double));
+    vt_scratch_release(d, mark);
+    return VT_OK;
 }
 
 vt_status vt_forces(const vt_model *m, vt_data *d)
@@ -97,6 +106,15 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
     vt_scratch_release(d, mark);
     if (st) return st;
     for (int c = 0; c < m->nv; c++) d->Q[c] += d->qfrc[c];
+    /* finite loads can still overflow (their sum in Q, a large ṗ squared in h): scanned, O(n) */
+    if (vt_all_finite(d->F, m->nx) && vt_all_finite(d->h, m->nx) && vt_all_finite(d->Q, m->nv)) return VT_OK;
+    for (int i = 1; i <= m->nbody; i++)
+        if (!vt_all_finite(d->F + vt_xoff(i), 7) || !vt_all_finite(d->h + vt_xoff(i), 7))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: body %d: applied force F or h overflows (xfrc, mass or ṗ too large)", i);
+    for (int c = 0; c < m->nv; c++)
+        if (!isfinite(d->Q[c]))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: Q[%d] (body %d's rate) overflows (loads too large)", c,
+                           m->dof_body[c]);
     return VT_OK;
 }
 

@@ -301,6 +301,43 @@ static void test_bad_input(void **state)
     teardown(&f);
 }
 
+/* Finite loads whose generalized force overflows: 1.5e308 N across each link of the double
+ * link (2 m links about z, along x at q = 0) is a moment of 1.5e308 × (1 + 3) N·m about joint 1. vt_forces refuses it (VT_ERR_NONFINITE, with a message) instead of
+ * returning VT_OK with Inf in Q. */
+static void test_overflowing_loads(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_double_link(&m, 0));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    for (int i = 1; i <= m->nbody; i++) d->xfrc[6 * i + 1] = 1.5e308;
+    assert_int_equal(vt_forces(m, d), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* vt_generalized_force with a finite F whose S^T F overflows (1.5e308 N across both links of the
+ * double link: 1.5e308 × (1 + 3) N·m about joint 1): VT_ERR_NONFINITE, Q left as it was. */
+static void test_generalized_force_overflow(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_double_link(&m, 0));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    double F[14] = {0}, Q[2] = {42.0, 43.0};
+    F[1] = F[7 + 1] = 1.5e308;
+    assert_int_equal(vt_generalized_force(Q, m, d, F), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    assert_true(Q[0] == 42.0 && Q[1] == 43.0);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -310,6 +347,8 @@ int main(void)
         cmocka_unit_test(test_power_balance),
         cmocka_unit_test(test_load_virtual_power),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_overflowing_loads),
+        cmocka_unit_test(test_generalized_force_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -78,6 +78,9 @@ typedef enum vt_status {
 #define VT_INERTIA_TOL 1e-6
 /// Absolute floor of those tolerances, kg·m²: a point mass written with moments of −5e-20.
 #define VT_INERTIA_ABS_TOL 1e-15
+/// Largest magnitude of an inertia entry, kg·m²: the rotational mass 4 GᵀJ'G has entries up to 12
+/// times it, which must not overflow. An inertia beyond it is refused with VT_ERR_NONFINITE.
+#define VT_INERTIA_MAX 1e307
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
 /// R (nv x 7n) of the reference path below about 400 MB.
