@@ -726,11 +726,12 @@ module vtdyn
     end function
 
     ! force transforms
-    subroutine vt_cartesian_force(F, p, s, f_, n) bind(C, name='vt_cartesian_force')
-      import :: c_double
-      real(c_double), intent(out) :: F(7)
+    function vt_cartesian_force(F, p, s, f_, n) bind(C, name='vt_cartesian_force')
+      import :: c_int, c_double
+      real(c_double), intent(inout) :: F(7)
       real(c_double), intent(in) :: p(4), s(3), f_(3), n(3)
-    end subroutine
+      integer(c_int) :: vt_cartesian_force
+    end function
     function vt_generalized_force(Q, model, data, F) bind(C, name='vt_generalized_force')
       import :: c_int, c_ptr, c_double
       real(c_double), intent(out) :: Q(*)

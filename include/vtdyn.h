@@ -11,7 +11,9 @@
  *     vt_kinematics(m, d); vt_mass_matrix(m, d); vt_forces(m, d);
  *
  * Every function that can fail returns a vt_status (0 ok, negative error); the detail is in
- * vt_builder_message() or d->message. The library never prints, exits or aborts. A failed call
+ * vt_builder_message() or d->message (functions given neither, such as vt_integrate_q(), return the
+ * status alone). The library never prints, exits or aborts; finite inputs whose results overflow
+ * are refused (VT_ERR_NONFINITE), not returned as Inf. A failed call
  * leaves the caller's inputs (a builder's definitions, d->q, d->qd, d->xfrc, d->qfrc, d->time)
  * as they were (vt_kinematic_solve restores q and q̇ it would have corrected; the analyses over
  * time use q, q̇ and time as their working state); the outputs of the failed stage are
@@ -54,7 +56,9 @@ VT_API vt_body_def vt_default_body_def(void);
 VT_API vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
 /// Validates and adds a body. Returns its id (1, 2, ...) or a negative vt_status, with the
 /// reason in vt_builder_message(). Non-unit axes and orientations are normalized; zero ones
-/// are refused. A refused body leaves the builder as it was.
+/// are refused (directions: normalized by their largest component first, so any finite non-zero
+/// length works). An inertia entry beyond VT_INERTIA_MAX is refused (VT_ERR_NONFINITE). A refused
+/// body leaves the builder as it was.
 VT_API int vt_builder_add_body(vt_builder *builder, const vt_body_def *def);
 /// Message of the last failure (empty string if none).
 VT_API const char *vt_builder_message(const vt_builder *builder);
@@ -62,9 +66,11 @@ VT_API const char *vt_builder_message(const vt_builder *builder);
 /// stays valid (it may build again, or be freed). On failure *model is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_EMPTY_MODEL, VT_ERR_NO_MEMORY.
 VT_API vt_status vt_builder_build(vt_model **model, vt_builder *builder);
-/// Frees a builder; NULL does nothing. Models built from it stay valid.
+/// Frees a builder; NULL does nothing. Models built from it stay valid. As with free(), freeing
+/// the same builder twice is undefined (the memory is no longer the library's to check).
 VT_API void vt_builder_free(vt_builder *builder);
 /// Frees a model; NULL does nothing. Data and trajectories made for it must not be used after.
+/// As with free(), freeing the same model twice is undefined.
 VT_API void vt_model_free(vt_model *model);
 /// A new model with the same bodies and cut joints and no drives: the model of the forward
 /// check. Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
@@ -137,6 +143,7 @@ VT_API vt_status vt_data_create(vt_data **data, const vt_model *model);
 VT_API vt_status vt_data_reset(const vt_model *model, vt_data *data);
 /// Releases data made by vt_data_create(); does nothing for NULL or for data laid out by
 /// vt_data_init() in the caller's buffer (that memory stays the caller's to reuse or drop).
+/// As with free(), freeing the same data twice is undefined.
 VT_API void vt_data_free(vt_data *data);
 
 /// Alignment, in bytes, of the start of a vt_data laid out by vt_data_init().
@@ -162,7 +169,8 @@ VT_API vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffe
 /// Adds to d->xfrc a force f (N) and moment n (N·m), both global, applied at the point
 /// `point` of body `body` (m, body axes from its centre of mass); f or n may be NULL.
 /// Needs the body's orientation: call after vt_kinematics(). Statuses: VT_ERR_NULL (point NULL
-/// with f given), VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX (body not in 1..nbody), VT_ERR_NONFINITE.
+/// with f given), VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX (body not in 1..nbody), VT_ERR_NONFINITE
+/// (NaN or Inf in the load, or the body's xfrc would overflow: xfrc is then left as it was).
 VT_API vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
                             const double point[3], const double f[3], const double n[3]);
 
@@ -178,7 +186,8 @@ VT_API vt_status vt_frame_pose(const vt_model *model, vt_data *data, int frame, 
 /// q_out = q advanced by the velocity v over h: scalar coordinates move by h v, spherical
 /// relative Euler parameters by the exact rotation exp(h ω) (normalized), a base body's
 /// x by h ẋ (then its Euler parameters normalized). q_out may alias q. q and q_out have nq
-/// entries, v has nv. Statuses: VT_ERR_NULL, VT_ERR_NONFINITE (q, v or h).
+/// entries, v has nv. Statuses: VT_ERR_NULL, VT_ERR_NONFINITE (q, v or h, or a result that
+/// overflows). q_out is untouched on failure. (No data: no message.)
 VT_API vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
                          const double *v, double h);
 
@@ -243,7 +252,10 @@ VT_API int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def 
 /* ---- stages: each reads the model and fills its part of the data ------------------ */
 
 /// From d->q and d->qd: x, A, ω, joint axes and points, S (15)-(18), ẋ = S q̇ and Ṡq̇.
-/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE, VT_ERR_QUATERNION.
+/// A spherical joint's Euler parameters are normalized (scaled first: any length works).
+/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (NaN or Inf in q or q̇, or an
+/// output that overflows: the message names the body), VT_ERR_QUATERNION (a spherical joint's or
+/// base body's Euler parameters of norm below 1e-12).
 VT_API vt_status vt_kinematics(const vt_model *model, vt_data *data);
 
 /// R, q̇ = R ẋ, assembled from Table 1 (20)-(21). Needs vt_kinematics().
@@ -254,11 +266,12 @@ VT_API vt_status vt_inverse_transform(const vt_model *model, vt_data *data);
 VT_API vt_status vt_mass_matrix(const vt_model *model, vt_data *data);
 
 /// F (gravity and d->xfrc, (7)), h and Q = S^T [F - M Ṡq̇ + h] (4), plus d->qfrc.
-/// Needs vt_kinematics(). Statuses: VT_ERR_NONFINITE (xfrc or qfrc).
+/// Needs vt_kinematics(). Statuses: VT_ERR_NONFINITE (xfrc or qfrc, or F, h or Q overflows).
 VT_API vt_status vt_forces(const vt_model *model, vt_data *data);
 
 /// Φ, Φ_x, Φ_q = Φ_x S (22), Φ_t and γ (23) of every constraint row at d->time.
-/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value),
+/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value, or
+/// a row's values that overflow: the message names the row and its owner),
 /// VT_ERR_QUATERNION (an orientation callback's p_d of zero norm).
 VT_API vt_status vt_constraints(const vt_model *model, vt_data *data);
 
@@ -315,7 +328,8 @@ VT_API vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_d
  *      src/dynamic_analysis.c) ------------------------------------------------------------ */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
-/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS).
+/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS). The analyses
+/// refuse (VT_ERR_BAD_OPTION) tolerances and max_step that are not finite, as well as out of range.
 VT_API vt_run_options vt_default_run_options(void);
 
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
@@ -323,15 +337,16 @@ VT_API vt_run_options vt_default_run_options(void);
 /// nrow ≥ ntout + 1 (row 0 is always t0). On failure *trajectory is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY.
 VT_API vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
-/// Frees a trajectory; NULL does nothing.
+/// Frees a trajectory; NULL does nothing. As with free(), freeing it twice is undefined.
 VT_API void vt_trajectory_free(vt_trajectory *trajectory);
 
 /// One instant of a kinematic analysis at d->time: Newton–Raphson on Φ(q, t) = 0 from d->q
 /// (steps from LAPACK's dgels: exact for as many rows as rates, least-norm for fewer), then
 /// q̇ corrected to Φ_q q̇ = −Φ_t the same way, then vt_inverse_dynamics(). d->q and d->qd are
 /// replaced by the consistent values; on failure they are restored.
-/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, VT_ERR_BAD_OPTION (tol or
-/// maxit not positive), and those of the stages.
+/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, VT_ERR_BAD_OPTION (tol not
+/// finite and positive, maxit not positive), VT_ERR_NONFINITE (a Newton step that overflows q),
+/// and those of the stages.
 VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
 /// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
@@ -374,17 +389,21 @@ VT_API vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const
 
 /// Eq (7): the Cartesian force on a body with Euler parameters p of a force f and moment n
 /// (global) applied at s (global vector from the body's origin to the point):
-/// F = [f; 2 E^T s̃ f + 2 E^T n]. F has 7 entries.
-VT_API void vt_cartesian_force(double F[7], const double p[4], const double s[3],
-                        const double f[3], const double n[3]);
+/// F = [f; 2 E^T s̃ f + 2 E^T n]. F has 7 entries. Statuses: VT_ERR_NULL (any argument NULL: pass
+/// zeros for no force or no moment), VT_ERR_NONFINITE (NaN or Inf in p, s, f or n, or F
+/// overflows). F is untouched on failure. (No data: no message.)
+VT_API vt_status vt_cartesian_force(double F[7], const double p[4], const double s[3],
+                                    const double f[3], const double n[3]);
 
 /// Eq (10): Q = S^T F for a Cartesian force F (7n) → Q (nv), the caller's arrays.
-/// Needs vt_kinematics(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (F).
+/// Needs vt_kinematics(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (F, or
+/// Q overflows). Q is untouched on failure.
 VT_API vt_status vt_generalized_force(double *Q, const vt_model *model, vt_data *data,
                                const double *F);
 
 /// Eq (14): F_eq = R^T Q for a generalized force Q (nv) → F_eq (7n).
-/// Needs vt_inverse_transform(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (Q).
+/// Needs vt_inverse_transform(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (Q,
+/// or F_eq overflows). Feq is untouched on failure.
 VT_API vt_status vt_equivalent_force(double *Feq, const vt_model *model, vt_data *data,
                               const double *Q);
 

@@ -11,16 +11,22 @@
 
 #include "internal.h"
 
-void vt_cartesian_force(double F[7], const double p[4], const double s[3], const double f[3],
-                        const double n[3])
+vt_status vt_cartesian_force(double F[7], const double p[4], const double s[3], const double f[3],
+                             const double n[3])
 {
-    double E[12], t[3];
+    if (!F || !p || !s || !f || !n) return VT_ERR_NULL;
+    if (!vt_all_finite(p, 4) || !vt_all_finite(s, 3) || !vt_all_finite(f, 3) || !vt_all_finite(n, 3))
+        return VT_ERR_NONFINITE;
+    double E[12], t[3], G[7]; /* into G: F written only when finite */
     vt_cross3(t, s, f);
     vt_axpy3(t, 1.0, n);
-    vt_copy3(F, f);
+    vt_copy3(G, f);
     vt_euler_E(E, p);
-    vt_mulE_t(F + 3, E, t);
-    for (int k = 3; k < 7; k++) F[k] *= 2.0;
+    vt_mulE_t(G + 3, E, t);
+    for (int k = 3; k < 7; k++) G[k] *= 2.0;
+    if (!vt_all_finite(G, 7)) return VT_ERR_NONFINITE;
+    memcpy(F, G, sizeof G);
+    return VT_OK;
 }
 
 /* Q = S^T G for a Cartesian vector G (7n) */

@@ -3,7 +3,8 @@
  * p = [p0 p1 p2 p3] (scalar first), e = [p1 p2 p3]:
  *   E(p) = [-e, ẽ + p0 I]  (3x4),   G(p) = [-e, -ẽ + p0 I]  (3x4),   A(p) = E G^T (3x3),
  *   ω = 2 E ṗ (global),  ω' = 2 G ṗ (body),  ṗ = ½ E^T ω,  p̈ = ½ E^T ω̇ − ¼ (ω·ω) p.
- * All matrices column-major.
+ * All matrices column-major. These are plain algebra without a status: every argument is an
+ * array of the size shown, never NULL (as with memcpy()).
  */
 #ifndef VTDYN_EULER_H
 #define VTDYN_EULER_H

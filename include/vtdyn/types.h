@@ -37,7 +37,7 @@ typedef enum vt_status {
     VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric (to VT_INERTIA_TOL)
     VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment (to VT_INERTIA_TOL)
     VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3 (to VT_INERTIA_TOL)
-    VT_ERR_AXIS_ZERO = -8,             ///< a joint axis has (near) zero length
+    VT_ERR_AXIS_ZERO = -8,             ///< a joint or drive axis is the zero vector
     VT_ERR_AXES_NOT_PERPENDICULAR = -9,///< universal joint axes not perpendicular
     VT_ERR_PARENT = -10,               ///< reference body is not an earlier body (base: not ground)
     VT_ERR_JOINT_TYPE = -11,           ///< unknown joint type
