@@ -56,6 +56,7 @@ module vtdyn
   integer(c_int), parameter :: VT_NAME_MAX = 64
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   real(c_double), parameter :: VT_INERTIA_ABS_TOL = 1.0e-15_c_double
+  real(c_double), parameter :: VT_INERTIA_MAX = 1.0e307_c_double
   integer(c_int), parameter :: VT_MAX_BODIES = 1000
   ! vt_joint_type
   integer(c_int), parameter :: VT_JOINT_BASE = 0, VT_JOINT_REVOLUTE = 1, VT_JOINT_UNIVERSAL = 2, &
