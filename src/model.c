@@ -208,8 +208,8 @@ vt_status vt_check_inertia(char *msg, const char *who, const double J[9])
 {
     double scale = 0.0;
     for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
-    /* the rotational mass 4 GᵀJ'G has entries up to 12 times the largest (|G| ≤ 1 for unit p):
-     * beyond DBL_MAX/16 it overflows, so such an inertia cannot be used */
+    /* the rotational mass 4 GᵀJ'G has entries up to 12 times the largest (G's rows orthonormal
+     * for unit p): VT_INERTIA_MAX = 1e307 < DBL_MAX/16 keeps it finite; beyond, it cannot be used */
     if (scale > VT_INERTIA_MAX)
         return vt_fail(msg, VT_ERR_NONFINITE, "%s: inertia entry of magnitude %g beyond %g: its mass matrix would overflow",
                        who, scale, VT_INERTIA_MAX);
