@@ -180,7 +180,8 @@ VT_API vt_status vt_add_frame_load(const vt_model *model, vt_data *data, int fra
 
 /// Where a frame is: its origin (m) and its axes (rotation frame → global, 3x3 column-major),
 /// both global, either may be NULL. Needs vt_kinematics() (or any instant). Statuses: VT_ERR_NULL,
-/// VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX.
+/// VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX, VT_ERR_NONFINITE (the position overflows: position is
+/// then left as it was).
 VT_API vt_status vt_frame_pose(const vt_model *model, vt_data *data, int frame, double position[3], double rotation[9]);
 
 /// q_out = q advanced by the velocity v over h: scalar coordinates move by h v, spherical

@@ -54,9 +54,12 @@ vt_status vt_frame_pose(const vt_model *m, vt_data *d, int frame, double positio
     static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     const double *A = b ? d->A + 9 * b : I3, *sp = m->frame_point + 3 * frame;
     if (position) {
-        double s[3];
+        double s[3], o[3];
         vt_mulmat3(s, A, sp);
-        for (int k = 0; k < 3; k++) position[k] = (b ? d->x[vt_xoff(b) + k] : 0.0) + s[k];
+        for (int k = 0; k < 3; k++) o[k] = (b ? d->x[vt_xoff(b) + k] : 0.0) + s[k];
+        if (!vt_all_finite(o, 3)) /* a far point on a far body: the sum overflows */
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_frame_pose: frame %d's position overflows", frame);
+        vt_copy3(position, o);
     }
     if (rotation) {
         double Af[9];

@@ -222,6 +222,41 @@ static void test_overflow_changes_nothing(void **state)
     vt_model_free(m);
 }
 
+/* A frame whose position overflows (a point 1.5e308 m out on a body 1.5e308 m out along the same
+ * axis) is refused with VT_ERR_NONFINITE, the caller's array untouched (it returned VT_OK with
+ * Inf); the same frame at q = 0 is where the sum puts it. */
+static void test_frame_pose_overflow(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_TRANSLATIONAL;
+    body.axis1[0] = 1.0; body.axis1[1] = 0.0; body.axis1[2] = 0.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_frame_def fr = vt_default_frame_def();
+    fr.name = "far";
+    fr.point[0] = 1.5e308;
+    assert_int_equal(vt_builder_add_frame(b, &fr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    double pos[3] = {1, 2, 3};
+    assert_ok(vt_kinematics(m, d));
+    assert_ok(vt_frame_pose(m, d, 0, pos, NULL));
+    assert_true(pos[0] == 1.5e308 && pos[1] == 0.0 && pos[2] == 0.0);
+    d->q[0] = 1.5e308;
+    assert_ok(vt_kinematics(m, d));
+    pos[0] = 1; pos[1] = 2; pos[2] = 3;
+    assert_int_equal(vt_frame_pose(m, d, 0, pos, NULL), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    assert_true(pos[0] == 1 && pos[1] == 2 && pos[2] == 3);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -229,6 +264,7 @@ int main(void)
         cmocka_unit_test(test_integrate_q),
         cmocka_unit_test(test_frames),
         cmocka_unit_test(test_overflow_changes_nothing),
+        cmocka_unit_test(test_frame_pose_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
