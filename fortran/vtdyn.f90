@@ -56,6 +56,7 @@ module vtdyn
   integer(c_int), parameter :: VT_NAME_MAX = 64
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   real(c_double), parameter :: VT_INERTIA_ABS_TOL = 1.0e-15_c_double
+  real(c_double), parameter :: VT_INERTIA_MAX = 1.0e307_c_double
   integer(c_int), parameter :: VT_MAX_BODIES = 1000
   ! vt_joint_type
   integer(c_int), parameter :: VT_JOINT_BASE = 0, VT_JOINT_REVOLUTE = 1, VT_JOINT_UNIVERSAL = 2, &
@@ -726,11 +727,12 @@ module vtdyn
     end function
 
     ! force transforms
-    subroutine vt_cartesian_force(F, p, s, f_, n) bind(C, name='vt_cartesian_force')
-      import :: c_double
-      real(c_double), intent(out) :: F(7)
+    function vt_cartesian_force(F, p, s, f_, n) bind(C, name='vt_cartesian_force')
+      import :: c_int, c_double
+      real(c_double), intent(inout) :: F(7)
       real(c_double), intent(in) :: p(4), s(3), f_(3), n(3)
-    end subroutine
+      integer(c_int) :: vt_cartesian_force
+    end function
     function vt_generalized_force(Q, model, data, F) bind(C, name='vt_generalized_force')
       import :: c_int, c_ptr, c_double
       real(c_double), intent(out) :: Q(*)

@@ -11,7 +11,9 @@
  *     vt_kinematics(m, d); vt_mass_matrix(m, d); vt_forces(m, d);
  *
  * Every function that can fail returns a vt_status (0 ok, negative error); the detail is in
- * vt_builder_message() or d->message. The library never prints, exits or aborts. A failed call
+ * vt_builder_message() or d->message (functions given neither, such as vt_integrate_q(), return the
+ * status alone). The library never prints, exits or aborts; finite inputs whose results overflow
+ * are refused (VT_ERR_NONFINITE), not returned as Inf. A failed call
  * leaves the caller's inputs (a builder's definitions, d->q, d->qd, d->xfrc, d->qfrc, d->time)
  * as they were (vt_kinematic_solve restores q and q̇ it would have corrected; the analyses over
  * time use q, q̇ and time as their working state); the outputs of the failed stage are
@@ -35,57 +37,61 @@ extern "C" {
 /* ---- statuses (src/status.c) ------------------------------------------------------------- */
 
 /// Text for a status code (never NULL).
-const char *vt_status_string(vt_status status);
+VT_API const char *vt_status_string(vt_status status);
 /// The library's semantic version, "MAJOR.MINOR.PATCH" (never NULL). Equals VT_VERSION_STRING
 /// when the headers and the library come from the same build.
-const char *vt_version(void);
+VT_API const char *vt_version(void);
 
 /* ---- model building (src/model.c) ------------------------------------------------- */
 
 /// Defaults: gravity (0, -9.81, 0), rcond_min 1e-12, rcond_warn 1e-6, allow_redundant 0.
-vt_model_def vt_default_model_def(void);
+VT_API vt_model_def vt_default_model_def(void);
 /// Defaults: revolute joint about z (axis1; axis2 x) to the ground, both joint points (0, 0, 0),
 /// orientation identity, 1 kg point mass (inertia 0).
-vt_body_def vt_default_body_def(void);
+VT_API vt_body_def vt_default_body_def(void);
 
 /// Starts a builder. def may be NULL for the defaults.
 /// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY, VT_ERR_NONFINITE (gravity, thresholds),
 /// VT_ERR_BAD_OPTION (rcond_min outside (0, 1] or rcond_warn below it).
-vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
+VT_API vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
 /// Validates and adds a body. Returns its id (1, 2, ...) or a negative vt_status, with the
 /// reason in vt_builder_message(). Non-unit axes and orientations are normalized; zero ones
-/// are refused. A refused body leaves the builder as it was.
-int vt_builder_add_body(vt_builder *builder, const vt_body_def *def);
+/// are refused (directions: normalized by their largest component first, so any finite non-zero
+/// length works). An inertia entry beyond VT_INERTIA_MAX is refused (VT_ERR_NONFINITE). A refused
+/// body leaves the builder as it was.
+VT_API int vt_builder_add_body(vt_builder *builder, const vt_body_def *def);
 /// Message of the last failure (empty string if none).
-const char *vt_builder_message(const vt_builder *builder);
+VT_API const char *vt_builder_message(const vt_builder *builder);
 /// Builds the immutable model (one allocation, the caller's: vt_model_free()); the builder
 /// stays valid (it may build again, or be freed). On failure *model is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_EMPTY_MODEL, VT_ERR_NO_MEMORY.
-vt_status vt_builder_build(vt_model **model, vt_builder *builder);
-/// Frees a builder; NULL does nothing. Models built from it stay valid.
-void vt_builder_free(vt_builder *builder);
+VT_API vt_status vt_builder_build(vt_model **model, vt_builder *builder);
+/// Frees a builder; NULL does nothing. Models built from it stay valid. As with free(), freeing
+/// the same builder twice is undefined (the memory is no longer the library's to check).
+VT_API void vt_builder_free(vt_builder *builder);
 /// Frees a model; NULL does nothing. Data and trajectories made for it must not be used after.
-void vt_model_free(vt_model *model);
+/// As with free(), freeing the same model twice is undefined.
+VT_API void vt_model_free(vt_model *model);
 /// A new model with the same bodies and cut joints and no drives: the model of the forward
 /// check. Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
-vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
+VT_API vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
 /// Defaults: body 1, at its centre of mass, its axes; no name (a frame needs one).
-vt_frame_def vt_default_frame_def(void);
+VT_API vt_frame_def vt_default_frame_def(void);
 /// Validates and adds a frame on a body already added (or the ground). Returns its index (0, 1,
 /// ...) or a negative vt_status: VT_ERR_BAD_NAME (missing, too long, or taken), VT_ERR_BAD_INDEX,
 /// VT_ERR_NONFINITE, VT_ERR_QUATERNION. A refused frame leaves the builder as it was.
-int vt_builder_add_frame(vt_builder *builder, const vt_frame_def *def);
+VT_API int vt_builder_add_frame(vt_builder *builder, const vt_frame_def *def);
 /// The id of the body added so far under this name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
-int vt_builder_find_body(const vt_builder *builder, const char *name);
+VT_API int vt_builder_find_body(const vt_builder *builder, const char *name);
 
 /// Lookups by name in a model: the id or index, or VT_ERR_NOT_FOUND (VT_ERR_NULL for NULL
 /// arguments). vt_find_joint gives the id of the body whose joint has that name.
-int vt_find_body(const vt_model *model, const char *name);
-int vt_find_joint(const vt_model *model, const char *name);
-int vt_find_drive(const vt_model *model, const char *name);
-int vt_find_cut_joint(const vt_model *model, const char *name);
-int vt_find_frame(const vt_model *model, const char *name);
+VT_API int vt_find_body(const vt_model *model, const char *name);
+VT_API int vt_find_joint(const vt_model *model, const char *name);
+VT_API int vt_find_drive(const vt_model *model, const char *name);
+VT_API int vt_find_cut_joint(const vt_model *model, const char *name);
+VT_API int vt_find_frame(const vt_model *model, const char *name);
 
 /* ---- URDF robots (src/urdf.c; only in builds with libxml2, VT_HAVE_URDF) ------------------ */
 
@@ -103,7 +109,7 @@ typedef struct vt_urdf_options {
                           ///< the joint moves on its own (as Pinocchio's default loads it)
 } vt_urdf_options;
 /// Defaults: vt_default_model_def() with gravity (0, 0, −9.81) m/s², floating 0, mimic 1.
-vt_urdf_options vt_default_urdf_options(void);
+VT_API vt_urdf_options vt_default_urdf_options(void);
 /// Reads a URDF file into a new builder (drives, cut joints and frames may be added after, then
 /// vt_builder_build()). Links become bodies named after the link and their joints are named after
 /// the URDF joint: revolute and continuous → VT_JOINT_REVOLUTE, prismatic → VT_JOINT_TRANSLATIONAL,
@@ -123,10 +129,10 @@ vt_urdf_options vt_default_urdf_options(void);
 /// malformed number), VT_ERR_BAD_NAME (a missing or duplicate link or joint name), the builder's
 /// statuses (an inertia, an axis of zero length, limits), VT_ERR_BAD_OPTION (options),
 /// VT_ERR_NO_MEMORY.
-vt_status vt_urdf_builder(vt_builder **builder, const char *path, const vt_urdf_options *options, char *message);
+VT_API vt_status vt_urdf_builder(vt_builder **builder, const char *path, const vt_urdf_options *options, char *message);
 /// The same from a string holding the XML (for tests and embedded use); line numbers are the
 /// string's.
-vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, const vt_urdf_options *options,
+VT_API vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, const vt_urdf_options *options,
                                  char *message);
 #endif
 
@@ -135,20 +141,21 @@ vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, const vt
 /// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with
 /// vt_data_init(). Free it with vt_data_free(). On failure *data is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
-vt_status vt_data_create(vt_data **data, const vt_model *model);
+VT_API vt_status vt_data_create(vt_data **data, const vt_model *model);
 /// The state at rest in the reference configuration: q = q0, q̇ = 0, xfrc = 0, qfrc = 0,
 /// time = 0; clears warning, ida_flag and message. Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH.
-vt_status vt_data_reset(const vt_model *model, vt_data *data);
+VT_API vt_status vt_data_reset(const vt_model *model, vt_data *data);
 /// Releases data made by vt_data_create(); does nothing for NULL or for data laid out by
 /// vt_data_init() in the caller's buffer (that memory stays the caller's to reuse or drop).
-void vt_data_free(vt_data *data);
+/// As with free(), freeing the same data twice is undefined.
+VT_API void vt_data_free(vt_data *data);
 
 /// Alignment, in bytes, of the start of a vt_data laid out by vt_data_init().
 #define VT_DATA_ALIGN 64
 /// Bytes a model's data needs in a caller-provided buffer, including up to VT_DATA_ALIGN − 1
 /// bytes of alignment slack: a buffer of this size at any address is enough (one aligned to
 /// VT_DATA_ALIGN needs VT_DATA_ALIGN − 1 bytes fewer). Fixed by the model. 0 for a NULL model.
-size_t vt_data_size(const vt_model *model);
+VT_API size_t vt_data_size(const vt_model *model);
 /// Lays the data of a model out in `buffer` (size bytes, owned by the caller) for builds that
 /// must not allocate after start-up: the same data as vt_data_create() (zeroed, the ground at
 /// identity, then vt_data_reset()), starting at the buffer's first VT_DATA_ALIGN boundary, and
@@ -160,44 +167,47 @@ size_t vt_data_size(const vt_model *model);
 /// it at their end.
 /// Statuses: VT_ERR_NULL (data, model or buffer NULL), VT_ERR_BAD_SIZE (the buffer cannot hold
 /// the data: nothing is written to it). On failure *data is NULL (if data is not NULL).
-vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
+VT_API vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
 
 /* ---- state helpers (src/state.c) ----------------------------------------------------------- */
 
 /// Adds to d->xfrc a force f (N) and moment n (N·m), both global, applied at the point
 /// `point` of body `body` (m, body axes from its centre of mass); f or n may be NULL.
 /// Needs the body's orientation: call after vt_kinematics(). Statuses: VT_ERR_NULL (point NULL
-/// with f given), VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX (body not in 1..nbody), VT_ERR_NONFINITE.
-vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
+/// with f given), VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX (body not in 1..nbody), VT_ERR_NONFINITE
+/// (NaN or Inf in the load, or the body's xfrc would overflow: xfrc is then left as it was).
+VT_API vt_status vt_add_point_load(const vt_model *model, vt_data *data, int body,
                             const double point[3], const double f[3], const double n[3]);
 
 /// vt_add_point_load() at a frame's origin (its body, its point). Statuses: those of
 /// vt_add_point_load(), VT_ERR_BAD_INDEX (frame not in 0..nframe−1, or on the ground).
-vt_status vt_add_frame_load(const vt_model *model, vt_data *data, int frame, const double f[3], const double n[3]);
+VT_API vt_status vt_add_frame_load(const vt_model *model, vt_data *data, int frame, const double f[3], const double n[3]);
 
 /// Where a frame is: its origin (m) and its axes (rotation frame → global, 3x3 column-major),
 /// both global, either may be NULL. Needs vt_kinematics() (or any instant). Statuses: VT_ERR_NULL,
-/// VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX.
-vt_status vt_frame_pose(const vt_model *model, vt_data *data, int frame, double position[3], double rotation[9]);
+/// VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_INDEX, VT_ERR_NONFINITE (the position overflows: position is
+/// then left as it was).
+VT_API vt_status vt_frame_pose(const vt_model *model, vt_data *data, int frame, double position[3], double rotation[9]);
 
 /// q_out = q advanced by the velocity v over h: scalar coordinates move by h v, spherical
 /// relative Euler parameters by the exact rotation exp(h ω) (normalized), a base body's
 /// x by h ẋ (then its Euler parameters normalized). q_out may alias q. q and q_out have nq
-/// entries, v has nv. Statuses: VT_ERR_NULL, VT_ERR_NONFINITE (q, v or h).
-vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
+/// entries, v has nv. Statuses: VT_ERR_NULL, VT_ERR_NONFINITE (q, v or h, or a result that
+/// overflows). q_out is untouched on failure. (No data: no message.)
+VT_API vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
                          const double *v, double h);
 
 /* ---- time functions (src/functions.c) ---------------------------------------------- */
 
 /// f = c (a time function is a value: copy it into a drive's f).
-vt_function vt_function_constant(double c);
+VT_API vt_function vt_function_constant(double c);
 /// c[0] + c[1] t + ... + c[ncoef-1] t^(ncoef-1); ncoef in 1..VT_POLY_MAX (checked when a drive
 /// using it is added).
-vt_function vt_function_polynomial(int ncoef, const double *c);
+VT_API vt_function vt_function_polynomial(int ncoef, const double *c);
 /// a + b sin(omega t + phase)
-vt_function vt_function_sine(double a, double b, double omega, double phase);
+VT_API vt_function vt_function_sine(double a, double b, double omega, double phase);
 /// f, f', f'' from callback(t, out, user)
-vt_function vt_function_user(vt_function_callback callback, void *user);
+VT_API vt_function vt_function_user(vt_function_callback callback, void *user);
 /// The C2 cubic interpolating spline through the n samples (t[k], y[k]), k = 0..n−1: t in s,
 /// strictly increasing, y in the drive's unit (rad or m), n ≥ 2. Ends: n = 2 the straight line,
 /// n = 3 the parabola through the three samples, n ≥ 4 "not-a-knot" (f''' continuous at t[1]
@@ -210,62 +220,66 @@ vt_function vt_function_user(vt_function_callback callback, void *user);
 /// then be freed) or while it is evaluated by vt_function_eval(). Refusals (when added or
 /// evaluated): VT_ERR_BAD_DRIVE (n < 2, t or y NULL, t not strictly increasing; the message
 /// names the sample), VT_ERR_NONFINITE (a sample not finite).
-vt_function vt_function_spline(int n, const double *t, const double *y);
+VT_API vt_function vt_function_spline(int n, const double *t, const double *y);
 /// out = [f(t), f'(t), f''(t)], exact for the built-in kinds. A spline not yet in a model
 /// (sample_d2 NULL) has its second derivatives solved at each call in a fixed local buffer:
 /// at most VT_SPLINE_EVAL_MAX samples (a model's drives, m->drive[k].f, have no limit).
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_DRIVE (malformed function), VT_ERR_CALLBACK,
 /// VT_ERR_NONFINITE (a value that is not finite), VT_ERR_BAD_SIZE (a spline not in a model with
 /// more than VT_SPLINE_EVAL_MAX samples), VT_ERR_LAPACK. out is untouched on failure.
-vt_status vt_function_eval(double out[3], const vt_function *f, double t);
+VT_API vt_status vt_function_eval(double out[3], const vt_function *f, double t);
 
 /* ---- drives and cut joints (src/model.c) -------------------------------------------- */
 
 /// Defaults: joint drive of body 1's first rate, constant 0; axis z; identity orientation.
-vt_drive_def vt_default_drive_def(void);
+VT_API vt_drive_def vt_default_drive_def(void);
 /// Defaults: revolute cut joint between the ground (a) and body 1 (b), at the origins, axis z.
-vt_cut_joint_def vt_default_cut_joint_def(void);
+VT_API vt_cut_joint_def vt_default_cut_joint_def(void);
 /// Validates and adds a drive on bodies already added. Returns the drive's index (0, 1, ...)
 /// or a negative vt_status (VT_ERR_BAD_DRIVE, VT_ERR_BAD_INDEX, VT_ERR_NONFINITE, ...).
 /// A spline time function's samples are copied into the builder with their second derivatives
 /// (its sample_d2 is ignored): the caller's arrays are free after the call. A refused drive
 /// leaves the builder as it was.
-int vt_builder_add_drive(vt_builder *builder, const vt_drive_def *def);
+VT_API int vt_builder_add_drive(vt_builder *builder, const vt_drive_def *def);
 /// Defaults: body 2's first rate follows body 1's, ratio 1, offset 0.
-vt_coupling_def vt_default_coupling_def(void);
+VT_API vt_coupling_def vt_default_coupling_def(void);
 /// Validates and adds a coupling between two scalar coordinates of bodies already added. Returns
 /// its index or a negative vt_status (VT_ERR_BAD_INDEX, VT_ERR_BAD_DRIVE: a coordinate that is
 /// not scalar, or the same one twice; VT_ERR_NONFINITE, VT_ERR_BAD_NAME). A refused coupling
 /// leaves the builder as it was.
-int vt_builder_add_coupling(vt_builder *builder, const vt_coupling_def *def);
+VT_API int vt_builder_add_coupling(vt_builder *builder, const vt_coupling_def *def);
 /// The coupling of that name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
-int vt_find_coupling(const vt_model *model, const char *name);
+VT_API int vt_find_coupling(const vt_model *model, const char *name);
 
 /// Validates and adds a cut joint between bodies already added. Returns its index or a
 /// negative vt_status (VT_ERR_BAD_CUT_JOINT, VT_ERR_BAD_INDEX, VT_ERR_AXIS_ZERO, ...).
-int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);
+VT_API int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);
 
 /* ---- stages: each reads the model and fills its part of the data ------------------ */
 
 /// From d->q and d->qd: x, A, ω, joint axes and points, S (15)-(18), ẋ = S q̇ and Ṡq̇.
-/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE, VT_ERR_QUATERNION.
-vt_status vt_kinematics(const vt_model *model, vt_data *data);
+/// A spherical joint's Euler parameters are normalized (scaled first: any length works).
+/// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (NaN or Inf in q or q̇, or an
+/// output that overflows: the message names the body), VT_ERR_QUATERNION (a spherical joint's or
+/// base body's Euler parameters of norm below 1e-12).
+VT_API vt_status vt_kinematics(const vt_model *model, vt_data *data);
 
 /// R, q̇ = R ẋ, assembled from Table 1 (20)-(21). Needs vt_kinematics().
 /// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH (as every stage).
-vt_status vt_inverse_transform(const vt_model *model, vt_data *data);
+VT_API vt_status vt_inverse_transform(const vt_model *model, vt_data *data);
 
 /// M^i = diag(m I, 4 G^T J' G) and M* = S^T M S (3). Needs vt_kinematics().
-vt_status vt_mass_matrix(const vt_model *model, vt_data *data);
+VT_API vt_status vt_mass_matrix(const vt_model *model, vt_data *data);
 
 /// F (gravity and d->xfrc, (7)), h and Q = S^T [F - M Ṡq̇ + h] (4), plus d->qfrc.
-/// Needs vt_kinematics(). Statuses: VT_ERR_NONFINITE (xfrc or qfrc).
-vt_status vt_forces(const vt_model *model, vt_data *data);
+/// Needs vt_kinematics(). Statuses: VT_ERR_NONFINITE (xfrc or qfrc, or F, h or Q overflows).
+VT_API vt_status vt_forces(const vt_model *model, vt_data *data);
 
 /// Φ, Φ_x, Φ_q = Φ_x S (22), Φ_t and γ (23) of every constraint row at d->time.
-/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value),
+/// Needs vt_kinematics(). Statuses: VT_ERR_CALLBACK, VT_ERR_NONFINITE (a time function's value, or
+/// a row's values that overflow: the message names the row and its owner),
 /// VT_ERR_QUATERNION (an orientation callback's p_d of zero norm).
-vt_status vt_constraints(const vt_model *model, vt_data *data);
+VT_API vt_status vt_constraints(const vt_model *model, vt_data *data);
 
 /// Solves (5), [M* Φ_q^T; Φ_q 0][q̈; −λ] = [Q; γ], for q̈ and λ, scaled by the mass metric, by
 /// the cheapest route the rows allow (LAPACK); d->route records the route, d->fallback a faster
@@ -274,17 +288,17 @@ vt_status vt_constraints(const vt_model *model, vt_data *data);
 /// Needs vt_mass_matrix(), vt_forces(), vt_constraints().
 /// Statuses: VT_ERR_DEPENDENT_CONSTRAINTS (the message names the rows), VT_ERR_SINGULAR,
 /// VT_ERR_NONFINITE (Q or γ), VT_ERR_LAPACK. On failure qdd and lambda are left as they were.
-vt_status vt_solve(const vt_model *model, vt_data *data);
+VT_API vt_status vt_solve(const vt_model *model, vt_data *data);
 
 /// ẍ, the drives' efforts (24) and the joint reactions (25)-(28), inward from the tree's ends,
 /// cut joints from their multipliers. Needs vt_solve(). Statuses: VT_ERR_NONFINITE (an effort
 /// or reaction overflowed: an ill-posed instant).
-vt_status vt_reactions(const vt_model *model, vt_data *data);
+VT_API vt_status vt_reactions(const vt_model *model, vt_data *data);
 
 /// The whole instant: vt_kinematics, vt_mass_matrix, vt_forces, vt_constraints, vt_solve,
 /// vt_reactions (R is left to vt_inverse_transform, which only (14) needs). Statuses: those of
 /// the stages; the first failure stops it. q, q̇ must satisfy the constraints (not corrected).
-vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
+VT_API vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 
 /// The same instant by the recursive evaluation, O(n) where the rows allow it: no dense S (and
 /// R), Φ_q from the rates' twists, M* and Q formed only on the general route. Fills what
@@ -292,7 +306,7 @@ vt_status vt_inverse_dynamics(const vt_model *model, vt_data *data);
 /// when anything is solved; M* and Q when vt_data.route is one of vt_solve's) except S and R,
 /// and agrees with it to round-off; d->route says which route it took. Statuses: those of
 /// vt_inverse_dynamics().
-vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
+VT_API vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 
 /// One instant of a motion given for every rate: q in d->q, q̇ in d->qd and q̈ in d->qdd (read,
 /// not changed), at any instant, without drives or time functions (the model's drives are
@@ -309,35 +323,37 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *data);
 /// joint drive is refused (VT_ERR_BAD_OPTION).
 /// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_OPTION, VT_ERR_NONFINITE (q, q̇, q̈,
 /// xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION, and with loops those of the stages.
-vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);
+VT_API vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);
 
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
 /// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24), into the caller's F (7n entries, body i at
 /// 7(i−1)). Needs vt_solve(). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (drive not in 0..ndrive−1).
-vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
+VT_API vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
 
 /* ---- analyses over time (src/kinematic_solve.c, src/kinematic_analysis.c, src/trajectory.c,
  *      src/dynamic_analysis.c) ------------------------------------------------------------ */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
-/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS).
-vt_run_options vt_default_run_options(void);
+/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS). The analyses
+/// refuse (VT_ERR_BAD_OPTION) tolerances and max_step that are not finite, as well as out of range.
+VT_API vt_run_options vt_default_run_options(void);
 
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
 /// with nout output intervals needs nrow ≥ nout + 1, one with ntout output times (tout)
 /// nrow ≥ ntout + 1 (row 0 is always t0). On failure *trajectory is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY.
-vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
-/// Frees a trajectory; NULL does nothing.
-void vt_trajectory_free(vt_trajectory *trajectory);
+VT_API vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
+/// Frees a trajectory; NULL does nothing. As with free(), freeing it twice is undefined.
+VT_API void vt_trajectory_free(vt_trajectory *trajectory);
 
 /// One instant of a kinematic analysis at d->time: Newton–Raphson on Φ(q, t) = 0 from d->q
 /// (steps from LAPACK's dgels: exact for as many rows as rates, least-norm for fewer), then
 /// q̇ corrected to Φ_q q̇ = −Φ_t the same way, then vt_inverse_dynamics(). d->q and d->qd are
 /// replaced by the consistent values; on failure they are restored.
-/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, VT_ERR_BAD_OPTION (tol or
-/// maxit not positive), and those of the stages.
-vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
+/// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, VT_ERR_BAD_OPTION (tol not
+/// finite and positive, maxit not positive), VT_ERR_NONFINITE (a Newton step that overflows q),
+/// and those of the stages.
+VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
 /// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
 /// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
@@ -352,7 +368,7 @@ vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, i
 /// Rows written before a failure stay in the trajectory (tr->nfilled).
 /// Statuses: VT_ERR_NOT_FULLY_DRIVEN, VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of
 /// another model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages.
-vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
+VT_API vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                                 vt_trajectory *trajectory);
 
 /// Dynamic analysis: the index-1 form of (5) handed to SUNDIALS IDA, unknowns q, q̇ and λ,
@@ -378,7 +394,7 @@ vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_r
 /// values, or a projection), VT_ERR_ABORTED, VT_ERR_NO_MEMORY, and those of the stages.
 /// Only in builds with SUNDIALS (VT_HAVE_SUNDIALS, vtdyn/version.h).
 #if VT_HAVE_SUNDIALS
-vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
+VT_API vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                               vt_trajectory *trajectory);
 #endif
 
@@ -386,18 +402,22 @@ vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run
 
 /// Eq (7): the Cartesian force on a body with Euler parameters p of a force f and moment n
 /// (global) applied at s (global vector from the body's origin to the point):
-/// F = [f; 2 E^T s̃ f + 2 E^T n]. F has 7 entries.
-void vt_cartesian_force(double F[7], const double p[4], const double s[3],
-                        const double f[3], const double n[3]);
+/// F = [f; 2 E^T s̃ f + 2 E^T n]. F has 7 entries. Statuses: VT_ERR_NULL (any argument NULL: pass
+/// zeros for no force or no moment), VT_ERR_NONFINITE (NaN or Inf in p, s, f or n, or F
+/// overflows). F is untouched on failure. (No data: no message.)
+VT_API vt_status vt_cartesian_force(double F[7], const double p[4], const double s[3],
+                                    const double f[3], const double n[3]);
 
 /// Eq (10): Q = S^T F for a Cartesian force F (7n) → Q (nv), the caller's arrays.
-/// Needs vt_kinematics(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (F).
-vt_status vt_generalized_force(double *Q, const vt_model *model, vt_data *data,
+/// Needs vt_kinematics(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (F, or
+/// Q overflows). Q is untouched on failure.
+VT_API vt_status vt_generalized_force(double *Q, const vt_model *model, vt_data *data,
                                const double *F);
 
 /// Eq (14): F_eq = R^T Q for a generalized force Q (nv) → F_eq (7n).
-/// Needs vt_inverse_transform(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (Q).
-vt_status vt_equivalent_force(double *Feq, const vt_model *model, vt_data *data,
+/// Needs vt_inverse_transform(). Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_NONFINITE (Q,
+/// or F_eq overflows). Feq is untouched on failure.
+VT_API vt_status vt_equivalent_force(double *Feq, const vt_model *model, vt_data *data,
                               const double *Q);
 
 #ifdef __cplusplus

@@ -123,9 +123,9 @@ static vt_status prescribed_orientation(char *msg, int k, const vt_drive_def *dr
             return vt_fail(msg, VT_ERR_CALLBACK, "vt_constraints: drive %d: orientation callback failed at t = %g", k, t);
         if (!vt_all_finite(p, 4) || !vt_all_finite(w, 3) || !vt_all_finite(wd, 3))
             return vt_fail(msg, VT_ERR_NONFINITE, "vt_constraints: drive %d: orientation callback returned NaN or Inf", k);
-        const double n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
-        if (!(n > 1e-12)) return vt_fail(msg, VT_ERR_QUATERNION, "vt_constraints: drive %d: orientation of zero norm", k);
-        for (int c = 0; c < 4; c++) pdes[c] = p[c] / n;
+        for (int c = 0; c < 4; c++) pdes[c] = p[c];
+        if (!(vt_normalize(pdes, 4) > 1e-12)) /* of norm 1 ideally (scaled: no overflow or underflow) */
+            return vt_fail(msg, VT_ERR_QUATERNION, "vt_constraints: drive %d: orientation of zero norm", k);
     } else {
         double f[3], r[4];
         vt_status st = vt_function_eval_valid(f, &dr->f, t);
@@ -396,6 +396,19 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
         if (dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1, Si);
     }
     vt_scratch_release(d, mark);
+    /* finite inputs can still overflow (q − f(t) with both near DBL_MAX, far points): scanned */
+    const int nc = m->nc, nphiq = m->nc * m->nv; /* ≤ nv + 7 n rows (cut joints, base bodies): an int */
+    if (vt_all_finite(d->Phi, nc) && vt_all_finite(d->Phit, nc) && vt_all_finite(d->gamma, nc) &&
+        vt_all_finite(d->Phix, 14 * nc) && vt_all_finite(d->Phiq, nphiq))
+        return VT_OK;
+    static const char *const owner_kind[] = {"drive", "cut joint", "coupling", "base body"};
+    for (int r = 0; r < nc; r++) {
+        int bad = !isfinite(d->Phi[r]) || !isfinite(d->Phit[r]) || !isfinite(d->gamma[r]) || !vt_all_finite(d->Phix + 14 * r, 14);
+        for (int c = 0; c < m->nv && !bad; c++) bad = !isfinite(d->Phiq[r + (size_t)c * (size_t)nc]);
+        if (bad)
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: row %d (%s %d) overflows (Φ, Φ_x, Φ_q, Φ_t or γ at t = %g)",
+                           r, owner_kind[vt_row_owner_kind(m, r)], m->con_owner[r], t);
+    }
     return VT_OK;
 }
 

@@ -11,16 +11,22 @@
 
 #include "internal.h"
 
-void vt_cartesian_force(double F[7], const double p[4], const double s[3], const double f[3],
-                        const double n[3])
+vt_status vt_cartesian_force(double F[7], const double p[4], const double s[3], const double f[3],
+                             const double n[3])
 {
-    double E[12], t[3];
+    if (!F || !p || !s || !f || !n) return VT_ERR_NULL;
+    if (!vt_all_finite(p, 4) || !vt_all_finite(s, 3) || !vt_all_finite(f, 3) || !vt_all_finite(n, 3))
+        return VT_ERR_NONFINITE;
+    double E[12], t[3], G[7]; /* into G: F written only when finite */
     vt_cross3(t, s, f);
     vt_axpy3(t, 1.0, n);
-    vt_copy3(F, f);
+    vt_copy3(G, f);
     vt_euler_E(E, p);
-    vt_mulE_t(F + 3, E, t);
-    for (int k = 3; k < 7; k++) F[k] *= 2.0;
+    vt_mulE_t(G + 3, E, t);
+    for (int k = 3; k < 7; k++) G[k] *= 2.0;
+    if (!vt_all_finite(G, 7)) return VT_ERR_NONFINITE;
+    memcpy(F, G, sizeof G);
+    return VT_OK;
 }
 
 /* Q = S^T G for a Cartesian vector G (7n) */
@@ -49,7 +55,16 @@ vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const d
     if (!Q || !F) return vt_fail(d->message, VT_ERR_NULL, "vt_generalized_force: NULL argument");
     if (!vt_all_finite(F, m->nx))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_generalized_force: NaN or Inf in F");
-    return apply_St(Q, m, d, F);
+    /* into scratch (nv ≤ nx: within vt_forces_scratch), the caller's Q written only when finite */
+    const size_t mark = vt_scratch_mark(d);
+    double *Qs = VT_SCRATCH(d, double, m->nv, "S^T F");
+    if (!Qs) return vt_scratch_fail(d, mark);
+    if ((st = apply_St(Qs, m, d, F))) return vt_scratch_release(d, mark), st;
+    if (!vt_all_finite(Qs, m->nv))
+        return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_NONFINITE, "vt_generalized_force: S^T F overflows (F too large)");
+    memcpy(Q, Qs, (size_t)m->nv * sizeof(double));
+    vt_scratch_release(d, mark);
+    return VT_OK;
 }
 
 vt_status vt_forces(const vt_model *m, vt_data *d)
@@ -97,6 +112,15 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
     vt_scratch_release(d, mark);
     if (st) return st;
     for (int c = 0; c < m->nv; c++) d->Q[c] += d->qfrc[c];
+    /* finite loads can still overflow (their sum in Q, a large ṗ squared in h): scanned, O(n) */
+    if (vt_all_finite(d->F, m->nx) && vt_all_finite(d->h, m->nx) && vt_all_finite(d->Q, m->nv)) return VT_OK;
+    for (int i = 1; i <= m->nbody; i++)
+        if (!vt_all_finite(d->F + vt_xoff(i), 7) || !vt_all_finite(d->h + vt_xoff(i), 7))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: body %d: applied force F or h overflows (xfrc, mass or ṗ too large)", i);
+    for (int c = 0; c < m->nv; c++)
+        if (!isfinite(d->Q[c]))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: Q[%d] (body %d's rate) overflows (loads too large)", c,
+                           m->dof_body[c]);
     return VT_OK;
 }
 

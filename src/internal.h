@@ -118,6 +118,24 @@ static inline int vt_all_finite(const double *a, int n)
     return !(any >> 63);
 }
 
+/* a ← a/|a| for a vector of n entries, with |a| = s·sqrt(Σ (a_k/s)²) and s = max |a_k|: no
+ * overflow of the sum of squares for lengths near DBL_MAX (1e160 and more), no underflow to zero
+ * for tiny non-zero ones, so any finite non-zero vector keeps its direction. Returns |a| (Inf
+ * when the length itself overflows; a is still normalized), or 0 for the zero vector (and a
+ * NaN), which is left as it was. Axes and Euler parameters of definitions are directions: only
+ * the zero vector has none (model.c). */
+static inline double vt_normalize(double *a, int n)
+{
+    double s = 0.0;
+    for (int k = 0; k < n; k++) s = fabs(a[k]) > s ? fabs(a[k]) : s;
+    if (!(s > 0.0) || !isfinite(s)) return 0.0;
+    double ss = 0.0;
+    for (int k = 0; k < n; k++) ss += (a[k] / s) * (a[k] / s);
+    const double r = sqrt(ss); /* in [1, sqrt(n)] */
+    for (int k = 0; k < n; k++) a[k] = (a[k] / s) / r;
+    return s * r;
+}
+
 /* ---- the scratch arena (data.c lays it out) ---------------------------------------------
  * A stack inside the data: a function that needs scratch marks the top, takes named
  * allocations (each on a cache line) and releases back to its mark before it returns, so no
@@ -210,6 +228,7 @@ size_t vt_solve_scratch(const vt_model *m);
 size_t vt_reactions_scratch(const vt_model *m);
 size_t vt_recursive_scratch(const vt_model *m);
 size_t vt_kinematic_solve_scratch(const vt_model *m);
+size_t vt_inverse_transform_scratch(const vt_model *m);
 
 /* Writes a formatted message into buf (size 256) and returns status. */
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)

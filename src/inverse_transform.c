@@ -80,6 +80,11 @@ vt_status vt_equivalent_force(double *Feq, const vt_model *m, vt_data *d, const 
     if (!vt_all_finite(Q, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_equivalent_force: NaN or Inf in Q");
     const int ld = m->nv;
+    /* into scratch, the caller's Feq written only when finite (R^T Q can overflow) */
+    const size_t mark = vt_scratch_mark(d);
+    double *out = Feq;
+    Feq = VT_SCRATCH(d, double, m->nx, "R^T Q");
+    if (!Feq) return vt_scratch_fail(d, mark);
     memset(Feq, 0, (size_t)m->nx * sizeof(double));
     /* only the blocks R_ii and R_ij of each joint are non-zero */
     for (int i = 1; i <= m->nbody; i++) {
@@ -90,5 +95,15 @@ vt_status vt_equivalent_force(double *Feq, const vt_model *m, vt_data *d, const 
             cblas_dgemv(CblasColMajor, CblasTrans, nvi, 7, 1.0, d->R + row + (size_t)vt_xoff(j) * (size_t)ld, ld,
                         Q + row, 1, 1.0, Feq + vt_xoff(j), 1);
     }
+    if (!vt_all_finite(Feq, m->nx))
+        return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_NONFINITE, "vt_equivalent_force: R^T Q overflows (Q too large)");
+    memcpy(out, Feq, (size_t)m->nx * sizeof(double));
+    vt_scratch_release(d, mark);
     return VT_OK;
+}
+
+/* vt_equivalent_force's R^T Q */
+size_t vt_inverse_transform_scratch(const vt_model *m)
+{
+    return VT_SCRATCH_BYTES(m->nx, sizeof(double));
 }

@@ -83,8 +83,9 @@ vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxi
 {
     vt_status st = vt_check_pair(m, d, "vt_kinematic_solve");
     if (st) return st;
-    if (!(tol > 0.0) || maxit < 1)
-        return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_kinematic_solve: tol %g and maxit %d must be positive", tol, maxit);
+    if (!(tol > 0.0) || !isfinite(tol) || maxit < 1)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_kinematic_solve: tol %g must be finite and positive, maxit %d positive",
+                       tol, maxit);
     const size_t mark = vt_scratch_mark(d);
     double *qsave = VT_SCRATCH(d, double, (size_t)m->nq + (size_t)m->nv, "q and q̇ as given");
     double *step = VT_SCRATCH(d, double, m->nv, "Newton step");
@@ -103,7 +104,9 @@ vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxi
                                              "vt_kinematic_solve: max |Φ| = %.3g after %d iterations at t = %g", res,
                                              maxit, d->time));
             if ((st = solve_phiq(m, d, 0, step))) return restore(m, d, qsave, mark, st);
-            if ((st = vt_integrate_q(d->q, m, d->q, step, 1.0))) return restore(m, d, qsave, mark, st);
+            if ((st = vt_integrate_q(d->q, m, d->q, step, 1.0))) /* a step so large that q overflows */
+                return restore(m, d, qsave, mark, vt_fail(d->message, st, "vt_kinematic_solve: Newton step %d overflows q (max |Φ| = %.3g at t = %g)",
+                                                          it + 1, res, d->time));
         }
         /* velocities: the correction of q̇ that makes Φ_q q̇ = −Φ_t */
         if ((st = solve_phiq(m, d, 1, step))) return restore(m, d, qsave, mark, st);

@@ -48,8 +48,8 @@ static vt_status check_state(const vt_model *m, vt_data *d)
         const int jt = m->body_joint[i];
         if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE && jt != VT_JOINT_FREE) continue;
         const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_SPHERICAL ? 0 : 3);
-        const double s = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
-        if (!(s > 1e-24))
+        double u[4] = {p[0], p[1], p[2], p[3]}; /* of norm 1 ideally: below 1e-12 is zero (scaled: no underflow) */
+        if (!(vt_normalize(u, 4) > 1e-12))
             return vt_fail(d->message, VT_ERR_QUATERNION,
                            "vt_kinematics: body %d: Euler parameters of zero norm", i);
     }
@@ -100,9 +100,8 @@ static void positions(const vt_model *m, vt_data *d)
         }
         case VT_JOINT_SPHERICAL:
         case VT_JOINT_FREE: { /* free: the translation (reference axes), then as spherical */
-            const double *qp = jt == VT_JOINT_FREE ? qi + 3 : qi;
-            const double s = sqrt(qp[0] * qp[0] + qp[1] * qp[1] + qp[2] * qp[2] + qp[3] * qp[3]);
-            for (int k = 0; k < 4; k++) pJ[k] = qp[k] / s;
+            memcpy(pJ, jt == VT_JOINT_FREE ? qi + 3 : qi, 4 * sizeof(double));
+            vt_normalize(pJ, 4); /* scaled: no overflow for a norm ≥ 1e154 */
             memcpy(e, Aj, 9 * sizeof(double)); /* triad: the reference body's axes */
             if (jt == VT_JOINT_FREE) vt_mulmat3(t, Aj, qi);
             break;
@@ -352,6 +351,33 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
     }
 }
 
+/* A finite state can still overflow (a base body's Euler parameters ×1e200 enter A squared, a
+ * rate of 1e300 rad/s its square in Ṡq̇): the outputs are scanned (branch-free, O(n)) and the
+ * first body with a non-finite one is named. */
+static vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
+{
+    const int n = m->nbody, nb = n + 1;
+    if (vt_all_finite(d->x, 7 * n) && vt_all_finite(d->A, 9 * nb) && vt_all_finite(d->jpoint, 3 * nb) &&
+        vt_all_finite(d->jd, 3 * nb) && vt_all_finite(d->omega, 3 * nb) && vt_all_finite(d->xd, 7 * n) &&
+        vt_all_finite(d->twist, 6 * m->nv) && (!Sdqd || vt_all_finite(d->Sdqd, 7 * n)))
+        return VT_OK;
+    for (int i = 1; i <= n; i++) {
+        const char *what = NULL;
+        if (!vt_all_finite(d->x + vt_xoff(i), 7) || !vt_all_finite(d->A + 9 * i, 9) ||
+            !vt_all_finite(d->jpoint + 3 * i, 3) || !vt_all_finite(d->jd + 3 * i, 3))
+            what = "position or orientation";
+        else if (!vt_all_finite(d->omega + 3 * i, 3) || !vt_all_finite(d->xd + vt_xoff(i), 7) ||
+                 !vt_all_finite(d->twist + 6 * m->body_vadr[i], 6 * m->body_nv[i]))
+            what = "velocity";
+        else if (Sdqd && !vt_all_finite(d->Sdqd + vt_xoff(i), 7))
+            what = "acceleration at q̈ = 0 (Ṡq̇)";
+        if (what)
+            return vt_fail(d->message, VT_ERR_NONFINITE,
+                           "vt_kinematics: body %d: %s overflows (q or q̇ too large; Euler parameters should be unit)", i, what);
+    }
+    return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: an output overflows (q or q̇ too large)");
+}
+
 vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
 {
     vt_status st = check_state(m, d);
@@ -366,7 +392,7 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
         vt_accelerations(m, d, NULL, d->Sdqd, alpha);
         vt_scratch_release(d, mark);
     }
-    return VT_OK;
+    return check_outputs(m, d, Sdqd);
 }
 
 /* the angular accelerations of Ṡq̇ */
@@ -381,5 +407,11 @@ vt_status vt_kinematics(const vt_model *m, vt_data *d)
     if (st) return st;
     if ((st = vt_kinematics_tree(m, d, 1))) return st;
     fill_S(m, d);
+    const size_t nS = (size_t)m->nx * (size_t)m->nv; /* ≤ 7 VT_MAX_BODIES × 6 VT_MAX_BODIES: an int */
+    if (vt_all_finite(d->S, (int)nS)) return VT_OK;
+    for (size_t k = 0; k < nS; k++)
+        if (!isfinite(d->S[k]))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: S of body %d, rate %d overflows (q too large)",
+                           (int)(k % (size_t)m->nx) / 7 + 1, (int)(k / (size_t)m->nx));
     return VT_OK;
 }

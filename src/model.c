@@ -191,44 +191,47 @@ static int find_name(const char *names, int n, const char *name)
     return VT_ERR_NOT_FOUND;
 }
 
-/* Normalizes a in place; refuses a length below 1e-12. */
+/* Normalizes a in place (vt_normalize: scaled, so lengths near overflow or underflow keep their
+ * direction); refuses only the zero vector: an axis or orientation is a direction, its length
+ * a unit of the caller's, so no other length is "too short" in itself. */
 static int normalize(double *a, int n)
 {
-    double s = 0.0;
-    for (int k = 0; k < n; k++) s += a[k] * a[k];
-    s = sqrt(s);
-    if (!(s > 1e-12)) return 0;
-    for (int k = 0; k < n; k++) a[k] /= s;
-    return 1;
+    return vt_normalize(a, n) > 0.0;
 }
 
 /* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two, to the relative
  * tolerance VT_INERTIA_TOL of its largest entry (files such as URDF print inertias to a few
  * digits: moments off the triangle inequality, or an entry of −5e-20, by round-off; a genuinely
  * bad inertia is off by far more). Zero is a point mass and allowed. Principal moments from
- * LAPACK's dsyev. The largest entry, not a sum, sets the scale: no overflow near DBL_MAX. */
+ * LAPACK's dsyev, on J divided by its largest entry: no overflow near DBL_MAX. */
 vt_status vt_check_inertia(char *msg, const char *who, const double J[9])
 {
     double scale = 0.0;
     for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
-    const double tol = VT_INERTIA_TOL * scale + VT_INERTIA_ABS_TOL; /* the floor: a point mass written −5e-20 */
-    if (!(fabs(J[1] - J[3]) <= tol) || !(fabs(J[2] - J[6]) <= tol) || !(fabs(J[5] - J[7]) <= tol))
+    /* the rotational mass 4 GᵀJ'G has entries up to 12 times the largest (G's rows orthonormal
+     * for unit p): VT_INERTIA_MAX = 1e307 < DBL_MAX/16 keeps it finite; beyond, it cannot be used */
+    if (scale > VT_INERTIA_MAX)
+        return vt_fail(msg, VT_ERR_NONFINITE, "%s: inertia entry of magnitude %g beyond %g: its mass matrix would overflow",
+                       who, scale, VT_INERTIA_MAX);
+    if (scale == 0.0) return VT_OK;
+    /* checked on J/scale (entries in [−1, 1]): no difference, tolerance or moment overflows */
+    double a[9], w[3], work[16];
+    for (int k = 0; k < 9; k++) a[k] = J[k] / scale;
+    const double tol = VT_INERTIA_TOL + VT_INERTIA_ABS_TOL / scale; /* the floor: a point mass written −5e-20 */
+    if (!(fabs(a[1] - a[3]) <= tol) || !(fabs(a[2] - a[6]) <= tol) || !(fabs(a[5] - a[7]) <= tol))
         return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
                        "%s: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",
                        who, J[3], J[1], J[6], J[2], J[7], J[5]);
-    if (scale == 0.0) return VT_OK;
-    double a[9], w[3], work[16];
-    memcpy(a, J, sizeof a);
     const int n = 3, lwork = 16;
     int info = 0;
     dsyev_("N", "L", &n, a, &n, w, work, &lwork, &info, 1, 1);
     if (info != 0)
         return vt_fail(msg, VT_ERR_LAPACK, "%s: dsyev info %d on the inertia matrix", who, info);
     if (w[0] < -tol)
-        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "%s: principal moment %g < 0", who, w[0]);
+        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "%s: principal moment %g < 0", who, w[0] * scale);
     if (w[0] + w[1] < w[2] - tol)
         return vt_fail(msg, VT_ERR_INERTIA_TRIANGLE,
-                       "%s: principal moments %g + %g < %g", who, w[0], w[1], w[2]);
+                       "%s: principal moments %g + %g < %g", who, w[0] * scale, w[1] * scale, w[2] * scale);
     return VT_OK;
 }
 

@@ -603,8 +603,8 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
         d->qdd[a] = x;
     }
     if (!drv) memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
-    if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc))
-        return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc)) /* conditioned (rcond checked): an overflow */
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: q̈ or λ overflows (loads or rates too large)");
     return 0;
 }
 

@@ -18,7 +18,8 @@ vt_status vt_add_point_load(const vt_model *m, vt_data *d, int body, const doubl
         return vt_fail(d->message, VT_ERR_NULL, "vt_add_point_load: point is NULL");
     if ((f && (!vt_all_finite(f, 3) || !vt_all_finite(point, 3))) || (n && !vt_all_finite(n, 3)))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_add_point_load: NaN or Inf in the load on body %d", body);
-    double *w = d->xfrc + 6 * body;
+    double w[6]; /* the new wrench, stored only when finite: a sum past DBL_MAX changes nothing */
+    memcpy(w, d->xfrc + 6 * body, sizeof w);
     if (f) {
         /* moment about the centre of mass: s × f with s = A s' (the s̃ f of (7)) */
         double s[3];
@@ -27,6 +28,9 @@ vt_status vt_add_point_load(const vt_model *m, vt_data *d, int body, const doubl
         vt_addcross3(w + 3, s, f);
     }
     if (n) vt_axpy3(w + 3, 1.0, n);
+    if (!vt_all_finite(w, 6))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_add_point_load: the load on body %d overflows (xfrc not finite)", body);
+    memcpy(d->xfrc + 6 * body, w, sizeof w);
     return VT_OK;
 }
 
@@ -50,9 +54,12 @@ vt_status vt_frame_pose(const vt_model *m, vt_data *d, int frame, double positio
     static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     const double *A = b ? d->A + 9 * b : I3, *sp = m->frame_point + 3 * frame;
     if (position) {
-        double s[3];
+        double s[3], o[3];
         vt_mulmat3(s, A, sp);
-        for (int k = 0; k < 3; k++) position[k] = (b ? d->x[vt_xoff(b) + k] : 0.0) + s[k];
+        for (int k = 0; k < 3; k++) o[k] = (b ? d->x[vt_xoff(b) + k] : 0.0) + s[k];
+        if (!vt_all_finite(o, 3)) /* a far point on a far body: the sum overflows */
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_frame_pose: frame %d's position overflows", frame);
+        vt_copy3(position, o);
     }
     if (rotation) {
         double Af[9];
@@ -65,26 +72,19 @@ vt_status vt_frame_pose(const vt_model *m, vt_data *d, int frame, double positio
 /* p ← exp(h ω) ⊗ p, normalized */
 static void rotate_quat(double p[4], const double w[3], double h)
 {
-    const double a = sqrt(vt_dot3(w, w)) * h;
+    double r[4], u[3] = {w[0], w[1], w[2]};
+    const double a = vt_normalize(u, 3) * h; /* |ω| h, u = ω/|ω| (scaled: no overflow) */
     if (a != 0.0) {
-        double r[4], u[3] = {w[0], w[1], w[2]};
-        const double inv = 1.0 / sqrt(vt_dot3(w, w));
-        u[0] *= inv; u[1] *= inv; u[2] *= inv;
         vt_quat_axis_angle(r, u, a);
         vt_quat_mul(p, r, p);
     }
-    const double s = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
-    if (s > 0.0)
-        for (int k = 0; k < 4; k++) p[k] /= s;
+    vt_normalize(p, 4);
 }
 
-vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, const double *v, double h)
+/* body i's coordinates advanced, into qi (body_nq[i] entries, at most 7) */
+static void advance(double *qi, const vt_model *m, int i, const double *v, double h)
 {
-    if (!q_out || !m || !q || !v) return VT_ERR_NULL;
-    if (!isfinite(h) || !vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
-    if (q_out != q) memcpy(q_out, q, (size_t)m->nq * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) {
-        double *qi = q_out + m->body_qadr[i];
+    {
         const double *vi = v + m->body_vadr[i];
         switch (m->body_joint[i]) {
         case VT_JOINT_SPHERICAL:
@@ -107,5 +107,22 @@ vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, cons
             for (int k = 0; k < m->body_nq[i]; k++) qi[k] += h * vi[k];
         }
     }
+}
+
+vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, const double *v, double h)
+{
+    if (!q_out || !m || !q || !v) return VT_ERR_NULL;
+    if (!isfinite(h) || !vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
+    /* finite inputs can still overflow (q + h q̇ past DBL_MAX): every body is advanced into a
+     * local first, and q_out is written only when all are finite (each body reads only its own
+     * entries, so q_out may alias q) */
+    for (int i = 1; i <= m->nbody; i++) {
+        double qi[7];
+        memcpy(qi, q + m->body_qadr[i], (size_t)m->body_nq[i] * sizeof(double));
+        advance(qi, m, i, v, h);
+        if (!vt_all_finite(qi, m->body_nq[i])) return VT_ERR_NONFINITE;
+    }
+    if (q_out != q) memcpy(q_out, q, (size_t)m->nq * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) advance(q_out + m->body_qadr[i], m, i, v, h);
     return VT_OK;
 }

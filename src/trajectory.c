@@ -208,8 +208,11 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
                        opt->nout, tr->nrow - 1);
     }
     if (!(opt->rtol > 0.0) || !(opt->atol > 0.0) || !(opt->max_step >= 0.0) || opt->max_steps < 1 ||
-        !(opt->newton_tol > 0.0) || opt->newton_maxit < 1 || opt->history_steps < 2)
-        return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: tolerances, step limits and iteration counts must be positive", who);
+        !(opt->newton_tol > 0.0) || opt->newton_maxit < 1 || opt->history_steps < 2 || /* +Inf passes `> 0` */
+        !isfinite(opt->rtol) || !isfinite(opt->atol) || !isfinite(opt->max_step) || !isfinite(opt->newton_tol))
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "%s: tolerances and step limits must be finite and positive (rtol %g, atol %g, newton_tol %g, max_step %g "
+                       "≥ 0), step and iteration counts positive", who, opt->rtol, opt->atol, opt->newton_tol, opt->max_step);
     if (opt->formulation < 0 || opt->formulation >= VT_FORMULATION_COUNT || !(opt->baumgarte_alpha >= 0.0) ||
         !(opt->baumgarte_beta >= 0.0) || !isfinite(opt->baumgarte_alpha) || !isfinite(opt->baumgarte_beta))
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: formulation %d or Baumgarte parameters out of range", who,

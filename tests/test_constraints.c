@@ -250,12 +250,40 @@ static void test_callback_failure(void **state)
     vt_model_free(m);
 }
 
+/* Finite inputs whose constraint values overflow: a joint drive to f = 1.7e308 rad from
+ * q = −1.7e308 rad gives Φ = q − f = −Inf. vt_constraints refuses it (VT_ERR_NONFINITE) and
+ * names the row and its drive, instead of returning VT_OK with Inf in Φ. */
+static void test_overflowing_rows(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_drive_def jd = vt_default_drive_def();
+    jd.f = vt_function_constant(1.7e308);
+    assert_int_equal(vt_builder_add_drive(b, &jd), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    d->q[0] = -1.7e308;
+    assert_ok(vt_kinematics(m, d));
+    assert_int_equal(vt_constraints(m, d), VT_ERR_NONFINITE);
+    assert_non_null(strstr(d->message, "row 0"));
+    assert_non_null(strstr(d->message, "drive 0"));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rows_against_finite_differences),
         cmocka_unit_test(test_joint_rows_are_unit),
         cmocka_unit_test(test_callback_failure),
+        cmocka_unit_test(test_overflowing_rows),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

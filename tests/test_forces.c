@@ -301,6 +301,68 @@ static void test_bad_input(void **state)
     teardown(&f);
 }
 
+/* Finite loads whose generalized force overflows: 1.5e308 N across each link of the double
+ * link (2 m links about z, along x at q = 0) is a moment of 1.5e308 × (1 + 3) N·m about joint 1. vt_forces refuses it (VT_ERR_NONFINITE, with a message) instead of
+ * returning VT_OK with Inf in Q. */
+static void test_overflowing_loads(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_double_link(&m, 0));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    for (int i = 1; i <= m->nbody; i++) d->xfrc[6 * i + 1] = 1.5e308;
+    assert_int_equal(vt_forces(m, d), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* vt_generalized_force with a finite F whose S^T F overflows (1.5e308 N across both links of the
+ * double link: 1.5e308 × (1 + 3) N·m about joint 1): VT_ERR_NONFINITE, Q left as it was. */
+static void test_generalized_force_overflow(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_double_link(&m, 0));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    double F[14] = {0}, Q[2] = {42.0, 43.0};
+    F[1] = F[7 + 1] = 1.5e308;
+    assert_int_equal(vt_generalized_force(Q, m, d, F), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    assert_true(Q[0] == 42.0 && Q[1] == 43.0);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* vt_cartesian_force: a NULL argument (the moment n = NULL was dereferenced) is VT_ERR_NULL, a
+ * NaN or a result that overflows VT_ERR_NONFINITE, and F is untouched; a good call gives (7)
+ * written out by hand: a force f = (0, 3, 0) at s = (2, 0, 0) on a body turned 90° about z
+ * (p = (c, 0, 0, c), c = √½) has the moment s × f = (0, 0, 6), and 2 E^T (0, 0, 6) = 12 (−p3,
+ * −p2, p1, p0) = 12 c (−1, 0, 0, 1). */
+static void test_cartesian_force_contract(void **state)
+{
+    (void)state;
+    const double c = sqrt(0.5), p[4] = {c, 0, 0, c}, s[3] = {2, 0, 0}, f[3] = {0, 3, 0}, n[3] = {0, 0, 0};
+    const double nan3[3] = {0, NAN, 0}, big[3] = {0, 1e300, 0}, far[3] = {1e300, 0, 0};
+    double F[7], before[7];
+    for (int k = 0; k < 7; k++) F[k] = before[k] = 42.0 + k;
+    assert_int_equal(vt_cartesian_force(NULL, p, s, f, n), VT_ERR_NULL);
+    assert_int_equal(vt_cartesian_force(F, NULL, s, f, n), VT_ERR_NULL);
+    assert_int_equal(vt_cartesian_force(F, p, NULL, f, n), VT_ERR_NULL);
+    assert_int_equal(vt_cartesian_force(F, p, s, NULL, n), VT_ERR_NULL);
+    assert_int_equal(vt_cartesian_force(F, p, s, f, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_cartesian_force(F, p, s, nan3, n), VT_ERR_NONFINITE);
+    assert_int_equal(vt_cartesian_force(F, p, far, big, n), VT_ERR_NONFINITE); /* moment 1e600 */
+    assert_memory_equal(F, before, sizeof F);
+    assert_ok(vt_cartesian_force(F, p, s, f, n));
+    const double want[7] = {0, 3, 0, -12 * c, 0, 0, 12 * c};
+    for (int k = 0; k < 7; k++) assert_near(F[k], want[k], 1e-14);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -310,6 +372,9 @@ int main(void)
         cmocka_unit_test(test_power_balance),
         cmocka_unit_test(test_load_virtual_power),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_overflowing_loads),
+        cmocka_unit_test(test_generalized_force_overflow),
+        cmocka_unit_test(test_cartesian_force_contract),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -67,11 +67,83 @@ static void test_first_failure_stops(void **state)
     vt_model_free(m);
 }
 
+/* a copy of the caller's inputs, to compare after a failed call */
+typedef struct {
+    double q[64], qd[64], xfrc[6 * 16], qfrc[64], time;
+} inputs;
+static void keep(inputs *k, const vt_model *m, const vt_data *d)
+{
+    assert_true(m->nq <= 64 && m->nv <= 64 && m->nbody < 16);
+    memcpy(k->q, d->q, (size_t)m->nq * sizeof(double));
+    memcpy(k->qd, d->qd, (size_t)m->nv * sizeof(double));
+    memcpy(k->xfrc, d->xfrc, 6 * (size_t)(m->nbody + 1) * sizeof(double));
+    memcpy(k->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
+    k->time = d->time;
+}
+static void unchanged(const inputs *k, const vt_model *m, const vt_data *d)
+{
+    assert_memory_equal(k->q, d->q, (size_t)m->nq * sizeof(double));
+    assert_memory_equal(k->qd, d->qd, (size_t)m->nv * sizeof(double));
+    assert_memory_equal(k->xfrc, d->xfrc, 6 * (size_t)(m->nbody + 1) * sizeof(double));
+    assert_memory_equal(k->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
+    assert_memory_equal(&k->time, &d->time, sizeof k->time);
+}
+
+/* Finite inputs whose results overflow: both evaluations of the instant refuse them with
+ * VT_ERR_NONFINITE and a message, and leave the inputs as they were (they returned VT_OK with
+ * Inf, or a status with no message). A base body's Euler parameters ×1e200 (A(p) overflows),
+ * every rate at 1e300 (ω² overflows), and on the double link 1.5e308 N across both links (Q
+ * overflows). */
+static void test_overflow_refused(void **state)
+{
+    (void)state;
+    for (int c = 0; c < 3; c++) {
+        vt_model *m;
+        vt_data *d;
+        if (c < 2) {
+            uint64_t seed = 1;
+            for (;; seed++) { /* a tree with a base body */
+                assert_ok(vt_scene_random_tree(&m, seed, 8, VT_SCENE_ALL_JOINTS));
+                int base = 0;
+                for (int i = 1; i <= m->nbody; i++) base += m->body_joint[i] == VT_JOINT_BASE;
+                if (base) break;
+                vt_model_free(m);
+            }
+            assert_ok(vt_data_create(&d, m));
+            uint64_t s = seed;
+            vt_scene_random_state(m, d, &s);
+            if (c == 0) {
+                for (int i = 1; i <= m->nbody; i++)
+                    if (m->body_joint[i] == VT_JOINT_BASE)
+                        for (int k = 3; k < 7; k++) d->q[m->body_qadr[i] + k] *= 1e200;
+            } else {
+                for (int k = 0; k < m->nv; k++) d->qd[k] = 1e300;
+            }
+        } else {
+            assert_ok(vt_scene_double_link(&m, 0));
+            assert_ok(vt_data_create(&d, m));
+            d->xfrc[6 * 1 + 1] = d->xfrc[6 * 2 + 1] = 1.5e308;
+        }
+        inputs k;
+        keep(&k, m, d);
+        for (int recursive = 0; recursive < 2; recursive++) {
+            d->message[0] = '\0';
+            const vt_status st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
+            if (st != VT_ERR_NONFINITE) fail_msg("case %d, recursive %d: status %d (%s)", c, recursive, (int)st, d->message);
+            if (!d->message[0]) fail_msg("case %d, recursive %d: no message", c, recursive);
+            unchanged(&k, m, d);
+        }
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pipeline_is_the_stages),
         cmocka_unit_test(test_first_failure_stops),
+        cmocka_unit_test(test_overflow_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

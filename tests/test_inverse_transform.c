@@ -87,11 +87,33 @@ static void test_equivalent_force(void **state)
     vt_model_free(m);
 }
 
+/* vt_equivalent_force with a finite Q whose R^T Q overflows: on the double link (both joints
+ * about z) link 1's block is 2 E^T e (Q1 − Q2), with Q = (1.7e308, −1.7e308) beyond DBL_MAX:
+ * VT_ERR_NONFINITE, Feq left as it was. */
+static void test_equivalent_force_overflow(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    assert_ok(vt_scene_double_link(&m, 0));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    assert_ok(vt_inverse_transform(m, d));
+    double Feq[14], before[14], Q[2] = {1.7e308, -1.7e308};
+    for (int k = 0; k < 14; k++) Feq[k] = before[k] = k + 0.5;
+    assert_int_equal(vt_equivalent_force(Feq, m, d, Q), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    assert_memory_equal(Feq, before, sizeof Feq);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_RS_identity),
         cmocka_unit_test(test_equivalent_force),
+        cmocka_unit_test(test_equivalent_force_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -105,11 +105,103 @@ static void test_free_joint_driven(void **state)
     vt_model_free(m);
 }
 
+/* A free body (base joint) held by an orientation drive about `axis` turning f(t) = 0.8 sin 2t
+ * and three point drives keeping its centre at the origin: as many rows as rates. */
+static vt_model *driven_base(const double axis[3])
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_BASE;
+    body.inertia[0] = 1.0; body.inertia[4] = 2.0; body.inertia[8] = 2.5;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    memcpy(od.axis, axis, sizeof od.axis);
+    od.f = vt_function_sine(0.0, 0.8, 2.0, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &od), 0);
+    for (int k = 0; k < 3; k++) {
+        vt_drive_def pd = vt_default_drive_def();
+        pd.type = VT_DRIVE_POINT;
+        pd.index = k;
+        assert_int_equal(vt_builder_add_drive(b, &pd), k + 1);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* The drive's axis (0, 0, 1e200) is the z axis (its sum of squares overflows: it was stored as
+ * zero and the body held still): the body turns f(t) about z, p = [cos f/2, 0, 0, sin f/2] up to
+ * sign, at ω = f'(t) about z. */
+static void test_orientation_drive_long_axis(void **state)
+{
+    (void)state;
+    const double axis[3] = {0.0, 0.0, 1e200};
+    vt_model *m = driven_base(axis);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    for (double t = 0.3; t < 1.0; t += 0.4) {
+        d->time = t;
+        assert_ok(vt_kinematic_solve(m, d, 1e-13, 30));
+        const double th = 0.8 * sin(2.0 * t), *p = d->q + 3, sg = p[0] < 0 ? -1.0 : 1.0;
+        assert_near(sg * p[0], cos(0.5 * th), 1e-12);
+        assert_near(sg * p[3], sin(0.5 * th), 1e-12);
+        assert_near(p[1], 0.0, 1e-12);
+        assert_near(p[2], 0.0, 1e-12);
+        assert_near(d->omega[3 + 2], 1.6 * cos(2.0 * t), 1e-10);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* Every refusal of vt_kinematic_solve says why in d->message and gives q and q̇ back as they
+ * were: Euler parameters ×1e200 (A(p) overflows; the status came with an empty message),
+ * tol = +Inf (passed the check `!(tol > 0)`, and Newton then stopped at any residual), tol NaN,
+ * maxit 0, a NaN in q. */
+static void test_failures_have_messages(void **state)
+{
+    (void)state;
+    const double axis[3] = {0.0, 0.0, 1.0};
+    vt_model *m = driven_base(axis);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    d->time = 0.4;
+    double q0[7], qd0[7];
+    for (int c = 0; c < 5; c++) {
+        assert_ok(vt_data_reset(m, d));
+        d->time = 0.4;
+        d->q[0] = 0.1; d->qd[1] = 0.2;
+        double tol = 1e-12;
+        int maxit = 30;
+        switch (c) {
+        case 0: for (int k = 3; k < 7; k++) d->q[k] *= 1e200; break;
+        case 1: tol = INFINITY; break;
+        case 2: tol = NAN; break;
+        case 3: maxit = 0; break;
+        default: d->q[2] = NAN;
+        }
+        memcpy(q0, d->q, sizeof q0);
+        memcpy(qd0, d->qd, sizeof qd0);
+        d->message[0] = '\0';
+        const vt_status st = vt_kinematic_solve(m, d, tol, maxit);
+        if (st == VT_OK) fail_msg("case %d: accepted", c);
+        if (!d->message[0]) fail_msg("case %d: status %d with an empty message", c, (int)st);
+        assert_memory_equal(d->q, q0, sizeof q0);
+        assert_memory_equal(d->qd, qd0, sizeof qd0);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rates_against_differences),
         cmocka_unit_test(test_free_joint_driven),
+        cmocka_unit_test(test_orientation_drive_long_axis),
+        cmocka_unit_test(test_failures_have_messages),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,8 @@
 /* src/kinematics.c: S against central finite differences of x(q), Ṡq̇ against finite
  * differences of S along q̇, ẋ from the recursion (15)-(16) against S q̇, and the joints'
  * geometric closure — on random trees that use every joint kind. */
+#include <stdio.h>
+
 #include "vt_test.h"
 
 typedef struct {
@@ -238,6 +240,65 @@ static void test_bad_state(void **state)
     teardown(&f);
 }
 
+/* Euler parameters of spherical joints are normalized by scaling (their length ×1e200 or ×1e-11
+ * gives the pose of the unit ones: the sum of squares would overflow to Inf); a state's Euler
+ * parameters should be unit, so below 1e-12 they count as zero (VT_ERR_QUATERNION);
+ * a state whose outputs overflow (a base body's Euler parameters ×1e200, which enter A(p)
+ * squared; rates of 1e300 rad/s, whose ω² overflows in Ṡq̇) is refused with VT_ERR_NONFINITE
+ * naming the body, by vt_kinematics and by the recursive evaluation's own kinematics. */
+static void test_extreme_states(void **state)
+{
+    (void)state;
+    fixture f;
+    uint64_t seed = 1;
+    for (;; seed++) { /* a tree with a spherical joint and a base body */
+        setup(&f, seed, 8, VT_SCENE_ALL_JOINTS);
+        int sph = 0, base = 0;
+        for (int i = 1; i <= f.m->nbody; i++) {
+            sph += f.m->body_joint[i] == VT_JOINT_SPHERICAL;
+            base += f.m->body_joint[i] == VT_JOINT_BASE;
+        }
+        if (sph && base) break;
+        teardown(&f);
+    }
+    const vt_model *m = f.m;
+    const size_t nx = (size_t)m->nx;
+    double *x0 = malloc(nx * sizeof(double));
+    eval(&f, f.q, x0, NULL);
+    const double scale[3] = {1e200, 1e-11, 1e-200};
+    for (int s = 0; s < 3; s++) {
+        memcpy(f.d->q, f.q, (size_t)m->nq * sizeof(double));
+        for (int i = 1; i <= m->nbody; i++)
+            if (m->body_joint[i] == VT_JOINT_SPHERICAL)
+                for (int k = 0; k < 4; k++) f.d->q[m->body_qadr[i] + k] *= scale[s];
+        if (s == 2) {
+            assert_int_equal(vt_kinematics(m, f.d), VT_ERR_QUATERNION);
+            continue;
+        }
+        assert_ok(vt_kinematics(m, f.d));
+        for (size_t r = 0; r < nx; r++) assert_near(f.d->x[r], x0[r], 1e-14 * (1 + fabs(x0[r])));
+    }
+    int base = 0;
+    for (int i = 1; i <= m->nbody && !base; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE) base = i;
+    char want[32];
+    snprintf(want, sizeof want, "body %d", base);
+    memcpy(f.d->q, f.q, (size_t)m->nq * sizeof(double));
+    for (int k = 3; k < 7; k++) f.d->q[m->body_qadr[base] + k] *= 1e200;
+    assert_int_equal(vt_kinematics(m, f.d), VT_ERR_NONFINITE);
+    assert_non_null(strstr(f.d->message, want));
+    assert_int_equal(vt_inverse_dynamics_recursive(m, f.d), VT_ERR_NONFINITE);
+    assert_non_null(strstr(f.d->message, want));
+    memcpy(f.d->q, f.q, (size_t)m->nq * sizeof(double));
+    for (int k = 0; k < m->nv; k++) f.d->qd[k] = 1e300;
+    assert_int_equal(vt_kinematics(m, f.d), VT_ERR_NONFINITE);
+    assert_true(strlen(f.d->message) > 0);
+    assert_int_equal(vt_inverse_dynamics_recursive(m, f.d), VT_ERR_NONFINITE);
+    assert_true(strlen(f.d->message) > 0);
+    free(x0);
+    teardown(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -247,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_joint_closure),
         cmocka_unit_test(test_sparsity_follows_paths),
         cmocka_unit_test(test_bad_state),
+        cmocka_unit_test(test_extreme_states),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

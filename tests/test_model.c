@@ -82,6 +82,92 @@ static void test_validation_errors(void **state)
     expect_refused(d, VT_ERR_QUATERNION);
 }
 
+/* Inertias near overflow are checked as well as ordinary ones: the check scales by the largest
+ * entry first (a tolerance or difference formed from raw entries near 1e308 overflows to Inf
+ * and lets anything through); entries so large that the rotational mass 4 GᵀJ'G (up to 12
+ * times the largest entry) would overflow cannot be used and are refused as VT_ERR_NONFINITE. */
+static void test_inertia_near_overflow(void **state)
+{
+    (void)state;
+    const double big = 1e308;
+    vt_body_def d;
+    d = vt_default_body_def(); /* negative definite */
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = -big;
+    expect_refused(d, VT_ERR_NONFINITE); /* too large to use, whatever its sign */
+    d = vt_default_body_def(); /* negative definite, usable size */
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = -1e300;
+    expect_refused(d, VT_ERR_INERTIA_NOT_PSD);
+    d = vt_default_body_def(); /* asymmetric: J12 = −J21 */
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 1e300; d.inertia[3] = 1e300; d.inertia[1] = -1e300;
+    expect_refused(d, VT_ERR_INERTIA_ASYMMETRIC);
+    d = vt_default_body_def(); /* indefinite: eigenvalues 1 ± 1.5 (×1e300) */
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 1e300; d.inertia[1] = d.inertia[3] = 1.5e300;
+    expect_refused(d, VT_ERR_INERTIA_NOT_PSD);
+    d = vt_default_body_def(); /* 1 + 1 < 3, ×1e300 */
+    d.inertia[0] = d.inertia[4] = 1e300; d.inertia[8] = 3e300;
+    expect_refused(d, VT_ERR_INERTIA_TRIANGLE);
+    d = vt_default_body_def(); /* positive definite but beyond use: 12 × 1.7e308 overflows */
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 1.7e308;
+    expect_refused(d, VT_ERR_NONFINITE);
+    d = vt_default_body_def(); /* the same, tiny: 1 + 1 < 3 ×1e-300, below VT_INERTIA_ABS_TOL: accepted */
+    vt_builder *b = make_builder();
+    d.inertia[0] = d.inertia[4] = 1e-300; d.inertia[8] = 3e-300;
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 1e300; /* large and valid: accepted */
+    assert_int_equal(vt_builder_add_body(b, &d), 3);
+    vt_builder_free(b);
+}
+
+/* Axes and Euler parameters are directions: normalized by their largest component first, so
+ * that lengths near overflow (whose sum of squares is Inf) and tiny ones (whose sum of squares
+ * underflows to 0) keep their direction; only the zero vector is refused. Bodies, cut joints,
+ * drives and frames; the expected directions are the same vectors at length ~1. */
+static void test_extreme_lengths(void **state)
+{
+    (void)state;
+    const double scales[] = {1e200, 1e-200, 1.7e308, 5e-324 /* the smallest subnormal */};
+    for (int s = 0; s < 4; s++) {
+        const double c = scales[s];
+        vt_builder *b = NULL;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_body_def d = vt_default_body_def();
+        d.axis1[0] = 0.0; d.axis1[1] = 0.0; d.axis1[2] = c;
+        d.orientation[0] = c; d.orientation[3] = c; /* 90° about z */
+        assert_int_equal(vt_builder_add_body(b, &d), 1);
+        d = vt_default_body_def();
+        d.parent = 1; d.joint = VT_JOINT_UNIVERSAL;
+        d.axis1[0] = c; d.axis1[1] = 0.0; d.axis1[2] = 0.0;
+        d.axis2[0] = 0.0; d.axis2[1] = c; d.axis2[2] = 0.0;
+        assert_int_equal(vt_builder_add_body(b, &d), 2);
+        vt_cut_joint_def cj = vt_default_cut_joint_def();
+        cj.body_a = 1; cj.body_b = 2; cj.axis1[0] = 0.0; cj.axis1[1] = c; cj.axis1[2] = 0.0;
+        cj.orientation[0] = c; cj.orientation[1] = c;
+        assert_int_equal(vt_builder_add_cut_joint(b, &cj), 0);
+        vt_drive_def dr = vt_default_drive_def();
+        dr.type = VT_DRIVE_ORIENTATION; dr.body = 2;
+        dr.axis[0] = c; dr.axis[1] = c; dr.axis[2] = 0.0;
+        dr.orientation[0] = 0.0; dr.orientation[2] = c;
+        assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+        vt_frame_def fr = vt_default_frame_def();
+        fr.name = "f"; fr.orientation[0] = c; fr.orientation[2] = -c;
+        assert_int_equal(vt_builder_add_frame(b, &fr), 0);
+        vt_model *m = NULL;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        const double h = sqrt(0.5);
+        const double *a1 = m->body_axis + 6, *q1 = m->body_quat0 + 4, *a2 = m->body_axis + 12;
+        assert_near(a1[2], 1.0, 1e-15); assert_near(a1[0], 0.0, 0.0);
+        assert_near(q1[0], h, 1e-15); assert_near(q1[3], h, 1e-15);
+        assert_near(a2[0], 1.0, 1e-15); assert_near(a2[4], 1.0, 1e-15);
+        assert_near(m->cut[0].axis1[1], 1.0, 1e-15);
+        assert_near(m->cut[0].orientation[0], h, 1e-15); assert_near(m->cut[0].orientation[1], h, 1e-15);
+        assert_near(m->drive[0].axis[0], h, 1e-15); assert_near(m->drive[0].axis[1], h, 1e-15);
+        assert_near(m->drive[0].orientation[2], 1.0, 1e-15);
+        assert_near(m->frame_quat[0], h, 1e-15); assert_near(m->frame_quat[2], -h, 1e-15);
+        vt_model_free(m);
+    }
+}
+
 static void test_allowed_and_normalized(void **state)
 {
     (void)state;
@@ -527,6 +613,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_validation_errors),
         cmocka_unit_test(test_allowed_and_normalized),
+        cmocka_unit_test(test_inertia_near_overflow),
+        cmocka_unit_test(test_extreme_lengths),
         cmocka_unit_test(test_limits_and_null),
         cmocka_unit_test(test_sizes_and_paths),
         cmocka_unit_test(test_real_files),

@@ -191,12 +191,88 @@ static void test_frames(void **state)
     vt_model_free(m);
 }
 
+/* Finite inputs whose results overflow are refused and change nothing: two loads of 1.5e308 N
+ * on one body sum past DBL_MAX in xfrc; q + h q̇ with q̇ = 1e300 and h = 1e10 is Inf (every kind
+ * of joint), also in place (q_out = q). Before, both returned VT_OK with Inf in the outputs. */
+static void test_overflow_changes_nothing(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    assert_ok(vt_scene_double_link(&m, 0));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    const double s[3] = {1, 0, 0}, f[3] = {1.5e308, 0, 0}, n[3] = {0, 0, 1.5e308};
+    assert_ok(vt_add_point_load(m, d, 2, s, f, n));
+    double before[18];
+    memcpy(before, d->xfrc, sizeof before);
+    assert_int_equal(vt_add_point_load(m, d, 2, s, f, NULL), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    assert_int_equal(vt_add_point_load(m, d, 2, s, NULL, n), VT_ERR_NONFINITE);
+    assert_memory_equal(before, d->xfrc, sizeof before);
+    vt_data_free(d);
+    vt_model_free(m);
+
+    assert_ok(vt_scene_random_tree(&m, 3, 12, VT_SCENE_ALL_JOINTS));
+    assert_ok(vt_data_create(&d, m));
+    const size_t nq = (size_t)m->nq;
+    double *q = malloc(nq * sizeof(double)), *q_out = malloc(nq * sizeof(double)), *v = malloc((size_t)m->nv * sizeof(double));
+    memcpy(q, d->q, nq * sizeof(double));
+    for (int k = 0; k < m->nv; k++) v[k] = 1e300;
+    for (size_t k = 0; k < nq; k++) q_out[k] = 42.0;
+    assert_int_equal(vt_integrate_q(q_out, m, q, v, 1e10), VT_ERR_NONFINITE);
+    for (size_t k = 0; k < nq; k++) assert_true(q_out[k] == 42.0);
+    memcpy(q_out, q, nq * sizeof(double));
+    assert_int_equal(vt_integrate_q(q_out, m, q_out, v, 1e10), VT_ERR_NONFINITE);
+    assert_memory_equal(q_out, q, nq * sizeof(double));
+    free(q); free(q_out); free(v);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* A frame whose position overflows (a point 1.5e308 m out on a body 1.5e308 m out along the same
+ * axis) is refused with VT_ERR_NONFINITE, the caller's array untouched (it returned VT_OK with
+ * Inf); the same frame at q = 0 is where the sum puts it. */
+static void test_frame_pose_overflow(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_TRANSLATIONAL;
+    body.axis1[0] = 1.0; body.axis1[1] = 0.0; body.axis1[2] = 0.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_frame_def fr = vt_default_frame_def();
+    fr.name = "far";
+    fr.point[0] = 1.5e308;
+    assert_int_equal(vt_builder_add_frame(b, &fr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    double pos[3] = {1, 2, 3};
+    assert_ok(vt_kinematics(m, d));
+    assert_ok(vt_frame_pose(m, d, 0, pos, NULL));
+    assert_true(pos[0] == 1.5e308 && pos[1] == 0.0 && pos[2] == 0.0);
+    d->q[0] = 1.5e308;
+    assert_ok(vt_kinematics(m, d));
+    pos[0] = 1; pos[1] = 2; pos[2] = 3;
+    assert_int_equal(vt_frame_pose(m, d, 0, pos, NULL), VT_ERR_NONFINITE);
+    assert_true(strlen(d->message) > 0);
+    assert_true(pos[0] == 1 && pos[1] == 2 && pos[2] == 3);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_point_load_bad_input_changes_nothing),
         cmocka_unit_test(test_integrate_q),
         cmocka_unit_test(test_frames),
+        cmocka_unit_test(test_overflow_changes_nothing),
+        cmocka_unit_test(test_frame_pose_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

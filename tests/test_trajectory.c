@@ -62,6 +62,36 @@ static void test_forward_error_norms(void **state)
 }
 #endif
 
+/* The run options' tolerances and step limits must be finite: +Inf passed the checks `!(tol > 0)`
+ * (with newton_tol = Inf every instant "converged" at any residual, the rows off their drives).
+ * Each refused with VT_ERR_BAD_OPTION and a message, by both analyses. */
+static void test_infinite_options(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    for (int k = 0; k < 4; k++) {
+        vt_run_options opt = vt_default_run_options();
+        opt.nout = 10;
+        opt.forward_check = 0;
+        double *field[4] = {&opt.rtol, &opt.atol, &opt.newton_tol, &opt.max_step};
+        *field[k] = INFINITY;
+        d->message[0] = '\0';
+        assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+        assert_true(strlen(d->message) > 0);
+#if VT_HAVE_SUNDIALS
+        assert_int_equal(vt_dynamic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+#endif
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -69,6 +99,7 @@ int main(void)
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_forward_error_norms),
 #endif
+        cmocka_unit_test(test_infinite_options),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

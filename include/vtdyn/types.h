@@ -21,6 +21,8 @@
 
 #include <stddef.h>
 
+#include "vtdyn/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -35,7 +37,7 @@ typedef enum vt_status {
     VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric (to VT_INERTIA_TOL)
     VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment (to VT_INERTIA_TOL)
     VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3 (to VT_INERTIA_TOL)
-    VT_ERR_AXIS_ZERO = -8,             ///< a joint axis has (near) zero length
+    VT_ERR_AXIS_ZERO = -8,             ///< a joint or drive axis is the zero vector
     VT_ERR_AXES_NOT_PERPENDICULAR = -9,///< universal joint axes not perpendicular
     VT_ERR_PARENT = -10,               ///< reference body is not an earlier body (base: not ground)
     VT_ERR_JOINT_TYPE = -11,           ///< unknown joint type
@@ -76,6 +78,9 @@ typedef enum vt_status {
 #define VT_INERTIA_TOL 1e-6
 /// Absolute floor of those tolerances, kg·m²: a point mass written with moments of −5e-20.
 #define VT_INERTIA_ABS_TOL 1e-15
+/// Largest magnitude of an inertia entry, kg·m²: the rotational mass 4 GᵀJ'G has entries up to 12
+/// times it, which must not overflow. An inertia beyond it is refused with VT_ERR_NONFINITE.
+#define VT_INERTIA_MAX 1e307
 
 /// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
 /// R (nv x 7n) of the reference path below about 400 MB.
