@@ -132,7 +132,7 @@ static void fail(const char *fmt, ...)
 static double num(bytes *b)
 {
     static const double special[16] = {0.0, 1.0, -1.0, 1e-9, 1e9, 0.0, 0.0, 0.0,
-                                       NAN, INFINITY, -INFINITY, 0.5, 2.0, 1e-6, 1e6, -0.0};
+                                       (double)NAN, (double)INFINITY, -(double)INFINITY, 0.5, 2.0, 1e-6, 1e6, -0.0};
     const unsigned v = byte(b);
     if (v < 240) return ((double)v - 120.0) / 16.0;
     if (v == 245 || v == 246) {
@@ -171,7 +171,7 @@ static int fuzz_callback(double t, double out[3], void *user)
     if (t >= c->t_fail) {
         if (c->after++ == 0) c->first_fail = t;
         if (c->mode == 0) return 1;
-        out[0] = out[1] = out[2] = NAN;
+        out[0] = out[1] = out[2] = (double)NAN;
         return 0;
     }
     out[0] = c->amp * sin(t);
@@ -433,7 +433,7 @@ static scales pair_scales(const vt_model *m, const vt_data *ref, const vt_data *
     double qs = 0.0, gs = 0.0, mdmax = 0.0;
     int massless = 0;
     for (int c = 0; c < m->nv; c++) {
-        const double mc = ref->Mstar[c + (size_t)c * (size_t)m->nv];
+        const double mc = ref->Mstar[(size_t)c + (size_t)c * (size_t)m->nv];
         mdmax = fmax(mdmax, mc);
         if (!(mc > 0.0)) massless = 1;
         else {
@@ -470,7 +470,7 @@ static void agree_qdd(const char *pair, const vt_model *m, const vt_data *ref, c
                       const scales *s)
 {
     for (int c = 0; c < m->nv; c++) {
-        const double mc = ref->Mstar[c + (size_t)c * (size_t)m->nv];
+        const double mc = ref->Mstar[(size_t)c + (size_t)c * (size_t)m->nv];
         const double tol = mc > 0.0 && s->dq > 0.0 ? s->dq / sqrt(mc) : s->tq;
         if (isfinite(tol)) agree(pair, "qdd", a + c, b + c, 1, tol, s);
     }
