@@ -317,7 +317,8 @@ static void model_check(const vt_model *m)
     for (int i = 1; i <= m->nbody; i++) {
         const int jt = m->body_joint[i];
         if (!(m->body_mass[i] >= 0.0) || !isfinite(m->body_mass[i])) fail("body %d: mass %g accepted", i, m->body_mass[i]);
-        if (jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL) unit(m->body_axis + 6 * i, 3, "body axis1", i);
+        if (jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_FREE)
+            unit(m->body_axis + 6 * i, 3, "body axis1", i);
         if (jt == VT_JOINT_UNIVERSAL) unit(m->body_axis + 6 * i + 3, 3, "body axis2", i);
         if (jt != VT_JOINT_BASE) unit(m->body_quat0 + 4 * i, 4, "body orientation", i);
         /* inertia: symmetric to the tolerance, its principal moments (LAPACK) ≥ −tol and within
@@ -734,7 +735,7 @@ static void read_definitions(bytes *b, definitions *defs)
     for (int i = 1; i <= defs->nbody; i++) {
         vt_body_def d = vt_default_body_def();
         d.parent = (int)(byte(b) % (unsigned)(i + 1)) - (byte(b) % 16 == 0);
-        d.joint = (vt_joint_type)(byte(b) % 7);
+        d.joint = (vt_joint_type)(byte(b) % 8); /* 7: an unknown kind */
         d.mass = byte(b) % 8 ? fabs(num(b)) + 0.1 : num(b);
         const unsigned shape = byte(b) % 4;
         if (shape == 0)
@@ -767,7 +768,7 @@ static void read_definitions(bytes *b, definitions *defs)
     defs->ncut = (int)(byte(b) % (MAX_CUT + 1));
     for (int k = 0; k < defs->ncut; k++) {
         vt_cut_joint_def c = vt_default_cut_joint_def();
-        c.joint = (vt_joint_type)(byte(b) % 7);
+        c.joint = (vt_joint_type)(byte(b) % 8);
         c.body_a = (int)(byte(b) % 8);
         c.body_b = (int)(byte(b) % 8);
         for (int e = 0; e < 3; e++) {
@@ -958,8 +959,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int unit_state = 1;
     for (int i = 1; i <= m->nbody; i++) {
         const int jt = m->body_joint[i];
-        if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE) continue;
-        double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_BASE ? 3 : 0);
+        if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE && jt != VT_JOINT_FREE) continue;
+        double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_SPHERICAL ? 0 : 3);
         const double big = maxabs(p, 4);
         double n2 = 0.0;
         for (int k = 0; k < 4; k++) n2 += (p[k] / big) * (p[k] / big);
