@@ -743,7 +743,8 @@ void vt_solve_reset(vt_data *d)
 
 /* What makes a solve singular by having nothing to move, written into buf (n bytes) as
  * " rate 2 (body 1) has no inertia; body 3, body 5: no mass or inertia beyond a free joint",
- * empty if none: a rate whose M*_aa is exactly 0 (moving it alone costs no kinetic energy), and
+ * empty if none: a rate without a joint drive whose M*_aa is exactly 0 (moving it alone costs no
+ * kinetic energy), and
  * a body without a drive on its joint whose subtree carries neither mass nor inertia. */
 static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
 {
@@ -751,7 +752,7 @@ static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
     size_t len = 0;
     int count = 0;
     for (int a = 0; a < m->nv && len + 48 < n; a++)
-        if (d->Mstar[a + (size_t)a * (size_t)m->nv] == 0.0)
+        if (d->Mstar[a + (size_t)a * (size_t)m->nv] == 0.0 && m->dof_drive[a] < 0)
             len += (size_t)snprintf(buf + len, n - len, "%s rate %d (body %d)", count++ ? "," : "", a, m->dof_body[a]);
     if (count) len += (size_t)snprintf(buf + len, n - len, " %s no inertia;", count > 1 ? "have" : "has");
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
