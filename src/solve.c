@@ -324,7 +324,7 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
     int lw = 0;
     double *work = vt_scratch_rest(d, 5 * (size_t)(nc + nv), sizeof(double), &lw, "dgesvd workspace");
-    if (!work) return VT_ERR_NO_MEMORY;
+    if (!work) return vt_scratch_fail(d, mark);
     double *g = o->g, *s = o->s, rmax = 0.0;
     scaling_diag(m, d->Mstar, nv + 1, s);
     const double rho = gyration_radius(m, d);
@@ -741,18 +741,26 @@ void vt_solve_reset(vt_data *d)
     d->residual = 0.0;
 }
 
+/* A rate that no constraint row touches (its column of Φ_q zero: no drive, cut joint or coupling) */
+static int untouched(const vt_model *m, const vt_data *d, int a)
+{
+    for (int r = 0; r < m->nc; r++)
+        if (d->Phiq[r + (size_t)a * (size_t)m->nc] != 0.0) return 0;
+    return 1;
+}
+
 /* What makes a solve singular by having nothing to move, written into buf (n bytes) as
  * " rate 2 (body 1) has no inertia; body 3, body 5: no mass or inertia beyond a free joint",
- * empty if none: a rate without a joint drive whose M*_aa is exactly 0 (moving it alone costs no
- * kinetic energy), and
- * a body without a drive on its joint whose subtree carries neither mass nor inertia. */
+ * empty if none: a rate that no row touches and whose M*_aa is exactly 0 (moving it alone costs
+ * no kinetic energy), and a body with such a rate whose subtree carries neither mass nor
+ * inertia. */
 static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
 {
     buf[0] = '\0';
     size_t len = 0;
     int count = 0;
     for (int a = 0; a < m->nv && len + 48 < n; a++)
-        if (d->Mstar[a + (size_t)a * (size_t)m->nv] == 0.0 && m->dof_drive[a] < 0)
+        if (d->Mstar[a + (size_t)a * (size_t)m->nv] == 0.0 && untouched(m, d, a))
             len += (size_t)snprintf(buf + len, n - len, "%s rate %d (body %d)", count++ ? "," : "", a, m->dof_body[a]);
     if (count) len += (size_t)snprintf(buf + len, n - len, " %s no inertia;", count > 1 ? "have" : "has");
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
@@ -770,7 +778,7 @@ static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
     count = 0;
     for (int i = 1; i <= m->nbody && len + 48 < n; i++) {
         int free_rate = 0;
-        for (int k = 0; k < m->body_nv[i]; k++) free_rate |= m->dof_drive[m->body_vadr[i] + k] < 0;
+        for (int k = 0; k < m->body_nv[i]; k++) free_rate |= untouched(m, d, m->body_vadr[i] + k);
         if (w[i] != 0.0 || !free_rate) continue;
         len += (size_t)snprintf(buf + len, n - len, "%s body %d", count++ ? "," : "", i);
     }
