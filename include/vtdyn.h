@@ -315,7 +315,8 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *da
  *      src/dynamic_analysis.c) ------------------------------------------------------------ */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
-/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS).
+/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS), the ODE
+/// form's redundant_band VT_REDUNDANT_TOL.
 vt_run_options vt_default_run_options(void);
 
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
@@ -334,7 +335,9 @@ void vt_trajectory_free(vt_trajectory *trajectory);
 /// maxit not positive), and those of the stages.
 vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
-/// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
+/// Kinematic analysis of a fully driven model (its constraint rows fix every rate: as many
+/// independent rows as rates, or more of that rank when the model allows redundant rows; the rank
+/// is Φ_q's at t0 and d->q, decided as vt_solve decides dependent rows): at every
 /// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
 /// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
 /// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
@@ -345,8 +348,11 @@ vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, i
 /// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).
-/// Statuses: VT_ERR_NOT_FULLY_DRIVEN, VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of
-/// another model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages.
+/// Statuses: VT_ERR_NOT_FULLY_DRIVEN (fewer rows than rates, or of lower rank),
+/// VT_ERR_DEPENDENT_CONSTRAINTS (more rows than rates, of full rank, in a model that does not
+/// allow redundant rows), VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of another
+/// model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages. The forward check
+/// of a model with dependent cut-joint rows needs VT_FORMULATION_ODE.
 vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                                 vt_trajectory *trajectory);
 

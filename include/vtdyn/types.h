@@ -499,7 +499,7 @@ typedef enum vt_formulation {
                                 ///< enforced, q' = T (q̇ + Φ_q^T μ); λ and μ out of the error test
     VT_FORMULATION_ODE,         ///< q̈ from vt_solve at every residual (Baumgarte's terms in γ), IDA on
                                 ///< q and q̇ only: carries through poses where rows become dependent
-                                ///< when the model allows redundant rows
+                                ///< when the model allows redundant rows (vt_run_options.redundant_band)
     VT_FORMULATION_COUNT        ///< number of formulations (not one)
 } vt_formulation;
 
