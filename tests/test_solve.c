@@ -3,6 +3,8 @@
  * singular system, dependent rows, bad drive and cut-joint definitions. */
 #include "vt_test.h"
 
+#include "../src/internal.h" /* vt_solve_run: the ODE form's solve with its band */
+
 static void dpotrs_solve(int n, double *A, double *b)
 {
     int info = 0, one = 1;
@@ -743,6 +745,78 @@ static void test_redundant_decision_frame_independent(void **state)
     }
 }
 
+/* The ODE form's band (vt_solve_run with vt_run_options.redundant_band) decides alike whatever
+ * the global axes and the units: the two-link arm 1 mrad from stretch, pulled along x, along a
+ * line at 0.5 rad, and along x in millimetres (lengths ×1e3, inertias ×1e6, gravity ×1e3), with
+ * a band of 1e-2 that holds its nearly dependent direction: each drops it (VT_WARN_BAND, rank
+ * still 2), with the same q̈ and the same drive forces, turned (and ×1e3 in mm: kg·mm/s²). With
+ * band 0 each is solved exactly. */
+static void test_band_frame_and_unit_independent(void **state)
+{
+    (void)state;
+    vt_model *m[3];
+    vt_data *d[3];
+    turned_arm(&m[0], &d[0], 0.0, 1e-3);
+    turned_arm(&m[1], &d[1], 0.5, 1e-3);
+    { /* the first one in millimetres */
+        vt_model_def md = vt_default_model_def();
+        md.allow_redundant = 1;
+        md.gravity[1] = -9810.0;
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, &md));
+        for (int k = 0; k < 2; k++) {
+            vt_body_def link = vt_default_body_def();
+            link.parent = k;
+            link.mass = 1.0;
+            link.inertia[4] = link.inertia[8] = 1e6 / 12.0;
+            link.joint_child[0] = -500.0;
+            link.joint_parent[0] = k ? 500.0 : 0.0;
+            assert_int_equal(vt_builder_add_body(b, &link), k + 1);
+        }
+        for (int k = 0; k < 2; k++) {
+            vt_drive_def tip = m[0]->drive[k];
+            tip.name = NULL;
+            tip.point[0] = 500.0;
+            for (int j = 0; j < 3; j++) tip.f.c[j] *= 1e3;
+            assert_int_equal(vt_builder_add_drive(b, &tip), k);
+        }
+        assert_ok(vt_builder_build(&m[2], b));
+        vt_builder_free(b);
+        assert_ok(vt_data_create(&d[2], m[2]));
+        memcpy(d[2]->q, d[0]->q, 2 * sizeof(double));
+        memcpy(d[2]->qd, d[0]->qd, 2 * sizeof(double));
+    }
+    const double scale[3] = {1.0, 1.0, 1e3}, th[3] = {0.0, 0.5, 0.0};
+    for (int band = 0; band < 2; band++) {
+        double qdd[3][2], F[3][2];
+        for (int k = 0; k < 3; k++) {
+            assert_ok(vt_kinematics(m[k], d[k]));
+            assert_ok(vt_mass_matrix(m[k], d[k]));
+            assert_ok(vt_forces(m[k], d[k]));
+            assert_ok(vt_constraints(m[k], d[k]));
+            assert_ok(vt_solve_run(m[k], d[k], band ? 1e-2 : 0.0));
+            assert_ok(vt_reactions(m[k], d[k]));
+            assert_int_equal(d[k]->rank, 2);
+            assert_int_equal((d[k]->warning & VT_WARN_BAND) != 0, band);
+            /* forces back to N, along the unturned axes */
+            const double c = cos(th[k]), s = sin(th[k]), *f = d[k]->drive_effort;
+            F[k][0] = (c * f[0] + s * f[1]) / scale[k];
+            F[k][1] = (-s * f[0] + c * f[1]) / scale[k];
+            memcpy(qdd[k], d[k]->qdd, sizeof qdd[k]);
+        }
+        const double fs = fmax(fabs(F[0][0]), fabs(F[0][1])), qs = fmax(fabs(qdd[0][0]), fabs(qdd[0][1]));
+        for (int k = 1; k < 3; k++)
+            for (int c = 0; c < 2; c++) {
+                assert_near(qdd[k][c], qdd[0][c], 1e-8 * qs);
+                assert_near(F[k][c], F[0][c], 1e-8 * fs);
+            }
+    }
+    for (int k = 0; k < 3; k++) {
+        vt_data_free(d[k]);
+        vt_model_free(m[k]);
+    }
+}
+
 /* After a failed solve no diagnostic of the previous call remains (rank, warning, rcond,
  * residual), on the dense and the recursive entry points: the redundant four-bar solved
  * (rank 3, VT_WARN_REDUNDANT), then a failing call on the same data. */
@@ -864,6 +938,7 @@ int main(void)
         cmocka_unit_test(test_bricard),
         cmocka_unit_test(test_regular_pose_with_redundant_option),
         cmocka_unit_test(test_redundant_decision_frame_independent),
+        cmocka_unit_test(test_band_frame_and_unit_independent),
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
     };
