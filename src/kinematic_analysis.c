@@ -10,9 +10,9 @@
 
 #include "internal.h"
 
-/* More rows than rates: fully driven when Φ_q's rank (to round-off, vt_solve's decision) at the
- * first row's time and the given q equals the rates, the other rows dependent; those a model
- * solves only when it allows them. Nothing of the caller's state changes (the stages' outputs do). */
+/* Fully driven when Φ_q's rank (to round-off, vt_solve's decision) at the first row's time and
+ * the given q equals the rates, any other rows dependent; those a model solves only when it
+ * allows them. Nothing of the caller's state changes (the stages' outputs do). */
 static vt_status fully_driven(const vt_model *m, vt_data *d, double t0)
 {
     const double t = d->time;
@@ -27,7 +27,8 @@ static vt_status fully_driven(const vt_model *m, vt_data *d, double t0)
     if (rank < m->nv)
         return vt_fail(d->message, VT_ERR_NOT_FULLY_DRIVEN,
                        "vt_kinematic_analysis: %d constraint rows of rank %d for %d rates at t = %g: they fix %d of "
-                       "the rates; drive the others, or run a dynamic analysis", m->nc, rank, m->nv, t0, rank);
+                       "the rates (or the start is a singular pose); drive the others, or run a dynamic analysis",
+                       m->nc, rank, m->nv, t0, rank);
     if (!m->allow_redundant)
         return vt_fail(d->message, VT_ERR_DEPENDENT_CONSTRAINTS,
                        "vt_kinematic_analysis: %d constraint rows of rank %d for %d rates: fully driven, with %d "
@@ -49,7 +50,8 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         return vt_fail(d->message, VT_ERR_NOT_FULLY_DRIVEN,
                        "vt_kinematic_analysis: %d constraint rows for %d rates: not fully driven; a dynamic analysis "
                        "handles partly driven models", m->nc, m->nv);
-    if (m->nc > m->nv && (st = fully_driven(m, d, opt->t0))) return st;
+    /* more rows than rates, or as many in a model that would solve dependent ones: the rank decides */
+    if ((m->nc > m->nv || m->allow_redundant) && (st = fully_driven(m, d, opt->t0))) return st;
     vt_trajectory_reset(tr);
     const int nrow = vt_run_rows(opt);
     const double tend = vt_run_time(opt, nrow);
