@@ -750,7 +750,8 @@ static int untouched(const vt_model *m, const vt_data *d, int a)
 }
 
 /* What makes a solve singular by having nothing to move, written into buf (n bytes) as
- * " rate 2 (body 1) has no inertia; body 3, body 5: no mass or inertia beyond a free joint",
+ * " rate 2 (body 1) has no inertia; body 3, body 5: no mass or inertia beyond a joint that no
+ * row touches",
  * empty if none: a rate that no row touches and whose M*_aa is exactly 0 (moving it alone costs
  * no kinetic energy), and a body with such a rate whose subtree carries neither mass nor
  * inertia. */
@@ -762,7 +763,8 @@ static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
     for (int a = 0; a < m->nv && len + 48 < n; a++)
         if (d->Mstar[a + (size_t)a * (size_t)m->nv] == 0.0 && untouched(m, d, a))
             len += (size_t)snprintf(buf + len, n - len, "%s rate %d (body %d)", count++ ? "," : "", a, m->dof_body[a]);
-    if (count) len += (size_t)snprintf(buf + len, n - len, " %s no inertia;", count > 1 ? "have" : "has");
+    if (count) len += (size_t)snprintf(buf + len, n - len, " %s no inertia", count > 1 ? "have" : "has");
+    const int rates = count;
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
     double *w = VT_SCRATCH(d, double, nb, "subtree inertia");
     if (!w) {
@@ -780,9 +782,9 @@ static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
         int free_rate = 0;
         for (int k = 0; k < m->body_nv[i]; k++) free_rate |= untouched(m, d, m->body_vadr[i] + k);
         if (w[i] != 0.0 || !free_rate) continue;
-        len += (size_t)snprintf(buf + len, n - len, "%s body %d", count++ ? "," : "", i);
+        len += (size_t)snprintf(buf + len, n - len, "%s body %d", count++ ? "," : rates ? ";" : "", i);
     }
-    if (count) snprintf(buf + len, n - len, ": no mass or inertia beyond a free joint");
+    if (count) snprintf(buf + len, n - len, ": no mass or inertia beyond a joint that no row touches");
     vt_scratch_release(d, mark);
 }
 
@@ -798,8 +800,8 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
         snprintf(rows, sizeof rows, "; Φ_q has full rank %d, its smallest scaled singular value %.3g of the largest",
                  o->rank, o->sig[0] > 0.0 ? o->sig[o->k - 1] / o->sig[0] : 0.0);
     if (who[0])
-        return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: singular (%s reciprocal condition %.3g):%s", what, rcond,
-                       who);
+        return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: singular:%s (reciprocal condition %.3g of the %s)", who,
+                       rcond, what);
     if (rcond == 0.0)
         return vt_fail(d->message, VT_ERR_SINGULAR,
                        "vt_solve: singular: an exactly zero pivot of the %s: the drives and cut joints leave a motion "
