@@ -817,6 +817,85 @@ static void test_band_frame_and_unit_independent(void **state)
     }
 }
 
+/* A planar arm of three rods (1 kg, 1 m, times u in length), its first joint driven (a row in
+ * radians) and its tip in x and y (rows in length), links 2 and 3 10 mrad from stretch. */
+static void mixed_arm(vt_model **m, vt_data **d, double u)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = 1;
+    md.gravity[1] = -9.81 * u;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    for (int k = 0; k < 3; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.parent = k;
+        link.mass = 1.0;
+        link.inertia[4] = link.inertia[8] = u * u / 12.0;
+        link.joint_child[0] = -0.5 * u;
+        link.joint_parent[0] = k ? 0.5 * u : 0.0;
+        assert_int_equal(vt_builder_add_body(b, &link), k + 1);
+    }
+    const double q[3] = {0.3, 0.2, 1e-2}, w[3] = {0.5, -0.3, 0.2};
+    const double a1 = q[0], a2 = q[0] + q[1], a3 = a2 + q[2], w1 = w[0], w2 = w1 + w[1], w3 = w2 + w[2];
+    const double P[2] = {cos(a1) + cos(a2) + cos(a3), sin(a1) + sin(a2) + sin(a3)};
+    const double V[2] = {-sin(a1) * w1 - sin(a2) * w2 - sin(a3) * w3, cos(a1) * w1 + cos(a2) * w2 + cos(a3) * w3};
+    const double A[2] = {0.4, -0.7};
+    vt_drive_def jd = vt_default_drive_def();
+    const double cj[3] = {q[0], w[0], 0.5 * 0.9};
+    jd.f = vt_function_polynomial(3, cj);
+    assert_int_equal(vt_builder_add_drive(b, &jd), 0);
+    for (int k = 0; k < 2; k++) {
+        vt_drive_def tip = vt_default_drive_def();
+        tip.type = VT_DRIVE_POINT;
+        tip.body = 3;
+        tip.index = k;
+        tip.point[0] = 0.5 * u;
+        const double c[3] = {u * P[k], u * V[k], 0.5 * u * A[k]};
+        tip.f = vt_function_polynomial(3, c);
+        assert_int_equal(vt_builder_add_drive(b, &tip), k + 1);
+    }
+    assert_ok(vt_builder_build(m, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(d, *m));
+    memcpy((*d)->q, q, sizeof q);
+    memcpy((*d)->qd, w, sizeof w);
+}
+
+/* Rows in radians and rows in metres weigh alike whatever the length unit: the arm above in
+ * metres and in millimetres, with a band of 1e-2 that holds its nearly dependent direction in
+ * the least-squares sense (a solution that depends on how the rows are weighted): the same q̈,
+ * the tip forces ×1e3 and the joint torque ×1e6 in mm; and the same with no band (exact). (The
+ * exact routes' condition estimates do depend on the unit: 3.0e-6 in m, 4.7e-11 in mm here.) */
+static void test_band_unit_independent_mixed_rows(void **state)
+{
+    (void)state;
+    vt_model *m[2];
+    vt_data *d[2];
+    mixed_arm(&m[0], &d[0], 1.0);
+    mixed_arm(&m[1], &d[1], 1e3);
+    for (int band = 0; band < 2; band++) {
+        for (int k = 0; k < 2; k++) {
+            assert_ok(vt_kinematics(m[k], d[k]));
+            assert_ok(vt_mass_matrix(m[k], d[k]));
+            assert_ok(vt_forces(m[k], d[k]));
+            assert_ok(vt_constraints(m[k], d[k]));
+            const vt_status st = vt_solve_run(m[k], d[k], band ? 1e-2 : 0.0);
+            if (st) fail_msg("unit %d band %d: %s", k, band, d[k]->message);
+            assert_ok(vt_reactions(m[k], d[k]));
+            assert_int_equal(d[k]->rank, 3);
+            assert_int_equal((d[k]->warning & VT_WARN_BAND) != 0, band);
+        }
+        const double qs = vt_test_maxabs(d[0]->qdd, 3), fs = vt_test_maxabs(d[0]->drive_effort, 3);
+        for (int c = 0; c < 3; c++) assert_near(d[1]->qdd[c], d[0]->qdd[c], 1e-8 * qs);
+        assert_near(d[1]->drive_effort[0] * 1e-6, d[0]->drive_effort[0], 1e-8 * fs);
+        for (int c = 1; c < 3; c++) assert_near(d[1]->drive_effort[c] * 1e-3, d[0]->drive_effort[c], 1e-8 * fs);
+    }
+    for (int k = 0; k < 2; k++) {
+        vt_data_free(d[k]);
+        vt_model_free(m[k]);
+    }
+}
+
 /* After a failed solve no diagnostic of the previous call remains (rank, warning, rcond,
  * residual), on the dense and the recursive entry points: the redundant four-bar solved
  * (rank 3, VT_WARN_REDUNDANT), then a failing call on the same data. */
@@ -939,6 +1018,7 @@ int main(void)
         cmocka_unit_test(test_regular_pose_with_redundant_option),
         cmocka_unit_test(test_redundant_decision_frame_independent),
         cmocka_unit_test(test_band_frame_and_unit_independent),
+        cmocka_unit_test(test_band_unit_independent_mixed_rows),
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
     };
