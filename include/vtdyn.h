@@ -337,7 +337,8 @@ vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, i
 
 /// Kinematic analysis of a fully driven model (its constraint rows fix every rate: as many
 /// independent rows as rates, or more of that rank when the model allows redundant rows; the rank
-/// is Φ_q's at t0 and d->q, decided as vt_solve decides dependent rows): at every
+/// decided as vt_solve decides dependent rows, at t0 and d->q before the run for a model that
+/// does not allow them, at the first row for one that does): at every
 /// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
 /// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
 /// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
