@@ -63,7 +63,7 @@ module vtdyn
       VT_JOINT_SPHERICAL = 3, VT_JOINT_TRANSLATIONAL = 4, VT_JOINT_CYLINDRICAL = 5, &
       VT_JOINT_FREE = 6, VT_JOINT_TYPE_COUNT = 7
   ! warning flags in vt_data%warning
-  integer(c_int), parameter :: VT_WARN_ILL_CONDITIONED = 1, VT_WARN_REDUNDANT = 2
+  integer(c_int), parameter :: VT_WARN_ILL_CONDITIONED = 1, VT_WARN_REDUNDANT = 2, VT_WARN_BAND = 4
   ! vt_route: the route by which the last solve found qdd and lambda (vt_data%route)
   integer(c_int), parameter :: VT_ROUTE_NONE = 0, VT_ROUTE_JOINT_DRIVEN = 1, VT_ROUTE_FREE_RATES = 2, &
       VT_ROUTE_SQUARE = 3, VT_ROUTE_SCHUR = 4, VT_ROUTE_ARTICULATED = 5, VT_ROUTE_AUGMENTED = 6, &
@@ -322,6 +322,7 @@ module vtdyn
     type(c_ptr)            :: user
     type(c_ptr)            :: tout      ! the address of a TARGET real(c_double) array, or c_null_ptr
     integer(c_int)         :: ntout
+    real(c_double)         :: redundant_band
   end type vt_run_options
 
   type, bind(C) :: vt_trajectory

@@ -334,8 +334,9 @@ VT_API vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_d
  *      src/dynamic_analysis.c) ------------------------------------------------------------ */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
-/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS). The analyses
-/// refuse (VT_ERR_BAD_OPTION) tolerances and max_step that are not finite, as well as out of range.
+/// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS), the ODE
+/// form's redundant_band VT_REDUNDANT_TOL. The analyses refuse (VT_ERR_BAD_OPTION) tolerances and
+/// max_step that are not finite, as well as out of range.
 VT_API vt_run_options vt_default_run_options(void);
 
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
@@ -355,7 +356,10 @@ VT_API void vt_trajectory_free(vt_trajectory *trajectory);
 /// and those of the stages.
 VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
-/// Kinematic analysis of a fully driven model (as many constraint rows as rates): at every
+/// Kinematic analysis of a fully driven model (its constraint rows fix every rate: as many
+/// independent rows as rates, or more of that rank when the model allows redundant rows; the rank
+/// decided as vt_solve decides dependent rows, at t0 and d->q before the run for a model that
+/// does not allow them, at the first row for one that does): at every
 /// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
 /// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
 /// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
@@ -366,8 +370,11 @@ VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double
 /// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).
-/// Statuses: VT_ERR_NOT_FULLY_DRIVEN, VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of
-/// another model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages.
+/// Statuses: VT_ERR_NOT_FULLY_DRIVEN (fewer rows than rates, or of lower rank),
+/// VT_ERR_DEPENDENT_CONSTRAINTS (more rows than rates, of full rank, in a model that does not
+/// allow redundant rows), VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of another
+/// model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages. The forward check
+/// of a model with dependent cut-joint rows needs VT_FORMULATION_ODE.
 VT_API vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                                 vt_trajectory *trajectory);
 

@@ -92,6 +92,7 @@ typedef struct {
     history *rec;       /* driven run: record its steps here */
     history *src;       /* forward run: the driven steps, efforts from their interpolant */
     double *w;          /* the GGL residual's v + Φ_q^T μ (nv) */
+    double band;        /* vt_run_options.redundant_band (ODE form) */
     struct {            /* set by run() */
         void *ida;      /* IDA's memory: the Jacobian's increments use its step and weights */
         vt_status why;  /* the last refusal's status since the current IDASolve call began */
@@ -212,7 +213,7 @@ static vt_status block_residual(const dae *p, const vt_model *m, vt_data *d, dou
             for (int c = 0; c < nv; c++) phid += d->Phiq[k + (size_t)c * (size_t)nc] * y[nq + c];
             d->gamma[k] -= a2 * phid + b2 * d->Phi[k];
         }
-        if ((st = vt_solve(m, d))) return st;
+        if ((st = vt_solve_run(m, d, p->band))) return st;
         qdot_from_v(m, y, y + nq, r);
         for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
         for (int k = 0; k < nv; k++) r[nq + k] = yp[nq + k] - d->qdd[k];
@@ -359,13 +360,18 @@ static vt_status block_project(const dae *p, const vt_model *m, vt_data *d, doub
     return VT_OK;
 }
 
-/* the state of a block of y into its data, then the whole instant (efforts, reactions) */
-static vt_status block_output(const vt_model *m, vt_data *d, double t, const double *y)
+/* the state of a block of y into its data, then the whole instant (efforts, reactions), its
+ * solve with the residual's band */
+static vt_status block_output(const vt_model *m, vt_data *d, double t, const double *y, double band)
 {
     memcpy(d->q, y, (size_t)m->nq * sizeof(double));
     memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
     d->time = t;
-    return vt_inverse_dynamics(m, d);
+    vt_status st;
+    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
+        (st = vt_constraints(m, d)) || (st = vt_solve_run(m, d, band)))
+        return st;
+    return vt_reactions(m, d);
 }
 
 /* rows 1..nout (or 1..ntout, at the caller's times): integrate, and at every output store the driven and the forward rows */
@@ -510,7 +516,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
             CHECK(IDAReInit(mem, tret, y, yp), "IDAReInit");
         }
         if (p->m) {
-            if ((st = block_output(p->m, p->d, tret, yv))) goto done;
+            if ((st = block_output(p->m, p->d, tret, yv, p->band))) goto done;
             vt_trajectory_store(tr, p->m, p->d, k);
         }
         if (p->mf) {
@@ -535,7 +541,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
             memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
             if ((st = vt_kinematics(p->mf, p->df))) goto done;
             vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-            if ((st = block_output(p->mf, p->df, tret, yv + p->nd))) {
+            if ((st = block_output(p->mf, p->df, tret, yv + p->nd, p->band))) {
                 vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->df->message);
                 goto done;
             }
@@ -617,6 +623,7 @@ static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
     double *buf = malloc((3 * (size_t)N + (size_t)nv) * sizeof(double));
     if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
     p->w = buf + 3 * (size_t)N;
+    p->band = p->form == VT_FORMULATION_ODE ? opt->redundant_band : 0.0; /* the ODE form's solves */
     if (p->m) {
         block_initial(p->m, p->d, p->form, buf, buf + N);
         block_ids(p->m, p->form, buf + 2 * N);
@@ -642,7 +649,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     } else {
         vt_trajectory_store_forward(tr, mf, df, 0);
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, {0}};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, 0.0, {0}};
         st = start(&p, opt, tr);
     }
     vt_data_free(df);
@@ -670,7 +677,7 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
     if (!mf || !opt->forward_independent) { /* the driven run, and the forward one in the same system */
         dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, {0}};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, 0.0, {0}};
         st = start(&p, opt, tr);
         goto out;
     }
@@ -692,13 +699,13 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
     {
         dae p = {m, d, NULL, NULL, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL, NULL, {0}};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL, NULL, 0.0, {0}};
         if ((st = start(&p, opt, tr))) goto out;
     }
     {
         const long steps = tr->steps, res = tr->res_evals;
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h, NULL, {0}};
+                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h, NULL, 0.0, {0}};
         st = start(&p, opt, tr);
         tr->steps = steps;
         tr->res_evals = res;

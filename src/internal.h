@@ -289,6 +289,15 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
 /* vt_solve without the argument check and without clearing d->fallback (solve.c): the
  * recursive evaluation's general route, after its own shortcuts have flagged their fallbacks */
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
+/* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl),
+ * and vt_solve with it (solve.c): the ODE formulation's residual */
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band);
+vt_status vt_solve_run(const vt_model *m, vt_data *d, double band);
+/* the diagnostics every solve starts from: route none, rcond 0, no warning, rank 0, residual 0 */
+void vt_solve_reset(vt_data *d);
+/* the rank of Φ_q to round-off, in the scaling of the redundant decision (from the current M*
+ * and Φ_q), or a negative vt_status (solve.c) */
+int vt_rows_rank(const vt_model *m, vt_data *d);
 /* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of Φ_q D
  * and, up to 16 rates, its inverse; D; q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
 typedef struct {

@@ -671,6 +671,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
+    vt_solve_reset(d);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
@@ -742,7 +743,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
     if (st) return st;
-    d->route = VT_ROUTE_NONE;
+    vt_solve_reset(d);
     d->fallback = 0;
     if (!vt_all_finite(d->qdd, m->nv)) {
         for (int c = 0; c < m->nv; c++)

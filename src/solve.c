@@ -15,13 +15,15 @@
  * Before factorizing, the matrix is scaled symmetrically (its rows and columns mix units:
  * kg·m², kg, m, rad) so that dsycon's reciprocal condition estimate measures the mechanism
  * rather than its units; how, is said where it is done. A system whose
- * estimate falls below rcond_min is refused: Φ_q of full row rank with M* singular on its null
- * space means a motion without inertia that nothing fixes (VT_ERR_SINGULAR); rows of Φ_q that
- * a rank-revealing QR with column pivoting (dgeqp3 on the row-normalized Φ_q^T) finds dependent
- * are named (VT_ERR_DEPENDENT_CONSTRAINTS). Two other paths, each said where it is done: as
- * many rows as rates (LU of Φ_q alone, square_solve) and, for models that allow redundant
- * rows, the minimum-norm least-squares solution by SVD (redundant_solve).
+ * estimate falls below rcond_min is refused: rows of Φ_q that are dependent to round-off (the
+ * SVD of a frame- and unit-independent scaling of Φ_q, rows_decide) are named
+ * (VT_ERR_DEPENDENT_CONSTRAINTS); otherwise the matrix is singular (a rate or body without
+ * inertia that nothing fixes, named; an exactly zero pivot) or only ill-conditioned, and
+ * VT_ERR_SINGULAR's message says which. Two other paths, each said where it is done: as many
+ * rows as rates (LU of Φ_q alone, square_solve) and, for models that allow redundant rows,
+ * (5) on the independent directions of the rows by SVD (redundant_solve).
  */
+#include <float.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -35,48 +37,6 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
     else if (kind == VT_OWNER_COUPLING) snprintf(buf, n, "coupling %d", m->con_owner[row]);
     else snprintf(buf, n, "p^T p = 1 of body %d", m->con_owner[row]);
     return buf;
-}
-
-/* Rank of Φ_q by QR with column pivoting of its row-normalized transpose; the pivots past the
- * rank are the dependent rows. The QR goes to A (nv x nc) and its pivots to jpvt (nc), which
- * the redundant route reads. Returns the rank (the message lists the dependent rows) or a
- * negative vt_status. */
-static int dependent_rows(const vt_model *m, vt_data *d, double rcond, double tau, double *A, int *jpvt)
-{
-    const int nv = m->nv, nc = m->nc;
-    const size_t mark = vt_scratch_mark(d);
-    int lwork = 0;
-    double *tau_qr = VT_SCRATCH(d, double, nc, "QR τ");
-    double *work = vt_scratch_rest(d, 3 * (size_t)nc + 1, sizeof(double), &lwork, "dgeqp3 workspace");
-    if (!work) return vt_scratch_fail(d, mark);
-    for (int r = 0; r < nc; r++) {
-        double s = 0.0;
-        for (int c = 0; c < nv; c++) s += d->Phiq[r + (size_t)c * (size_t)nc] * d->Phiq[r + (size_t)c * (size_t)nc];
-        s = s > 0.0 ? 1.0 / sqrt(s) : 0.0;
-        for (int c = 0; c < nv; c++) A[c + (size_t)r * (size_t)nv] = s * d->Phiq[r + (size_t)c * (size_t)nc];
-        jpvt[r] = 0;
-    }
-    int info = 0;
-    dgeqp3_(&nv, &nc, A, &nv, jpvt, tau_qr, work, &lwork, &info);
-    vt_scratch_release(d, mark);
-    if (info != 0) return nc;
-    const int kmax = nv < nc ? nv : nc;
-    const double r11 = kmax > 0 ? fabs(A[0]) : 0.0;
-    int rank = 0;
-    while (rank < kmax && fabs(A[rank + (size_t)rank * (size_t)nv]) > tau * r11) rank++;
-    if (rank == nc) return rank;
-    /* rcond is NaN when the rank is checked first (models that allow redundant rows) */
-    int len = isnan(rcond) ? snprintf(d->message, sizeof d->message,
-                                      "vt_solve: Φ_q has rank %d of %d rows; dependent:", rank, nc)
-                           : snprintf(d->message, sizeof d->message,
-                                      "vt_solve: rcond %.3g; Φ_q has rank %d of %d rows; dependent:", rcond, rank, nc);
-    for (int k = rank; k < nc && len < (int)sizeof d->message - 40; k++) {
-        char name[64];
-        const int row = jpvt[k] - 1;
-        len += snprintf(d->message + len, sizeof d->message - (size_t)len, " row %d (%s)", row,
-                        owner_name(m, row, name, sizeof name));
-    }
-    return rank;
 }
 
 /* Small systems (n ≤ EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
@@ -295,21 +255,128 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
     return 0;
 }
 
-/* Redundant rows (models that allow them): the constraint rows reduced to their independent
- * directions, then (5) on those. With the scaling of factor_solve, Φ̃ = c Φ_q D = U Σ V^T
- * (LAPACK dgesvd); the directions with σ ≥ VT_REDUNDANT_TOL σ_max (1e-3) are kept as the rows
- * R = Σ_r V_r^T with right-hand side U_r^T c γ, the others dropped; the reduced system
- * [M̃ R^T; R 0] [ỹ; −μ] = [D Q; U_r^T c γ] is solved by dgelsd (minimum norm, for an M* singular
- * on directions R fixes), q̈ = D ỹ and λ = c U_r μ, of minimum norm. With exactly dependent rows
- * and consistent γ this is (5) itself. Where a row is about to become dependent (a singular
- * pose, as the IFToMM N-four-bar's horizontal one) or drift makes γ slightly inconsistent, the
- * nearly dependent direction is dropped instead of amplified by 1/σ², which is what carries a
- * time analysis through the pose; the price is a constraint held in the least-squares sense
- * within that band (Baumgarte's terms of the ODE form close it after). Then the residual
- * max |Φ_q q̈ − γ|, and which multipliers are not unique: those that change along the null
- * directions z of Φ_q^T, from the QR of dependent_rows (z = P [−R11^{-1} R12; I] in the
- * row-normalized space), which are left in d->lambda_null for the reactions stage to tell
- * which reactions are not unique. */
+/* Dependent rows: what is truly dependent, decided in a scaling that neither the directions of
+ * the global axes nor the units change. Φ̂ = G Φ_q D with D = diag(M*_aa^(-1/2)), the mass
+ * metric of the rates (joint coordinates: unchanged by a rotation of the whole scene), and G =
+ * c diag(w): w = 1 for the rows that measure lengths (points, lines, joint drives and couplings
+ * on a translation), w = ρ for those that measure angles (dot products, orientations, Euler
+ * parameters, joint drives and couplings on a rotation), ρ the system's radius of gyration about
+ * its centre of mass (ρ² Σ m = Σ (tr J'/2 + m |c − c_G|²), a length that no rotation changes),
+ * which makes both kinds of rows 1/√kg; c = 1 / (largest row norm of diag(w) Φ_q D), one factor
+ * for all rows so that no row's own size is scaled away. A rotation of the scene turns a point's
+ * rows among themselves and a change of units scales every row alike, so the singular values of Φ̂
+ * are unchanged by both. Its SVD Φ̂ = U Σ V^T (LAPACK dgesvd, U of nc columns) gives
+ *   rank    the number of σ above max(nc, nv) ε σ_max (ε = DBL_EPSILON): dependence to round-off
+ *   kept    the directions kept in the solve: those above max(that, band σ_max), band being a time
+ *           analysis's vt_run_options.redundant_band (0 at every other instant)
+ * and the null directions of Φ_q^T, z = G w for the last nc − rank columns w of U. */
+typedef struct {
+    double *U, *VT, *sig, *g, *s; /* nc x nc, k x nv, k, nc, nv (k = min(nc, nv)) */
+    int k, rank, kept;
+} rows_svd;
+
+/* 1 when row r measures a length (a translation), 0 when an angle */
+static int length_row(const vt_model *m, const vt_data *d, int r)
+{
+    const int kind = m->con_kind[r];
+    if (kind == VT_ROW_POINT || kind == VT_ROW_LINE) return 1;
+    if (kind != VT_ROW_JOINT && kind != VT_ROW_COUPLING) return 0;
+    int c = kind == VT_ROW_JOINT ? m->con_dof[r] : 0, axis = 0;
+    if (kind == VT_ROW_COUPLING) /* q_a − ratio q_b: rate a's unit, its entry the first non-zero */
+        while (c < m->nv - 1 && d->Phiq[r + (size_t)c * (size_t)m->nc] == 0.0) c++;
+    const int i = m->dof_body[c];
+    return vt_dof_kind(m->body_joint[i], c - m->body_vadr[i], &axis) == VT_DOF_TRANS;
+}
+
+/* ρ: the radius of gyration of all bodies about their common centre of mass (1 m for a model
+ * without mass or extent, where nothing better exists) */
+static double gyration_radius(const vt_model *m, const vt_data *d)
+{
+    double mt = 0.0, cg[3] = {0.0, 0.0, 0.0}, i2 = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *c = d->x + vt_xoff(i), mi = m->body_mass[i];
+        mt += mi;
+        for (int k = 0; k < 3; k++) cg[k] += mi * c[k];
+    }
+    for (int k = 0; k < 3; k++) cg[k] = mt > 0.0 ? cg[k] / mt : 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *c = d->x + vt_xoff(i), *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
+        double r2 = 0.0;
+        for (int k = 0; k < 3; k++) r2 += (c[k] - cg[k]) * (c[k] - cg[k]);
+        i2 += 0.5 * (J[0] + J[4] + J[8]) + mi * r2;
+    }
+    const double rho = mt > 0.0 ? sqrt(i2 / mt) : 0.0;
+    return rho > 0.0 && isfinite(rho) ? rho : 1.0;
+}
+
+/* Φ̂ and its SVD into o (arrays on the arena: the caller releases them); band as above.
+ * Returns 0 or a negative vt_status. */
+static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
+{
+    const int nv = m->nv, nc = m->nc, k = nc < nv ? nc : nv;
+    o->k = k;
+    o->U = VT_SCRATCH(d, double, (size_t)nc * (size_t)nc, "U");
+    o->VT = VT_SCRATCH(d, double, (size_t)k * (size_t)nv, "V^T");
+    o->sig = VT_SCRATCH(d, double, k, "σ");
+    o->g = VT_SCRATCH(d, double, nc, "row scaling");
+    o->s = VT_SCRATCH(d, double, nv, "rate scaling");
+    const size_t mark = vt_scratch_mark(d);
+    double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
+    int lw = 0;
+    double *work = vt_scratch_rest(d, 5 * (size_t)(nc + nv), sizeof(double), &lw, "dgesvd workspace");
+    if (!work) return vt_scratch_fail(d, mark);
+    double *g = o->g, *s = o->s, rmax = 0.0;
+    scaling_diag(m, d->Mstar, nv + 1, s);
+    const double rho = gyration_radius(m, d);
+    for (int r = 0; r < nc; r++) {
+        g[r] = length_row(m, d, r) ? 1.0 : rho;
+        double rn = 0.0;
+        for (int c = 0; c < nv; c++) {
+            const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+            rn += v * v;
+        }
+        rmax = fmax(rmax, sqrt(rn));
+    }
+    for (int r = 0; r < nc; r++) {
+        g[r] *= rmax > 0.0 ? 1.0 / rmax : 1.0;
+        for (int c = 0; c < nv; c++) P[r + (size_t)c * (size_t)nc] = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+    }
+    /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
+    if (!vt_all_finite(P, nc * nv) || !vt_all_finite(s, nv) || !vt_all_finite(d->Mstar, nv * nv))
+        return vt_scratch_release(d, mark),
+               vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in the scaled M* or Φ_q (overflow)");
+    int info = 0;
+    dgesvd_("A", "S", &nc, &nv, P, &nc, o->sig, o->U, &nc, o->VT, &k, work, &lw, &info, 1, 1);
+    vt_scratch_release(d, mark);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgesvd info %d", info);
+    const double smax = k > 0 ? o->sig[0] : 0.0, tol = (double)(nc > nv ? nc : nv) * DBL_EPSILON * smax;
+    const double keep = fmax(tol, band * smax);
+    o->rank = o->kept = 0;
+    while (o->rank < k && o->sig[o->rank] > tol) o->rank++;
+    while (o->kept < k && o->sig[o->kept] > keep) o->kept++;
+    return 0;
+}
+
+/* The part of row r in the null space of Φ̂^T (the last nc − rank columns of U, orthonormal):
+ * 0 for a row independent of the others, up to 1 */
+static double null_part(const vt_model *m, const rows_svd *o, int r)
+{
+    const int nc = m->nc;
+    double p = 0.0;
+    for (int j = o->rank; j < nc; j++) p += o->U[r + (size_t)j * (size_t)nc] * o->U[r + (size_t)j * (size_t)nc];
+    return sqrt(p);
+}
+#define NULL_PART_TOL 1e-8 /* above it, a row takes part in a dependence (its multiplier is not unique) */
+
+/* Redundant rows (models that allow them): (5) on the kept directions of Φ̂ (rows_decide).
+ * With R = Σ_r V_r^T, the rows of Φ̂ reduced to those directions, and M̃ = D M* D,
+ *   [M̃ R^T; R 0] [ỹ; −μ] = [D Q; U_r^T G γ],   q̈ = D ỹ,   λ = G U_r μ
+ * solved by dgelsd (minimum norm, for an M* singular on directions R fixes). Exactly dependent
+ * rows with consistent γ: this is (5) itself, q̈ and the efforts unique, λ the one whose scaled
+ * G^(-1) λ has minimum norm. Directions dropped by a time analysis's band (not dependent to
+ * round-off) hold in the least-squares sense: d->residual = max |Φ_q q̈ − γ| says how well.
+ * Which multipliers are not unique: those in the null directions z = G w of Φ_q^T, left in
+ * d->lambda_null for the reactions stage to tell which reactions are not unique. */
 void vt_mark_unique(const vt_model *m, vt_data *d)
 {
     const int nc = m->nc;
@@ -317,61 +384,19 @@ void vt_mark_unique(const vt_model *m, vt_data *d)
     for (int r = 0; r < nc; r++) lu[r] = 1;
 }
 
-/* A (nv x nc) and jpvt (nc): the QR of the row-normalized Φ_q^T and its pivots (dependent_rows) */
-static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank, const double *A, const int *jpvt)
+static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *o)
 {
-    const int nv = m->nv, nc = m->nc, nfree = nc - rank, N = nv + nc, one = 1;
-    const size_t mark = vt_scratch_mark(d);
-    double *X = VT_SCRATCH(d, double, (size_t)rank * (size_t)nfree, "R11^-1 R12");
-    double *rownorm = VT_SCRATCH(d, double, nc, "row norms"), *Ur = VT_SCRATCH(d, double, (size_t)nc * (size_t)nc, "U_r");
-    double *K = VT_SCRATCH(d, double, (size_t)N * (size_t)N, "reduced augmented matrix");
-    double *b = VT_SCRATCH(d, double, N, "right side"), *s = VT_SCRATCH(d, double, N, "scaling");
-    double *sv = VT_SCRATCH(d, double, N, "singular values");
-    int *perm = VT_SCRATCH(d, int, nc, "row permutation");
-    if (!perm) return vt_scratch_fail(d, mark);
-    for (int k = 0; k < nc; k++) perm[k] = jpvt[k] - 1;
-    for (int r = 0; r < nc; r++) {
-        double sn = 0.0;
-        for (int c = 0; c < nv; c++) sn += d->Phiq[r + (size_t)c * (size_t)nc] * d->Phiq[r + (size_t)c * (size_t)nc];
-        rownorm[r] = sqrt(sn);
-    }
-    /* X = R11^{-1} R12 (before dgelsd reuses the workspace) */
-    for (int j = 0; j < nfree; j++)
-        for (int i = 0; i < rank; i++) X[i + (size_t)j * (size_t)rank] = A[i + (size_t)(rank + j) * (size_t)nv];
-    int info = 0;
-    if (rank > 0 && nfree > 0) {
-        dtrtrs_("U", "N", "N", &rank, &nfree, A, &nv, X, &rank, &info, 1, 1, 1);
-        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dtrtrs info %d", info);
-    }
-    /* the scaled rows Φ̃ = c Φ_q D and their SVD U Σ V^T (dgesvd); the directions with
-     * σ < VT_REDUNDANT_TOL σ_max are dropped, the others kept as the rows Σ_r V_r^T with the
-     * right-hand side U_r^T c γ: the least-squares constraint on the rows' independent
-     * directions, bounded where a row is about to become dependent (a singular pose) and whatever
-     * drift makes γ inconsistent */
-    scaling(m, d, s, 1);
-    const double c = s[nv];
-    const int k = nc < nv ? nc : nv;
-    const size_t mark_svd = vt_scratch_mark(d);
-    double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
-    double *U = VT_SCRATCH(d, double, (size_t)nc * (size_t)k, "U"), *VT = VT_SCRATCH(d, double, (size_t)k * (size_t)nv, "V^T");
-    double *sig = VT_SCRATCH(d, double, k, "σ");
-    int lw = 0;
-    double *svd_work = vt_scratch_rest(d, 5 * (size_t)(nc + nv), sizeof(double), &lw, "dgesvd workspace");
-    if (!svd_work) return vt_scratch_fail(d, mark);
-    for (int a = 0; a < nv; a++)
-        for (int r = 0; r < nc; r++) P[r + (size_t)a * (size_t)nc] = c * d->Phiq[r + (size_t)a * (size_t)nc] * s[a];
-    /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
-    if (!vt_all_finite(P, nc * nv) || !vt_all_finite(s, nv) || !vt_all_finite(d->Mstar, nv * nv))
-        return vt_scratch_release(d, mark),
-               vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in the scaled M* or Φ_q (overflow)");
-    dgesvd_("S", "S", &nc, &nv, P, &nc, sig, U, &nc, VT, &k, svd_work, &lw, &info, 1, 1);
-    if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgesvd info %d", info);
-    int nr = 0;
-    while (nr < k && sig[nr] > VT_REDUNDANT_TOL * sig[0]) nr++;
-    memcpy(Ur, U, (size_t)nc * (size_t)nr * sizeof(double));
-    /* the reduced augmented matrix [M̃ R^T; R 0], R = Σ_r V_r^T, both triangles */
-    const int Nr = nv + nr;
-    const size_t ld = (size_t)Nr;
+    const int nv = m->nv, nc = m->nc, k = o->k, nr = o->kept, Nr = nv + nr, one = 1;
+    const size_t mark = vt_scratch_mark(d), ld = (size_t)Nr;
+    const double *s = o->s, *g = o->g, *U = o->U, *sig = o->sig, *VT = o->VT;
+    double *K = VT_SCRATCH(d, double, ld * ld, "reduced augmented matrix");
+    double *b = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "right side");
+    double *sv = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "singular values");
+    int *iwork = VT_SCRATCH(d, int, vt_dgelsd_iwork(Nr, Nr), "dgelsd integer workspace");
+    int lwd = 0;
+    double *lsq_work = vt_scratch_rest(d, 1, sizeof(double), &lwd, "dgelsd workspace");
+    if (!lsq_work) return vt_scratch_fail(d, mark);
+    /* [M̃ R^T; R 0], both triangles */
     for (int j = 0; j < Nr; j++)
         for (int i = 0; i < Nr; i++) {
             double v = 0.0;
@@ -383,33 +408,33 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank, const 
     for (int a = 0; a < nv; a++) b[a] = d->Q[a] * s[a];
     for (int i = 0; i < nr; i++) {
         double v = 0.0;
-        for (int r = 0; r < nc; r++) v += Ur[r + (size_t)i * (size_t)nc] * c * d->gamma[r];
+        for (int r = 0; r < nc; r++) v += U[r + (size_t)i * (size_t)nc] * g[r] * d->gamma[r];
         b[nv + i] = v;
     }
-    vt_scratch_release(d, mark_svd); /* the SVD's arrays: U_r is kept */
     const double rc = m->rcond_min; /* M̃ alone may still be singular on directions R fixes */
-    int rk = 0, lwd = 0;
-    int *iwork = VT_SCRATCH(d, int, vt_dgelsd_iwork(Nr, Nr), "dgelsd integer workspace");
-    double *lsq_work = vt_scratch_rest(d, 1, sizeof(double), &lwd, "dgelsd workspace");
-    if (!lsq_work) return vt_scratch_fail(d, mark);
+    int rk = 0, info = 0;
     dgelsd_(&Nr, &Nr, &one, K, &Nr, b, &Nr, sv, &rc, &rk, lsq_work, &lwd, iwork, &info);
     if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
     d->rcond = rk > 0 ? sv[rk - 1] / sv[0] : 0.0;
+    d->rank = o->rank;
     if (rk < Nr)
-        return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR,
-                       "vt_solve: Φ_q has rank %d of %d rows, and the reduced augmented matrix keeps rank %d of %d "
-                       "(rcond %.3g): a motion without inertia that nothing fixes", nr, nc, rk, Nr, d->rcond);
-    /* q̈ = D ỹ; λ = c U_r μ (minimum norm: in the range of U_r), with b = [ỹ; −μ] */
+        return vt_scratch_release(d, mark),
+               vt_fail(d->message, VT_ERR_SINGULAR,
+                       "vt_solve: singular: Φ_q has rank %d of %d rows (%d directions kept), and the reduced augmented "
+                       "matrix has rank %d of %d (reciprocal condition %.3g below rcond_min %.3g): a motion without "
+                       "inertia that nothing fixes", o->rank, nc, nr, rk, Nr, d->rcond, m->rcond_min);
+    /* q̈ = D ỹ; λ = G U_r μ, with b = [ỹ; −μ] */
     for (int a = 0; a < nv; a++) b[a] *= s[a];
     for (int r = 0; r < nc; r++) {
         double v = 0.0;
-        for (int i = 0; i < nr; i++) v += Ur[r + (size_t)i * (size_t)nc] * b[nv + i];
-        sv[r] = -c * v;
+        for (int i = 0; i < nr; i++) v += U[r + (size_t)i * (size_t)nc] * b[nv + i];
+        sv[r] = -g[r] * v;
     }
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
     memcpy(d->lambda, sv, (size_t)nc * sizeof(double));
+    vt_scratch_release(d, mark);
     double resid = 0.0;
     for (int r = 0; r < nc; r++) {
         double v = -d->gamma[r];
@@ -417,24 +442,21 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, int rank, const 
         resid = fmax(resid, fabs(v));
     }
     d->residual = resid;
-    /* the null directions z of Φ_q^T: which multipliers they change (and, in the reactions
-     * stage, which reactions) */
+    /* the null directions z = G w of Φ_q^T (each scaled to a largest entry of 1), and which
+     * multipliers they change */
     vt_mark_unique(m, d);
-    for (int j = 0; j < nfree; j++) {
+    for (int j = 0; j < nc - o->rank; j++) {
         double *z = d->lambda_null + (size_t)j * (size_t)nc, zmax = 0.0;
-        memset(z, 0, (size_t)nc * sizeof(double));
-        for (int i = 0; i < rank; i++) z[perm[i]] = -X[i + (size_t)j * (size_t)rank];
-        z[perm[rank + j]] = 1.0;
-        for (int r = 0; r < nc; r++) { /* back from the row-normalized space */
-            if (rownorm[r] > 0.0) z[r] /= rownorm[r];
+        for (int r = 0; r < nc; r++) {
+            z[r] = g[r] * U[r + (size_t)(o->rank + j) * (size_t)nc];
             zmax = fmax(zmax, fabs(z[r]));
         }
-        for (int r = 0; r < nc; r++)
-            if (fabs(z[r]) > 1e-9 * zmax) d->lambda_unique[r] = 0;
+        for (int r = 0; r < nc; r++) z[r] = zmax > 0.0 ? z[r] / zmax : 0.0;
     }
-    vt_scratch_release(d, mark);
-    d->rank = rank;
-    d->warning = (d->rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0) | VT_WARN_REDUNDANT;
+    for (int r = 0; r < nc; r++)
+        if (null_part(m, o, r) > NULL_PART_TOL) d->lambda_unique[r] = 0;
+    d->warning = (d->rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0) | (o->rank < nc ? VT_WARN_REDUNDANT : 0) |
+                 (nr < o->rank ? VT_WARN_BAND : 0);
     return VT_OK;
 }
 
@@ -710,12 +732,39 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond)
     vt_mark_unique(m, d);
 }
 
-/* The bodies that make a solve singular by having nothing to move: a free rate (no joint drive)
- * whose body and everything beyond it carry neither mass nor inertia. Written into buf (n
- * bytes) as " (body 3, body 5 ...: no mass or inertia beyond a free joint)", empty if none. */
+void vt_solve_reset(vt_data *d)
+{
+    d->route = VT_ROUTE_NONE;
+    d->rcond = 0.0;
+    d->warning = 0;
+    d->rank = 0;
+    d->residual = 0.0;
+}
+
+/* A rate that no constraint row touches (its column of Φ_q zero: no drive, cut joint or coupling) */
+static int untouched(const vt_model *m, const vt_data *d, int a)
+{
+    for (int r = 0; r < m->nc; r++)
+        if (d->Phiq[r + (size_t)a * (size_t)m->nc] != 0.0) return 0;
+    return 1;
+}
+
+/* What makes a solve singular by having nothing to move, written into buf (n bytes) as
+ * " rate 2 (body 1) has no inertia; body 3, body 5: no mass or inertia beyond a joint that no
+ * row touches",
+ * empty if none: a rate that no row touches and whose M*_aa is exactly 0 (moving it alone costs
+ * no kinetic energy), and a body with such a rate whose subtree carries neither mass nor
+ * inertia. */
 static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
 {
     buf[0] = '\0';
+    size_t len = 0;
+    int count = 0;
+    for (int a = 0; a < m->nv && len + 48 < n; a++)
+        if (d->Mstar[a + (size_t)a * (size_t)m->nv] == 0.0 && untouched(m, d, a))
+            len += (size_t)snprintf(buf + len, n - len, "%s rate %d (body %d)", count++ ? "," : "", a, m->dof_body[a]);
+    if (count) len += (size_t)snprintf(buf + len, n - len, " %s no inertia", count > 1 ? "have" : "has");
+    const int rates = count;
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
     double *w = VT_SCRATCH(d, double, nb, "subtree inertia");
     if (!w) {
@@ -728,21 +777,45 @@ static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
         w[i] = m->body_mass[i] + fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
     }
     vt_subtree_sum(m, w, 1);
-    size_t len = 0;
-    int count = 0;
-    for (int i = 1; i <= m->nbody && len + 40 < n; i++) {
+    count = 0;
+    for (int i = 1; i <= m->nbody && len + 48 < n; i++) {
         int free_rate = 0;
-        for (int k = 0; k < m->body_nv[i]; k++) free_rate |= m->dof_drive[m->body_vadr[i] + k] < 0;
+        for (int k = 0; k < m->body_nv[i]; k++) free_rate |= untouched(m, d, m->body_vadr[i] + k);
         if (w[i] != 0.0 || !free_rate) continue;
-        len += (size_t)snprintf(buf + len, n - len, "%s body %d", count++ ? "," : " (", i);
+        len += (size_t)snprintf(buf + len, n - len, "%s body %d", count++ ? "," : rates ? ";" : "", i);
     }
-    if (count) snprintf(buf + len, n - len, ": no mass or inertia beyond a free joint)");
+    if (count) snprintf(buf + len, n - len, ": no mass or inertia beyond a joint that no row touches");
     vt_scratch_release(d, mark);
+}
+
+/* VT_ERR_SINGULAR with what was found: rates or bodies without inertia (named), an exactly zero
+ * pivot (rcond 0), or neither: a matrix that is only ill-conditioned, its reciprocal condition
+ * below rcond_min (with Φ_q's rank and smallest scaled singular value when rows were checked:
+ * rows_decide's, o NULL without rows). what: the matrix the route factorized. */
+static vt_status singular(const vt_model *m, vt_data *d, const char *what, double rcond, const rows_svd *o)
+{
+    char who[160], rows[96] = "";
+    massless(m, d, who, sizeof who);
+    if (o && o->k > 0)
+        snprintf(rows, sizeof rows, "; Φ_q has full rank %d, its smallest scaled singular value %.3g of the largest",
+                 o->rank, o->sig[0] > 0.0 ? o->sig[o->k - 1] / o->sig[0] : 0.0);
+    if (who[0])
+        return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: singular:%s (reciprocal condition %.3g of the %s)", who,
+                       rcond, what);
+    if (rcond == 0.0)
+        return vt_fail(d->message, VT_ERR_SINGULAR,
+                       "vt_solve: singular: an exactly zero pivot of the %s: the drives and cut joints leave a motion "
+                       "free that has no inertia%s", what, rows);
+    return vt_fail(d->message, VT_ERR_SINGULAR,
+                   "vt_solve: ill-conditioned: the %s has reciprocal condition %.3g, below rcond_min %.3g (no zero "
+                   "pivot, no rate without inertia%s): a pose near a singular one, or a model beyond the precision "
+                   "rcond_min asks for", what, rcond, m->rcond_min, rows);
 }
 
 /* The routes, cheapest first (the model's rows decide; vt_data.route records the one taken):
  *   FREE_RATES  every row a joint drive on a rate of its own (joint_rows_solve)
- *   REDUNDANT   allow_redundant and Φ_q found rank-deficient first (redundant_solve)
+ *   REDUNDANT   allow_redundant, and rows_decide drops a direction: dependent to round-off, or
+ *               within a time analysis's band (redundant_solve)
  *   SQUARE      as many rows as rates (square_solve); ill-conditioned: diagnosed, no fallback
  *   SCHUR       fewer rows than rates (schur_solve); a small pivot of M̃ gives way to
  *   AUGMENTED   the whole augmented matrix (factor_solve, also every other case), flagged
@@ -751,49 +824,43 @@ static void massless(const vt_model *m, vt_data *d, char *buf, size_t n)
  * (FREE_RATES); Φ_q D's, squared (SQUARE); the Schur complement's times M̃'s pivot ratio squared
  * (SCHUR); the scaled augmented matrix's (AUGMENTED); the reduced system's singular value ratio
  * (REDUNDANT). A lone row's condition is 1 on the Schur route (the scaling normalizes it): a
- * lone drive losing its grip does not show there. On failure q̈ and λ are left as they were and
- * the route is VT_ROUTE_NONE. */
-vt_status vt_solve_impl(const vt_model *m, vt_data *d)
+ * lone drive losing its grip does not show there. Below rcond_min the rows' rank (rows_decide)
+ * tells dependent rows (VT_ERR_DEPENDENT_CONSTRAINTS, named) from a singular or ill-conditioned
+ * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
+ * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
+ * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
 {
     const int nv = m->nv, nc = m->nc;
-    d->route = VT_ROUTE_NONE;
+    vt_solve_reset(d);
     if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
     double rcond = 0.0;
     if (m->joint_rows_only) {
         const int r = joint_rows_solve(m, d, &rcond);
         if (r < 0) return (vt_status)r;
-        d->rcond = rcond;
-        d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
-        if (r == 1) {
-            char who[128];
-            massless(m, d, who, sizeof who);
-            return vt_fail(d->message, VT_ERR_SINGULAR,
-                           "vt_solve: the free rates' mass matrix has rcond %.3g < %.3g: a motion without inertia "
-                           "that no drive fixes%s", rcond, m->rcond_min, who);
-        }
+        d->rank = nc; /* one unit row on a rate of its own each: independent */
+        if (r == 1) return d->rcond = rcond, singular(m, d, "free rates' scaled M*", rcond, NULL);
         vt_solved(m, d, VT_ROUTE_FREE_RATES, rcond);
         return VT_OK;
     }
     const size_t mark = vt_scratch_mark(d);
-    double *qr = NULL, *sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution");
-    int *jpvt = NULL;
-    if (nc > 0) {
-        qr = VT_SCRATCH(d, double, (size_t)nv * (size_t)nc, "QR of Φ_q^T");
-        jpvt = VT_SCRATCH(d, int, nc, "QR pivots");
-    }
-    if (!vt_scratch_ok(d)) return vt_scratch_fail(d, mark);
+    double *sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution");
+    if (!sol) return vt_scratch_fail(d, mark);
     vt_status st = VT_OK;
+    rows_svd o;
     if (m->allow_redundant && nc > 0) {
-        /* rank first: near a redundant model's constraint manifold Φ_q is only nearly
-         * rank-deficient, and solving its near-dependent rows exactly would amplify the drift */
-        const int rank = dependent_rows(m, d, NAN, VT_REDUNDANT_TOL, qr, jpvt);
-        if (rank < 0 || rank < nc) {
-            st = rank < 0 ? (vt_status)rank : redundant_solve(m, d, rank, qr, jpvt);
+        /* rows first: exactly dependent rows would make every other route fail */
+        const int r = rows_decide(m, d, band, &o);
+        if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
+        if (o.kept < nc) {
+            st = redundant_solve(m, d, &o);
             if (!st) d->route = VT_ROUTE_REDUNDANT;
             vt_scratch_release(d, mark);
             return st;
         }
+        vt_scratch_release(d, mark);
+        sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution"); /* the same place again */
     }
     const int square = nc == nv && nc > 0;
     vt_route route = square ? VT_ROUTE_SQUARE : nc > 0 && nc < nv ? VT_ROUTE_SCHUR : VT_ROUTE_AUGMENTED;
@@ -806,24 +873,28 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d)
         r = factor_solve(m, d, sol, &rcond);
     }
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
-    d->rcond = rcond;
-    d->warning = rcond < m->rcond_warn ? VT_WARN_ILL_CONDITIONED : 0;
     if (r == 1) {
-        /* the augmented matrix's condition goes as the square of Φ_q's: rows are dependent to the
-         * precision rcond_min asks for when R's diagonal falls below sqrt(rcond_min) of its first */
-        const int rank = nc > 0 ? dependent_rows(m, d, rcond, sqrt(m->rcond_min), qr, jpvt) : nc;
-        if (rank < 0) st = (vt_status)rank;
-        else if (rank < nc && m->allow_redundant) {
-            st = redundant_solve(m, d, rank, qr, jpvt);
-            if (!st) d->route = VT_ROUTE_REDUNDANT;
-        } else if (rank < nc) st = VT_ERR_DEPENDENT_CONSTRAINTS;
-        else {
-            char who[128];
-            massless(m, d, who, sizeof who);
-            st = vt_fail(d->message, VT_ERR_SINGULAR,
-                         "vt_solve: augmented matrix of (5) has rcond %.3g < %.3g: the drives and cut joints "
-                         "leave a motion unfixed that has no inertia, or a singular pose%s",
-                         rcond, m->rcond_min, who);
+        /* below rcond_min: dependent rows, or a singular or ill-conditioned matrix */
+        d->rcond = rcond;
+        const char *what = route == VT_ROUTE_SQUARE ? "scaled Φ_q (squared)"
+                         : route == VT_ROUTE_SCHUR  ? "Schur complement of the scaled (5)"
+                                                    : "scaled augmented matrix of (5)";
+        if (nc == 0) st = singular(m, d, what, rcond, NULL);
+        else if ((st = (vt_status)rows_decide(m, d, 0.0, &o)) == VT_OK) {
+            d->rank = o.rank;
+            if (o.rank == nc) st = singular(m, d, what, rcond, &o);
+            else { /* only without allow_redundant: with it, rows_decide above took them */
+                int len = snprintf(d->message, sizeof d->message,
+                                   "vt_solve: Φ_q has rank %d of %d rows (reciprocal condition %.3g of the %s); "
+                                   "dependent:", o.rank, nc, rcond, what);
+                for (int k = 0; k < nc && len < (int)sizeof d->message - 40; k++) {
+                    if (!(null_part(m, &o, k) > NULL_PART_TOL)) continue;
+                    char name[64];
+                    len += snprintf(d->message + len, sizeof d->message - (size_t)len, " row %d (%s)", k,
+                                    owner_name(m, k, name, sizeof name));
+                }
+                st = VT_ERR_DEPENDENT_CONSTRAINTS;
+            }
         }
         vt_scratch_release(d, mark);
         return st;
@@ -835,12 +906,35 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+vt_status vt_solve_impl(const vt_model *m, vt_data *d)
+{
+    return vt_solve_band(m, d, 0.0);
+}
+
 vt_status vt_solve(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
     return vt_solve_impl(m, d);
+}
+
+vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
+{
+    vt_status st = vt_check_pair(m, d, "vt_solve");
+    if (st) return st;
+    d->fallback = 0;
+    return vt_solve_band(m, d, band);
+}
+
+int vt_rows_rank(const vt_model *m, vt_data *d)
+{
+    if (m->nc == 0) return 0;
+    const size_t mark = vt_scratch_mark(d);
+    rows_svd o;
+    const int r = rows_decide(m, d, 0.0, &o);
+    vt_scratch_release(d, mark);
+    return r < 0 ? r : o.rank;
 }
 
 /* The recursive evaluation's square route (recursive.c): vt_solve's square route in two halves
@@ -892,24 +986,26 @@ size_t vt_solve_scratch(const vt_model *m)
     dsytrf_rk_("L", &N, &dummy, &N, &dummy, &idummy, &q, &lw, &info, 1);
     if (info == 0 && q > (double)lapack) lapack = (size_t)q;
     if (nc > 0) {
-        dgeqp3_(&nv, &nc, &dummy, &nv, &idummy, &dummy, &q, &lw, &info);
-        if (info == 0 && q > (double)lapack) lapack = (size_t)q;
-        dgesvd_("S", "S", &nc, &nv, &dummy, &nc, &dummy, &dummy, &nc, &dummy, &k, &q, &lw, &info, 1, 1);
+        dgesvd_("A", "S", &nc, &nv, &dummy, &nc, &dummy, &dummy, &nc, &dummy, &k, &q, &lw, &info, 1, 1);
         if (info == 0 && q > (double)lapack) lapack = (size_t)q;
         dgelsd_(&N, &N, &one, &dummy, &N, &dummy, &N, &dummy, &rc, &rank, &q, &lw, &idummy, &info);
         if (info == 0 && q > (double)lapack) lapack = (size_t)q;
     }
     lapack = VT_SCRATCH_BYTES(lapack + 5 * (snc + snv), D);
-    const size_t held = VT_SCRATCH_BYTES(sN, D) + VT_SCRATCH_BYTES(snv * snc, D) + VT_SCRATCH_BYTES(snc, I) +
-                        VT_SCRATCH_BYTES(snc, D); /* solution, QR, pivots, τ */
+    const size_t held = VT_SCRATCH_BYTES(sN, D); /* the solution */
     const size_t small = VT_SCRATCH_BYTES((size_t)EXACT_RCOND_N * (EXACT_RCOND_N + EXACT_EXTRA), D) +
-                         VT_SCRATCH_BYTES(sN, D); /* an exact inverse, or dlansy's / dpocon's work */
+                         VT_SCRATCH_BYTES(sN, D) + /* an exact inverse, or dlansy's / dpocon's work */
+                         VT_SCRATCH_BYTES((size_t)m->nbody + 1, D); /* massless()'s subtree inertias */
     size_t route = VT_SCRATCH_BYTES(sN * sN, D) + 4 * VT_SCRATCH_BYTES(2 * sN, D) + VT_SCRATCH_BYTES(sN, I);
-    const size_t redundant = VT_SCRATCH_BYTES(snc * snc, D) * 2 + VT_SCRATCH_BYTES(snc, D) + VT_SCRATCH_BYTES(sN * sN, D) +
-                             3 * VT_SCRATCH_BYTES(sN, D) + VT_SCRATCH_BYTES(snc, I) +
-                             VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I) + VT_SCRATCH_BYTES(snc * snv, D) +
-                             VT_SCRATCH_BYTES(snc * (size_t)k, D) + VT_SCRATCH_BYTES((size_t)k * snv, D) +
-                             VT_SCRATCH_BYTES((size_t)k, D);
-    if (redundant > route) route = redundant;
+    /* rows_decide's SVD (U, V^T, σ, both scalings; the scaled Φ_q while it runs), then
+     * redundant_solve's reduced system */
+    const size_t rows = VT_SCRATCH_BYTES(snc * snc, D) + VT_SCRATCH_BYTES((size_t)k * snv, D) +
+                        VT_SCRATCH_BYTES((size_t)k, D) + VT_SCRATCH_BYTES(snc, D) + VT_SCRATCH_BYTES(snv, D);
+    const size_t after = VT_SCRATCH_BYTES(snc * snv, D) > VT_SCRATCH_BYTES(sN * sN, D) + 2 * VT_SCRATCH_BYTES(sN, D) +
+                                                              VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I)
+                             ? VT_SCRATCH_BYTES(snc * snv, D)
+                             : VT_SCRATCH_BYTES(sN * sN, D) + 2 * VT_SCRATCH_BYTES(sN, D) +
+                                   VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
+    if (rows + after > route) route = rows + after;
     return held + route + small + lapack + 8 * VT_DATA_ALIGN;
 }

@@ -28,6 +28,7 @@ vt_run_options vt_default_run_options(void)
     o.baumgarte_beta = 10.0;
     o.tout = NULL; /* the uniform rows */
     o.ntout = 0;
+    o.redundant_band = VT_REDUNDANT_TOL;
     return o;
 }
 
@@ -217,5 +218,7 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
         !(opt->baumgarte_beta >= 0.0) || !isfinite(opt->baumgarte_alpha) || !isfinite(opt->baumgarte_beta))
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: formulation %d or Baumgarte parameters out of range", who,
                        opt->formulation);
+    if (!(opt->redundant_band >= 0.0 && opt->redundant_band < 1.0))
+        return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: redundant_band %g outside [0, 1)", who, opt->redundant_band);
     return VT_OK;
 }

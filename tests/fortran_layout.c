@@ -87,7 +87,7 @@ static const size_t vt_run_options_layout[] = {sizeof(vt_run_options),
     offsetof(vt_run_options, forward_as_loads), offsetof(vt_run_options, formulation),
     offsetof(vt_run_options, baumgarte_alpha), offsetof(vt_run_options, baumgarte_beta),
     offsetof(vt_run_options, progress), offsetof(vt_run_options, user), offsetof(vt_run_options, tout),
-    offsetof(vt_run_options, ntout), VT_END};
+    offsetof(vt_run_options, ntout), offsetof(vt_run_options, redundant_band), VT_END};
 static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, model), offsetof(vt_trajectory, nrow), offsetof(vt_trajectory, nfilled),
     offsetof(vt_trajectory, t), offsetof(vt_trajectory, q), offsetof(vt_trajectory, qd),

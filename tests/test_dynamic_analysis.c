@@ -614,6 +614,51 @@ static void test_refused_states_reported(void **state)
     vt_model_free(m);
 }
 
+/* The band that carries the ODE form through the N-four-bar's singular poses is the run's
+ * explicit choice (vt_run_options.redundant_band): with none (0, rows dropped only when
+ * dependent to round-off) the solve is refused at the first horizontal pose and the run stops
+ * there, with it the run goes on; a band outside [0, 1) is refused. */
+static void test_redundant_band_option(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_nfourbar(&m, 2));
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    assert_true(opt.redundant_band == VT_REDUNDANT_TOL);
+    opt.formulation = VT_FORMULATION_ODE;
+    opt.t1 = 1.6; /* past the first horizontal pose, near t = 1.23 */
+    opt.nout = 80;
+    opt.rtol = 1e-8;
+    opt.atol = 1e-10;
+    opt.forward_check = 0;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    const double bad[3] = {-0.1, 1.0, NAN};
+    for (int k = 0; k < 3; k++) {
+        opt.redundant_band = bad[k];
+        assert_int_equal(vt_dynamic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+    }
+    for (int k = 0; k < 2; k++) {
+        opt.redundant_band = k ? VT_REDUNDANT_TOL : 0.0;
+        vt_scene_nfourbar_start(m, d, 2, 1.0);
+        const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+        if (k) {
+            assert_ok(st);
+            assert_int_equal(tr->nfilled, opt.nout + 1);
+            assert_true(tr->phi_norm[opt.nout] < 1e-6);
+        } else {
+            assert_int_not_equal(st, VT_OK);
+            assert_true(tr->nfilled < opt.nout + 1);
+            assert_true(tr->t[tr->nfilled - 1] > 1.0); /* it stopped at the pose, not before */
+        }
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -622,6 +667,7 @@ int main(void)
         cmocka_unit_test(test_free_floating_chain),
         cmocka_unit_test(test_formulations_drift),
         cmocka_unit_test(test_nfourbar_through_singular_pose),
+        cmocka_unit_test(test_redundant_band_option),
         cmocka_unit_test(test_bricard_free_motion),
         cmocka_unit_test(test_forward_modes),
         cmocka_unit_test(test_given_output_times),

@@ -102,7 +102,7 @@ program test_fortran_layout
          a(c_loc(x_run_options%forward_as_loads)), a(c_loc(x_run_options%formulation)), &
          a(c_loc(x_run_options%baumgarte_alpha)), a(c_loc(x_run_options%baumgarte_beta)), &
          a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user)), a(c_loc(x_run_options%tout)), &
-         a(c_loc(x_run_options%ntout))])
+         a(c_loc(x_run_options%ntout)), a(c_loc(x_run_options%redundant_band))])
     call check(8_c_int, 'vt_trajectory', c_sizeof(x_trajectory), a(c_loc(x_trajectory)), [ &
          a(c_loc(x_trajectory%model)), a(c_loc(x_trajectory%nrow)), a(c_loc(x_trajectory%nfilled)), &
          a(c_loc(x_trajectory%t)), a(c_loc(x_trajectory%q)), a(c_loc(x_trajectory%qd)), &
@@ -179,7 +179,8 @@ program test_fortran_layout
   x_run_options = vt_default_run_options()
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
       .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL &
-      .and. .not. c_associated(x_run_options%tout) .and. x_run_options%ntout == 0, &
+      .and. .not. c_associated(x_run_options%tout) .and. x_run_options%ntout == 0 &
+      .and. same([x_run_options%redundant_band], [1e-3_c_double]), &
       'vt_default_run_options')
   call expect(vt_string(vt_status_string(VT_ERR_BAD_SIZE)) /= vt_string(vt_status_string(VT_ERR_BAD_OPTION)), &
       'vt_status_string')

@@ -1,6 +1,7 @@
 /* src/kinematic_analysis.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
  * the forward check), the stretched arm that warns then fails, and the
- * failure statuses (not fully driven, Newton that does not converge, abort, bad options). */
+ * failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
+ * fully driven model with dependent rows, decided by rank. */
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
@@ -335,6 +336,94 @@ static void test_spline_drive_converges(void **state)
     vt_model_free(m);
 }
 
+/* A fully driven model with dependent rows: the planar four-bar closed by a spatial revolute
+ * cut joint, its crank driven (6 rows of rank 3 for 3 rates). Built without allow_redundant it
+ * is refused as having dependent rows, with the advice to allow them (not as "not fully
+ * driven"); built with it, every row is the closed-form assembly of the four-bar at the crank's
+ * angle (positions and rates, vt_scene_fourbar_planar_assemble) and its crank torque that of the
+ * exactly constrained RSUR model of the same mechanism at the same state. Without the crank's
+ * drive (the N-four-bar: 10 rows of rank 4 for 5 rates) the rank says not fully driven. */
+static void test_redundant_fully_driven(void **state)
+{
+    (void)state;
+    const double coef[3] = {0.3, 2.0, 1.5};
+    const vt_function crank = vt_function_polynomial(3, coef);
+    vt_model *strict, *red, *rsur, *nfb;
+    assert_ok(vt_scene_fourbar_planar(&strict, crank, 0));
+    assert_ok(vt_scene_fourbar_planar(&red, crank, 1));
+    assert_ok(vt_scene_fourbar(&rsur, crank));
+    assert_int_equal(red->nc, 6);
+    assert_int_equal(red->nv, 3);
+    vt_data *ds, *dr, *du;
+    assert_ok(vt_data_create(&ds, strict));
+    assert_ok(vt_data_create(&dr, red));
+    assert_ok(vt_data_create(&du, rsur));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 1.0;
+    opt.nout = 10;
+    opt.forward_check = 0;
+    vt_trajectory *trs, *tr;
+    assert_ok(vt_trajectory_create(&trs, strict, opt.nout + 1));
+    assert_ok(vt_trajectory_create(&tr, red, opt.nout + 1));
+    assert_int_equal(vt_scene_fourbar_planar_assemble(strict, ds, coef[0], coef[1]), 0);
+    const double t_before = ds->time;
+    assert_int_equal(vt_kinematic_analysis(strict, ds, &opt, trs), VT_ERR_DEPENDENT_CONSTRAINTS);
+    assert_non_null(strstr(ds->message, "rank 3"));
+    assert_non_null(strstr(ds->message, "allow_redundant"));
+    assert_true(ds->time == t_before);
+
+    assert_int_equal(vt_scene_fourbar_planar_assemble(red, dr, coef[0], coef[1]), 0);
+    const vt_status st = vt_kinematic_analysis(red, dr, &opt, tr);
+    if (st) fail_msg("%s", dr->message);
+    assert_int_equal(tr->nfilled, opt.nout + 1);
+    vt_data *dx; /* the closed form */
+    assert_ok(vt_data_create(&dx, red));
+    for (int k = 0; k <= opt.nout; k++) {
+        const double t = tr->t[k], th2 = coef[0] + coef[1] * t + coef[2] * t * t, w2 = coef[1] + 2 * coef[2] * t;
+        assert_int_equal(vt_scene_fourbar_planar_assemble(red, dx, th2, w2), 0);
+        for (int c = 0; c < 3; c++) {
+            assert_near(tr->q[3 * k + c], dx->q[c], 1e-10);
+            assert_near(tr->qd[3 * k + c], dx->qd[c], 1e-9);
+        }
+        assert_int_equal(vt_scene_fourbar_assemble(rsur, du, th2, w2, NULL, NULL), 0);
+        du->time = t;
+        assert_ok(vt_inverse_dynamics(rsur, du));
+        assert_near(tr->drive_effort[k], du->drive_effort[0], 1e-8 * (1 + fabs(du->drive_effort[0])));
+    }
+    vt_data_free(dx);
+#if VT_HAVE_SUNDIALS
+    /* the forward check: the model without its drive keeps the dependent cut rows, which the
+     * ODE formulation's solve takes (the DAE forms' IDA Jacobian is singular with them) */
+    opt.forward_check = 1;
+    opt.formulation = VT_FORMULATION_ODE;
+    assert_int_equal(vt_scene_fourbar_planar_assemble(red, dr, coef[0], coef[1]), 0);
+    assert_ok(vt_kinematic_analysis(red, dr, &opt, tr));
+    assert_true(tr->fwd_err_q < 1e-5);
+    opt.forward_check = 0;
+#endif
+
+    assert_ok(vt_scene_nfourbar(&nfb, 2));
+    assert_true(nfb->nc > nfb->nv);
+    vt_data *dn;
+    vt_trajectory *trn;
+    assert_ok(vt_data_create(&dn, nfb));
+    assert_ok(vt_trajectory_create(&trn, nfb, opt.nout + 1));
+    vt_scene_nfourbar_start(nfb, dn, 2, 1.0);
+    assert_int_equal(vt_kinematic_analysis(nfb, dn, &opt, trn), VT_ERR_NOT_FULLY_DRIVEN);
+    assert_non_null(strstr(dn->message, "rank 4"));
+    vt_trajectory_free(trn);
+    vt_data_free(dn);
+    vt_model_free(nfb);
+    vt_trajectory_free(trs);
+    vt_trajectory_free(tr);
+    vt_data_free(ds);
+    vt_data_free(dr);
+    vt_data_free(du);
+    vt_model_free(strict);
+    vt_model_free(red);
+    vt_model_free(rsur);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -346,6 +435,7 @@ int main(void)
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_stretched_arm),
         cmocka_unit_test(test_spline_drive_converges),
+        cmocka_unit_test(test_redundant_fully_driven),
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_given_output_times),
 #endif

@@ -50,9 +50,9 @@ typedef enum vt_status {
     VT_ERR_BAD_DRIVE = -18,            ///< a drive definition that cannot be used (message says why)
     VT_ERR_BAD_CUT_JOINT = -19,        ///< a cut-joint definition that cannot be used
     VT_ERR_CALLBACK = -20,             ///< a user time function or orientation callback returned an error
-    VT_ERR_SINGULAR = -21,             ///< augmented system (5) singular or ill-conditioned (rcond below
-                                       ///< rcond_min): the drives do not fix the motion, or a body
-                                       ///< without inertia moves freely
+    VT_ERR_SINGULAR = -21,             ///< augmented system (5) singular (a rate or body without inertia
+                                       ///< that nothing fixes, named; an exactly zero pivot) or only
+                                       ///< ill-conditioned (rcond below rcond_min); the message says which
     VT_ERR_DEPENDENT_CONSTRAINTS = -22,///< constraint rows Φ_q linearly dependent (rows named in the message)
     VT_ERR_NEWTON = -23,               ///< Newton–Raphson on Φ(q, t) = 0 did not converge (residual in message)
     VT_ERR_NOT_FULLY_DRIVEN = -24,     ///< a kinematic analysis needs as many constraint rows as rates
@@ -110,10 +110,10 @@ typedef enum vt_joint_type {
 } vt_joint_type;
 
 /// Options of the whole model.
-/// Models that allow redundant rows (vt_model_def.allow_redundant): constraint directions whose
-/// singular value (of Φ_q scaled by the mass metric) falls below this fraction of the largest
-/// count as dependent, and are dropped from the solve of (5): exactly dependent rows, and near a
-/// singular pose the direction about to become dependent.
+/// Default of vt_run_options.redundant_band: the band of relative singular values within which
+/// the ODE formulation of a dynamic analysis drops a constraint direction of a model that allows
+/// redundant rows (what carries it through a singular pose). Not used by a single instant, whose
+/// dependent rows are those dependent to round-off (see vt_model_def.allow_redundant).
 #define VT_REDUNDANT_TOL 1e-3
 
 typedef struct vt_model_def {
@@ -123,16 +123,28 @@ typedef struct vt_model_def {
     double rcond_warn;  ///< below this (and above rcond_min) vt_solve succeeds but sets
                         ///< VT_WARN_ILL_CONDITIONED in the data's warning: a pose near a singular one,
                         ///< where efforts grow without bound; default 1e-6
-    int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved in the
-                        ///< least-squares / minimum-norm sense instead of refused; the motion and the
-                        ///< efforts stay unique, the multipliers and some reactions do not (see
-                        ///< vt_data.rank, lambda_unique, jnt_unique, cut_unique); default 0
+    int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved instead of
+                        ///< refused: on their independent directions, the multipliers of minimum
+                        ///< (scaled) norm. Rows count as dependent when the singular values of
+                        ///< G Φ_q D fall below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
+                        ///< D = diag(M*_aa^(-1/2)), G one factor for the length rows and one for the
+                        ///< angle rows (neither the global axes' directions nor the units change the
+                        ///< decision); any other pose, however ill-conditioned, is solved exactly as
+                        ///< without the option. The motion and the efforts stay unique, the
+                        ///< multipliers and some reactions do not (see vt_data.rank, lambda_unique,
+                        ///< jnt_unique, cut_unique). A dynamic analysis in the ODE formulation may
+                        ///< also drop nearly dependent directions (vt_run_options.redundant_band);
+                        ///< default 0
 } vt_model_def;
 
 /// Warning flags a successful call may leave in vt_data.warning.
 enum {
     VT_WARN_ILL_CONDITIONED = 1, ///< the condition estimate of (5) is below rcond_warn
-    VT_WARN_REDUNDANT = 2        ///< dependent rows were solved in the least-squares sense (allow_redundant)
+    VT_WARN_REDUNDANT = 2,       ///< dependent rows (to round-off) were solved on their independent
+                                 ///< directions (allow_redundant; vt_data.rank < nc)
+    VT_WARN_BAND = 4             ///< a time analysis's band (vt_run_options.redundant_band) dropped a
+                                 ///< direction that is not dependent to round-off: its constraint held
+                                 ///< in the least-squares sense (vt_data.residual says how well)
 };
 
 /// The route by which the last solve found q̈ and λ (vt_data.route). Which route a model and an
@@ -453,9 +465,11 @@ typedef struct vt_data {
     double rcond;            ///< reciprocal 1-norm condition of the mass-scaled system the route factorized
                              ///< (exact up to 16 unknowns, LAPACK's estimate above; 1 when nothing was
                              ///< factorized); it falls toward a singular pose. What exactly each route
-                             ///< measures: src/solve.c and src/recursive.c
-    int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none)
-    int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent)
+                             ///< measures: src/solve.c and src/recursive.c. After a failure: what the
+                             ///< failed route measured, 0 if nothing
+    int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none, and after a failure)
+    int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent;
+                             ///< after a failure what it found, 0 if nothing)
     double residual;         ///< max |Φ_q q̈ − γ| over all rows after a redundant solve (0 otherwise)
     int *lambda_unique;      ///< 0 where a multiplier is not unique (redundant rows), else 1 (nc)
     double *lambda_null;     ///< redundant rows: the nc − rank multiplier directions z with Φ_q^T z = 0,
@@ -510,7 +524,7 @@ typedef enum vt_formulation {
                                 ///< enforced, q' = T (q̇ + Φ_q^T μ); λ and μ out of the error test
     VT_FORMULATION_ODE,         ///< q̈ from vt_solve at every residual (Baumgarte's terms in γ), IDA on
                                 ///< q and q̇ only: carries through poses where rows become dependent
-                                ///< when the model allows redundant rows
+                                ///< when the model allows redundant rows (vt_run_options.redundant_band)
     VT_FORMULATION_COUNT        ///< number of formulations (not one)
 } vt_formulation;
 
@@ -547,6 +561,13 @@ typedef struct vt_run_options {
                              ///< increasing, in (t0, t1]; the run ends at tout[ntout−1]. The trajectory
                              ///< needs ntout + 1 rows. Default NULL (the uniform rows of nout)
     int ntout;               ///< number of entries of tout (≥ 1 with tout); default 0
+    double redundant_band;   ///< ODE formulation, models that allow redundant rows: at every residual,
+                             ///< constraint directions whose singular value (of the scaled Φ_q of
+                             ///< vt_model_def.allow_redundant) is below this fraction of the largest
+                             ///< are dropped, their constraints held in the least-squares sense and
+                             ///< closed afterwards by Baumgarte's terms: what carries a run through a
+                             ///< singular pose instead of amplifying the drift there by 1/σ². 0 drops
+                             ///< only rows dependent to round-off; in [0, 1); default VT_REDUNDANT_TOL
 } vt_run_options;
 
 /// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
