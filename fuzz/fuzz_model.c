@@ -643,7 +643,7 @@ static void stages(const vt_model *m, vt_data *d, bytes *b)
     save_inputs(m, d, before);
     d->message[0] = '\0';
     vt_status st = vt_add_point_load(m, d, body, pt, pick & 128 ? NULL : f, pick & 32 ? NULL : n);
-    if (st == VT_OK) finite(d->xfrc, 6 * n1, "vt_add_point_load", "xfrc");
+    if (st == VT_OK) finite(d->xfrc + 6 * body, 6, "vt_add_point_load", "xfrc of its body"); /* the rest is the caller's */
     else failed_call(m, d, before, st, "vt_add_point_load");
     free(before);
 
@@ -673,14 +673,18 @@ static void stages(const vt_model *m, vt_data *d, bytes *b)
     if (m->nbody >= 1) {
         double Fc[7];
         const int i = 1 + (int)(pick % (unsigned)m->nbody);
-        unsigned nulls = byte(b) % 8;
+        unsigned nulls = byte(b) % 4;
         if (excluded("vt_cartesian_force(NULL)")) nulls = 0; /* #19's NULL moment: set aside */
-        vt_cartesian_force(Fc, d->x + 7 * (i - 1) + 3, pt, nulls & 1 ? NULL : f, nulls & 2 ? NULL : n);
+        const vt_status cst = vt_cartesian_force(Fc, d->x + 7 * (i - 1) + 3, pt, nulls & 1 ? NULL : f, nulls & 2 ? NULL : n);
+        if (cst == VT_OK) finite(Fc, 7, "vt_cartesian_force", "F");
+        if (nulls && cst != VT_ERR_NULL) fail("vt_cartesian_force with a NULL argument returned %s", vt_status_string(cst));
         /* finite inputs whose products cannot overflow give a finite force */
-        int modest = 1;
+        int modest = !nulls;
+        for (int k = 0; k < 4; k++)
+            if (!(fabs(d->x[7 * (i - 1) + 3 + k]) < 1e100)) modest = 0;
         for (int k = 0; k < 3; k++)
             if (!(fabs(pt[k]) < 1e100) || !(fabs(f[k]) < 1e100) || !(fabs(n[k]) < 1e100)) modest = 0;
-        if (modest) finite(Fc, 7, "vt_cartesian_force", "F");
+        if (modest && cst != VT_OK) fail("vt_cartesian_force refused modest finite inputs (%s)", vt_status_string(cst));
     }
     free(F);
 }
@@ -735,7 +739,7 @@ static void read_definitions(bytes *b, definitions *defs)
     for (int i = 1; i <= defs->nbody; i++) {
         vt_body_def d = vt_default_body_def();
         d.parent = (int)(byte(b) % (unsigned)(i + 1)) - (byte(b) % 16 == 0);
-        d.joint = (vt_joint_type)(byte(b) % 8); /* 7: an unknown kind */
+        d.joint = (vt_joint_type)(byte(b) % 7); /* 6: the free joint (an unknown kind before it) */
         d.mass = byte(b) % 8 ? fabs(num(b)) + 0.1 : num(b);
         const unsigned shape = byte(b) % 4;
         if (shape == 0)
@@ -768,7 +772,7 @@ static void read_definitions(bytes *b, definitions *defs)
     defs->ncut = (int)(byte(b) % (MAX_CUT + 1));
     for (int k = 0; k < defs->ncut; k++) {
         vt_cut_joint_def c = vt_default_cut_joint_def();
-        c.joint = (vt_joint_type)(byte(b) % 8);
+        c.joint = (vt_joint_type)(byte(b) % 7);
         c.body_a = (int)(byte(b) % 8);
         c.body_b = (int)(byte(b) % 8);
         for (int e = 0; e < 3; e++) {

@@ -65,6 +65,8 @@ vt_status vt_inverse_transform(const vt_model *m, vt_data *d)
         const int i = m->dof_body[dof], j = m->body_parent[i];
         double ri[7], rj[7];
         vt_R_row(m, d, dof, rj, ri);
+        if (!vt_all_finite(ri, 7) || (j && !vt_all_finite(rj, 7)))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_transform: row %d of R (body %d) is not finite", dof, i);
         for (int c = 0; c < 7; c++) d->R[(size_t)dof + (size_t)(vt_xoff(i) + c) * ld] = ri[c];
         if (j)
             for (int c = 0; c < 7; c++) d->R[(size_t)dof + (size_t)(vt_xoff(j) + c) * ld] = rj[c];

@@ -46,6 +46,14 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
             for (int a = 0; a < k; a++) d->Mstar[path[a] + (size_t)path[b] * (size_t)nv] += C[a + k * b];
     }
     vt_scratch_release(d, mark);
+    /* a state or inertia near overflow can make a product Inf: refused, naming the entry */
+    if (!vt_all_finite(d->Mstar, nv * nv))
+        for (int c = 0; c < nv * nv; c++)
+            if (!isfinite(d->Mstar[c]))
+                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_mass_matrix: M*[%d, %d] = %g (overflow)", c % nv,
+                               c / nv, d->Mstar[c]);
+    if (!vt_all_finite(d->Mp + 16, 16 * m->nbody))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_mass_matrix: a body's rotational mass block overflows");
     return VT_OK;
 }
 

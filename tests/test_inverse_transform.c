@@ -108,12 +108,38 @@ static void test_equivalent_force_overflow(void **state)
     vt_model_free(m);
 }
 
+/* A translational joint whose body's joint point lies 1e308 m from its centre of mass: every
+ * position is finite, but R's row (2 E^T (e × d)) overflows: refused, naming the row. */
+static void test_overflowing_row_refused(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_TRANSLATIONAL;
+    body.axis1[0] = 1.0, body.axis1[2] = 0.0;
+    body.joint_child[1] = -1e308;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    d->message[0] = '\0';
+    assert_int_equal(vt_inverse_transform(m, d), VT_ERR_NONFINITE);
+    assert_non_null(strstr(d->message, "row 0"));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_RS_identity),
         cmocka_unit_test(test_equivalent_force),
         cmocka_unit_test(test_equivalent_force_overflow),
+        cmocka_unit_test(test_overflowing_row_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -131,6 +131,30 @@ static void test_rotational_block(void **state)
     vt_model_free(m);
 }
 
+/* A point mass of 1e300 kg on a hinge 1e10 m away: positions and velocities are finite, but its
+ * M* entry m |e × r|² = 1e320 overflows: refused, naming the entry. */
+static void test_overflowing_entry_refused(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.mass = 1e300;
+    body.joint_child[0] = -1e10;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_kinematics(m, d));
+    d->message[0] = '\0';
+    assert_int_equal(vt_mass_matrix(m, d), VT_ERR_NONFINITE);
+    assert_non_null(strstr(d->message, "M*[0, 0]"));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -138,6 +162,7 @@ int main(void)
         cmocka_unit_test(test_polarization),
         cmocka_unit_test(test_symmetric_positive_definite),
         cmocka_unit_test(test_rotational_block),
+        cmocka_unit_test(test_overflowing_entry_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
