@@ -275,7 +275,7 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         if (!p->s.dk_valid || p->dk->time != t) { /* (IDA's iterations and Jacobian at one t reuse them) */
             p->dk->time = t;
             p->s.dk_valid = 0;
-            if ((st = vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)))
+            if ((st = vt_kinematic_solve_impl(m, p->dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0)))
                 return refused(p, st, p->dk->message, t);
             p->s.dk_valid = 1;
         }
