@@ -1,10 +1,9 @@
 /* The kinematic analysis over time: a fully driven model (as many constraint rows as rates) at
- * every output time, each instant by vt_kinematic_solve (the instant itself by the recursive
- * evaluation) from the previous two extrapolated (Hermite, matching q, q̇, q̈ at both: O(h⁶)),
- * from the previous one
- * itself when that start's residual is not below ½ h max |Φ_t|, about the previous one's own,
- * or when Newton fails from there), then the forward
- * check (src/dynamic_analysis.c): the model without drives integrated under the drives' efforts,
+ * every output time, each instant by vt_kinematic_solve's Newton–Raphson from the previous rows
+ * extrapolated (predict below: Hermite through q, q̇, q̈ of the last two, O(h⁶)), or from the
+ * previous row itself when that start's residual is not below ½ h max |Φ_t| or Newton fails
+ * from it; the instant after the solve by the recursive evaluation. Then the forward check
+ * (src/dynamic_analysis.c): the model without drives integrated under the drives' efforts,
  * which must reproduce the motion. Rows at t0 and the output times (the uniform ones, or the
  * caller's list vt_run_options.tout): each exact at its time.
  */
