@@ -198,8 +198,8 @@ int main(int argc, char **argv)
     printf("  forward check alone / recursive instant   %6.2f (%.2f-%.2f)\n", s_f[0], s_f[1], s_f[2]);
     printf("  forward check alone / analysis instant    %6.2f (%.2f-%.2f)\n", s_fa[0], s_fa[1], s_fa[2]);
     run(&b, M_CHECKED);
-    printf("  forward check: %ld IDA steps, %ld residuals (without the Jacobian's) for %d output intervals\n",
-           b.tr->steps_fwd, b.tr->res_evals_fwd, NOUT);
+    printf("  forward check: %ld IDA steps, %ld residuals (without the Jacobian's) for %d output intervals;"
+           " max |q_fwd - q| %.3g rad\n", b.tr->steps_fwd, b.tr->res_evals_fwd, NOUT, b.tr->fwd_err_q);
     char path[4096];
     snprintf(path, sizeof path, "%s/analysis_speed.csv", outdir);
     FILE *csv = fopen(path, "w");
