@@ -57,7 +57,7 @@ static vt_status solve_phiq(const vt_model *m, vt_data *d, int velocities, doubl
         if (nv <= 32) dgetf2_(&nv, &nv, A, &nv, ipiv, &info);
         else dgetrf_(&nv, &nv, A, &nv, ipiv, &info);
         if (info < 0)
-            return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgetrf info %d", info);
+            return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: LU (dgetf2/dgetrf) info %d", info);
         if (info > 0)
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_SINGULAR, "vt_kinematic_solve: Φ_q rank deficient at t = %g", d->time);
@@ -126,7 +126,7 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
                 return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NONFINITE,
                                                          "vt_kinematic_solve: Φ is not finite at t = %g", d->time));
             res = max_abs(d->Phi, m->nc);
-            if (qprev && it == 0 && res > 0.5 * h * max_abs(d->Phit, m->nc)) {
+            if (qprev && it == 0 && res > tol && res > 0.5 * h * max_abs(d->Phit, m->nc)) {
                 /* a start predicted worse than the previous solution's h Φ_t: from that one */
                 memcpy(d->q, qprev, (size_t)m->nq * sizeof(double));
                 memcpy(d->qd, qdprev, (size_t)m->nv * sizeof(double));
