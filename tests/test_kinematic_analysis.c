@@ -172,6 +172,75 @@ static void test_rows_against_dense_instants(void **state)
     }
 }
 
+/* Body 2 on a free joint from a driven hinge (body 1), its translation by three joint drives
+ * and its orientation by an orientation drive: 7 rates, 7 rows */
+static vt_model *free_joint_model(void)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint_child[0] = -0.5;
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body.parent = 1;
+    body.joint = VT_JOINT_FREE;
+    body.joint_parent[0] = 0.5;
+    body.joint_child[0] = 0.2, body.joint_child[1] = -0.1, body.joint_child[2] = 0.3;
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.2, 0.7, 1.1, 0.3);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    for (int k = 0; k < 3; k++) {
+        dr.body = 2;
+        dr.index = k;
+        dr.f = vt_function_sine(0.1 * k, 0.3 + 0.1 * k, 0.9 + 0.4 * k, 0.2 * k);
+        assert_int_equal(vt_builder_add_drive(b, &dr), k + 1);
+    }
+    dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_ORIENTATION;
+    dr.body = 2;
+    dr.axis[0] = 0.0, dr.axis[1] = 0.6, dr.axis[2] = 0.8;
+    dr.f = vt_function_sine(0.1, 0.5, 1.3, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 4);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* The free joint's rows (its rotation's rates extrapolated by their cubic q̇) against
+ * vt_kinematic_solve's dense instant started from the row before, as the analysis used to */
+static void test_free_joint_rows_against_dense_instants(void **state)
+{
+    (void)state;
+    vt_model *m = free_joint_model();
+    vt_data *d, *di;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&di, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.forward_check = 0;
+    opt.newton_tol = 1e-14;
+    opt.t1 = 2.0;
+    opt.nout = 50;
+    assert_ok(vt_trajectory_create(&tr, m, 51));
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    double worst = 0.0;
+    for (int k = 1; k <= 50; k++) {
+        memcpy(di->q, tr->q + (size_t)(k - 1) * (size_t)m->nq, (size_t)m->nq * sizeof(double));
+        memcpy(di->qd, tr->qd + (size_t)(k - 1) * (size_t)m->nv, (size_t)m->nv * sizeof(double));
+        di->time = tr->t[k];
+        assert_ok(vt_kinematic_solve(m, di, 1e-14, 30));
+        worst = fmax(worst, row_diff(m, tr, k, di));
+    }
+    if (!(worst <= 1e-12)) fail_msg("rows differ from the dense instants by %.3g", worst);
+    vt_trajectory_free(tr);
+    vt_data_free(di);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* From the predicted starts one Newton step reaches 1e-10 at every row of the five-link arm
  * (from the previous row itself it takes two or three) */
 static void test_one_newton_step_a_row(void **state)
@@ -461,6 +530,7 @@ int main(void)
         cmocka_unit_test(test_no_forward_check_without_sundials),
 #endif
         cmocka_unit_test(test_rows_against_dense_instants),
+        cmocka_unit_test(test_free_joint_rows_against_dense_instants),
         cmocka_unit_test(test_one_newton_step_a_row),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_stretched_arm),
