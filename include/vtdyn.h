@@ -348,8 +348,9 @@ VT_API vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model
 VT_API void vt_trajectory_free(vt_trajectory *trajectory);
 
 /// One instant of a kinematic analysis at d->time: Newton–Raphson on Φ(q, t) = 0 from d->q
-/// (steps from LAPACK's dgels: exact for as many rows as rates, least-norm for fewer), then
-/// q̇ corrected to Φ_q q̇ = −Φ_t the same way, then vt_inverse_dynamics(). d->q and d->qd are
+/// (steps by LU for as many rows as rates, LAPACK's least-norm dgels for fewer, dgelsd for the
+/// dependent rows a model allows), then q̇ corrected to Φ_q q̇ = −Φ_t the same way, then
+/// vt_inverse_dynamics(). d->q and d->qd are
 /// replaced by the consistent values; on failure they are restored.
 /// Statuses: VT_ERR_NEWTON (max |Φ| in the message), VT_ERR_SINGULAR, VT_ERR_BAD_OPTION (tol not
 /// finite and positive, maxit not positive), VT_ERR_NONFINITE (a Newton step that overflows q),
@@ -359,8 +360,11 @@ VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double
 /// Kinematic analysis of a fully driven model (its constraint rows fix every rate: as many
 /// independent rows as rates, or more of that rank when the model allows redundant rows; the rank
 /// decided as vt_solve decides dependent rows, at t0 and d->q before the run for a model that
-/// does not allow them, at the first row for one that does): at every
-/// output time vt_kinematic_solve(), from the previous solution (the first from d->q). The output
+/// does not allow them, at the first row for one that does): at every output time
+/// vt_kinematic_solve()'s Newton–Raphson, from a start extrapolated from the previous two rows
+/// (Hermite through their q, q̇, q̈; the previous row itself when that start is worse, the first
+/// from d->q), each row's instant by vt_inverse_dynamics_recursive() (S, R, M* and Q are not left
+/// in the data). The output
 /// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
 /// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
 /// more entries than the trajectory's rows − 1) is refused with VT_ERR_BAD_OPTION, the message

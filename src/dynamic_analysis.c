@@ -100,6 +100,7 @@ typedef struct {
         int refusals;   /* recoverable refusals since the current IDASolve call began */
         double t;       /* the last refusal's time */
         char msg[256];  /* and its message */
+        int dk_valid;   /* dk holds the exact efforts at dk->time (they depend on t alone) */
     } s;
 } dae;
 
@@ -272,9 +273,13 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         p->dk->time = t;
         if ((st = vt_inverse_dynamics(m, p->dk))) return refused(p, st, p->dk->message, t);
     } else if (p->dk) {
-        p->dk->time = t;
-        if ((st = vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit)))
-            return refused(p, st, p->dk->message, t);
+        if (!p->s.dk_valid || p->dk->time != t) { /* (IDA's iterations and Jacobian at one t reuse them) */
+            p->dk->time = t;
+            p->s.dk_valid = 0;
+            if ((st = vt_kinematic_solve_impl(m, p->dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0)))
+                return refused(p, st, p->dk->message, t);
+            p->s.dk_valid = 1;
+        }
     } else { /* the efforts of the driven block's current λ */
         /* (the ODE form has no λ in y: its residual's vt_solve left them in d already) */
         if (p->form != VT_FORMULATION_ODE) memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));

@@ -229,6 +229,12 @@ size_t vt_reactions_scratch(const vt_model *m);
 size_t vt_recursive_scratch(const vt_model *m);
 size_t vt_kinematic_solve_scratch(const vt_model *m);
 size_t vt_inverse_transform_scratch(const vt_model *m);
+/* vt_kinematic_solve without the argument check, the instant after the solve by the recursive
+ * evaluation (recursive = 1, vt_kinematic_analysis) or the dense one; with qprev (q and q̇ of a
+ * solution at t − h: qprev nq, qdprev nv) d->q is a start predicted from it, abandoned for qprev
+ * itself when its max |Φ| exceeds ½ h max |Φ_t| (roughly qprev's own residual at t) */
+vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
+                                  const double *qprev, const double *qdprev, double h);
 
 /* Writes a formatted message into buf (size 256) and returns status. */
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)

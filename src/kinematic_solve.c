@@ -3,8 +3,12 @@
  *   positions    Φ(q, t) = 0:  Φ_q Δ = −Φ,  q ← q ⊕ Δ  (Newton–Raphson; ⊕ as vt_integrate_q)
  *   velocities   Φ_q q̇ = −Φ_t                                   (time derivative of Φ = 0)
  *   accelerations and multipliers from (5), then efforts (24) and reactions (25)-(28)
- * Each linear step is LAPACK's dgels on Φ_q: with as many rows as rates it is the Newton step
- * itself; with fewer (consistent initial values of a dynamic analysis) the least-norm
+ * Newton's Φ and Φ_q come from the positions and the rates' twists (vt_kinematics_tree,
+ * vt_constraints_impl without the dense S): Φ_q = Φ_x S column by column, as the recursive
+ * evaluation forms it. Each linear step: with as many independent rows as rates, Φ_q is square
+ * and the step is Φ_q^-1 b by LU with partial pivoting (LAPACK's dgetf2/dgetrf, dgetrs), one
+ * factorization at each q (Newton's and the velocities' at the converged q); with fewer rows
+ * (consistent initial values of a dynamic analysis) LAPACK's dgels gives the least-norm
  * correction, a projection onto the constraint manifold; dependent rows of a model that allows
  * them, the least-norm least-squares step (dgelsd).
  */
@@ -32,22 +36,43 @@ static void phiq_rhs(const vt_model *m, const vt_data *d, int velocities, double
     }
 }
 
-/* x = least-norm (or exact) solution of Φ_q x = b with b = −Φ (positions) or
- * b = −Φ_t − Φ_q q̇ (velocities); x has nv entries */
+/* LAPACK's blocked LU, for large square Φ_q (dgetf2, unblocked, below) */
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+
+/* x = the exact solution of a square Φ_q x = b, or the least-norm one of fewer rows, with
+ * b = −Φ (positions) or b = −Φ_t − Φ_q q̇ (velocities); x has nv entries */
 static vt_status solve_phiq(const vt_model *m, vt_data *d, int velocities, double *x)
 {
     const int nc = m->nc, nv = m->nv, one = 1, ldb = nc > nv ? nc : nv;
     const size_t mark = vt_scratch_mark(d);
     double *A = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "Φ_q, factorized");
     double *B = VT_SCRATCH(d, double, ldb, "right side");
+    if (!B) return vt_scratch_fail(d, mark);
+    memcpy(A, d->Phiq, (size_t)nc * (size_t)nv * sizeof(double));
+    phiq_rhs(m, d, velocities, B, ldb);
+    int info = 0;
+    if (nc == nv && !m->allow_redundant) { /* square: Φ_q = P L U */
+        int *ipiv = VT_SCRATCH(d, int, nv, "LU pivots");
+        if (!ipiv) return vt_scratch_fail(d, mark);
+        if (nv <= 32) dgetf2_(&nv, &nv, A, &nv, ipiv, &info);
+        else dgetrf_(&nv, &nv, A, &nv, ipiv, &info);
+        if (info < 0)
+            return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: LU (dgetf2/dgetrf) info %d", info);
+        if (info > 0)
+            return vt_scratch_release(d, mark),
+                   vt_fail(d->message, VT_ERR_SINGULAR, "vt_kinematic_solve: Φ_q rank deficient at t = %g", d->time);
+        dgetrs_("N", &nv, &one, A, &nv, ipiv, B, &ldb, &info, 1);
+        if (info != 0)
+            return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgetrs info %d", info);
+        memcpy(x, B, (size_t)nv * sizeof(double));
+        vt_scratch_release(d, mark);
+        return VT_OK;
+    }
     double *sv = VT_SCRATCH(d, double, ldb, "singular values");
     int *iwork = VT_SCRATCH(d, int, vt_dgelsd_iwork(nc, nv), "dgelsd integer workspace");
     int lwork = 0;
     double *work = vt_scratch_rest(d, 1, sizeof(double), &lwork, "dgels workspace");
     if (!work) return vt_scratch_fail(d, mark);
-    memcpy(A, d->Phiq, (size_t)nc * (size_t)nv * sizeof(double));
-    phiq_rhs(m, d, velocities, B, ldb);
-    int info = 0;
     dgels_("N", &nc, &nv, &one, A, &nc, B, &ldb, work, &lwork, &info, 1);
     if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_kinematic_solve: dgels info %d", info);
     if (info > 0 && m->allow_redundant) { /* dependent rows: the least-norm least-squares step (SVD) */
@@ -79,10 +104,9 @@ static vt_status restore(const vt_model *m, vt_data *d, const double *qsave, siz
     return st;
 }
 
-vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxit)
+vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
+                                  const double *qprev, const double *qdprev, double h)
 {
-    vt_status st = vt_check_pair(m, d, "vt_kinematic_solve");
-    if (st) return st;
     if (!(tol > 0.0) || !isfinite(tol) || maxit < 1)
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_kinematic_solve: tol %g must be finite and positive, maxit %d positive",
                        tol, maxit);
@@ -94,10 +118,23 @@ vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxi
     memcpy(qsave + m->nq, d->qd, (size_t)m->nv * sizeof(double));
     double res = 0.0;
     int it = 0;
+    vt_status st;
     if (m->nc > 0) {
-        for (;; it++) {
-            if ((st = vt_kinematics(m, d)) || (st = vt_constraints(m, d))) return restore(m, d, qsave, mark, st);
+        for (;; it++) { /* Φ and Φ_q from the positions and twists (the velocities' terms unused) */
+            if ((st = vt_kinematics_tree(m, d, 0)) || (st = vt_constraints_impl(m, d, 0)))
+                return restore(m, d, qsave, mark, st);
+            if (!vt_all_finite(d->Phi, m->nc))
+                return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NONFINITE,
+                                                         "vt_kinematic_solve: Φ is not finite at t = %g", d->time));
             res = max_abs(d->Phi, m->nc);
+            if (qprev && it == 0 && res > tol && res > 0.5 * h * max_abs(d->Phit, m->nc)) {
+                /* a start predicted worse than the previous solution's h Φ_t: from that one */
+                memcpy(d->q, qprev, (size_t)m->nq * sizeof(double));
+                memcpy(d->qd, qdprev, (size_t)m->nv * sizeof(double));
+                qprev = NULL;
+                it--;
+                continue;
+            }
             if (res <= tol) break;
             if (it == maxit)
                 return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NEWTON,
@@ -108,17 +145,24 @@ vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxi
                 return restore(m, d, qsave, mark, vt_fail(d->message, st, "vt_kinematic_solve: Newton step %d overflows q (max |Φ| = %.3g at t = %g)",
                                                           it + 1, res, d->time));
         }
-        /* velocities: the correction of q̇ that makes Φ_q q̇ = −Φ_t */
+        /* velocities: the correction of q̇ that makes Φ_q q̇ = −Φ_t, Φ_q at the converged q */
         if ((st = solve_phiq(m, d, 1, step))) return restore(m, d, qsave, mark, st);
         for (int c = 0; c < m->nv; c++) d->qd[c] += step[c];
     }
-    if ((st = vt_inverse_dynamics(m, d))) return restore(m, d, qsave, mark, st);
+    st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
+    if (st) return restore(m, d, qsave, mark, st);
     vt_scratch_release(d, mark);
     return VT_OK;
 }
 
-/* q and q̇ as given and the Newton step, held across the instant; solve_phiq's arrays and LAPACK's
- * workspaces (dgels, dgelsd) by their queries */
+vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxit)
+{
+    const vt_status st = vt_check_pair(m, d, "vt_kinematic_solve");
+    return st ? st : vt_kinematic_solve_impl(m, d, tol, maxit, 0, NULL, NULL, 0.0);
+}
+
+/* q and q̇ as given and the Newton step, held across the instant; solve_phiq's arrays (the LU's
+ * pivots, or the least squares' arrays and LAPACK's workspaces (dgels, dgelsd) by their queries) */
 size_t vt_kinematic_solve_scratch(const vt_model *m)
 {
     const int nc = m->nc, nv = m->nv, one = 1, ldb = nc > nv ? nc : nv, lw = -1;
@@ -134,6 +178,7 @@ size_t vt_kinematic_solve_scratch(const vt_model *m)
     }
     return VT_SCRATCH_BYTES((size_t)m->nq + (size_t)nv, D) + VT_SCRATCH_BYTES(nv, D) +
            VT_SCRATCH_BYTES((size_t)nc * (size_t)nv, D) + 2 * VT_SCRATCH_BYTES(ldb, D) +
-           VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(nc, nv), sizeof(int)) + VT_SCRATCH_BYTES(lapack, D);
+           VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(nc, nv), sizeof(int)) + VT_SCRATCH_BYTES(lapack, D) +
+           VT_SCRATCH_BYTES(nv, sizeof(int));
 }
 

@@ -1,7 +1,8 @@
 /* src/kinematic_analysis.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
- * the forward check), the stretched arm that warns then fails, and the
- * failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
- * fully driven model with dependent rows, decided by rank. */
+ * the forward check), its rows (recursive instants from predicted starts) against the dense
+ * vt_kinematic_solve from independent starts, one Newton step per row, the stretched arm that
+ * warns then fails, and the failure statuses (not fully driven, Newton that does not converge,
+ * abort, bad options); a fully driven model with dependent rows, decided by rank. */
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
@@ -89,6 +90,190 @@ static void test_no_forward_check_without_sundials(void **state)
 }
 #endif
 
+/* largest |a − b| / (1 + |b|) over n entries */
+static double rel_diff(const double *a, const double *b, int n)
+{
+    double e = 0.0;
+    for (int k = 0; k < n; k++) e = fmax(e, fabs(a[k] - b[k]) / (1.0 + fabs(b[k])));
+    return e;
+}
+
+/* every stored output of row k against the data of an instant; the condition estimate, whose
+ * round-off is the inverse's, to a hundredth of the tolerance */
+static double row_diff(const vt_model *m, const vt_trajectory *tr, int k, const vt_data *d)
+{
+    const size_t r = (size_t)k;
+    const int nb3 = 3 * (m->nbody + 1);
+    double e = rel_diff(tr->q + r * (size_t)m->nq, d->q, m->nq);
+    e = fmax(e, rel_diff(tr->qd + r * (size_t)m->nv, d->qd, m->nv));
+    e = fmax(e, rel_diff(tr->qdd + r * (size_t)m->nv, d->qdd, m->nv));
+    e = fmax(e, rel_diff(tr->lambda + r * (size_t)m->nc, d->lambda, m->nc));
+    e = fmax(e, rel_diff(tr->qfrc_drive + r * (size_t)m->nv, d->qfrc_drive, m->nv));
+    e = fmax(e, rel_diff(tr->drive_effort + r * (size_t)m->ndrive, d->drive_effort, m->ndrive));
+    e = fmax(e, rel_diff(tr->drive_force + 3 * r * (size_t)m->ndrive, d->drive_force, 3 * m->ndrive));
+    e = fmax(e, rel_diff(tr->drive_moment + 3 * r * (size_t)m->ndrive, d->drive_moment, 3 * m->ndrive));
+    e = fmax(e, rel_diff(tr->jnt_force + r * (size_t)nb3, d->jnt_force, nb3));
+    e = fmax(e, rel_diff(tr->jnt_moment + r * (size_t)nb3, d->jnt_moment, nb3));
+    e = fmax(e, rel_diff(tr->cut_force + 3 * r * (size_t)m->ncut, d->cut_force, 3 * m->ncut));
+    e = fmax(e, rel_diff(tr->cut_moment + 3 * r * (size_t)m->ncut, d->cut_moment, 3 * m->ncut));
+    return fmax(e, 1e-2 * fabs(tr->rcond[k] - d->rcond) / d->rcond);
+}
+
+/* The analysis's rows (Newton from starts extrapolated from the rows before, the recursive
+ * instant) against vt_kinematic_solve (the dense instant) from the scene's own start at each
+ * time: the five-link arm (revolute joints, point drives) and the RSUR four-bar (a spherical
+ * joint's Euler parameters, a cut joint), uniform rows and uneven given times */
+static void test_rows_against_dense_instants(void **state)
+{
+    (void)state;
+    for (int scene = 0; scene < 4; scene++) {
+        const int fourbar = scene >= 2, uneven = scene % 2;
+        const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
+        vt_model *m;
+        vt_data *d, *di;
+        vt_trajectory *tr;
+        if (fourbar) assert_ok(vt_scene_fourbar(&m, crank));
+        else assert_ok(vt_scene_five_link(&m));
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&di, m));
+        vt_run_options opt = vt_default_run_options();
+        opt.forward_check = 0;
+        opt.newton_tol = 1e-14;
+        opt.nout = 40;
+        double tout[40];
+        for (int k = 0; k < 40; k++) tout[k] = 0.025 * (k + 1) - (k % 3 == 1 ? 0.011 : 0.0);
+        if (uneven) {
+            opt.tout = tout;
+            opt.ntout = 40;
+        }
+        assert_ok(vt_trajectory_create(&tr, m, 41));
+        if (fourbar) assert_int_equal(vt_scene_fourbar_assemble(m, d, 0.3, 2.0, NULL, NULL), 0);
+        else vt_scene_five_link_guess(m, d, 0.0);
+        assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+        assert_int_equal(tr->nfilled, 41);
+        double worst = 0.0;
+        for (int k = 0; k <= 40; k++) {
+            const double t = tr->t[k];
+            double f[3];
+            assert_ok(vt_function_eval(f, &crank, t));
+            if (fourbar) assert_int_equal(vt_scene_fourbar_assemble(m, di, f[0], f[1], NULL, NULL), 0);
+            else vt_scene_five_link_guess(m, di, t);
+            di->time = t;
+            assert_ok(vt_kinematic_solve(m, di, 1e-14, 30));
+            worst = fmax(worst, row_diff(m, tr, k, di));
+            assert_true(tr->phi_norm[k] <= 1e-14);
+            assert_true(tr->phid_norm[k] <= 1e-12);
+        }
+        if (!(worst <= 1e-12)) fail_msg("scene %d: rows differ from the dense instants by %.3g", scene, worst);
+        vt_trajectory_free(tr);
+        vt_data_free(di);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
+/* Body 2 on a free joint from a driven hinge (body 1), its translation by three joint drives
+ * and its orientation by an orientation drive: 7 rates, 7 rows */
+static vt_model *free_joint_model(void)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint_child[0] = -0.5;
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body.parent = 1;
+    body.joint = VT_JOINT_FREE;
+    body.joint_parent[0] = 0.5;
+    body.joint_child[0] = 0.2, body.joint_child[1] = -0.1, body.joint_child[2] = 0.3;
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.2, 0.7, 1.1, 0.3);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    for (int k = 0; k < 3; k++) {
+        dr.body = 2;
+        dr.index = k;
+        dr.f = vt_function_sine(0.1 * k, 0.3 + 0.1 * k, 0.9 + 0.4 * k, 0.2 * k);
+        assert_int_equal(vt_builder_add_drive(b, &dr), k + 1);
+    }
+    dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_ORIENTATION;
+    dr.body = 2;
+    dr.axis[0] = 0.0, dr.axis[1] = 0.6, dr.axis[2] = 0.8;
+    dr.f = vt_function_sine(0.1, 0.5, 1.3, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 4);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* The free joint's rows (its rotation's rates extrapolated by their cubic q̇) against
+ * vt_kinematic_solve's dense instant started from the row before, as the analysis used to */
+static void test_free_joint_rows_against_dense_instants(void **state)
+{
+    (void)state;
+    vt_model *m = free_joint_model();
+    vt_data *d, *di;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&di, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.forward_check = 0;
+    opt.newton_tol = 1e-14;
+    opt.t1 = 2.0;
+    opt.nout = 50;
+    assert_ok(vt_trajectory_create(&tr, m, 51));
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    double worst = 0.0;
+    for (int k = 1; k <= 50; k++) {
+        memcpy(di->q, tr->q + (size_t)(k - 1) * (size_t)m->nq, (size_t)m->nq * sizeof(double));
+        memcpy(di->qd, tr->qd + (size_t)(k - 1) * (size_t)m->nv, (size_t)m->nv * sizeof(double));
+        di->time = tr->t[k];
+        assert_ok(vt_kinematic_solve(m, di, 1e-14, 30));
+        worst = fmax(worst, row_diff(m, tr, k, di));
+    }
+    if (!(worst <= 1e-12)) fail_msg("rows differ from the dense instants by %.3g", worst);
+    vt_trajectory_free(tr);
+    vt_data_free(di);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* From the predicted starts one Newton step reaches 1e-10 at every row of the five-link arm
+ * (from the previous row itself it takes two or three) */
+static void test_one_newton_step_a_row(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d, *dt;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dt, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.forward_check = 0;
+    opt.newton_tol = 1e-10;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    vt_scene_five_link_guess(m, d, 0.0);
+    assert_ok(vt_kinematic_solve(m, d, 1e-14, 30)); /* row 0 exact: the count is about the rows after */
+    opt.newton_maxit = 1;
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, opt.nout + 1);
+    for (int k = 0; k < tr->nfilled; k++) {
+        const double t = tr->t[k], w = 2.0 * 3.14159265358979323846;
+        double p[3];
+        tip_of(p, m, dt, tr->q + 5 * k);
+        assert_near(p[0], VT_FL_C1 + 0.3 * cos(w * t), 1e-10);
+        assert_near(p[1], 0.3 * sin(w * t), 1e-10);
+        assert_near(p[2], VT_FL_CE, 1e-10);
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
 
 static int stop_now(double t, double t_end, void *user)
 {
@@ -432,6 +617,9 @@ int main(void)
 #else
         cmocka_unit_test(test_no_forward_check_without_sundials),
 #endif
+        cmocka_unit_test(test_rows_against_dense_instants),
+        cmocka_unit_test(test_free_joint_rows_against_dense_instants),
+        cmocka_unit_test(test_one_newton_step_a_row),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_stretched_arm),
         cmocka_unit_test(test_spline_drive_converges),

@@ -1,5 +1,6 @@
 /* src/kinematic_solve.c: the consistent q̇ and q̈ of an instant against differences of the Newton
- * solutions in time; a free joint driven by joint drives and an orientation drive. */
+ * solutions in time; a free joint driven by joint drives and an orientation drive; fewer rows than
+ * rates: the least-norm corrections. */
 #include "vt_test.h"
 
 /* q̇ and q̈ of the Newton solutions against central differences of q(t) and q̇(t) */
@@ -195,6 +196,31 @@ static void test_failures_have_messages(void **state)
     vt_model_free(m);
 }
 
+/* One drive on the double link's second joint (one row, two rates): the least-norm corrections
+ * move only the driven rate, so q1 and q̇1 stay exactly as given and q2, q̇2 take the drive's f, f' */
+static void test_fewer_rows_least_norm(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    const vt_function f = vt_function_sine(0.2, 0.5, 3.0, 0.1);
+    assert_ok(vt_scene_double_link_driven(&m, f));
+    assert_int_equal(m->nc, 1);
+    assert_int_equal(m->nv, 2);
+    assert_ok(vt_data_create(&d, m));
+    d->q[0] = 0.4, d->q[1] = -0.3, d->qd[0] = 0.7, d->qd[1] = 2.0;
+    d->time = 0.37;
+    assert_ok(vt_kinematic_solve(m, d, 1e-14, 30));
+    double v[3];
+    assert_ok(vt_function_eval(v, &f, 0.37));
+    assert_true(d->q[0] == 0.4 && d->qd[0] == 0.7);
+    assert_near(d->q[1], v[0], 1e-14);
+    assert_near(d->qd[1], v[1], 1e-14);
+    assert_near(d->qdd[1], v[2], 1e-12);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -202,6 +228,7 @@ int main(void)
         cmocka_unit_test(test_free_joint_driven),
         cmocka_unit_test(test_orientation_drive_long_axis),
         cmocka_unit_test(test_failures_have_messages),
+        cmocka_unit_test(test_fewer_rows_least_norm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
