@@ -141,11 +141,12 @@ static void positions(const vt_model *m, vt_data *d)
             for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
             for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
         }
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 3; k++) { /* r^i − o from P_i − o, not via d^i: a free root's t is its
+                                        * position (of the size of o), P_1 − o is 0 */
             const double b = rj[k] + sij[k]; /* for a root: (point on the ground − o), rounded once */
             di[k] = t[k] - sji[k];
             Pr[k] = b + t[k];
-            rr[k] = b + di[k];
+            rr[k] = Pr[k] - sji[k];
             ri[k] = o[k] + rr[k];
             P[k] = o[k] + Pr[k];
         }
