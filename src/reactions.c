@@ -16,7 +16,7 @@
  * the body's axes, f' = A^T f, n' = A^T n (27)-(28). The drives' efforts are among the
  * applied forces, never inside the reactions: a revolute reaction moment has no axial part.
  * Summed over the subtree below joint i instead of counted down body by body, the same balance
- * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about the origin (inertia
+ * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about o = d->origin (inertia
  * less gravity and applied loads) and G_i its rows' and generalized forces' wrenches, the
  * moment then moved to P_i; the recursive paths have W̄ already (vt_reactions_subtree).
  */
@@ -322,7 +322,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
 
 /* The same reactions from the subtrees' needed wrenches W̄ about o = d->origin (recursive.c, which has them
  * from its inward passes): the reaction at joint i is W̄_i less the rows' and the generalized
- * forces' wrenches G over i's subtree, about O, its moment then moved to P_i. With rows_in_wbar
+ * forces' wrenches G over i's subtree, about o, its moment then moved to P_i. With rows_in_wbar
  * W̄ already has the rows' wrenches taken off (the articulated path starts its row right sides
  * from them) and G holds the generalized forces' alone, when there are any.
  * G: scratch of 6 x (nbody+1). */

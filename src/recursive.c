@@ -1,9 +1,10 @@
 /* The recursive (O(n) and O(n·depth)) evaluation of the same method, without the dense S.
  *
- * Every rate a has a twist s_a = (w_a, v_a) about the reference point O = d->origin (body 1's joint
- * point, near the mechanism; every r below is r − O, d->xrel, kinematics.c): the column of S of
- * every body below it is ṙ = v_a + w_a × r, ṗ = ½ E^T w_a (15)-(16). A wrench (n_O, f) about O pairs with it as power s_a · W = w_a · n_O + v_a · f, so S^T F, summed over a
- * subtree, is the projection of the subtree's wrench (10).
+ * Every rate a has a twist s_a = (w_a, v_a) about the reference point O = d->origin (body 1's
+ * joint point, near the mechanism; every r below is r − O, d->xrel, kinematics.c): the column of
+ * S of every body below it is ṙ = v_a + w_a × r, ṗ = ½ E^T w_a (15)-(16). A wrench (n_O, f) about
+ * O pairs with it as power s_a · W = w_a · n_O + v_a · f, so S^T F, summed over a subtree, is the
+ * projection of the subtree's wrench (10).
  *
  *   body wrench needed   W_k = (J α + ω × J ω − n_e + r × f,  f = m a − f_e)   about O
  *                        (f_e: gravity and xfrc; n_e: xfrc's moment about the centre of mass)
