@@ -28,8 +28,9 @@
  * (0, e_k) and (e_k, (P − o) × e_k), and Ṡq̇ is the a^i above with q_k the translation's components.
  * Lever arms from o, not from the global origin: o = body 1's joint point P_1 at this instant
  * (d->origin), and the positions recur relative to it,
- *   r^i − o = (r^j − o) + s^{ij} + d^i,   P_i − o = (r^j − o) + s^{ij} + t   (ground: r^0 − o = −o)
- * (d->xrel), the absolute r^i and P_i = o + those after. Twists and wrenches about the global
+ *   P_i − o = (r^j − o) + s^{ij} + t,   r^i − o = (P_i − o) − s^{ji}   (ground: r^0 − o = −o)
+ * (d->xrel; = (r^j − o) + s^{ij} + d^i, summed so that a free root's t, its position, cancels
+ * against o exactly), the absolute r^i and P_i = o + those after. Twists and wrenches about the global
  * origin would carry |r|·ω and |r|·f terms that cancel in the results, losing digits with the
  * distance (squared through the inertias about O); from o each lever arm is exact to its own
  * size, and a ground point (a root's joint point, a cut joint's or point drive's point on the
@@ -141,8 +142,7 @@ static void positions(const vt_model *m, vt_data *d)
             for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
             for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
         }
-        for (int k = 0; k < 3; k++) { /* r^i − o from P_i − o, not via d^i: a free root's t is its
-                                        * position (of the size of o), P_1 − o is 0 */
+        for (int k = 0; k < 3; k++) { /* r^i − o from P_i − o, not via d^i (see above) */
             const double b = rj[k] + sij[k]; /* for a root: (point on the ground − o), rounded once */
             di[k] = t[k] - sji[k];
             Pr[k] = b + t[k];
