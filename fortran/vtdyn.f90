@@ -257,6 +257,8 @@ module vtdyn
     type(c_ptr)            :: jd
     type(c_ptr)            :: jpoint
     type(c_ptr)            :: twist
+    type(c_ptr)            :: xrel
+    real(c_double)         :: origin(3)
     type(c_ptr)            :: S
     type(c_ptr)            :: Sdqd
     type(c_ptr)            :: R

@@ -25,7 +25,9 @@
 
 #include "internal.h"
 
-/* Motion of one body as a row sees it; the ground is at rest with identity axes. */
+/* Motion of one body as a row sees it; the ground is at rest with identity axes. Positions are
+ * taken from the reference point o (d->xrel, kinematics.c), the ground's at −o: a point P below
+ * is P − o, and a point on the ground enters as (point − o), rounded once. */
 typedef struct {
     int id;
     const double *r, *p, *A, *w, *v;
@@ -41,7 +43,7 @@ static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id
     b->id = id;
     if (id == 0) {
         static const double unit[4] = {1, 0, 0, 0};
-        b->r = zero3; b->p = unit; b->A = ident9; b->w = zero3; b->v = zero3;
+        b->r = d->xrel; b->p = unit; b->A = ident9; b->w = zero3; b->v = zero3;
         memset(b->a0, 0, sizeof b->a0);
         memset(b->al0, 0, sizeof b->al0);
         memset(b->pd, 0, sizeof b->pd);
@@ -49,7 +51,7 @@ static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id
         return;
     }
     const int o = vt_xoff(id);
-    b->r = d->x + o;
+    b->r = d->xrel + 6 * id;
     b->p = d->x + o + 3;
     b->A = d->A + 9 * id;
     b->w = d->omega + 3 * id;
@@ -189,7 +191,7 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si
 }
 
 /* The recursive path's Φ_q for a row whose rate on body b is Φ̇ = jv·v_b + jw·ω_b (v_b the
- * centre of mass's velocity): with each rate's twist (ω_c, v_c) about the global origin,
+ * centre of mass's velocity): with each rate's twist (ω_c, v_c) about o (r_b from o),
  * v_b = v_c + ω_c × r_b, so Φ_q[r, c] = jv·v_c + (jw + r_b × jv)·ω_c — no E, no 7-vectors.
  * It equals Φ_x S: along the rates (2 E^T jw)·ṗ = jw·ω, ω = 2 E ṗ (16), for a base body's
  * own ṗ too (its twist is ω = 2 E e_k about r_b). */
@@ -197,7 +199,7 @@ static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double
 {
     if (b == 0) return;
     double jwo[3];
-    vt_cross3(jwo, d->x + vt_xoff(b), jv);
+    vt_cross3(jwo, d->xrel + 6 * b, jv);
     for (int k = 0; k < 3; k++) jwo[k] += jw[k];
     const int *path = m->path_dof + m->body_pathadr[b];
     for (int c = 0; c < m->body_pathnum[b]; c++) {

@@ -53,6 +53,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->jd = take(base, &used, 3 * nb * sizeof(double));
     d->jpoint = take(base, &used, 3 * nb * sizeof(double));
     d->twist = take(base, &used, 6 * nv * sizeof(double));
+    d->xrel = take(base, &used, 6 * nb * sizeof(double));
     d->S = take(base, &used, nx * nv * sizeof(double));
     d->Sdqd = take(base, &used, nx * sizeof(double));
     d->R = take(base, &used, nv * nx * sizeof(double));

@@ -9,7 +9,7 @@
  *                v^i = v^j + ω̃^j s^{ij} + Σ ε_k q̇_k e_k + ω̃^i d^i                          (15)
  *                ṗ^i = ½ E^{iT} ω^i
  *   S, column of rate k of joint b, in the rows of every body i whose path holds b, from the
- *   rate's twist (w, v) about the global origin (d->twist): ṙ^i += v + w × r^i,
+ *   rate's twist (w, v) about the reference point o (d->twist): ṙ^i += v + w × (r^i − o),
  *   ṗ^i += ½ E^{iT} w; that is
  *                rotational axis e through the joint point P_b:  ṙ^i += e × (r^i − P_b),
  *                                                                ṗ^i += ½ E^{iT} e
@@ -25,7 +25,16 @@
  * e_k = A^j's columns for both the translation (ε = 1, t = A^j t' = Σ q_k e_k) and the rotation
  * (ε = 0, as spherical); the joint point P = r^j + s^{ij} + t. Since t turns with j and s^{ji}
  * with i, (15) reads  v^i = v^j + ω̃^j (s^{ij} + t) + Σ ṫ'_k e_k − ω̃^i s^{ji}; its twists are
- * (0, e_k) and (e_k, P × e_k), and Ṡq̇ is the a^i above with q_k the translation's components.
+ * (0, e_k) and (e_k, (P − o) × e_k), and Ṡq̇ is the a^i above with q_k the translation's components.
+ * Lever arms from o, not from the global origin: o = body 1's joint point P_1 at this instant
+ * (d->origin), and the positions recur relative to it,
+ *   P_i − o = (r^j − o) + s^{ij} + t,   r^i − o = (P_i − o) − s^{ji}   (ground: r^0 − o = −o)
+ * (d->xrel; = (r^j − o) + s^{ij} + d^i, summed so that a free root's t, its position, cancels
+ * against o exactly), the absolute r^i and P_i = o + those after. Twists and wrenches about the global
+ * origin would carry |r|·ω and |r|·f terms that cancel in the results, losing digits with the
+ * distance (squared through the inertias about O); from o each lever arm is exact to its own
+ * size, and a ground point (a root's joint point, a cut joint's or point drive's point on the
+ * ground) enters once as (point − o), rounded as the point itself is.
  */
 #include <string.h>
 
@@ -56,14 +65,19 @@ static vt_status check_state(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
-/* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body */
+/* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body; o and the positions from
+ * it (xrel) */
 static void positions(const vt_model *m, vt_data *d)
 {
+    double *o = d->origin;
+    o[0] = o[1] = o[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qi = d->q + m->body_qadr[i];
-        const double *rj = j ? d->x + vt_xoff(j) : zero3;
+        const double *rj = d->xrel + 6 * j; /* r^j − o */
         const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
+        double *rr = d->xrel + 6 * i, *Pr = rr + 3;
         const double *Aj = d->A + 9 * j;
         const double *ax1 = m->body_axis + 6 * i, *ax2 = ax1 + 3;
         double *ri = d->x + vt_xoff(i), *pi = ri + 3, *Ai = d->A + 9 * i;
@@ -77,6 +91,11 @@ static void positions(const vt_model *m, vt_data *d)
             memset(sij, 0, 3 * sizeof(double));
             memset(di, 0, 3 * sizeof(double));
             vt_copy3(P, ri);
+            if (i == 1) { /* o = r^1: the ground at −o */
+                vt_copy3(o, qi);
+                for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+            }
+            for (int k = 0; k < 3; k++) rr[k] = Pr[k] = qi[k] - o[k];
             continue;
         }
         double pJ[4] = {1, 0, 0, 0}, t[3] = {0, 0, 0};
@@ -119,10 +138,17 @@ static void positions(const vt_model *m, vt_data *d)
         double sji[3];
         vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
         vt_mulmat3(sji, Ai, m->body_jchild + 3 * i);
-        for (int k = 0; k < 3; k++) {
+        if (i == 1) { /* o = P_1 (the ground's A is I: s^{01} is the point on the ground) */
+            for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
+            for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+        }
+        for (int k = 0; k < 3; k++) { /* r^i − o from P_i − o, not via d^i (see above) */
+            const double b = rj[k] + sij[k]; /* for a root: (point on the ground − o), rounded once */
             di[k] = t[k] - sji[k];
-            ri[k] = rj[k] + sij[k] + di[k];
-            P[k] = ri[k] + sji[k];
+            Pr[k] = b + t[k];
+            rr[k] = Pr[k] - sji[k];
+            ri[k] = o[k] + rr[k];
+            P[k] = o[k] + Pr[k];
         }
     }
 }
@@ -157,11 +183,11 @@ static void velocities(const vt_model *m, vt_data *d)
         }
         if (jt == VT_JOINT_FREE) { /* t turns with the reference body, s^{ji} with this one:
                                     * ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
-            const double *ri = d->x + vt_xoff(i), *P = d->jpoint + 3 * i;
+            const double *rr = d->xrel + 6 * i;
             double dw[3], u[3];
             for (int k = 0; k < 3; k++) {
                 dw[k] = w[k] - wj[k];
-                u[k] = ri[k] - P[k];
+                u[k] = rr[k] - rr[3 + k];
             }
             vt_addcross3(v, wj, d->jd + 3 * i);
             vt_addcross3(v, dw, u);
@@ -174,9 +200,9 @@ static void velocities(const vt_model *m, vt_data *d)
     }
 }
 
-/* Twist of every rate about the global origin O, into d->twist: angular part w, velocity of
- * the point at O v. Rotational axis e through the joint point P: (e, P × e); translational e:
- * (0, e); a base body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, r^b × ω). */
+/* Twist of every rate about the reference point o, into d->twist: angular part w, velocity of
+ * the point at o v. Rotational axis e through the joint point P: (e, (P − o) × e); translational
+ * e: (0, e); a base body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, (r^b − o) × ω). */
 static void twists(const vt_model *m, vt_data *d)
 {
     for (int dof = 0; dof < m->nv; dof++) {
@@ -187,7 +213,7 @@ static void twists(const vt_model *m, vt_data *d)
         switch (vt_dof_kind(jt, dof - m->body_vadr[b], &ax)) {
         case VT_DOF_ROT:
             vt_copy3(w, e + 3 * ax);
-            vt_cross3(v, d->jpoint + 3 * b, w);
+            vt_cross3(v, d->xrel + 6 * b + 3, w);
             break;
         case VT_DOF_TRANS:
             w[0] = w[1] = w[2] = 0.0;
@@ -202,14 +228,14 @@ static void twists(const vt_model *m, vt_data *d)
             double E[12];
             vt_euler_E(E, d->x + vt_xoff(b) + 3);
             for (int r = 0; r < 3; r++) w[r] = 2.0 * E[3 * ax + r];
-            vt_cross3(v, d->x + vt_xoff(b), w);
+            vt_cross3(v, d->xrel + 6 * b, w);
             break;
         }
         }
     }
 }
 
-/* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × r^i, ṗ^i = ½ E^{iT} w,
+/* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × (r^i − o), ṗ^i = ½ E^{iT} w,
  * except a base body's own ṗ, which is q̇ itself (S's block I). Ei = E(p^i). */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof)
 {
@@ -220,7 +246,7 @@ void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const 
     }
     const double *w = d->twist + 6 * dof, *v = w + 3;
     vt_copy3(c, v);
-    vt_addcross3(c, w, d->x + vt_xoff(i));
+    vt_addcross3(c, w, d->xrel + 6 * i);
     vt_mulE_t(c + 3, Ei, w);
     for (int r = 3; r < 7; r++) c[r] *= 0.5;
 }
@@ -271,7 +297,7 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
         }
         const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
         double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
-        for (int r = 0; r < 3; r++) sji[r] = d->jpoint[3 * i + r] - ri[r];
+        for (int r = 0; r < 3; r++) sji[r] = d->xrel[6 * i + 3 + r] - d->xrel[6 * i + r];
 
         vt_copy3(al, alj);
         vt_copy3(a, aj);
@@ -315,8 +341,8 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
 }
 
 /* ẍ = S q̈ + Ṡq̇ from the stored Ṡq̇ (d->Sdqd) and the rates' twists, outward: the twist of
- * accelerations T^i = T^j + Σ_own q̈_a s_a (a sum of twists about O) gives
- *   α^i = α0^i + T_w,   a^i = a0^i + T_v + T_w × r^i,   p̈^i = p̈0^i + ½ E^{iT} T_w
+ * accelerations T^i = T^j + Σ_own q̈_a s_a (a sum of twists about o) gives
+ *   α^i = α0^i + T_w,   a^i = a0^i + T_v + T_w × (r^i − o),   p̈^i = p̈0^i + ½ E^{iT} T_w
  * with α0 = 2 E p̈0 (E p = 0, E E^T = I); a base body's own ṗ rates enter its p̈ as themselves
  * (S's block I), whose part along p the twist form leaves out: p̈ += p (p · q̈_p). */
 void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, double *T)
@@ -326,7 +352,7 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
     for (int i = 1; i <= m->nbody; i++) {
         const int j = m->body_parent[i], o = vt_xoff(i);
         double *ai = out + o, t[6], a[3], pdd[4]; /* locals, stored once: out may alias the inputs */
-        const double *ri = d->x + o, *pi = ri + 3, *a0 = d->Sdqd + o;
+        const double *pi = d->x + o + 3, *a0 = d->Sdqd + o;
         memcpy(t, T + 6 * j, sizeof t);
         for (int k = m->body_vadr[i]; k < m->body_vadr[i] + m->body_nv[i]; k++) {
             const double *s = d->twist + 6 * k;
@@ -339,7 +365,7 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
             for (int c = 0; c < 3; c++) ali[c] = 2.0 * ali[c] + t[c];
         }
         for (int c = 0; c < 3; c++) a[c] = a0[c] + t[3 + c];
-        vt_addcross3(a, t, ri);
+        vt_addcross3(a, t, d->xrel + 6 * i);
         vt_quat_rate(pdd, pi, t); /* ½ E^T T_w */
         vt_copy3(ai, a);
         for (int c = 0; c < 4; c++) ai[3 + c] = a0[3 + c] + pdd[c];

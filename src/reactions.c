@@ -16,7 +16,7 @@
  * the body's axes, f' = A^T f, n' = A^T n (27)-(28). The drives' efforts are among the
  * applied forces, never inside the reactions: a revolute reaction moment has no axial part.
  * Summed over the subtree below joint i instead of counted down body by body, the same balance
- * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about the origin (inertia
+ * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about o = d->origin (inertia
  * less gravity and applied loads) and G_i its rows' and generalized forces' wrenches, the
  * moment then moved to P_i; the recursive paths have W̄ already (vt_reactions_subtree).
  */
@@ -44,7 +44,8 @@ void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const doub
         }
 }
 
-/* sum of the wrenches rw of rows [r0, r1) on side `side`, moved to the point P of their body */
+/* sum of the wrenches rw of rows [r0, r1) on side `side`, moved to the point P of their body
+ * (P − o, as d->xrel) */
 static void rows_wrench_at(const vt_model *m, const vt_data *d, const double *rw, int r0, int r1, int side,
                            const double P[3], double f[3], double n[3])
 {
@@ -57,7 +58,7 @@ static void rows_wrench_at(const vt_model *m, const vt_data *d, const double *rw
         vt_axpy3(f, 1.0, rw + 12 * r + 6 * side);
         vt_axpy3(n, 1.0, rw + 12 * r + 6 * side + 3);
     }
-    for (int c = 0; c < 3; c++) s[c] = P[c] - d->x[vt_xoff(k) + c];
+    for (int c = 0; c < 3; c++) s[c] = P[c] - d->xrel[6 * k + c];
     vt_cross3(t, s, f);
     for (int c = 0; c < 3; c++) n[c] -= t[c];
 }
@@ -87,14 +88,14 @@ static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
     for (int k = 0; k < m->ndrive; k++) {
         const vt_drive_def *dr = &m->drive[k];
         const int r0 = m->drive_row[k], b = dr->body;
-        double P[3];
+        double P[3]; /* from o */
         if (dr->type == VT_DRIVE_JOINT) {
-            vt_copy3(P, d->jpoint + 3 * b);
+            vt_copy3(P, d->xrel + 6 * b + 3);
         } else if (dr->type == VT_DRIVE_POINT) {
             vt_mulmat3(P, d->A + 9 * b, dr->point);
-            vt_axpy3(P, 1.0, d->x + vt_xoff(b));
+            vt_axpy3(P, 1.0, d->xrel + 6 * b);
         } else {
-            vt_copy3(P, d->x + vt_xoff(b));
+            vt_copy3(P, d->xrel + 6 * b);
         }
         rows_wrench_at(m, d, rw, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
         d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
@@ -209,7 +210,7 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
         const int rend = r0 + vt_cut_nrows(c->joint);
         double P[3];
         vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
-        vt_axpy3(P, 1.0, d->x + vt_xoff(c->body_b));
+        vt_axpy3(P, 1.0, d->xrel + 6 * c->body_b);
         double *f = d->cut_force + 3 * k, *mo = d->cut_moment + 3 * k;
         rows_wrench_at(m, d, rw, r0, rend, 1, P, f, mo);
         vt_mulmat3t(d->cut_force_body + 3 * k, d->A + 9 * c->body_b, f);
@@ -287,7 +288,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
     /* tree joints, inward (26) */
     for (int i = n; i >= 1; i--) {
         const int j = m->body_parent[i];
-        const double *ri = d->x + vt_xoff(i), *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
+        const double *ri = d->xrel + 6 * i, *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
         const double *w = d->omega + 3 * i, *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
         double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
         double wb[3], ab[3], Jw[3], Ja[3], t[3], s[3], Nc[3];
@@ -301,13 +302,13 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
         for (int c = 0; c < 3; c++) {
             f[c] = m->body_mass[i] * a[c] - fe[6 * i + c] + cf[6 * i + c];
             Nc[c] += -fe[6 * i + 3 + c] + cf[6 * i + 3 + c];
-            s[c] = d->jpoint[3 * i + c] - ri[c];
+            s[c] = ri[3 + c] - ri[c];
         }
         vt_cross3(t, s, f);
         for (int c = 0; c < 3; c++) mo[c] = Nc[c] - t[c];
         if (j) { /* into the parent: f and its moment about the parent's centre of mass */
-            const double *rj = d->x + vt_xoff(j);
-            for (int c = 0; c < 3; c++) s[c] = d->jpoint[3 * i + c] - rj[c];
+            const double *rj = d->xrel + 6 * j;
+            for (int c = 0; c < 3; c++) s[c] = d->xrel[6 * i + 3 + c] - rj[c];
             vt_cross3(t, s, f);
             for (int c = 0; c < 3; c++) {
                 cf[6 * j + c] += f[c];
@@ -319,9 +320,9 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
     return joint_reactions_done(m, d);
 }
 
-/* The same reactions from the subtrees' needed wrenches W̄ about O (recursive.c, which has them
+/* The same reactions from the subtrees' needed wrenches W̄ about o = d->origin (recursive.c, which has them
  * from its inward passes): the reaction at joint i is W̄_i less the rows' and the generalized
- * forces' wrenches G over i's subtree, about O, its moment then moved to P_i. With rows_in_wbar
+ * forces' wrenches G over i's subtree, about o, its moment then moved to P_i. With rows_in_wbar
  * W̄ already has the rows' wrenches taken off (the articulated path starts its row right sides
  * from them) and G holds the generalized forces' alone, when there are any.
  * G: scratch of 6 x (nbody+1). */
@@ -341,7 +342,7 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
         memset(G, 0, 6 * ((size_t)n + 1) * sizeof(double));
         qfrc_loads(m, d, G);
         if (!rows_in_wbar) add_row_wrenches(m, rw, G);
-        for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->x + vt_xoff(i), G + 6 * i); /* about O */
+        for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->xrel + 6 * i, G + 6 * i); /* about o */
         vt_subtree_sum(m, G, 6);
     }
     for (int i = 1; i <= n; i++) {
@@ -351,7 +352,7 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
             f[c] = W[3 + c] - g[c];
             mo[c] = W[c] - g[3 + c];
         }
-        vt_cross3(t, d->jpoint + 3 * i, f);
+        vt_cross3(t, d->xrel + 6 * i + 3, f);
         for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
         vt_copy3(d->jnt_force + 3 * i, f);
         vt_copy3(d->jnt_moment + 3 * i, mo);
@@ -386,7 +387,7 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
         const int r0 = m->cut_row[k];
         double P[3], f[3], mo[3];
         vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
-        vt_axpy3(P, 1.0, d->x + vt_xoff(c->body_b));
+        vt_axpy3(P, 1.0, d->xrel + 6 * c->body_b);
         rows_wrench_at(m, d, rw, r0, r0 + vt_cut_nrows(c->joint), 1, P, f, mo);
         for (int e = 0; e < 3; e++) {
             cmag[6 * k + e] = fabs(f[e]);
@@ -396,12 +397,12 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
     }
     for (int i = n; i >= 1; i--) {
         const int j = m->body_parent[i];
-        const double *ri = d->x + vt_xoff(i);
+        const double *ri = d->xrel + 6 * i;
         double f[3], N[3], s[3], t[3], mo[3];
         for (int c = 0; c < 3; c++) {
             f[c] = -fe[6 * i + c] + cf[6 * i + c];
             N[c] = -fe[6 * i + 3 + c] + cf[6 * i + 3 + c];
-            s[c] = d->jpoint[3 * i + c] - ri[c];
+            s[c] = ri[3 + c] - ri[c];
         }
         vt_cross3(t, s, f);
         for (int c = 0; c < 3; c++) mo[c] = N[c] - t[c];
@@ -411,8 +412,8 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
             big = fmax(big, fmax(fabs(f[e]), fabs(mo[e])));
         }
         if (j) {
-            const double *rj = d->x + vt_xoff(j);
-            for (int c = 0; c < 3; c++) s[c] = d->jpoint[3 * i + c] - rj[c];
+            const double *rj = d->xrel + 6 * j;
+            for (int c = 0; c < 3; c++) s[c] = d->xrel[6 * i + 3 + c] - rj[c];
             vt_cross3(t, s, f);
             for (int c = 0; c < 3; c++) {
                 cf[6 * j + c] += f[c];

@@ -1,9 +1,10 @@
 /* The recursive (O(n) and O(n·depth)) evaluation of the same method, without the dense S.
  *
- * Every rate a has a twist s_a = (w_a, v_a) about the global origin O (d->twist, from the kinematics): the
- * column of S of every body below it is ṙ = v_a + w_a × r, ṗ = ½ E^T w_a (15)-(16). A wrench
- * (n_O, f) about O pairs with it as power s_a · W = w_a · n_O + v_a · f, so S^T F, summed over a
- * subtree, is the projection of the subtree's wrench (10).
+ * Every rate a has a twist s_a = (w_a, v_a) about the reference point O = d->origin (body 1's
+ * joint point, near the mechanism; every r below is r − O, d->xrel, kinematics.c): the column of
+ * S of every body below it is ṙ = v_a + w_a × r, ṗ = ½ E^T w_a (15)-(16). A wrench (n_O, f) about
+ * O pairs with it as power s_a · W = w_a · n_O + v_a · f, so S^T F, summed over a subtree, is the
+ * projection of the subtree's wrench (10).
  *
  *   body wrench needed   W_k = (J α + ω × J ω − n_e + r × f,  f = m a − f_e)   about O
  *                        (f_e: gravity and xfrc; n_e: xfrc's moment about the centre of mass)
@@ -50,7 +51,7 @@
  * (W might alias the inputs as far as the compiler knows) */
 static inline void needed_wrench(double W[6], const vt_model *m, const vt_data *d, int i, double n[3], const double *a)
 {
-    const double *c = d->x + vt_xoff(i), *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+    const double *c = d->xrel + 6 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
     double f[3];
     for (int k = 0; k < 3; k++) {
         f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
@@ -92,7 +93,7 @@ static double pair(const double w[3], const double v[3], const double W[6])
 static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_data *d, int i)
 {
     double t[9];
-    const double mass = m->body_mass[i], *c = d->x + vt_xoff(i), *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+    const double mass = m->body_mass[i], *c = d->xrel + 6 * i, *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
     for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
     double u[6]; /* A t, symmetric: its upper triangle */
     for (int col = 0, k = 0; col < 3; col++)
@@ -246,7 +247,7 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
     for (int i = 1; i <= n; i++) {
-        const double *Wi = W + 6 * i, *P = d->jpoint + 3 * i, *e = d->jaxis + 9 * i;
+        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
         double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_copy3(f, Wi + 3);
         vt_copy3(mo, Wi);
@@ -330,7 +331,7 @@ static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
 {
     memset(diag, 0, (size_t)m->nv * sizeof(double));
     for (int k = 1; k <= m->nbody; k++) {
-        const double *c = d->x + vt_xoff(k), *A = d->A + 9 * k, *J = m->body_inertia + 9 * k, mass = m->body_mass[k];
+        const double *c = d->xrel + 6 * k, *A = d->A + 9 * k, *J = m->body_inertia + 9 * k, mass = m->body_mass[k];
         const int *path = m->path_dof + m->body_pathadr[k];
         for (int p = 0; p < m->body_pathnum[k]; p++) {
             const double *w = d->twist + 6 * path[p], *v = w + 3;
@@ -516,7 +517,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
                 if (b == 0) continue;
                 const double *f = rw + 12 * r + 6 * side, *n0 = f + 3;
                 double *p = P + sr * (size_t)b + 6 * (size_t)(r + 1), t[3];
-                vt_cross3(t, d->x + vt_xoff(b), f);
+                vt_cross3(t, d->xrel + 6 * b, f);
                 for (int c = 0; c < 3; c++) {
                     p[c] -= n0[c] + t[c];
                     p[3 + c] -= f[c];

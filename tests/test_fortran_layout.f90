@@ -79,7 +79,7 @@ program test_fortran_layout
          a(c_loc(x_data%qd)), a(c_loc(x_data%xfrc)), a(c_loc(x_data%qfrc)), a(c_loc(x_data%x)), &
          a(c_loc(x_data%xd)), a(c_loc(x_data%A)), a(c_loc(x_data%omega)), a(c_loc(x_data%jaxis)), &
          a(c_loc(x_data%jsij)), a(c_loc(x_data%jd)), a(c_loc(x_data%jpoint)), a(c_loc(x_data%twist)), &
-         a(c_loc(x_data%S)), &
+         a(c_loc(x_data%xrel)), a(c_loc(x_data%origin)), a(c_loc(x_data%S)), &
          a(c_loc(x_data%Sdqd)), a(c_loc(x_data%R)), a(c_loc(x_data%Mp)), a(c_loc(x_data%Mstar)), &
          a(c_loc(x_data%F)), a(c_loc(x_data%h)), a(c_loc(x_data%Qgen)), a(c_loc(x_data%Phi)), &
          a(c_loc(x_data%Phix)), a(c_loc(x_data%Phiq)), a(c_loc(x_data%Phit)), a(c_loc(x_data%gamma)), &

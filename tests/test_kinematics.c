@@ -299,6 +299,39 @@ static void test_extreme_states(void **state)
     teardown(&f);
 }
 
+/* Far from the global origin (every root's joint point on the ground, and free and base roots'
+ * positions, moved by 1e6 m): the twists are about d->origin, body 1's joint point; d->xrel is
+ * x − origin and jpoint − origin to the rounding of the absolute positions (ulp(1e6) = 1.2e-10 m);
+ * and ẋ from the recursion (15)-(16) still equals S q̇ from the twists to 1e-12, which about the
+ * global origin lose ulp(1e6)·|ω| to cancellation. */
+static void test_far_from_origin(void **state)
+{
+    (void)state;
+    const double D[3] = {0.48e6, -0.6e6, 0.64e6};
+    for (uint64_t seed = 1; seed <= 9; seed++) {
+        fixture f;
+        setup(&f, seed, 15, seed > 6 ? VT_SCENE_WITH_FREE : VT_SCENE_ALL_JOINTS);
+        vt_model *m = f.m;
+        for (int i = 1; i <= m->nbody; i++) {
+            if (m->body_parent[i] != 0) continue;
+            const int jt = m->body_joint[i];
+            double *p = jt == VT_JOINT_FREE || jt == VT_JOINT_BASE ? f.q + m->body_qadr[i] : m->body_jpar + 3 * i;
+            for (int k = 0; k < 3; k++) p[k] += D[k];
+        }
+        eval(&f, f.q, NULL, NULL);
+        const vt_data *d = f.d;
+        for (int k = 0; k < 3; k++) assert_near(d->origin[k], d->jpoint[3 + k], 0.0);
+        for (int i = 1; i <= m->nbody; i++)
+            for (int k = 0; k < 3; k++) {
+                assert_near(d->xrel[6 * i + k], d->x[7 * (i - 1) + k] - d->origin[k], 3e-10);
+                assert_near(d->xrel[6 * i + 3 + k], d->jpoint[3 * i + k] - d->origin[k], 3e-10);
+            }
+        vt_test_S_times(f.y, m, f.d, f.v);
+        for (int r = 0; r < m->nx; r++) assert_near(d->xd[r], f.y[r], 1e-12 * (1 + fabs(f.y[r])));
+        teardown(&f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -309,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_sparsity_follows_paths),
         cmocka_unit_test(test_bad_state),
         cmocka_unit_test(test_extreme_states),
+        cmocka_unit_test(test_far_from_origin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -878,6 +878,154 @@ static void test_free_body(void **state)
     vt_model_free(m);
 }
 
+/* Translation invariance: the same mechanism at D = 1 km and 1e6 m from the global origin as at
+ * the origin. The mechanism at D is the reference one translated exactly: each ground point p
+ * (a root's joint point on the ground, the ground side of a constraint row: a point drive's
+ * reference, a cut joint's point) and each free or base root's position is fl(p + D) there and
+ * fl(p + D) − D in the reference (exact, by Sterbenz's lemma), so any change in the results is
+ * the evaluation's, not the data's rounding. q̈, λ, every effort and every reaction (both frames)
+ * must agree to 1e-13 of each array's largest entry at 1 km and 1e-10 at 1e6 m and 1e9 m, for the dense
+ * evaluation, the recursive one and, on trees, the motion given. */
+static void shift3(double *p, const double D[3], int back)
+{
+    for (int k = 0; k < 3; k++) {
+        const double x = p[k] + D[k];
+        p[k] = back ? x - D[k] : x;
+    }
+}
+
+static void place_model(vt_model *m, const double D[3], int back)
+{
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_parent[i] == 0 && m->body_joint[i] != VT_JOINT_FREE && m->body_joint[i] != VT_JOINT_BASE)
+            shift3(m->body_jpar + 3 * i, D, back);
+    for (int r = 0; r < m->nc; r++) /* a row's point on the ground, global (rows without points ignore it) */
+        for (int side = 0; side < 2; side++)
+            if (m->con_body[2 * r + side] == 0) shift3(m->con_point + 6 * r + 3 * side, D, back);
+}
+
+static void place_state(const vt_model *m, vt_data *d, const double D[3], int back)
+{
+    for (int i = 1; i <= m->nbody; i++) /* a free root's translation is in the ground's axes */
+        if (m->body_parent[i] == 0 && (m->body_joint[i] == VT_JOINT_FREE || m->body_joint[i] == VT_JOINT_BASE))
+            shift3(d->q + m->body_qadr[i], D, back);
+}
+
+/* the largest change of an output array from the reference's, over the larger of the reference's
+ * largest entry and floor (a moment that is zero in exact arithmetic, as a point drive's about
+ * its own point, is measured against the moments through the joints) */
+static double change(const double *a, const double *ref, int n, double floor)
+{
+    double num = 0.0, den = floor;
+    for (int k = 0; k < n; k++) {
+        num = fmax(num, fabs(a[k] - ref[k]));
+        den = fmax(den, fabs(ref[k]));
+    }
+    return den > 0.0 ? num / den : num;
+}
+
+static double outputs_change(const vt_model *m, const vt_data *a, const vt_data *b, const char **what)
+{
+    const int nb3 = 3 * (m->nbody + 1), nd3 = 3 * m->ndrive, nk3 = 3 * m->ncut;
+    const struct { const char *name; const double *x, *y; int n, kind; /* 0 own, 1 force, 2 moment */ } out[] = {
+        {"qdd", a->qdd, b->qdd, m->nv, 0}, {"lambda", a->lambda, b->lambda, m->nc, 0},
+        {"qfrc_drive", a->qfrc_drive, b->qfrc_drive, m->nv, 2}, {"drive_effort", a->drive_effort, b->drive_effort, m->ndrive, 0},
+        {"drive_force", a->drive_force, b->drive_force, nd3, 1}, {"drive_moment", a->drive_moment, b->drive_moment, nd3, 2},
+        {"jnt_force", a->jnt_force, b->jnt_force, nb3, 1}, {"jnt_moment", a->jnt_moment, b->jnt_moment, nb3, 2},
+        {"jnt_force_body", a->jnt_force_body, b->jnt_force_body, nb3, 1},
+        {"jnt_moment_body", a->jnt_moment_body, b->jnt_moment_body, nb3, 2},
+        {"cut_force", a->cut_force, b->cut_force, nk3, 1}, {"cut_moment", a->cut_moment, b->cut_moment, nk3, 2},
+        {"cut_force_body", a->cut_force_body, b->cut_force_body, nk3, 1},
+        {"cut_moment_body", a->cut_moment_body, b->cut_moment_body, nk3, 2}};
+    const size_t nout = sizeof out / sizeof out[0];
+    double floor[3] = {0.0, 0.0, 0.0}, worst = 0.0;
+    for (size_t k = 0; k < nout; k++)
+        if (out[k].kind) floor[out[k].kind] = fmax(floor[out[k].kind], vt_test_maxabs(out[k].y, out[k].n));
+    for (size_t k = 0; k < nout; k++) {
+        const double c = change(out[k].x, out[k].y, out[k].n, floor[out[k].kind]);
+        if (c > worst) worst = c, *what = out[k].name;
+    }
+    return worst;
+}
+
+enum { INV_CHAIN, INV_FREE_TREE, INV_BASE_TREE, INV_FOURBAR, INV_FOURBAR_RUSR, INV_SCENES };
+
+static vt_model *inv_model(int scene)
+{
+    vt_model *m = NULL;
+    const double c[3] = {0.1, -0.05, 0.2};
+    const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
+    switch (scene) {
+    case INV_CHAIN: assert_ok(vt_scene_chain(&m, 12, VT_CHAIN_TIP_DRIVE)); break;
+    case INV_FREE_TREE: m = floating_tree(7, 10, 1, c); break;
+    case INV_BASE_TREE: m = floating_tree(7, 10, 0, c); break;
+    case INV_FOURBAR: assert_ok(vt_scene_fourbar(&m, crank)); break;
+    default: assert_ok(vt_scene_fourbar_rusr(&m, crank)); break;
+    }
+    return m;
+}
+
+/* the scene's state (time 0), loads and, for the motion given, q̈ */
+static void inv_state(const vt_model *m, vt_data *d, int scene)
+{
+    uint64_t s = 11;
+    if (scene == INV_CHAIN) {
+        for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, &d->q[k], &d->qd[k], &d->qdd[k]);
+    } else if (scene == INV_FOURBAR || scene == INV_FOURBAR_RUSR) {
+        assert_int_equal(scene == INV_FOURBAR ? vt_scene_fourbar_assemble(m, d, 0.9, 1.3, NULL, NULL)
+                                              : vt_scene_fourbar_rusr_assemble(m, d, 0.9, 1.3, NULL, NULL), 0);
+    } else {
+        vt_scene_random_state(m, d, &s);
+        for (int c = 0; c < m->nv; c++) d->qdd[c] = vt_rand_uniform(&s, -3, 3);
+    }
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = vt_rand_uniform(&s, -1, 1);
+    for (int i = 1; i <= m->nbody; i++)
+        for (int k = 0; k < 6; k++) d->xfrc[6 * i + k] = vt_rand_uniform(&s, -2, 2);
+}
+
+static void test_translation_invariance(void **state)
+{
+    (void)state;
+    static const char *scene_name[] = {"tip-driven chain", "free-rooted tree", "base-rooted tree", "four-bar RSUR",
+                                       "four-bar RUSR"};
+    static const char *path_name[] = {"dense", "recursive", "motion"};
+    /* 1e9 m: where the chain came back as −1004 N instead of 4.98 N */
+    const double dist[3] = {1e3, 1e6, 1e9}, tol[3] = {1e-13, 1e-10, 1e-10}, u[3] = {0.48, -0.6, 0.64};
+    for (int scene = 0; scene < INV_SCENES; scene++)
+        for (int k = 0; k < 3; k++) {
+            const double D[3] = {dist[k] * u[0], dist[k] * u[1], dist[k] * u[2]};
+            vt_model *mr = inv_model(scene), *mt = inv_model(scene);
+            place_model(mr, D, 1);
+            place_model(mt, D, 0);
+            const int trees = mr->ncut == 0 && mr->body_joint[1] != VT_JOINT_BASE;
+            for (int path = 0; path < 2 + trees; path++) {
+                vt_data *dr, *dt;
+                assert_ok(vt_data_create(&dr, mr));
+                assert_ok(vt_data_create(&dt, mt));
+                inv_state(mr, dr, scene);
+                inv_state(mt, dt, scene);
+                place_state(mr, dr, D, 1);
+                place_state(mt, dt, D, 0);
+                vt_status (*f)(const vt_model *, vt_data *) =
+                    path == 0 ? vt_inverse_dynamics : path == 1 ? vt_inverse_dynamics_recursive : vt_inverse_dynamics_motion;
+                assert_ok(f(mr, dr));
+                assert_ok(f(mt, dt));
+                assert_int_equal(dt->route, dr->route);
+                const char *what = "";
+                const double c = outputs_change(mr, dt, dr, &what);
+                print_message("%s, %s, D = %g m: largest change %.3g (%s)\n", scene_name[scene], path_name[path], dist[k],
+                              c, what);
+                if (!(c <= tol[k]))
+                    fail_msg("%s, %s, D = %g m: %s changed by %.3g of its largest entry (> %g)", scene_name[scene],
+                             path_name[path], dist[k], what, c, tol[k]);
+                vt_data_free(dr);
+                vt_data_free(dt);
+            }
+            vt_model_free(mr);
+            vt_model_free(mt);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -892,6 +1040,7 @@ int main(void)
         cmocka_unit_test(test_coupled),
         cmocka_unit_test(test_free_vs_base),
         cmocka_unit_test(test_free_body),
+        cmocka_unit_test(test_translation_invariance),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -432,8 +432,15 @@ typedef struct vt_data {
     double *jsij;            ///< s^{ij}: reference origin → joint point on reference, global (3 x (nbody+1))
     double *jd;              ///< d^i = -s^{ji} + Σ ε_k q_k e_k, eq (17), global (3 x (nbody+1))
     double *jpoint;          ///< joint point on the body, global position (3 x (nbody+1))
-    double *twist;           ///< twist of each rate about the global origin O, [ω; v] (6 x nv): body i's
-                             ///< S column is ṙ = v + ω × r^i, ṗ = ½ E^T ω (15)-(16) (vt_kinematics)
+    double *twist;           ///< twist of each rate about the reference point o (origin), [ω; v] (6 x nv):
+                             ///< v is the velocity of the point at o; body i's S column is
+                             ///< ṙ = v + ω × (r^i − o), ṗ = ½ E^T ω (15)-(16) (vt_kinematics)
+    double *xrel;            ///< m, body i's centre of mass and joint point from o, [r^i − o; P_i − o]
+                             ///< (6 x (nbody+1); the ground's [−o; −o]): the lever arms of the twists
+                             ///< and wrenches, exact to their own size whatever |o|
+    double origin[3];        ///< m, the reference point o of twist and xrel: body 1's joint point at this
+                             ///< instant (its position for a base joint; 0 without bodies), so that lever
+                             ///< arms stay short when the mechanism stands far from the global origin
     double *S;               ///< velocity transformation, ẋ = S q̇ (7n x nv, leading dimension 7n)
     double *Sdqd;            ///< Ṡ q̇ (7n): the Cartesian accelerations at q̈ = 0
 
