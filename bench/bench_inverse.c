@@ -31,7 +31,9 @@
  * the scenes, vtdyn_motion on the robots) is the median of the rounds' ratios, printed with
  * their range. Prints the date, the CPU (/proc/cpuinfo), the compiler and the command first. Writes <outdir>/inverse_speed.csv (scene,
  * n, method, median_us, ratio_median, ratio_min, ratio_max) and prints the ratios.
- * Usage: bench_inverse [outdir] [rounds] [robots_dir]   (41 rounds by default, at most 201)
+ * Usage: bench_inverse [outdir] [rounds] [robots_dir]   (41 rounds by default, at most 201);
+ * VT_BENCH_ONLY=<scene> (e.g. talos) runs that scene's rows alone; VT_BENCH_COUNT=<calls> runs
+ * every method that many times untimed, for instruction counts (callgrind, docs/performance.md).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -108,6 +110,13 @@ static void time_methods(timed *t, int nt, int ref, int rounds, double *median, 
 {
     long reps[MAX_METHODS];
     static double samples[MAX_METHODS][MAX_ROUNDS];
+    const char *count = getenv("VT_BENCH_COUNT");
+    if (count && atol(count) > 0) { /* for callgrind: every method count times, nothing timed */
+        for (int k = 0; k < nt; k++)
+            for (long i = 0; i < atol(count); i++) t[k].run(t[k].ctx, t[k].method);
+        for (int k = 0; k < nt; k++) median[k] = ratio[3 * k] = ratio[3 * k + 1] = ratio[3 * k + 2] = 0.0;
+        return;
+    }
     for (int k = 0; k < nt; k++) { /* warm up and size a batch to about 2 ms */
         long r = 1;
         for (;;) {
@@ -268,9 +277,17 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
 #endif
 }
 
+/* VT_BENCH_ONLY=<scene>: only that scene's rows (e.g. "talos", for callgrind) */
+static int skip_row(const char *scene)
+{
+    const char *only = getenv("VT_BENCH_ONLY");
+    return only && only[0] && strcmp(only, scene) != 0;
+}
+
 static void scene_row(const char *scene, int n, vt_status (*make)(vt_model **, int), void (*state)(const vt_model *, vt_data *),
                       int rounds)
 {
+    if (skip_row(scene)) return;
     vt_model *m;
     vt_data *dd, *dr;
     if (make(&m, n) || vt_data_create(&dd, m) || vt_data_create(&dr, m)) {
@@ -393,6 +410,7 @@ static void robot_pack(const vt_model *m, const vt_data *d, double *q, double *q
 
 static void robot_row(const char *dir, const char *scene, const char *rel, int floating, int rounds)
 {
+    if (skip_row(scene)) return;
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", dir, rel);
     vt_urdf_options opt = vt_default_urdf_options();
@@ -554,7 +572,7 @@ int main(int argc, char **argv)
         sx += x; sy += y; sxx += x * x; sxy += x * y;
     }
     const double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
-    printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..200)\n", slope);
+    if (nfit > 1) printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..200)\n", slope);
     printf("wrote %s\n", path);
     return 0;
 }
