@@ -12,13 +12,28 @@
  * ours before they are timed (MuJoCo also on the double link, both four-bars and the tip-driven
  * chain, there both handed our q̈ and solving q̈ itself from the tip's acceleration).
  *
- * Timing: every method of a row is run in turn, round after round (interleaved, so that the
- * machine's slow stretches hit all of them alike; the order is reversed every other round); a
- * round times a batch of calls sized to take about 2 ms; the figure is the median over the
- * rounds of µs per call, and each ratio vtdyn_recursive / method is the median of the rounds'
- * ratios, printed with their range. Writes <outdir>/inverse_speed.csv (scene, n, method,
- * median_us, ratio_median, ratio_min, ratio_max) and prints the ratios.
- * Usage: bench_inverse [outdir] [rounds]   (41 rounds by default, at most 201)
+ * Robots (the rows "ur5", "panda" with their bases welded, "solo12", "talos" floating; n = the
+ * number of rates): URDF files of example-robot-data, read from the robots directory given as
+ * the third argument or in VT_BENCH_ROBOTS (bench/peers/install.sh prints it; without it, or
+ * in a build without URDF loading, the rows are skipped with a message). vtdyn_motion is
+ * vt_inverse_dynamics_motion on vt_urdf_builder's model (floating roots: a VT_JOINT_FREE joint,
+ * options.floating = 1; mimic joints independent, as Pinocchio loads them), efforts and every
+ * reaction in both frames, at a random state (q, q̇, q̈); Pinocchio's rnea (free flyer root) and
+ * rnea with every reaction mapped to world (pinocchio_rnea_world), and MuJoCo's leanest path
+ * (mujoco_post_project) on the same state, each peer loading the file itself. Every peer's
+ * torques are compared with vtdyn's at that state and two more, to 1e-8 of the largest, before
+ * it is timed.
+ *
+ * Timing: every method of a row is run in turn, round after round, in one process (interleaved,
+ * so that the machine's slow stretches hit all of them alike; the order is turned every round:
+ * forwards, backwards); a round times a batch of calls sized to take about 2 ms; the figure is
+ * the median over the rounds of µs per call, and each ratio vtdyn / method (vtdyn_recursive on
+ * the scenes, vtdyn_motion on the robots) is the median of the rounds' ratios, printed with
+ * their range. Prints the date, the CPU (/proc/cpuinfo), the compiler and the command first. Writes <outdir>/inverse_speed.csv (scene,
+ * n, method, median_us, ratio_median, ratio_min, ratio_max) and prints the ratios.
+ * Usage: bench_inverse [outdir] [rounds] [robots_dir]   (41 rounds by default, at most 201);
+ * VT_BENCH_ONLY=<scene> (e.g. talos) runs that scene's rows alone; VT_BENCH_COUNT=<calls> runs
+ * every method that many times untimed, for instruction counts (callgrind, docs/performance.md).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -27,6 +42,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cpuinfo.h"
 #include "scenes.h"
 #if defined(VT_HAVE_MUJOCO) || defined(VT_HAVE_PINOCCHIO)
 #define VT_HAVE_PEERS 1
@@ -88,12 +104,19 @@ static double median_of(double *a, int n)
 }
 
 /* median µs per call of each method, interleaved rounds (order reversed every other round), and
- * for every method k the median, smallest and largest of the rounds' ratios t_1 / t_k (method 1
- * is vtdyn_recursive) into ratio[3 k .. 3 k + 2] */
-static void time_methods(timed *t, int nt, int rounds, double *median, double *ratio)
+ * for every method k the median, smallest and largest of the rounds' ratios t_ref / t_k (method
+ * ref is vtdyn's: vtdyn_recursive, vtdyn_motion) into ratio[3 k .. 3 k + 2] */
+static void time_methods(timed *t, int nt, int ref, int rounds, double *median, double *ratio)
 {
     long reps[MAX_METHODS];
     static double samples[MAX_METHODS][MAX_ROUNDS];
+    const char *count = getenv("VT_BENCH_COUNT");
+    if (count && atol(count) > 0) { /* for callgrind: every method count times, nothing timed */
+        for (int k = 0; k < nt; k++)
+            for (long i = 0; i < atol(count); i++) t[k].run(t[k].ctx, t[k].method);
+        for (int k = 0; k < nt; k++) median[k] = ratio[3 * k] = ratio[3 * k + 1] = ratio[3 * k + 2] = 0.0;
+        return;
+    }
     for (int k = 0; k < nt; k++) { /* warm up and size a batch to about 2 ms */
         long r = 1;
         for (;;) {
@@ -116,7 +139,7 @@ static void time_methods(timed *t, int nt, int rounds, double *median, double *r
     for (int k = 0; k < nt; k++) {
         double lo = 1e300, hi = 0.0;
         for (int round = 0; round < rounds; round++) {
-            r[round] = nt > 1 ? samples[1][round] / samples[k][round] : 1.0;
+            r[round] = samples[ref][round] / samples[k][round];
             lo = r[round] < lo ? r[round] : lo;
             hi = r[round] > hi ? r[round] : hi;
         }
@@ -234,7 +257,7 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
     }
 #endif
     double med[MAX_METHODS], ratio[3 * MAX_METHODS];
-    time_methods(t, nt, rounds, med, ratio);
+    time_methods(t, nt, 1, rounds, med, ratio);
     printf("%-12s n=%3d", scene, n);
     for (int k = 0; k < nt; k++) {
         printf("  %s %.3f us", t[k].name, med[k]);
@@ -254,9 +277,17 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
 #endif
 }
 
+/* VT_BENCH_ONLY=<scene>: only that scene's rows (e.g. "talos", for callgrind) */
+static int skip_row(const char *scene)
+{
+    const char *only = getenv("VT_BENCH_ONLY");
+    return only && only[0] && strcmp(only, scene) != 0;
+}
+
 static void scene_row(const char *scene, int n, vt_status (*make)(vt_model **, int), void (*state)(const vt_model *, vt_data *),
                       int rounds)
 {
+    if (skip_row(scene)) return;
     vt_model *m;
     vt_data *dd, *dr;
     if (make(&m, n) || vt_data_create(&dd, m) || vt_data_create(&dr, m)) {
@@ -308,6 +339,180 @@ static void state_five_link(const vt_model *m, vt_data *d)
     vt_kinematic_solve(m, d, 1e-13, 30);
 }
 
+/* ---- URDF robots ---- */
+#if VT_HAVE_URDF
+typedef struct {
+    const vt_model *m;
+    vt_data *d;
+} motion_ctx;
+
+static void run_motion(void *ctx, int method)
+{
+    (void)method;
+    motion_ctx *c = ctx;
+    const vt_status st = vt_inverse_dynamics_motion(c->m, c->d);
+    if (st) {
+        fprintf(stderr, "bench_inverse: %s: %s\n", vt_status_string(st), c->d->message);
+        exit(1);
+    }
+}
+
+static double uniform(unsigned long long *s, double lo, double hi) /* splitmix64 */
+{
+    unsigned long long z = (*s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return lo + (hi - lo) * (double)(z >> 11) * 0x1.0p-53;
+}
+
+/* a random state: joint coordinates in [-1.5, 1.5] (rad or m: within every joint's range is not
+ * needed for the dynamics), rates and accelerations in [-2, 2]; a free joint's position in
+ * [-1, 1]^3 m and a random unit quaternion */
+static void robot_state(const vt_model *m, vt_data *d, unsigned long long seed)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        double *q = d->q + m->body_qadr[i];
+        if (m->body_joint[i] == VT_JOINT_FREE) {
+            double nrm = 0.0;
+            for (int k = 0; k < 3; k++) q[k] = uniform(&seed, -1.0, 1.0);
+            for (int k = 3; k < 7; k++) {
+                q[k] = uniform(&seed, -1.0, 1.0);
+                nrm += q[k] * q[k];
+            }
+            for (int k = 3; k < 7; k++) q[k] /= sqrt(nrm);
+        } else {
+            for (int k = 0; k < m->body_nq[i]; k++) q[k] = uniform(&seed, -1.5, 1.5);
+        }
+        for (int k = 0; k < m->body_nv[i]; k++) {
+            d->qd[m->body_vadr[i] + k] = uniform(&seed, -2.0, 2.0);
+            d->qdd[m->body_vadr[i] + k] = uniform(&seed, -2.0, 2.0);
+        }
+    }
+    d->time = 0.0;
+}
+
+#ifdef VT_HAVE_PEERS
+/* the state packed body by body (peers.h's layout), the names of the joints, vtdyn's efforts */
+static void robot_pack(const vt_model *m, const vt_data *d, double *q, double *qd, double *qdd, double *ours)
+{
+    int iq = 0, iv = 0;
+    for (int i = 1; i <= m->nbody; i++) {
+        for (int k = 0; k < m->body_nq[i]; k++) q[iq++] = d->q[m->body_qadr[i] + k];
+        for (int k = 0; k < m->body_nv[i]; k++, iv++) {
+            qd[iv] = d->qd[m->body_vadr[i] + k];
+            qdd[iv] = d->qdd[m->body_vadr[i] + k];
+            ours[iv] = d->qfrc_drive[m->body_vadr[i] + k];
+        }
+    }
+}
+#endif
+
+static void robot_row(const char *dir, const char *scene, const char *rel, int floating, int rounds)
+{
+    if (skip_row(scene)) return;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, rel);
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.floating = floating;
+    opt.mimic = 0; /* as Pinocchio and MuJoCo load the file: a mimic joint moves on its own */
+    char msg[256] = "";
+    vt_builder *b;
+    vt_model *m;
+    vt_data *d;
+    if (vt_urdf_builder(&b, path, &opt, msg)) {
+        printf("%-12s skipped: %s\n", scene, msg);
+        return;
+    }
+    if (vt_builder_build(&m, b) || vt_data_create(&d, m)) {
+        printf("%-12s skipped: %s\n", scene, vt_builder_message(b));
+        vt_builder_free(b);
+        return;
+    }
+    vt_builder_free(b);
+    const unsigned long long seed = 0x5EEDULL + (unsigned long long)strlen(scene);
+    robot_state(m, d, seed);
+    motion_ctx c = {m, d};
+    run_motion(&c, 0);
+    timed t[MAX_METHODS];
+    int nt = 0;
+    t[nt++] = (timed){"vtdyn_motion", run_motion, &c, 0};
+#ifdef VT_HAVE_PEERS
+    /* the peers, each at three states (the last the timed one): torques to 1e-8 of the largest */
+    vt_peer *peers[2] = {NULL, NULL};
+    const int nj = m->nbody, nv = m->nv;
+    const char **names = malloc((size_t)nj * sizeof *names);
+    double *buf = malloc((size_t)(m->nq + 4 * nv) * sizeof *buf);
+    double *q = buf, *qd = buf + m->nq, *qdd = qd + nv, *ours = qdd + nv, *tau = ours + nv;
+    for (int i = 1; i <= nj; i++) names[i - 1] = m->joint_name + VT_NAME_MAX * i;
+    for (int p = 0; p < 2; p++) {
+        double worst = 0.0;
+        for (int s = 2; s >= 0; s--) {
+            robot_state(m, d, seed + (unsigned long long)s);
+            run_motion(&c, 0);
+            robot_pack(m, d, q, qd, qdd, ours);
+            vt_peer *peer = NULL;
+            int built = 0;
+#ifdef VT_HAVE_PINOCCHIO
+            if (p == 0) peer = vt_peer_pinocchio_robot(path, floating, nj, names, q, qd, qdd, msg), built = 1;
+#endif
+#ifdef VT_HAVE_MUJOCO
+            if (p == 1) peer = vt_peer_mujoco_robot(path, floating, nj, names, q, qd, qdd, msg), built = 1;
+#endif
+            if (!peer) {
+                if (built) printf("  %s cannot load %s: %s\n", p ? "MuJoCo" : "Pinocchio", rel, msg);
+                break;
+            }
+            int ok = 1;
+            for (int k = 0; k < vt_peer_nmethods(peer); k++) {
+                vt_peer_run(peer, k);
+                vt_peer_torques(peer, tau);
+                double err = 0.0, scale = 1e-300;
+                for (int j = 0; j < nv; j++) {
+                    err = fmax(err, fabs(tau[j] - ours[j]));
+                    scale = fmax(scale, fabs(ours[j]));
+                }
+                worst = fmax(worst, err / scale);
+                if (!(err <= 1e-8 * scale)) {
+                    printf("  %s disagrees with vtdyn on %s: max torque difference %.3g (scale %.3g): not timed\n",
+                           vt_peer_method(peer, k), scene, err, scale);
+                    ok = 0;
+                }
+            }
+            if (!ok || s > 0) vt_peer_free(peer);
+            else peers[p] = peer;
+            if (!ok) break;
+        }
+        if (peers[p]) {
+            printf("  %s agrees with vtdyn on %s to %.2g relative (3 states)\n", p ? "MuJoCo" : "Pinocchio", scene, worst);
+            for (int k = 0; k < vt_peer_nmethods(peers[p]) && nt < MAX_METHODS; k++)
+                t[nt++] = (timed){vt_peer_method(peers[p], k), run_peer, peers[p], k};
+        }
+    }
+    free(names);
+    free(buf);
+#endif
+    double med[MAX_METHODS], ratio[3 * MAX_METHODS];
+    time_methods(t, nt, 0, rounds, med, ratio);
+    printf("%-12s n=%3d", scene, m->nv);
+    for (int k = 0; k < nt; k++) {
+        printf("  %s %.3f us", t[k].name, med[k]);
+        fprintf(csv, "%s,%d,%s,%.6g,%.4g,%.4g,%.4g\n", scene, m->nv, t[k].name, med[k], ratio[3 * k], ratio[3 * k + 1],
+                ratio[3 * k + 2]);
+    }
+    for (int k = 1; k < nt; k++)
+        printf("  [vtdyn_motion/%s %.2f (%.2f-%.2f)]", t[k].name, ratio[3 * k], ratio[3 * k + 1], ratio[3 * k + 2]);
+    printf("\n");
+    fflush(stdout);
+#ifdef VT_HAVE_PEERS
+    for (int p = 0; p < 2; p++)
+        if (peers[p]) vt_peer_free(peers[p]);
+#endif
+    vt_data_free(d);
+    vt_model_free(m);
+}
+#endif
+
 int main(int argc, char **argv)
 {
     const char *outdir = argc > 1 ? argv[1] : ".";
@@ -325,6 +530,14 @@ int main(int argc, char **argv)
     }
     fprintf(csv, "scene,n,method,median_us,ratio_median,ratio_min,ratio_max\n");
     printf("vtdyn inverse-dynamics instant: median of %d interleaved rounds, us per call\n", rounds);
+    char date[64];
+    const time_t now = time(NULL);
+    strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S %Z", localtime(&now));
+    printf("date: %s\n", date);
+    vt_bench_cpu_line();
+    printf("compiler: %s\ncommand:", __VERSION__);
+    for (int i = 0; i < argc; i++) printf(" %s", argv[i]);
+    printf("\n");
 #ifndef VT_HAVE_PEERS
     printf("(peers not built: see bench/peers/install.sh and the README to compare with Pinocchio and MuJoCo)\n");
 #endif
@@ -337,6 +550,20 @@ int main(int argc, char **argv)
     for (size_t k = 0; k < sizeof ntip / sizeof ntip[0]; k++)
         scene_row("chain_tip", ntip[k], make_chain_tip, state_chain, rounds);
     scene_row("five_link", 5, make_five_link, state_five_link, rounds);
+    const char *robots = argc > 3 ? argv[3] : getenv("VT_BENCH_ROBOTS");
+#if VT_HAVE_URDF
+    if (robots && robots[0]) {
+        robot_row(robots, "ur5", "ur_description/urdf/ur5_robot.urdf", 0, rounds);
+        robot_row(robots, "panda", "panda_description/urdf/panda.urdf", 0, rounds);
+        robot_row(robots, "solo12", "solo_description/robots/solo12.urdf", 1, rounds);
+        robot_row(robots, "talos", "talos_data/robots/talos_reduced.urdf", 1, rounds);
+    } else {
+        printf("robots skipped: no robots directory (third argument or VT_BENCH_ROBOTS; bench/peers/install.sh prints it)\n");
+    }
+#else
+    (void)robots;
+    printf("robots skipped: this build has no URDF loading (libxml2)\n");
+#endif
     fclose(csv);
     /* growth of the recursive chain: least-squares slope of log t against log n */
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -345,7 +572,7 @@ int main(int argc, char **argv)
         sx += x; sy += y; sxx += x * x; sxy += x * y;
     }
     const double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
-    printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..200)\n", slope);
+    if (nfit > 1) printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..200)\n", slope);
     printf("wrote %s\n", path);
     return 0;
 }

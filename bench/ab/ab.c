@@ -21,6 +21,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "../cpuinfo.h"
+
 #define MAXROUNDS 1001
 #define MAXOUT 4096
 
@@ -72,31 +74,6 @@ static double timed(const build *b, long calls)
     return s;
 }
 
-static void cpu_line(void)
-{
-    char line[8192], model[256] = "?", fam[32] = "?", mod[32] = "?";
-    int avx2 = 0, fma = 0, avx512 = 0;
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    while (f && fgets(line, sizeof line, f)) {
-        char *v = strchr(line, ':');
-        if (!v) continue;
-        v += 2;
-        v[strcspn(v, "\n")] = 0;
-        if (!strncmp(line, "model name", 10)) snprintf(model, sizeof model, "%s", v);
-        else if (!strncmp(line, "cpu family", 10)) snprintf(fam, sizeof fam, "%s", v);
-        else if (!strncmp(line, "model\t", 6)) snprintf(mod, sizeof mod, "%s", v);
-        else if (!strncmp(line, "flags", 5)) {
-            avx2 = strstr(v, " avx2") != NULL;
-            fma = strstr(v, " fma") != NULL;
-            avx512 = strstr(v, " avx512f") != NULL;
-            break;
-        }
-    }
-    if (f) fclose(f);
-    printf("cpu: %s (family %s model %s), %s%s%s\n", model, fam, mod, avx2 ? "AVX2" : "no AVX2",
-           fma ? " + FMA" : "", avx512 ? ", AVX-512F" : ", no AVX-512");
-}
-
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -117,7 +94,7 @@ int main(int argc, char **argv)
     strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S %Z", localtime(&now));
     printf("vtdyn A/B, vt_inverse_dynamics_recursive, one instant: %d rounds, order turned each round\n", rounds);
     printf("date: %s\n", date);
-    cpu_line();
+    vt_bench_cpu_line();
     printf("compiler: %s\n", __VERSION__);
     printf("command:");
     for (int i = 0; i < argc; i++) printf(" %s", argv[i]);

@@ -591,3 +591,238 @@ long vt_peer_mujoco_simulate(vt_peer *p, double dt, int integrator, double t1, i
     m->opt.integrator = integ;
     return nsteps;
 }
+
+#ifdef VT_PEER_URDF
+/* ---- URDF robots (vt_peer_mujoco_robot) ----
+ * The file is read with libxml2 and its <visual>, <collision>, <gazebo> and <transmission>
+ * elements removed (MuJoCo cannot read the meshes' formats, and the dynamics needs only the
+ * inertias and the joints); mj_parseXMLString parses the rest as URDF (fixed joints fused, each
+ * link's <inertial> as its inertia), a free joint "root_joint" is added to the root link's body
+ * when floating, and the options are set as for the scenes: everything but the dynamics disabled.
+ * One method, mujoco_post_project (the leanest path to torques and reactions, as on the chain):
+ * mj_kinematics, mj_comPos, mj_comVel, mj_rnePostConstraint, the torques cdof . cfrc_int.
+ * MuJoCo's free joint: qpos = (position, quaternion w x y z) of the body frame (the root link's
+ * frame), qvel = (world velocity of that origin, angular velocity in the body's axes), qacc their
+ * derivatives; its generalized force = (world force, moment about the origin in the body's axes). */
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+
+typedef struct {
+    mjModel *m;
+    mjData *d;
+    int nj;
+    int *qadr, *dadr, *isfree;   /* per vtdyn joint: MuJoCo's qpos and dof address, 1 for the free root */
+    int *vadr;                   /* vtdyn's packed rate address of joint k */
+    int root_body;               /* MuJoCo's body of the free root (0: none) */
+    mjtNum *tau;                 /* MuJoCo's qfrc of the last run (nv) */
+} mj_robot;
+
+static const char *const robot_methods[] = {"mujoco_post_project"};
+
+static void strip_geometry(xmlNodePtr n)
+{
+    static const char *const drop[] = {"visual", "collision", "gazebo", "transmission"};
+    for (xmlNodePtr c = n->children, next; c; c = next) {
+        next = c->next;
+        if (c->type != XML_ELEMENT_NODE) continue;
+        int gone = 0;
+        for (size_t k = 0; k < sizeof drop / sizeof drop[0]; k++)
+            if (strcmp((const char *)c->name, drop[k]) == 0) {
+                xmlUnlinkNode(c);
+                xmlFreeNode(c);
+                gone = 1;
+                break;
+            }
+        if (!gone) strip_geometry(c);
+    }
+}
+
+static void robot_run(void *p, int method)
+{
+    (void)method;
+    mj_robot *s = p;
+    const mjModel *m = s->m;
+    mjData *d = s->d;
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    mj_comVel(m, d);
+    mj_rnePostConstraint(m, d);
+    for (int i = 0; i < m->nv; i++) {
+        const mjtNum *c = d->cdof + 6 * i, *f = d->cfrc_int + 6 * m->dof_bodyid[i];
+        s->tau[i] = c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3] + c[4] * f[4] + c[5] * f[5];
+    }
+}
+
+static void robot_torques(const void *p, double *tau)
+{
+    const mj_robot *s = p;
+    for (int k = 0; k < s->nj; k++) {
+        const mjtNum *t = s->tau + s->dadr[k];
+        if (s->isfree[k]) { /* the moment from the body's axes to the world's: R t */
+            const mjtNum *R = s->d->xmat + 9 * s->root_body;
+            for (int c = 0; c < 3; c++) {
+                tau[s->vadr[k] + c] = t[c];
+                tau[s->vadr[k] + 3 + c] = R[3 * c] * t[3] + R[3 * c + 1] * t[4] + R[3 * c + 2] * t[5];
+            }
+        } else {
+            tau[s->vadr[k]] = t[0];
+        }
+    }
+}
+
+/* joint k's body: the com-based cfrc_int moved to the joint's anchor (see reaction() above) */
+static void robot_reaction(const void *p, int k, double f[3], double n[3])
+{
+    const mj_robot *s = p;
+    const mjModel *m = s->m;
+    const int dof = s->dadr[k - 1], b = m->dof_bodyid[dof], j = m->dof_jntid[dof];
+    const mjtNum *w = s->d->cfrc_int + 6 * b, *c = s->d->subtree_com + 3 * m->body_rootid[b];
+    const mjtNum *a = s->d->xanchor + 3 * j;
+    const mjtNum r[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    for (int i = 0; i < 3; i++) f[i] = w[3 + i];
+    n[0] = w[0] + r[1] * f[2] - r[2] * f[1];
+    n[1] = w[1] + r[2] * f[0] - r[0] * f[2];
+    n[2] = w[2] + r[0] * f[1] - r[1] * f[0];
+}
+
+static void robot_destroy(void *p)
+{
+    mj_robot *s = p;
+    if (!s) return;
+    if (s->d) mj_deleteData(s->d);
+    if (s->m) mj_deleteModel(s->m);
+    free(s->qadr);
+    free(s->tau);
+    free(s);
+}
+
+static const vt_peer_vtable robot_vtable = {1, robot_methods, robot_run, robot_torques, robot_reaction, robot_destroy};
+
+static vt_peer *robot_fail(char *message, mj_robot *s, const char *fmt, const char *what)
+{
+    if (message) snprintf(message, 256, fmt, what);
+    robot_destroy(s);
+    return NULL;
+}
+
+vt_peer *vt_peer_mujoco_robot(const char *urdf, int floating, int nj, const char *const *names, const double *q,
+                              const double *qd, const double *qdd, char *message)
+{
+    if (message) message[0] = '\0';
+    if (!urdf || nj < 1 || !names || !q || !qd || !qdd) return NULL;
+    xmlDocPtr doc = xmlReadFile(urdf, NULL, XML_PARSE_NONET | XML_PARSE_NOWARNING | XML_PARSE_NOERROR);
+    if (!doc || !xmlDocGetRootElement(doc)) {
+        if (doc) xmlFreeDoc(doc);
+        return robot_fail(message, NULL, "cannot read %s", urdf);
+    }
+    xmlNodePtr robot = xmlDocGetRootElement(doc);
+    strip_geometry(robot);
+    /* the root link: the one link no joint has as its child */
+    char root[512] = "";
+    for (xmlNodePtr l = robot->children; l; l = l->next) {
+        if (l->type != XML_ELEMENT_NODE || strcmp((const char *)l->name, "link") != 0) continue;
+        xmlChar *ln = xmlGetProp(l, (const xmlChar *)"name");
+        int child = 0;
+        for (xmlNodePtr j = robot->children; j && ln && !child; j = j->next) {
+            if (j->type != XML_ELEMENT_NODE || strcmp((const char *)j->name, "joint") != 0) continue;
+            for (xmlNodePtr c = j->children; c; c = c->next)
+                if (c->type == XML_ELEMENT_NODE && strcmp((const char *)c->name, "child") == 0) {
+                    xmlChar *cl = xmlGetProp(c, (const xmlChar *)"link");
+                    child = cl && strcmp((const char *)cl, (const char *)ln) == 0;
+                    xmlFree(cl);
+                }
+        }
+        if (!child && ln && !root[0]) snprintf(root, sizeof root, "%s", (const char *)ln);
+        xmlFree(ln);
+    }
+    xmlChar *text = NULL;
+    int len = 0;
+    xmlDocDumpMemory(doc, &text, &len);
+    xmlFreeDoc(doc);
+    char err[1024] = "";
+    mjSpec *spec = text ? mj_parseXMLString((const char *)text, NULL, err, (int)sizeof err) : NULL;
+    xmlFree(text);
+    if (!spec) {
+        return robot_fail(message, NULL, "mj_parseXMLString: %s", err);
+    }
+    spec->compiler.alignfree = 0; /* the free joint at the root link frame, not its inertial frame */
+    spec->option.gravity[0] = 0.0;
+    spec->option.gravity[1] = 0.0;
+    spec->option.gravity[2] = -9.81;
+    spec->option.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_CONTACT | mjDSBL_LIMIT | mjDSBL_FRICTIONLOSS |
+                                 mjDSBL_SPRING | mjDSBL_DAMPER | mjDSBL_ACTUATION | mjDSBL_SENSOR | mjDSBL_EQUALITY;
+    if (floating) {
+        mjsBody *body = root[0] ? mjs_findBody(spec, root) : NULL;
+        if (!body) {
+            mj_deleteSpec(spec);
+            return robot_fail(message, NULL, "no body for the root link %s", root);
+        }
+        mjsJoint *fj = mjs_addJoint(body, NULL);
+        fj->type = mjJNT_FREE;
+        mjs_setName(fj->element, "root_joint");
+    }
+    mjModel *m = mj_compile(spec, NULL);
+    if (!m) {
+        snprintf(err, sizeof err, "%s", mjs_getError(spec));
+        mj_deleteSpec(spec);
+        return robot_fail(message, NULL, "mj_compile: %s", err);
+    }
+    mj_deleteSpec(spec);
+    mj_robot *s = calloc(1, sizeof *s);
+    if (!s) {
+        mj_deleteModel(m);
+        return NULL;
+    }
+    s->m = m;
+    s->nj = nj;
+    s->qadr = malloc(4 * (size_t)nj * sizeof *s->qadr);
+    s->tau = calloc((size_t)m->nv + 1, sizeof *s->tau);
+    s->d = mj_makeData(m);
+    if (!s->qadr || !s->tau || !s->d) return robot_fail(message, s, "%s", "out of memory");
+    s->dadr = s->qadr + nj;
+    s->isfree = s->dadr + nj;
+    s->vadr = s->isfree + nj;
+    mj_resetData(m, s->d);
+    int iq = 0, iv = 0;
+    for (int k = 0; k < nj; k++) {
+        const int root_joint = !names[k] || !names[k][0];
+        const char *name = root_joint ? "root_joint" : names[k];
+        const int j = mj_name2id(m, mjOBJ_JOINT, name);
+        if (j < 0) return robot_fail(message, s, "MuJoCo's model has no joint %s", name);
+        s->qadr[k] = m->jnt_qposadr[j];
+        s->dadr[k] = m->jnt_dofadr[j];
+        s->vadr[k] = iv;
+        s->isfree[k] = m->jnt_type[j] == mjJNT_FREE;
+        mjtNum *qp = s->d->qpos + s->qadr[k], *v = s->d->qvel + s->dadr[k], *a = s->d->qacc + s->dadr[k];
+        if (s->isfree[k]) {
+            s->root_body = m->jnt_bodyid[j];
+            for (int c = 0; c < 7; c++) qp[c] = q[iq + c];
+            mjtNum R[9], qn[4] = {q[iq + 3], q[iq + 4], q[iq + 5], q[iq + 6]};
+            mju_normalize4(qn);
+            mju_quat2Mat(R, qn);
+            for (int c = 0; c < 3; c++) { /* linear: world; angular: the body's axes, R^T w */
+                v[c] = qd[iv + c];
+                a[c] = qdd[iv + c];
+                v[3 + c] = R[c] * qd[iv + 3] + R[3 + c] * qd[iv + 4] + R[6 + c] * qd[iv + 5];
+                a[3 + c] = R[c] * qdd[iv + 3] + R[3 + c] * qdd[iv + 4] + R[6 + c] * qdd[iv + 5];
+            }
+            iq += 7;
+            iv += 6;
+        } else if (m->jnt_type[j] == mjJNT_HINGE || m->jnt_type[j] == mjJNT_SLIDE) {
+            qp[0] = q[iq++];
+            v[0] = qd[iv];
+            a[0] = qdd[iv++];
+        } else {
+            return robot_fail(message, s, "joint %s: a type the robot rows do not map", name);
+        }
+    }
+    if (iv != m->nv) return robot_fail(message, s, "%s", "the joints given do not cover MuJoCo's model");
+    vt_peer *p = malloc(sizeof *p);
+    if (!p) return robot_fail(message, s, "%s", "out of memory");
+    robot_run(s, 0);
+    p->vt = &robot_vtable;
+    p->impl = s;
+    p->n = nj;
+    return p;
+}
+#endif

@@ -42,6 +42,22 @@ enum {
 /* NULL if the scene is not supported by that peer */
 vt_peer *vt_peer_pinocchio(int scene, int n, const double *q, const double *qd, const double *qdd);
 vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd);
+/* A URDF robot (the bench's robot rows), each peer loading the file itself: Pinocchio's model as
+ * its URDF loader builds it, MuJoCo's from the URDF without its geometry (mj_parseXMLString).
+ * The state comes in vtdyn's layout (vt_urdf_builder's model): nj joints in vtdyn's body order,
+ * names[k] the URDF joint's name, or NULL or "" for the free root joint (floating = 1); q, qd,
+ * qdd packed joint by joint: one value for a revolute or prismatic joint; for the free root
+ * q = (x, y, z, q_w, q_x, q_y, q_z), the root link frame's origin and orientation, qd = its
+ * origin's velocity and its angular velocity, world axes, qdd their derivatives (the classical
+ * acceleration of the origin). torques() in the same layout (the root's six: the world force and
+ * the world moment about the root origin that the free joint transmits); reaction(k), k = 1..nj,
+ * of joint k in world axes about its origin, the actuation inside. NULL on failure, with a reason
+ * in message (256 bytes, may be NULL). Methods: Pinocchio "pinocchio_rnea",
+ * "pinocchio_rnea_world"; MuJoCo "mujoco_post_project" (see mujoco_peer.c). */
+vt_peer *vt_peer_pinocchio_robot(const char *urdf, int floating, int nj, const char *const *names, const double *q,
+                                 const double *qd, const double *qdd, char *message);
+vt_peer *vt_peer_mujoco_robot(const char *urdf, int floating, int nj, const char *const *names, const double *q,
+                              const double *qd, const double *qdd, char *message);
 int vt_peer_nmethods(const vt_peer *p);
 const char *vt_peer_method(const vt_peer *p, int method);   /* e.g. "pinocchio_rnea", "pinocchio_rnea_world", "pinocchio_crba_cholesky", "mujoco_inverse", "mujoco_rne_post", "mujoco_inverse_tip" */
 void vt_peer_run(vt_peer *p, int method);                    /* one full evaluation; no allocation */

@@ -1,4 +1,7 @@
-/* Pinocchio peer (header-only use: no libpinocchio_* is linked). Chain scene only.
+/* Pinocchio peer (header-only use: no libpinocchio_* is linked). The chain scene, and URDF robots
+ * (vt_peer_pinocchio_robot: the model built here from the URDF file as Pinocchio's own loader
+ * builds it, see RobotBuilder below; the loader itself lives in libpinocchio_parsers, which is
+ * not linked for the reason given in meson.build).
  *
  * Methods
  *   0 pinocchio_rnea          rnea(model, data, q, v, a); reactions are data.f (joint frames);
@@ -57,14 +60,27 @@
 #pragma GCC diagnostic ignored "-Wstringop-overread"
 #endif
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <map>
 #include <new>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#ifdef VT_PEER_URDF
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#endif
 
 #include <Eigen/Cholesky>
 #include <pinocchio/multibody.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/algorithm/crba.hpp>
+#include <pinocchio/algorithm/joint-configuration.hpp>
 
 #include "peer_impl.h"
 
@@ -210,6 +226,279 @@ const vt_peer_vtable pin_vtable = {
     3, pin_method_names, pin_run, pin_torques, pin_reaction, pin_destroy,
 };
 
+#ifdef VT_PEER_URDF
+/* ---- URDF robots ----
+ * RobotBuilder: the model Pinocchio's buildModelFromUrdf makes (parsers/urdf/model.cpp), rebuilt
+ * here from the file with libxml2: the links visited depth first from the root, a link's child
+ * joints in the order of their names (urdfdom keeps its joints in a std::map); a revolute or
+ * prismatic joint whose axis is +x, +y or +z becomes JointModelRX/RY/RZ (PX/PY/PZ), another
+ * axis the unaligned joint; the joint's placement is its origin composed with the placement of
+ * its parent link in the parent link's joint (fixed joints); a link's inertia (mass, COM at the
+ * inertial origin, R I R^T) is appended to its joint, a link behind a fixed joint appended to the
+ * joint it is fixed to at its placement; with floating, a JointModelFreeFlyer "root_joint" at the
+ * root link's frame. Continuous, floating and planar joints are refused (none of the benchmark's
+ * robots has one). */
+struct RobotBuilder {
+    struct Link { double mass = 0.0; Eigen::Vector3d com = Eigen::Vector3d::Zero(); Eigen::Matrix3d I = Eigen::Matrix3d::Zero(); };
+    struct Joint { std::string name, type, parent, child; pin::SE3 origin = pin::SE3::Identity(); Eigen::Vector3d axis = Eigen::Vector3d::UnitX(); };
+    std::map<std::string, Link> links;
+    std::vector<Joint> joints;
+    std::string error;
+
+    static std::string attr(xmlNodePtr n, const char *name)
+    {
+        xmlChar *v = xmlGetProp(n, reinterpret_cast<const xmlChar *>(name));
+        std::string s = v ? reinterpret_cast<const char *>(v) : "";
+        xmlFree(v);
+        return s;
+    }
+    static xmlNodePtr child(xmlNodePtr n, const char *name)
+    {
+        for (xmlNodePtr c = n->children; c; c = c->next)
+            if (c->type == XML_ELEMENT_NODE && std::strcmp(reinterpret_cast<const char *>(c->name), name) == 0) return c;
+        return nullptr;
+    }
+    static Eigen::Vector3d vec(const std::string &s, const Eigen::Vector3d &dflt)
+    {
+        if (s.empty()) return dflt;
+        std::istringstream in(s);
+        Eigen::Vector3d v;
+        in >> v[0] >> v[1] >> v[2];
+        return v;
+    }
+    static pin::SE3 origin(xmlNodePtr o)
+    {
+        if (!o) return pin::SE3::Identity();
+        const Eigen::Vector3d xyz = vec(attr(o, "xyz"), Eigen::Vector3d::Zero()), rpy = vec(attr(o, "rpy"), Eigen::Vector3d::Zero());
+        const Eigen::Matrix3d R = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                                   Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX())).toRotationMatrix();
+        return pin::SE3(R, xyz);
+    }
+
+    bool read(const char *path)
+    {
+        xmlDocPtr doc = xmlReadFile(path, nullptr, XML_PARSE_NONET | XML_PARSE_NOWARNING | XML_PARSE_NOERROR);
+        if (!doc) return error = std::string("cannot read ") + path, false;
+        xmlNodePtr robot = xmlDocGetRootElement(doc);
+        for (xmlNodePtr n = robot ? robot->children : nullptr; n; n = n->next) {
+            if (n->type != XML_ELEMENT_NODE) continue;
+            const char *tag = reinterpret_cast<const char *>(n->name);
+            if (std::strcmp(tag, "link") == 0) {
+                Link l;
+                if (xmlNodePtr in = child(n, "inertial")) {
+                    const pin::SE3 o = origin(child(in, "origin"));
+                    xmlNodePtr ms = child(in, "mass"), it = child(in, "inertia");
+                    l.mass = ms ? std::atof(attr(ms, "value").c_str()) : 0.0;
+                    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+                    if (it) {
+                        auto g = [&](const char *k) { return std::atof(attr(it, k).c_str()); };
+                        I << g("ixx"), g("ixy"), g("ixz"), g("ixy"), g("iyy"), g("iyz"), g("ixz"), g("iyz"), g("izz");
+                    }
+                    l.com = o.translation();
+                    l.I = o.rotation() * I * o.rotation().transpose();
+                }
+                links[attr(n, "name")] = l;
+            } else if (std::strcmp(tag, "joint") == 0) {
+                Joint j;
+                j.name = attr(n, "name");
+                j.type = attr(n, "type");
+                j.parent = child(n, "parent") ? attr(child(n, "parent"), "link") : "";
+                j.child = child(n, "child") ? attr(child(n, "child"), "link") : "";
+                j.origin = origin(child(n, "origin"));
+                if (xmlNodePtr a = child(n, "axis")) j.axis = vec(attr(a, "xyz"), Eigen::Vector3d::UnitX());
+                joints.push_back(j);
+            }
+        }
+        xmlFreeDoc(doc);
+        if (links.empty()) return error = std::string("no links in ") + path, false;
+        return true;
+    }
+
+    template <class JX, class JY, class JZ, class JU>
+    static pin::JointModel axis_joint(const Eigen::Vector3d &axis)
+    {
+        if (axis.isApprox(Eigen::Vector3d::UnitX())) return JX();
+        if (axis.isApprox(Eigen::Vector3d::UnitY())) return JY();
+        if (axis.isApprox(Eigen::Vector3d::UnitZ())) return JZ();
+        return JU(axis.normalized());
+    }
+
+    void visit(pin::Model &model, const std::map<std::string, std::map<std::string, size_t>> &kids, const std::string &link,
+               pin::JointIndex jid, const pin::SE3 &place)
+    {
+        auto it = kids.find(link);
+        if (it == kids.end()) return;
+        for (const auto &kv : it->second) {
+            const Joint &j = joints[kv.second];
+            const Link &l = links[j.child];
+            const pin::Inertia Y(l.mass, l.com, l.I);
+            const pin::SE3 placement = place * j.origin;
+            if (j.type == "fixed") {
+                model.appendBodyToJoint(jid, Y, placement);
+                visit(model, kids, j.child, jid, placement);
+                continue;
+            }
+            pin::JointModel jm;
+            if (j.type == "revolute")
+                jm = axis_joint<pin::JointModelRX, pin::JointModelRY, pin::JointModelRZ, pin::JointModelRevoluteUnaligned>(j.axis);
+            else if (j.type == "prismatic")
+                jm = axis_joint<pin::JointModelPX, pin::JointModelPY, pin::JointModelPZ, pin::JointModelPrismaticUnaligned>(j.axis);
+            else {
+                if (error.empty()) error = "joint " + j.name + ": type " + j.type + " not supported here";
+                continue;
+            }
+            const pin::JointIndex id = model.addJoint(jid, jm, placement, j.name);
+            model.appendBodyToJoint(id, Y, pin::SE3::Identity());
+            visit(model, kids, j.child, id, pin::SE3::Identity());
+        }
+    }
+
+    bool build(pin::Model &model, bool floating)
+    {
+        std::map<std::string, std::map<std::string, size_t>> kids;
+        std::map<std::string, int> is_child;
+        for (size_t k = 0; k < joints.size(); k++) {
+            kids[joints[k].parent][joints[k].name] = k;
+            is_child[joints[k].child] = 1;
+        }
+        std::string root;
+        for (const auto &l : links)
+            if (!is_child.count(l.first)) {
+                if (!root.empty()) return error = "two root links", false;
+                root = l.first;
+            }
+        model.gravity = pin::Motion(Eigen::Vector3d(0.0, 0.0, -9.81), Eigen::Vector3d::Zero());
+        const Link &r = links[root];
+        pin::JointIndex jid = 0;
+        if (floating) {
+            jid = model.addJoint(0, pin::JointModelFreeFlyer(), pin::SE3::Identity(), "root_joint");
+            model.appendBodyToJoint(jid, pin::Inertia(r.mass, r.com, r.I), pin::SE3::Identity());
+        }
+        visit(model, kids, root, jid, pin::SE3::Identity());
+        return error.empty();
+    }
+};
+
+/* A robot: the state arrives in vtdyn's layout (see peers.h) and is converted once. */
+const char *const robot_method_names[] = {"pinocchio_rnea", "pinocchio_rnea_world"};
+
+struct RobotPeer {
+    pin::Model model;
+    pin::Data data;
+    Eigen::VectorXd q, v, a;
+    std::vector<pin::Force> fworld;
+    std::vector<pin::JointIndex> jid; /* Pinocchio's joint of vtdyn's joint k */
+    std::vector<int> vadr;            /* vtdyn's first rate of joint k */
+    int nv_vt = 0;
+    Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity(); /* the free flyer's rotation */
+
+    /* data built in place from the finished model (see PinPeer) */
+    explicit RobotPeer(const pin::Model &m) : model(m), data(model) {}
+
+    bool init(int nj, const char *const *names, const double *qv, const double *qdv, const double *qddv, std::string &err)
+    {
+        q = pin::neutral(model);
+        v = Eigen::VectorXd::Zero(model.nv);
+        a = Eigen::VectorXd::Zero(model.nv);
+        int iq = 0, iv = 0;
+        for (int k = 0; k < nj; k++) {
+            const bool root = !names[k] || !names[k][0];
+            const std::string name = root ? "root_joint" : names[k];
+            if (!model.existJointName(name)) return err = "Pinocchio's model has no joint " + name, false;
+            const pin::JointIndex id = model.getJointId(name);
+            const int pq = model.joints[id].idx_q(), pv = model.joints[id].idx_v();
+            jid.push_back(id);
+            vadr.push_back(iv);
+            if (root) {
+                /* (x, y, z, w, x, y, z) -> (x, y, z, x, y, z, w); world rates -> the root frame's */
+                const Eigen::Quaterniond quat(qv[iq + 3], qv[iq + 4], qv[iq + 5], qv[iq + 6]);
+                R0 = quat.normalized().toRotationMatrix();
+                for (int c = 0; c < 3; c++) q[pq + c] = qv[iq + c];
+                q[pq + 3] = quat.x(); q[pq + 4] = quat.y(); q[pq + 5] = quat.z(); q[pq + 6] = quat.w();
+                const Eigen::Vector3d pd(qdv + iv), w(qdv + iv + 3), pdd(qddv + iv), wd(qddv + iv + 3);
+                const Eigen::Vector3d vl = R0.transpose() * pd, wl = R0.transpose() * w;
+                v.segment<3>(pv) = vl;
+                v.segment<3>(pv + 3) = wl;
+                a.segment<3>(pv) = R0.transpose() * pdd - wl.cross(vl);
+                a.segment<3>(pv + 3) = R0.transpose() * wd;
+                iq += 7;
+                iv += 6;
+            } else {
+                if (model.joints[id].nq() != 1) return err = "joint " + name + " has more than one coordinate", false;
+                q[pq] = qv[iq++];
+                v[pv] = qdv[iv];
+                a[pv] = qddv[iv++];
+            }
+        }
+        nv_vt = iv;
+        if (iv != model.nv) return err = "the joints given do not cover Pinocchio's model", false;
+        fworld.assign(static_cast<size_t>(model.njoints), pin::Force::Zero());
+        run(1);
+        return true;
+    }
+
+    void run(int method)
+    {
+        pin::rnea(model, data, q, v, a);
+        if (method == 0) return;
+        for (pin::JointIndex i = 1; i < static_cast<pin::JointIndex>(model.njoints); i++) {
+            const pin::JointIndex parent = model.parents[i];
+            if (parent > 0) data.oMi[i] = data.oMi[parent] * data.liMi[i];
+            else data.oMi[i] = data.liMi[i];
+            fworld[i] = data.oMi[i].act(data.f[i]);
+        }
+    }
+};
+
+RobotPeer *rimpl(void *p) { return static_cast<RobotPeer *>(p); }
+const RobotPeer *rimpl(const void *p) { return static_cast<const RobotPeer *>(p); }
+
+void robot_run(void *p, int method) { rimpl(p)->run(method); }
+
+/* in vtdyn's layout: the free flyer's six as a world force and a world moment about the root
+ * origin (R f, R n), every other joint's torque or force */
+void robot_torques(const void *p, double *tau)
+{
+    const RobotPeer *s = rimpl(p);
+    for (size_t k = 0; k < s->jid.size(); k++) {
+        const pin::JointIndex id = s->jid[k];
+        const int pv = s->model.joints[id].idx_v();
+        if (s->model.joints[id].nv() == 6) {
+            const Eigen::Vector3d f = s->R0 * s->data.tau.segment<3>(pv), n = s->R0 * s->data.tau.segment<3>(pv + 3);
+            for (int c = 0; c < 3; c++) {
+                tau[s->vadr[k] + c] = f[c];
+                tau[s->vadr[k] + 3 + c] = n[c];
+            }
+        } else {
+            tau[s->vadr[k]] = s->data.tau[pv];
+        }
+    }
+}
+
+/* vtdyn's joint k (1-based): world axes, the moment about the joint's origin, actuation inside;
+ * the poses from liMi (rnea fills those) */
+void robot_reaction(const void *p, int k, double f[3], double n[3])
+{
+    const RobotPeer *s = rimpl(p);
+    const pin::JointIndex id = s->jid[static_cast<size_t>(k - 1)];
+    pin::SE3 M = pin::SE3::Identity();
+    std::vector<pin::JointIndex> path;
+    for (pin::JointIndex i = id; i > 0; i = s->model.parents[i]) path.push_back(i);
+    for (auto it = path.rbegin(); it != path.rend(); ++it) M = M * s->data.liMi[*it];
+    const Eigen::Vector3d fw = M.rotation() * s->data.f[id].linear(), nw = M.rotation() * s->data.f[id].angular();
+    for (int j = 0; j < 3; j++) {
+        f[j] = fw[j];
+        n[j] = nw[j];
+    }
+}
+
+void robot_destroy(void *p) { delete rimpl(p); }
+
+const vt_peer_vtable robot_vtable = {
+    2, robot_method_names, robot_run, robot_torques, robot_reaction, robot_destroy,
+};
+#endif
+
 } // namespace
 
 extern "C" vt_peer *vt_peer_pinocchio(int scene, int n, const double *q, const double *qd, const double *qdd)
@@ -235,3 +524,39 @@ extern "C" void vt_peer_pinocchio_acc(const vt_peer *p, double *acc)
     const PinPeer *s = impl(p->impl);
     for (Eigen::Index i = 0; i < s->acc.size(); i++) acc[i] = s->acc[i];
 }
+
+#ifdef VT_PEER_URDF
+extern "C" vt_peer *vt_peer_pinocchio_robot(const char *urdf, int floating, int nj, const char *const *names,
+                                            const double *q, const double *qd, const double *qdd, char *message)
+{
+    if (message) message[0] = '\0';
+    if (!urdf || nj < 1 || !names || !q || !qd || !qdd) return nullptr;
+    vt_peer *p = static_cast<vt_peer *>(std::malloc(sizeof *p));
+    if (!p) return nullptr;
+    RobotPeer *r = nullptr;
+    std::string err;
+    try {
+        RobotBuilder b;
+        pin::Model model;
+        if (!b.read(urdf) || !b.build(model, floating != 0)) throw std::runtime_error(b.error);
+        r = new RobotPeer(model);
+        if (!r->init(nj, names, q, qd, qdd, err)) {
+            delete r;
+            r = nullptr;
+        }
+    } catch (const std::exception &e) {
+        delete r;
+        r = nullptr;
+        err = e.what();
+    }
+    if (!r) {
+        if (message) std::snprintf(message, 256, "%s", err.c_str());
+        std::free(p);
+        return nullptr;
+    }
+    p->impl = r;
+    p->vt = &robot_vtable;
+    p->n = nj;
+    return p;
+}
+#endif
