@@ -553,8 +553,10 @@ static int singularish(vt_status st)
  * articulated route's estimate is a product of the pivots' ratio and the rows' condition, and
  * can sit orders of magnitude from the augmented matrix's). One NONFINITE and the other OK with
  * finite outputs: only at overflow's edge (inputs ≥ EDGE_INPUT, or the OK route's scales times
- * its 1/rcond ≥ EDGE_OUTPUT); at that edge a singular refusal too (an M* that overflowed). Both fail: singular, dependent and NONFINITE may swap; any other
- * pair of different statuses is a disagreement. Returns 1 when both are OK. */
+ * its 1/rcond ≥ EDGE_OUTPUT); at that edge a singular refusal too (an M* that overflowed). Both
+ * fail: singular, dependent and NONFINITE may swap, and a failing user function (CALLBACK) may
+ * stand beside any refusal (the routes meet the two in different orders); any other pair of
+ * different statuses is a disagreement. Returns 1 when both are OK. */
 #define NEAR 1e6
 
 static int consistent(const char *pair, const vt_model *m, vt_status sa, const vt_data *a, vt_status sb,
@@ -562,7 +564,9 @@ static int consistent(const char *pair, const vt_model *m, vt_status sa, const v
 {
     if (sa == VT_OK && sb == VT_OK) return 1;
     if (sa != VT_OK && sb != VT_OK) {
-        const int ok = sa == sb || ((singularish(sa) || sa == VT_ERR_NONFINITE) && (singularish(sb) || sb == VT_ERR_NONFINITE));
+        /* a failing user function may be reached before or after another refusal, by route */
+        const int ok = sa == sb || ((singularish(sa) || sa == VT_ERR_NONFINITE) && (singularish(sb) || sb == VT_ERR_NONFINITE)) ||
+                       sa == VT_ERR_CALLBACK || sb == VT_ERR_CALLBACK;
         if (!ok)
             fail("%s: statuses %s (%s) and %s (%s)", pair, vt_status_string(sa), a->message, vt_status_string(sb),
                  b->message);
