@@ -39,6 +39,130 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
     return buf;
 }
 
+/* Round-off of exact zeros. M*_aa and Φ_q's entries are sums whose terms cancel exactly at some
+ * poses (a point mass on a rate's axis: v + ω × c = 0; a point drive at a spherical joint's
+ * centre), and what is computed there is round-off of the terms' size, not a small inertia or a
+ * small row. Each is judged against the magnitude of what it was summed from, never by itself:
+ *   rate a   M*_aa = Σ_k m_k |v_a + ω_a × c_k|² + u^T J'_k u over the bodies k it moves, whose
+ *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k: round-off
+ *            when M*_aa ≤ (τ ε)² T_a + τ ε R_a (a velocity that cancels to τ ε of its terms, then
+ *            squared; the rotational part, products of J' with rotations, to first order)
+ *   row r    Φ_q,ra = Σ_j Φ_x,rj S_ja over the row's two bodies, terms bounded by B_ra = Σ_j
+ *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| |r| for a position, ½ |ω_a| for an Euler
+ *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖
+ * with τ = VT_ROUND_TAU (64) and ε = DBL_EPSILON. (v_a, ω_a) is rate a's twist (d->twist), the one
+ * both paths build S and M* from. Joint drives' and couplings' rows are exact (unit entries), and
+ * p^T p − 1's row is 2 p^T: not judged. */
+void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T)
+{
+    for (int k = 0; k < 4; k++) w[k] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *c = d->x + vt_xoff(i), *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
+        const double rc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        w[4 * i] = mi, w[4 * i + 1] = mi * rc, w[4 * i + 2] = mi * rc * rc;
+        w[4 * i + 3] = fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
+    }
+    vt_subtree_sum(m, w, 4);
+    for (int a = 0; a < m->nv; a++) {
+        const double *tw = d->twist + 6 * a, *s = w + 4 * m->dof_body[a];
+        const double wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
+        T[2 * a] = vn * vn * s[0] + 2.0 * vn * wn * s[1] + wn * wn * s[2];
+        T[2 * a + 1] = wn * wn * s[3];
+    }
+}
+
+double vt_rate_roundoff(const double *T, int a)
+{
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
+    return te * te * T[2 * a] + te * T[2 * a + 1];
+}
+
+/* rows that Φ_x S builds (points, lines, dot products, orientations) */
+static int judged_row(const vt_model *m, int r)
+{
+    const int kind = m->con_kind[r];
+    return kind != VT_ROW_JOINT && kind != VT_ROW_COUPLING && kind != VT_ROW_NORM;
+}
+
+/* B_r (as above) into B (nv) for row r; returns ‖B_r‖ */
+static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
+{
+    for (int a = 0; a < m->nv; a++) B[a] = 0.0;
+    for (int side = 0; side < 2; side++) {
+        const int b = m->con_body[2 * r + side];
+        if (b <= 0) continue;
+        const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->x + vt_xoff(b);
+        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]), fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        const double rc = sqrt(vt_dot3(c, c));
+        const int *path = m->path_dof + m->body_pathadr[b];
+        for (int k = 0; k < m->body_pathnum[b]; k++) {
+            const int a = path[k];
+            const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
+            int ax = 0;
+            const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
+            B[a] += fr * (vn + wn * rc) + fp * (own_p ? 1.0 : 0.5 * wn);
+        }
+    }
+    double n2 = 0.0;
+    for (int a = 0; a < m->nv; a++) n2 += B[a] * B[a];
+    return sqrt(n2);
+}
+
+static double row_norm(const vt_model *m, const vt_data *d, int r)
+{
+    double n2 = 0.0;
+    for (int a = 0; a < m->nv; a++) n2 += d->Phiq[r + (size_t)a * (size_t)m->nc] * d->Phiq[r + (size_t)a * (size_t)m->nc];
+    return sqrt(n2);
+}
+
+static const char *owner_name(const vt_model *m, int row, char *buf, size_t n);
+
+/* Rows that are round-off of a zero row, flagged 1 in flag (nc; NULL: not kept): the caller
+ * takes them as zero rows, dependent (rows_decide; vt_solve then names them). Then the rates whose M*_aa is round-off and that no
+ * row (other than a flagged one) touches beyond round-off: VT_ERR_SINGULAR, named (nothing
+ * fixes a motion that has no inertia). withM: M* is formed (else only the rows are judged).
+ * Returns the number of rows flagged or a negative vt_status. */
+static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
+{
+    const int nv = m->nv, nc = m->nc;
+    const size_t mark = vt_scratch_mark(d);
+    double *B = VT_SCRATCH(d, double, (size_t)nv * ((size_t)nc + 1), "terms of Φ_q's rows");
+    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
+    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    int *fl = VT_SCRATCH(d, int, nc + 1, "round-off rows");
+    if (!fl) return vt_scratch_fail(d, mark);
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
+    int zero_rows = 0;
+    for (int r = 0; r < nc; r++) {
+        double *Br = B + (size_t)r * (size_t)nv;
+        fl[r] = 0;
+        if (!judged_row(m, r)) {
+            for (int a = 0; a < nv; a++) Br[a] = 0.0; /* exact entries: any non-zero one counts */
+            continue;
+        }
+        const double bn = row_terms(m, d, r, Br), rn = row_norm(m, d, r);
+        if (!(rn > te * bn)) fl[r] = 1, zero_rows++;
+    }
+    if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
+    if (withM) {
+        vt_rate_terms(m, d, w, T);
+        for (int a = 0; a < nv; a++) {
+            const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
+            if (maa > vt_rate_roundoff(T, a)) continue;
+            int held = 0;
+            for (int r = 0; r < nc && !held; r++)
+                held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
+            if (held) continue;
+            vt_scratch_release(d, mark);
+            return vt_fail(d->message, VT_ERR_SINGULAR,
+                           "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is round-off of terms "
+                           "%.3g) and no row fixes it", a, m->dof_body[a], maa, T[2 * a] + T[2 * a + 1]);
+        }
+    }
+    vt_scratch_release(d, mark);
+    return zero_rows;
+}
+
 /* Small systems (n ≤ EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
  * itself, the factors applied to the identity in one multi-right-hand-side solve (as much work
  * as the factorization), costs fewer instructions than LAPACK's estimators (dgecon, dsycon_3:
@@ -320,6 +444,10 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     o->sig = VT_SCRATCH(d, double, k, "σ");
     o->g = VT_SCRATCH(d, double, nc, "row scaling");
     o->s = VT_SCRATCH(d, double, nv, "rate scaling");
+    int *flag = VT_SCRATCH(d, int, nc, "round-off rows");
+    if (!flag) return vt_scratch_fail(d, vt_scratch_mark(d)); /* the caller releases o's arrays */
+    const int ro = roundoff_check(m, d, flag, 0); /* a row that is round-off of zero counts as zero */
+    if (ro < 0) return ro;
     const size_t mark = vt_scratch_mark(d);
     double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
     int lw = 0;
@@ -335,11 +463,12 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
             const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
             rn += v * v;
         }
-        rmax = fmax(rmax, sqrt(rn));
+        if (!flag[r]) rmax = fmax(rmax, sqrt(rn));
     }
     for (int r = 0; r < nc; r++) {
         g[r] *= rmax > 0.0 ? 1.0 / rmax : 1.0;
-        for (int c = 0; c < nv; c++) P[r + (size_t)c * (size_t)nc] = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+        for (int c = 0; c < nv; c++)
+            P[r + (size_t)c * (size_t)nc] = flag[r] ? 0.0 : g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
     }
     /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
     if (!vt_all_finite(P, nc * nv) || !vt_all_finite(s, nv) || !vt_all_finite(d->Mstar, nv * nv))
@@ -517,30 +646,43 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  *
  *   Φ_q q̈ = γ,        Φ_q^T λ = M* q̈ − Q,                                   (5), (2)
  *
- * one LU factorization of Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes the
- * blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), the
- * mass metric of factor_solve) serving both solves (dgetrs, then its transpose; or products
- * with the inverse that small systems compute for their condition anyway). M* is not
- * factorized at all: a quarter of the augmented matrix's size, an eighth of its work. The two
- * solves in sequence amplify errors by cond(Φ_q D) each, so the reported reciprocal condition is
- * squared, the scale of the augmented matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)).
- * Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
-int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
+ * one LU factorization of Φ̂ = G Φ_q C (LAPACK dgetf2, partial pivoting, unblocked: at these
+ * sizes the blocked dgetrf's recursion costs more than it saves) serving both solves (dgetrs,
+ * then its transpose; or products with the inverse that small systems compute for their
+ * condition anyway): Φ̂ y = G γ, q̈ = C y; Φ̂^T μ = C (M* q̈ − Q), λ = G μ. M* is not factorized
+ * at all: the motion is the rows' alone, and so is the question of its conditioning, which is
+ * kinematic (the pose), whatever the inertias. The scaling makes Φ̂ dimensionless and its
+ * condition independent of units and of the scene's frame: rows that measure angles by ρ and
+ * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
+ * parameters) by 1/ρ and those that translate by 1 (C), ρ the system's radius of gyration (a
+ * length of the mechanism, gyration_radius). The two solves in sequence amplify errors by
+ * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
+ * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
+ * same number. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
+int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, double *rcond_out)
 {
     const int n = m->nv;
-    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of Φ_q D");
-    sq->s = VT_SCRATCH(d, double, n, "scaling");
+    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of G Φ_q C");
+    sq->s = VT_SCRATCH(d, double, 2 * (size_t)n, "scalings C and G");
     sq->x = VT_SCRATCH(d, double, 2 * (size_t)n, "q̈ and M* q̈ − Q");
     sq->ipiv = VT_SCRATCH(d, int, n, "pivots");
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
-    double *A = sq->A, *s = sq->s, *x = sq->x;
-    scaling_diag(m, mdiag, stride, s);
-    double anorm = 0.0; /* ‖Φ_q D‖_1, the largest column sum, as the columns are scaled */
+    sq->g = sq->s + n;
+    double *A = sq->A, *s = sq->s, *g = sq->g, *x = sq->x;
+    const double rho = gyration_radius(m, d);
+    for (int a = 0; a < n; a++) {
+        const int i = m->dof_body[a];
+        int ax = 0;
+        const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
+        s[a] = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+    }
+    for (int r = 0; r < n; r++) g[r] = length_row(m, d, r) ? 1.0 : rho;
+    double anorm = 0.0; /* ‖G Φ_q C‖_1, the largest column sum */
     for (int c = 0; c < n; c++) {
         double cs = 0.0;
         for (int r = 0; r < n; r++) {
-            const double v = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+            const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
             A[r + (size_t)c * (size_t)n] = v;
             cs += fabs(v);
         }
@@ -572,10 +714,10 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
         const double *X = sq->X;
         for (int r = 0; r < n; r++) x[r] = 0.0;
         for (int c = 0; c < n; c++)
-            for (int r = 0; r < n; r++) x[r] += X[r + (size_t)c * (size_t)n] * d->gamma[c];
+            for (int r = 0; r < n; r++) x[r] += X[r + (size_t)c * (size_t)n] * (g[c] * d->gamma[c]);
     } else {
         const int one = 1;
-        memcpy(x, d->gamma, (size_t)n * sizeof(double));
+        for (int r = 0; r < n; r++) x[r] = g[r] * d->gamma[r];
         dgetrs_("N", &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     }
@@ -602,6 +744,7 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
         dgetrs_("T", &n, &one, sq->A, &n, sq->ipiv, g, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     }
+    for (int a = 0; a < n; a++) g[a] *= sq->g[a];
     if (!vt_all_finite(sq->x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
 }
@@ -612,7 +755,7 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
     const int n = m->nv;
     const size_t mark = vt_scratch_mark(d);
     vt_square sq;
-    int r = vt_square_first(m, d, &sq, d->Mstar, n + 1, rcond_out);
+    int r = vt_square_first(m, d, &sq, rcond_out);
     if (r == 0) {
         memcpy(sq.h, d->Q, (size_t)n * sizeof(double)); /* h = M* q̈ − Q */
         cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, sq.x, 1, -1.0, sq.h, 1);
@@ -835,6 +978,10 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
     vt_solve_reset(d);
     if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
+    /* round-off of an exact zero is neither a row nor an inertia: a rate without inertia that
+     * nothing fixes is refused here, zero rows are dependent (rows_decide below says so) */
+    const int zero_rows = roundoff_check(m, d, NULL, 1);
+    if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
     if (m->joint_rows_only) {
         const int r = joint_rows_solve(m, d, &rcond);
@@ -864,8 +1011,9 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
     }
     const int square = nc == nv && nc > 0;
     vt_route route = square ? VT_ROUTE_SQUARE : nc > 0 && nc < nv ? VT_ROUTE_SCHUR : VT_ROUTE_AUGMENTED;
-    int r = 2; /* sol holds [q̈; λ], or [q̈; −λ] on the augmented route (factor_solve) */
-    if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
+    int r = zero_rows ? 1 : 2; /* sol holds [q̈; λ], or [q̈; −λ] on the augmented route (factor_solve) */
+    if (r == 1) {} /* a zero row: nothing solved, diagnosed below */
+    else if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
     else if (route == VT_ROUTE_SCHUR) r = schur_solve(m, d, sol, &rcond);
     if (r == 2) {
         if (route == VT_ROUTE_SCHUR) d->fallback |= VT_FALLBACK_SCHUR_PIVOT;
@@ -939,16 +1087,17 @@ int vt_rows_rank(const vt_model *m, vt_data *d)
 
 /* The recursive evaluation's square route (recursive.c): vt_solve's square route in two halves
  * with M* q̈ − Q computed between them by a Newton–Euler pass instead of from M* and Q (neither
- * is formed). vt_solve_square_begin: mdiag (nv) holds M*'s diagonal, which sets the scaling D;
- * the route's state goes to *sq on the arena (the caller releases it), q̈ to sq->x, the
+ * is formed). vt_solve_square_begin: the route's state goes to *sq on the arena (the caller releases it), q̈ to sq->x, the
  * condition to *rcond. Returns 0, 1 (ill-conditioned: the caller falls back to vt_solve, which
  * diagnoses it) or a negative vt_status. vt_solve_square_end: with h = M* q̈ − Q in sq->h, λ,
  * and everything vt_solve sets on success. */
-int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
+int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, double *rcond)
 {
     if (!vt_all_finite(d->gamma, m->nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
-    return vt_square_first(m, d, sq, mdiag, 1, rcond);
+    const int zero_rows = roundoff_check(m, d, NULL, 0); /* a zero row: the general route diagnoses it */
+    if (zero_rows) return zero_rows < 0 ? zero_rows : 1;
+    return vt_square_first(m, d, sq, rcond);
 }
 
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond)

@@ -343,6 +343,32 @@ static void test_bricard(void **state)
 /* as many rows as rates (the RSUR four-bar, the crank driven): (5) is solved through an LU of
  * Φ_q alone; against the whole augmented matrix by a general LU (dgesv), and its condition
  * reciprocal condition against the exact one of the scaled Φ_q (explicit inverse), squared */
+/* ρ, the radius of gyration of all bodies about their common centre of mass, from the model's
+ * masses and inertias and the bodies' positions: ρ² Σ m = Σ (tr J'/2 + m |c − c_G|²) */
+static double test_gyration_radius(const vt_model *m, const vt_data *d)
+{
+    double mt = 0.0, cg[3] = {0, 0, 0}, i2 = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        mt += m->body_mass[i];
+        for (int k = 0; k < 3; k++) cg[k] += m->body_mass[i] * d->x[7 * (i - 1) + k];
+    }
+    for (int k = 0; k < 3; k++) cg[k] /= mt;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *J = m->body_inertia + 9 * i;
+        double r2 = 0.0;
+        for (int k = 0; k < 3; k++) r2 += (d->x[7 * (i - 1) + k] - cg[k]) * (d->x[7 * (i - 1) + k] - cg[k]);
+        i2 += 0.5 * (J[0] + J[4] + J[8]) + m->body_mass[i] * r2;
+    }
+    return sqrt(i2 / mt);
+}
+
+/* a row that measures a length (a point or line row, or a joint drive on a translation); the
+ * four-bar's and the arms' rows here: point rows of drives and cut joints, dot rows, rotation drives */
+static int test_row_is_length(const vt_model *m, int r)
+{
+    return m->con_kind[r] == VT_ROW_POINT || m->con_kind[r] == VT_ROW_LINE;
+}
+
 static void test_square_constraints(void **state)
 {
     (void)state;
@@ -377,12 +403,15 @@ static void test_square_constraints(void **state)
             assert_near(d->qdd[k], x[k], 1e-11 * qs);
             assert_near(d->lambda[k], -x[nv + k], 1e-11 * ls);
         }
-        /* exact 1-norm condition of Φ_q D, D = diag(M*_aa^(-1/2)) */
+        /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ρ; rates that turn
+         * by 1/ρ; ρ the radius of gyration (all of the four-bar's rates turn; its rows: the
+         * crank's joint drive an angle, the cut joint's point rows lengths, its dot rows angles) */
+        const double rho = test_gyration_radius(m, d);
         double an = 0.0, in = 0.0;
         for (int c = 0; c < nv; c++) {
             double cs = 0.0;
             for (int r = 0; r < nv; r++) {
-                A[r + c * nv] = d->Phiq[r + c * nv] / sqrt(d->Mstar[c + c * nv]);
+                A[r + c * nv] = d->Phiq[r + c * nv] / rho * (test_row_is_length(m, r) ? 1.0 : rho);
                 Ainv[r + c * nv] = r == c;
                 cs += fabs(A[r + c * nv]);
             }
