@@ -41,6 +41,7 @@
  *   SCHUR, AUGMENTED, REDUNDANT: src/solve.c), which also diagnose, and the reactions (25)-(28)
  *   as in the dense path.
  */
+#include <float.h>
 #include <string.h>
 
 #include "internal.h"
@@ -509,9 +510,13 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
                 for (int r = 0; r < 6; r++) p[r] += Ua[r] * d->qdd[a];
                 continue;
             }
-            const double Da = dot6(s, Ua);
-            const double piv = Da / inertia_quad(Ic + 13 * i, s, s + 3);
-            if (!(piv >= PIVOT_MIN)) return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
+            const double Da = dot6(s, Ua), *Ii = Ic + 13 * i;
+            const double piv = Da / inertia_quad(Ii, s, s + 3);
+            /* D_a is a difference of terms about O as large as (|w| (tr J̄_O)^½ + |v| m̄^½)²: below
+             * VT_ROUND_TAU ε of them it is round-off of an exact zero, not inertia */
+            const double tw = sqrt(vt_dot3(s, s) * (Ii[4] + Ii[8] + Ii[12])) + sqrt(vt_dot3(s + 3, s + 3) * Ii[0]);
+            if (!(piv >= PIVOT_MIN) || !(Da > VT_ROUND_TAU * DBL_EPSILON * tw * tw))
+                return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
             const double inv = 1.0 / Da;

@@ -605,7 +605,7 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
     if (!qdd) return vt_scratch_fail(d, mark);
     for (int c = 0; c < nv; c++) qdd[c] = 0.0;
     int k = 0;
-    for (int c = 0; c < nv; c++)
+    for (int c = nv - 1; c >= 0; c--) /* descending: leaf first, as the articulated pivots */
         if (m->dof_drive[c] < 0) freev[k++] = c;
     for (int r = 0; r < nc; r++) qdd[m->con_dof[r]] = d->gamma[r];
     for (int a = 0; a < nf; a++) {
@@ -620,12 +620,26 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
         for (int r = 0; r < nc; r++) v -= d->Mstar[freev[i] + (size_t)m->con_dof[r] * (size_t)nv] * d->gamma[r];
         b[i] = v * s[i];
     }
-    double anorm = 0.0, rcond = 0.0;
-    int st = norm1_sym(d, K, nf, &anorm);
-    if (!st) st = chol_solve(d, K, nf, anorm, b, &rcond);
-    if (st) return vt_scratch_release(d, mark), st;
+    /* the condition: min/max of the pivots (L_kk², each relative to its unit diagonal), as the
+     * articulated route's over the same free rates in the same order */
+    double rcond = 0.0;
+    int info = 0;
+    if (nf > 0) dpotf2_("L", &nf, K, &nf, &info, 1);
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
+    if (info == 0) {
+        double pmin = 1.0, pmax = 0.0;
+        for (int a = 0; a < nf; a++) {
+            const double p = K[a + (size_t)a * (size_t)nf] * K[a + (size_t)a * (size_t)nf];
+            pmin = p < pmin ? p : pmin;
+            pmax = p > pmax ? p : pmax;
+        }
+        rcond = nf > 0 ? pmin / pmax : 1.0;
+    }
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
+    const int one = 1;
+    if (nf > 0) dpotrs_("L", &nf, &one, K, &nf, b, &nf, &info, 1);
+    if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
     for (int i = 0; i < nf; i++) qdd[freev[i]] = b[i] * s[i];
     if (!vt_all_finite(qdd, nv))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
@@ -795,11 +809,14 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     double *x = sol, *lam = sol + nv;
     scaling(m, d, s, 1);
     const double c = s[nv];
+    /* M̃ with its rates in descending order (P M̃ P, P the reversal): leaf first, the order of
+     * the articulated-body pivots (no fill-in on a tree; M* is stored whole) */
     for (int j = 0; j < nv; j++) {
-        const double *restrict Mc = d->Mstar + (size_t)j * (size_t)nv;
+        const int cj = nv - 1 - j;
+        const double *restrict Mc = d->Mstar + (size_t)cj * (size_t)nv;
         double *restrict Lc = L + (size_t)j * (size_t)nv;
-        const double sj = s[j];
-        for (int i = j; i < nv; i++) Lc[i] = Mc[i] * s[i] * sj;
+        const double sj = s[cj];
+        for (int i = j; i < nv; i++) Lc[i] = Mc[nv - 1 - i] * s[nv - 1 - i] * sj;
     }
     int info = 0;
     dpotf2_("L", &nv, L, &nv, &info, 1);
@@ -814,8 +831,9 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     }
     /* B = [Φ̃^T, D Q], then L^-1 B */
     for (int r = 0; r < nc; r++)
-        for (int a = 0; a < nv; a++) B[a + (size_t)r * (size_t)nv] = c * d->Phiq[r + (size_t)a * (size_t)nc] * s[a];
-    for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[a] * s[a];
+        for (int a = 0; a < nv; a++)
+            B[a + (size_t)r * (size_t)nv] = c * d->Phiq[r + (size_t)(nv - 1 - a) * (size_t)nc] * s[nv - 1 - a];
+    for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[nv - 1 - a] * s[nv - 1 - a];
     cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nv, nrhs, 1.0, L, nv, B, nv);
     const double *Y = B, *z = B + (size_t)nc * (size_t)nv;
     /* S = Y^T Y and its right-hand side c γ − Y^T z. With a few rows (a point drive: 1 to 3)
@@ -858,6 +876,11 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
         cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nc, 1.0, Y, nv, lam, 1, 1.0, x, 1);
     }
     cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nv, L, nv, x, 1);
+    for (int a = 0; a < nv - 1 - a; a++) { /* back to ascending order */
+        const double t = x[a];
+        x[a] = x[nv - 1 - a];
+        x[nv - 1 - a] = t;
+    }
     for (int a = 0; a < nv; a++) x[a] *= s[a];
     for (int r = 0; r < nc; r++) lam[r] *= c;
     vt_scratch_release(d, mark);

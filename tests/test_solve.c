@@ -578,8 +578,13 @@ static void test_schur(void **state)
             for (int c = 0; c < nv; c++) rn += pow(d->Phiq[r + c * nc] * sc[c], 2);
             rmax = fmax(rmax, sqrt(rn));
         }
+        /* M* scaled to unit diagonal, its rates in descending order (leaf first: the articulated
+         * pivots' order, the same number on the recursive path) */
         for (int c = 0; c < nv; c++)
-            for (int r = 0; r < nv; r++) L[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
+            for (int r = 0; r < nv; r++) {
+                const int rr = nv - 1 - r, cc = nv - 1 - c;
+                L[r + c * nv] = d->Mstar[rr + cc * nv] * sc[rr] * sc[cc];
+            }
         dpotrf_("L", &nv, L, &nv, &info, 1);
         assert_int_equal(info, 0);
         double lmin = 1e300, lmax = 0.0;
