@@ -324,6 +324,9 @@ int vt_dgelsd_iwork(int m, int n);
  * n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above, 0 when S is not positive
  * definite (nothing solved). Returns 0 or a negative vt_status (solve.c). */
 int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
+/* the smallest grip² of the point drives' rows (1 without any): how much of what the rates can
+ * move the driven point by lies along the driven direction (solve.c) */
+double vt_rows_grip(const vt_model *m, const vt_data *d);
 /* vt_reactions without the argument checks (ẍ and α from d->qdd) */
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar

@@ -574,7 +574,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     double rcond = 0.0;
     const int st = vt_solve_spd(d, S, nc, lam, &rcond);
     if (st) return st;
-    rcond *= pmin / pmax;
+    rcond *= pmin / pmax * (nc > 0 ? vt_rows_grip(m, d) : 1.0);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
     for (int a = 0; a < nv; a++) {

@@ -243,23 +243,44 @@ static int norm1_sym(vt_data *d, const double *K, int n, double *out)
 
 int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
 {
-    if (n <= 1) { /* one row: S is a number, its condition exactly 1 */
-        *rcond = n == 0 || S[0] > 0.0 ? 1.0 : 0.0;
-        if (n == 1 && *rcond > 0.0) b[0] /= S[0];
-        return 0;
+    /* S to unit diagonal first (E S E, E = diag(S_rr^(-1/2)); b by E, the solution by E after):
+     * its condition then measures how independent the rows are, not their sizes */
+    for (int r = 0; r < n; r++) {
+        const double srr = S[r + (size_t)r * (size_t)n];
+        if (!(srr > 0.0)) return *rcond = 0.0, 0; /* not positive definite: nothing solved */
     }
-    double snorm = 0.0;
-    const int st = norm1_sym(d, S, n, &snorm);
-    return st ? st : chol_solve(d, S, n, snorm, b, rcond);
+    for (int c = 0; c < n; c++) {
+        const double ec = 1.0 / sqrt(S[c + (size_t)c * (size_t)n]);
+        for (int r = c + 1; r < n; r++) S[r + (size_t)c * (size_t)n] *= ec / sqrt(S[r + (size_t)r * (size_t)n]);
+    }
+    double *e = NULL;
+    const size_t mark = vt_scratch_mark(d);
+    if (n > 0 && !(e = VT_SCRATCH(d, double, n, "unit diagonal"))) return vt_scratch_fail(d, mark);
+    for (int r = 0; r < n; r++) {
+        const double er = 1.0 / sqrt(S[r + (size_t)r * (size_t)n]);
+        if (e) e[r] = er;
+        b[r] *= er;
+        S[r + (size_t)r * (size_t)n] = 1.0;
+    }
+    int st = 0;
+    if (n <= 1) *rcond = 1.0; /* one row: S is 1, its condition exactly 1, b solved */
+    else {
+        double snorm = 0.0;
+        st = norm1_sym(d, S, n, &snorm);
+        if (!st) st = chol_solve(d, S, n, snorm, b, rcond);
+    }
+    for (int r = 0; r < n && e; r++) b[r] *= e[r];
+    vt_scratch_release(d, mark);
+    return st;
 }
 
 /* The symmetric scaling D of (5): the rates by the mass metric, d_a = M*_aa^(-1/2), into
- * s[0..nv); with rows, every constraint row by one common factor, 1 / (largest row norm of
- * Φ_q D), into s[nv..nv+nc). One factor for all rows keeps their relative sizes: a drive whose
- * row shrinks toward a singular pose (an arm reaching its full stretch) shows in the condition
- * estimate instead of being scaled away, as a row-by-row equilibration (LAPACK's dsyequb)
- * would do. scaling_diag: the rates' part from M*'s diagonal mdiag[a stride] (s may be mdiag
- * itself with stride 1). */
+ * s[0..nv); with rows, each constraint row by its own norm in that metric, 1 / ‖(Φ_q D)_r‖, into
+ * s[nv..nv+nc) (a row without entries: 1). Row by row, so that rows on bodies of very different
+ * masses (a joint drive on a 1e-9 kg link beside p^T p − 1 on a 30 kg base) are not taken for
+ * rows losing their grip; a row that does lose its grip (a point drive at an arm's full
+ * stretch) is measured apart, vt_rows_grip. scaling_diag: the rates' part from M*'s diagonal
+ * mdiag[a stride] (s may be mdiag itself with stride 1). */
 static void scaling_diag(const vt_model *m, const double *mdiag, int stride, double *s)
 {
     for (int a = 0; a < m->nv; a++) {
@@ -273,16 +294,57 @@ static void scaling(const vt_model *m, const vt_data *d, double *s, int rows)
     const int nv = m->nv, nc = m->nc;
     scaling_diag(m, d->Mstar, nv + 1, s);
     if (!rows) return;
-    double rmax = 0.0;
     for (int r = 0; r < nc; r++) {
         double rn = 0.0;
         for (int c = 0; c < nv; c++) {
             const double v = d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
             rn += v * v;
         }
-        rmax = fmax(rmax, sqrt(rn));
+        s[nv + r] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
     }
-    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+}
+
+/* A point drive's grip: the row is e · V_a, V_a = v_a + ω_a × P the velocity rate a's twist
+ * gives the driven point P; the whole of V_a is what the rates can move the point by, the row
+ * what of it lies along the driven direction e. Its grip is the ratio of the two, in the
+ * rates' kinematic scaling (the square route's C: rates that turn by 1/ρ):
+ *   grip_r = ‖(e · V_a C_a)_a‖ / ‖(|V_a| C_a)_a‖   in [0, 1]
+ * 1 while the rates move P along e as well as across it, 0 where no rate moves P along e (an
+ * arm stretched along e: a row that has lost its grip, with nothing else to show it when it is
+ * the only row). Independent of the units, of the scene's frame and position, and of the
+ * inertias. vt_rows_grip returns the smallest grip² over the point drives' rows (1 without). */
+static double gyration_radius(const vt_model *m, const vt_data *d);
+double vt_rows_grip(const vt_model *m, const vt_data *d)
+{
+    double worst = 1.0, rho = 0.0;
+    for (int r = 0; r < m->nc; r++) {
+        if (m->con_kind[r] != VT_ROW_POINT || vt_row_owner_kind(m, r) != VT_OWNER_DRIVE) continue;
+        if (rho == 0.0) rho = gyration_radius(m, d);
+        const vt_drive_def *dr = m->drive + m->con_owner[r];
+        const int b = dr->body;
+        const double *A = d->A + 9 * b, *c = d->x + vt_xoff(b);
+        double P[3];
+        vt_mulmat3(P, A, dr->point);
+        for (int k = 0; k < 3; k++) P[k] += c[k];
+        double num = 0.0, den = 0.0;
+        const int *path = m->path_dof + m->body_pathadr[b];
+        for (int k = 0; k < m->body_pathnum[b]; k++) {
+            const int a = path[k], i = m->dof_body[a];
+            const double *tw = d->twist + 6 * a;
+            int ax = 0;
+            const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
+            const double ca = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+            double V[3];
+            vt_copy3(V, tw + 3);
+            vt_addcross3(V, tw, P);
+            const double e = d->Phiq[r + (size_t)a * (size_t)m->nc] * ca;
+            num += e * e;
+            den += vt_dot3(V, V) * ca * ca;
+        }
+        const double g2 = den > 0.0 ? num / den : 0.0;
+        worst = g2 < worst ? g2 : worst;
+    }
+    return worst;
 }
 
 /* Factor and solve the augmented system of (5) into b = [q̈; −λ] (nv + nc); the condition
@@ -338,6 +400,7 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
         dsycon_3_("L", &N, K, &N, E, ipiv, &anorm, &rcond, work, iwork, &info, 1);
         if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsycon_3 info %d", info);
     }
+    if (nc > 0) rcond *= vt_rows_grip(m, d);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
     double *t = res + N;
@@ -808,7 +871,6 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     if (!s) return vt_scratch_fail(d, mark);
     double *x = sol, *lam = sol + nv;
     scaling(m, d, s, 1);
-    const double c = s[nv];
     /* M̃ with its rates in descending order (P M̃ P, P the reversal): leaf first, the order of
      * the articulated-body pivots (no fill-in on a tree; M* is stored whole) */
     for (int j = 0; j < nv; j++) {
@@ -832,7 +894,7 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     /* B = [Φ̃^T, D Q], then L^-1 B */
     for (int r = 0; r < nc; r++)
         for (int a = 0; a < nv; a++)
-            B[a + (size_t)r * (size_t)nv] = c * d->Phiq[r + (size_t)(nv - 1 - a) * (size_t)nc] * s[nv - 1 - a];
+            B[a + (size_t)r * (size_t)nv] = s[nv + r] * d->Phiq[r + (size_t)(nv - 1 - a) * (size_t)nc] * s[nv - 1 - a];
     for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[nv - 1 - a] * s[nv - 1 - a];
     cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nv, nrhs, 1.0, L, nv, B, nv);
     const double *Y = B, *z = B + (size_t)nc * (size_t)nv;
@@ -844,7 +906,7 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     if (few) {
         for (int r = 0; r < nc; r++) {
             const double *yr = Y + (size_t)r * (size_t)nv;
-            double t = c * d->gamma[r];
+            double t = s[nv + r] * d->gamma[r];
             for (int a = 0; a < nv; a++) t -= yr[a] * z[a];
             lam[r] = t;
             for (int k = r; k < nc; k++) {
@@ -856,13 +918,13 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
         }
     } else {
         cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, nc, nv, 1.0, Y, nv, 0.0, S, nc);
-        for (int r = 0; r < nc; r++) lam[r] = c * d->gamma[r];
+        for (int r = 0; r < nc; r++) lam[r] = s[nv + r] * d->gamma[r];
         cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
     const int st = vt_solve_spd(d, S, nc, lam, &rcond);
     if (st) return vt_scratch_release(d, mark), st;
-    rcond *= (lmin / lmax) * (lmin / lmax);
+    rcond *= (lmin / lmax) * (lmin / lmax) * vt_rows_grip(m, d);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
     /* ỹ = L^-T (z + Y λ̃) */
@@ -882,7 +944,7 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
         x[nv - 1 - a] = t;
     }
     for (int a = 0; a < nv; a++) x[a] *= s[a];
-    for (int r = 0; r < nc; r++) lam[r] *= c;
+    for (int r = 0; r < nc; r++) lam[r] *= s[nv + r];
     vt_scratch_release(d, mark);
     if (!vt_all_finite(x, nv + nc)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;

@@ -343,25 +343,6 @@ static void test_bricard(void **state)
 /* as many rows as rates (the RSUR four-bar, the crank driven): (5) is solved through an LU of
  * Φ_q alone; against the whole augmented matrix by a general LU (dgesv), and its condition
  * reciprocal condition against the exact one of the scaled Φ_q (explicit inverse), squared */
-/* ρ, the radius of gyration of all bodies about their common centre of mass, from the model's
- * masses and inertias and the bodies' positions: ρ² Σ m = Σ (tr J'/2 + m |c − c_G|²) */
-static double test_gyration_radius(const vt_model *m, const vt_data *d)
-{
-    double mt = 0.0, cg[3] = {0, 0, 0}, i2 = 0.0;
-    for (int i = 1; i <= m->nbody; i++) {
-        mt += m->body_mass[i];
-        for (int k = 0; k < 3; k++) cg[k] += m->body_mass[i] * d->x[7 * (i - 1) + k];
-    }
-    for (int k = 0; k < 3; k++) cg[k] /= mt;
-    for (int i = 1; i <= m->nbody; i++) {
-        const double *J = m->body_inertia + 9 * i;
-        double r2 = 0.0;
-        for (int k = 0; k < 3; k++) r2 += (d->x[7 * (i - 1) + k] - cg[k]) * (d->x[7 * (i - 1) + k] - cg[k]);
-        i2 += 0.5 * (J[0] + J[4] + J[8]) + m->body_mass[i] * r2;
-    }
-    return sqrt(i2 / mt);
-}
-
 /* a row that measures a length (a point or line row, or a joint drive on a translation); the
  * four-bar's and the arms' rows here: point rows of drives and cut joints, dot rows, rotation drives */
 static int test_row_is_length(const vt_model *m, int r)
@@ -406,7 +387,7 @@ static void test_square_constraints(void **state)
         /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ρ; rates that turn
          * by 1/ρ; ρ the radius of gyration (all of the four-bar's rates turn; its rows: the
          * crank's joint drive an angle, the cut joint's point rows lengths, its dot rows angles) */
-        const double rho = test_gyration_radius(m, d);
+        const double rho = vt_test_gyration_radius(m, d);
         double an = 0.0, in = 0.0;
         for (int c = 0; c < nv; c++) {
             double cs = 0.0;
@@ -598,7 +579,8 @@ static void test_schur(void **state)
             for (int r = 0; r < nv; r++) Mt[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
         for (int r = 0; r < nc; r++)
             for (int a = 0; a < nv; a++) P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
-        const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc);
+        const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc) *
+                              vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
         assert_near(d->rcond, expect, 1e-8 * expect);
         vt_data_free(d);
         vt_model_free(m);
