@@ -45,8 +45,8 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
  * small row. Each is judged against the magnitude of what it was summed from, never by itself:
  *   rate a   M*_aa = Σ_k m_k |v_a + ω_a × c_k|² + u^T J'_k u over the bodies k it moves, whose
  *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k: round-off
- *            when M*_aa ≤ (τ ε)² T_a + τ ε R_a (a velocity that cancels to τ ε of its terms, then
- *            squared; the rotational part, products of J' with rotations, to first order)
+ *            when M*_aa ≤ τ ε (T_a + R_a) (first order: the composite-inertia form s · Ī s about O
+ *            subtracts terms of that size; S^T M S's squares would leave less)
  *   row r    Φ_q,ra = Σ_j Φ_x,rj S_ja over the row's two bodies, terms bounded by B_ra = Σ_j
  *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| |r| for a position, ½ |ω_a| for an Euler
  *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖
@@ -73,8 +73,7 @@ void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T)
 
 double vt_rate_roundoff(const double *T, int a)
 {
-    const double te = VT_ROUND_TAU * DBL_EPSILON;
-    return te * te * T[2 * a] + te * T[2 * a + 1];
+    return VT_ROUND_TAU * DBL_EPSILON * (T[2 * a] + T[2 * a + 1]);
 }
 
 /* rows that Φ_x S builds (points, lines, dot products, orientations) */
