@@ -298,17 +298,16 @@ void vt_solve_reset(vt_data *d);
 /* the rank of Φ_q to round-off, in the scaling of the redundant decision (from the current M*
  * and Φ_q), or a negative vt_status (solve.c) */
 int vt_rows_rank(const vt_model *m, vt_data *d);
-/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of G Φ_q C
- * and, up to 16 rates, its inverse; C (s) and G (g); q̈ (x) and then M* q̈ − Q, overwritten by
- * λ (h) */
+/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of R Φ_q D
+ * (X: NULL, no inverse kept); D (s) and R (g); q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
 typedef struct {
     double *A, *X, *s, *g, *x, *h;
     int *ipiv;
 } vt_square;
-int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, double *rcond);
+int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);
 int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
-/* the same for the recursive evaluation, and its outcome */
-int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, double *rcond);
+/* the same for the recursive evaluation: from M*'s diagonal mdiag (nv), and its outcome */
+int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
 /* Round-off of exact zeros (solve.c): T (2 nv) the magnitudes of the terms of each rate's M*_aa,
  * T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,

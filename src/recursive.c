@@ -323,8 +323,31 @@ static vt_status factorized_instant(const vt_model *m, vt_data *d)
     return st ? st : vt_reactions_impl(m, d);
 }
 
-/* Square Φ_q (as many rows as rates, e.g. the crank-driven four-bar): q̈ = Φ_q^-1 γ needs no
- * inertia (its scaling and condition are kinematic: vt_solve's square route), and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
+/* M*'s diagonal without the composite inertias: M*_aa = s_a · (Ī_i s_a) is twice the kinetic
+ * energy of the bodies k below rate a moving with its twist s_a = (w, v) alone,
+ *   M*_aa = Σ_k  m_k |v + w × c_k|² + u^T J'_k u,   u = A_k^T w,
+ * summed body by body over each body's path (no base bodies: their ṗ rates are not twists). */
+static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
+{
+    memset(diag, 0, (size_t)m->nv * sizeof(double));
+    for (int k = 1; k <= m->nbody; k++) {
+        const double *c = d->x + vt_xoff(k), *A = d->A + 9 * k, *J = m->body_inertia + 9 * k, mass = m->body_mass[k];
+        const int *path = m->path_dof + m->body_pathadr[k];
+        for (int p = 0; p < m->body_pathnum[k]; p++) {
+            const double *w = d->twist + 6 * path[p], *v = w + 3;
+            double t[3], u[3], Ju[3];
+            vt_copy3(t, v);
+            vt_addcross3(t, w, c);
+            vt_mulmat3t(u, A, w);
+            vt_mulmat3(Ju, J, u);
+            diag[path[p]] += mass * vt_dot3(t, t) + vt_dot3(u, Ju);
+        }
+    }
+}
+
+/* Square Φ_q (as many rows as rates, e.g. the crank-driven four-bar): q̈ = Φ_q^-1 γ needs only
+ * M*'s diagonal, for the solves' scaling (its condition is kinematic: vt_solve's square route),
+ * and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
  * the needed wrenches W at the full accelerations, one inward pass as for joint drives: neither
  * M* nor Q is formed. Where Φ_q is ill-conditioned, the general path diagnoses it. */
 static vt_status square_instant(const vt_model *m, vt_data *d)
@@ -332,8 +355,11 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     const int nv = m->nv;
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
     double rcond = 0.0;
+    double *mdiag = VT_SCRATCH(d, double, nv, "M*'s diagonal");
+    if (!mdiag) return vt_scratch_fail(d, mark);
+    mass_diagonal(m, d, mdiag);
     vt_square sq;
-    const int r = vt_solve_square_begin(m, d, &sq, &rcond);
+    const int r = vt_solve_square_begin(m, d, &sq, mdiag, &rcond);
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
     if (r == 1) {
         vt_scratch_release(d, mark);

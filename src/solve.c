@@ -722,30 +722,37 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  *
  *   Φ_q q̈ = γ,        Φ_q^T λ = M* q̈ − Q,                                   (5), (2)
  *
- * one LU factorization of Φ̂ = G Φ_q C (LAPACK dgetf2, partial pivoting, unblocked: at these
- * sizes the blocked dgetrf's recursion costs more than it saves) serving both solves (dgetrs,
- * then its transpose; or products with the inverse that small systems compute for their
- * condition anyway): Φ̂ y = G γ, q̈ = C y; Φ̂^T μ = C (M* q̈ − Q), λ = G μ. M* is not factorized
- * at all: the motion is the rows' alone, and so is the question of its conditioning, which is
- * kinematic (the pose), whatever the inertias. The scaling makes Φ̂ dimensionless and its
- * condition independent of units and of the scene's frame: rows that measure angles by ρ and
+ one LU factorization of R Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes
+ * the blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), R each row to
+ * unit norm in that metric) serving both solves (dgetrs, then its transpose): M* is not
+ * factorized at all. The motion is the rows' alone, and so is the question of its
+ * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
+ * the condition of Φ̂ = G Φ_q C (its own LU; exact from the inverse up to 16 rates, dgecon
+ * above), a scaling that makes Φ̂ dimensionless and its condition independent of units and of
+ * the scene's frame: rows that measure angles by ρ and
  * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
  * parameters) by 1/ρ and those that translate by 1 (C), ρ the system's radius of gyration (a
  * length of the mechanism, gyration_radius). The two solves in sequence amplify errors by
  * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
  * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
  * same number. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
-int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, double *rcond_out)
+int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
 {
     const int n = m->nv;
-    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of G Φ_q C");
-    sq->s = VT_SCRATCH(d, double, 2 * (size_t)n, "scalings C and G");
+    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of R Φ_q D");
+    sq->s = VT_SCRATCH(d, double, 2 * (size_t)n, "scalings D and R");
     sq->x = VT_SCRATCH(d, double, 2 * (size_t)n, "q̈ and M* q̈ − Q");
     sq->ipiv = VT_SCRATCH(d, int, n, "pivots");
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
     sq->g = sq->s + n;
+    sq->X = NULL;
     double *A = sq->A, *s = sq->s, *g = sq->g, *x = sq->x;
+    /* the condition: of Φ̂ = G Φ_q C, on a copy */
+    const size_t mark = vt_scratch_mark(d);
+    double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
+    int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C");
+    if (!ip) return vt_scratch_fail(d, mark);
     const double rho = gyration_radius(m, d);
     for (int a = 0; a < n; a++) {
         const int i = m->dof_body[a];
@@ -759,44 +766,50 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, double *rcond_
         double cs = 0.0;
         for (int r = 0; r < n; r++) {
             const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
-            A[r + (size_t)c * (size_t)n] = v;
+            K[r + (size_t)c * (size_t)n] = v;
             cs += fabs(v);
         }
         anorm = cs > anorm ? cs : anorm;
     }
     int info = 0;
-    dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
-    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    dgetf2_(&n, &n, K, &n, ip, &info);
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     double rcond = 0.0;
-    sq->X = info == 0 ? small_inverse(d, n, 1) : NULL; /* kept for the second half */
-    if (sq->X) { /* the inverse X */
-        dgetrs_("N", &n, &n, A, &n, sq->ipiv, sq->X, &n, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-        rcond = rcond_from_inverse(sq->X, n, anorm);
+    double *X = info == 0 ? small_inverse(d, n, 0) : NULL;
+    if (X) { /* the inverse X */
+        dgetrs_("N", &n, &n, K, &n, ip, X, &n, &info, 1);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+        rcond = rcond_from_inverse(X, n, anorm);
     } else if (info == 0) {
-        const size_t mark = vt_scratch_mark(d);
         double *work = VT_SCRATCH(d, double, 4 * (size_t)n, "dgecon workspace");
         int *iwork = VT_SCRATCH(d, int, n, "dgecon integer workspace");
         if (!iwork) return vt_scratch_fail(d, mark);
-        dgecon_("1", &n, A, &n, &anorm, &rcond, work, iwork, &info, 1);
-        vt_scratch_release(d, mark);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
+        dgecon_("1", &n, K, &n, &anorm, &rcond, work, iwork, &info, 1);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
     }
+    vt_scratch_release(d, mark);
     *rcond_out = rcond * rcond;
     if (!(*rcond_out >= m->rcond_min)) return 1;
-    /* y = (Φ_q D)^-1 γ, q̈ = D y: with the inverse at hand (small systems) by loops, else with
-     * the LU factors */
-    if (sq->X) {
-        const double *X = sq->X;
-        for (int r = 0; r < n; r++) x[r] = 0.0;
-        for (int c = 0; c < n; c++)
-            for (int r = 0; r < n; r++) x[r] += X[r + (size_t)c * (size_t)n] * (g[c] * d->gamma[c]);
-    } else {
-        const int one = 1;
-        for (int r = 0; r < n; r++) x[r] = g[r] * d->gamma[r];
-        dgetrs_("N", &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    /* the solves: with R Φ_q D, D the mass metric and R each row to unit norm in it. Its LU's
+     * pivots then take the rows that act on heavy rates for those rates, and the substitutions
+     * keep apart what the structure keeps apart: a light link's drive force is not made of a
+     * heavy one's round-off (the inverse, a dense product, would mix them) */
+    scaling_diag(m, mdiag, stride, s);
+    for (int r = 0; r < n; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < n; c++) rn += d->Phiq[r + (size_t)c * (size_t)n] * s[c] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+        g[r] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
     }
+    for (int c = 0; c < n; c++)
+        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+    dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    if (info > 0) return *rcond_out = 0.0, 1; /* an exactly zero pivot after all */
+    /* y = (R Φ_q D)^-1 R γ, q̈ = D y */
+    const int one = 1;
+    for (int r = 0; r < n; r++) x[r] = g[r] * d->gamma[r];
+    dgetrs_("N", &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     for (int a = 0; a < n; a++) x[a] *= s[a];
     return 0;
 }
@@ -831,7 +844,7 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
     const int n = m->nv;
     const size_t mark = vt_scratch_mark(d);
     vt_square sq;
-    int r = vt_square_first(m, d, &sq, rcond_out);
+    int r = vt_square_first(m, d, &sq, d->Mstar, n + 1, rcond_out);
     if (r == 0) {
         memcpy(sq.h, d->Q, (size_t)n * sizeof(double)); /* h = M* q̈ − Q */
         cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, sq.x, 1, -1.0, sq.h, 1);
@@ -1171,17 +1184,18 @@ int vt_rows_rank(const vt_model *m, vt_data *d)
 
 /* The recursive evaluation's square route (recursive.c): vt_solve's square route in two halves
  * with M* q̈ − Q computed between them by a Newton–Euler pass instead of from M* and Q (neither
- * is formed). vt_solve_square_begin: the route's state goes to *sq on the arena (the caller releases it), q̈ to sq->x, the
+ * is formed). vt_solve_square_begin: mdiag (nv) holds M*'s diagonal, which scales the solves;
+ * the route's state goes to *sq on the arena (the caller releases it), q̈ to sq->x, the
  * condition to *rcond. Returns 0, 1 (ill-conditioned: the caller falls back to vt_solve, which
  * diagnoses it) or a negative vt_status. vt_solve_square_end: with h = M* q̈ − Q in sq->h, λ,
  * and everything vt_solve sets on success. */
-int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, double *rcond)
+int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
 {
     if (!vt_all_finite(d->gamma, m->nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
     const int zero_rows = roundoff_check(m, d, NULL, 0); /* a zero row: the general route diagnoses it */
     if (zero_rows) return zero_rows < 0 ? zero_rows : 1;
-    return vt_square_first(m, d, sq, rcond);
+    return vt_square_first(m, d, sq, mdiag, 1, rcond);
 }
 
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond)

@@ -1037,6 +1037,127 @@ static void test_roundoff_zeros(void **state)
     }
 }
 
+/* Mass ratios of 1e24 along a chain: five planar rods whose masses fall from 1e12 to 1e-12 kg (or
+ * rise), driven as
+ *   0  every joint (nothing factorized: rcond 1)
+ *   1  joints 1-3 and the tip's x, y (square: the rows fix the motion)
+ *   2  joints 1-2 and the tip's x, y (one rate free: Schur and articulated)
+ *   3  joint 1 alone (four free rates)
+ * at three states each. No failure on either path, no warning where the rows fix the motion
+ * (0, 1: the estimate is the pose's alone); each path's q̈ and λ satisfy
+ * (5) in the dense M*, Q and Φ_q, Φ_q q̈ = γ against ‖Φ_q,r‖ max|q̈| and each rate's
+ * M* q̈ − Q − Φ_q^T λ = 0 against the size of its own terms (a backward error that the light
+ * rods' rates, 1e24 below the heavy ones', cannot hide in) to 1e-14 / rcond; the paths agree
+ * (both; with free motion q̈ to 1e-14 / rcond, and the same estimate). With free motion the
+ * estimate can warn, and does where the answers lose digits: a 1e12 kg tip on 1e-12 kg links
+ * (the light links' q̈ hang on round-off of the tip's inertia; 6e-8), or two tip rows that act
+ * through links of 1e-6 and 1e-12 kg (5e-7). */
+static vt_model *ratio_chain(int rising, int drive)
+{
+    double mass[5];
+    for (int k = 0; k < 5; k++) mass[k] = pow(10.0, rising ? -12.0 + 6.0 * k : 12.0 - 6.0 * k);
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_test_add_rods(b, 5, 0.4, mass);
+    const int joints = drive == 0 ? 5 : drive == 1 ? 3 : drive == 2 ? 2 : 1;
+    for (int k = 0; k < joints; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = k + 1;
+        dr.f = vt_function_sine(0.3 + 0.2 * k, 0.4, 1.5, 0.2 * k);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    for (int c = 0; c < 2 && (drive == 1 || drive == 2); c++) {
+        vt_drive_def tip = vt_default_drive_def();
+        tip.type = VT_DRIVE_POINT;
+        tip.body = 5;
+        tip.index = c;
+        tip.point[0] = 0.2;
+        tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * c); /* only its derivatives matter here */
+        assert_true(vt_builder_add_drive(b, &tip) >= 0);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void residuals_hold(const vt_model *m, const vt_data *d, double tol)
+{
+    const int nv = m->nv, nc = m->nc;
+    const double qmax = vt_test_maxabs(d->qdd, nv); /* the rows are kinematic: q̈ normwise */
+    for (int r = 0; r < nc; r++) {
+        double v = -d->gamma[r], t = fabs(d->gamma[r]);
+        for (int a = 0; a < nv; a++) {
+            v += d->Phiq[r + a * nc] * d->qdd[a];
+            t += fabs(d->Phiq[r + a * nc]) * qmax;
+        }
+        if (!(fabs(v) <= tol * t + 1e-300)) fail_msg("row %d: Φ_q q̈ − γ = %.3g of terms %.3g", r, v, t);
+    }
+    for (int a = 0; a < nv; a++) {
+        double v = -d->Q[a], t = fabs(d->Q[a]);
+        for (int b = 0; b < nv; b++) {
+            v += d->Mstar[a + b * nv] * d->qdd[b];
+            t += fabs(d->Mstar[a + b * nv] * d->qdd[b]);
+        }
+        for (int r = 0; r < nc; r++) {
+            v -= d->Phiq[r + a * nc] * d->lambda[r];
+            t += fabs(d->Phiq[r + a * nc] * d->lambda[r]);
+        }
+        if (!(fabs(v) <= tol * t + 1e-300)) fail_msg("rate %d: M* q̈ − Q − Φ_q^T λ = %.3g of terms %.3g", a, v, t);
+    }
+}
+
+static void test_mass_ratios(void **state)
+{
+    (void)state;
+    double worst = 1.0;
+    for (int rising = 0; rising < 2; rising++)
+        for (int drive = 0; drive < 4; drive++) {
+            vt_model *m = ratio_chain(rising, drive);
+            vt_data *dr, *dd;
+            assert_ok(vt_data_create(&dr, m));
+            assert_ok(vt_data_create(&dd, m));
+            for (int k = 0; k < 3; k++) {
+                for (int c = 0; c < m->nv; c++) {
+                    dd->q[c] = 0.3 + 0.25 * c + 0.4 * k; /* bent: a regular pose */
+                    dd->qd[c] = 0.5 - 0.2 * c + 0.1 * k;
+                }
+                dd->time = 0.2 * k;
+                memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
+                memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
+                dr->time = dd->time;
+                assert_ok(vt_inverse_dynamics(m, dd));
+                assert_ok(vt_inverse_dynamics_recursive(m, dr));
+                /* both paths' answers in the dense equations, to what the estimate promises */
+                const double tol = fmax(1e-12, 1e-14 / fmin(dd->rcond, dr->rcond));
+                residuals_hold(m, dd, tol);
+                vt_data *dx;
+                assert_ok(vt_data_create(&dx, m));
+                memcpy(dx->q, dd->q, (size_t)m->nq * sizeof(double));
+                memcpy(dx->qd, dd->qd, (size_t)m->nv * sizeof(double));
+                dx->time = dd->time;
+                assert_ok(vt_inverse_dynamics(m, dx));
+                memcpy(dx->qdd, dr->qdd, (size_t)m->nv * sizeof(double));
+                memcpy(dx->lambda, dr->lambda, (size_t)m->nc * sizeof(double));
+                residuals_hold(m, dx, tol);
+                vt_data_free(dx);
+                if (drive < 2) { /* the rows fix the motion: the estimate is the pose's, 1e24 or not */
+                    both(m, dr, dd);
+                    if (dd->warning || dr->warning) fail_msg("rising %d drive %d state %d: warning", rising, drive, k);
+                } else { /* free motion: the paths agree to what the estimate says */
+                    for (int a = 0; a < m->nv; a++)
+                        assert_near(dr->qdd[a], dd->qdd[a], tol * (1.0 + vt_test_maxabs(dd->qdd, m->nv)));
+                    assert_near(dr->rcond, dd->rcond, tol * dd->rcond); /* itself computed to that */
+                }
+                worst = fmin(worst, fmin(dd->rcond, dr->rcond));
+            }
+            vt_data_free(dr);
+            vt_data_free(dd);
+            vt_model_free(m);
+        }
+    print_message("mass ratios 1e24: smallest rcond %.3g\n", worst);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1053,6 +1174,7 @@ int main(void)
         cmocka_unit_test(test_free_body),
         cmocka_unit_test(test_inertia_spread),
         cmocka_unit_test(test_roundoff_zeros),
+        cmocka_unit_test(test_mass_ratios),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
