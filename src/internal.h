@@ -318,10 +318,10 @@ void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T);
 double vt_rate_roundoff(const double *T, int a);
 /* dgelsd's integer workspace for an m x n problem (solve.c) */
 int vt_dgelsd_iwork(int m, int n);
-/* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten by the
- * factor; n ≤ 1 needs none), b solved in place, S's reciprocal condition into *rcond: 1 for
- * n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above, 0 when S is not positive
- * definite (nothing solved). Returns 0 or a negative vt_status (solve.c). */
+/* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten: scaled
+ * to unit diagonal, then factorized), b solved in place, the reciprocal condition of S at unit
+ * diagonal into *rcond: 1 for n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above,
+ * 0 when S is not positive definite (nothing solved). Returns 0 or a negative vt_status (solve.c). */
 int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
 /* the smallest grip² of the point drives' rows (1 without any): how much of what the rates can
  * move the driven point by lies along the driven direction (solve.c) */

@@ -12,7 +12,7 @@
  *                        (I s = (J_O w + h × v, m v + w × h)); composite Ī_i = Σ_subtree I_k
  *   M* (3)               M*_ab = s_b · (Ī_i s_a),  i the body of rate a, b on i's path
  *   M*_aa alone          Σ_k m_k |v_a + w_a × c_k|² + u^T J'_k u,  u = A_k^T w_a, k below rate a
- *                        (twice the kinetic energy of s_a; its terms judge round-off: src/solve.c)
+ *                        (twice the kinetic energy of s_a: the square path's scaling)
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
  *   W linear in q̈        W_k = W⁰_k + I_k T_k,  T_k = Σ_{a on k's path} s_a q̈_a
@@ -28,9 +28,10 @@
  *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum and without the
  *   rows' loads (articulated_instant); when every row is a joint drive (joint_rows_only) the
  *   driven rates' q̈ are known and only the free ones are solved, then the inward pass as above.
- *   rcond is S's exact condition (1 for one row) times min/max of M*'s pivots taken leaf first,
- *   each over its diagonal entry (the free rates' pivots alone with only joint-drive rows); a
- *   pivot below 1e-8 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
+ *   rcond is S's exact condition at unit diagonal (1 for one row) times min/max of M*'s pivots
+ *   taken leaf first, each over its diagonal entry (the free rates' pivots alone with only
+ *   joint-drive rows), times the point drives' grip²: vt_solve's number on the same system; a
+ *   pivot below 1e-8 or round-off of 0 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
  *   (VT_FALLBACK_ARTICULATED_CONDITION) hands the instant to the general route;
  * - SQUARE, as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q =
  *   S^T W̄ − qfrc from one inward pass (square_instant: neither M* nor Q is formed); rcond as
@@ -482,11 +483,13 @@ static size_t aba_bytes(const vt_model *m, int nr)
  * b_a = 0, since Σ_{k below a} s_a · w_r,k = (Φ_q^T e_r)_a (10); so the I^A T + p that give the
  * reactions come without the rows' loads. With q̈ = x⁰ + X λ (2), the rows
  * Φ_q q̈ = γ give S λ = γ − Φ_q x⁰, S = Φ_q X = Φ_q M*^-1 Φ_q^T, the Schur complement of
- * vt_solve's Schur path, which has S̃ = c² S: the same condition. The D_a are M*'s pivots
- * taken leaf first (rates in descending order); the reported condition is S's times min/max of
- * D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in (0, 1]; M*_aa = s_a · Ī s_a
- * by composite inertias) where the Schur path has its forward Cholesky pivots'
- * (min L_kk / max L_kk)²: both fall where a motion loses its inertia.
+ * vt_solve's Schur path, whose S̃ = R S R has the same unit-diagonal form. The D_a are M*'s
+ * pivots taken leaf first (rates in descending order); the reported condition is S's at unit
+ * diagonal times min/max of D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in
+ * (0, 1]; M*_aa = s_a · Ī s_a by composite inertias) times the point drives' grip², the number
+ * the Schur path computes from its leaf-first Cholesky pivots: both fall where a motion loses
+ * its inertia. A D_a that is round-off of 0 (below VT_ROUND_TAU ε of the terms about O it is a
+ * difference of) is no pivot: the general route decides.
  * When every row is a joint drive on a rate of its own (joint_rows_only) the driven rates' q̈
  * are known (drive_accelerations) and no row is a right side: such a rate articulates nothing,
  *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,

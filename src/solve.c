@@ -653,8 +653,9 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
 
 /* Every row a joint drive q_k = f_k(t) on a rate of its own: those rates' q̈ are γ, and (5)
  * reduces to the free rates F, M*_FF q̈_F = Q_F − M*_FD q̈_D, with M*_FF symmetric positive
- * definite: LAPACK's Cholesky (dpotf2/dpotrs) and its condition (small_inverse, or dpocon) on the
- * mass-metric scaled matrix; then λ_D = (M* q̈ − Q)_D. The same solution as (5), a fraction of
+ * definite: LAPACK's Cholesky (dpotf2/dpotrs) on the mass-metric scaled matrix, its free rates in
+ * descending order (leaf first), its condition estimate min/max of the pivots L_kk² (each
+ * relative to its unit diagonal: the recursive articulated route's number); then λ_D = (M* q̈ − Q)_D. The same solution as (5), a fraction of
  * the work. Returns 0, 1 (below rcond_min) or a negative vt_status. */
 static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
@@ -857,7 +858,7 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
 
 /* Fewer rows than rates, M* well conditioned (the usual case: a chain whose tip follows a
  * path, an arm partly driven): (5) by its Schur complement on the constraint rows, in the
- * scaled variables (M̃ = D M* D with unit diagonal, Φ̃ = c Φ_q D, as factor_solve):
+ * scaled variables (M̃ = D M* D with unit diagonal, Φ̃ = R Φ_q D, as factor_solve; R is c below):
  *
  *   M̃ = L L^T,   Y = L^-1 Φ̃^T,   z = L^-1 D Q,   S = Y^T Y = Φ̃ M̃^-1 Φ̃^T,
  *   S λ̃ = c γ − Y^T z,   ỹ = L^-T (z + Y λ̃),   q̈ = D ỹ,   λ = c λ̃,
@@ -866,10 +867,13 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
  * unknowns) instead of the symmetric indefinite one of nv + nc: about a third of the work, and
  * no pivoting. It applies when every pivot of L is at least 1e-4 (M̃'s unit diagonal bounds them
  * by 1 from above): below that M* is (nearly) singular on some rates, which only the constraints
- * may fix, and factor_solve takes over (return 2). The reported reciprocal condition is S's
- * (exact: 1 for one row, for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)²,
- * the pivots' estimate of M̃'s: it falls where the constraint rows lose independence in the
- * mass metric — a drive losing its grip. Returns 0, 1 (below rcond_min), 2 or a negative
+ * may fix, and factor_solve takes over (return 2). M̃ is factorized with its rates in descending
+ * order (leaf first), so that L_kk² are the articulated-body pivots each over its diagonal entry.
+ * The reported reciprocal condition is S's at unit diagonal (vt_solve_spd: exact, 1 for one row,
+ * for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)² times the
+ * point drives' grip² (vt_rows_grip): the recursive articulated route's number. It falls where
+ * the rows lose independence in the mass metric, where a motion loses its inertia, and where a
+ * point drive loses its grip (a lone one too). Returns 0, 1 (below rcond_min), 2 or a negative
  * vt_status. */
 #define SCHUR_FEW 3 /* rows up to which S and its right side are formed by loops */
 static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_out)
@@ -1060,11 +1064,12 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  *   SCHUR       fewer rows than rates (schur_solve); a small pivot of M̃ gives way to
  *   AUGMENTED   the whole augmented matrix (factor_solve, also every other case), flagged
  *               VT_FALLBACK_SCHUR_PIVOT
- * d->rcond is the reciprocal condition of what the route factorized: the free rates' scaled M*
- * (FREE_RATES); Φ_q D's, squared (SQUARE); the Schur complement's times M̃'s pivot ratio squared
- * (SCHUR); the scaled augmented matrix's (AUGMENTED); the reduced system's singular value ratio
- * (REDUNDANT). A lone row's condition is 1 on the Schur route (the scaling normalizes it): a
- * lone drive losing its grip does not show there. Below rcond_min the rows' rank (rows_decide)
+ * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
+ * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio of
+ * the whole M* times the unit-diagonal Schur complement's and the point drives' grip² (SCHUR); the
+ * scaled augmented matrix's times the grip² (AUGMENTED); the reduced system's singular value
+ * ratio (REDUNDANT). Round-off of an exact zero taken for a row or an inertia is caught first
+ * (roundoff_check). Below rcond_min the rows' rank (rows_decide)
  * tells dependent rows (VT_ERR_DEPENDENT_CONSTRAINTS, named) from a singular or ill-conditioned
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
