@@ -1259,5 +1259,11 @@ size_t vt_solve_scratch(const vt_model *m)
                              : VT_SCRATCH_BYTES(sN * sN, D) + 2 * VT_SCRATCH_BYTES(sN, D) +
                                    VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
     if (rows + after > route) route = rows + after;
-    return held + route + small + lapack + 8 * VT_DATA_ALIGN;
+    /* roundoff_check (before a route, and inside rows_decide with its flags), the square route's
+     * condition (G Φ_q C, its pivots, its inverse) and vt_solve_spd's unit diagonal */
+    const size_t nb1 = (size_t)m->nbody + 1;
+    const size_t roundoff = VT_SCRATCH_BYTES(snv * (snc + 1), D) + VT_SCRATCH_BYTES(2 * snv, D) +
+                            VT_SCRATCH_BYTES(4 * nb1, D) + 2 * VT_SCRATCH_BYTES(snc + 1, I);
+    const size_t square = 2 * VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
+    return held + route + small + lapack + roundoff + square + VT_SCRATCH_BYTES(snc, D) + 8 * VT_DATA_ALIGN;
 }
