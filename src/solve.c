@@ -152,10 +152,11 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
             if (held) continue;
+            const double terms = T[2 * a] + T[2 * a + 1]; /* read before the scratch is released */
             vt_scratch_release(d, mark);
             return vt_fail(d->message, VT_ERR_SINGULAR,
                            "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is round-off of terms "
-                           "%.3g) and no row fixes it", a, m->dof_body[a], maa, T[2 * a] + T[2 * a + 1]);
+                           "%.3g) and no row fixes it", a, m->dof_body[a], maa, terms);
         }
     }
     vt_scratch_release(d, mark);
