@@ -316,6 +316,9 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 #define VT_ROUND_TAU 64.0
 void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T);
 double vt_rate_roundoff(const double *T, int a);
+/* the number of rows of Φ_q that are round-off of a zero row (judged against the terms they are
+ * summed from), or a negative vt_status (solve.c) */
+int vt_zero_rows(const vt_model *m, vt_data *d);
 /* dgelsd's integer workspace for an m x n problem (solve.c) */
 int vt_dgelsd_iwork(int m, int n);
 /* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten: scaled

@@ -646,6 +646,11 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
     const int nr = m->nc + 1;
+    /* a row that is round-off of zero would pass for a row once S is at unit diagonal: the
+     * general route names it */
+    const int zero_rows = vt_zero_rows(m, d);
+    if (zero_rows < 0) return (vt_status)zero_rows;
+    if (zero_rows > 0) return factorized_instant(m, d);
     const size_t mark = vt_scratch_mark(d);
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);

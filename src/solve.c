@@ -163,6 +163,11 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
     return zero_rows;
 }
 
+int vt_zero_rows(const vt_model *m, vt_data *d)
+{
+    return m->nc > 0 ? roundoff_check(m, d, NULL, 0) : 0;
+}
+
 /* Small systems (n ≤ EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
  * itself, the factors applied to the identity in one multi-right-hand-side solve (as much work
  * as the factorization), costs fewer instructions than LAPACK's estimators (dgecon, dsycon_3:
