@@ -114,8 +114,6 @@ static double row_norm(const vt_model *m, const vt_data *d, int r)
     return sqrt(n2);
 }
 
-static const char *owner_name(const vt_model *m, int row, char *buf, size_t n);
-
 /* Rows that are round-off of a zero row, flagged 1 in flag (nc; NULL: not kept): the caller
  * takes them as zero rows, dependent (rows_decide; vt_solve then names them). Then the rates whose M*_aa is round-off and that no
  * row (other than a flagged one) touches beyond round-off: VT_ERR_SINGULAR, named (nothing
