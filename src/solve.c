@@ -13,8 +13,10 @@
  * and the rook variant bounds the entries of L (and its BLAS-3 solves are cheaper than
  * dsytrs/dsycon's BLAS-2 loops at these sizes).
  * Before factorizing, the matrix is scaled symmetrically (its rows and columns mix units:
- * kg·m², kg, m, rad) so that dsycon's reciprocal condition estimate measures the mechanism
- * rather than its units; how, is said where it is done. A system whose
+ * kg·m², kg, m, rad); how, is said where it is done. Every route reports a condition estimate
+ * of the pose (docs/method.md, "The condition estimate"): independent of units, of the scene's
+ * frame and of inertia spread alone, the same number on the recursive path's routes. Round-off
+ * of an exact zero is neither a row nor an inertia (roundoff_check). A system whose
  * estimate falls below rcond_min is refused: rows of Φ_q that are dependent to round-off (the
  * SVD of a frame- and unit-independent scaling of Φ_q, rows_decide) are named
  * (VT_ERR_DEPENDENT_CONSTRAINTS); otherwise the matrix is singular (a rate or body without
@@ -418,8 +420,8 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
     }
     for (int k = 0; k < N; k++) b[k] *= s[k];
     /* one step of iterative refinement on the unscaled system (the residual from M* and Φ_q
-     * themselves, the correction from the same factors): the common row factor above can
-     * leave the scaled matrix less well balanced than a row-by-row equilibration would */
+     * themselves, the correction from the same factors): the symmetric scaling balances the
+     * matrix only as far as its diagonal and its rows' norms show */
     memcpy(res, d->Q, (size_t)nv * sizeof(double));
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
     for (int r = 0; r < nr; r++) {
