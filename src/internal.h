@@ -304,10 +304,10 @@ void vt_solve_reset(vt_data *d);
 /* the rank of Φ_q to round-off, in the scaling of the redundant decision (from the current M*
  * and Φ_q), or a negative vt_status (solve.c) */
 int vt_rows_rank(const vt_model *m, vt_data *d);
-/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of Φ_q D
- * and, up to 16 rates, its inverse; D; q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
+/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of R Φ_q D
+ * (X: NULL, no inverse kept); D (s) and R (g); q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
 typedef struct {
-    double *A, *X, *s, *x, *h;
+    double *A, *X, *s, *g, *x, *h;
     int *ipiv;
 } vt_square;
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);
@@ -315,13 +315,26 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
 /* the same for the recursive evaluation: from M*'s diagonal mdiag (nv), and its outcome */
 int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
+/* Round-off of exact zeros (solve.c): T (2 nv) the magnitudes of the terms of each rate's M*_aa,
+ * T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,
+ * from the twists (w: 4 (nbody + 1) scratch); vt_rate_roundoff, the size below which M*_aa is
+ * round-off, τ ε (T_a + R_a). */
+#define VT_ROUND_TAU 64.0
+void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T);
+double vt_rate_roundoff(const double *T, int a);
+/* the number of rows of Φ_q that are round-off of a zero row (judged against the terms they are
+ * summed from), or a negative vt_status (solve.c) */
+int vt_zero_rows(const vt_model *m, vt_data *d);
 /* dgelsd's integer workspace for an m x n problem (solve.c) */
 int vt_dgelsd_iwork(int m, int n);
-/* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten by the
- * factor; n ≤ 1 needs none), b solved in place, S's reciprocal condition into *rcond: 1 for
- * n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above, 0 when S is not positive
- * definite (nothing solved). Returns 0 or a negative vt_status (solve.c). */
+/* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten: scaled
+ * to unit diagonal, then factorized), b solved in place, the reciprocal condition of S at unit
+ * diagonal into *rcond: 1 for n ≤ 1, exact from the inverse for n ≤ 16, dpocon's estimate above,
+ * 0 when S is not positive definite (nothing solved). Returns 0 or a negative vt_status (solve.c). */
 int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
+/* the smallest grip² of the point drives' rows (1 without any): how much of what the rates can
+ * move the driven point by lies along the driven direction (solve.c) */
+double vt_rows_grip(const vt_model *m, const vt_data *d);
 /* vt_reactions without the argument checks (ẍ and α from d->qdd) */
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar

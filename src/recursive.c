@@ -13,7 +13,7 @@
  *                        (I s = (J_O w + h × v, m v + w × h)); composite Ī_i = Σ_subtree I_k
  *   M* (3)               M*_ab = s_b · (Ī_i s_a),  i the body of rate a, b on i's path
  *   M*_aa alone          Σ_k m_k |v_a + w_a × c_k|² + u^T J'_k u,  u = A_k^T w_a, k below rate a
- *                        (the square path's scaling: twice the kinetic energy of s_a)
+ *                        (twice the kinetic energy of s_a: the square path's scaling)
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
  *   W linear in q̈        W_k = W⁰_k + I_k T_k,  T_k = Σ_{a on k's path} s_a q̈_a
@@ -29,9 +29,10 @@
  *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum and without the
  *   rows' loads (articulated_instant); when every row is a joint drive (joint_rows_only) the
  *   driven rates' q̈ are known and only the free ones are solved, then the inward pass as above.
- *   rcond is S's exact condition (1 for one row) times min/max of M*'s pivots taken leaf first,
- *   each over its diagonal entry (the free rates' pivots alone with only joint-drive rows); a
- *   pivot below 1e-8 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
+ *   rcond is S's exact condition at unit diagonal (1 for one row) times min/max of M*'s pivots
+ *   taken leaf first, each over its diagonal entry (the free rates' pivots alone with only
+ *   joint-drive rows), times the point drives' grip²: vt_solve's number on the same system; a
+ *   pivot below 1e-8 or round-off of 0 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
  *   (VT_FALLBACK_ARTICULATED_CONDITION) hands the instant to the general route;
  * - SQUARE, as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q =
  *   S^T W̄ − qfrc from one inward pass (square_instant: neither M* nor Q is formed); rcond as
@@ -42,6 +43,7 @@
  *   SCHUR, AUGMENTED, REDUNDANT: src/solve.c), which also diagnose, and the reactions (25)-(28)
  *   as in the dense path.
  */
+#include <float.h>
 #include <string.h>
 
 #include "internal.h"
@@ -346,7 +348,8 @@ static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
 }
 
 /* Square Φ_q (as many rows as rates, e.g. the crank-driven four-bar): q̈ = Φ_q^-1 γ needs only
- * M*'s diagonal, for the scaling, and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
+ * M*'s diagonal, for the solves' scaling (its condition is kinematic: vt_solve's square route),
+ * and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
  * the needed wrenches W at the full accelerations, one inward pass as for joint drives: neither
  * M* nor Q is formed. Where Φ_q is ill-conditioned, the general path diagnoses it. */
 static vt_status square_instant(const vt_model *m, vt_data *d)
@@ -481,11 +484,13 @@ static size_t aba_bytes(const vt_model *m, int nr)
  * b_a = 0, since Σ_{k below a} s_a · w_r,k = (Φ_q^T e_r)_a (10); so the I^A T + p that give the
  * reactions come without the rows' loads. With q̈ = x⁰ + X λ (2), the rows
  * Φ_q q̈ = γ give S λ = γ − Φ_q x⁰, S = Φ_q X = Φ_q M*^-1 Φ_q^T, the Schur complement of
- * vt_solve's Schur path, which has S̃ = c² S: the same condition. The D_a are M*'s pivots
- * taken leaf first (rates in descending order); the reported condition is S's times min/max of
- * D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in (0, 1]; M*_aa = s_a · Ī s_a
- * by composite inertias) where the Schur path has its forward Cholesky pivots'
- * (min L_kk / max L_kk)²: both fall where a motion loses its inertia.
+ * vt_solve's Schur path, whose S̃ = R S R has the same unit-diagonal form. The D_a are M*'s
+ * pivots taken leaf first (rates in descending order); the reported condition is S's at unit
+ * diagonal times min/max of D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in
+ * (0, 1]; M*_aa = s_a · Ī s_a by composite inertias) times the point drives' grip², the number
+ * the Schur path computes from its leaf-first Cholesky pivots: both fall where a motion loses
+ * its inertia. A D_a that is round-off of 0 (below VT_ROUND_TAU ε of the terms about O it is a
+ * difference of) is no pivot: the general route decides.
  * When every row is a joint drive on a rate of its own (joint_rows_only) the driven rates' q̈
  * are known (drive_accelerations) and no row is a right side: such a rate articulates nothing,
  *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,
@@ -535,9 +540,13 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
                 for (int r = 0; r < 6; r++) p[r] += Ua[r] * d->qdd[a];
                 continue;
             }
-            const double Da = dot6(s, Ua);
-            const double piv = Da / inertia_quad(Ic + 13 * i, s, s + 3);
-            if (!(piv >= PIVOT_MIN)) return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
+            const double Da = dot6(s, Ua), *Ii = Ic + 13 * i;
+            const double piv = Da / inertia_quad(Ii, s, s + 3);
+            /* D_a is a difference of terms about O as large as (|w| (tr J̄_O)^½ + |v| m̄^½)²: below
+             * VT_ROUND_TAU ε of them it is round-off of an exact zero, not inertia */
+            const double tw = sqrt(vt_dot3(s, s) * (Ii[4] + Ii[8] + Ii[12])) + sqrt(vt_dot3(s + 3, s + 3) * Ii[0]);
+            if (!(piv >= PIVOT_MIN) || !(Da > VT_ROUND_TAU * DBL_EPSILON * tw * tw))
+                return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
             const double inv = 1.0 / Da;
@@ -595,7 +604,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     double rcond = 0.0;
     const int st = vt_solve_spd(d, S, nc, lam, &rcond);
     if (st) return st;
-    rcond *= pmin / pmax;
+    rcond *= pmin / pmax * (nc > 0 ? vt_rows_grip(m, d) : 1.0);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
     for (int a = 0; a < nv; a++) {
@@ -638,6 +647,11 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
     const int nr = m->nc + 1;
+    /* a row that is round-off of zero would pass for a row once S is at unit diagonal: the
+     * general route names it */
+    const int zero_rows = vt_zero_rows(m, d);
+    if (zero_rows < 0) return (vt_status)zero_rows;
+    if (zero_rows > 0) return factorized_instant(m, d);
     const size_t mark = vt_scratch_mark(d);
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);

@@ -13,8 +13,10 @@
  * and the rook variant bounds the entries of L (and its BLAS-3 solves are cheaper than
  * dsytrs/dsycon's BLAS-2 loops at these sizes).
  * Before factorizing, the matrix is scaled symmetrically (its rows and columns mix units:
- * kg·m², kg, m, rad) so that dsycon's reciprocal condition estimate measures the mechanism
- * rather than its units; how, is said where it is done. A system whose
+ * kg·m², kg, m, rad); how, is said where it is done. Every route reports a condition estimate
+ * of the pose (docs/method.md, "The condition estimate"): independent of units, of the scene's
+ * frame and of inertia spread alone, the same number on the recursive path's routes. Round-off
+ * of an exact zero is neither a row nor an inertia (roundoff_check). A system whose
  * estimate falls below rcond_min is refused: rows of Φ_q that are dependent to round-off (the
  * SVD of a frame- and unit-independent scaling of Φ_q, rows_decide) are named
  * (VT_ERR_DEPENDENT_CONSTRAINTS); otherwise the matrix is singular (a rate or body without
@@ -37,6 +39,133 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
     else if (kind == VT_OWNER_COUPLING) snprintf(buf, n, "coupling %d", m->con_owner[row]);
     else snprintf(buf, n, "p^T p = 1 of body %d", m->con_owner[row]);
     return buf;
+}
+
+/* Round-off of exact zeros. M*_aa and Φ_q's entries are sums whose terms cancel exactly at some
+ * poses (a point mass on a rate's axis: v + ω × c = 0; a point drive at a spherical joint's
+ * centre), and what is computed there is round-off of the terms' size, not a small inertia or a
+ * small row. Each is judged against the magnitude of what it was summed from, never by itself:
+ *   rate a   M*_aa = Σ_k m_k |v_a + ω_a × c_k|² + u^T J'_k u over the bodies k it moves, whose
+ *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k: round-off
+ *            when M*_aa ≤ τ ε (T_a + R_a) (first order: the composite-inertia form s · Ī s about O
+ *            subtracts terms of that size; S^T M S's squares would leave less)
+ *   row r    Φ_q,ra = Σ_j Φ_x,rj S_ja over the row's two bodies, terms bounded by B_ra = Σ_j
+ *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| |r| for a position, ½ |ω_a| for an Euler
+ *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖
+ * with τ = VT_ROUND_TAU (64) and ε = DBL_EPSILON. (v_a, ω_a) is rate a's twist (d->twist), the one
+ * both paths build S and M* from. Joint drives' and couplings' rows are exact (unit entries), and
+ * p^T p − 1's row is 2 p^T: not judged. */
+void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T)
+{
+    for (int k = 0; k < 4; k++) w[k] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *c = d->xrel + 6 * i, *J = m->body_inertia + 9 * i, mi = m->body_mass[i]; /* from o, as the twists */
+        const double rc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        w[4 * i] = mi, w[4 * i + 1] = mi * rc, w[4 * i + 2] = mi * rc * rc;
+        w[4 * i + 3] = fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
+    }
+    vt_subtree_sum(m, w, 4);
+    for (int a = 0; a < m->nv; a++) {
+        const double *tw = d->twist + 6 * a, *s = w + 4 * m->dof_body[a];
+        const double wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
+        T[2 * a] = vn * vn * s[0] + 2.0 * vn * wn * s[1] + wn * wn * s[2];
+        T[2 * a + 1] = wn * wn * s[3];
+    }
+}
+
+double vt_rate_roundoff(const double *T, int a)
+{
+    return VT_ROUND_TAU * DBL_EPSILON * (T[2 * a] + T[2 * a + 1]);
+}
+
+/* rows that Φ_x S builds (points, lines, dot products, orientations) */
+static int judged_row(const vt_model *m, int r)
+{
+    const int kind = m->con_kind[r];
+    return kind != VT_ROW_JOINT && kind != VT_ROW_COUPLING && kind != VT_ROW_NORM;
+}
+
+/* B_r (as above) into B (nv) for row r; returns ‖B_r‖ */
+static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
+{
+    for (int a = 0; a < m->nv; a++) B[a] = 0.0;
+    for (int side = 0; side < 2; side++) {
+        const int b = m->con_body[2 * r + side];
+        if (b <= 0) continue;
+        const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->xrel + 6 * b; /* from o, as the twists */
+        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]), fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        const double rc = sqrt(vt_dot3(c, c));
+        const int *path = m->path_dof + m->body_pathadr[b];
+        for (int k = 0; k < m->body_pathnum[b]; k++) {
+            const int a = path[k];
+            const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
+            int ax = 0;
+            const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
+            B[a] += fr * (vn + wn * rc) + fp * (own_p ? 1.0 : 0.5 * wn);
+        }
+    }
+    double n2 = 0.0;
+    for (int a = 0; a < m->nv; a++) n2 += B[a] * B[a];
+    return sqrt(n2);
+}
+
+static double row_norm(const vt_model *m, const vt_data *d, int r)
+{
+    double n2 = 0.0;
+    for (int a = 0; a < m->nv; a++) n2 += d->Phiq[r + (size_t)a * (size_t)m->nc] * d->Phiq[r + (size_t)a * (size_t)m->nc];
+    return sqrt(n2);
+}
+
+/* Rows that are round-off of a zero row, flagged 1 in flag (nc; NULL: not kept): the caller
+ * takes them as zero rows, dependent (rows_decide; vt_solve then names them). Then the rates whose M*_aa is round-off and that no
+ * row (other than a flagged one) touches beyond round-off: VT_ERR_SINGULAR, named (nothing
+ * fixes a motion that has no inertia). withM: M* is formed (else only the rows are judged).
+ * Returns the number of rows flagged or a negative vt_status. */
+static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
+{
+    const int nv = m->nv, nc = m->nc;
+    const size_t mark = vt_scratch_mark(d);
+    double *B = VT_SCRATCH(d, double, (size_t)nv * ((size_t)nc + 1), "terms of Φ_q's rows");
+    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
+    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    int *fl = VT_SCRATCH(d, int, nc + 1, "round-off rows");
+    if (!fl) return vt_scratch_fail(d, mark);
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
+    int zero_rows = 0;
+    for (int r = 0; r < nc; r++) {
+        double *Br = B + (size_t)r * (size_t)nv;
+        fl[r] = 0;
+        if (!judged_row(m, r)) {
+            for (int a = 0; a < nv; a++) Br[a] = 0.0; /* exact entries: any non-zero one counts */
+            continue;
+        }
+        const double bn = row_terms(m, d, r, Br), rn = row_norm(m, d, r);
+        if (!(rn > te * bn)) fl[r] = 1, zero_rows++;
+    }
+    if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
+    if (withM) {
+        vt_rate_terms(m, d, w, T);
+        for (int a = 0; a < nv; a++) {
+            const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
+            if (maa > vt_rate_roundoff(T, a)) continue;
+            int held = 0;
+            for (int r = 0; r < nc && !held; r++)
+                held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
+            if (held) continue;
+            const double terms = T[2 * a] + T[2 * a + 1]; /* read before the scratch is released */
+            vt_scratch_release(d, mark);
+            return vt_fail(d->message, VT_ERR_SINGULAR,
+                           "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is round-off of terms "
+                           "%.3g) and no row fixes it", a, m->dof_body[a], maa, terms);
+        }
+    }
+    vt_scratch_release(d, mark);
+    return zero_rows;
+}
+
+int vt_zero_rows(const vt_model *m, vt_data *d)
+{
+    return m->nc > 0 ? roundoff_check(m, d, NULL, 0) : 0;
 }
 
 /* Small systems (n ≤ EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
@@ -119,23 +248,44 @@ static int norm1_sym(vt_data *d, const double *K, int n, double *out)
 
 int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
 {
-    if (n <= 1) { /* one row: S is a number, its condition exactly 1 */
-        *rcond = n == 0 || S[0] > 0.0 ? 1.0 : 0.0;
-        if (n == 1 && *rcond > 0.0) b[0] /= S[0];
-        return 0;
+    /* S to unit diagonal first (E S E, E = diag(S_rr^(-1/2)); b by E, the solution by E after):
+     * its condition then measures how independent the rows are, not their sizes */
+    for (int r = 0; r < n; r++) {
+        const double srr = S[r + (size_t)r * (size_t)n];
+        if (!(srr > 0.0)) return *rcond = 0.0, 0; /* not positive definite: nothing solved */
     }
-    double snorm = 0.0;
-    const int st = norm1_sym(d, S, n, &snorm);
-    return st ? st : chol_solve(d, S, n, snorm, b, rcond);
+    for (int c = 0; c < n; c++) {
+        const double ec = 1.0 / sqrt(S[c + (size_t)c * (size_t)n]);
+        for (int r = c + 1; r < n; r++) S[r + (size_t)c * (size_t)n] *= ec / sqrt(S[r + (size_t)r * (size_t)n]);
+    }
+    double *e = NULL;
+    const size_t mark = vt_scratch_mark(d);
+    if (n > 0 && !(e = VT_SCRATCH(d, double, n, "unit diagonal"))) return vt_scratch_fail(d, mark);
+    for (int r = 0; r < n; r++) {
+        const double er = 1.0 / sqrt(S[r + (size_t)r * (size_t)n]);
+        if (e) e[r] = er;
+        b[r] *= er;
+        S[r + (size_t)r * (size_t)n] = 1.0;
+    }
+    int st = 0;
+    if (n <= 1) *rcond = 1.0; /* one row: S is 1, its condition exactly 1, b solved */
+    else {
+        double snorm = 0.0;
+        st = norm1_sym(d, S, n, &snorm);
+        if (!st) st = chol_solve(d, S, n, snorm, b, rcond);
+    }
+    for (int r = 0; r < n && e; r++) b[r] *= e[r];
+    vt_scratch_release(d, mark);
+    return st;
 }
 
 /* The symmetric scaling D of (5): the rates by the mass metric, d_a = M*_aa^(-1/2), into
- * s[0..nv); with rows, every constraint row by one common factor, 1 / (largest row norm of
- * Φ_q D), into s[nv..nv+nc). One factor for all rows keeps their relative sizes: a drive whose
- * row shrinks toward a singular pose (an arm reaching its full stretch) shows in the condition
- * estimate instead of being scaled away, as a row-by-row equilibration (LAPACK's dsyequb)
- * would do. scaling_diag: the rates' part from M*'s diagonal mdiag[a stride] (s may be mdiag
- * itself with stride 1). */
+ * s[0..nv); with rows, each constraint row by its own norm in that metric, 1 / ‖(Φ_q D)_r‖, into
+ * s[nv..nv+nc) (a row without entries: 1). Row by row, so that rows on bodies of very different
+ * masses (a joint drive on a 1e-9 kg link beside p^T p − 1 on a 30 kg base) are not taken for
+ * rows losing their grip; a row that does lose its grip (a point drive at an arm's full
+ * stretch) is measured apart, vt_rows_grip. scaling_diag: the rates' part from M*'s diagonal
+ * mdiag[a stride] (s may be mdiag itself with stride 1). */
 static void scaling_diag(const vt_model *m, const double *mdiag, int stride, double *s)
 {
     for (int a = 0; a < m->nv; a++) {
@@ -149,16 +299,57 @@ static void scaling(const vt_model *m, const vt_data *d, double *s, int rows)
     const int nv = m->nv, nc = m->nc;
     scaling_diag(m, d->Mstar, nv + 1, s);
     if (!rows) return;
-    double rmax = 0.0;
     for (int r = 0; r < nc; r++) {
         double rn = 0.0;
         for (int c = 0; c < nv; c++) {
             const double v = d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
             rn += v * v;
         }
-        rmax = fmax(rmax, sqrt(rn));
+        s[nv + r] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
     }
-    for (int r = 0; r < nc; r++) s[nv + r] = rmax > 0.0 ? 1.0 / rmax : 1.0;
+}
+
+/* A point drive's grip: the row is e · V_a, V_a = v_a + ω_a × P the velocity rate a's twist
+ * gives the driven point P; the whole of V_a is what the rates can move the point by, the row
+ * what of it lies along the driven direction e. Its grip is the ratio of the two, in the
+ * rates' kinematic scaling (the square route's C: rates that turn by 1/ρ):
+ *   grip_r = ‖(e · V_a C_a)_a‖ / ‖(|V_a| C_a)_a‖   in [0, 1]
+ * 1 while the rates move P along e as well as across it, 0 where no rate moves P along e (an
+ * arm stretched along e: a row that has lost its grip, with nothing else to show it when it is
+ * the only row). Independent of the units, of the scene's frame and position, and of the
+ * inertias. vt_rows_grip returns the smallest grip² over the point drives' rows (1 without). */
+static double gyration_radius(const vt_model *m, const vt_data *d);
+double vt_rows_grip(const vt_model *m, const vt_data *d)
+{
+    double worst = 1.0, rho = 0.0;
+    for (int r = 0; r < m->nc; r++) {
+        if (m->con_kind[r] != VT_ROW_POINT || vt_row_owner_kind(m, r) != VT_OWNER_DRIVE) continue;
+        if (rho == 0.0) rho = gyration_radius(m, d);
+        const vt_drive_def *dr = m->drive + m->con_owner[r];
+        const int b = dr->body;
+        const double *A = d->A + 9 * b, *c = d->xrel + 6 * b; /* from o, as the twists */
+        double P[3];
+        vt_mulmat3(P, A, dr->point);
+        for (int k = 0; k < 3; k++) P[k] += c[k];
+        double num = 0.0, den = 0.0;
+        const int *path = m->path_dof + m->body_pathadr[b];
+        for (int k = 0; k < m->body_pathnum[b]; k++) {
+            const int a = path[k], i = m->dof_body[a];
+            const double *tw = d->twist + 6 * a;
+            int ax = 0;
+            const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
+            const double ca = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+            double V[3];
+            vt_copy3(V, tw + 3);
+            vt_addcross3(V, tw, P);
+            const double e = d->Phiq[r + (size_t)a * (size_t)m->nc] * ca;
+            num += e * e;
+            den += vt_dot3(V, V) * ca * ca;
+        }
+        const double g2 = den > 0.0 ? num / den : 0.0;
+        worst = g2 < worst ? g2 : worst;
+    }
+    return worst;
 }
 
 /* Factor and solve the augmented system of (5) into b = [q̈; −λ] (nv + nc); the condition
@@ -214,6 +405,7 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
         dsycon_3_("L", &N, K, &N, E, ipiv, &anorm, &rcond, work, iwork, &info, 1);
         if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsycon_3 info %d", info);
     }
+    if (nc > 0) rcond *= vt_rows_grip(m, d);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
     double *t = res + N;
@@ -228,8 +420,8 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
     }
     for (int k = 0; k < N; k++) b[k] *= s[k];
     /* one step of iterative refinement on the unscaled system (the residual from M* and Φ_q
-     * themselves, the correction from the same factors): the common row factor above can
-     * leave the scaled matrix less well balanced than a row-by-row equilibration would */
+     * themselves, the correction from the same factors): the symmetric scaling balances the
+     * matrix only as far as its diagonal and its rows' norms show */
     memcpy(res, d->Q, (size_t)nv * sizeof(double));
     cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
     for (int r = 0; r < nr; r++) {
@@ -294,13 +486,13 @@ static double gyration_radius(const vt_model *m, const vt_data *d)
 {
     double mt = 0.0, cg[3] = {0.0, 0.0, 0.0}, i2 = 0.0;
     for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->x + vt_xoff(i), mi = m->body_mass[i];
+        const double *c = d->xrel + 6 * i, mi = m->body_mass[i];
         mt += mi;
         for (int k = 0; k < 3; k++) cg[k] += mi * c[k];
     }
     for (int k = 0; k < 3; k++) cg[k] = mt > 0.0 ? cg[k] / mt : 0.0;
     for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->x + vt_xoff(i), *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
+        const double *c = d->xrel + 6 * i, *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
         double r2 = 0.0;
         for (int k = 0; k < 3; k++) r2 += (c[k] - cg[k]) * (c[k] - cg[k]);
         i2 += 0.5 * (J[0] + J[4] + J[8]) + mi * r2;
@@ -320,6 +512,10 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     o->sig = VT_SCRATCH(d, double, k, "σ");
     o->g = VT_SCRATCH(d, double, nc, "row scaling");
     o->s = VT_SCRATCH(d, double, nv, "rate scaling");
+    int *flag = VT_SCRATCH(d, int, nc, "round-off rows");
+    if (!flag) return vt_scratch_fail(d, vt_scratch_mark(d)); /* the caller releases o's arrays */
+    const int ro = roundoff_check(m, d, flag, 0); /* a row that is round-off of zero counts as zero */
+    if (ro < 0) return ro;
     const size_t mark = vt_scratch_mark(d);
     double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
     int lw = 0;
@@ -335,11 +531,12 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
             const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
             rn += v * v;
         }
-        rmax = fmax(rmax, sqrt(rn));
+        if (!flag[r]) rmax = fmax(rmax, sqrt(rn));
     }
     for (int r = 0; r < nc; r++) {
         g[r] *= rmax > 0.0 ? 1.0 / rmax : 1.0;
-        for (int c = 0; c < nv; c++) P[r + (size_t)c * (size_t)nc] = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
+        for (int c = 0; c < nv; c++)
+            P[r + (size_t)c * (size_t)nc] = flag[r] ? 0.0 : g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
     }
     /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
     if (!vt_all_finite(P, nc * nv) || !vt_all_finite(s, nv) || !vt_all_finite(d->Mstar, nv * nv))
@@ -462,8 +659,9 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
 
 /* Every row a joint drive q_k = f_k(t) on a rate of its own: those rates' q̈ are γ, and (5)
  * reduces to the free rates F, M*_FF q̈_F = Q_F − M*_FD q̈_D, with M*_FF symmetric positive
- * definite: LAPACK's Cholesky (dpotf2/dpotrs) and its condition (small_inverse, or dpocon) on the
- * mass-metric scaled matrix; then λ_D = (M* q̈ − Q)_D. The same solution as (5), a fraction of
+ * definite: LAPACK's Cholesky (dpotf2/dpotrs) on the mass-metric scaled matrix, its free rates in
+ * descending order (leaf first), its condition estimate min/max of the pivots L_kk² (each
+ * relative to its unit diagonal: the recursive articulated route's number); then λ_D = (M* q̈ − Q)_D. The same solution as (5), a fraction of
  * the work. Returns 0, 1 (below rcond_min) or a negative vt_status. */
 static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
 {
@@ -476,7 +674,7 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
     if (!qdd) return vt_scratch_fail(d, mark);
     for (int c = 0; c < nv; c++) qdd[c] = 0.0;
     int k = 0;
-    for (int c = 0; c < nv; c++)
+    for (int c = nv - 1; c >= 0; c--) /* descending: leaf first, as the articulated pivots */
         if (m->dof_drive[c] < 0) freev[k++] = c;
     for (int r = 0; r < nc; r++) qdd[m->con_dof[r]] = d->gamma[r];
     for (int a = 0; a < nf; a++) {
@@ -491,12 +689,26 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
         for (int r = 0; r < nc; r++) v -= d->Mstar[freev[i] + (size_t)m->con_dof[r] * (size_t)nv] * d->gamma[r];
         b[i] = v * s[i];
     }
-    double anorm = 0.0, rcond = 0.0;
-    int st = norm1_sym(d, K, nf, &anorm);
-    if (!st) st = chol_solve(d, K, nf, anorm, b, &rcond);
-    if (st) return vt_scratch_release(d, mark), st;
+    /* the condition: min/max of the pivots (L_kk², each relative to its unit diagonal), as the
+     * articulated route's over the same free rates in the same order */
+    double rcond = 0.0;
+    int info = 0;
+    if (nf > 0) dpotf2_("L", &nf, K, &nf, &info, 1);
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
+    if (info == 0) {
+        double pmin = 1.0, pmax = 0.0;
+        for (int a = 0; a < nf; a++) {
+            const double p = K[a + (size_t)a * (size_t)nf] * K[a + (size_t)a * (size_t)nf];
+            pmin = p < pmin ? p : pmin;
+            pmax = p > pmax ? p : pmax;
+        }
+        rcond = nf > 0 ? pmin / pmax : 1.0;
+    }
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
+    const int one = 1;
+    if (nf > 0) dpotrs_("L", &nf, &one, K, &nf, b, &nf, &info, 1);
+    if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
     for (int i = 0; i < nf; i++) qdd[freev[i]] = b[i] * s[i];
     if (!vt_all_finite(qdd, nv))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
@@ -517,68 +729,94 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  *
  *   Φ_q q̈ = γ,        Φ_q^T λ = M* q̈ − Q,                                   (5), (2)
  *
- * one LU factorization of Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes the
- * blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), the
- * mass metric of factor_solve) serving both solves (dgetrs, then its transpose; or products
- * with the inverse that small systems compute for their condition anyway). M* is not
- * factorized at all: a quarter of the augmented matrix's size, an eighth of its work. The two
- * solves in sequence amplify errors by cond(Φ_q D) each, so the reported reciprocal condition is
- * squared, the scale of the augmented matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)).
- * Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
+ one LU factorization of R Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes
+ * the blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), R each row to
+ * unit norm in that metric) serving both solves (dgetrs, then its transpose): M* is not
+ * factorized at all. The motion is the rows' alone, and so is the question of its
+ * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
+ * the condition of Φ̂ = G Φ_q C (its own LU; exact from the inverse up to 16 rates, dgecon
+ * above), a scaling that makes Φ̂ dimensionless and its condition independent of units and of
+ * the scene's frame: rows that measure angles by ρ and
+ * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
+ * parameters) by 1/ρ and those that translate by 1 (C), ρ the system's radius of gyration (a
+ * length of the mechanism, gyration_radius). The two solves in sequence amplify errors by
+ * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
+ * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
+ * same number. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
 {
     const int n = m->nv;
-    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of Φ_q D");
-    sq->s = VT_SCRATCH(d, double, n, "scaling");
+    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of R Φ_q D");
+    sq->s = VT_SCRATCH(d, double, 2 * (size_t)n, "scalings D and R");
     sq->x = VT_SCRATCH(d, double, 2 * (size_t)n, "q̈ and M* q̈ − Q");
     sq->ipiv = VT_SCRATCH(d, int, n, "pivots");
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
-    double *A = sq->A, *s = sq->s, *x = sq->x;
-    scaling_diag(m, mdiag, stride, s);
-    double anorm = 0.0; /* ‖Φ_q D‖_1, the largest column sum, as the columns are scaled */
+    sq->g = sq->s + n;
+    sq->X = NULL;
+    double *A = sq->A, *s = sq->s, *g = sq->g, *x = sq->x;
+    /* the condition: of Φ̂ = G Φ_q C, on a copy */
+    const size_t mark = vt_scratch_mark(d);
+    double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
+    int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C");
+    if (!ip) return vt_scratch_fail(d, mark);
+    const double rho = gyration_radius(m, d);
+    for (int a = 0; a < n; a++) {
+        const int i = m->dof_body[a];
+        int ax = 0;
+        const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
+        s[a] = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+    }
+    for (int r = 0; r < n; r++) g[r] = length_row(m, d, r) ? 1.0 : rho;
+    double anorm = 0.0; /* ‖G Φ_q C‖_1, the largest column sum */
     for (int c = 0; c < n; c++) {
         double cs = 0.0;
         for (int r = 0; r < n; r++) {
-            const double v = d->Phiq[r + (size_t)c * (size_t)n] * s[c];
-            A[r + (size_t)c * (size_t)n] = v;
+            const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+            K[r + (size_t)c * (size_t)n] = v;
             cs += fabs(v);
         }
         anorm = cs > anorm ? cs : anorm;
     }
     int info = 0;
-    dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
-    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    dgetf2_(&n, &n, K, &n, ip, &info);
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     double rcond = 0.0;
-    sq->X = info == 0 ? small_inverse(d, n, 1) : NULL; /* kept for the second half */
-    if (sq->X) { /* the inverse X */
-        dgetrs_("N", &n, &n, A, &n, sq->ipiv, sq->X, &n, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-        rcond = rcond_from_inverse(sq->X, n, anorm);
+    double *X = info == 0 ? small_inverse(d, n, 0) : NULL;
+    if (X) { /* the inverse X */
+        dgetrs_("N", &n, &n, K, &n, ip, X, &n, &info, 1);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+        rcond = rcond_from_inverse(X, n, anorm);
     } else if (info == 0) {
-        const size_t mark = vt_scratch_mark(d);
         double *work = VT_SCRATCH(d, double, 4 * (size_t)n, "dgecon workspace");
         int *iwork = VT_SCRATCH(d, int, n, "dgecon integer workspace");
         if (!iwork) return vt_scratch_fail(d, mark);
-        dgecon_("1", &n, A, &n, &anorm, &rcond, work, iwork, &info, 1);
-        vt_scratch_release(d, mark);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
+        dgecon_("1", &n, K, &n, &anorm, &rcond, work, iwork, &info, 1);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
     }
+    vt_scratch_release(d, mark);
     *rcond_out = rcond * rcond;
     if (!(*rcond_out >= m->rcond_min)) return 1;
-    /* y = (Φ_q D)^-1 γ, q̈ = D y: with the inverse at hand (small systems) by loops, else with
-     * the LU factors */
-    if (sq->X) {
-        const double *X = sq->X;
-        for (int r = 0; r < n; r++) x[r] = 0.0;
-        for (int c = 0; c < n; c++)
-            for (int r = 0; r < n; r++) x[r] += X[r + (size_t)c * (size_t)n] * d->gamma[c];
-    } else {
-        const int one = 1;
-        memcpy(x, d->gamma, (size_t)n * sizeof(double));
-        dgetrs_("N", &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    /* the solves: with R Φ_q D, D the mass metric and R each row to unit norm in it. Its LU's
+     * pivots then take the rows that act on heavy rates for those rates, and the substitutions
+     * keep apart what the structure keeps apart: a light link's drive force is not made of a
+     * heavy one's round-off (the inverse, a dense product, would mix them) */
+    scaling_diag(m, mdiag, stride, s);
+    for (int r = 0; r < n; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < n; c++) rn += d->Phiq[r + (size_t)c * (size_t)n] * s[c] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+        g[r] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
     }
+    for (int c = 0; c < n; c++)
+        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+    dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    if (info > 0) return *rcond_out = 0.0, 1; /* an exactly zero pivot after all */
+    /* y = (R Φ_q D)^-1 R γ, q̈ = D y */
+    const int one = 1;
+    for (int r = 0; r < n; r++) x[r] = g[r] * d->gamma[r];
+    dgetrs_("N", &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     for (int a = 0; a < n; a++) x[a] *= s[a];
     return 0;
 }
@@ -602,6 +840,7 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
         dgetrs_("T", &n, &one, sq->A, &n, sq->ipiv, g, &n, &info, 1);
         if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     }
+    for (int a = 0; a < n; a++) g[a] *= sq->g[a];
     if (!vt_all_finite(sq->x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
 }
@@ -625,7 +864,7 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
 
 /* Fewer rows than rates, M* well conditioned (the usual case: a chain whose tip follows a
  * path, an arm partly driven): (5) by its Schur complement on the constraint rows, in the
- * scaled variables (M̃ = D M* D with unit diagonal, Φ̃ = c Φ_q D, as factor_solve):
+ * scaled variables (M̃ = D M* D with unit diagonal, Φ̃ = R Φ_q D, as factor_solve; R is c below):
  *
  *   M̃ = L L^T,   Y = L^-1 Φ̃^T,   z = L^-1 D Q,   S = Y^T Y = Φ̃ M̃^-1 Φ̃^T,
  *   S λ̃ = c γ − Y^T z,   ỹ = L^-T (z + Y λ̃),   q̈ = D ỹ,   λ = c λ̃,
@@ -634,10 +873,13 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
  * unknowns) instead of the symmetric indefinite one of nv + nc: about a third of the work, and
  * no pivoting. It applies when every pivot of L is at least 1e-4 (M̃'s unit diagonal bounds them
  * by 1 from above): below that M* is (nearly) singular on some rates, which only the constraints
- * may fix, and factor_solve takes over (return 2). The reported reciprocal condition is S's
- * (exact: 1 for one row, for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)²,
- * the pivots' estimate of M̃'s: it falls where the constraint rows lose independence in the
- * mass metric — a drive losing its grip. Returns 0, 1 (below rcond_min), 2 or a negative
+ * may fix, and factor_solve takes over (return 2). M̃ is factorized with its rates in descending
+ * order (leaf first), so that L_kk² are the articulated-body pivots each over its diagonal entry.
+ * The reported reciprocal condition is S's at unit diagonal (vt_solve_spd: exact, 1 for one row,
+ * for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)² times the
+ * point drives' grip² (vt_rows_grip): the recursive articulated route's number. It falls where
+ * the rows lose independence in the mass metric, where a motion loses its inertia, and where a
+ * point drive loses its grip (a lone one too). Returns 0, 1 (below rcond_min), 2 or a negative
  * vt_status. */
 #define SCHUR_FEW 3 /* rows up to which S and its right side are formed by loops */
 static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_out)
@@ -651,12 +893,14 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     if (!s) return vt_scratch_fail(d, mark);
     double *x = sol, *lam = sol + nv;
     scaling(m, d, s, 1);
-    const double c = s[nv];
+    /* M̃ with its rates in descending order (P M̃ P, P the reversal): leaf first, the order of
+     * the articulated-body pivots (no fill-in on a tree; M* is stored whole) */
     for (int j = 0; j < nv; j++) {
-        const double *restrict Mc = d->Mstar + (size_t)j * (size_t)nv;
+        const int cj = nv - 1 - j;
+        const double *restrict Mc = d->Mstar + (size_t)cj * (size_t)nv;
         double *restrict Lc = L + (size_t)j * (size_t)nv;
-        const double sj = s[j];
-        for (int i = j; i < nv; i++) Lc[i] = Mc[i] * s[i] * sj;
+        const double sj = s[cj];
+        for (int i = j; i < nv; i++) Lc[i] = Mc[nv - 1 - i] * s[nv - 1 - i] * sj;
     }
     int info = 0;
     dpotf2_("L", &nv, L, &nv, &info, 1);
@@ -671,8 +915,9 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     }
     /* B = [Φ̃^T, D Q], then L^-1 B */
     for (int r = 0; r < nc; r++)
-        for (int a = 0; a < nv; a++) B[a + (size_t)r * (size_t)nv] = c * d->Phiq[r + (size_t)a * (size_t)nc] * s[a];
-    for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[a] * s[a];
+        for (int a = 0; a < nv; a++)
+            B[a + (size_t)r * (size_t)nv] = s[nv + r] * d->Phiq[r + (size_t)(nv - 1 - a) * (size_t)nc] * s[nv - 1 - a];
+    for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[nv - 1 - a] * s[nv - 1 - a];
     cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nv, nrhs, 1.0, L, nv, B, nv);
     const double *Y = B, *z = B + (size_t)nc * (size_t)nv;
     /* S = Y^T Y and its right-hand side c γ − Y^T z. With a few rows (a point drive: 1 to 3)
@@ -683,7 +928,7 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     if (few) {
         for (int r = 0; r < nc; r++) {
             const double *yr = Y + (size_t)r * (size_t)nv;
-            double t = c * d->gamma[r];
+            double t = s[nv + r] * d->gamma[r];
             for (int a = 0; a < nv; a++) t -= yr[a] * z[a];
             lam[r] = t;
             for (int k = r; k < nc; k++) {
@@ -695,13 +940,13 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
         }
     } else {
         cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, nc, nv, 1.0, Y, nv, 0.0, S, nc);
-        for (int r = 0; r < nc; r++) lam[r] = c * d->gamma[r];
+        for (int r = 0; r < nc; r++) lam[r] = s[nv + r] * d->gamma[r];
         cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
     const int st = vt_solve_spd(d, S, nc, lam, &rcond);
     if (st) return vt_scratch_release(d, mark), st;
-    rcond *= (lmin / lmax) * (lmin / lmax);
+    rcond *= (lmin / lmax) * (lmin / lmax) * vt_rows_grip(m, d);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
     /* ỹ = L^-T (z + Y λ̃) */
@@ -715,8 +960,13 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
         cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nc, 1.0, Y, nv, lam, 1, 1.0, x, 1);
     }
     cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nv, L, nv, x, 1);
+    for (int a = 0; a < nv - 1 - a; a++) { /* back to ascending order */
+        const double t = x[a];
+        x[a] = x[nv - 1 - a];
+        x[nv - 1 - a] = t;
+    }
     for (int a = 0; a < nv; a++) x[a] *= s[a];
-    for (int r = 0; r < nc; r++) lam[r] *= c;
+    for (int r = 0; r < nc; r++) lam[r] *= s[nv + r];
     vt_scratch_release(d, mark);
     if (!vt_all_finite(x, nv + nc)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
@@ -820,11 +1070,12 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  *   SCHUR       fewer rows than rates (schur_solve); a small pivot of M̃ gives way to
  *   AUGMENTED   the whole augmented matrix (factor_solve, also every other case), flagged
  *               VT_FALLBACK_SCHUR_PIVOT
- * d->rcond is the reciprocal condition of what the route factorized: the free rates' scaled M*
- * (FREE_RATES); Φ_q D's, squared (SQUARE); the Schur complement's times M̃'s pivot ratio squared
- * (SCHUR); the scaled augmented matrix's (AUGMENTED); the reduced system's singular value ratio
- * (REDUNDANT). A lone row's condition is 1 on the Schur route (the scaling normalizes it): a
- * lone drive losing its grip does not show there. Below rcond_min the rows' rank (rows_decide)
+ * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
+ * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio of
+ * the whole M* times the unit-diagonal Schur complement's and the point drives' grip² (SCHUR); the
+ * scaled augmented matrix's times the grip² (AUGMENTED); the reduced system's singular value
+ * ratio (REDUNDANT). Round-off of an exact zero taken for a row or an inertia is caught first
+ * (roundoff_check). Below rcond_min the rows' rank (rows_decide)
  * tells dependent rows (VT_ERR_DEPENDENT_CONSTRAINTS, named) from a singular or ill-conditioned
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
@@ -835,6 +1086,10 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
     vt_solve_reset(d);
     if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
+    /* round-off of an exact zero is neither a row nor an inertia: a rate without inertia that
+     * nothing fixes is refused here, zero rows are dependent (rows_decide below says so) */
+    const int zero_rows = roundoff_check(m, d, NULL, 1);
+    if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
     if (m->joint_rows_only) {
         const int r = joint_rows_solve(m, d, &rcond);
@@ -864,8 +1119,9 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
     }
     const int square = nc == nv && nc > 0;
     vt_route route = square ? VT_ROUTE_SQUARE : nc > 0 && nc < nv ? VT_ROUTE_SCHUR : VT_ROUTE_AUGMENTED;
-    int r = 2; /* sol holds [q̈; λ], or [q̈; −λ] on the augmented route (factor_solve) */
-    if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
+    int r = zero_rows ? 1 : 2; /* sol holds [q̈; λ], or [q̈; −λ] on the augmented route (factor_solve) */
+    if (r == 1) {} /* a zero row: nothing solved, diagnosed below */
+    else if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
     else if (route == VT_ROUTE_SCHUR) r = schur_solve(m, d, sol, &rcond);
     if (r == 2) {
         if (route == VT_ROUTE_SCHUR) d->fallback |= VT_FALLBACK_SCHUR_PIVOT;
@@ -939,7 +1195,7 @@ int vt_rows_rank(const vt_model *m, vt_data *d)
 
 /* The recursive evaluation's square route (recursive.c): vt_solve's square route in two halves
  * with M* q̈ − Q computed between them by a Newton–Euler pass instead of from M* and Q (neither
- * is formed). vt_solve_square_begin: mdiag (nv) holds M*'s diagonal, which sets the scaling D;
+ * is formed). vt_solve_square_begin: mdiag (nv) holds M*'s diagonal, which scales the solves;
  * the route's state goes to *sq on the arena (the caller releases it), q̈ to sq->x, the
  * condition to *rcond. Returns 0, 1 (ill-conditioned: the caller falls back to vt_solve, which
  * diagnoses it) or a negative vt_status. vt_solve_square_end: with h = M* q̈ − Q in sq->h, λ,
@@ -948,6 +1204,8 @@ int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const do
 {
     if (!vt_all_finite(d->gamma, m->nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
+    const int zero_rows = roundoff_check(m, d, NULL, 0); /* a zero row: the general route diagnoses it */
+    if (zero_rows) return zero_rows < 0 ? zero_rows : 1;
     return vt_square_first(m, d, sq, mdiag, 1, rcond);
 }
 
@@ -1007,5 +1265,11 @@ size_t vt_solve_scratch(const vt_model *m)
                              : VT_SCRATCH_BYTES(sN * sN, D) + 2 * VT_SCRATCH_BYTES(sN, D) +
                                    VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
     if (rows + after > route) route = rows + after;
-    return held + route + small + lapack + 8 * VT_DATA_ALIGN;
+    /* roundoff_check (before a route, and inside rows_decide with its flags), the square route's
+     * condition (G Φ_q C, its pivots, its inverse) and vt_solve_spd's unit diagonal */
+    const size_t nb1 = (size_t)m->nbody + 1;
+    const size_t roundoff = VT_SCRATCH_BYTES(snv * (snc + 1), D) + VT_SCRATCH_BYTES(2 * snv, D) +
+                            VT_SCRATCH_BYTES(4 * nb1, D) + 2 * VT_SCRATCH_BYTES(snc + 1, I);
+    const size_t square = 2 * VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
+    return held + route + small + lapack + roundoff + square + VT_SCRATCH_BYTES(snc, D) + 8 * VT_DATA_ALIGN;
 }

@@ -343,6 +343,13 @@ static void test_bricard(void **state)
 /* as many rows as rates (the RSUR four-bar, the crank driven): (5) is solved through an LU of
  * Φ_q alone; against the whole augmented matrix by a general LU (dgesv), and its condition
  * reciprocal condition against the exact one of the scaled Φ_q (explicit inverse), squared */
+/* a row that measures a length (a point or line row, or a joint drive on a translation); the
+ * four-bar's and the arms' rows here: point rows of drives and cut joints, dot rows, rotation drives */
+static int test_row_is_length(const vt_model *m, int r)
+{
+    return m->con_kind[r] == VT_ROW_POINT || m->con_kind[r] == VT_ROW_LINE;
+}
+
 static void test_square_constraints(void **state)
 {
     (void)state;
@@ -377,12 +384,15 @@ static void test_square_constraints(void **state)
             assert_near(d->qdd[k], x[k], 1e-11 * qs);
             assert_near(d->lambda[k], -x[nv + k], 1e-11 * ls);
         }
-        /* exact 1-norm condition of Φ_q D, D = diag(M*_aa^(-1/2)) */
+        /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ρ; rates that turn
+         * by 1/ρ; ρ the radius of gyration (all of the four-bar's rates turn; its rows: the
+         * crank's joint drive an angle, the cut joint's point rows lengths, its dot rows angles) */
+        const double rho = vt_test_gyration_radius(m, d);
         double an = 0.0, in = 0.0;
         for (int c = 0; c < nv; c++) {
             double cs = 0.0;
             for (int r = 0; r < nv; r++) {
-                A[r + c * nv] = d->Phiq[r + c * nv] / sqrt(d->Mstar[c + c * nv]);
+                A[r + c * nv] = d->Phiq[r + c * nv] / rho * (test_row_is_length(m, r) ? 1.0 : rho);
                 Ainv[r + c * nv] = r == c;
                 cs += fabs(A[r + c * nv]);
             }
@@ -549,8 +559,13 @@ static void test_schur(void **state)
             for (int c = 0; c < nv; c++) rn += pow(d->Phiq[r + c * nc] * sc[c], 2);
             rmax = fmax(rmax, sqrt(rn));
         }
+        /* M* scaled to unit diagonal, its rates in descending order (leaf first: the articulated
+         * pivots' order, the same number on the recursive path) */
         for (int c = 0; c < nv; c++)
-            for (int r = 0; r < nv; r++) L[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
+            for (int r = 0; r < nv; r++) {
+                const int rr = nv - 1 - r, cc = nv - 1 - c;
+                L[r + c * nv] = d->Mstar[rr + cc * nv] * sc[rr] * sc[cc];
+            }
         dpotrf_("L", &nv, L, &nv, &info, 1);
         assert_int_equal(info, 0);
         double lmin = 1e300, lmax = 0.0;
@@ -564,7 +579,8 @@ static void test_schur(void **state)
             for (int r = 0; r < nv; r++) Mt[r + c * nv] = d->Mstar[r + c * nv] * sc[r] * sc[c];
         for (int r = 0; r < nc; r++)
             for (int a = 0; a < nv; a++) P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
-        const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc);
+        const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc) *
+                              vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
         assert_near(d->rcond, expect, 1e-8 * expect);
         vt_data_free(d);
         vt_model_free(m);
@@ -864,8 +880,9 @@ static void mixed_arm(vt_model **m, vt_data **d, double u)
 /* Rows in radians and rows in metres weigh alike whatever the length unit: the arm above in
  * metres and in millimetres, with a band of 1e-2 that holds its nearly dependent direction in
  * the least-squares sense (a solution that depends on how the rows are weighted): the same q̈,
- * the tip forces ×1e3 and the joint torque ×1e6 in mm; and the same with no band (exact). (The
- * exact routes' condition estimates do depend on the unit: 3.0e-6 in m, 4.7e-11 in mm here.) */
+ * the tip forces ×1e3 and the joint torque ×1e6 in mm; and the same with no band (exact), with
+ * the same condition estimate (the square route's G Φ_q C: it was 3.0e-6 in m and 4.7e-11 in mm
+ * when the rates were scaled by the mass metric and the rows not at all). */
 static void test_band_unit_independent_mixed_rows(void **state)
 {
     (void)state;
@@ -886,6 +903,7 @@ static void test_band_unit_independent_mixed_rows(void **state)
             assert_int_equal((d[k]->warning & VT_WARN_BAND) != 0, band);
         }
         const double qs = vt_test_maxabs(d[0]->qdd, 3), fs = vt_test_maxabs(d[0]->drive_effort, 3);
+        if (!band) assert_near(d[1]->rcond, d[0]->rcond, 1e-9 * d[0]->rcond); /* the estimate too */
         for (int c = 0; c < 3; c++) assert_near(d[1]->qdd[c], d[0]->qdd[c], 1e-8 * qs);
         assert_near(d[1]->drive_effort[0] * 1e-6, d[0]->drive_effort[0], 1e-8 * fs);
         for (int c = 1; c < 3; c++) assert_near(d[1]->drive_effort[c] * 1e-3, d[0]->drive_effort[c], 1e-8 * fs);
@@ -1003,6 +1021,93 @@ static void test_ill_conditioned_message(void **state)
     }
 }
 
+/* A planar arm of three 1 m, 1 kg rods along x, its last joint bent by e (q = (0, 0, e)), with
+ *   square  its first joint driven and its tip in x and y: the rows fix the motion
+ *   lone    its tip driven in x alone, two rates free
+ * As e falls to 0 the rows lose their grip on the tip along x: both estimates fall (the square
+ * route's with Φ_q's condition, about e²; the lone row's with its grip, e·V along x over |V|
+ * for the rates' velocities V of the tip, about e²), warn below rcond_warn and fail at e = 0;
+ * dense and recursive give the same estimate, the same in millimetres, and each against an
+ * independent computation (vt_test_grip2 from the dense S; G Φ_q C by dgesv in
+ * test_square_constraints). */
+static void reach_arm(vt_model **m, vt_data **d, int lone, double e, double u)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[1] = -9.81 * u;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    const double mass[3] = {1.0, 1.0, 1.0};
+    vt_test_add_rods(b, 3, u, mass);
+    if (!lone) {
+        vt_drive_def jd = vt_default_drive_def();
+        jd.f = vt_function_sine(0.0, 0.3, 1.0, 0.0);
+        assert_int_equal(vt_builder_add_drive(b, &jd), 0);
+    }
+    for (int k = 0; k < (lone ? 1 : 2); k++) {
+        vt_drive_def tip = vt_default_drive_def();
+        tip.type = VT_DRIVE_POINT;
+        tip.body = 3;
+        tip.index = k;
+        tip.point[0] = 0.5 * u;
+        tip.f = vt_function_sine(0.0, 0.2 * u, 1.3, 0.4 * k);
+        assert_true(vt_builder_add_drive(b, &tip) >= 0);
+    }
+    assert_ok(vt_builder_build(m, b));
+    vt_builder_free(b);
+    assert_ok(vt_data_create(d, *m));
+    const double q[3] = {0.0, 0.0, e}, w[3] = {0.2, -0.1, 0.3};
+    memcpy((*d)->q, q, sizeof q);
+    memcpy((*d)->qd, w, sizeof w);
+    (*d)->time = 0.3;
+}
+
+static void test_reach(void **state)
+{
+    (void)state;
+    const double es[5] = {0.3, 1e-2, 1e-3, 1e-4, 0.0};
+    for (int lone = 0; lone < 2; lone++) {
+        double prev = 2.0;
+        for (int k = 0; k < 5; k++) {
+            vt_model *m, *mm;
+            vt_data *d, *dr, *dm;
+            reach_arm(&m, &d, lone, es[k], 1.0);
+            reach_arm(&mm, &dm, lone, es[k], 1e3);
+            assert_ok(vt_data_create(&dr, m));
+            memcpy(dr->q, d->q, 3 * sizeof(double));
+            memcpy(dr->qd, d->qd, 3 * sizeof(double));
+            dr->time = d->time;
+            const vt_status st = vt_inverse_dynamics(m, d), sr = vt_inverse_dynamics_recursive(m, dr);
+            const vt_status sm = vt_inverse_dynamics(mm, dm);
+            print_message("%s e = %g: rcond %.3g (%s), recursive %.3g, mm %.3g\n", lone ? "lone row" : "square", es[k],
+                          d->rcond, vt_status_string(st), dr->rcond, dm->rcond);
+            assert_int_equal(st, sr);
+            assert_int_equal(st, sm);
+            if (es[k] == 0.0) { /* at reach: refused */
+                assert_true(st == VT_ERR_SINGULAR || st == VT_ERR_DEPENDENT_CONSTRAINTS);
+            } else {
+                assert_ok(st);
+                assert_near(dr->rcond, d->rcond, 1e-6 * d->rcond);
+                assert_near(dm->rcond, d->rcond, 1e-6 * d->rcond);
+                assert_true(d->rcond < prev);
+                prev = d->rcond;
+                /* warns where it should: near reach, not at a bent pose */
+                assert_int_equal((d->warning & VT_WARN_ILL_CONDITIONED) != 0, es[k] <= (lone ? 1e-3 : 1e-2));
+                assert_int_equal(dr->warning, d->warning);
+                if (lone) { /* the grip against its independent computation: the estimate is at most it */
+                    const double g2 = vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
+                    assert_true(d->rcond <= g2 * (1.0 + 1e-9));
+                    assert_true(g2 < 10.0 * es[k] * es[k] + 1e-300 || es[k] > 0.1);
+                }
+            }
+            vt_data_free(d);
+            vt_data_free(dr);
+            vt_data_free(dm);
+            vt_model_free(m);
+            vt_model_free(mm);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1021,6 +1126,7 @@ int main(void)
         cmocka_unit_test(test_band_unit_independent_mixed_rows),
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
+        cmocka_unit_test(test_reach),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -36,8 +36,8 @@ void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
             int *info);
 
 /* The Schur complement S = P M^-1 P^T of the n x n M and the nc x n P (column-major, leading
- * dimensions n and nc), by LAPACK's dgesv on copies, and S's exact 1-norm reciprocal condition
- * 1 / (‖S‖₁ ‖S^-1‖₁), which it returns */
+ * dimensions n and nc), by LAPACK's dgesv on copies, scaled to unit diagonal, and its exact
+ * 1-norm reciprocal condition 1 / (‖S‖₁ ‖S^-1‖₁), which it returns */
 static inline double vt_test_schur_rcond(const double *M, const double *P, int n, int nc)
 {
     double *A = malloc(sizeof(double) * (size_t)(n * n + 2 * n * nc + 2 * nc * nc));
@@ -57,6 +57,10 @@ static inline double vt_test_schur_rcond(const double *M, const double *P, int n
             S[i + j * nc] = v;
             X[i + j * nc] = i == j;
         }
+    for (int j = 0; j < nc; j++) /* to unit diagonal: the rows' independence, not their sizes */
+        for (int i = 0; i < nc; i++)
+            if (i != j) S[i + j * nc] /= sqrt(S[i + i * nc] * S[j + j * nc]);
+    for (int i = 0; i < nc; i++) S[i + i * nc] = 1.0;
     double sn = 0.0, xn = 0.0;
     for (int c = 0; c < nc; c++) {
         double cs = 0.0;
@@ -73,6 +77,61 @@ static inline double vt_test_schur_rcond(const double *M, const double *P, int n
     free(A);
     free(ipiv);
     return 1.0 / (sn * xn);
+}
+
+/* ρ, the radius of gyration of all bodies about their common centre of mass, from the model's
+ * masses and inertias and the bodies' positions: ρ² Σ m = Σ (tr J'/2 + m |c − c_G|²) */
+static inline double vt_test_gyration_radius(const vt_model *m, const vt_data *d)
+{
+    double mt = 0.0, cg[3] = {0, 0, 0}, i2 = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        mt += m->body_mass[i];
+        for (int k = 0; k < 3; k++) cg[k] += m->body_mass[i] * d->x[7 * (i - 1) + k];
+    }
+    for (int k = 0; k < 3; k++) cg[k] /= mt;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *J = m->body_inertia + 9 * i;
+        double r2 = 0.0;
+        for (int k = 0; k < 3; k++) r2 += (d->x[7 * (i - 1) + k] - cg[k]) * (d->x[7 * (i - 1) + k] - cg[k]);
+        i2 += 0.5 * (J[0] + J[4] + J[8]) + m->body_mass[i] * r2;
+    }
+    return sqrt(i2 / mt);
+}
+
+/* The smallest grip² of the point drives' rows (1 without any), from the dense S (vt_kinematics):
+ * rate a moves the driven point P = r + A u' of body b by V_a = ṙ_a + ω_a × (A u'), ω_a = 2 E(p) ṗ_a
+ * (ṙ_a, ṗ_a: S's rows of b, column a); the row's grip is ‖(e·V_a C_a)‖ / ‖(|V_a| C_a)‖ with e the
+ * driven direction and C_a = 1/ρ for a rate that turns (ρ: rho), 1 for one that translates */
+static inline double vt_test_grip2(const vt_model *m, const vt_data *d, double rho)
+{
+    double worst = 1.0;
+    for (int k = 0; k < m->ndrive; k++) {
+        const vt_drive_def *dr = m->drive + k;
+        if (dr->type != VT_DRIVE_POINT) continue;
+        const int b = dr->body, o = 7 * (b - 1);
+        const double *A = d->A + 9 * b, *p = d->x + o + 3;
+        double u[3], num = 0.0, den = 0.0;
+        for (int i = 0; i < 3; i++) u[i] = A[i] * dr->point[0] + A[i + 3] * dr->point[1] + A[i + 6] * dr->point[2];
+        const double E[12] = {-p[1], -p[2], -p[3], p[0], p[3], -p[2], -p[3], p[0], p[1], p[2], -p[1], p[0]};
+        for (int a = 0; a < m->nv; a++) {
+            const double *Sa = d->S + (size_t)a * (size_t)m->nx + o;
+            double w[3] = {0, 0, 0}, V[3];
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 4; j++) w[i] += 2.0 * E[i + 3 * j] * Sa[3 + j];
+            V[0] = Sa[0] + w[1] * u[2] - w[2] * u[1];
+            V[1] = Sa[1] + w[2] * u[0] - w[0] * u[2];
+            V[2] = Sa[2] + w[0] * u[1] - w[1] * u[0];
+            const int i = m->dof_body[a], turn = !(m->body_joint[i] == VT_JOINT_TRANSLATIONAL ||
+                                                   (m->body_joint[i] == VT_JOINT_CYLINDRICAL && a > m->body_vadr[i]) ||
+                                                   (m->body_joint[i] == VT_JOINT_FREE && a < m->body_vadr[i] + 3) ||
+                                                   (m->body_joint[i] == VT_JOINT_BASE && a < m->body_vadr[i] + 3));
+            const double ca = turn ? 1.0 / rho : 1.0, e = V[dr->index] * ca;
+            num += e * e;
+            den += (V[0] * V[0] + V[1] * V[1] + V[2] * V[2]) * ca * ca;
+        }
+        worst = fmin(worst, den > 0.0 ? num / den : 0.0);
+    }
+    return worst;
 }
 
 static inline double vt_test_maxabs(const double *a, int n)

@@ -51,9 +51,11 @@ typedef enum vt_status {
     VT_ERR_BAD_CUT_JOINT = -19,        ///< a cut-joint definition that cannot be used
     VT_ERR_CALLBACK = -20,             ///< a user time function or orientation callback returned an error
     VT_ERR_SINGULAR = -21,             ///< augmented system (5) singular (a rate or body without inertia
-                                       ///< that nothing fixes, named; an exactly zero pivot) or only
-                                       ///< ill-conditioned (rcond below rcond_min); the message says which
-    VT_ERR_DEPENDENT_CONSTRAINTS = -22,///< constraint rows Φ_q linearly dependent (rows named in the message)
+                                       ///< that nothing fixes, named, an inertia that is round-off of 0
+                                       ///< included; an exactly zero pivot) or only ill-conditioned
+                                       ///< (rcond below rcond_min); the message says which
+    VT_ERR_DEPENDENT_CONSTRAINTS = -22,///< constraint rows Φ_q linearly dependent, a row that is
+                                       ///< round-off of 0 included (rows named in the message)
     VT_ERR_NEWTON = -23,               ///< Newton–Raphson on Φ(q, t) = 0 did not converge (residual in message)
     VT_ERR_NOT_FULLY_DRIVEN = -24,     ///< a kinematic analysis needs as many constraint rows as rates
     VT_ERR_IDA = -25,                  ///< SUNDIALS IDA failed: its return code in ida_flag, its message
@@ -118,8 +120,8 @@ typedef enum vt_joint_type {
 
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
-    double rcond_min;   ///< smallest accepted reciprocal condition of the scaled system of (5) that
-                        ///< vt_solve factorizes (see vt_data.rcond); default 1e-12
+    double rcond_min;   ///< smallest accepted condition estimate of the pose (vt_data.rcond);
+                        ///< below it the solve is refused; default 1e-12
     double rcond_warn;  ///< below this (and above rcond_min) vt_solve succeeds but sets
                         ///< VT_WARN_ILL_CONDITIONED in the data's warning: a pose near a singular one,
                         ///< where efforts grow without bound; default 1e-6
@@ -169,7 +171,8 @@ enum {
     VT_FALLBACK_SCHUR_PIVOT = 1,          ///< vt_solve's Schur route: a Cholesky pivot of the scaled M*
                                           ///< below 1e-4 (a motion nearly without inertia)
     VT_FALLBACK_ARTICULATED_PIVOT = 2,    ///< recursive articulated route: a pivot of M* below 1e-8 of
-                                          ///< its diagonal entry
+                                          ///< its diagonal entry, or round-off of 0 against the terms
+                                          ///< it is summed from
     VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min
     VT_FALLBACK_SQUARE_CONDITION = 8      ///< recursive square route: rcond below rcond_min
 };
@@ -469,11 +472,16 @@ typedef struct vt_data {
                              ///< row: drives, then cut joints, then base bodies' p^T p − 1 (nc)
     vt_route route;          ///< the route by which the last solve found q̈ and λ (VT_ROUTE_NONE after a failure)
     int fallback;            ///< VT_FALLBACK_* flags: faster routes the last instant left, and why (0: none)
-    double rcond;            ///< reciprocal 1-norm condition of the mass-scaled system the route factorized
-                             ///< (exact up to 16 unknowns, LAPACK's estimate above; 1 when nothing was
-                             ///< factorized); it falls toward a singular pose. What exactly each route
-                             ///< measures: src/solve.c and src/recursive.c. After a failure: what the
-                             ///< failed route measured, 0 if nothing
+    double rcond;            ///< condition estimate of the pose, in (0, 1]: 1 when joint drives fix every
+                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ρ,
+                             ///< turning rates by 1/ρ (ρ the radius of gyration); some motion free:
+                             ///< min/max of M*'s leaf-first pivots each over its diagonal entry, times
+                             ///< the reciprocal condition of Φ_q M*^-1 Φ_q^T at unit diagonal, times
+                             ///< the point drives' smallest grip² (docs/method.md, "The condition
+                             ///< estimate"). Independent of units, of the scene's frame and of inertia
+                             ///< spread alone; the same on the dense and recursive paths. It falls
+                             ///< toward a singular pose. After a failure: what the failed route
+                             ///< measured, 0 if nothing
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none, and after a failure)
     int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent;
                              ///< after a failure what it found, 0 if nothing)
