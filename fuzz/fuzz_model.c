@@ -871,8 +871,10 @@ static void differential(const definitions *defs, const vt_model *m, const vt_da
     }
 
     /* the same definitions with allow_redundant: at a clearly regular pose (rcond ≥ 1e-8, far
-     * above any round-off rank decision) the redundant route must give the unique answer */
-    if (!m->allow_redundant && m->nc > 0 && dd->rcond >= 1e-8) {
+     * above any round-off rank decision) the redundant route must give the unique answer; not at
+     * overflow's edge (inputs ≥ EDGE_INPUT: a 1e154 kg body of 6 kg m² has a radius of gyration
+     * of 1e-77 m, which weighs its orientation rows to nothing) */
+    if (!m->allow_redundant && m->nc > 0 && dd->rcond >= 1e-8 && in_mag < EDGE_INPUT) {
         vt_model *m1 = build(defs, 1);
         vt_data *d1 = NULL;
         if (m1 && m1->nc == m->nc && vt_data_create(&d1, m1) == VT_OK) {
