@@ -81,6 +81,39 @@ vt_status vt_scene_double_link_driven(vt_model **model, vt_function f)
     return double_link(model, 1, f);
 }
 
+vt_status vt_scene_free_joint_driven(vt_model **model)
+{
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    vt_body_def body = vt_default_body_def();
+    body.joint_child[0] = -0.5;
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.1;
+    int id = vt_builder_add_body(b, &body);
+    body.parent = 1;
+    body.joint = VT_JOINT_FREE;
+    body.joint_parent[0] = 0.5;
+    body.joint_child[0] = 0.2, body.joint_child[1] = -0.1, body.joint_child[2] = 0.3;
+    if (id > 0) id = vt_builder_add_body(b, &body);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.2, 0.7, 1.1, 0.3);
+    if (id > 0) id = vt_builder_add_drive(b, &dr);
+    for (int k = 0; k < 3 && id >= 0; k++) {
+        dr.body = 2;
+        dr.index = k;
+        dr.f = vt_function_sine(0.1 * k, 0.3 + 0.1 * k, 0.9 + 0.4 * k, 0.2 * k);
+        id = vt_builder_add_drive(b, &dr);
+    }
+    dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_ORIENTATION;
+    dr.body = 2;
+    dr.axis[0] = 0.0, dr.axis[1] = 0.6, dr.axis[2] = 0.8;
+    dr.f = vt_function_sine(0.1, 0.5, 1.3, 0.0);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
 void vt_scene_chain_state(int k, double *q, double *qd, double *qdd)
 {
     *q = 0.3 * sin(1.3 * k + 0.2);

@@ -18,6 +18,13 @@ vt_status vt_scene_double_link(vt_model **model, int lock);
  * two rates); f = constant 0 is vt_scene_double_link(model, 1). */
 vt_status vt_scene_double_link_driven(vt_model **model, vt_function f);
 
+/* A free joint driven whole: body 1 on a hinge about z driven by 0.2 + 0.7 sin(1.1 t + 0.3)
+ * (drive 0); body 2 on a free joint from body 1's tip (joint point (0.5, 0, 0) on body 1,
+ * (0.2, −0.1, 0.3) on body 2), its translation by joint drives 1..3 (0.1 k + (0.3 + 0.1 k)
+ * sin((0.9 + 0.4 k) t + 0.2 k), m) and its orientation by drive 4, a turn of
+ * 0.1 + 0.5 sin 1.3t about (0, 0.6, 0.8): 7 rows, 7 rates. 1 kg bodies, 0.1 kg m² inertias. */
+vt_status vt_scene_free_joint_driven(vt_model **model);
+
 /* A spatial serial chain of n links joined by revolute joints whose axes cycle x, y, z (joint
  * k = 1..n about body axis (k−1) mod 3, given in the parent's axes; all axes aligned at q = 0).
  * Link k: 1 kg, 0.5 m along its x, centre of mass at its middle, inertia about it

@@ -39,36 +39,8 @@ static void test_rates_against_differences(void **state)
 static void test_free_joint_driven(void **state)
 {
     (void)state;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def body = vt_default_body_def();
-    body.joint_child[0] = -0.5;
-    body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.1;
-    assert_int_equal(vt_builder_add_body(b, &body), 1);
-    body.parent = 1;
-    body.joint = VT_JOINT_FREE;
-    body.joint_parent[0] = 0.5;
-    body.joint_child[0] = 0.2, body.joint_child[1] = -0.1, body.joint_child[2] = 0.3;
-    assert_int_equal(vt_builder_add_body(b, &body), 2);
-    vt_drive_def dr = vt_default_drive_def();
-    dr.body = 1;
-    dr.f = vt_function_sine(0.2, 0.7, 1.1, 0.3);
-    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
-    for (int k = 0; k < 3; k++) {
-        dr.body = 2;
-        dr.index = k;
-        dr.f = vt_function_sine(0.1 * k, 0.3 + 0.1 * k, 0.9 + 0.4 * k, 0.2 * k);
-        assert_int_equal(vt_builder_add_drive(b, &dr), k + 1);
-    }
-    dr = vt_default_drive_def();
-    dr.type = VT_DRIVE_ORIENTATION;
-    dr.body = 2;
-    dr.axis[0] = 0.0, dr.axis[1] = 0.6, dr.axis[2] = 0.8;
-    dr.f = vt_function_sine(0.1, 0.5, 1.3, 0.0);
-    assert_int_equal(vt_builder_add_drive(b, &dr), 4);
     vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
+    assert_ok(vt_scene_free_joint_driven(&m));
     assert_int_equal(m->nc, m->nv); /* 1 + 3 + 3 rows, 1 + 6 rates */
     vt_data *d;
     assert_ok(vt_data_create(&d, m));
