@@ -545,6 +545,14 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             /* D_a is a difference of terms about O as large as (|w| (tr J̄_O)^½ + |v| m̄^½)²: below
              * VT_ROUND_TAU ε of them it is round-off of an exact zero, not inertia */
             const double tw = sqrt(vt_dot3(s, s) * (Ii[4] + Ii[8] + Ii[12])) + sqrt(vt_dot3(s + 3, s + 3) * Ii[0]);
+            if (Da < -VT_ROUND_TAU * DBL_EPSILON * tw * tw) /* M* is semi-definite: a negative pivot beyond
+                                                            * its round-off is M* lost to round-off, a motion
+                                                            * with no inertia at working precision */
+                return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT,
+                       vt_fail(d->message, VT_ERR_SINGULAR,
+                               "vt_inverse_dynamics_recursive: singular: rate %d (body %d) has pivot %.3g of M*_aa %.3g, "
+                               "negative beyond round-off (%.3g): a motion without inertia at working precision",
+                               a, i, Da, inertia_quad(Ii, s, s + 3), VT_ROUND_TAU * DBL_EPSILON * tw * tw);
             if (!(piv >= PIVOT_MIN) || !(Da > VT_ROUND_TAU * DBL_EPSILON * tw * tw))
                 return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;

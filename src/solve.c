@@ -151,7 +151,11 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
-            if (held) continue;
+            if (held) { /* M* is semi-definite, so its row a is round-off too: exactly zero, as the
+                         * dense path forms it, not a unit pivot once scaled */
+                for (int b = 0; b < nv; b++) d->Mstar[a + (size_t)b * (size_t)nv] = d->Mstar[b + (size_t)a * (size_t)nv] = 0.0;
+                continue;
+            }
             const double terms = T[2 * a] + T[2 * a + 1]; /* read before the scratch is released */
             vt_scratch_release(d, mark);
             return vt_fail(d->message, VT_ERR_SINGULAR,

@@ -1158,6 +1158,66 @@ static vt_model *roundoff_model(int which)
     return m;
 }
 
+/* Motions without inertia that round-off hides, found by the differential fuzzer. (a) A base body
+ * that is a point mass turns without inertia: its M* rows are exactly zero in the dense path and
+ * round-off in the recursive one, which once scaled to unit diagonal passed for inertia (a
+ * state a little off p^T p = 1 made it so). (b) A point mass on a spherical joint 1e6 m from its
+ * centre of mass does not resist turning about the line from the joint to the mass: the
+ * articulated pivot of that direction came out negative (round-off of terms of 1e11), and the
+ * general route's M* passed for regular. Both paths must refuse both as singular. */
+static void test_roundoff_singular(void **state)
+{
+    (void)state;
+    for (int c = 0; c < 2; c++) {
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_body_def body = vt_default_body_def();
+        if (c == 0) {
+            body.joint = VT_JOINT_UNIVERSAL;
+            body.mass = 4.1875;
+            body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.6875;
+            body.axis1[2] = -1.0;
+            assert_int_equal(vt_builder_add_body(b, &body), 1);
+            body = vt_default_body_def();
+            body.joint = VT_JOINT_BASE;
+            body.mass = 0.1;
+            assert_int_equal(vt_builder_add_body(b, &body), 2);
+        } else {
+            body.joint = VT_JOINT_TRANSLATIONAL;
+            body.mass = 2.5;
+            body.inertia[0] = body.inertia[4] = body.inertia[8] = 2.4;
+            assert_int_equal(vt_builder_add_body(b, &body), 1);
+            body = vt_default_body_def();
+            body.parent = 1;
+            body.joint = VT_JOINT_SPHERICAL;
+            body.mass = 0.1;
+            body.joint_child[0] = 3.2e5, body.joint_child[1] = 1.2e5, body.joint_child[2] = 9.4e5;
+            assert_int_equal(vt_builder_add_body(b, &body), 2);
+        }
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        const double q0[9] = {1.875, 1.875, -2.1, -7.5, -7.5, -0.643563, 0.536303, -0.386138, -0.386138};
+        const double qd0[9] = {-4.5, -4.5, -4.5, -4.5, -4.5, -1.98389, -6.59676, -2.99034, -2.86534};
+        const double q1[5] = {-0.5, -0.5, -0.5, -0.5, -0.5}, qd1[4] = {-7.5, -7.5, -7.5, -7.5};
+        memcpy(dd->q, c ? q1 : q0, (size_t)m->nq * sizeof(double));
+        memcpy(dd->qd, c ? qd1 : qd0, (size_t)m->nv * sizeof(double));
+        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
+        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
+        print_message("case %d: dense %s (%s), recursive %s (%s)\n", c, vt_status_string(sd), dd->message,
+                      vt_status_string(sr), dr->message);
+        assert_int_equal(sd, VT_ERR_SINGULAR);
+        assert_int_equal(sr, VT_ERR_SINGULAR);
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 static void test_roundoff_zeros(void **state)
 {
     (void)state;
@@ -1323,6 +1383,7 @@ int main(void)
         cmocka_unit_test(test_translation_invariance),
         cmocka_unit_test(test_inertia_spread),
         cmocka_unit_test(test_roundoff_zeros),
+        cmocka_unit_test(test_roundoff_singular),
         cmocka_unit_test(test_mass_ratios),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
