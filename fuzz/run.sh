@@ -9,12 +9,15 @@
 # (VT_SETUP_EXTRA="clang libclang-rt-14-dev" tools/setup installs them). Findings are saved in
 # build-fuzz/crashes/, the harness's reason in the log build-fuzz/fuzz_model.log. Exits non-zero
 # on a crash, a sanitizer report or a failed comparison.
+# FUZZ_RUNS=N (and FUZZ_URDF_RUNS=N) run a fixed number of inputs from seed FUZZ_SEED (default
+# 1) instead of a time: a deterministic run, the same inputs on every machine (CI's). FUZZ_OUT
+# names another output folder than build-fuzz (a second run beside a long one).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 urdf_seconds=${2:-$((seconds / 2))}
 workers=${3:-1}
-out=build-fuzz
+out=${FUZZ_OUT:-build-fuzz}
 mkdir -p "$out/corpus" "$out/corpus_urdf" "$out/crashes"
 parallel=()
 if [ "$workers" -gt 1 ] || [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then parallel=(-fork="$workers"); fi
@@ -38,12 +41,16 @@ cp fuzz/corpus/* "$out/corpus/" 2>/dev/null || true
 cp fuzz/corpus_urdf/* "$out/corpus_urdf/" 2>/dev/null || true
 # the harness prints its reason ("fuzz_model: ...") before it aborts: shown above the tail
 status=0
-"$out/fuzz_model" -max_total_time="$seconds" -print_final_stats=1 -rss_limit_mb=4096 -timeout=60 \
+model_len=(-max_total_time="$seconds")
+urdf_len=(-max_total_time="$urdf_seconds")
+[ -n "${FUZZ_RUNS:-}" ] && model_len=(-runs="$FUZZ_RUNS" -seed="${FUZZ_SEED:-1}")
+[ -n "${FUZZ_URDF_RUNS:-}" ] && urdf_len=(-runs="$FUZZ_URDF_RUNS" -seed="${FUZZ_SEED:-1}")
+"$out/fuzz_model" "${model_len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -timeout=60 \
     -dict=fuzz/model.dict -artifact_prefix="$out/crashes/" "${parallel[@]}" "$out/corpus" \
     > "$out/fuzz_model.log" 2>&1 || status=$?
 grep -a '^fuzz_model: ' "$out/fuzz_model.log" | sort | uniq -c | head -40 || true
 tail -25 "$out/fuzz_model.log"
 [ "$status" -eq 0 ] || exit "$status"
 [ "$urdf_seconds" -gt 0 ] || exit 0
-"$out/fuzz_urdf" -max_total_time="$urdf_seconds" -print_final_stats=1 -rss_limit_mb=4096 -dict=fuzz/urdf.dict \
+"$out/fuzz_urdf" "${urdf_len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -dict=fuzz/urdf.dict \
     -max_len=8192 -artifact_prefix="$out/crashes/" "$out/corpus_urdf" 2>&1 | tail -25

@@ -545,9 +545,10 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             /* D_a is a difference of terms about O as large as (|w| (tr J̄_O)^½ + |v| m̄^½)²: below
              * VT_ROUND_TAU ε of them it is round-off of an exact zero, not inertia */
             const double tw = sqrt(vt_dot3(s, s) * (Ii[4] + Ii[8] + Ii[12])) + sqrt(vt_dot3(s + 3, s + 3) * Ii[0]);
-            if (Da < -VT_ROUND_TAU * DBL_EPSILON * tw * tw) /* M* is semi-definite: a negative pivot beyond
-                                                            * its round-off is M* lost to round-off, a motion
-                                                            * with no inertia at working precision */
+            if (Da < -VT_ROUND_TAU * DBL_EPSILON * tw * tw && piv < -PIVOT_MIN) /* M* is semi-definite: a
+                                     * pivot negative beyond its round-off and its diagonal's PIVOT_MIN
+                                     * is M* lost to round-off, a motion with no inertia at working
+                                     * precision (a smaller one: the general route decides) */
                 return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT,
                        vt_fail(d->message, VT_ERR_SINGULAR,
                                "vt_inverse_dynamics_recursive: singular: rate %d (body %d) has pivot %.3g of M*_aa %.3g, "
@@ -690,7 +691,29 @@ static int has_base(const vt_model *m)
     return 0;
 }
 
+static vt_status recursive_instant(const vt_model *m, vt_data *d);
+
+/* The instant, then its outputs scanned: finite inputs whose products overflow (an acceleration
+ * of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK */
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
+{
+    vt_status st = recursive_instant(m, d);
+    if (st) return st;
+    const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
+    if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||
+        !vt_all_finite(d->drive_effort, m->ndrive) || !vt_all_finite(d->drive_force, nd) ||
+        !vt_all_finite(d->drive_moment, nd) || !vt_all_finite(d->jnt_force, nb) || !vt_all_finite(d->jnt_moment, nb) ||
+        !vt_all_finite(d->jnt_force_body, nb) || !vt_all_finite(d->jnt_moment_body, nb) ||
+        !vt_all_finite(d->cut_force, nk) || !vt_all_finite(d->cut_moment, nk) ||
+        !vt_all_finite(d->cut_force_body, nk) || !vt_all_finite(d->cut_moment_body, nk)) {
+        d->route = VT_ROUTE_NONE;
+        return vt_fail(d->message, VT_ERR_NONFINITE,
+                       "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
+    }
+    return VT_OK;
+}
+
+static vt_status recursive_instant(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
