@@ -294,6 +294,175 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     return vt_reactions_unique(m, d);
 }
 
+/* A tree whose joints are all revolute (the chain, an arm), every q̈ known: the kinematics, the
+ * accelerations and each body's needed wrench in one outward pass, the subtree wrenches, efforts
+ * and reactions in one inward pass; the same equations as vt_kinematics_tree, vt_accelerations,
+ * body_wrench and inward_pass, written for one rotational rate a body (e = A^j u, its twist
+ * (e, (P − o) × e), t = 0, ė = ω^j × e), with each body's quantities kept in locals between
+ * the stages instead of stored and read back. */
+static int all_revolute(const vt_model *m)
+{
+    for (int i = 1; i <= m->nbody; i++)
+        if (m->body_joint[i] != VT_JOINT_REVOLUTE) return 0;
+    return 1;
+}
+
+static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
+
+/* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
+static void revolute_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W)
+{
+    double *o = d->origin;
+    o[0] = o[1] = o[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
+    alpha[0] = alpha[1] = alpha[2] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i], c = m->body_vadr[i];
+        const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
+        const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
+        const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
+        double pJ[4], p[4], A[9], e[3], sij[3], sji[3];
+        vt_quat_axis_angle(pJ, u, q);
+        vt_quat_mul(p, pj, pJ);
+        const double *p0 = m->body_quat0 + 4 * i;
+        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) vt_quat_mul(p, p, p0);
+        vt_euler_A(A, p);
+        vt_mulmat3(e, Aj, u);
+        vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
+        vt_mulmat3(sji, A, m->body_jchild + 3 * i);
+        if (i == 1) { /* o = P_1 */
+            vt_copy3(o, sij);
+            for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+        }
+        const double *rj = d->xrel + 6 * j, *wj = d->omega + 3 * j, *alj = alpha + 3 * j;
+        const double *vj = j ? d->xd + vt_xoff(j) : zero3, *aj = j ? d->xdd + vt_xoff(j) : zero3;
+        double Pr[3], rr[3], di[3], w[3], v[3], tw[3], al[3], a[3], t[3], ed[3], pd[4], pdd[4];
+        for (int k = 0; k < 3; k++) {
+            Pr[k] = rj[k] + sij[k];
+            rr[k] = Pr[k] - sji[k];
+            di[k] = 0.0 - sji[k];
+        }
+        /* velocities, the rate's twist */
+        for (int k = 0; k < 3; k++) {
+            w[k] = wj[k] + qd * e[k];
+            v[k] = vj[k];
+        }
+        vt_addcross3(v, wj, sij);
+        vt_addcross3(v, w, di);
+        vt_quat_rate(pd, p, w);
+        vt_cross3(tw, Pr, e);
+        /* accelerations */
+        vt_copy3(al, alj);
+        vt_copy3(a, aj);
+        vt_addcross3(a, alj, sij);
+        vt_cross3(t, wj, sij);
+        vt_addcross3(a, wj, t);
+        vt_cross3(ed, wj, e);
+        vt_axpy3(al, qdd, e);
+        vt_axpy3(al, qd, ed);
+        vt_cross3(ed, al, sji);
+        for (int k = 0; k < 3; k++) a[k] -= ed[k];
+        vt_cross3(t, w, sji);
+        vt_cross3(ed, w, t);
+        for (int k = 0; k < 3; k++) a[k] -= ed[k];
+        vt_quat_rate(pdd, p, al);
+        const double w2 = vt_dot3(w, w);
+        for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
+        /* the needed wrench (body_wrench) */
+        const double *Jb = m->body_inertia + 9 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+        double wb[3], ab[3], Jw[3], Ja[3], nn[3], f[3];
+        vt_mulmat3t(wb, A, w);
+        vt_mulmat3t(ab, A, al);
+        vt_mulmat3(Jw, Jb, wb);
+        vt_mulmat3(Ja, Jb, ab);
+        vt_addcross3(Ja, wb, Jw);
+        vt_mulmat3(nn, A, Ja);
+        for (int k = 0; k < 3; k++) {
+            f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
+            nn[k] -= xf[3 + k];
+        }
+        vt_addcross3(nn, rr, f);
+        /* stores, once each */
+        double *x = d->x + vt_xoff(i), *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
+        double *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c, *Wi = W + 6 * i;
+        for (int k = 0; k < 3; k++) {
+            x[k] = o[k] + rr[k];
+            d->jpoint[3 * i + k] = o[k] + Pr[k];
+            d->xrel[6 * i + k] = rr[k];
+            d->xrel[6 * i + 3 + k] = Pr[k];
+            d->jsij[3 * i + k] = sij[k];
+            d->jd[3 * i + k] = di[k];
+            d->omega[3 * i + k] = w[k];
+            xd[k] = v[k];
+            xdd[k] = a[k];
+            alpha[3 * i + k] = al[k];
+            ej[k] = e[k];
+            ej[3 + k] = ej[6 + k] = 0.0;
+            twc[k] = e[k];
+            twc[3 + k] = tw[k];
+            Wi[k] = nn[k];
+            Wi[3 + k] = f[k];
+        }
+        memcpy(x + 3, p, sizeof p);
+        memcpy(xd + 3, pd, sizeof pd);
+        memcpy(xdd + 3, pdd, sizeof pdd);
+        memcpy(d->A + 9 * i, A, sizeof A);
+    }
+}
+
+/* the joint-driven (given = 0) or given (1) instant of an all-revolute tree: inward_pass's
+ * outputs, and vt_kinematics_tree's (without Ṡq̇) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status revolute_pass(const vt_model *m, vt_data *d, const int given)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
+    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
+    if (!alpha) return vt_scratch_fail(d, mark);
+    revolute_outward(m, d, alpha, W);
+    vt_status st = vt_kinematics_check_outputs(m, d);
+    if (st) return vt_scratch_release(d, mark), st;
+    for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
+        const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
+        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i, *s = d->twist + 6 * c;
+        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+        vt_copy3(f, Wi + 3);
+        vt_copy3(mo, Wi);
+        vt_cross3(t, P, f);
+        for (int k = 0; k < 3; k++) mo[k] -= t[k]; /* about P_i */
+        const double qf = d->qfrc[c];
+        double tau = 0.0;
+        if (given || dr >= 0) tau = pair(s, s + 3, Wi) - qf;
+        if (!given && dr >= 0) {
+            d->lambda[m->drive_row[dr]] = tau;
+            d->drive_effort[dr] = tau;
+            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+            for (int k = 0; k < 3; k++) {
+                df[k] = 0.0;
+                dm[k] = tau * e[k];
+            }
+        }
+        d->qfrc_drive[c] = tau;
+        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
+        double fb[3], mb[3];
+        vt_mulmat3t(fb, d->A + 9 * i, f);
+        vt_mulmat3t(mb, d->A + 9 * i, mo);
+        vt_copy3(d->jnt_force + 3 * i, f);
+        vt_copy3(d->jnt_moment + 3 * i, mo);
+        vt_copy3(d->jnt_force_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_body + 3 * i, mb);
+        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
+            return vt_scratch_release(d, mark),
+                   vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+        if (j > 0)
+            for (int k = 0; k < 6; k++) W[6 * j + k] += Wi[k]; /* W̄_j += W̄_i */
+    }
+    vt_scratch_release(d, mark);
+    return vt_reactions_unique(m, d);
+}
+
 static vt_status inward(const vt_model *m, vt_data *d)
 {
     return inward_pass(m, d, 0);
@@ -722,6 +891,20 @@ static vt_status recursive_instant(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
+    if (m->joint_driven && all_revolute(m)) { /* the outward passes fused */
+        if ((st = vt_kinematics_check_state(m, d))) return st;
+        if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
+            const vt_status sk = vt_kinematics_tree(m, d, 0);
+            return sk ? sk : st;
+        }
+        d->route = VT_ROUTE_JOINT_DRIVEN;
+        d->rcond = 1.0;
+        d->warning = 0;
+        d->rank = m->nc;
+        d->residual = 0.0;
+        vt_mark_unique(m, d);
+        return revolute_pass(m, d, 0);
+    }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
         if ((st = drive_accelerations(m, d))) return st;
