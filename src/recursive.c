@@ -427,14 +427,14 @@ static inline vt_status revolute_pass(const vt_model *m, vt_data *d, const int g
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i, *s = d->twist + 6 * c;
-        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+        double f[3], Wn[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_copy3(f, Wi + 3);
-        vt_copy3(mo, Wi);
+        vt_copy3(Wn, Wi);
         vt_cross3(t, P, f);
-        for (int k = 0; k < 3; k++) mo[k] -= t[k]; /* about P_i */
+        for (int k = 0; k < 3; k++) mo[k] = Wn[k] - t[k]; /* about P_i */
         const double qf = d->qfrc[c];
         double tau = 0.0;
-        if (given || dr >= 0) tau = pair(s, s + 3, Wi) - qf;
+        if (given || dr >= 0) tau = vt_dot3(s, Wn) + vt_dot3(s + 3, f) - qf;
         if (!given && dr >= 0) {
             d->lambda[m->drive_row[dr]] = tau;
             d->drive_effort[dr] = tau;
@@ -456,8 +456,13 @@ static inline vt_status revolute_pass(const vt_model *m, vt_data *d, const int g
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
-        if (j > 0)
-            for (int k = 0; k < 6; k++) W[6 * j + k] += Wi[k]; /* W̄_j += W̄_i */
+        if (j > 0) { /* W̄_j += W̄_i */
+            double *Wj = W + 6 * j;
+            for (int k = 0; k < 3; k++) {
+                Wj[k] += Wn[k];
+                Wj[3 + k] += f[k];
+            }
+        }
     }
     vt_scratch_release(d, mark);
     return vt_reactions_unique(m, d);
@@ -892,7 +897,8 @@ static vt_status recursive_instant(const vt_model *m, vt_data *d)
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
     if (m->joint_driven && all_revolute(m)) { /* the outward passes fused */
-        if ((st = vt_kinematics_check_state(m, d))) return st;
+        if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) /* no Euler parameters to check */
+            return vt_kinematics_check_state(m, d);
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
             return sk ? sk : st;
@@ -995,13 +1001,18 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
                            "use VT_JOINT_FREE", i);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
-    if ((st = vt_kinematics_tree(m, d, 0))) return st;
+    const int revolute = all_revolute(m); /* the outward passes fused */
+    if (revolute) {
+        if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) return vt_kinematics_check_state(m, d);
+    } else if ((st = vt_kinematics_tree(m, d, 0))) {
+        return st;
+    }
     d->rcond = 1.0;
     d->warning = 0;
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = inward_given(m, d))) return st;
+    if ((st = revolute ? revolute_pass(m, d, 1) : inward_given(m, d))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }
