@@ -67,12 +67,10 @@ static vt_status check_state(const vt_model *m, vt_data *d)
 
 /* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body; o and the positions from
  * it (xrel) */
-static void positions(const vt_model *m, vt_data *d)
+static inline void position(const vt_model *m, vt_data *d, int i)
 {
     double *o = d->origin;
-    o[0] = o[1] = o[2] = 0.0;
-    memset(d->xrel, 0, 6 * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) {
+    {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qi = d->q + m->body_qadr[i];
         const double *rj = d->xrel + 6 * j; /* r^j − o */
@@ -96,7 +94,7 @@ static void positions(const vt_model *m, vt_data *d)
                 for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
             }
             for (int k = 0; k < 3; k++) rr[k] = Pr[k] = qi[k] - o[k];
-            continue;
+            return;
         }
         double pJ[4] = {1, 0, 0, 0}, t[3] = {0, 0, 0};
         switch (jt) {
@@ -154,9 +152,9 @@ static void positions(const vt_model *m, vt_data *d)
 }
 
 /* ω (16), v (15), ṗ = ½ E^T ω */
-static void velocities(const vt_model *m, vt_data *d)
+static inline void velocity(const vt_model *m, vt_data *d, int i)
 {
-    for (int i = 1; i <= m->nbody; i++) {
+    {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qdi = d->qd + m->body_vadr[i];
         const double *wj = d->omega + 3 * j;
@@ -169,7 +167,7 @@ static void velocities(const vt_model *m, vt_data *d)
             memcpy(vi, qdi, 7 * sizeof(double));
             vt_mulE(wi, E, pdi);
             wi[0] *= 2; wi[1] *= 2; wi[2] *= 2;
-            continue;
+            return;
         }
         const double *e = d->jaxis + 9 * i;
         double w[3], v[3]; /* locals, stored once: the outputs might alias the inputs */
@@ -203,10 +201,10 @@ static void velocities(const vt_model *m, vt_data *d)
 /* Twist of every rate about the reference point o, into d->twist: angular part w, velocity of
  * the point at o v. Rotational axis e through the joint point P: (e, (P − o) × e); translational
  * e: (0, e); a base body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, (r^b − o) × ω). */
-static void twists(const vt_model *m, vt_data *d)
+static inline void twists(const vt_model *m, vt_data *d, int b)
 {
-    for (int dof = 0; dof < m->nv; dof++) {
-        const int b = m->dof_body[dof], jt = m->body_joint[b];
+    const int jt = m->body_joint[b];
+    for (int dof = m->body_vadr[b]; dof < m->body_vadr[b] + m->body_nv[b]; dof++) {
         const double *e = d->jaxis + 9 * b;
         double *w = d->twist + 6 * dof, *v = w + 3;
         int ax;
@@ -233,6 +231,15 @@ static void twists(const vt_model *m, vt_data *d)
         }
         }
     }
+}
+
+/* Body i's positions, its rates' twists and its velocities, its reference body's known (body 1
+ * first: it sets o; d->origin and the ground's xrel zeroed before) */
+void vt_kinematics_body(const vt_model *m, vt_data *d, int i)
+{
+    position(m, d, i);
+    twists(m, d, i);
+    velocity(m, d, i);
 }
 
 /* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × (r^i − o), ṗ^i = ½ E^{iT} w,
@@ -277,7 +284,13 @@ void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i)
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
 {
     memset(alpha, 0, 3 * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) {
+    for (int i = 1; i <= m->nbody; i++) vt_acceleration_body(m, d, qdd, out, alpha, i);
+}
+
+/* body i's row of vt_accelerations, its reference body's known (alpha's ground entry zeroed) */
+void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i)
+{
+    {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qi = d->q + m->body_qadr[i], *qdi = d->qd + m->body_vadr[i];
         const double *qddi = qdd ? qdd + m->body_vadr[i] : NULL;
@@ -293,7 +306,7 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
             else memset(ai, 0, 7 * sizeof(double));
             vt_mulE(ali, E, pddi); /* α = 2 E p̈ + 2 Ė ṗ, and Ė ṗ = E(ṗ) ṗ = 0 */
             ali[0] *= 2; ali[1] *= 2; ali[2] *= 2;
-            continue;
+            return;
         }
         const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
         double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
@@ -420,9 +433,9 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
 {
     vt_status st = check_state(m, d);
     if (st) return st;
-    positions(m, d);
-    twists(m, d);
-    velocities(m, d);
+    d->origin[0] = d->origin[1] = d->origin[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) vt_kinematics_body(m, d, i);
     if (Sdqd) {
         const size_t mark = vt_scratch_mark(d);
         double *alpha = VT_SCRATCH(d, double, 3 * ((size_t)m->nbody + 1), "α at q̈ = 0");

@@ -230,11 +230,59 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+/* joint i's efforts and reaction from its subtree's wrench Wi (about o): inward_pass's step for one
+ * body; 1 if the reaction overflowed */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given)
+{
+    const double *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
+    double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+    vt_copy3(f, Wi + 3);
+    vt_copy3(mo, Wi);
+    vt_cross3(t, P, f);
+    for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+    for (int k = 0; k < m->body_nv[i]; k++) {
+        const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
+        int ax;
+        const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
+        double tau = 0.0;
+        if (given) {
+            const double *w = d->twist + 6 * c;
+            tau = pair(w, w + 3, Wi) - d->qfrc[c];
+        } else if (dr >= 0) {
+            const double *w = d->twist + 6 * c;
+            tau = pair(w, w + 3, Wi) - d->qfrc[c];
+            d->lambda[m->drive_row[dr]] = tau;
+            d->drive_effort[dr] = tau;
+            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+            for (int r = 0; r < 3; r++) {
+                df[r] = rot ? 0.0 : tau * e[3 * ax + r];
+                dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
+            }
+        }
+        d->qfrc_drive[c] = tau;
+        vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
+    }
+    if (m->body_joint[i] == VT_JOINT_FREE) /* transmits nothing: what is left is round-off */
+        f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
+    double fb[3], mb[3];
+    vt_mulmat3t(fb, d->A + 9 * i, f);
+    vt_mulmat3t(mb, d->A + 9 * i, mo);
+    vt_copy3(d->jnt_force + 3 * i, f);
+    vt_copy3(d->jnt_moment + 3 * i, mo);
+    vt_copy3(d->jnt_force_body + 3 * i, fb);
+    vt_copy3(d->jnt_moment_body + 3 * i, mb);
+    return !vt_all_finite(f, 3) || !vt_all_finite(mo, 3);
+}
+
 /* with q̈ known for every rate: one inward pass for the joint drives' efforts τ = s · W̄ − qfrc
  * and every reaction (actuation — a drive's τ and an applied qfrc — is not reaction) */
-/* given: the motion is given for every rate (vt_inverse_dynamics_motion): every rate's effort,
- * the drives left alone; else the joint drives' efforts. Inlined into inward and inward_given,
- * so that each is compiled for its constant (the branch in the loop cost 2.5 % on the chain) */
+/* given: the motion is given for every rate: every rate's effort, the drives left alone; else
+ * the joint drives' efforts. Inlined, so that each use is compiled for its constant (the branch
+ * in the loop cost 2.5 % on the chain). The trees without base bodies take the fused passes
+ * below (fused_pass); this one follows the articulated solve of the free rates. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -248,48 +296,10 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     if (!alpha) return vt_scratch_fail(d, mark);
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
-    for (int i = 1; i <= n; i++) {
-        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
-        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
-        vt_copy3(f, Wi + 3);
-        vt_copy3(mo, Wi);
-        vt_cross3(t, P, f);
-        for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
-        for (int k = 0; k < m->body_nv[i]; k++) {
-            const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
-            int ax;
-            const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
-            double tau = 0.0;
-            if (given) {
-                const double *w = d->twist + 6 * c;
-                tau = pair(w, w + 3, Wi) - d->qfrc[c];
-            } else if (dr >= 0) {
-                const double *w = d->twist + 6 * c;
-                tau = pair(w, w + 3, Wi) - d->qfrc[c];
-                d->lambda[m->drive_row[dr]] = tau;
-                d->drive_effort[dr] = tau;
-                double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
-                for (int r = 0; r < 3; r++) {
-                    df[r] = rot ? 0.0 : tau * e[3 * ax + r];
-                    dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
-                }
-            }
-            d->qfrc_drive[c] = tau;
-            vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
-        }
-        if (m->body_joint[i] == VT_JOINT_FREE) /* transmits nothing: what is left is round-off */
-            f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
-        double fb[3], mb[3];
-        vt_mulmat3t(fb, d->A + 9 * i, f);
-        vt_mulmat3t(mb, d->A + 9 * i, mo);
-        vt_copy3(d->jnt_force + 3 * i, f);
-        vt_copy3(d->jnt_moment + 3 * i, mo);
-        vt_copy3(d->jnt_force_body + 3 * i, fb);
-        vt_copy3(d->jnt_moment_body + 3 * i, mb);
-        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
+    for (int i = 1; i <= n; i++)
+        if (joint_reaction(m, d, W + 6 * i, i, given))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
-    }
     vt_scratch_release(d, mark);
     return vt_reactions_unique(m, d);
 }
@@ -300,23 +310,34 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
  * body_wrench and inward_pass, written for one rotational rate a body (e = A^j u, its twist
  * (e, (P − o) × e), t = 0, ė = ω^j × e), with each body's quantities kept in locals between
  * the stages instead of stored and read back. */
-static int all_revolute(const vt_model *m)
+/* 1: every joint revolute, 0: some other, but no base body (the fused passes take each other
+ * joint through the general code body by body), -1: a base body */
+static int joint_mix(const vt_model *m)
 {
-    for (int i = 1; i <= m->nbody; i++)
-        if (m->body_joint[i] != VT_JOINT_REVOLUTE) return 0;
-    return 1;
+    int r = 1;
+    for (int i = 1; i <= m->nbody; i++) {
+        if (m->body_joint[i] == VT_JOINT_BASE) return -1;
+        if (m->body_joint[i] != VT_JOINT_REVOLUTE) r = 0;
+    }
+    return r;
 }
 
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
 /* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
-static void revolute_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W)
+static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const int mixed)
 {
     double *o = d->origin;
     o[0] = o[1] = o[2] = 0.0;
     memset(d->xrel, 0, 6 * sizeof(double));
     alpha[0] = alpha[1] = alpha[2] = 0.0;
     for (int i = 1; i <= m->nbody; i++) {
+        if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) { /* the general code's stages for this body */
+            vt_kinematics_body(m, d, i);
+            vt_acceleration_body(m, d, d->qdd, d->xdd, alpha, i);
+            body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
+            continue;
+        }
         const int j = m->body_parent[i], c = m->body_vadr[i];
         const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
         const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
@@ -415,17 +436,25 @@ static void revolute_outward(const vt_model *m, vt_data *d, double *restrict alp
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status revolute_pass(const vt_model *m, vt_data *d, const int given)
+static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
     double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
     if (!alpha) return vt_scratch_fail(d, mark);
-    revolute_outward(m, d, alpha, W);
+    fused_outward(m, d, alpha, W, mixed);
     vt_status st = vt_kinematics_check_outputs(m, d);
     if (st) return vt_scratch_release(d, mark), st;
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
+        if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
+            if (joint_reaction(m, d, W + 6 * i, i, given))
+                return vt_scratch_release(d, mark),
+                       vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+            if (j > 0)
+                for (int k = 0; k < 6; k++) W[6 * j + k] += W[6 * i + k];
+            continue;
+        }
         const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i, *s = d->twist + 6 * c;
         double f[3], Wn[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_copy3(f, Wi + 3);
@@ -471,11 +500,6 @@ static inline vt_status revolute_pass(const vt_model *m, vt_data *d, const int g
 static vt_status inward(const vt_model *m, vt_data *d)
 {
     return inward_pass(m, d, 0);
-}
-
-static vt_status inward_given(const vt_model *m, vt_data *d)
-{
-    return inward_pass(m, d, 1);
 }
 
 /* M* by composite bodies and Q by a Newton–Euler pass */
@@ -896,9 +920,10 @@ static vt_status recursive_instant(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
-    if (m->joint_driven && all_revolute(m)) { /* the outward passes fused */
-        if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) /* no Euler parameters to check */
-            return vt_kinematics_check_state(m, d);
+    const int mix = joint_mix(m);
+    if (m->joint_driven && mix >= 0) { /* the outward passes fused */
+        if (mix == 0 || !vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) /* Euler parameters to check */
+            if ((st = vt_kinematics_check_state(m, d))) return st;
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
             return sk ? sk : st;
@@ -909,7 +934,7 @@ static vt_status recursive_instant(const vt_model *m, vt_data *d)
         d->rank = m->nc;
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        return revolute_pass(m, d, 0);
+        return mix ? fused_pass(m, d, 0, 0) : fused_pass(m, d, 0, 1);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
@@ -1001,18 +1026,16 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
                            "use VT_JOINT_FREE", i);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
-    const int revolute = all_revolute(m); /* the outward passes fused */
-    if (revolute) {
-        if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) return vt_kinematics_check_state(m, d);
-    } else if ((st = vt_kinematics_tree(m, d, 0))) {
-        return st;
-    }
+    /* the outward passes fused (no base body here) */
+    const int mix = joint_mix(m);
+    if (mix == 0 || !vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv))
+        if ((st = vt_kinematics_check_state(m, d))) return st;
     d->rcond = 1.0;
     d->warning = 0;
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = revolute ? revolute_pass(m, d, 1) : inward_given(m, d))) return st;
+    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }
