@@ -342,12 +342,24 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
         const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
         const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
         const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
-        double pJ[4], p[4], A[9], e[3], sij[3], sji[3];
-        vt_quat_axis_angle(pJ, u, q);
-        vt_quat_mul(p, pj, pJ);
+        double p[4], A[9], e[3], sij[3], sji[3];
+        { /* p = p^j ⊗ (cos ½q, sin ½q u) written out, (c p0 − s p·u, c p + s p0 u + s p × u): no
+           * calls with the vectors live */
+            const double h = 0.5 * q, cs = cos(h), sn = sin(h);
+            const double a0 = pj[0], a1 = pj[1], a2 = pj[2], a3 = pj[3];
+            p[0] = cs * a0 - sn * (a1 * u[0] + a2 * u[1] + a3 * u[2]);
+            p[1] = cs * a1 + sn * (a0 * u[0] + a2 * u[2] - a3 * u[1]);
+            p[2] = cs * a2 + sn * (a0 * u[1] + a3 * u[0] - a1 * u[2]);
+            p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
+        }
         const double *p0 = m->body_quat0 + 4 * i;
         if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) vt_quat_mul(p, p, p0);
-        vt_euler_A(A, p);
+        { /* vt_euler_A, inlined: no call with the vectors live */
+            const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3], sq = e0 * e0 - e1 * e1 - e2 * e2 - e3 * e3;
+            A[0] = sq + 2 * e1 * e1, A[3] = 2 * (e1 * e2 - e0 * e3), A[6] = 2 * (e1 * e3 + e0 * e2);
+            A[1] = 2 * (e1 * e2 + e0 * e3), A[4] = sq + 2 * e2 * e2, A[7] = 2 * (e2 * e3 - e0 * e1);
+            A[2] = 2 * (e1 * e3 - e0 * e2), A[5] = 2 * (e2 * e3 + e0 * e1), A[8] = sq + 2 * e3 * e3;
+        }
         vt_mulmat3(e, Aj, u);
         vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
         vt_mulmat3(sji, A, m->body_jchild + 3 * i);
