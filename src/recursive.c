@@ -353,7 +353,13 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
         }
         const double *p0 = m->body_quat0 + 4 * i;
-        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) vt_quat_mul(p, p, p0);
+        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) { /* p ⊗ p0 (vt_quat_mul) */
+            const double a0 = p[0], a1 = p[1], a2 = p[2], a3 = p[3], b0 = p0[0], b1 = p0[1], b2 = p0[2], b3 = p0[3];
+            p[0] = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3;
+            p[1] = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2;
+            p[2] = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1;
+            p[3] = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0;
+        }
         { /* vt_euler_A, inlined: no call with the vectors live */
             const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3], sq = e0 * e0 - e1 * e1 - e2 * e2 - e3 * e3;
             A[0] = sq + 2 * e1 * e1, A[3] = 2 * (e1 * e2 - e0 * e3), A[6] = 2 * (e1 * e3 + e0 * e2);
