@@ -373,79 +373,99 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             vt_copy3(o, sij);
             for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
         }
-        const double *rj = d->xrel + 6 * j, *wj = d->omega + 3 * j, *alj = alpha + 3 * j;
-        const double *vj = j ? d->xd + vt_xoff(j) : zero3, *aj = j ? d->xdd + vt_xoff(j) : zero3;
-        double Pr[3], rr[3], di[3], w[3], v[3], tw[3], al[3], a[3], t[3], ed[3], pd[4], pdd[4];
+        /* the reference body's values in locals before the first store (the outputs might alias
+         * them as far as the compiler knows); each output stored as soon as it is known, so that
+         * fewer values stay live (spilled) to the end */
+        const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
+        const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
+        double rj[3], wj[3], alj[3], vj[3], aj[3];
         for (int k = 0; k < 3; k++) {
-            Pr[k] = rj[k] + sij[k];
-            rr[k] = Pr[k] - sji[k];
-            di[k] = 0.0 - sji[k];
+            rj[k] = rjp[k];
+            wj[k] = wjp[k];
+            alj[k] = aljp[k];
+            vj[k] = vjp[k];
+            aj[k] = ajp[k];
         }
-        /* velocities, the rate's twist */
-        for (int k = 0; k < 3; k++) {
-            w[k] = wj[k] + qd * e[k];
-            v[k] = vj[k];
+        double rr[3], di[3], w[3], al[3], a[3], t[3], ed[3];
+        { /* positions from o, the rate's twist */
+            double Pr[3], tw[3];
+            for (int k = 0; k < 3; k++) {
+                Pr[k] = rj[k] + sij[k];
+                rr[k] = Pr[k] - sji[k];
+                di[k] = 0.0 - sji[k];
+            }
+            vt_cross3(tw, Pr, e);
+            double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
+            for (int k = 0; k < 3; k++) {
+                x[k] = o[k] + rr[k];
+                d->jpoint[3 * i + k] = o[k] + Pr[k];
+                d->xrel[6 * i + k] = rr[k];
+                d->xrel[6 * i + 3 + k] = Pr[k];
+                d->jsij[3 * i + k] = sij[k];
+                d->jd[3 * i + k] = di[k];
+                ej[k] = e[k];
+                ej[3 + k] = ej[6 + k] = 0.0;
+                twc[k] = e[k];
+                twc[3 + k] = tw[k];
+            }
+            memcpy(x + 3, p, sizeof p);
+            memcpy(d->A + 9 * i, A, sizeof A);
         }
-        vt_addcross3(v, wj, sij);
-        vt_addcross3(v, w, di);
-        vt_quat_rate(pd, p, w);
-        vt_cross3(tw, Pr, e);
-        /* accelerations */
-        vt_copy3(al, alj);
-        vt_copy3(a, aj);
-        vt_addcross3(a, alj, sij);
-        vt_cross3(t, wj, sij);
-        vt_addcross3(a, wj, t);
-        vt_cross3(ed, wj, e);
-        vt_axpy3(al, qdd, e);
-        vt_axpy3(al, qd, ed);
-        vt_cross3(ed, al, sji);
-        for (int k = 0; k < 3; k++) a[k] -= ed[k];
-        vt_cross3(t, w, sji);
-        vt_cross3(ed, w, t);
-        for (int k = 0; k < 3; k++) a[k] -= ed[k];
-        vt_quat_rate(pdd, p, al);
-        const double w2 = vt_dot3(w, w);
-        for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
-        /* the needed wrench (body_wrench) */
-        const double *Jb = m->body_inertia + 9 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
-        double wb[3], ab[3], Jw[3], Ja[3], nn[3], f[3];
-        vt_mulmat3t(wb, A, w);
-        vt_mulmat3t(ab, A, al);
-        vt_mulmat3(Jw, Jb, wb);
-        vt_mulmat3(Ja, Jb, ab);
-        vt_addcross3(Ja, wb, Jw);
-        vt_mulmat3(nn, A, Ja);
-        for (int k = 0; k < 3; k++) {
-            f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
-            nn[k] -= xf[3 + k];
+        { /* velocities */
+            double v[3], pd[4];
+            for (int k = 0; k < 3; k++) {
+                w[k] = wj[k] + qd * e[k];
+                v[k] = vj[k];
+            }
+            vt_addcross3(v, wj, sij);
+            vt_addcross3(v, w, di);
+            vt_quat_rate(pd, p, w);
+            double *xd = d->xd + vt_xoff(i);
+            vt_copy3(d->omega + 3 * i, w);
+            vt_copy3(xd, v);
+            memcpy(xd + 3, pd, sizeof pd);
         }
-        vt_addcross3(nn, rr, f);
-        /* stores, once each */
-        double *x = d->x + vt_xoff(i), *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
-        double *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c, *Wi = W + 6 * i;
-        for (int k = 0; k < 3; k++) {
-            x[k] = o[k] + rr[k];
-            d->jpoint[3 * i + k] = o[k] + Pr[k];
-            d->xrel[6 * i + k] = rr[k];
-            d->xrel[6 * i + 3 + k] = Pr[k];
-            d->jsij[3 * i + k] = sij[k];
-            d->jd[3 * i + k] = di[k];
-            d->omega[3 * i + k] = w[k];
-            xd[k] = v[k];
-            xdd[k] = a[k];
-            alpha[3 * i + k] = al[k];
-            ej[k] = e[k];
-            ej[3 + k] = ej[6 + k] = 0.0;
-            twc[k] = e[k];
-            twc[3 + k] = tw[k];
-            Wi[k] = nn[k];
-            Wi[3 + k] = f[k];
+        { /* accelerations */
+            double pdd[4];
+            vt_copy3(al, alj);
+            vt_copy3(a, aj);
+            vt_addcross3(a, alj, sij);
+            vt_cross3(t, wj, sij);
+            vt_addcross3(a, wj, t);
+            vt_cross3(ed, wj, e);
+            vt_axpy3(al, qdd, e);
+            vt_axpy3(al, qd, ed);
+            vt_cross3(ed, al, sji);
+            for (int k = 0; k < 3; k++) a[k] -= ed[k];
+            vt_cross3(t, w, sji);
+            vt_cross3(ed, w, t);
+            for (int k = 0; k < 3; k++) a[k] -= ed[k];
+            vt_quat_rate(pdd, p, al);
+            const double w2 = vt_dot3(w, w);
+            for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
+            double *xdd = d->xdd + vt_xoff(i);
+            vt_copy3(alpha + 3 * i, al);
+            vt_copy3(xdd, a);
+            memcpy(xdd + 3, pdd, sizeof pdd);
         }
-        memcpy(x + 3, p, sizeof p);
-        memcpy(xd + 3, pd, sizeof pd);
-        memcpy(xdd + 3, pdd, sizeof pdd);
-        memcpy(d->A + 9 * i, A, sizeof A);
+        { /* the needed wrench (body_wrench) */
+            const double *Jb = m->body_inertia + 9 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+            double wb[3], ab[3], Jw[3], Ja[3], nn[3], f[3];
+            vt_mulmat3t(wb, A, w);
+            vt_mulmat3t(ab, A, al);
+            vt_mulmat3(Jw, Jb, wb);
+            vt_mulmat3(Ja, Jb, ab);
+            vt_addcross3(Ja, wb, Jw);
+            vt_mulmat3(nn, A, Ja);
+            for (int k = 0; k < 3; k++) {
+                f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
+                nn[k] -= xf[3 + k];
+            }
+            vt_addcross3(nn, rr, f);
+            double *Wi = W + 6 * i;
+            vt_copy3(Wi, nn);
+            vt_copy3(Wi + 3, f);
+        }
     }
 }
 
