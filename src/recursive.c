@@ -386,7 +386,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             vj[k] = vjp[k];
             aj[k] = ajp[k];
         }
-        double rr[3], di[3], w[3], al[3], a[3], t[3], ed[3];
+        double rr[3], di[3], w[3], al[3], a[3], t[3], ed[3], wb[3], ab[3];
         { /* positions from o, the rate's twist */
             double Pr[3], tw[3];
             for (int k = 0; k < 3; k++) {
@@ -420,6 +420,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             vt_addcross3(v, wj, sij);
             vt_addcross3(v, w, di);
             vt_quat_rate(pd, p, w);
+            vt_mulmat3t(wb, A, w); /* ω in body axes for the wrench */
             double *xd = d->xd + vt_xoff(i);
             vt_copy3(d->omega + 3 * i, w);
             vt_copy3(xd, v);
@@ -441,6 +442,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             vt_cross3(ed, w, t);
             for (int k = 0; k < 3; k++) a[k] -= ed[k];
             vt_quat_rate(pdd, p, al);
+            vt_mulmat3t(ab, A, al); /* α in body axes for the wrench */
             const double w2 = vt_dot3(w, w);
             for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
             double *xdd = d->xdd + vt_xoff(i);
@@ -450,9 +452,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
         }
         { /* the needed wrench (body_wrench) */
             const double *Jb = m->body_inertia + 9 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
-            double wb[3], ab[3], Jw[3], Ja[3], nn[3], f[3];
-            vt_mulmat3t(wb, A, w);
-            vt_mulmat3t(ab, A, al);
+            double Jw[3], Ja[3], nn[3], f[3];
             vt_mulmat3(Jw, Jb, wb);
             vt_mulmat3(Ja, Jb, ab);
             vt_addcross3(Ja, wb, Jw);
