@@ -493,7 +493,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
                 for (int k = 0; k < 6; k++) W[6 * j + k] += W[6 * i + k];
             continue;
         }
-        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i, *s = d->twist + 6 * c;
+        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
         double f[3], Wn[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_copy3(f, Wi + 3);
         vt_copy3(Wn, Wi);
@@ -501,7 +501,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         for (int k = 0; k < 3; k++) mo[k] = Wn[k] - t[k]; /* about P_i */
         const double qf = d->qfrc[c];
         double tau = 0.0;
-        if (given || dr >= 0) tau = vt_dot3(s, Wn) + vt_dot3(s + 3, f) - qf;
+        if (given || dr >= 0) tau = vt_dot3(e, mo) - qf; /* s · W̄ = e · (the moment about P_i) */
         if (!given && dr >= 0) {
             d->lambda[m->drive_row[dr]] = tau;
             d->drive_effort[dr] = tau;
