@@ -43,7 +43,10 @@
 static const double zero3[3] = {0, 0, 0};
 static const double unit_quat[4] = {1, 0, 0, 0};
 
-static vt_status check_state(const vt_model *m, vt_data *d)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_state(const vt_model *m, vt_data *d)
 {
     if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) { /* which one, for the message */
         for (int k = 0; k < m->nq; k++)
@@ -67,6 +70,9 @@ static vt_status check_state(const vt_model *m, vt_data *d)
 
 /* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body; o and the positions from
  * it (xrel) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 static inline void position(const vt_model *m, vt_data *d, int i)
 {
     double *o = d->origin;
@@ -152,6 +158,9 @@ static inline void position(const vt_model *m, vt_data *d, int i)
 }
 
 /* ω (16), v (15), ṗ = ½ E^T ω */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 static inline void velocity(const vt_model *m, vt_data *d, int i)
 {
     {
@@ -201,10 +210,13 @@ static inline void velocity(const vt_model *m, vt_data *d, int i)
 /* Twist of every rate about the reference point o, into d->twist: angular part w, velocity of
  * the point at o v. Rotational axis e through the joint point P: (e, (P − o) × e); translational
  * e: (0, e); a base body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, (r^b − o) × ω). */
-static inline void twists(const vt_model *m, vt_data *d, int b)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void twist(const vt_model *m, vt_data *d, int dof)
 {
-    const int jt = m->body_joint[b];
-    for (int dof = m->body_vadr[b]; dof < m->body_vadr[b] + m->body_nv[b]; dof++) {
+    {
+        const int b = m->dof_body[dof], jt = m->body_joint[b];
         const double *e = d->jaxis + 9 * b;
         double *w = d->twist + 6 * dof, *v = w + 3;
         int ax;
@@ -231,6 +243,12 @@ static inline void twists(const vt_model *m, vt_data *d, int b)
         }
         }
     }
+}
+
+/* the twists of body b's rates */
+static inline void twists(const vt_model *m, vt_data *d, int b)
+{
+    for (int dof = m->body_vadr[b]; dof < m->body_vadr[b] + m->body_nv[b]; dof++) twist(m, d, dof);
 }
 
 /* Body i's positions, its rates' twists and its velocities, its reference body's known (body 1
@@ -279,16 +297,10 @@ void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i)
         memcpy(Si + 7 * c, d->S + (size_t)path[c] * (size_t)m->nx + (size_t)vt_xoff(i), 7 * sizeof(double));
 }
 
-/* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
- * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
-void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
-{
-    memset(alpha, 0, 3 * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) vt_acceleration_body(m, d, qdd, out, alpha, i);
-}
-
-/* body i's row of vt_accelerations, its reference body's known (alpha's ground entry zeroed) */
-void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i)
 {
     {
         const int j = m->body_parent[i], jt = m->body_joint[i];
@@ -353,6 +365,20 @@ void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, doub
     }
 }
 
+/* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
+ * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
+void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+{
+    memset(alpha, 0, 3 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) acceleration(m, d, qdd, out, alpha, i);
+}
+
+/* body i's row of vt_accelerations, its reference body's known (alpha's ground entry zeroed) */
+void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i)
+{
+    acceleration(m, d, qdd, out, alpha, i);
+}
+
 /* ẍ = S q̈ + Ṡq̇ from the stored Ṡq̇ (d->Sdqd) and the rates' twists, outward: the twist of
  * accelerations T^i = T^j + Σ_own q̈_a s_a (a sum of twists about o) gives
  *   α^i = α0^i + T_w,   a^i = a0^i + T_v + T_w × (r^i − o),   p̈^i = p̈0^i + ½ E^{iT} T_w
@@ -393,7 +419,10 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
 /* A finite state can still overflow (a base body's Euler parameters ×1e200 enter A squared, a
  * rate of 1e300 rad/s its square in Ṡq̇): the outputs are scanned (branch-free, O(n)) and the
  * first body with a non-finite one is named. */
-static vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
 {
     const int n = m->nbody, nb = n + 1;
     if (vt_all_finite(d->x, 7 * n) && vt_all_finite(d->A, 9 * nb) && vt_all_finite(d->jpoint, 3 * nb) &&
@@ -435,7 +464,9 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
     if (st) return st;
     d->origin[0] = d->origin[1] = d->origin[2] = 0.0;
     memset(d->xrel, 0, 6 * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) vt_kinematics_body(m, d, i);
+    for (int i = 1; i <= m->nbody; i++) position(m, d, i);
+    for (int dof = 0; dof < m->nv; dof++) twist(m, d, dof);
+    for (int i = 1; i <= m->nbody; i++) velocity(m, d, i);
     if (Sdqd) {
         const size_t mark = vt_scratch_mark(d);
         double *alpha = VT_SCRATCH(d, double, 3 * ((size_t)m->nbody + 1), "α at q̈ = 0");

@@ -927,7 +927,10 @@ static int has_base(const vt_model *m)
     return 0;
 }
 
-static vt_status recursive_instant(const vt_model *m, vt_data *d);
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d);
 
 /* The instant, then its outputs scanned: finite inputs whose products overflow (an acceleration
  * of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK */
@@ -949,7 +952,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
-static vt_status recursive_instant(const vt_model *m, vt_data *d)
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
