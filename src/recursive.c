@@ -212,20 +212,26 @@ static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
 /* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
 static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 {
-    for (int c = 0; c < m->nv; c++) {
-        const int k = m->dof_drive[c];
+    /* the arrays in locals: the time function's call would have them all read again per rate */
+    const int nv = m->nv, *dof_drive = m->dof_drive, *drive_row = m->drive_row, *dof_body = m->dof_body;
+    const int *qadr = m->body_qadr, *vadr = m->body_vadr;
+    const vt_drive_def *drive = m->drive;
+    const double t = d->time, *q = d->q;
+    double *Phi = d->Phi, *Phit = d->Phit, *gamma = d->gamma, *qdd = d->qdd;
+    for (int c = 0; c < nv; c++) {
+        const int k = dof_drive[c];
         if (k < 0) continue;
-        const int row = m->drive_row[k];
+        const int row = drive_row[k];
         double f[3];
-        vt_status st = vt_function_eval_valid(f, &m->drive[k].f, d->time);
+        vt_status st = vt_function_eval_valid(f, &drive[k].f, t);
         if (st)
             return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
                            d->time);
-        const int i = m->dof_body[c];
-        d->Phi[row] = d->q[m->body_qadr[i] + c - m->body_vadr[i]] - f[0];
-        d->Phit[row] = -f[1];
-        d->gamma[row] = f[2];
-        d->qdd[c] = f[2];
+        const int i = dof_body[c];
+        Phi[row] = q[qadr[i] + c - vadr[i]] - f[0];
+        Phit[row] = -f[1];
+        gamma[row] = f[2];
+        qdd[c] = f[2];
     }
     return VT_OK;
 }
