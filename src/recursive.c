@@ -21,7 +21,8 @@
  * - JOINT_DRIVEN, every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and
  *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's
  *   Φ_q^T λ with unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point
- *   P_i less the joint's actuation (τ + qfrc) along its axes (inward);
+ *   P_i less the joint's actuation (τ + qfrc) along its axes (inward; without base bodies the
+ *   kinematics fused into the same two passes, fused_pass);
  * (a free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
  * normal part, so the routes below take free bodies, base bodies only the general one)
  * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
@@ -310,12 +311,13 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     return vt_reactions_unique(m, d);
 }
 
-/* A tree whose joints are all revolute (the chain, an arm), every q̈ known: the kinematics, the
- * accelerations and each body's needed wrench in one outward pass, the subtree wrenches, efforts
- * and reactions in one inward pass; the same equations as vt_kinematics_tree, vt_accelerations,
- * body_wrench and inward_pass, written for one rotational rate a body (e = A^j u, its twist
- * (e, (P − o) × e), t = 0, ė = ω^j × e), with each body's quantities kept in locals between
- * the stages instead of stored and read back. */
+/* The fused passes: a tree without base bodies, every q̈ known (every rate joint-driven, or the
+ * motion given): the kinematics, the accelerations and each body's needed wrench in one outward
+ * loop over the bodies, the subtree wrenches, efforts and reactions in one inward loop; the same
+ * equations as vt_kinematics_tree, vt_accelerations, body_wrench and inward_pass. A revolute body
+ * has its own code, written for one rotational rate (e = A^j u, its twist (e, (P − o) × e),
+ * t = 0, ė = ω^j × e, τ = e · the moment about P); any other joint takes the general code's
+ * stages for its body. */
 /* 1: every joint revolute, 0: some other, but no base body (the fused passes take each other
  * joint through the general code body by body), -1: a base body */
 static int joint_mix(const vt_model *m)
@@ -488,7 +490,10 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     if (!alpha) return vt_scratch_fail(d, mark);
     fused_outward(m, d, alpha, W, mixed);
     vt_status st = vt_kinematics_check_outputs(m, d);
-    if (st) return vt_scratch_release(d, mark), st;
+    if (st) { /* as vt_kinematics_tree's failure before any route */
+        d->route = VT_ROUTE_NONE;
+        return vt_scratch_release(d, mark), st;
+    }
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
