@@ -40,7 +40,9 @@ program test_fortran_layout
          a(c_loc(x_drive_def%type)), a(c_loc(x_drive_def%body)), a(c_loc(x_drive_def%index)), &
          a(c_loc(x_drive_def%point)), a(c_loc(x_drive_def%f)), a(c_loc(x_drive_def%axis)), &
          a(c_loc(x_drive_def%orientation)), a(c_loc(x_drive_def%orientation_callback)), &
-         a(c_loc(x_drive_def%user)), a(c_loc(x_drive_def%name)), a(c_loc(x_drive_def%frame))])
+         a(c_loc(x_drive_def%user)), a(c_loc(x_drive_def%name)), a(c_loc(x_drive_def%frame)), &
+         a(c_loc(x_drive_def%reference)), a(c_loc(x_drive_def%sequence)), a(c_loc(x_drive_def%f2)), &
+         a(c_loc(x_drive_def%f3))])
     call check(3_c_int, 'vt_cut_joint_def', c_sizeof(x_cut_joint_def), a(c_loc(x_cut_joint_def)), [ &
          a(c_loc(x_cut_joint_def%joint)), a(c_loc(x_cut_joint_def%body_a)), a(c_loc(x_cut_joint_def%body_b)), &
          a(c_loc(x_cut_joint_def%point_a)), a(c_loc(x_cut_joint_def%point_b)), &
