@@ -397,6 +397,8 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
         return vt_fail(msg, VT_ERR_BAD_INDEX, "drive %d: body %d is not a body added so far (1..%d)", k,
                        d->body, b->n);
     const vt_body_def *body = &b->bodies[d->body - 1];
+    if (d->sequence && !vt_drive_turns(d->type))
+        return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: a sequence of angles belongs to orientation drives", k);
     switch (d->type) {
     case VT_DRIVE_JOINT:
         if (d->index < 0 || d->index >= joint_nv[body->joint])
@@ -445,8 +447,6 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
         }
         break;
     }
-    if (d->sequence && !vt_drive_turns(d->type))
-        return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: a sequence of angles belongs to orientation drives", k);
     const vt_function *fs[3];
     const int nf = vt_drive_functions(d, fs);
     for (int e = 0; e < nf; e++) {
