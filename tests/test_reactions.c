@@ -893,66 +893,18 @@ static void same_reactions(const vt_model *m, const vt_data *a, const vt_data *b
     }
 }
 
-/* A chain ground –revolute– 1 –spherical– 2 –revolute– 3 (masses, off-centre joints, body 2
- * assembled turned), the spherical joint driven by a relative orientation drive (reference −1:
- * its own rotation, three Z–Y–X angles), the revolutes by joint drives. The kinematic solve's
+/* vt_scene_spherical_chain: a spherical joint driven by a relative orientation drive
+ * (reference −1: its own rotation, three Z–Y–X angles) between two driven revolutes. The kinematic solve's
  * motion given to vt_inverse_dynamics_motion on the model without drives: the same generalized
  * forces (the drive's moment is the spherical joint's three efforts, turned from body 1's
  * axes), the same reactions of every joint (the spherical one's moment 0); the recursive path
  * the same again. (The drive's rows do not move with rate 0, so the first joint's torque is its
  * joint drive's multiplier alone: a drive reacting on the ground would change it.) */
-static vt_model *spherical_chain(int relative)
-{
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def body = vt_default_body_def();
-    body.mass = 2.0;
-    const double J[9] = {0.12, 0.01, -0.02, 0.01, 0.2, 0.015, -0.02, 0.015, 0.15};
-    memcpy(body.inertia, J, sizeof J);
-    body.axis1[0] = 0.3; body.axis1[1] = 0.2; body.axis1[2] = 0.93;
-    body.joint_child[1] = -0.4; body.joint_child[2] = 0.1;
-    assert_int_equal(vt_builder_add_body(b, &body), 1);
-    body.parent = 1;
-    body.joint = VT_JOINT_SPHERICAL;
-    body.mass = 1.5;
-    body.joint_parent[0] = 0.1; body.joint_parent[1] = -0.5; body.joint_parent[2] = 0.2;
-    body.joint_child[0] = 0.2; body.joint_child[1] = 0.3; body.joint_child[2] = -0.1;
-    const double q0[4] = {0.9, 0.1, -0.3, 0.2};
-    memcpy(body.orientation, q0, sizeof q0);
-    assert_int_equal(vt_builder_add_body(b, &body), 2);
-    body.parent = 2;
-    body.joint = VT_JOINT_REVOLUTE;
-    body.mass = 0.8;
-    body.orientation[0] = 1.0; body.orientation[1] = body.orientation[2] = body.orientation[3] = 0.0;
-    body.axis1[0] = 1.0; body.axis1[1] = 0.0; body.axis1[2] = 0.0;
-    body.joint_parent[0] = -0.2; body.joint_parent[1] = 0.4; body.joint_parent[2] = 0.0;
-    body.joint_child[0] = 0.0; body.joint_child[1] = -0.3; body.joint_child[2] = 0.05;
-    assert_int_equal(vt_builder_add_body(b, &body), 3);
-    vt_drive_def dr = vt_default_drive_def();
-    dr.body = 1;
-    dr.f = vt_function_sine(0.2, 0.6, 1.9, 0.1);
-    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
-    dr.type = relative ? VT_DRIVE_RELATIVE_ORIENTATION : VT_DRIVE_ORIENTATION;
-    dr.body = 2;
-    dr.sequence = "ZYX";
-    dr.f = vt_function_sine(0.4, 0.5, 2.2, -0.3);
-    dr.f2 = vt_function_sine(-0.3, 0.4, 1.4, 0.6);
-    dr.f3 = vt_function_sine(0.1, -0.7, 2.7, 0.2);
-    assert_int_equal(vt_builder_add_drive(b, &dr), 1);
-    dr = vt_default_drive_def();
-    dr.body = 3;
-    dr.f = vt_function_sine(-0.5, 0.3, 3.1, 0.0);
-    assert_int_equal(vt_builder_add_drive(b, &dr), 2);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    return m;
-}
-
 static void test_spherical_joint_drive(void **state)
 {
     (void)state;
-    vt_model *m = spherical_chain(1), *m0;
+    vt_model *m, *m0;
+    assert_ok(vt_scene_spherical_chain(&m, 1));
     assert_ok(vt_model_without_drives(&m0, m));
     vt_data *d, *d0, *dr;
     assert_ok(vt_data_create(&d, m));
