@@ -15,9 +15,10 @@
  *   orientation    2 G(p_d) p  (3 rows)       Φ_p = 2 G(p_d), Φ_t = 2 G(ṗ_d) p,
  *                                             γ = −[2 G(p̈_d) p + 4 G(ṗ_d) ṗ + 2 G(p_d) p̈0]
  *                  (G(a) b is the vector part of a* ⊗ b: zero when p = p_d)
- *   relative       2 G(p_d) p_r, p_r = p_a* ⊗ p_b   as orientation with p_r for p; Φ_x on both bodies
- *   orientation    (3 rows)                   from the bilinear p_a* ⊗ p_b (relative_row); along the
- *                                             rates Φ̇ = J (ω_b − ω_a), so its moment on a is minus b's
+ *   relative       2 G(p_d) p_r  (3 rows)     as orientation with p_r = p_a* ⊗ p_b for p (γ from ṗ_r,
+ *   orientation                               p̈_r0); Φ_x the exact gradients of the bilinear p_r on
+ *                                             both bodies (relative_row); along the rates Φ̇ sees
+ *                                             ω_b − ω_a only, so its moment on a is minus b's
  *   normalization  p^T p − 1 (base body)      Φ_p = 2 p^T, γ = −2 ṗ·ṗ
  *   coupling       q_a − k q_b − c            Φ_q = e_a − k e_b directly (the coordinates of two
  *                                             joints: up to four bodies, so no Φ_x), Φ_t = 0, γ = 0

@@ -1,7 +1,8 @@
 /* src/reactions.c: efforts (24) and reactions (25)-(28) against the paper's exact double-link
  * solution (29), a planar Newton–Euler solution of a four-bar, the power balance of every
  * effort, Newton–Euler balance of every body, and the reaction's orthogonality to a joint's
- * free directions. */
+ * free directions; relative orientation drives against the same motion given to
+ * vt_inverse_dynamics_motion and against a revolute's joint drive. */
 #include "vt_test.h"
 
 /* ---- the paper's double link, joint 2 locked --------------------------------------- */
