@@ -155,7 +155,9 @@ program test_fortran_layout
   x_drive_def = vt_default_drive_def()
   call expect(x_drive_def%type == VT_DRIVE_JOINT .and. x_drive_def%body == 1 .and. x_drive_def%index == 0 &
       .and. x_drive_def%f%type == VT_FUNC_CONSTANT .and. same(x_drive_def%axis, [0, 0, 1]) &
-      .and. .not. c_associated(x_drive_def%orientation_callback), 'vt_default_drive_def')
+      .and. .not. c_associated(x_drive_def%orientation_callback) .and. x_drive_def%reference == -1 &
+      .and. .not. c_associated(x_drive_def%sequence) .and. x_drive_def%f3%type == VT_FUNC_CONSTANT, &
+      'vt_default_drive_def')
   x_function = vt_function_sine(1.0_c_double, 2.0_c_double, 3.0_c_double, 4.0_c_double)
   call expect(x_function%type == VT_FUNC_SINE .and. same(x_function%c(1:4), [1, 2, 3, 4]), 'vt_function_sine')
   x_function = vt_function_spline(3_c_int, [0.0_c_double, 1.0_c_double, 2.0_c_double], &
