@@ -135,6 +135,9 @@ static void test_forward_check(void **state)
             e += (qf[pq + c] - q[pq + c]) * (qf[pq + c] - q[pq + c]);
         }
         dev = fmax(dev, sqrt(e));
+        /* the parallelograms keep the platform parallel to the base: no row drives its turn */
+        assert_near(q[pq + 3], 1.0, 1e-12);
+        for (int c = 4; c < 7; c++) assert_near(q[pq + c], 0.0, 1e-12);
         assert_true(tr->phi_norm[k] <= 1e-12);
         assert_true(tr->phid_norm[k] <= 1e-10);
         /* the motor angles' accelerations given, the cut joints give the rest: the path's q̈ */
