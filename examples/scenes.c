@@ -475,6 +475,149 @@ void vt_scene_five_link_guess(const vt_model *m, vt_data *d, double t)
     q[m->body_qadr[5]] = -psi;
 }
 
+vt_status vt_scene_delta(vt_model **model, double period, int drives)
+{
+    if (!(period > 0.0 && period < INFINITY) || (drives != VT_DELTA_PATH && drives != VT_DELTA_MOTORS))
+        return VT_ERR_BAD_OPTION;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[1] = 0.0;
+    md.gravity[2] = -9.81;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    int id = 0;
+    for (int i = 0; i < 3 && id >= 0; i++) { /* the upper arms, bodies 1..3 */
+        const double phi = 2.0 * VT_PI * i / 3.0, c = cos(phi), s = sin(phi);
+        vt_body_def arm = vt_default_body_def();
+        arm.mass = VT_DELTA_MA;
+        rod_inertia(arm.inertia, VT_DELTA_MA, VT_DELTA_LA);
+        arm.inertia[0] = 1e-4; /* about its own axis: a tube of 13 mm radius */
+        arm.joint_parent[0] = VT_DELTA_RB * c;
+        arm.joint_parent[1] = VT_DELTA_RB * s;
+        arm.joint_child[0] = -0.5 * VT_DELTA_LA;
+        arm.axis1[0] = -s;
+        arm.axis1[1] = c;
+        arm.axis1[2] = 0.0;
+        arm.orientation[0] = cos(0.5 * phi);
+        arm.orientation[3] = sin(0.5 * phi);
+        id = vt_builder_add_body(b, &arm);
+    }
+    for (int i = 0; i < 3 && id >= 0; i++) /* the forearms' rods, bodies 4..9 */
+        for (int k = 0; k < 2 && id >= 0; k++) {
+            vt_body_def rod = vt_default_body_def();
+            rod.parent = 1 + i;
+            rod.joint = VT_JOINT_UNIVERSAL;
+            rod.mass = VT_DELTA_MR;
+            rod.inertia[0] = rod.inertia[4] = VT_DELTA_MR * VT_DELTA_LF * VT_DELTA_LF / 12.0;
+            rod.inertia[8] = 0.5 * VT_DELTA_MR * 0.008 * 0.008; /* a tube of 8 mm radius */
+            rod.joint_parent[0] = 0.5 * VT_DELTA_LA;
+            rod.joint_parent[1] = k ? VT_DELTA_H : -VT_DELTA_H;
+            rod.joint_child[2] = 0.5 * VT_DELTA_LF;
+            rod.axis1[0] = 0.0; /* the arm's y, then the rod's x */
+            rod.axis1[1] = 1.0;
+            rod.axis1[2] = 0.0;
+            rod.axis2[0] = 1.0;
+            id = vt_builder_add_body(b, &rod);
+        }
+    if (id >= 0) { /* the platform, body 10 */
+        vt_body_def pf = vt_default_body_def();
+        pf.joint = VT_JOINT_FREE;
+        pf.mass = VT_DELTA_MP;
+        pf.inertia[0] = pf.inertia[4] = 1.0e-3;
+        pf.inertia[8] = 0.5 * VT_DELTA_MP * VT_DELTA_RP * VT_DELTA_RP;
+        id = vt_builder_add_body(b, &pf);
+    }
+    for (int i = 0; i < 3 && id >= 0; i++)
+        for (int k = 0; k < 2 && id >= 0; k++) {
+            const double phi = 2.0 * VT_PI * i / 3.0, c = cos(phi), s = sin(phi), h = k ? VT_DELTA_H : -VT_DELTA_H;
+            vt_cut_joint_def cut = vt_default_cut_joint_def();
+            cut.joint = VT_JOINT_SPHERICAL;
+            cut.body_a = 10;
+            cut.body_b = 4 + 2 * i + k;
+            cut.point_a[0] = VT_DELTA_RP * c - h * s;
+            cut.point_a[1] = VT_DELTA_RP * s + h * c;
+            cut.point_b[2] = -0.5 * VT_DELTA_LF;
+            id = vt_builder_add_cut_joint(b, &cut);
+        }
+    const double w = 2.0 * VT_PI / period;
+    for (int k = 0; k < 3 && id >= 0; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        if (drives == VT_DELTA_PATH) {
+            dr.type = VT_DRIVE_POINT;
+            dr.body = 10;
+            dr.index = k;
+            if (k == 0) dr.f = vt_function_sine(0.0, VT_DELTA_RHO, w, 0.5 * VT_PI);
+            else if (k == 1) dr.f = vt_function_sine(0.0, VT_DELTA_RHO, w, 0.0);
+            else dr.f = vt_function_sine(VT_DELTA_Z0, VT_DELTA_DZ, 2.0 * w, 0.0);
+        } else {
+            dr.body = 1 + k; /* joint drive of the motor angle */
+        }
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+void vt_scene_delta_path(double t, double period, double p[3], double pd[3], double pdd[3])
+{
+    const double w = 2.0 * VT_PI / period, c = cos(w * t), s = sin(w * t), c2 = cos(2 * w * t), s2 = sin(2 * w * t);
+    if (p) {
+        p[0] = VT_DELTA_RHO * c;
+        p[1] = VT_DELTA_RHO * s;
+        p[2] = VT_DELTA_Z0 + VT_DELTA_DZ * s2;
+    }
+    if (pd) {
+        pd[0] = -VT_DELTA_RHO * w * s;
+        pd[1] = VT_DELTA_RHO * w * c;
+        pd[2] = 2.0 * w * VT_DELTA_DZ * c2;
+    }
+    if (pdd) {
+        pdd[0] = -VT_DELTA_RHO * w * w * c;
+        pdd[1] = -VT_DELTA_RHO * w * w * s;
+        pdd[2] = -4.0 * w * w * VT_DELTA_DZ * s2;
+    }
+}
+
+int vt_scene_delta_assemble(const vt_model *m, vt_data *d, const double p[3])
+{
+    for (int i = 0; i < 3; i++) {
+        const double phi = 2.0 * VT_PI * i / 3.0;
+        const double u[3] = {cos(phi), sin(phi), 0.0}, t[3] = {-u[1], u[0], 0.0};
+        /* the rod runs from the elbow E = (RB + LA cos θ) u − LA sin θ z to the platform's point
+         * p + RP u (either rod: the parallelogram); |c − LA cos θ u + LA sin θ z| = LF with
+         * c = p + (RP − RB) u gives A cos θ + B sin θ = K */
+        const double cv[3] = {p[0] + (VT_DELTA_RP - VT_DELTA_RB) * u[0], p[1] + (VT_DELTA_RP - VT_DELTA_RB) * u[1], p[2]};
+        const double a = cv[0] * u[0] + cv[1] * u[1], bt = cv[0] * t[0] + cv[1] * t[1], z = cv[2];
+        const double A = -2.0 * a * VT_DELTA_LA, B = 2.0 * z * VT_DELTA_LA;
+        const double K = VT_DELTA_LF * VT_DELTA_LF - VT_DELTA_LA * VT_DELTA_LA - a * a - bt * bt - z * z;
+        const double rAB = sqrt(A * A + B * B);
+        if (!(rAB > 0.0) || fabs(K) > rAB) return -1;
+        /* the two roots atan2(B, A) ± acos(K / rAB): the elbow out is the one of larger cos θ */
+        const double th1 = atan2(B, A) + acos(K / rAB), th2 = atan2(B, A) - acos(K / rAB);
+        const double th = cos(th1) >= cos(th2) ? th1 : th2;
+        d->q[m->body_qadr[1 + i]] = th;
+        /* the rod's direction in the arm's axes x_a = cos θ u − sin θ z, y_a = t,
+         * z_a = sin θ u + cos θ z; the universal turns it from −z_a to
+         * R_y(α) R_x(β) (0, 0, −1) = (−sin α cos β, sin β, −cos α cos β) */
+        const double e[3] = {a - (VT_DELTA_LA * cos(th)), bt, z + VT_DELTA_LA * sin(th)}; /* in u, t, z */
+        const double dx = (e[0] * cos(th) - e[2] * sin(th)) / VT_DELTA_LF, dy = e[1] / VT_DELTA_LF,
+                     dz = (e[0] * sin(th) + e[2] * cos(th)) / VT_DELTA_LF;
+        const double beta = asin(dy < -1.0 ? -1.0 : (dy > 1.0 ? 1.0 : dy)), alpha = atan2(-dx, -dz);
+        for (int k = 0; k < 2; k++) {
+            const int body = 4 + 2 * i + k;
+            d->q[m->body_qadr[body]] = alpha;
+            d->q[m->body_qadr[body] + 1] = beta;
+        }
+    }
+    double *qp = d->q + m->body_qadr[10];
+    qp[0] = p[0];
+    qp[1] = p[1];
+    qp[2] = p[2];
+    qp[3] = 1.0;
+    qp[4] = qp[5] = qp[6] = 0.0;
+    for (int k = 0; k < m->nv; k++) d->qd[k] = 0.0;
+    return 0;
+}
+
 vt_status vt_scene_pendulum(vt_model **model)
 {
     vt_builder *b;

@@ -112,6 +112,53 @@ vt_status vt_scene_five_link_payload(vt_model **model, double payload, double pe
 /* q of the five-link arm at time t from its inverse kinematics (elbow up): a start for Newton. */
 void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
 
+/* A Delta robot (ABB FlexPicker / Codian-like), z up, gravity (0, 0, −9.81), the base at z = 0
+ * and the platform below. Arm i = 0, 1, 2 sits at φ_i = 2π i/3 with radial unit u_i =
+ * (cos φ_i, sin φ_i, 0) and tangential unit t_i = (−sin φ_i, cos φ_i, 0):
+ *   upper arm i (body 1 + i)   revolute about t_i at VT_DELTA_RB u_i (the motor), VT_DELTA_LA
+ *                              long, VT_DELTA_MA kg, a uniform rod along its body x (body axes:
+ *                              the base's turned by φ_i about z, then by the motor angle θ_i);
+ *                              θ_i = 0 horizontal, θ_i > 0 down
+ *   rods (i, ∓) (bodies 4 + 2i, 5 + 2i)  the forearm's parallelogram: two uniform rods
+ *                              VT_DELTA_LF long, VT_DELTA_MR kg each, hung from the elbow at
+ *                              ∓VT_DELTA_H along the arm's y by universal joints (first axis the
+ *                              arm's y, parallel to the motor's; second the rod's x), along the
+ *                              rod's −z at zero angles
+ *   platform (body 10)         a free joint from the ground (q: its centre's global position and
+ *                              its Euler parameters), VT_DELTA_MP kg (gripper and load), its
+ *                              centre at its centre of mass
+ * Cut joints 2i, 2i + 1: spherical, rod (i, ∓)'s lower end to the platform at
+ * VT_DELTA_RP u_i ∓ VT_DELTA_H t_i. Rates 3 + 12 + 6 = 21, cut rows 6 × 3 = 18: three degrees
+ * of freedom (Grübler's count is the mobility: the rods' universal joints leave no spin), the
+ * platform kept parallel to the base by the parallelograms. With three drives the model is
+ * square and exactly constrained (no redundant rows) away from the Delta's singular poses.
+ *   drives = VT_DELTA_PATH    three point drives on the platform's centre, x, y, z (drives 0..2)
+ *                             following vt_scene_delta_path() with period `period` s
+ *            VT_DELTA_MOTORS  three joint drives on the motor angles (drive i on arm i),
+ *                             constant 0: the motion is given to vt_inverse_dynamics_motion(),
+ *                             whose efforts are then the motor torques
+ * VT_ERR_BAD_OPTION for a period that is not > 0 and finite, or an unknown drives. */
+#define VT_DELTA_RB 0.2   /* base radius (motor axes), m */
+#define VT_DELTA_LA 0.35  /* upper arm, m */
+#define VT_DELTA_LF 0.8   /* forearm rods, m */
+#define VT_DELTA_RP 0.05  /* platform radius (middle of each rod pair), m */
+#define VT_DELTA_H 0.05   /* half the spacing of a parallelogram's rods, m */
+#define VT_DELTA_MA 1.2   /* upper arm, kg */
+#define VT_DELTA_MR 0.2   /* each forearm rod, kg */
+#define VT_DELTA_MP 1.5   /* platform with gripper and load, kg */
+#define VT_DELTA_RHO 0.15 /* radius of the path's circle, m */
+#define VT_DELTA_Z0 (-0.85) /* height of the circle's centre, m */
+#define VT_DELTA_DZ 0.05  /* the path's rise and fall, m */
+enum { VT_DELTA_PATH, VT_DELTA_MOTORS };
+vt_status vt_scene_delta(vt_model **model, double period, int drives);
+/* The platform centre's path, p, ṗ, p̈ at time t (any of them may be NULL): a circle of radius
+ * VT_DELTA_RHO about the z axis at height VT_DELTA_Z0, rising and falling by VT_DELTA_DZ twice
+ * a turn: p = (ρ cos ωt, ρ sin ωt, z0 + Δz sin 2ωt), ω = 2π/period. */
+void vt_scene_delta_path(double t, double period, double p[3], double pd[3], double pdd[3]);
+/* The assembly with the platform's centre at p (the Delta's inverse kinematics, elbows out, the
+ * platform parallel to the base): sets d->q; q̇ = 0. Returns 0, or −1 where p is out of reach. */
+int vt_scene_delta_assemble(const vt_model *model, vt_data *data, const double p[3]);
+
 /* The IFToMM multibody benchmark's simple pendulum (problem A01): a 1 kg point mass on a
  * massless 1 m link, revolute about z at the origin, gravity (0, −9.81, 0); at q = 0 the link
  * lies along +x (horizontal): released from rest there. In joint coordinates it has no
