@@ -801,3 +801,116 @@ void vt_scene_stewart_assemble(const vt_model *m, vt_data *d, const vt_stewart *
     }
     d->time = t;
 }
+
+/* ---- knee four-bar ---- */
+
+/* a solid rod along body x: axial m ρ²/2, transverse m (3 ρ² + ℓ²)/12 */
+static void rod_x_inertia(double J[9], double mass, double length, double radius)
+{
+    memset(J, 0, 9 * sizeof(double));
+    J[0] = 0.5 * mass * radius * radius;
+    J[4] = J[8] = mass * (3.0 * radius * radius + length * length) / 12.0;
+}
+
+vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor)
+{
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    const double ls = VT_KN_C + VT_KN_L, cs = 0.5 * ls - VT_KN_C; /* shank rod; its centre from the knee */
+    vt_body_def thigh = vt_default_body_def();
+    thigh.mass = 1.5;
+    rod_x_inertia(thigh.inertia, 1.5, VT_KN_D, 0.01);
+    thigh.joint_child[0] = -0.5 * VT_KN_D;
+    thigh.name = "thigh";
+    int id = vt_builder_add_body(b, &thigh);
+    vt_body_def crank = vt_default_body_def();
+    crank.parent = 1;
+    crank.mass = 0.1;
+    rod_x_inertia(crank.inertia, 0.1, VT_KN_A, 0.01);
+    crank.joint_parent[0] = -0.5 * VT_KN_D; /* the hip, on the thigh */
+    crank.joint_child[0] = -0.5 * VT_KN_A;
+    crank.name = "crank";
+    if (id > 0) id = vt_builder_add_body(b, &crank);
+    /* with the planar cut joint (vt_cut_joint_def.planar = 1) the coupler takes a revolute joint
+     * here and the cut below becomes a planar revolute: 4 rates, 2 drives, 2 rows */
+    vt_body_def coupler = vt_default_body_def();
+    coupler.parent = 2;
+    coupler.joint = VT_JOINT_UNIVERSAL;
+    coupler.mass = 0.08;
+    rod_x_inertia(coupler.inertia, 0.08, VT_KN_B, 0.01);
+    coupler.joint_parent[0] = 0.5 * VT_KN_A;
+    coupler.joint_child[0] = -0.5 * VT_KN_B;
+    coupler.axis2[0] = 0.0;
+    coupler.axis2[1] = 1.0;
+    coupler.name = "coupler";
+    if (id > 0) id = vt_builder_add_body(b, &coupler);
+    vt_body_def shank = vt_default_body_def();
+    shank.parent = 1;
+    shank.mass = 0.5;
+    rod_x_inertia(shank.inertia, 0.5, ls, 0.01);
+    shank.joint_parent[0] = 0.5 * VT_KN_D; /* the knee, on the thigh */
+    shank.joint_child[0] = -cs;
+    shank.name = "shank";
+    if (id > 0) id = vt_builder_add_body(b, &shank);
+    if (id > 0) {
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.joint = VT_JOINT_SPHERICAL; /* planar = 1: VT_JOINT_REVOLUTE about z */
+        cut.body_a = 4;
+        cut.body_b = 3;
+        cut.point_a[0] = -cs - VT_KN_C; /* the lever point */
+        cut.point_b[0] = 0.5 * VT_KN_B;
+        cut.name = "lever";
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    for (int k = 0; k < 2 && id >= 0; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = 1 + k;
+        dr.f = k ? motor : hip;
+        dr.name = k ? "motor" : "hip";
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1, double thm, double wm, double knee[2])
+{
+    /* in the thigh's frame: hip O = 0, knee K = (D, 0), crank tip B = A (cos θm, sin θm), lever
+     * point C = K + C (cos ψ, sin ψ) with |C − B| = B_len: C on both circles */
+    const double Bx = VT_KN_A * cos(thm), By = VT_KN_A * sin(thm);
+    const double ex = VT_KN_D - Bx, ey = -By, L = sqrt(ex * ex + ey * ey);
+    if (L == 0.0) return -1;
+    const double x = (L * L + VT_KN_B * VT_KN_B - VT_KN_C * VT_KN_C) / (2.0 * L), h2 = VT_KN_B * VT_KN_B - x * x;
+    if (h2 < 0.0) return -1;
+    const double h = sqrt(h2), ux = ex / L, uy = ey / L;
+    double psi = 0.0, best = INFINITY;
+    for (int s = -1; s <= 1; s += 2) { /* the branch with ψ nearest θm */
+        const double Cx = Bx + x * ux - s * h * uy, Cy = By + x * uy + s * h * ux;
+        const double p = atan2(Cy, Cx - VT_KN_D), dd = fabs(remainder(p - thm, 2.0 * VT_PI));
+        if (dd < best) { best = dd; psi = p; }
+    }
+    const double Cx = VT_KN_D + VT_KN_C * cos(psi), Cy = VT_KN_C * sin(psi);
+    const double phi = atan2(Cy - By, Cx - Bx); /* the coupler's angle from the thigh */
+    /* rates: A θm' k×e(θm) + B φ' k×e(φ) = C ψ' k×e(ψ) */
+    const double a11 = -VT_KN_B * sin(phi), a12 = VT_KN_C * sin(psi);
+    const double a21 = VT_KN_B * cos(phi), a22 = -VT_KN_C * cos(psi);
+    const double r1 = VT_KN_A * wm * sin(thm), r2 = -VT_KN_A * wm * cos(thm);
+    const double det = a11 * a22 - a12 * a21;
+    if (det == 0.0) return -1;
+    const double phid = (r1 * a22 - a12 * r2) / det, psid = (a11 * r2 - a21 * r1) / det;
+    d->q[m->body_qadr[1]] = th1;
+    d->q[m->body_qadr[2]] = thm;
+    d->q[m->body_qadr[3]] = phi - thm;
+    d->q[m->body_qadr[3] + 1] = 0.0;
+    d->q[m->body_qadr[4]] = remainder(psi - VT_PI, 2.0 * VT_PI); /* the shank points away from the lever */
+    d->qd[m->body_vadr[1]] = w1;
+    d->qd[m->body_vadr[2]] = wm;
+    d->qd[m->body_vadr[3]] = phid - wm;
+    d->qd[m->body_vadr[3] + 1] = 0.0;
+    d->qd[m->body_vadr[4]] = psid;
+    if (knee) {
+        knee[0] = d->q[m->body_qadr[4]];
+        knee[1] = psid;
+    }
+    return 0;
+}
