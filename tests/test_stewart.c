@@ -153,8 +153,7 @@ static void test_static_closed_form(void **state)
                     assert_near(d->jnt_force[3 * pis + c], P[3 * i + c], tol);
                 }
             }
-            /* the legs carry the whole weight: Σ f_i u_z,i is not it (the legs lean), but the
-             * ground's six universal forces are */
+            /* the ground's six universal forces carry the whole weight */
             double Uz = 0.0;
             for (int i = 0; i < 6; i++) Uz += d->jnt_force[3 * (2 + 2 * i) + 2];
             assert_near(Uz, 9.81 * (VT_SG_M_PLAT + 6 * (VT_SG_M_CYL + VT_SG_M_PIST)), 1e-9 * Uz);
