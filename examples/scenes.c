@@ -779,6 +779,53 @@ vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut_kind, int drive, 
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
+vt_status vt_scene_spherical_chain(vt_model **model, int relative)
+{
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    int id = 0;
+    vt_body_def body = vt_default_body_def();
+    body.mass = 2.0;
+    const double J[9] = {0.12, 0.01, -0.02, 0.01, 0.2, 0.015, -0.02, 0.015, 0.15};
+    memcpy(body.inertia, J, sizeof J);
+    body.axis1[0] = 0.3; body.axis1[1] = 0.2; body.axis1[2] = 0.93;
+    body.joint_child[1] = -0.4; body.joint_child[2] = 0.1;
+    if (id >= 0) id = vt_builder_add_body(b, &body);
+    body.parent = 1;
+    body.joint = VT_JOINT_SPHERICAL;
+    body.mass = 1.5;
+    body.joint_parent[0] = 0.1; body.joint_parent[1] = -0.5; body.joint_parent[2] = 0.2;
+    body.joint_child[0] = 0.2; body.joint_child[1] = 0.3; body.joint_child[2] = -0.1;
+    const double q0[4] = {0.9, 0.1, -0.3, 0.2}; /* normalized by the builder */
+    memcpy(body.orientation, q0, sizeof q0);
+    if (id >= 0) id = vt_builder_add_body(b, &body);
+    body.parent = 2;
+    body.joint = VT_JOINT_REVOLUTE;
+    body.mass = 0.8;
+    body.orientation[0] = 1.0; body.orientation[1] = body.orientation[2] = body.orientation[3] = 0.0;
+    body.axis1[0] = 1.0; body.axis1[1] = 0.0; body.axis1[2] = 0.0;
+    body.joint_parent[0] = -0.2; body.joint_parent[1] = 0.4; body.joint_parent[2] = 0.0;
+    body.joint_child[0] = 0.0; body.joint_child[1] = -0.3; body.joint_child[2] = 0.05;
+    if (id >= 0) id = vt_builder_add_body(b, &body);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.2, 0.6, 1.9, 0.1);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    dr.type = relative ? VT_DRIVE_RELATIVE_ORIENTATION : VT_DRIVE_ORIENTATION;
+    dr.body = 2;
+    dr.sequence = "ZYX";
+    dr.f = vt_function_sine(0.4, 0.5, 2.2, -0.3);
+    dr.f2 = vt_function_sine(-0.3, 0.4, 1.4, 0.6);
+    dr.f3 = vt_function_sine(0.1, -0.7, 2.7, 0.2);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    dr = vt_default_drive_def();
+    dr.body = 3;
+    dr.f = vt_function_sine(-0.5, 0.3, 3.1, 0.0);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
 /* ---- Stewart–Gough platform (6-UPS) ---- */
 
 static const double sg_axis[3] = {0.40824829046386302, 0.40824829046386302, 0.81649658092772603}; /* (1,1,2)/√6 */

@@ -187,6 +187,14 @@ void vt_scene_nfourbar_start(const vt_model *model, vt_data *data, int N, double
  * model of the same motion. drive: when nonzero, rod 1's joint angle follows f. */
 vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut, int drive, vt_function f);
 
+/* A chain ground –revolute– 1 –spherical– 2 –revolute– 3: masses and inertias with products,
+ * joints off the centres of mass, body 2 assembled turned (its orientation at q = 0 not the
+ * identity). Drive 0 turns joint 1 (sine), drive 1 the spherical joint by three angles "ZYX"
+ * (sines): relative = 1 a relative orientation drive with reference −1 (the joint's own
+ * rotation q = R_z(f) ⊗ R_y(f2) ⊗ R_x(f3)), relative = 0 the same drive absolute (body 2's
+ * global orientation, another motion); drive 2 turns joint 3. 5 rates, 5 rows: fully driven. */
+vt_status vt_scene_spherical_chain(vt_model **model, int relative);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */

@@ -79,7 +79,7 @@ module vtdyn
   integer(c_int), parameter :: VT_POLY_MAX = 8, VT_SPLINE_EVAL_MAX = 64
   ! vt_drive_type
   integer(c_int), parameter :: VT_DRIVE_JOINT = 0, VT_DRIVE_POINT = 1, VT_DRIVE_ORIENTATION = 2, &
-      VT_DRIVE_TYPE_COUNT = 3
+      VT_DRIVE_RELATIVE_ORIENTATION = 3, VT_DRIVE_TYPE_COUNT = 4
   ! vt_formulation
   integer(c_int), parameter :: VT_FORMULATION_INDEX1 = 0, VT_FORMULATION_BAUMGARTE = 1, &
       VT_FORMULATION_PROJECTION = 2, VT_FORMULATION_GGL = 3, VT_FORMULATION_ODE = 4, &
@@ -128,6 +128,10 @@ module vtdyn
     type(c_ptr)            :: user
     type(c_ptr)            :: name
     type(c_ptr)            :: frame
+    integer(c_int)         :: reference
+    type(c_ptr)            :: sequence
+    type(vt_function)      :: f2
+    type(vt_function)      :: f3
   end type vt_drive_def
 
   type, bind(C) :: vt_cut_joint_def

@@ -345,7 +345,8 @@ static void model_check(const vt_model *m)
         }
     }
     for (int k = 0; k < m->ndrive; k++)
-        if (m->drive[k].type == VT_DRIVE_ORIENTATION && !m->drive[k].orientation_callback) {
+        if ((m->drive[k].type == VT_DRIVE_ORIENTATION || m->drive[k].type == VT_DRIVE_RELATIVE_ORIENTATION) &&
+            !m->drive[k].orientation_callback && !m->drive[k].sequence) {
             unit(m->drive[k].axis, 3, "drive axis", k);
             unit(m->drive[k].orientation, 4, "drive orientation", k);
         }

@@ -117,7 +117,7 @@ static vt_status drive_functions(const vt_model *m, double t, char *msg, size_t 
         const char *name = m->drive_name ? m->drive_name + (size_t)VT_NAME_MAX * (size_t)k : "";
         double v[3], p[4], w[3], wd[3];
         vt_status st = VT_OK;
-        if (dr->type == VT_DRIVE_ORIENTATION && dr->orientation_callback) {
+        if (vt_drive_turns(dr->type) && dr->orientation_callback) {
             if (dr->orientation_callback(t, p, w, wd, dr->user) != 0) st = VT_ERR_CALLBACK;
             else if (!vt_all_finite(p, 4) || !vt_all_finite(w, 3) || !vt_all_finite(wd, 3)) st = VT_ERR_NONFINITE;
             if (st) {
@@ -125,11 +125,17 @@ static vt_status drive_functions(const vt_model *m, double t, char *msg, size_t 
                          st == VT_ERR_CALLBACK ? "failed" : "returned NaN or Inf", t);
                 return st;
             }
-        } else if ((st = vt_function_eval_valid(v, &dr->f, t))) {
-            snprintf(msg, size, "drive %d%s%s: time function %s at t = %.17g", k, name[0] ? " " : "", name,
-                     st == VT_ERR_CALLBACK ? "failed" : st == VT_ERR_NONFINITE ? "returned NaN or Inf" : "failed",
-                     t);
-            return st;
+        } else {
+            const vt_function *fs[3];
+            const int nf = vt_drive_functions(dr, fs);
+            for (int e = 0; e < nf; e++)
+                if ((st = vt_function_eval_valid(v, fs[e], t))) {
+                    snprintf(msg, size, "drive %d%s%s: time function %s%s at t = %.17g", k, name[0] ? " " : "", name,
+                             e == 0 ? "" : e == 1 ? "f2 " : "f3 ",
+                             st == VT_ERR_CALLBACK ? "failed" : st == VT_ERR_NONFINITE ? "returned NaN or Inf" : "failed",
+                             t);
+                    return st;
+                }
         }
     }
     return VT_OK;

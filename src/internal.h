@@ -383,6 +383,24 @@ int vt_row_owner_kind(const vt_model *m, int row);
 int vt_cut_nrows(int joint_type);
 /* Number of rows that belong to drives (they come first). */
 int vt_drive_rows(const vt_model *m);
+/* An orientation drive, absolute or relative (3 rows, p_d(t) from prescribed orientation) */
+static inline int vt_drive_turns(vt_drive_type type)
+{
+    return type == VT_DRIVE_ORIENTATION || type == VT_DRIVE_RELATIVE_ORIENTATION;
+}
+/* Rows of one drive */
+static inline int vt_drive_nrows(const vt_drive_def *d) { return vt_drive_turns(d->type) ? 3 : 1; }
+/* A drive's time functions (f; with an orientation drive's sequence also f2, f3; none for an
+ * orientation callback) into fs; returns how many */
+static inline int vt_drive_functions(const vt_drive_def *d, const vt_function *fs[3])
+{
+    if (vt_drive_turns(d->type) && d->orientation_callback) return 0;
+    fs[0] = &d->f;
+    if (!vt_drive_turns(d->type) || !d->sequence) return 1;
+    fs[1] = &d->f2;
+    fs[2] = &d->f3;
+    return 3;
+}
 
 /* LAPACK routines of the solve (solve.c) */
 void dsytrf_rk_(const char *uplo, const int *n, double *a, const int *lda, double *e, int *ipiv, double *work,

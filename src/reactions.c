@@ -75,11 +75,6 @@ static void add_row_wrenches(const vt_model *m, const double *rw, double *fe)
         }
 }
 
-static int drive_nrows(const vt_drive_def *dr)
-{
-    return dr->type == VT_DRIVE_ORIENTATION ? 3 : 1;
-}
-
 /* The drives' efforts (24) from d->lambda: each drive's force and moment on its body at the
  * drive's point, its effort along its coordinate or component, and Φ_q^T λ over the drives.
  * rw: the rows' wrenches at λ (vt_row_wrenches). */
@@ -97,8 +92,8 @@ static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
         } else {
             vt_copy3(P, d->xrel + 6 * b);
         }
-        rows_wrench_at(m, d, rw, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
-        d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
+        rows_wrench_at(m, d, rw, r0, r0 + vt_drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        d->drive_effort[k] = vt_drive_turns(dr->type) ? 0.0 : d->lambda[r0];
     }
 
     /* the drives' generalized force Φ_q^T λ over their rows */
@@ -145,6 +140,8 @@ void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, co
         vt_axpy3(w, 1.0, f);
         vt_axpy3(w + 3, 1.0, n);
         vt_addcross3(w + 3, s, f);
+        if (dr->type == VT_DRIVE_RELATIVE_ORIENTATION && dr->reference > 0) /* a pure moment: its opposite on a */
+            vt_axpy3(df->xfrc + 6 * dr->reference + 3, -1.0, n);
     }
 }
 
@@ -472,7 +469,7 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int
         return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_drive_cartesian_force: drive %d not in 0..%d", k, m->ndrive - 1);
     memset(F, 0, (size_t)m->nx * sizeof(double));
     const int r0 = m->drive_row[k];
-    for (int r = r0; r < r0 + drive_nrows(&m->drive[k]); r++)
+    for (int r = r0; r < r0 + vt_drive_nrows(&m->drive[k]); r++)
         for (int side = 0; side < 2; side++) {
             const int b = m->con_body[2 * r + side];
             if (b == 0) continue;

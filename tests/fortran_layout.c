@@ -19,7 +19,9 @@ static const size_t vt_drive_def_layout[] = {sizeof(vt_drive_def),
     offsetof(vt_drive_def, type), offsetof(vt_drive_def, body), offsetof(vt_drive_def, index),
     offsetof(vt_drive_def, point), offsetof(vt_drive_def, f), offsetof(vt_drive_def, axis),
     offsetof(vt_drive_def, orientation), offsetof(vt_drive_def, orientation_callback),
-    offsetof(vt_drive_def, user), offsetof(vt_drive_def, name), offsetof(vt_drive_def, frame), VT_END};
+    offsetof(vt_drive_def, user), offsetof(vt_drive_def, name), offsetof(vt_drive_def, frame),
+    offsetof(vt_drive_def, reference), offsetof(vt_drive_def, sequence), offsetof(vt_drive_def, f2),
+    offsetof(vt_drive_def, f3), VT_END};
 static const size_t vt_cut_joint_def_layout[] = {sizeof(vt_cut_joint_def),
     offsetof(vt_cut_joint_def, joint), offsetof(vt_cut_joint_def, body_a), offsetof(vt_cut_joint_def, body_b),
     offsetof(vt_cut_joint_def, point_a), offsetof(vt_cut_joint_def, point_b),

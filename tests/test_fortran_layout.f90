@@ -40,7 +40,9 @@ program test_fortran_layout
          a(c_loc(x_drive_def%type)), a(c_loc(x_drive_def%body)), a(c_loc(x_drive_def%index)), &
          a(c_loc(x_drive_def%point)), a(c_loc(x_drive_def%f)), a(c_loc(x_drive_def%axis)), &
          a(c_loc(x_drive_def%orientation)), a(c_loc(x_drive_def%orientation_callback)), &
-         a(c_loc(x_drive_def%user)), a(c_loc(x_drive_def%name)), a(c_loc(x_drive_def%frame))])
+         a(c_loc(x_drive_def%user)), a(c_loc(x_drive_def%name)), a(c_loc(x_drive_def%frame)), &
+         a(c_loc(x_drive_def%reference)), a(c_loc(x_drive_def%sequence)), a(c_loc(x_drive_def%f2)), &
+         a(c_loc(x_drive_def%f3))])
     call check(3_c_int, 'vt_cut_joint_def', c_sizeof(x_cut_joint_def), a(c_loc(x_cut_joint_def)), [ &
          a(c_loc(x_cut_joint_def%joint)), a(c_loc(x_cut_joint_def%body_a)), a(c_loc(x_cut_joint_def%body_b)), &
          a(c_loc(x_cut_joint_def%point_a)), a(c_loc(x_cut_joint_def%point_b)), &
@@ -153,7 +155,9 @@ program test_fortran_layout
   x_drive_def = vt_default_drive_def()
   call expect(x_drive_def%type == VT_DRIVE_JOINT .and. x_drive_def%body == 1 .and. x_drive_def%index == 0 &
       .and. x_drive_def%f%type == VT_FUNC_CONSTANT .and. same(x_drive_def%axis, [0, 0, 1]) &
-      .and. .not. c_associated(x_drive_def%orientation_callback), 'vt_default_drive_def')
+      .and. .not. c_associated(x_drive_def%orientation_callback) .and. x_drive_def%reference == -1 &
+      .and. .not. c_associated(x_drive_def%sequence) .and. x_drive_def%f3%type == VT_FUNC_CONSTANT, &
+      'vt_default_drive_def')
   x_function = vt_function_sine(1.0_c_double, 2.0_c_double, 3.0_c_double, 4.0_c_double)
   call expect(x_function%type == VT_FUNC_SINE .and. same(x_function%c(1:4), [1, 2, 3, 4]), 'vt_function_sine')
   x_function = vt_function_spline(3_c_int, [0.0_c_double, 1.0_c_double, 2.0_c_double], &

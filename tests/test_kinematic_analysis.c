@@ -2,7 +2,8 @@
  * the forward check), its rows (recursive instants from predicted starts) against the dense
  * vt_kinematic_solve from independent starts, one Newton step per row, the stretched arm that
  * warns then fails, and the failure statuses (not fully driven, Newton that does not converge,
- * abort, bad options); a fully driven model with dependent rows, decided by rank. */
+ * abort, bad options); a fully driven model with dependent rows, decided by rank; a spherical
+ * joint's relative orientation drive through the forward check both ways. */
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
@@ -49,6 +50,40 @@ static void test_five_link_circle_and_forward_check(void **state)
     assert_true(tr->steps_fwd > 0);
     vt_trajectory_free(tr);
     vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+/* A spherical joint driven by a relative orientation drive (vt_scene_spherical_chain): the
+ * kinematic analysis's Newton from the assembled pose, and the forward check both ways — the
+ * generalized forces Φ_q^T λ, and each drive's own load (the relative drive's moment on body 2
+ * and its opposite on body 1), which also compares the reactions — reproduce the motion. */
+static void test_relative_orientation_forward_check(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_spherical_chain(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 50;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    for (int as_loads = 0; as_loads < 2; as_loads++) {
+        opt.forward_as_loads = as_loads;
+        assert_ok(vt_data_reset(m, d));
+        assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+        assert_int_equal(tr->nfilled, opt.nout + 1);
+        for (int k = 0; k < tr->nfilled; k++) assert_near(tr->phi_norm[k], 0.0, 1e-12);
+        print_message("relative orientation drive, forward check (as_loads %d): |q| %.2g, |q̇| %.2g, "
+                      "reaction force %.2g N, moment %.2g N·m\n", as_loads, tr->fwd_err_q, tr->fwd_err_qd,
+                      tr->fwd_err_force, tr->fwd_err_moment);
+        assert_true(tr->fwd_err_q < 1e-6 && tr->fwd_err_q > 0.0);
+        assert_true(tr->fwd_err_qd < 1e-5);
+        if (as_loads) assert_true(tr->fwd_err_force < 1e-5 && tr->fwd_err_moment < 1e-5);
+    }
+    vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
 }
@@ -585,6 +620,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_five_link_circle_and_forward_check),
+        cmocka_unit_test(test_relative_orientation_forward_check),
 #else
         cmocka_unit_test(test_no_forward_check_without_sundials),
 #endif

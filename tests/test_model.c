@@ -608,6 +608,53 @@ static void test_free_joint(void **state)
     vt_model_free(m);
 }
 
+/* An orientation drive's three angles may be splines: the builder owns each one's samples (the
+ * caller's arrays overwritten after the drive is added change nothing), and the angles are the
+ * parabola through three samples and the line through two: the body's q against the Z–Y–X
+ * product of those angles, and q̇ = ω against its closed form. */
+static void test_sequence_splines_owned(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_SPHERICAL;
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = 1.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    double t1[3] = {0.0, 1.0, 2.0}, y1[3] = {0.0, 0.5, 2.0}; /* the parabola y = t²/2 */
+    double t3[2] = {0.0, 1.0}, y3[2] = {0.2, -0.4};           /* y = 0.2 − 0.6 t */
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    od.sequence = "ZYX";
+    od.f = vt_function_spline(3, t1, y1);
+    od.f2 = vt_function_constant(0.3);
+    od.f3 = vt_function_spline(2, t3, y3);
+    assert_int_equal(vt_builder_add_drive(b, &od), 0);
+    for (int k = 0; k < 3; k++) t1[k] = y1[k] = -7.0;
+    t3[0] = t3[1] = y3[0] = y3[1] = 9.0;
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    const double t = 0.7, a = 0.5 * t * t, ad = t, c = 0.2 - 0.6 * t, cd = -0.6;
+    d->time = t;
+    assert_ok(vt_kinematic_solve(m, d, 1e-14, 50));
+    const double ez[3] = {0, 0, 1}, ey[3] = {0, 1, 0}, ex[3] = {1, 0, 0};
+    double rz[4], ry[4], rx[4], want[4], Azy[9], rzy[4];
+    vt_quat_axis_angle(rz, ez, a);
+    vt_quat_axis_angle(ry, ey, 0.3);
+    vt_quat_axis_angle(rx, ex, c);
+    vt_quat_mul(rzy, rz, ry);
+    vt_quat_mul(want, rzy, rx);
+    const double sg = d->q[0] * want[0] < 0 ? -1.0 : 1.0;
+    for (int k = 0; k < 4; k++) assert_near(d->q[k], sg * want[k], 1e-12);
+    vt_euler_A(Azy, rzy);
+    for (int k = 0; k < 3; k++) assert_near(d->qd[k], ad * ez[k] + cd * Azy[k], 1e-12); /* ω = ȧ z + ċ (R_z R_y x) */
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -623,6 +670,7 @@ int main(void)
         cmocka_unit_test(test_limits),
         cmocka_unit_test(test_couplings),
         cmocka_unit_test(test_free_joint),
+        cmocka_unit_test(test_sequence_splines_owned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

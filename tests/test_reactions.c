@@ -1,7 +1,8 @@
 /* src/reactions.c: efforts (24) and reactions (25)-(28) against the paper's exact double-link
  * solution (29), a planar Newton–Euler solution of a four-bar, the power balance of every
  * effort, Newton–Euler balance of every body, and the reaction's orthogonality to a joint's
- * free directions. */
+ * free directions; relative orientation drives against the same motion given to
+ * vt_inverse_dynamics_motion and against a revolute's joint drive. */
 #include "vt_test.h"
 
 /* ---- the paper's double link, joint 2 locked --------------------------------------- */
@@ -880,6 +881,184 @@ static void test_unique_despite_redundant_row(void **state)
     vt_model_free(m);
 }
 
+/* ---- relative orientation drives ----------------------------------------------------- */
+
+/* every joint's reaction of two data of models with the same bodies, to tol of the largest */
+static void same_reactions(const vt_model *m, const vt_data *a, const vt_data *b, int from, double tol)
+{
+    const int n = 3 * (m->nbody + 1);
+    const double fs = vt_test_maxabs(a->jnt_force, n), ns = vt_test_maxabs(a->jnt_moment, n);
+    for (int k = 3 * from; k < n; k++) {
+        assert_near(a->jnt_force[k], b->jnt_force[k], tol * fs);
+        assert_near(a->jnt_moment[k], b->jnt_moment[k], tol * ns);
+    }
+}
+
+/* vt_scene_spherical_chain: a spherical joint driven by a relative orientation drive
+ * (reference −1: its own rotation, three Z–Y–X angles) between two driven revolutes. The kinematic solve's
+ * motion given to vt_inverse_dynamics_motion on the model without drives: the same generalized
+ * forces (the drive's moment is the spherical joint's three efforts, turned from body 1's
+ * axes), the same reactions of every joint (the spherical one's moment 0); the recursive path
+ * the same again. (The drive's rows do not move with rate 0, so the first joint's torque is its
+ * joint drive's multiplier alone: a drive reacting on the ground would change it.) */
+static void test_spherical_joint_drive(void **state)
+{
+    (void)state;
+    vt_model *m, *m0;
+    assert_ok(vt_scene_spherical_chain(&m, 1));
+    assert_ok(vt_model_without_drives(&m0, m));
+    vt_data *d, *d0, *dr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&d0, m0));
+    assert_ok(vt_data_create(&dr, m));
+    double worst_q = 0.0, worst_n = 0.0, worst_r = 0.0;
+    for (double t = 0.0; t < 2.0; t += 0.37) {
+        d->time = t;
+        assert_ok(vt_kinematic_solve(m, d, 1e-14, 50));
+        { /* the spherical joint's own q is the Z–Y–X turn: q = R_z(f) ⊗ R_y(f2) ⊗ R_x(f3) */
+            const vt_drive_def *sd = &m->drive[1];
+            const double ez[3] = {0, 0, 1}, ey[3] = {0, 1, 0}, ex[3] = {1, 0, 0};
+            double f1[3], f2[3], f3[3], r1[4], r2[4], r3[4], want[4];
+            assert_ok(vt_function_eval(f1, &sd->f, t));
+            assert_ok(vt_function_eval(f2, &sd->f2, t));
+            assert_ok(vt_function_eval(f3, &sd->f3, t));
+            vt_quat_axis_angle(r1, ez, f1[0]);
+            vt_quat_axis_angle(r2, ey, f2[0]);
+            vt_quat_axis_angle(r3, ex, f3[0]);
+            vt_quat_mul(want, r1, r2);
+            vt_quat_mul(want, want, r3);
+            const double *qs = d->q + m->body_qadr[2], sg = qs[0] * want[0] < 0 ? -1.0 : 1.0;
+            for (int e = 0; e < 4; e++) assert_near(qs[e], sg * want[e], 1e-12);
+        }
+        memcpy(d0->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(d0->qd, d->qd, (size_t)m->nv * sizeof(double));
+        memcpy(d0->qdd, d->qdd, (size_t)m->nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_motion(m0, d0));
+        const double qs = vt_test_maxabs(d0->qfrc_drive, m->nv);
+        for (int c = 0; c < m->nv; c++) {
+            assert_near(d->qfrc_drive[c], d0->qfrc_drive[c], 1e-10 * qs);
+            worst_q = fmax(worst_q, fabs(d->qfrc_drive[c] - d0->qfrc_drive[c]) / qs);
+        }
+        /* the drive's moment on body 2: the spherical joint's efforts (body 1's axes) turned */
+        double n[3];
+        for (int e = 0; e < 3; e++)
+            n[e] = d->A[9 + e] * d0->qfrc_drive[1] + d->A[12 + e] * d0->qfrc_drive[2] + d->A[15 + e] * d0->qfrc_drive[3];
+        for (int e = 0; e < 3; e++) {
+            assert_near(d->drive_moment[3 + e], n[e], 1e-10 * qs);
+            assert_near(d->drive_force[3 + e], 0.0, 0.0);
+            worst_n = fmax(worst_n, fabs(d->drive_moment[3 + e] - n[e]) / qs);
+        }
+        assert_near(d->drive_effort[1], 0.0, 0.0);
+        same_reactions(m, d, d0, 1, 1e-10);
+        for (int e = 0; e < 3; e++) assert_near(d->jnt_moment[6 + e], 0.0, 1e-10 * qs);
+        for (int k = 3; k < 12; k++)
+            worst_r = fmax(worst_r, fmax(fabs(d->jnt_force[k] - d0->jnt_force[k]) / vt_test_maxabs(d0->jnt_force, 12),
+                                         fabs(d->jnt_moment[k] - d0->jnt_moment[k]) / vt_test_maxabs(d0->jnt_moment, 12)));
+        /* the recursive instant on the driven model */
+        memcpy(dr->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, d->qd, (size_t)m->nv * sizeof(double));
+        dr->time = t;
+        assert_ok(vt_inverse_dynamics_recursive(m, dr));
+        for (int c = 0; c < m->nv; c++) {
+            assert_near(dr->qdd[c], d->qdd[c], 1e-10 * (1 + vt_test_maxabs(d->qdd, m->nv)));
+            assert_near(dr->qfrc_drive[c], d->qfrc_drive[c], 1e-10 * qs);
+        }
+        for (int e = 0; e < 9; e++) assert_near(dr->drive_moment[e], d->drive_moment[e], 1e-10 * qs);
+        same_reactions(m, dr, d, 1, 1e-10);
+    }
+    print_message("spherical joint's drive vs the motion given: generalized forces %.2g, drive moment %.2g, "
+                  "reactions %.2g (largest relative differences)\n", worst_q, worst_n, worst_r);
+
+    vt_data_free(d);
+    vt_data_free(d0);
+    vt_data_free(dr);
+    vt_model_free(m);
+    vt_model_free(m0);
+}
+
+/* Two links on revolute joints; the second's joint drive replaced by a relative orientation
+ * drive of link 2 to link 1 about the joint's axis (in link 1's axes, link 2's assembled
+ * orientation given as the drive's): the same motion from the kinematic solve, the same
+ * generalized forces and reactions (the two rows that repeat the joint's own constraints are
+ * dependent: allow_redundant, their multipliers 0 at minimum norm), and the drive's moment
+ * the joint torque along the turned axis. */
+static vt_model *two_links(int relative)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = relative;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.mass = 3.0;
+    const double J[9] = {0.2, 0.02, 0.0, 0.02, 0.05, 0.01, 0.0, 0.01, 0.22};
+    memcpy(body.inertia, J, sizeof J);
+    body.joint_child[0] = -0.5;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body.parent = 1;
+    body.mass = 1.2;
+    body.joint_parent[0] = 0.5; body.joint_parent[2] = 0.1;
+    body.joint_child[0] = -0.3; body.joint_child[1] = 0.05;
+    body.axis1[0] = 0.0; body.axis1[1] = 0.6; body.axis1[2] = 0.8;
+    const double q0[4] = {0.8, 0.2, 0.1, -0.3};
+    memcpy(body.orientation, q0, sizeof q0);
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.3, 0.8, 2.0, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    dr.body = 2;
+    dr.f = vt_function_sine(-0.2, 1.1, 3.0, 0.4);
+    if (relative) {
+        dr.type = VT_DRIVE_RELATIVE_ORIENTATION;
+        dr.reference = 1;
+        memcpy(dr.axis, body.axis1, sizeof dr.axis);
+        memcpy(dr.orientation, q0, sizeof q0);
+    }
+    assert_int_equal(vt_builder_add_drive(b, &dr), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void test_relative_drive_for_joint_drive(void **state)
+{
+    (void)state;
+    vt_model *mj = two_links(0), *mr = two_links(1);
+    vt_data *dj, *drel;
+    assert_ok(vt_data_create(&dj, mj));
+    assert_ok(vt_data_create(&drel, mr));
+    double worst = 0.0;
+    for (double t = 0.1; t < 2.0; t += 0.3) {
+        dj->time = drel->time = t;
+        assert_ok(vt_kinematic_solve(mj, dj, 1e-14, 50));
+        assert_ok(vt_kinematic_solve(mr, drel, 1e-14, 50));
+        assert_int_equal(drel->rank, 2);
+        for (int c = 0; c < 2; c++) {
+            assert_near(drel->q[c], dj->q[c], 1e-12);
+            assert_near(drel->qd[c], dj->qd[c], 1e-10);
+            assert_near(drel->qdd[c], dj->qdd[c], 1e-9);
+        }
+        const double qs = vt_test_maxabs(dj->qfrc_drive, 2);
+        for (int c = 0; c < 2; c++) assert_near(drel->qfrc_drive[c], dj->qfrc_drive[c], 1e-9 * qs);
+        assert_near(drel->drive_effort[0], dj->drive_effort[0], 1e-9 * qs);
+        same_reactions(mj, drel, dj, 1, 1e-9);
+        double u[3]; /* the joint axis, global: link 1's axes turned */
+        for (int e = 0; e < 3; e++)
+            u[e] = dj->A[9 + e] * mj->body_axis[12] + dj->A[12 + e] * mj->body_axis[13] + dj->A[15 + e] * mj->body_axis[14];
+        for (int e = 0; e < 3; e++) {
+            const double want = dj->drive_effort[1] * u[e];
+            assert_near(drel->drive_moment[3 + e], want, 1e-9 * qs);
+            worst = fmax(worst, fabs(drel->drive_moment[3 + e] - want) / qs);
+        }
+    }
+    print_message("relative drive for a joint drive: drive moment vs torque × axis %.2g (relative)\n", worst);
+    vt_data_free(dj);
+    vt_data_free(drel);
+    vt_model_free(mj);
+    vt_model_free(mr);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -894,6 +1073,8 @@ int main(void)
         cmocka_unit_test(test_spherical_through_gimbal_lock),
         cmocka_unit_test(test_coupling),
         cmocka_unit_test(test_unique_despite_redundant_row),
+        cmocka_unit_test(test_spherical_joint_drive),
+        cmocka_unit_test(test_relative_drive_for_joint_drive),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

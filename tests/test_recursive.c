@@ -300,8 +300,8 @@ static void test_scenes(void **state)
 }
 
 /* fewer rows than rates, no base body (the articulated path), every other joint kind: random
- * trees with joint drives, a point drive, an orientation drive and a spherical cut joint, loads
- * on every body and rate */
+ * trees with joint drives, a point drive, an orientation drive (absolute, or relative to another
+ * body or to its joint's parent) and a spherical cut joint, loads on every body and rate */
 static void test_articulated(void **state)
 {
     (void)state;
@@ -331,6 +331,19 @@ static void test_articulated(void **state)
             od.type = VT_DRIVE_ORIENTATION;
             od.body = 3;
             od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
+            assert_true(vt_builder_add_drive(b, &od) >= 0);
+        } else { /* a relative orientation drive on a spherical joint's body: three angles to its
+                  * grandparent, or the joint's own drive */
+            int sph = n;
+            while (probe->body_joint[sph] != VT_JOINT_SPHERICAL) sph--;
+            vt_drive_def od = vt_default_drive_def();
+            od.type = VT_DRIVE_RELATIVE_ORIENTATION;
+            od.body = sph;
+            od.reference = seed % 3 == 1 ? probe->body_parent[probe->body_parent[sph]] : -1;
+            od.sequence = seed % 3 == 1 ? "XYZ" : NULL;
+            od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
+            od.f2 = vt_function_sine(-0.2, 0.3, 2.0, 0.5);
+            od.f3 = vt_function_sine(0.3, -0.2, 1.5, 0.1);
             assert_true(vt_builder_add_drive(b, &od) >= 0);
         }
         if (seed % 2) {

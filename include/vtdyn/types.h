@@ -224,6 +224,9 @@ typedef enum vt_drive_type {
     VT_DRIVE_JOINT = 0,    ///< a rate's coordinate of a body's joint follows f(t): q_k − f(t) = 0
     VT_DRIVE_POINT,        ///< one global component of a body point follows f(t), (30)-(34)
     VT_DRIVE_ORIENTATION,  ///< a body's orientation follows p_d(t): 2 G(p_d) p = 0 (3 rows)
+    VT_DRIVE_RELATIVE_ORIENTATION, ///< body's orientation relative to body `reference` follows p_d(t):
+                           ///< 2 G(p_d) (p_a* ⊗ p_b) = 0 (3 rows), reacting on both bodies; with
+                           ///< reference −1 a joint's drive (a spherical joint's q follows p_d)
     VT_DRIVE_TYPE_COUNT    ///< number of drive kinds (not a kind)
 } vt_drive_type;
 
@@ -236,16 +239,33 @@ typedef struct vt_drive_def {
                            ///< 3..5); point drive: component 0 = x,
                            ///< 1 = y, 2 = z; default 0
     double point[3];       ///< point drive: the point, m, body axes from the centre of mass; default 0
-    vt_function f;         ///< joint drive: rad or m; point drive: m; orientation drive: the angle (rad)
-                           ///< turned about `axis`; default constant 0
-    double axis[3];        ///< orientation drive: global axis of the prescribed turn; normalized; default z
-    double orientation[4]; ///< orientation drive: orientation at angle 0 (global Euler parameters):
-                           ///< p_d(t) = [rotation f(t) about axis] ⊗ orientation; default identity
-    vt_orientation_callback orientation_callback; ///< orientation drive: if set, gives p_d(t) instead
+    vt_function f;         ///< joint drive: rad or m; point drive: m; orientation drives: the angle (rad)
+                           ///< turned about `axis`, or the first angle of `sequence`; default constant 0
+    double axis[3];        ///< orientation drives: axis of the prescribed turn (absolute: global; relative:
+                           ///< the reference body's axes); normalized; default z; unused with `sequence`
+    double orientation[4]; ///< orientation drives: orientation at angle 0 (Euler parameters, global or
+                           ///< relative to the reference body's axes): p_d(t) = [rotation f(t) about
+                           ///< axis] ⊗ orientation, or R_1(f) ⊗ R_2(f2) ⊗ R_3(f3) ⊗ orientation with
+                           ///< `sequence`; default identity
+    vt_orientation_callback orientation_callback; ///< orientation drives: if set, gives p_d(t) (and its
+                           ///< ω, ω̇: global, or in the reference body's axes for a relative drive)
     void *user;            ///< passed to orientation_callback
     const char *name;      ///< the drive's name (copied; in a model: its own copy); default NULL
     const char *frame;     ///< point drive: the name of a frame added so far; its body and origin
                            ///< replace body and point (in a model: NULL); default NULL
+    int reference;         ///< relative orientation drive: body a, relative to whose axes body `body`'s
+                           ///< orientation is prescribed: 0 = ground, 1..n a body added so far, ≠ body;
+                           ///< −1 (default) = the body's joint: a = its parent and p_d is the joint's
+                           ///< own rotation p_J (a spherical joint's q), the body's `orientation` at
+                           ///< q = 0 appended by the builder (a model stores a and that orientation)
+    const char *sequence;  ///< orientation drives: NULL (default) a turn about `axis` by f; or three
+                           ///< angles f, f2, f3 (rad) about the named axes in turn: "ZYX", "XYZ", "ZXZ"…
+                           ///< (upper case: body-fixed, each turn about the axis as already turned,
+                           ///< R_1 ⊗ R_2 ⊗ R_3; lower case "zyx"…: about the fixed axes, first f about
+                           ///< the first letter, so R_3 ⊗ R_2 ⊗ R_1); no letter twice in a row; in a
+                           ///< model the library's own copy
+    vt_function f2;        ///< with `sequence`: the second angle (rad); default constant 0
+    vt_function f3;        ///< with `sequence`: the third angle (rad); default constant 0
 } vt_drive_def;
 
 /// A cut joint: closes a loop between body_a (in the role of the reference body) and body_b,
@@ -498,11 +518,13 @@ typedef struct vt_data {
                              ///< joint's six: the force and the moment about its joint point, in the
                              ///< reference body's axes, N and N·m)
     double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
-                             ///< point drive: force along its component (N); orientation drive: 0 (ndrive)
+                             ///< point drive: force along its component (N); orientation drives: 0 (ndrive)
     double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N
     double *drive_moment;    ///< moment the drive exerts on its body about the drive's point (the joint
                              ///< point for a joint drive, the body point for a point drive, the centre
-                             ///< of mass for an orientation drive) (3 x ndrive), N·m
+                             ///< of mass for an orientation drive) (3 x ndrive), N·m; a relative
+                             ///< orientation drive exerts a pure moment: this on `body`, its opposite on
+                             ///< `reference` (its drive_force is 0)
     double *jnt_force;       ///< reaction force of the reference body on the body at the joint point
                              ///< (3 x (nbody+1)), N; zero for a free joint (it transmits nothing)
     double *jnt_moment;      ///< reaction moment, about the joint point (3 x (nbody+1)), N·m
