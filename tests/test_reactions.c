@@ -968,6 +968,238 @@ static void test_planar_pin_off_plane(void **state)
     }
 }
 
+/* ---- the total joint wrench and every body's α ------------------------------------------- */
+
+/* Each body's centre-of-mass acceleration and angular acceleration by central differences of its
+ * velocity and ω (vt_kinematics) along (q ⊕ τ q̇, q̇ + τ q̈), whose rates at τ = 0 are the
+ * instant's own; dk: a data of the model for the differences */
+static void fd_accelerations(const vt_model *m, vt_data *dk, const vt_data *d, double *acc, double *al)
+{
+    const double h = 1e-5;
+    const int nb3 = 3 * (m->nbody + 1);
+    double *vel[2], *om[2];
+    for (int sgn = 0; sgn < 2; sgn++) {
+        const double s = sgn ? h : -h;
+        assert_ok(vt_integrate_q(dk->q, m, d->q, d->qd, s));
+        for (int c = 0; c < m->nv; c++) dk->qd[c] = d->qd[c] + s * d->qdd[c];
+        assert_ok(vt_kinematics(m, dk));
+        vel[sgn] = calloc((size_t)nb3, sizeof(double));
+        om[sgn] = malloc((size_t)nb3 * sizeof(double));
+        for (int i = 1; i <= m->nbody; i++) memcpy(vel[sgn] + 3 * i, dk->xd + 7 * (i - 1), 3 * sizeof(double));
+        memcpy(om[sgn], dk->omega, (size_t)nb3 * sizeof(double));
+    }
+    for (int k = 0; k < nb3; k++) {
+        acc[k] = (vel[1][k] - vel[0][k]) / (2 * h);
+        al[k] = (om[1][k] - om[0][k]) / (2 * h);
+    }
+    for (int sgn = 0; sgn < 2; sgn++) {
+        free(vel[sgn]);
+        free(om[sgn]);
+    }
+}
+
+/* The wrench that must reach body i's subtree through joint i, force f and moment n about the
+ * joint point P_i: over the subtree, Σ m (a − g) − f_x and Σ J α + ω × J ω − n_x + (r − P_i) ×
+ * (m (a − g) − f_x), J = A J' A^T, from the centres' accelerations acc and α al (3 x (nbody+1)) */
+static void subtree_wrench(const vt_model *m, const vt_data *d, const double *acc, const double *al, int i, double f[3],
+                           double n[3])
+{
+    const double *P = d->jpoint + 3 * i;
+    memset(f, 0, 3 * sizeof(double));
+    memset(n, 0, 3 * sizeof(double));
+    for (int k = i; k <= m->nbody; k++) {
+        int up = k;
+        while (up > i) up = m->body_parent[up];
+        if (up != i) continue;
+        const double *r = d->x + 7 * (k - 1), *w = d->omega + 3 * k, *a = acc + 3 * k, *xf = d->xfrc + 6 * k;
+        double J[9], Jw[3], Ja[3], fk[3], s[3];
+        vt_test_global_inertia(J, m, d, k);
+        for (int c = 0; c < 3; c++) {
+            Jw[c] = J[c] * w[0] + J[c + 3] * w[1] + J[c + 6] * w[2];
+            Ja[c] = J[c] * al[3 * k] + J[c + 3] * al[3 * k + 1] + J[c + 6] * al[3 * k + 2];
+            fk[c] = m->body_mass[k] * (a[c] - m->gravity[c]) - xf[c];
+            s[c] = r[c] - P[c];
+        }
+        for (int c = 0; c < 3; c++) {
+            const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            f[c] += fk[c];
+            n[c] += Ja[c] + (w[c1] * Jw[c2] - w[c2] * Jw[c1]) - xf[3 + c] + (s[c1] * fk[c2] - s[c2] * fk[c1]);
+        }
+    }
+}
+
+/* Checks d's α against differences of ω, the centres' accelerations too, and each joint's total
+ * wrench against its subtree's Newton–Euler wrench: from the instant's own accelerations (ẍ, α)
+ * to round-off, from the differences to their error; the body-axes totals as A^T of the global
+ * ones. Keeps the largest relative differences. */
+static void check_totals(const vt_model *m, vt_data *d, vt_data *dk, double worst[2])
+{
+    const int n = m->nbody, nb3 = 3 * (n + 1);
+    double *acc = malloc((size_t)nb3 * sizeof(double)), *al = malloc((size_t)nb3 * sizeof(double));
+    double *own = calloc((size_t)nb3, sizeof(double));
+    fd_accelerations(m, dk, d, acc, al);
+    for (int i = 1; i <= n; i++) memcpy(own + 3 * i, d->xdd + 7 * (i - 1), 3 * sizeof(double));
+    const double as = 1.0 + fmax(vt_test_maxabs(al, nb3), vt_test_maxabs(acc, nb3));
+    for (int k = 0; k < 3; k++) assert_true(d->alpha[k] == 0.0);
+    for (int k = 3; k < nb3; k++) {
+        assert_near(d->alpha[k], al[k], 1e-7 * as);
+        assert_near(own[k], acc[k], 1e-7 * as);
+        worst[1] = fmax(worst[1], fabs(d->alpha[k] - al[k]) / as);
+    }
+    double *W = malloc(6 * (size_t)(n + 1) * sizeof(double)), *Wd = malloc(6 * (size_t)(n + 1) * sizeof(double));
+    double ws = 1.0;
+    for (int i = 1; i <= n; i++) {
+        subtree_wrench(m, d, own, d->alpha, i, W + 6 * i, W + 6 * i + 3);
+        subtree_wrench(m, d, acc, al, i, Wd + 6 * i, Wd + 6 * i + 3);
+        ws = fmax(ws, vt_test_maxabs(W + 6 * i, 6));
+    }
+    for (int i = 1; i <= n; i++) {
+        const double *A = d->A + 9 * i, *ft = d->jnt_force_total + 3 * i, *nt = d->jnt_moment_total + 3 * i;
+        for (int c = 0; c < 3; c++) {
+            assert_near(ft[c], W[6 * i + c], 1e-11 * ws);
+            assert_near(nt[c], W[6 * i + 3 + c], 1e-11 * ws);
+            assert_near(ft[c], Wd[6 * i + c], 1e-7 * ws);
+            assert_near(nt[c], Wd[6 * i + 3 + c], 1e-7 * ws);
+            worst[0] = fmax(worst[0], fmax(fabs(ft[c] - W[6 * i + c]), fabs(nt[c] - W[6 * i + 3 + c])) / ws);
+            assert_near(d->jnt_force_total_body[3 * i + c], A[3 * c] * ft[0] + A[3 * c + 1] * ft[1] + A[3 * c + 2] * ft[2], 1e-12 * ws);
+            assert_near(d->jnt_moment_total_body[3 * i + c], A[3 * c] * nt[0] + A[3 * c + 1] * nt[1] + A[3 * c + 2] * nt[2], 1e-12 * ws);
+        }
+    }
+    free(W); free(Wd); free(acc); free(al); free(own);
+}
+
+static void random_loads(const vt_model *m, vt_data *d, uint64_t *s)
+{
+    for (int k = 6; k < 6 * (m->nbody + 1); k++) d->xfrc[k] = vt_rand_uniform(s, -3.0, 3.0);
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = vt_rand_uniform(s, -2.0, 2.0);
+}
+
+/* The total wrench a joint transmits (reaction plus actuation) is what the subtree outboard of
+ * it needs: its Newton–Euler wrench less gravity and the applied loads xfrc on it (the applied
+ * qfrc of the joints inside it cancel in pairs), computed here from masses, inertias and the
+ * bodies' accelerations, which differences of the velocities check; α against differences of ω.
+ *  (1) trees of scalar joints, every rate joint-driven, xfrc and qfrc applied: the dense, the
+ *      recursive (joint-driven route) and the motion paths;
+ *  (2) trees with spherical and free joints, the motion given for every rate;
+ *  (3) trees with every joint kind, base bodies among them, some rates driven (a base body's
+ *      r_y too), a coupling, the rest free: the dense and recursive paths. */
+static void test_total_wrench_subtree(void **state)
+{
+    (void)state;
+    double worst[2] = {0.0, 0.0};
+    for (uint64_t seed = 1; seed <= 3; seed++) {
+        /* (1) */
+        vt_model *probe;
+        assert_ok(vt_scene_random_tree(&probe, seed, 10, VT_SCENE_SCALAR_JOINTS));
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed, 10, VT_SCENE_SCALAR_JOINTS));
+        uint64_t s = seed * 7;
+        for (int i = 1; i <= probe->nbody; i++)
+            for (int k = 0; k < probe->body_nv[i]; k++) {
+                vt_drive_def dr = vt_default_drive_def();
+                dr.body = i;
+                dr.index = k;
+                const double c[3] = {vt_rand_uniform(&s, -1, 1), vt_rand_uniform(&s, -2, 2), vt_rand_uniform(&s, -2, 2)};
+                dr.f = vt_function_polynomial(3, c);
+                assert_true(vt_builder_add_drive(b, &dr) >= 0);
+            }
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_model_free(probe);
+        vt_data *d, *dk;
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        const double t = 0.4;
+        for (int path = 0; path < 3; path++) {
+            for (int k = 0; k < m->ndrive; k++) {
+                double f[3];
+                assert_ok(vt_function_eval(f, &m->drive[k].f, t));
+                const int c = m->body_vadr[m->drive[k].body] + m->drive[k].index;
+                d->q[m->body_qadr[m->drive[k].body] + m->drive[k].index] = f[0];
+                d->qd[c] = f[1];
+                d->qdd[c] = f[2];
+            }
+            uint64_t ls = seed;
+            random_loads(m, d, &ls);
+            d->time = t;
+            if (path == 0) assert_ok(vt_inverse_dynamics(m, d));
+            if (path == 1) {
+                assert_ok(vt_inverse_dynamics_recursive(m, d));
+                assert_int_equal(d->route, VT_ROUTE_JOINT_DRIVEN);
+            }
+            if (path == 2) {
+                assert_ok(vt_inverse_dynamics_motion(m, d));
+                assert_int_equal(d->route, VT_ROUTE_MOTION);
+            }
+            check_totals(m, d, dk, worst);
+        }
+        vt_data_free(dk);
+        vt_data_free(d);
+        vt_model_free(m);
+
+        /* (2) */
+        assert_ok(vt_scene_random_tree(&m, seed + 20, 10, VT_SCENE_WITH_FREE));
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        s = seed * 11;
+        vt_scene_random_state(m, d, &s);
+        for (int c = 0; c < m->nv; c++) d->qdd[c] = vt_rand_uniform(&s, -3.0, 3.0);
+        random_loads(m, d, &s);
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        check_totals(m, d, dk, worst);
+        vt_data_free(dk);
+        vt_data_free(d);
+        vt_model_free(m);
+
+        /* (3) */
+        assert_ok(vt_scene_random_tree(&probe, seed + 40, 10, VT_SCENE_ALL_JOINTS));
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed + 40, 10, VT_SCENE_ALL_JOINTS));
+        int scalar[2] = {0, 0}, ns = 0;
+        for (int i = 1; i <= probe->nbody; i += 2) {
+            const int jt = probe->body_joint[i];
+            if (jt == VT_JOINT_SPHERICAL) continue;
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = i;
+            dr.index = jt == VT_JOINT_BASE ? 1 : 0;
+            dr.f = vt_function_sine(0.1, 0.5, 1.3, 0.2 * (double)i);
+            assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        }
+        for (int i = 2; i <= probe->nbody && ns < 2; i += 2)
+            if (probe->body_joint[i] != VT_JOINT_SPHERICAL && probe->body_joint[i] != VT_JOINT_BASE) scalar[ns++] = i;
+        assert_int_equal(ns, 2);
+        vt_coupling_def cp = vt_default_coupling_def();
+        cp.body_a = scalar[0];
+        cp.body_b = scalar[1];
+        cp.ratio = -0.6;
+        assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_model_free(probe);
+        int bases = 0;
+        for (int i = 1; i <= m->nbody; i++) bases += m->body_joint[i] == VT_JOINT_BASE;
+        assert_true(bases > 0);
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        for (int path = 0; path < 2; path++) {
+            s = seed * 13;
+            vt_scene_random_state(m, d, &s);
+            random_loads(m, d, &s);
+            d->time = 0.3;
+            if (path == 0) assert_ok(vt_inverse_dynamics(m, d));
+            else assert_ok(vt_inverse_dynamics_recursive(m, d));
+            check_totals(m, d, dk, worst);
+        }
+        vt_data_free(dk);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+    print_message("total wrench against the subtree's Newton-Euler wrench: %.2e of the largest; alpha against differences of omega: %.2e\n",
+                  worst[0], worst[1]);
+}
+
 /* A double link of arbitrary link length L and masses m1, m2 (uniform rods), joint 2 locked:
  * the pair pivots as one rigid body with mass M = m1 + m2, centre of mass at x_c from the pivot
  * and inertia I_p about it, so θ̇² = 2 M g x_c sin θ / I_p, θ̈ = M g x_c cos θ / I_p and the
@@ -1254,6 +1486,7 @@ int main(void)
         cmocka_unit_test(test_fourbar_planar_pin),
         cmocka_unit_test(test_slider_crank_planar_pin),
         cmocka_unit_test(test_planar_pin_off_plane),
+        cmocka_unit_test(test_total_wrench_subtree),
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_spherical_through_gimbal_lock),
         cmocka_unit_test(test_coupling),
