@@ -436,13 +436,20 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
         vt_copy3(d->jnt_moment_total + 3 * i, mo);
         vt_copy3(d->jnt_force_total_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
-        if (!vt_all_finite(al, 3) || !vt_all_finite(f, 3) || !vt_all_finite(mo, 3) || !vt_all_finite(fb, 3) ||
-            !vt_all_finite(mb, 3))
-            return vt_scratch_release(d, mark),
-                   vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) or body %d's angular acceleration overflows", i, i);
     }
     vt_scratch_release(d, mark);
-    return VT_OK;
+    const int nb3 = 3 * (n + 1);
+    if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
+        vt_all_finite(d->jnt_force_total_body, nb3) && vt_all_finite(d->jnt_moment_total_body, nb3))
+        return VT_OK;
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->alpha + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
+    return vt_fail(d->message, VT_ERR_NONFINITE, "a total wrench or angular acceleration overflows");
 }
 
 /* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
