@@ -629,7 +629,7 @@ vt_status vt_scene_pendulum(vt_model **model)
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
-vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant)
+static vt_status fourbar_rrrr(vt_model **model, vt_function crank, int allow_redundant, int planar)
 {
     static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
     vt_model_def md = vt_default_model_def();
@@ -654,6 +654,7 @@ vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow
         cut.body_b = 3;
         cut.point_a[0] = VT_FB_D;
         cut.point_b[0] = -0.5 * VT_FB_C;
+        cut.planar = planar;
         id = vt_builder_add_cut_joint(b, &cut);
     }
     if (id >= 0) {
@@ -663,6 +664,80 @@ vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow
         id = vt_builder_add_drive(b, &drive);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant)
+{
+    return fourbar_rrrr(model, crank, allow_redundant, 0);
+}
+
+vt_status vt_scene_fourbar_pin(vt_model **model, vt_function crank)
+{
+    return fourbar_rrrr(model, crank, 0, 1);
+}
+
+vt_status vt_scene_slider_crank(vt_model **model, vt_function crank, int planar)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = !planar;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    vt_body_def link = vt_default_body_def(); /* the crank, about z at the origin */
+    link.mass = 1.0;
+    rod_inertia(link.inertia, 1.0, VT_SC_R);
+    link.joint_child[0] = -0.5 * VT_SC_R;
+    int id = vt_builder_add_body(b, &link);
+    link = vt_default_body_def(); /* the rod, at the crank's tip */
+    link.parent = 1;
+    link.mass = 2.0;
+    rod_inertia(link.inertia, 2.0, VT_SC_L);
+    link.joint_parent[0] = 0.5 * VT_SC_R;
+    link.joint_child[0] = -0.5 * VT_SC_L;
+    if (id > 0) id = vt_builder_add_body(b, &link);
+    link = vt_default_body_def(); /* the slider, along x on the ground */
+    link.joint = VT_JOINT_TRANSLATIONAL;
+    link.mass = 1.5;
+    link.inertia[0] = link.inertia[4] = link.inertia[8] = 0.01;
+    link.axis1[0] = 1.0;
+    link.axis1[2] = 0.0;
+    link.joint_parent[1] = VT_SC_H;
+    link.joint_child[0] = VT_SC_JX;
+    link.joint_child[1] = VT_SC_JY;
+    if (id > 0) id = vt_builder_add_body(b, &link);
+    if (id > 0) { /* the rod's far end on the slider's pin */
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.body_a = 3;
+        cut.body_b = 2;
+        cut.point_a[0] = VT_SC_PX;
+        cut.point_a[1] = VT_SC_PY;
+        cut.point_b[0] = 0.5 * VT_SC_L;
+        cut.planar = planar;
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    if (id >= 0) {
+        vt_drive_def drive = vt_default_drive_def();
+        drive.body = 1;
+        drive.f = crank;
+        id = vt_builder_add_drive(b, &drive);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+int vt_scene_slider_crank_assemble(const vt_model *m, vt_data *d, double th, double w)
+{
+    /* the pin B at height h = VT_SC_H − VT_SC_JY + VT_SC_PY: r sin θ + L sin φ = h, rod toward +x */
+    const double h = VT_SC_H - VT_SC_JY + VT_SC_PY, s = (h - VT_SC_R * sin(th)) / VT_SC_L;
+    if (!(fabs(s) < 1.0)) return -1;
+    const double phi = asin(s), wphi = -VT_SC_R * w * cos(th) / (VT_SC_L * cos(phi));
+    const double Bx = VT_SC_R * cos(th) + VT_SC_L * cos(phi), vBx = -VT_SC_R * w * sin(th) - VT_SC_L * wphi * sin(phi);
+    d->q[m->body_qadr[1]] = th;
+    d->q[m->body_qadr[2]] = phi - th;
+    d->q[m->body_qadr[3]] = Bx - (VT_SC_PX - VT_SC_JX); /* the slider's joint point from (0, VT_SC_H) */
+    d->qd[m->body_vadr[1]] = w;
+    d->qd[m->body_vadr[2]] = wphi - w;
+    d->qd[m->body_vadr[3]] = vBx;
+    return 0;
 }
 
 int vt_scene_fourbar_planar_assemble(const vt_model *m, vt_data *d, double th2, double w2)

@@ -61,8 +61,31 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank);
  * rank 3: redundant (the Grübler count says −2, the mobility is 1). With allow_redundant the
  * model solves them in the least-squares sense (vt_model_def.allow_redundant). */
 vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant);
-/* its q and q̇ at crank angle th2 and rate w2 (the planar assembly of vt_scene_fourbar) */
+/* its q and q̇ at crank angle th2 and rate w2 (the planar assembly of vt_scene_fourbar); also
+ * vt_scene_fourbar_pin's */
 int vt_scene_fourbar_planar_assemble(const vt_model *model, vt_data *data, double th2, double w2);
+/* The same RRRR four-bar closed by a planar revolute cut joint (vt_cut_joint_def.planar): 2 cut
+ * rows and the drive on 3 rates, exactly constrained without allow_redundant. */
+vt_status vt_scene_fourbar_pin(vt_model **model, vt_function crank);
+
+/* An offset slider-crank in the XY plane: crank (body 1, VT_SC_R m, 1 kg uniform rod, revolute
+ * about z at the origin), rod (body 2, VT_SC_L m, 2 kg uniform rod, revolute at the crank's tip),
+ * slider (body 3, 1.5 kg, inertia 0.01 I kg·m², translational along x; its joint point
+ * (VT_SC_JX, VT_SC_JY) from its centre of mass slides on the line y = VT_SC_H). The rod's far end
+ * is pinned to the slider at (VT_SC_PX, VT_SC_PY) from its centre of mass by a revolute cut joint
+ * (cut 0, body_a the slider, body_b the rod): planar = 1 its two in-plane rows (3 rows on 3
+ * rates: exact); 0 the full 5 rows with allow_redundant. Drive 0 turns the crank: q1 = crank(t);
+ * gravity −9.81 y. */
+#define VT_SC_R 0.3
+#define VT_SC_L 1.0
+#define VT_SC_H 0.1
+#define VT_SC_JX (-0.03)
+#define VT_SC_JY (-0.01)
+#define VT_SC_PX 0.05
+#define VT_SC_PY 0.02
+vt_status vt_scene_slider_crank(vt_model **model, vt_function crank, int planar);
+/* its q and q̇ at crank angle th and rate w (the rod toward +x); 0, or -1 where it cannot close */
+int vt_scene_slider_crank_assemble(const vt_model *model, vt_data *data, double th, double w);
 
 /* Planar assembly of that four-bar at crank angle th2 and rate w2 (open branch, rocker tip
  * above the ground line): sets d->q, d->qd. Writes the coupler and rocker angles and rates

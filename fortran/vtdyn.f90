@@ -146,6 +146,7 @@ module vtdyn
     type(c_ptr)            :: name
     type(c_ptr)            :: frame_a
     type(c_ptr)            :: frame_b
+    integer(c_int)         :: planar
   end type vt_cut_joint_def
 
   type, bind(C) :: vt_coupling_def
@@ -287,6 +288,7 @@ module vtdyn
     type(c_ptr)            :: lambda_unique
     type(c_ptr)            :: lambda_null
     type(c_ptr)            :: xdd
+    type(c_ptr)            :: alpha
     type(c_ptr)            :: qfrc_drive
     type(c_ptr)            :: drive_effort
     type(c_ptr)            :: drive_force
@@ -295,6 +297,10 @@ module vtdyn
     type(c_ptr)            :: jnt_moment
     type(c_ptr)            :: jnt_force_body
     type(c_ptr)            :: jnt_moment_body
+    type(c_ptr)            :: jnt_force_total
+    type(c_ptr)            :: jnt_moment_total
+    type(c_ptr)            :: jnt_force_total_body
+    type(c_ptr)            :: jnt_moment_total_body
     type(c_ptr)            :: cut_force
     type(c_ptr)            :: cut_moment
     type(c_ptr)            :: cut_force_body

@@ -296,6 +296,11 @@ static void data_finite(const vt_model *m, const vt_data *d, const char *call)
     finite(d->cut_force_body, 3 * m->ncut, call, "cut_force_body");
     finite(d->cut_moment_body, 3 * m->ncut, call, "cut_moment_body");
     finite(d->coupling_effort, m->ncoupling, call, "coupling_effort");
+    finite(d->alpha, 3 * n1, call, "alpha");
+    finite(d->jnt_force_total, 3 * n1, call, "jnt_force_total");
+    finite(d->jnt_moment_total, 3 * n1, call, "jnt_moment_total");
+    finite(d->jnt_force_total_body, 3 * n1, call, "jnt_force_total_body");
+    finite(d->jnt_moment_total_body, 3 * n1, call, "jnt_moment_total_body");
 }
 
 /* What the builder accepted must satisfy what it checks: items an overflowing check would let

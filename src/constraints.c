@@ -12,6 +12,7 @@
  *   dot            u_a·v_b                    jw_a = u × v, jw_b = v × u;  γ = −(ü·v + 2 u̇·v̇ + u·v̈)0
  *   line           u_a·d                      jv = ±u, jw_b = s_b × u, jw_a = u × d − s_a × u
  *                                             γ = −(ü·d + 2 u̇·ḋ + u·d̈)0
+ *                  (a planar pin, vt_cut_joint_def.planar: two line rows, u = h1, h2 ⟂ axis1)
  *   orientation    2 G(p_d) p  (3 rows)       Φ_p = 2 G(p_d), Φ_t = 2 G(ṗ_d) p,
  *                                             γ = −[2 G(p̈_d) p + 4 G(ṗ_d) ṗ + 2 G(p_d) p̈0]
  *                  (G(a) b is the vector part of a* ⊗ b: zero when p = p_d)

@@ -346,6 +346,9 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
 void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const double *lam);
 /* jnt_unique and cut_unique from the solve's rank and null directions (reactions.c) */
 vt_status vt_reactions_unique(const vt_model *m, vt_data *d);
+/* what every instant path ends with: α of every body (from ẍ) and each joint's total wrench,
+ * reaction plus actuation (given: the motion given, every rate's qfrc_drive its effort) */
+vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
 
 /* the given motion of a mechanism with loops or couplings: the joint drives' rows take q̈ from
  * d->qdd (instant.c) */
@@ -379,8 +382,8 @@ enum {
 /* Which kind of object owns a row: drive, cut joint or base body. */
 enum { VT_OWNER_DRIVE, VT_OWNER_CUT, VT_OWNER_COUPLING, VT_OWNER_BASE };
 int vt_row_owner_kind(const vt_model *m, int row);
-/* Rows of a cut joint of this kind. */
-int vt_cut_nrows(int joint_type);
+/* Rows of a cut joint: its kind's, or 2 for a planar pin. */
+int vt_cut_nrows(const vt_cut_joint_def *c);
 /* Number of rows that belong to drives (they come first). */
 int vt_drive_rows(const vt_model *m);
 /* An orientation drive, absolute or relative (3 rows, p_d(t) from prescribed orientation) */

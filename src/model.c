@@ -557,6 +557,12 @@ static vt_status validate_cut(const vt_builder *b, char *msg, int k, vt_cut_join
                        k, d->body_a, d->body_b, b->n, b->n);
     if (d->body_a == d->body_b)
         return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: joins body %d to itself", k, d->body_a);
+    if (d->planar != 0 && d->planar != 1)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: planar is %d (0 or 1)", k, d->planar);
+    if (d->planar && d->joint != VT_JOINT_REVOLUTE)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT,
+                       "cut joint %d: planar is a revolute's pin in the plane ⟂ axis1 (joint VT_JOINT_REVOLUTE), not joint type %d",
+                       k, (int)d->joint);
     if (!vt_all_finite(d->point_a, 3) || !vt_all_finite(d->point_b, 3) || !vt_all_finite(d->axis1, 3) ||
         !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
         return vt_fail(msg, VT_ERR_NONFINITE, "cut joint %d: NaN or Inf in its definition", k);
@@ -642,9 +648,9 @@ int vt_builder_add_coupling(vt_builder *b, const vt_coupling_def *def)
     return k;
 }
 
-int vt_cut_nrows(int joint_type)
+int vt_cut_nrows(const vt_cut_joint_def *c)
 {
-    return cut_rows[joint_type];
+    return c->planar ? 2 : cut_rows[c->joint];
 }
 
 int vt_drive_rows(const vt_model *m)
@@ -658,7 +664,7 @@ int vt_row_owner_kind(const vt_model *m, int row)
 {
     if (row < vt_drive_rows(m)) return VT_OWNER_DRIVE;
     if (m->ncoupling && row >= m->coupling_row[0] && row <= m->coupling_row[m->ncoupling - 1]) return VT_OWNER_COUPLING;
-    if (m->ncut && row < m->cut_row[m->ncut - 1] + cut_rows[m->cut[m->ncut - 1].joint]) return VT_OWNER_CUT;
+    if (m->ncut && row < m->cut_row[m->ncut - 1] + vt_cut_nrows(&m->cut[m->ncut - 1])) return VT_OWNER_CUT;
     return VT_OWNER_BASE;
 }
 
@@ -721,13 +727,19 @@ static void build_rows(vt_model *m)
         onto_b(u1b, c->orientation, c->axis1);
         onto_b(u2b, c->orientation, c->axis2);
         const int first = r;
-        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL) {
+        if (c->planar) { /* a planar pin: b's point in a's plane ⟂ axis1 through a's point, as the
+                          * line rows below with d along h1 and h2 (the point may leave the plane) */
+            for (int e = 0; e < 2; e++) {
+                memcpy(m->con_vec + 6 * r, e ? h2 : h1, 3 * sizeof(double));
+                r = add_row(m, r, VT_ROW_LINE, a, b, k);
+            }
+        } else if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL) {
             for (int e = 0; e < 3; e++) { /* the two joint points coincide */
                 m->con_vec[6 * r + e] = 1.0;
                 r = add_row(m, r, VT_ROW_POINT, a, b, k);
             }
         }
-        if (jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_CYLINDRICAL || jt == VT_JOINT_TRANSLATIONAL) {
+        if ((jt == VT_JOINT_REVOLUTE && !c->planar) || jt == VT_JOINT_CYLINDRICAL || jt == VT_JOINT_TRANSLATIONAL) {
             for (int e = 0; e < 2; e++) { /* b's axis stays parallel to a's */
                 memcpy(m->con_vec + 6 * r, e ? h2 : h1, 3 * sizeof(double));
                 memcpy(m->con_vec + 6 * r + 3, u1b, 3 * sizeof(double));
@@ -870,7 +882,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         nc += d->joint == VT_JOINT_BASE;
     }
     for (int k = 0; k < b->ndrive; k++) nc += vt_drive_nrows(&b->drives[k]);
-    for (int k = 0; k < b->ncut; k++) nc += cut_rows[b->cuts[k].joint];
+    for (int k = 0; k < b->ncut; k++) nc += vt_cut_nrows(&b->cuts[k]);
     nc += b->ncoupling;
 
     size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */

@@ -710,7 +710,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    return VT_OK;
+    if ((st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    return st;
 }
 
 static vt_status recursive_instant(const vt_model *m, vt_data *d)
@@ -818,7 +819,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = inward_given(m, d))) return st;
+    if ((st = inward_given(m, d)) || (st = vt_reactions_total(m, d, 1))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }

@@ -2,8 +2,8 @@
  * rate, Φ_t against differences in t, and γ (23) against the second difference of Φ along a
  * motion with q̈ = 0 — for every kind of row: joint, point and orientation drives (about an
  * axis, three angles body-fixed and about fixed axes, callback; absolute and relative to
- * another body, a spherical joint's drive), cut joints of every kind, the base bodies' p^T p = 1, and a coupling of two
- * joint coordinates. */
+ * another body, a spherical joint's drive), cut joints of every kind and a planar pin, the base
+ * bodies' p^T p = 1, and a coupling of two joint coordinates. */
 #include "vt_test.h"
 
 /* prescribed orientation with a turning axis: p = [a t about u1] ⊗ [b t about u2] */
@@ -88,11 +88,12 @@ static vt_model *build_all_kinds(uint64_t seed)
             assert_true(vt_builder_add_drive(b, &od) >= 0);
             break;
         }
-    static const vt_joint_type kinds[5] = {VT_JOINT_REVOLUTE, VT_JOINT_UNIVERSAL, VT_JOINT_SPHERICAL,
-                                           VT_JOINT_TRANSLATIONAL, VT_JOINT_CYLINDRICAL};
-    for (int k = 0; k < 5; k++) {
+    static const vt_joint_type kinds[6] = {VT_JOINT_REVOLUTE, VT_JOINT_UNIVERSAL, VT_JOINT_SPHERICAL,
+                                           VT_JOINT_TRANSLATIONAL, VT_JOINT_CYLINDRICAL, VT_JOINT_REVOLUTE};
+    for (int k = 0; k < 6; k++) { /* the last a planar pin */
         vt_cut_joint_def cj = vt_default_cut_joint_def();
         cj.joint = kinds[k];
+        cj.planar = k == 5;
         cj.body_a = k == 0 ? 0 : 1 + k;
         cj.body_b = 8 + k;
         for (int c = 0; c < 3; c++) {
@@ -160,6 +161,29 @@ static void test_rows_against_finite_differences(void **state)
         memcpy(v, d->qd, (size_t)nv * sizeof(double));
         eval_phi(m, d, q, v, t0, p0);
         memcpy(Phiq, d->Phiq, (size_t)nc * (size_t)nv * sizeof(double));
+        { /* the planar pin's two rows: the joint points' separation in the plane ⟂ a's axis1 */
+            const int k = m->ncut - 1;
+            const vt_cut_joint_def *c = &m->cut[k];
+            assert_int_equal(c->planar, 1);
+            assert_int_equal(m->cut_row[k] + 2, k + 1 < m->ncut ? m->cut_row[k + 1] : m->coupling_row[0]);
+            double P[2][3], ax[3], sep[3];
+            for (int side = 0; side < 2; side++) {
+                const int bd = side ? c->body_b : c->body_a;
+                const double *sp = side ? c->point_b : c->point_a, *A = d->A + 9 * bd;
+                for (int e = 0; e < 3; e++)
+                    P[side][e] = (bd ? d->x[7 * (bd - 1) + e] : 0.0) + A[e] * sp[0] + A[e + 3] * sp[1] + A[e + 6] * sp[2];
+            }
+            const double *Aa = d->A + 9 * c->body_a;
+            for (int e = 0; e < 3; e++) {
+                ax[e] = Aa[e] * c->axis1[0] + Aa[e + 3] * c->axis1[1] + Aa[e + 6] * c->axis1[2];
+                sep[e] = P[1][e] - P[0][e];
+            }
+            const double along = sep[0] * ax[0] + sep[1] * ax[1] + sep[2] * ax[2];
+            const double inplane2 = sep[0] * sep[0] + sep[1] * sep[1] + sep[2] * sep[2] - along * along;
+            const double r0 = p0[m->cut_row[k]], r1 = p0[m->cut_row[k] + 1];
+            assert_near(r0 * r0 + r1 * r1, inplane2, 1e-12 * (1 + inplane2));
+            assert_true(inplane2 > 1e-4 && fabs(along) > 1e-3); /* a random pose: both parts present */
+        }
         memcpy(gam, d->gamma, (size_t)nc * sizeof(double));
         memcpy(Phit, d->Phit, (size_t)nc * sizeof(double));
 

@@ -48,7 +48,7 @@ program test_fortran_layout
          a(c_loc(x_cut_joint_def%point_a)), a(c_loc(x_cut_joint_def%point_b)), &
          a(c_loc(x_cut_joint_def%axis1)), a(c_loc(x_cut_joint_def%axis2)), &
          a(c_loc(x_cut_joint_def%orientation)), a(c_loc(x_cut_joint_def%name)), a(c_loc(x_cut_joint_def%frame_a)), &
-         a(c_loc(x_cut_joint_def%frame_b))])
+         a(c_loc(x_cut_joint_def%frame_b)), a(c_loc(x_cut_joint_def%planar))])
     call check(4_c_int, 'vt_body_def', c_sizeof(x_body_def), a(c_loc(x_body_def)), [ &
          a(c_loc(x_body_def%parent)), a(c_loc(x_body_def%joint)), a(c_loc(x_body_def%mass)), &
          a(c_loc(x_body_def%inertia)), a(c_loc(x_body_def%joint_parent)), a(c_loc(x_body_def%joint_child)), &
@@ -88,9 +88,11 @@ program test_fortran_layout
          a(c_loc(x_data%qdd)), a(c_loc(x_data%lambda)), a(c_loc(x_data%route)), a(c_loc(x_data%fallback)), &
          a(c_loc(x_data%rcond)), a(c_loc(x_data%warning)), a(c_loc(x_data%rank)), a(c_loc(x_data%residual)), &
          a(c_loc(x_data%lambda_unique)), a(c_loc(x_data%lambda_null)), a(c_loc(x_data%xdd)), &
-         a(c_loc(x_data%qfrc_drive)), a(c_loc(x_data%drive_effort)), a(c_loc(x_data%drive_force)), &
+         a(c_loc(x_data%alpha)), a(c_loc(x_data%qfrc_drive)), a(c_loc(x_data%drive_effort)), a(c_loc(x_data%drive_force)), &
          a(c_loc(x_data%drive_moment)), a(c_loc(x_data%jnt_force)), a(c_loc(x_data%jnt_moment)), &
-         a(c_loc(x_data%jnt_force_body)), a(c_loc(x_data%jnt_moment_body)), a(c_loc(x_data%cut_force)), &
+         a(c_loc(x_data%jnt_force_body)), a(c_loc(x_data%jnt_moment_body)), &
+         a(c_loc(x_data%jnt_force_total)), a(c_loc(x_data%jnt_moment_total)), &
+         a(c_loc(x_data%jnt_force_total_body)), a(c_loc(x_data%jnt_moment_total_body)), a(c_loc(x_data%cut_force)), &
          a(c_loc(x_data%cut_moment)), a(c_loc(x_data%cut_force_body)), a(c_loc(x_data%cut_moment_body)), &
          a(c_loc(x_data%coupling_effort)), &
          a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), a(c_loc(x_data%arena)), &

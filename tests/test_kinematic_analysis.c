@@ -527,6 +527,60 @@ static void test_spline_drive_converges(void **state)
     vt_model_free(m);
 }
 
+/* The same four-bar closed by a planar pin (3 independent rows for 3 rates, no allow_redundant):
+ * a kinematic analysis's every row equals the closed-form assembly, its crank torque the RSUR
+ * model's at the same state; the forward check runs in the default (GGL) formulation, whose IDA
+ * Jacobian the redundant model's dependent rows make singular, and reproduces the motion and
+ * the reactions. */
+static void test_planar_pin_over_time(void **state)
+{
+    (void)state;
+    const double coef[3] = {0.3, 2.0, 1.5};
+    const vt_function crank = vt_function_polynomial(3, coef);
+    vt_model *m, *rsur;
+    assert_ok(vt_scene_fourbar_pin(&m, crank));
+    assert_ok(vt_scene_fourbar(&rsur, crank));
+    vt_data *d, *dx, *du;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dx, m));
+    assert_ok(vt_data_create(&du, rsur));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 1.0;
+    opt.nout = 10;
+#if !VT_HAVE_SUNDIALS
+    opt.forward_check = 0;
+#endif
+    vt_trajectory *tr;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    assert_int_equal(vt_scene_fourbar_planar_assemble(m, d, coef[0], coef[1]), 0);
+    const vt_status st = vt_kinematic_analysis(m, d, &opt, tr);
+    if (st) fail_msg("%s", d->message);
+    assert_int_equal(tr->nfilled, opt.nout + 1);
+    for (int k = 0; k <= opt.nout; k++) {
+        const double t = tr->t[k], th2 = coef[0] + coef[1] * t + coef[2] * t * t, w2 = coef[1] + 2 * coef[2] * t;
+        assert_int_equal(vt_scene_fourbar_planar_assemble(m, dx, th2, w2), 0);
+        for (int c = 0; c < 3; c++) {
+            assert_near(tr->q[3 * k + c], dx->q[c], 1e-10);
+            assert_near(tr->qd[3 * k + c], dx->qd[c], 1e-9);
+        }
+        assert_int_equal(vt_scene_fourbar_assemble(rsur, du, th2, w2, NULL, NULL), 0);
+        du->time = t;
+        assert_ok(vt_inverse_dynamics(rsur, du));
+        assert_near(tr->drive_effort[k], du->drive_effort[0], 1e-8 * (1 + fabs(du->drive_effort[0])));
+    }
+#if VT_HAVE_SUNDIALS
+    assert_true(tr->fwd_err_q < 1e-5); /* IDA's error at rtol 1e-8 over 1 s */
+    assert_true(tr->fwd_err_force < 1e-4 * (1 + vt_test_maxabs(tr->jnt_force, 3 * 4 * (opt.nout + 1))));
+    print_message("planar pin four-bar, forward check: |q| %.2e rad, reactions %.2e N\n", tr->fwd_err_q, tr->fwd_err_force);
+#endif
+    vt_trajectory_free(tr);
+    vt_data_free(du);
+    vt_data_free(dx);
+    vt_data_free(d);
+    vt_model_free(rsur);
+    vt_model_free(m);
+}
+
 /* A fully driven model with dependent rows: the planar four-bar closed by a spatial revolute
  * cut joint, its crank driven (6 rows of rank 3 for 3 rates). Built without allow_redundant it
  * is refused as having dependent rows, with the advice to allow them (not as "not fully
@@ -631,6 +685,7 @@ int main(void)
         cmocka_unit_test(test_stretched_arm),
         cmocka_unit_test(test_spline_drive_converges),
         cmocka_unit_test(test_redundant_fully_driven),
+        cmocka_unit_test(test_planar_pin_over_time),
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_given_output_times),
 #endif

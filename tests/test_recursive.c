@@ -96,6 +96,11 @@ static void both(const vt_model *m, vt_data *dr, vt_data *dd)
     compare_at(dr->jnt_moment_body, dd->jnt_moment_body, nb3, 1e-12, mscale, "jnt_moment_body");
     compare(dr->cut_force, dd->cut_force, 3 * m->ncut, 1e-12, "cut_force");
     compare(dr->cut_moment, dd->cut_moment, 3 * m->ncut, 1e-12, "cut_moment");
+    compare(dr->alpha, dd->alpha, nb3, 1e-12, "alpha");
+    compare(dr->jnt_force_total, dd->jnt_force_total, nb3, 1e-12, "jnt_force_total");
+    compare_at(dr->jnt_moment_total, dd->jnt_moment_total, nb3, 1e-12, mscale, "jnt_moment_total");
+    compare(dr->jnt_force_total_body, dd->jnt_force_total_body, nb3, 1e-12, "jnt_force_total_body");
+    compare_at(dr->jnt_moment_total_body, dd->jnt_moment_total_body, nb3, 1e-12, mscale, "jnt_moment_total_body");
     compare(dr->Phi, dd->Phi, m->nc, 1e-12, "Phi");
     if (path == SQUARE) { /* the square path computes the condition of the same Φ_q D itself */
         assert_near(dr->rcond, dd->rcond, 1e-9 * dd->rcond);
@@ -293,6 +298,31 @@ static void test_scenes(void **state)
             assert_int_equal(dr->fallback, 0);
             assert_int_equal(dd->route, VT_ROUTE_SQUARE);
         }
+        vt_data_free(dr);
+        vt_data_free(dd);
+        vt_model_free(m);
+    }
+    /* planar pins (2 rows each): the four-bar and the slider-crank square with the crank driven,
+     * and without the drive (the loop moving freely) by articulated bodies */
+    for (int k = 0; k < 4; k++) {
+        const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
+        vt_model *md;
+        assert_ok(k % 2 ? vt_scene_slider_crank(&md, crank, 1) : vt_scene_fourbar_pin(&md, crank));
+        if (k < 2) {
+            m = md;
+        } else {
+            assert_ok(vt_model_without_drives(&m, md));
+            vt_model_free(md);
+        }
+        assert_ok(vt_data_create(&dr, m));
+        assert_ok(vt_data_create(&dd, m));
+        assert_int_equal(k % 2 ? vt_scene_slider_crank_assemble(m, dd, 0.9, 1.3) : vt_scene_fourbar_planar_assemble(m, dd, 0.9, 1.3), 0);
+        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
+        for (int c = 0; c < m->nv; c++) dr->qfrc[c] = dd->qfrc[c] = 0.4 - 0.3 * c;
+        both(m, dr, dd);
+        assert_int_equal(dr->route, k < 2 ? VT_ROUTE_SQUARE : VT_ROUTE_ARTICULATED);
+        assert_int_equal(dr->fallback, 0);
         vt_data_free(dr);
         vt_data_free(dd);
         vt_model_free(m);

@@ -272,7 +272,8 @@ typedef struct vt_drive_def {
 /// with the joint kinds of Table 1 except base (and not free: neither constrains anything). Equations: spherical 3 (points coincide),
 /// revolute 5 (and axes parallel), universal 4 (points coincide, axis1 on a ⟂ axis2 on b),
 /// cylindrical 4 (axes parallel, b's point on a's axis line), translational 5 (cylindrical and
-/// no turn about the axis). Fill from vt_default_cut_joint_def().
+/// no turn about the axis), and with `planar` a revolute's 2 in-plane equations alone (planar
+/// loops). Fill from vt_default_cut_joint_def().
 typedef struct vt_cut_joint_def {
     vt_joint_type joint;   ///< default VT_JOINT_REVOLUTE
     int body_a;            ///< 0 = ground allowed; default 0
@@ -288,6 +289,14 @@ typedef struct vt_cut_joint_def {
     const char *frame_a;   ///< the name of a frame added so far: its body and origin replace body_a
                            ///< and point_a (the axes stay in a's body axes); NULL: as given; default NULL
     const char *frame_b;   ///< the same for body_b and point_b; default NULL
+    int planar;            ///< 1: a planar loop's pin (joint VT_JOINT_REVOLUTE only; the builder refuses
+                           ///< it with another kind): the two equations of the joint point in the plane
+                           ///< ⟂ axis1, [u1 u2]^T (P_b − P_a) = 0 with u1, u2 ⟂ axis1 fixed on a, so a
+                           ///< planar loop is exactly constrained (no allow_redundant). The points may
+                           ///< part along axis1 and b may tilt: the reaction is the in-plane force alone
+                           ///< (cut_force ⟂ axis1; its component along axis1 and cut_moment zero), the
+                           ///< out-of-plane loads go through the tree joints. On a loop that is not
+                           ///< planar the rows fix less than a full pin would. Default 0 (all 5 rows)
 } vt_cut_joint_def;
 
 /// A coupling of two joint coordinates, q_a = ratio q_b + offset (a URDF mimic joint, a gear
@@ -512,6 +521,8 @@ typedef struct vt_data {
 
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
+    double *alpha;           ///< angular acceleration of each body, global, rad/s²: α = ω̇ = 2 E p̈ (3 x
+                             ///< (nbody+1); the ground's 0); every instant path fills it
     double *qfrc_drive;      ///< generalized force of all drives, Φ_q^T λ over the drives' rows (nv):
                              ///< the joint torques and forces that produce the motion; with the motion
                              ///< given (vt_inverse_dynamics_motion), every rate's: M* q̈ − Q (a free
@@ -530,6 +541,20 @@ typedef struct vt_data {
     double *jnt_moment;      ///< reaction moment, about the joint point (3 x (nbody+1)), N·m
     double *jnt_force_body;  ///< the same in the body's axes, (27) (3 x (nbody+1))
     double *jnt_moment_body; ///< the same in the body's axes, (28) (3 x (nbody+1))
+    double *jnt_force_total; ///< the total the joint transmits: its reaction plus its actuation, force of
+                             ///< the reference body on the body at the joint point (3 x (nbody+1)), N,
+                             ///< global. Actuation: the generalized forces along the joint's own rates —
+                             ///< its joint drives' efforts (every rate's qfrc_drive with the motion given,
+                             ///< vt_inverse_dynamics_motion), the applied qfrc and the couplings' forces —
+                             ///< each as a force along a translational axis or a moment about a rotational
+                             ///< one (a free joint: its six efforts; a base body's: at its centre of mass,
+                             ///< moved to the joint point). Point and orientation drives act on bodies,
+                             ///< not along rates: not included. Equals the Newton–Euler wrench of the
+                             ///< subtree outboard of the joint less the loads on it from outside
+                             ///< (gravity, xfrc, cut joints, point and orientation drives)
+    double *jnt_moment_total;///< its moment about the joint point (3 x (nbody+1)), N·m, global
+    double *jnt_force_total_body;  ///< jnt_force_total in the body's axes (3 x (nbody+1)), N
+    double *jnt_moment_total_body; ///< jnt_moment_total in the body's axes (3 x (nbody+1)), N·m
     double *cut_force;       ///< cut joint: force of body_a on body_b at point_b (3 x ncut), N
     double *cut_moment;      ///< cut joint: moment of body_a on body_b about point_b (3 x ncut), N·m
     double *cut_force_body;  ///< the same in body_b's axes (3 x ncut)
