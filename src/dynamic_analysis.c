@@ -608,9 +608,18 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                 p->s.dk_valid = 1;
             }
             memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
-            if ((st = vt_kinematics(p->mf, p->df))) goto done;
-            vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-            if ((st = block_output(p->mf, p->df, tret, yv + p->nd, p->band))) {
+            if (p->s.motion) { /* a tree: its q̈ and reactions by the recursive instant (articulated bodies) */
+                memcpy(p->df->qd, yv + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
+                p->df->time = tret;
+                if (p->as_loads && (st = vt_kinematics_tree(p->mf, p->df, 0))) goto done;
+                vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+                st = vt_inverse_dynamics_recursive(p->mf, p->df);
+            } else {
+                if ((st = vt_kinematics(p->mf, p->df))) goto done;
+                vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+                st = block_output(p->mf, p->df, tret, yv + p->nd, p->band);
+            }
+            if (st) {
                 vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->df->message);
                 goto done;
             }
