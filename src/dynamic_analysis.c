@@ -295,7 +295,11 @@ static vt_status exact_efforts(const dae *p, const vt_model *m, double t)
         else hi = mid;
     }
     const int near = t - tr->t[lo] <= tr->t[hi] - t ? lo : hi, far = near == lo ? hi : lo;
-    vt_status st = vt_kinematic_start(m, dk, tr, near, far == near ? -1 : far);
+    int third = -1; /* the next row out on either side, the nearer one */
+    if (lo > 0 && (hi + 1 >= tr->nfilled || t - tr->t[lo - 1] <= tr->t[hi + 1] - t)) third = lo - 1;
+    else if (hi + 1 < tr->nfilled) third = hi + 1;
+    if (far == near) third = -1;
+    vt_status st = vt_kinematic_start(m, dk, tr, near, far == near ? -1 : far, third);
     if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0);
     if (st == VT_ERR_NEWTON) {
         memcpy(dk->q, tr->q + (size_t)near * (size_t)m->nq, (size_t)m->nq * sizeof(double));

@@ -67,7 +67,7 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         d->time = vt_run_time(opt, k);
         const double *qp = k ? tr->q + (size_t)(k - 1) * (size_t)m->nq : NULL;
         const double *qdp = k ? tr->qd + (size_t)(k - 1) * (size_t)m->nv : NULL;
-        if (k > 0 && (st = vt_kinematic_start(m, d, tr, k - 1, k >= 2 ? k - 2 : -1))) return st;
+        if (k > 0 && (st = vt_kinematic_start(m, d, tr, k - 1, k >= 2 ? k - 2 : -1, -1))) return st;
         /* row 0 by the dense instant: its M* and Φ_q decide the rank below */
         if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, k > 0, qp, qdp, k ? d->time - tr->t[k - 1] : 0.0))) {
             if (k == 0 || st != VT_ERR_NEWTON) return st;

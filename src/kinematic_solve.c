@@ -170,7 +170,32 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
  * d->qd holds the increment while vt_integrate_q turns it into q (Euler parameters on the sphere).
  * The analysis extrapolates from its last two rows; the forward check interpolates between the
  * two rows around the time IDA asks for (at mid-interval 2⁶ × 2³ times closer than extrapolated). */
-vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k1, int k2)
+/* q(t1 + h) − q1 of coordinate e (rate c) by the Hermite polynomial through q, q̇, q̈ at rows k1,
+ * k2, k3 (degree 8), in Newton's form from the confluent divided differences of the nodes
+ * z = (t1, t1, t1, t2, t2, t2, t3, t3, t3) − t1, where f[z_i..z_{i+j}] over one row's repeated
+ * node is q̇ (j = 1) or ½ q̈ (j = 2):  q − q1 = h (f1 + h (f2 + (h − z3) (f3 + …))) */
+static double hermite3(const vt_trajectory *tr, int k1, int k2, int k3, int e, int c, double h)
+{
+    const vt_model *m = tr->model;
+    const int row[3] = {k1, k2, k3};
+    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
+    double z[9], f[9];
+    for (int n = 0; n < 9; n++) {
+        z[n] = tr->t[row[n / 3]] - tr->t[k1];
+        f[n] = tr->q[(size_t)row[n / 3] * nq + (size_t)e];
+    }
+    for (int j = 1; j < 9; j++) /* column j of the table, bottom up, in place */
+        for (int n = 8; n >= j; n--) {
+            const size_t r = (size_t)row[n / 3];
+            if (z[n] == z[n - j]) f[n] = j == 1 ? tr->qd[r * nv + (size_t)c] : 0.5 * tr->qdd[r * nv + (size_t)c];
+            else f[n] = (f[n] - f[n - 1]) / (z[n] - z[n - j]);
+        }
+    double p = f[8];
+    for (int n = 7; n >= 1; n--) p = f[n] + (h - z[n]) * p;
+    return h * p;
+}
+
+vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k1, int k2, int k3)
 {
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
     const double t1 = tr->t[k1], h = d->time - t1;
@@ -186,6 +211,8 @@ vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory 
                 if (jt == VT_JOINT_SPHERICAL || (jt == VT_JOINT_FREE && o >= 3)) {
                     const double S0 = v2[c] - v1[c] + dl * a1[c], S1 = dl * (a2[c] - a1[c]);
                     d->qd[c] += h * s * s * ((3.0 * S0 + S1) / 3.0 + s * (S1 + 2.0 * S0) / 4.0);
+                } else if (k3 >= 0) { /* degree 8 through the three rows */
+                    d->qd[c] = hermite3(tr, k1, k2, k3, qa + o, (int)c, h);
                 } else {
                     const size_t e = (size_t)(qa + o);
                     const double R0 = q2[e] - q1[e] + dl * (v1[c] - 0.5 * dl * a1[c]), R1 = dl * (v2[c] - v1[c] + dl * a1[c]),
