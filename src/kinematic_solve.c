@@ -170,28 +170,41 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
  * d->qd holds the increment while vt_integrate_q turns it into q (Euler parameters on the sphere).
  * The analysis extrapolates from its last two rows; the forward check interpolates between the
  * two rows around the time IDA asks for (at mid-interval 2⁶ × 2³ times closer than extrapolated). */
-/* q(t1 + h) − q1 of coordinate e (rate c) by the Hermite polynomial through q, q̇, q̈ at rows k1,
- * k2, k3 (degree 8), in Newton's form from the confluent divided differences of the nodes
- * z = (t1, t1, t1, t2, t2, t2, t3, t3, t3) − t1, where f[z_i..z_{i+j}] over one row's repeated
- * node is q̇ (j = 1) or ½ q̈ (j = 2):  q − q1 = h (f1 + h (f2 + (h − z3) (f3 + …))) */
-static double hermite3(const vt_trajectory *tr, int k1, int k2, int k3, int e, int c, double h)
+/* The Hermite polynomial through q, q̇, q̈ at three rows (degree 8) in Newton's form, from the
+ * confluent divided differences of the nodes z = (t1, t1, t1, t2, t2, t2, t3, t3, t3) − t1, where
+ * f[z_i..z_{i+j}] over one row's repeated node is q̇ (j = 1) or ½ q̈ (j = 2):
+ *   q(t1 + h) − q1 = h (f1 + (h − z1) (f2 + (h − z2) (f3 + …)))
+ * The nodes' reciprocal differences are the same for every coordinate: taken once */
+typedef struct {
+    int row[3];
+    double z[9], inv[9][9]; /* inv[j][n] = 1 / (z[n] − z[n − j]), 0 over one row's node */
+} hermite3;
+
+static void hermite3_nodes(hermite3 *H, const vt_trajectory *tr, int k1, int k2, int k3)
 {
-    const vt_model *m = tr->model;
-    const int row[3] = {k1, k2, k3};
-    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
-    double z[9], f[9];
-    for (int n = 0; n < 9; n++) {
-        z[n] = tr->t[row[n / 3]] - tr->t[k1];
-        f[n] = tr->q[(size_t)row[n / 3] * nq + (size_t)e];
-    }
+    H->row[0] = k1, H->row[1] = k2, H->row[2] = k3;
+    for (int n = 0; n < 9; n++) H->z[n] = tr->t[H->row[n / 3]] - tr->t[k1];
+    for (int j = 1; j < 9; j++)
+        for (int n = j; n < 9; n++) H->inv[j][n] = n / 3 == (n - j) / 3 ? 0.0 : 1.0 / (H->z[n] - H->z[n - j]);
+}
+
+/* q(t1 + h) − q1 of coordinate e (rate c) */
+static double hermite3_increment(const hermite3 *H, const vt_trajectory *tr, int e, int c, double h)
+{
+    const size_t nq = (size_t)tr->model->nq, nv = (size_t)tr->model->nv;
+    double f[9];
+    for (int n = 0; n < 9; n++) f[n] = tr->q[(size_t)H->row[n / 3] * nq + (size_t)e];
     for (int j = 1; j < 9; j++) /* column j of the table, bottom up, in place */
         for (int n = 8; n >= j; n--) {
-            const size_t r = (size_t)row[n / 3];
-            if (z[n] == z[n - j]) f[n] = j == 1 ? tr->qd[r * nv + (size_t)c] : 0.5 * tr->qdd[r * nv + (size_t)c];
-            else f[n] = (f[n] - f[n - 1]) / (z[n] - z[n - j]);
+            if (H->inv[j][n] != 0.0) {
+                f[n] = (f[n] - f[n - 1]) * H->inv[j][n];
+            } else { /* one row's repeated node (j = 1, 2): its derivative / j! */
+                const size_t r = (size_t)H->row[n / 3] * nv + (size_t)c;
+                f[n] = j == 1 ? tr->qd[r] : 0.5 * tr->qdd[r];
+            }
         }
     double p = f[8];
-    for (int n = 7; n >= 1; n--) p = f[n] + (h - z[n]) * p;
+    for (int n = 7; n >= 1; n--) p = f[n] + (h - H->z[n]) * p;
     return h * p;
 }
 
@@ -204,6 +217,8 @@ vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory 
     if (k2 >= 0) {
         const double *q2 = tr->q + (size_t)k2 * nq, *v2 = tr->qd + (size_t)k2 * nv, *a2 = tr->qdd + (size_t)k2 * nv;
         const double dl = t1 - tr->t[k2], s = h / dl;
+        hermite3 H;
+        if (k3 >= 0) hermite3_nodes(&H, tr, k1, k2, k3);
         for (int i = 1; i <= m->nbody; i++) {
             const int jt = m->body_joint[i], va = m->body_vadr[i], qa = m->body_qadr[i];
             for (int o = 0; o < m->body_nv[i]; o++) {
@@ -212,7 +227,7 @@ vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory 
                     const double S0 = v2[c] - v1[c] + dl * a1[c], S1 = dl * (a2[c] - a1[c]);
                     d->qd[c] += h * s * s * ((3.0 * S0 + S1) / 3.0 + s * (S1 + 2.0 * S0) / 4.0);
                 } else if (k3 >= 0) { /* degree 8 through the three rows */
-                    d->qd[c] = hermite3(tr, k1, k2, k3, qa + o, (int)c, h);
+                    d->qd[c] = hermite3_increment(&H, tr, qa + o, (int)c, h);
                 } else {
                     const size_t e = (size_t)(qa + o);
                     const double R0 = q2[e] - q1[e] + dl * (v1[c] - 0.5 * dl * a1[c]), R1 = dl * (v2[c] - v1[c] + dl * a1[c]),
