@@ -2,7 +2,8 @@
  * the forward check; the free joint's forward check under the drives' loads), its rows
  * (recursive instants from predicted starts) against the dense vt_kinematic_solve from
  * independent starts, one Newton step per row, the stretched arm that warns then fails, and
- * the failure statuses (not fully driven, Newton that does not converge, abort, bad options); a fully driven model with dependent rows, decided by rank. */
+ * the failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
+ * fully driven model with dependent rows, decided by rank. */
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
