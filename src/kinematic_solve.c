@@ -11,6 +11,9 @@
  * (consistent initial values of a dynamic analysis) LAPACK's dgels gives the least-norm
  * correction, a projection onto the constraint manifold; dependent rows of a model that allows
  * them, the least-norm least-squares step (dgelsd).
+ * Newton's starts for the analyses over time (vt_kinematic_start, below): the Hermite polynomial
+ * through q, q̇, q̈ of two or three rows of a trajectory, extrapolated to the next row's time by
+ * the kinematic analysis, interpolated to the times IDA asks for by its forward check.
  */
 #include <string.h>
 
