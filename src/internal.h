@@ -235,6 +235,9 @@ size_t vt_inverse_transform_scratch(const vt_model *m);
  * itself when its max |Φ| exceeds ½ h max |Φ_t| (roughly qprev's own residual at t) */
 vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
                                   const double *qprev, const double *qdprev, double h);
+/* Newton's start at d->time into d->q, d->qd: the Hermite polynomial through q, q̇, q̈ of rows k1
+ * and k2 of tr (k2 before k1: extrapolated; after: interpolated; −1: Taylor from k1 alone) */
+vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k1, int k2, int k3);
 
 /* Writes a formatted message into buf (size 256) and returns status. */
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
@@ -450,9 +453,11 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
 int vt_run_rows(const vt_run_options *opt);
 double vt_run_time(const vt_run_options *opt, int k);
 
-/* The forward check with IDA (integrate.c): integrates the model without drives (mf, df)
+/* The forward check with IDA (dynamic_analysis.c): integrates the model without drives (mf, df)
  * from the driven state at opt->t0, with df->qfrc = the drives' generalized force at each
- * time, evaluated exactly by vt_kinematic_solve() on dk (fully driven models). */
+ * time, evaluated exactly on dk by vt_kinematic_solve_impl from the rows of tr around it,
+ * interpolated (vt_kinematic_start), and at the output times taken from tr's rows (fully driven
+ * models). */
 vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr);
 
 #endif

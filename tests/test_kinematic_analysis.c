@@ -1,9 +1,10 @@
 /* src/kinematic_analysis.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
- * the forward check), its rows (recursive instants from predicted starts) against the dense
- * vt_kinematic_solve from independent starts, one Newton step per row, the stretched arm that
- * warns then fails, and the failure statuses (not fully driven, Newton that does not converge,
- * abort, bad options); a fully driven model with dependent rows, decided by rank; a spherical
- * joint's relative orientation drive through the forward check both ways. */
+ * the forward check; the free joint's forward check under the drives' loads), its rows
+ * (recursive instants from predicted starts) against the dense vt_kinematic_solve from
+ * independent starts, one Newton step per row, the stretched arm that warns then fails, and
+ * the failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
+ * fully driven model with dependent rows, decided by rank; a spherical joint's relative
+ * orientation drive through the forward check both ways. */
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
@@ -246,6 +247,34 @@ static void test_free_joint_rows_against_dense_instants(void **state)
     vt_data_free(d);
     vt_model_free(m);
 }
+
+#if VT_HAVE_SUNDIALS
+/* The forward check of the free joint (Euler parameters integrated on the sphere, the exact
+ * efforts' Newton started from the rows interpolated by the rotation's cubic q̇): the undriven
+ * run under the drives' own loads reproduces the rows' motion and their reactions */
+static void test_free_joint_forward_check(void **state)
+{
+    (void)state;
+    vt_model *m = free_joint_model();
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 2.0;
+    opt.nout = 50;
+    opt.forward_as_loads = 1;
+    assert_ok(vt_trajectory_create(&tr, m, 51));
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_true(tr->steps_fwd > 0);
+    if (!(tr->fwd_err_q <= 1e-6 && tr->fwd_err_q > 0.0 && tr->fwd_err_qd <= 1e-5 && tr->fwd_err_force <= 1e-5 &&
+          tr->fwd_err_moment <= 1e-5))
+        fail_msg("forward check off: |q| %.3g, |q'| %.3g, reactions %.3g N, %.3g N m", tr->fwd_err_q, tr->fwd_err_qd,
+                 tr->fwd_err_force, tr->fwd_err_moment);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+#endif
 
 /* From the predicted starts one Newton step reaches 1e-10 at every row of the five-link arm
  * (from the previous row itself it takes two or three) */
@@ -675,6 +704,7 @@ int main(void)
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_five_link_circle_and_forward_check),
         cmocka_unit_test(test_relative_orientation_forward_check),
+        cmocka_unit_test(test_free_joint_forward_check),
 #else
         cmocka_unit_test(test_no_forward_check_without_sundials),
 #endif
