@@ -1,10 +1,12 @@
 /* A legged robot's knee four-bar (vt_scene_knee() in scenes.h): the knee motor sits at the hip
  * and turns the knee through a crank, a coupler along the thigh and a lever on the shank, the
- * closed chain Pinocchio cannot express with a revolute closure (pinocchio #2729). The hip swings
- * the thigh by 0.35 rad and the motor turns the crank by 0.4 rad, 2 Hz (a trot): hip and motor
- * joint drives, the loop closed by a spherical cut joint at the lever (the coupler on a universal
- * joint at the crank, so the rows are independent: no redundant option). Fully driven: a
- * kinematic analysis; the two drive efforts are the hip and motor torques.
+ * closed chain Pinocchio cannot express (pinocchio #2729): a planar loop of revolute joints
+ * closed by a revolute joint, which a set of 3D/6D point and frame constraints cannot state.
+ * The hip swings the thigh by 0.35 rad and the motor turns the crank by 0.4 rad, 2 Hz (a trot):
+ * hip and motor joint drives, every joint of the loop a revolute, the loop closed by a planar
+ * revolute cut joint at the lever (vt_cut_joint_def.planar = 1: its 2 in-plane rows, so the
+ * rows are independent: no redundant option). Fully driven: a kinematic analysis; the two drive
+ * efforts are the hip and motor torques.
  *
  * Checks printed: the knee angle from the Newton solve against the loop's closed-form closure;
  * the forward check (drives removed, the torques applied, the same start: IDA must follow the
@@ -14,8 +16,8 @@
  * Writes CSV (default knee.csv; first argument to change it), t ∈ [0, 1] s, 201 rows:
  *   t_s, hip_rad, motor_rad, knee_rad, tau_hip_Nm, tau_motor_Nm, hip_fx_N, hip_fy_N (ground on
  *   thigh), motor_fx_N, motor_fy_N (thigh on crank at the hip), knee_fx_N, knee_fy_N (thigh on
- *   shank), crank_fx_N, crank_fy_N (crank on coupler at the universal), lever_fx_N, lever_fy_N
- *   (shank on coupler at the spherical cut), foot_x_m, foot_y_m, knee_err_rad, fwd_dev_rad,
+ *   shank), crank_fx_N, crank_fy_N (crank on coupler at their revolute), lever_fx_N, lever_fy_N
+ *   (shank on coupler at the planar revolute cut), foot_x_m, foot_y_m, knee_err_rad, fwd_dev_rad,
  *   power_W, power_err_W; all forces global, z components zero (a planar motion)
  * Plot with examples/knee.gp.
  */
@@ -59,7 +61,7 @@ int main(int argc, char **argv)
     opt.nout = 200;
     opt.rtol = 1e-11;
     opt.atol = 1e-13;
-    vt_status st = vt_scene_knee(&m, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8));
+    vt_status st = vt_scene_knee(&m, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8), 1);
     if (!st) st = vt_data_create(&d, m);
     if (!st) st = vt_data_create(&dt, m);
     if (!st) st = vt_trajectory_create(&tr, m, opt.nout + 1);

@@ -28,4 +28,4 @@ plot csv using 't_s':(sqrt(column('hip_fx_N')**2 + column('hip_fy_N')**2)) with 
      csv using 't_s':(sqrt(column('motor_fx_N')**2 + column('motor_fy_N')**2)) with lines lw 2 title 'motor (crank)', \
      csv using 't_s':(sqrt(column('knee_fx_N')**2 + column('knee_fy_N')**2)) with lines lw 2 title 'knee', \
      csv using 't_s':(sqrt(column('crank_fx_N')**2 + column('crank_fy_N')**2)) with lines lw 2 title 'crank-coupler', \
-     csv using 't_s':(sqrt(column('lever_fx_N')**2 + column('lever_fy_N')**2)) with lines lw 2 dt 2 title 'coupler-lever (cut)'
+     csv using 't_s':(sqrt(column('lever_fx_N')**2 + column('lever_fy_N')**2)) with lines lw 2 dt 2 title 'coupler-lever (planar revolute cut)'

@@ -1077,10 +1077,12 @@ static void rod_x_inertia(double J[9], double mass, double length, double radius
     J[4] = J[8] = mass * (3.0 * radius * radius + length * length) / 12.0;
 }
 
-vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor)
+vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar)
 {
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = !planar;
     vt_builder *b;
-    vt_status st = vt_builder_create(&b, NULL);
+    vt_status st = vt_builder_create(&b, &md);
     if (st) return st;
     const double ls = VT_KN_C + VT_KN_L, cs = 0.5 * ls - VT_KN_C; /* shank rod; its centre from the knee */
     vt_body_def thigh = vt_default_body_def();
@@ -1097,17 +1099,12 @@ vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor)
     crank.joint_child[0] = -0.5 * VT_KN_A;
     crank.name = "crank";
     if (id > 0) id = vt_builder_add_body(b, &crank);
-    /* with the planar cut joint (vt_cut_joint_def.planar = 1) the coupler takes a revolute joint
-     * here and the cut below becomes a planar revolute: 4 rates, 2 drives, 2 rows */
-    vt_body_def coupler = vt_default_body_def();
+    vt_body_def coupler = vt_default_body_def(); /* revolute about z at the crank's tip */
     coupler.parent = 2;
-    coupler.joint = VT_JOINT_UNIVERSAL;
     coupler.mass = 0.08;
     rod_x_inertia(coupler.inertia, 0.08, VT_KN_B, 0.01);
     coupler.joint_parent[0] = 0.5 * VT_KN_A;
     coupler.joint_child[0] = -0.5 * VT_KN_B;
-    coupler.axis2[0] = 0.0;
-    coupler.axis2[1] = 1.0;
     coupler.name = "coupler";
     if (id > 0) id = vt_builder_add_body(b, &coupler);
     vt_body_def shank = vt_default_body_def();
@@ -1119,8 +1116,10 @@ vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor)
     shank.name = "shank";
     if (id > 0) id = vt_builder_add_body(b, &shank);
     if (id > 0) {
+        /* a revolute about z (the shank's z): planar, its 2 in-plane rows, which with the 2
+         * drives make 4 independent rows on the 4 rates; else all 5 rows, 3 of them dependent */
         vt_cut_joint_def cut = vt_default_cut_joint_def();
-        cut.joint = VT_JOINT_SPHERICAL; /* planar = 1: VT_JOINT_REVOLUTE about z */
+        cut.planar = planar;
         cut.body_a = 4;
         cut.body_b = 3;
         cut.point_a[0] = -cs - VT_KN_C; /* the lever point */
@@ -1166,12 +1165,10 @@ int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1,
     d->q[m->body_qadr[1]] = th1;
     d->q[m->body_qadr[2]] = thm;
     d->q[m->body_qadr[3]] = phi - thm;
-    d->q[m->body_qadr[3] + 1] = 0.0;
     d->q[m->body_qadr[4]] = remainder(psi - VT_PI, 2.0 * VT_PI); /* the shank points away from the lever */
     d->qd[m->body_vadr[1]] = w1;
     d->qd[m->body_vadr[2]] = wm;
     d->qd[m->body_vadr[3]] = phid - wm;
-    d->qd[m->body_vadr[3] + 1] = 0.0;
     d->qd[m->body_vadr[4]] = psid;
     if (knee) {
         knee[0] = d->q[m->body_qadr[4]];

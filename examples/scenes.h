@@ -289,25 +289,25 @@ void vt_scene_stewart_pose(const vt_stewart *sg, double t, double r[9], double p
 void vt_scene_stewart_assemble(const vt_model *model, vt_data *data, const vt_stewart *sg, double t);
 
 /* A legged robot's knee four-bar: the knee motor sits at the hip and turns the knee through a
- * crank, a coupler along the thigh and a lever on the shank. All in the XY plane, joints about z,
- * gravity (0, −9.81, 0). Thigh (body 1): revolute about z at the hip (the origin), VT_KN_D m
- * from hip to knee along its x, 1.5 kg; crank (body 2): revolute about z on the thigh at the
- * hip, VT_KN_A m, 0.1 kg; coupler (body 3): universal joint at the crank's tip (z on the crank,
- * then the coupler's y, which tilts it out of the plane), VT_KN_B m, 0.08 kg; shank (body 4):
- * revolute about z on the thigh at the knee, a uniform rod from the lever point VT_KN_C m behind
- * the knee to the foot VT_KN_L m ahead of it, 0.5 kg. The loop is closed by a spherical cut
- * joint (cut 0) from the shank's lever point (body_a) to the coupler's far end (body_b): its
- * force is the shank's on the coupler. Rods of radius 0.01 m (solid-cylinder inertias). Drive 0:
- * the hip, q1 = hip(t) (the thigh's angle from the global x); drive 1: the knee motor,
- * q2 = motor(t) (the crank's angle from the thigh). 5 rates, 2 drives, 3 cut rows: square, of
- * full rank in the planar poses (the tilt rate alone moves the coupler's end along z), so no
- * redundant rows. q4, the shank's angle from the thigh, is the knee angle. */
+ * crank, a coupler along the thigh and a lever on the shank. All in the XY plane, every joint a
+ * revolute about z, gravity (0, −9.81, 0). Thigh (body 1): at the hip (the origin), VT_KN_D m
+ * from hip to knee along its x, 1.5 kg; crank (body 2): on the thigh at the hip, VT_KN_A m,
+ * 0.1 kg; coupler (body 3): at the crank's tip, VT_KN_B m, 0.08 kg; shank (body 4): on the thigh
+ * at the knee, a uniform rod from the lever point VT_KN_C m behind the knee to the foot VT_KN_L m
+ * ahead of it, 0.5 kg. The loop is closed by a revolute cut joint about z (cut 0) from the
+ * shank's lever point (body_a) to the coupler's far end (body_b): its force is the shank's on
+ * the coupler. Rods of radius 0.01 m (solid-cylinder inertias). Drive 0: the hip, q1 = hip(t)
+ * (the thigh's angle from the global x); drive 1: the knee motor, q2 = motor(t) (the crank's
+ * angle from the thigh). planar = 1: the cut is a planar pin (vt_cut_joint_def.planar), its 2
+ * in-plane rows and the 2 drives on 4 rates, square and of full rank, no redundant option;
+ * planar = 0: the full 5-row revolute, 7 rows of rank 4, with allow_redundant. q4, the shank's
+ * angle from the thigh, is the knee angle. */
 #define VT_KN_A 0.05   /* crank */
 #define VT_KN_B 0.30   /* coupler */
 #define VT_KN_C 0.045  /* lever on the shank, behind the knee */
 #define VT_KN_D 0.30   /* thigh, hip to knee */
 #define VT_KN_L 0.30   /* shank, knee to foot */
-vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor);
+vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar);
 /* q and q̇ of the knee at hip angle th1 (rad, rate w1) and motor angle thm (rad, rate wm): the
  * loop closed on the branch where the lever follows the crank (ψ near thm). Writes the knee
  * angle and rate into knee[2] if not NULL. Returns 0, or -1 where the loop cannot close. */

@@ -1,5 +1,6 @@
-/* The knee four-bar of examples/scenes.c (vt_scene_knee, docs/knee.md) against what does not
- * come from vtdyn's solve:
+/* The knee four-bar of examples/scenes.c (vt_scene_knee, docs/knee.md), a planar loop of
+ * revolute joints closed by a planar revolute cut joint, against what does not come from
+ * vtdyn's solve:
  * - the scene's loop closure: the assembled state closes the loop (Φ = 0, Φ̇ = 0);
  * - the statics in closed form, planar, at rest: the lever point C from a Newton solve of
  *   |C(ψ) − B| = b written here; the force F of the shank on the coupler from the moments of
@@ -8,10 +9,12 @@
  *   then the crank's moment about the hip gives the motor torque
  *     τ_m = −[B × (F + m_cp g) + G_c × m_c g]_z,
  *   the whole leg's the hip torque τ_hip = −Σ [G_i × m_i g]_z, and the bearings' forces
- *   follow from each body's force balance (the knee's F − m_s g, the crank–coupler universal's
+ *   follow from each body's force balance (the knee's F − m_s g, the crank–coupler revolute's
  *   −F − m_cp g, the motor bearing's −F − (m_cp + m_c) g);
  * - over two strides: the knee angle on the loop's closure, the forward check, and the power
- *   balance τ_hip q̇1 + τ_m q̇2 = d(T + V)/dt from the bodies' velocities and accelerations. */
+ *   balance τ_hip q̇1 + τ_m q̇2 = d(T + V)/dt from the bodies' velocities and accelerations;
+ * - over the strides, the same loop closed by the full 5-row revolute with allow_redundant (a
+ *   second constraint set, solved by least squares): the same torques and in-plane forces. */
 #include "vt_test.h"
 
 #define PI 3.14159265358979323846
@@ -23,9 +26,9 @@ static void test_assembly_closes(void **state)
     (void)state;
     vt_model *m;
     vt_data *d;
-    assert_ok(vt_scene_knee(&m, vt_function_constant(0.0), vt_function_constant(0.0)));
-    assert_int_equal(m->nv, 5);
-    assert_int_equal(m->nc, 5);
+    assert_ok(vt_scene_knee(&m, vt_function_constant(0.0), vt_function_constant(0.0), 1));
+    assert_int_equal(m->nv, 4); /* four revolutes */
+    assert_int_equal(m->nc, 4); /* two drives, the pin's two in-plane rows */
     assert_int_equal(m->allow_redundant, 0);
     assert_ok(vt_data_create(&d, m));
     uint64_t s = 7;
@@ -46,7 +49,7 @@ static void test_assembly_closes(void **state)
 }
 
 /* the closed-form statics: efforts tau[2], the shank's force on the coupler F[2], the knee's,
- * the universal's and the motor bearing's forces R[6] (global, planar) */
+ * the crank–coupler revolute's and the motor bearing's forces R[6] (global, planar) */
 static void closed_form(double th1, double thm, double tau[2], double F[2], double R[6])
 {
     const double g[2] = {0.0, -9.81}, mt = 1.5, mc = 0.1, mcp = 0.08, ms = 0.5;
@@ -85,7 +88,7 @@ static void closed_form(double th1, double thm, double tau[2], double F[2], doub
     tau[0] = -(cross2(Gt, gt) + cross2(Gc, gc) + cross2(Gcp, gcp) + cross2(Gs, gs));
     for (int k = 0; k < 2; k++) {
         R[k] = F[k] - ms * g[k];                  /* thigh on shank at the knee */
-        R[2 + k] = -F[k] - mcp * g[k];            /* crank on coupler at the universal */
+        R[2 + k] = -F[k] - mcp * g[k];            /* crank on coupler at their revolute */
         R[4 + k] = -F[k] - (mcp + mc) * g[k];     /* thigh on crank at the hip */
     }
 }
@@ -100,7 +103,7 @@ static void test_static_closed_form(void **state)
             const double th1 = vt_rand_uniform(&s, -PI, PI), thm = vt_rand_uniform(&s, 0.5 * PI - 0.5, 0.5 * PI + 0.5);
             vt_model *m;
             vt_data *d;
-            assert_ok(vt_scene_knee(&m, vt_function_constant(th1), vt_function_constant(thm)));
+            assert_ok(vt_scene_knee(&m, vt_function_constant(th1), vt_function_constant(thm), 1));
             assert_ok(vt_data_create(&d, m));
             assert_int_equal(vt_scene_knee_assemble(m, d, th1, 0.0, thm, 0.0, NULL), 0);
             assert_ok(pass ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d));
@@ -120,7 +123,8 @@ static void test_static_closed_form(void **state)
                     worst = fmax(worst, fabs(got[j] - want[j]) / Fs);
                 }
             }
-            assert_near(d->cut_force[2], 0.0, 1e-9 * Fs);
+            assert_near(d->cut_force[2], 0.0, 1e-9 * Fs); /* the pin's force is in the plane */
+            for (int c = 0; c < 3; c++) assert_near(d->cut_moment[c], 0.0, 1e-9 * Fs);
             vt_data_free(d);
             vt_model_free(m);
         }
@@ -150,23 +154,28 @@ static void test_strides_forward_power(void **state)
 {
     (void)state;
     const double om = 4.0 * PI;
-    vt_model *m;
-    vt_data *d, *di;
+    vt_model *m, *mr;
+    vt_data *d, *di, *dr;
     vt_trajectory *tr;
     vt_run_options opt = vt_default_run_options();
     opt.t1 = 1.0;
     opt.nout = 50;
     opt.rtol = 1e-10;
     opt.atol = 1e-12;
-    assert_ok(vt_scene_knee(&m, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8)));
+    assert_ok(vt_scene_knee(&m, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8), 1));
     assert_ok(vt_data_create(&d, m));
     assert_ok(vt_data_create(&di, m));
     assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    /* the full revolute: 2 drives and 5 cut rows of rank 4 on the 4 rates */
+    assert_ok(vt_scene_knee(&mr, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8), 0));
+    assert_int_equal(mr->nc, 7);
+    assert_int_equal(mr->allow_redundant, 1);
+    assert_ok(vt_data_create(&dr, mr));
     assert_int_equal(vt_scene_knee_assemble(m, d, -0.25 * PI, 0.35 * om, 0.5 * PI + 0.4 * sin(0.8), 0.4 * om * cos(0.8), NULL), 0);
     assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
     assert_int_equal(tr->nfilled, opt.nout + 1);
     assert_true(tr->fwd_err_q <= 1e-6);
-    double pmax = 0.0, perr = 0.0;
+    double pmax = 0.0, perr = 0.0, rworst = 0.0;
     for (int k = 0; k < tr->nfilled; k++) {
         const double *q = tr->q + m->nq * k, *qd = tr->qd + m->nv * k;
         double kn[2];
@@ -180,13 +189,36 @@ static void test_strides_forward_power(void **state)
         const double P = di->drive_effort[0] * qd[0] + di->drive_effort[1] * qd[1];
         pmax = fmax(pmax, fabs(P));
         perr = fmax(perr, fabs(P - energy_rate(m, di)));
+        /* the full revolute at the same state: the torques, the cut's and every joint's
+         * in-plane force (the out-of-plane loads of its dependent rows are not unique) */
+        dr->time = tr->t[k];
+        memcpy(dr->q, q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, qd, (size_t)m->nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics(mr, dr));
+        assert_int_equal(dr->rank, 4);
+        const double fs = 1.0 + vt_test_maxabs(di->jnt_force + 3, 12);
+        for (int j = 0; j < 2; j++) {
+            assert_near(dr->drive_effort[j], di->drive_effort[j], 1e-10 * fs);
+            assert_int_equal(dr->cut_unique[j], 1);
+            assert_near(dr->cut_force[j], di->cut_force[j], 1e-10 * fs);
+            rworst = fmax(rworst, fabs(dr->drive_effort[j] - di->drive_effort[j]) / fs);
+            rworst = fmax(rworst, fabs(dr->cut_force[j] - di->cut_force[j]) / fs);
+            for (int i = 1; i <= 4; i++) {
+                assert_int_equal(dr->jnt_unique[6 * i + j], 1);
+                assert_near(dr->jnt_force[3 * i + j], di->jnt_force[3 * i + j], 1e-10 * fs);
+                rworst = fmax(rworst, fabs(dr->jnt_force[3 * i + j] - di->jnt_force[3 * i + j]) / fs);
+            }
+        }
     }
     print_message("power balance: max error %.3g W of %.4g W\n", perr, pmax);
+    print_message("full 5-row revolute against the planar pin: largest difference %.3g (relative)\n", rworst);
     assert_true(pmax > 1.0);
     assert_true(perr <= 1e-9 * pmax);
     vt_trajectory_free(tr);
+    vt_data_free(dr);
     vt_data_free(di);
     vt_data_free(d);
+    vt_model_free(mr);
     vt_model_free(m);
 }
 

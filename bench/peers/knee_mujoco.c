@@ -1,8 +1,9 @@
 /* The knee four-bar of examples/scenes.c (vt_scene_knee, docs/knee.md) in MuJoCo, following
  * vtdyn's motion: the same bodies, masses, inertias and joints in MJCF (hinges about z at the hip
- * for the thigh and the crank, two hinges z then y at the crank's tip for the coupler, as vtdyn's
- * universal joint, a hinge about z at the knee for the shank), the loop closed by a connect
- * equality (the coupler's far end = the shank's lever point), the hip and the motor held on
+ * for the thigh and the crank, at the crank's tip for the coupler and at the knee for the
+ * shank), the loop closed by a connect equality (the coupler's far end = the shank's lever
+ * point: 3 rows, which with the planar tree's 4 hinges are dependent, as MuJoCo's soft
+ * constraints allow; vtdyn closes it with its planar revolute cut joint's 2 rows), the hip and the motor held on
  * their prescribed angles by joint equalities whose constant terms are set before every step
  * with the feed-forward of stewart_mujoco.c (c = f + (f'' + b f')/k, so that MuJoCo's reference
  * acceleration on the exact motion is the drive's; --no-feed-forward: c = f). The equality
@@ -60,7 +61,7 @@ static int xml(char *s, size_t cap)
     X("      <body name=\"crank\" pos=\"0 0 0\">\n        <joint name=\"motor\" axis=\"0 0 1\"/>\n");
     X("        <inertial pos=\"%.17g 0 0\" mass=\"0.1\" diaginertia=\"%.17g %.17g %.17g\"/>\n", 0.5 * VT_KN_A, Jc[0], Jc[1], Jc[2]);
     X("        <body name=\"coupler\" pos=\"%.17g 0 0\">\n", VT_KN_A);
-    X("          <joint name=\"cz\" axis=\"0 0 1\"/>\n          <joint name=\"cy\" axis=\"0 1 0\"/>\n");
+    X("          <joint name=\"cz\" axis=\"0 0 1\"/>\n");
     X("          <inertial pos=\"%.17g 0 0\" mass=\"0.08\" diaginertia=\"%.17g %.17g %.17g\"/>\n", 0.5 * VT_KN_B, Jp[0], Jp[1], Jp[2]);
     X("          <site name=\"cend\" pos=\"%.17g 0 0\"/>\n        </body>\n      </body>\n", VT_KN_B);
     X("      <body name=\"shank\" pos=\"%.17g 0 0\">\n        <joint name=\"knee\" axis=\"0 0 1\"/>\n", VT_KN_D);
@@ -102,7 +103,7 @@ int main(int argc, char **argv)
     const double om = 4.0 * PI;
     vt_model *vm = NULL;
     vt_data *vd = NULL;
-    vt_status st = vt_scene_knee(&vm, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8));
+    vt_status st = vt_scene_knee(&vm, vt_function_sine(-0.25 * PI, 0.35, om, 0.0), vt_function_sine(0.5 * PI, 0.4, om, 0.8), 1);
     if (!st) st = vt_data_create(&vd, vm);
     if (st) return fprintf(stderr, "knee_mujoco: %s\n", vt_status_string(st)), 1;
     if (m->nq != vm->nq || m->nv != vm->nv) return fprintf(stderr, "knee_mujoco: coordinates differ\n"), 1;
