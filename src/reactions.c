@@ -266,7 +266,8 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
 /* Efforts that round-off leaves undetermined. vt_solve zeroes M*'s row a where M*_aa is
  * round-off of the terms it is summed from, β_a = τ ε (T_a + R_a) (vt_rate_terms: lever arms from
  * o), and a row holds the rate. The true M*_aa is then anywhere in [0, β_a], and M* being
- * semi-definite, the true M*_ba of another rate b anywhere up to sqrt(β_a M*_bb): rate b's
+ * semi-definite, the true M*_ba of another rate b anywhere up to sqrt(β_a M*_bb) (0 when neither
+ * rate's body is on the other's path): rate b's
  * equation M* q̈ − Q = Φ_q^T λ is known only to
  *   u_b = Σ_{a zeroed} sqrt(β_a M*_bb) |q̈_a|   against its terms g_b = |Q_b| + Σ_c |M*_bc q̈_c|,
  * and the solve turns that into a relative error of the efforts and the free rates' q̈ of up to
@@ -276,6 +277,21 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
  * carrying a body of a few metres) does not. Both paths call this after vt_solve (the recursive
  * one's joint-rows route too), so they refuse alike. (A zeroed rate's own equation has lost its
  * terms: it is judged through the others.) */
+/* rates a and b can couple in M* (one's body on the other's path); apart, M*_ab is zero by
+ * structure (separate trees or branches), whatever the round-off of their diagonals */
+static int on_path(const vt_model *m, int body, int rate)
+{
+    const int *path = m->path_dof + m->body_pathadr[body];
+    for (int k = 0; k < m->body_pathnum[body]; k++)
+        if (path[k] == rate) return 1;
+    return 0;
+}
+
+static int coupled(const vt_model *m, int a, int b)
+{
+    return on_path(m, m->dof_body[b], a) || on_path(m, m->dof_body[a], b);
+}
+
 vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
 {
     const int nv = m->nv;
@@ -295,7 +311,8 @@ vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
         double u = 0.0, g = fabs(d->Q[b]);
         for (int c = 0; c < nv; c++) {
             g += fabs(d->Mstar[b + (size_t)c * (size_t)nv] * d->qdd[c]);
-            if (d->Mstar[c + (size_t)c * (size_t)nv] == 0.0) u += sqrt(vt_rate_roundoff(T, c) * mbb) * fabs(d->qdd[c]);
+            if (d->Mstar[c + (size_t)c * (size_t)nv] == 0.0 && coupled(m, b, c))
+                u += sqrt(vt_rate_roundoff(T, c) * mbb) * fabs(d->qdd[c]);
         }
         if (u > 0.0 && !(u <= worst * g)) worst = g > 0.0 ? u / g : (double)INFINITY, wb = b, ub = u, gb = g;
     }
