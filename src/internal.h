@@ -340,6 +340,9 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
 double vt_rows_grip(const vt_model *m, const vt_data *d);
 /* vt_reactions without the argument checks (ẍ and α from d->qdd) */
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
+/* after vt_solve: VT_ERR_SINGULAR when rates whose M* row it zeroed (round-off held by rows)
+ * leave the efforts without a certain digit (reactions.c); who names the caller */
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar
  * (6 x (nbody+1), recursive.c), the rows' wrenches already taken off it with rows_in_wbar;
  * G: scratch of 6 x (nbody+1), apart from Wbar */

@@ -261,8 +261,73 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+/* Efforts that round-off leaves undetermined. vt_solve zeroes M*'s row a where M*_aa is
+ * round-off of the terms it is summed from, β_a = τ ε (T_a + R_a) (vt_rate_terms: lever arms from
+ * o), and a row holds the rate. The true M*_aa is then anywhere in [0, β_a], and M* being
+ * semi-definite, the true M*_ba of another rate b anywhere up to sqrt(β_a M*_bb) (0 when neither
+ * rate's body is on the other's path): rate b's
+ * equation M* q̈ − Q = Φ_q^T λ is known only to
+ *   u_b = Σ_{a zeroed} sqrt(β_a M*_bb) |q̈_a|   against its terms g_b = |Q_b| + Σ_c |M*_bc q̈_c|,
+ * and the solve turns that into a relative error of the efforts and the free rates' q̈ of up to
+ * u_b / (rcond g_b). Where that reaches 1 no digit is certain: refused (VT_ERR_SINGULAR). A rate
+ * truly without inertia near o (a point mass on its axis) has a tiny β_a and passes; a rate whose
+ * inertia about its own axis is real but below the round-off of lever arms from o (a 1e9 m link
+ * carrying a body of a few metres) does not. Both paths call this after vt_solve (the recursive
+ * one's joint-rows route too), so they refuse alike. (A zeroed rate's own equation has lost its
+ * terms: it is judged through the others.) */
+/* rates a and b can couple in M* (one's body on the other's path); apart, M*_ab is zero by
+ * structure (separate trees or branches), whatever the round-off of their diagonals */
+static int on_path(const vt_model *m, int body, int rate)
+{
+    const int *path = m->path_dof + m->body_pathadr[body];
+    for (int k = 0; k < m->body_pathnum[body]; k++)
+        if (path[k] == rate) return 1;
+    return 0;
+}
+
+static int coupled(const vt_model *m, int a, int b)
+{
+    return on_path(m, m->dof_body[b], a) || on_path(m, m->dof_body[a], b);
+}
+
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
+{
+    const int nv = m->nv;
+    const size_t mark = vt_scratch_mark(d);
+    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
+    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    if (!w) return vt_scratch_fail(d, mark);
+    int zeroed = 0;
+    for (int a = 0; a < nv; a++) zeroed += d->Mstar[a + (size_t)a * (size_t)nv] == 0.0;
+    if (!zeroed) return vt_scratch_release(d, mark), VT_OK;
+    vt_rate_terms(m, d, w, T);
+    double worst = 0.0, ub = 0.0, gb = 0.0;
+    int wb = 0;
+    for (int b = 0; b < nv; b++) {
+        const double mbb = d->Mstar[b + (size_t)b * (size_t)nv];
+        if (!(mbb > 0.0)) continue; /* a zeroed rate's own row: its terms are gone, judged through the others */
+        double u = 0.0, g = fabs(d->Q[b]);
+        for (int c = 0; c < nv; c++) {
+            g += fabs(d->Mstar[b + (size_t)c * (size_t)nv] * d->qdd[c]);
+            if (d->Mstar[c + (size_t)c * (size_t)nv] == 0.0 && coupled(m, b, c))
+                u += sqrt(vt_rate_roundoff(T, c) * mbb) * fabs(d->qdd[c]);
+        }
+        if (u > 0.0 && !(u <= worst * g)) worst = g > 0.0 ? u / g : (double)INFINITY, wb = b, ub = u, gb = g;
+    }
+    vt_scratch_release(d, mark);
+    if (!(worst >= d->rcond)) return VT_OK;
+    const double rcond = d->rcond;
+    vt_solve_reset(d);
+    return vt_fail(d->message, VT_ERR_SINGULAR,
+                   "%s: no certain digit: rate %d's M* q̈ − Q known to %.3g against terms of %.3g (rcond %.3g): "
+                   "moving rates whose M*_aa is round-off of their lever arms from the reference point",
+                   who, wb, ub, gb, rcond);
+}
+
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
 {
+    vt_status st0 = vt_zeroed_rates_check(m, d, "vt_reactions");
+    if (st0) return st0;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
     /* α, the applied wrenches and the children's reactions one after the other (the layout the
@@ -550,7 +615,9 @@ size_t vt_reactions_scratch(const vt_model *m)
     const size_t unique = 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double)) +
                           VT_SCRATCH_BYTES(6 * nb + 6 * (size_t)m->ncut, sizeof(double));
     const size_t total = VT_SCRATCH_BYTES(m->nv > 0 ? (size_t)m->nv : 1, sizeof(double));
-    const size_t most = (inward > unique ? inward : unique) + rw;
+    const size_t zeroed = VT_SCRATCH_BYTES(2 * (size_t)m->nv, sizeof(double)) + VT_SCRATCH_BYTES(4 * nb, sizeof(double));
+    size_t most = inward > unique ? inward : unique;
+    most = (most > zeroed ? most : zeroed) + rw;
     return most > total ? most : total;
 }
 

@@ -1652,6 +1652,85 @@ static void test_relative_drive_for_joint_drive(void **state)
     vt_model_free(mr);
 }
 
+/* ---- a driven rate whose inertia is round-off of its lever arm from the reference point -------
+ * A slider along x (body 1, point mass m1, its joint point L from its centre of mass along y)
+ * carries a point mass m2 on a revolute joint about z at body 1's centre, at ℓ from the axis.
+ * At θ = π/2, θ̇ = ẋ = 0, with θ̈ driven and no gravity (Lagrange, exact):
+ *   (m1 + m2) ẍ − m2 ℓ sin θ θ̈ = 0,   τ = m2 ℓ² θ̈ − m2 ℓ sin θ ẍ = m2 ℓ² θ̈ m1 / (m1 + m2).
+ * The twists are about the slider's joint point, L from the masses: M*_θθ = m2 ℓ² is summed from
+ * terms of m2 (2L)², round-off of them when L ≫ ℓ / sqrt(τ ε). Up to L = 1e5 the efforts hold to
+ * the round-off of S's lever arms, 64 ε (1 + L/ℓ); at L = 1e9, vt_solve zeroes the driven rate's
+ * row of M* (round-off held by the drive) and the dense answer was τ = 0, ẍ = 0 with VT_OK: now
+ * it refuses (as the recursive general route does, its M* zeroed alike), the coupling m2 ℓ sin θ
+ * to the slider unknown within that round-off. The recursive articulated route zeroes nothing (the
+ * driven rate's acceleration enters through the body's inertia about o, round-off ε m2 L²
+ * against m2 ℓ L): it solves, to the same 64 ε (1 + L/ℓ). */
+static vt_model *long_link(double L, double m1, double m2, double ell, double thdd)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = md.gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_TRANSLATIONAL;
+    body.axis1[0] = 1.0, body.axis1[1] = 0.0, body.axis1[2] = 0.0;
+    body.mass = m1;
+    body.joint_child[1] = L;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body = vt_default_body_def();
+    body.parent = 1;
+    body.joint = VT_JOINT_REVOLUTE;
+    body.axis1[0] = 0.0, body.axis1[1] = 0.0, body.axis1[2] = 1.0;
+    body.mass = m2;
+    body.joint_child[0] = -ell; /* the centre of mass ℓ along the body's x from the axis */
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 2;
+    const double c[3] = {1.5707963267948966, 0.0, thdd / 2};
+    dr.f = vt_function_polynomial(3, c);
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void test_long_link_roundoff_inertia(void **state)
+{
+    (void)state;
+    const double m1 = 3.0, m2 = 2.0, ell = 1.5, thdd = 4.0;
+    const double tau = m2 * ell * ell * thdd * m1 / (m1 + m2), xdd = m2 * ell * thdd / (m1 + m2);
+    const double Ls[3] = {10.0, 1e5, 1e9};
+    for (int k = 0; k < 3; k++) {
+        const double L = Ls[k];
+        vt_model *m = long_link(L, m1, m2, ell, thdd);
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        dd->q[1] = dr->q[1] = 1.5707963267948966;
+        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
+        print_message("L = %g: dense %s (%s) effort %.17g, recursive %s (%s) effort %.17g, exact %.17g\n", L,
+                      vt_status_string(sd), dd->message, dd->drive_effort[0],
+                      vt_status_string(sr), dr->message, dr->drive_effort[0], tau);
+        const double tol = 64.0 * 2.220446049250313e-16 * (1.0 + L / ell); /* S's lever arms from o */
+        if (L < 1e6) {
+            assert_ok(sd);
+            assert_near(dd->drive_effort[0], tau, tol * tau);
+            assert_near(dd->qdd[0], xdd, tol * xdd);
+        } else {
+            assert_int_equal(sd, VT_ERR_SINGULAR);
+            assert_non_null(strstr(dd->message, "no certain digit"));
+            assert_int_equal(dd->route, VT_ROUTE_NONE);
+        }
+        assert_ok(sr);
+        assert_near(dr->drive_effort[0], tau, tol * tau);
+        assert_near(dr->qdd[0], xdd, tol * xdd);
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1672,6 +1751,7 @@ int main(void)
         cmocka_unit_test(test_unique_despite_redundant_row),
         cmocka_unit_test(test_spherical_joint_drive),
         cmocka_unit_test(test_relative_drive_for_joint_drive),
+        cmocka_unit_test(test_long_link_roundoff_inertia),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1261,6 +1261,65 @@ static void test_roundoff_singular(void **state)
     }
 }
 
+/* A point mass on a spherical joint turns freely about the joint–mass line: M* is exactly
+ * singular (the rates along u = (c − P)/|c − P| have no inertia, M* u = 0). Beside it a revolute
+ * body whose joint point, the reference point o of the twists, stands D from it. Near (D = 10)
+ * both paths refuse; at D = 1e6 the recursive general route's composite inertias about o hold
+ * m D² terms, their round-off (64 ε of them, 0.03 of the spherical rates' M*_aa) hid the
+ * singularity, and it returned VT_OK with rcond 2.6e-5 and q̈ of 1e5 (the fuzzer's
+ * crash-5bde61aefa…): now it refuses, its rcond below what M*'s round-off allows. The dense M*
+ * is checked against the identity M* u = 0 (to 64 ε of its largest entry × D/|c − P|: S's
+ * lever arms from o). */
+static void test_roundoff_hides_singular(void **state)
+{
+    (void)state;
+    const double Ds[2] = {10.0, 1e6};
+    for (int k = 0; k < 2; k++) {
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_body_def body = vt_default_body_def();
+        body.joint = VT_JOINT_REVOLUTE;
+        body.mass = 1.6;
+        body.axis1[0] = 0.0, body.axis1[1] = 0.0, body.axis1[2] = -1.0;
+        body.joint_parent[1] = Ds[k], body.joint_parent[2] = -4.5;
+        body.joint_child[0] = -7.5, body.joint_child[1] = 6.125, body.joint_child[2] = 4.1875;
+        assert_int_equal(vt_builder_add_body(b, &body), 1);
+        body = vt_default_body_def();
+        body.joint = VT_JOINT_SPHERICAL;
+        body.mass = 0.1;
+        body.joint_parent[2] = -1.75;
+        body.joint_child[1] = -1.3125, body.joint_child[2] = -4.25;
+        assert_int_equal(vt_builder_add_body(b, &body), 2);
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        for (int c = 0; c < m->nv; c++) dd->qfrc[c] = dr->qfrc[c] = -7.0;
+        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
+        print_message("D = %g: dense %s (%s), recursive %s (%s)\n", Ds[k], vt_status_string(sd), dd->message,
+                      vt_status_string(sr), dr->message);
+        assert_int_equal(sd, VT_ERR_SINGULAR);
+        assert_int_equal(sr, VT_ERR_SINGULAR);
+        assert_int_equal(dr->route, VT_ROUTE_NONE);
+        /* the identity: u along the joint–mass line (global = the spherical rates' axes at p = 1) */
+        assert_ok(vt_kinematics(m, dd));
+        assert_ok(vt_mass_matrix(m, dd));
+        const double u[3] = {0.0, -1.3125 / hypot(1.3125, 4.25), -4.25 / hypot(1.3125, 4.25)};
+        double big = 0.0;
+        for (int e = 0; e < m->nv * m->nv; e++) big = fmax(big, fabs(dd->Mstar[e]));
+        for (int r = 0; r < m->nv; r++) {
+            double mu = 0.0;
+            for (int c = 0; c < 3; c++) mu += dd->Mstar[r + (size_t)(1 + c) * (size_t)m->nv] * -u[c];
+            assert_true(fabs(mu) <= 64.0 * 2.220446049250313e-16 * big * (1.0 + Ds[k] / 4.45));
+        }
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 static void test_roundoff_zeros(void **state)
 {
     (void)state;
@@ -1427,6 +1486,7 @@ int main(void)
         cmocka_unit_test(test_inertia_spread),
         cmocka_unit_test(test_roundoff_zeros),
         cmocka_unit_test(test_roundoff_singular),
+        cmocka_unit_test(test_roundoff_hides_singular),
         cmocka_unit_test(test_mass_ratios),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
