@@ -116,7 +116,7 @@ typedef enum vt_joint_type {
 /// the ODE formulation of a dynamic analysis drops a constraint direction of a model that allows
 /// redundant rows (what carries it through a singular pose). Not used by a single instant, whose
 /// dependent rows are those dependent to round-off (see vt_model_def.allow_redundant).
-#define VT_REDUNDANT_TOL 1e-3
+#define VT_REDUNDANT_TOL 5e-4
 
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
