@@ -113,6 +113,29 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
     return sqrt(n2);
 }
 
+/* B_ra alone (as row_terms) */
+static double row_term(const vt_model *m, const vt_data *d, int r, int a)
+{
+    double t = 0.0;
+    const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
+    for (int side = 0; side < 2; side++) {
+        const int b = m->con_body[2 * r + side];
+        if (b <= 0) continue;
+        const int *path = m->path_dof + m->body_pathadr[b];
+        int on = 0;
+        for (int k = 0; k < m->body_pathnum[b] && !on; k++) on = path[k] == a;
+        if (!on) continue;
+        const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->xrel + 6 * b;
+        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
+        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0);
+        int ax = 0;
+        const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
+        t += fr * (vn + wn * sqrt(vt_dot3(c, c))) + fp * (own_p ? 1.0 : 0.5 * wn);
+    }
+    return t;
+}
+
 static double row_norm(const vt_model *m, const vt_data *d, int r)
 {
     double n2 = 0.0;
@@ -320,19 +343,20 @@ static void scaling(const vt_model *m, const vt_data *d, double *s, int rows)
 /* A point drive's grip: the row is e · V_a, V_a = v_a + ω_a × P the velocity rate a's twist
  * gives the driven point P; the whole of V_a is what the rates can move the point by, the row
  * what of it lies along the driven direction e. Its grip is the ratio of the two, in the
- * rates' kinematic scaling (the square route's C: rates that turn by 1/ρ):
+ * rates' kinematic scaling (the square route's C: rates that turn by 1/ℓ, ℓ the rows' lever arm,
+ * rows_length):
  *   grip_r = ‖(e · V_a C_a)_a‖ / ‖(|V_a| C_a)_a‖   in [0, 1]
  * 1 while the rates move P along e as well as across it, 0 where no rate moves P along e (an
  * arm stretched along e: a row that has lost its grip, with nothing else to show it when it is
  * the only row). Independent of the units, of the scene's frame and position, and of the
  * inertias. vt_rows_grip returns the smallest grip² over the point drives' rows (1 without). */
-static double gyration_radius(const vt_model *m, const vt_data *d);
+static double rows_length(const vt_model *m, const vt_data *d, const int *flag);
 double vt_rows_grip(const vt_model *m, const vt_data *d)
 {
-    double worst = 1.0, rho = 0.0;
+    double worst = 1.0, rho = 0.0; /* ℓ */
     for (int r = 0; r < m->nc; r++) {
         if (m->con_kind[r] != VT_ROW_POINT || vt_row_owner_kind(m, r) != VT_OWNER_DRIVE) continue;
-        if (rho == 0.0) rho = gyration_radius(m, d);
+        if (rho == 0.0) rho = rows_length(m, d, NULL);
         const vt_drive_def *dr = m->drive + m->con_owner[r];
         const int b = dr->body;
         const double *A = d->A + 9 * b, *c = d->xrel + 6 * b; /* from o, as the twists */
@@ -492,27 +516,6 @@ static int length_row(const vt_model *m, const vt_data *d, int r)
     return vt_dof_kind(m->body_joint[i], c - m->body_vadr[i], &axis) == VT_DOF_TRANS;
 }
 
-/* ρ: the radius of gyration of all bodies about their common centre of mass (1 m for a model
- * without mass or extent, where nothing better exists) */
-static double gyration_radius(const vt_model *m, const vt_data *d)
-{
-    double mt = 0.0, cg[3] = {0.0, 0.0, 0.0}, i2 = 0.0;
-    for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->xrel + 6 * i, mi = m->body_mass[i];
-        mt += mi;
-        for (int k = 0; k < 3; k++) cg[k] += mi * c[k];
-    }
-    for (int k = 0; k < 3; k++) cg[k] = mt > 0.0 ? cg[k] / mt : 0.0;
-    for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->xrel + 6 * i, *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
-        double r2 = 0.0;
-        for (int k = 0; k < 3; k++) r2 += (c[k] - cg[k]) * (c[k] - cg[k]);
-        i2 += 0.5 * (J[0] + J[4] + J[8]) + mi * r2;
-    }
-    const double rho = mt > 0.0 ? sqrt(i2 / mt) : 0.0;
-    return rho > 0.0 && isfinite(rho) ? rho : 1.0;
-}
-
 /* 1 when rate a turns (a rotation, an Euler parameter), 0 when it translates */
 static int turning_rate(const vt_model *m, int a)
 {
@@ -523,24 +526,29 @@ static int turning_rate(const vt_model *m, int a)
 }
 
 /* ℓ, the rows' lever arm: the largest over the rates that turn of the norm of their column in
- * the rows that measure lengths, ‖(Φ_q,ra)_r‖ (a length per radian: how far the rate moves the
- * rows' points); without such entries, the reciprocal of the largest column norm of the rows
- * that measure angles on the rates that translate (a coupling's rad/m); without either, 1 (then
- * Φ̂'s blocks do not mix the two kinds and its singular values do not depend on ℓ). Sums of
- * squares over all rows of a kind: a rotation of the scene turns a point's rows among
- * themselves and leaves the column norms as they were. flag (nc or NULL): rows left out
- * (round-off of zero). */
+ * the point and line rows, ‖(Φ_q,ra)_r‖ (a length per radian: how far the rate moves the rows'
+ * points), entries that are round-off of their terms (τ ε B_ra, as roundoff_check) left out;
+ * without such entries, the reciprocal of the largest column norm of the couplings that measure
+ * angles on the rates that translate (rad/m); without either, 1 (then Φ̂'s blocks do not mix the
+ * two kinds and its singular values do not depend on ℓ). Joint drives' rows touch their own rate
+ * alone (the dense path forms them with round-off elsewhere). Sums of squares over all rows of a
+ * kind: a rotation of the scene turns a point's rows among themselves and leaves the column norms
+ * as they were. flag (nc or NULL): rows left out (round-off of zero). */
 static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
 {
     const int nv = m->nv, nc = m->nc;
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
     double arm = 0.0, inv = 0.0;
     for (int a = 0; a < nv; a++) {
         const int turns = turning_rate(m, a);
         double n2 = 0.0;
         for (int r = 0; r < nc; r++) {
-            if ((flag && flag[r]) || length_row(m, d, r) != turns) continue; /* lengths on turning rates, angles on translating */
+            const int kind = m->con_kind[r];
+            if ((flag && flag[r]) || !(turns ? kind == VT_ROW_POINT || kind == VT_ROW_LINE
+                                             : kind == VT_ROW_COUPLING && !length_row(m, d, r)))
+                continue;
             const double v = d->Phiq[r + (size_t)a * (size_t)nc];
-            n2 += v * v;
+            if (v != 0.0 && (kind == VT_ROW_COUPLING || fabs(v) > te * row_term(m, d, r, a))) n2 += v * v;
         }
         if (turns) arm = fmax(arm, sqrt(n2));
         else inv = fmax(inv, sqrt(n2));
@@ -853,10 +861,10 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
  * the condition of Φ̂ = G Φ_q C (its own LU; exact from the inverse up to 16 rates, dgecon
  * above), a scaling that makes Φ̂ dimensionless and its condition independent of units and of
- * the scene's frame: rows that measure angles by ρ and
+ * the scene's frame, and in which no mass takes part: rows that measure angles by ℓ and
  * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
- * parameters) by 1/ρ and those that translate by 1 (C), ρ the system's radius of gyration (a
- * length of the mechanism, gyration_radius). The two solves in sequence amplify errors by
+ * parameters) by 1/ℓ and those that translate by 1 (C), ℓ the rows' own lever arm (rows_length,
+ * a length of the rows' geometry). The two solves in sequence amplify errors by
  * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
  * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
  * same number. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
@@ -877,7 +885,7 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
     double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
     int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C");
     if (!ip) return vt_scratch_fail(d, mark);
-    const double rho = gyration_radius(m, d);
+    const double rho = rows_length(m, d, NULL);
     for (int a = 0; a < n; a++) {
         const int i = m->dof_body[a];
         int ax = 0;

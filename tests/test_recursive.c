@@ -5,6 +5,8 @@
  * same quantity computed from the dense M* and Φ_q by LAPACK). */
 #include <float.h>
 
+#include "../src/internal.h" /* the rows' kinds, for vt_test_rows_length */
+
 #include "vt_test.h"
 
 static void compare_at(const double *a, const double *b, int n, double rel, double scale, const char *what)
@@ -63,7 +65,7 @@ static double articulated_rcond(const vt_model *m, const vt_data *dd)
     free(K);
     free(fr);
     const int rows = !m->joint_rows_only && m->nc > 0; /* joint rows only: no S */
-    return (rows ? vt_test_schur_rcond(dd->Mstar, dd->Phiq, m->nv, m->nc) * vt_test_grip2(m, dd, vt_test_gyration_radius(m, dd)) : 1.0) *
+    return (rows ? vt_test_schur_rcond(dd->Mstar, dd->Phiq, m->nv, m->nc) * vt_test_grip2(m, dd, vt_test_rows_length(m, dd)) : 1.0) *
            pmin / pmax;
 }
 
@@ -1430,6 +1432,95 @@ static void test_mass_ratio_sensitivity(void **state)
     }
 }
 
+/* A 1e154 kg link (6 kg·m²) in a planar chain of 1 kg rods, fully driven (joints 1-3 and the
+ * tip's x, y: the square route) and with a rate free (joints 1-2 and the tip: Schur, articulated):
+ * no failure and no warning on either path (a radius of gyration of 1e-77 m weighted the rows
+ * before: the square route refused, calling three joint drives dependent); both paths' answers in
+ * the dense equations (residuals_hold), and the square route's estimate against its definition,
+ * κ₁(G Φ_q C)^-2 with ℓ from vt_test_rows_length, the inverse by LAPACK's dgesv. */
+static void test_heavy_link(void **state)
+{
+    (void)state;
+    for (int drive = 1; drive < 3; drive++) {
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        for (int k = 0; k < 5; k++) {
+            vt_body_def link = vt_default_body_def();
+            link.parent = k;
+            link.mass = k == 2 ? 1e154 : 1.0;
+            link.inertia[0] = k == 2 ? 3.0 : 0.0; /* the heavy one: 3, 3, 6 kg·m² */
+            link.inertia[4] = k == 2 ? 3.0 : 0.4 * 0.4 / 12.0;
+            link.inertia[8] = k == 2 ? 6.0 : 0.4 * 0.4 / 12.0;
+            link.joint_child[0] = -0.2;
+            link.joint_parent[0] = k ? 0.2 : 0.0;
+            assert_int_equal(vt_builder_add_body(b, &link), k + 1);
+        }
+        for (int k = 0; k < (drive == 1 ? 3 : 2); k++) {
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = k + 1;
+            dr.f = vt_function_sine(0.3 + 0.2 * k, 0.4, 1.5, 0.2 * k);
+            assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        }
+        for (int c = 0; c < 2; c++) {
+            vt_drive_def tip = vt_default_drive_def();
+            tip.type = VT_DRIVE_POINT;
+            tip.body = 5;
+            tip.index = c;
+            tip.point[0] = 0.2;
+            tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * c);
+            assert_true(vt_builder_add_drive(b, &tip) >= 0);
+        }
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        for (int a = 0; a < 5; a++) {
+            dd->q[a] = dr->q[a] = 0.3 + 0.25 * a;
+            dd->qd[a] = dr->qd[a] = 0.5 - 0.2 * a;
+        }
+        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
+        if (sd || sr) fail_msg("drive %d: dense %s (%s), recursive %s (%s)", drive, vt_status_string(sd), dd->message,
+                               vt_status_string(sr), dr->message);
+        if (dd->warning || dr->warning) fail_msg("drive %d: warning (rcond %.3g, %.3g)", drive, dd->rcond, dr->rcond);
+        assert_near(dr->rcond, dd->rcond, 1e-9 * dd->rcond);
+        const double tol = fmax(1e-12, 1e-14 / dd->rcond);
+        residuals_hold(m, dd, tol);
+        memcpy(dd->qdd, dr->qdd, sizeof(double) * 5);
+        memcpy(dd->lambda, dr->lambda, sizeof(double) * (size_t)m->nc);
+        residuals_hold(m, dd, tol);
+        if (drive == 1) { /* κ₁(G Φ_q C)^-2: all rates turn (C = 1/ℓ); the joint rows measure angles (G = ℓ) */
+            assert_int_equal(dd->route, VT_ROUTE_SQUARE);
+            const double l = vt_test_rows_length(m, dd);
+            double A[25], X[25], an = 0.0, xn = 0.0;
+            int ipiv[5], info = 0;
+            const int n = 5;
+            for (int c = 0; c < 5; c++) {
+                double cs = 0.0;
+                for (int r = 0; r < 5; r++) {
+                    A[r + 5 * c] = dd->Phiq[r + 5 * c] / l * (r < 3 ? l : 1.0);
+                    X[r + 5 * c] = r == c;
+                    cs += fabs(A[r + 5 * c]);
+                }
+                an = fmax(an, cs);
+            }
+            dgesv_(&n, &n, A, &n, ipiv, X, &n, &info);
+            assert_int_equal(info, 0);
+            for (int c = 0; c < 5; c++) {
+                double cs = 0.0;
+                for (int r = 0; r < 5; r++) cs += fabs(X[r + 5 * c]);
+                xn = fmax(xn, cs);
+            }
+            const double expect = 1.0 / (an * xn * an * xn);
+            assert_near(dd->rcond, expect, 1e-9 * expect);
+        }
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1447,6 +1538,7 @@ int main(void)
         cmocka_unit_test(test_translation_invariance),
         cmocka_unit_test(test_inertia_spread),
         cmocka_unit_test(test_mass_ratio_sensitivity),
+        cmocka_unit_test(test_heavy_link),
         cmocka_unit_test(test_roundoff_zeros),
         cmocka_unit_test(test_roundoff_singular),
         cmocka_unit_test(test_mass_ratios),

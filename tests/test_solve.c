@@ -1,9 +1,9 @@
 /* src/solve.c: the augmented system (5) against second methods (a fully joint-driven chain:
  * q̈ = f'', λ = M* q̈ − Q; a free tree: M* q̈ = Q by Cholesky), and every failure status:
  * singular system, dependent rows, bad drive and cut-joint definitions. */
-#include "vt_test.h"
+#include "../src/internal.h" /* vt_solve_run: the ODE form's solve with its band; rows' kinds */
 
-#include "../src/internal.h" /* vt_solve_run: the ODE form's solve with its band */
+#include "vt_test.h"
 
 static void dpotrs_solve(int n, double *A, double *b)
 {
@@ -384,10 +384,10 @@ static void test_square_constraints(void **state)
             assert_near(d->qdd[k], x[k], 1e-11 * qs);
             assert_near(d->lambda[k], -x[nv + k], 1e-11 * ls);
         }
-        /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ρ; rates that turn
-         * by 1/ρ; ρ the radius of gyration (all of the four-bar's rates turn; its rows: the
+        /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ℓ; rates that turn
+         * by 1/ℓ; ℓ the rows' lever arm (all of the four-bar's rates turn; its rows: the
          * crank's joint drive an angle, the cut joint's point rows lengths, its dot rows angles) */
-        const double rho = vt_test_gyration_radius(m, d);
+        const double rho = vt_test_rows_length(m, d);
         double an = 0.0, in = 0.0;
         for (int c = 0; c < nv; c++) {
             double cs = 0.0;
@@ -580,7 +580,7 @@ static void test_schur(void **state)
         for (int r = 0; r < nc; r++)
             for (int a = 0; a < nv; a++) P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
         const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc) *
-                              vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
+                              vt_test_grip2(m, d, vt_test_rows_length(m, d));
         assert_near(d->rcond, expect, 1e-8 * expect);
         vt_data_free(d);
         vt_model_free(m);
@@ -1094,7 +1094,7 @@ static void test_reach(void **state)
                 assert_int_equal((d->warning & VT_WARN_ILL_CONDITIONED) != 0, es[k] <= (lone ? 1e-3 : 1e-2));
                 assert_int_equal(dr->warning, d->warning);
                 if (lone) { /* the grip against its independent computation: the estimate is at most it */
-                    const double g2 = vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
+                    const double g2 = vt_test_grip2(m, d, vt_test_rows_length(m, d));
                     assert_true(d->rcond <= g2 * (1.0 + 1e-9));
                     assert_true(g2 < 10.0 * es[k] * es[k] + 1e-300 || es[k] > 0.1);
                 }

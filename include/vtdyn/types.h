@@ -473,8 +473,8 @@ typedef struct vt_data {
     vt_route route;          ///< the route by which the last solve found q̈ and λ (VT_ROUTE_NONE after a failure)
     int fallback;            ///< VT_FALLBACK_* flags: faster routes the last instant left, and why (0: none)
     double rcond;            ///< condition estimate of the pose, in (0, 1]: 1 when joint drives fix every
-                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ρ,
-                             ///< turning rates by 1/ρ (ρ the radius of gyration); some motion free:
+                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ℓ,
+                             ///< turning rates by 1/ℓ (ℓ the rows' own lever arm); some motion free:
                              ///< min/max of M*'s leaf-first pivots each over its diagonal entry, times
                              ///< the reciprocal condition of Φ_q M*^-1 Φ_q^T at unit diagonal, times
                              ///< the point drives' smallest grip² (docs/method.md, "The condition
