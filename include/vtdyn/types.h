@@ -128,10 +128,10 @@ typedef struct vt_model_def {
     int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved instead of
                         ///< refused: on their independent directions, the multipliers of minimum
                         ///< (scaled) norm. Rows count as dependent when the singular values of
-                        ///< G Φ_q D fall below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
-                        ///< D = diag(M*_aa^(-1/2)), G one factor for the length rows and one for the
-                        ///< angle rows (neither the global axes' directions nor the units change the
-                        ///< decision); any other pose, however ill-conditioned, is solved exactly as
+                        ///< G Φ_q C are at or below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
+                        ///< C = 1/ℓ on rates that turn, G = ℓ on rows that measure angles (one common
+                        ///< factor), ℓ the rows' own lever arm (docs/method.md): neither the global
+                        ///< axes' directions, the units nor the masses change the decision; any other pose, however ill-conditioned, is solved exactly as
                         ///< without the option. The motion and the efforts stay unique, the
                         ///< multipliers and some reactions do not (see vt_data.rank, lambda_unique,
                         ///< jnt_unique, cut_unique). A dynamic analysis in the ODE formulation may
