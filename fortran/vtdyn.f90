@@ -72,7 +72,7 @@ module vtdyn
   integer(c_int), parameter :: VT_FALLBACK_SCHUR_PIVOT = 1, VT_FALLBACK_ARTICULATED_PIVOT = 2, &
       VT_FALLBACK_ARTICULATED_CONDITION = 4, VT_FALLBACK_SQUARE_CONDITION = 8
   ! redundant rows: directions below this fraction of the largest singular value are dropped
-  real(c_double), parameter :: VT_REDUNDANT_TOL = 1.0e-3_c_double
+  real(c_double), parameter :: VT_REDUNDANT_TOL = 5.0e-4_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
   integer(c_int), parameter :: VT_FUNC_CONSTANT = 0, VT_FUNC_POLYNOMIAL = 1, VT_FUNC_SINE = 2, &
       VT_FUNC_CALLBACK = 3, VT_FUNC_SPLINE = 4

@@ -186,7 +186,7 @@ program test_fortran_layout
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
       .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL &
       .and. .not. c_associated(x_run_options%tout) .and. x_run_options%ntout == 0 &
-      .and. same([x_run_options%redundant_band], [1e-3_c_double]), &
+      .and. same([x_run_options%redundant_band], [5e-4_c_double]), &
       'vt_default_run_options')
   call expect(vt_string(vt_status_string(VT_ERR_BAD_SIZE)) /= vt_string(vt_status_string(VT_ERR_BAD_OPTION)), &
       'vt_status_string')

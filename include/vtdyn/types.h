@@ -116,7 +116,7 @@ typedef enum vt_joint_type {
 /// the ODE formulation of a dynamic analysis drops a constraint direction of a model that allows
 /// redundant rows (what carries it through a singular pose). Not used by a single instant, whose
 /// dependent rows are those dependent to round-off (see vt_model_def.allow_redundant).
-#define VT_REDUNDANT_TOL 1e-3
+#define VT_REDUNDANT_TOL 5e-4
 
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
@@ -128,10 +128,10 @@ typedef struct vt_model_def {
     int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved instead of
                         ///< refused: on their independent directions, the multipliers of minimum
                         ///< (scaled) norm. Rows count as dependent when the singular values of
-                        ///< G Φ_q D fall below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
-                        ///< D = diag(M*_aa^(-1/2)), G one factor for the length rows and one for the
-                        ///< angle rows (neither the global axes' directions nor the units change the
-                        ///< decision); any other pose, however ill-conditioned, is solved exactly as
+                        ///< G Φ_q C are at or below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
+                        ///< C = 1/ℓ on rates that turn, G = ℓ on rows that measure angles (one common
+                        ///< factor), ℓ the rows' own lever arm (docs/method.md): neither the global
+                        ///< axes' directions, the units nor the masses change the decision; any other pose, however ill-conditioned, is solved exactly as
                         ///< without the option. The motion and the efforts stay unique, the
                         ///< multipliers and some reactions do not (see vt_data.rank, lambda_unique,
                         ///< jnt_unique, cut_unique). A dynamic analysis in the ODE formulation may
@@ -502,8 +502,8 @@ typedef struct vt_data {
     vt_route route;          ///< the route by which the last solve found q̈ and λ (VT_ROUTE_NONE after a failure)
     int fallback;            ///< VT_FALLBACK_* flags: faster routes the last instant left, and why (0: none)
     double rcond;            ///< condition estimate of the pose, in (0, 1]: 1 when joint drives fix every
-                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ρ,
-                             ///< turning rates by 1/ρ (ρ the radius of gyration); some motion free:
+                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ℓ,
+                             ///< turning rates by 1/ℓ (ℓ the rows' own lever arm); some motion free:
                              ///< min/max of M*'s leaf-first pivots each over its diagonal entry, times
                              ///< the reciprocal condition of Φ_q M*^-1 Φ_q^T at unit diagonal, times
                              ///< the point drives' smallest grip² (docs/method.md, "The condition
