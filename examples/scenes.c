@@ -475,6 +475,149 @@ void vt_scene_five_link_guess(const vt_model *m, vt_data *d, double t)
     q[m->body_qadr[5]] = -psi;
 }
 
+vt_status vt_scene_delta(vt_model **model, double period, int drives)
+{
+    if (!(period > 0.0 && period < INFINITY) || (drives != VT_DELTA_PATH && drives != VT_DELTA_MOTORS))
+        return VT_ERR_BAD_OPTION;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[1] = 0.0;
+    md.gravity[2] = -9.81;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    int id = 0;
+    for (int i = 0; i < 3 && id >= 0; i++) { /* the upper arms, bodies 1..3 */
+        const double phi = 2.0 * VT_PI * i / 3.0, c = cos(phi), s = sin(phi);
+        vt_body_def arm = vt_default_body_def();
+        arm.mass = VT_DELTA_MA;
+        rod_inertia(arm.inertia, VT_DELTA_MA, VT_DELTA_LA);
+        arm.inertia[0] = 1e-4; /* about its own axis: a tube of 13 mm radius */
+        arm.joint_parent[0] = VT_DELTA_RB * c;
+        arm.joint_parent[1] = VT_DELTA_RB * s;
+        arm.joint_child[0] = -0.5 * VT_DELTA_LA;
+        arm.axis1[0] = -s;
+        arm.axis1[1] = c;
+        arm.axis1[2] = 0.0;
+        arm.orientation[0] = cos(0.5 * phi);
+        arm.orientation[3] = sin(0.5 * phi);
+        id = vt_builder_add_body(b, &arm);
+    }
+    for (int i = 0; i < 3 && id >= 0; i++) /* the forearms' rods, bodies 4..9 */
+        for (int k = 0; k < 2 && id >= 0; k++) {
+            vt_body_def rod = vt_default_body_def();
+            rod.parent = 1 + i;
+            rod.joint = VT_JOINT_UNIVERSAL;
+            rod.mass = VT_DELTA_MR;
+            rod.inertia[0] = rod.inertia[4] = VT_DELTA_MR * VT_DELTA_LF * VT_DELTA_LF / 12.0;
+            rod.inertia[8] = 0.5 * VT_DELTA_MR * 0.008 * 0.008; /* a tube of 8 mm radius */
+            rod.joint_parent[0] = 0.5 * VT_DELTA_LA;
+            rod.joint_parent[1] = k ? VT_DELTA_H : -VT_DELTA_H;
+            rod.joint_child[2] = 0.5 * VT_DELTA_LF;
+            rod.axis1[0] = 0.0; /* the arm's y, then the rod's x */
+            rod.axis1[1] = 1.0;
+            rod.axis1[2] = 0.0;
+            rod.axis2[0] = 1.0;
+            id = vt_builder_add_body(b, &rod);
+        }
+    if (id >= 0) { /* the platform, body 10 */
+        vt_body_def pf = vt_default_body_def();
+        pf.joint = VT_JOINT_FREE;
+        pf.mass = VT_DELTA_MP;
+        pf.inertia[0] = pf.inertia[4] = 1.0e-3;
+        pf.inertia[8] = 0.5 * VT_DELTA_MP * VT_DELTA_RP * VT_DELTA_RP;
+        id = vt_builder_add_body(b, &pf);
+    }
+    for (int i = 0; i < 3 && id >= 0; i++)
+        for (int k = 0; k < 2 && id >= 0; k++) {
+            const double phi = 2.0 * VT_PI * i / 3.0, c = cos(phi), s = sin(phi), h = k ? VT_DELTA_H : -VT_DELTA_H;
+            vt_cut_joint_def cut = vt_default_cut_joint_def();
+            cut.joint = VT_JOINT_SPHERICAL;
+            cut.body_a = 10;
+            cut.body_b = 4 + 2 * i + k;
+            cut.point_a[0] = VT_DELTA_RP * c - h * s;
+            cut.point_a[1] = VT_DELTA_RP * s + h * c;
+            cut.point_b[2] = -0.5 * VT_DELTA_LF;
+            id = vt_builder_add_cut_joint(b, &cut);
+        }
+    const double w = 2.0 * VT_PI / period;
+    for (int k = 0; k < 3 && id >= 0; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        if (drives == VT_DELTA_PATH) {
+            dr.type = VT_DRIVE_POINT;
+            dr.body = 10;
+            dr.index = k;
+            if (k == 0) dr.f = vt_function_sine(0.0, VT_DELTA_RHO, w, 0.5 * VT_PI);
+            else if (k == 1) dr.f = vt_function_sine(0.0, VT_DELTA_RHO, w, 0.0);
+            else dr.f = vt_function_sine(VT_DELTA_Z0, VT_DELTA_DZ, 2.0 * w, 0.0);
+        } else {
+            dr.body = 1 + k; /* joint drive of the motor angle */
+        }
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+void vt_scene_delta_path(double t, double period, double p[3], double pd[3], double pdd[3])
+{
+    const double w = 2.0 * VT_PI / period, c = cos(w * t), s = sin(w * t), c2 = cos(2 * w * t), s2 = sin(2 * w * t);
+    if (p) {
+        p[0] = VT_DELTA_RHO * c;
+        p[1] = VT_DELTA_RHO * s;
+        p[2] = VT_DELTA_Z0 + VT_DELTA_DZ * s2;
+    }
+    if (pd) {
+        pd[0] = -VT_DELTA_RHO * w * s;
+        pd[1] = VT_DELTA_RHO * w * c;
+        pd[2] = 2.0 * w * VT_DELTA_DZ * c2;
+    }
+    if (pdd) {
+        pdd[0] = -VT_DELTA_RHO * w * w * c;
+        pdd[1] = -VT_DELTA_RHO * w * w * s;
+        pdd[2] = -4.0 * w * w * VT_DELTA_DZ * s2;
+    }
+}
+
+int vt_scene_delta_assemble(const vt_model *m, vt_data *d, const double p[3])
+{
+    for (int i = 0; i < 3; i++) {
+        const double phi = 2.0 * VT_PI * i / 3.0;
+        const double u[3] = {cos(phi), sin(phi), 0.0}, t[3] = {-u[1], u[0], 0.0};
+        /* the rod runs from the elbow E = (RB + LA cos θ) u − LA sin θ z to the platform's point
+         * p + RP u (either rod: the parallelogram); |c − LA cos θ u + LA sin θ z| = LF with
+         * c = p + (RP − RB) u gives A cos θ + B sin θ = K */
+        const double cv[3] = {p[0] + (VT_DELTA_RP - VT_DELTA_RB) * u[0], p[1] + (VT_DELTA_RP - VT_DELTA_RB) * u[1], p[2]};
+        const double a = cv[0] * u[0] + cv[1] * u[1], bt = cv[0] * t[0] + cv[1] * t[1], z = cv[2];
+        const double A = -2.0 * a * VT_DELTA_LA, B = 2.0 * z * VT_DELTA_LA;
+        const double K = VT_DELTA_LF * VT_DELTA_LF - VT_DELTA_LA * VT_DELTA_LA - a * a - bt * bt - z * z;
+        const double rAB = sqrt(A * A + B * B);
+        if (!(rAB > 0.0) || fabs(K) > rAB) return -1;
+        /* the two roots atan2(B, A) ± acos(K / rAB): the elbow out is the one of larger cos θ */
+        const double th1 = atan2(B, A) + acos(K / rAB), th2 = atan2(B, A) - acos(K / rAB);
+        const double th = cos(th1) >= cos(th2) ? th1 : th2;
+        d->q[m->body_qadr[1 + i]] = th;
+        /* the rod's direction in the arm's axes x_a = cos θ u − sin θ z, y_a = t,
+         * z_a = sin θ u + cos θ z; the universal turns it from −z_a to
+         * R_y(α) R_x(β) (0, 0, −1) = (−sin α cos β, sin β, −cos α cos β) */
+        const double e[3] = {a - (VT_DELTA_LA * cos(th)), bt, z + VT_DELTA_LA * sin(th)}; /* in u, t, z */
+        const double dx = (e[0] * cos(th) - e[2] * sin(th)) / VT_DELTA_LF, dy = e[1] / VT_DELTA_LF,
+                     dz = (e[0] * sin(th) + e[2] * cos(th)) / VT_DELTA_LF;
+        const double beta = asin(dy < -1.0 ? -1.0 : (dy > 1.0 ? 1.0 : dy)), alpha = atan2(-dx, -dz);
+        for (int k = 0; k < 2; k++) {
+            const int body = 4 + 2 * i + k;
+            d->q[m->body_qadr[body]] = alpha;
+            d->q[m->body_qadr[body] + 1] = beta;
+        }
+    }
+    double *qp = d->q + m->body_qadr[10];
+    qp[0] = p[0];
+    qp[1] = p[1];
+    qp[2] = p[2];
+    qp[3] = 1.0;
+    qp[4] = qp[5] = qp[6] = 0.0;
+    for (int k = 0; k < m->nv; k++) d->qd[k] = 0.0;
+    return 0;
+}
+
 vt_status vt_scene_pendulum(vt_model **model)
 {
     vt_builder *b;
@@ -486,7 +629,7 @@ vt_status vt_scene_pendulum(vt_model **model)
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
 }
 
-vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant)
+static vt_status fourbar_rrrr(vt_model **model, vt_function crank, int allow_redundant, int planar)
 {
     static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
     vt_model_def md = vt_default_model_def();
@@ -511,6 +654,7 @@ vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow
         cut.body_b = 3;
         cut.point_a[0] = VT_FB_D;
         cut.point_b[0] = -0.5 * VT_FB_C;
+        cut.planar = planar;
         id = vt_builder_add_cut_joint(b, &cut);
     }
     if (id >= 0) {
@@ -520,6 +664,80 @@ vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow
         id = vt_builder_add_drive(b, &drive);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant)
+{
+    return fourbar_rrrr(model, crank, allow_redundant, 0);
+}
+
+vt_status vt_scene_fourbar_pin(vt_model **model, vt_function crank)
+{
+    return fourbar_rrrr(model, crank, 0, 1);
+}
+
+vt_status vt_scene_slider_crank(vt_model **model, vt_function crank, int planar)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = !planar;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    vt_body_def link = vt_default_body_def(); /* the crank, about z at the origin */
+    link.mass = 1.0;
+    rod_inertia(link.inertia, 1.0, VT_SC_R);
+    link.joint_child[0] = -0.5 * VT_SC_R;
+    int id = vt_builder_add_body(b, &link);
+    link = vt_default_body_def(); /* the rod, at the crank's tip */
+    link.parent = 1;
+    link.mass = 2.0;
+    rod_inertia(link.inertia, 2.0, VT_SC_L);
+    link.joint_parent[0] = 0.5 * VT_SC_R;
+    link.joint_child[0] = -0.5 * VT_SC_L;
+    if (id > 0) id = vt_builder_add_body(b, &link);
+    link = vt_default_body_def(); /* the slider, along x on the ground */
+    link.joint = VT_JOINT_TRANSLATIONAL;
+    link.mass = 1.5;
+    link.inertia[0] = link.inertia[4] = link.inertia[8] = 0.01;
+    link.axis1[0] = 1.0;
+    link.axis1[2] = 0.0;
+    link.joint_parent[1] = VT_SC_H;
+    link.joint_child[0] = VT_SC_JX;
+    link.joint_child[1] = VT_SC_JY;
+    if (id > 0) id = vt_builder_add_body(b, &link);
+    if (id > 0) { /* the rod's far end on the slider's pin */
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.body_a = 3;
+        cut.body_b = 2;
+        cut.point_a[0] = VT_SC_PX;
+        cut.point_a[1] = VT_SC_PY;
+        cut.point_b[0] = 0.5 * VT_SC_L;
+        cut.planar = planar;
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    if (id >= 0) {
+        vt_drive_def drive = vt_default_drive_def();
+        drive.body = 1;
+        drive.f = crank;
+        id = vt_builder_add_drive(b, &drive);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+int vt_scene_slider_crank_assemble(const vt_model *m, vt_data *d, double th, double w)
+{
+    /* the pin B at height h = VT_SC_H − VT_SC_JY + VT_SC_PY: r sin θ + L sin φ = h, rod toward +x */
+    const double h = VT_SC_H - VT_SC_JY + VT_SC_PY, s = (h - VT_SC_R * sin(th)) / VT_SC_L;
+    if (!(fabs(s) < 1.0)) return -1;
+    const double phi = asin(s), wphi = -VT_SC_R * w * cos(th) / (VT_SC_L * cos(phi));
+    const double Bx = VT_SC_R * cos(th) + VT_SC_L * cos(phi), vBx = -VT_SC_R * w * sin(th) - VT_SC_L * wphi * sin(phi);
+    d->q[m->body_qadr[1]] = th;
+    d->q[m->body_qadr[2]] = phi - th;
+    d->q[m->body_qadr[3]] = Bx - (VT_SC_PX - VT_SC_JX); /* the slider's joint point from (0, VT_SC_H) */
+    d->qd[m->body_vadr[1]] = w;
+    d->qd[m->body_vadr[2]] = wphi - w;
+    d->qd[m->body_vadr[3]] = vBx;
+    return 0;
 }
 
 int vt_scene_fourbar_planar_assemble(const vt_model *m, vt_data *d, double th2, double w2)
@@ -634,4 +852,327 @@ vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut_kind, int drive, 
         id = vt_builder_add_drive(b, &dr);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_spherical_chain(vt_model **model, int relative)
+{
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, NULL);
+    if (st) return st;
+    int id = 0;
+    vt_body_def body = vt_default_body_def();
+    body.mass = 2.0;
+    const double J[9] = {0.12, 0.01, -0.02, 0.01, 0.2, 0.015, -0.02, 0.015, 0.15};
+    memcpy(body.inertia, J, sizeof J);
+    body.axis1[0] = 0.3; body.axis1[1] = 0.2; body.axis1[2] = 0.93;
+    body.joint_child[1] = -0.4; body.joint_child[2] = 0.1;
+    if (id >= 0) id = vt_builder_add_body(b, &body);
+    body.parent = 1;
+    body.joint = VT_JOINT_SPHERICAL;
+    body.mass = 1.5;
+    body.joint_parent[0] = 0.1; body.joint_parent[1] = -0.5; body.joint_parent[2] = 0.2;
+    body.joint_child[0] = 0.2; body.joint_child[1] = 0.3; body.joint_child[2] = -0.1;
+    const double q0[4] = {0.9, 0.1, -0.3, 0.2}; /* normalized by the builder */
+    memcpy(body.orientation, q0, sizeof q0);
+    if (id >= 0) id = vt_builder_add_body(b, &body);
+    body.parent = 2;
+    body.joint = VT_JOINT_REVOLUTE;
+    body.mass = 0.8;
+    body.orientation[0] = 1.0; body.orientation[1] = body.orientation[2] = body.orientation[3] = 0.0;
+    body.axis1[0] = 1.0; body.axis1[1] = 0.0; body.axis1[2] = 0.0;
+    body.joint_parent[0] = -0.2; body.joint_parent[1] = 0.4; body.joint_parent[2] = 0.0;
+    body.joint_child[0] = 0.0; body.joint_child[1] = -0.3; body.joint_child[2] = 0.05;
+    if (id >= 0) id = vt_builder_add_body(b, &body);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.2, 0.6, 1.9, 0.1);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    dr.type = relative ? VT_DRIVE_RELATIVE_ORIENTATION : VT_DRIVE_ORIENTATION;
+    dr.body = 2;
+    dr.sequence = "ZYX";
+    dr.f = vt_function_sine(0.4, 0.5, 2.2, -0.3);
+    dr.f2 = vt_function_sine(-0.3, 0.4, 1.4, 0.6);
+    dr.f3 = vt_function_sine(0.1, -0.7, 2.7, 0.2);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    dr = vt_default_drive_def();
+    dr.body = 3;
+    dr.f = vt_function_sine(-0.5, 0.3, 3.1, 0.0);
+    if (id >= 0) id = vt_builder_add_drive(b, &dr);
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+/* ---- Stewart–Gough platform (6-UPS) ---- */
+
+static const double sg_axis[3] = {0.40824829046386302, 0.40824829046386302, 0.81649658092772603}; /* (1,1,2)/√6 */
+
+void vt_scene_stewart_points(int leg, double a[3], double b[3])
+{
+    const int k = leg / 2, j = leg % 2;
+    const double deg = VT_PI / 180.0;
+    const double ab = (120.0 * k + (j ? 15.0 : -15.0)) * deg, pb = (120.0 * k + (j ? 45.0 : -45.0)) * deg;
+    a[0] = VT_SG_BASE_R * cos(ab);
+    a[1] = VT_SG_BASE_R * sin(ab);
+    a[2] = 0.0;
+    b[0] = VT_SG_PLAT_R * cos(pb);
+    b[1] = VT_SG_PLAT_R * sin(pb);
+    b[2] = 0.0;
+}
+
+void vt_scene_stewart_pose(const vt_stewart *sg, double t, double r[9], double p[4], double w[6])
+{
+    const double om = sg->omega, ph = sg->phase + om * t, s1 = sin(ph), c1 = cos(ph), s2 = sin(2.0 * ph),
+                 c2 = cos(2.0 * ph);
+    r[0] = 0.08 * s1;
+    r[1] = 0.06 * s2;
+    r[2] = VT_SG_HEIGHT + 0.05 * s1;
+    r[3] = om * 0.08 * c1;
+    r[4] = om * 0.12 * c2;
+    r[5] = om * 0.05 * c1;
+    r[6] = -om * om * 0.08 * s1;
+    r[7] = -om * om * 0.24 * s2;
+    r[8] = -om * om * 0.05 * s1;
+    /* a turn θ = 0.15 sin φ about the fixed axis n: ω = θ' n, ω̇ = θ'' n */
+    const double th = 0.15 * s1, thd = 0.15 * om * c1, thdd = -0.15 * om * om * s1;
+    vt_quat_axis_angle(p, sg_axis, th);
+    for (int k = 0; k < 3; k++) {
+        w[k] = thd * sg_axis[k];
+        w[3 + k] = thdd * sg_axis[k];
+    }
+}
+
+/* leg i's vector l = r + ρ − a from the universal's centre to the spherical's (ρ = A b), its
+ * first and second derivatives: l' = ṙ + ω × ρ, l'' = r̈ + ω̇ × ρ + ω × (ω × ρ) */
+static void sg_leg(const vt_stewart *sg, int leg, double t, double l[9])
+{
+    double r[9], p[4], w[6], A[9], a[3], b[3], rho[3], wr[3];
+    vt_scene_stewart_pose(sg, t, r, p, w);
+    vt_scene_stewart_points(leg, a, b);
+    vt_euler_A(A, p);
+    for (int k = 0; k < 3; k++) rho[k] = A[k] * b[0] + A[k + 3] * b[1] + A[k + 6] * b[2];
+    wr[0] = w[1] * rho[2] - w[2] * rho[1];
+    wr[1] = w[2] * rho[0] - w[0] * rho[2];
+    wr[2] = w[0] * rho[1] - w[1] * rho[0];
+    for (int k = 0; k < 3; k++) {
+        const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+        l[k] = r[k] + rho[k] - a[k];
+        l[3 + k] = r[3 + k] + wr[k];
+        l[6 + k] = r[6 + k] + (w[3 + k1] * rho[k2] - w[3 + k2] * rho[k1]) + (w[k1] * wr[k2] - w[k2] * wr[k1]);
+    }
+}
+
+/* L = |l|, L' = l·l'/L, L'' = (l'·l' + l·l'' − L'²)/L */
+static int sg_length(double t, double out[3], void *user)
+{
+    const vt_stewart_leg *lg = user;
+    double l[9];
+    sg_leg(lg->sg, lg->leg, t, l);
+    const double L = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    const double Ld = (l[0] * l[3] + l[1] * l[4] + l[2] * l[5]) / L;
+    out[0] = L;
+    out[1] = Ld;
+    out[2] = (l[3] * l[3] + l[4] * l[4] + l[5] * l[5] + l[0] * l[6] + l[1] * l[7] + l[2] * l[8] - Ld * Ld) / L;
+    return 0;
+}
+
+/* a solid cylinder along body z: transverse m (3 ρ² + ℓ²)/12, axial m ρ²/2 */
+static void cylinder_inertia(double J[9], double mass, double length, double radius)
+{
+    memset(J, 0, 9 * sizeof(double));
+    J[0] = J[4] = mass * (3.0 * radius * radius + length * length) / 12.0;
+    J[8] = 0.5 * mass * radius * radius;
+}
+
+vt_status vt_scene_stewart(vt_model **model, vt_stewart *sg)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[1] = 0.0;
+    md.gravity[2] = -9.81;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    vt_body_def plat = vt_default_body_def();
+    plat.joint = VT_JOINT_FREE;
+    plat.mass = VT_SG_M_PLAT;
+    cylinder_inertia(plat.inertia, VT_SG_M_PLAT, 0.03, VT_SG_PLAT_R);
+    plat.name = "platform";
+    int id = vt_builder_add_body(b, &plat);
+    for (int i = 0; i < 6 && id >= 0; i++) {
+        double a[3], bp[3];
+        vt_scene_stewart_points(i, a, bp);
+        vt_body_def cyl = vt_default_body_def();
+        cyl.joint = VT_JOINT_UNIVERSAL;
+        cyl.mass = VT_SG_M_CYL;
+        cylinder_inertia(cyl.inertia, VT_SG_M_CYL, 0.5, 0.04);
+        memcpy(cyl.joint_parent, a, sizeof a);
+        cyl.joint_child[2] = -VT_SG_HALF;
+        cyl.axis1[0] = 1.0; /* the global x, then the cylinder's y */
+        cyl.axis1[2] = 0.0;
+        cyl.axis2[0] = 0.0;
+        cyl.axis2[1] = 1.0;
+        id = vt_builder_add_body(b, &cyl);
+        if (id < 0) break;
+        vt_body_def pis = vt_default_body_def();
+        pis.parent = id;
+        pis.joint = VT_JOINT_TRANSLATIONAL;
+        pis.mass = VT_SG_M_PIST;
+        cylinder_inertia(pis.inertia, VT_SG_M_PIST, 0.5, 0.02);
+        pis.joint_parent[2] = -VT_SG_HALF; /* the universal's centre on the cylinder */
+        pis.joint_child[2] = VT_SG_HALF;   /* the piston's top: its coordinate is the leg length */
+        id = vt_builder_add_body(b, &pis);
+        if (id < 0) break;
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.joint = VT_JOINT_SPHERICAL;
+        cut.body_a = 1;
+        cut.body_b = id;
+        memcpy(cut.point_a, bp, sizeof bp);
+        cut.point_b[2] = VT_SG_HALF;
+        id = vt_builder_add_cut_joint(b, &cut);
+        if (id < 0) break;
+        sg->leg[i].sg = sg;
+        sg->leg[i].leg = i;
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = 3 + 2 * i;
+        dr.f = vt_function_user(sg_length, &sg->leg[i]);
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+void vt_scene_stewart_assemble(const vt_model *m, vt_data *d, const vt_stewart *sg, double t)
+{
+    double r[9], p[4], w[6];
+    vt_scene_stewart_pose(sg, t, r, p, w);
+    for (int k = 0; k < 3; k++) {
+        d->q[m->body_qadr[1] + k] = r[k];
+        d->qd[m->body_vadr[1] + k] = r[3 + k];
+        d->qd[m->body_vadr[1] + 3 + k] = w[k];
+    }
+    for (int k = 0; k < 4; k++) d->q[m->body_qadr[1] + 3 + k] = p[k];
+    for (int i = 0; i < 6; i++) {
+        double l[9];
+        sg_leg(sg, i, t, l);
+        const double L = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+        const double u[3] = {l[0] / L, l[1] / L, l[2] / L}, ul = u[0] * l[3] + u[1] * l[4] + u[2] * l[5];
+        double ud[3];
+        for (int k = 0; k < 3; k++) ud[k] = (l[3 + k] - u[k] * ul) / L;
+        /* u = Rx(q1) Ry(q2) z = (sin q2, −sin q1 cos q2, cos q1 cos q2) */
+        const int c = 2 + 2 * i, s = 3 + 2 * i;
+        d->q[m->body_qadr[c]] = atan2(-u[1], u[2]);
+        d->q[m->body_qadr[c] + 1] = asin(u[0]);
+        d->qd[m->body_vadr[c]] = (u[1] * ud[2] - u[2] * ud[1]) / (u[1] * u[1] + u[2] * u[2]);
+        d->qd[m->body_vadr[c] + 1] = ud[0] / sqrt(u[1] * u[1] + u[2] * u[2]);
+        d->q[m->body_qadr[s]] = L;
+        d->qd[m->body_vadr[s]] = ul;
+    }
+    d->time = t;
+}
+
+/* ---- knee four-bar ---- */
+
+/* a solid rod along body x: axial m ρ²/2, transverse m (3 ρ² + ℓ²)/12 */
+static void rod_x_inertia(double J[9], double mass, double length, double radius)
+{
+    memset(J, 0, 9 * sizeof(double));
+    J[0] = 0.5 * mass * radius * radius;
+    J[4] = J[8] = mass * (3.0 * radius * radius + length * length) / 12.0;
+}
+
+vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = !planar;
+    vt_builder *b;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    const double ls = VT_KN_C + VT_KN_L, cs = 0.5 * ls - VT_KN_C; /* shank rod; its centre from the knee */
+    vt_body_def thigh = vt_default_body_def();
+    thigh.mass = 1.5;
+    rod_x_inertia(thigh.inertia, 1.5, VT_KN_D, 0.01);
+    thigh.joint_child[0] = -0.5 * VT_KN_D;
+    thigh.name = "thigh";
+    int id = vt_builder_add_body(b, &thigh);
+    vt_body_def crank = vt_default_body_def();
+    crank.parent = 1;
+    crank.mass = 0.1;
+    rod_x_inertia(crank.inertia, 0.1, VT_KN_A, 0.01);
+    crank.joint_parent[0] = -0.5 * VT_KN_D; /* the hip, on the thigh */
+    crank.joint_child[0] = -0.5 * VT_KN_A;
+    crank.name = "crank";
+    if (id > 0) id = vt_builder_add_body(b, &crank);
+    vt_body_def coupler = vt_default_body_def(); /* revolute about z at the crank's tip */
+    coupler.parent = 2;
+    coupler.mass = 0.08;
+    rod_x_inertia(coupler.inertia, 0.08, VT_KN_B, 0.01);
+    coupler.joint_parent[0] = 0.5 * VT_KN_A;
+    coupler.joint_child[0] = -0.5 * VT_KN_B;
+    coupler.name = "coupler";
+    if (id > 0) id = vt_builder_add_body(b, &coupler);
+    vt_body_def shank = vt_default_body_def();
+    shank.parent = 1;
+    shank.mass = 0.5;
+    rod_x_inertia(shank.inertia, 0.5, ls, 0.01);
+    shank.joint_parent[0] = 0.5 * VT_KN_D; /* the knee, on the thigh */
+    shank.joint_child[0] = -cs;
+    shank.name = "shank";
+    if (id > 0) id = vt_builder_add_body(b, &shank);
+    if (id > 0) {
+        /* a revolute about z (the shank's z): planar, its 2 in-plane rows, which with the 2
+         * drives make 4 independent rows on the 4 rates; else all 5 rows, 3 of them dependent */
+        vt_cut_joint_def cut = vt_default_cut_joint_def();
+        cut.planar = planar;
+        cut.body_a = 4;
+        cut.body_b = 3;
+        cut.point_a[0] = -cs - VT_KN_C; /* the lever point */
+        cut.point_b[0] = 0.5 * VT_KN_B;
+        cut.name = "lever";
+        id = vt_builder_add_cut_joint(b, &cut);
+    }
+    for (int k = 0; k < 2 && id >= 0; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = 1 + k;
+        dr.f = k ? motor : hip;
+        dr.name = k ? "motor" : "hip";
+        id = vt_builder_add_drive(b, &dr);
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1, double thm, double wm, double knee[2])
+{
+    /* in the thigh's frame: hip O = 0, knee K = (D, 0), crank tip B = A (cos θm, sin θm), lever
+     * point C = K + C (cos ψ, sin ψ) with |C − B| = B_len: C on both circles */
+    const double Bx = VT_KN_A * cos(thm), By = VT_KN_A * sin(thm);
+    const double ex = VT_KN_D - Bx, ey = -By, L = sqrt(ex * ex + ey * ey);
+    if (L == 0.0) return -1;
+    const double x = (L * L + VT_KN_B * VT_KN_B - VT_KN_C * VT_KN_C) / (2.0 * L), h2 = VT_KN_B * VT_KN_B - x * x;
+    if (h2 < 0.0) return -1;
+    const double h = sqrt(h2), ux = ex / L, uy = ey / L;
+    double psi = 0.0, best = INFINITY;
+    for (int s = -1; s <= 1; s += 2) { /* the branch with ψ nearest θm */
+        const double Cx = Bx + x * ux - s * h * uy, Cy = By + x * uy + s * h * ux;
+        const double p = atan2(Cy, Cx - VT_KN_D), dd = fabs(remainder(p - thm, 2.0 * VT_PI));
+        if (dd < best) { best = dd; psi = p; }
+    }
+    const double Cx = VT_KN_D + VT_KN_C * cos(psi), Cy = VT_KN_C * sin(psi);
+    const double phi = atan2(Cy - By, Cx - Bx); /* the coupler's angle from the thigh */
+    /* rates: A θm' k×e(θm) + B φ' k×e(φ) = C ψ' k×e(ψ) */
+    const double a11 = -VT_KN_B * sin(phi), a12 = VT_KN_C * sin(psi);
+    const double a21 = VT_KN_B * cos(phi), a22 = -VT_KN_C * cos(psi);
+    const double r1 = VT_KN_A * wm * sin(thm), r2 = -VT_KN_A * wm * cos(thm);
+    const double det = a11 * a22 - a12 * a21;
+    if (det == 0.0) return -1;
+    const double phid = (r1 * a22 - a12 * r2) / det, psid = (a11 * r2 - a21 * r1) / det;
+    d->q[m->body_qadr[1]] = th1;
+    d->q[m->body_qadr[2]] = thm;
+    d->q[m->body_qadr[3]] = phi - thm;
+    d->q[m->body_qadr[4]] = remainder(psi - VT_PI, 2.0 * VT_PI); /* the shank points away from the lever */
+    d->qd[m->body_vadr[1]] = w1;
+    d->qd[m->body_vadr[2]] = wm;
+    d->qd[m->body_vadr[3]] = phid - wm;
+    d->qd[m->body_vadr[4]] = psid;
+    if (knee) {
+        knee[0] = d->q[m->body_qadr[4]];
+        knee[1] = psid;
+    }
+    return 0;
 }

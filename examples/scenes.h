@@ -61,8 +61,31 @@ vt_status vt_scene_fourbar(vt_model **model, vt_function crank);
  * rank 3: redundant (the Grübler count says −2, the mobility is 1). With allow_redundant the
  * model solves them in the least-squares sense (vt_model_def.allow_redundant). */
 vt_status vt_scene_fourbar_planar(vt_model **model, vt_function crank, int allow_redundant);
-/* its q and q̇ at crank angle th2 and rate w2 (the planar assembly of vt_scene_fourbar) */
+/* its q and q̇ at crank angle th2 and rate w2 (the planar assembly of vt_scene_fourbar); also
+ * vt_scene_fourbar_pin's */
 int vt_scene_fourbar_planar_assemble(const vt_model *model, vt_data *data, double th2, double w2);
+/* The same RRRR four-bar closed by a planar revolute cut joint (vt_cut_joint_def.planar): 2 cut
+ * rows and the drive on 3 rates, exactly constrained without allow_redundant. */
+vt_status vt_scene_fourbar_pin(vt_model **model, vt_function crank);
+
+/* An offset slider-crank in the XY plane: crank (body 1, VT_SC_R m, 1 kg uniform rod, revolute
+ * about z at the origin), rod (body 2, VT_SC_L m, 2 kg uniform rod, revolute at the crank's tip),
+ * slider (body 3, 1.5 kg, inertia 0.01 I kg·m², translational along x; its joint point
+ * (VT_SC_JX, VT_SC_JY) from its centre of mass slides on the line y = VT_SC_H). The rod's far end
+ * is pinned to the slider at (VT_SC_PX, VT_SC_PY) from its centre of mass by a revolute cut joint
+ * (cut 0, body_a the slider, body_b the rod): planar = 1 its two in-plane rows (3 rows on 3
+ * rates: exact); 0 the full 5 rows with allow_redundant. Drive 0 turns the crank: q1 = crank(t);
+ * gravity −9.81 y. */
+#define VT_SC_R 0.3
+#define VT_SC_L 1.0
+#define VT_SC_H 0.1
+#define VT_SC_JX (-0.03)
+#define VT_SC_JY (-0.01)
+#define VT_SC_PX 0.05
+#define VT_SC_PY 0.02
+vt_status vt_scene_slider_crank(vt_model **model, vt_function crank, int planar);
+/* its q and q̇ at crank angle th and rate w (the rod toward +x); 0, or -1 where it cannot close */
+int vt_scene_slider_crank_assemble(const vt_model *model, vt_data *data, double th, double w);
 
 /* Planar assembly of that four-bar at crank angle th2 and rate w2 (open branch, rocker tip
  * above the ground line): sets d->q, d->qd. Writes the coupler and rocker angles and rates
@@ -112,6 +135,53 @@ vt_status vt_scene_five_link_payload(vt_model **model, double payload, double pe
 /* q of the five-link arm at time t from its inverse kinematics (elbow up): a start for Newton. */
 void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
 
+/* A Delta robot (ABB FlexPicker / Codian-like), z up, gravity (0, 0, −9.81), the base at z = 0
+ * and the platform below. Arm i = 0, 1, 2 sits at φ_i = 2π i/3 with radial unit u_i =
+ * (cos φ_i, sin φ_i, 0) and tangential unit t_i = (−sin φ_i, cos φ_i, 0):
+ *   upper arm i (body 1 + i)   revolute about t_i at VT_DELTA_RB u_i (the motor), VT_DELTA_LA
+ *                              long, VT_DELTA_MA kg, a uniform rod along its body x (body axes:
+ *                              the base's turned by φ_i about z, then by the motor angle θ_i);
+ *                              θ_i = 0 horizontal, θ_i > 0 down
+ *   rods (i, ∓) (bodies 4 + 2i, 5 + 2i)  the forearm's parallelogram: two uniform rods
+ *                              VT_DELTA_LF long, VT_DELTA_MR kg each, hung from the elbow at
+ *                              ∓VT_DELTA_H along the arm's y by universal joints (first axis the
+ *                              arm's y, parallel to the motor's; second the rod's x), along the
+ *                              rod's −z at zero angles
+ *   platform (body 10)         a free joint from the ground (q: its centre's global position and
+ *                              its Euler parameters), VT_DELTA_MP kg (gripper and load), its
+ *                              centre at its centre of mass
+ * Cut joints 2i, 2i + 1: spherical, rod (i, ∓)'s lower end to the platform at
+ * VT_DELTA_RP u_i ∓ VT_DELTA_H t_i. Rates 3 + 12 + 6 = 21, cut rows 6 × 3 = 18: three degrees
+ * of freedom (Grübler's count is the mobility: the rods' universal joints leave no spin), the
+ * platform kept parallel to the base by the parallelograms. With three drives the model is
+ * square and exactly constrained (no redundant rows) away from the Delta's singular poses.
+ *   drives = VT_DELTA_PATH    three point drives on the platform's centre, x, y, z (drives 0..2)
+ *                             following vt_scene_delta_path() with period `period` s
+ *            VT_DELTA_MOTORS  three joint drives on the motor angles (drive i on arm i),
+ *                             constant 0: the motion is given to vt_inverse_dynamics_motion(),
+ *                             whose efforts are then the motor torques
+ * VT_ERR_BAD_OPTION for a period that is not > 0 and finite, or an unknown drives. */
+#define VT_DELTA_RB 0.2   /* base radius (motor axes), m */
+#define VT_DELTA_LA 0.35  /* upper arm, m */
+#define VT_DELTA_LF 0.8   /* forearm rods, m */
+#define VT_DELTA_RP 0.05  /* platform radius (middle of each rod pair), m */
+#define VT_DELTA_H 0.05   /* half the spacing of a parallelogram's rods, m */
+#define VT_DELTA_MA 1.2   /* upper arm, kg */
+#define VT_DELTA_MR 0.2   /* each forearm rod, kg */
+#define VT_DELTA_MP 1.5   /* platform with gripper and load, kg */
+#define VT_DELTA_RHO 0.15 /* radius of the path's circle, m */
+#define VT_DELTA_Z0 (-0.85) /* height of the circle's centre, m */
+#define VT_DELTA_DZ 0.05  /* the path's rise and fall, m */
+enum { VT_DELTA_PATH, VT_DELTA_MOTORS };
+vt_status vt_scene_delta(vt_model **model, double period, int drives);
+/* The platform centre's path, p, ṗ, p̈ at time t (any of them may be NULL): a circle of radius
+ * VT_DELTA_RHO about the z axis at height VT_DELTA_Z0, rising and falling by VT_DELTA_DZ twice
+ * a turn: p = (ρ cos ωt, ρ sin ωt, z0 + Δz sin 2ωt), ω = 2π/period. */
+void vt_scene_delta_path(double t, double period, double p[3], double pd[3], double pdd[3]);
+/* The assembly with the platform's centre at p (the Delta's inverse kinematics, elbows out, the
+ * platform parallel to the base): sets d->q; q̇ = 0. Returns 0, or −1 where p is out of reach. */
+int vt_scene_delta_assemble(const vt_model *model, vt_data *data, const double p[3]);
+
 /* The IFToMM multibody benchmark's simple pendulum (problem A01): a 1 kg point mass on a
  * massless 1 m link, revolute about z at the origin, gravity (0, −9.81, 0); at q = 0 the link
  * lies along +x (horizontal): released from rest there. In joint coordinates it has no
@@ -140,6 +210,14 @@ void vt_scene_nfourbar_start(const vt_model *model, vt_data *data, int N, double
  * model of the same motion. drive: when nonzero, rod 1's joint angle follows f. */
 vt_status vt_scene_bricard(vt_model **model, vt_joint_type cut, int drive, vt_function f);
 
+/* A chain ground –revolute– 1 –spherical– 2 –revolute– 3: masses and inertias with products,
+ * joints off the centres of mass, body 2 assembled turned (its orientation at q = 0 not the
+ * identity). Drive 0 turns joint 1 (sine), drive 1 the spherical joint by three angles "ZYX"
+ * (sines): relative = 1 a relative orientation drive with reference −1 (the joint's own
+ * rotation q = R_z(f) ⊗ R_y(f2) ⊗ R_x(f3)), relative = 0 the same drive absolute (body 2's
+ * global orientation, another motion); drive 2 turns joint 3. 5 rates, 5 rows: fully driven. */
+vt_status vt_scene_spherical_chain(vt_model **model, int relative);
+
 /* A random tree of n bodies whose joints cycle through the kinds in `kinds` (a mask of
  * 1 << vt_joint_type; base bodies hang from the ground): random parents, masses, principal
  * inertias, joint points, axes and orientations at q = 0. Deterministic in seed. */
@@ -161,5 +239,79 @@ void vt_scene_random_state(const vt_model *model, vt_data *data, uint64_t *seed)
 /* Random numbers for scenes and tests: splitmix64 on a caller-held state. */
 double vt_rand_uniform(uint64_t *state, double lo, double hi);
 void vt_rand_unit(double *v, int n, uint64_t *state); /* uniform direction in R^n */
+
+/* A Stewart–Gough platform, 6-UPS: six legs from the ground to a platform. Leg i (0..5): a
+ * cylinder (body 2 + 2i) on a universal joint at the base point a_i (first axis the global x,
+ * then the cylinder's y; at q = 0 the cylinder lies along the global z), a piston (body 3 + 2i)
+ * on a translational joint along the cylinder's z whose coordinate is the leg length L_i (the
+ * distance from the universal's centre to the piston's top), and a spherical cut joint (cut i)
+ * from the platform (body_a) at b_i to the piston's top (body_b): the cut's force is the
+ * platform's on the leg. The platform (body 1) floats on a free joint from the ground at its
+ * centre. Gravity (0, 0, −9.81), z up. 24 rates, 18 cut rows and six joint drives (drive i:
+ * the piston of leg i, L_i = the leg length of the prescribed pose, exact with both
+ * derivatives): fully driven, a kinematic analysis; the six drive efforts are the actuators'
+ * forces (N, along the leg, positive pushing the platform away from the base).
+ * Geometry: base points on a circle of VT_SG_BASE_R m at z = 0, at angles 120k ∓ 15°; platform
+ * points on a circle of VT_SG_PLAT_R m in the platform's plane through its centre, at
+ * 120k − 45° and 120k + 45° (leg 2k at 120k − 15° on the base to 120k − 45° on the platform,
+ * leg 2k+1 at 120k + 15° to 120k + 45°). Platform: 10 kg disc (radius 0.3 m, 0.03 m thick),
+ * centre of mass at its centre. Cylinder: 2 kg, 0.5 m, radius 0.04 m, centre of mass 0.25 m
+ * from the universal's centre; piston: 1 kg, 0.5 m, radius 0.02 m, centre of mass 0.25 m below
+ * the top (solid cylinders' inertias).
+ * The pose: with φ = phase + ω t, the centre r = (0.08 sin φ, 0.06 sin 2φ, VT_SG_HEIGHT +
+ * 0.05 sin φ) and the orientation a turn of 0.15 sin φ about the slanted axis (1, 1, 2)/√6 from
+ * the base's axes; legs 0.86..1.04 m long over a period. ω = 0 holds the platform still at
+ * the pose of phase (the static case). The struct must outlive the model (its legs are the
+ * drives' callback data). */
+#define VT_SG_BASE_R 0.5
+#define VT_SG_PLAT_R 0.3
+#define VT_SG_HEIGHT 0.9
+#define VT_SG_M_PLAT 10.0
+#define VT_SG_M_CYL 2.0
+#define VT_SG_M_PIST 1.0
+#define VT_SG_HALF 0.25 /* m, centres of mass from the universal's centre and from the top */
+typedef struct vt_stewart_leg {
+    const struct vt_stewart *sg;
+    int leg;
+} vt_stewart_leg;
+typedef struct vt_stewart {
+    double omega;          /* rad/s, the pose's phase rate */
+    double phase;          /* rad, its phase at t = 0 */
+    vt_stewart_leg leg[6]; /* filled by vt_scene_stewart: the drives' callback data */
+} vt_stewart;
+vt_status vt_scene_stewart(vt_model **model, vt_stewart *sg);
+/* the base point a_i (global, m) and the platform point b_i (platform axes from its centre, m) */
+void vt_scene_stewart_points(int leg, double a[3], double b[3]);
+/* the prescribed pose at t: r[0..8] the centre, its velocity and acceleration (m, m/s, m/s²);
+ * p the platform's Euler parameters; w[0..5] its angular velocity and acceleration (global) */
+void vt_scene_stewart_pose(const vt_stewart *sg, double t, double r[9], double p[4], double w[6]);
+/* q and q̇ of the model at t from the closed-form inverse kinematics */
+void vt_scene_stewart_assemble(const vt_model *model, vt_data *data, const vt_stewart *sg, double t);
+
+/* A legged robot's knee four-bar: the knee motor sits at the hip and turns the knee through a
+ * crank, a coupler along the thigh and a lever on the shank. All in the XY plane, every joint a
+ * revolute about z, gravity (0, −9.81, 0). Thigh (body 1): at the hip (the origin), VT_KN_D m
+ * from hip to knee along its x, 1.5 kg; crank (body 2): on the thigh at the hip, VT_KN_A m,
+ * 0.1 kg; coupler (body 3): at the crank's tip, VT_KN_B m, 0.08 kg; shank (body 4): on the thigh
+ * at the knee, a uniform rod from the lever point VT_KN_C m behind the knee to the foot VT_KN_L m
+ * ahead of it, 0.5 kg. The loop is closed by a revolute cut joint about z (cut 0) from the
+ * shank's lever point (body_a) to the coupler's far end (body_b): its force is the shank's on
+ * the coupler. Rods of radius 0.01 m (solid-cylinder inertias). Drive 0: the hip, q1 = hip(t)
+ * (the thigh's angle from the global x); drive 1: the knee motor, q2 = motor(t) (the crank's
+ * angle from the thigh). planar = 1: the cut is a planar pin (vt_cut_joint_def.planar), its 2
+ * in-plane rows and the 2 drives on 4 rates, square and of full rank, no redundant option;
+ * planar = 0: the full 5-row revolute, 7 rows of rank 4, with allow_redundant. q4, the shank's
+ * angle from the thigh, is the knee angle. */
+#define VT_KN_A 0.05   /* crank */
+#define VT_KN_B 0.30   /* coupler */
+#define VT_KN_C 0.045  /* lever on the shank, behind the knee */
+#define VT_KN_D 0.30   /* thigh, hip to knee */
+#define VT_KN_L 0.30   /* shank, knee to foot */
+vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar);
+/* q and q̇ of the knee at hip angle th1 (rad, rate w1) and motor angle thm (rad, rate wm): the
+ * loop closed on the branch where the lever follows the crank (ψ near thm). Writes the knee
+ * angle and rate into knee[2] if not NULL. Returns 0, or -1 where the loop cannot close. */
+int vt_scene_knee_assemble(const vt_model *model, vt_data *data, double th1, double w1, double thm, double wm,
+                           double knee[2]);
 
 #endif

@@ -72,14 +72,14 @@ module vtdyn
   integer(c_int), parameter :: VT_FALLBACK_SCHUR_PIVOT = 1, VT_FALLBACK_ARTICULATED_PIVOT = 2, &
       VT_FALLBACK_ARTICULATED_CONDITION = 4, VT_FALLBACK_SQUARE_CONDITION = 8
   ! redundant rows: directions below this fraction of the largest singular value are dropped
-  real(c_double), parameter :: VT_REDUNDANT_TOL = 1.0e-3_c_double
+  real(c_double), parameter :: VT_REDUNDANT_TOL = 5.0e-4_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
   integer(c_int), parameter :: VT_FUNC_CONSTANT = 0, VT_FUNC_POLYNOMIAL = 1, VT_FUNC_SINE = 2, &
       VT_FUNC_CALLBACK = 3, VT_FUNC_SPLINE = 4
   integer(c_int), parameter :: VT_POLY_MAX = 8, VT_SPLINE_EVAL_MAX = 64
   ! vt_drive_type
   integer(c_int), parameter :: VT_DRIVE_JOINT = 0, VT_DRIVE_POINT = 1, VT_DRIVE_ORIENTATION = 2, &
-      VT_DRIVE_TYPE_COUNT = 3
+      VT_DRIVE_RELATIVE_ORIENTATION = 3, VT_DRIVE_TYPE_COUNT = 4
   ! vt_formulation
   integer(c_int), parameter :: VT_FORMULATION_INDEX1 = 0, VT_FORMULATION_BAUMGARTE = 1, &
       VT_FORMULATION_PROJECTION = 2, VT_FORMULATION_GGL = 3, VT_FORMULATION_ODE = 4, &
@@ -128,6 +128,10 @@ module vtdyn
     type(c_ptr)            :: user
     type(c_ptr)            :: name
     type(c_ptr)            :: frame
+    integer(c_int)         :: reference
+    type(c_ptr)            :: sequence
+    type(vt_function)      :: f2
+    type(vt_function)      :: f3
   end type vt_drive_def
 
   type, bind(C) :: vt_cut_joint_def
@@ -142,6 +146,7 @@ module vtdyn
     type(c_ptr)            :: name
     type(c_ptr)            :: frame_a
     type(c_ptr)            :: frame_b
+    integer(c_int)         :: planar
   end type vt_cut_joint_def
 
   type, bind(C) :: vt_coupling_def
@@ -283,6 +288,7 @@ module vtdyn
     type(c_ptr)            :: lambda_unique
     type(c_ptr)            :: lambda_null
     type(c_ptr)            :: xdd
+    type(c_ptr)            :: alpha
     type(c_ptr)            :: qfrc_drive
     type(c_ptr)            :: drive_effort
     type(c_ptr)            :: drive_force
@@ -291,6 +297,10 @@ module vtdyn
     type(c_ptr)            :: jnt_moment
     type(c_ptr)            :: jnt_force_body
     type(c_ptr)            :: jnt_moment_body
+    type(c_ptr)            :: jnt_force_total
+    type(c_ptr)            :: jnt_moment_total
+    type(c_ptr)            :: jnt_force_total_body
+    type(c_ptr)            :: jnt_moment_total_body
     type(c_ptr)            :: cut_force
     type(c_ptr)            :: cut_moment
     type(c_ptr)            :: cut_force_body

@@ -66,9 +66,15 @@ static void describe(void)
         fprintf(stderr, "  body %d: parent %d, joint %d, mass %g, inertia diag %g %g %g, axis1 %g %g %g\n", i,
                 m->body_parent[i], m->body_joint[i], m->body_mass[i], m->body_inertia[9 * i], m->body_inertia[9 * i + 4],
                 m->body_inertia[9 * i + 8], m->body_axis[6 * i], m->body_axis[6 * i + 1], m->body_axis[6 * i + 2]);
+    for (int i = 1; i <= m->nbody; i++)
+        fprintf(stderr, "  body %d: joint_parent %.17g %.17g %.17g, joint_child %.17g %.17g %.17g\n", i,
+                m->body_jpar[3 * i], m->body_jpar[3 * i + 1], m->body_jpar[3 * i + 2], m->body_jchild[3 * i],
+                m->body_jchild[3 * i + 1], m->body_jchild[3 * i + 2]);
+    fprintf(stderr, "  gravity %g %g %g\n", m->gravity[0], m->gravity[1], m->gravity[2]);
     for (int k = 0; k < m->ndrive; k++)
-        fprintf(stderr, "  drive %d: type %d, body %d, index %d, function %d\n", k, m->drive[k].type, m->drive[k].body,
-                m->drive[k].index, m->drive[k].f.type);
+        fprintf(stderr, "  drive %d: type %d, body %d, index %d, function %d, point %g %g %g, axis %g %g %g\n", k,
+                m->drive[k].type, m->drive[k].body, m->drive[k].index, m->drive[k].f.type, m->drive[k].point[0],
+                m->drive[k].point[1], m->drive[k].point[2], m->drive[k].axis[0], m->drive[k].axis[1], m->drive[k].axis[2]);
     for (int k = 0; k < m->ncut; k++)
         fprintf(stderr, "  cut joint %d: joint %d, bodies %d %d\n", k, m->cut[k].joint, m->cut[k].body_a, m->cut[k].body_b);
     const vt_data *both[2] = {context.a, context.b};
@@ -82,6 +88,11 @@ static void describe(void)
         print_vec("qdd", d->qdd, m->nv);
         print_vec("x", d->x, m->nx);
         print_vec("qfrc_drive", d->qfrc_drive, m->nv);
+        print_vec("origin", d->origin, 3);
+        print_vec("xfrc", d->xfrc, 6 * (m->nbody + 1));
+        print_vec("qfrc", d->qfrc, m->nv);
+        print_vec("jnt_force", d->jnt_force, 3 * (m->nbody + 1));
+        print_vec("jnt_moment", d->jnt_moment, 3 * (m->nbody + 1));
         print_vec("Phiq", d->Phiq, m->nc * m->nv);
         print_vec("gamma", d->gamma, m->nc);
         fprintf(stderr, "  Mstar diagonal:");
@@ -296,6 +307,11 @@ static void data_finite(const vt_model *m, const vt_data *d, const char *call)
     finite(d->cut_force_body, 3 * m->ncut, call, "cut_force_body");
     finite(d->cut_moment_body, 3 * m->ncut, call, "cut_moment_body");
     finite(d->coupling_effort, m->ncoupling, call, "coupling_effort");
+    finite(d->alpha, 3 * n1, call, "alpha");
+    finite(d->jnt_force_total, 3 * n1, call, "jnt_force_total");
+    finite(d->jnt_moment_total, 3 * n1, call, "jnt_moment_total");
+    finite(d->jnt_force_total_body, 3 * n1, call, "jnt_force_total_body");
+    finite(d->jnt_moment_total_body, 3 * n1, call, "jnt_moment_total_body");
 }
 
 /* What the builder accepted must satisfy what it checks: items an overflowing check would let
@@ -345,7 +361,8 @@ static void model_check(const vt_model *m)
         }
     }
     for (int k = 0; k < m->ndrive; k++)
-        if (m->drive[k].type == VT_DRIVE_ORIENTATION && !m->drive[k].orientation_callback) {
+        if ((m->drive[k].type == VT_DRIVE_ORIENTATION || m->drive[k].type == VT_DRIVE_RELATIVE_ORIENTATION) &&
+            !m->drive[k].orientation_callback && !m->drive[k].sequence) {
             unit(m->drive[k].axis, 3, "drive axis", k);
             unit(m->drive[k].orientation, 4, "drive orientation", k);
         }
@@ -559,6 +576,19 @@ static int singularish(vt_status st)
  * different statuses is a disagreement. Returns 1 when both are OK. */
 #define NEAR 1e6
 
+/* The refusals of round-off of lever arms from the reference point o, which the routes meet
+ * differently: vt_solve zeroes an M* row whose diagonal is round-off of its terms about o and
+ * refuses when the rates it zeroed leave no certain digit ("no certain digit", reactions.c),
+ * which the recursive articulated, square and joint-driven routes never do (they zero nothing);
+ * the recursive general route refuses where its composite inertias about o leave M* less precise
+ * than its condition needs ("within M*'s round-off", recursive.c), where the dense S^T M S, with
+ * less round-off, may solve. Either against VT_OK is a refusal of what a route cannot trust,
+ * not a disagreement (test_long_link_roundoff_inertia, test_roundoff_hides_singular). */
+static int beyond_lever_arms(const vt_data *d)
+{
+    return strstr(d->message, "no certain digit") != NULL || strstr(d->message, "within M*'s round-off") != NULL;
+}
+
 static int consistent(const char *pair, const vt_model *m, vt_status sa, const vt_data *a, vt_status sb,
                       const vt_data *b, double in_mag)
 {
@@ -575,6 +605,7 @@ static int consistent(const char *pair, const vt_model *m, vt_status sa, const v
     const vt_status se = sa ? sa : sb;
     const vt_data *ok = sa ? b : a, *bad = sa ? a : b;
     if (singularish(se) && ok->rcond <= NEAR * m->rcond_min) return 0;
+    if (se == VT_ERR_SINGULAR && beyond_lever_arms(bad)) return 0;
     if (in_mag >= EDGE_INPUT && singularish(se)) return 0; /* an overflowed M* may look singular */
     if (se == VT_ERR_NONFINITE) {
         const scales s = pair_scales(m, ok, ok, ok, ok->rcond);
@@ -883,11 +914,12 @@ static void differential(const definitions *defs, const vt_model *m, const vt_da
             copy_state(m1, d1, state);
             context.b = d1;
             const vt_status s1 = instant(m1, d1, vt_inverse_dynamics, "vt_inverse_dynamics (allow_redundant)");
-            if (s1 != VT_OK)
+            const int refused = s1 == VT_ERR_SINGULAR && beyond_lever_arms(d1); /* its general route's */
+            if (s1 != VT_OK && !refused)
                 fail("allow_redundant: %s (%s) at a regular pose that the plain model solves (rcond %.3g)",
                      vt_status_string(s1), d1->message, dd->rcond);
             const scales s = pair_scales(m, dd, dd, d1, dd->rcond);
-            if (isfinite(s.e)) {
+            if (!refused && isfinite(s.e)) {
                 agree_qdd("allow_redundant 0 and 1", m, dd, dd->qdd, d1->qdd, &s);
                 agree_loads("allow_redundant 0 and 1", m, dd, d1, &s, 1, 0);
             }

@@ -370,7 +370,9 @@ VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double
 /// more entries than the trajectory's rows − 1) is refused with VT_ERR_BAD_OPTION, the message
 /// naming the entry, before anything is written.
 /// With opt->forward_check, the forward check integrates the model without drives under
-/// the drives' generalized forces, evaluated exactly at every time IDA asks for (in a build
+/// the drives' generalized forces, evaluated exactly at every time IDA asks for (the kinematic
+/// solution there to opt->newton_tol, Newton started from the rows around it; at the output
+/// times the rows' own efforts) (in a build
 /// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).

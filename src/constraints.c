@@ -12,14 +12,20 @@
  *   dot            u_a·v_b                    jw_a = u × v, jw_b = v × u;  γ = −(ü·v + 2 u̇·v̇ + u·v̈)0
  *   line           u_a·d                      jv = ±u, jw_b = s_b × u, jw_a = u × d − s_a × u
  *                                             γ = −(ü·d + 2 u̇·ḋ + u·d̈)0
+ *                  (a planar pin, vt_cut_joint_def.planar: two line rows, u = h1, h2 ⟂ axis1)
  *   orientation    2 G(p_d) p  (3 rows)       Φ_p = 2 G(p_d), Φ_t = 2 G(ṗ_d) p,
  *                                             γ = −[2 G(p̈_d) p + 4 G(ṗ_d) ṗ + 2 G(p_d) p̈0]
  *                  (G(a) b is the vector part of a* ⊗ b: zero when p = p_d)
+ *   relative       2 G(p_d) p_r  (3 rows)     as orientation with p_r = p_a* ⊗ p_b for p (γ from ṗ_r,
+ *   orientation                               p̈_r0); Φ_x the exact gradients of the bilinear p_r on
+ *                                             both bodies (relative_row); along the rates Φ̇ sees
+ *                                             ω_b − ω_a only, so its moment on a is minus b's
  *   normalization  p^T p − 1 (base body)      Φ_p = 2 p^T, γ = −2 ṗ·ṗ
  *   coupling       q_a − k q_b − c            Φ_q = e_a − k e_b directly (the coordinates of two
  *                                             joints: up to four bodies, so no Φ_x), Φ_t = 0, γ = 0
  * The prescribed orientation of a built-in orientation drive: p_d = [f(t) about axis] ⊗ p0,
- * ω_d = f' axis, ω̇_d = f'' axis, ṗ_d = ½ E^T ω_d, p̈_d = ½ E^T ω̇_d − ¼ |ω_d|² p_d.
+ * ω_d = f' axis, ω̇_d = f'' axis, or three angles in a sequence (sequence_turn), then
+ * ṗ_d = ½ E^T ω_d, p̈_d = ½ E^T ω̇_d − ¼ |ω_d|² p_d (a relative drive: p_d, ω_d in a's axes).
  */
 #include <string.h>
 
@@ -114,12 +120,63 @@ static void phix_from(double *px, const body_state *b, const double jv[3], const
     for (int k = 3; k < 7; k++) px[k] *= 4.0;
 }
 
-/* p_d, ṗ_d, p̈_d of an orientation drive at time t */
+/* The turn by three angles in a named sequence (vt_drive_def.sequence): q = R_1 ⊗ R_2 ⊗ R_3,
+ * R_i a turn by φ_i about the unit axis e_i (body-fixed order; a lower-case sequence about
+ * fixed axes is the upper-case one read backwards, angles too). The axis of each turn as seen
+ * from outside, u_1 = e_1, u_2 = R_1 e_2, u_3 = R_1 R_2 e_3, gives
+ *   ω = φ̇_1 u_1 + φ̇_2 u_2 + φ̇_3 u_3,
+ *   ω̇ = Σ φ̈_i u_i + φ̇_2 (ω_1 × u_2) + φ̇_3 (ω_12 × u_3),  ω_1 = φ̇_1 u_1, ω_12 = ω_1 + φ̇_2 u_2
+ * (u_2 turns with R_1, u_3 with R_1 R_2). f: the three functions' values and derivatives. */
+static void sequence_turn(const char *seq, const double f[3][3], double q[4], double w[3], double wd[3])
+{
+    const int fixed = seq[0] >= 'a';
+    double u[3][3], R[4] = {1, 0, 0, 0};
+    const double *fi[3];
+    memset(w, 0, 3 * sizeof(double));
+    memset(wd, 0, 3 * sizeof(double));
+    for (int i = 0; i < 3; i++) {
+        const int s = fixed ? 2 - i : i; /* the turn applied i-th from the outside */
+        double e[3] = {0, 0, 0}, A[9], r[4];
+        e[(seq[s] - (fixed ? 'x' : 'X'))] = 1.0;
+        fi[i] = f[s];
+        vt_euler_A(A, R);
+        vt_mulmat3(u[i], A, e);
+        vt_quat_axis_angle(r, e, fi[i][0]);
+        vt_quat_mul(R, R, r);
+    }
+    memcpy(q, R, 4 * sizeof(double));
+    double w1[3], w12[3];
+    for (int c = 0; c < 3; c++) {
+        w1[c] = fi[0][1] * u[0][c];
+        w12[c] = w1[c] + fi[1][1] * u[1][c];
+        w[c] = w12[c] + fi[2][1] * u[2][c];
+        wd[c] = fi[0][2] * u[0][c] + fi[1][2] * u[1][c] + fi[2][2] * u[2][c];
+    }
+    double t[3];
+    vt_cross3(t, w1, u[1]);
+    vt_axpy3(wd, fi[1][1], t);
+    vt_cross3(t, w12, u[2]);
+    vt_axpy3(wd, fi[2][1], t);
+}
+
+/* p_d, ṗ_d, p̈_d of an orientation drive at time t (a relative drive's: of b's axes relative to
+ * a's, with ω_d, ω̇_d in a's axes) */
 static vt_status prescribed_orientation(char *msg, int k, const vt_drive_def *dr, double t, double pdes[4],
                                         double pdes_d[4], double pdes_dd[4])
 {
     double w[3], wd[3], E[12];
-    if (dr->orientation_callback) {
+    if (dr->sequence) {
+        double f[3][3], r[4];
+        const vt_function *fs[3] = {&dr->f, &dr->f2, &dr->f3};
+        for (int e = 0; e < 3; e++) {
+            vt_status st = vt_function_eval_valid(f[e], fs[e], t);
+            if (st)
+                return vt_fail(msg, st, "vt_constraints: drive %d: time function %s failed at t = %g (%s)", k,
+                               e == 0 ? "f" : e == 1 ? "f2" : "f3", t, vt_status_string(st));
+        }
+        sequence_turn(dr->sequence, (const double(*)[3])f, r, w, wd);
+        vt_quat_mul(pdes, r, dr->orientation);
+    } else if (dr->orientation_callback) {
         double p[4];
         if (dr->orientation_callback(t, p, w, wd, dr->user) != 0)
             return vt_fail(msg, VT_ERR_CALLBACK, "vt_constraints: drive %d: orientation callback failed at t = %g", k, t);
@@ -128,6 +185,9 @@ static vt_status prescribed_orientation(char *msg, int k, const vt_drive_def *dr
         for (int c = 0; c < 4; c++) pdes[c] = p[c];
         if (!(vt_normalize(pdes, 4) > 1e-12)) /* of norm 1 ideally (scaled: no overflow or underflow) */
             return vt_fail(msg, VT_ERR_QUATERNION, "vt_constraints: drive %d: orientation of zero norm", k);
+        /* a relative drive's callback gives the turn before `orientation` (a joint's p0: model.c);
+         * a constant right factor leaves ω_d and ω̇_d as they are */
+        if (dr->type == VT_DRIVE_RELATIVE_ORIENTATION) vt_quat_mul(pdes, pdes, dr->orientation);
     } else {
         double f[3], r[4];
         vt_status st = vt_function_eval_valid(f, &dr->f, t);
@@ -158,6 +218,58 @@ static double G_row(const double a[4], const double b[4], int k)
     double G[12];
     vt_euler_G(G, a);
     return G[k] * b[0] + G[3 + k] * b[1] + G[6 + k] * b[2] + G[9 + k] * b[3];
+}
+
+static void conj4(double c[4], const double p[4])
+{
+    c[0] = p[0]; c[1] = -p[1]; c[2] = -p[2]; c[3] = -p[3];
+}
+
+/* b's orientation relative to a's, p_r = p_a* ⊗ p_b, its rate and its second rate at q̈ = 0:
+ * ṗ_r = ṗ_a* ⊗ p_b + p_a* ⊗ ṗ_b, p̈_r0 = p̈_a0* ⊗ p_b + 2 ṗ_a* ⊗ ṗ_b + p_a* ⊗ p̈_b0 */
+static void relative_motion(const body_state *A, const body_state *B, double pr[4], double prd[4], double prdd[4])
+{
+    double ca[4], cad[4], cadd[4], t[4];
+    conj4(ca, A->p);
+    conj4(cad, A->pd);
+    conj4(cadd, A->pdd0);
+    vt_quat_mul(pr, ca, B->p);
+    vt_quat_mul(prd, cad, B->p);
+    vt_quat_mul(t, ca, B->pd);
+    for (int c = 0; c < 4; c++) prd[c] += t[c];
+    vt_quat_mul(prdd, cadd, B->p);
+    vt_quat_mul(t, cad, B->pd);
+    for (int c = 0; c < 4; c++) prdd[c] += 2.0 * t[c];
+    vt_quat_mul(t, ca, B->pdd0);
+    for (int c = 0; c < 4; c++) prdd[c] += t[c];
+}
+
+/* Row k of a relative orientation drive, 2 G(p_d) p_r with p_r = p_a* ⊗ p_b: bilinear in p_a
+ * and p_b, so its exact gradients are the row on p_r's columns e_c* ⊗ p_b (for p_a) and
+ * p_a* ⊗ e_c (for p_b); Φ_t = 2 G(ṗ_d) p_r, γ = −[2 G(p̈_d) p_r + 4 G(ṗ_d) ṗ_r + 2 G(p_d) p̈_r0] */
+static void relative_row(vt_data *d, int r, int k, const body_state *A, const body_state *B, const double pdes[4],
+                         const double pdes_d[4], const double pdes_dd[4], const double pr[4], const double prd[4],
+                         const double prdd[4])
+{
+    double *pxa = d->Phix + 14 * r, *pxb = pxa + 7, ca[4], G[12];
+    conj4(ca, A->p);
+    vt_euler_G(G, pdes);
+    memset(pxa, 0, 14 * sizeof(double));
+    for (int c = 0; c < 4; c++) {
+        double e[4] = {0, 0, 0, 0}, col[4];
+        e[c] = 1.0;
+        if (A->id != 0) {
+            double ec[4];
+            conj4(ec, e);
+            vt_quat_mul(col, ec, B->p);
+            pxa[3 + c] = 2.0 * (G[k] * col[0] + G[3 + k] * col[1] + G[6 + k] * col[2] + G[9 + k] * col[3]);
+        }
+        vt_quat_mul(col, ca, e);
+        pxb[3 + c] = 2.0 * (G[k] * col[0] + G[3 + k] * col[1] + G[6 + k] * col[2] + G[9 + k] * col[3]);
+    }
+    d->Phi[r] = 2.0 * G_row(pdes, pr, k);
+    d->Phit[r] = 2.0 * G_row(pdes_d, pr, k);
+    d->gamma[r] = -(2.0 * G_row(pdes_dd, pr, k) + 4.0 * G_row(pdes_d, prd, k) + 2.0 * G_row(pdes, prdd, k));
 }
 
 /* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
@@ -260,6 +372,7 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
     const double t = d->time;
     if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
     double pdes[4] = {1, 0, 0, 0}, pdes_d[4] = {0}, pdes_dd[4] = {0};
+    double prel[4] = {1, 0, 0, 0}, prel_d[4] = {0}, prel_dd0[4] = {0}; /* p_a* ⊗ p_b and its rates */
     const int drive_rows = vt_drive_rows(m);
     const size_t mark = vt_scratch_mark(d);
     double *Si = dense ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
@@ -360,6 +473,12 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             if (k == 0) {
                 st = prescribed_orientation(d->message, owner, &m->drive[owner], t, pdes, pdes_d, pdes_dd);
                 if (st) return vt_scratch_release(d, mark), st;
+            }
+            if (m->drive[owner].type == VT_DRIVE_RELATIVE_ORIENTATION) {
+                if (k == 0) relative_motion(&A, &B, prel, prel_d, prel_dd0);
+                relative_row(d, r, k, &A, &B, pdes, pdes_d, pdes_dd, prel, prel_d, prel_dd0);
+                phiq_row(m, d, r, dense, Si);
+                break;
             }
             double G[12];
             vt_euler_G(G, pdes);

@@ -71,6 +71,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->qdd = take(base, &used, nv * sizeof(double));
     d->lambda = take(base, &used, nc * sizeof(double));
     d->xdd = take(base, &used, nx * sizeof(double));
+    d->alpha = take(base, &used, 3 * nb * sizeof(double));
     d->qfrc_drive = take(base, &used, nv * sizeof(double));
     d->drive_effort = take(base, &used, nd * sizeof(double));
     d->drive_force = take(base, &used, 3 * nd * sizeof(double));
@@ -79,6 +80,10 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
     d->jnt_moment = take(base, &used, 3 * nb * sizeof(double));
     d->jnt_force_body = take(base, &used, 3 * nb * sizeof(double));
     d->jnt_moment_body = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_force_total = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_moment_total = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_force_total_body = take(base, &used, 3 * nb * sizeof(double));
+    d->jnt_moment_total_body = take(base, &used, 3 * nb * sizeof(double));
     d->cut_force = take(base, &used, 3 * nk * sizeof(double));
     d->cut_moment = take(base, &used, 3 * nk * sizeof(double));
     d->cut_force_body = take(base, &used, 3 * nk * sizeof(double));

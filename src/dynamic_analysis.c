@@ -33,7 +33,10 @@
  * again; the interpolant's error is measured against IDA's own at each step's middle. (Or, with
  * forward_independent = 0, both share one IDA run, y = [y_driven; y_forward], the efforts from
  * the driven block's λ at the same t.) For a fully driven model they are exact: the kinematic
- * solution at every t that IDA asks for.
+ * solution at every t that IDA asks for, Newton started from the analysis's rows around t
+ * interpolated, and at the output times the rows themselves. A forward model without constraint
+ * rows (a tree) has its residual M* v' − Q by one recursive pass (vt_inverse_dynamics_motion
+ * with q̈ = v'): the same equations, O(n), M* and Q not formed.
  */
 #include <float.h>
 #include <stdio.h>
@@ -101,6 +104,8 @@ typedef struct {
         double t;       /* the last refusal's time */
         char msg[256];  /* and its message */
         int dk_valid;   /* dk holds the exact efforts at dk->time (they depend on t alone) */
+        int motion;     /* the forward block's residual by motion_residual (set by start()) */
+        const vt_trajectory *rows; /* exact efforts: the kinematic analysis's rows, Newton's starts */
     } s;
 } dae;
 
@@ -117,7 +122,7 @@ static vt_status drive_functions(const vt_model *m, double t, char *msg, size_t 
         const char *name = m->drive_name ? m->drive_name + (size_t)VT_NAME_MAX * (size_t)k : "";
         double v[3], p[4], w[3], wd[3];
         vt_status st = VT_OK;
-        if (dr->type == VT_DRIVE_ORIENTATION && dr->orientation_callback) {
+        if (vt_drive_turns(dr->type) && dr->orientation_callback) {
             if (dr->orientation_callback(t, p, w, wd, dr->user) != 0) st = VT_ERR_CALLBACK;
             else if (!vt_all_finite(p, 4) || !vt_all_finite(w, 3) || !vt_all_finite(wd, 3)) st = VT_ERR_NONFINITE;
             if (st) {
@@ -125,11 +130,17 @@ static vt_status drive_functions(const vt_model *m, double t, char *msg, size_t 
                          st == VT_ERR_CALLBACK ? "failed" : "returned NaN or Inf", t);
                 return st;
             }
-        } else if ((st = vt_function_eval_valid(v, &dr->f, t))) {
-            snprintf(msg, size, "drive %d%s%s: time function %s at t = %.17g", k, name[0] ? " " : "", name,
-                     st == VT_ERR_CALLBACK ? "failed" : st == VT_ERR_NONFINITE ? "returned NaN or Inf" : "failed",
-                     t);
-            return st;
+        } else {
+            const vt_function *fs[3];
+            const int nf = vt_drive_functions(dr, fs);
+            for (int e = 0; e < nf; e++)
+                if ((st = vt_function_eval_valid(v, fs[e], t))) {
+                    snprintf(msg, size, "drive %d%s%s: time function %s%s at t = %.17g", k, name[0] ? " " : "", name,
+                             e == 0 ? "" : e == 1 ? "f2 " : "f3 ",
+                             st == VT_ERR_CALLBACK ? "failed" : st == VT_ERR_NONFINITE ? "returned NaN or Inf" : "failed",
+                             t);
+                    return st;
+                }
         }
     }
     return VT_OK;
@@ -256,6 +267,72 @@ static vt_status block_residual(const dae *p, const vt_model *m, vt_data *d, dou
                : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
 }
 
+/* The residual of a block without constraint rows (a tree: the forward model of most
+ * mechanisms), q' − T v and M* v' − Q, by one recursive pass: M* v' − Q is the effort
+ * s · W̄ − qfrc that the motion v' needs (vt_inverse_dynamics_motion, O(n)), neither M* nor Q
+ * formed; the loads already in d */
+static vt_status motion_residual(const vt_model *m, vt_data *d, double t, const double *y, const double *yp, double *r)
+{
+    const int nq = m->nq, nv = m->nv;
+    memcpy(d->q, y, (size_t)nq * sizeof(double));
+    memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
+    memcpy(d->qdd, yp + nq, (size_t)nv * sizeof(double));
+    d->time = t;
+    const vt_status st = vt_inverse_dynamics_motion(m, d);
+    if (st) return st;
+    qdot_from_v(m, y, y + nq, r);
+    for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
+    memcpy(r + nq, d->qfrc_drive, (size_t)nv * sizeof(double));
+    return vt_all_finite(r, nq + nv) ? VT_OK : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
+}
+
+/* The drives' exact efforts at t into dk: the kinematic solution at t by Newton from the analysis's
+ * two rows around t interpolated (vt_kinematic_start: at mid-interval often within newton_tol
+ * already, so that the solve is one evaluation of Φ and Φ_q, the velocities' solve and the
+ * instant), or, should Newton fail from there, from the nearer row itself */
+static vt_status exact_efforts(const dae *p, const vt_model *m, double t)
+{
+    const vt_trajectory *tr = p->s.rows;
+    vt_data *dk = p->dk;
+    int lo = 0, hi = tr->nfilled - 1; /* t[lo] ≤ t < t[hi], or the last two rows */
+    while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        if (tr->t[mid] <= t) lo = mid;
+        else hi = mid;
+    }
+    const int near = t - tr->t[lo] <= tr->t[hi] - t ? lo : hi, far = near == lo ? hi : lo;
+    int third = -1; /* the next row out on either side, the nearer one */
+    if (lo > 0 && (hi + 1 >= tr->nfilled || t - tr->t[lo - 1] <= tr->t[hi + 1] - t)) third = lo - 1;
+    else if (hi + 1 < tr->nfilled) third = hi + 1;
+    if (far == near) third = -1;
+    vt_status st = vt_kinematic_start(m, dk, tr, near, far == near ? -1 : far, third);
+    if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0);
+    if (st == VT_ERR_NEWTON) {
+        memcpy(dk->q, tr->q + (size_t)near * (size_t)m->nq, (size_t)m->nq * sizeof(double));
+        memcpy(dk->qd, tr->qd + (size_t)near * (size_t)m->nv, (size_t)m->nv * sizeof(double));
+        st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0);
+    }
+    return st;
+}
+
+/* At an output time the drives' efforts are row k of the analysis (stored at exactly that time):
+ * what vt_apply_drive_loads reads, copied into dk */
+static void row_efforts(const dae *p, const vt_model *m, int k)
+{
+    const vt_trajectory *tr = p->s.rows;
+    vt_data *dk = p->dk;
+    const size_t r = (size_t)k, nv = (size_t)m->nv, nd = (size_t)m->ndrive, D = sizeof(double);
+    memcpy(dk->q, tr->q + r * (size_t)m->nq, (size_t)m->nq * D);
+    memcpy(dk->qd, tr->qd + r * nv, nv * D);
+    memcpy(dk->qdd, tr->qdd + r * nv, nv * D);
+    memcpy(dk->lambda, tr->lambda + r * (size_t)m->nc, (size_t)m->nc * D);
+    memcpy(dk->qfrc_drive, tr->qfrc_drive + r * nv, nv * D);
+    memcpy(dk->drive_effort, tr->drive_effort + r * nd, nd * D);
+    memcpy(dk->drive_force, tr->drive_force + 3 * r * nd, 3 * nd * D);
+    memcpy(dk->drive_moment, tr->drive_moment + 3 * r * nd, 3 * nd * D);
+    dk->time = tr->t[k];
+}
+
 static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)
 {
     dae *p = user;
@@ -276,8 +353,7 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         if (!p->s.dk_valid || p->dk->time != t) { /* (IDA's iterations and Jacobian at one t reuse them) */
             p->dk->time = t;
             p->s.dk_valid = 0;
-            if ((st = vt_kinematic_solve_impl(m, p->dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0)))
-                return refused(p, st, p->dk->message, t);
+            if ((st = exact_efforts(p, m, t))) return refused(p, st, p->dk->message, t);
             p->s.dk_valid = 1;
         }
     } else { /* the efforts of the driven block's current λ */
@@ -285,14 +361,15 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         if (p->form != VT_FORMULATION_ODE) memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
         if ((st = vt_drive_efforts(m, p->d))) return refused(p, st, p->d->message, t);
     }
-    /* the forward block's positions first: body drives' loads act at its body points */
+    /* the forward block's positions first: body drives' loads act at its body points (joint
+     * torques, the default, need none) */
     memcpy(p->df->q, y + p->nd, (size_t)p->mf->nq * sizeof(double));
     memcpy(p->df->qd, y + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
-    if ((st = vt_kinematics(p->mf, p->df))) return refused(p, st, p->df->message, t);
+    if (p->as_loads && (st = vt_kinematics_tree(p->mf, p->df, 0))) return refused(p, st, p->df->message, t);
     vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-    if ((st = block_residual(p, p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd)))
-        return refused(p, st, p->df->message, t);
-    return 0;
+    st = p->s.motion ? motion_residual(p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd)
+                   : block_residual(p, p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd);
+    return st ? refused(p, st, p->df->message, t) : 0;
 }
 
 /* J = ∂F/∂y + c_j ∂F/∂y' by IDA's dense difference quotient (see the top of the file), in IDA's
@@ -537,16 +614,22 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                     goto done;
                 }
             } else if (p->dk) { /* exact efforts: the kinematic row already stored at this time */
-                p->dk->time = tret;
-                if ((st = vt_kinematic_solve(m, p->dk, p->newton_tol, p->newton_maxit))) {
-                    vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
-                    goto done;
-                }
+                row_efforts(p, m, k);
+                p->s.dk_valid = 1;
             }
             memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
-            if ((st = vt_kinematics(p->mf, p->df))) goto done;
-            vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-            if ((st = block_output(p->mf, p->df, tret, yv + p->nd, p->band))) {
+            if (p->s.motion) { /* a tree: its q̈ and reactions by the recursive instant (articulated bodies) */
+                memcpy(p->df->qd, yv + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
+                p->df->time = tret;
+                if (p->as_loads && (st = vt_kinematics_tree(p->mf, p->df, 0))) goto done;
+                vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+                st = vt_inverse_dynamics_recursive(p->mf, p->df);
+            } else {
+                if ((st = vt_kinematics(p->mf, p->df))) goto done;
+                vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+                st = block_output(p->mf, p->df, tret, yv + p->nd, p->band);
+            }
+            if (st) {
                 vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->df->message);
                 goto done;
             }
@@ -629,6 +712,8 @@ static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
     if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
     p->w = buf + 3 * (size_t)N;
     p->band = p->form == VT_FORMULATION_ODE ? opt->redundant_band : 0.0; /* the ODE form's solves */
+    /* a forward model without rows (no loop, no base body): its residual by one recursive pass */
+    p->s.motion = p->mf && p->mf->nc == 0 && p->form != VT_FORMULATION_ODE;
     if (p->m) {
         block_initial(p->m, p->d, p->form, buf, buf + N);
         block_ids(p->m, p->form, buf + 2 * N);
@@ -655,6 +740,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
         vt_trajectory_store_forward(tr, mf, df, 0);
         dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
                  opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, 0.0, {0}};
+        p.s.rows = tr;
         st = start(&p, opt, tr);
     }
     vt_data_free(df);

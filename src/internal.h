@@ -235,6 +235,9 @@ size_t vt_inverse_transform_scratch(const vt_model *m);
  * itself when its max |Φ| exceeds ½ h max |Φ_t| (roughly qprev's own residual at t) */
 vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
                                   const double *qprev, const double *qdprev, double h);
+/* Newton's start at d->time into d->q, d->qd: the Hermite polynomial through q, q̇, q̈ of rows k1
+ * and k2 of tr (k2 before k1: extrapolated; after: interpolated; −1: Taylor from k1 alone) */
+vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k1, int k2, int k3);
 
 /* Writes a formatted message into buf (size 256) and returns status. */
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
@@ -344,6 +347,9 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
 double vt_rows_grip(const vt_model *m, const vt_data *d);
 /* vt_reactions without the argument checks (ẍ and α from d->qdd) */
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
+/* after vt_solve: VT_ERR_SINGULAR when rates whose M* row it zeroed (round-off held by rows)
+ * leave the efforts without a certain digit (reactions.c); who names the caller */
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar
  * (6 x (nbody+1), recursive.c), the rows' wrenches already taken off it with rows_in_wbar;
  * G: scratch of 6 x (nbody+1), apart from Wbar */
@@ -353,6 +359,9 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
 void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const double *lam);
 /* jnt_unique and cut_unique from the solve's rank and null directions (reactions.c) */
 vt_status vt_reactions_unique(const vt_model *m, vt_data *d);
+/* what every instant path ends with: α of every body (from ẍ) and each joint's total wrench,
+ * reaction plus actuation (given: the motion given, every rate's qfrc_drive its effort) */
+vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
 
 /* the given motion of a mechanism with loops or couplings: the joint drives' rows take q̈ from
  * d->qdd (instant.c) */
@@ -386,10 +395,28 @@ enum {
 /* Which kind of object owns a row: drive, cut joint or base body. */
 enum { VT_OWNER_DRIVE, VT_OWNER_CUT, VT_OWNER_COUPLING, VT_OWNER_BASE };
 int vt_row_owner_kind(const vt_model *m, int row);
-/* Rows of a cut joint of this kind. */
-int vt_cut_nrows(int joint_type);
+/* Rows of a cut joint: its kind's, or 2 for a planar pin. */
+int vt_cut_nrows(const vt_cut_joint_def *c);
 /* Number of rows that belong to drives (they come first). */
 int vt_drive_rows(const vt_model *m);
+/* An orientation drive, absolute or relative (3 rows, p_d(t) from prescribed orientation) */
+static inline int vt_drive_turns(vt_drive_type type)
+{
+    return type == VT_DRIVE_ORIENTATION || type == VT_DRIVE_RELATIVE_ORIENTATION;
+}
+/* Rows of one drive */
+static inline int vt_drive_nrows(const vt_drive_def *d) { return vt_drive_turns(d->type) ? 3 : 1; }
+/* A drive's time functions (f; with an orientation drive's sequence also f2, f3; none for an
+ * orientation callback) into fs; returns how many */
+static inline int vt_drive_functions(const vt_drive_def *d, const vt_function *fs[3])
+{
+    if (vt_drive_turns(d->type) && d->orientation_callback) return 0;
+    fs[0] = &d->f;
+    if (!vt_drive_turns(d->type) || !d->sequence) return 1;
+    fs[1] = &d->f2;
+    fs[2] = &d->f3;
+    return 3;
+}
 
 /* LAPACK routines of the solve (solve.c) */
 void dsytrf_rk_(const char *uplo, const int *n, double *a, const int *lda, double *e, int *ipiv, double *work,
@@ -436,9 +463,11 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
 int vt_run_rows(const vt_run_options *opt);
 double vt_run_time(const vt_run_options *opt, int k);
 
-/* The forward check with IDA (integrate.c): integrates the model without drives (mf, df)
+/* The forward check with IDA (dynamic_analysis.c): integrates the model without drives (mf, df)
  * from the driven state at opt->t0, with df->qfrc = the drives' generalized force at each
- * time, evaluated exactly by vt_kinematic_solve() on dk (fully driven models). */
+ * time, evaluated exactly on dk by vt_kinematic_solve_impl from the rows of tr around it,
+ * interpolated (vt_kinematic_start), and at the output times taken from tr's rows (fully driven
+ * models). */
 vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr);
 
 #endif

@@ -1,7 +1,7 @@
 /* The kinematic analysis over time: a fully driven model (its constraint rows fix every rate) at
  * every output time, each instant by vt_kinematic_solve's Newton–Raphson from the previous rows
- * extrapolated (predict below: Hermite through q, q̇, q̈ of the last two, O(h⁶)), or from the
- * previous row itself when that start's residual is not below ½ h max |Φ_t| or Newton fails
+ * extrapolated (vt_kinematic_start in src/kinematic_solve.c: Hermite through q, q̇, q̈ of the last
+ * two, O(h⁶)), or from the previous row itself when that start's residual is not below ½ h max |Φ_t| or Newton fails
  * from it; the instant after the solve by the recursive evaluation. Then the forward check
  * (src/dynamic_analysis.c): the model without drives integrated under the drives' efforts,
  * which must reproduce the motion. Rows at t0 and the output times (the uniform ones, or the
@@ -46,51 +46,6 @@ static vt_status fully_driven(const vt_model *m, vt_data *d, double t0, int solv
     return VT_OK;
 }
 
-/* Newton's start at row k from rows k − 1 and k − 2 (τ = t − t1, δ = t1 − t2, s = h / δ, h the
- * step to t): the Hermite extrapolation that matches q, q̇, q̈ at both rows, exact for quintics
- * (error O(h⁶)), for the rates whose q̇ is the derivative of q,
- *   q(t1 + h) − q1 = h q̇1 + ½ h² q̈1 + u3 s³ + u4 s⁴ + u5 s⁵,
- *   u5 = −(R2 + 6 R1 + 12 R0) / 2,  u4 = 2 u5 − R1 − 3 R0,  u3 = u5 − R1 − 4 R0,
- *   R0 = q2 − q1 + δ q̇1 − ½ δ² q̈1,  R1 = δ (q̇2 − q̇1 + δ q̈1),  R2 = δ² (q̈2 − q̈1);
- * for a rotation's rates (spherical, free), whose q is not their integral, the cubic q̇ that
- * matches q̇, q̈ at both rows, integrated over [t1, t]:
- *   h q̇1 + ½ h² q̈1 + w2 h s² / 3 + w3 h s³ / 4,  w3 = S1 + 2 S0,  w2 = 3 S0 + S1,
- *   S0 = q̇2 − q̇1 + δ q̈1,  S1 = δ (q̈2 − q̈1);
- * from row 0 alone, Taylor's h q̇1 + ½ h² q̈1. Then q ← q1 ⊕ increment, q̇ ← q̇1 + h q̈1.
- * d->qd holds the increment while vt_integrate_q turns it into q (Euler parameters on the sphere) */
-static vt_status predict(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k)
-{
-    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
-    const double t1 = tr->t[k - 1], h = d->time - t1;
-    const double *q1 = tr->q + (size_t)(k - 1) * nq, *v1 = tr->qd + (size_t)(k - 1) * nv,
-                 *a1 = tr->qdd + (size_t)(k - 1) * nv;
-    for (size_t c = 0; c < nv; c++) d->qd[c] = h * (v1[c] + 0.5 * h * a1[c]);
-    if (k >= 2) {
-        const double *q2 = q1 - nq, *v2 = v1 - nv, *a2 = a1 - nv, dl = t1 - tr->t[k - 2], s = h / dl;
-        for (int i = 1; i <= m->nbody; i++) {
-            const int jt = m->body_joint[i], va = m->body_vadr[i], qa = m->body_qadr[i];
-            for (int o = 0; o < m->body_nv[i]; o++) {
-                const size_t c = (size_t)(va + o);
-                if (jt == VT_JOINT_SPHERICAL || (jt == VT_JOINT_FREE && o >= 3)) {
-                    const double S0 = v2[c] - v1[c] + dl * a1[c], S1 = dl * (a2[c] - a1[c]);
-                    d->qd[c] += h * s * s * ((3.0 * S0 + S1) / 3.0 + s * (S1 + 2.0 * S0) / 4.0);
-                } else {
-                    const size_t e = (size_t)(qa + o);
-                    const double R0 = q2[e] - q1[e] + dl * (v1[c] - 0.5 * dl * a1[c]), R1 = dl * (v2[c] - v1[c] + dl * a1[c]),
-                                 R2 = dl * dl * (a2[c] - a1[c]);
-                    const double u5 = -0.5 * (R2 + 6.0 * R1 + 12.0 * R0), u4 = 2.0 * u5 - R1 - 3.0 * R0,
-                                 u3 = u5 - R1 - 4.0 * R0;
-                    d->qd[c] += s * s * s * (u3 + s * (u4 + s * u5));
-                }
-            }
-        }
-    }
-    const vt_status st = vt_integrate_q(d->q, m, q1, d->qd, 1.0);
-    if (st) return vt_fail(d->message, st, "vt_kinematic_analysis: the start predicted at t = %g is not finite", d->time);
-    for (size_t c = 0; c < nv; c++) d->qd[c] = v1[c] + h * a1[c];
-    return VT_OK;
-}
-
 vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr)
 {
     vt_status st = vt_check_run(m, d, opt, tr, "vt_kinematic_analysis");
@@ -112,7 +67,7 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         d->time = vt_run_time(opt, k);
         const double *qp = k ? tr->q + (size_t)(k - 1) * (size_t)m->nq : NULL;
         const double *qdp = k ? tr->qd + (size_t)(k - 1) * (size_t)m->nv : NULL;
-        if (k > 0 && (st = predict(m, d, tr, k))) return st;
+        if (k > 0 && (st = vt_kinematic_start(m, d, tr, k - 1, k >= 2 ? k - 2 : -1, -1))) return st;
         /* row 0 by the dense instant: its M* and Φ_q decide the rank below */
         if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, k > 0, qp, qdp, k ? d->time - tr->t[k - 1] : 0.0))) {
             if (k == 0 || st != VT_ERR_NEWTON) return st;

@@ -11,6 +11,9 @@
  * (consistent initial values of a dynamic analysis) LAPACK's dgels gives the least-norm
  * correction, a projection onto the constraint manifold; dependent rows of a model that allows
  * them, the least-norm least-squares step (dgelsd).
+ * Newton's starts for the analyses over time (vt_kinematic_start, below): the Hermite polynomial
+ * through q, q̇, q̈ of two or three rows of a trajectory, extrapolated to the next row's time by
+ * the kinematic analysis, interpolated to the times IDA asks for by its forward check.
  */
 #include <string.h>
 
@@ -152,6 +155,96 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
     if (st) return restore(m, d, qsave, mark, st);
     vt_scratch_release(d, mark);
+    return VT_OK;
+}
+
+/* A start for Newton at d->time from rows k1 and k2 of tr (τ = t − t1, δ = t1 − t2, s = h / δ, h
+ * the step to t from t1; k2 before k1 to extrapolate, after it to interpolate, or −1): the Hermite
+ * polynomial that matches q, q̇, q̈ at both rows, exact for quintics (error O(h⁶)), for the rates
+ * whose q̇ is the derivative of q,
+ *   q(t1 + h) − q1 = h q̇1 + ½ h² q̈1 + u3 s³ + u4 s⁴ + u5 s⁵,
+ *   u5 = −(R2 + 6 R1 + 12 R0) / 2,  u4 = 2 u5 − R1 − 3 R0,  u3 = u5 − R1 − 4 R0,
+ *   R0 = q2 − q1 + δ q̇1 − ½ δ² q̈1,  R1 = δ (q̇2 − q̇1 + δ q̈1),  R2 = δ² (q̈2 − q̈1);
+ * for a rotation's rates (spherical, free), whose q is not their integral, the cubic q̇ that
+ * matches q̇, q̈ at both rows, integrated over [t1, t]:
+ *   h q̇1 + ½ h² q̈1 + w2 h s² / 3 + w3 h s³ / 4,  w3 = S1 + 2 S0,  w2 = 3 S0 + S1,
+ *   S0 = q̇2 − q̇1 + δ q̈1,  S1 = δ (q̈2 − q̈1);
+ * from row k1 alone, Taylor's h q̇1 + ½ h² q̈1. Then q ← q1 ⊕ increment, q̇ ← q̇1 + h q̈1.
+ * d->qd holds the increment while vt_integrate_q turns it into q (Euler parameters on the sphere).
+ * The analysis extrapolates from its last two rows; the forward check interpolates between the
+ * two rows around the time IDA asks for (at mid-interval 2⁶ × 2³ times closer than extrapolated). */
+/* The Hermite polynomial through q, q̇, q̈ at three rows (degree 8) in Newton's form, from the
+ * confluent divided differences of the nodes z = (t1, t1, t1, t2, t2, t2, t3, t3, t3) − t1, where
+ * f[z_i..z_{i+j}] over one row's repeated node is q̇ (j = 1) or ½ q̈ (j = 2):
+ *   q(t1 + h) − q1 = h (f1 + (h − z1) (f2 + (h − z2) (f3 + …)))
+ * The nodes' reciprocal differences are the same for every coordinate: taken once */
+typedef struct {
+    int row[3];
+    double z[9], inv[9][9]; /* inv[j][n] = 1 / (z[n] − z[n − j]), 0 over one row's node */
+} hermite3;
+
+static void hermite3_nodes(hermite3 *H, const vt_trajectory *tr, int k1, int k2, int k3)
+{
+    H->row[0] = k1, H->row[1] = k2, H->row[2] = k3;
+    for (int n = 0; n < 9; n++) H->z[n] = tr->t[H->row[n / 3]] - tr->t[k1];
+    for (int j = 1; j < 9; j++)
+        for (int n = j; n < 9; n++) H->inv[j][n] = n / 3 == (n - j) / 3 ? 0.0 : 1.0 / (H->z[n] - H->z[n - j]);
+}
+
+/* q(t1 + h) − q1 of coordinate e (rate c) */
+static double hermite3_increment(const hermite3 *H, const vt_trajectory *tr, int e, int c, double h)
+{
+    const size_t nq = (size_t)tr->model->nq, nv = (size_t)tr->model->nv;
+    double f[9];
+    for (int n = 0; n < 9; n++) f[n] = tr->q[(size_t)H->row[n / 3] * nq + (size_t)e];
+    for (int j = 1; j < 9; j++) /* column j of the table, bottom up, in place */
+        for (int n = 8; n >= j; n--) {
+            if (H->inv[j][n] != 0.0) {
+                f[n] = (f[n] - f[n - 1]) * H->inv[j][n];
+            } else { /* one row's repeated node (j = 1, 2): its derivative / j! */
+                const size_t r = (size_t)H->row[n / 3] * nv + (size_t)c;
+                f[n] = j == 1 ? tr->qd[r] : 0.5 * tr->qdd[r];
+            }
+        }
+    double p = f[8];
+    for (int n = 7; n >= 1; n--) p = f[n] + (h - H->z[n]) * p;
+    return h * p;
+}
+
+vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory *tr, int k1, int k2, int k3)
+{
+    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
+    const double t1 = tr->t[k1], h = d->time - t1;
+    const double *q1 = tr->q + (size_t)k1 * nq, *v1 = tr->qd + (size_t)k1 * nv, *a1 = tr->qdd + (size_t)k1 * nv;
+    for (size_t c = 0; c < nv; c++) d->qd[c] = h * (v1[c] + 0.5 * h * a1[c]);
+    if (k2 >= 0) {
+        const double *q2 = tr->q + (size_t)k2 * nq, *v2 = tr->qd + (size_t)k2 * nv, *a2 = tr->qdd + (size_t)k2 * nv;
+        const double dl = t1 - tr->t[k2], s = h / dl;
+        hermite3 H;
+        if (k3 >= 0) hermite3_nodes(&H, tr, k1, k2, k3);
+        for (int i = 1; i <= m->nbody; i++) {
+            const int jt = m->body_joint[i], va = m->body_vadr[i], qa = m->body_qadr[i];
+            for (int o = 0; o < m->body_nv[i]; o++) {
+                const size_t c = (size_t)(va + o);
+                if (jt == VT_JOINT_SPHERICAL || (jt == VT_JOINT_FREE && o >= 3)) {
+                    const double S0 = v2[c] - v1[c] + dl * a1[c], S1 = dl * (a2[c] - a1[c]);
+                    d->qd[c] += h * s * s * ((3.0 * S0 + S1) / 3.0 + s * (S1 + 2.0 * S0) / 4.0);
+                } else if (k3 >= 0) { /* degree 8 through the three rows */
+                    d->qd[c] = hermite3_increment(&H, tr, qa + o, (int)c, h);
+                } else {
+                    const size_t e = (size_t)(qa + o);
+                    const double R0 = q2[e] - q1[e] + dl * (v1[c] - 0.5 * dl * a1[c]), R1 = dl * (v2[c] - v1[c] + dl * a1[c]),
+                                 R2 = dl * dl * (a2[c] - a1[c]);
+                    const double u5 = -0.5 * (R2 + 6.0 * R1 + 12.0 * R0), u4 = 2.0 * u5 - R1 - 3.0 * R0,
+                                 u3 = u5 - R1 - 4.0 * R0;
+                    d->qd[c] += s * s * s * (u3 + s * (u4 + s * u5));
+                }
+            }
+        }
+    }
+    const vt_status st = vt_integrate_q(d->q, m, q1, d->qd, 1.0);
+    if (st) return vt_fail(d->message, st, "vt_kinematic_analysis: the start predicted at t = %g is not finite", d->time);
+    for (size_t c = 0; c < nv; c++) d->qd[c] = v1[c] + h * a1[c];
     return VT_OK;
 }
 

@@ -11,8 +11,9 @@
  * The path of body i is the list of rates of the joints between the ground and i: the
  * columns of S that are non-zero in body i's rows (S is block lower triangular in tree order,
  * the paper's "reference matrix").
- * A drive's spline time function (src/functions.c) owns its samples and their second
- * derivatives: one block per drive in the builder, and a part of the model's one block.
+ * A drive's spline time functions (src/functions.c: f, and f2, f3 of an orientation drive's
+ * sequence) own their samples and second derivatives: one block per drive in the builder
+ * (each spline's t, y, f'' in turn), and a part of the model's one block.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,7 +31,7 @@ struct vt_builder {
     vt_drive_def *drives;
     vt_name *drive_names;
     int ndrive, capdrive, capdrivenames;
-    double **samples; /* per drive: its spline's t, y and f'' (3 nsample), the builder's; or NULL */
+    double **samples; /* per drive: its splines' t, y and f'' (3 nsample each), the builder's; or NULL */
     int capsamples;
     vt_cut_joint_def *cuts;
     vt_name *cut_names;
@@ -69,8 +70,11 @@ vt_drive_def vt_default_drive_def(void)
     d.type = VT_DRIVE_JOINT;
     d.body = 1;
     d.f = vt_function_constant(0.0);
+    d.f2 = vt_function_constant(0.0);
+    d.f3 = vt_function_constant(0.0);
     d.axis[2] = 1.0;
     d.orientation[0] = 1.0;
+    d.reference = -1;
     return d;
 }
 
@@ -373,6 +377,18 @@ int vt_builder_add_frame(vt_builder *b, const vt_frame_def *def)
 }
 
 
+/* The library's copy of an orientation drive's sequence name, or NULL if it names none: three
+ * axes of one case, no letter twice in a row (upper case body-fixed, lower case fixed axes) */
+static const char *sequence_literal(const char *s)
+{
+    static const char *const known[] = {"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY",
+                                        "ZXZ", "ZYZ", "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx",
+                                        "yxy", "yzy", "zxz", "zyz"};
+    for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
+        if (strcmp(s, known[k]) == 0) return known[k];
+    return NULL;
+}
+
 static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_def *d)
 {
     if ((int)d->type < 0 || d->type >= VT_DRIVE_TYPE_COUNT)
@@ -381,6 +397,8 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
         return vt_fail(msg, VT_ERR_BAD_INDEX, "drive %d: body %d is not a body added so far (1..%d)", k,
                        d->body, b->n);
     const vt_body_def *body = &b->bodies[d->body - 1];
+    if (d->sequence && !vt_drive_turns(d->type))
+        return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: a sequence of angles belongs to orientation drives", k);
     switch (d->type) {
     case VT_DRIVE_JOINT:
         if (d->index < 0 || d->index >= joint_nv[body->joint])
@@ -402,47 +420,92 @@ static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_
         if (!vt_all_finite(d->point, 3))
             return vt_fail(msg, VT_ERR_NONFINITE, "drive %d: point not finite", k);
         break;
-    default: /* orientation */
+    default: /* orientation, absolute or relative */
         if (!vt_all_finite(d->axis, 3) || !vt_all_finite(d->orientation, 4))
             return vt_fail(msg, VT_ERR_NONFINITE, "drive %d: axis or orientation not finite", k);
-        if (!d->orientation_callback) {
-            if (!normalize(d->axis, 3)) return vt_fail(msg, VT_ERR_AXIS_ZERO, "drive %d: axis of zero length", k);
-            if (!normalize(d->orientation, 4))
-                return vt_fail(msg, VT_ERR_QUATERNION, "drive %d: orientation of zero norm", k);
+        if (d->sequence && d->orientation_callback)
+            return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: a sequence and an orientation callback both given; use one", k);
+        if (d->sequence && !(d->sequence = sequence_literal(d->sequence)))
+            return vt_fail(msg, VT_ERR_BAD_DRIVE,
+                           "drive %d: unknown sequence (three of X, Y, Z body-fixed or of x, y, z about fixed axes, "
+                           "no letter twice in a row, e.g. \"ZYX\", \"ZXZ\", \"xyz\")", k);
+        if (!d->orientation_callback && !d->sequence && !normalize(d->axis, 3))
+            return vt_fail(msg, VT_ERR_AXIS_ZERO, "drive %d: axis of zero length", k);
+        if ((!d->orientation_callback || d->type == VT_DRIVE_RELATIVE_ORIENTATION) && !normalize(d->orientation, 4))
+            return vt_fail(msg, VT_ERR_QUATERNION, "drive %d: orientation of zero norm", k);
+        if (d->type == VT_DRIVE_RELATIVE_ORIENTATION) {
+            if (d->reference < -1 || d->reference > b->n)
+                return vt_fail(msg, VT_ERR_BAD_INDEX,
+                               "drive %d: reference %d is not the ground (0), a body added so far (1..%d) or the body's "
+                               "joint (-1)", k, d->reference, b->n);
+            if (d->reference == d->body)
+                return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: body %d's orientation relative to itself", k, d->body);
+            if (d->reference == -1) { /* the joint's drive: p_a* ⊗ p_b = p_J ⊗ p0 (kinematics.c) */
+                d->reference = body->parent;
+                vt_quat_mul(d->orientation, d->orientation, body->orientation);
+            }
         }
         break;
     }
-    if (d->type != VT_DRIVE_ORIENTATION || !d->orientation_callback) {
+    const vt_function *fs[3];
+    const int nf = vt_drive_functions(d, fs);
+    for (int e = 0; e < nf; e++) {
         char fmsg[256];
-        vt_status st = vt_function_check(fmsg, &d->f);
-        if (st) return vt_fail(msg, st, "drive %d: %s", k, fmsg);
+        vt_status st = vt_function_check(fmsg, fs[e]);
+        if (st) return vt_fail(msg, st, "drive %d: %s%s", k, e == 0 ? "" : e == 1 ? "f2: " : "f3: ", fmsg);
     }
     return VT_OK;
 }
 
-/* a spline's samples copied, with their second derivatives, into a block of the builder's
- * (t, y, f'': 3n doubles), so that the caller's arrays are free after the drive is added */
-static vt_status own_spline(char *msg, int k, vt_function *f, double **block)
+/* the samples of a drive's spline functions (f, f2, f3) copied, with their second derivatives,
+ * into one block of the builder's (each spline's t, y, f'': 3n doubles), so that the caller's
+ * arrays are free after the drive is added; *block NULL if the drive has no spline */
+static vt_status own_splines(char *msg, int k, vt_drive_def *d, double **block)
 {
-    const size_t n = (size_t)f->nsample;
-    double *own = malloc(3 * n * sizeof(double)), *work = malloc(3 * n * sizeof(double));
+    vt_function *fs[3] = {&d->f, &d->f2, &d->f3};
+    const vt_function *used[3];
+    const int nf = vt_drive_functions(d, used);
+    size_t total = 0, most = 0;
+    for (int e = 0; e < nf; e++)
+        if (fs[e]->type == VT_FUNCTION_SPLINE) {
+            total += (size_t)fs[e]->nsample;
+            most = (size_t)fs[e]->nsample > most ? (size_t)fs[e]->nsample : most;
+        }
+    *block = NULL;
+    if (total == 0) return VT_OK;
+    double *own = malloc(3 * total * sizeof(double)), *work = malloc(3 * most * sizeof(double));
     if (!own || !work) {
         free(own);
         free(work);
-        return vt_fail(msg, VT_ERR_NO_MEMORY, "drive %d: out of memory for %zu spline samples", k, n);
+        return vt_fail(msg, VT_ERR_NO_MEMORY, "drive %d: out of memory for %zu spline samples", k, total);
     }
-    memcpy(own, f->sample_t, n * sizeof(double));
-    memcpy(own + n, f->sample_y, n * sizeof(double));
-    char fmsg[256];
-    const vt_status st = vt_spline_d2(fmsg, f->nsample, own, own + n, own + 2 * n, work);
+    double *at = own;
+    for (int e = 0; e < nf; e++) {
+        vt_function *f = fs[e];
+        if (f->type != VT_FUNCTION_SPLINE) continue;
+        const size_t n = (size_t)f->nsample;
+        memcpy(at, f->sample_t, n * sizeof(double));
+        memcpy(at + n, f->sample_y, n * sizeof(double));
+        char fmsg[256];
+        const vt_status st = vt_spline_d2(fmsg, f->nsample, at, at + n, at + 2 * n, work);
+        if (st) {
+            free(work);
+            free(own);
+            return vt_fail(msg, st, "drive %d: %s%s", k, e == 0 ? "" : e == 1 ? "f2: " : "f3: ", fmsg);
+        }
+        at += 3 * n;
+    }
     free(work);
-    if (st) {
-        free(own);
-        return vt_fail(msg, st, "drive %d: %s", k, fmsg);
+    at = own;
+    for (int e = 0; e < nf; e++) { /* every spline checked: the definition now points at the block */
+        vt_function *f = fs[e];
+        if (f->type != VT_FUNCTION_SPLINE) continue;
+        const size_t n = (size_t)f->nsample;
+        f->sample_t = at;
+        f->sample_y = at + n;
+        f->sample_d2 = at + 2 * n;
+        at += 3 * n;
     }
-    f->sample_t = own;
-    f->sample_y = own + n;
-    f->sample_d2 = own + 2 * n;
     *block = own;
     return VT_OK;
 }
@@ -453,6 +516,8 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
     vt_drive_def d = *def;
     if (d.f.type == VT_FUNCTION_SPLINE) d.f.sample_d2 = NULL; /* computed here, never trusted */
+    if (d.f2.type == VT_FUNCTION_SPLINE) d.f2.sample_d2 = NULL;
+    if (d.f3.type == VT_FUNCTION_SPLINE) d.f3.sample_d2 = NULL;
     vt_status st = VT_OK;
     if (d.frame) {
         if (d.type != VT_DRIVE_POINT)
@@ -463,8 +528,7 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
     vt_name name;
     if ((st = take_name(b->message, name, d.name, (const vt_name *)b->drive_names, b->ndrive, "drive", b->ndrive))) return st;
     double *own = NULL;
-    const int uses_f = d.type != VT_DRIVE_ORIENTATION || !d.orientation_callback;
-    if (uses_f && d.f.type == VT_FUNCTION_SPLINE && (st = own_spline(b->message, b->ndrive, &d.f, &own))) return st;
+    if ((st = own_splines(b->message, b->ndrive, &d, &own))) return st;
     int capn = b->capdrivenames;
     if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d) ||
         !grow((void **)&b->drive_names, &capn, b->ndrive, sizeof(vt_name)) ||
@@ -493,6 +557,12 @@ static vt_status validate_cut(const vt_builder *b, char *msg, int k, vt_cut_join
                        k, d->body_a, d->body_b, b->n, b->n);
     if (d->body_a == d->body_b)
         return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: joins body %d to itself", k, d->body_a);
+    if (d->planar != 0 && d->planar != 1)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: planar is %d (0 or 1)", k, d->planar);
+    if (d->planar && d->joint != VT_JOINT_REVOLUTE)
+        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT,
+                       "cut joint %d: planar is a revolute's pin in the plane ⟂ axis1 (joint VT_JOINT_REVOLUTE), not joint type %d",
+                       k, (int)d->joint);
     if (!vt_all_finite(d->point_a, 3) || !vt_all_finite(d->point_b, 3) || !vt_all_finite(d->axis1, 3) ||
         !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
         return vt_fail(msg, VT_ERR_NONFINITE, "cut joint %d: NaN or Inf in its definition", k);
@@ -578,23 +648,23 @@ int vt_builder_add_coupling(vt_builder *b, const vt_coupling_def *def)
     return k;
 }
 
-int vt_cut_nrows(int joint_type)
+int vt_cut_nrows(const vt_cut_joint_def *c)
 {
-    return cut_rows[joint_type];
+    return c->planar ? 2 : cut_rows[c->joint];
 }
 
 int vt_drive_rows(const vt_model *m)
 {
     if (m->ndrive == 0) return 0;
     const int last = m->ndrive - 1;
-    return m->drive_row[last] + (m->drive[last].type == VT_DRIVE_ORIENTATION ? 3 : 1);
+    return m->drive_row[last] + vt_drive_nrows(&m->drive[last]);
 }
 
 int vt_row_owner_kind(const vt_model *m, int row)
 {
     if (row < vt_drive_rows(m)) return VT_OWNER_DRIVE;
     if (m->ncoupling && row >= m->coupling_row[0] && row <= m->coupling_row[m->ncoupling - 1]) return VT_OWNER_COUPLING;
-    if (m->ncut && row < m->cut_row[m->ncut - 1] + cut_rows[m->cut[m->ncut - 1].joint]) return VT_OWNER_CUT;
+    if (m->ncut && row < m->cut_row[m->ncut - 1] + vt_cut_nrows(&m->cut[m->ncut - 1])) return VT_OWNER_CUT;
     return VT_OWNER_BASE;
 }
 
@@ -641,10 +711,10 @@ static void build_rows(vt_model *m)
             memcpy(m->con_point + 6 * r + 3, d->point, 3 * sizeof(double));
             r = add_row(m, r, VT_ROW_POINT, 0, d->body, k);
             break;
-        default:
+        default: /* orientation: absolute (a = ground) or relative to body a = reference */
             for (int c = 0; c < 3; c++) {
                 m->con_dof[r] = c;
-                r = add_row(m, r, VT_ROW_ORIENT, 0, d->body, k);
+                r = add_row(m, r, VT_ROW_ORIENT, d->type == VT_DRIVE_RELATIVE_ORIENTATION ? d->reference : 0, d->body, k);
             }
         }
     }
@@ -657,13 +727,19 @@ static void build_rows(vt_model *m)
         onto_b(u1b, c->orientation, c->axis1);
         onto_b(u2b, c->orientation, c->axis2);
         const int first = r;
-        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL) {
+        if (c->planar) { /* a planar pin: b's point in a's plane ⟂ axis1 through a's point, as the
+                          * line rows below with d along h1 and h2 (the point may leave the plane) */
+            for (int e = 0; e < 2; e++) {
+                memcpy(m->con_vec + 6 * r, e ? h2 : h1, 3 * sizeof(double));
+                r = add_row(m, r, VT_ROW_LINE, a, b, k);
+            }
+        } else if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL) {
             for (int e = 0; e < 3; e++) { /* the two joint points coincide */
                 m->con_vec[6 * r + e] = 1.0;
                 r = add_row(m, r, VT_ROW_POINT, a, b, k);
             }
         }
-        if (jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_CYLINDRICAL || jt == VT_JOINT_TRANSLATIONAL) {
+        if ((jt == VT_JOINT_REVOLUTE && !c->planar) || jt == VT_JOINT_CYLINDRICAL || jt == VT_JOINT_TRANSLATIONAL) {
             for (int e = 0; e < 2; e++) { /* b's axis stays parallel to a's */
                 memcpy(m->con_vec + 6 * r, e ? h2 : h1, 3 * sizeof(double));
                 memcpy(m->con_vec + 6 * r + 3, u1b, 3 * sizeof(double));
@@ -805,13 +881,17 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         npath += depth_nv[i];
         nc += d->joint == VT_JOINT_BASE;
     }
-    for (int k = 0; k < b->ndrive; k++) nc += b->drives[k].type == VT_DRIVE_ORIENTATION ? 3 : 1;
-    for (int k = 0; k < b->ncut; k++) nc += cut_rows[b->cuts[k].joint];
+    for (int k = 0; k < b->ndrive; k++) nc += vt_drive_nrows(&b->drives[k]);
+    for (int k = 0; k < b->ncut; k++) nc += vt_cut_nrows(&b->cuts[k]);
     nc += b->ncoupling;
 
     size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */
-    for (int k = 0; k < b->ndrive; k++)
-        if (b->samples[k]) nsample += (size_t)b->drives[k].f.nsample;
+    for (int k = 0; k < b->ndrive; k++) {
+        const vt_function *fs[3];
+        const int nf = vt_drive_functions(&b->drives[k], fs);
+        for (int e = 0; e < nf; e++)
+            if (fs[e]->type == VT_FUNCTION_SPLINE) nsample += (size_t)fs[e]->nsample;
+    }
 
     arena a = {NULL, sizeof(vt_model)};
     vt_model tmp;
@@ -843,13 +923,22 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     if (b->ndrive) memcpy(m->drive, b->drives, (size_t)b->ndrive * sizeof(vt_drive_def));
     for (int k = 0; k < b->ndrive; k++) { /* the model's own copy of each spline's samples */
         if (!b->samples[k]) continue;
-        vt_function *f = &m->drive[k].f;
-        const size_t ns = (size_t)f->nsample;
-        memcpy(samples, b->samples[k], 3 * ns * sizeof(double));
-        f->sample_t = samples;
-        f->sample_y = samples + ns;
-        f->sample_d2 = samples + 2 * ns;
-        samples += 3 * ns;
+        vt_drive_def *dr = &m->drive[k];
+        vt_function *fs[3] = {&dr->f, &dr->f2, &dr->f3};
+        const vt_function *used[3];
+        const int nf = vt_drive_functions(dr, used);
+        const double *from = b->samples[k];
+        for (int e = 0; e < nf; e++) {
+            vt_function *f = fs[e];
+            if (f->type != VT_FUNCTION_SPLINE) continue;
+            const size_t ns = (size_t)f->nsample;
+            memcpy(samples, from, 3 * ns * sizeof(double));
+            f->sample_t = samples;
+            f->sample_y = samples + ns;
+            f->sample_d2 = samples + 2 * ns;
+            samples += 3 * ns;
+            from += 3 * ns;
+        }
     }
     if (b->ncut) memcpy(m->cut, b->cuts, (size_t)b->ncut * sizeof(vt_cut_joint_def));
     /* names (the model's own copies; a stored definition's name points at its copy) and frames */

@@ -75,11 +75,6 @@ static void add_row_wrenches(const vt_model *m, const double *rw, double *fe)
         }
 }
 
-static int drive_nrows(const vt_drive_def *dr)
-{
-    return dr->type == VT_DRIVE_ORIENTATION ? 3 : 1;
-}
-
 /* The drives' efforts (24) from d->lambda: each drive's force and moment on its body at the
  * drive's point, its effort along its coordinate or component, and Φ_q^T λ over the drives.
  * rw: the rows' wrenches at λ (vt_row_wrenches). */
@@ -97,8 +92,8 @@ static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
         } else {
             vt_copy3(P, d->xrel + 6 * b);
         }
-        rows_wrench_at(m, d, rw, r0, r0 + drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
-        d->drive_effort[k] = dr->type == VT_DRIVE_ORIENTATION ? 0.0 : d->lambda[r0];
+        rows_wrench_at(m, d, rw, r0, r0 + vt_drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        d->drive_effort[k] = vt_drive_turns(dr->type) ? 0.0 : d->lambda[r0];
     }
 
     /* the drives' generalized force Φ_q^T λ over their rows */
@@ -145,6 +140,8 @@ void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, co
         vt_axpy3(w, 1.0, f);
         vt_axpy3(w + 3, 1.0, n);
         vt_addcross3(w + 3, s, f);
+        if (dr->type == VT_DRIVE_RELATIVE_ORIENTATION && dr->reference > 0) /* a pure moment: its opposite on a */
+            vt_axpy3(df->xfrc + 6 * dr->reference + 3, -1.0, n);
     }
 }
 
@@ -152,7 +149,8 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions");
     if (st) return st;
-    return vt_reactions_impl(m, d);
+    if ((st = vt_reactions_impl(m, d))) return st;
+    return vt_reactions_total(m, d, 0);
 }
 
 /* Into fe (6 x (nbody+1), added, about each body's centre of mass) the applied generalized
@@ -207,7 +205,7 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
     for (int k = 0; k < m->ncut; k++) {
         const vt_cut_joint_def *c = &m->cut[k];
         const int r0 = m->cut_row[k];
-        const int rend = r0 + vt_cut_nrows(c->joint);
+        const int rend = r0 + vt_cut_nrows(c);
         double P[3];
         vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
         vt_axpy3(P, 1.0, d->xrel + 6 * c->body_b);
@@ -263,8 +261,73 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+/* Efforts that round-off leaves undetermined. vt_solve zeroes M*'s row a where M*_aa is
+ * round-off of the terms it is summed from, β_a = τ ε (T_a + R_a) (vt_rate_terms: lever arms from
+ * o), and a row holds the rate. The true M*_aa is then anywhere in [0, β_a], and M* being
+ * semi-definite, the true M*_ba of another rate b anywhere up to sqrt(β_a M*_bb) (0 when neither
+ * rate's body is on the other's path): rate b's
+ * equation M* q̈ − Q = Φ_q^T λ is known only to
+ *   u_b = Σ_{a zeroed} sqrt(β_a M*_bb) |q̈_a|   against its terms g_b = |Q_b| + Σ_c |M*_bc q̈_c|,
+ * and the solve turns that into a relative error of the efforts and the free rates' q̈ of up to
+ * u_b / (rcond g_b). Where that reaches 1 no digit is certain: refused (VT_ERR_SINGULAR). A rate
+ * truly without inertia near o (a point mass on its axis) has a tiny β_a and passes; a rate whose
+ * inertia about its own axis is real but below the round-off of lever arms from o (a 1e9 m link
+ * carrying a body of a few metres) does not. Both paths call this after vt_solve (the recursive
+ * one's joint-rows route too), so they refuse alike. (A zeroed rate's own equation has lost its
+ * terms: it is judged through the others.) */
+/* rates a and b can couple in M* (one's body on the other's path); apart, M*_ab is zero by
+ * structure (separate trees or branches), whatever the round-off of their diagonals */
+static int on_path(const vt_model *m, int body, int rate)
+{
+    const int *path = m->path_dof + m->body_pathadr[body];
+    for (int k = 0; k < m->body_pathnum[body]; k++)
+        if (path[k] == rate) return 1;
+    return 0;
+}
+
+static int coupled(const vt_model *m, int a, int b)
+{
+    return on_path(m, m->dof_body[b], a) || on_path(m, m->dof_body[a], b);
+}
+
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
+{
+    const int nv = m->nv;
+    const size_t mark = vt_scratch_mark(d);
+    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
+    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    if (!w) return vt_scratch_fail(d, mark);
+    int zeroed = 0;
+    for (int a = 0; a < nv; a++) zeroed += d->Mstar[a + (size_t)a * (size_t)nv] == 0.0;
+    if (!zeroed) return vt_scratch_release(d, mark), VT_OK;
+    vt_rate_terms(m, d, w, T);
+    double worst = 0.0, ub = 0.0, gb = 0.0;
+    int wb = 0;
+    for (int b = 0; b < nv; b++) {
+        const double mbb = d->Mstar[b + (size_t)b * (size_t)nv];
+        if (!(mbb > 0.0)) continue; /* a zeroed rate's own row: its terms are gone, judged through the others */
+        double u = 0.0, g = fabs(d->Q[b]);
+        for (int c = 0; c < nv; c++) {
+            g += fabs(d->Mstar[b + (size_t)c * (size_t)nv] * d->qdd[c]);
+            if (d->Mstar[c + (size_t)c * (size_t)nv] == 0.0 && coupled(m, b, c))
+                u += sqrt(vt_rate_roundoff(T, c) * mbb) * fabs(d->qdd[c]);
+        }
+        if (u > 0.0 && !(u <= worst * g)) worst = g > 0.0 ? u / g : (double)INFINITY, wb = b, ub = u, gb = g;
+    }
+    vt_scratch_release(d, mark);
+    if (!(worst >= d->rcond)) return VT_OK;
+    const double rcond = d->rcond;
+    vt_solve_reset(d);
+    return vt_fail(d->message, VT_ERR_SINGULAR,
+                   "%s: no certain digit: rate %d's M* q̈ − Q known to %.3g against terms of %.3g (rcond %.3g): "
+                   "moving rates whose M*_aa is round-off of their lever arms from the reference point",
+                   who, wb, ub, gb, rcond);
+}
+
 vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
 {
+    vt_status st0 = vt_zeroed_rates_check(m, d, "vt_reactions");
+    if (st0) return st0;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
     /* α, the applied wrenches and the children's reactions one after the other (the layout the
@@ -361,6 +424,96 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
     return joint_reactions_done(m, d);
 }
 
+/* The outputs every instant path ends with, from what each leaves alike (the reactions, ẍ, λ,
+ * qfrc_drive), so that the dense, recursive and motion paths share them:
+ * - each body's angular acceleration α = 2 E p̈ (ω = 2 E ṗ, and 2 Ė ṗ = 0), from ẍ;
+ * - each tree joint's total wrench, reaction plus actuation: the generalized force g_c along each
+ *   of its rates c — the joint drives' multipliers on c (given: every rate's qfrc_drive, the
+ *   motion given), the applied qfrc_c and the couplings' λ (−ratio λ on rate b) — as the force
+ *   g e along a translational axis e or the moment g e about a rotational one, at the joint point
+ *   P (a free joint's rates are such axes). A base body's rates act at its centre of mass r: force
+ *   g e_k on r_k, moment ½ g E e_k on p_k (the Cartesian form R^T g, as rate_load), the force's
+ *   moment then moved to P. Summed this way the total is the wrench the reference body passes to
+ *   the subtree: its Newton–Euler wrench less the loads from outside it (25)-(26). */
+vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
+{
+    const int n = m->nbody, nv = m->nv;
+    const size_t mark = vt_scratch_mark(d);
+    double *g = VT_SCRATCH(d, double, nv > 0 ? (size_t)nv : 1, "actuation per rate");
+    if (!g) return vt_scratch_fail(d, mark);
+    memcpy(g, d->qfrc, (size_t)nv * sizeof(double));
+    if (given) {
+        for (int c = 0; c < nv; c++) g[c] += d->qfrc_drive[c];
+    } else {
+        for (int r = 0; r < vt_drive_rows(m); r++)
+            if (m->con_kind[r] == VT_ROW_JOINT) g[m->con_dof[r]] += d->lambda[r];
+        for (int k = 0; k < m->ncoupling; k++) {
+            const vt_coupling_def *c = &m->coupling[k];
+            const double l = d->lambda[m->coupling_row[k]];
+            g[m->body_vadr[c->body_a] + c->index_a] += l;
+            g[m->body_vadr[c->body_b] + c->index_b] -= c->ratio * l;
+        }
+    }
+    memset(d->alpha, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    for (int i = 1; i <= n; i++) {
+        const double *p = d->x + vt_xoff(i) + 3, *e = d->jaxis + 9 * i, *Ai = d->A + 9 * i;
+        const int jt = m->body_joint[i];
+        double al[3], f[3], mo[3], fb[3], mb[3];
+        vt_mulEp(al, p, d->xdd + vt_xoff(i) + 3);
+        for (int c = 0; c < 3; c++) al[c] *= 2.0;
+        vt_copy3(f, d->jnt_force + 3 * i);
+        vt_copy3(mo, d->jnt_moment + 3 * i);
+        for (int k = 0; k < m->body_nv[i]; k++) {
+            const double gc = g[m->body_vadr[i] + k];
+            if (gc == 0.0) continue;
+            int ax;
+            switch (vt_dof_kind(jt, k, &ax)) {
+            case VT_DOF_ROT: vt_axpy3(mo, gc, e + 3 * ax); break;
+            case VT_DOF_TRANS: vt_axpy3(f, gc, e + 3 * ax); break;
+            case VT_DOF_BASE_R: { /* at r: force g e_k, its moment about P (r − P) × g e_k */
+                double u[3] = {0, 0, 0}, s[3];
+                u[ax] = gc;
+                vt_axpy3(f, 1.0, u);
+                for (int c = 0; c < 3; c++) s[c] = d->xrel[6 * i + c] - d->xrel[6 * i + 3 + c];
+                vt_addcross3(mo, s, u);
+                break;
+            }
+            default: { /* VT_DOF_BASE_P: ½ g E e_k */
+                double u[4] = {0, 0, 0, 0}, t[3];
+                u[ax] = 0.5 * gc;
+                vt_mulEp(t, p, u);
+                vt_axpy3(mo, 1.0, t);
+                break;
+            }
+            }
+        }
+        vt_mulmat3t(fb, Ai, f);
+        vt_mulmat3t(mb, Ai, mo);
+        vt_copy3(d->alpha + 3 * i, al);
+        vt_copy3(d->jnt_force_total + 3 * i, f);
+        vt_copy3(d->jnt_moment_total + 3 * i, mo);
+        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+    }
+    vt_scratch_release(d, mark);
+    const int nb3 = 3 * (n + 1);
+    if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
+        vt_all_finite(d->jnt_force_total_body, nb3) && vt_all_finite(d->jnt_moment_total_body, nb3))
+        return VT_OK;
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->alpha + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
+    return vt_fail(d->message, VT_ERR_NONFINITE, "a total wrench or angular acceleration overflows");
+}
+
 /* Marks in d->jnt_unique and d->cut_unique the reactions that the multiplier direction z
  * (Φ_q^T z = 0) changes by more than tol of its largest change: the reactions that the
  * multipliers z alone produce (no inertia, no applied load). Scratch: fe, cf (6 x (nbody+1)
@@ -388,7 +541,7 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
         double P[3], f[3], mo[3];
         vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
         vt_axpy3(P, 1.0, d->xrel + 6 * c->body_b);
-        rows_wrench_at(m, d, rw, r0, r0 + vt_cut_nrows(c->joint), 1, P, f, mo);
+        rows_wrench_at(m, d, rw, r0, r0 + vt_cut_nrows(c), 1, P, f, mo);
         for (int e = 0; e < 3; e++) {
             cmag[6 * k + e] = fabs(f[e]);
             cmag[6 * k + 3 + e] = fabs(mo[e]);
@@ -453,14 +606,19 @@ vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
 }
 
 /* The scratch reactions.c takes at once: the inward pass (α, two wrenches a body, the rows'
- * wrenches) or the uniqueness (three wrenches a body, the cuts', the rows'). */
+ * wrenches) or the uniqueness (three wrenches a body, the cuts', the rows'), or the total
+ * wrenches' actuation per rate (alone). */
 size_t vt_reactions_scratch(const vt_model *m)
 {
     const size_t nb = (size_t)m->nbody + 1, rw = VT_SCRATCH_BYTES(12 * (size_t)m->nc, sizeof(double));
     const size_t inward = VT_SCRATCH_BYTES(15 * nb, sizeof(double));
     const size_t unique = 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double)) +
                           VT_SCRATCH_BYTES(6 * nb + 6 * (size_t)m->ncut, sizeof(double));
-    return (inward > unique ? inward : unique) + rw;
+    const size_t total = VT_SCRATCH_BYTES(m->nv > 0 ? (size_t)m->nv : 1, sizeof(double));
+    const size_t zeroed = VT_SCRATCH_BYTES(2 * (size_t)m->nv, sizeof(double)) + VT_SCRATCH_BYTES(4 * nb, sizeof(double));
+    size_t most = inward > unique ? inward : unique;
+    most = (most > zeroed ? most : zeroed) + rw;
+    return most > total ? most : total;
 }
 
 vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int k)
@@ -472,7 +630,7 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int
         return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_drive_cartesian_force: drive %d not in 0..%d", k, m->ndrive - 1);
     memset(F, 0, (size_t)m->nx * sizeof(double));
     const int r0 = m->drive_row[k];
-    for (int r = r0; r < r0 + drive_nrows(&m->drive[k]); r++)
+    for (int r = r0; r < r0 + vt_drive_nrows(&m->drive[k]); r++)
         for (int side = 0; side < 2; side++) {
             const int b = m->con_body[2 * r + side];
             if (b == 0) continue;

@@ -563,12 +563,49 @@ static vt_status mass_and_bias(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
+/* The composite inertias about o hold m |c|² terms (c from o): M*_aa = s_a · (Ī s_a) carries
+ * round-off up to τ ε (T_a + R_a) of the terms it subtracts (vt_rate_terms), so the scaled M*
+ * that vt_solve's estimate measures (unit diagonal, the mass metric) is known to δ_a = τ ε (T_a +
+ * R_a) / M*_aa in row and column a (an off-diagonal entry to τ ε sqrt(T_a T_b) / sqrt(M*_aa M*_bb)
+ * ≤ max δ), and ‖ΔÃ‖_1 ≤ nv max_a δ_a ≤ nv max δ ‖Ã‖_1. The solution's relative error is up to
+ * that over rcond: where nv max δ ≥ rcond not one digit is certain (M* may be singular within
+ * its own round-off: a mechanism long against its bodies' radii of gyration), refused as
+ * vt_solve refuses below rcond_min. Rates whose M* row vt_solve zeroed (round-off held by a
+ * row) are not measured: they are exactly zero. The dense path's S^T M S sums squares and
+ * leaves less round-off, so it may solve what this refuses. */
+static vt_status composite_precision(const vt_model *m, vt_data *d)
+{
+    const int nv = m->nv;
+    const size_t mark = vt_scratch_mark(d);
+    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
+    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    if (!w) return vt_scratch_fail(d, mark);
+    vt_rate_terms(m, d, w, T);
+    double delta = 0.0, arm = 0.0;
+    int worst = 0;
+    for (int a = 0; a < nv; a++) {
+        const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
+        if (maa > 0.0 && vt_rate_roundoff(T, a) / maa > delta) delta = vt_rate_roundoff(T, a) / maa, worst = a;
+    }
+    const double msub = w[4 * m->dof_body[worst]]; /* the subtree's mass: T_a / m its lever arm squared */
+    if (msub > 0.0) arm = sqrt(T[2 * worst] / msub);
+    vt_scratch_release(d, mark);
+    if (!(nv * delta >= d->rcond)) return VT_OK;
+    const double rcond = d->rcond;
+    vt_solve_reset(d);
+    return vt_fail(d->message, VT_ERR_SINGULAR,
+                   "vt_inverse_dynamics_recursive: ill-conditioned within M*'s round-off: rcond %.3g, rate %d's "
+                   "M*_aa (body %d) known to %.3g of itself (lever arms of %.3g m from the reference point)",
+                   rcond, worst, m->dof_body[worst], delta, arm);
+}
+
 /* M* and Q formed, (5) solved by vt_solve (which also diagnoses), the reactions inward:
  * constraints already evaluated */
 static vt_status factorized_instant(const vt_model *m, vt_data *d)
 {
     vt_status st = mass_and_bias(m, d);
     if (!st) st = vt_solve_impl(m, d);
+    if (!st) st = composite_precision(m, d);
     return st ? st : vt_reactions_impl(m, d);
 }
 
@@ -776,7 +813,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
                 }
             }
     }
-    double pmin = 1.0, pmax = 0.0;
+    double pmin = 1.0, pmax = 0.0, dmax = 0.0; /* dmax: the largest τ ε tw² / M*_aa (below) */
     for (int i = n; i >= 1; i--) {
         double *restrict G = IA + 48 * i, *restrict p = P + sr * (size_t)i;
         for (int a = m->body_vadr[i] + m->body_nv[i] - 1; a >= m->body_vadr[i]; a--) {
@@ -805,6 +842,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
                 return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
+            dmax = fmax(dmax, VT_ROUND_TAU * DBL_EPSILON * tw * tw / inertia_quad(Ii, s, s + 3));
             const double inv = 1.0 / Da;
             Dinv[a] = inv;
             double *restrict ua = u + (size_t)nr * (size_t)a;
@@ -863,6 +901,11 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     rcond *= pmin / pmax * (nc > 0 ? vt_rows_grip(m, d) : 1.0);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
+    /* M*_aa = s · Ī s about o is known to τ ε tw² only: the pivots, which subtract such terms,
+     * carry no digit where nv times that over M*_aa reaches rcond (composite_precision's bound):
+     * the general route decides (a point mass 1e6 m from its spherical joint: M* exactly
+     * singular, its last pivot round-off amplified by the small one before it) */
+    if (!(nv * dmax < rcond)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
     for (int a = 0; a < nv; a++) {
         double x = X[a];
         for (int r = 0; r < nc; r++) x += X[a + (size_t)(r + 1) * (size_t)nv] * lam[r];
@@ -960,7 +1003,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    return VT_OK;
+    if ((st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    return st;
 }
 
 static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
@@ -1013,7 +1057,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         }
         if (r < 0) return (vt_status)r;
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
-        else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d))) /* or from M*_FF, which also diagnoses */
+        else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d)) || (st = composite_precision(m, d)) ||
+                 (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive"))) /* or from M*_FF, which also diagnoses */
             return st;
         return inward(m, d);
     }
@@ -1039,6 +1084,9 @@ size_t vt_recursive_scratch(const vt_model *m)
     if (one > n) n = one;
     if (square > n) n = square;
     if (VT_SCRATCH_BYTES(13 * nb, D) > n) n = VT_SCRATCH_BYTES(13 * nb, D);
+    /* composite_precision's terms of M*'s diagonal and subtree sums */
+    const size_t terms = VT_SCRATCH_BYTES(2 * (size_t)m->nv, D) + VT_SCRATCH_BYTES(4 * nb, D);
+    if (terms > n) n = terms;
     /* vt_motion_rows (instant.c, called from here) holds the given q̈ while the stages run */
     if (VT_SCRATCH_BYTES(m->nv, D) > n) n = VT_SCRATCH_BYTES(m->nv, D);
     return n;
@@ -1087,7 +1135,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1))) return st;
+    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1)) || (st = vt_reactions_total(m, d, 1))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }

@@ -51,7 +51,9 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
  *            subtracts terms of that size; S^T M S's squares would leave less)
  *   row r    Φ_q,ra = Σ_j Φ_x,rj S_ja over the row's two bodies, terms bounded by B_ra = Σ_j
  *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| |r| for a position, ½ |ω_a| for an Euler
- *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖
+ *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖. A dot
+ *            product's Φ_x is itself a sum, 2 (u × v)^T E: its Euler-parameter entries are taken
+ *            as at least their terms' size, 2 |u| |v| = 2 (u ∥ v makes them round-off)
  * with τ = VT_ROUND_TAU (64) and ε = DBL_EPSILON. (v_a, ω_a) is rate a's twist (d->twist), the one
  * both paths build S and M* from. Joint drives' and couplings' rows are exact (unit entries), and
  * p^T p − 1's row is 2 p^T: not judged. */
@@ -93,7 +95,9 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
         const int b = m->con_body[2 * r + side];
         if (b <= 0) continue;
         const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->xrel + 6 * b; /* from o, as the twists */
-        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]), fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
+        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
         const double rc = sqrt(vt_dot3(c, c));
         const int *path = m->path_dof + m->body_pathadr[b];
         for (int k = 0; k < m->body_pathnum[b]; k++) {
@@ -107,6 +111,29 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
     double n2 = 0.0;
     for (int a = 0; a < m->nv; a++) n2 += B[a] * B[a];
     return sqrt(n2);
+}
+
+/* B_ra alone (as row_terms) */
+static double row_term(const vt_model *m, const vt_data *d, int r, int a)
+{
+    double t = 0.0;
+    const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
+    for (int side = 0; side < 2; side++) {
+        const int b = m->con_body[2 * r + side];
+        if (b <= 0) continue;
+        const int *path = m->path_dof + m->body_pathadr[b];
+        int on = 0;
+        for (int k = 0; k < m->body_pathnum[b] && !on; k++) on = path[k] == a;
+        if (!on) continue;
+        const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->xrel + 6 * b;
+        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
+        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0);
+        int ax = 0;
+        const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
+        t += fr * (vn + wn * sqrt(vt_dot3(c, c))) + fp * (own_p ? 1.0 : 0.5 * wn);
+    }
+    return t;
 }
 
 static double row_norm(const vt_model *m, const vt_data *d, int r)
@@ -316,19 +343,20 @@ static void scaling(const vt_model *m, const vt_data *d, double *s, int rows)
 /* A point drive's grip: the row is e · V_a, V_a = v_a + ω_a × P the velocity rate a's twist
  * gives the driven point P; the whole of V_a is what the rates can move the point by, the row
  * what of it lies along the driven direction e. Its grip is the ratio of the two, in the
- * rates' kinematic scaling (the square route's C: rates that turn by 1/ρ):
+ * rates' kinematic scaling (the square route's C: rates that turn by 1/ℓ, ℓ the rows' lever arm,
+ * rows_length):
  *   grip_r = ‖(e · V_a C_a)_a‖ / ‖(|V_a| C_a)_a‖   in [0, 1]
  * 1 while the rates move P along e as well as across it, 0 where no rate moves P along e (an
  * arm stretched along e: a row that has lost its grip, with nothing else to show it when it is
  * the only row). Independent of the units, of the scene's frame and position, and of the
  * inertias. vt_rows_grip returns the smallest grip² over the point drives' rows (1 without). */
-static double gyration_radius(const vt_model *m, const vt_data *d);
+static double rows_length(const vt_model *m, const vt_data *d, const int *flag);
 double vt_rows_grip(const vt_model *m, const vt_data *d)
 {
-    double worst = 1.0, rho = 0.0;
+    double worst = 1.0, rho = 0.0; /* ℓ */
     for (int r = 0; r < m->nc; r++) {
         if (m->con_kind[r] != VT_ROW_POINT || vt_row_owner_kind(m, r) != VT_OWNER_DRIVE) continue;
-        if (rho == 0.0) rho = gyration_radius(m, d);
+        if (rho == 0.0) rho = rows_length(m, d, NULL);
         const vt_drive_def *dr = m->drive + m->con_owner[r];
         const int b = dr->body;
         const double *A = d->A + 9 * b, *c = d->xrel + 6 * b; /* from o, as the twists */
@@ -451,23 +479,27 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
     return 0;
 }
 
-/* Dependent rows: what is truly dependent, decided in a scaling that neither the directions of
- * the global axes nor the units change. Φ̂ = G Φ_q D with D = diag(M*_aa^(-1/2)), the mass
- * metric of the rates (joint coordinates: unchanged by a rotation of the whole scene), and G =
- * c diag(w): w = 1 for the rows that measure lengths (points, lines, joint drives and couplings
- * on a translation), w = ρ for those that measure angles (dot products, orientations, Euler
- * parameters, joint drives and couplings on a rotation), ρ the system's radius of gyration about
- * its centre of mass (ρ² Σ m = Σ (tr J'/2 + m |c − c_G|²), a length that no rotation changes),
- * which makes both kinds of rows 1/√kg; c = 1 / (largest row norm of diag(w) Φ_q D), one factor
- * for all rows so that no row's own size is scaled away. A rotation of the scene turns a point's
- * rows among themselves and a change of units scales every row alike, so the singular values of Φ̂
- * are unchanged by both. Its SVD Φ̂ = U Σ V^T (LAPACK dgesvd, U of nc columns) gives
+/* Dependent rows: what is truly dependent, decided on Φ_q alone (kinematics: the masses do not
+ * take part) in a scaling that neither the directions of the global axes nor the units change.
+ * Φ̂ = G Φ_q C: C = 1 for rates that translate and 1/ℓ for rates that turn (rotations, Euler
+ * parameters), G = c diag(w) with w = 1 for the rows that measure lengths (points, lines, joint
+ * drives and couplings on a translation) and w = ℓ for those that measure angles (dot products,
+ * orientations, Euler parameters, joint drives and couplings on a rotation), so that every entry
+ * is dimensionless; ℓ the rows' own lever arm (rows_length: a length of the rows' geometry, not
+ * of the mass distribution); c = 1 / (largest row norm of diag(w) Φ_q C), one factor for all rows
+ * so that no row's own size is scaled away. A rotation of the scene turns a point's rows among
+ * themselves (and leaves joint rates alone) and a change of units scales every entry alike, so
+ * the singular values of Φ̂ are unchanged by both, and by inertia spread, which does not enter.
+ * Its SVD Φ̂ = U Σ V^T (LAPACK dgesvd, U of nc columns) gives
  *   rank    the number of σ above max(nc, nv) ε σ_max (ε = DBL_EPSILON): dependence to round-off
+ *           (rows that are round-off of zero, roundoff_check, are zero rows here)
  *   kept    the directions kept in the solve: those above max(that, band σ_max), band being a time
  *           analysis's vt_run_options.redundant_band (0 at every other instant)
  * and the null directions of Φ_q^T, z = G w for the last nc − rank columns w of U. */
 typedef struct {
-    double *U, *VT, *sig, *g, *s; /* nc x nc, k x nv, k, nc, nv (k = min(nc, nv)) */
+    double *U, *VT, *sig, *g, *s, *c; /* nc x nc, k x nv, k, nc, nv, nv (k = min(nc, nv)); s: the
+                                       * mass metric D (redundant_solve's), c: C */
+    int *flag;                        /* nc: 1 for a row that is round-off of zero (roundoff_check) */
     int k, rank, kept;
 } rows_svd;
 
@@ -484,25 +516,45 @@ static int length_row(const vt_model *m, const vt_data *d, int r)
     return vt_dof_kind(m->body_joint[i], c - m->body_vadr[i], &axis) == VT_DOF_TRANS;
 }
 
-/* ρ: the radius of gyration of all bodies about their common centre of mass (1 m for a model
- * without mass or extent, where nothing better exists) */
-static double gyration_radius(const vt_model *m, const vt_data *d)
+/* 1 when rate a turns (a rotation, an Euler parameter), 0 when it translates */
+static int turning_rate(const vt_model *m, int a)
 {
-    double mt = 0.0, cg[3] = {0.0, 0.0, 0.0}, i2 = 0.0;
-    for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->xrel + 6 * i, mi = m->body_mass[i];
-        mt += mi;
-        for (int k = 0; k < 3; k++) cg[k] += mi * c[k];
+    const int i = m->dof_body[a];
+    int ax = 0;
+    const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
+    return kind == VT_DOF_ROT || kind == VT_DOF_BASE_P;
+}
+
+/* ℓ, the rows' lever arm: the largest over the rates that turn of the norm of their column in
+ * the point and line rows, ‖(Φ_q,ra)_r‖ (a length per radian: how far the rate moves the rows'
+ * points), entries that are round-off of their terms (τ ε B_ra, as roundoff_check) left out;
+ * without such entries, the reciprocal of the largest column norm of the couplings that measure
+ * angles on the rates that translate (rad/m); without either, 1 (then Φ̂'s blocks do not mix the
+ * two kinds and its singular values do not depend on ℓ). Joint drives' rows touch their own rate
+ * alone (the dense path forms them with round-off elsewhere). Sums of squares over all rows of a
+ * kind: a rotation of the scene turns a point's rows among themselves and leaves the column norms
+ * as they were. flag (nc or NULL): rows left out (round-off of zero). */
+static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
+{
+    const int nv = m->nv, nc = m->nc;
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
+    double arm = 0.0, inv = 0.0;
+    for (int a = 0; a < nv; a++) {
+        const int turns = turning_rate(m, a);
+        double n2 = 0.0;
+        for (int r = 0; r < nc; r++) {
+            const int kind = m->con_kind[r];
+            if ((flag && flag[r]) || !(turns ? kind == VT_ROW_POINT || kind == VT_ROW_LINE
+                                             : kind == VT_ROW_COUPLING && !length_row(m, d, r)))
+                continue;
+            const double v = d->Phiq[r + (size_t)a * (size_t)nc];
+            if (v != 0.0 && (kind == VT_ROW_COUPLING || fabs(v) > te * row_term(m, d, r, a))) n2 += v * v;
+        }
+        if (turns) arm = fmax(arm, sqrt(n2));
+        else inv = fmax(inv, sqrt(n2));
     }
-    for (int k = 0; k < 3; k++) cg[k] = mt > 0.0 ? cg[k] / mt : 0.0;
-    for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->xrel + 6 * i, *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
-        double r2 = 0.0;
-        for (int k = 0; k < 3; k++) r2 += (c[k] - cg[k]) * (c[k] - cg[k]);
-        i2 += 0.5 * (J[0] + J[4] + J[8]) + mi * r2;
-    }
-    const double rho = mt > 0.0 ? sqrt(i2 / mt) : 0.0;
-    return rho > 0.0 && isfinite(rho) ? rho : 1.0;
+    const double len = arm > 0.0 ? arm : inv > 0.0 ? 1.0 / inv : 1.0;
+    return isfinite(len) && len > 0.0 ? len : 1.0;
 }
 
 /* Φ̂ and its SVD into o (arrays on the arena: the caller releases them); band as above.
@@ -515,8 +567,9 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     o->VT = VT_SCRATCH(d, double, (size_t)k * (size_t)nv, "V^T");
     o->sig = VT_SCRATCH(d, double, k, "σ");
     o->g = VT_SCRATCH(d, double, nc, "row scaling");
-    o->s = VT_SCRATCH(d, double, nv, "rate scaling");
-    int *flag = VT_SCRATCH(d, int, nc, "round-off rows");
+    o->s = VT_SCRATCH(d, double, nv, "mass metric");
+    o->c = VT_SCRATCH(d, double, nv, "rate scaling");
+    int *flag = o->flag = VT_SCRATCH(d, int, nc, "round-off rows");
     if (!flag) return vt_scratch_fail(d, vt_scratch_mark(d)); /* the caller releases o's arrays */
     const int ro = roundoff_check(m, d, flag, 0); /* a row that is round-off of zero counts as zero */
     if (ro < 0) return ro;
@@ -525,11 +578,12 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     int lw = 0;
     double *work = vt_scratch_rest(d, 5 * (size_t)(nc + nv), sizeof(double), &lw, "dgesvd workspace");
     if (!work) return vt_scratch_fail(d, mark);
-    double *g = o->g, *s = o->s, rmax = 0.0;
-    scaling_diag(m, d->Mstar, nv + 1, s);
-    const double rho = gyration_radius(m, d);
+    double *g = o->g, *s = o->c, rmax = 0.0;
+    scaling_diag(m, d->Mstar, nv + 1, o->s);
+    const double len = rows_length(m, d, flag);
+    for (int a = 0; a < nv; a++) s[a] = turning_rate(m, a) ? 1.0 / len : 1.0;
     for (int r = 0; r < nc; r++) {
-        g[r] = length_row(m, d, r) ? 1.0 : rho;
+        g[r] = length_row(m, d, r) ? 1.0 : len;
         double rn = 0.0;
         for (int c = 0; c < nv; c++) {
             const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
@@ -543,7 +597,7 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
             P[r + (size_t)c * (size_t)nc] = flag[r] ? 0.0 : g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
     }
     /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
-    if (!vt_all_finite(P, nc * nv) || !vt_all_finite(s, nv) || !vt_all_finite(d->Mstar, nv * nv))
+    if (!vt_all_finite(P, nc * nv) || !vt_all_finite(o->s, nv) || !vt_all_finite(d->Mstar, nv * nv))
         return vt_scratch_release(d, mark),
                vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in the scaled M* or Φ_q (overflow)");
     int info = 0;
@@ -569,15 +623,22 @@ static double null_part(const vt_model *m, const rows_svd *o, int r)
 }
 #define NULL_PART_TOL 1e-8 /* above it, a row takes part in a dependence (its multiplier is not unique) */
 
-/* Redundant rows (models that allow them): (5) on the kept directions of Φ̂ (rows_decide).
- * With R = Σ_r V_r^T, the rows of Φ̂ reduced to those directions, and M̃ = D M* D,
- *   [M̃ R^T; R 0] [ỹ; −μ] = [D Q; U_r^T G γ],   q̈ = D ỹ,   λ = G U_r μ
- * solved by dgelsd (minimum norm, for an M* singular on directions R fixes). Exactly dependent
- * rows with consistent γ: this is (5) itself, q̈ and the efforts unique, λ the one whose scaled
- * G^(-1) λ has minimum norm. Directions dropped by a time analysis's band (not dependent to
- * round-off) hold in the least-squares sense: d->residual = max |Φ_q q̈ − γ| says how well.
- * Which multipliers are not unique: those in the null directions z = G w of Φ_q^T, left in
- * d->lambda_null for the reactions stage to tell which reactions are not unique. */
+/* Redundant rows (models that allow them): (5) with the rows' dropped directions taken out
+ * (rows_decide: those dependent to round-off, and a time analysis's band). With U_d the dropped
+ * columns of U and P = I − U_d U_d^T, the rows Y = P G Φ_q (the original rows, each less its
+ * parts along the dropped directions: round-off where those are dependent to round-off, so a row
+ * stays itself and the rows of two unrelated bodies are not mixed), then factor_solve's scaling:
+ * rates by the mass metric D = diag(M*_aa^(-1/2)), M̃ = D M* D, and each row to unit norm in it,
+ * N = diag(1 / ‖(Y D)_r‖):
+ *   [M̃ (N Y D)^T; N Y D 0] [ỹ; −μ] = [D Q; N P G γ],   q̈ = D ỹ,   λ = G P N μ
+ * solved by dgelsd (least squares, minimum norm: the matrix has rank nv + kept, the dropped
+ * directions being exactly dependent rows of N Y D, and M* may be singular on directions the
+ * rows fix). Exactly dependent rows with consistent γ: this is (5) itself, q̈ and the efforts
+ * unique, λ the one whose G^(-1) λ lies in the kept directions (the minimum norm one). Directions
+ * dropped by a time analysis's band (not dependent to round-off) hold in the least-squares sense:
+ * d->residual = max |Φ_q q̈ − γ| says how well. Which multipliers are not unique: those in the
+ * null directions z = G w of Φ_q^T, left in d->lambda_null for the reactions stage to tell which
+ * reactions are not unique. */
 void vt_mark_unique(const vt_model *m, vt_data *d)
 {
     const int nc = m->nc;
@@ -585,51 +646,111 @@ void vt_mark_unique(const vt_model *m, vt_data *d)
     for (int r = 0; r < nc; r++) lu[r] = 1;
 }
 
+#define ROWS_TAU 64.0 /* a row's part outside the dropped directions below τ max(nc, nv) ε σ_max: zero */
 static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *o)
 {
-    const int nv = m->nv, nc = m->nc, k = o->k, nr = o->kept, Nr = nv + nr, one = 1;
-    const size_t mark = vt_scratch_mark(d), ld = (size_t)Nr;
-    const double *s = o->s, *g = o->g, *U = o->U, *sig = o->sig, *VT = o->VT;
-    double *K = VT_SCRATCH(d, double, ld * ld, "reduced augmented matrix");
+    const int nv = m->nv, nc = m->nc, nr = o->kept, nd = nc - nr, N = nv + nc, want = nv + nr, one = 1;
+    const size_t mark = vt_scratch_mark(d), ld = (size_t)N, snc = (size_t)nc;
+    const double *s = o->s, *g = o->g, *U = o->U;
+    double *h = VT_SCRATCH(d, double, nc, "rows' scaling");
+    double *W = VT_SCRATCH(d, double, (size_t)(nd > 0 ? nd : 1) * (size_t)(nv + 1), "U_d^T G [Φ_q, γ]");
+    double *K = VT_SCRATCH(d, double, ld * ld, "augmented matrix of the kept rows");
+    double *K0 = VT_SCRATCH(d, double, ld * ld, "its copy, for the refinement");
+    double *b0 = VT_SCRATCH(d, double, ld, "right side's copy");
     double *b = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "right side");
     double *sv = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "singular values");
-    int *iwork = VT_SCRATCH(d, int, vt_dgelsd_iwork(Nr, Nr), "dgelsd integer workspace");
+    int *iwork = VT_SCRATCH(d, int, vt_dgelsd_iwork(N, N), "dgelsd integer workspace");
     int lwd = 0;
     double *lsq_work = vt_scratch_rest(d, 1, sizeof(double), &lwd, "dgelsd workspace");
     if (!lsq_work) return vt_scratch_fail(d, mark);
-    /* [M̃ R^T; R 0], both triangles */
-    for (int j = 0; j < Nr; j++)
-        for (int i = 0; i < Nr; i++) {
+    /* W = U_d^T G [Φ_q, γ]: the rows' parts along the dropped directions */
+    for (int j = 0; j < nd; j++) {
+        const double *u = U + (size_t)(nr + j) * snc;
+        for (int a = 0; a <= nv; a++) {
             double v = 0.0;
-            if (i < nv && j < nv) v = d->Mstar[i + (size_t)j * (size_t)nv] * s[i] * s[j];
-            else if (i >= nv && j < nv) v = sig[i - nv] * VT[(i - nv) + (size_t)j * (size_t)k];
-            else if (i < nv && j >= nv) v = sig[j - nv] * VT[(j - nv) + (size_t)i * (size_t)k];
-            K[i + j * ld] = v;
+            for (int r = 0; r < nc; r++)
+                if (!o->flag[r]) v += u[r] * g[r] * (a < nv ? d->Phiq[r + (size_t)a * snc] : d->gamma[r]);
+            W[j + (size_t)a * (size_t)nd] = v;
         }
-    for (int a = 0; a < nv; a++) b[a] = d->Q[a] * s[a];
-    for (int i = 0; i < nr; i++) {
-        double v = 0.0;
-        for (int r = 0; r < nc; r++) v += U[r + (size_t)i * (size_t)nc] * g[r] * d->gamma[r];
-        b[nv + i] = v;
     }
-    const double rc = m->rcond_min; /* M̃ alone may still be singular on directions R fixes */
-    int rk = 0, info = 0;
-    dgelsd_(&Nr, &Nr, &one, K, &Nr, b, &Nr, sv, &rc, &rk, lsq_work, &lwd, iwork, &info);
+    /* Y D = (G Φ_q − U_d W) D into K's lower left block, each row to unit norm (N); the right side
+     * N (G γ − U_d W_γ) */
+    const double zero = o->k > 0 ? ROWS_TAU * (double)(nc > nv ? nc : nv) * DBL_EPSILON * o->sig[0] : 0.0;
+    for (int r = 0; r < nc; r++) {
+        double n2 = 0.0, c2 = 0.0;
+        for (int a = 0; a <= nv; a++) {
+            double v = o->flag[r] ? 0.0 : g[r] * (a < nv ? d->Phiq[r + (size_t)a * snc] : d->gamma[r]);
+            for (int j = 0; j < nd; j++) v -= U[r + (size_t)(nr + j) * snc] * W[j + (size_t)a * (size_t)nd];
+            if (a < nv) {
+                c2 += v * o->c[a] * v * o->c[a];
+                v *= s[a];
+                K[nv + r + (size_t)a * ld] = v;
+                n2 += v * v;
+            } else b[nv + r] = v;
+        }
+        /* a row whose part outside the dropped directions is round-off in Φ̂'s scaling (a row
+         * dependent on the others, or along a dropped direction) is a zero row */
+        h[r] = n2 > 0.0 && sqrt(c2) > zero ? 1.0 / sqrt(n2) : 0.0;
+        b[nv + r] *= h[r];
+        for (int a = 0; a < nv; a++) K[nv + r + (size_t)a * ld] *= h[r];
+    }
+    /* M̃ and both triangles */
+    for (int j = 0; j < nv; j++)
+        for (int i = 0; i < nv; i++) K[i + (size_t)j * ld] = d->Mstar[i + (size_t)j * (size_t)nv] * s[i] * s[j];
+    for (int j = nv; j < N; j++) {
+        for (int i = 0; i < nv; i++) K[i + (size_t)j * ld] = K[j + (size_t)i * ld];
+        for (int i = nv; i < N; i++) K[i + (size_t)j * ld] = 0.0;
+    }
+    for (int a = 0; a < nv; a++) b[a] = d->Q[a] * s[a];
+    memcpy(K0, K, ld * ld * sizeof(double));
+    memcpy(b0, b, ld * sizeof(double));
+    /* M̃ alone may be singular on directions the rows fix; the dropped directions are round-off */
+    const double rc = fmax(m->rcond_min, 64.0 * (double)N * DBL_EPSILON);
+    int rk = 0, rk2 = 0, info = 0;
+    dgelsd_(&N, &N, &one, K, &N, b, &N, sv, &rc, &rk, lsq_work, &lwd, iwork, &info);
     if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
-    d->rcond = rk > 0 ? sv[rk - 1] / sv[0] : 0.0;
+    /* one step of iterative refinement (residual and correction in the same scaling): the SVD's
+     * error is relative to the whole solution, whose multipliers may be far larger than ỹ (a row
+     * on a rate of tiny inertia is large in the mass metric, and unit once scaled) */
+    cblas_dgemv(CblasColMajor, CblasNoTrans, N, N, -1.0, K0, N, b, 1, 1.0, b0, 1);
+    if (vt_all_finite(b, N) && vt_all_finite(b0, N)) {
+        dgelsd_(&N, &N, &one, K0, &N, b0, &N, K, &rc, &rk2, lsq_work, &lwd, iwork, &info);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
+        for (int i = 0; i < N; i++) b[i] += b0[i];
+    }
+    /* the estimate: the kept part's smallest singular value over the largest, or, if smaller,
+     * (σ_kept / σ_max)² of Φ̂: its rows unit, the matrix cannot show a row losing its grip (a cut
+     * joint's point row at a four-bar's singular pose), which Φ̂, all rows scaled alike, does; squared,
+     * the scale of the rows' Schur complement on the other routes */
+    const double kin = nr > 0 && o->sig[0] > 0.0 ? o->sig[nr - 1] / o->sig[0] : 1.0;
+    d->rcond = rk > 0 ? fmin(sv[(rk < want ? rk : want) - 1] / sv[0], kin * kin) : 0.0;
     d->rank = o->rank;
-    if (rk < Nr)
+    if (rk != want)
         return vt_scratch_release(d, mark),
                vt_fail(d->message, VT_ERR_SINGULAR,
-                       "vt_solve: singular: Φ_q has rank %d of %d rows (%d directions kept), and the reduced augmented "
-                       "matrix has rank %d of %d (reciprocal condition %.3g below rcond_min %.3g): a motion without "
-                       "inertia that nothing fixes", o->rank, nc, nr, rk, Nr, d->rcond, m->rcond_min);
-    /* q̈ = D ỹ; λ = G U_r μ, with b = [ỹ; −μ] */
+                       "vt_solve: singular: Φ_q has rank %d of %d rows (%d directions kept), and the augmented matrix "
+                       "of the kept rows has rank %d of %d (reciprocal condition %.3g, rcond_min %.3g): %s",
+                       o->rank, nc, nr, rk, want, d->rcond, m->rcond_min,
+                       rk < want ? "a motion without inertia that nothing fixes, or a pose near a singular one"
+                                 : "dropped directions not dependent to round-off");
+    if (!(d->rcond >= m->rcond_min))
+        return vt_scratch_release(d, mark),
+               vt_fail(d->message, VT_ERR_SINGULAR,
+                       "vt_solve: ill-conditioned: Φ_q has rank %d of %d rows (%d directions kept, the smallest kept "
+                       "one %.3g of the largest), reciprocal condition %.3g below rcond_min %.3g: a pose near a "
+                       "singular one", o->rank, nc, nr, kin, d->rcond, m->rcond_min);
+    /* q̈ = D ỹ; λ = G P N μ, with b = [ỹ; −μ] */
     for (int a = 0; a < nv; a++) b[a] *= s[a];
-    for (int r = 0; r < nc; r++) {
+    for (int r = 0; r < nc; r++) h[r] *= -b[nv + r]; /* w = N μ */
+    for (int j = 0; j < nd; j++) {
         double v = 0.0;
-        for (int i = 0; i < nr; i++) v += U[r + (size_t)i * (size_t)nc] * b[nv + i];
-        sv[r] = -g[r] * v;
+        for (int r = 0; r < nc; r++) v += U[r + (size_t)(nr + j) * snc] * h[r];
+        W[j] = v; /* U_d^T w */
+    }
+    for (int r = 0; r < nc; r++) {
+        double v = h[r];
+        for (int j = 0; j < nd; j++) v -= U[r + (size_t)(nr + j) * snc] * W[j];
+        sv[r] = g[r] * v;
     }
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
@@ -740,10 +861,10 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
  * the condition of Φ̂ = G Φ_q C (its own LU; exact from the inverse up to 16 rates, dgecon
  * above), a scaling that makes Φ̂ dimensionless and its condition independent of units and of
- * the scene's frame: rows that measure angles by ρ and
+ * the scene's frame, and in which no mass takes part: rows that measure angles by ℓ and
  * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
- * parameters) by 1/ρ and those that translate by 1 (C), ρ the system's radius of gyration (a
- * length of the mechanism, gyration_radius). The two solves in sequence amplify errors by
+ * parameters) by 1/ℓ and those that translate by 1 (C), ℓ the rows' own lever arm (rows_length,
+ * a length of the rows' geometry). The two solves in sequence amplify errors by
  * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
  * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
  * same number. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
@@ -764,7 +885,7 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
     double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
     int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C");
     if (!ip) return vt_scratch_fail(d, mark);
-    const double rho = gyration_radius(m, d);
+    const double rho = rows_length(m, d, NULL);
     for (int a = 0; a < n; a++) {
         const int i = m->dof_body[a];
         int ax = 0;
@@ -1077,8 +1198,8 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
  * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio of
  * the whole M* times the unit-diagonal Schur complement's and the point drives' grip² (SCHUR); the
- * scaled augmented matrix's times the grip² (AUGMENTED); the reduced system's singular value
- * ratio (REDUNDANT). Round-off of an exact zero taken for a row or an inertia is caught first
+ * scaled augmented matrix's times the grip² (AUGMENTED); the kept rows' matrix's singular value
+ * ratio or (σ_kept / σ_max)² of Φ̂, the smaller (REDUNDANT). Round-off of an exact zero taken for a row or an inertia is caught first
  * (roundoff_check). Below rcond_min the rows' rank (rows_decide)
  * tells dependent rows (VT_ERR_DEPENDENT_CONSTRAINTS, named) from a singular or ill-conditioned
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
@@ -1262,12 +1383,10 @@ size_t vt_solve_scratch(const vt_model *m)
     /* rows_decide's SVD (U, V^T, σ, both scalings; the scaled Φ_q while it runs), then
      * redundant_solve's reduced system */
     const size_t rows = VT_SCRATCH_BYTES(snc * snc, D) + VT_SCRATCH_BYTES((size_t)k * snv, D) +
-                        VT_SCRATCH_BYTES((size_t)k, D) + VT_SCRATCH_BYTES(snc, D) + VT_SCRATCH_BYTES(snv, D);
-    const size_t after = VT_SCRATCH_BYTES(snc * snv, D) > VT_SCRATCH_BYTES(sN * sN, D) + 2 * VT_SCRATCH_BYTES(sN, D) +
-                                                              VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I)
-                             ? VT_SCRATCH_BYTES(snc * snv, D)
-                             : VT_SCRATCH_BYTES(sN * sN, D) + 2 * VT_SCRATCH_BYTES(sN, D) +
-                                   VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
+                        VT_SCRATCH_BYTES((size_t)k, D) + VT_SCRATCH_BYTES(snc, D) + 2 * VT_SCRATCH_BYTES(snv, D);
+    const size_t solve_kept = 2 * VT_SCRATCH_BYTES(sN * sN, D) + 3 * VT_SCRATCH_BYTES(sN, D) + VT_SCRATCH_BYTES(snc, D) +
+                              VT_SCRATCH_BYTES(snc * (snv + 1) + 1, D) + VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
+    const size_t after = VT_SCRATCH_BYTES(snc * snv, D) > solve_kept ? VT_SCRATCH_BYTES(snc * snv, D) : solve_kept;
     if (rows + after > route) route = rows + after;
     /* roundoff_check (before a route, and inside rows_decide with its flags), the square route's
      * condition (G Φ_q C, its pivots, its inverse) and vt_solve_spd's unit diagonal */

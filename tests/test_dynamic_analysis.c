@@ -1,6 +1,7 @@
 /* src/dynamic_analysis.c: the dynamic analysis and its forward check against the paper's exact
  * double link (29) and its first integral; a free four-bar (cut joint, spherical joint)
- * against energy conservation; IDA's failures reaching the caller with IDA's own code. */
+ * against energy conservation; IDA's failures reaching the caller with IDA's own code; a
+ * spherical joint's relative orientation drive against Newton's solution at each output. */
 #include <ida/ida.h>
 
 #include "vt_test.h"
@@ -54,6 +55,48 @@ static void test_double_link(void **state)
     assert_true(tr->steps > 0 && tr->res_evals >= tr->steps);
     vt_trajectory_free(tr);
     vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* A spherical joint's relative orientation drive (vt_scene_spherical_chain, fully driven):
+ * IDA's integration of the driven motion against Newton's solution at each output time — the
+ * state, the drive's moment and every reaction. */
+static void test_relative_orientation_drive(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d, *dk;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_spherical_chain(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dk, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 20;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    opt.forward_check = 0;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    d->time = opt.t0;
+    assert_ok(vt_kinematic_solve(m, d, 1e-14, 50)); /* a consistent start */
+    assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, opt.nout + 1);
+    double dq = 0.0, dn = 0.0, df = 0.0;
+    const int nb3 = 3 * (m->nbody + 1);
+    for (int k = 0; k < tr->nfilled; k++) {
+        memcpy(dk->q, tr->q + (size_t)m->nq * (size_t)k, (size_t)m->nq * sizeof(double));
+        dk->time = tr->t[k];
+        assert_ok(vt_kinematic_solve(m, dk, 1e-14, 50));
+        for (int c = 0; c < m->nq; c++) dq = fmax(dq, fabs(tr->q[(size_t)m->nq * (size_t)k + c] - dk->q[c]));
+        for (int e = 0; e < 9; e++)
+            dn = fmax(dn, fabs(tr->drive_moment[9 * k + e] - dk->drive_moment[e]) / (1 + vt_test_maxabs(dk->drive_moment, 9)));
+        for (int e = 3; e < nb3; e++)
+            df = fmax(df, fabs(tr->jnt_force[(size_t)nb3 * (size_t)k + e] - dk->jnt_force[e]) / vt_test_maxabs(dk->jnt_force, nb3));
+    }
+    print_message("relative orientation drive, IDA against Newton: q %.2g, drive moments %.2g, reactions %.2g\n", dq, dn, df);
+    assert_true(dq < 1e-7 && dn < 1e-6 && df < 1e-6);
+    vt_trajectory_free(tr);
+    vt_data_free(dk);
     vt_data_free(d);
     vt_model_free(m);
 }
@@ -663,6 +706,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_double_link),
+        cmocka_unit_test(test_relative_orientation_drive),
         cmocka_unit_test(test_free_fourbar),
         cmocka_unit_test(test_free_floating_chain),
         cmocka_unit_test(test_formulations_drift),

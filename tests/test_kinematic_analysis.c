@@ -1,8 +1,10 @@
 /* src/kinematic_analysis.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
- * the forward check), its rows (recursive instants from predicted starts) against the dense
- * vt_kinematic_solve from independent starts, one Newton step per row, the stretched arm that
- * warns then fails, and the failure statuses (not fully driven, Newton that does not converge,
- * abort, bad options); a fully driven model with dependent rows, decided by rank. */
+ * the forward check; the free joint's forward check under the drives' loads), its rows
+ * (recursive instants from predicted starts) against the dense vt_kinematic_solve from
+ * independent starts, one Newton step per row, the stretched arm that warns then fails, and
+ * the failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
+ * fully driven model with dependent rows, decided by rank; a spherical joint's relative
+ * orientation drive through the forward check both ways. */
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
@@ -49,6 +51,40 @@ static void test_five_link_circle_and_forward_check(void **state)
     assert_true(tr->steps_fwd > 0);
     vt_trajectory_free(tr);
     vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+/* A spherical joint driven by a relative orientation drive (vt_scene_spherical_chain): the
+ * kinematic analysis's Newton from the assembled pose, and the forward check both ways — the
+ * generalized forces Φ_q^T λ, and each drive's own load (the relative drive's moment on body 2
+ * and its opposite on body 1), which also compares the reactions — reproduce the motion. */
+static void test_relative_orientation_forward_check(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_spherical_chain(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 50;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    for (int as_loads = 0; as_loads < 2; as_loads++) {
+        opt.forward_as_loads = as_loads;
+        assert_ok(vt_data_reset(m, d));
+        assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+        assert_int_equal(tr->nfilled, opt.nout + 1);
+        for (int k = 0; k < tr->nfilled; k++) assert_near(tr->phi_norm[k], 0.0, 1e-12);
+        print_message("relative orientation drive, forward check (as_loads %d): |q| %.2g, |q̇| %.2g, "
+                      "reaction force %.2g N, moment %.2g N·m\n", as_loads, tr->fwd_err_q, tr->fwd_err_qd,
+                      tr->fwd_err_force, tr->fwd_err_moment);
+        assert_true(tr->fwd_err_q < 1e-6 && tr->fwd_err_q > 0.0);
+        assert_true(tr->fwd_err_qd < 1e-5);
+        if (as_loads) assert_true(tr->fwd_err_force < 1e-5 && tr->fwd_err_moment < 1e-5);
+    }
+    vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
 }
@@ -211,6 +247,34 @@ static void test_free_joint_rows_against_dense_instants(void **state)
     vt_data_free(d);
     vt_model_free(m);
 }
+
+#if VT_HAVE_SUNDIALS
+/* The forward check of the free joint (Euler parameters integrated on the sphere, the exact
+ * efforts' Newton started from the rows interpolated by the rotation's cubic q̇): the undriven
+ * run under the drives' own loads reproduces the rows' motion and their reactions */
+static void test_free_joint_forward_check(void **state)
+{
+    (void)state;
+    vt_model *m = free_joint_model();
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 2.0;
+    opt.nout = 50;
+    opt.forward_as_loads = 1;
+    assert_ok(vt_trajectory_create(&tr, m, 51));
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_true(tr->steps_fwd > 0);
+    if (!(tr->fwd_err_q <= 1e-6 && tr->fwd_err_q > 0.0 && tr->fwd_err_qd <= 1e-5 && tr->fwd_err_force <= 1e-5 &&
+          tr->fwd_err_moment <= 1e-5))
+        fail_msg("forward check off: |q| %.3g, |q'| %.3g, reactions %.3g N, %.3g N m", tr->fwd_err_q, tr->fwd_err_qd,
+                 tr->fwd_err_force, tr->fwd_err_moment);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+#endif
 
 /* From the predicted starts one Newton step reaches 1e-10 at every row of the five-link arm
  * (from the previous row itself it takes two or three) */
@@ -492,6 +556,60 @@ static void test_spline_drive_converges(void **state)
     vt_model_free(m);
 }
 
+/* The same four-bar closed by a planar pin (3 independent rows for 3 rates, no allow_redundant):
+ * a kinematic analysis's every row equals the closed-form assembly, its crank torque the RSUR
+ * model's at the same state; the forward check runs in the default (GGL) formulation, whose IDA
+ * Jacobian the redundant model's dependent rows make singular, and reproduces the motion and
+ * the reactions. */
+static void test_planar_pin_over_time(void **state)
+{
+    (void)state;
+    const double coef[3] = {0.3, 2.0, 1.5};
+    const vt_function crank = vt_function_polynomial(3, coef);
+    vt_model *m, *rsur;
+    assert_ok(vt_scene_fourbar_pin(&m, crank));
+    assert_ok(vt_scene_fourbar(&rsur, crank));
+    vt_data *d, *dx, *du;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dx, m));
+    assert_ok(vt_data_create(&du, rsur));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 1.0;
+    opt.nout = 10;
+#if !VT_HAVE_SUNDIALS
+    opt.forward_check = 0;
+#endif
+    vt_trajectory *tr;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    assert_int_equal(vt_scene_fourbar_planar_assemble(m, d, coef[0], coef[1]), 0);
+    const vt_status st = vt_kinematic_analysis(m, d, &opt, tr);
+    if (st) fail_msg("%s", d->message);
+    assert_int_equal(tr->nfilled, opt.nout + 1);
+    for (int k = 0; k <= opt.nout; k++) {
+        const double t = tr->t[k], th2 = coef[0] + coef[1] * t + coef[2] * t * t, w2 = coef[1] + 2 * coef[2] * t;
+        assert_int_equal(vt_scene_fourbar_planar_assemble(m, dx, th2, w2), 0);
+        for (int c = 0; c < 3; c++) {
+            assert_near(tr->q[3 * k + c], dx->q[c], 1e-10);
+            assert_near(tr->qd[3 * k + c], dx->qd[c], 1e-9);
+        }
+        assert_int_equal(vt_scene_fourbar_assemble(rsur, du, th2, w2, NULL, NULL), 0);
+        du->time = t;
+        assert_ok(vt_inverse_dynamics(rsur, du));
+        assert_near(tr->drive_effort[k], du->drive_effort[0], 1e-8 * (1 + fabs(du->drive_effort[0])));
+    }
+#if VT_HAVE_SUNDIALS
+    assert_true(tr->fwd_err_q < 1e-5); /* IDA's error at rtol 1e-8 over 1 s */
+    assert_true(tr->fwd_err_force < 1e-4 * (1 + vt_test_maxabs(tr->jnt_force, 3 * 4 * (opt.nout + 1))));
+    print_message("planar pin four-bar, forward check: |q| %.2e rad, reactions %.2e N\n", tr->fwd_err_q, tr->fwd_err_force);
+#endif
+    vt_trajectory_free(tr);
+    vt_data_free(du);
+    vt_data_free(dx);
+    vt_data_free(d);
+    vt_model_free(rsur);
+    vt_model_free(m);
+}
+
 /* A fully driven model with dependent rows: the planar four-bar closed by a spatial revolute
  * cut joint, its crank driven (6 rows of rank 3 for 3 rates). Built without allow_redundant it
  * is refused as having dependent rows, with the advice to allow them (not as "not fully
@@ -585,6 +703,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_five_link_circle_and_forward_check),
+        cmocka_unit_test(test_relative_orientation_forward_check),
+        cmocka_unit_test(test_free_joint_forward_check),
 #else
         cmocka_unit_test(test_no_forward_check_without_sundials),
 #endif
@@ -595,6 +715,7 @@ int main(void)
         cmocka_unit_test(test_stretched_arm),
         cmocka_unit_test(test_spline_drive_converges),
         cmocka_unit_test(test_redundant_fully_driven),
+        cmocka_unit_test(test_planar_pin_over_time),
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_given_output_times),
 #endif

@@ -1,7 +1,9 @@
 /* src/kinematic_solve.c: the consistent q̇ and q̈ of an instant against differences of the Newton
  * solutions in time; a free joint driven by joint drives and an orientation drive; fewer rows than
- * rates: the least-norm corrections. */
+ * rates: the least-norm corrections; Newton's starts from a trajectory's rows (vt_kinematic_start)
+ * exact for the polynomials of their degree. */
 #include "vt_test.h"
+#include "../src/internal.h" /* vt_kinematic_start */
 
 /* q̇ and q̈ of the Newton solutions against central differences of q(t) and q̇(t) */
 static void test_rates_against_differences(void **state)
@@ -193,6 +195,60 @@ static void test_fewer_rows_least_norm(void **state)
     vt_model_free(m);
 }
 
+/* coordinate c of a polynomial motion of degree deg and its derivatives (der 0, 1, 2) at t */
+static double poly(int deg, int c, int der, double t)
+{
+    double s = 0.0;
+    for (int j = der; j <= deg; j++) {
+        double f = 1.0;
+        for (int k = 0; k < der; k++) f *= j - k;
+        s += f * ((j % 2 ? -1.0 : 1.0) * (c + 1.0) / (j + 1.0)) * pow(t, j - der);
+    }
+    return s;
+}
+
+/* Newton's start from rows whose q, q̇, q̈ are those of a polynomial motion: the Hermite
+ * polynomial through three rows (degree 8), two rows (degree 5) and one (Taylor, degree 2)
+ * reproduces a motion of its degree exactly, interpolated between irregular rows and
+ * extrapolated past them; one degree more and it does not */
+static void test_start_exact_for_its_degree(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m)); /* five revolute joints: q̇ is the derivative of q */
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 4));
+    static const double times[4] = {0.0, 0.1, 0.25, 0.3};
+    static const struct { int k1, k2, k3, deg; double t; } cases[] = {
+        {1, 2, 3, 8, 0.18}, {2, 1, 3, 8, 0.12}, {3, 2, 1, 8, 0.36}, {1, 2, -1, 5, 0.2}, {2, 1, -1, 5, 0.33},
+        {1, -1, -1, 2, 0.14},
+    };
+    for (size_t n = 0; n < sizeof cases / sizeof cases[0]; n++)
+        for (int extra = 0; extra < 2; extra++) { /* the motion of the start's degree, then one more */
+            const int deg = cases[n].deg + extra;
+            for (int k = 0; k < 4; k++) {
+                tr->t[k] = times[k];
+                for (int c = 0; c < 5; c++) {
+                    tr->q[5 * k + c] = poly(deg, c, 0, times[k]);
+                    tr->qd[5 * k + c] = poly(deg, c, 1, times[k]);
+                    tr->qdd[5 * k + c] = poly(deg, c, 2, times[k]);
+                }
+            }
+            tr->nfilled = 4;
+            d->time = cases[n].t;
+            assert_ok(vt_kinematic_start(m, d, tr, cases[n].k1, cases[n].k2, cases[n].k3));
+            double err = 0.0;
+            for (int c = 0; c < 5; c++) err = fmax(err, fabs(d->q[c] - poly(deg, c, 0, cases[n].t)));
+            if (extra == 0 && !(err <= 1e-12)) fail_msg("case %zu: degree %d off by %g", n, deg, err);
+            if (extra == 1 && !(err > 1e-11)) fail_msg("case %zu: degree %d reproduced (%g): the test cannot fail", n, deg, err);
+        }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -201,6 +257,7 @@ int main(void)
         cmocka_unit_test(test_orientation_drive_long_axis),
         cmocka_unit_test(test_failures_have_messages),
         cmocka_unit_test(test_fewer_rows_least_norm),
+        cmocka_unit_test(test_start_exact_for_its_degree),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -608,6 +608,114 @@ static void test_free_joint(void **state)
     vt_model_free(m);
 }
 
+/* An orientation drive's three angles may be splines: the builder owns each one's samples (the
+ * caller's arrays overwritten after the drive is added change nothing), and the angles are the
+ * parabola through three samples and the line through two: the body's q against the Z–Y–X
+ * product of those angles, and q̇ = ω against its closed form. */
+static void test_sequence_splines_owned(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_SPHERICAL;
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = 1.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    double t1[3] = {0.0, 1.0, 2.0}, y1[3] = {0.0, 0.5, 2.0}; /* the parabola y = t²/2 */
+    double t3[2] = {0.0, 1.0}, y3[2] = {0.2, -0.4};           /* y = 0.2 − 0.6 t */
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    od.sequence = "ZYX";
+    od.f = vt_function_spline(3, t1, y1);
+    od.f2 = vt_function_constant(0.3);
+    od.f3 = vt_function_spline(2, t3, y3);
+    assert_int_equal(vt_builder_add_drive(b, &od), 0);
+    for (int k = 0; k < 3; k++) t1[k] = y1[k] = -7.0;
+    t3[0] = t3[1] = y3[0] = y3[1] = 9.0;
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    const double t = 0.7, a = 0.5 * t * t, ad = t, c = 0.2 - 0.6 * t, cd = -0.6;
+    d->time = t;
+    assert_ok(vt_kinematic_solve(m, d, 1e-14, 50));
+    const double ez[3] = {0, 0, 1}, ey[3] = {0, 1, 0}, ex[3] = {1, 0, 0};
+    double rz[4], ry[4], rx[4], want[4], Azy[9], rzy[4];
+    vt_quat_axis_angle(rz, ez, a);
+    vt_quat_axis_angle(ry, ey, 0.3);
+    vt_quat_axis_angle(rx, ex, c);
+    vt_quat_mul(rzy, rz, ry);
+    vt_quat_mul(want, rzy, rx);
+    const double sg = d->q[0] * want[0] < 0 ? -1.0 : 1.0;
+    for (int k = 0; k < 4; k++) assert_near(d->q[k], sg * want[k], 1e-12);
+    vt_euler_A(Azy, rzy);
+    for (int k = 0; k < 3; k++) assert_near(d->qd[k], ad * ez[k] + cd * Azy[k], 1e-12); /* ω = ȧ z + ċ (R_z R_y x) */
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* The planar pin: only a revolute may be one (the builder refuses any other kind, naming it,
+ * and any value but 0 or 1); it has 2 rows, along two unit vectors ⟂ axis1 in a's axes, each
+ * on both joint points; a full revolute beside it keeps its 5; a builder's refusal adds nothing */
+static void test_planar_cut_joint(void **state)
+{
+    (void)state;
+    vt_builder *b = NULL;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    d.parent = 1;
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    vt_cut_joint_def cj = vt_default_cut_joint_def();
+    assert_int_equal(cj.planar, 0);
+    cj.body_b = 2;
+    cj.planar = 1;
+    static const vt_joint_type others[4] = {VT_JOINT_UNIVERSAL, VT_JOINT_SPHERICAL, VT_JOINT_TRANSLATIONAL,
+                                            VT_JOINT_CYLINDRICAL};
+    for (int k = 0; k < 4; k++) {
+        cj.joint = others[k];
+        assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_BAD_CUT_JOINT);
+        assert_non_null(strstr(vt_builder_message(b), "planar"));
+    }
+    cj.joint = VT_JOINT_REVOLUTE;
+    cj.planar = 2;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), VT_ERR_BAD_CUT_JOINT);
+    assert_non_null(strstr(vt_builder_message(b), "planar is 2"));
+    cj.planar = 1;
+    cj.axis1[0] = 3.0; /* normalized: (0.6, 0, 0.8) */
+    cj.axis1[1] = 0.0;
+    cj.axis1[2] = 4.0;
+    cj.point_a[0] = 0.3;
+    cj.point_b[1] = -0.2;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), 0);
+    cj.planar = 0;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cj), 1);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->ncut, 2);
+    assert_int_equal(m->nc, 2 + 5);
+    assert_int_equal(m->cut_row[0], 0);
+    assert_int_equal(m->cut_row[1], 2);
+    assert_int_equal(m->cut[0].planar, 1);
+    const double a[3] = {0.6, 0.0, 0.8};
+    double u[2][3];
+    for (int r = 0; r < 2; r++) {
+        const double *v = m->con_vec + 6 * r, *p = m->con_point + 6 * r;
+        memcpy(u[r], v, sizeof u[r]);
+        assert_int_equal(m->con_owner[r], 0);
+        assert_int_equal(m->con_body[2 * r], 0);
+        assert_int_equal(m->con_body[2 * r + 1], 2);
+        assert_near(v[0] * a[0] + v[1] * a[1] + v[2] * a[2], 0.0, 1e-15);
+        assert_near(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, 1e-15);
+        assert_near(p[0], 0.3, 0.0);
+        assert_near(p[4], -0.2, 0.0);
+    }
+    assert_near(u[0][0] * u[1][0] + u[0][1] * u[1][1] + u[0][2] * u[1][2], 0.0, 1e-15);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -623,6 +731,8 @@ int main(void)
         cmocka_unit_test(test_limits),
         cmocka_unit_test(test_couplings),
         cmocka_unit_test(test_free_joint),
+        cmocka_unit_test(test_sequence_splines_owned),
+        cmocka_unit_test(test_planar_cut_joint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,7 +1,8 @@
 /* src/reactions.c: efforts (24) and reactions (25)-(28) against the paper's exact double-link
  * solution (29), a planar Newton–Euler solution of a four-bar, the power balance of every
  * effort, Newton–Euler balance of every body, and the reaction's orthogonality to a joint's
- * free directions. */
+ * free directions; relative orientation drives against the same motion given to
+ * vt_inverse_dynamics_motion and against a revolute's joint drive. */
 #include "vt_test.h"
 
 /* ---- the paper's double link, joint 2 locked --------------------------------------- */
@@ -607,6 +608,599 @@ static void test_fourbar_rusr(void **state)
     vt_model_free(ms);
 }
 
+/* ---- planar loops closed by a planar pin (vt_cut_joint_def.planar) ------------------------- */
+
+/* One instant by path 0 the dense stages, 1 the recursive evaluation, 2 the motion given (the
+ * crank's q̈, rate 0; the loop gives the rest) */
+static void planar_instant(const vt_model *m, vt_data *d, int path, double crank_qdd)
+{
+    if (path == 0) {
+        assert_ok(vt_inverse_dynamics(m, d));
+    } else if (path == 1) {
+        assert_ok(vt_inverse_dynamics_recursive(m, d));
+    } else {
+        memset(d->qdd, 0, (size_t)m->nv * sizeof(double));
+        d->qdd[0] = crank_qdd;
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+    }
+}
+
+/* |got − (x, y, z)| componentwise within tol; the largest relative difference to scale kept */
+static void expect3(const double *got, double x, double y, double z, double tol, double scale, double *worst)
+{
+    const double want[3] = {x, y, z};
+    for (int k = 0; k < 3; k++) {
+        assert_near(got[k], want[k], tol);
+        *worst = fmax(*worst, fabs(got[k] - want[k]) / scale);
+    }
+}
+
+/* The four-bar closed by a planar pin at the rocker's ground pivot: 3 rows on 3 rates, no
+ * allow_redundant. Against the planar Newton–Euler solution above (its own kinematics, dgesv)
+ * on all three paths to 1e-12 of the largest force: the crank torque, q̈, every pin's in-plane
+ * force (tree joints and the cut), nothing out of the plane, no pin moment, α of every link and
+ * the total joint wrenches (the crank's carries the torque). Then the same mechanism with the
+ * full 5-row revolute and allow_redundant: the same torque and in-plane forces. */
+static void test_fourbar_planar_pin(void **state)
+{
+    (void)state;
+    const vt_function crank = vt_function_sine(0.3, 2.5, 1.7, 0.4); /* θ2 = 0.3 + 2.5 sin(1.7 t + 0.4) */
+    vt_model *m, *mr;
+    assert_ok(vt_scene_fourbar_pin(&m, crank));
+    assert_ok(vt_scene_fourbar_planar(&mr, crank, 1));
+    assert_int_equal(m->nv, 3);
+    assert_int_equal(m->nc, 3);
+    assert_int_equal(m->allow_redundant, 0);
+    assert_int_equal(mr->nc, 6);
+    vt_data *d, *dr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dr, mr));
+    const double g = 9.81;
+    double worst = 0.0;
+    for (double t = 0.0; t < 4.0; t += 0.23) {
+        double f[3];
+        assert_ok(vt_function_eval(f, &crank, t));
+        for (int path = 0; path < 3; path++) {
+            assert_int_equal(vt_scene_fourbar_planar_assemble(m, d, f[0], f[1]), 0);
+            d->time = t;
+            planar_instant(m, d, path, f[2]);
+            assert_int_equal(d->rank, 3);
+            assert_int_equal(d->warning, 0);
+            /* the coupler's and rocker's global angles and rates: the joint angles summed */
+            const double th[2] = {d->q[0] + d->q[1], d->q[0] + d->q[1] + d->q[2]};
+            const double w[2] = {d->qd[0] + d->qd[1], d->qd[0] + d->qd[1] + d->qd[2]};
+            planar_motion pm;
+            planar_motion_at(&pm, f[0], f[1], f[2], th, w);
+            double x[9];
+            planar_solution(&pm, x, g);
+            const double fs = vt_test_maxabs(x, 9), tol = 1e-12 * fs;
+            const double as = vt_test_maxabs(pm.al, 3);
+            /* q̈ and α */
+            expect3(d->qdd, pm.al[0], pm.al[1] - pm.al[0], pm.al[2] - pm.al[1], 1e-12 * as, as, &worst);
+            for (int i = 1; i <= 3; i++) expect3(d->alpha + 3 * i, 0.0, 0.0, pm.al[i - 1], 1e-12 * as, as, &worst);
+            /* the crank torque, the pins' forces: ground on crank at O2, crank on coupler at B,
+             * coupler on rocker at C (= −F3), ground on rocker at O4 (the planar pin) */
+            assert_near(d->drive_effort[0], x[8], tol);
+            worst = fmax(worst, fabs(d->drive_effort[0] - x[8]) / fs);
+            expect3(d->jnt_force + 3, x[0], x[1], 0.0, tol, fs, &worst);
+            expect3(d->jnt_force + 6, x[2], x[3], 0.0, tol, fs, &worst);
+            expect3(d->jnt_force + 9, -x[4], -x[5], 0.0, tol, fs, &worst);
+            expect3(d->cut_force, x[6], x[7], 0.0, tol, fs, &worst);
+            expect3(d->cut_moment, 0.0, 0.0, 0.0, tol, fs, &worst);
+            for (int i = 1; i <= 3; i++) expect3(d->jnt_moment + 3 * i, 0.0, 0.0, 0.0, tol, fs, &worst);
+            /* the total wrenches: the reactions, and the crank's torque at O2 */
+            expect3(d->jnt_force_total + 3, x[0], x[1], 0.0, tol, fs, &worst);
+            expect3(d->jnt_moment_total + 3, 0.0, 0.0, x[8], tol, fs, &worst);
+            for (int i = 2; i <= 3; i++) {
+                expect3(d->jnt_force_total + 3 * i, d->jnt_force[3 * i], d->jnt_force[3 * i + 1], 0.0, tol, fs, &worst);
+                expect3(d->jnt_moment_total + 3 * i, 0.0, 0.0, 0.0, tol, fs, &worst);
+            }
+        }
+        /* the full revolute, 5 rows (2 of them and the axis rows' out-of-plane loads not unique) */
+        assert_int_equal(vt_scene_fourbar_planar_assemble(mr, dr, f[0], f[1]), 0);
+        dr->time = t;
+        assert_ok(vt_inverse_dynamics(mr, dr));
+        assert_int_equal(dr->rank, 3);
+        const double fs = 1.0 + vt_test_maxabs(d->jnt_force + 3, 9);
+        assert_near(dr->drive_effort[0], d->drive_effort[0], 1e-10 * fs);
+        for (int i = 1; i <= 3; i++)
+            for (int k = 0; k < 2; k++) {
+                assert_int_equal(dr->jnt_unique[6 * i + k], 1);
+                assert_near(dr->jnt_force[3 * i + k], d->jnt_force[3 * i + k], 1e-10 * fs);
+            }
+        for (int k = 0; k < 2; k++) assert_near(dr->cut_force[k], d->cut_force[k], 1e-10 * fs);
+    }
+    print_message("four-bar, planar pin: largest difference from the planar Newton-Euler solution %.2e of the largest force\n", worst);
+    vt_data_free(dr);
+    vt_data_free(d);
+    vt_model_free(mr);
+    vt_model_free(m);
+}
+
+/* the slider-crank's planar motion: crank θ, ω, α; rod φ, φ̇, φ̈; the pin B's x and its rates */
+typedef struct { double th, w, al, phi, wphi, alphi, Bx, aBx; } slider_motion;
+
+static void slider_motion_at(slider_motion *s, double th, double w, double al)
+{
+    const double R = VT_SC_R, L = VT_SC_L, h = VT_SC_H - VT_SC_JY + VT_SC_PY; /* B's height */
+    s->th = th; s->w = w; s->al = al;
+    /* R sin θ + L sin φ = h, differentiated twice */
+    s->phi = asin((h - R * sin(th)) / L);
+    const double cp = cos(s->phi), sp = sin(s->phi);
+    s->wphi = -R * w * cos(th) / (L * cp);
+    s->alphi = (-R * (al * cos(th) - w * w * sin(th)) + L * s->wphi * s->wphi * sp) / (L * cp);
+    s->Bx = R * cos(th) + L * cp;
+    s->aBx = -R * (al * sin(th) + w * w * cos(th)) - L * (s->alphi * sp + s->wphi * s->wphi * cp);
+}
+
+/* 9x9 Newton–Euler of the slider-crank: unknowns F_O (ground on crank at O) x y, F_A (crank on
+ * rod at A) x y, F_B (slider on rod at the pin B) x y, N (the guide on the slider along y at its
+ * joint point P), M (the guide's moment on the slider about P), T (the crank torque) */
+static void slider_solution(const slider_motion *s, double x[9], double g)
+{
+    const double R = VT_SC_R, L = VT_SC_L, m1 = 1.0, m2 = 2.0, m3 = 1.5, I1 = m1 * R * R / 12, I2 = m2 * L * L / 12;
+    const double e1[2] = {cos(s->th), sin(s->th)}, ep[2] = {cos(s->phi), sin(s->phi)};
+    double A[2], G1[2], G2[2], B[2], G3[2], P[2], a1[2], a2[2], t[2], u[2];
+    for (int k = 0; k < 2; k++) {
+        A[k] = R * e1[k];
+        G1[k] = 0.5 * R * e1[k];
+        B[k] = A[k] + L * ep[k];
+        G2[k] = A[k] + 0.5 * L * ep[k];
+    }
+    G3[0] = B[0] - VT_SC_PX; G3[1] = B[1] - VT_SC_PY;
+    P[0] = G3[0] + VT_SC_JX; P[1] = G3[1] + VT_SC_JY;
+    cross_z(t, s->al, e1);
+    cross_z(u, s->alphi, ep);
+    for (int k = 0; k < 2; k++) {
+        const double aA = R * (t[k] - s->w * s->w * e1[k]);
+        a1[k] = 0.5 * aA;
+        a2[k] = aA + 0.5 * L * (u[k] - s->wphi * s->wphi * ep[k]);
+    }
+    double M[81] = {0}, rhs[9];
+#define EQ(row, col, v) M[(row) + 9 * (col)] += (v)
+#define MOM(row, col, r, sg) do { EQ(row, col, -(sg) * (r)[1]); EQ(row, (col) + 1, (sg) * (r)[0]); } while (0)
+    double r[2];
+    /* crank: F_O − F_A + m g = m a; T + (O − G1) × F_O − (A − G1) × F_A = I α */
+    EQ(0, 0, 1); EQ(0, 2, -1); EQ(1, 1, 1); EQ(1, 3, -1);
+    r[0] = -G1[0]; r[1] = -G1[1]; MOM(2, 0, r, 1.0);
+    r[0] = A[0] - G1[0]; r[1] = A[1] - G1[1]; MOM(2, 2, r, -1.0);
+    EQ(2, 8, 1);
+    /* rod: F_A + F_B + m g = m a; (A − G2) × F_A + (B − G2) × F_B = I φ̈ */
+    EQ(3, 2, 1); EQ(3, 4, 1); EQ(4, 3, 1); EQ(4, 5, 1);
+    r[0] = A[0] - G2[0]; r[1] = A[1] - G2[1]; MOM(5, 2, r, 1.0);
+    r[0] = B[0] - G2[0]; r[1] = B[1] - G2[1]; MOM(5, 4, r, 1.0);
+    /* slider: (0, N) − F_B + m g = m a; M + (P − G3) × (0, N) − (B − G3) × F_B = 0 (it does not turn) */
+    EQ(6, 4, -1); EQ(7, 5, -1); EQ(7, 6, 1);
+    EQ(8, 7, 1); EQ(8, 6, P[0] - G3[0]);
+    r[0] = B[0] - G3[0]; r[1] = B[1] - G3[1]; MOM(8, 4, r, -1.0);
+#undef MOM
+#undef EQ
+    rhs[0] = m1 * a1[0]; rhs[1] = m1 * (a1[1] + g); rhs[2] = I1 * s->al;
+    rhs[3] = m2 * a2[0]; rhs[4] = m2 * (a2[1] + g); rhs[5] = I2 * s->alphi;
+    rhs[6] = m3 * s->aBx; rhs[7] = m3 * g; rhs[8] = 0.0;
+    int n = 9, one = 1, ipiv[9], info = 0;
+    dgesv_(&n, &one, M, &n, ipiv, rhs, &n, &info);
+    assert_int_equal(info, 0);
+    memcpy(x, rhs, sizeof rhs);
+}
+
+/* The offset slider-crank closed by a planar pin between the rod's end and the slider (3 rows on
+ * 3 rates, no allow_redundant), on all three paths, against its planar Newton–Euler solution to
+ * 1e-12 of the largest force: the crank torque, q̈, every pin's force, the guide's normal force
+ * and moment, α, the total wrenches; nothing out of the plane. The full revolute with
+ * allow_redundant gives the same torque. */
+static void test_slider_crank_planar_pin(void **state)
+{
+    (void)state;
+    const vt_function crank = vt_function_sine(0.2, 3.0, 2.1, -0.3);
+    vt_model *m, *mr;
+    assert_ok(vt_scene_slider_crank(&m, crank, 1));
+    assert_ok(vt_scene_slider_crank(&mr, crank, 0));
+    assert_int_equal(m->nv, 3);
+    assert_int_equal(m->nc, 3);
+    assert_int_equal(m->allow_redundant, 0);
+    vt_data *d, *dr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&dr, mr));
+    double worst = 0.0;
+    for (double t = 0.0; t < 3.0; t += 0.19) {
+        double f[3];
+        assert_ok(vt_function_eval(f, &crank, t));
+        slider_motion s;
+        slider_motion_at(&s, f[0], f[1], f[2]);
+        double x[9];
+        slider_solution(&s, x, 9.81);
+        const double fs = vt_test_maxabs(x, 9), tol = 1e-12 * fs;
+        const double as = fmax(fmax(fabs(s.al), fabs(s.alphi)), fabs(s.aBx));
+        for (int path = 0; path < 3; path++) {
+            assert_int_equal(vt_scene_slider_crank_assemble(m, d, f[0], f[1]), 0);
+            d->time = t;
+            planar_instant(m, d, path, f[2]);
+            assert_int_equal(d->rank, 3);
+            assert_int_equal(d->warning, 0);
+            expect3(d->qdd, s.al, s.alphi - s.al, s.aBx, 1e-12 * as, as, &worst);
+            expect3(d->alpha + 3, 0.0, 0.0, s.al, 1e-12 * as, as, &worst);
+            expect3(d->alpha + 6, 0.0, 0.0, s.alphi, 1e-12 * as, as, &worst);
+            expect3(d->alpha + 9, 0.0, 0.0, 0.0, 1e-12 * as, as, &worst);
+            assert_near(d->drive_effort[0], x[8], tol);
+            worst = fmax(worst, fabs(d->drive_effort[0] - x[8]) / fs);
+            expect3(d->jnt_force + 3, x[0], x[1], 0.0, tol, fs, &worst);   /* ground on crank at O */
+            expect3(d->jnt_force + 6, x[2], x[3], 0.0, tol, fs, &worst);   /* crank on rod at A */
+            expect3(d->jnt_force + 9, 0.0, x[6], 0.0, tol, fs, &worst);    /* guide on slider at P */
+            expect3(d->jnt_moment + 9, 0.0, 0.0, x[7], tol, fs, &worst);
+            expect3(d->cut_force, x[4], x[5], 0.0, tol, fs, &worst);       /* slider on rod at B */
+            expect3(d->cut_moment, 0.0, 0.0, 0.0, tol, fs, &worst);
+            for (int i = 1; i <= 2; i++) expect3(d->jnt_moment + 3 * i, 0.0, 0.0, 0.0, tol, fs, &worst);
+            expect3(d->jnt_moment_total + 3, 0.0, 0.0, x[8], tol, fs, &worst);
+            expect3(d->jnt_force_total + 9, 0.0, x[6], 0.0, tol, fs, &worst);
+            expect3(d->jnt_moment_total + 9, 0.0, 0.0, x[7], tol, fs, &worst);
+        }
+        assert_int_equal(vt_scene_slider_crank_assemble(mr, dr, f[0], f[1]), 0);
+        dr->time = t;
+        assert_ok(vt_inverse_dynamics(mr, dr));
+        assert_int_equal(dr->rank, 3);
+        assert_near(dr->drive_effort[0], x[8], 1e-10 * fs);
+    }
+    print_message("slider-crank, planar pin: largest difference from the planar Newton-Euler solution %.2e of the largest force\n", worst);
+    vt_data_free(dr);
+    vt_data_free(d);
+    vt_model_free(mr);
+    vt_model_free(m);
+}
+
+/* vt_scene_fourbar_pin's links by hand, with the rocker's hinge on the coupler tilted by `tilt`
+ * about the coupler's x (tilt ≠ 0: a loop that is not planar) and the pin's axis1 given */
+static vt_model *fourbar_pin_variant(double tilt, const double axis[3], int allow_redundant)
+{
+    static const double len[3] = {VT_FB_A, VT_FB_B, VT_FB_C}, mass[3] = {1.0, 3.0, 2.0};
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = allow_redundant;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    for (int k = 0; k < 3; k++) {
+        vt_body_def link = vt_default_body_def();
+        link.parent = k;
+        link.mass = mass[k];
+        link.inertia[4] = link.inertia[8] = mass[k] * len[k] * len[k] / 12.0;
+        link.joint_child[0] = k == 2 ? 0.5 * len[k] : -0.5 * len[k];
+        if (k > 0) link.joint_parent[0] = 0.5 * len[k - 1];
+        if (k == 2) {
+            link.axis1[1] = sin(tilt);
+            link.axis1[2] = cos(tilt);
+        }
+        assert_int_equal(vt_builder_add_body(b, &link), k + 1);
+    }
+    vt_cut_joint_def cut = vt_default_cut_joint_def();
+    cut.body_b = 3;
+    cut.point_a[0] = VT_FB_D;
+    cut.point_b[0] = -0.5 * VT_FB_C;
+    memcpy(cut.axis1, axis, sizeof cut.axis1);
+    cut.planar = 1;
+    assert_int_equal(vt_builder_add_cut_joint(b, &cut), 0);
+    vt_drive_def drive = vt_default_drive_def();
+    drive.f = vt_function_sine(0.3, 2.5, 1.7, 0.4);
+    assert_int_equal(vt_builder_add_drive(b, &drive), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* A planar pin where the loop is not planar, as documented: it holds only the joint point in the
+ * plane ⟂ axis1. (1) The rocker's hinge tilted 0.2 rad: the loop closes (kinematic solve) with
+ * the rocker's end off the plane along axis1; 3 independent rows; the pin's force lies in the
+ * plane and it carries no moment; dense and recursive paths agree; and the crank torque does the
+ * work the motion needs, τ ω = d(T + V)/dt (energies from the bodies' velocities, central
+ * differences). (2) A pin whose axis1 lies in the plane of a planar loop: its out-of-plane row
+ * has Φ_q = 0, refused as dependent (the message names the cut joint), or with allow_redundant
+ * solved at rank 2. */
+static void test_planar_pin_off_plane(void **state)
+{
+    (void)state;
+    const double z[3] = {0, 0, 1}, xaxis[3] = {1, 0, 0};
+    vt_model *m = fourbar_pin_variant(0.2, z, 0);
+    vt_data *d, *d2;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&d2, m));
+    for (double t = 0.1; t < 1.0; t += 0.3) {
+        double f[3];
+        assert_ok(vt_function_eval(f, &m->drive[0].f, t));
+        assert_int_equal(vt_scene_fourbar_planar_assemble(m, d, f[0], f[1]), 0); /* a start near */
+        d->time = t;
+        assert_ok(vt_kinematic_solve(m, d, 1e-13, 50));
+        assert_int_equal(d->rank, 3);
+        /* the rocker's end O4 in the plane z = 0 at (VT_FB_D, 0), off it along z */
+        const double *A3 = d->A + 9 * 3, *r3 = d->x + 14;
+        double O4[3];
+        for (int k = 0; k < 3; k++) O4[k] = r3[k] - 0.5 * VT_FB_C * A3[k];
+        assert_near(O4[0], VT_FB_D, 1e-12);
+        assert_near(O4[1], 0.0, 1e-12);
+        assert_true(fabs(O4[2]) > 1e-3);
+        const double fs = 1.0 + vt_test_maxabs(d->jnt_force + 3, 9);
+        assert_near(d->cut_force[2], 0.0, 1e-12 * fs);
+        for (int k = 0; k < 3; k++) assert_near(d->cut_moment[k], 0.0, 1e-12 * fs);
+        assert_true(fabs(d->jnt_moment[9]) + fabs(d->jnt_moment[10]) > 1e-3 * fs); /* the tree takes the tilt */
+        memcpy(d2->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(d2->qd, d->qd, (size_t)m->nv * sizeof(double));
+        d2->time = t;
+        assert_ok(vt_inverse_dynamics_recursive(m, d2));
+        assert_near(d2->drive_effort[0], d->drive_effort[0], 1e-12 * fs);
+        for (int k = 0; k < 3; k++) {
+            assert_near(d2->cut_force[k], d->cut_force[k], 1e-12 * fs);
+            for (int i = 1; i <= 3; i++) assert_near(d2->jnt_force[3 * i + k], d->jnt_force[3 * i + k], 1e-12 * fs);
+        }
+        /* power balance */
+        const double P = d->drive_effort[0] * d->qd[0], h = 1e-5;
+        double q[3], v[3], a[3], E[2];
+        memcpy(q, d->q, sizeof q);
+        memcpy(v, d->qd, sizeof v);
+        memcpy(a, d->qdd, sizeof a);
+        for (int sgn = 0; sgn < 2; sgn++) {
+            const double s = sgn ? h : -h;
+            for (int c = 0; c < 3; c++) {
+                d2->q[c] = q[c] + s * v[c];
+                d2->qd[c] = v[c] + s * a[c];
+            }
+            assert_ok(vt_kinematics(m, d2));
+            E[sgn] = vt_test_kinetic_energy(m, d2) + vt_test_potential_energy(m, d2);
+        }
+        assert_near(P, (E[1] - E[0]) / (2 * h), 1e-7 * (1 + fabs(P)));
+    }
+    vt_data_free(d2);
+    vt_data_free(d);
+    vt_model_free(m);
+
+    for (int redundant = 0; redundant < 2; redundant++) {
+        m = fourbar_pin_variant(0.0, xaxis, redundant);
+        assert_ok(vt_data_create(&d, m));
+        assert_int_equal(vt_scene_fourbar_planar_assemble(m, d, 0.7, 1.1), 0);
+        d->time = 0.0;
+        if (!redundant) {
+            assert_int_equal(vt_inverse_dynamics(m, d), VT_ERR_DEPENDENT_CONSTRAINTS);
+            assert_non_null(strstr(d->message, "cut joint 0"));
+            assert_int_equal(vt_inverse_dynamics_recursive(m, d), VT_ERR_DEPENDENT_CONSTRAINTS);
+        } else {
+            assert_ok(vt_inverse_dynamics(m, d));
+            assert_int_equal(d->rank, 2);
+            assert_true(d->warning & VT_WARN_REDUNDANT);
+        }
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
+/* ---- the total joint wrench and every body's α ------------------------------------------- */
+
+/* Each body's centre-of-mass acceleration and angular acceleration by central differences of its
+ * velocity and ω (vt_kinematics) along (q ⊕ τ q̇, q̇ + τ q̈), whose rates at τ = 0 are the
+ * instant's own; dk: a data of the model for the differences */
+static void fd_accelerations(const vt_model *m, vt_data *dk, const vt_data *d, double *acc, double *al)
+{
+    const double h = 1e-5;
+    const int nb3 = 3 * (m->nbody + 1);
+    double *vel[2], *om[2];
+    for (int sgn = 0; sgn < 2; sgn++) {
+        const double s = sgn ? h : -h;
+        assert_ok(vt_integrate_q(dk->q, m, d->q, d->qd, s));
+        for (int c = 0; c < m->nv; c++) dk->qd[c] = d->qd[c] + s * d->qdd[c];
+        assert_ok(vt_kinematics(m, dk));
+        vel[sgn] = calloc((size_t)nb3, sizeof(double));
+        om[sgn] = malloc((size_t)nb3 * sizeof(double));
+        for (int i = 1; i <= m->nbody; i++) memcpy(vel[sgn] + 3 * i, dk->xd + 7 * (i - 1), 3 * sizeof(double));
+        memcpy(om[sgn], dk->omega, (size_t)nb3 * sizeof(double));
+    }
+    for (int k = 0; k < nb3; k++) {
+        acc[k] = (vel[1][k] - vel[0][k]) / (2 * h);
+        al[k] = (om[1][k] - om[0][k]) / (2 * h);
+    }
+    for (int sgn = 0; sgn < 2; sgn++) {
+        free(vel[sgn]);
+        free(om[sgn]);
+    }
+}
+
+/* The wrench that must reach body i's subtree through joint i, force f and moment n about the
+ * joint point P_i: over the subtree, Σ m (a − g) − f_x and Σ J α + ω × J ω − n_x + (r − P_i) ×
+ * (m (a − g) − f_x), J = A J' A^T, from the centres' accelerations acc and α al (3 x (nbody+1)) */
+static void subtree_wrench(const vt_model *m, const vt_data *d, const double *acc, const double *al, int i, double f[3],
+                           double n[3])
+{
+    const double *P = d->jpoint + 3 * i;
+    memset(f, 0, 3 * sizeof(double));
+    memset(n, 0, 3 * sizeof(double));
+    for (int k = i; k <= m->nbody; k++) {
+        int up = k;
+        while (up > i) up = m->body_parent[up];
+        if (up != i) continue;
+        const double *r = d->x + 7 * (k - 1), *w = d->omega + 3 * k, *a = acc + 3 * k, *xf = d->xfrc + 6 * k;
+        double J[9], Jw[3], Ja[3], fk[3], s[3];
+        vt_test_global_inertia(J, m, d, k);
+        for (int c = 0; c < 3; c++) {
+            Jw[c] = J[c] * w[0] + J[c + 3] * w[1] + J[c + 6] * w[2];
+            Ja[c] = J[c] * al[3 * k] + J[c + 3] * al[3 * k + 1] + J[c + 6] * al[3 * k + 2];
+            fk[c] = m->body_mass[k] * (a[c] - m->gravity[c]) - xf[c];
+            s[c] = r[c] - P[c];
+        }
+        for (int c = 0; c < 3; c++) {
+            const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            f[c] += fk[c];
+            n[c] += Ja[c] + (w[c1] * Jw[c2] - w[c2] * Jw[c1]) - xf[3 + c] + (s[c1] * fk[c2] - s[c2] * fk[c1]);
+        }
+    }
+}
+
+/* Checks d's α against differences of ω, the centres' accelerations too, and each joint's total
+ * wrench against its subtree's Newton–Euler wrench: from the instant's own accelerations (ẍ, α)
+ * to round-off, from the differences to their error; the body-axes totals as A^T of the global
+ * ones. Keeps the largest relative differences. */
+static void check_totals(const vt_model *m, vt_data *d, vt_data *dk, double worst[2])
+{
+    const int n = m->nbody, nb3 = 3 * (n + 1);
+    double *acc = malloc((size_t)nb3 * sizeof(double)), *al = malloc((size_t)nb3 * sizeof(double));
+    double *own = calloc((size_t)nb3, sizeof(double));
+    fd_accelerations(m, dk, d, acc, al);
+    for (int i = 1; i <= n; i++) memcpy(own + 3 * i, d->xdd + 7 * (i - 1), 3 * sizeof(double));
+    const double as = 1.0 + fmax(vt_test_maxabs(al, nb3), vt_test_maxabs(acc, nb3));
+    for (int k = 0; k < 3; k++) assert_true(d->alpha[k] == 0.0);
+    for (int k = 3; k < nb3; k++) {
+        assert_near(d->alpha[k], al[k], 1e-7 * as);
+        assert_near(own[k], acc[k], 1e-7 * as);
+        worst[1] = fmax(worst[1], fabs(d->alpha[k] - al[k]) / as);
+    }
+    double *W = malloc(6 * (size_t)(n + 1) * sizeof(double)), *Wd = malloc(6 * (size_t)(n + 1) * sizeof(double));
+    double ws = 1.0;
+    for (int i = 1; i <= n; i++) {
+        subtree_wrench(m, d, own, d->alpha, i, W + 6 * i, W + 6 * i + 3);
+        subtree_wrench(m, d, acc, al, i, Wd + 6 * i, Wd + 6 * i + 3);
+        ws = fmax(ws, vt_test_maxabs(W + 6 * i, 6));
+    }
+    for (int i = 1; i <= n; i++) {
+        const double *A = d->A + 9 * i, *ft = d->jnt_force_total + 3 * i, *nt = d->jnt_moment_total + 3 * i;
+        for (int c = 0; c < 3; c++) {
+            assert_near(ft[c], W[6 * i + c], 1e-11 * ws);
+            assert_near(nt[c], W[6 * i + 3 + c], 1e-11 * ws);
+            assert_near(ft[c], Wd[6 * i + c], 1e-7 * ws);
+            assert_near(nt[c], Wd[6 * i + 3 + c], 1e-7 * ws);
+            worst[0] = fmax(worst[0], fmax(fabs(ft[c] - W[6 * i + c]), fabs(nt[c] - W[6 * i + 3 + c])) / ws);
+            assert_near(d->jnt_force_total_body[3 * i + c], A[3 * c] * ft[0] + A[3 * c + 1] * ft[1] + A[3 * c + 2] * ft[2], 1e-12 * ws);
+            assert_near(d->jnt_moment_total_body[3 * i + c], A[3 * c] * nt[0] + A[3 * c + 1] * nt[1] + A[3 * c + 2] * nt[2], 1e-12 * ws);
+        }
+    }
+    free(W); free(Wd); free(acc); free(al); free(own);
+}
+
+static void random_loads(const vt_model *m, vt_data *d, uint64_t *s)
+{
+    for (int k = 6; k < 6 * (m->nbody + 1); k++) d->xfrc[k] = vt_rand_uniform(s, -3.0, 3.0);
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = vt_rand_uniform(s, -2.0, 2.0);
+}
+
+/* The total wrench a joint transmits (reaction plus actuation) is what the subtree outboard of
+ * it needs: its Newton–Euler wrench less gravity and the applied loads xfrc on it (the applied
+ * qfrc of the joints inside it cancel in pairs), computed here from masses, inertias and the
+ * bodies' accelerations, which differences of the velocities check; α against differences of ω.
+ *  (1) trees of scalar joints, every rate joint-driven, xfrc and qfrc applied: the dense, the
+ *      recursive (joint-driven route) and the motion paths;
+ *  (2) trees with spherical and free joints, the motion given for every rate;
+ *  (3) trees with every joint kind, base bodies among them, some rates driven (a base body's
+ *      r_y too), a coupling, the rest free: the dense and recursive paths. */
+static void test_total_wrench_subtree(void **state)
+{
+    (void)state;
+    double worst[2] = {0.0, 0.0};
+    for (uint64_t seed = 1; seed <= 3; seed++) {
+        /* (1) */
+        vt_model *probe;
+        assert_ok(vt_scene_random_tree(&probe, seed, 10, VT_SCENE_SCALAR_JOINTS));
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed, 10, VT_SCENE_SCALAR_JOINTS));
+        uint64_t s = seed * 7;
+        for (int i = 1; i <= probe->nbody; i++)
+            for (int k = 0; k < probe->body_nv[i]; k++) {
+                vt_drive_def dr = vt_default_drive_def();
+                dr.body = i;
+                dr.index = k;
+                const double c[3] = {vt_rand_uniform(&s, -1, 1), vt_rand_uniform(&s, -2, 2), vt_rand_uniform(&s, -2, 2)};
+                dr.f = vt_function_polynomial(3, c);
+                assert_true(vt_builder_add_drive(b, &dr) >= 0);
+            }
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_model_free(probe);
+        vt_data *d, *dk;
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        const double t = 0.4;
+        for (int path = 0; path < 3; path++) {
+            for (int k = 0; k < m->ndrive; k++) {
+                double f[3];
+                assert_ok(vt_function_eval(f, &m->drive[k].f, t));
+                const int c = m->body_vadr[m->drive[k].body] + m->drive[k].index;
+                d->q[m->body_qadr[m->drive[k].body] + m->drive[k].index] = f[0];
+                d->qd[c] = f[1];
+                d->qdd[c] = f[2];
+            }
+            uint64_t ls = seed;
+            random_loads(m, d, &ls);
+            d->time = t;
+            if (path == 0) assert_ok(vt_inverse_dynamics(m, d));
+            if (path == 1) {
+                assert_ok(vt_inverse_dynamics_recursive(m, d));
+                assert_int_equal(d->route, VT_ROUTE_JOINT_DRIVEN);
+            }
+            if (path == 2) {
+                assert_ok(vt_inverse_dynamics_motion(m, d));
+                assert_int_equal(d->route, VT_ROUTE_MOTION);
+            }
+            check_totals(m, d, dk, worst);
+        }
+        vt_data_free(dk);
+        vt_data_free(d);
+        vt_model_free(m);
+
+        /* (2) */
+        assert_ok(vt_scene_random_tree(&m, seed + 20, 10, VT_SCENE_WITH_FREE));
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        s = seed * 11;
+        vt_scene_random_state(m, d, &s);
+        for (int c = 0; c < m->nv; c++) d->qdd[c] = vt_rand_uniform(&s, -3.0, 3.0);
+        random_loads(m, d, &s);
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        check_totals(m, d, dk, worst);
+        vt_data_free(dk);
+        vt_data_free(d);
+        vt_model_free(m);
+
+        /* (3) */
+        assert_ok(vt_scene_random_tree(&probe, seed + 40, 10, VT_SCENE_ALL_JOINTS));
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed + 40, 10, VT_SCENE_ALL_JOINTS));
+        int scalar[2] = {0, 0}, ns = 0;
+        for (int i = 1; i <= probe->nbody; i += 2) {
+            const int jt = probe->body_joint[i];
+            if (jt == VT_JOINT_SPHERICAL) continue;
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = i;
+            dr.index = jt == VT_JOINT_BASE ? 1 : 0;
+            dr.f = vt_function_sine(0.1, 0.5, 1.3, 0.2 * (double)i);
+            assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        }
+        for (int i = 2; i <= probe->nbody && ns < 2; i += 2)
+            if (probe->body_joint[i] != VT_JOINT_SPHERICAL && probe->body_joint[i] != VT_JOINT_BASE) scalar[ns++] = i;
+        assert_int_equal(ns, 2);
+        vt_coupling_def cp = vt_default_coupling_def();
+        cp.body_a = scalar[0];
+        cp.body_b = scalar[1];
+        cp.ratio = -0.6;
+        assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_model_free(probe);
+        int bases = 0;
+        for (int i = 1; i <= m->nbody; i++) bases += m->body_joint[i] == VT_JOINT_BASE;
+        assert_true(bases > 0);
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        for (int path = 0; path < 2; path++) {
+            s = seed * 13;
+            vt_scene_random_state(m, d, &s);
+            random_loads(m, d, &s);
+            d->time = 0.3;
+            if (path == 0) assert_ok(vt_inverse_dynamics(m, d));
+            else assert_ok(vt_inverse_dynamics_recursive(m, d));
+            check_totals(m, d, dk, worst);
+        }
+        vt_data_free(dk);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+    print_message("total wrench against the subtree's Newton-Euler wrench: %.2e of the largest; alpha against differences of omega: %.2e\n",
+                  worst[0], worst[1]);
+}
+
 /* A double link of arbitrary link length L and masses m1, m2 (uniform rods), joint 2 locked:
  * the pair pivots as one rigid body with mass M = m1 + m2, centre of mass at x_c from the pivot
  * and inertia I_p about it, so θ̇² = 2 M g x_c sin θ / I_p, θ̈ = M g x_c cos θ / I_p and the
@@ -880,6 +1474,263 @@ static void test_unique_despite_redundant_row(void **state)
     vt_model_free(m);
 }
 
+/* ---- relative orientation drives ----------------------------------------------------- */
+
+/* every joint's reaction of two data of models with the same bodies, to tol of the largest */
+static void same_reactions(const vt_model *m, const vt_data *a, const vt_data *b, int from, double tol)
+{
+    const int n = 3 * (m->nbody + 1);
+    const double fs = vt_test_maxabs(a->jnt_force, n), ns = vt_test_maxabs(a->jnt_moment, n);
+    for (int k = 3 * from; k < n; k++) {
+        assert_near(a->jnt_force[k], b->jnt_force[k], tol * fs);
+        assert_near(a->jnt_moment[k], b->jnt_moment[k], tol * ns);
+    }
+}
+
+/* vt_scene_spherical_chain: a spherical joint driven by a relative orientation drive
+ * (reference −1: its own rotation, three Z–Y–X angles) between two driven revolutes. The kinematic solve's
+ * motion given to vt_inverse_dynamics_motion on the model without drives: the same generalized
+ * forces (the drive's moment is the spherical joint's three efforts, turned from body 1's
+ * axes), the same reactions of every joint (the spherical one's moment 0); the recursive path
+ * the same again. (The drive's rows do not move with rate 0, so the first joint's torque is its
+ * joint drive's multiplier alone: a drive reacting on the ground would change it.) */
+static void test_spherical_joint_drive(void **state)
+{
+    (void)state;
+    vt_model *m, *m0;
+    assert_ok(vt_scene_spherical_chain(&m, 1));
+    assert_ok(vt_model_without_drives(&m0, m));
+    vt_data *d, *d0, *dr;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&d0, m0));
+    assert_ok(vt_data_create(&dr, m));
+    double worst_q = 0.0, worst_n = 0.0, worst_r = 0.0;
+    for (double t = 0.0; t < 2.0; t += 0.37) {
+        d->time = t;
+        assert_ok(vt_kinematic_solve(m, d, 1e-14, 50));
+        { /* the spherical joint's own q is the Z–Y–X turn: q = R_z(f) ⊗ R_y(f2) ⊗ R_x(f3) */
+            const vt_drive_def *sd = &m->drive[1];
+            const double ez[3] = {0, 0, 1}, ey[3] = {0, 1, 0}, ex[3] = {1, 0, 0};
+            double f1[3], f2[3], f3[3], r1[4], r2[4], r3[4], want[4];
+            assert_ok(vt_function_eval(f1, &sd->f, t));
+            assert_ok(vt_function_eval(f2, &sd->f2, t));
+            assert_ok(vt_function_eval(f3, &sd->f3, t));
+            vt_quat_axis_angle(r1, ez, f1[0]);
+            vt_quat_axis_angle(r2, ey, f2[0]);
+            vt_quat_axis_angle(r3, ex, f3[0]);
+            vt_quat_mul(want, r1, r2);
+            vt_quat_mul(want, want, r3);
+            const double *qs = d->q + m->body_qadr[2], sg = qs[0] * want[0] < 0 ? -1.0 : 1.0;
+            for (int e = 0; e < 4; e++) assert_near(qs[e], sg * want[e], 1e-12);
+        }
+        memcpy(d0->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(d0->qd, d->qd, (size_t)m->nv * sizeof(double));
+        memcpy(d0->qdd, d->qdd, (size_t)m->nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_motion(m0, d0));
+        const double qs = vt_test_maxabs(d0->qfrc_drive, m->nv);
+        for (int c = 0; c < m->nv; c++) {
+            assert_near(d->qfrc_drive[c], d0->qfrc_drive[c], 1e-10 * qs);
+            worst_q = fmax(worst_q, fabs(d->qfrc_drive[c] - d0->qfrc_drive[c]) / qs);
+        }
+        /* the drive's moment on body 2: the spherical joint's efforts (body 1's axes) turned */
+        double n[3];
+        for (int e = 0; e < 3; e++)
+            n[e] = d->A[9 + e] * d0->qfrc_drive[1] + d->A[12 + e] * d0->qfrc_drive[2] + d->A[15 + e] * d0->qfrc_drive[3];
+        for (int e = 0; e < 3; e++) {
+            assert_near(d->drive_moment[3 + e], n[e], 1e-10 * qs);
+            assert_near(d->drive_force[3 + e], 0.0, 0.0);
+            worst_n = fmax(worst_n, fabs(d->drive_moment[3 + e] - n[e]) / qs);
+        }
+        assert_near(d->drive_effort[1], 0.0, 0.0);
+        same_reactions(m, d, d0, 1, 1e-10);
+        for (int e = 0; e < 3; e++) assert_near(d->jnt_moment[6 + e], 0.0, 1e-10 * qs);
+        for (int k = 3; k < 12; k++)
+            worst_r = fmax(worst_r, fmax(fabs(d->jnt_force[k] - d0->jnt_force[k]) / vt_test_maxabs(d0->jnt_force, 12),
+                                         fabs(d->jnt_moment[k] - d0->jnt_moment[k]) / vt_test_maxabs(d0->jnt_moment, 12)));
+        /* the recursive instant on the driven model */
+        memcpy(dr->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(dr->qd, d->qd, (size_t)m->nv * sizeof(double));
+        dr->time = t;
+        assert_ok(vt_inverse_dynamics_recursive(m, dr));
+        for (int c = 0; c < m->nv; c++) {
+            assert_near(dr->qdd[c], d->qdd[c], 1e-10 * (1 + vt_test_maxabs(d->qdd, m->nv)));
+            assert_near(dr->qfrc_drive[c], d->qfrc_drive[c], 1e-10 * qs);
+        }
+        for (int e = 0; e < 9; e++) assert_near(dr->drive_moment[e], d->drive_moment[e], 1e-10 * qs);
+        same_reactions(m, dr, d, 1, 1e-10);
+    }
+    print_message("spherical joint's drive vs the motion given: generalized forces %.2g, drive moment %.2g, "
+                  "reactions %.2g (largest relative differences)\n", worst_q, worst_n, worst_r);
+
+    vt_data_free(d);
+    vt_data_free(d0);
+    vt_data_free(dr);
+    vt_model_free(m);
+    vt_model_free(m0);
+}
+
+/* Two links on revolute joints; the second's joint drive replaced by a relative orientation
+ * drive of link 2 to link 1 about the joint's axis (in link 1's axes, link 2's assembled
+ * orientation given as the drive's): the same motion from the kinematic solve, the same
+ * generalized forces and reactions (the two rows that repeat the joint's own constraints are
+ * dependent: allow_redundant, their multipliers 0 at minimum norm), and the drive's moment
+ * the joint torque along the turned axis. */
+static vt_model *two_links(int relative)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = relative;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.mass = 3.0;
+    const double J[9] = {0.2, 0.02, 0.0, 0.02, 0.05, 0.01, 0.0, 0.01, 0.22};
+    memcpy(body.inertia, J, sizeof J);
+    body.joint_child[0] = -0.5;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body.parent = 1;
+    body.mass = 1.2;
+    body.joint_parent[0] = 0.5; body.joint_parent[2] = 0.1;
+    body.joint_child[0] = -0.3; body.joint_child[1] = 0.05;
+    body.axis1[0] = 0.0; body.axis1[1] = 0.6; body.axis1[2] = 0.8;
+    const double q0[4] = {0.8, 0.2, 0.1, -0.3};
+    memcpy(body.orientation, q0, sizeof q0);
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    dr.f = vt_function_sine(0.3, 0.8, 2.0, 0.0);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    dr.body = 2;
+    dr.f = vt_function_sine(-0.2, 1.1, 3.0, 0.4);
+    if (relative) {
+        dr.type = VT_DRIVE_RELATIVE_ORIENTATION;
+        dr.reference = 1;
+        memcpy(dr.axis, body.axis1, sizeof dr.axis);
+        memcpy(dr.orientation, q0, sizeof q0);
+    }
+    assert_int_equal(vt_builder_add_drive(b, &dr), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void test_relative_drive_for_joint_drive(void **state)
+{
+    (void)state;
+    vt_model *mj = two_links(0), *mr = two_links(1);
+    vt_data *dj, *drel;
+    assert_ok(vt_data_create(&dj, mj));
+    assert_ok(vt_data_create(&drel, mr));
+    double worst = 0.0;
+    for (double t = 0.1; t < 2.0; t += 0.3) {
+        dj->time = drel->time = t;
+        assert_ok(vt_kinematic_solve(mj, dj, 1e-14, 50));
+        assert_ok(vt_kinematic_solve(mr, drel, 1e-14, 50));
+        assert_int_equal(drel->rank, 2);
+        for (int c = 0; c < 2; c++) {
+            assert_near(drel->q[c], dj->q[c], 1e-12);
+            assert_near(drel->qd[c], dj->qd[c], 1e-10);
+            assert_near(drel->qdd[c], dj->qdd[c], 1e-9);
+        }
+        const double qs = vt_test_maxabs(dj->qfrc_drive, 2);
+        for (int c = 0; c < 2; c++) assert_near(drel->qfrc_drive[c], dj->qfrc_drive[c], 1e-9 * qs);
+        assert_near(drel->drive_effort[0], dj->drive_effort[0], 1e-9 * qs);
+        same_reactions(mj, drel, dj, 1, 1e-9);
+        double u[3]; /* the joint axis, global: link 1's axes turned */
+        for (int e = 0; e < 3; e++)
+            u[e] = dj->A[9 + e] * mj->body_axis[12] + dj->A[12 + e] * mj->body_axis[13] + dj->A[15 + e] * mj->body_axis[14];
+        for (int e = 0; e < 3; e++) {
+            const double want = dj->drive_effort[1] * u[e];
+            assert_near(drel->drive_moment[3 + e], want, 1e-9 * qs);
+            worst = fmax(worst, fabs(drel->drive_moment[3 + e] - want) / qs);
+        }
+    }
+    print_message("relative drive for a joint drive: drive moment vs torque × axis %.2g (relative)\n", worst);
+    vt_data_free(dj);
+    vt_data_free(drel);
+    vt_model_free(mj);
+    vt_model_free(mr);
+}
+
+/* ---- a driven rate whose inertia is round-off of its lever arm from the reference point -------
+ * A slider along x (body 1, point mass m1, its joint point L from its centre of mass along y)
+ * carries a point mass m2 on a revolute joint about z at body 1's centre, at ℓ from the axis.
+ * At θ = π/2, θ̇ = ẋ = 0, with θ̈ driven and no gravity (Lagrange, exact):
+ *   (m1 + m2) ẍ − m2 ℓ sin θ θ̈ = 0,   τ = m2 ℓ² θ̈ − m2 ℓ sin θ ẍ = m2 ℓ² θ̈ m1 / (m1 + m2).
+ * The twists are about the slider's joint point, L from the masses: M*_θθ = m2 ℓ² is summed from
+ * terms of m2 (2L)², round-off of them when L ≫ ℓ / sqrt(τ ε). Up to L = 1e5 the efforts hold to
+ * the round-off of S's lever arms, 64 ε (1 + L/ℓ); at L = 1e9, vt_solve zeroes the driven rate's
+ * row of M* (round-off held by the drive) and the dense answer was τ = 0, ẍ = 0 with VT_OK: now
+ * it refuses (as the recursive general route does, its M* zeroed alike), the coupling m2 ℓ sin θ
+ * to the slider unknown within that round-off. The recursive articulated route zeroes nothing (the
+ * driven rate's acceleration enters through the body's inertia about o, round-off ε m2 L²
+ * against m2 ℓ L): it solves, to the same 64 ε (1 + L/ℓ). */
+static vt_model *long_link(double L, double m1, double m2, double ell, double thdd)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = md.gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_TRANSLATIONAL;
+    body.axis1[0] = 1.0, body.axis1[1] = 0.0, body.axis1[2] = 0.0;
+    body.mass = m1;
+    body.joint_child[1] = L;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    body = vt_default_body_def();
+    body.parent = 1;
+    body.joint = VT_JOINT_REVOLUTE;
+    body.axis1[0] = 0.0, body.axis1[1] = 0.0, body.axis1[2] = 1.0;
+    body.mass = m2;
+    body.joint_child[0] = -ell; /* the centre of mass ℓ along the body's x from the axis */
+    assert_int_equal(vt_builder_add_body(b, &body), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 2;
+    const double c[3] = {1.5707963267948966, 0.0, thdd / 2};
+    dr.f = vt_function_polynomial(3, c);
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void test_long_link_roundoff_inertia(void **state)
+{
+    (void)state;
+    const double m1 = 3.0, m2 = 2.0, ell = 1.5, thdd = 4.0;
+    const double tau = m2 * ell * ell * thdd * m1 / (m1 + m2), xdd = m2 * ell * thdd / (m1 + m2);
+    const double Ls[3] = {10.0, 1e5, 1e9};
+    for (int k = 0; k < 3; k++) {
+        const double L = Ls[k];
+        vt_model *m = long_link(L, m1, m2, ell, thdd);
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        dd->q[1] = dr->q[1] = 1.5707963267948966;
+        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
+        print_message("L = %g: dense %s (%s) effort %.17g, recursive %s (%s) effort %.17g, exact %.17g\n", L,
+                      vt_status_string(sd), dd->message, dd->drive_effort[0],
+                      vt_status_string(sr), dr->message, dr->drive_effort[0], tau);
+        const double tol = 64.0 * 2.220446049250313e-16 * (1.0 + L / ell); /* S's lever arms from o */
+        if (L < 1e6) {
+            assert_ok(sd);
+            assert_near(dd->drive_effort[0], tau, tol * tau);
+            assert_near(dd->qdd[0], xdd, tol * xdd);
+        } else {
+            assert_int_equal(sd, VT_ERR_SINGULAR);
+            assert_non_null(strstr(dd->message, "no certain digit"));
+            assert_int_equal(dd->route, VT_ROUTE_NONE);
+        }
+        assert_ok(sr);
+        assert_near(dr->drive_effort[0], tau, tol * tau);
+        assert_near(dr->qdd[0], xdd, tol * xdd);
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -890,10 +1741,17 @@ int main(void)
         cmocka_unit_test(test_drive_cartesian_force),
         cmocka_unit_test(test_fourbar),
         cmocka_unit_test(test_fourbar_rusr),
+        cmocka_unit_test(test_fourbar_planar_pin),
+        cmocka_unit_test(test_slider_crank_planar_pin),
+        cmocka_unit_test(test_planar_pin_off_plane),
+        cmocka_unit_test(test_total_wrench_subtree),
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_spherical_through_gimbal_lock),
         cmocka_unit_test(test_coupling),
         cmocka_unit_test(test_unique_despite_redundant_row),
+        cmocka_unit_test(test_spherical_joint_drive),
+        cmocka_unit_test(test_relative_drive_for_joint_drive),
+        cmocka_unit_test(test_long_link_roundoff_inertia),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

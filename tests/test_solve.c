@@ -1,9 +1,9 @@
 /* src/solve.c: the augmented system (5) against second methods (a fully joint-driven chain:
  * q̈ = f'', λ = M* q̈ − Q; a free tree: M* q̈ = Q by Cholesky), and every failure status:
  * singular system, dependent rows, bad drive and cut-joint definitions. */
-#include "vt_test.h"
+#include "../src/internal.h" /* vt_solve_run: the ODE form's solve with its band; rows' kinds */
 
-#include "../src/internal.h" /* vt_solve_run: the ODE form's solve with its band */
+#include "vt_test.h"
 
 static void dpotrs_solve(int n, double *A, double *b)
 {
@@ -384,10 +384,10 @@ static void test_square_constraints(void **state)
             assert_near(d->qdd[k], x[k], 1e-11 * qs);
             assert_near(d->lambda[k], -x[nv + k], 1e-11 * ls);
         }
-        /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ρ; rates that turn
-         * by 1/ρ; ρ the radius of gyration (all of the four-bar's rates turn; its rows: the
+        /* exact 1-norm condition of G Φ_q C: rows in lengths by 1, in angles by ℓ; rates that turn
+         * by 1/ℓ; ℓ the rows' lever arm (all of the four-bar's rates turn; its rows: the
          * crank's joint drive an angle, the cut joint's point rows lengths, its dot rows angles) */
-        const double rho = vt_test_gyration_radius(m, d);
+        const double rho = vt_test_rows_length(m, d);
         double an = 0.0, in = 0.0;
         for (int c = 0; c < nv; c++) {
             double cs = 0.0;
@@ -580,7 +580,7 @@ static void test_schur(void **state)
         for (int r = 0; r < nc; r++)
             for (int a = 0; a < nv; a++) P[r + a * nc] = d->Phiq[r + a * nc] * sc[a] / rmax;
         const double expect = (lmin / lmax) * (lmin / lmax) * vt_test_schur_rcond(Mt, P, nv, nc) *
-                              vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
+                              vt_test_grip2(m, d, vt_test_rows_length(m, d));
         assert_near(d->rcond, expect, 1e-8 * expect);
         vt_data_free(d);
         vt_model_free(m);
@@ -1094,7 +1094,7 @@ static void test_reach(void **state)
                 assert_int_equal((d->warning & VT_WARN_ILL_CONDITIONED) != 0, es[k] <= (lone ? 1e-3 : 1e-2));
                 assert_int_equal(dr->warning, d->warning);
                 if (lone) { /* the grip against its independent computation: the estimate is at most it */
-                    const double g2 = vt_test_grip2(m, d, vt_test_gyration_radius(m, d));
+                    const double g2 = vt_test_grip2(m, d, vt_test_rows_length(m, d));
                     assert_true(d->rcond <= g2 * (1.0 + 1e-9));
                     assert_true(g2 < 10.0 * es[k] * es[k] + 1e-300 || es[k] > 0.1);
                 }
@@ -1106,6 +1106,178 @@ static void test_reach(void **state)
             vt_model_free(mm);
         }
     }
+}
+
+/* q̈ by the null-space method, independent of vt_solve's routes: the first `rows` rows of Φ_q
+ * by LAPACK's SVD (rank: σ above 1e-12 σ_max), q̈ = q_p + Z y with q_p the least-norm solution
+ * of Φ_q q̈ = γ and Z its null space, (Z^T M* Z) y = Z^T (Q − M* q_p) by Cholesky. Returns the rank. */
+static int nullspace_qdd(const vt_model *m, const vt_data *d, int rows, double *qdd)
+{
+    const int nv = m->nv, nc = m->nc;
+    double A[64 * 16], S[16], U[64 * 64], VT[16 * 16], work[2048], qp[16], y[16], MZ[16 * 16], ZMZ[16 * 16];
+    assert_true(nv <= 16 && rows <= 64 && rows >= 1);
+    for (int c = 0; c < nv; c++)
+        for (int r = 0; r < rows; r++) A[r + c * rows] = d->Phiq[r + c * nc];
+    const int lw = 2048, k = rows < nv ? rows : nv;
+    int info = 0;
+    dgesvd_("A", "A", &rows, &nv, A, &rows, S, U, &rows, VT, &nv, work, &lw, &info, 1, 1);
+    assert_int_equal(info, 0);
+    int rank = 0;
+    while (rank < k && S[rank] > 1e-12 * S[0]) rank++;
+    for (int c = 0; c < nv; c++) qp[c] = 0.0;
+    for (int i = 0; i < rank; i++) {
+        double t = 0.0;
+        for (int r = 0; r < rows; r++) t += U[r + i * rows] * d->gamma[r];
+        for (int c = 0; c < nv; c++) qp[c] += VT[i + c * nv] * t / S[i];
+    }
+    const int nz = nv - rank; /* Z = rows rank.. of V^T, transposed */
+    for (int c = 0; c < nv; c++) {
+        double t = d->Q[c];
+        for (int j = 0; j < nv; j++) t -= d->Mstar[c + j * nv] * qp[j];
+        work[c] = t;
+    }
+    for (int i = 0; i < nz; i++) {
+        double t = 0.0;
+        for (int c = 0; c < nv; c++) t += VT[rank + i + c * nv] * work[c];
+        y[i] = t;
+        for (int c = 0; c < nv; c++) {
+            double v = 0.0;
+            for (int j = 0; j < nv; j++) v += d->Mstar[c + j * nv] * VT[rank + i + j * nv];
+            MZ[c + i * nv] = v;
+        }
+    }
+    for (int i = 0; i < nz; i++)
+        for (int j = 0; j < nz; j++) {
+            double v = 0.0;
+            for (int c = 0; c < nv; c++) v += VT[rank + i + c * nv] * MZ[c + j * nv];
+            ZMZ[i + j * nz] = v;
+        }
+    if (nz > 0) dpotrs_solve(nz, ZMZ, y);
+    for (int c = 0; c < nv; c++) {
+        double v = qp[c];
+        for (int i = 0; i < nz; i++) v += VT[rank + i + c * nv] * y[i];
+        qdd[c] = v;
+    }
+    return rank;
+}
+
+/* The fuzzer's three findings of the redundant route's rank (fuzz/corpus/crash-2690988dbc…,
+ * crash-ee7f3a7f4a…, crash-28375274a4…), each with allow_redundant and without, against the
+ * null-space method above:
+ *  - a point mass on a free joint (no inertia, no extent: the radius of gyration that weighted the
+ *    rows was round-off of zero, 9e-16 m), one translation joint-driven and its orientation driven: 4
+ *    independent rows, solved alike with and without the option (it called them rank 1);
+ *  - two base bodies falling freely, one turned by π about z with Euler parameters of 1e-100
+ *    beside 1 (the Euler parameters' radial rate then has an inertia of 1e-198: the mass metric
+ *    that weighted the rows made its p^T p − 1 row 1e99 and the other one dependent): 2
+ *    independent rows, r̈ = g;
+ *  - two links on spherical joints, a universal cut joint from the ground to link 2 whose
+ *    axes are parallel at this state (link 2 turned by 90° about y): its dot row is round-off of
+ *    zero (Φ_x itself a cross product of parallel vectors), a zero row. Without the option it is
+ *    refused as dependent (it was scaled to a unit row and solved, q̈ of 1e15); with it q̈ holds
+ *    the three point rows. */
+static void test_redundant_rank_fuzz_findings(void **state)
+{
+    (void)state;
+    for (int ex = 0; ex < 3; ex++)
+        for (int red = 0; red < 2; red++) {
+            vt_model_def md = vt_default_model_def();
+            md.allow_redundant = red;
+            vt_builder *b;
+            assert_ok(vt_builder_create(&b, &md));
+            vt_body_def bd = vt_default_body_def();
+            if (ex == 0) {
+                bd.joint = VT_JOINT_FREE;
+                bd.mass = 0.7; /* m c / m rounds: a radius of gyration of 9e-16 m */
+                bd.joint_child[0] = 0.5625, bd.joint_child[1] = 7.1875, bd.joint_child[2] = -3.375;
+                assert_int_equal(vt_builder_add_body(b, &bd), 1);
+                vt_drive_def jd = vt_default_drive_def();
+                jd.body = 1;
+                jd.index = 1;
+                jd.f = vt_function_polynomial(3, (const double[3]){3.0, 0.5, -0.75});
+                assert_int_equal(vt_builder_add_drive(b, &jd), 0);
+                vt_drive_def od = vt_default_drive_def();
+                od.type = VT_DRIVE_ORIENTATION;
+                od.body = 1;
+                od.axis[0] = 0.6, od.axis[1] = 0.0, od.axis[2] = 0.8;
+                od.f = vt_function_polynomial(3, (const double[3]){0.0, 0.3, 0.2});
+                assert_int_equal(vt_builder_add_drive(b, &od), 1);
+            } else if (ex == 1) {
+                bd.joint = VT_JOINT_BASE;
+                bd.mass = 4.6;
+                bd.inertia[0] = bd.inertia[4] = bd.inertia[8] = 7.3125;
+                assert_int_equal(vt_builder_add_body(b, &bd), 1);
+                bd.mass = 7.6;
+                bd.inertia[0] = bd.inertia[4] = bd.inertia[8] = 1.8125;
+                assert_int_equal(vt_builder_add_body(b, &bd), 2);
+            } else {
+                bd.joint = VT_JOINT_SPHERICAL;
+                bd.inertia[0] = 0.1, bd.inertia[4] = 0.2, bd.inertia[8] = 0.25;
+                bd.joint_child[0] = -0.5;
+                assert_int_equal(vt_builder_add_body(b, &bd), 1);
+                bd.parent = 1;
+                bd.joint_parent[0] = 0.5;
+                assert_int_equal(vt_builder_add_body(b, &bd), 2);
+                vt_cut_joint_def cut = vt_default_cut_joint_def();
+                cut.joint = VT_JOINT_UNIVERSAL;
+                cut.body_a = 0;
+                cut.body_b = 2;
+                cut.point_a[0] = 2.0; /* global */
+                cut.point_b[0] = 0.5;
+                assert_int_equal(vt_builder_add_cut_joint(b, &cut), 0);
+            }
+            vt_model *m;
+            assert_ok(vt_builder_build(&m, b));
+            vt_builder_free(b);
+            vt_data *d;
+            assert_ok(vt_data_create(&d, m));
+            for (int c = 0; c < m->nv; c++) d->qd[c] = 0.3 + 0.1 * c;
+            if (ex == 0) {
+                const double q[7] = {3, 3, 3, 0.5, 0.5, 0.5, 0.5};
+                memcpy(d->q, q, sizeof q);
+                d->time = 0.4;
+            } else if (ex == 1) {
+                const double q[14] = {-1.96875, 0.1125, -1.875, -0.957584, -0.245439, 0.0306799, 0.147821,
+                                      0.95625, 0.2625, 0.39375, -7.4375e-100, -1.63125e-100, -2.25e-100, 1.0};
+                memcpy(d->q, q, sizeof q);
+            } else {
+                /* link 1 turned generically (a), link 2 turned by 90° about y in all (g): its x axis
+                 * along −z, the cut's axis1 on the ground, to round-off (q2 = a* ⊗ g, rounded) */
+                const double h = sqrt(0.5), n1 = sqrt(0.9 * 0.9 + 0.04 + 0.09 + 0.0625);
+                const double a[4] = {0.9 / n1, 0.2 / n1, -0.3 / n1, 0.25 / n1}, g[4] = {h, 0.0, h, 0.0};
+                const double c[4] = {a[0], -a[1], -a[2], -a[3]};
+                const double q[8] = {a[0], a[1], a[2], a[3],
+                                     c[0] * g[0] - c[1] * g[1] - c[2] * g[2] - c[3] * g[3],
+                                     c[0] * g[1] + g[0] * c[1] + c[2] * g[3] - c[3] * g[2],
+                                     c[0] * g[2] + g[0] * c[2] + c[3] * g[1] - c[1] * g[3],
+                                     c[0] * g[3] + g[0] * c[3] + c[1] * g[2] - c[2] * g[1]};
+                memcpy(d->q, q, sizeof q);
+            }
+            const vt_status st = vt_inverse_dynamics(m, d);
+            double ref[16];
+            if (ex < 2) {
+                if (st) fail_msg("example %d, allow_redundant %d: %s", ex, red, d->message);
+                assert_int_equal(d->rank, m->nc);
+                assert_int_equal(nullspace_qdd(m, d, m->nc, ref), m->nc);
+            } else if (!red) {
+                if (st != VT_ERR_DEPENDENT_CONSTRAINTS)
+                    fail_msg("example 2 without the option: status %d (%s), q̈[0] %g", st, d->message, d->qdd[0]);
+            } else {
+                if (st) fail_msg("example 2, allow_redundant: %s", d->message);
+                assert_int_equal(d->rank, 3);
+                assert_int_equal(nullspace_qdd(m, d, 3, ref), 3); /* the point rows alone */
+            }
+            if (st == VT_OK) {
+                const double qs = vt_test_maxabs(ref, m->nv);
+                assert_true(qs > 0.1);
+                for (int c = 0; c < m->nv; c++) assert_near(d->qdd[c], ref[c], 1e-10 * qs);
+                if (ex == 1)
+                    for (int bdy = 0; bdy < 2; bdy++) /* free fall */
+                        for (int k = 0; k < 3; k++) assert_near(d->qdd[7 * bdy + k], md.gravity[k], 1e-12);
+            }
+            vt_data_free(d);
+            vt_model_free(m);
+        }
 }
 
 int main(void)
@@ -1127,6 +1299,7 @@ int main(void)
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
         cmocka_unit_test(test_reach),
+        cmocka_unit_test(test_redundant_rank_fuzz_findings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -98,6 +98,44 @@ static inline double vt_test_gyration_radius(const vt_model *m, const vt_data *d
     return sqrt(i2 / mt);
 }
 
+#ifdef VTDYN_INTERNAL_H /* the rows' kinds (con_kind): tests that include src/internal.h first */
+/* 1 when rate a turns (a rotation, an Euler parameter), 0 when it translates */
+static inline int vt_test_rate_turns(const vt_model *m, int a)
+{
+    const int i = m->dof_body[a];
+    return !(m->body_joint[i] == VT_JOINT_TRANSLATIONAL || (m->body_joint[i] == VT_JOINT_CYLINDRICAL && a > m->body_vadr[i]) ||
+             (m->body_joint[i] == VT_JOINT_FREE && a < m->body_vadr[i] + 3) ||
+             (m->body_joint[i] == VT_JOINT_BASE && a < m->body_vadr[i] + 3));
+}
+
+/* ℓ, the rows' lever arm (docs/method.md, "The condition estimate"), from d->Phiq: the largest,
+ * over the rates that turn, of the norm of their column in the point and line rows (entries
+ * below 1e-13 of the row's largest taken as round-off); without any, the reciprocal of the
+ * largest column norm of the couplings whose first rate turns on rates that translate; without
+ * either, 1 */
+static inline double vt_test_rows_length(const vt_model *m, const vt_data *d)
+{
+    double arm = 0.0, inv = 0.0;
+    for (int a = 0; a < m->nv; a++) {
+        double n2 = 0.0;
+        for (int r = 0; r < m->nc; r++) {
+            const int kind = m->con_kind[r];
+            int first = 0;
+            double rmax = 0.0;
+            for (int c = 0; c < m->nv; c++) rmax = fmax(rmax, fabs(d->Phiq[r + c * m->nc]));
+            while (first < m->nv - 1 && d->Phiq[r + first * m->nc] == 0.0) first++;
+            const int use = vt_test_rate_turns(m, a) ? kind == VT_ROW_POINT || kind == VT_ROW_LINE
+                                                     : kind == VT_ROW_COUPLING && vt_test_rate_turns(m, first);
+            const double v = d->Phiq[r + a * m->nc];
+            if (use && fabs(v) > 1e-13 * rmax) n2 += v * v;
+        }
+        if (vt_test_rate_turns(m, a)) arm = fmax(arm, sqrt(n2));
+        else inv = fmax(inv, sqrt(n2));
+    }
+    return arm > 0.0 ? arm : inv > 0.0 ? 1.0 / inv : 1.0;
+}
+#endif
+
 /* The smallest grip² of the point drives' rows (1 without any), from the dense S (vt_kinematics):
  * rate a moves the driven point P = r + A u' of body b by V_a = ṙ_a + ω_a × (A u'), ω_a = 2 E(p) ṗ_a
  * (ṙ_a, ṗ_a: S's rows of b, column a); the row's grip is ‖(e·V_a C_a)‖ / ‖(|V_a| C_a)‖ with e the

@@ -116,7 +116,7 @@ typedef enum vt_joint_type {
 /// the ODE formulation of a dynamic analysis drops a constraint direction of a model that allows
 /// redundant rows (what carries it through a singular pose). Not used by a single instant, whose
 /// dependent rows are those dependent to round-off (see vt_model_def.allow_redundant).
-#define VT_REDUNDANT_TOL 1e-3
+#define VT_REDUNDANT_TOL 5e-4
 
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
@@ -128,10 +128,10 @@ typedef struct vt_model_def {
     int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved instead of
                         ///< refused: on their independent directions, the multipliers of minimum
                         ///< (scaled) norm. Rows count as dependent when the singular values of
-                        ///< G Φ_q D fall below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
-                        ///< D = diag(M*_aa^(-1/2)), G one factor for the length rows and one for the
-                        ///< angle rows (neither the global axes' directions nor the units change the
-                        ///< decision); any other pose, however ill-conditioned, is solved exactly as
+                        ///< G Φ_q C are at or below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
+                        ///< C = 1/ℓ on rates that turn, G = ℓ on rows that measure angles (one common
+                        ///< factor), ℓ the rows' own lever arm (docs/method.md): neither the global
+                        ///< axes' directions, the units nor the masses change the decision; any other pose, however ill-conditioned, is solved exactly as
                         ///< without the option. The motion and the efforts stay unique, the
                         ///< multipliers and some reactions do not (see vt_data.rank, lambda_unique,
                         ///< jnt_unique, cut_unique). A dynamic analysis in the ODE formulation may
@@ -224,6 +224,9 @@ typedef enum vt_drive_type {
     VT_DRIVE_JOINT = 0,    ///< a rate's coordinate of a body's joint follows f(t): q_k − f(t) = 0
     VT_DRIVE_POINT,        ///< one global component of a body point follows f(t), (30)-(34)
     VT_DRIVE_ORIENTATION,  ///< a body's orientation follows p_d(t): 2 G(p_d) p = 0 (3 rows)
+    VT_DRIVE_RELATIVE_ORIENTATION, ///< body's orientation relative to body `reference` follows p_d(t):
+                           ///< 2 G(p_d) (p_a* ⊗ p_b) = 0 (3 rows), reacting on both bodies; with
+                           ///< reference −1 a joint's drive (a spherical joint's q follows p_d)
     VT_DRIVE_TYPE_COUNT    ///< number of drive kinds (not a kind)
 } vt_drive_type;
 
@@ -236,23 +239,41 @@ typedef struct vt_drive_def {
                            ///< 3..5); point drive: component 0 = x,
                            ///< 1 = y, 2 = z; default 0
     double point[3];       ///< point drive: the point, m, body axes from the centre of mass; default 0
-    vt_function f;         ///< joint drive: rad or m; point drive: m; orientation drive: the angle (rad)
-                           ///< turned about `axis`; default constant 0
-    double axis[3];        ///< orientation drive: global axis of the prescribed turn; normalized; default z
-    double orientation[4]; ///< orientation drive: orientation at angle 0 (global Euler parameters):
-                           ///< p_d(t) = [rotation f(t) about axis] ⊗ orientation; default identity
-    vt_orientation_callback orientation_callback; ///< orientation drive: if set, gives p_d(t) instead
+    vt_function f;         ///< joint drive: rad or m; point drive: m; orientation drives: the angle (rad)
+                           ///< turned about `axis`, or the first angle of `sequence`; default constant 0
+    double axis[3];        ///< orientation drives: axis of the prescribed turn (absolute: global; relative:
+                           ///< the reference body's axes); normalized; default z; unused with `sequence`
+    double orientation[4]; ///< orientation drives: orientation at angle 0 (Euler parameters, global or
+                           ///< relative to the reference body's axes): p_d(t) = [rotation f(t) about
+                           ///< axis] ⊗ orientation, or R_1(f) ⊗ R_2(f2) ⊗ R_3(f3) ⊗ orientation with
+                           ///< `sequence`; default identity
+    vt_orientation_callback orientation_callback; ///< orientation drives: if set, gives p_d(t) (and its
+                           ///< ω, ω̇: global, or in the reference body's axes for a relative drive)
     void *user;            ///< passed to orientation_callback
     const char *name;      ///< the drive's name (copied; in a model: its own copy); default NULL
     const char *frame;     ///< point drive: the name of a frame added so far; its body and origin
                            ///< replace body and point (in a model: NULL); default NULL
+    int reference;         ///< relative orientation drive: body a, relative to whose axes body `body`'s
+                           ///< orientation is prescribed: 0 = ground, 1..n a body added so far, ≠ body;
+                           ///< −1 (default) = the body's joint: a = its parent and p_d is the joint's
+                           ///< own rotation p_J (a spherical joint's q), the body's `orientation` at
+                           ///< q = 0 appended by the builder (a model stores a and that orientation)
+    const char *sequence;  ///< orientation drives: NULL (default) a turn about `axis` by f; or three
+                           ///< angles f, f2, f3 (rad) about the named axes in turn: "ZYX", "XYZ", "ZXZ"…
+                           ///< (upper case: body-fixed, each turn about the axis as already turned,
+                           ///< R_1 ⊗ R_2 ⊗ R_3; lower case "zyx"…: about the fixed axes, first f about
+                           ///< the first letter, so R_3 ⊗ R_2 ⊗ R_1); no letter twice in a row; in a
+                           ///< model the library's own copy
+    vt_function f2;        ///< with `sequence`: the second angle (rad); default constant 0
+    vt_function f3;        ///< with `sequence`: the third angle (rad); default constant 0
 } vt_drive_def;
 
 /// A cut joint: closes a loop between body_a (in the role of the reference body) and body_b,
 /// with the joint kinds of Table 1 except base (and not free: neither constrains anything). Equations: spherical 3 (points coincide),
 /// revolute 5 (and axes parallel), universal 4 (points coincide, axis1 on a ⟂ axis2 on b),
 /// cylindrical 4 (axes parallel, b's point on a's axis line), translational 5 (cylindrical and
-/// no turn about the axis). Fill from vt_default_cut_joint_def().
+/// no turn about the axis), and with `planar` a revolute's 2 in-plane equations alone (planar
+/// loops). Fill from vt_default_cut_joint_def().
 typedef struct vt_cut_joint_def {
     vt_joint_type joint;   ///< default VT_JOINT_REVOLUTE
     int body_a;            ///< 0 = ground allowed; default 0
@@ -268,6 +289,14 @@ typedef struct vt_cut_joint_def {
     const char *frame_a;   ///< the name of a frame added so far: its body and origin replace body_a
                            ///< and point_a (the axes stay in a's body axes); NULL: as given; default NULL
     const char *frame_b;   ///< the same for body_b and point_b; default NULL
+    int planar;            ///< 1: a planar loop's pin (joint VT_JOINT_REVOLUTE only; the builder refuses
+                           ///< it with another kind): the two equations of the joint point in the plane
+                           ///< ⟂ axis1, [u1 u2]^T (P_b − P_a) = 0 with u1, u2 ⟂ axis1 fixed on a, so a
+                           ///< planar loop is exactly constrained (no allow_redundant). The points may
+                           ///< part along axis1 and b may tilt: the reaction is the in-plane force alone
+                           ///< (cut_force ⟂ axis1; its component along axis1 and cut_moment zero), the
+                           ///< out-of-plane loads go through the tree joints. On a loop that is not
+                           ///< planar the rows fix less than a full pin would. Default 0 (all 5 rows)
 } vt_cut_joint_def;
 
 /// A coupling of two joint coordinates, q_a = ratio q_b + offset (a URDF mimic joint, a gear
@@ -473,8 +502,8 @@ typedef struct vt_data {
     vt_route route;          ///< the route by which the last solve found q̈ and λ (VT_ROUTE_NONE after a failure)
     int fallback;            ///< VT_FALLBACK_* flags: faster routes the last instant left, and why (0: none)
     double rcond;            ///< condition estimate of the pose, in (0, 1]: 1 when joint drives fix every
-                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ρ,
-                             ///< turning rates by 1/ρ (ρ the radius of gyration); some motion free:
+                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ℓ,
+                             ///< turning rates by 1/ℓ (ℓ the rows' own lever arm); some motion free:
                              ///< min/max of M*'s leaf-first pivots each over its diagonal entry, times
                              ///< the reciprocal condition of Φ_q M*^-1 Φ_q^T at unit diagonal, times
                              ///< the point drives' smallest grip² (docs/method.md, "The condition
@@ -492,22 +521,40 @@ typedef struct vt_data {
 
     /* vt_reactions(): efforts (24) and joint reactions (25)-(28); all global unless "body" */
     double *xdd;             ///< ẍ = S q̈ + Ṡ q̇ (7n)
+    double *alpha;           ///< angular acceleration of each body, global, rad/s²: α = ω̇ = 2 E p̈ (3 x
+                             ///< (nbody+1); the ground's 0); every instant path fills it
     double *qfrc_drive;      ///< generalized force of all drives, Φ_q^T λ over the drives' rows (nv):
                              ///< the joint torques and forces that produce the motion; with the motion
                              ///< given (vt_inverse_dynamics_motion), every rate's: M* q̈ − Q (a free
                              ///< joint's six: the force and the moment about its joint point, in the
                              ///< reference body's axes, N and N·m)
     double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
-                             ///< point drive: force along its component (N); orientation drive: 0 (ndrive)
+                             ///< point drive: force along its component (N); orientation drives: 0 (ndrive)
     double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N
     double *drive_moment;    ///< moment the drive exerts on its body about the drive's point (the joint
                              ///< point for a joint drive, the body point for a point drive, the centre
-                             ///< of mass for an orientation drive) (3 x ndrive), N·m
+                             ///< of mass for an orientation drive) (3 x ndrive), N·m; a relative
+                             ///< orientation drive exerts a pure moment: this on `body`, its opposite on
+                             ///< `reference` (its drive_force is 0)
     double *jnt_force;       ///< reaction force of the reference body on the body at the joint point
                              ///< (3 x (nbody+1)), N; zero for a free joint (it transmits nothing)
     double *jnt_moment;      ///< reaction moment, about the joint point (3 x (nbody+1)), N·m
     double *jnt_force_body;  ///< the same in the body's axes, (27) (3 x (nbody+1))
     double *jnt_moment_body; ///< the same in the body's axes, (28) (3 x (nbody+1))
+    double *jnt_force_total; ///< the total the joint transmits: its reaction plus its actuation, force of
+                             ///< the reference body on the body at the joint point (3 x (nbody+1)), N,
+                             ///< global. Actuation: the generalized forces along the joint's own rates —
+                             ///< its joint drives' efforts (every rate's qfrc_drive with the motion given,
+                             ///< vt_inverse_dynamics_motion), the applied qfrc and the couplings' forces —
+                             ///< each as a force along a translational axis or a moment about a rotational
+                             ///< one (a free joint: its six efforts; a base body's: at its centre of mass,
+                             ///< moved to the joint point). Point and orientation drives act on bodies,
+                             ///< not along rates: not included. Equals the Newton–Euler wrench of the
+                             ///< subtree outboard of the joint less the loads on it from outside
+                             ///< (gravity, xfrc, cut joints, point and orientation drives)
+    double *jnt_moment_total;///< its moment about the joint point (3 x (nbody+1)), N·m, global
+    double *jnt_force_total_body;  ///< jnt_force_total in the body's axes (3 x (nbody+1)), N
+    double *jnt_moment_total_body; ///< jnt_moment_total in the body's axes (3 x (nbody+1)), N·m
     double *cut_force;       ///< cut joint: force of body_a on body_b at point_b (3 x ncut), N
     double *cut_moment;      ///< cut joint: moment of body_a on body_b about point_b (3 x ncut), N·m
     double *cut_force_body;  ///< the same in body_b's axes (3 x ncut)
