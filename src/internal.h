@@ -277,6 +277,13 @@ void vt_rot_mass(double Mp[16], const double J[9], const double p[4]);
 /* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (kinematics.c) */
 void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 
+/* vt_kinematics_tree's and vt_accelerations' rows of one body i, its reference body's done
+ * (kinematics.c): for a pass that fuses them with other work body by body (recursive.c) */
+void vt_kinematics_body(const vt_model *m, vt_data *d, int i);
+void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i);
+/* vt_kinematics_tree's checks of the state and of its outputs (without Ṡq̇) (kinematics.c) */
+vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d);
+vt_status vt_kinematics_check_outputs(const vt_model *m, vt_data *d);
 /* Kinematics (kinematics.c): ẍ = S q̈ + Ṡ q̇ into out (7n) (q̈ = 0 if qdd is NULL), with the
  * angular accelerations into alpha (3 x (nbody+1)). */
 void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);

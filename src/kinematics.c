@@ -43,7 +43,10 @@
 static const double zero3[3] = {0, 0, 0};
 static const double unit_quat[4] = {1, 0, 0, 0};
 
-static vt_status check_state(const vt_model *m, vt_data *d)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_state(const vt_model *m, vt_data *d)
 {
     if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) { /* which one, for the message */
         for (int k = 0; k < m->nq; k++)
@@ -67,12 +70,13 @@ static vt_status check_state(const vt_model *m, vt_data *d)
 
 /* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body; o and the positions from
  * it (xrel) */
-static void positions(const vt_model *m, vt_data *d)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void position(const vt_model *m, vt_data *d, int i)
 {
     double *o = d->origin;
-    o[0] = o[1] = o[2] = 0.0;
-    memset(d->xrel, 0, 6 * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) {
+    {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qi = d->q + m->body_qadr[i];
         const double *rj = d->xrel + 6 * j; /* r^j − o */
@@ -96,7 +100,7 @@ static void positions(const vt_model *m, vt_data *d)
                 for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
             }
             for (int k = 0; k < 3; k++) rr[k] = Pr[k] = qi[k] - o[k];
-            continue;
+            return;
         }
         double pJ[4] = {1, 0, 0, 0}, t[3] = {0, 0, 0};
         switch (jt) {
@@ -154,9 +158,12 @@ static void positions(const vt_model *m, vt_data *d)
 }
 
 /* ω (16), v (15), ṗ = ½ E^T ω */
-static void velocities(const vt_model *m, vt_data *d)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void velocity(const vt_model *m, vt_data *d, int i)
 {
-    for (int i = 1; i <= m->nbody; i++) {
+    {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qdi = d->qd + m->body_vadr[i];
         const double *wj = d->omega + 3 * j;
@@ -169,7 +176,7 @@ static void velocities(const vt_model *m, vt_data *d)
             memcpy(vi, qdi, 7 * sizeof(double));
             vt_mulE(wi, E, pdi);
             wi[0] *= 2; wi[1] *= 2; wi[2] *= 2;
-            continue;
+            return;
         }
         const double *e = d->jaxis + 9 * i;
         double w[3], v[3]; /* locals, stored once: the outputs might alias the inputs */
@@ -203,9 +210,12 @@ static void velocities(const vt_model *m, vt_data *d)
 /* Twist of every rate about the reference point o, into d->twist: angular part w, velocity of
  * the point at o v. Rotational axis e through the joint point P: (e, (P − o) × e); translational
  * e: (0, e); a base body's r_k: (0, e_k); its ṗ_k: ω = 2 E^b e_k about r^b, (ω, (r^b − o) × ω). */
-static void twists(const vt_model *m, vt_data *d)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void twist(const vt_model *m, vt_data *d, int dof)
 {
-    for (int dof = 0; dof < m->nv; dof++) {
+    {
         const int b = m->dof_body[dof], jt = m->body_joint[b];
         const double *e = d->jaxis + 9 * b;
         double *w = d->twist + 6 * dof, *v = w + 3;
@@ -233,6 +243,21 @@ static void twists(const vt_model *m, vt_data *d)
         }
         }
     }
+}
+
+/* the twists of body b's rates */
+static inline void twists(const vt_model *m, vt_data *d, int b)
+{
+    for (int dof = m->body_vadr[b]; dof < m->body_vadr[b] + m->body_nv[b]; dof++) twist(m, d, dof);
+}
+
+/* Body i's positions, its rates' twists and its velocities, its reference body's known (body 1
+ * first: it sets o; d->origin and the ground's xrel zeroed before) */
+void vt_kinematics_body(const vt_model *m, vt_data *d, int i)
+{
+    position(m, d, i);
+    twists(m, d, i);
+    velocity(m, d, i);
 }
 
 /* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × (r^i − o), ṗ^i = ½ E^{iT} w,
@@ -272,12 +297,12 @@ void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i)
         memcpy(Si + 7 * c, d->S + (size_t)path[c] * (size_t)m->nx + (size_t)vt_xoff(i), 7 * sizeof(double));
 }
 
-/* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
- * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
-void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i)
 {
-    memset(alpha, 0, 3 * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) {
+    {
         const int j = m->body_parent[i], jt = m->body_joint[i];
         const double *qi = d->q + m->body_qadr[i], *qdi = d->qd + m->body_vadr[i];
         const double *qddi = qdd ? qdd + m->body_vadr[i] : NULL;
@@ -293,7 +318,7 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
             else memset(ai, 0, 7 * sizeof(double));
             vt_mulE(ali, E, pddi); /* α = 2 E p̈ + 2 Ė ṗ, and Ė ṗ = E(ṗ) ṗ = 0 */
             ali[0] *= 2; ali[1] *= 2; ali[2] *= 2;
-            continue;
+            return;
         }
         const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
         double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
@@ -340,6 +365,20 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
     }
 }
 
+/* Cartesian accelerations ẍ = S q̈ + Ṡ q̇ into out (7n); with qdd == NULL, Ṡ q̇.
+ * alpha: angular accelerations (3 x (nbody+1)), filled as well. */
+void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+{
+    memset(alpha, 0, 3 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) acceleration(m, d, qdd, out, alpha, i);
+}
+
+/* body i's row of vt_accelerations, its reference body's known (alpha's ground entry zeroed) */
+void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i)
+{
+    acceleration(m, d, qdd, out, alpha, i);
+}
+
 /* ẍ = S q̈ + Ṡq̇ from the stored Ṡq̇ (d->Sdqd) and the rates' twists, outward: the twist of
  * accelerations T^i = T^j + Σ_own q̈_a s_a (a sum of twists about o) gives
  *   α^i = α0^i + T_w,   a^i = a0^i + T_v + T_w × (r^i − o),   p̈^i = p̈0^i + ½ E^{iT} T_w
@@ -380,7 +419,10 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
 /* A finite state can still overflow (a base body's Euler parameters ×1e200 enter A squared, a
  * rate of 1e300 rad/s its square in Ṡq̇): the outputs are scanned (branch-free, O(n)) and the
  * first body with a non-finite one is named. */
-static vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
 {
     const int n = m->nbody, nb = n + 1;
     if (vt_all_finite(d->x, 7 * n) && vt_all_finite(d->A, 9 * nb) && vt_all_finite(d->jpoint, 3 * nb) &&
@@ -404,13 +446,27 @@ static vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
     return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: an output overflows (q or q̇ too large)");
 }
 
+/* vt_kinematics_tree's checks, for a pass that computes the same outputs (recursive.c's
+ * revolute one): the state before, the outputs (without Ṡq̇) after */
+vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d)
+{
+    return check_state(m, d);
+}
+
+vt_status vt_kinematics_check_outputs(const vt_model *m, vt_data *d)
+{
+    return check_outputs(m, d, 0);
+}
+
 vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
 {
     vt_status st = check_state(m, d);
     if (st) return st;
-    positions(m, d);
-    twists(m, d);
-    velocities(m, d);
+    d->origin[0] = d->origin[1] = d->origin[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) position(m, d, i);
+    for (int dof = 0; dof < m->nv; dof++) twist(m, d, dof);
+    for (int i = 1; i <= m->nbody; i++) velocity(m, d, i);
     if (Sdqd) {
         const size_t mark = vt_scratch_mark(d);
         double *alpha = VT_SCRATCH(d, double, 3 * ((size_t)m->nbody + 1), "α at q̈ = 0");

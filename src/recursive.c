@@ -21,7 +21,8 @@
  * - JOINT_DRIVEN, every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and
  *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's
  *   Φ_q^T λ with unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point
- *   P_i less the joint's actuation (τ + qfrc) along its axes (inward);
+ *   P_i less the joint's actuation (τ + qfrc) along its axes (inward; without base bodies the
+ *   kinematics fused into the same two passes, fused_pass);
  * (a free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
  * normal part, so the routes below take free bodies, base bodies only the general one)
  * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
@@ -212,29 +213,83 @@ static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
 /* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
 static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 {
-    for (int c = 0; c < m->nv; c++) {
-        const int k = m->dof_drive[c];
+    /* the arrays in locals: the time function's call would have them all read again per rate */
+    const int nv = m->nv, *dof_drive = m->dof_drive, *drive_row = m->drive_row, *dof_body = m->dof_body;
+    const int *qadr = m->body_qadr, *vadr = m->body_vadr;
+    const vt_drive_def *drive = m->drive;
+    const double t = d->time, *q = d->q;
+    double *Phi = d->Phi, *Phit = d->Phit, *gamma = d->gamma, *qdd = d->qdd;
+    for (int c = 0; c < nv; c++) {
+        const int k = dof_drive[c];
         if (k < 0) continue;
-        const int row = m->drive_row[k];
+        const int row = drive_row[k];
         double f[3];
-        vt_status st = vt_function_eval_valid(f, &m->drive[k].f, d->time);
+        vt_status st = vt_function_eval_valid(f, &drive[k].f, t);
         if (st)
             return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
                            d->time);
-        const int i = m->dof_body[c];
-        d->Phi[row] = d->q[m->body_qadr[i] + c - m->body_vadr[i]] - f[0];
-        d->Phit[row] = -f[1];
-        d->gamma[row] = f[2];
-        d->qdd[c] = f[2];
+        const int i = dof_body[c];
+        Phi[row] = q[qadr[i] + c - vadr[i]] - f[0];
+        Phit[row] = -f[1];
+        gamma[row] = f[2];
+        qdd[c] = f[2];
     }
     return VT_OK;
 }
 
+/* joint i's efforts and reaction from its subtree's wrench Wi (about o): inward_pass's step for one
+ * body; 1 if the reaction overflowed */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given)
+{
+    const double *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
+    double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+    vt_copy3(f, Wi + 3);
+    vt_copy3(mo, Wi);
+    vt_cross3(t, P, f);
+    for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+    for (int k = 0; k < m->body_nv[i]; k++) {
+        const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
+        int ax;
+        const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
+        double tau = 0.0;
+        if (given) {
+            const double *w = d->twist + 6 * c;
+            tau = pair(w, w + 3, Wi) - d->qfrc[c];
+        } else if (dr >= 0) {
+            const double *w = d->twist + 6 * c;
+            tau = pair(w, w + 3, Wi) - d->qfrc[c];
+            d->lambda[m->drive_row[dr]] = tau;
+            d->drive_effort[dr] = tau;
+            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+            for (int r = 0; r < 3; r++) {
+                df[r] = rot ? 0.0 : tau * e[3 * ax + r];
+                dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
+            }
+        }
+        d->qfrc_drive[c] = tau;
+        vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
+    }
+    if (m->body_joint[i] == VT_JOINT_FREE) /* transmits nothing: what is left is round-off */
+        f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
+    double fb[3], mb[3];
+    vt_mulmat3t(fb, d->A + 9 * i, f);
+    vt_mulmat3t(mb, d->A + 9 * i, mo);
+    vt_copy3(d->jnt_force + 3 * i, f);
+    vt_copy3(d->jnt_moment + 3 * i, mo);
+    vt_copy3(d->jnt_force_body + 3 * i, fb);
+    vt_copy3(d->jnt_moment_body + 3 * i, mb);
+    return !vt_all_finite(f, 3) || !vt_all_finite(mo, 3);
+}
+
 /* with q̈ known for every rate: one inward pass for the joint drives' efforts τ = s · W̄ − qfrc
  * and every reaction (actuation — a drive's τ and an applied qfrc — is not reaction) */
-/* given: the motion is given for every rate (vt_inverse_dynamics_motion): every rate's effort,
- * the drives left alone; else the joint drives' efforts. Inlined into inward and inward_given,
- * so that each is compiled for its constant (the branch in the loop cost 2.5 % on the chain) */
+/* given: the motion is given for every rate: every rate's effort, the drives left alone; else
+ * the joint drives' efforts. Inlined, so that each use is compiled for its constant (the branch
+ * in the loop cost 2.5 % on the chain). The trees without base bodies take the fused passes
+ * below (fused_pass); this one follows the articulated solve of the free rates. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -248,37 +303,227 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     if (!alpha) return vt_scratch_fail(d, mark);
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
-    for (int i = 1; i <= n; i++) {
-        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
-        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
-        vt_copy3(f, Wi + 3);
-        vt_copy3(mo, Wi);
-        vt_cross3(t, P, f);
-        for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
-        for (int k = 0; k < m->body_nv[i]; k++) {
-            const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
-            int ax;
-            const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
-            double tau = 0.0;
-            if (given) {
-                const double *w = d->twist + 6 * c;
-                tau = pair(w, w + 3, Wi) - d->qfrc[c];
-            } else if (dr >= 0) {
-                const double *w = d->twist + 6 * c;
-                tau = pair(w, w + 3, Wi) - d->qfrc[c];
-                d->lambda[m->drive_row[dr]] = tau;
-                d->drive_effort[dr] = tau;
-                double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
-                for (int r = 0; r < 3; r++) {
-                    df[r] = rot ? 0.0 : tau * e[3 * ax + r];
-                    dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
-                }
-            }
-            d->qfrc_drive[c] = tau;
-            vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
+    for (int i = 1; i <= n; i++)
+        if (joint_reaction(m, d, W + 6 * i, i, given))
+            return vt_scratch_release(d, mark),
+                   vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+    vt_scratch_release(d, mark);
+    return vt_reactions_unique(m, d);
+}
+
+/* The fused passes: a tree without base bodies, every q̈ known (every rate joint-driven, or the
+ * motion given): the kinematics, the accelerations and each body's needed wrench in one outward
+ * loop over the bodies, the subtree wrenches, efforts and reactions in one inward loop; the same
+ * equations as vt_kinematics_tree, vt_accelerations, body_wrench and inward_pass. A revolute body
+ * has its own code, written for one rotational rate (e = A^j u, its twist (e, (P − o) × e),
+ * t = 0, ė = ω^j × e, τ = e · the moment about P); any other joint takes the general code's
+ * stages for its body. */
+/* 1: every joint revolute, 0: some other, but no base body (the fused passes take each other
+ * joint through the general code body by body), -1: a base body */
+static int joint_mix(const vt_model *m)
+{
+    int r = 1;
+    for (int i = 1; i <= m->nbody; i++) {
+        if (m->body_joint[i] == VT_JOINT_BASE) return -1;
+        if (m->body_joint[i] != VT_JOINT_REVOLUTE) r = 0;
+    }
+    return r;
+}
+
+static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
+
+/* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
+static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const int mixed)
+{
+    double *o = d->origin;
+    o[0] = o[1] = o[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
+    alpha[0] = alpha[1] = alpha[2] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) { /* the general code's stages for this body */
+            vt_kinematics_body(m, d, i);
+            vt_acceleration_body(m, d, d->qdd, d->xdd, alpha, i);
+            body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
+            continue;
         }
-        if (m->body_joint[i] == VT_JOINT_FREE) /* transmits nothing: what is left is round-off */
-            f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
+        const int j = m->body_parent[i], c = m->body_vadr[i];
+        const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
+        const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
+        const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
+        double p[4], A[9], e[3], sij[3], sji[3];
+        { /* p = p^j ⊗ (cos ½q, sin ½q u) written out, (c p0 − s p·u, c p + s p0 u + s p × u): no
+           * calls with the vectors live */
+            const double h = 0.5 * q, cs = cos(h), sn = sin(h);
+            const double a0 = pj[0], a1 = pj[1], a2 = pj[2], a3 = pj[3];
+            p[0] = cs * a0 - sn * (a1 * u[0] + a2 * u[1] + a3 * u[2]);
+            p[1] = cs * a1 + sn * (a0 * u[0] + a2 * u[2] - a3 * u[1]);
+            p[2] = cs * a2 + sn * (a0 * u[1] + a3 * u[0] - a1 * u[2]);
+            p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
+        }
+        const double *p0 = m->body_quat0 + 4 * i;
+        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) { /* p ⊗ p0 (vt_quat_mul) */
+            const double a0 = p[0], a1 = p[1], a2 = p[2], a3 = p[3], b0 = p0[0], b1 = p0[1], b2 = p0[2], b3 = p0[3];
+            p[0] = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3;
+            p[1] = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2;
+            p[2] = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1;
+            p[3] = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0;
+        }
+        { /* vt_euler_A, inlined: no call with the vectors live */
+            const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3], sq = e0 * e0 - e1 * e1 - e2 * e2 - e3 * e3;
+            A[0] = sq + 2 * e1 * e1, A[3] = 2 * (e1 * e2 - e0 * e3), A[6] = 2 * (e1 * e3 + e0 * e2);
+            A[1] = 2 * (e1 * e2 + e0 * e3), A[4] = sq + 2 * e2 * e2, A[7] = 2 * (e2 * e3 - e0 * e1);
+            A[2] = 2 * (e1 * e3 - e0 * e2), A[5] = 2 * (e2 * e3 + e0 * e1), A[8] = sq + 2 * e3 * e3;
+        }
+        vt_mulmat3(e, Aj, u);
+        vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
+        vt_mulmat3(sji, A, m->body_jchild + 3 * i);
+        if (i == 1) { /* o = P_1 */
+            vt_copy3(o, sij);
+            for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+        }
+        /* the reference body's values in locals before the first store (the outputs might alias
+         * them as far as the compiler knows); each output stored as soon as it is known, so that
+         * fewer values stay live (spilled) to the end */
+        const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
+        const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
+        double rj[3], wj[3], alj[3], vj[3], aj[3];
+        for (int k = 0; k < 3; k++) {
+            rj[k] = rjp[k];
+            wj[k] = wjp[k];
+            alj[k] = aljp[k];
+            vj[k] = vjp[k];
+            aj[k] = ajp[k];
+        }
+        double rr[3], di[3], w[3], al[3], a[3], t[3], ed[3], wb[3], ab[3];
+        { /* positions from o, the rate's twist */
+            double Pr[3], tw[3];
+            for (int k = 0; k < 3; k++) {
+                Pr[k] = rj[k] + sij[k];
+                rr[k] = Pr[k] - sji[k];
+                di[k] = 0.0 - sji[k];
+            }
+            vt_cross3(tw, Pr, e);
+            double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
+            for (int k = 0; k < 3; k++) {
+                x[k] = o[k] + rr[k];
+                d->jpoint[3 * i + k] = o[k] + Pr[k];
+                d->xrel[6 * i + k] = rr[k];
+                d->xrel[6 * i + 3 + k] = Pr[k];
+                d->jsij[3 * i + k] = sij[k];
+                d->jd[3 * i + k] = di[k];
+                ej[k] = e[k];
+                ej[3 + k] = ej[6 + k] = 0.0;
+                twc[k] = e[k];
+                twc[3 + k] = tw[k];
+            }
+            memcpy(x + 3, p, sizeof p);
+            memcpy(d->A + 9 * i, A, sizeof A);
+        }
+        { /* velocities */
+            double v[3], pd[4];
+            for (int k = 0; k < 3; k++) {
+                w[k] = wj[k] + qd * e[k];
+                v[k] = vj[k];
+            }
+            vt_addcross3(v, wj, sij);
+            vt_addcross3(v, w, di);
+            vt_quat_rate(pd, p, w);
+            vt_mulmat3t(wb, A, w); /* ω in body axes for the wrench */
+            double *xd = d->xd + vt_xoff(i);
+            vt_copy3(d->omega + 3 * i, w);
+            vt_copy3(xd, v);
+            memcpy(xd + 3, pd, sizeof pd);
+        }
+        { /* accelerations */
+            double pdd[4];
+            vt_copy3(al, alj);
+            vt_copy3(a, aj);
+            vt_addcross3(a, alj, sij);
+            vt_cross3(t, wj, sij);
+            vt_addcross3(a, wj, t);
+            vt_cross3(ed, wj, e);
+            vt_axpy3(al, qdd, e);
+            vt_axpy3(al, qd, ed);
+            vt_cross3(ed, al, sji);
+            for (int k = 0; k < 3; k++) a[k] -= ed[k];
+            vt_cross3(t, w, sji);
+            vt_cross3(ed, w, t);
+            for (int k = 0; k < 3; k++) a[k] -= ed[k];
+            vt_quat_rate(pdd, p, al);
+            vt_mulmat3t(ab, A, al); /* α in body axes for the wrench */
+            const double w2 = vt_dot3(w, w);
+            for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
+            double *xdd = d->xdd + vt_xoff(i);
+            vt_copy3(alpha + 3 * i, al);
+            vt_copy3(xdd, a);
+            memcpy(xdd + 3, pdd, sizeof pdd);
+        }
+        { /* the needed wrench (body_wrench) */
+            const double *Jb = m->body_inertia + 9 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+            double Jw[3], Ja[3], nn[3], f[3];
+            vt_mulmat3(Jw, Jb, wb);
+            vt_mulmat3(Ja, Jb, ab);
+            vt_addcross3(Ja, wb, Jw);
+            vt_mulmat3(nn, A, Ja);
+            for (int k = 0; k < 3; k++) {
+                f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
+                nn[k] -= xf[3 + k];
+            }
+            vt_addcross3(nn, rr, f);
+            double *Wi = W + 6 * i;
+            vt_copy3(Wi, nn);
+            vt_copy3(Wi + 3, f);
+        }
+    }
+}
+
+/* the joint-driven (given = 0) or given (1) instant of an all-revolute tree: inward_pass's
+ * outputs, and vt_kinematics_tree's (without Ṡq̇) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
+    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
+    if (!alpha) return vt_scratch_fail(d, mark);
+    fused_outward(m, d, alpha, W, mixed);
+    vt_status st = vt_kinematics_check_outputs(m, d);
+    if (st) { /* as vt_kinematics_tree's failure before any route */
+        d->route = VT_ROUTE_NONE;
+        return vt_scratch_release(d, mark), st;
+    }
+    for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
+        const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
+        if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
+            if (joint_reaction(m, d, W + 6 * i, i, given))
+                return vt_scratch_release(d, mark),
+                       vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+            if (j > 0)
+                for (int k = 0; k < 6; k++) W[6 * j + k] += W[6 * i + k];
+            continue;
+        }
+        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
+        double f[3], Wn[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+        vt_copy3(f, Wi + 3);
+        vt_copy3(Wn, Wi);
+        vt_cross3(t, P, f);
+        for (int k = 0; k < 3; k++) mo[k] = Wn[k] - t[k]; /* about P_i */
+        const double qf = d->qfrc[c];
+        double tau = 0.0;
+        if (given || dr >= 0) tau = vt_dot3(e, mo) - qf; /* s · W̄ = e · (the moment about P_i) */
+        if (!given && dr >= 0) {
+            d->lambda[m->drive_row[dr]] = tau;
+            d->drive_effort[dr] = tau;
+            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+            for (int k = 0; k < 3; k++) {
+                df[k] = 0.0;
+                dm[k] = tau * e[k];
+            }
+        }
+        d->qfrc_drive[c] = tau;
+        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
         double fb[3], mb[3];
         vt_mulmat3t(fb, d->A + 9 * i, f);
         vt_mulmat3t(mb, d->A + 9 * i, mo);
@@ -289,6 +534,13 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+        if (j > 0) { /* W̄_j += W̄_i */
+            double *Wj = W + 6 * j;
+            for (int k = 0; k < 3; k++) {
+                Wj[k] += Wn[k];
+                Wj[3 + k] += f[k];
+            }
+        }
     }
     vt_scratch_release(d, mark);
     return vt_reactions_unique(m, d);
@@ -297,11 +549,6 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
 static vt_status inward(const vt_model *m, vt_data *d)
 {
     return inward_pass(m, d, 0);
-}
-
-static vt_status inward_given(const vt_model *m, vt_data *d)
-{
-    return inward_pass(m, d, 1);
 }
 
 /* M* by composite bodies and Q by a Newton–Euler pass */
@@ -734,7 +981,10 @@ static int has_base(const vt_model *m)
     return 0;
 }
 
-static vt_status recursive_instant(const vt_model *m, vt_data *d);
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d);
 
 /* The instant, then its outputs scanned: finite inputs whose products overflow (an acceleration
  * of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK */
@@ -757,7 +1007,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
     return st;
 }
 
-static vt_status recursive_instant(const vt_model *m, vt_data *d)
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
@@ -766,6 +1016,22 @@ static vt_status recursive_instant(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
+    const int mix = joint_mix(m);
+    if (m->joint_driven && mix >= 0) { /* the outward passes fused */
+        if (mix == 0 || !vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) /* Euler parameters to check */
+            if ((st = vt_kinematics_check_state(m, d))) return st;
+        if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
+            const vt_status sk = vt_kinematics_tree(m, d, 0);
+            return sk ? sk : st;
+        }
+        d->route = VT_ROUTE_JOINT_DRIVEN;
+        d->rcond = 1.0;
+        d->warning = 0;
+        d->rank = m->nc;
+        d->residual = 0.0;
+        vt_mark_unique(m, d);
+        return mix ? fused_pass(m, d, 0, 0) : fused_pass(m, d, 0, 1);
+    }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
         if ((st = drive_accelerations(m, d))) return st;
@@ -860,13 +1126,16 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
                            "use VT_JOINT_FREE", i);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
-    if ((st = vt_kinematics_tree(m, d, 0))) return st;
+    /* the outward passes fused (no base body here) */
+    const int mix = joint_mix(m);
+    if (mix == 0 || !vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv))
+        if ((st = vt_kinematics_check_state(m, d))) return st;
     d->rcond = 1.0;
     d->warning = 0;
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = inward_given(m, d)) || (st = vt_reactions_total(m, d, 1))) return st;
+    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1)) || (st = vt_reactions_total(m, d, 1))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }

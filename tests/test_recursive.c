@@ -460,6 +460,46 @@ static void test_dependent(void **state)
  * does not compute itself: the efforts equal M* q̈ − Q from the dense stages (2), and applied as
  * generalized forces to the same tree without drives, the dense path's forward solve gives back
  * the given q̈ and the same reactions (the actuation is not reaction either way) */
+/* The fused outward pass of vt_inverse_dynamics_motion (a revolute body by its own code, other
+ * joints by the general code body by body) leaves every kinematic output of the data as
+ * vt_kinematics, the general code in its separate loops, computes it: on all-revolute trees
+ * (every body by the revolute code, non-unit axes, turned joint frames) and on trees of every
+ * kind but base */
+static void test_fused_kinematics(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 8; seed++) {
+        vt_model *m;
+        vt_data *d, *dk;
+        const unsigned kinds = seed <= 4 ? (1u << VT_JOINT_REVOLUTE) : VT_SCENE_WITH_FREE;
+        assert_ok(vt_scene_random_tree(&m, seed, 5 + (int)seed, kinds));
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&dk, m));
+        uint64_t s = seed * 7;
+        vt_scene_random_state(m, d, &s);
+        for (int c = 0; c < m->nv; c++) d->qdd[c] = vt_rand_uniform(&s, -3, 3);
+        memcpy(dk->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(dk->qd, d->qd, (size_t)m->nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        assert_ok(vt_kinematics(m, dk));
+        const int nb = m->nbody + 1;
+        compare(d->x, dk->x, m->nx, 1e-14, "x");
+        compare(d->A, dk->A, 9 * nb, 1e-14, "A");
+        compare(d->xd, dk->xd, m->nx, 1e-14, "xd");
+        compare(d->omega, dk->omega, 3 * nb, 1e-14, "omega");
+        compare(d->twist, dk->twist, 6 * m->nv, 1e-14, "twist");
+        compare(d->jaxis, dk->jaxis, 9 * nb, 1e-14, "jaxis");
+        compare(d->jsij, dk->jsij, 3 * nb, 1e-14, "jsij");
+        compare(d->jd, dk->jd, 3 * nb, 1e-14, "jd");
+        compare(d->jpoint, dk->jpoint, 3 * nb, 1e-14, "jpoint");
+        compare(d->xrel, dk->xrel, 6 * nb, 1e-14, "xrel");
+        compare(d->origin, dk->origin, 3, 1e-14, "origin");
+        vt_data_free(d);
+        vt_data_free(dk);
+        vt_model_free(m);
+    }
+}
+
 static void test_motion(void **state)
 {
     (void)state;
@@ -1645,6 +1685,7 @@ int main(void)
         cmocka_unit_test(test_roundoff_singular),
         cmocka_unit_test(test_roundoff_hides_singular),
         cmocka_unit_test(test_mass_ratios),
+        cmocka_unit_test(test_fused_kinematics),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
