@@ -10,7 +10,10 @@
  *   data of the same state; vt_inverse_dynamics_motion given the dense q̈ (a tree: every rate's
  *   M* q̈ − Q against the dense Φ_q^T λ; loops and couplings: the whole instant); the same
  *   definitions with allow_redundant = 1 at a clearly regular pose. Where both succeed, q̈, the
- *   efforts and every reaction agree within tol (below); their statuses are consistent (below);
+ *   efforts and every reaction agree within tol (below), and dense and recursive α and the
+ *   joints' totals too; their statuses are consistent (below). The bytes also choose the later
+ *   pieces: planar revolute cut joints, relative orientation drives' references and three-angle
+ *   sequences (valid and refused ones), from bits the older inputs left unused;
  * - with VT_OK every output array of the call is finite (the instants', and each single stage's:
  *   vt_kinematics, vt_mass_matrix, vt_forces, vt_constraints, vt_inverse_transform,
  *   vt_add_point_load, vt_generalized_force, vt_equivalent_force, vt_drive_cartesian_force,
@@ -72,11 +75,13 @@ static void describe(void)
                 m->body_jchild[3 * i + 1], m->body_jchild[3 * i + 2]);
     fprintf(stderr, "  gravity %g %g %g\n", m->gravity[0], m->gravity[1], m->gravity[2]);
     for (int k = 0; k < m->ndrive; k++)
-        fprintf(stderr, "  drive %d: type %d, body %d, index %d, function %d, point %g %g %g, axis %g %g %g\n", k,
+        fprintf(stderr, "  drive %d: type %d, body %d, index %d, function %d, point %g %g %g, axis %g %g %g, reference %d, sequence %s\n", k,
                 m->drive[k].type, m->drive[k].body, m->drive[k].index, m->drive[k].f.type, m->drive[k].point[0],
-                m->drive[k].point[1], m->drive[k].point[2], m->drive[k].axis[0], m->drive[k].axis[1], m->drive[k].axis[2]);
+                m->drive[k].point[1], m->drive[k].point[2], m->drive[k].axis[0], m->drive[k].axis[1], m->drive[k].axis[2],
+                m->drive[k].reference, m->drive[k].sequence ? m->drive[k].sequence : "none");
     for (int k = 0; k < m->ncut; k++)
-        fprintf(stderr, "  cut joint %d: joint %d, bodies %d %d\n", k, m->cut[k].joint, m->cut[k].body_a, m->cut[k].body_b);
+        fprintf(stderr, "  cut joint %d: joint %d, bodies %d %d, planar %d\n", k, m->cut[k].joint, m->cut[k].body_a,
+                m->cut[k].body_b, m->cut[k].planar);
     const vt_data *both[2] = {context.a, context.b};
     for (int k = 0; k < 2; k++) {
         const vt_data *d = both[k];
@@ -535,6 +540,35 @@ static void agree_loads(const char *pair, const vt_model *m, const vt_data *a, c
         }
 }
 
+/* α and the joints' totals, derived from q̈ and the same loads as the reactions. α = Σ (rate's
+ * angular twist, |·| ≤ 2: unit axes, or 2 E with |p| = 1) q̈ + velocity products: q̈'s error
+ * (each rate's tolerance, agree_qdd's) times 2 nv, plus round-off e (|α| + (|ω| + |q̇|)²). The
+ * totals with the reactions' tolerances, where every reaction is unique (with redundant rows the
+ * cut joints' share, and so the subtree's outside loads, is not). */
+static void agree_totals(const char *pair, const vt_model *m, const vt_data *ref, const vt_data *a, const vt_data *b,
+                         const scales *s)
+{
+    const int n1 = m->nbody + 1;
+    double tq = 0.0;
+    for (int c = 0; c < m->nv; c++) {
+        const double mc = ref->Mstar[(size_t)c + (size_t)c * (size_t)m->nv];
+        tq = fmax(tq, mc > 0.0 && s->dq > 0.0 ? s->dq / sqrt(mc) : s->tq);
+    }
+    const double w = fmax(maxabs(a->omega, 3 * n1), maxabs(b->omega, 3 * n1));
+    const double v = fmax(maxabs(a->qd, m->nv), maxabs(b->qd, m->nv)) + w;
+    const double ta = 2.0 * m->nv * tq + s->e * (fmax(maxabs(a->alpha, 3 * n1), maxabs(b->alpha, 3 * n1)) + v * v);
+    if (isfinite(ta)) agree(pair, "alpha", a->alpha, b->alpha, 3 * n1, ta, s);
+    if (!isfinite(s->tf) || !isfinite(s->tn)) return;
+    for (int k = 0; k < 6 * n1; k++)
+        if (!a->jnt_unique[k] || !b->jnt_unique[k]) return;
+    for (int k = 0; k < 6 * m->ncut; k++)
+        if (!a->cut_unique[k] || !b->cut_unique[k]) return;
+    agree(pair, "jnt_force_total", a->jnt_force_total, b->jnt_force_total, 3 * n1, s->tf, s);
+    agree(pair, "jnt_force_total_body", a->jnt_force_total_body, b->jnt_force_total_body, 3 * n1, s->tf, s);
+    agree(pair, "jnt_moment_total", a->jnt_moment_total, b->jnt_moment_total, 3 * n1, s->tn, s);
+    agree(pair, "jnt_moment_total_body", a->jnt_moment_total_body, b->jnt_moment_total_body, 3 * n1, s->tn, s);
+}
+
 /* The largest magnitude among the inputs of an instant: the model's masses, inertias, offsets,
  * the state, the loads. From about 1e75 on, a product of four of them (m r² ω²) overflows: the
  * edge of overflow, where one route may overflow in an intermediate and the other not. */
@@ -730,6 +764,10 @@ static void stages(const vt_model *m, vt_data *d, bytes *b)
 #define MAX_DRIVE 4
 #define MAX_CUT 2
 
+/* orientation drives' sequences: body-fixed, fixed-axes, and names the builder refuses (a
+ * letter twice in a row, not axes, mixed case) */
+static const char *const SEQUENCES[8] = {"ZYX", "xyz", "ZXZ", "zyz", "XYZ", "ZZX", "abc", "zYx"};
+
 typedef struct {
     vt_model_def md;
     int nbody, ndrive, ncut;
@@ -749,14 +787,20 @@ static vt_model *build(const definitions *defs, int allow_redundant)
         const int id = vt_builder_add_body(builder, &defs->body[i]); /* refusals are fine, with a reason */
         if (id < 0 && vt_builder_message(builder)[0] == '\0') fail("vt_builder_add_body refused with an empty message");
     }
+    const int show = getenv("FUZZ_DESCRIBE") != NULL;
     for (int k = 0; k < defs->ndrive; k++)
-        if (vt_builder_add_drive(builder, &defs->drive[k]) < 0 && vt_builder_message(builder)[0] == '\0')
-            fail("vt_builder_add_drive refused with an empty message");
+        if (vt_builder_add_drive(builder, &defs->drive[k]) < 0) {
+            if (vt_builder_message(builder)[0] == '\0') fail("vt_builder_add_drive refused with an empty message");
+            if (show) fprintf(stderr, "fuzz_model: drive refused: %s\n", vt_builder_message(builder));
+        }
     for (int k = 0; k < defs->ncut; k++)
-        if (vt_builder_add_cut_joint(builder, &defs->cut[k]) < 0 && vt_builder_message(builder)[0] == '\0')
-            fail("vt_builder_add_cut_joint refused with an empty message");
+        if (vt_builder_add_cut_joint(builder, &defs->cut[k]) < 0) {
+            if (vt_builder_message(builder)[0] == '\0') fail("vt_builder_add_cut_joint refused with an empty message");
+            if (show) fprintf(stderr, "fuzz_model: cut joint refused: %s\n", vt_builder_message(builder));
+        }
     vt_model *m = NULL;
     const vt_status st = vt_builder_build(&m, builder);
+    if (st && getenv("FUZZ_DESCRIBE")) fprintf(stderr, "fuzz_model: the builder refused: %s\n", vt_builder_message(builder));
     vt_builder_free(builder);
     return st ? NULL : m;
 }
@@ -794,20 +838,41 @@ static void read_definitions(bytes *b, definitions *defs)
     defs->ndrive = (int)(byte(b) % (MAX_DRIVE + 1));
     for (int k = 0; k < defs->ndrive; k++) {
         vt_drive_def d = vt_default_drive_def();
-        d.type = (vt_drive_type)(byte(b) % 4);
-        d.body = (int)(byte(b) % 8);
+        const unsigned kind = byte(b), who = byte(b);
+        d.type = (vt_drive_type)(kind % 4);
+        d.body = (int)(who % 8);
         d.index = (int)(byte(b) % 5) - 1;
         for (int c = 0; c < 3; c++) {
             d.point[c] = num(b);
             d.axis[c] = num(b);
         }
         fill_function(b, &d.f, &defs->cb[k]);
+        /* the later pieces from the kind and body bytes' unused high bits (the older inputs
+         * still read the same bytes): a relative drive's reference (-1 its joint, the ground,
+         * another body or, refused, 1 in 8, the body itself); a sequence of three angles on an
+         * orientation drive (3 in 8), on another kind 1 in 64 (refused), from SEQUENCES (valid
+         * and invalid names); f2 and f3 the first angle's function rescaled (no bytes read) */
+        const unsigned rb = who >> 3, hi = kind >> 2;
+        const int which = (int)(rb >> 2) % 7;
+        d.reference = (rb & 3) == 0 ? -1 : (rb & 3) == 1 ? 0 : (rb & 3) == 2 ? which : rb & 4 ? d.body : -1;
+        if (hi == 63 || ((hi & 7) >= 5 && (d.type == VT_DRIVE_ORIENTATION || d.type == VT_DRIVE_RELATIVE_ORIENTATION)))
+            d.sequence = SEQUENCES[(hi >> 3) & 7];
+        d.f2 = d.f3 = d.f;
+        for (int c = 0; c < VT_POLY_MAX; c++) {
+            d.f2.c[c] *= -0.6;
+            d.f3.c[c] *= c % 2 ? 1.7 : 0.3;
+        }
         defs->drive[k] = d;
     }
     defs->ncut = (int)(byte(b) % (MAX_CUT + 1));
     for (int k = 0; k < defs->ncut; k++) {
         vt_cut_joint_def c = vt_default_cut_joint_def();
-        c.joint = (vt_joint_type)(byte(b) % 7);
+        const unsigned kind = byte(b), hi = kind / 7;
+        c.joint = (vt_joint_type)(kind % 7);
+        /* planar from the kind byte's unused high part: a revolute's pin half the time (2, not
+         * 0 or 1, refused, 1 in 16); another kind's 1 in 8 (refused) */
+        if (c.joint == VT_JOINT_REVOLUTE) c.planar = hi % 16 == 15 ? 2 : (int)(hi & 1);
+        else c.planar = hi % 8 == 7;
         c.body_a = (int)(byte(b) % 8);
         c.body_b = (int)(byte(b) % 8);
         for (int e = 0; e < 3; e++) {
@@ -863,6 +928,7 @@ static void differential(const definitions *defs, const vt_model *m, const vt_da
         if (isfinite(s.e) && in_mag < EDGE_INPUT) {
             agree_qdd("dense and recursive", m, dd, dd->qdd, dr->qdd, &s);
             agree_loads("dense and recursive", m, dd, dr, &s, 1, 1);
+            agree_totals("dense and recursive", m, dd, dd, dr, &s);
         }
     }
     if (sd != VT_OK) goto out;
@@ -982,6 +1048,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     vt_model *m = build(&defs, defs.md.allow_redundant);
     if (!m) return 0;
     context.m = m;
+    if (getenv("FUZZ_DESCRIBE")) describe(); /* FUZZ_DESCRIBE=1: the model each input makes (seeds) */
     model_check(m);
     vt_data *d = NULL;
     if (vt_data_create(&d, m)) {
