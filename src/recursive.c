@@ -569,10 +569,14 @@ static vt_status mass_and_bias(const vt_model *m, vt_data *d)
  * R_a) / M*_aa in row and column a (an off-diagonal entry to τ ε sqrt(T_a T_b) / sqrt(M*_aa M*_bb)
  * ≤ max δ), and ‖ΔÃ‖_1 ≤ nv max_a δ_a ≤ nv max δ ‖Ã‖_1. The solution's relative error is up to
  * that over rcond: where nv max δ ≥ rcond not one digit is certain (M* may be singular within
- * its own round-off: a mechanism long against its bodies' radii of gyration), refused as
- * vt_solve refuses below rcond_min. Rates whose M* row vt_solve zeroed (round-off held by a
- * row) are not measured: they are exactly zero. The dense path's S^T M S sums squares and
- * leaves less round-off, so it may solve what this refuses. */
+ * its own round-off: a mechanism long against its bodies' radii of gyration), this route cannot
+ * vouch for its answer, and the instant is computed again by the dense stages, whose S^T M S sums
+ * positive terms (kinetic energies, no cancellation: round-off relative to each entry itself) and
+ * is judged by vt_solve's own estimate (VT_FALLBACK_COMPOSITE_ROUNDOFF; returned as
+ * NEEDS_DENSE). Rates whose M* row vt_solve zeroed (round-off held by a row) are not measured:
+ * they are exactly zero. The bound is a worst case: a 100-link chain driven at its tip, 72 m
+ * long, meets it (nv max δ = 3.7e-5 against rcond 6.7e-7) while its two paths agree to 3e-9. */
+#define NEEDS_DENSE ((vt_status)1)
 static vt_status composite_precision(const vt_model *m, vt_data *d)
 {
     const int nv = m->nv;
@@ -581,22 +585,13 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
     double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
     if (!w) return vt_scratch_fail(d, mark);
     vt_rate_terms(m, d, w, T);
-    double delta = 0.0, arm = 0.0;
-    int worst = 0;
+    double delta = 0.0;
     for (int a = 0; a < nv; a++) {
         const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
-        if (maa > 0.0 && vt_rate_roundoff(T, a) / maa > delta) delta = vt_rate_roundoff(T, a) / maa, worst = a;
+        if (maa > 0.0 && vt_rate_roundoff(T, a) / maa > delta) delta = vt_rate_roundoff(T, a) / maa;
     }
-    const double msub = w[4 * m->dof_body[worst]]; /* the subtree's mass: T_a / m its lever arm squared */
-    if (msub > 0.0) arm = sqrt(T[2 * worst] / msub);
     vt_scratch_release(d, mark);
-    if (!(nv * delta >= d->rcond)) return VT_OK;
-    const double rcond = d->rcond;
-    vt_solve_reset(d);
-    return vt_fail(d->message, VT_ERR_SINGULAR,
-                   "vt_inverse_dynamics_recursive: ill-conditioned within M*'s round-off: rcond %.3g, rate %d's "
-                   "M*_aa (body %d) known to %.3g of itself (lever arms of %.3g m from the reference point)",
-                   rcond, worst, m->dof_body[worst], delta, arm);
+    return nv * delta >= d->rcond ? NEEDS_DENSE : VT_OK;
 }
 
 /* M* and Q formed, (5) solved by vt_solve (which also diagnoses), the reactions inward:
@@ -991,6 +986,11 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d);
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 {
     vt_status st = recursive_instant(m, d);
+    if (st == NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
+        st = vt_inverse_dynamics(m, d);
+        d->fallback |= VT_FALLBACK_COMPOSITE_ROUNDOFF;
+        return st;
+    }
     if (st) return st;
     const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
     if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||

@@ -1315,7 +1315,7 @@ static void test_roundoff_singular(void **state)
  * both paths refuse; at D = 1e6 the recursive general route's composite inertias about o hold
  * m D² terms, their round-off (64 ε of them, 0.03 of the spherical rates' M*_aa) hid the
  * singularity, and it returned VT_OK with rcond 2.6e-5 and q̈ of 1e5 (the fuzzer's
- * crash-5bde61aefa…): now it refuses, its rcond below what M*'s round-off allows. The dense M*
+ * crash-5bde61aefa…): now it hands the instant to the dense stages, whose rcond refuses. The dense M*
  * is checked against the identity M* u = 0 (to 64 ε of its largest entry × D/|c − P|: S's
  * lever arms from o). */
 static void test_roundoff_hides_singular(void **state)
@@ -1663,6 +1663,44 @@ static void test_heavy_link(void **state)
     }
 }
 
+/* A chain of n revolute links driven at its tip only (the benchmark's chain_tip), n = 100 and 200,
+ * 72 m and 135 m long: the composite inertias about o cannot vouch for a digit of M* at its
+ * rcond (6.7e-7, 1.6e-8) by their worst-case bound, and the recursive path refused the regular
+ * instant (VT_ERR_SINGULAR, "within M*'s round-off"). It hands it to the dense stages
+ * (VT_FALLBACK_COMPOSITE_ROUNDOFF), whose S^T M S sums positive terms: VT_OK, and the same
+ * answer as vt_inverse_dynamics. The shorter chain (n = 12) keeps the recursive route and matches
+ * the dense path to 1e-9 relative (rcond 1.7e-3). */
+static void test_composite_roundoff_falls_back(void **state)
+{
+    (void)state;
+    const int ns[3] = {12, 100, 200};
+    for (int k = 0; k < 3; k++) {
+        vt_model *m;
+        assert_ok(vt_scene_chain(&m, ns[k], VT_CHAIN_TIP_DRIVE));
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        for (int a = 0; a < m->nv; a++) {
+            double qdd;
+            vt_scene_chain_state(a, &dd->q[a], &dd->qd[a], &qdd);
+            dr->q[a] = dd->q[a];
+            dr->qd[a] = dd->qd[a];
+        }
+        assert_ok(vt_inverse_dynamics(m, dd));
+        assert_ok(vt_inverse_dynamics_recursive(m, dr));
+        print_message("n = %d: rcond %.3g, fallback %d, effort %.17g (dense %.17g)\n", ns[k], dr->rcond, dr->fallback,
+                      dr->drive_effort[0], dd->drive_effort[0]);
+        assert_int_equal(dr->fallback & VT_FALLBACK_COMPOSITE_ROUNDOFF, k ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
+        double scale = 0.0;
+        for (int a = 0; a < m->nv; a++) scale = fmax(scale, fabs(dd->qdd[a]));
+        for (int a = 0; a < m->nv; a++) assert_near(dr->qdd[a], dd->qdd[a], (k ? 0.0 : 1e-9) * scale);
+        assert_near(dr->drive_effort[0], dd->drive_effort[0], (k ? 0.0 : 1e-9) * fabs(dd->drive_effort[0]));
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1684,6 +1722,7 @@ int main(void)
         cmocka_unit_test(test_roundoff_zeros),
         cmocka_unit_test(test_roundoff_singular),
         cmocka_unit_test(test_roundoff_hides_singular),
+        cmocka_unit_test(test_composite_roundoff_falls_back),
         cmocka_unit_test(test_mass_ratios),
         cmocka_unit_test(test_fused_kinematics),
     };

@@ -174,7 +174,11 @@ enum {
                                           ///< its diagonal entry, or round-off of 0 against the terms
                                           ///< it is summed from
     VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min
-    VT_FALLBACK_SQUARE_CONDITION = 8      ///< recursive square route: rcond below rcond_min
+    VT_FALLBACK_SQUARE_CONDITION = 8,     ///< recursive square route: rcond below rcond_min
+    VT_FALLBACK_COMPOSITE_ROUNDOFF = 16   ///< recursive general route: M* formed from composite inertias
+                                          ///< about o is not known to one digit at its rcond (a mechanism
+                                          ///< long against its bodies' radii of gyration): the instant was
+                                          ///< computed by the dense stages (vt_inverse_dynamics)
 };
 
 /// Prescribed function of time f(t), evaluated exactly with f' and f''.
