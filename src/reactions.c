@@ -628,13 +628,27 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int
     if (!F) return vt_fail(d->message, VT_ERR_NULL, "vt_drive_cartesian_force: F is NULL");
     if (k < 0 || k >= m->ndrive)
         return vt_fail(d->message, VT_ERR_BAD_INDEX, "vt_drive_cartesian_force: drive %d not in 0..%d", k, m->ndrive - 1);
-    memset(F, 0, (size_t)m->nx * sizeof(double));
+    /* the drive's rows (at most 3) touch at most 6 bodies: their 7 entries formed aside, written
+     * only when finite (a product or sum may overflow), so that a failure leaves F as it was */
+    enum { MAXB = 6 };
+    int body[MAXB], nb = 0;
+    double f[MAXB][7] = {{0.0}};
     const int r0 = m->drive_row[k];
     for (int r = r0; r < r0 + vt_drive_nrows(&m->drive[k]); r++)
         for (int side = 0; side < 2; side++) {
             const int b = m->con_body[2 * r + side];
             if (b == 0) continue;
-            for (int c = 0; c < 7; c++) F[vt_xoff(b) + c] += d->Phix[14 * r + 7 * side + c] * d->lambda[r];
+            int j = 0;
+            while (j < nb && body[j] != b) j++;
+            if (j == nb) body[nb++] = b;
+            for (int c = 0; c < 7; c++) f[j][c] += d->Phix[14 * r + 7 * side + c] * d->lambda[r];
         }
+    for (int j = 0; j < nb; j++)
+        if (!vt_all_finite(f[j], 7))
+            return vt_fail(d->message, VT_ERR_NONFINITE,
+                           "vt_drive_cartesian_force: drive %d's force on body %d overflows (Φ_x^T λ not finite)", k,
+                           body[j]);
+    memset(F, 0, (size_t)m->nx * sizeof(double));
+    for (int j = 0; j < nb; j++) memcpy(F + vt_xoff(body[j]), f[j], sizeof f[j]);
     return VT_OK;
 }

@@ -754,15 +754,18 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
     }
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    double resid = 0.0; /* how well the kept rows hold: max |Φ_q q̈ − γ| (it may overflow: refused) */
+    for (int r = 0; r < nc; r++) {
+        double v = -d->gamma[r];
+        for (int a = 0; a < nv; a++) v += d->Phiq[r + (size_t)a * (size_t)nc] * b[a];
+        resid = fmax(resid, fabs(v));
+    }
+    if (!isfinite(resid))
+        return vt_scratch_release(d, mark),
+               vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: the rows' residual |Φ_q q̈ − γ| overflows (not finite)");
     memcpy(d->qdd, b, (size_t)nv * sizeof(double));
     memcpy(d->lambda, sv, (size_t)nc * sizeof(double));
     vt_scratch_release(d, mark);
-    double resid = 0.0;
-    for (int r = 0; r < nc; r++) {
-        double v = -d->gamma[r];
-        for (int a = 0; a < nv; a++) v += d->Phiq[r + (size_t)a * (size_t)nc] * d->qdd[a];
-        resid = fmax(resid, fabs(v));
-    }
     d->residual = resid;
     /* the null directions z = G w of Φ_q^T (each scaled to a largest entry of 1), and which
      * multipliers they change */

@@ -3,6 +3,8 @@
  * effort, Newton–Euler balance of every body, and the reaction's orthogonality to a joint's
  * free directions; relative orientation drives against the same motion given to
  * vt_inverse_dynamics_motion and against a revolute's joint drive. */
+#include <float.h>
+
 #include "vt_test.h"
 
 /* ---- the paper's double link, joint 2 locked --------------------------------------- */
@@ -368,6 +370,19 @@ static void test_drive_cartesian_force(void **state)
         for (int r = 0; r < m->nx; r++) assert_near(F[r], G[r], 1e-10 * (1 + fabs(G[r])));
     }
     assert_int_equal(vt_drive_cartesian_force(F, m, d, m->ndrive), VT_ERR_BAD_INDEX);
+    /* a multiplier near overflow and an entry of Φ_x above 1 (set in the data): Φ_x^T λ overflows
+     * and the call refuses, F untouched (it returned VT_OK with Inf: the fuzzer's crash-7bc3419220…) */
+    for (int k = 0; k < m->ndrive; k++) {
+        if (m->drive[k].type != VT_DRIVE_POINT) continue;
+        const int r0 = m->drive_row[k];
+        d->lambda[r0] = DBL_MAX; /* and an Euler-parameter entry of Φ_x above 1 on either side */
+        d->Phix[14 * r0 + 3] = d->Phix[14 * r0 + 7 + 3] = 4.0;
+        for (int r = 0; r < m->nx; r++) F[r] = 7.0;
+        assert_int_equal(vt_drive_cartesian_force(F, m, d, k), VT_ERR_NONFINITE);
+        assert_non_null(strstr(d->message, "overflows"));
+        for (int r = 0; r < m->nx; r++) assert_true(F[r] == 7.0);
+        break;
+    }
     free(F); free(G); free(Q);
     vt_data_free(d);
     vt_model_free(m);
