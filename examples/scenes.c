@@ -1176,3 +1176,21 @@ int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1,
     }
     return 0;
 }
+
+double vt_scene_energy_rate(const vt_model *m, const vt_data *d)
+{
+    double P = 0.0;
+    for (int b = 1; b <= m->nbody; b++) {
+        const double *v = d->xd + 7 * (b - 1), *a = d->xdd + 7 * (b - 1), *A = d->A + 9 * b;
+        const double *w = d->omega + 3 * b, *wd = d->alpha + 3 * b, *J = m->body_inertia + 9 * b;
+        const double mass = m->body_mass[b];
+        double wb[3], Jb[3];
+        for (int k = 0; k < 3; k++) wb[k] = A[3 * k] * wd[0] + A[3 * k + 1] * wd[1] + A[3 * k + 2] * wd[2];
+        for (int k = 0; k < 3; k++) Jb[k] = J[k] * wb[0] + J[k + 3] * wb[1] + J[k + 6] * wb[2];
+        for (int k = 0; k < 3; k++) {
+            const double Jg = A[k] * Jb[0] + A[k + 3] * Jb[1] + A[k + 6] * Jb[2];
+            P += mass * v[k] * a[k] + w[k] * Jg - mass * m->gravity[k] * v[k];
+        }
+    }
+    return P;
+}

@@ -314,4 +314,9 @@ vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, in
 int vt_scene_knee_assemble(const vt_model *model, vt_data *data, double th1, double w1, double thm, double wm,
                            double knee[2]);
 
+/* d(T + V)/dt of the whole mechanism at the data's last instant (W, for the power balance of the
+ * examples): Σ m v·a + ω·(J ω̇) − m g·v over the bodies (J global: ω·(J̇ ω) = 0), from ẋ, ẍ,
+ * ω and α (vt_data.alpha) of an instant that has run. */
+double vt_scene_energy_rate(const vt_model *model, const vt_data *data);
+
 #endif

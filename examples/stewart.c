@@ -24,26 +24,6 @@
 
 #include "scenes.h"
 
-/* d(T + V)/dt = Σ m v·a + ω·(J ω̇) − m g·v (J global: ω·(J̇ ω) = 0), ω̇ = 2 E(p) p̈ */
-static double energy_rate(const vt_model *m, const vt_data *d)
-{
-    double P = 0.0;
-    for (int b = 1; b <= m->nbody; b++) {
-        const double *v = d->xd + 7 * (b - 1), *a = d->xdd + 7 * (b - 1), *A = d->A + 9 * b, *w = d->omega + 3 * b;
-        const double *J = m->body_inertia + 9 * b, mass = m->body_mass[b];
-        double E[12], wd[3], Jb[3], wb[3];
-        vt_euler_E(E, d->x + 7 * (b - 1) + 3);
-        for (int k = 0; k < 3; k++) wd[k] = 2.0 * (E[k] * a[3] + E[k + 3] * a[4] + E[k + 6] * a[5] + E[k + 9] * a[6]);
-        for (int k = 0; k < 3; k++) wb[k] = A[3 * k] * wd[0] + A[3 * k + 1] * wd[1] + A[3 * k + 2] * wd[2];
-        for (int k = 0; k < 3; k++) Jb[k] = J[k] * wb[0] + J[k + 3] * wb[1] + J[k + 6] * wb[2];
-        for (int k = 0; k < 3; k++) {
-            const double Jg = A[k] * Jb[0] + A[k + 3] * Jb[1] + A[k + 6] * Jb[2];
-            P += mass * v[k] * a[k] + w[k] * Jg - mass * m->gravity[k] * v[k];
-        }
-    }
-    return P;
-}
-
 int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "stewart.csv";
@@ -105,7 +85,7 @@ int main(int argc, char **argv)
         const double *fl = tr->drive_effort + m->ndrive * k;
         double P = 0.0;
         for (int i = 0; i < 6; i++) P += fl[i] * dt->qd[m->body_vadr[3 + 2 * i]];
-        const double dE = energy_rate(m, dt);
+        const double dE = vt_scene_energy_rate(m, dt);
         pmax = fmax(pmax, fabs(P));
         perr = fmax(perr, fabs(P - dE));
         fprintf(f, "%.6f", t);
