@@ -113,29 +113,6 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
     return sqrt(n2);
 }
 
-/* B_ra alone (as row_terms) */
-static double row_term(const vt_model *m, const vt_data *d, int r, int a)
-{
-    double t = 0.0;
-    const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
-    for (int side = 0; side < 2; side++) {
-        const int b = m->con_body[2 * r + side];
-        if (b <= 0) continue;
-        const int *path = m->path_dof + m->body_pathadr[b];
-        int on = 0;
-        for (int k = 0; k < m->body_pathnum[b] && !on; k++) on = path[k] == a;
-        if (!on) continue;
-        const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->xrel + 6 * b;
-        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
-        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
-        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0);
-        int ax = 0;
-        const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
-        t += fr * (vn + wn * sqrt(vt_dot3(c, c))) + fp * (own_p ? 1.0 : 0.5 * wn);
-    }
-    return t;
-}
-
 static double row_norm(const vt_model *m, const vt_data *d, int r)
 {
     double n2 = 0.0;
@@ -525,34 +502,72 @@ static int turning_rate(const vt_model *m, int a)
     return kind == VT_DOF_ROT || kind == VT_DOF_BASE_P;
 }
 
-/* ℓ, the rows' lever arm: the largest over the rates that turn of the norm of their column in
- * the point and line rows, ‖(Φ_q,ra)_r‖ (a length per radian: how far the rate moves the rows'
- * points), entries that are round-off of their terms (τ ε B_ra, as roundoff_check) left out;
- * without such entries, the reciprocal of the largest column norm of the couplings that measure
- * angles on the rates that translate (rad/m); without either, 1 (then Φ̂'s blocks do not mix the
- * two kinds and its singular values do not depend on ℓ). Joint drives' rows touch their own rate
- * alone (the dense path forms them with round-off elsewhere). Sums of squares over all rows of a
- * kind: a rotation of the scene turns a point's rows among themselves and leaves the column norms
- * as they were. flag (nc or NULL): rows left out (round-off of zero). */
+/* 1 when body j is body i or one of its descendants (parents come before their children) */
+static int moves_with(const vt_model *m, int i, int j)
+{
+    while (j > i) j = m->body_parent[j];
+    return j == i;
+}
+
+/* ℓ, the rows' lever arm: the largest, over the point and line rows and the rates that turn, of
+ * the speed a unit rate gives the row's point relative to its partner, |W_ra| (a length per
+ * radian: how far the rate moves the rows' points), with
+ *   W_ra = v_a + ω_a × P_b            rate a moves body b (side b of row r) and not body a
+ *        = −(v_a + ω_a × P_a)         rate a moves body a and not body b
+ *        = ω_a × (P_b − P_a)          rate a moves both
+ * ((ω_a, v_a) its twist about o, P the row's points from o) — all three components, not the one
+ * the row measures: a row that measures y beside a rate turning about y would otherwise make ℓ
+ * collapse with the direction it measures, and scale a nearly dependent column to unit size.
+ * Without point and line rows (or when every W is zero), the reciprocal of the largest column
+ * norm of the couplings that measure angles on the rates that translate (rad/m); without
+ * either, 1 (then Φ̂'s blocks do not mix the two kinds and its singular values do not depend on
+ * ℓ). A rotation of the scene turns every W alike and leaves its length. flag (nc or NULL): rows
+ * left out (round-off of zero). */
 static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
 {
     const int nv = m->nv, nc = m->nc;
-    const double te = VT_ROUND_TAU * DBL_EPSILON;
     double arm = 0.0, inv = 0.0;
-    for (int a = 0; a < nv; a++) {
-        const int turns = turning_rate(m, a);
-        double n2 = 0.0;
-        for (int r = 0; r < nc; r++) {
-            const int kind = m->con_kind[r];
-            if ((flag && flag[r]) || !(turns ? kind == VT_ROW_POINT || kind == VT_ROW_LINE
-                                             : kind == VT_ROW_COUPLING && !length_row(m, d, r)))
-                continue;
-            const double v = d->Phiq[r + (size_t)a * (size_t)nc];
-            if (v != 0.0 && (kind == VT_ROW_COUPLING || fabs(v) > te * row_term(m, d, r, a))) n2 += v * v;
+    for (int r = 0; r < nc; r++) {
+        const int kind = m->con_kind[r];
+        if ((flag && flag[r]) || (kind != VT_ROW_POINT && kind != VT_ROW_LINE)) continue;
+        const int ba = m->con_body[2 * r], bb = m->con_body[2 * r + 1];
+        double P[2][3], dP[3];
+        for (int s = 0; s < 2; s++) {
+            const int b = s ? bb : ba;
+            vt_mulmat3(P[s], d->A + 9 * b, m->con_point + 6 * r + 3 * s);
+            for (int k = 0; k < 3; k++) P[s][k] += d->xrel[6 * b + k];
         }
-        if (turns) arm = fmax(arm, sqrt(n2));
-        else inv = fmax(inv, sqrt(n2));
+        for (int k = 0; k < 3; k++) dP[k] = P[1][k] - P[0][k];
+        for (int s = 0; s < 2; s++) {
+            const int b = s ? bb : ba, other = s ? ba : bb;
+            const int *path = m->path_dof + m->body_pathadr[b];
+            for (int k = 0; k < m->body_pathnum[b]; k++) {
+                const int a = path[k];
+                if (!turning_rate(m, a)) continue;
+                const int both = moves_with(m, m->dof_body[a], other);
+                if (both && s == 0) continue; /* taken once, from side b */
+                const double *w = d->twist + 6 * a;
+                double W[3];
+                if (both) vt_cross3(W, w, dP);
+                else {
+                    vt_copy3(W, w + 3);
+                    vt_addcross3(W, w, P[s]);
+                }
+                arm = fmax(arm, sqrt(vt_dot3(W, W)));
+            }
+        }
     }
+    if (arm == 0.0)
+        for (int a = 0; a < nv; a++) {
+            if (turning_rate(m, a)) continue;
+            double n2 = 0.0;
+            for (int r = 0; r < nc; r++)
+                if (!(flag && flag[r]) && m->con_kind[r] == VT_ROW_COUPLING && !length_row(m, d, r)) {
+                    const double v = d->Phiq[r + (size_t)a * (size_t)nc];
+                    n2 += v * v;
+                }
+            inv = fmax(inv, sqrt(n2));
+        }
     const double len = arm > 0.0 ? arm : inv > 0.0 ? 1.0 / inv : 1.0;
     return isfinite(len) && len > 0.0 ? len : 1.0;
 }

@@ -108,30 +108,59 @@ static inline int vt_test_rate_turns(const vt_model *m, int a)
              (m->body_joint[i] == VT_JOINT_BASE && a < m->body_vadr[i] + 3));
 }
 
-/* ℓ, the rows' lever arm (docs/method.md, "The condition estimate"), from d->Phiq: the largest,
- * over the rates that turn, of the norm of their column in the point and line rows (entries
- * below 1e-13 of the row's largest taken as round-off); without any, the reciprocal of the
- * largest column norm of the couplings whose first rate turns on rates that translate; without
- * either, 1 */
+/* The velocity a unit rate a gives the point u' of body b (0: the ground), from the dense S
+ * (vt_kinematics): V = ṙ_a + ω_a × (A u'), ω_a = 2 E(p) ṗ_a */
+static inline void vt_test_point_rate(const vt_model *m, const vt_data *d, int b, const double *u, int a, double V[3])
+{
+    V[0] = V[1] = V[2] = 0.0;
+    if (b == 0) return;
+    const int o = 7 * (b - 1);
+    const double *A = d->A + 9 * b, *p = d->x + o + 3, *Sa = d->S + (size_t)a * (size_t)m->nx + o;
+    const double E[12] = {-p[1], -p[2], -p[3], p[0], p[3], -p[2], -p[3], p[0], p[1], p[2], -p[1], p[0]};
+    double w[3] = {0, 0, 0}, Au[3];
+    for (int i = 0; i < 3; i++) {
+        Au[i] = A[i] * u[0] + A[i + 3] * u[1] + A[i + 6] * u[2];
+        for (int j = 0; j < 4; j++) w[i] += 2.0 * E[i + 3 * j] * Sa[3 + j];
+    }
+    V[0] = Sa[0] + w[1] * Au[2] - w[2] * Au[1];
+    V[1] = Sa[1] + w[2] * Au[0] - w[0] * Au[2];
+    V[2] = Sa[2] + w[0] * Au[1] - w[1] * Au[0];
+}
+
+/* ℓ, the rows' lever arm (docs/method.md, "The condition estimate"), from the dense S: the
+ * largest, over the point and line rows and the rates that turn, of |V_b − V_a|, the velocity a
+ * unit rate gives the row's point on body b less that of its point on body a (differences below
+ * 1e-13 of their terms taken as round-off); without any, the reciprocal of the largest column
+ * norm of the couplings whose first rate turns on rates that translate; without either, 1 */
 static inline double vt_test_rows_length(const vt_model *m, const vt_data *d)
 {
     double arm = 0.0, inv = 0.0;
-    for (int a = 0; a < m->nv; a++) {
-        double n2 = 0.0;
-        for (int r = 0; r < m->nc; r++) {
-            const int kind = m->con_kind[r];
-            int first = 0;
-            double rmax = 0.0;
-            for (int c = 0; c < m->nv; c++) rmax = fmax(rmax, fabs(d->Phiq[r + c * m->nc]));
-            while (first < m->nv - 1 && d->Phiq[r + first * m->nc] == 0.0) first++;
-            const int use = vt_test_rate_turns(m, a) ? kind == VT_ROW_POINT || kind == VT_ROW_LINE
-                                                     : kind == VT_ROW_COUPLING && vt_test_rate_turns(m, first);
-            const double v = d->Phiq[r + a * m->nc];
-            if (use && fabs(v) > 1e-13 * rmax) n2 += v * v;
+    for (int r = 0; r < m->nc; r++) {
+        if (m->con_kind[r] != VT_ROW_POINT && m->con_kind[r] != VT_ROW_LINE) continue;
+        for (int a = 0; a < m->nv; a++) {
+            if (!vt_test_rate_turns(m, a)) continue;
+            double Va[3], Vb[3], W = 0.0, T = 0.0;
+            vt_test_point_rate(m, d, m->con_body[2 * r], m->con_point + 6 * r, a, Va);
+            vt_test_point_rate(m, d, m->con_body[2 * r + 1], m->con_point + 6 * r + 3, a, Vb);
+            for (int k = 0; k < 3; k++) {
+                W += (Vb[k] - Va[k]) * (Vb[k] - Va[k]);
+                T += Va[k] * Va[k] + Vb[k] * Vb[k];
+            }
+            if (sqrt(W) > 1e-13 * sqrt(T)) arm = fmax(arm, sqrt(W));
         }
-        if (vt_test_rate_turns(m, a)) arm = fmax(arm, sqrt(n2));
-        else inv = fmax(inv, sqrt(n2));
     }
+    if (arm == 0.0)
+        for (int a = 0; a < m->nv; a++) {
+            if (vt_test_rate_turns(m, a)) continue;
+            double n2 = 0.0;
+            for (int r = 0; r < m->nc; r++) {
+                int first = 0;
+                while (first < m->nv - 1 && d->Phiq[r + first * m->nc] == 0.0) first++;
+                const double v = d->Phiq[r + a * m->nc];
+                if (m->con_kind[r] == VT_ROW_COUPLING && vt_test_rate_turns(m, first)) n2 += v * v;
+            }
+            inv = fmax(inv, sqrt(n2));
+        }
     return arm > 0.0 ? arm : inv > 0.0 ? 1.0 / inv : 1.0;
 }
 #endif
