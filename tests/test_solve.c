@@ -1161,6 +1161,63 @@ static int nullspace_qdd(const vt_model *m, const vt_data *d, int rows, double *
     return rank;
 }
 
+/* The rows' lever arm ℓ cannot collapse with the component a row measures (fuzz crash-cffa): a
+ * point mass on a cylindrical joint whose axis n = (0, 1, δ)/|·| lies δ = 1e-3 off y, driven by
+ * the y coordinates of two points 0.5 and 0.625 m from the axis along x. A turn about n moves a
+ * point by |n × r| (0.5, 0.625 m a radian) but its y by only n_z r_x: Φ_q = [n_z 0.5, n_y;
+ * n_z 0.625, n_y] is nearly singular, det −0.125 n_y n_z. The expected estimate is written here
+ * from that closed form and the geometry's own length L = 0.625 m (the far point's distance from
+ * the axis): κ₁(Φ_q diag(1/L, 1))^-2 (point rows measure lengths: G = 1). The old ℓ, the norm of
+ * Φ_q's turning column (0.8 δ m), scaled that column to unit size and reported rcond 2e-2 without
+ * a warning. Both paths must warn and report the same estimate. */
+static void test_lever_arm_across_rows(void **state)
+{
+    (void)state;
+    const double delta = 1e-3, xs[2] = {0.0, 0.125};
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_CYLINDRICAL;
+    body.mass = 2.0;
+    body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.0; /* a point mass */
+    body.axis1[0] = 0.0;
+    body.axis1[1] = 1.0;
+    body.axis1[2] = delta;
+    body.joint_child[0] = -0.5;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    for (int k = 0; k < 2; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.type = VT_DRIVE_POINT;
+        dr.body = 1;
+        dr.index = 1;
+        dr.point[0] = xs[k];
+        dr.f = vt_function_sine(0.0, 0.1, 2.0, 0.3 * k);
+        assert_int_equal(vt_builder_add_drive(b, &dr), k);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    const double nn = sqrt(1.0 + delta * delta), ny = 1.0 / nn, nz = delta / nn, L = 0.625;
+    const double P[4] = {nz * 0.5 / L, nz * 0.625 / L, ny, ny}; /* Φ_q diag(1/L, 1), column-major */
+    const double det = P[0] * P[3] - P[2] * P[1];
+    const double an = fmax(fabs(P[0]) + fabs(P[1]), fabs(P[2]) + fabs(P[3]));
+    const double xn = fmax(fabs(P[3]) + fabs(P[1]), fabs(P[2]) + fabs(P[0])) / fabs(det); /* ‖P^-1‖₁ */
+    const double expect = 1.0 / (an * xn * an * xn);
+    for (int path = 0; path < 2; path++) {
+        vt_data *d;
+        assert_ok(vt_data_create(&d, m));
+        d->qd[0] = 0.4;
+        d->qd[1] = -0.1;
+        const vt_status st = path ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
+        if (st) fail_msg("path %d: %s (%s)", path, vt_status_string(st), d->message);
+        assert_int_equal(d->route, VT_ROUTE_SQUARE);
+        if (!(d->warning & VT_WARN_ILL_CONDITIONED)) fail_msg("path %d: no warning, rcond %.3g (expected %.3g)", path, d->rcond, expect);
+        assert_near(d->rcond, expect, 1e-6 * expect);
+        vt_data_free(d);
+    }
+    vt_model_free(m);
+}
+
 /* The fuzzer's three findings of the redundant route's rank (fuzz/corpus/crash-2690988dbc…,
  * crash-ee7f3a7f4a…, crash-28375274a4…), each with allow_redundant and without, against the
  * null-space method above:
@@ -1300,6 +1357,7 @@ int main(void)
         cmocka_unit_test(test_ill_conditioned_message),
         cmocka_unit_test(test_reach),
         cmocka_unit_test(test_redundant_rank_fuzz_findings),
+        cmocka_unit_test(test_lever_arm_across_rows),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
