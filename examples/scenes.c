@@ -406,7 +406,7 @@ vt_status vt_scene_five_link(vt_model **model)
 vt_status vt_scene_five_link_payload(vt_model **model, double payload, double period)
 {
     static const double len[5] = {0.4, 0.5, 0.5, 0.2, 0.2}, mass[5] = {2.0, 1.5, 1.5, 0.5, 0.5};
-    if (!(payload >= 0.0 && payload < INFINITY && period > 0.0 && period < INFINITY)) return VT_ERR_BAD_OPTION;
+    if (!(payload >= 0.0 && isfinite(payload) && period > 0.0 && isfinite(period))) return VT_ERR_BAD_OPTION;
     /* link 5 with the point mass at its tip: the centre moves c toward the tip (parallel axes) */
     const double c5 = payload * 0.5 * len[4] / (mass[4] + payload);
     vt_model_def md = vt_default_model_def();
@@ -477,7 +477,7 @@ void vt_scene_five_link_guess(const vt_model *m, vt_data *d, double t)
 
 vt_status vt_scene_delta(vt_model **model, double period, int drives)
 {
-    if (!(period > 0.0 && period < INFINITY) || (drives != VT_DELTA_PATH && drives != VT_DELTA_MOTORS))
+    if (!(period > 0.0 && isfinite(period)) || (drives != VT_DELTA_PATH && drives != VT_DELTA_MOTORS))
         return VT_ERR_BAD_OPTION;
     vt_model_def md = vt_default_model_def();
     md.gravity[1] = 0.0;
@@ -1147,7 +1147,7 @@ int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1,
     const double x = (L * L + VT_KN_B * VT_KN_B - VT_KN_C * VT_KN_C) / (2.0 * L), h2 = VT_KN_B * VT_KN_B - x * x;
     if (h2 < 0.0) return -1;
     const double h = sqrt(h2), ux = ex / L, uy = ey / L;
-    double psi = 0.0, best = INFINITY;
+    double psi = 0.0, best = HUGE_VAL;
     for (int s = -1; s <= 1; s += 2) { /* the branch with ψ nearest θm */
         const double Cx = Bx + x * ux - s * h * uy, Cy = By + x * uy + s * h * ux;
         const double p = atan2(Cy, Cx - VT_KN_D), dd = fabs(remainder(p - thm, 2.0 * VT_PI));
