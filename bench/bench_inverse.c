@@ -541,7 +541,7 @@ int main(int argc, char **argv)
 #ifndef VT_HAVE_PEERS
     printf("(peers not built: see bench/peers/install.sh and the README to compare with Pinocchio and MuJoCo)\n");
 #endif
-    static const int ns[] = {2, 5, 10, 20, 50, 100, 200};
+    static const int ns[] = {2, 5, 10, 20, 50, 100, 200, 500};
     for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++) scene_row("chain", ns[k], make_chain, state_chain, rounds);
     scene_row("double_link", 2, make_double_link, state_double_link, rounds);
     scene_row("fourbar", 3, make_fourbar, state_fourbar, rounds);
@@ -572,7 +572,7 @@ int main(int argc, char **argv)
         sx += x; sy += y; sxx += x * x; sxy += x * y;
     }
     const double slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
-    if (nfit > 1) printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..200)\n", slope);
+    if (nfit > 1) printf("vtdyn_recursive on the chain grows as n^%.3f (n = 2..500)\n", slope);
     printf("wrote %s\n", path);
     return 0;
 }
