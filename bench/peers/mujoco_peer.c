@@ -136,20 +136,40 @@ static void xml_header(xbuf *b, const char *name, int constrained)
     xcat(b, "  </default>\n");
 }
 
-/* chain: body k's frame is at joint k, aligned with the world at q = 0 */
-static void xml_chain(xbuf *b, int n)
+/* chain: body k's frame is at joint k, aligned with the world at q = 0. The bodies are added
+ * to the parsed header's spec (mjs_addBody), not nested in the XML: MuJoCo's XML parser refuses
+ * elements nested deeper than 500 (a 500-link chain) */
+static void xml_chain(xbuf *b)
 {
-    static const char *const axis[3] = {"1 0 0", "0 1 0", "0 0 1"};
     xml_header(b, "vt_chain", 0);
-    xcat(b, "  <worldbody>\n");
-    for (int k = 1; k <= n; k++) {
-        xcat(b, "<body name=\"b%d\" pos=\"%s\">\n", k, k > 1 ? "0.5 0 0" : "0 0 0");
-        xcat(b, "<joint name=\"j%d\" axis=\"%s\" pos=\"0 0 0\"/>\n", k, axis[(k - 1) % 3]);
-        xcat(b, "<inertial pos=\"0.25 0 0\" mass=\"1\" diaginertia=\"2e-4 %.17g %.17g\"/>\n",
-             1.0 / 48.0, 1.0 / 48.0);
+    xcat(b, "  <worldbody/>\n</mujoco>\n");
+}
+
+static int spec_chain(mjSpec *spec, int n)
+{
+    mjsBody *parent = mjs_findBody(spec, "world");
+    for (int k = 1; k <= n && parent; k++) {
+        char name[32];
+        mjsBody *body = mjs_addBody(parent, NULL);
+        if (!body) return -1;
+        snprintf(name, sizeof name, "b%d", k);
+        mjs_setName(body->element, name);
+        body->pos[0] = k > 1 ? 0.5 : 0.0;
+        body->mass = 1.0;
+        body->ipos[0] = 0.25;
+        body->inertia[0] = 2e-4;
+        body->inertia[1] = body->inertia[2] = 1.0 / 48.0;
+        body->explicitinertial = 1;
+        mjsJoint *joint = mjs_addJoint(body, NULL);
+        if (!joint) return -1;
+        snprintf(name, sizeof name, "j%d", k);
+        mjs_setName(joint->element, name);
+        joint->type = mjJNT_HINGE;
+        joint->axis[0] = joint->axis[1] = joint->axis[2] = 0.0;
+        joint->axis[(k - 1) % 3] = 1.0;
+        parent = body;
     }
-    for (int k = 1; k <= n; k++) xcat(b, "</body>\n");
-    xcat(b, "  </worldbody>\n</mujoco>\n");
+    return parent ? 0 : -1;
 }
 
 /* double link: 2 m, 100 kg uniform rods along x; axial inertia 1e-6 (MuJoCo needs a positive one) */
@@ -455,7 +475,8 @@ static const vt_peer_vtable fb_vtable = {2, fb_methods, mjp_run, mjp_torques, mj
 static const vt_peer_vtable rusr_vtable = {1, rusr_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable tip_vtable = {2, tip_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 
-static mjModel *compile_xml(const char *xml)
+/* the model of xml; chain > 0: that many chain links added to its worldbody first */
+static mjModel *compile_xml(const char *xml, int chain)
 {
     char err[1024] = "";
     mjSpec *spec = mj_parseXMLString(xml, NULL, err, (int)sizeof err);
@@ -463,7 +484,7 @@ static mjModel *compile_xml(const char *xml)
         fprintf(stderr, "vt_peer_mujoco: %s\n", err);
         return NULL;
     }
-    mjModel *m = mj_compile(spec, NULL);
+    mjModel *m = chain > 0 && spec_chain(spec, chain) ? NULL : mj_compile(spec, NULL);
     if (!m) fprintf(stderr, "vt_peer_mujoco: %s\n", mjs_getError(spec));
     mj_deleteSpec(spec);
     return m;
@@ -476,11 +497,12 @@ static mjModel *scene_model(int scene, int n)
     b.s = malloc(b.cap = 4096);
     if (!b.s) return NULL;
     b.s[0] = '\0';
-    if (scene == VT_PEER_CHAIN || scene == VT_PEER_CHAIN_TIP) xml_chain(&b, n);
+    const int chain = scene == VT_PEER_CHAIN || scene == VT_PEER_CHAIN_TIP;
+    if (chain) xml_chain(&b);
     else if (scene == VT_PEER_DOUBLE_LINK) xml_double_link(&b);
     else if (scene == VT_PEER_FOURBAR_RUSR) xml_fourbar(&b, 1);
     else xml_fourbar(&b, 0);
-    mjModel *m = b.failed ? NULL : compile_xml(b.s);
+    mjModel *m = b.failed ? NULL : compile_xml(b.s, chain ? n : 0);
     free(b.s);
     return m;
 }
