@@ -116,15 +116,17 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     const size_t mark = vt_scratch_mark(d);
     double *qsave = VT_SCRATCH(d, double, (size_t)m->nq + (size_t)m->nv, "q and q̇ as given");
     double *step = VT_SCRATCH(d, double, m->nv, "Newton step");
-    if (!step) return vt_scratch_fail(d, mark);
+    double *fd = VT_SCRATCH(d, double, 3 * (size_t)m->ndrive + 1, "the drives' functions at t");
+    if (!fd) return vt_scratch_fail(d, mark);
     memcpy(qsave, d->q, (size_t)m->nq * sizeof(double));
     memcpy(qsave + m->nq, d->qd, (size_t)m->nv * sizeof(double));
     double res = 0.0;
     int it = 0;
     vt_status st;
     if (m->nc > 0) {
-        for (;; it++) { /* Φ and Φ_q from the positions and twists (the velocities' terms unused) */
-            if ((st = vt_kinematics_tree(m, d, 0)) || (st = vt_constraints_impl(m, d, 0)))
+        if ((st = vt_drive_values(m, d, fd))) return restore(m, d, qsave, mark, st); /* once: t is fixed */
+        for (;; it++) { /* Φ, Φ_t and Φ_q from the positions and twists alone */
+            if ((st = vt_kinematics_positions(m, d)) || (st = vt_constraints_parts(m, d, 0, VT_CON_PHIQ, fd)))
                 return restore(m, d, qsave, mark, st);
             if (!vt_all_finite(d->Phi, m->nc))
                 return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NONFINITE,
@@ -152,7 +154,9 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
         if ((st = solve_phiq(m, d, 1, step))) return restore(m, d, qsave, mark, st);
         for (int c = 0; c < m->nv; c++) d->qd[c] += step[c];
     }
-    st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
+    /* the recursive instant takes the positions, twists, Φ and Φ_q of Newton's last evaluation */
+    st = !recursive ? vt_inverse_dynamics(m, d)
+         : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd) : vt_inverse_dynamics_recursive(m, d);
     if (st) return restore(m, d, qsave, mark, st);
     vt_scratch_release(d, mark);
     return VT_OK;
@@ -254,7 +258,7 @@ vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxi
     return st ? st : vt_kinematic_solve_impl(m, d, tol, maxit, 0, NULL, NULL, 0.0);
 }
 
-/* q and q̇ as given and the Newton step, held across the instant; solve_phiq's arrays (the LU's
+/* q and q̇ as given, the Newton step and the drives' functions, held across the instant; solve_phiq's arrays (the LU's
  * pivots, or the least squares' arrays and LAPACK's workspaces (dgels, dgelsd) by their queries) */
 size_t vt_kinematic_solve_scratch(const vt_model *m)
 {
@@ -270,6 +274,7 @@ size_t vt_kinematic_solve_scratch(const vt_model *m)
         if (info == 0 && q > (double)lapack) lapack = (size_t)q;
     }
     return VT_SCRATCH_BYTES((size_t)m->nq + (size_t)nv, D) + VT_SCRATCH_BYTES(nv, D) +
+           VT_SCRATCH_BYTES(3 * (size_t)m->ndrive + 1, D) +
            VT_SCRATCH_BYTES((size_t)nc * (size_t)nv, D) + 2 * VT_SCRATCH_BYTES(ldb, D) +
            VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(nc, nv), sizeof(int)) + VT_SCRATCH_BYTES(lapack, D) +
            VT_SCRATCH_BYTES(nv, sizeof(int));
