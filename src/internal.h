@@ -230,13 +230,20 @@ size_t vt_recursive_scratch(const vt_model *m);
 size_t vt_kinematic_solve_scratch(const vt_model *m);
 size_t vt_inverse_transform_scratch(const vt_model *m);
 /* vt_kinematic_solve without the argument check, the instant after the solve by the recursive
- * evaluation (recursive = 1, vt_kinematic_analysis) or the dense one; with qprev (q and q̇ of a
+ * evaluation (recursive = VT_SOLVE_RECURSIVE, or VT_SOLVE_RECURSIVE_NO_TOTALS:
+ * vt_kinematic_analysis) or the dense one (VT_SOLVE_DENSE); with qprev (q and q̇ of a
  * solution at t − h: qprev nq, qdprev nv) d->q is a start predicted from it, abandoned for qprev
  * itself when its max |Φ| exceeds ½ h max |Φ_t| (roughly qprev's own residual at t) */
 /* vt_inverse_dynamics_recursive with d's positions, twists, Φ, Φ_t and Φ_q current at d->q and
  * d->time (Newton's last evaluation), q̇ new; fd: the drives' functions at d->time
- * (vt_drive_values) or NULL (recursive.c) */
-vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd);
+ * (vt_drive_values) or NULL; α and the joints' total wrenches only with totals (recursive.c) */
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals);
+/* vt_inverse_dynamics_motion without α and the joints' total wrenches on a tree (recursive.c) */
+vt_status vt_inverse_dynamics_motion_efforts(const vt_model *m, vt_data *d);
+/* vt_kinematic_solve_impl's instants: the dense one, the recursive one, the recursive one
+ * without α and the joints' total wrenches (vt_reactions_total; the analyses' rows and the
+ * exact efforts do not keep them) */
+enum { VT_SOLVE_DENSE = 0, VT_SOLVE_RECURSIVE = 1, VT_SOLVE_RECURSIVE_NO_TOTALS = 2 };
 vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
                                   const double *qprev, const double *qdprev, double h);
 /* Newton's start at d->time into d->q, d->qd: the Hermite polynomial through q, q̇, q̈ of rows k1

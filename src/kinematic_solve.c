@@ -216,7 +216,8 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     }
     /* the recursive instant takes the positions, twists, Φ and Φ_q of Newton's last evaluation */
     st = !recursive ? vt_inverse_dynamics(m, d)
-         : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd) : vt_inverse_dynamics_recursive(m, d);
+         : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, recursive != VT_SOLVE_RECURSIVE_NO_TOTALS)
+                     : vt_inverse_dynamics_recursive(m, d);
     if (st) return restore(m, d, qsave, mark, st);
     vt_scratch_release(d, mark);
     return VT_OK;
@@ -332,7 +333,7 @@ vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory 
 vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxit)
 {
     const vt_status st = vt_check_pair(m, d, "vt_kinematic_solve");
-    return st ? st : vt_kinematic_solve_impl(m, d, tol, maxit, 0, NULL, NULL, 0.0);
+    return st ? st : vt_kinematic_solve_impl(m, d, tol, maxit, VT_SOLVE_DENSE, NULL, NULL, 0.0);
 }
 
 /* q and q̇ as given, the Newton step and the drives' functions, held across the instant; solve_phiq's arrays (the LU's

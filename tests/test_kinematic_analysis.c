@@ -220,9 +220,10 @@ static vt_model *free_joint_model(void)
 }
 
 /* The recursive instant of a row takes what Newton's last evaluation left (positions, twists,
- * Φ, Φ_q at the converged q) and computes only the velocities, Ṡq̇, Φ_x and γ: every row after
- * the first (the dense instant) against a fresh vt_inverse_dynamics_recursive at the row's own
- * state, which evaluates everything again — the five-link arm (square route), the RSUR four-bar
+ * Φ, Φ_q at the converged q) and computes only the velocities, Ṡq̇, Φ_x and γ (α and the total
+ * wrenches, which the rows do not keep, at the last row only): every row after the first (the
+ * dense instant) against a fresh vt_inverse_dynamics_recursive at the row's own state, which
+ * evaluates everything again, and d after the run against the last row's — the five-link arm (square route), the RSUR four-bar
  * (a cut joint, a spherical joint's Euler parameters), the free joint's 7 rows, and the planar
  * four-bar with dependent rows (the factorized route) */
 static void test_rows_equal_fresh_recursive_instants(void **state)
@@ -260,6 +261,12 @@ static void test_rows_equal_fresh_recursive_instants(void **state)
             for (int r = 0; r < m->nc; r++) pn = fmax(pn, fabs(di->Phi[r]));
             worst_phi = fmax(worst_phi, fabs(tr->phi_norm[k] - pn));
         }
+        /* d holds the last row's whole instant, α and the joints' total wrenches too */
+        const int nb3 = 3 * (m->nbody + 1);
+        worst = fmax(worst, rel_diff(d->alpha, di->alpha, nb3));
+        worst = fmax(worst, rel_diff(d->jnt_force_total, di->jnt_force_total, nb3));
+        worst = fmax(worst, rel_diff(d->jnt_moment_total, di->jnt_moment_total, nb3));
+        worst = fmax(worst, rel_diff(d->jnt_moment_total_body, di->jnt_moment_total_body, nb3));
         if (!(worst <= 4.0 * DBL_EPSILON && worst_phi <= 4.0 * DBL_EPSILON))
             fail_msg("scene %d: rows differ from fresh recursive instants by %.3g (max |Φ| by %.3g)", scene, worst,
                      worst_phi);
