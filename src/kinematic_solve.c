@@ -3,11 +3,16 @@
  *   positions    Φ(q, t) = 0:  Φ_q Δ = −Φ,  q ← q ⊕ Δ  (Newton–Raphson; ⊕ as vt_integrate_q)
  *   velocities   Φ_q q̇ = −Φ_t                                   (time derivative of Φ = 0)
  *   accelerations and multipliers from (5), then efforts (24) and reactions (25)-(28)
- * Newton's Φ and Φ_q come from the positions and the rates' twists (vt_kinematics_tree,
- * vt_constraints_impl without the dense S): Φ_q = Φ_x S column by column, as the recursive
- * evaluation forms it. Each linear step: with as many independent rows as rates, Φ_q is square
- * and the step is Φ_q^-1 b by LU with partial pivoting (LAPACK's dgetf2/dgetrf, dgetrs), one
- * factorization at each q (Newton's and the velocities' at the converged q); with fewer rows
+ * Newton's Φ, Φ_t and Φ_q come from the positions and the rates' twists alone
+ * (vt_kinematics_positions, vt_constraints_parts without the dense S, Φ_x or γ; the drives'
+ * functions once per instant): Φ_q = Φ_x S column by column, as the recursive evaluation forms
+ * it; the recursive instant then takes that last evaluation, at the converged q, and adds the
+ * velocities, Ṡq̇, Φ_x and γ (vt_inverse_dynamics_recursive_positioned). Each linear step: with
+ * as many independent rows as rates, Φ_q is square and the step is Φ_q^-1 b by LU with partial
+ * pivoting (LAPACK's dgetf2/dgetrf, dgetrs), one factorization at each Newton iterate; the
+ * velocities at the converged q by the last iterate's LU, refined (q̇ += LU^-1 (−Φ_t − Φ_q q̇)
+ * with the converged Φ_q: its error shrinks by the O(|Δq|) the two Φ_q differ by) until the
+ * residual is round-off, or by a fresh LU after two corrections or without a step; with fewer rows
  * (consistent initial values of a dynamic analysis) LAPACK's dgels gives the least-norm
  * correction, a projection onto the constraint manifold; dependent rows of a model that allows
  * them, the least-norm least-squares step (dgelsd).
