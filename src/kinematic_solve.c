@@ -241,7 +241,7 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
  *   S0 = q̇2 − q̇1 + δ q̈1,  S1 = δ (q̈2 − q̈1);
  * from row k1 alone, Taylor's h q̇1 + ½ h² q̈1. Then q ← q1 ⊕ increment, and q̇ the same
  * polynomial's rate at t (Taylor's q̇1 + h q̈1 from one row): the velocities' solve then corrects
- * q̇ by O(h⁵), which the LU of Newton's last iterate does to round-off in one step.
+ * q̇ by O(h⁵), which the LU of Newton's last iterate does to round-off in one or two steps.
  * d->qd holds the increment while vt_integrate_q turns it into q (Euler parameters on the sphere).
  * The analysis extrapolates from its last two rows; the forward check interpolates between the
  * two rows around the time IDA asks for (at mid-interval 2⁶ × 2³ times closer than extrapolated). */
