@@ -267,17 +267,22 @@ static void hermite3_nodes(hermite3 *H, const vt_trajectory *tr, int k1, int k2,
 static double hermite3_increment(const hermite3 *H, const vt_trajectory *tr, int e, int c, double h, double *rate)
 {
     const size_t nq = (size_t)tr->model->nq, nv = (size_t)tr->model->nv;
-    double f[9];
-    for (int n = 0; n < 9; n++) f[n] = tr->q[(size_t)H->row[n / 3] * nq + (size_t)e];
-    for (int j = 1; j < 9; j++) /* column j of the table, bottom up, in place */
-        for (int n = 8; n >= j; n--) {
-            if (H->inv[j][n] != 0.0) {
-                f[n] = (f[n] - f[n - 1]) * H->inv[j][n];
-            } else { /* one row's repeated node (j = 1, 2): its derivative / j! */
-                const size_t r = (size_t)H->row[n / 3] * nv + (size_t)c;
-                f[n] = j == 1 ? tr->qd[r] : 0.5 * tr->qdd[r];
-            }
-        }
+    double q[3], v[3], a[3]; /* each row's q, q̇ and ½ q̈ */
+    for (int k = 0; k < 3; k++) {
+        const size_t r = (size_t)H->row[k];
+        q[k] = tr->q[r * nq + (size_t)e];
+        v[k] = tr->qd[r * nv + (size_t)c];
+        a[k] = 0.5 * tr->qdd[r * nv + (size_t)c];
+    }
+    /* the table's columns bottom up, in place: in columns 1 and 2 a row's repeated node takes its
+     * derivative / j! (inv 0 there), every other entry (and all of columns 3..8) the quotient */
+    double f[9] = {q[0], v[0], a[0], (q[1] - q[0]) * H->inv[1][3], 0.0, a[1], (q[2] - q[1]) * H->inv[1][6], 0.0, a[2]};
+    f[7] = (v[2] - f[6]) * H->inv[2][7]; /* column 2 from column 1 (v[1], v[1], v[2], v[2] at 4, 5, 7, 8) */
+    f[6] = (f[6] - v[1]) * H->inv[2][6];
+    f[4] = (v[1] - f[3]) * H->inv[2][4];
+    f[3] = (f[3] - v[0]) * H->inv[2][3];
+    for (int j = 3; j < 9; j++)
+        for (int n = 8; n >= j; n--) f[n] = (f[n] - f[n - 1]) * H->inv[j][n];
     double p = f[8], dp = 0.0; /* P(h) and P'(h), the increment h P(h) */
     for (int n = 7; n >= 1; n--) {
         dp = p + (h - H->z[n]) * dp;
