@@ -43,7 +43,8 @@ typedef struct {
 static const double zero3[3] = {0, 0, 0};
 static const double ident9[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 
-static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id)
+/* rates: the velocities and the accelerations at q̈ = 0 as well (γ's rows need them) */
+static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id, int rates)
 {
     (void)m;
     b->id = id;
@@ -62,6 +63,7 @@ static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id
     b->A = d->A + 9 * id;
     b->w = d->omega + 3 * id;
     b->v = d->xd + o;
+    if (!rates) return;
     vt_copy3(b->a0, d->Sdqd + o);
     memcpy(b->pd, d->xd + o + 3, sizeof b->pd);
     memcpy(b->pdd0, d->Sdqd + o + 3, sizeof b->pdd0);
@@ -69,12 +71,14 @@ static void load_body(body_state *b, const vt_model *m, const vt_data *d, int id
     for (int k = 0; k < 3; k++) b->al0[k] *= 2.0;
 }
 
-/* a body point: position, velocity, acceleration at q̈ = 0; s = A s' */
-static void point_motion(const body_state *b, const double sp[3], double s[3], double P[3], double vP[3], double aP[3])
+/* a body point: position, velocity, acceleration at q̈ = 0 (with rates); s = A s' */
+static void point_motion(const body_state *b, const double sp[3], double s[3], double P[3], double vP[3], double aP[3],
+                         int rates)
 {
     double t[3];
     vt_mulmat3(s, b->A, sp);
     for (int k = 0; k < 3; k++) P[k] = b->r[k] + s[k];
+    if (!rates) return;
     vt_copy3(vP, b->v);
     vt_addcross3(vP, b->w, s);
     vt_copy3(aP, b->a0);
@@ -89,20 +93,21 @@ typedef struct {
     double sp[3], s[3], P[3], vP[3], aP[3];
 } point_memo;
 
-static const point_memo *point_motion_memo(point_memo *c, const body_state *b, const double sp[3])
+static const point_memo *point_motion_memo(point_memo *c, const body_state *b, const double sp[3], int rates)
 {
     if (c->id != b->id || c->sp[0] != sp[0] || c->sp[1] != sp[1] || c->sp[2] != sp[2]) {
         c->id = b->id;
         vt_copy3(c->sp, sp);
-        point_motion(b, sp, c->s, c->P, c->vP, c->aP);
+        point_motion(b, sp, c->s, c->P, c->vP, c->aP, rates);
     }
     return c;
 }
 
-/* a body vector: u, u̇, ü at q̈ = 0 */
-static void vector_motion(const body_state *b, const double up[3], double u[3], double ud[3], double udd[3])
+/* a body vector: u, u̇, ü at q̈ = 0 (with rates) */
+static void vector_motion(const body_state *b, const double up[3], double u[3], double ud[3], double udd[3], int rates)
 {
     vt_mulmat3(u, b->A, up);
+    if (!rates) return;
     vt_cross3(ud, b->w, u);
     vt_cross3(udd, b->al0, u);
     vt_addcross3(udd, b->w, ud);
@@ -227,13 +232,15 @@ static void conj4(double c[4], const double p[4])
 
 /* b's orientation relative to a's, p_r = p_a* ⊗ p_b, its rate and its second rate at q̈ = 0:
  * ṗ_r = ṗ_a* ⊗ p_b + p_a* ⊗ ṗ_b, p̈_r0 = p̈_a0* ⊗ p_b + 2 ṗ_a* ⊗ ṗ_b + p_a* ⊗ p̈_b0 */
-static void relative_motion(const body_state *A, const body_state *B, double pr[4], double prd[4], double prdd[4])
+static void relative_motion(const body_state *A, const body_state *B, double pr[4], double prd[4], double prdd[4],
+                            int rates)
 {
     double ca[4], cad[4], cadd[4], t[4];
     conj4(ca, A->p);
+    vt_quat_mul(pr, ca, B->p);
+    if (!rates) return;
     conj4(cad, A->pd);
     conj4(cadd, A->pdd0);
-    vt_quat_mul(pr, ca, B->p);
     vt_quat_mul(prd, cad, B->p);
     vt_quat_mul(t, ca, B->pd);
     for (int c = 0; c < 4; c++) prd[c] += t[c];
@@ -249,7 +256,7 @@ static void relative_motion(const body_state *A, const body_state *B, double pr[
  * p_a* ⊗ e_c (for p_b); Φ_t = 2 G(ṗ_d) p_r, γ = −[2 G(p̈_d) p_r + 4 G(ṗ_d) ṗ_r + 2 G(p_d) p̈_r0] */
 static void relative_row(vt_data *d, int r, int k, const body_state *A, const body_state *B, const double pdes[4],
                          const double pdes_d[4], const double pdes_dd[4], const double pr[4], const double prd[4],
-                         const double prdd[4])
+                         const double prdd[4], int rates)
 {
     double *pxa = d->Phix + 14 * r, *pxb = pxa + 7, ca[4], G[12];
     conj4(ca, A->p);
@@ -269,7 +276,7 @@ static void relative_row(vt_data *d, int r, int k, const body_state *A, const bo
     }
     d->Phi[r] = 2.0 * G_row(pdes, pr, k);
     d->Phit[r] = 2.0 * G_row(pdes_d, pr, k);
-    d->gamma[r] = -(2.0 * G_row(pdes_dd, pr, k) + 4.0 * G_row(pdes_d, prd, k) + 2.0 * G_row(pdes, prdd, k));
+    if (rates) d->gamma[r] = -(2.0 * G_row(pdes_dd, pr, k) + 4.0 * G_row(pdes_d, prd, k) + 2.0 * G_row(pdes, prdd, k));
 }
 
 /* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
@@ -338,22 +345,24 @@ static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, con
 
 /* The three point rows of a cut joint, P_b − P_a = 0 along the global axes e_k, at once */
 static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_state *A, const body_state *B,
-                           const point_memo *pa, const point_memo *pb, int dense, double *Si)
+                           const point_memo *pa, const point_memo *pb, int dense, double *Si, int parts)
 {
     for (int k = 0; k < 3; k++) {
         double *pxa = d->Phix + 14 * (r + k), *pxb = pxa + 7, e[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3];
         e[k] = 1.0;
         jv[k] = -1.0;
-        vt_cross3(jw, e, pa->s); /* −s_a × e */
-        phix_from(pxa, A, jv, jw);
-        vt_cross3(jw, pb->s, e);
-        phix_from(pxb, B, e, jw);
+        if (parts & VT_CON_PHIX) {
+            vt_cross3(jw, e, pa->s); /* −s_a × e */
+            phix_from(pxa, A, jv, jw);
+            vt_cross3(jw, pb->s, e);
+            phix_from(pxb, B, e, jw);
+        }
         d->Phi[r + k] = pb->P[k] - pa->P[k];
         d->Phit[r + k] = 0.0;
-        d->gamma[r + k] = pa->aP[k] - pb->aP[k];
-        if (dense) phiq_row(m, d, r + k, 1, Si);
+        if (parts & VT_CON_GAMMA) d->gamma[r + k] = pa->aP[k] - pb->aP[k];
+        if (dense && (parts & VT_CON_PHIQ)) phiq_row(m, d, r + k, 1, Si);
     }
-    if (!dense) {
+    if (!dense && (parts & VT_CON_PHIQ)) {
         point_jacobian_rows(m, d, r, A->id, pa->P, -1.0);
         point_jacobian_rows(m, d, r, B->id, pb->P, 1.0);
     }
@@ -368,27 +377,55 @@ vt_status vt_constraints(const vt_model *m, vt_data *d)
 
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
 {
+    return vt_constraints_parts(m, d, dense, VT_CON_ALL, NULL);
+}
+
+/* The joint and point drives' f, f', f'' at d->time into fd (3 per drive; an orientation
+ * drive's entries untouched) */
+vt_status vt_drive_values(const vt_model *m, vt_data *d, double *fd)
+{
+    const double t = d->time;
+    if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
+    for (int k = 0; k < m->ndrive; k++) {
+        if (vt_drive_turns(m->drive[k].type)) continue;
+        const vt_status st = vt_function_eval_valid(fd + 3 * k, &m->drive[k].f, t);
+        if (st)
+            return vt_fail(d->message, st, "vt_constraints: drive %d: time function failed at t = %g (%s)", k, t,
+                           vt_status_string(st));
+    }
+    return VT_OK;
+}
+
+/* Φ and Φ_t, and the parts asked for (VT_CON_*): Φ_x (the positions and t alone), Φ_q (the
+ * positions and twists), γ (d's kinematics complete: the velocities and Ṡq̇); a part not asked
+ * for may be left as it was. fd: the joint and point drives' functions at d->time
+ * (vt_drive_values), or NULL to evaluate them here. */
+vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int parts, const double *fd)
+{
     vt_status st;
+    const int rates = parts & VT_CON_GAMMA, phiq = parts & VT_CON_PHIQ, phix = parts & VT_CON_PHIX;
     const double t = d->time;
     if (!isfinite(t)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: time is %g", t);
     double pdes[4] = {1, 0, 0, 0}, pdes_d[4] = {0}, pdes_dd[4] = {0};
     double prel[4] = {1, 0, 0, 0}, prel_d[4] = {0}, prel_dd0[4] = {0}; /* p_a* ⊗ p_b and its rates */
     const int drive_rows = vt_drive_rows(m);
     const size_t mark = vt_scratch_mark(d);
-    double *Si = dense ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
-    if (dense && !Si) return vt_scratch_fail(d, mark);
-    memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
+    double *Si = dense && phiq ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
+    if (dense && phiq && !Si) return vt_scratch_fail(d, mark);
+    if (phiq) memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
 
     body_state A = {.id = -1}, B = {.id = -1}; /* loaded when a row's bodies change */
     point_memo ma = {.id = -1}, mb = {.id = -1};
     for (int r = 0; r < m->nc; r++) {
         const int kind = m->con_kind[r], owner = m->con_owner[r];
-        if (A.id != m->con_body[2 * r]) load_body(&A, m, d, m->con_body[2 * r]), ma.id = -1;
-        if (B.id != m->con_body[2 * r + 1]) load_body(&B, m, d, m->con_body[2 * r + 1]), mb.id = -1;
+        if (A.id != m->con_body[2 * r]) load_body(&A, m, d, m->con_body[2 * r], rates), ma.id = -1;
+        if (B.id != m->con_body[2 * r + 1]) load_body(&B, m, d, m->con_body[2 * r + 1], rates), mb.id = -1;
         const double *va = m->con_vec + 6 * r, *vb = va + 3, *sa = m->con_point + 6 * r, *sb = sa + 3;
         double *pxa = d->Phix + 14 * r, *pxb = pxa + 7;
         double f[3] = {0, 0, 0}, jv[3], jw[3];
-        if ((kind == VT_ROW_JOINT || kind == VT_ROW_POINT) && r < drive_rows) {
+        if ((kind == VT_ROW_JOINT || kind == VT_ROW_POINT) && r < drive_rows && fd) {
+            vt_copy3(f, fd + 3 * owner);
+        } else if ((kind == VT_ROW_JOINT || kind == VT_ROW_POINT) && r < drive_rows) {
             st = vt_function_eval_valid(f, &m->drive[owner].f, t);
             if (st)
                 return vt_scratch_release(d, mark), vt_fail(d->message, st, "vt_constraints: drive %d: time function failed at t = %g (%s)",
@@ -399,73 +436,83 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             const int dof = m->con_dof[r], i = m->dof_body[dof];
             d->Phi[r] = d->q[m->body_qadr[i] + dof - m->body_vadr[i]] - f[0];
             d->Phit[r] = -f[1];
-            d->gamma[r] = f[2];
-            vt_R_row(m, d, dof, pxa, pxb);
-            if (A.id == 0) memset(pxa, 0, 7 * sizeof(double));
-            if (dense) phiq_row(m, d, r, 1, Si);
-            else d->Phiq[r + (size_t)dof * (size_t)m->nc] = 1.0; /* R S = I */
+            if (rates) d->gamma[r] = f[2];
+            if (phix) {
+                vt_R_row(m, d, dof, pxa, pxb);
+                if (A.id == 0) memset(pxa, 0, 7 * sizeof(double));
+            }
+            if (phiq && dense) phiq_row(m, d, r, 1, Si);
+            else if (phiq) d->Phiq[r + (size_t)dof * (size_t)m->nc] = 1.0; /* R S = I */
             break;
         }
         case VT_ROW_POINT: {
             if (r >= drive_rows && r == m->cut_row[owner]) { /* a cut joint's three point rows */
-                cut_point_rows(m, d, r, &A, &B, point_motion_memo(&ma, &A, sa), point_motion_memo(&mb, &B, sb), dense, Si);
+                cut_point_rows(m, d, r, &A, &B, point_motion_memo(&ma, &A, sa, rates), point_motion_memo(&mb, &B, sb, rates),
+                               dense, Si, parts);
                 r += 2;
                 continue;
             }
-            const point_memo *pa = point_motion_memo(&ma, &A, sa), *pb = point_motion_memo(&mb, &B, sb);
-            vt_cross3(jw, pa->s, va);
-            for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
-            phix_from(pxa, &A, jv, jw);
-            if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
-            vt_cross3(jw, pb->s, va);
-            phix_from(pxb, &B, va, jw);
-            if (!dense) phiq_twist(m, d, r, B.id, va, jw);
+            const point_memo *pa = point_motion_memo(&ma, &A, sa, rates), *pb = point_motion_memo(&mb, &B, sb, rates);
+            if (phix || (phiq && !dense)) {
+                vt_cross3(jw, pa->s, va);
+                for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
+                if (phix) phix_from(pxa, &A, jv, jw);
+                if (phiq && !dense) phiq_twist(m, d, r, A.id, jv, jw);
+                vt_cross3(jw, pb->s, va);
+                if (phix) phix_from(pxb, &B, va, jw);
+                if (phiq && !dense) phiq_twist(m, d, r, B.id, va, jw);
+            }
             double dP[3], daP[3];
-            for (int k = 0; k < 3; k++) { dP[k] = pb->P[k] - pa->P[k]; daP[k] = pb->aP[k] - pa->aP[k]; }
+            for (int k = 0; k < 3; k++) dP[k] = pb->P[k] - pa->P[k];
             d->Phi[r] = vt_dot3(va, dP) - f[0];
             d->Phit[r] = -f[1];
-            d->gamma[r] = f[2] - vt_dot3(va, daP);
+            if (rates) {
+                for (int k = 0; k < 3; k++) daP[k] = pb->aP[k] - pa->aP[k];
+                d->gamma[r] = f[2] - vt_dot3(va, daP);
+            }
             break;
         }
         case VT_ROW_DOT: {
-            double u[3], ud[3], udd[3], v[3], vd[3], vdd[3];
-            vector_motion(&A, va, u, ud, udd);
-            vector_motion(&B, vb, v, vd, vdd);
+            double u[3], ud[3] = {0, 0, 0}, udd[3] = {0, 0, 0}, v[3], vd[3] = {0, 0, 0}, vdd[3] = {0, 0, 0};
+            vector_motion(&A, va, u, ud, udd, rates);
+            vector_motion(&B, vb, v, vd, vdd, rates);
             memset(jv, 0, sizeof jv);
             vt_cross3(jw, u, v);
-            phix_from(pxa, &A, jv, jw);
-            if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
+            if (phix) phix_from(pxa, &A, jv, jw);
+            if (phiq && !dense) phiq_twist(m, d, r, A.id, jv, jw);
             vt_cross3(jw, v, u);
-            phix_from(pxb, &B, jv, jw);
-            if (!dense) phiq_twist(m, d, r, B.id, jv, jw);
+            if (phix) phix_from(pxb, &B, jv, jw);
+            if (phiq && !dense) phiq_twist(m, d, r, B.id, jv, jw);
             d->Phi[r] = vt_dot3(u, v);
             d->Phit[r] = 0.0;
-            d->gamma[r] = -(vt_dot3(udd, v) + 2.0 * vt_dot3(ud, vd) + vt_dot3(u, vdd));
+            if (rates) d->gamma[r] = -(vt_dot3(udd, v) + 2.0 * vt_dot3(ud, vd) + vt_dot3(u, vdd));
             break;
         }
         case VT_ROW_LINE: {
-            double u[3], ud[3], udd[3];
+            double u[3], ud[3] = {0, 0, 0}, udd[3] = {0, 0, 0};
             double dd[3], ddd[3], dddd[3];
-            vector_motion(&A, va, u, ud, udd);
-            const point_memo *pa = point_motion_memo(&ma, &A, sa), *pb = point_motion_memo(&mb, &B, sb);
+            vector_motion(&A, va, u, ud, udd, rates);
+            const point_memo *pa = point_motion_memo(&ma, &A, sa, rates), *pb = point_motion_memo(&mb, &B, sb, rates);
             const double *s_a = pa->s, *s_b = pb->s;
-            for (int k = 0; k < 3; k++) {
-                dd[k] = pb->P[k] - pa->P[k];
-                ddd[k] = pb->vP[k] - pa->vP[k];
-                dddd[k] = pb->aP[k] - pa->aP[k];
-            }
+            for (int k = 0; k < 3; k++) dd[k] = pb->P[k] - pa->P[k];
             double t1[3], t2[3];
             vt_cross3(t1, u, dd);
             vt_cross3(t2, s_a, u);
             for (int k = 0; k < 3; k++) { jv[k] = -u[k]; jw[k] = t1[k] - t2[k]; }
-            phix_from(pxa, &A, jv, jw);
-            if (!dense) phiq_twist(m, d, r, A.id, jv, jw);
+            if (phix) phix_from(pxa, &A, jv, jw);
+            if (phiq && !dense) phiq_twist(m, d, r, A.id, jv, jw);
             vt_cross3(jw, s_b, u);
-            phix_from(pxb, &B, u, jw);
-            if (!dense) phiq_twist(m, d, r, B.id, u, jw);
+            if (phix) phix_from(pxb, &B, u, jw);
+            if (phiq && !dense) phiq_twist(m, d, r, B.id, u, jw);
             d->Phi[r] = vt_dot3(u, dd);
             d->Phit[r] = 0.0;
-            d->gamma[r] = -(vt_dot3(udd, dd) + 2.0 * vt_dot3(ud, ddd) + vt_dot3(u, dddd));
+            if (rates) {
+                for (int k = 0; k < 3; k++) {
+                    ddd[k] = pb->vP[k] - pa->vP[k];
+                    dddd[k] = pb->aP[k] - pa->aP[k];
+                }
+                d->gamma[r] = -(vt_dot3(udd, dd) + 2.0 * vt_dot3(ud, ddd) + vt_dot3(u, dddd));
+            }
             break;
         }
         case VT_ROW_ORIENT: {
@@ -475,9 +522,9 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
                 if (st) return vt_scratch_release(d, mark), st;
             }
             if (m->drive[owner].type == VT_DRIVE_RELATIVE_ORIENTATION) {
-                if (k == 0) relative_motion(&A, &B, prel, prel_d, prel_dd0);
-                relative_row(d, r, k, &A, &B, pdes, pdes_d, pdes_dd, prel, prel_d, prel_dd0);
-                phiq_row(m, d, r, dense, Si);
+                if (k == 0) relative_motion(&A, &B, prel, prel_d, prel_dd0, rates);
+                relative_row(d, r, k, &A, &B, pdes, pdes_d, pdes_dd, prel, prel_d, prel_dd0, rates);
+                if (phiq) phiq_row(m, d, r, dense, Si);
                 break;
             }
             double G[12];
@@ -487,8 +534,9 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             for (int c = 0; c < 4; c++) pxb[3 + c] = 2.0 * G[3 * c + k];
             d->Phi[r] = 2.0 * G_row(pdes, B.p, k);
             d->Phit[r] = 2.0 * G_row(pdes_d, B.p, k);
-            d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
-            phiq_row(m, d, r, dense, Si);
+            if (rates)
+                d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
+            if (phiq) phiq_row(m, d, r, dense, Si);
             break;
         }
         case VT_ROW_COUPLING: { /* on the coordinates themselves: Φ_q = e_a − ratio e_b, Φ̈ = Φ_q q̈ (no γ) */
@@ -498,9 +546,11 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             memset(pxa, 0, 14 * sizeof(double)); /* its force acts through the rates (reactions.c) */
             d->Phi[r] = qa - c->ratio * qb - c->offset;
             d->Phit[r] = 0.0;
-            d->gamma[r] = 0.0;
-            d->Phiq[r + (size_t)a * (size_t)m->nc] += 1.0;
-            d->Phiq[r + (size_t)b * (size_t)m->nc] -= c->ratio;
+            if (rates) d->gamma[r] = 0.0;
+            if (phiq) {
+                d->Phiq[r + (size_t)a * (size_t)m->nc] += 1.0;
+                d->Phiq[r + (size_t)b * (size_t)m->nc] -= c->ratio;
+            }
             break;
         }
         default: { /* VT_ROW_NORM */
@@ -509,23 +559,24 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
             for (int c = 0; c < 4; c++) pxb[3 + c] = 2.0 * B.p[c];
             d->Phi[r] = dot4(B.p, B.p) - 1.0;
             d->Phit[r] = 0.0;
-            d->gamma[r] = -2.0 * dot4(B.pd, B.pd);
-            phiq_row(m, d, r, dense, Si);
+            if (rates) d->gamma[r] = -2.0 * dot4(B.pd, B.pd);
+            if (phiq) phiq_row(m, d, r, dense, Si);
             break;
         }
         }
-        if (dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1, Si);
+        if (phiq && dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1, Si);
     }
     vt_scratch_release(d, mark);
     /* finite inputs can still overflow (q − f(t) with both near DBL_MAX, far points): scanned */
     const int nc = m->nc, nphiq = m->nc * m->nv; /* ≤ nv + 7 n rows (cut joints, base bodies): an int */
-    if (vt_all_finite(d->Phi, nc) && vt_all_finite(d->Phit, nc) && vt_all_finite(d->gamma, nc) &&
-        vt_all_finite(d->Phix, 14 * nc) && vt_all_finite(d->Phiq, nphiq))
+    if (vt_all_finite(d->Phi, nc) && vt_all_finite(d->Phit, nc) && (!rates || vt_all_finite(d->gamma, nc)) &&
+        (!phix || vt_all_finite(d->Phix, 14 * nc)) && (!phiq || vt_all_finite(d->Phiq, nphiq)))
         return VT_OK;
     static const char *const owner_kind[] = {"drive", "cut joint", "coupling", "base body"};
     for (int r = 0; r < nc; r++) {
-        int bad = !isfinite(d->Phi[r]) || !isfinite(d->Phit[r]) || !isfinite(d->gamma[r]) || !vt_all_finite(d->Phix + 14 * r, 14);
-        for (int c = 0; c < m->nv && !bad; c++) bad = !isfinite(d->Phiq[r + (size_t)c * (size_t)nc]);
+        int bad = !isfinite(d->Phi[r]) || !isfinite(d->Phit[r]) || (rates && !isfinite(d->gamma[r])) ||
+                  (phix && !vt_all_finite(d->Phix + 14 * r, 14));
+        for (int c = 0; c < m->nv && phiq && !bad; c++) bad = !isfinite(d->Phiq[r + (size_t)c * (size_t)nc]);
         if (bad)
             return vt_fail(d->message, VT_ERR_NONFINITE, "vt_constraints: row %d (%s %d) overflows (Φ, Φ_x, Φ_q, Φ_t or γ at t = %g)",
                            r, owner_kind[vt_row_owner_kind(m, r)], m->con_owner[r], t);

@@ -278,7 +278,7 @@ static vt_status motion_residual(const vt_model *m, vt_data *d, double t, const 
     memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
     memcpy(d->qdd, yp + nq, (size_t)nv * sizeof(double));
     d->time = t;
-    const vt_status st = vt_inverse_dynamics_motion(m, d);
+    const vt_status st = vt_inverse_dynamics_motion_efforts(m, d); /* (α and the totals unused) */
     if (st) return st;
     qdot_from_v(m, y, y + nq, r);
     for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
@@ -306,11 +306,11 @@ static vt_status exact_efforts(const dae *p, const vt_model *m, double t)
     else if (hi + 1 < tr->nfilled) third = hi + 1;
     if (far == near) third = -1;
     vt_status st = vt_kinematic_start(m, dk, tr, near, far == near ? -1 : far, third);
-    if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0);
+    if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS, NULL, NULL, 0.0);
     if (st == VT_ERR_NEWTON) {
         memcpy(dk->q, tr->q + (size_t)near * (size_t)m->nq, (size_t)m->nq * sizeof(double));
         memcpy(dk->qd, tr->qd + (size_t)near * (size_t)m->nv, (size_t)m->nv * sizeof(double));
-        st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, 1, NULL, NULL, 0.0);
+        st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS, NULL, NULL, 0.0);
     }
     return st;
 }

@@ -230,9 +230,20 @@ size_t vt_recursive_scratch(const vt_model *m);
 size_t vt_kinematic_solve_scratch(const vt_model *m);
 size_t vt_inverse_transform_scratch(const vt_model *m);
 /* vt_kinematic_solve without the argument check, the instant after the solve by the recursive
- * evaluation (recursive = 1, vt_kinematic_analysis) or the dense one; with qprev (q and q̇ of a
+ * evaluation (recursive = VT_SOLVE_RECURSIVE, or VT_SOLVE_RECURSIVE_NO_TOTALS:
+ * vt_kinematic_analysis) or the dense one (VT_SOLVE_DENSE); with qprev (q and q̇ of a
  * solution at t − h: qprev nq, qdprev nv) d->q is a start predicted from it, abandoned for qprev
  * itself when its max |Φ| exceeds ½ h max |Φ_t| (roughly qprev's own residual at t) */
+/* vt_inverse_dynamics_recursive with d's positions, twists, Φ, Φ_t and Φ_q current at d->q and
+ * d->time (Newton's last evaluation), q̇ new; fd: the drives' functions at d->time
+ * (vt_drive_values) or NULL; α and the joints' total wrenches only with totals (recursive.c) */
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals);
+/* vt_inverse_dynamics_motion without α and the joints' total wrenches on a tree (recursive.c) */
+vt_status vt_inverse_dynamics_motion_efforts(const vt_model *m, vt_data *d);
+/* vt_kinematic_solve_impl's instants: the dense one, the recursive one, the recursive one
+ * without α and the joints' total wrenches (vt_reactions_total; the analyses' rows and the
+ * exact efforts do not keep them) */
+enum { VT_SOLVE_DENSE = 0, VT_SOLVE_RECURSIVE = 1, VT_SOLVE_RECURSIVE_NO_TOTALS = 2 };
 vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
                                   const double *qprev, const double *qdprev, double h);
 /* Newton's start at d->time into d->q, d->qd: the Hermite polynomial through q, q̇, q̈ of rows k1
@@ -294,6 +305,10 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
 /* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
  * state is checked. */
 vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
+/* vt_kinematics_tree in two halves (kinematics.c): the positions and the rates' twists (q
+ * checked), then the velocities and (Sdqd != 0) Ṡq̇ at those positions (q̇ checked) */
+vt_status vt_kinematics_positions(const vt_model *m, vt_data *d);
+vt_status vt_kinematics_velocities(const vt_model *m, vt_data *d, int Sdqd);
 /* A column of S in body i's rows, from the rate's twist d->twist (kinematics.c) */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
 
@@ -369,6 +384,13 @@ vt_status vt_motion_rows(const vt_model *m, vt_data *d);
 
 /* vt_constraints with Φ_q from the dense S (dense = 1) or from the twists (dense = 0) */
 vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense);
+/* the same, its parts chosen: Φ and Φ_t always, Φ_x (VT_CON_PHIX) and Φ_q (VT_CON_PHIQ) from the
+ * positions and twists, γ from the velocities and Ṡq̇ as well (VT_CON_GAMMA); a part left out may
+ * be left as it was. fd: the joint and point drives' f, f', f'' at d->time (3 a drive, from
+ * vt_drive_values), or NULL to evaluate them */
+enum { VT_CON_PHIX = 1, VT_CON_PHIQ = 2, VT_CON_GAMMA = 4, VT_CON_ALL = 7 };
+vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int parts, const double *fd);
+vt_status vt_drive_values(const vt_model *m, vt_data *d, double *fd);
 
 /* Row of R (Table 1) for rate `dof`: its entries on x^j (rj, 7) and on x^i (ri, 7). */
 void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double ri[7]);

@@ -68,19 +68,24 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         const double *qp = k ? tr->q + (size_t)(k - 1) * (size_t)m->nq : NULL;
         const double *qdp = k ? tr->qd + (size_t)(k - 1) * (size_t)m->nv : NULL;
         if (k > 0 && (st = vt_kinematic_start(m, d, tr, k - 1, k >= 2 ? k - 2 : -1, -1))) return st;
-        /* row 0 by the dense instant: its M* and Φ_q decide the rank below */
-        if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, k > 0, qp, qdp, k ? d->time - tr->t[k - 1] : 0.0))) {
+        /* row 0 by the dense instant: its M* and Φ_q decide the rank below; the rows after by the
+         * recursive one without α and the joints' total wrenches, which the rows do not keep
+         * (the last row's after the loop) */
+        const int solve = k > 0 ? VT_SOLVE_RECURSIVE_NO_TOTALS : VT_SOLVE_DENSE;
+        if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, solve, qp, qdp, k ? d->time - tr->t[k - 1] : 0.0))) {
             if (k == 0 || st != VT_ERR_NEWTON) return st;
             /* Newton from the prediction failed: once more from the previous row */
             memcpy(d->q, qp, (size_t)m->nq * sizeof(double));
             memcpy(d->qd, qdp, (size_t)m->nv * sizeof(double));
-            if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, 1, NULL, NULL, 0.0))) return st;
+            if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, solve, NULL, NULL, 0.0))) return st;
         }
         /* a model that solves dependent rows would also solve a rank-deficient one dynamically */
         if (k == 0 && m->allow_redundant && (st = fully_driven(m, d, opt->t0, 1))) return st;
         vt_trajectory_store(tr, m, d, k);
-        if (opt->progress && opt->progress(d->time, tend, opt->user))
-            return vt_fail(d->message, VT_ERR_ABORTED, "vt_kinematic_analysis: stopped at t = %g", d->time);
+        const int stop = opt->progress && opt->progress(d->time, tend, opt->user);
+        /* d left with the last row's whole instant */
+        if ((stop || k == nrow) && k > 0 && (st = vt_reactions_total(m, d, 0))) return st;
+        if (stop) return vt_fail(d->message, VT_ERR_ABORTED, "vt_kinematic_analysis: stopped at t = %g", d->time);
     }
 #if VT_HAVE_SUNDIALS
     if (!opt->forward_check) return VT_OK;

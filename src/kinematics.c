@@ -46,26 +46,53 @@ static const double unit_quat[4] = {1, 0, 0, 0};
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status check_state(const vt_model *m, vt_data *d)
+static inline vt_status check_q(const vt_model *m, vt_data *d)
 {
-    if (!vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) { /* which one, for the message */
+    if (!vt_all_finite(d->q, m->nq)) /* which one, for the message */
         for (int k = 0; k < m->nq; k++)
             if (!isfinite(d->q[k]))
                 return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: q[%d] = %g", k, d->q[k]);
+    return VT_OK;
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_qd(const vt_model *m, vt_data *d)
+{
+    if (!vt_all_finite(d->qd, m->nv))
         for (int k = 0; k < m->nv; k++)
             if (!isfinite(d->qd[k]))
                 return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: qd[%d] = %g", k, d->qd[k]);
-    }
+    return VT_OK;
+}
+
+/* Euler parameters of norm 1 ideally: below 1e-12 is zero */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_quaternions(const vt_model *m, vt_data *d)
+{
     for (int i = 1; i <= m->nbody; i++) {
         const int jt = m->body_joint[i];
         if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE && jt != VT_JOINT_FREE) continue;
         const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_SPHERICAL ? 0 : 3);
-        double u[4] = {p[0], p[1], p[2], p[3]}; /* of norm 1 ideally: below 1e-12 is zero (scaled: no underflow) */
+        double u[4] = {p[0], p[1], p[2], p[3]}; /* scaled: no underflow */
         if (!(vt_normalize(u, 4) > 1e-12))
             return vt_fail(d->message, VT_ERR_QUATERNION,
                            "vt_kinematics: body %d: Euler parameters of zero norm", i);
     }
     return VT_OK;
+}
+
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status check_state(const vt_model *m, vt_data *d)
+{
+    vt_status st = check_q(m, d);
+    if (!st) st = check_qd(m, d);
+    return st ? st : check_quaternions(m, d);
 }
 
 /* x, A, joint axes e_k, s^{ij}, d^i and the joint point on the body; o and the positions from
@@ -418,26 +445,30 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
 
 /* A finite state can still overflow (a base body's Euler parameters ×1e200 enter A squared, a
  * rate of 1e300 rad/s its square in Ṡq̇): the outputs are scanned (branch-free, O(n)) and the
- * first body with a non-finite one is named. */
+ * first body with a non-finite one is named; parts: which outputs (OUT_POSITIONS: x, A, the joint
+ * points, d^i and the twists; OUT_VELOCITIES: ω, ẋ; OUT_SDQD: Ṡq̇). */
+enum { OUT_POSITIONS = 1, OUT_VELOCITIES = 2, OUT_SDQD = 4 };
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status check_outputs(const vt_model *m, vt_data *d, int Sdqd)
+static inline vt_status check_outputs(const vt_model *m, vt_data *d, const int parts)
 {
-    const int n = m->nbody, nb = n + 1;
-    if (vt_all_finite(d->x, 7 * n) && vt_all_finite(d->A, 9 * nb) && vt_all_finite(d->jpoint, 3 * nb) &&
-        vt_all_finite(d->jd, 3 * nb) && vt_all_finite(d->omega, 3 * nb) && vt_all_finite(d->xd, 7 * n) &&
-        vt_all_finite(d->twist, 6 * m->nv) && (!Sdqd || vt_all_finite(d->Sdqd, 7 * n)))
+    const int n = m->nbody, nb = n + 1, pos = parts & OUT_POSITIONS, vel = parts & OUT_VELOCITIES,
+              acc = parts & OUT_SDQD;
+    if ((!pos || (vt_all_finite(d->x, 7 * n) && vt_all_finite(d->A, 9 * nb) && vt_all_finite(d->jpoint, 3 * nb) &&
+                  vt_all_finite(d->jd, 3 * nb) && vt_all_finite(d->twist, 6 * m->nv))) &&
+        (!vel || (vt_all_finite(d->omega, 3 * nb) && vt_all_finite(d->xd, 7 * n))) &&
+        (!acc || vt_all_finite(d->Sdqd, 7 * n)))
         return VT_OK;
     for (int i = 1; i <= n; i++) {
         const char *what = NULL;
-        if (!vt_all_finite(d->x + vt_xoff(i), 7) || !vt_all_finite(d->A + 9 * i, 9) ||
-            !vt_all_finite(d->jpoint + 3 * i, 3) || !vt_all_finite(d->jd + 3 * i, 3))
+        if (pos && (!vt_all_finite(d->x + vt_xoff(i), 7) || !vt_all_finite(d->A + 9 * i, 9) ||
+                    !vt_all_finite(d->jpoint + 3 * i, 3) || !vt_all_finite(d->jd + 3 * i, 3)))
             what = "position or orientation";
-        else if (!vt_all_finite(d->omega + 3 * i, 3) || !vt_all_finite(d->xd + vt_xoff(i), 7) ||
-                 !vt_all_finite(d->twist + 6 * m->body_vadr[i], 6 * m->body_nv[i]))
+        else if ((vel && (!vt_all_finite(d->omega + 3 * i, 3) || !vt_all_finite(d->xd + vt_xoff(i), 7))) ||
+                 (pos && !vt_all_finite(d->twist + 6 * m->body_vadr[i], 6 * m->body_nv[i])))
             what = "velocity";
-        else if (Sdqd && !vt_all_finite(d->Sdqd + vt_xoff(i), 7))
+        else if (acc && !vt_all_finite(d->Sdqd + vt_xoff(i), 7))
             what = "acceleration at q̈ = 0 (Ṡq̇)";
         if (what)
             return vt_fail(d->message, VT_ERR_NONFINITE,
@@ -455,7 +486,18 @@ vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d)
 
 vt_status vt_kinematics_check_outputs(const vt_model *m, vt_data *d)
 {
-    return check_outputs(m, d, 0);
+    return check_outputs(m, d, OUT_POSITIONS | OUT_VELOCITIES);
+}
+
+/* Ṡq̇ into d->Sdqd (its angular accelerations on the arena) */
+static vt_status sdqd(const vt_model *m, vt_data *d)
+{
+    const size_t mark = vt_scratch_mark(d);
+    double *alpha = VT_SCRATCH(d, double, 3 * ((size_t)m->nbody + 1), "α at q̈ = 0");
+    if (!alpha) return vt_scratch_fail(d, mark);
+    vt_accelerations(m, d, NULL, d->Sdqd, alpha);
+    vt_scratch_release(d, mark);
+    return VT_OK;
 }
 
 vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
@@ -467,14 +509,31 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd)
     for (int i = 1; i <= m->nbody; i++) position(m, d, i);
     for (int dof = 0; dof < m->nv; dof++) twist(m, d, dof);
     for (int i = 1; i <= m->nbody; i++) velocity(m, d, i);
-    if (Sdqd) {
-        const size_t mark = vt_scratch_mark(d);
-        double *alpha = VT_SCRATCH(d, double, 3 * ((size_t)m->nbody + 1), "α at q̈ = 0");
-        if (!alpha) return vt_scratch_fail(d, mark);
-        vt_accelerations(m, d, NULL, d->Sdqd, alpha);
-        vt_scratch_release(d, mark);
-    }
-    return check_outputs(m, d, Sdqd);
+    if (Sdqd && (st = sdqd(m, d))) return st;
+    return check_outputs(m, d, OUT_POSITIONS | OUT_VELOCITIES | (Sdqd ? OUT_SDQD : 0));
+}
+
+/* vt_kinematics_tree in two halves: the positions and the rates' twists from q alone (Newton's
+ * evaluations need no more), then the velocities and Ṡq̇ from q̇ with the positions known (the
+ * instant at Newton's converged q) */
+vt_status vt_kinematics_positions(const vt_model *m, vt_data *d)
+{
+    vt_status st = check_q(m, d);
+    if (st || (st = check_quaternions(m, d))) return st;
+    d->origin[0] = d->origin[1] = d->origin[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) position(m, d, i);
+    for (int dof = 0; dof < m->nv; dof++) twist(m, d, dof);
+    return check_outputs(m, d, OUT_POSITIONS);
+}
+
+vt_status vt_kinematics_velocities(const vt_model *m, vt_data *d, int Sdqd)
+{
+    vt_status st = check_qd(m, d);
+    if (st) return st;
+    for (int i = 1; i <= m->nbody; i++) velocity(m, d, i);
+    if (Sdqd && (st = sdqd(m, d))) return st;
+    return check_outputs(m, d, OUT_VELOCITIES | (Sdqd ? OUT_SDQD : 0));
 }
 
 /* the angular accelerations of Ṡq̇ */

@@ -980,12 +980,19 @@ static int has_base(const vt_model *m)
 __attribute__((always_inline))
 #endif
 static inline vt_status recursive_instant(const vt_model *m, vt_data *d);
+static vt_status constrained_instant(const vt_model *m, vt_data *d);
+static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int totals);
 
-/* The instant, then its outputs scanned: finite inputs whose products overflow (an acceleration
- * of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK */
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 {
-    vt_status st = recursive_instant(m, d);
+    return outputs_scanned(m, d, recursive_instant(m, d), 1);
+}
+
+/* The instant after it, its outputs scanned: finite inputs whose products overflow (an
+ * acceleration of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK; then, with
+ * totals, α and the joints' total wrenches */
+static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int totals)
+{
     if (st == NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
         st = vt_inverse_dynamics(m, d);
         d->fallback |= VT_FALLBACK_COMPOSITE_ROUNDOFF;
@@ -1003,7 +1010,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    if ((st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    if (totals && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
     return st;
 }
 
@@ -1063,6 +1070,13 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         return inward(m, d);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
+    return constrained_instant(m, d);
+}
+
+/* The instant of a model with rows other than joint drives, its kinematics and constraints
+ * evaluated */
+static vt_status constrained_instant(const vt_model *m, vt_data *d)
+{
     /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
      * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
     /* (and no coupling, whose force acts through two rates, not through the rows' wrenches) */
@@ -1071,6 +1085,29 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         if (m->nc < m->nv) return articulated_instant(m, d);
     }
     return factorized_instant(m, d);
+}
+
+/* vt_inverse_dynamics_recursive at a state whose positions d already holds, as Newton's last
+ * evaluation leaves them (vt_kinematic_solve_impl): vt_kinematics_positions' outputs and the
+ * constraints' Φ, Φ_t and Φ_q (vt_constraints_parts with VT_CON_PHIQ, from the twists) at d->q
+ * and d->time, q̇ new; fd the drives' functions at d->time (vt_drive_values) or NULL. The
+ * velocities, Ṡq̇, Φ_x and γ are computed, then the same routes: the same outputs as
+ * vt_inverse_dynamics_recursive, bitwise (α and the joints' total wrenches only with totals).
+ * A model whose rows are all joint drives (the fused passes, or the free rates' solve) takes
+ * vt_inverse_dynamics_recursive. */
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals)
+{
+    if (m->joint_driven || m->joint_rows_only) return vt_inverse_dynamics_recursive(m, d);
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    if (st) return st;
+    vt_solve_reset(d);
+    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
+    d->route = VT_ROUTE_NONE;
+    d->fallback = 0;
+    if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
+        st = constrained_instant(m, d);
+    return outputs_scanned(m, d, st, totals);
 }
 
 /* The scratch recursive.c takes at once: the articulated route's work (the largest, with the
@@ -1099,7 +1136,21 @@ size_t vt_recursive_scratch(const vt_model *m)
  * follows from the rows (vt_motion_rows, instant.c). Base bodies of a tree are refused: a base
  * body's ṗ rates carry (4)'s normal part (its multiplier); a free joint (VT_JOINT_FREE), whose
  * six rates are twists, is what a floating robot uses here. */
+static vt_status motion_instant(const vt_model *m, vt_data *d, int totals);
+
 vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
+{
+    return motion_instant(m, d, 1);
+}
+
+/* the same without α and the joints' total wrenches of a tree (a forward run's residual needs
+ * the efforts alone) */
+vt_status vt_inverse_dynamics_motion_efforts(const vt_model *m, vt_data *d)
+{
+    return motion_instant(m, d, 0);
+}
+
+static vt_status motion_instant(const vt_model *m, vt_data *d, int totals)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
     if (st) return st;
@@ -1135,7 +1186,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1)) || (st = vt_reactions_total(m, d, 1))) return st;
+    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1)) || (totals && (st = vt_reactions_total(m, d, 1)))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }

@@ -4,7 +4,10 @@
  * independent starts, one Newton step per row, the stretched arm that warns then fails, and
  * the failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
  * fully driven model with dependent rows, decided by rank; a spherical joint's relative
- * orientation drive through the forward check both ways. */
+ * orientation drive through the forward check both ways; each row's instant, which takes
+ * Newton's last positions and Φ_q, against a fresh recursive instant at the row's state. */
+#include <float.h>
+
 #include "vt_test.h"
 
 static void tip_of(double out[3], const vt_model *m, vt_data *d, const double *q)
@@ -214,6 +217,64 @@ static vt_model *free_joint_model(void)
     vt_model *m;
     assert_ok(vt_scene_free_joint_driven(&m));
     return m;
+}
+
+/* The recursive instant of a row takes what Newton's last evaluation left (positions, twists,
+ * Φ, Φ_q at the converged q) and computes only the velocities, Ṡq̇, Φ_x and γ (α and the total
+ * wrenches, which the rows do not keep, at the last row only): every row after the first (the
+ * dense instant) against a fresh vt_inverse_dynamics_recursive at the row's own state, which
+ * evaluates everything again, and d after the run against the last row's — the five-link arm (square route), the RSUR four-bar
+ * (a cut joint, a spherical joint's Euler parameters), the free joint's 7 rows, and the planar
+ * four-bar with dependent rows (the factorized route) */
+static void test_rows_equal_fresh_recursive_instants(void **state)
+{
+    (void)state;
+    const double coef[3] = {0.3, 2.0, 1.5};
+    const vt_function crank = vt_function_polynomial(3, coef);
+    for (int scene = 0; scene < 4; scene++) {
+        vt_model *m;
+        vt_data *d, *di;
+        vt_trajectory *tr;
+        if (scene == 0) assert_ok(vt_scene_five_link(&m));
+        else if (scene == 1) assert_ok(vt_scene_fourbar(&m, crank));
+        else if (scene == 2) m = free_joint_model();
+        else assert_ok(vt_scene_fourbar_planar(&m, crank, 1));
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&di, m));
+        vt_run_options opt = vt_default_run_options();
+        opt.forward_check = 0;
+        opt.nout = 30;
+        assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+        if (scene == 0) vt_scene_five_link_guess(m, d, 0.0);
+        else if (scene == 1) assert_int_equal(vt_scene_fourbar_assemble(m, d, coef[0], coef[1], NULL, NULL), 0);
+        else if (scene == 3) assert_int_equal(vt_scene_fourbar_planar_assemble(m, d, coef[0], coef[1]), 0);
+        const vt_status st = vt_kinematic_analysis(m, d, &opt, tr);
+        if (st) fail_msg("scene %d: %s", scene, d->message);
+        double worst = 0.0, worst_phi = 0.0;
+        for (int k = 1; k <= opt.nout; k++) {
+            memcpy(di->q, tr->q + (size_t)k * (size_t)m->nq, (size_t)m->nq * sizeof(double));
+            memcpy(di->qd, tr->qd + (size_t)k * (size_t)m->nv, (size_t)m->nv * sizeof(double));
+            di->time = tr->t[k];
+            assert_ok(vt_inverse_dynamics_recursive(m, di));
+            worst = fmax(worst, row_diff(m, tr, k, di));
+            double pn = 0.0;
+            for (int r = 0; r < m->nc; r++) pn = fmax(pn, fabs(di->Phi[r]));
+            worst_phi = fmax(worst_phi, fabs(tr->phi_norm[k] - pn));
+        }
+        /* d holds the last row's whole instant, α and the joints' total wrenches too */
+        const int nb3 = 3 * (m->nbody + 1);
+        worst = fmax(worst, rel_diff(d->alpha, di->alpha, nb3));
+        worst = fmax(worst, rel_diff(d->jnt_force_total, di->jnt_force_total, nb3));
+        worst = fmax(worst, rel_diff(d->jnt_moment_total, di->jnt_moment_total, nb3));
+        worst = fmax(worst, rel_diff(d->jnt_moment_total_body, di->jnt_moment_total_body, nb3));
+        if (!(worst <= 4.0 * DBL_EPSILON && worst_phi <= 4.0 * DBL_EPSILON))
+            fail_msg("scene %d: rows differ from fresh recursive instants by %.3g (max |Φ| by %.3g)", scene, worst,
+                     worst_phi);
+        vt_trajectory_free(tr);
+        vt_data_free(di);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
 }
 
 /* The free joint's rows (its rotation's rates extrapolated by their cubic q̇) against
@@ -710,6 +771,7 @@ int main(void)
 #endif
         cmocka_unit_test(test_rows_against_dense_instants),
         cmocka_unit_test(test_free_joint_rows_against_dense_instants),
+        cmocka_unit_test(test_rows_equal_fresh_recursive_instants),
         cmocka_unit_test(test_one_newton_step_a_row),
         cmocka_unit_test(test_failures),
         cmocka_unit_test(test_stretched_arm),
