@@ -617,7 +617,8 @@ static int singularish(vt_status st)
  * Such a refusal against VT_OK is a refusal of what a route cannot trust, not a disagreement
  * (test_long_link_roundoff_inertia). (Where the recursive general route's composite inertias
  * about o leave M* less precise than its condition needs, it hands the instant to the dense
- * stages: test_roundoff_hides_singular, test_composite_roundoff_falls_back.) */
+ * stages: test_roundoff_hides_singular; the articulated route, about each body's joint point,
+ * keeps long chains: test_long_chain.) */
 static int beyond_lever_arms(const vt_data *d)
 {
     return strstr(d->message, "no certain digit") != NULL;

@@ -26,9 +26,11 @@
  * (a free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
  * normal part, so the routes below take free bodies, base bodies only the general one)
  * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
- *   (articulated_solve: O(n) per right side, M* is not formed), then the reactions from
- *   W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without the sum and without the
- *   rows' loads (articulated_instant); when every row is a joint drive (joint_rows_only) the
+ *   (articulated_solve: O(n) per right side, M* is not formed; each body's articulated inertia,
+ *   bias wrenches and twists about its own joint point P_i, passed to the parent by the short
+ *   P_i − P_j, so that round-off grows with the subtrees' extent, not with the distance from O),
+ *   then the reactions from W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without
+ *   the sum and without the rows' loads (articulated_instant); when every row is a joint drive (joint_rows_only) the
  *   driven rates' q̈ are known and only the free ones are solved, then the inward pass as above.
  *   rcond is S's exact condition at unit diagonal (1 for one row) times min/max of M*'s pivots
  *   taken leaf first, each over its diagonal entry (the free rates' pivots alone with only
@@ -91,12 +93,12 @@ static double pair(const double w[3], const double v[3], const double W[6])
     return vt_dot3(w, W) + vt_dot3(v, W + 3);
 }
 
-/* body i's spatial inertia about O in 13 numbers: (m, h = m c, J_O = J − m c̃ c̃), and J = A J' A^T
- * (global axes, about the centre of mass) into J */
-static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_data *d, int i)
+/* body i's spatial inertia about the point from which its centre of mass lies at c, in 13 numbers:
+ * (m, h = m c, J_O = J − m c̃ c̃), and J = A J' A^T (global axes, about the centre of mass) into J */
+static void inertia_at(double I[13], double J[9], const vt_model *m, const vt_data *d, int i, const double c[3])
 {
     double t[9];
-    const double mass = m->body_mass[i], *c = d->xrel + 6 * i, *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+    const double mass = m->body_mass[i], *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
     for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
     double u[6]; /* A t, symmetric: its upper triangle */
     for (int col = 0, k = 0; col < 3; col++)
@@ -109,21 +111,33 @@ static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_dat
     I[6] = I[10] = u[3] - h0 * c[2], I[9] = I[11] = u[4] - h1 * c[2], I[12] = u[5] + o2;
 }
 
-/* inertia_O, and body i's needed wrench at q̈ = 0 from the same global J (bias_wrench's, without
- * its turns to body axes): W⁰ = (J α + ω × J ω − n_e + c × f, f = m (a − g) − f_e) about O at
- * the accelerations Ṡq̇ (α = 2 E p̈) */
-static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i)
+/* body i's spatial inertia about O (c = r − O) */
+static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_data *d, int i)
+{
+    inertia_at(I, J, m, d, i, d->xrel + 6 * i);
+}
+
+/* inertia_at, and body i's needed wrench at q̈ = 0 from the same global J (bias_wrench's, without
+ * its turns to body axes): W⁰ = (J α + ω × J ω − n_e + c × f, f = m (a − g) − f_e) about the
+ * point from which the centre of mass lies at c, at the accelerations Ṡq̇ (α = 2 E p̈) */
+static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i, const double c[3])
 {
     const int o = vt_xoff(i);
-    const double *w = d->omega + 3 * i, *a = d->Sdqd + o;
-    double J[9], al[3], Jw[3], n[3];
-    inertia_O(I, J, m, d, i);
+    const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+    double J[9], al[3], Jw[3], n[3], f[3];
+    inertia_at(I, J, m, d, i, c);
     vt_mulEp(al, d->x + o + 3, a + 3);
     for (int k = 0; k < 3; k++) al[k] *= 2.0;
     vt_mulmat3(n, J, al);
     vt_mulmat3(Jw, J, w);
     vt_addcross3(n, w, Jw);
-    needed_wrench(W, m, d, i, n, a);
+    for (int k = 0; k < 3; k++) {
+        f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
+        n[k] -= xf[3 + k];
+    }
+    vt_addcross3(n, c, f);
+    vt_copy3(W, n);
+    vt_copy3(W + 3, f);
 }
 
 /* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
@@ -575,7 +589,9 @@ static vt_status mass_and_bias(const vt_model *m, vt_data *d)
  * is judged by vt_solve's own estimate (VT_FALLBACK_COMPOSITE_ROUNDOFF; returned as
  * NEEDS_DENSE). Rates whose M* row vt_solve zeroed (round-off held by a row) are not measured:
  * they are exactly zero. The bound is a worst case: a 100-link chain driven at its tip, 72 m
- * long, meets it (nv max δ = 3.7e-5 against rcond 6.7e-7) while its two paths agree to 3e-9. */
+ * long, meets it (nv max δ = 3.7e-5 against rcond 6.7e-7) while its two paths agree to 3e-9;
+ * the articulated route, about each body's joint point, keeps such a chain and does not come
+ * here. */
 #define NEEDS_DENSE ((vt_status)1)
 static vt_status composite_precision(const vt_model *m, vt_data *d)
 {
@@ -708,9 +724,91 @@ static double dot6(const double *a, const double *b)
     return (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3]) + (a[4] * b[4] + a[5] * b[5]);
 }
 
+/* The shifts of Featherstone's articulated-body algorithm between joint points, global axes
+ * (only the reference point moves), r = P_i − P_j from the parent's joint point to the child's:
+ * a motion (α, a) about P_j is (α, a + α × r) about P_i; a wrench (n, f) about P_i is
+ * (n + r × f, f) about P_j; an inertia G about P_i is X^T G X about P_j, X = [1 0; −r̃ 1] the
+ * motion shift (r̃ x = r × x). With G = [A B; C D] (rows n, f; columns w, v; B = C^T, D = D^T):
+ *   E = D r̃,  C' = C − E,  B' = C'^T,  D' = D,
+ *   A' = A − B r̃ + r̃ C' = A + r̃ C + (r̃ C)^T − r̃ E = A + T + T^T,  T = r̃ (C − ½ E)
+ * (r̃ E = r̃ D r̃ is symmetric; a point mass m at P_i: A' = −m r̃ r̃, B' = m r̃, its inertia about
+ * P_j). Row k of E is D_k × r (D_k row k of D), column k of T is r × (C − ½ E)^k. */
+static inline void shift_inertia_add(double *restrict Gj, const double *restrict G, const double r[3])
+{
+    double E[9], T[9]; /* column-major */
+    for (int k = 0; k < 3; k++) {
+        const double Dk[3] = {G[3 + k + 24], G[3 + k + 32], G[3 + k + 40]};
+        double x[3];
+        vt_cross3(x, Dk, r);
+        E[k] = x[0], E[k + 3] = x[1], E[k + 6] = x[2];
+    }
+    for (int c = 0; c < 3; c++) {
+        const double h[3] = {G[3 + 8 * c] - 0.5 * E[3 * c], G[4 + 8 * c] - 0.5 * E[1 + 3 * c], G[5 + 8 * c] - 0.5 * E[2 + 3 * c]};
+        vt_cross3(T + 3 * c, r, h);
+    }
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 3; k++) {
+            const double cp = G[3 + k + 8 * c] - E[k + 3 * c];
+            Gj[k + 8 * c] += G[k + 8 * c] + (T[k + 3 * c] + T[c + 3 * k]);
+            Gj[3 + k + 8 * c] += cp;
+            Gj[c + 8 * (3 + k)] += cp;
+            Gj[3 + k + 8 * (3 + c)] += G[3 + k + 8 * (3 + c)];
+        }
+}
+
+/* a composite inertia (m, h, J) about P_i (13 numbers, inertia_at's form) added about P_j:
+ * h' = h + m r, J' = J + 2 (g · r) 1 − (g r^T + r g^T) with g = h + ½ m r
+ * (= J + 2 (h · r) 1 − (h r^T + r h^T) + m (|r|² 1 − r r^T)) */
+static inline void shift_composite_add(double *restrict Ij, const double *restrict I, const double r[3])
+{
+    const double mass = I[0], *h = I + 1, *J = I + 4;
+    const double g0 = h[0] + 0.5 * mass * r[0], g1 = h[1] + 0.5 * mass * r[1], g2 = h[2] + 0.5 * mass * r[2];
+    const double a0 = g0 * r[0], a1 = g1 * r[1], a2 = g2 * r[2];
+    const double j01 = J[3] - (g0 * r[1] + r[0] * g1), j02 = J[6] - (g0 * r[2] + r[0] * g2),
+                 j12 = J[7] - (g1 * r[2] + r[1] * g2);
+    Ij[0] += mass;
+    for (int k = 0; k < 3; k++) Ij[1 + k] += h[k] + mass * r[k];
+    Ij[4] += J[0] + 2.0 * (a1 + a2);
+    Ij[8] += J[4] + 2.0 * (a0 + a2);
+    Ij[12] += J[8] + 2.0 * (a0 + a1);
+    Ij[5] += j01, Ij[7] += j01;
+    Ij[6] += j02, Ij[10] += j02;
+    Ij[9] += j12, Ij[11] += j12;
+}
+
+/* the articulated route's lever arms, each short whatever the distance from o (6 x (nbody+1)):
+ * body i's centre of mass from its joint point, c_i = r_i − P_i = −s^{ji} = −A_i s'^{ji}, and its
+ * joint point from its reference body's: P_i = r_j + s^{ij} + t_i and P_j = r_j − c_j give
+ * r_i = P_i − P_j = s^{ij} + t_i + c_j = s^{ij} + d^i − c_i + c_j (t_i the joint's translation,
+ * d^i = t_i − s^{ji}, (17)); 0 for a root, whose reference is the ground */
+static void lever_arms(const vt_model *m, const vt_data *d, double *L)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i];
+        double *c = L + 6 * i, *r = c + 3, s[3];
+        vt_mulmat3(s, d->A + 9 * i, m->body_jchild + 3 * i);
+        for (int k = 0; k < 3; k++) c[k] = -s[k];
+        if (j > 0)
+            for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + d->jd[3 * i + k] + s[k] + L[6 * j + k];
+        else
+            r[0] = r[1] = r[2] = 0.0;
+    }
+}
+
+/* rate a's twist about its own body's joint point: (e, 0) for a rotation about an axis through
+ * it, (0, e) for a translation (no base body here); *off the place of e in (w, v), 0 or 3 */
+static inline void twist_at_joint(double e[3], int *off, const vt_model *m, const vt_data *d, int i, int a)
+{
+    int ax;
+    const int rot = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax) == VT_DOF_ROT;
+    *off = rot ? 0 : 3;
+    vt_copy3(e, d->twist + 6 * a + *off);
+}
+
 /* articulated_solve's work on the arena, nr right sides: per body I^A (48, columns of 8), Ī (13),
  * p and A (6 nr each); per rate U (8), 1 / D, u and x (nr each); S (nc x nc) and λ; the rows'
- * wrenches (12 nc); then the reactions' T (6), W̄ (6) and G (6) per body. Each array starts on
+ * wrenches (12 nc); then the reactions' T (6), W̄ (6) and G (6, first the lever arms) per body.
+ * Each array starts on
  * a cache line (the 8-wide columns' loads stay within one). */
 typedef struct {
     double *IA, *Ic, *P, *A, *U, *Dinv, *u, *X, *S, *lam, *rw, *T, *W, *G;
@@ -749,50 +847,58 @@ static size_t aba_bytes(const vt_model *m, int nr)
 }
 
 /* Fewer independent rows than rates, no base body: (5) by articulated bodies, without M*.
- * Featherstone's articulated-body recursion on the twists s_a about O, each rate of a multi-rate
- * joint a massless link of its own, solves M* x = b for several right sides b at once:
- *   inward, body i's rates last first, I^A starting as i's inertia about O plus what its
+ * Featherstone's articulated-body recursion, each rate of a multi-rate joint a massless link of
+ * its own, solves M* x = b for several right sides b at once. Every body's quantities are taken
+ * about its own joint point P_i (global axes), so that each holds the terms of its own subtree's
+ * extent, not of the distance from O: a rate's twist about P_i is (e, 0) or (0, e) (its axis
+ * passes through P_i), the body's inertia I_i about P_i (c_i = r_i − P_i), and the articulated
+ * inertia, bias wrenches and accelerations pass between a body and its parent by the short
+ * r_i = P_i − P_j (shift_inertia_add; lever_arms):
+ *   inward, body i's rates last first, I^A starting as i's inertia about P_i plus what its
  *   children pass, p as i's b-wrench plus theirs:
  *     U_a = I^A s_a,  D_a = s_a · U_a,  u_a = b_a − s_a · p,
- *     I^A ← I^A − U_a U_a^T / D_a,  p ← p + U_a u_a / D_a          (then passed to the parent)
- *   outward, A the parent's spatial acceleration (about O):
+ *     I^A ← I^A − U_a U_a^T / D_a,  p ← p + U_a u_a / D_a
+ *   then to the parent:  I^A_j += X^T I^A X,  p_j += (n + r_i × f, f)
+ *   outward, A the spatial acceleration about P_i, from the parent's (α, a + α × r_i):
  *     x_a = (u_a − U_a · A) / D_a,  A ← A + s_a x_a
  * For b = Q (4) p starts as the bodies' needed wrenches W⁰ at q̈ = 0 and b_a = qfrc_a, since
- * Q_a = qfrc_a − s_a · W̄⁰; for b = Φ_q^T e_r = S^T Φ_x^T e_r, the row's own wrench w_r on its
- * bodies (vt_row_wrenches at λ_r = 1, about O) is an applied load: p starts at −w_r there and
- * b_a = 0, since Σ_{k below a} s_a · w_r,k = (Φ_q^T e_r)_a (10); so the I^A T + p that give the
- * reactions come without the rows' loads. With q̈ = x⁰ + X λ (2), the rows
- * Φ_q q̈ = γ give S λ = γ − Φ_q x⁰, S = Φ_q X = Φ_q M*^-1 Φ_q^T, the Schur complement of
- * vt_solve's Schur path, whose S̃ = R S R has the same unit-diagonal form. The D_a are M*'s
- * pivots taken leaf first (rates in descending order); the reported condition is S's at unit
- * diagonal times min/max of D_a / M*_aa (those pivots of M* scaled to unit diagonal, each in
- * (0, 1]; M*_aa = s_a · Ī s_a by composite inertias) times the point drives' grip², the number
- * the Schur path computes from its leaf-first Cholesky pivots: both fall where a motion loses
- * its inertia. A D_a that is round-off of 0 (below VT_ROUND_TAU ε of the terms about O it is a
- * difference of) is no pivot: the general route decides.
+ * Q_a = qfrc_a − s_a · W̄⁰ (the pairing of a twist and a wrench is the same about any point);
+ * for b = Φ_q^T e_r = S^T Φ_x^T e_r, the row's own wrench w_r on its bodies (vt_row_wrenches at
+ * λ_r = 1) is an applied load: p starts at −w_r there and b_a = 0, since Σ_{k below a} s_a · w_r,k
+ * = (Φ_q^T e_r)_a (10); so the I^A T + p that give the reactions come without the rows' loads.
+ * With q̈ = x⁰ + X λ (2), the rows Φ_q q̈ = γ give S λ = γ − Φ_q x⁰, S = Φ_q X = Φ_q M*^-1 Φ_q^T,
+ * the Schur complement of vt_solve's Schur path, whose S̃ = R S R has the same unit-diagonal
+ * form. The D_a are M*'s pivots taken leaf first (rates in descending order); the reported
+ * condition is S's at unit diagonal times min/max of D_a / M*_aa (those pivots of M* scaled to
+ * unit diagonal, each in (0, 1]; M*_aa = s_a · Ī s_a by composite inertias about P_i) times the
+ * point drives' grip², the number the Schur path computes from its leaf-first Cholesky pivots:
+ * both fall where a motion loses its inertia. A D_a that is round-off of 0 (below VT_ROUND_TAU ε
+ * of the subtree's terms about P_i it is a difference of) is no pivot: the general route decides.
  * When every row is a joint drive on a rate of its own (joint_rows_only) the driven rates' q̈
  * are known (drive_accelerations) and no row is a right side: such a rate articulates nothing,
  *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,
  * the others are the free rates, M*_FF's pivots give the condition, and λ comes after from the
  * inward pass (the drives' efforts).
  * articulated_solve_nr: nr right sides (nc + 1), drv the rates' joint drives when joint_rows_only.
- * Fills q̈ (and λ with rows); returns 0, 1 (a scaled pivot below 1e-8, or rcond below
- * rcond_min: the factorized instant decides and diagnoses) or a negative vt_status. */
+ * Fills q̈ (and λ with rows), and leaves the lever arms in w->G; returns 0, 1 (a scaled pivot
+ * below 1e-8, or rcond below rcond_min: the factorized instant decides and diagnoses) or a
+ * negative vt_status. */
 #define PIVOT_MIN 1e-8
 static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_work *w, double *rcond_out,
                                        const int *drv, const int nr)
 {
     const int n = m->nbody, nv = m->nv, nc = nr - 1;
-    const size_t nb = (size_t)n + 1, sr = 6 * (size_t)nr;
+    const size_t sr = 6 * (size_t)nr;
     double *Ic = w->Ic, *IA = w->IA, *P = w->P, *Aw = w->A, *U = w->U, *Dinv = w->Dinv, *u = w->u, *X = w->X,
-           *S = w->S, *lam = w->lam;
-    memset(P, 0, sr * nb * sizeof(double));
-    for (int i = 1; i <= n; i++) { /* p⁰ = W⁰; I^A = I_O; Ī by subtree sums of I_O */
-        inertia_bias(Ic + 13 * i, P + sr * (size_t)i, m, d, i);
+           *S = w->S, *lam = w->lam, *L = w->G;
+    lever_arms(m, d, L);
+    for (int i = 1; i <= n; i++) { /* p⁰ = W⁰, I^A = Ī = I_i, about P_i (the children's added below) */
+        double *p = P + sr * (size_t)i;
+        for (int k = 6; k < 6 * nr; k++) p[k] = 0.0; /* the rows' sides */
+        inertia_bias(Ic + 13 * i, p, m, d, i, L + 6 * i);
         inertia_full(IA + 48 * i, Ic + 13 * i);
     }
-    vt_subtree_sum(m, Ic, 13);
-    if (nc > 0) { /* p^r: the row's wrench for λ_r = 1 on its bodies, about O, as an applied load */
+    if (nc > 0) { /* p^r: the row's wrench for λ_r = 1 on its bodies, about P_b, as an applied load */
         double *rw = w->rw;
         vt_row_wrenches(rw, m, d, NULL);
         for (int r = 0; r < nc; r++)
@@ -801,7 +907,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
                 if (b == 0) continue;
                 const double *f = rw + 12 * r + 6 * side, *n0 = f + 3;
                 double *p = P + sr * (size_t)b + 6 * (size_t)(r + 1), t[3];
-                vt_cross3(t, d->xrel + 6 * b, f);
+                vt_cross3(t, L + 6 * b, f); /* about the centre of mass → about P_b */
                 for (int c = 0; c < 3; c++) {
                     p[c] -= n0[c] + t[c];
                     p[3 + c] -= f[c];
@@ -811,38 +917,50 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     double pmin = 1.0, pmax = 0.0, dmax = 0.0; /* dmax: the largest τ ε tw² / M*_aa (below) */
     for (int i = n; i >= 1; i--) {
         double *restrict G = IA + 48 * i, *restrict p = P + sr * (size_t)i;
+        const double *Ii = Ic + 13 * i; /* Ī about P_i: its subtree's all added */
         for (int a = m->body_vadr[i] + m->body_nv[i] - 1; a >= m->body_vadr[i]; a--) {
-            const double *restrict s = d->twist + 6 * a;
-            double Ua[8]; /* local: no aliasing with G, stored to U after */
-            mul_cols8(Ua, G, s);
+            double e[3], Ua[8]; /* local: no aliasing with G, stored to U after */
+            int off; /* s_a = e at off, zero elsewhere: U_a = G's three columns there times e */
+            twist_at_joint(e, &off, m, d, i, a);
+            const double *Gc = G + 8 * off;
+            for (int r = 0; r < 8; r++) Ua[r] = Gc[r] * e[0] + Gc[r + 8] * e[1] + Gc[r + 16] * e[2];
             if (drv && drv[a] >= 0) { /* q̈_a known: I^A passes unchanged, p += U_a q̈_a */
                 for (int r = 0; r < 6; r++) p[r] += Ua[r] * d->qdd[a];
                 continue;
             }
-            const double Da = dot6(s, Ua), *Ii = Ic + 13 * i;
-            const double piv = Da / inertia_quad(Ii, s, s + 3);
-            /* D_a is a difference of terms about O as large as (|w| (tr J̄_O)^½ + |v| m̄^½)²: below
-             * VT_ROUND_TAU ε of them it is round-off of an exact zero, not inertia */
-            const double tw = sqrt(vt_dot3(s, s) * (Ii[4] + Ii[8] + Ii[12])) + sqrt(vt_dot3(s + 3, s + 3) * Ii[0]);
-            if (Da < -VT_ROUND_TAU * DBL_EPSILON * tw * tw && piv < -PIVOT_MIN) /* M* is semi-definite: a
-                                     * pivot negative beyond its round-off and its diagonal's PIVOT_MIN
-                                     * is M* lost to round-off, a motion with no inertia at working
-                                     * precision (a smaller one: the general route decides) */
+            /* M*_aa = s · Ī s = e · J̄ e or m̄ e · e; D_a is a difference of terms as large as
+             * |e|² tr J̄ or |e|² m̄ (tw²): below VT_ROUND_TAU ε of them it is round-off of an exact
+             * zero, not inertia */
+            const double Da = vt_dot3(e, Ua + off), ee = vt_dot3(e, e);
+            double maa, tw2;
+            if (off == 0) {
+                double Je[3];
+                vt_mulmat3(Je, Ii + 4, e);
+                maa = vt_dot3(e, Je);
+                tw2 = ee * (Ii[4] + Ii[8] + Ii[12]);
+            } else {
+                maa = Ii[0] * ee;
+                tw2 = maa;
+            }
+            const double piv = Da / maa, tol = VT_ROUND_TAU * DBL_EPSILON * tw2;
+            if (Da < -tol && piv < -PIVOT_MIN) /* M* is semi-definite: a pivot negative beyond its
+                                     * round-off and its diagonal's PIVOT_MIN is M* lost to round-off,
+                                     * a motion with no inertia at working precision (a smaller one:
+                                     * the general route decides) */
                 return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT,
                        vt_fail(d->message, VT_ERR_SINGULAR,
                                "vt_inverse_dynamics_recursive: singular: rate %d (body %d) has pivot %.3g of M*_aa %.3g, "
                                "negative beyond round-off (%.3g): a motion without inertia at working precision",
-                               a, i, Da, inertia_quad(Ii, s, s + 3), VT_ROUND_TAU * DBL_EPSILON * tw * tw);
-            if (!(piv >= PIVOT_MIN) || !(Da > VT_ROUND_TAU * DBL_EPSILON * tw * tw))
-                return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
+                               a, i, Da, maa, tol);
+            if (!(piv >= PIVOT_MIN) || !(Da > tol)) return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
-            dmax = fmax(dmax, VT_ROUND_TAU * DBL_EPSILON * tw * tw / inertia_quad(Ii, s, s + 3));
+            dmax = fmax(dmax, tol / maa);
             const double inv = 1.0 / Da;
             Dinv[a] = inv;
             double *restrict ua = u + (size_t)nr * (size_t)a;
-            ua[0] = d->qfrc[a] - dot6(s, p);
-            for (int k = 1; k < nr; k++) ua[k] = -dot6(s, p + 6 * k); /* b_a = 0: the row's wrench is in p */
+            ua[0] = d->qfrc[a] - vt_dot3(e, p + off);
+            for (int k = 1; k < nr; k++) ua[k] = -vt_dot3(e, p + 6 * k + off); /* b_a = 0: the row's wrench is in p */
             rank1_cols8(G, Ua, inv);
             memcpy(U + 8 * a, Ua, sizeof Ua);
             for (int k = 0; k < nr; k++) {
@@ -852,30 +970,54 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
         }
         const int j = m->body_parent[i];
         if (j <= 0) continue;
-        double *restrict Gj = IA + 48 * j, *restrict pj = P + sr * (size_t)j;
-        for (int k = 0; k < 48; k++) Gj[k] += G[k];
-        for (int k = 0; k < nr; k++)
-            for (int r = 0; r < 6; r++) pj[6 * k + r] += p[6 * k + r];
+        const double *ri = L + 6 * i + 3;
+        double *restrict pj = P + sr * (size_t)j;
+        shift_inertia_add(IA + 48 * j, G, ri);
+        shift_composite_add(Ic + 13 * j, Ii, ri);
+        for (int k = 0; k < nr; k++) {
+            const double *pk = p + 6 * k;
+            double t[3];
+            vt_cross3(t, ri, pk + 3);
+            for (int r = 0; r < 3; r++) {
+                pj[6 * k + r] += pk[r] + t[r];
+                pj[6 * k + 3 + r] += pk[3 + r];
+            }
+        }
     }
-    /* outward: A of every body for every right side (the ground's is 0) */
-    memset(Aw, 0, sr * sizeof(double));
+    /* outward: A of every body about its P_i for every right side (a root's starts at 0) */
     for (int i = 1; i <= n; i++) {
         double *Ai = Aw + sr * (size_t)i;
-        const double *Ain = Aw + sr * (size_t)(m->body_parent[i] > 0 ? m->body_parent[i] : 0);
-        for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
-            const double *s = d->twist + 6 * a, *Ua = U + 8 * a, *ua = u + (size_t)nr * (size_t)a;
-            if (drv && drv[a] >= 0) {
-                X[a] = d->qdd[a];
-                for (int r = 0; r < 6; r++) Ai[r] = Ain[r] + d->qdd[a] * s[r];
-            } else {
-                const double inv = Dinv[a];
-                for (int k = 0; k < nr; k++) {
-                    const double x = (ua[k] - dot6(Ua, Ain + 6 * k)) * inv;
-                    X[a + (size_t)k * (size_t)nv] = x;
-                    for (int r = 0; r < 6; r++) Ai[6 * k + r] = Ain[6 * k + r] + x * s[r];
+        const int j = m->body_parent[i];
+        if (j > 0) {
+            const double *Aj = Aw + sr * (size_t)j, *ri = L + 6 * i + 3;
+            for (int k = 0; k < nr; k++) {
+                const double *ak = Aj + 6 * k;
+                double t[3];
+                vt_cross3(t, ak, ri);
+                for (int r = 0; r < 3; r++) {
+                    Ai[6 * k + r] = ak[r];
+                    Ai[6 * k + 3 + r] = ak[3 + r] + t[r];
                 }
             }
-            Ain = Ai; /* a multi-rate joint's next rate: from this one's A */
+        } else {
+            memset(Ai, 0, sr * sizeof(double));
+        }
+        for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i]; a++) {
+            const double *Ua = U + 8 * a, *ua = u + (size_t)nr * (size_t)a;
+            double e[3];
+            int off;
+            twist_at_joint(e, &off, m, d, i, a);
+            if (drv && drv[a] >= 0) {
+                X[a] = d->qdd[a];
+                vt_axpy3(Ai + off, d->qdd[a], e);
+            } else {
+                const double inv = Dinv[a];
+                for (int k = 0; k < nr; k++) { /* a multi-rate joint's next rate: from this one's A */
+                    const double x = (ua[k] - dot6(Ua, Ai + 6 * k)) * inv;
+                    X[a + (size_t)k * (size_t)nv] = x;
+                    vt_axpy3(Ai + 6 * k + off, x, e);
+                }
+            }
         }
     }
     /* S λ = γ − Φ_q x⁰, S = Φ_q X (lower triangle) */
@@ -896,7 +1038,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     rcond *= pmin / pmax * (nc > 0 ? vt_rows_grip(m, d) : 1.0);
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
-    /* M*_aa = s · Ī s about o is known to τ ε tw² only: the pivots, which subtract such terms,
+    /* M*_aa = s · Ī s about P_i is known to τ ε tw² only: the pivots, which subtract such terms,
      * carry no digit where nv times that over M*_aa reaches rcond (composite_precision's bound):
      * the general route decides (a point mass 1e6 m from its spherical joint: M* exactly
      * singular, its last pivot round-off amplified by the small one before it) */
@@ -930,13 +1072,18 @@ static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, d
 }
 
 /* (5) by articulated bodies, then the reactions from the subtrees' needed wrenches: the inward
- * pass leaves, for body i, the I^A and p its subtree passes to the parent (after its own rates),
- * and for any right side the subtree then needs W̄_i = I^A T_j + p at the parent's acceleration
- * T_j (the outward pass: A_i = T_j + s_a x_a and u_a − U_a·T_j = D_a x_a give I^A_i T_j + p_i =
- * I^A T_i + p before the rate's update). At the solution, p = p⁰ + Σ_r λ_r p^r and T_j is the
- * part q̈ adds to j's spatial acceleration (vt_accelerations_add), so
- *   W̄_i = I^A_i T_j + p⁰_i + Σ_r λ_r p^r_i    (= Σ over i's subtree of W⁰ + I_O T − Σ_r λ_r w_r)
- * the rows' loads already off (the p^r start from them): vt_reactions_subtree(..., 1). */
+ * pass leaves, for body i, the I^A and p its subtree passes to the parent (after its own rates,
+ * about P_i), and for any right side the subtree then needs W̄_i = I^A T_j + p at the parent's
+ * acceleration T_j moved to P_i (the outward pass: A_i = T_j + s_a x_a and u_a − U_a·T_j = D_a x_a
+ * give I^A_i T_j + p_i = I^A T_i + p before the rate's update). At the solution, p = p⁰ +
+ * Σ_r λ_r p^r, and the part q̈ adds to body i's spatial acceleration about P_i is T_i = A⁰_i +
+ * Σ_r λ_r A^r_i (the outward pass's, linear in the right sides), so
+ *   W̄_i = I^A_i (T_j moved to P_i) + p⁰_i + Σ_r λ_r p^r_i   (= Σ over i's subtree of W⁰ + I T − Σ_r λ_r w_r)
+ * about P_i, then about O for vt_reactions_subtree (n + (P_i − O) × f: a sum whose round-off
+ * grows with |P_i − O| once, as vt_reactions_subtree's own move back to the joint point; no
+ * cancellation of squared lengths), the rows' loads already off (the p^r start from them); and
+ * ẍ from the same T_i (T about O, as vt_accelerations_add sums it, carries |P − O| |q̈| terms:
+ * the forces of a mechanism 1 km from o changed by 2e-11 with it, 5e-13 with T_i). */
 static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
@@ -946,7 +1093,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     const int zero_rows = vt_zero_rows(m, d);
     if (zero_rows < 0) return (vt_status)zero_rows;
     if (zero_rows > 0) return factorized_instant(m, d);
-    const size_t mark = vt_scratch_mark(d);
+    const size_t mark = vt_scratch_mark(d), sr = 6 * (size_t)nr;
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
     const int r = articulated_solve(m, d, &w, &rcond);
@@ -955,14 +1102,33 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         return r < 0 ? (vt_status)r : factorized_instant(m, d);
     }
     vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
-    vt_accelerations_add(m, d, d->qdd, d->xdd, NULL, w.T);
-    for (int i = 1; i <= m->nbody; i++) {
-        double *Wi = w.W + 6 * i, IT[8];
-        const double *p = w.P + 6 * (size_t)nr * (size_t)i;
-        mul_cols8(IT, w.IA + 48 * i, w.T + 6 * m->body_parent[i]);
-        for (int k = 0; k < 6; k++) Wi[k] = IT[k] + p[k];
-        for (int c = 1; c < nr; c++)
-            for (int k = 0; k < 6; k++) Wi[k] += d->lambda[c - 1] * p[6 * c + k];
+    const double *L = w.G; /* the lever arms (articulated_solve) */
+    for (int i = 1; i <= m->nbody; i++) { /* parents first: T_j is known at i's turn */
+        const int j = m->body_parent[i], o = vt_xoff(i);
+        double *Wi = w.W + 6 * i, *Ti = w.T + 6 * i, IT[8], Tj[6] = {0, 0, 0, 0, 0, 0};
+        if (j > 0) { /* the parent's T about P_i */
+            const double *tj = w.T + 6 * j;
+            double t[3];
+            vt_cross3(t, tj, L + 6 * i + 3);
+            for (int k = 0; k < 3; k++) Tj[k] = tj[k], Tj[3 + k] = tj[3 + k] + t[k];
+        }
+        const double *p = w.P + sr * (size_t)i, *Ai = w.A + sr * (size_t)i, *Po = d->xrel + 6 * i + 3;
+        mul_cols8(IT, w.IA + 48 * i, Tj);
+        for (int k = 0; k < 6; k++) Wi[k] = IT[k] + p[k], Ti[k] = Ai[k];
+        for (int c = 1; c < nr; c++) {
+            const double l = d->lambda[c - 1];
+            for (int k = 0; k < 6; k++) Wi[k] += l * p[6 * c + k], Ti[k] += l * Ai[6 * c + k];
+        }
+        vt_addcross3(Wi, Po, Wi + 3); /* about O */
+        /* ẍ = S q̈ + Ṡq̇ (vt_accelerations_add's, from T about P_i): the centre of mass, c_i from
+         * P_i, a = a⁰ + T_v + T_ω × c_i; p̈ = p̈⁰ + ½ E^T T_ω (no base body on this route) */
+        const double *a0 = d->Sdqd + o, *ci = L + 6 * i;
+        double *xi = d->xdd + o, a[3], pdd[4];
+        for (int k = 0; k < 3; k++) a[k] = a0[k] + Ti[3 + k];
+        vt_addcross3(a, Ti, ci);
+        vt_quat_rate(pdd, d->x + o + 3, Ti);
+        vt_copy3(xi, a);
+        for (int k = 0; k < 4; k++) xi[3 + k] = a0[3 + k] + pdd[k];
     }
     const vt_status st = vt_reactions_subtree(m, d, w.W, w.G, 1);
     vt_scratch_release(d, mark);

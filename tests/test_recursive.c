@@ -1036,7 +1036,62 @@ static double outputs_change(const vt_model *m, const vt_data *a, const vt_data 
     return worst;
 }
 
-enum { INV_CHAIN, INV_FREE_TREE, INV_BASE_TREE, INV_FOURBAR, INV_FOURBAR_RUSR, INV_SCENES };
+/* m0's bodies and cut joints without its drives: a loop with fewer rows than rates */
+static vt_model *without_drives(const vt_model *m0)
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    for (int i = 1; i <= m0->nbody; i++) {
+        vt_body_def d = vt_default_body_def();
+        d.parent = m0->body_parent[i];
+        d.joint = (vt_joint_type)m0->body_joint[i];
+        d.mass = m0->body_mass[i];
+        memcpy(d.inertia, m0->body_inertia + 9 * i, 9 * sizeof(double));
+        memcpy(d.joint_parent, m0->body_jpar + 3 * i, 3 * sizeof(double));
+        memcpy(d.joint_child, m0->body_jchild + 3 * i, 3 * sizeof(double));
+        memcpy(d.axis1, m0->body_axis + 6 * i, 3 * sizeof(double));
+        memcpy(d.axis2, m0->body_axis + 6 * i + 3, 3 * sizeof(double));
+        memcpy(d.orientation, m0->body_quat0 + 4 * i, 4 * sizeof(double));
+        assert_int_equal(vt_builder_add_body(b, &d), i);
+    }
+    for (int k = 0; k < m0->ncut; k++) assert_true(vt_builder_add_cut_joint(b, &m0->cut[k]) >= 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* the benchmark's chain of n links with every other joint driven (1, 3, 5…: joint rows only) */
+static vt_model *partly_driven_chain(int n)
+{
+    vt_model *mc;
+    assert_ok(vt_scene_chain(&mc, n, VT_CHAIN_FREE));
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    for (int i = 1; i <= mc->nbody; i++) {
+        vt_body_def d = vt_default_body_def();
+        d.parent = mc->body_parent[i];
+        d.mass = mc->body_mass[i];
+        memcpy(d.inertia, mc->body_inertia + 9 * i, 9 * sizeof(double));
+        memcpy(d.joint_parent, mc->body_jpar + 3 * i, 3 * sizeof(double));
+        memcpy(d.joint_child, mc->body_jchild + 3 * i, 3 * sizeof(double));
+        memcpy(d.axis1, mc->body_axis + 6 * i, 3 * sizeof(double));
+        assert_int_equal(vt_builder_add_body(b, &d), i);
+        if (i % 2) {
+            vt_drive_def dr = vt_default_drive_def();
+            dr.body = i;
+            dr.f = vt_function_sine(0.2, 0.3, 1.5, 0.1 * i);
+            assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        }
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_model_free(mc);
+    return m;
+}
+
+enum { INV_CHAIN, INV_FREE_TREE, INV_BASE_TREE, INV_FOURBAR, INV_FOURBAR_RUSR, INV_PARTLY_CHAIN, INV_RUSR_UNDRIVEN, INV_SCENES };
 
 static vt_model *inv_model(int scene)
 {
@@ -1048,7 +1103,13 @@ static vt_model *inv_model(int scene)
     case INV_FREE_TREE: m = floating_tree(7, 10, 1, c); break;
     case INV_BASE_TREE: m = floating_tree(7, 10, 0, c); break;
     case INV_FOURBAR: assert_ok(vt_scene_fourbar(&m, crank)); break;
+    case INV_PARTLY_CHAIN: m = partly_driven_chain(12); break;
     default: assert_ok(vt_scene_fourbar_rusr(&m, crank)); break;
+    }
+    if (scene == INV_RUSR_UNDRIVEN) {
+        vt_model *m0 = m;
+        m = without_drives(m0);
+        vt_model_free(m0);
     }
     return m;
 }
@@ -1057,9 +1118,9 @@ static vt_model *inv_model(int scene)
 static void inv_state(const vt_model *m, vt_data *d, int scene)
 {
     uint64_t s = 11;
-    if (scene == INV_CHAIN) {
+    if (scene == INV_CHAIN || scene == INV_PARTLY_CHAIN) {
         for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, &d->q[k], &d->qd[k], &d->qdd[k]);
-    } else if (scene == INV_FOURBAR || scene == INV_FOURBAR_RUSR) {
+    } else if (scene == INV_FOURBAR || scene == INV_FOURBAR_RUSR || scene == INV_RUSR_UNDRIVEN) {
         assert_int_equal(scene == INV_FOURBAR ? vt_scene_fourbar_assemble(m, d, 0.9, 1.3, NULL, NULL)
                                               : vt_scene_fourbar_rusr_assemble(m, d, 0.9, 1.3, NULL, NULL), 0);
     } else {
@@ -1075,7 +1136,7 @@ static void test_translation_invariance(void **state)
 {
     (void)state;
     static const char *scene_name[] = {"tip-driven chain", "free-rooted tree", "base-rooted tree", "four-bar RSUR",
-                                       "four-bar RUSR"};
+                                       "four-bar RUSR", "partly joint-driven chain", "four-bar RUSR without its drive"};
     static const char *path_name[] = {"dense", "recursive", "motion"};
     /* 1e9 m: where the chain came back as −1004 N instead of 4.98 N */
     const double dist[3] = {1e3, 1e6, 1e9}, tol[3] = {1e-13, 1e-10, 1e-10}, u[3] = {0.48, -0.6, 0.64};
@@ -1111,6 +1172,119 @@ static void test_translation_invariance(void **state)
             }
             vt_model_free(mr);
             vt_model_free(mt);
+        }
+}
+
+/* The scene m0 D from o: body 1 a pendulum at the global origin (a revolute root, its rate free),
+ * bodies 2.. m0's own, their roots and the ground points of m0's rows moved by D as in
+ * place_model; m0's drives and cut joints on the same bodies. */
+static vt_model *beside_pendulum(const vt_model *m0, const double D[3])
+{
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def pend = vt_default_body_def();
+    pend.mass = 0.8;
+    pend.inertia[0] = 0.01, pend.inertia[4] = 0.02, pend.inertia[8] = 0.015;
+    pend.joint_child[0] = -0.3, pend.joint_child[1] = 0.05;
+    assert_int_equal(vt_builder_add_body(b, &pend), 1);
+    for (int i = 1; i <= m0->nbody; i++) {
+        vt_body_def d = vt_default_body_def();
+        d.parent = m0->body_parent[i] ? m0->body_parent[i] + 1 : 0;
+        d.joint = (vt_joint_type)m0->body_joint[i];
+        d.mass = m0->body_mass[i];
+        memcpy(d.inertia, m0->body_inertia + 9 * i, 9 * sizeof(double));
+        memcpy(d.joint_parent, m0->body_jpar + 3 * i, 3 * sizeof(double));
+        memcpy(d.joint_child, m0->body_jchild + 3 * i, 3 * sizeof(double));
+        memcpy(d.axis1, m0->body_axis + 6 * i, 3 * sizeof(double));
+        memcpy(d.axis2, m0->body_axis + 6 * i + 3, 3 * sizeof(double));
+        memcpy(d.orientation, m0->body_quat0 + 4 * i, 4 * sizeof(double));
+        assert_int_equal(vt_builder_add_body(b, &d), i + 1);
+    }
+    for (int k = 0; k < m0->ndrive; k++) {
+        vt_drive_def dr = m0->drive[k];
+        dr.body += 1;
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    for (int k = 0; k < m0->ncut; k++) {
+        vt_cut_joint_def c = m0->cut[k];
+        c.body_a = c.body_a ? c.body_a + 1 : 0;
+        c.body_b = c.body_b ? c.body_b + 1 : 0;
+        assert_true(vt_builder_add_cut_joint(b, &c) >= 0);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    for (int i = 2; i <= m->nbody; i++)
+        if (m->body_parent[i] == 0) shift3(m->body_jpar + 3 * i, D, 0);
+    for (int r = 0; r < m->nc; r++)
+        for (int side = 0; side < 2; side++)
+            if (m->con_body[2 * r + side] == 0) shift3(m->con_point + 6 * r + 3 * side, D, 0);
+    return m;
+}
+
+/* A partly driven mechanism standing D = 1 km and 1e6 m from o (body 1's joint point, the twists'
+ * and the route's reference): a pendulum at the global origin is body 1, and beside it, D away,
+ *   0  the tip-driven chain (12 links: one point row, articulated bodies with a row),
+ *   1  the same chain with every other joint driven (joint rows only: the free rates' solve),
+ *   2  the RSUR four-bar without its crank drive (a loop: 4 rows, 5 rates).
+ * The mechanism's rates, rows and joints are decoupled from the pendulum's (M* and Φ_q block
+ * diagonal, no shared body): its q̈, λ, efforts and reactions must be those of the same mechanism
+ * alone at the origin (there o is its own first joint point), to 1e-12 at 1 km and 1e-9 at 1e6 m
+ * of each array's largest entry: what is left grows once with D (Φ_q from twists about o, moments
+ * moved from o to the joints), no longer with D² (the articulated pivots about o: the tip-driven
+ * chain at 1e6 m went to the dense stages and changed by 3e-8). */
+static void test_far_from_o(void **state)
+{
+    (void)state;
+    const double dist[2] = {1e3, 1e6}, tol[2] = {1e-11, 1e-8}, tol_qdd[2] = {1e-13, 1e-10}, u[3] = {0.48, -0.6, 0.64};
+    static const char *name[3] = {"tip-driven chain", "partly joint-driven chain", "RUSR four-bar without its drive"};
+    for (int scene = 0; scene < 3; scene++)
+        for (int k = 0; k < 2; k++) {
+            const double D[3] = {dist[k] * u[0], dist[k] * u[1], dist[k] * u[2]};
+            vt_model *m0 = scene == 0 ? inv_model(INV_CHAIN) : scene == 1 ? inv_model(INV_PARTLY_CHAIN) : inv_model(INV_RUSR_UNDRIVEN);
+            vt_model *m = beside_pendulum(m0, D);
+            const vt_model *alone = m0;
+            vt_data *d, *da;
+            assert_ok(vt_data_create(&d, m));
+            assert_ok(vt_data_create(&da, alone));
+            /* the state: the chain's reference state or the assembled four-bar, random loads */
+            inv_state(alone, da, scene == 0 ? INV_CHAIN : scene == 1 ? INV_PARTLY_CHAIN : INV_RUSR_UNDRIVEN);
+            d->q[0] = 0.4, d->qd[0] = 0.7;
+            memcpy(d->q + 1, da->q, (size_t)alone->nq * sizeof(double));
+            memcpy(d->qd + 1, da->qd, (size_t)alone->nv * sizeof(double));
+            memcpy(d->qfrc + 1, da->qfrc, (size_t)alone->nv * sizeof(double));
+            memcpy(d->xfrc + 12, da->xfrc + 6, 6 * (size_t)alone->nbody * sizeof(double));
+            assert_ok(vt_inverse_dynamics_recursive(alone, da));
+            assert_ok(vt_inverse_dynamics_recursive(m, d));
+            const int nb3 = 3 * alone->nbody, nv = alone->nv, nc = alone->nc, nk3 = 3 * alone->ncut;
+            const struct { const char *what; const double *x, *y; int n; } out[] = {
+                {"qdd", d->qdd + 1, da->qdd, nv}, {"lambda", d->lambda, da->lambda, nc},
+                {"qfrc_drive", d->qfrc_drive + 1, da->qfrc_drive, nv},
+                {"jnt_force", d->jnt_force + 6, da->jnt_force + 3, nb3}, {"jnt_moment", d->jnt_moment + 6, da->jnt_moment + 3, nb3},
+                {"jnt_force_body", d->jnt_force_body + 6, da->jnt_force_body + 3, nb3},
+                {"jnt_moment_body", d->jnt_moment_body + 6, da->jnt_moment_body + 3, nb3},
+                {"cut_force", d->cut_force, da->cut_force, nk3}, {"cut_moment", d->cut_moment, da->cut_moment, nk3}};
+            const double mfloor = fmax(vt_test_maxabs(da->jnt_moment, 3 * (alone->nbody + 1)), vt_test_maxabs(da->qfrc_drive, nv));
+            double worst = 0.0;
+            const char *what = "";
+            for (size_t o = 0; o < sizeof out / sizeof out[0]; o++) {
+                const double c = change(out[o].x, out[o].y, out[o].n, strstr(out[o].what, "moment") ? mfloor : 0.0);
+                if (c > worst) worst = c, what = out[o].what;
+            }
+            print_message("%s, D = %g m from o: route %d (alone %d), fallback %d, largest change %.3g (%s)\n", name[scene],
+                          dist[k], d->route, da->route, d->fallback, worst, what);
+            assert_int_equal(d->route, da->route);
+            assert_int_equal(d->route, VT_ROUTE_ARTICULATED);
+            if (!(worst <= tol[k]))
+                fail_msg("%s, D = %g m from o: %s changed by %.3g of its largest entry (> %g)", name[scene], dist[k], what, worst, tol[k]);
+            if (scene == 1) { /* unit rows: q̈ is the articulated route's alone */
+                const double c = change(d->qdd + 1, da->qdd, nv, 0.0);
+                if (!(c <= tol_qdd[k])) fail_msg("%s, D = %g m from o: q̈ changed by %.3g (> %g)", name[scene], dist[k], c, tol_qdd[k]);
+            }
+            vt_data_free(d);
+            vt_data_free(da);
+            vt_model_free(m);
+            vt_model_free(m0);
         }
 }
 
@@ -1663,14 +1837,18 @@ static void test_heavy_link(void **state)
     }
 }
 
-/* A chain of n revolute links driven at its tip only (the benchmark's chain_tip), n = 100 and 200,
- * 72 m and 135 m long: the composite inertias about o cannot vouch for a digit of M* at its
- * rcond (6.7e-7, 1.6e-8) by their worst-case bound, and the recursive path refused the regular
- * instant (VT_ERR_SINGULAR, "within M*'s round-off"). It hands it to the dense stages
- * (VT_FALLBACK_COMPOSITE_ROUNDOFF), whose S^T M S sums positive terms: VT_OK, and the same
- * answer as vt_inverse_dynamics. The shorter chain (n = 12) keeps the recursive route and matches
- * the dense path to 1e-9 relative (rcond 1.7e-3). */
-static void test_composite_roundoff_falls_back(void **state)
+/* A chain of n revolute links driven at its tip only (the benchmark's chain_tip), n = 12, 100 and
+ * 200, up to 135 m long against links of 0.5 m. Its articulated inertias about o held m L² terms
+ * that the pivots of the tip's rates cancel, and the route's round-off bound sent n = 100 and 200
+ * to the general route, whose composite inertias about o sent them to the dense stages
+ * (VT_FALLBACK_COMPOSITE_ROUNDOFF: 6.5 ms an instant). About each body's own joint point the
+ * pivots are differences of the subtree's own terms: the articulated route keeps them (no
+ * fallback) and must give the dense path's q̈, λ, effort and reactions (S^T M S, no composite
+ * inertia) to what its estimate allows, 1e-13 / rcond relative (rcond 1.7e-3, 6.7e-7, 1.6e-8), and
+ * the estimate itself from the dense M* and Φ_q by LAPACK (articulated_rcond) to the larger of
+ * 1e-9 and that. The general route, whose M* is still formed about o, still hands n = 100 to the
+ * dense stages (VT_FALLBACK_COMPOSITE_ROUNDOFF; taken here by allowing redundant rows). */
+static void test_long_chain(void **state)
 {
     (void)state;
     const int ns[3] = {12, 100, 200};
@@ -1688,15 +1866,47 @@ static void test_composite_roundoff_falls_back(void **state)
         }
         assert_ok(vt_inverse_dynamics(m, dd));
         assert_ok(vt_inverse_dynamics_recursive(m, dr));
-        print_message("n = %d: rcond %.3g, fallback %d, effort %.17g (dense %.17g)\n", ns[k], dr->rcond, dr->fallback,
-                      dr->drive_effort[0], dd->drive_effort[0]);
-        assert_int_equal(dr->fallback & VT_FALLBACK_COMPOSITE_ROUNDOFF, k ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
-        double scale = 0.0;
-        for (int a = 0; a < m->nv; a++) scale = fmax(scale, fabs(dd->qdd[a]));
-        for (int a = 0; a < m->nv; a++) assert_near(dr->qdd[a], dd->qdd[a], (k ? 0.0 : 1e-9) * scale);
-        assert_near(dr->drive_effort[0], dd->drive_effort[0], (k ? 0.0 : 1e-9) * fabs(dd->drive_effort[0]));
+        const int nb3 = 3 * (m->nbody + 1);
+        const double tol = 1e-13 / dr->rcond, expect = articulated_rcond(m, dd);
+        const struct { const char *name; const double *x, *y; int n; } out[] = {
+            {"qdd", dr->qdd, dd->qdd, m->nv}, {"lambda", dr->lambda, dd->lambda, m->nc},
+            {"drive_effort", dr->drive_effort, dd->drive_effort, m->ndrive}, {"jnt_force", dr->jnt_force, dd->jnt_force, nb3},
+            {"jnt_moment", dr->jnt_moment, dd->jnt_moment, nb3}, {"jnt_force_total", dr->jnt_force_total, dd->jnt_force_total, nb3},
+            {"jnt_moment_total", dr->jnt_moment_total, dd->jnt_moment_total, nb3}};
+        double worst = 0.0;
+        for (size_t o = 0; o < sizeof out / sizeof out[0]; o++) {
+            const double c = change(out[o].x, out[o].y, out[o].n, 0.0);
+            worst = fmax(worst, c);
+            if (!(c <= tol)) fail_msg("n = %d: %s differs from the dense path by %.3g of its largest (> %.3g)", ns[k], out[o].name, c, tol);
+        }
+        print_message("n = %d: route %d, fallback %d, rcond %.3g (LAPACK %.3g), largest difference from the dense path %.3g\n",
+                      ns[k], dr->route, dr->fallback, dr->rcond, expect, worst);
+        assert_int_equal(dr->route, VT_ROUTE_ARTICULATED);
+        assert_int_equal(dr->fallback, 0);
+        assert_near(dr->rcond, expect, fmax(1e-9, tol) * expect); /* an estimate has round-off of its own */
         vt_data_free(dd);
         vt_data_free(dr);
+        if (ns[k] == 100) { /* the general route (taken when redundant rows are allowed) still forms M*
+                             * from composite inertias about o: it hands the instant to the dense stages */
+            m->allow_redundant = 1;
+            assert_ok(vt_data_create(&dd, m));
+            assert_ok(vt_data_create(&dr, m));
+            for (int a = 0; a < m->nv; a++) {
+                double qdd;
+                vt_scene_chain_state(a, &dd->q[a], &dd->qd[a], &qdd);
+                dr->q[a] = dd->q[a];
+                dr->qd[a] = dd->qd[a];
+            }
+            assert_ok(vt_inverse_dynamics(m, dd));
+            assert_ok(vt_inverse_dynamics_recursive(m, dr));
+            print_message("n = %d, redundant rows allowed: route %d, fallback %d\n", ns[k], dr->route, dr->fallback);
+            assert_int_equal(dr->fallback, VT_FALLBACK_COMPOSITE_ROUNDOFF);
+            assert_int_equal(dr->route, dd->route);
+            for (int a = 0; a < m->nv; a++) assert_true(dr->qdd[a] == dd->qdd[a]); /* the same stages */
+            assert_true(dr->drive_effort[0] == dd->drive_effort[0]);
+            vt_data_free(dd);
+            vt_data_free(dr);
+        }
         vt_model_free(m);
     }
 }
@@ -1716,13 +1926,14 @@ int main(void)
         cmocka_unit_test(test_free_vs_base),
         cmocka_unit_test(test_free_body),
         cmocka_unit_test(test_translation_invariance),
+        cmocka_unit_test(test_far_from_o),
         cmocka_unit_test(test_inertia_spread),
         cmocka_unit_test(test_mass_ratio_sensitivity),
         cmocka_unit_test(test_heavy_link),
         cmocka_unit_test(test_roundoff_zeros),
         cmocka_unit_test(test_roundoff_singular),
         cmocka_unit_test(test_roundoff_hides_singular),
-        cmocka_unit_test(test_composite_roundoff_falls_back),
+        cmocka_unit_test(test_long_chain),
         cmocka_unit_test(test_mass_ratios),
         cmocka_unit_test(test_fused_kinematics),
     };
