@@ -1395,17 +1395,6 @@ static void test_roundoff_zeros(void **state)
     }
 }
 
-/* Mass ratios of 1e24 along a chain (vt_test_ratio_chain: five planar rods whose masses fall
- * from 1e12 to 1e-12 kg, or rise), driven in four ways, at three states each. No failure on
- * either path, no warning where the rows fix the motion (the estimate is the pose's alone); each
- * path's q̈ and λ satisfy (5) in the dense M*, Q and Φ_q, Φ_q q̈ = γ against ‖Φ_q,r‖ max|q̈| and
- * each rate's M* q̈ − Q − Φ_q^T λ = 0 against the size of its own terms (a backward error that
- * the light rods' rates, 1e24 below the heavy ones', cannot hide in) to 1e-14 / rcond; the paths
- * agree (both; with free motion q̈ to 1e-14 / rcond, and the same estimate). With free motion
- * the estimate warns on two of these chains (a 1e12 kg tip on links of 1e-12 … 1e6 kg with joint
- * 1 driven, 6e-8; the falling chain with joints 1-2 and the tip driven, 5e-7): the test
- * ratio_oracle holds both paths' answers against the exact ones (mpmath) and shows that the
- * warning is about vtdyn's own loss there, not about the problem's condition. */
 static void residuals_hold(const vt_model *m, const vt_data *d, double tol)
 {
     const int nv = m->nv, nc = m->nc;
@@ -1432,6 +1421,17 @@ static void residuals_hold(const vt_model *m, const vt_data *d, double tol)
     }
 }
 
+/* Mass ratios of 1e24 along a chain (vt_test_ratio_chain: five planar rods whose masses fall
+ * from 1e12 to 1e-12 kg, or rise), driven in four ways, at three states each. No failure on
+ * either path, no warning where the rows fix the motion (the estimate is the pose's alone); each
+ * path's q̈ and λ satisfy (5) in the dense M*, Q and Φ_q, Φ_q q̈ = γ against ‖Φ_q,r‖ max|q̈| and
+ * each rate's M* q̈ − Q − Φ_q^T λ = 0 against the size of its own terms (a backward error that
+ * the light rods' rates, 1e24 below the heavy ones', cannot hide in) to 1e-14 / rcond; the paths
+ * agree (both; with free motion q̈ to 1e-14 / rcond, and the same estimate). With free motion
+ * the estimate warns on two of these chains (a 1e12 kg tip on links of 1e-12 … 1e6 kg with joint
+ * 1 driven, 6e-8; the falling chain with joints 1-2 and the tip driven, 5e-7): the test
+ * ratio_oracle holds both paths' answers against the exact ones (mpmath) and shows that the
+ * warning is about vtdyn's own loss there, not about the problem's condition. */
 static void test_mass_ratios(void **state)
 {
     (void)state;
