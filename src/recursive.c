@@ -895,7 +895,10 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     if (st) return st;
     rcond *= pmin / pmax * (nc > 0 ? vt_rows_grip(m, d) : 1.0);
     *rcond_out = rcond;
-    if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
+    /* with rows other than joint drives, below rcond_warn the general route decides, as vt_solve's
+     * Schur route gives way to the augmented one there (the rows' Schur complement can lose what
+     * the whole matrix keeps); joint drives alone have no other route than the free rates' */
+    if (!(rcond >= (drv ? m->rcond_min : m->rcond_warn))) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
     /* M*_aa = s · Ī s about o is known to τ ε tw² only: the pivots, which subtract such terms,
      * carry no digit where nv times that over M*_aa reaches rcond (composite_precision's bound):
      * the general route decides (a point mass 1e6 m from its spherical joint: M* exactly

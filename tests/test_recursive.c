@@ -79,7 +79,7 @@ static void both(const vt_model *m, vt_data *dr, vt_data *dd)
     assert_true(dr->route > VT_ROUTE_NONE && dr->route < VT_ROUTE_COUNT);
     /* when the recursive evaluation factorizes, vt_solve takes the dense path's route */
     if (path == FACTORIZED) assert_int_equal(dr->route, dd->route);
-    assert_int_equal(dd->fallback & ~VT_FALLBACK_SCHUR_PIVOT, 0); /* the dense path's only fallback */
+    assert_int_equal(dd->fallback & ~(VT_FALLBACK_SCHUR_PIVOT | VT_FALLBACK_SCHUR_CONDITION), 0); /* the dense path's only fallbacks */
     const int nb3 = 3 * (m->nbody + 1);
     /* a reaction moment that is zero in exact arithmetic (a planar scene's) is the round-off of
      * the moments through the joint: measure it against them */
