@@ -1438,7 +1438,7 @@ static void test_mass_ratios(void **state)
     double worst = 1.0;
     for (int rising = 0; rising < 2; rising++)
         for (int drive = 0; drive < 4; drive++) {
-            vt_model *m = vt_test_ratio_chain(rising, drive);
+            vt_model *m = vt_test_ratio_chain(rising, drive, 6.0);
             vt_data *dr, *dd;
             assert_ok(vt_data_create(&dr, m));
             assert_ok(vt_data_create(&dd, m));
