@@ -1273,7 +1273,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
     if (r == 3 || r == 4) {
         /* the Schur route's estimate below rcond_warn (4: solved) or rcond_min (3: not): the rows'
          * Schur complement in the mass metric can lose digits that the whole matrix keeps (a chain
-         * whose masses rise by 1e3 a rod: 1e-12 against 3e-4; docs/accuracy.md, "Mass ratios").
+         * whose masses rise by 1e3 a rod: 7e-13 against 2e-3; docs/accuracy.md, "Mass ratios").
          * The augmented route solves too, and the answer whose estimate is the higher is kept */
         double *alt = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "augmented route's solution");
         if (!alt) return vt_scratch_fail(d, mark);

@@ -33,7 +33,7 @@ solves the very problem vtdyn was given. Checks:
     of the exact one, and lambda too, except where vtdyn is known to lose more (KNOWN below);
  4. no warning and no failure on the chains of 1e3 a rod (a rising one, joints 1-2 and the tip
     driven, was refused: the Schur route's estimate, 6.6e-13, where the augmented route's is
-    2.9e-4 and its answers exact to 26 eps).
+    2.1e-3 and its answers exact to 50 eps).
 It prints every case: route, rcond, the problem's condition and vtdyn's errors in eps.
 
     ratio_oracle.py RATIO_CHAIN        (exit 77, skipped, without mpmath)
