@@ -71,7 +71,7 @@ module vtdyn
   ! fallback flags in vt_data%fallback: faster routes the last instant left, and why
   integer(c_int), parameter :: VT_FALLBACK_SCHUR_PIVOT = 1, VT_FALLBACK_ARTICULATED_PIVOT = 2, &
       VT_FALLBACK_ARTICULATED_CONDITION = 4, VT_FALLBACK_SQUARE_CONDITION = 8, &
-      VT_FALLBACK_COMPOSITE_ROUNDOFF = 16
+      VT_FALLBACK_COMPOSITE_ROUNDOFF = 16, VT_FALLBACK_SCHUR_CONDITION = 32
   ! redundant rows: directions below this fraction of the largest singular value are dropped
   real(c_double), parameter :: VT_REDUNDANT_TOL = 5.0e-4_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()

@@ -1051,7 +1051,10 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     if (!drv) memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
     if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc)) /* conditioned (rcond checked): an overflow */
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: q̈ or λ overflows (loads or rates too large)");
-    return 0;
+    /* with rows other than joint drives, below rcond_warn: 2, the whole system may keep what the
+     * rows' Schur complement loses (articulated_instant asks vt_solve); joint drives alone have
+     * no other route than the free rates' */
+    return !drv && nc > 0 && rcond < m->rcond_warn ? 2 : 0;
 }
 
 /* right sides of the articulated solve: Q, and one per row unless every row is a joint drive */
@@ -1097,7 +1100,29 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
     const int r = articulated_solve(m, d, &w, &rcond);
-    if (r) {
+    if (r == 2) { /* below rcond_warn: vt_solve's Schur route would give way to the augmented one
+                   * where that is the better conditioned (mass spread the rows' Schur complement
+                   * loses); ask it on M* and keep this route's answer where it keeps the Schur one
+                   * (the same estimate, computed about each body's joint point here) */
+        const size_t keep = vt_scratch_mark(d);
+        double *save = VT_SCRATCH(d, double, (size_t)(m->nv + m->nc), "the articulated q̈ and λ");
+        if (!save) return vt_scratch_fail(d, mark);
+        memcpy(save, d->qdd, (size_t)m->nv * sizeof(double));
+        memcpy(save + m->nv, d->lambda, (size_t)m->nc * sizeof(double));
+        const int fallback = d->fallback;
+        vt_status st = mass_and_bias(m, d);
+        if (!st) st = vt_solve_impl(m, d);
+        if (st || (d->fallback & VT_FALLBACK_SCHUR_CONDITION)) { /* the general route's answer */
+            vt_scratch_release(d, mark);
+            d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
+            if (!st) st = composite_precision(m, d);
+            return st ? st : vt_reactions_impl(m, d);
+        }
+        memcpy(d->qdd, save, (size_t)m->nv * sizeof(double));
+        memcpy(d->lambda, save + m->nv, (size_t)m->nc * sizeof(double));
+        d->fallback = fallback;
+        vt_scratch_release(d, keep);
+    } else if (r) {
         vt_scratch_release(d, mark);
         return r < 0 ? (vt_status)r : factorized_instant(m, d);
     }
@@ -1290,6 +1315,9 @@ size_t vt_recursive_scratch(const vt_model *m)
     /* composite_precision's terms of M*'s diagonal and subtree sums */
     const size_t terms = VT_SCRATCH_BYTES(2 * (size_t)m->nv, D) + VT_SCRATCH_BYTES(4 * nb, D);
     if (terms > n) n = terms;
+    /* the articulated route below rcond_warn: its work, its answer and M*'s composite inertias at once */
+    const size_t asked = aba_bytes(m, m->nc + 1) + VT_SCRATCH_BYTES((size_t)(m->nv + m->nc), D) + VT_SCRATCH_BYTES(13 * nb, D);
+    if (asked > n) n = asked;
     /* vt_motion_rows (instant.c, called from here) holds the given q̈ while the stages run */
     if (VT_SCRATCH_BYTES(m->nv, D) > n) n = VT_SCRATCH_BYTES(m->nv, D);
     return n;

@@ -1022,8 +1022,8 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
  * for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)² times the
  * point drives' grip² (vt_rows_grip): the recursive articulated route's number. It falls where
  * the rows lose independence in the mass metric, where a motion loses its inertia, and where a
- * point drive loses its grip (a lone one too). Returns 0, 1 (below rcond_min), 2 or a negative
- * vt_status. */
+ * point drive loses its grip (a lone one too). Returns 0, 2, 3 (below rcond_min: not solved), 4
+ * (solved, below rcond_warn: vt_solve_band tries the augmented route too) or a negative vt_status. */
 #define SCHUR_FEW 3 /* rows up to which S and its right side are formed by loops */
 static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_out)
 {
@@ -1091,7 +1091,8 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     if (st) return vt_scratch_release(d, mark), st;
     rcond *= (lmin / lmax) * (lmin / lmax) * vt_rows_grip(m, d);
     *rcond_out = rcond;
-    if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 1;
+    /* below rcond_min: not solved, 3 (vt_solve_band tries the augmented route before refusing) */
+    if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 3;
     /* ỹ = L^-T (z + Y λ̃) */
     memcpy(x, z, (size_t)nv * sizeof(double));
     if (few) {
@@ -1112,7 +1113,8 @@ static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond
     for (int r = 0; r < nc; r++) lam[r] *= s[nv + r];
     vt_scratch_release(d, mark);
     if (!vt_all_finite(x, nv + nc)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
-    return 0;
+    /* below rcond_warn: solved, 4 (vt_solve_band also tries the augmented route) */
+    return rcond >= m->rcond_warn ? 0 : 4;
 }
 
 void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond)
@@ -1212,7 +1214,9 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  *   SQUARE      as many rows as rates (square_solve); ill-conditioned: diagnosed, no fallback
  *   SCHUR       fewer rows than rates (schur_solve); a small pivot of M̃ gives way to
  *   AUGMENTED   the whole augmented matrix (factor_solve, also every other case), flagged
- *               VT_FALLBACK_SCHUR_PIVOT
+ *               VT_FALLBACK_SCHUR_PIVOT; with an estimate below rcond_warn the augmented route
+ *               solves too and the answer of the higher estimate is kept (the augmented one:
+ *               VT_FALLBACK_SCHUR_CONDITION)
  * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
  * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio of
  * the whole M* times the unit-diagonal Schur complement's and the point drives' grip² (SCHUR); the
@@ -1266,6 +1270,28 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
     if (r == 1) {} /* a zero row: nothing solved, diagnosed below */
     else if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
     else if (route == VT_ROUTE_SCHUR) r = schur_solve(m, d, sol, &rcond);
+    if (r == 3 || r == 4) {
+        /* the Schur route's estimate below rcond_warn (4: solved) or rcond_min (3: not): the rows'
+         * Schur complement in the mass metric can lose digits that the whole matrix keeps (a chain
+         * whose masses rise by 1e3 a rod: 7e-13 against 2e-3; docs/accuracy.md, "Mass ratios").
+         * The augmented route solves too, and the answer whose estimate is the higher is kept */
+        double *alt = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "augmented route's solution");
+        if (!alt) return vt_scratch_fail(d, mark);
+        double rc = 0.0;
+        const int ra = factor_solve(m, d, alt, &rc);
+        if (ra < 0) return vt_scratch_release(d, mark), (vt_status)ra;
+        if (ra == 0 && rc > rcond) {
+            memcpy(sol, alt, ((size_t)nv + (size_t)nc) * sizeof(double));
+            d->fallback |= VT_FALLBACK_SCHUR_CONDITION;
+            route = VT_ROUTE_AUGMENTED;
+            rcond = rc;
+            r = 0;
+        } else if (r == 4) r = 0; /* the Schur route's answer, and its estimate */
+        else { /* neither above rcond_min: the higher one is diagnosed */
+            if (rc > rcond) route = VT_ROUTE_AUGMENTED, rcond = rc, d->fallback |= VT_FALLBACK_SCHUR_CONDITION;
+            r = 1;
+        }
+    }
     if (r == 2) {
         if (route == VT_ROUTE_SCHUR) d->fallback |= VT_FALLBACK_SCHUR_PIVOT;
         route = VT_ROUTE_AUGMENTED;
@@ -1393,7 +1419,7 @@ size_t vt_solve_scratch(const vt_model *m)
         if (info == 0 && q > (double)lapack) lapack = (size_t)q;
     }
     lapack = VT_SCRATCH_BYTES(lapack + 5 * (snc + snv), D);
-    const size_t held = VT_SCRATCH_BYTES(sN, D); /* the solution */
+    const size_t held = 2 * VT_SCRATCH_BYTES(sN, D); /* the solution; the augmented route's beside the Schur route's */
     const size_t small = VT_SCRATCH_BYTES((size_t)EXACT_RCOND_N * (EXACT_RCOND_N + EXACT_EXTRA), D) +
                          VT_SCRATCH_BYTES(sN, D) + /* an exact inverse, or dlansy's / dpocon's work */
                          VT_SCRATCH_BYTES((size_t)m->nbody + 1, D); /* massless()'s subtree inertias */

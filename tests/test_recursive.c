@@ -79,7 +79,7 @@ static void both(const vt_model *m, vt_data *dr, vt_data *dd)
     assert_true(dr->route > VT_ROUTE_NONE && dr->route < VT_ROUTE_COUNT);
     /* when the recursive evaluation factorizes, vt_solve takes the dense path's route */
     if (path == FACTORIZED) assert_int_equal(dr->route, dd->route);
-    assert_int_equal(dd->fallback & ~VT_FALLBACK_SCHUR_PIVOT, 0); /* the dense path's only fallback */
+    assert_int_equal(dd->fallback & ~(VT_FALLBACK_SCHUR_PIVOT | VT_FALLBACK_SCHUR_CONDITION), 0); /* the dense path's only fallbacks */
     const int nb3 = 3 * (m->nbody + 1);
     /* a reaction moment that is zero in exact arithmetic (a planar scene's) is the round-off of
      * the moments through the joint: measure it against them */
@@ -1569,57 +1569,6 @@ static void test_roundoff_zeros(void **state)
     }
 }
 
-/* Mass ratios of 1e24 along a chain: five planar rods whose masses fall from 1e12 to 1e-12 kg (or
- * rise), driven as
- *   0  every joint (nothing factorized: rcond 1)
- *   1  joints 1-3 and the tip's x, y (square: the rows fix the motion)
- *   2  joints 1-2 and the tip's x, y (one rate free: Schur and articulated)
- *   3  joint 1 alone (four free rates)
- * at three states each. No failure on either path, no warning where the rows fix the motion
- * (0, 1: the estimate is the pose's alone); each path's q̈ and λ satisfy
- * (5) in the dense M*, Q and Φ_q, Φ_q q̈ = γ against ‖Φ_q,r‖ max|q̈| and each rate's
- * M* q̈ − Q − Φ_q^T λ = 0 against the size of its own terms (a backward error that the light
- * rods' rates, 1e24 below the heavy ones', cannot hide in) to 1e-14 / rcond; the paths agree
- * (both; with free motion q̈ to 1e-14 / rcond, and the same estimate). With free motion the
- * estimate can warn, and does where the answers lose digits: a 1e12 kg tip on 1e-12 kg links
- * (the light links' q̈ hang on round-off of the tip's inertia; 6e-8), or two tip rows that act
- * through links of 1e-6 and 1e-12 kg (5e-7). */
-static vt_model *ratio_chain_with(int rising, int drive, int which, double factor)
-{
-    double mass[5];
-    for (int k = 0; k < 5; k++) mass[k] = pow(10.0, rising ? -12.0 + 6.0 * k : 12.0 - 6.0 * k) * (k == which ? factor : 1.0);
-    if (rising < 0)
-        for (int k = 0; k < 5; k++) mass[k] = 1.0;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_test_add_rods(b, 5, 0.4, mass);
-    const int joints = drive == 0 ? 5 : drive == 1 ? 3 : drive == 2 ? 2 : 1;
-    for (int k = 0; k < joints; k++) {
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = k + 1;
-        dr.f = vt_function_sine(0.3 + 0.2 * k, 0.4, 1.5, 0.2 * k);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
-    }
-    for (int c = 0; c < 2 && (drive == 1 || drive == 2); c++) {
-        vt_drive_def tip = vt_default_drive_def();
-        tip.type = VT_DRIVE_POINT;
-        tip.body = 5;
-        tip.index = c;
-        tip.point[0] = 0.2;
-        tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * c); /* only its derivatives matter here */
-        assert_true(vt_builder_add_drive(b, &tip) >= 0);
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    return m;
-}
-
-static vt_model *ratio_chain(int rising, int drive)
-{
-    return ratio_chain_with(rising, drive, -1, 1.0);
-}
-
 static void residuals_hold(const vt_model *m, const vt_data *d, double tol)
 {
     const int nv = m->nv, nc = m->nc;
@@ -1646,13 +1595,26 @@ static void residuals_hold(const vt_model *m, const vt_data *d, double tol)
     }
 }
 
+/* Mass ratios of 1e24 along a chain (vt_test_ratio_chain: five planar rods whose masses fall
+ * from 1e12 to 1e-12 kg, or rise; and of 1e12, 1e3 a rod), driven in four ways, at three states
+ * each. No failure on
+ * either path, no warning where the rows fix the motion (the estimate is the pose's alone); each
+ * path's q̈ and λ satisfy (5) in the dense M*, Q and Φ_q, Φ_q q̈ = γ against ‖Φ_q,r‖ max|q̈| and
+ * each rate's M* q̈ − Q − Φ_q^T λ = 0 against the size of its own terms (a backward error that
+ * the light rods' rates, 1e24 below the heavy ones', cannot hide in) to 1e-14 / rcond; the paths
+ * agree (both; with free motion q̈ to 1e-14 / rcond, and the same estimate). With free motion
+ * the estimate warns on two of these chains (a 1e12 kg tip on links of 1e-12 … 1e6 kg with joint
+ * 1 driven, 6e-8; the falling chain with joints 1-2 and the tip driven, 5e-7): the test
+ * ratio_oracle holds both paths' answers against the exact ones (mpmath) and shows that the
+ * warning is about vtdyn's own loss there, not about the problem's condition. */
 static void test_mass_ratios(void **state)
 {
     (void)state;
     double worst = 1.0;
-    for (int rising = 0; rising < 2; rising++)
+    for (int chain = 0; chain < 4; chain++)
         for (int drive = 0; drive < 4; drive++) {
-            vt_model *m = ratio_chain(rising, drive);
+            const int rising = chain % 2, step = chain < 2 ? 6 : 3; /* 1e6 a rod, then 1e3 */
+            vt_model *m = vt_test_ratio_chain(rising, drive, step);
             vt_data *dr, *dd;
             assert_ok(vt_data_create(&dr, m));
             assert_ok(vt_data_create(&dd, m));
@@ -1680,6 +1642,15 @@ static void test_mass_ratios(void **state)
                 memcpy(dx->lambda, dr->lambda, (size_t)m->nc * sizeof(double));
                 residuals_hold(m, dx, tol);
                 vt_data_free(dx);
+                /* 1e3 a rod: no warning on any (the rising chain with joints 1-2 and the tip driven
+                 * was refused, the Schur route's estimate 6.6e-13: the augmented route's, 2.1e-3,
+                 * is kept) */
+                if (step == 3 && (dd->warning || dr->warning))
+                    fail_msg("1e3 a rod, rising %d drive %d state %d: warning (rcond %.3g)", rising, drive, k, dd->rcond);
+                if (step == 3 && rising && drive == 2) {
+                    assert_int_equal(dd->route, VT_ROUTE_AUGMENTED);
+                    assert_int_equal(dd->fallback, VT_FALLBACK_SCHUR_CONDITION);
+                }
                 if (drive < 2) { /* the rows fix the motion: the estimate is the pose's, 1e24 or not */
                     both(m, dr, dd);
                     if (dd->warning || dr->warning) fail_msg("rising %d drive %d state %d: warning", rising, drive, k);
@@ -1694,58 +1665,7 @@ static void test_mass_ratios(void **state)
             vt_data_free(dd);
             vt_model_free(m);
         }
-    print_message("mass ratios 1e24: smallest rcond %.3g\n", worst);
-}
-
-/* Where the 1e24 chain's estimate warns with free motion (test_mass_ratios: a 1e12 kg tip on
- * 1e-12 kg links with joint 1 driven, rcond 6e-8; the falling chain with joints 1-2 and the tip
- * driven, 5e-7), the answers themselves hang on the masses that much: against an independent
- * measure of the problem's condition, q̈'s normwise relative change when one body's mass changes
- * by 4 ε (the masses' own round-off), each body in turn, the estimate is not pessimistic by more
- * than 10 (measured: 1/rcond 1.6e7 and 2.2e6, q̈ moving by 2.2e7 ε and 2.7e6 ε per ε of a mass):
- * it is a pose of this mass distribution that is ill-conditioned, not an artefact of the spread
- * in the estimate. The same chain with 1 kg links at the same state: no warning, and
- * q̈ moves by less than 1e3 ε. Both paths, the same numbers. */
-static void test_mass_ratio_sensitivity(void **state)
-{
-    (void)state;
-    const int cases[3][2] = {{1, 3}, {0, 2}, {-1, 3}}; /* rising, drive; −1: uniform masses */
-    for (int c = 0; c < 3; c++) {
-        double base[5], rcond[2], change = 0.0;
-        for (int which = -1; which < 5; which++) {
-            vt_model *m = ratio_chain_with(cases[c][0], cases[c][1], which, 1.0 + 4.0 * DBL_EPSILON);
-            for (int path = 0; path < 2; path++) {
-                vt_data *d;
-                assert_ok(vt_data_create(&d, m));
-                for (int a = 0; a < m->nv; a++) {
-                    d->q[a] = 0.3 + 0.25 * a; /* test_mass_ratios' first state */
-                    d->qd[a] = 0.5 - 0.2 * a;
-                }
-                assert_ok(path ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d));
-                if (which < 0) {
-                    rcond[path] = d->rcond;
-                    assert_int_equal((d->warning & VT_WARN_ILL_CONDITIONED) != 0, d->rcond < m->rcond_warn);
-                    if (path == 0) memcpy(base, d->qdd, sizeof base);
-                } else {
-                    double dq = 0.0;
-                    for (int a = 0; a < 5; a++) dq = fmax(dq, fabs(d->qdd[a] - base[a]));
-                    change = fmax(change, dq / vt_test_maxabs(base, 5) / (4.0 * DBL_EPSILON));
-                }
-                vt_data_free(d);
-            }
-            vt_model_free(m);
-        }
-        assert_near(rcond[1], rcond[0], 1e-6 * rcond[0]);
-        print_message("rising %d drive %d: rcond %.3g, q̈ moves by %.3g ε per ε of a mass (1/rcond %.3g)\n",
-                      cases[c][0], cases[c][1], rcond[0], change, 1.0 / rcond[0]);
-        if (cases[c][0] >= 0) {
-            assert_true(rcond[0] < 1e-6); /* it warns */
-            if (!(change >= 0.1 / rcond[0])) fail_msg("case %d: q̈ moves by %.3g ε, the estimate says %.3g", c, change, 1.0 / rcond[0]);
-        } else {
-            assert_true(rcond[0] > 1e-3);
-            assert_true(change < 1e3);
-        }
-    }
+    print_message("mass ratios 1e24 and 1e12: smallest rcond %.3g\n", worst);
 }
 
 /* A 1e154 kg link (6 kg·m²) in a planar chain of 1 kg rods, fully driven (joints 1-3 and the
@@ -1928,7 +1848,6 @@ int main(void)
         cmocka_unit_test(test_translation_invariance),
         cmocka_unit_test(test_far_from_o),
         cmocka_unit_test(test_inertia_spread),
-        cmocka_unit_test(test_mass_ratio_sensitivity),
         cmocka_unit_test(test_heavy_link),
         cmocka_unit_test(test_roundoff_zeros),
         cmocka_unit_test(test_roundoff_singular),

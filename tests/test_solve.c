@@ -1337,6 +1337,55 @@ static void test_redundant_rank_fuzz_findings(void **state)
         }
 }
 
+/* The Schur route's estimate below rcond_warn: the augmented route solves too and the answer with
+ * the higher estimate is kept. A chain whose masses rise by 1e3 a rod (vt_test_ratio_chain), joints
+ * 1-2 and the tip driven: the Schur estimate is 6.6e-13 (π of the driven light rods' rates), the
+ * whole matrix's 2.1e-3: the augmented route's answer, flagged, no warning (it was refused); and
+ * the Schur route's own answer, with rcond_warn and rcond_min set below its estimate so that it
+ * is kept, agrees with it to 1e-11 of q̈ and λ (two factorizations; both against the exact answer:
+ * ratio_oracle). A 100-link chain driven at its tip keeps the Schur route (its estimate, 6.7e-7,
+ * above the whole matrix's): no fallback, and it warns. */
+static void test_schur_condition_fallback(void **state)
+{
+    (void)state;
+    vt_model *m = vt_test_ratio_chain(1, 2, 3.0);
+    vt_data *d[2];
+    for (int k = 0; k < 2; k++) {
+        assert_ok(vt_data_create(&d[k], m));
+        for (int a = 0; a < m->nv; a++) {
+            d[k]->q[a] = 0.3 + 0.25 * a; /* test_mass_ratios' first state */
+            d[k]->qd[a] = 0.5 - 0.2 * a;
+        }
+        if (k) m->rcond_warn = 1e-14, m->rcond_min = 1e-15; /* the Schur route keeps the instant */
+        assert_ok(vt_inverse_dynamics(m, d[k]));
+    }
+    assert_int_equal(d[0]->route, VT_ROUTE_AUGMENTED);
+    assert_int_equal(d[0]->fallback, VT_FALLBACK_SCHUR_CONDITION);
+    assert_int_equal(d[0]->warning, 0);
+    assert_true(d[0]->rcond > 1e-3);
+    assert_int_equal(d[1]->route, VT_ROUTE_SCHUR);
+    assert_int_equal(d[1]->fallback, 0);
+    assert_true(d[1]->rcond < 1e-12);
+    const double qs = vt_test_maxabs(d[0]->qdd, m->nv), ls = vt_test_maxabs(d[0]->lambda, m->nc);
+    for (int a = 0; a < m->nv; a++) assert_near(d[1]->qdd[a], d[0]->qdd[a], 1e-11 * qs);
+    for (int r = 0; r < m->nc; r++) assert_near(d[1]->lambda[r], d[0]->lambda[r], 1e-11 * ls);
+    for (int k = 0; k < 2; k++) vt_data_free(d[k]);
+    vt_model_free(m);
+
+    assert_ok(vt_scene_chain(&m, 100, VT_CHAIN_TIP_DRIVE));
+    assert_ok(vt_data_create(&d[0], m));
+    for (int a = 0; a < m->nv; a++) {
+        double qdd;
+        vt_scene_chain_state(a, &d[0]->q[a], &d[0]->qd[a], &qdd);
+    }
+    assert_ok(vt_inverse_dynamics(m, d[0]));
+    assert_int_equal(d[0]->route, VT_ROUTE_SCHUR);
+    assert_int_equal(d[0]->fallback, 0);
+    assert_int_equal(d[0]->warning, VT_WARN_ILL_CONDITIONED);
+    vt_data_free(d[0]);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1358,6 +1407,7 @@ int main(void)
         cmocka_unit_test(test_reach),
         cmocka_unit_test(test_redundant_rank_fuzz_findings),
         cmocka_unit_test(test_lever_arm_across_rows),
+        cmocka_unit_test(test_schur_condition_fallback),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -283,4 +283,43 @@ static inline void vt_test_S_times(double *y, const vt_model *m, const vt_data *
     }
 }
 
+/* Mass ratios along a chain: five planar rods (vt_test_add_rods, 0.4 m) whose masses fall by
+ * 10^step a rod about the middle one's 1 kg (rising 0: 1e12 … 1e-12 kg for step 6), rise (1), or
+ * are all 1 kg (rising −1), driven as
+ *   0  every joint (nothing factorized)
+ *   1  joints 1-3 and the tip's x, y (square: the rows fix the motion)
+ *   2  joints 1-2 and the tip's x, y (one rate free)
+ *   3  joint 1 alone (four free rates)
+ * joint k by f = 0.3 + 0.2 k + 0.4 sin(1.5 t + 0.2 k) (k from 0), the tip's x and y by
+ * 0.05 sin(t + 0.3 c) (c = 0, 1). test_recursive and the high-precision oracle (ratio_oracle.py,
+ * which writes the same chain's equations itself) use it. */
+static inline vt_model *vt_test_ratio_chain(int rising, int drive, double step)
+{
+    double mass[5];
+    for (int k = 0; k < 5; k++) mass[k] = rising < 0 ? 1.0 : pow(10.0, (rising ? step : -step) * (k - 2));
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_test_add_rods(b, 5, 0.4, mass);
+    const int joints = drive == 0 ? 5 : drive == 1 ? 3 : drive == 2 ? 2 : 1;
+    for (int k = 0; k < joints; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = k + 1;
+        dr.f = vt_function_sine(0.3 + 0.2 * k, 0.4, 1.5, 0.2 * k);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    for (int c = 0; c < 2 && (drive == 1 || drive == 2); c++) {
+        vt_drive_def tip = vt_default_drive_def();
+        tip.type = VT_DRIVE_POINT;
+        tip.body = 5;
+        tip.index = c;
+        tip.point[0] = 0.2;
+        tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * c); /* only its derivatives matter here */
+        assert_true(vt_builder_add_drive(b, &tip) >= 0);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
 #endif
