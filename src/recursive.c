@@ -1051,10 +1051,15 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     if (!drv) memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
     if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc)) /* conditioned (rcond checked): an overflow */
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: q̈ or λ overflows (loads or rates too large)");
-    /* with rows other than joint drives, below rcond_warn: 2, the whole system may keep what the
-     * rows' Schur complement loses (articulated_instant asks vt_solve); joint drives alone have
-     * no other route than the free rates' */
-    return !drv && nc > 0 && rcond < m->rcond_warn ? 2 : 0;
+    /* joint drives among other rows, below rcond_warn: 2, the whole system may keep what the
+     * rows' Schur complement loses (articulated_instant asks vt_solve): π counts the joint-driven
+     * rates, which their rows fix whatever their inertia (light links driven beside heavy ones).
+     * Joint drives alone have no other route than the free rates'; without joint drives π is the
+     * free motion's own inertia spread, and the answer stays with its estimate */
+    if (drv || nc == 0 || rcond >= m->rcond_warn) return 0;
+    for (int r = 0; r < nc; r++)
+        if (m->con_kind[r] == VT_ROW_JOINT) return 2;
+    return 0;
 }
 
 /* right sides of the articulated solve: Q, and one per row unless every row is a joint drive */

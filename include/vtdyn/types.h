@@ -174,7 +174,7 @@ enum {
                                           ///< its diagonal entry, or round-off of 0 against the terms
                                           ///< it is summed from
     VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min, or below
-                                          ///< rcond_warn with rows other than joint drives where vt_solve
+                                          ///< rcond_warn with joint drives among other rows where vt_solve
                                           ///< then keeps the augmented route's answer (its estimate higher:
                                           ///< VT_FALLBACK_SCHUR_CONDITION); where it keeps the Schur one,
                                           ///< the articulated answer stays
