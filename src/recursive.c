@@ -238,11 +238,14 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 }
 
 /* joint i's efforts and reaction from its subtree's wrench Wi (about o): inward_pass's step for one
- * body; 1 if the reaction overflowed */
+ * body; 1 if the reaction overflowed. With totals, also the joint's total wrench (reaction plus
+ * actuation): W̄_i itself, its moment about P_i, before the actuation is taken off; d->jnt_force_total
+ * is then the reaction's force but for a free joint, whose reaction is zeroed. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given)
+static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given,
+                                 const int totals)
 {
     const double *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
     double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
@@ -250,6 +253,15 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
     vt_copy3(mo, Wi);
     vt_cross3(t, P, f);
     for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+    if (totals) {
+        double tb[3];
+        vt_mulmat3t(tb, d->A + 9 * i, f);
+        vt_copy3(d->jnt_force_total + 3 * i, f);
+        vt_copy3(d->jnt_force_total_body + 3 * i, tb);
+        vt_mulmat3t(tb, d->A + 9 * i, mo);
+        vt_copy3(d->jnt_moment_total + 3 * i, mo);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, tb);
+    }
     for (int k = 0; k < m->body_nv[i]; k++) {
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
@@ -304,7 +316,7 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     vt_accelerations(m, d, d->qdd, d->xdd, alpha);
     subtree_wrenches(m, d, alpha, W);
     for (int i = 1; i <= n; i++)
-        if (joint_reaction(m, d, W + 6 * i, i, given))
+        if (joint_reaction(m, d, W + 6 * i, i, given, 0))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     vt_scratch_release(d, mark);
@@ -486,9 +498,9 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
-    if (!alpha) return vt_scratch_fail(d, mark);
-    fused_outward(m, d, alpha, W, mixed);
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    fused_outward(m, d, d->alpha, W, mixed);
     vt_status st = vt_kinematics_check_outputs(m, d);
     if (st) { /* as vt_kinematics_tree's failure before any route */
         d->route = VT_ROUTE_NONE;
@@ -497,7 +509,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
-            if (joint_reaction(m, d, W + 6 * i, i, given))
+            if (joint_reaction(m, d, W + 6 * i, i, given, 1))
                 return vt_scratch_release(d, mark),
                        vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
             if (j > 0)
@@ -523,9 +535,14 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
             }
         }
         d->qfrc_drive[c] = tau;
-        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
         double fb[3], mb[3];
         vt_mulmat3t(fb, d->A + 9 * i, f);
+        vt_mulmat3t(mb, d->A + 9 * i, mo);
+        vt_copy3(d->jnt_force_total + 3 * i, f); /* the total: W̄_i about P_i, actuation included */
+        vt_copy3(d->jnt_moment_total + 3 * i, mo);
+        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
         vt_mulmat3t(mb, d->A + 9 * i, mo);
         vt_copy3(d->jnt_force + 3 * i, f);
         vt_copy3(d->jnt_moment + 3 * i, mo);
@@ -543,6 +560,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         }
     }
     vt_scratch_release(d, mark);
+    if ((st = vt_reactions_total_done(m, d))) return st; /* α and the total wrenches, formed above */
     return vt_reactions_unique(m, d);
 }
 
@@ -979,13 +997,14 @@ static int has_base(const vt_model *m)
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d);
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fused);
 
 /* The instant, then its outputs scanned: finite inputs whose products overflow (an acceleration
  * of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK */
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 {
-    vt_status st = recursive_instant(m, d);
+    int fused = 0; /* the fused passes, which form α and the total wrenches themselves */
+    vt_status st = recursive_instant(m, d, &fused);
     if (st == NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
         st = vt_inverse_dynamics(m, d);
         d->fallback |= VT_FALLBACK_COMPOSITE_ROUNDOFF;
@@ -1003,11 +1022,11 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    if ((st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    if (!fused && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
     return st;
 }
 
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fused)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
@@ -1030,6 +1049,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         d->rank = m->nc;
         d->residual = 0.0;
         vt_mark_unique(m, d);
+        *fused = 1;
         return mix ? fused_pass(m, d, 0, 0) : fused_pass(m, d, 0, 1);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
@@ -1135,7 +1155,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1)) || (st = vt_reactions_total(m, d, 1))) return st;
+    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1))) return st;
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }
