@@ -362,9 +362,6 @@ vt_status vt_reactions_unique(const vt_model *m, vt_data *d);
 /* what every instant path ends with: α of every body (from ẍ) and each joint's total wrench,
  * reaction plus actuation (given: the motion given, every rate's qfrc_drive its effort) */
 vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
-/* vt_reactions_total's end, for a pass that formed α and the total wrenches itself (recursive.c's
- * fused passes): the ground's rows zeroed, every entry checked finite */
-vt_status vt_reactions_total_done(const vt_model *m, vt_data *d);
 
 /* the given motion of a mechanism with loops or couplings: the joint drives' rows take q̈ from
  * d->qdd (instant.c) */

@@ -454,6 +454,11 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
             g[m->body_vadr[c->body_b] + c->index_b] -= c->ratio * l;
         }
     }
+    memset(d->alpha, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
     for (int i = 1; i <= n; i++) {
         const double *p = d->x + vt_xoff(i) + 3, *e = d->jaxis + 9 * i, *Ai = d->A + 9 * i;
         const int jt = m->body_joint[i];
@@ -495,17 +500,7 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
         vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
     }
     vt_scratch_release(d, mark);
-    return vt_reactions_total_done(m, d);
-}
-
-vt_status vt_reactions_total_done(const vt_model *m, vt_data *d)
-{
-    const int n = m->nbody, nb3 = 3 * (n + 1);
-    memset(d->alpha, 0, 3 * sizeof(double));
-    memset(d->jnt_force_total, 0, 3 * sizeof(double));
-    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
-    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
-    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    const int nb3 = 3 * (n + 1);
     if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
         vt_all_finite(d->jnt_force_total_body, nb3) && vt_all_finite(d->jnt_moment_total_body, nb3))
         return VT_OK;

@@ -489,6 +489,38 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
     }
 }
 
+/* The fused passes' results checked at once after both loops (a scan of whole arrays costs less
+ * than checks joint by joint in the inward loop): ẍ, α, the efforts, the reactions and the total
+ * wrenches. Copies are not scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute
+ * joint's drive force is zero and its total force is its reaction's (f, stored twice); q̈ is the
+ * drives' f'' (checked by vt_function_eval_valid) or the given one (checked on entry). A failure
+ * names the first joint from the tree's ends, as a check in the inward loop would. */
+static vt_status fused_check(const vt_model *m, vt_data *d, const int given, const int mixed)
+{
+    const int n = m->nbody, nb3 = 3 * (n + 1), nd = 3 * m->ndrive;
+    if (vt_all_finite(d->xdd, m->nx) && vt_all_finite(d->alpha, nb3) && vt_all_finite(d->qfrc_drive, m->nv) &&
+        (given || (vt_all_finite(d->drive_moment, nd) && (!mixed || vt_all_finite(d->drive_force, nd)))) &&
+        vt_all_finite(d->jnt_force, nb3) && vt_all_finite(d->jnt_moment, nb3) && vt_all_finite(d->jnt_force_body, nb3) &&
+        vt_all_finite(d->jnt_moment_body, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
+        vt_all_finite(d->jnt_moment_total_body, nb3) &&
+        (!mixed || (vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_force_total_body, nb3))))
+        return VT_OK;
+    d->route = VT_ROUTE_NONE;
+    for (int i = n; i >= 1; i--) {
+        if (!vt_all_finite(d->jnt_force + 3 * i, 3) || !vt_all_finite(d->jnt_moment + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
+    }
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->alpha + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
+    return vt_fail(d->message, VT_ERR_NONFINITE,
+                   "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
+}
+
 /* the joint-driven (given = 0) or given (1) instant of an all-revolute tree: inward_pass's
  * outputs, and vt_kinematics_tree's (without Ṡq̇) */
 #if defined(__GNUC__)
@@ -509,9 +541,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
-            if (joint_reaction(m, d, W + 6 * i, i, given, 1))
-                return vt_scratch_release(d, mark),
-                       vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+            (void)joint_reaction(m, d, W + 6 * i, i, given, 1); /* checked with the rest: fused_check */
             if (j > 0)
                 for (int k = 0; k < 6; k++) W[6 * j + k] += W[6 * i + k];
             continue;
@@ -548,9 +578,6 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         vt_copy3(d->jnt_moment + 3 * i, mo);
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
-        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
-            return vt_scratch_release(d, mark),
-                   vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
         if (j > 0) { /* W̄_j += W̄_i */
             double *Wj = W + 6 * j;
             for (int k = 0; k < 3; k++) {
@@ -560,7 +587,11 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         }
     }
     vt_scratch_release(d, mark);
-    if ((st = vt_reactions_total_done(m, d))) return st; /* α and the total wrenches, formed above */
+    memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
+    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    if ((st = fused_check(m, d, given, mixed))) return st;
     return vt_reactions_unique(m, d);
 }
 
@@ -1011,6 +1042,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return st;
     }
     if (st) return st;
+    if (fused) return VT_OK; /* its outputs checked by fused_check, α and the total wrenches formed */
     const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
     if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||
         !vt_all_finite(d->drive_effort, m->ndrive) || !vt_all_finite(d->drive_force, nd) ||
@@ -1022,7 +1054,7 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    if (!fused && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    if ((st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
     return st;
 }
 
