@@ -305,21 +305,25 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int given)
+static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int given, const int totals)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    /* α (3 per body) and the subtree wrenches W (6) in one allocation: W straight after α, not on
-     * a cache line of its own, measured 5 % faster on the joint-driven chain */
-    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
-    if (!alpha) return vt_scratch_fail(d, mark);
-    vt_accelerations(m, d, d->qdd, d->xdd, alpha);
-    subtree_wrenches(m, d, alpha, W);
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    vt_accelerations(m, d, d->qdd, d->xdd, d->alpha);
+    subtree_wrenches(m, d, d->alpha, W);
     for (int i = 1; i <= n; i++)
-        if (joint_reaction(m, d, W + 6 * i, i, given, 0))
+        if (totals ? joint_reaction(m, d, W + 6 * i, i, given, 1) : joint_reaction(m, d, W + 6 * i, i, given, 0))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     vt_scratch_release(d, mark);
+    if (totals) { /* the ground's rows */
+        memset(d->jnt_force_total, 0, 3 * sizeof(double));
+        memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+        memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+        memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    }
     return vt_reactions_unique(m, d);
 }
 
@@ -595,9 +599,11 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     return vt_reactions_unique(m, d);
 }
 
-static vt_status inward(const vt_model *m, vt_data *d)
+/* the inward pass after q̈ is known; without base bodies it also forms the total wrenches, W̄_i
+ * about P_i (a base body's rates act at its centre of mass and through p: vt_reactions_total) */
+static vt_status inward(const vt_model *m, vt_data *d, int totals)
 {
-    return inward_pass(m, d, 0);
+    return inward_pass(m, d, 0, totals);
 }
 
 /* M* by composite bodies and Q by a Newton–Euler pass */
@@ -1028,37 +1034,42 @@ static int has_base(const vt_model *m)
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fused);
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *totals);
 
 /* The instant, then its outputs scanned: finite inputs whose products overflow (an acceleration
  * of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK */
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 {
-    int fused = 0; /* the fused passes, which form α and the total wrenches themselves */
-    vt_status st = recursive_instant(m, d, &fused);
+    /* 2: the fused passes, which form α and the total wrenches and check their outputs
+     * themselves; 1: the inward pass formed α and the total wrenches, scanned below */
+    int totals = 0;
+    vt_status st = recursive_instant(m, d, &totals);
     if (st == NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
         st = vt_inverse_dynamics(m, d);
         d->fallback |= VT_FALLBACK_COMPOSITE_ROUNDOFF;
         return st;
     }
     if (st) return st;
-    if (fused) return VT_OK; /* its outputs checked by fused_check, α and the total wrenches formed */
+    if (totals == 2) return VT_OK; /* its outputs checked by fused_check */
     const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
     if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||
         !vt_all_finite(d->drive_effort, m->ndrive) || !vt_all_finite(d->drive_force, nd) ||
         !vt_all_finite(d->drive_moment, nd) || !vt_all_finite(d->jnt_force, nb) || !vt_all_finite(d->jnt_moment, nb) ||
         !vt_all_finite(d->jnt_force_body, nb) || !vt_all_finite(d->jnt_moment_body, nb) ||
         !vt_all_finite(d->cut_force, nk) || !vt_all_finite(d->cut_moment, nk) ||
-        !vt_all_finite(d->cut_force_body, nk) || !vt_all_finite(d->cut_moment_body, nk)) {
+        !vt_all_finite(d->cut_force_body, nk) || !vt_all_finite(d->cut_moment_body, nk) ||
+        (totals && (!vt_all_finite(d->alpha, nb) || !vt_all_finite(d->jnt_force_total, nb) ||
+                    !vt_all_finite(d->jnt_moment_total, nb) || !vt_all_finite(d->jnt_force_total_body, nb) ||
+                    !vt_all_finite(d->jnt_moment_total_body, nb)))) {
         d->route = VT_ROUTE_NONE;
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    if ((st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    if (!totals && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
     return st;
 }
 
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fused)
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *totals)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
@@ -1081,7 +1092,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fu
         d->rank = m->nc;
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        *fused = 1;
+        *totals = 2;
         return mix ? fused_pass(m, d, 0, 0) : fused_pass(m, d, 0, 1);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
@@ -1093,7 +1104,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fu
         d->rank = m->nc; /* one unit row per rate: independent, every multiplier and reaction unique */
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        return inward(m, d);
+        *totals = !has_base(m);
+        return inward(m, d, *totals);
     }
     if (m->joint_rows_only) { /* q̈ of the free rates, then the inward pass */
         memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double)); /* unit rows (R S = I) */
@@ -1112,7 +1124,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fu
         else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d)) || (st = composite_precision(m, d)) ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive"))) /* or from M*_FF, which also diagnoses */
             return st;
-        return inward(m, d);
+        *totals = !has_base(m);
+        return inward(m, d, *totals);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
     /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
