@@ -497,17 +497,20 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
  * than checks joint by joint in the inward loop): ẍ, α, the efforts, the reactions and the total
  * wrenches. Copies are not scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute
  * joint's drive force is zero and its total force is its reaction's (f, stored twice); q̈ is the
- * drives' f'' (checked by vt_function_eval_valid) or the given one (checked on entry). A failure
- * names the first joint from the tree's ends, as a check in the inward loop would. */
+ * drives' f'' (checked by vt_function_eval_valid) or the given one (checked on entry). The given
+ * motion (vt_inverse_dynamics_motion) scans what it always did, the reactions and the totals, in
+ * which an overflow of ẍ or τ shows (W̄ sums every body's wrench below the joint). A failure names
+ * the first joint from the tree's ends, as a check in the inward loop would. */
 static vt_status fused_check(const vt_model *m, vt_data *d, const int given, const int mixed)
 {
     const int n = m->nbody, nb3 = 3 * (n + 1), nd = 3 * m->ndrive;
-    if (vt_all_finite(d->xdd, m->nx) && vt_all_finite(d->alpha, nb3) && vt_all_finite(d->qfrc_drive, m->nv) &&
-        (given || (vt_all_finite(d->drive_moment, nd) && (!mixed || vt_all_finite(d->drive_force, nd)))) &&
-        vt_all_finite(d->jnt_force, nb3) && vt_all_finite(d->jnt_moment, nb3) && vt_all_finite(d->jnt_force_body, nb3) &&
-        vt_all_finite(d->jnt_moment_body, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
+    if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force, nb3) && vt_all_finite(d->jnt_moment, nb3) &&
+        vt_all_finite(d->jnt_force_body, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
         vt_all_finite(d->jnt_moment_total_body, nb3) &&
-        (!mixed || (vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_force_total_body, nb3))))
+        (!mixed || (vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_force_total_body, nb3))) &&
+        (given || (vt_all_finite(d->xdd, m->nx) && vt_all_finite(d->qfrc_drive, m->nv) && /* the driver's scan */
+                   vt_all_finite(d->jnt_moment_body, nb3) && vt_all_finite(d->drive_moment, nd) &&
+                   (!mixed || vt_all_finite(d->drive_force, nd)))))
         return VT_OK;
     d->route = VT_ROUTE_NONE;
     for (int i = n; i >= 1; i--) {
