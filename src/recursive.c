@@ -21,8 +21,9 @@
  * - JOINT_DRIVEN, every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and
  *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's
  *   Φ_q^T λ with unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point
- *   P_i less the joint's actuation (τ + qfrc) along its axes (inward; without base bodies the
- *   kinematics fused into the same two passes, fused_pass);
+ *   P_i less the joint's actuation (τ + qfrc) along its axes, W̄_i at P_i itself being the joint's
+ *   total wrench (inward; without base bodies the kinematics fused into the same two passes,
+ *   fused_pass, which also store α = ω̇ where they form it);
  * (a free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
  * normal part, so the routes below take free bodies, base bodies only the general one)
  * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
