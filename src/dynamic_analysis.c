@@ -278,7 +278,7 @@ static vt_status motion_residual(const vt_model *m, vt_data *d, double t, const 
     memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
     memcpy(d->qdd, yp + nq, (size_t)nv * sizeof(double));
     d->time = t;
-    const vt_status st = vt_inverse_dynamics_motion_efforts(m, d); /* (α and the totals unused) */
+    const vt_status st = vt_inverse_dynamics_motion(m, d);
     if (st) return st;
     qdot_from_v(m, y, y + nq, r);
     for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];

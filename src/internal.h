@@ -238,8 +238,6 @@ size_t vt_inverse_transform_scratch(const vt_model *m);
  * d->time (Newton's last evaluation), q̇ new; fd: the drives' functions at d->time
  * (vt_drive_values) or NULL; α and the joints' total wrenches only with totals (recursive.c) */
 vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals);
-/* vt_inverse_dynamics_motion without α and the joints' total wrenches on a tree (recursive.c) */
-vt_status vt_inverse_dynamics_motion_efforts(const vt_model *m, vt_data *d);
 /* vt_kinematic_solve_impl's instants: the dense one, the recursive one, the recursive one
  * without α and the joints' total wrenches (vt_reactions_total; the analyses' rows and the
  * exact efforts do not keep them) */

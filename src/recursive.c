@@ -21,8 +21,9 @@
  * - JOINT_DRIVEN, every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and
  *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's
  *   Φ_q^T λ with unit rows, λ = τ), and the reaction at joint i is W̄_i moved to the joint point
- *   P_i less the joint's actuation (τ + qfrc) along its axes (inward; without base bodies the
- *   kinematics fused into the same two passes, fused_pass);
+ *   P_i less the joint's actuation (τ + qfrc) along its axes, W̄_i at P_i itself being the joint's
+ *   total wrench (inward; without base bodies the kinematics fused into the same two passes,
+ *   fused_pass, which also store α = ω̇ where they form it);
  * (a free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
  * normal part, so the routes below take free bodies, base bodies only the general one)
  * - ARTICULATED, fewer rows than rates, no base body: (2) and Φ_q q̈ = γ by articulated bodies
@@ -252,11 +253,14 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 }
 
 /* joint i's efforts and reaction from its subtree's wrench Wi (about o): inward_pass's step for one
- * body; 1 if the reaction overflowed */
+ * body; 1 if the reaction overflowed. With totals, also the joint's total wrench (reaction plus
+ * actuation): W̄_i itself, its moment about P_i, before the actuation is taken off; d->jnt_force_total
+ * is then the reaction's force but for a free joint, whose reaction is zeroed. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given)
+static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given,
+                                 const int totals)
 {
     const double *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
     double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
@@ -264,6 +268,15 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
     vt_copy3(mo, Wi);
     vt_cross3(t, P, f);
     for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+    if (totals) {
+        double tb[3];
+        vt_mulmat3t(tb, d->A + 9 * i, f);
+        vt_copy3(d->jnt_force_total + 3 * i, f);
+        vt_copy3(d->jnt_force_total_body + 3 * i, tb);
+        vt_mulmat3t(tb, d->A + 9 * i, mo);
+        vt_copy3(d->jnt_moment_total + 3 * i, mo);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, tb);
+    }
     for (int k = 0; k < m->body_nv[i]; k++) {
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
@@ -307,21 +320,25 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int given)
+static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int given, const int totals)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    /* α (3 per body) and the subtree wrenches W (6) in one allocation: W straight after α, not on
-     * a cache line of its own, measured 5 % faster on the joint-driven chain */
-    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
-    if (!alpha) return vt_scratch_fail(d, mark);
-    vt_accelerations(m, d, d->qdd, d->xdd, alpha);
-    subtree_wrenches(m, d, alpha, W);
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    vt_accelerations(m, d, d->qdd, d->xdd, d->alpha);
+    subtree_wrenches(m, d, d->alpha, W);
     for (int i = 1; i <= n; i++)
-        if (joint_reaction(m, d, W + 6 * i, i, given))
+        if (totals ? joint_reaction(m, d, W + 6 * i, i, given, 1) : joint_reaction(m, d, W + 6 * i, i, given, 0))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     vt_scratch_release(d, mark);
+    if (totals) { /* the ground's rows */
+        memset(d->jnt_force_total, 0, 3 * sizeof(double));
+        memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+        memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+        memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    }
     return vt_reactions_unique(m, d);
 }
 
@@ -491,6 +508,41 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
     }
 }
 
+/* The fused passes' results checked at once after both loops (a scan of whole arrays costs less
+ * than checks joint by joint in the inward loop): ẍ, α, the efforts, the reactions and the total
+ * wrenches. Copies are not scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute
+ * joint's drive force is zero and its total force is its reaction's (f, stored twice); q̈ is the
+ * drives' f'' (checked by vt_function_eval_valid) or the given one (checked on entry). The given
+ * motion (vt_inverse_dynamics_motion) scans what it always did, the reactions and the totals, in
+ * which an overflow of ẍ or τ shows (W̄ sums every body's wrench below the joint). A failure names
+ * the first joint from the tree's ends, as a check in the inward loop would. */
+static vt_status fused_check(const vt_model *m, vt_data *d, const int given, const int mixed)
+{
+    const int n = m->nbody, nb3 = 3 * (n + 1), nd = 3 * m->ndrive;
+    if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force, nb3) && vt_all_finite(d->jnt_moment, nb3) &&
+        vt_all_finite(d->jnt_force_body, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
+        vt_all_finite(d->jnt_moment_total_body, nb3) &&
+        (!mixed || (vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_force_total_body, nb3))) &&
+        (given || (vt_all_finite(d->xdd, m->nx) && vt_all_finite(d->qfrc_drive, m->nv) && /* the driver's scan */
+                   vt_all_finite(d->jnt_moment_body, nb3) && vt_all_finite(d->drive_moment, nd) &&
+                   (!mixed || vt_all_finite(d->drive_force, nd)))))
+        return VT_OK;
+    d->route = VT_ROUTE_NONE;
+    for (int i = n; i >= 1; i--) {
+        if (!vt_all_finite(d->jnt_force + 3 * i, 3) || !vt_all_finite(d->jnt_moment + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
+    }
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->alpha + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
+    return vt_fail(d->message, VT_ERR_NONFINITE,
+                   "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
+}
+
 /* the joint-driven (given = 0) or given (1) instant of an all-revolute tree: inward_pass's
  * outputs, and vt_kinematics_tree's (without Ṡq̇) */
 #if defined(__GNUC__)
@@ -500,9 +552,9 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    double *alpha = VT_SCRATCH(d, double, 9 * nb, "α and subtree wrenches"), *W = alpha + 3 * nb;
-    if (!alpha) return vt_scratch_fail(d, mark);
-    fused_outward(m, d, alpha, W, mixed);
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    fused_outward(m, d, d->alpha, W, mixed);
     vt_status st = vt_kinematics_check_outputs(m, d);
     if (st) { /* as vt_kinematics_tree's failure before any route */
         d->route = VT_ROUTE_NONE;
@@ -511,9 +563,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
-            if (joint_reaction(m, d, W + 6 * i, i, given))
-                return vt_scratch_release(d, mark),
-                       vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+            (void)joint_reaction(m, d, W + 6 * i, i, given, 1); /* checked with the rest: fused_check */
             if (j > 0)
                 for (int k = 0; k < 6; k++) W[6 * j + k] += W[6 * i + k];
             continue;
@@ -537,17 +587,19 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
             }
         }
         d->qfrc_drive[c] = tau;
-        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
         double fb[3], mb[3];
         vt_mulmat3t(fb, d->A + 9 * i, f);
+        vt_mulmat3t(mb, d->A + 9 * i, mo);
+        vt_copy3(d->jnt_force_total + 3 * i, f); /* the total: W̄_i about P_i, actuation included */
+        vt_copy3(d->jnt_moment_total + 3 * i, mo);
+        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
         vt_mulmat3t(mb, d->A + 9 * i, mo);
         vt_copy3(d->jnt_force + 3 * i, f);
         vt_copy3(d->jnt_moment + 3 * i, mo);
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
-        if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
-            return vt_scratch_release(d, mark),
-                   vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
         if (j > 0) { /* W̄_j += W̄_i */
             double *Wj = W + 6 * j;
             for (int k = 0; k < 3; k++) {
@@ -557,12 +609,19 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         }
     }
     vt_scratch_release(d, mark);
+    memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
+    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    if ((st = fused_check(m, d, given, mixed))) return st;
     return vt_reactions_unique(m, d);
 }
 
-static vt_status inward(const vt_model *m, vt_data *d)
+/* the inward pass after q̈ is known; without base bodies it also forms the total wrenches, W̄_i
+ * about P_i (a base body's rates act at its centre of mass and through p: vt_reactions_total) */
+static vt_status inward(const vt_model *m, vt_data *d, int totals)
 {
-    return inward_pass(m, d, 0);
+    return inward_pass(m, d, 0, totals);
 }
 
 /* M* by composite bodies and Q by a Newton–Euler pass */
@@ -1175,19 +1234,23 @@ static int has_base(const vt_model *m)
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d);
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *formed);
 static vt_status constrained_instant(const vt_model *m, vt_data *d);
-static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int totals);
+static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int formed, int totals);
 
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 {
-    return outputs_scanned(m, d, recursive_instant(m, d), 1);
+    int formed = 0;
+    const vt_status st = recursive_instant(m, d, &formed);
+    return outputs_scanned(m, d, st, formed, 1);
 }
 
 /* The instant after it, its outputs scanned: finite inputs whose products overflow (an
- * acceleration of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK; then, with
- * totals, α and the joints' total wrenches */
-static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int totals)
+ * acceleration of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK. formed: 2
+ * the fused passes formed α and the total wrenches and checked their outputs themselves; 1 the
+ * inward pass formed α and the total wrenches (scanned here); 0 neither: with totals,
+ * vt_reactions_total forms them */
+static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int formed, int totals)
 {
     if (st == NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
         st = vt_inverse_dynamics(m, d);
@@ -1195,22 +1258,26 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, in
         return st;
     }
     if (st) return st;
+    if (formed == 2) return VT_OK; /* its outputs checked by fused_check */
     const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
     if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||
         !vt_all_finite(d->drive_effort, m->ndrive) || !vt_all_finite(d->drive_force, nd) ||
         !vt_all_finite(d->drive_moment, nd) || !vt_all_finite(d->jnt_force, nb) || !vt_all_finite(d->jnt_moment, nb) ||
         !vt_all_finite(d->jnt_force_body, nb) || !vt_all_finite(d->jnt_moment_body, nb) ||
         !vt_all_finite(d->cut_force, nk) || !vt_all_finite(d->cut_moment, nk) ||
-        !vt_all_finite(d->cut_force_body, nk) || !vt_all_finite(d->cut_moment_body, nk)) {
+        !vt_all_finite(d->cut_force_body, nk) || !vt_all_finite(d->cut_moment_body, nk) ||
+        (formed && (!vt_all_finite(d->alpha, nb) || !vt_all_finite(d->jnt_force_total, nb) ||
+                    !vt_all_finite(d->jnt_moment_total, nb) || !vt_all_finite(d->jnt_force_total_body, nb) ||
+                    !vt_all_finite(d->jnt_moment_total_body, nb)))) {
         d->route = VT_ROUTE_NONE;
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
-    if (totals && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    if (!formed && totals && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
     return st;
 }
 
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *formed)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
@@ -1233,6 +1300,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         d->rank = m->nc;
         d->residual = 0.0;
         vt_mark_unique(m, d);
+        *formed = 2;
         return mix ? fused_pass(m, d, 0, 0) : fused_pass(m, d, 0, 1);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
@@ -1244,7 +1312,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         d->rank = m->nc; /* one unit row per rate: independent, every multiplier and reaction unique */
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        return inward(m, d);
+        *formed = !has_base(m);
+        return inward(m, d, *formed);
     }
     if (m->joint_rows_only) { /* q̈ of the free rates, then the inward pass */
         memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double)); /* unit rows (R S = I) */
@@ -1263,7 +1332,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d)
         else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d)) || (st = composite_precision(m, d)) ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive"))) /* or from M*_FF, which also diagnoses */
             return st;
-        return inward(m, d);
+        *formed = !has_base(m);
+        return inward(m, d, *formed);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
     return constrained_instant(m, d);
@@ -1303,7 +1373,7 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     d->fallback = 0;
     if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
         st = constrained_instant(m, d);
-    return outputs_scanned(m, d, st, totals);
+    return outputs_scanned(m, d, st, 0, totals);
 }
 
 /* The scratch recursive.c takes at once: the articulated route's work (the largest, with the
@@ -1335,21 +1405,7 @@ size_t vt_recursive_scratch(const vt_model *m)
  * follows from the rows (vt_motion_rows, instant.c). Base bodies of a tree are refused: a base
  * body's ṗ rates carry (4)'s normal part (its multiplier); a free joint (VT_JOINT_FREE), whose
  * six rates are twists, is what a floating robot uses here. */
-static vt_status motion_instant(const vt_model *m, vt_data *d, int totals);
-
 vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
-{
-    return motion_instant(m, d, 1);
-}
-
-/* the same without α and the joints' total wrenches of a tree (a forward run's residual needs
- * the efforts alone) */
-vt_status vt_inverse_dynamics_motion_efforts(const vt_model *m, vt_data *d)
-{
-    return motion_instant(m, d, 0);
-}
-
-static vt_status motion_instant(const vt_model *m, vt_data *d, int totals)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
     if (st) return st;
@@ -1385,7 +1441,7 @@ static vt_status motion_instant(const vt_model *m, vt_data *d, int totals)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1)) || (totals && (st = vt_reactions_total(m, d, 1)))) return st;
+    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1))) return st; /* α and the totals formed in it */
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }

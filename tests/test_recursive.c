@@ -500,6 +500,55 @@ static void test_fused_kinematics(void **state)
     }
 }
 
+/* The fused passes (every rate joint-driven, or the motion given, no base body) check their
+ * results once after both loops: finite inputs whose results overflow are refused with
+ * VT_ERR_NONFINITE, a message and no route, the inputs left as they were. (a) the joint-driven
+ * chain and (b) the motion of trees with free joints under 1.5e308 N on a body and its parent
+ * (the subtree sum overflows the reactions, or a free joint's total wrench); (c) the chain's motion with every q̈ at 1e308 (α and ẍ overflow
+ * down the chain). */
+static void test_fused_overflow(void **state)
+{
+    (void)state;
+    for (int c = 0; c < 4; c++) {
+        vt_model *m;
+        vt_data *d;
+        if (c == 0) assert_ok(vt_scene_chain(&m, 6, VT_CHAIN_JOINT_DRIVEN));
+        else if (c < 3) assert_ok(vt_scene_random_tree(&m, (uint64_t)c + 4, 7, VT_SCENE_WITH_FREE));
+        else assert_ok(vt_scene_chain(&m, 6, VT_CHAIN_FREE));
+        assert_ok(vt_data_create(&d, m));
+        uint64_t s = 11u + (uint64_t)c;
+        if (c == 0 || c == 3)
+            for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, d->q + k, d->qd + k, d->qdd + k);
+        else vt_scene_random_state(m, d, &s);
+        d->time = 0.3;
+        for (int k = 0; k < m->nv; k++) d->qdd[k] = c == 3 ? 1e308 : vt_rand_uniform(&s, -2, 2);
+        if (c < 3) { /* the last body and its parent */
+            const int j = m->body_parent[m->nbody];
+            assert_true(j > 0);
+            d->xfrc[6 * m->nbody + 1] = d->xfrc[6 * j + 1] = 1.5e308;
+        }
+        double *in = malloc(((size_t)m->nq + 2 * (size_t)m->nv + 6 * ((size_t)m->nbody + 1)) * sizeof(double));
+        double *k0 = in, *k1 = k0 + m->nq, *k2 = k1 + m->nv, *k3 = k2 + m->nv;
+        memcpy(k0, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(k1, d->qd, (size_t)m->nv * sizeof(double));
+        memcpy(k2, d->qdd, (size_t)m->nv * sizeof(double));
+        memcpy(k3, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        d->message[0] = '\0';
+        const vt_status st = c == 0 ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics_motion(m, d);
+        if (st != VT_ERR_NONFINITE) fail_msg("case %d: status %d (%s)", c, (int)st, d->message);
+        print_message("case %d: %s\n", c, d->message);
+        assert_non_null(strstr(d->message, "overflow"));
+        assert_int_equal(d->route, VT_ROUTE_NONE);
+        assert_memory_equal(k0, d->q, (size_t)m->nq * sizeof(double));
+        assert_memory_equal(k1, d->qd, (size_t)m->nv * sizeof(double));
+        if (c > 0) assert_memory_equal(k2, d->qdd, (size_t)m->nv * sizeof(double));
+        assert_memory_equal(k3, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        free(in);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
 static void test_motion(void **state)
 {
     (void)state;
@@ -1855,6 +1904,7 @@ int main(void)
         cmocka_unit_test(test_long_chain),
         cmocka_unit_test(test_mass_ratios),
         cmocka_unit_test(test_fused_kinematics),
+        cmocka_unit_test(test_fused_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
