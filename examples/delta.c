@@ -119,14 +119,15 @@ int main(int argc, char **argv)
     for (int k = 0; k < ti->nfilled; k++) {
         const double *q = ti->q + (size_t)k * (size_t)mi->nq, *qf = ti->q_fwd + (size_t)k * (size_t)mi->nq;
         const double *qd = ti->qd + (size_t)k * (size_t)mi->nv, *qdd = ti->qdd + (size_t)k * (size_t)mi->nv;
-        const double *qdd_p = tr->qdd + (size_t)k * (size_t)m->nv, *tau = ti->drive_effort + (size_t)k * 3;
+        const double *qd_p = tr->qd + (size_t)k * (size_t)m->nv, *qdd_p = tr->qdd + (size_t)k * (size_t)m->nv;
+        const double *tau = ti->drive_effort + (size_t)k * 3;
         /* the same motion as the path's run; the motors' power equal to the point drives' (the
          * same motion, the same kinetic and potential energy) */
         for (int c = 0; c < mi->nv; c++) qdd_err = fmax(qdd_err, fabs(qdd[c] - qdd_p[c]) / (1.0 + fabs(qdd_p[c])));
         double pm = 0.0, pp = 0.0, pa = 0.0;
         for (int i = 0; i < 3; i++) {
             pm += tau[i] * qd[mi->body_vadr[1 + i]];
-            pp += tr->drive_effort[(size_t)k * 3 + (size_t)i] * tr->qd[(size_t)k * (size_t)m->nv + (size_t)(m->body_vadr[10] + i)];
+            pp += tr->drive_effort[(size_t)k * 3 + (size_t)i] * qd_p[m->body_vadr[10] + i];
             pa += fabs(tau[i] * qd[mi->body_vadr[1 + i]]);
         }
         pow_err = fmax(pow_err, fabs(pm - pp));
