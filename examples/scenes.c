@@ -475,10 +475,18 @@ void vt_scene_five_link_guess(const vt_model *m, vt_data *d, double t)
     q[m->body_qadr[5]] = -psi;
 }
 
-vt_status vt_scene_delta(vt_model **model, double period, int drives)
+/* drive i of VT_DELTA_IK: θ_i, θ̇_i, θ̈_i at the path's p(t), ṗ(t), p̈(t) */
+static int delta_motor_path(double t, double out[3], void *user)
 {
-    if (!(period > 0.0 && isfinite(period)) || (drives != VT_DELTA_PATH && drives != VT_DELTA_MOTORS))
-        return VT_ERR_BAD_OPTION;
+    const vt_delta_arm *arm = user;
+    double p[3], pd[3], pdd[3];
+    vt_scene_delta_path(t, arm->ik->period, p, pd, pdd);
+    return vt_scene_delta_motor(arm->arm, p, pd, pdd, out) ? 1 : 0;
+}
+
+/* the Delta with the drives `drives`; ik the callbacks' data of VT_DELTA_IK */
+static vt_status delta_build(vt_model **model, double period, int drives, vt_delta_ik *ik)
+{
     vt_model_def md = vt_default_model_def();
     md.gravity[1] = 0.0;
     md.gravity[2] = -9.81;
@@ -551,10 +559,68 @@ vt_status vt_scene_delta(vt_model **model, double period, int drives)
             else dr.f = vt_function_sine(VT_DELTA_Z0, VT_DELTA_DZ, 2.0 * w, 0.0);
         } else {
             dr.body = 1 + k; /* joint drive of the motor angle */
+            if (drives == VT_DELTA_IK) dr.f = vt_function_user(delta_motor_path, &ik->arm[k]);
         }
         id = vt_builder_add_drive(b, &dr);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_delta(vt_model **model, double period, int drives)
+{
+    if (!(period > 0.0 && isfinite(period)) || (drives != VT_DELTA_PATH && drives != VT_DELTA_MOTORS))
+        return VT_ERR_BAD_OPTION;
+    return delta_build(model, period, drives, NULL);
+}
+
+vt_status vt_scene_delta_ik(vt_model **model, vt_delta_ik *ik, double period)
+{
+    if (!ik) return VT_ERR_NULL;
+    if (!(period > 0.0 && isfinite(period))) return VT_ERR_BAD_OPTION;
+    ik->period = period;
+    for (int i = 0; i < 3; i++) {
+        ik->arm[i].ik = ik;
+        ik->arm[i].arm = i;
+    }
+    return delta_build(model, period, VT_DELTA_IK, ik);
+}
+
+/* Arm i (u = (cos φ_i, sin φ_i, 0), t = (−sin φ_i, cos φ_i, 0)): the elbow
+ * E = (RB + LA cos θ) u − LA sin θ z and the rods' platform end p + RP u are LF apart. With
+ * c = p + (RP − RB) u and its components a = c·u, b = c·t, z = c_z:
+ *   |c − LA cos θ u + LA sin θ z|² = LF²  ⇔  F(θ, p) = A cos θ + B sin θ − K = 0,
+ *   A = −2 LA a,  B = 2 LA z,  K = LF² − LA² − a² − b² − z²,
+ * solved by θ = atan2(B, A) ± acos(K / √(A² + B²)), the elbow out the root of larger cos θ.
+ * Along a motion ȧ = ṗ·u, ḃ = ṗ·t, ż = ṗ_z (and likewise for the second derivatives), so
+ *   Ȧ = −2 LA ȧ,  Ḃ = 2 LA ż,  K̇ = −2 (a ȧ + b ḃ + z ż),  K̈ = −2 (ȧ² + ḃ² + ż² + a ä + b b̈ + z z̈),
+ * and with F_θ = −A sin θ + B cos θ, differentiating F = 0 once and twice:
+ *   F_θ θ̇ + Ȧ cos θ + Ḃ sin θ − K̇ = 0,
+ *   F_θ θ̈ + Ä cos θ + B̈ sin θ − K̈ + 2 θ̇ (−Ȧ sin θ + Ḃ cos θ) − θ̇² (A cos θ + B sin θ) = 0. */
+int vt_scene_delta_motor(int arm, const double p[3], const double pd[3], const double pdd[3], double th[3])
+{
+    const double phi = 2.0 * VT_PI * arm / 3.0;
+    const double u[2] = {cos(phi), sin(phi)}, t[2] = {-u[1], u[0]};
+    const double cx = p[0] + (VT_DELTA_RP - VT_DELTA_RB) * u[0], cy = p[1] + (VT_DELTA_RP - VT_DELTA_RB) * u[1];
+    const double a = cx * u[0] + cy * u[1], bt = cx * t[0] + cy * t[1], z = p[2];
+    const double A = -2.0 * a * VT_DELTA_LA, B = 2.0 * z * VT_DELTA_LA;
+    const double K = VT_DELTA_LF * VT_DELTA_LF - VT_DELTA_LA * VT_DELTA_LA - a * a - bt * bt - z * z;
+    const double rAB = sqrt(A * A + B * B);
+    if (!(rAB > 0.0) || !(fabs(K) <= rAB)) return -1;
+    const double th1 = atan2(B, A) + acos(K / rAB), th2 = atan2(B, A) - acos(K / rAB);
+    const double q = cos(th1) >= cos(th2) ? th1 : th2, c = cos(q), s = sin(q);
+    th[0] = q;
+    if (!pd || !pdd) return 0;
+    const double Fth = -A * s + B * c;
+    if (!(Fth != 0.0)) return -1;
+    const double ad = pd[0] * u[0] + pd[1] * u[1], bd = pd[0] * t[0] + pd[1] * t[1], zd = pd[2];
+    const double add = pdd[0] * u[0] + pdd[1] * u[1], bdd = pdd[0] * t[0] + pdd[1] * t[1], zdd = pdd[2];
+    const double Ad = -2.0 * VT_DELTA_LA * ad, Bd = 2.0 * VT_DELTA_LA * zd, Kd = -2.0 * (a * ad + bt * bd + z * zd);
+    const double Add = -2.0 * VT_DELTA_LA * add, Bdd = 2.0 * VT_DELTA_LA * zdd;
+    const double Kdd = -2.0 * (ad * ad + bd * bd + zd * zd + a * add + bt * bdd + z * zdd);
+    const double qd = -(Ad * c + Bd * s - Kd) / Fth;
+    th[1] = qd;
+    th[2] = -(Add * c + Bdd * s - Kdd + 2.0 * qd * (-Ad * s + Bd * c) - qd * qd * (A * c + B * s)) / Fth;
+    return 0;
 }
 
 void vt_scene_delta_path(double t, double period, double p[3], double pd[3], double pdd[3])
@@ -583,17 +649,13 @@ int vt_scene_delta_assemble(const vt_model *m, vt_data *d, const double p[3])
         const double phi = 2.0 * VT_PI * i / 3.0;
         const double u[3] = {cos(phi), sin(phi), 0.0}, t[3] = {-u[1], u[0], 0.0};
         /* the rod runs from the elbow E = (RB + LA cos θ) u − LA sin θ z to the platform's point
-         * p + RP u (either rod: the parallelogram); |c − LA cos θ u + LA sin θ z| = LF with
-         * c = p + (RP − RB) u gives A cos θ + B sin θ = K */
+         * p + RP u (either rod: the parallelogram), c − LA cos θ u + LA sin θ z with
+         * c = p + (RP − RB) u; θ from vt_scene_delta_motor (elbow out) */
         const double cv[3] = {p[0] + (VT_DELTA_RP - VT_DELTA_RB) * u[0], p[1] + (VT_DELTA_RP - VT_DELTA_RB) * u[1], p[2]};
         const double a = cv[0] * u[0] + cv[1] * u[1], bt = cv[0] * t[0] + cv[1] * t[1], z = cv[2];
-        const double A = -2.0 * a * VT_DELTA_LA, B = 2.0 * z * VT_DELTA_LA;
-        const double K = VT_DELTA_LF * VT_DELTA_LF - VT_DELTA_LA * VT_DELTA_LA - a * a - bt * bt - z * z;
-        const double rAB = sqrt(A * A + B * B);
-        if (!(rAB > 0.0) || fabs(K) > rAB) return -1;
-        /* the two roots atan2(B, A) ± acos(K / rAB): the elbow out is the one of larger cos θ */
-        const double th1 = atan2(B, A) + acos(K / rAB), th2 = atan2(B, A) - acos(K / rAB);
-        const double th = cos(th1) >= cos(th2) ? th1 : th2;
+        double ths[3];
+        if (vt_scene_delta_motor(i, p, NULL, NULL, ths)) return -1;
+        const double th = ths[0];
         d->q[m->body_qadr[1 + i]] = th;
         /* the rod's direction in the arm's axes x_a = cos θ u − sin θ z, y_a = t,
          * z_a = sin θ u + cos θ z; the universal turns it from −z_a to

@@ -160,7 +160,13 @@ void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
  *            VT_DELTA_MOTORS  three joint drives on the motor angles (drive i on arm i),
  *                             constant 0: the motion is given to vt_inverse_dynamics_motion(),
  *                             whose efforts are then the motor torques
- * VT_ERR_BAD_OPTION for a period that is not > 0 and finite, or an unknown drives. */
+ *            VT_DELTA_IK      three joint drives on the motor angles (drive i on arm i) following
+ *                             the path's inverse kinematics θ_i(t) (vt_scene_delta_motor() of
+ *                             vt_scene_delta_path()): one model whose drive efforts are the motor
+ *                             torques. Its callbacks need data that outlives the model: build it
+ *                             with vt_scene_delta_ik(); here it is refused.
+ * VT_ERR_BAD_OPTION for a period that is not > 0 and finite, or drives not VT_DELTA_PATH or
+ * VT_DELTA_MOTORS. */
 #define VT_DELTA_RB 0.2   /* base radius (motor axes), m */
 #define VT_DELTA_LA 0.35  /* upper arm, m */
 #define VT_DELTA_LF 0.8   /* forearm rods, m */
@@ -172,8 +178,33 @@ void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
 #define VT_DELTA_RHO 0.15 /* radius of the path's circle, m */
 #define VT_DELTA_Z0 (-0.85) /* height of the circle's centre, m */
 #define VT_DELTA_DZ 0.05  /* the path's rise and fall, m */
-enum { VT_DELTA_PATH, VT_DELTA_MOTORS };
+enum { VT_DELTA_PATH, VT_DELTA_MOTORS, VT_DELTA_IK };
 vt_status vt_scene_delta(vt_model **model, double period, int drives);
+/* The Delta driven at its motors by the path's inverse kinematics (VT_DELTA_IK): drive i holds
+ * arm i's motor angle at θ_i(t), the closed form of vt_scene_delta_motor() at the platform centre
+ * p(t) = vt_scene_delta_path(t, period) with θ̇_i and θ̈_i exact. The drives' efforts are the
+ * motor torques (N·m about t_i, positive turning the arm down), the reactions those of the
+ * machine driven by its motors. The struct must outlive the model (its arms are the drives'
+ * callback data, as vt_scene_stewart's legs); vt_scene_delta_ik fills it. A callback fails
+ * (VT_ERR_CALLBACK from the analyses) where the path leaves the reach or meets a singular pose.
+ * VT_ERR_NULL for a NULL ik; VT_ERR_BAD_OPTION for a period that is not > 0 and finite. */
+typedef struct vt_delta_arm {
+    const struct vt_delta_ik *ik;
+    int arm;
+} vt_delta_arm;
+typedef struct vt_delta_ik {
+    double period;         /* s, the path's period */
+    vt_delta_arm arm[3];   /* filled by vt_scene_delta_ik: the drives' callback data */
+} vt_delta_ik;
+vt_status vt_scene_delta_ik(vt_model **model, vt_delta_ik *ik, double period);
+/* Arm `arm`'s motor angle θ (rad, > 0 down) with the platform's centre at p (m), elbow out, and
+ * when pd and pdd are not NULL its time derivatives θ̇, θ̈ for the centre's velocity pd (m/s)
+ * and acceleration pdd (m/s²): th[0..2] = θ, θ̇, θ̈ (th[1], th[2] untouched without pd, pdd).
+ * The elbow lies on the circle of radius VT_DELTA_LA about the motor axis, VT_DELTA_LF from the
+ * rods' platform end: F(θ, p) = A cos θ + B sin θ − K = 0 (scenes.c); θ̇ = −F_t / F_θ and θ̈ from
+ * F's second derivative, by implicit differentiation. Returns 0, or −1 where p is out of reach
+ * or (with derivatives) F_θ = 0, the arm and its rods in line. */
+int vt_scene_delta_motor(int arm, const double p[3], const double pd[3], const double pdd[3], double th[3]);
 /* The platform centre's path, p, ṗ, p̈ at time t (any of them may be NULL): a circle of radius
  * VT_DELTA_RHO about the z axis at height VT_DELTA_Z0, rising and falling by VT_DELTA_DZ twice
  * a turn: p = (ρ cos ωt, ρ sin ωt, z0 + Δz sin 2ωt), ω = 2π/period. */

@@ -1,4 +1,4 @@
-/* The Delta robot of examples/delta.c (vt_scene_delta in examples/scenes.c), verified three ways:
+/* The Delta robot of examples/delta.c (vt_scene_delta in examples/scenes.c), verified four ways:
  *  1. the forward check: the drives removed, their generalized forces applied, IDA from the same
  *     start; the platform centre stays on the driven run's to 1e-6 m (and the driven run on the
  *     prescribed path to 1e-10 m);
@@ -7,7 +7,11 @@
  *     (q̇ = q̈ = 0) and along the path run a million times slower;
  *  3. the power balance: the motors' power Σ τ_i θ̇_i, and the point drives' Σ f_k ṗ_k, against
  *     d/dt (T + V) = Σ_bodies m (a − g)·v + ω·J α from the bodies' own motion, to 1e-9 of the
- *     largest power term on the path.
+ *     largest power term on the path;
+ *  4. the one model driven at its motors by the path's inverse kinematics (vt_scene_delta_ik):
+ *     its θ_i(t) against the path model's Newton solution (1e-12 rad), θ̇ and θ̈ against central
+ *     differences of θ (1e-7, 1e-5) and the path model's q̇, q̈; its run on the path (1e-10 m),
+ *     its forward check, and its torques and reactions against the two-model route (1e-9).
  * The model is exactly constrained (21 rates, 18 cut rows and 3 drives, no redundant rows). */
 #include "vt_test.h"
 
@@ -254,6 +258,134 @@ static void test_power_balance(void **state)
     vt_model_free(m);
 }
 
+/* 4. the one model driven at its motors by the path's inverse kinematics (VT_DELTA_IK): its time
+ * functions against the path model's solved motor angles (Newton on all 21 rows from another
+ * pose) and against central differences of themselves */
+static void test_ik_angles(void **state)
+{
+    (void)state;
+    vt_model *m, *mi;
+    vt_data *d;
+    vt_delta_ik ik;
+    assert_ok(vt_scene_delta(&m, 1.0, VT_DELTA_PATH));
+    assert_ok(vt_scene_delta_ik(&mi, &ik, 1.0));
+    assert_int_equal(mi->ndrive, 3);
+    assert_int_equal(mi->nc, 21);
+    assert_ok(vt_data_create(&d, m));
+    double e_q = 0.0, e_qd = 0.0, e_qdd = 0.0, e_fd1 = 0.0, e_fd2 = 0.0;
+    for (int k = 0; k < 24; k++) {
+        const double t = k / 24.0 + 0.01;
+        /* the path model solved at t from the pose 0.03 s later: Newton has work to do */
+        double p[3];
+        vt_scene_delta_path(t + 0.03, 1.0, p, NULL, NULL);
+        assert_int_equal(vt_scene_delta_assemble(m, d, p), 0);
+        d->time = t;
+        assert_ok(vt_kinematic_solve(m, d, 1e-14, 30));
+        for (int i = 0; i < 3; i++) {
+            double f[3], fp[3], fm[3], gp[3], gm[3];
+            assert_ok(vt_function_eval(f, &mi->drive[i].f, t));
+            assert_ok(vt_function_eval(fp, &mi->drive[i].f, t + 1e-5));
+            assert_ok(vt_function_eval(fm, &mi->drive[i].f, t - 1e-5));
+            assert_ok(vt_function_eval(gp, &mi->drive[i].f, t + 1e-4));
+            assert_ok(vt_function_eval(gm, &mi->drive[i].f, t - 1e-4));
+            const int v = m->body_vadr[1 + i];
+            e_q = fmax(e_q, fabs(f[0] - d->q[m->body_qadr[1 + i]]));
+            e_qd = fmax(e_qd, fabs(f[1] - d->qd[v]) / (1.0 + fabs(d->qd[v])));
+            e_qdd = fmax(e_qdd, fabs(f[2] - d->qdd[v]) / (1.0 + fabs(d->qdd[v])));
+            e_fd1 = fmax(e_fd1, fabs(f[1] - (fp[0] - fm[0]) / 2e-5) / (1.0 + fabs(f[1])));
+            e_fd2 = fmax(e_fd2, fabs(f[2] - (gp[0] - 2.0 * f[0] + gm[0]) / 1e-8) / (1.0 + fabs(f[2])));
+        }
+    }
+    print_message("delta IK: θ against the path model's Newton %.3g rad; θ̇, θ̈ against its q̇, q̈ %.3g, %.3g "
+                  "(relative); against central differences %.3g, %.3g\n",
+                  e_q, e_qd, e_qdd, e_fd1, e_fd2);
+    assert_true(e_q <= 1e-12);
+    assert_true(e_qd <= 1e-10);
+    assert_true(e_qdd <= 1e-10);
+    assert_true(e_fd1 <= 1e-7);
+    assert_true(e_fd2 <= 1e-5);
+    vt_data_free(d);
+    vt_model_free(mi);
+    vt_model_free(m);
+}
+
+/* 5. the IK model's kinematic analysis: its platform on the path, its forward check (the motor
+ * torques applied, the motor drives removed), and its efforts and reactions against the two-model
+ * route (the path model's motion given to the motor model, as the example used to print) */
+static void test_ik_model(void **state)
+{
+    (void)state;
+    vt_model *m, *mm, *mi;
+    vt_data *d, *dm, *di;
+    vt_trajectory *tr, *ti;
+    vt_delta_ik ik;
+    run_path(&m, &d, &tr, 1.0, 100, 0);
+    assert_ok(vt_scene_delta(&mm, 1.0, VT_DELTA_MOTORS));
+    assert_ok(vt_data_create(&dm, mm));
+    assert_ok(vt_scene_delta_ik(&mi, &ik, 1.0));
+    assert_ok(vt_data_create(&di, mi));
+    vt_run_options opt = vt_default_run_options();
+    opt.t1 = 1.0;
+    opt.nout = 100;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    opt.forward_check = VT_HAVE_SUNDIALS;
+    assert_ok(vt_trajectory_create(&ti, mi, 101));
+    double p0[3];
+    vt_scene_delta_path(0.0, 1.0, p0, NULL, NULL);
+    assert_int_equal(vt_scene_delta_assemble(mi, di, p0), 0);
+    assert_ok(vt_kinematic_analysis(mi, di, &opt, ti));
+    assert_int_equal(ti->nfilled, 101);
+    const int pq = mi->body_qadr[10];
+    double path = 0.0, dev = 0.0, tau_max = 0.0, e_tau = 0.0, f_max = 0.0, e_f = 0.0;
+    for (int k = 0; k < ti->nfilled; k++) {
+        const double *q = ti->q + (size_t)k * (size_t)mi->nq, *qf = ti->q_fwd + (size_t)k * (size_t)mi->nq;
+        double p[3], e = 0.0;
+        assert_near(ti->t[k], tr->t[k], 1e-15);
+        vt_scene_delta_path(ti->t[k], 1.0, p, NULL, NULL);
+        for (int c = 0; c < 3; c++) {
+            path = fmax(path, fabs(q[pq + c] - p[c]));
+            e += (qf[pq + c] - q[pq + c]) * (qf[pq + c] - q[pq + c]);
+        }
+        dev = fmax(dev, sqrt(e));
+        assert_near(q[pq + 3], 1.0, 1e-12);
+        for (int c = 4; c < 7; c++) assert_near(q[pq + c], 0.0, 1e-12);
+        motors_at_row(mm, dm, tr, k);
+        for (int i = 0; i < 3; i++) {
+            tau_max = fmax(tau_max, fabs(dm->drive_effort[i]));
+            e_tau = fmax(e_tau, fabs(ti->drive_effort[(size_t)k * 3 + (size_t)i] - dm->drive_effort[i]));
+        }
+        /* every bearing: the motors' and elbows' (bodies 1..9) and the ball joints */
+        const double *jf = ti->jnt_force + (size_t)k * 3 * (size_t)(mi->nbody + 1);
+        const double *jm = ti->jnt_moment + (size_t)k * 3 * (size_t)(mi->nbody + 1);
+        const double *cf = ti->cut_force + (size_t)k * 3 * (size_t)mi->ncut;
+        for (int c = 3; c < 30; c++) {
+            f_max = fmax(f_max, fabs(dm->jnt_force[c]));
+            e_f = fmax(e_f, fmax(fabs(jf[c] - dm->jnt_force[c]), fabs(jm[c] - dm->jnt_moment[c])));
+        }
+        for (int c = 0; c < 18; c++) e_f = fmax(e_f, fabs(cf[c] - dm->cut_force[c]));
+    }
+    print_message("delta IK model: platform on the path %.3g m, forward check %.3g m (%ld IDA steps); against the "
+                  "two-model route: torques %.3g of %.4g N m, reactions %.3g of %.4g N\n",
+                  path, dev, ti->steps_fwd, e_tau, tau_max, e_f, f_max);
+    assert_true(path <= 1e-10);
+#if VT_HAVE_SUNDIALS
+    assert_true(dev <= 1e-6);
+    assert_true(dev > 0.0); /* a separate integration, not the driven run copied */
+#endif
+    assert_true(tau_max > 1.0);
+    assert_true(e_tau <= 1e-9 * tau_max);
+    assert_true(e_f <= 1e-9 * f_max);
+    vt_trajectory_free(ti);
+    vt_trajectory_free(tr);
+    vt_data_free(di);
+    vt_data_free(dm);
+    vt_data_free(d);
+    vt_model_free(mi);
+    vt_model_free(mm);
+    vt_model_free(m);
+}
+
 /* the scene's refusals */
 static void test_bad_options(void **state)
 {
@@ -262,7 +394,15 @@ static void test_bad_options(void **state)
     assert_int_equal(vt_scene_delta(&m, 0.0, VT_DELTA_PATH), VT_ERR_BAD_OPTION);
     assert_int_equal(vt_scene_delta(&m, INFINITY, VT_DELTA_PATH), VT_ERR_BAD_OPTION);
     assert_int_equal(vt_scene_delta(&m, 1.0, 7), VT_ERR_BAD_OPTION);
+    assert_int_equal(vt_scene_delta(&m, 1.0, VT_DELTA_IK), VT_ERR_BAD_OPTION); /* needs vt_scene_delta_ik */
+    vt_delta_ik ik;
+    assert_int_equal(vt_scene_delta_ik(&m, NULL, 1.0), VT_ERR_NULL);
+    assert_int_equal(vt_scene_delta_ik(&m, &ik, 0.0), VT_ERR_BAD_OPTION);
+    assert_int_equal(vt_scene_delta_ik(&m, &ik, NAN), VT_ERR_BAD_OPTION);
     assert_null(m);
+    double th[3] = {0.0, 0.0, 0.0};
+    const double far2[3] = {0.0, 0.0, -2.0}, zero[3] = {0.0, 0.0, 0.0};
+    assert_int_equal(vt_scene_delta_motor(0, far2, zero, zero, th), -1);
     assert_ok(vt_scene_delta(&m, 1.0, VT_DELTA_PATH));
     vt_data *d;
     assert_ok(vt_data_create(&d, m));
@@ -280,6 +420,8 @@ int main(void)
 #endif
         cmocka_unit_test(test_quasi_static),
         cmocka_unit_test(test_power_balance),
+        cmocka_unit_test(test_ik_angles),
+        cmocka_unit_test(test_ik_model),
         cmocka_unit_test(test_bad_options),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
