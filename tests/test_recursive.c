@@ -405,6 +405,10 @@ static void test_articulated(void **state)
         assert_ok(vt_builder_build(&m, b));
         vt_builder_free(b);
         vt_model_free(probe);
+        int joint_rows = 0; /* joint drives among other rows: their rates known, their efforts from
+                             * the subtrees' wrenches (both: against the dense path's λ and reactions) */
+        for (int r = 0; r < m->nc; r++) joint_rows += m->con_kind[r] == VT_ROW_JOINT;
+        assert_true(joint_rows > 0 && joint_rows < m->nc);
         vt_data *dr, *dd;
         assert_ok(vt_data_create(&dr, m));
         assert_ok(vt_data_create(&dd, m));
