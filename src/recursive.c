@@ -31,11 +31,14 @@
  *   bias wrenches and twists about its own joint point P_i, passed to the parent by the short
  *   P_i − P_j, so that round-off grows with the subtrees' extent, not with the distance from O),
  *   then the reactions from W̄ = Σ (W⁰ + I T), which the inward pass's I^A and p give without
- *   the sum and without the rows' loads (articulated_instant); when every row is a joint drive (joint_rows_only) the
- *   driven rates' q̈ are known and only the free ones are solved, then the inward pass as above.
- *   rcond is S's exact condition at unit diagonal (1 for one row) times min/max of M*'s pivots
- *   taken leaf first, each over its diagonal entry (the free rates' pivots alone with only
- *   joint-drive rows), times the point drives' grip²: vt_solve's number on the same system; a
+ *   the sum and without the rows' loads (articulated_instant). A joint-driven rate's q̈ is known
+ *   (f'' = γ): only the free rates are solved and only the other rows enter S; each joint drive's
+ *   multiplier follows as s_a · W̄_i − qfrc_a (= (M* q̈ − Q − Φ_q,o^T λ_o)_a), and when every row
+ *   is a joint drive (joint_rows_only) the inward pass as above gives them.
+ *   rcond is the other rows' S's exact condition at unit diagonal (1 for one row, none without)
+ *   times min/max of M*_FF's pivots (the free rates') taken leaf first, each over its diagonal
+ *   entry, times the point drives' grip²: vt_solve's number on the system left once the driven
+ *   rates are known, which the dense path's, on the whole M* and every row, does not exceed; a
  *   pivot below 1e-8 or round-off of 0 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
  *   (VT_FALLBACK_ARTICULATED_CONDITION) hands the instant to the general route;
  * - SQUARE, as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q =
@@ -871,6 +874,7 @@ static inline void twist_at_joint(double e[3], int *off, const vt_model *m, cons
  * a cache line (the 8-wide columns' loads stay within one). */
 typedef struct {
     double *IA, *Ic, *P, *A, *U, *Dinv, *u, *X, *S, *lam, *rw, *T, *W, *G;
+    int *rows; /* the rows that are right sides, S's order (schur_rows) */
 } aba_work;
 
 /* takes the work for nr right sides; 0 or VT_ERR_NO_MEMORY (the caller releases) */
@@ -891,6 +895,7 @@ static int aba_take(const vt_model *m, vt_data *d, int nr, aba_work *w)
     w->T = VT_SCRATCH(d, double, 6 * nb, "twists of q̈");
     w->W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
     w->G = VT_SCRATCH(d, double, 6 * nb, "G");
+    w->rows = VT_SCRATCH(d, int, (size_t)m->nc, "the rows of S");
     return vt_scratch_ok(d) ? 0 : VT_ERR_NO_MEMORY;
 }
 
@@ -902,7 +907,27 @@ static size_t aba_bytes(const vt_model *m, int nr)
     return VT_SCRATCH_BYTES(48 * nb, D) + VT_SCRATCH_BYTES(13 * nb, D) + 2 * VT_SCRATCH_BYTES(sr * nb, D) +
            VT_SCRATCH_BYTES(8 * nv, D) + VT_SCRATCH_BYTES(nv, D) + 2 * VT_SCRATCH_BYTES((size_t)nr * nv, D) +
            VT_SCRATCH_BYTES(nc * nc, D) + VT_SCRATCH_BYTES(nc, D) + VT_SCRATCH_BYTES(12 * (size_t)m->nc, D) +
-           3 * VT_SCRATCH_BYTES(6 * nb, D);
+           3 * VT_SCRATCH_BYTES(6 * nb, D) + VT_SCRATCH_BYTES((size_t)m->nc, sizeof(int));
+}
+
+/* row r a joint drive whose rate is known (the rate's only joint drive, dof_drive): its q̈ is
+ * the drive's f'' and its multiplier follows from the subtree's needed wrench */
+static inline int known_row(const vt_model *m, int r)
+{
+    return m->con_kind[r] == VT_ROW_JOINT && m->drive_row[m->dof_drive[m->con_dof[r]]] == r;
+}
+
+/* the rows that stay in the Schur system (every row but the known joint drives) into rows (or
+ * only counted with NULL); their count */
+static int schur_rows(const vt_model *m, int *rows)
+{
+    int k = 0;
+    for (int r = 0; r < m->nc; r++)
+        if (!known_row(m, r)) {
+            if (rows) rows[k] = r;
+            k++;
+        }
+    return k;
 }
 
 /* Fewer independent rows than rates, no base body: (5) by articulated bodies, without M*.
@@ -933,20 +958,22 @@ static size_t aba_bytes(const vt_model *m, int nr)
  * point drives' grip², the number the Schur path computes from its leaf-first Cholesky pivots:
  * both fall where a motion loses its inertia. A D_a that is round-off of 0 (below VT_ROUND_TAU ε
  * of the subtree's terms about P_i it is a difference of) is no pivot: the general route decides.
- * When every row is a joint drive on a rate of its own (joint_rows_only) the driven rates' q̈
- * are known (drive_accelerations) and no row is a right side: such a rate articulates nothing,
- *   inward  p ← p + U_a q̈_a (I^A unchanged),   outward  A ← A + s_a q̈_a,
- * the others are the free rates, M*_FF's pivots give the condition, and λ comes after from the
- * inward pass (the drives' efforts).
- * articulated_solve_nr: nr right sides (nc + 1), drv the rates' joint drives when joint_rows_only.
- * Fills q̈ (and λ with rows), and leaves the lever arms in w->G; returns 0, 1 (a scaled pivot
+ * A rate with a joint drive (drv, its only one: known_row) has its q̈ known, f'' = γ of the
+ * drive's row, and that row is no right side: such a rate articulates nothing,
+ *   inward  p ← p + U_a q̈_a for Q (0 for a row's side; I^A unchanged),   outward  A ← A + s_a q̈_a,
+ * the others are the free rates, M*_FF's pivots and the other rows' S = Φ_oF M*_FF^-1 Φ_oF^T
+ * give the condition (π over the free rates alone: a light link driven beside a heavy one
+ * weighs nothing in it), and the drives' λ come after from the subtrees' wrenches
+ * (articulated_instant; with only joint-drive rows the inward pass).
+ * articulated_solve_nr: nr right sides (1 + the rows in w->rows), drv the rates' joint drives or NULL.
+ * Fills q̈ (and the other rows' λ), and leaves the lever arms in w->G; returns 0, 1 (a scaled pivot
  * below 1e-8, or rcond below rcond_min: the factorized instant decides and diagnoses) or a
  * negative vt_status. */
 #define PIVOT_MIN 1e-8
 static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_work *w, double *rcond_out,
                                        const int *drv, const int nr)
 {
-    const int n = m->nbody, nv = m->nv, nc = nr - 1;
+    const int n = m->nbody, nv = m->nv, nc = nr - 1, ncall = m->nc, *rows = w->rows;
     const size_t sr = 6 * (size_t)nr;
     double *Ic = w->Ic, *IA = w->IA, *P = w->P, *Aw = w->A, *U = w->U, *Dinv = w->Dinv, *u = w->u, *X = w->X,
            *S = w->S, *lam = w->lam, *L = w->G;
@@ -960,12 +987,12 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     if (nc > 0) { /* p^r: the row's wrench for λ_r = 1 on its bodies, about P_b, as an applied load */
         double *rw = w->rw;
         vt_row_wrenches(rw, m, d, NULL);
-        for (int r = 0; r < nc; r++)
+        for (int k = 0; k < nc; k++)
             for (int side = 0; side < 2; side++) {
-                const int b = m->con_body[2 * r + side];
+                const int r = rows[k], b = m->con_body[2 * r + side];
                 if (b == 0) continue;
                 const double *f = rw + 12 * r + 6 * side, *n0 = f + 3;
-                double *p = P + sr * (size_t)b + 6 * (size_t)(r + 1), t[3];
+                double *p = P + sr * (size_t)b + 6 * (size_t)(k + 1), t[3];
                 vt_cross3(t, L + 6 * b, f); /* about the centre of mass → about P_b */
                 for (int c = 0; c < 3; c++) {
                     p[c] -= n0[c] + t[c];
@@ -983,8 +1010,9 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             twist_at_joint(e, &off, m, d, i, a);
             const double *Gc = G + 8 * off;
             for (int r = 0; r < 8; r++) Ua[r] = Gc[r] * e[0] + Gc[r + 8] * e[1] + Gc[r + 16] * e[2];
-            if (drv && drv[a] >= 0) { /* q̈_a known: I^A passes unchanged, p += U_a q̈_a */
-                for (int r = 0; r < 6; r++) p[r] += Ua[r] * d->qdd[a];
+            if (drv && drv[a] >= 0) { /* q̈_a = f'' = γ known: I^A passes unchanged, p += U_a q̈_a (0 for a row's side) */
+                const double qa = d->gamma[m->drive_row[drv[a]]];
+                for (int r = 0; r < 6; r++) p[r] += Ua[r] * qa;
                 continue;
             }
             /* M*_aa = s · Ī s = e · J̄ e or m̄ e · e; D_a is a difference of terms as large as
@@ -1067,8 +1095,9 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             int off;
             twist_at_joint(e, &off, m, d, i, a);
             if (drv && drv[a] >= 0) {
-                X[a] = d->qdd[a];
-                vt_axpy3(Ai + off, d->qdd[a], e);
+                X[a] = d->gamma[m->drive_row[drv[a]]];
+                for (int k = 1; k < nr; k++) X[a + (size_t)k * (size_t)nv] = 0.0;
+                vt_axpy3(Ai + off, X[a], e);
             } else {
                 const double inv = Dinv[a];
                 for (int k = 0; k < nr; k++) { /* a multi-rate joint's next rate: from this one's A */
@@ -1079,16 +1108,18 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             }
         }
     }
-    /* S λ = γ − Φ_q x⁰, S = Φ_q X (lower triangle) */
-    for (int r = 0; r < nc; r++) {
+    /* S λ = γ − Φ_q x⁰, S = Φ_q X (lower triangle), over the Schur system's rows */
+    for (int c = 0; c < nc; c++) {
+        const int r = rows[c];
+        const double *phi = d->Phiq + r;
         double t = d->gamma[r];
-        for (int a = 0; a < nv; a++) t -= d->Phiq[r + (size_t)a * (size_t)nc] * X[a];
-        lam[r] = t;
-        for (int k = 0; k <= r; k++) {
+        for (int a = 0; a < nv; a++) t -= phi[(size_t)a * (size_t)ncall] * X[a];
+        lam[c] = t;
+        for (int k = 0; k <= c; k++) {
             const double *xk = X + (size_t)(k + 1) * (size_t)nv;
             double v = 0.0;
-            for (int a = 0; a < nv; a++) v += d->Phiq[r + (size_t)a * (size_t)nc] * xk[a];
-            S[r + (size_t)k * (size_t)nc] = v;
+            for (int a = 0; a < nv; a++) v += phi[(size_t)a * (size_t)ncall] * xk[a];
+            S[c + (size_t)k * (size_t)nc] = v;
         }
     }
     double rcond = 0.0;
@@ -1107,34 +1138,27 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
         for (int r = 0; r < nc; r++) x += X[a + (size_t)(r + 1) * (size_t)nv] * lam[r];
         d->qdd[a] = x;
     }
-    if (!drv) memcpy(d->lambda, lam, (size_t)nc * sizeof(double));
+    for (int c = 0; c < nc; c++) d->lambda[rows[c]] = lam[c]; /* the known joint drives': articulated_instant */
     if (!vt_all_finite(d->qdd, nv) || !vt_all_finite(lam, nc)) /* conditioned (rcond checked): an overflow */
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: q̈ or λ overflows (loads or rates too large)");
-    /* joint drives among other rows, below rcond_warn: 2, the whole system may keep what the
-     * rows' Schur complement loses (articulated_instant asks vt_solve): π counts the joint-driven
-     * rates, which their rows fix whatever their inertia (light links driven beside heavy ones).
-     * Joint drives alone have no other route than the free rates'; without joint drives π is the
-     * free motion's own inertia spread, and the answer stays with its estimate */
-    if (drv || nc == 0 || rcond >= m->rcond_warn) return 0;
-    for (int r = 0; r < nc; r++)
-        if (m->con_kind[r] == VT_ROW_JOINT) return 2;
     return 0;
 }
 
-/* right sides of the articulated solve: Q, and one per row unless every row is a joint drive */
+/* right sides of the articulated solve: Q, and one per row but the known joint drives */
 static int aba_sides(const vt_model *m)
 {
-    return m->joint_rows_only ? 1 : m->nc + 1;
+    return schur_rows(m, NULL) + 1;
 }
 
+/* w->rows filled by the caller (schur_rows) */
 static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, double *rcond_out)
 {
-    /* joint rows only: the driven rates' q̈ are known (d->qdd), no row is a right side */
-    const int *drv = m->joint_rows_only ? m->dof_drive : NULL;
-    const int nr = aba_sides(m);
+    /* joint drives among the rows: the driven rates' q̈ are known (d->qdd, drive_accelerations),
+     * their rows are no right side */
+    const int nr = schur_rows(m, w->rows) + 1, *drv = nr <= m->nc ? m->dof_drive : NULL;
     /* one and two right sides (no row, one row) compiled apart: their loops over right sides unroll */
     if (nr == 1) return articulated_solve_nr(m, d, w, rcond_out, drv, 1);
-    if (nr == 2) return articulated_solve_nr(m, d, w, rcond_out, NULL, 2);
+    if (nr == 2) return articulated_solve_nr(m, d, w, rcond_out, drv, 2);
     return articulated_solve_nr(m, d, w, rcond_out, drv, nr);
 }
 
@@ -1150,11 +1174,14 @@ static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, d
  * grows with |P_i − O| once, as vt_reactions_subtree's own move back to the joint point; no
  * cancellation of squared lengths), the rows' loads already off (the p^r start from them); and
  * ẍ from the same T_i (T about O, as vt_accelerations_add sums it, carries |P − O| |q̈| terms:
- * the forces of a mechanism 1 km from o changed by 2e-11 with it, 5e-13 with T_i). */
+ * the forces of a mechanism 1 km from o changed by 2e-11 with it, 5e-13 with T_i). A known joint
+ * drive's λ_r on rate a of body i is s_a · W̄_i − qfrc_a with W̄_i about P_i (s_a = (e, 0) or
+ * (0, e) there), W̄_i being then M* q̈ − Q less the other rows' loads over the subtree; its own
+ * load (on its two bodies) is then taken off W̄ over each subtree too, as the reactions want. */
 static vt_status articulated_instant(const vt_model *m, vt_data *d)
 {
     double rcond = 0.0;
-    const int nr = m->nc + 1;
+    const int nr = aba_sides(m);
     /* a row that is round-off of zero would pass for a row once S is at unit diagonal: the
      * general route names it */
     const int zero_rows = vt_zero_rows(m, d);
@@ -1164,29 +1191,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
     const int r = articulated_solve(m, d, &w, &rcond);
-    if (r == 2) { /* below rcond_warn: vt_solve's Schur route would give way to the augmented one
-                   * where that is the better conditioned (mass spread the rows' Schur complement
-                   * loses); ask it on M* and keep this route's answer where it keeps the Schur one
-                   * (the same estimate, computed about each body's joint point here) */
-        const size_t keep = vt_scratch_mark(d);
-        double *save = VT_SCRATCH(d, double, (size_t)(m->nv + m->nc), "the articulated q̈ and λ");
-        if (!save) return vt_scratch_fail(d, mark);
-        memcpy(save, d->qdd, (size_t)m->nv * sizeof(double));
-        memcpy(save + m->nv, d->lambda, (size_t)m->nc * sizeof(double));
-        const int fallback = d->fallback;
-        vt_status st = mass_and_bias(m, d);
-        if (!st) st = vt_solve_impl(m, d);
-        if (st || (d->fallback & VT_FALLBACK_SCHUR_CONDITION)) { /* the general route's answer */
-            vt_scratch_release(d, mark);
-            d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
-            if (!st) st = composite_precision(m, d);
-            return st ? st : vt_reactions_impl(m, d);
-        }
-        memcpy(d->qdd, save, (size_t)m->nv * sizeof(double));
-        memcpy(d->lambda, save + m->nv, (size_t)m->nc * sizeof(double));
-        d->fallback = fallback;
-        vt_scratch_release(d, keep);
-    } else if (r) {
+    if (r) {
         vt_scratch_release(d, mark);
         return r < 0 ? (vt_status)r : factorized_instant(m, d);
     }
@@ -1205,8 +1210,18 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         mul_cols8(IT, w.IA + 48 * i, Tj);
         for (int k = 0; k < 6; k++) Wi[k] = IT[k] + p[k], Ti[k] = Ai[k];
         for (int c = 1; c < nr; c++) {
-            const double l = d->lambda[c - 1];
+            const double l = d->lambda[w.rows[c - 1]];
             for (int k = 0; k < 6; k++) Wi[k] += l * p[6 * c + k], Ti[k] += l * Ai[6 * c + k];
+        }
+        for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i] && nr <= m->nc; a++) {
+            /* a known joint drive's multiplier: (M* q̈ − Q − Φ_q,o^T λ_o)_a = s_a · W̄_i − qfrc_a,
+             * W̄_i about P_i here, without the other rows' loads; s_a about P_i (e at off) */
+            const int k = m->dof_drive[a];
+            if (k < 0) continue;
+            double e[3];
+            int off;
+            twist_at_joint(e, &off, m, d, i, a);
+            d->lambda[m->drive_row[k]] = vt_dot3(e, Wi + off) - d->qfrc[a];
         }
         vt_addcross3(Wi, Po, Wi + 3); /* about O */
         /* ẍ = S q̈ + Ṡq̇ (vt_accelerations_add's, from T about P_i): the centre of mass, c_i from
@@ -1218,6 +1233,27 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         vt_quat_rate(pdd, d->x + o + 3, Ti);
         vt_copy3(xi, a);
         for (int k = 0; k < 4; k++) xi[3 + k] = a0[3 + k] + pdd[k];
+    }
+    if (nr <= m->nc) { /* the known joint drives' loads off W̄ too (about O, over each subtree) */
+        double *J = w.T;
+        if (nr == 1) vt_row_wrenches(w.rw, m, d, NULL); /* articulated_solve formed them with other rows */
+        memset(J, 0, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+        for (int q = 0; q < m->nc; q++) {
+            if (!known_row(m, q)) continue;
+            for (int side = 0; side < 2; side++) {
+                const int b = m->con_body[2 * q + side];
+                if (b == 0) continue;
+                const double *f = w.rw + 12 * q + 6 * side, l = d->lambda[q];
+                double *Jb = J + 6 * b, t[3];
+                vt_cross3(t, d->xrel + 6 * b, f);
+                for (int c = 0; c < 3; c++) {
+                    Jb[c] += l * (f[3 + c] + t[c]);
+                    Jb[3 + c] += l * f[c];
+                }
+            }
+        }
+        vt_subtree_sum(m, J, 6);
+        for (int k = 6; k < 6 * (m->nbody + 1); k++) w.W[k] -= J[k];
     }
     const vt_status st = vt_reactions_subtree(m, d, w.W, w.G, 1);
     vt_scratch_release(d, mark);
@@ -1390,9 +1426,6 @@ size_t vt_recursive_scratch(const vt_model *m)
     /* composite_precision's terms of M*'s diagonal and subtree sums */
     const size_t terms = VT_SCRATCH_BYTES(2 * (size_t)m->nv, D) + VT_SCRATCH_BYTES(4 * nb, D);
     if (terms > n) n = terms;
-    /* the articulated route below rcond_warn: its work, its answer and M*'s composite inertias at once */
-    const size_t asked = aba_bytes(m, m->nc + 1) + VT_SCRATCH_BYTES((size_t)(m->nv + m->nc), D) + VT_SCRATCH_BYTES(13 * nb, D);
-    if (asked > n) n = asked;
     /* vt_motion_rows (instant.c, called from here) holds the given q̈ while the stages run */
     if (VT_SCRATCH_BYTES(m->nv, D) > n) n = VT_SCRATCH_BYTES(m->nv, D);
     return n;

@@ -173,11 +173,8 @@ enum {
     VT_FALLBACK_ARTICULATED_PIVOT = 2,    ///< recursive articulated route: a pivot of M* below 1e-8 of
                                           ///< its diagonal entry, or round-off of 0 against the terms
                                           ///< it is summed from
-    VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min, or below
-                                          ///< rcond_warn with joint drives among other rows where vt_solve
-                                          ///< then keeps the augmented route's answer (its estimate higher:
-                                          ///< VT_FALLBACK_SCHUR_CONDITION); where it keeps the Schur one,
-                                          ///< the articulated answer stays
+    VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min, or its
+                                          ///< pivots' round-off reaching rcond
     VT_FALLBACK_SQUARE_CONDITION = 8,     ///< recursive square route: rcond below rcond_min
     VT_FALLBACK_COMPOSITE_ROUNDOFF = 16,  ///< recursive general route: M* formed from composite inertias
                                           ///< about o is not known to one digit at its rcond (a mechanism
