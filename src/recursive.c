@@ -361,6 +361,18 @@ static int joint_mix(const vt_model *m)
     return r;
 }
 
+/* 1 if some joint's q holds Euler parameters (spherical, free, base): the state's check then
+ * looks at their norms (vt_kinematics_check_state); otherwise finite q and q̇ are the whole check
+ * (a revolute or translational joint's coordinates are any finite numbers) */
+static int has_quaternions(const vt_model *m)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int jt = m->body_joint[i];
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE || jt == VT_JOINT_BASE) return 1;
+    }
+    return 0;
+}
+
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
 /* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
@@ -1315,7 +1327,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     d->fallback = 0;
     const int mix = joint_mix(m);
     if (m->joint_driven && mix >= 0) { /* the outward passes fused */
-        if (mix == 0 || !state_finite(m, d)) /* Euler parameters to check */
+        if ((mix == 0 && has_quaternions(m)) || !state_finite(m, d)) /* Euler parameters to check */
             if ((st = vt_kinematics_check_state(m, d))) return st;
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
@@ -1461,7 +1473,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
     const int mix = joint_mix(m);
-    if (mix == 0 || !state_finite(m, d))
+    if ((mix == 0 && has_quaternions(m)) || !state_finite(m, d)) /* Euler parameters to check */
         if ((st = vt_kinematics_check_state(m, d))) return st;
     d->rcond = 1.0;
     d->warning = 0;
