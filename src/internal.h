@@ -118,6 +118,58 @@ static inline int vt_all_finite(const double *a, int n)
     return !(any >> 63);
 }
 
+/* Several arrays scanned as one: each array's entries ORed into four lanes (the last four
+ * entries taken whole, overlapping the ones before: an OR does not mind), tested once at the
+ * end. For the fused passes' many short arrays: a vt_all_finite per array paid its set-up,
+ * remainder and reduction for a few entries each. */
+#if defined(__GNUC__)
+typedef uint64_t vt_u64x4 __attribute__((vector_size(32)));
+#else
+typedef struct {
+    uint64_t l[4];
+} vt_u64x4;
+#endif
+typedef struct {
+    vt_u64x4 l;
+} vt_finite_scan;
+static inline uint64_t vt_nonfinite_bit(const double *a)
+{
+    uint64_t u;
+    memcpy(&u, a, sizeof u);
+    return (u & 0x7ff0000000000000u) + 0x0010000000000000u;
+}
+/* four entries' bits */
+static inline void vt_finite_add4(vt_finite_scan *s, const double *a)
+{
+#if defined(__GNUC__)
+    vt_u64x4 u;
+    memcpy(&u, a, sizeof u);
+    s->l |= (u & 0x7ff0000000000000u) + 0x0010000000000000u;
+#else
+    for (int j = 0; j < 4; j++) s->l.l[j] |= vt_nonfinite_bit(a + j);
+#endif
+}
+static inline void vt_finite_add(vt_finite_scan *s, const double *a, int n)
+{
+    if (n < 4) {
+        double t[4] = {0, 0, 0, 0};
+        for (int k = 0; k < n; k++) t[k] = a[k];
+        vt_finite_add4(s, t);
+        return;
+    }
+    for (int k = 0; k < n - 4; k += 4) vt_finite_add4(s, a + k);
+    vt_finite_add4(s, a + n - 4);
+}
+static inline int vt_finite_ok(const vt_finite_scan *s)
+{
+#if defined(__GNUC__)
+    const uint64_t any = (s->l[0] | s->l[1]) | (s->l[2] | s->l[3]);
+#else
+    const uint64_t any = (s->l.l[0] | s->l.l[1]) | (s->l.l[2] | s->l.l[3]);
+#endif
+    return !(any >> 63);
+}
+
 /* a ← a/|a| for a vector of n entries, with |a| = s·sqrt(Σ (a_k/s)²) and s = max |a_k|: no
  * overflow of the sum of squares for lengths near DBL_MAX (1e160 and more), no underflow to zero
  * for tiny non-zero ones, so any finite non-zero vector keeps its direction. Returns |a| (Inf

@@ -455,11 +455,20 @@ static inline vt_status check_outputs(const vt_model *m, vt_data *d, const int p
 {
     const int n = m->nbody, nb = n + 1, pos = parts & OUT_POSITIONS, vel = parts & OUT_VELOCITIES,
               acc = parts & OUT_SDQD;
-    if ((!pos || (vt_all_finite(d->x, 7 * n) && vt_all_finite(d->A, 9 * nb) && vt_all_finite(d->jpoint, 3 * nb) &&
-                  vt_all_finite(d->jd, 3 * nb) && vt_all_finite(d->twist, 6 * m->nv))) &&
-        (!vel || (vt_all_finite(d->omega, 3 * nb) && vt_all_finite(d->xd, 7 * n))) &&
-        (!acc || vt_all_finite(d->Sdqd, 7 * n)))
-        return VT_OK;
+    vt_finite_scan s = {0}; /* the outputs as one scan */
+    if (pos) {
+        vt_finite_add(&s, d->x, 7 * n);
+        vt_finite_add(&s, d->A, 9 * nb);
+        vt_finite_add(&s, d->jpoint, 3 * nb);
+        vt_finite_add(&s, d->jd, 3 * nb);
+        vt_finite_add(&s, d->twist, 6 * m->nv);
+    }
+    if (vel) {
+        vt_finite_add(&s, d->omega, 3 * nb);
+        vt_finite_add(&s, d->xd, 7 * n);
+    }
+    if (acc) vt_finite_add(&s, d->Sdqd, 7 * n);
+    if (vt_finite_ok(&s)) return VT_OK;
     for (int i = 1; i <= n; i++) {
         const char *what = NULL;
         if (pos && (!vt_all_finite(d->x + vt_xoff(i), 7) || !vt_all_finite(d->A + 9 * i, 9) ||

@@ -364,6 +364,18 @@ static int joint_mix(const vt_model *m)
     return r;
 }
 
+/* 1 if some joint's q holds Euler parameters (spherical, free, base): the state's check then
+ * looks at their norms (vt_kinematics_check_state); otherwise finite q and q̇ are the whole check
+ * (a revolute or translational joint's coordinates are any finite numbers) */
+static int has_quaternions(const vt_model *m)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int jt = m->body_joint[i];
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE || jt == VT_JOINT_BASE) return 1;
+    }
+    return 0;
+}
+
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
 /* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
@@ -522,14 +534,25 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
 static vt_status fused_check(const vt_model *m, vt_data *d, const int given, const int mixed)
 {
     const int n = m->nbody, nb3 = 3 * (n + 1), nd = 3 * m->ndrive;
-    if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force, nb3) && vt_all_finite(d->jnt_moment, nb3) &&
-        vt_all_finite(d->jnt_force_body, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
-        vt_all_finite(d->jnt_moment_total_body, nb3) &&
-        (!mixed || (vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_force_total_body, nb3))) &&
-        (given || (vt_all_finite(d->xdd, m->nx) && vt_all_finite(d->qfrc_drive, m->nv) && /* the driver's scan */
-                   vt_all_finite(d->jnt_moment_body, nb3) && vt_all_finite(d->drive_moment, nd) &&
-                   (!mixed || vt_all_finite(d->drive_force, nd)))))
-        return VT_OK;
+    vt_finite_scan s = {0};
+    vt_finite_add(&s, d->alpha, nb3);
+    vt_finite_add(&s, d->jnt_force, nb3);
+    vt_finite_add(&s, d->jnt_moment, nb3);
+    vt_finite_add(&s, d->jnt_force_body, nb3);
+    vt_finite_add(&s, d->jnt_moment_total, nb3);
+    vt_finite_add(&s, d->jnt_moment_total_body, nb3);
+    if (mixed) {
+        vt_finite_add(&s, d->jnt_force_total, nb3);
+        vt_finite_add(&s, d->jnt_force_total_body, nb3);
+    }
+    if (!given) { /* the driver's scan */
+        vt_finite_add(&s, d->xdd, m->nx);
+        vt_finite_add(&s, d->qfrc_drive, m->nv);
+        vt_finite_add(&s, d->jnt_moment_body, nb3);
+        vt_finite_add(&s, d->drive_moment, nd);
+        if (mixed) vt_finite_add(&s, d->drive_force, nd);
+    }
+    if (vt_finite_ok(&s)) return VT_OK;
     d->route = VT_ROUTE_NONE;
     for (int i = n; i >= 1; i--) {
         if (!vt_all_finite(d->jnt_force + 3 * i, 3) || !vt_all_finite(d->jnt_moment + 3 * i, 3) ||
@@ -1260,6 +1283,22 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     return st;
 }
 
+/* xfrc and qfrc, and q and q̇, each pair scanned as one */
+static inline int loads_finite(const vt_model *m, const vt_data *d)
+{
+    vt_finite_scan s = {0};
+    vt_finite_add(&s, d->xfrc, 6 * (m->nbody + 1));
+    vt_finite_add(&s, d->qfrc, m->nv);
+    return vt_finite_ok(&s);
+}
+static inline int state_finite(const vt_model *m, const vt_data *d)
+{
+    vt_finite_scan s = {0};
+    vt_finite_add(&s, d->q, m->nq);
+    vt_finite_add(&s, d->qd, m->nv);
+    return vt_finite_ok(&s);
+}
+
 static int has_base(const vt_model *m)
 {
     for (int i = 1; i <= m->nbody; i++)
@@ -1318,13 +1357,13 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
     vt_solve_reset(d);
-    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
+    if (!loads_finite(m, d))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
     const int mix = joint_mix(m);
     if (m->joint_driven && mix >= 0) { /* the outward passes fused */
-        if (mix == 0 || !vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv)) /* Euler parameters to check */
+        if ((mix == 0 && has_quaternions(m)) || !state_finite(m, d)) /* Euler parameters to check */
             if ((st = vt_kinematics_check_state(m, d))) return st;
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
@@ -1463,11 +1502,11 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
                            "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
                            "use VT_JOINT_FREE", i);
-    if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
+    if (!loads_finite(m, d))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
     const int mix = joint_mix(m);
-    if (mix == 0 || !vt_all_finite(d->q, m->nq) || !vt_all_finite(d->qd, m->nv))
+    if ((mix == 0 && has_quaternions(m)) || !state_finite(m, d)) /* Euler parameters to check */
         if ((st = vt_kinematics_check_state(m, d))) return st;
     d->rcond = 1.0;
     d->warning = 0;

@@ -1920,6 +1920,43 @@ static void test_long_chain(void **state)
     }
 }
 
+/* The scans of several arrays as one (vt_finite_add, vt_finite_ok: the fused passes' checks)
+ * against isfinite entry by entry: every length 0..13 in one or two arrays, a NaN, +Inf or −Inf
+ * at every position of either array (the overlapping last four included), DBL_MAX and the
+ * smallest subnormal finite. */
+static void test_finite_scan(void **state)
+{
+    (void)state;
+    const double bad[3] = {NAN, INFINITY, -INFINITY};
+    double a[13], b[13];
+    for (int n = 0; n <= 13; n++)
+        for (int nb = 0; nb <= 13; nb += 5) {
+            for (int k = 0; k < 13; k++) {
+                a[k] = (k % 3 == 0) ? DBL_MAX : (k % 3 == 1 ? -4.9e-324 : 1.0 + k);
+                b[k] = -a[k];
+            }
+            vt_finite_scan s = {0};
+            vt_finite_add(&s, a, n);
+            vt_finite_add(&s, b, nb);
+            assert_true(vt_finite_ok(&s));
+            for (int w = 0; w < 2; w++)
+                for (int pos = 0; pos < (w ? nb : n); pos++)
+                    for (int v = 0; v < 3; v++) {
+                        double *x = w ? b : a, keep = x[pos];
+                        x[pos] = bad[v];
+                        int expect = 1;
+                        for (int k = 0; k < n; k++) expect &= isfinite(a[k]) != 0;
+                        for (int k = 0; k < nb; k++) expect &= isfinite(b[k]) != 0;
+                        vt_finite_scan t = {0};
+                        vt_finite_add(&t, a, n);
+                        vt_finite_add(&t, b, nb);
+                        assert_int_equal(vt_finite_ok(&t), expect);
+                        assert_int_equal(expect, 0);
+                        x[pos] = keep;
+                    }
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1945,6 +1982,7 @@ int main(void)
         cmocka_unit_test(test_mass_ratios),
         cmocka_unit_test(test_fused_kinematics),
         cmocka_unit_test(test_fused_overflow),
+        cmocka_unit_test(test_finite_scan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
