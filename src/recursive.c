@@ -55,12 +55,14 @@
 
 #include "internal.h"
 
-/* W = body i's needed wrench about O, (n − n_e + c × f, f = m (a − g) − f_e), from
- * n = J α + ω × J ω and the centre of mass's acceleration a; built in locals and written once
- * (W might alias the inputs as far as the compiler knows) */
-static inline void needed_wrench(double W[6], const vt_model *m, const vt_data *d, int i, double n[3], const double *a)
+/* W = body i's needed wrench about the point from which its centre of mass lies at c (O:
+ * c = xrel), (n − n_e + c × f, f = m (a − g) − f_e), from n = J α + ω × J ω and the centre of
+ * mass's acceleration a; built in locals and written once (W might alias the inputs as far as
+ * the compiler knows) */
+static inline void needed_wrench_at(double W[6], const vt_model *m, const vt_data *d, int i, double n[3], const double *a,
+                                    const double *c)
 {
-    const double *c = d->xrel + 6 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
+    const double *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
     double f[3];
     for (int k = 0; k < 3; k++) {
         f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
@@ -82,7 +84,7 @@ static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i,
     vt_mulmat3(Ja, Jb, ab);
     vt_addcross3(Ja, wb, Jw);
     vt_mulmat3(n, Ai, Ja); /* J α + ω × J ω, body axes and back */
-    needed_wrench(W, m, d, i, n, a);
+    needed_wrench_at(W, m, d, i, n, a, d->xrel + 6 * i);
 }
 
 /* W̄: every subtree's needed wrench about O at the accelerations d->xdd and alpha (3 x (nbody+1)) */
@@ -127,21 +129,15 @@ static void inertia_O(double I[13], double J[9], const vt_model *m, const vt_dat
 static void inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i, const double c[3])
 {
     const int o = vt_xoff(i);
-    const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
-    double J[9], al[3], Jw[3], n[3], f[3];
+    const double *w = d->omega + 3 * i, *a = d->Sdqd + o;
+    double J[9], al[3], Jw[3], n[3];
     inertia_at(I, J, m, d, i, c);
     vt_mulEp(al, d->x + o + 3, a + 3);
     for (int k = 0; k < 3; k++) al[k] *= 2.0;
     vt_mulmat3(n, J, al);
     vt_mulmat3(Jw, J, w);
     vt_addcross3(n, w, Jw);
-    for (int k = 0; k < 3; k++) {
-        f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
-        n[k] -= xf[3 + k];
-    }
-    vt_addcross3(n, c, f);
-    vt_copy3(W, n);
-    vt_copy3(W + 3, f);
+    needed_wrench_at(W, m, d, i, n, a, c);
 }
 
 /* F = I s for an inertia I in inertia_O's form: (J_O w + h × v, m v + w × h) */
