@@ -465,8 +465,11 @@ static scales pair_scales(const vt_model *m, const vt_data *ref, const vt_data *
         }
     }
     s.tq = s.e * fmax(maxabs(a->qdd, m->nv), maxabs(b->qdd, m->nv));
-    s.dq = massless ? s.tq * sqrt(mdmax) : s.e * (qs + gs);
-    const double norm = m->nv * s.dq, nb = m->nbody;
+    /* the rates with inertia in the mass metric whether or not others have none (a point mass's
+     * turning rates, fixed by rows): their q̈ carries the loads' round-off, Gs / sqrt(M*_aa),
+     * as anywhere (a rate turning at 1e9 rad/s: 1e18 N centripetal terms) */
+    s.dq = s.e * (qs + gs);
+    const double norm = m->nv * fmax(s.dq, massless ? s.tq * sqrt(mdmax) : 0.0), nb = m->nbody;
     s.tf = s.e * s.Fs + nb * sqrt(s.mmax) * norm;
     s.tn = s.e * s.Ns + nb * (2.0 * s.L * sqrt(s.mmax) + sqrt(s.Jmax)) * norm;
     s.tg = s.e * s.Gs + sqrt(mdmax) * norm;
