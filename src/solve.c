@@ -46,12 +46,9 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
  * centre), and what is computed there is round-off of the terms' size, not a small inertia or a
  * small row. Each is judged against the magnitude of what it was summed from, never by itself:
  *   rate a   M*_aa = Σ_k m_k |v_a + ω_a × c_k|² + u^T J'_k u over the bodies k it moves, whose
- *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k: the
- *            composite-inertia form s · Ī s about O subtracts terms of that size, round-off to
- *            first order, τ ε (T_a + R_a) (vt_rate_roundoff: the recursive general route's
- *            composite_precision); vt_solve judges the M* of S^T M S, whose translational part
- *            squares S's columns, by (τ ε)² T_a + τ ε R_a (dense_rate_roundoff), so that a real
- *            inertia far from o is not taken for round-off
+ *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k: round-off
+ *            when M*_aa ≤ τ ε (T_a + R_a) (first order: the composite-inertia form s · Ī s about O
+ *            subtracts terms of that size; S^T M S's squares would leave less)
  *   row r    Φ_q,ra = Σ_j Φ_x,rj S_ja over the row's two bodies, terms bounded by B_ra = Σ_j
  *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| |r| for a position, ½ |ω_a| for an Euler
  *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖. A dot
@@ -81,16 +78,6 @@ void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T)
 double vt_rate_roundoff(const double *T, int a)
 {
     return VT_ROUND_TAU * DBL_EPSILON * (T[2 * a] + T[2 * a + 1]);
-}
-
-/* The same for an M* formed as S^T M S (vt_mass_matrix): its translational part squares S's
- * columns (m |V_k|², the terms non-negative), so an exact zero comes out as the square of the
- * columns' round-off, at most (τ ε)² T_a, and a real inertia keeps its digits however far its
- * bodies lie from o; its rotational part is a quadratic form in 4 G^T J' G, first order: τ ε R_a */
-static double dense_rate_roundoff(const double *T, int a)
-{
-    const double te = VT_ROUND_TAU * DBL_EPSILON;
-    return te * te * T[2 * a] + te * T[2 * a + 1];
 }
 
 /* rows that Φ_x S builds (points, lines, dot products, orientations) */
@@ -164,7 +151,7 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
         vt_rate_terms(m, d, w, T);
         for (int a = 0; a < nv; a++) {
             const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
-            if (maa > dense_rate_roundoff(T, a)) continue;
+            if (maa > vt_rate_roundoff(T, a)) continue;
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
