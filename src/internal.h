@@ -361,6 +361,16 @@ vt_status vt_kinematics_positions(const vt_model *m, vt_data *d);
 vt_status vt_kinematics_velocities(const vt_model *m, vt_data *d, int Sdqd);
 /* A column of S in body i's rows, from the rate's twist d->twist (kinematics.c) */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
+/* The dense S's lever arms (kinematics.c): from body i up its path, u = r^i − P_k at joint k,
+ * summed along the tree from the joints' own vectors; len, the sum of their lengths (u's
+ * round-off is ε len); s, s^{ji} of joint k. vt_lever_up moves to k's reference body (0 at the
+ * ground). */
+typedef struct {
+    int k;
+    double u[3], s[3], len;
+} vt_lever;
+void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i);
+int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d);
 
 /* every multiplier unique (vt_solve's exact routes) */
 void vt_mark_unique(const vt_model *m, vt_data *d);
@@ -370,9 +380,10 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
 /* vt_solve without the argument check and without clearing d->fallback (solve.c): the
  * recursive evaluation's general route, after its own shortcuts have flagged their fallbacks */
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
-/* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl),
- * and vt_solve with it (solve.c): the ODE formulation's residual */
-vt_status vt_solve_band(const vt_model *m, vt_data *d, double band);
+/* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl)
+ * and the form of M* (dense: S^T M S, else the composite inertias about o, as vt_rate_bounds),
+ * and vt_solve with it on the dense M* (solve.c): the ODE formulation's residual */
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense);
 vt_status vt_solve_run(const vt_model *m, vt_data *d, double band);
 /* the diagnostics every solve starts from: route none, rcond 0, no warning, rank 0, residual 0 */
 void vt_solve_reset(vt_data *d);
@@ -397,6 +408,11 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 #define VT_ROUND_TAU 64.0
 void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T);
 double vt_rate_roundoff(const double *T, int a);
+/* The bound below which M*_aa is round-off, for every rate, into beta (nv): of the M* the
+ * dense stages form as S^T M S (dense != 0: S's columns squared, (τ ε)² T_a + τ ε R_a, T_a with
+ * the dense S's lever arms, vt_lever) or of the recursive general route's composite inertias
+ * about o (dense == 0: vt_rate_roundoff). Scratch: 2 nv + 4 (nbody + 1) doubles (solve.c) */
+int vt_rate_bounds(const vt_model *m, vt_data *d, int dense, double *beta);
 /* the number of rows of Φ_q that are round-off of a zero row (judged against the terms they are
  * summed from), or a negative vt_status (solve.c) */
 int vt_zero_rows(const vt_model *m, vt_data *d);
@@ -410,11 +426,13 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
 /* the smallest grip² of the point drives' rows (1 without any): how much of what the rates can
  * move the driven point by lies along the driven direction (solve.c) */
 double vt_rows_grip(const vt_model *m, const vt_data *d);
-/* vt_reactions without the argument checks (ẍ and α from d->qdd) */
-vt_status vt_reactions_impl(const vt_model *m, vt_data *d);
+/* vt_reactions without the argument checks (ẍ and α from d->qdd); dense: M* and S are the
+ * dense stages' (else the recursive general route's composite M* about o) */
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense);
 /* after vt_solve: VT_ERR_SINGULAR when rates whose M* row it zeroed (round-off held by rows)
- * leave the efforts without a certain digit (reactions.c); who names the caller */
-vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who);
+ * leave the efforts without a certain digit (reactions.c); who names the caller; dense as
+ * vt_rate_bounds */
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, int dense);
 /* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar
  * (6 x (nbody+1), recursive.c), the rows' wrenches already taken off it with rows_in_wbar;
  * G: scratch of 6 x (nbody+1), apart from Wbar */

@@ -288,7 +288,9 @@ void vt_kinematics_body(const vt_model *m, vt_data *d, int i)
 }
 
 /* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × (r^i − o), ṗ^i = ½ E^{iT} w,
- * except a base body's own ṗ, which is q̇ itself (S's block I). Ei = E(p^i). */
+ * except a base body's own ṗ, which is q̇ itself (S's block I). Ei = E(p^i). The recursive path's
+ * form (its Φ_q from the twists about o); the dense S takes each lever arm along the tree
+ * (lever_column). */
 void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof)
 {
     if (m->body_joint[i] == VT_JOINT_BASE && m->dof_body[dof] == i && dof - m->body_vadr[i] >= 3) {
@@ -303,16 +305,76 @@ void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const 
     for (int r = 3; r < 7; r++) c[r] *= 0.5;
 }
 
-/* The non-zero blocks of S: body i's rows, the columns of its path. */
+/* s^{ji} = A^i s'^{ji}, body i's centre of mass to its joint point (a base body's: 0) */
+static void joint_child(double s[3], const vt_model *m, const vt_data *d, int i)
+{
+    if (m->body_joint[i] == VT_JOINT_BASE) s[0] = s[1] = s[2] = 0.0;
+    else vt_mulmat3(s, d->A + 9 * i, m->body_jchild + 3 * i);
+}
+
+/* The lever arms of the dense S, walked from body i up its path: at joint k, u = r^i − P_k (P_k
+ * the point the joint's rates turn about; a base body's, its centre of mass), summed from the
+ * joints' own short vectors,
+ *   r^i − P_i = −s^{ji}_i,   r^i − P_j = (r^i − P_k) + (s^{ij}_k + t_k) − s^{ji}_j   (j = k's reference)
+ * with t_k = d^k + s^{ji}_k the joint's translation (17), and len = the sum of those vectors'
+ * lengths, the size of u's round-off. The difference (r^i − o) − (P_k − o) of positions from o
+ * would carry ε |r − o| of it: a mechanism 1e9 m from o would have no digit of a 1 m lever arm,
+ * S's columns and M*'s entries none of the inertia about the joint. */
+void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i)
+{
+    L->k = i;
+    joint_child(L->s, m, d, i);
+    for (int c = 0; c < 3; c++) L->u[c] = -L->s[c];
+    L->len = sqrt(vt_dot3(L->s, L->s));
+}
+
+int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d)
+{
+    const int k = L->k, j = m->body_parent[k];
+    if (j == 0) return 0;
+    double a[3], sj[3];
+    const double *sij = d->jsij + 3 * k, *dk = d->jd + 3 * k;
+    for (int c = 0; c < 3; c++) a[c] = sij[c] + (dk[c] + L->s[c]); /* P_k − r^j */
+    joint_child(sj, m, d, j);
+    for (int c = 0; c < 3; c++) L->u[c] += a[c] - sj[c];
+    L->len += sqrt(vt_dot3(a, a)) + sqrt(vt_dot3(sj, sj));
+    vt_copy3(L->s, sj);
+    L->k = j;
+    return 1;
+}
+
+/* Column `dof` (a rate of joint L->k) of S in body i's rows, with the lever arm u = r^i − P_k:
+ * a turning rate (axis or base body's ω = 2 E e) ṙ^i = w × u, ṗ^i = ½ E^{iT} w; a sliding one
+ * ṙ^i = e; a base body's own ṗ, S's block I */
+static void lever_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof,
+                         const double u[3])
+{
+    int ax;
+    const int kind = vt_dof_kind(m->body_joint[m->dof_body[dof]], dof - m->body_vadr[m->dof_body[dof]], &ax);
+    const double *w = d->twist + 6 * dof;
+    memset(c, 0, 7 * sizeof(double));
+    if (kind == VT_DOF_BASE_P && m->dof_body[dof] == i) c[3 + ax] = 1.0;
+    else if (kind == VT_DOF_ROT || kind == VT_DOF_BASE_P) {
+        vt_cross3(c, w, u);
+        vt_mulE_t(c + 3, Ei, w);
+        for (int r = 3; r < 7; r++) c[r] *= 0.5;
+    } else vt_copy3(c, w + 3); /* the axis (a base body's unit vector): the twist's v */
+}
+
+/* The non-zero blocks of S: body i's rows, the columns of its path, with lever arms along the
+ * tree (vt_lever_start) */
 static void fill_S(const vt_model *m, vt_data *d)
 {
     const size_t ld = (size_t)m->nx;
     for (int i = 1; i <= m->nbody; i++) {
         double Ei[12];
         vt_euler_E(Ei, d->x + vt_xoff(i) + 3);
-        const int *path = m->path_dof + m->body_pathadr[i];
-        for (int c = 0; c < m->body_pathnum[i]; c++)
-            vt_S_column(d->S + (size_t)path[c] * ld + (size_t)vt_xoff(i), m, d, i, Ei, path[c]);
+        vt_lever L;
+        vt_lever_start(&L, m, d, i);
+        do {
+            for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++)
+                lever_column(d->S + (size_t)a * ld + (size_t)vt_xoff(i), m, d, i, Ei, a, L.u);
+        } while (vt_lever_up(&L, m, d));
     }
 }
 
@@ -349,7 +411,7 @@ static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd
         }
         const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
         double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
-        for (int r = 0; r < 3; r++) sji[r] = d->xrel[6 * i + 3 + r] - d->xrel[6 * i + r];
+        joint_child(sji, m, d, i); /* not (P_i − o) − (r^i − o): exact far from o */
 
         vt_copy3(al, alj);
         vt_copy3(a, aj);

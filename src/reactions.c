@@ -149,7 +149,7 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions");
     if (st) return st;
-    if ((st = vt_reactions_impl(m, d))) return st;
+    if ((st = vt_reactions_impl(m, d, 1))) return st;
     return vt_reactions_total(m, d, 0);
 }
 
@@ -290,17 +290,17 @@ static int coupled(const vt_model *m, int a, int b)
     return on_path(m, m->dof_body[b], a) || on_path(m, m->dof_body[a], b);
 }
 
-vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, int dense)
 {
     const int nv = m->nv;
     const size_t mark = vt_scratch_mark(d);
-    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
-    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
-    if (!w) return vt_scratch_fail(d, mark);
+    double *beta = VT_SCRATCH(d, double, (size_t)nv, "round-off of M*'s diagonal");
+    if (!beta) return vt_scratch_fail(d, mark);
     int zeroed = 0;
     for (int a = 0; a < nv; a++) zeroed += d->Mstar[a + (size_t)a * (size_t)nv] == 0.0;
     if (!zeroed) return vt_scratch_release(d, mark), VT_OK;
-    vt_rate_terms(m, d, w, T);
+    const int r = vt_rate_bounds(m, d, dense, beta);
+    if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
     double worst = 0.0, ub = 0.0, gb = 0.0;
     int wb = 0;
     for (int b = 0; b < nv; b++) {
@@ -310,7 +310,7 @@ vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
         for (int c = 0; c < nv; c++) {
             g += fabs(d->Mstar[b + (size_t)c * (size_t)nv] * d->qdd[c]);
             if (d->Mstar[c + (size_t)c * (size_t)nv] == 0.0 && coupled(m, b, c))
-                u += sqrt(vt_rate_roundoff(T, c) * mbb) * fabs(d->qdd[c]);
+                u += sqrt(beta[c] * mbb) * fabs(d->qdd[c]);
         }
         if (u > 0.0 && !(u <= worst * g)) worst = g > 0.0 ? u / g : (double)INFINITY, wb = b, ub = u, gb = g;
     }
@@ -324,9 +324,9 @@ vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who)
                    who, wb, ub, gb, rcond);
 }
 
-vt_status vt_reactions_impl(const vt_model *m, vt_data *d)
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
 {
-    vt_status st0 = vt_zeroed_rates_check(m, d, "vt_reactions");
+    vt_status st0 = vt_zeroed_rates_check(m, d, "vt_reactions", dense);
     if (st0) return st0;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
@@ -615,7 +615,8 @@ size_t vt_reactions_scratch(const vt_model *m)
     const size_t unique = 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double)) +
                           VT_SCRATCH_BYTES(6 * nb + 6 * (size_t)m->ncut, sizeof(double));
     const size_t total = VT_SCRATCH_BYTES(m->nv > 0 ? (size_t)m->nv : 1, sizeof(double));
-    const size_t zeroed = VT_SCRATCH_BYTES(2 * (size_t)m->nv, sizeof(double)) + VT_SCRATCH_BYTES(4 * nb, sizeof(double));
+    const size_t zeroed = VT_SCRATCH_BYTES((size_t)m->nv, sizeof(double)) + VT_SCRATCH_BYTES(2 * (size_t)m->nv, sizeof(double)) +
+                          VT_SCRATCH_BYTES(4 * nb, sizeof(double)); /* β, vt_rate_bounds' T and w */
     size_t most = inward > unique ? inward : unique;
     most = (most > zeroed ? most : zeroed) + rw;
     return most > total ? most : total;

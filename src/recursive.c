@@ -698,7 +698,7 @@ static vt_status factorized_instant(const vt_model *m, vt_data *d)
     vt_status st = mass_and_bias(m, d);
     if (!st) st = vt_solve_impl(m, d);
     if (!st) st = composite_precision(m, d);
-    return st ? st : vt_reactions_impl(m, d);
+    return st ? st : vt_reactions_impl(m, d, 0);
 }
 
 /* M*'s diagonal without the composite inertias: M*_aa = s_a · (Ī_i s_a) is twice the kinetic
@@ -1401,7 +1401,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         if (r < 0) return (vt_status)r;
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
         else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d)) || (st = composite_precision(m, d)) ||
-                 (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive"))) /* or from M*_FF, which also diagnoses */
+                 (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", 0))) /* or from M*_FF, which also diagnoses */
             return st;
         *formed = !has_base(m);
         return inward(m, d, *formed);

@@ -80,6 +80,55 @@ double vt_rate_roundoff(const double *T, int a)
     return VT_ROUND_TAU * DBL_EPSILON * (T[2 * a] + T[2 * a + 1]);
 }
 
+/* The dense M* = S^T M S: T_a = Σ_k m_k (|v_a| + |ω_a| len_ka)², len_ka the length of body k's
+ * lever arm from rate a's joint as the dense S sums it (vt_lever: its round-off is ε len_ka, not
+ * ε |c_k − o|), and R_a = |ω_a|² Σ_k tr J'_k (a base body's own ṗ too: 4 G^T J' G's diagonal). Its
+ * translational part sums m |V_k|² over S's columns V_k: an exact zero (each V_k zero) comes out
+ * as the square of their round-off, at most (τ ε)² T_a, and a real inertia keeps its digits; its
+ * rotational part is a quadratic form in 4 G^T J' G, first order: τ ε R_a. */
+static void dense_rate_bounds(const vt_model *m, const vt_data *d, double *T, double *beta)
+{
+    const int nv = m->nv;
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
+    for (int a = 0; a < 2 * nv; a++) T[a] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
+        const double trJ = fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
+        vt_lever L;
+        vt_lever_start(&L, m, d, i);
+        do {
+            const int b = L.k;
+            for (int a = m->body_vadr[b]; a < m->body_vadr[b] + m->body_nv[b]; a++) {
+                int ax;
+                const int kind = vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax);
+                const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw));
+                if (kind == VT_DOF_BASE_P && b == i) T[2 * a + 1] += wn * wn * trJ; /* 4 |G_a|² tr J' */
+                else if (kind == VT_DOF_ROT || kind == VT_DOF_BASE_P) {
+                    const double v = wn * L.len;
+                    T[2 * a] += mi * v * v;
+                    T[2 * a + 1] += wn * wn * trJ;
+                } else T[2 * a] += mi;
+            }
+        } while (vt_lever_up(&L, m, d));
+    }
+    for (int a = 0; a < nv; a++) beta[a] = te * te * T[2 * a] + te * T[2 * a + 1];
+}
+
+int vt_rate_bounds(const vt_model *m, vt_data *d, int dense, double *beta)
+{
+    const size_t mark = vt_scratch_mark(d);
+    double *T = VT_SCRATCH(d, double, 2 * (size_t)m->nv, "terms of M*'s diagonal");
+    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    if (!w) return vt_scratch_fail(d, mark);
+    if (dense) dense_rate_bounds(m, d, T, beta);
+    else {
+        vt_rate_terms(m, d, w, T);
+        for (int a = 0; a < m->nv; a++) beta[a] = vt_rate_roundoff(T, a);
+    }
+    vt_scratch_release(d, mark);
+    return 0;
+}
+
 /* rows that Φ_x S builds (points, lines, dot products, orientations) */
 static int judged_row(const vt_model *m, int r)
 {
@@ -125,13 +174,12 @@ static double row_norm(const vt_model *m, const vt_data *d, int r)
  * row (other than a flagged one) touches beyond round-off: VT_ERR_SINGULAR, named (nothing
  * fixes a motion that has no inertia). withM: M* is formed (else only the rows are judged).
  * Returns the number of rows flagged or a negative vt_status. */
-static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
+static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int dense)
 {
     const int nv = m->nv, nc = m->nc;
     const size_t mark = vt_scratch_mark(d);
     double *B = VT_SCRATCH(d, double, (size_t)nv * ((size_t)nc + 1), "terms of Φ_q's rows");
-    double *T = VT_SCRATCH(d, double, 2 * (size_t)nv, "terms of M*'s diagonal");
-    double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
+    double *beta = VT_SCRATCH(d, double, (size_t)nv, "round-off of M*'s diagonal");
     int *fl = VT_SCRATCH(d, int, nc + 1, "round-off rows");
     if (!fl) return vt_scratch_fail(d, mark);
     const double te = VT_ROUND_TAU * DBL_EPSILON;
@@ -148,10 +196,11 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
     }
     if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
     if (withM) {
-        vt_rate_terms(m, d, w, T);
+        const int st = vt_rate_bounds(m, d, dense, beta);
+        if (st < 0) return vt_scratch_release(d, mark), st;
         for (int a = 0; a < nv; a++) {
             const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
-            if (maa > vt_rate_roundoff(T, a)) continue;
+            if (maa > beta[a]) continue;
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
@@ -160,11 +209,11 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
                 for (int b = 0; b < nv; b++) d->Mstar[a + (size_t)b * (size_t)nv] = d->Mstar[b + (size_t)a * (size_t)nv] = 0.0;
                 continue;
             }
-            const double terms = T[2 * a] + T[2 * a + 1]; /* read before the scratch is released */
+            const double bound = beta[a]; /* read before the scratch is released */
             vt_scratch_release(d, mark);
             return vt_fail(d->message, VT_ERR_SINGULAR,
-                           "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is round-off of terms "
-                           "%.3g) and no row fixes it", a, m->dof_body[a], maa, terms);
+                           "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is below its round-off "
+                           "%.3g) and no row fixes it", a, m->dof_body[a], maa, bound);
         }
     }
     vt_scratch_release(d, mark);
@@ -173,7 +222,7 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM)
 
 int vt_zero_rows(const vt_model *m, vt_data *d)
 {
-    return m->nc > 0 ? roundoff_check(m, d, NULL, 0) : 0;
+    return m->nc > 0 ? roundoff_check(m, d, NULL, 0, 0) : 0;
 }
 
 /* Small systems (n ≤ EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
@@ -586,7 +635,7 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     o->c = VT_SCRATCH(d, double, nv, "rate scaling");
     int *flag = o->flag = VT_SCRATCH(d, int, nc, "round-off rows");
     if (!flag) return vt_scratch_fail(d, vt_scratch_mark(d)); /* the caller releases o's arrays */
-    const int ro = roundoff_check(m, d, flag, 0); /* a row that is round-off of zero counts as zero */
+    const int ro = roundoff_check(m, d, flag, 0, 0); /* a row that is round-off of zero counts as zero */
     if (ro < 0) return ro;
     const size_t mark = vt_scratch_mark(d);
     double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
@@ -1227,7 +1276,7 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
  * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
-vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
 {
     const int nv = m->nv, nc = m->nc;
     vt_solve_reset(d);
@@ -1235,7 +1284,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
     /* round-off of an exact zero is neither a row nor an inertia: a rate without inertia that
      * nothing fixes is refused here, zero rows are dependent (rows_decide below says so) */
-    const int zero_rows = roundoff_check(m, d, NULL, 1);
+    const int zero_rows = roundoff_check(m, d, NULL, 1, dense);
     if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
     if (m->joint_rows_only) {
@@ -1333,7 +1382,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band)
 
 vt_status vt_solve_impl(const vt_model *m, vt_data *d)
 {
-    return vt_solve_band(m, d, 0.0);
+    return vt_solve_band(m, d, 0.0, 0);
 }
 
 vt_status vt_solve(const vt_model *m, vt_data *d)
@@ -1341,7 +1390,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
-    return vt_solve_impl(m, d);
+    return vt_solve_band(m, d, 0.0, 1);
 }
 
 vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
@@ -1349,7 +1398,7 @@ vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
-    return vt_solve_band(m, d, band);
+    return vt_solve_band(m, d, band, 1);
 }
 
 int vt_rows_rank(const vt_model *m, vt_data *d)
@@ -1373,7 +1422,7 @@ int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const do
 {
     if (!vt_all_finite(d->gamma, m->nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
-    const int zero_rows = roundoff_check(m, d, NULL, 0); /* a zero row: the general route diagnoses it */
+    const int zero_rows = roundoff_check(m, d, NULL, 0, 0); /* a zero row: the general route diagnoses it */
     if (zero_rows) return zero_rows < 0 ? zero_rows : 1;
     return vt_square_first(m, d, sq, mdiag, 1, rcond);
 }
@@ -1435,8 +1484,9 @@ size_t vt_solve_scratch(const vt_model *m)
     /* roundoff_check (before a route, and inside rows_decide with its flags), the square route's
      * condition (G Φ_q C, its pivots, its inverse) and vt_solve_spd's unit diagonal */
     const size_t nb1 = (size_t)m->nbody + 1;
-    const size_t roundoff = VT_SCRATCH_BYTES(snv * (snc + 1), D) + VT_SCRATCH_BYTES(2 * snv, D) +
-                            VT_SCRATCH_BYTES(4 * nb1, D) + 2 * VT_SCRATCH_BYTES(snc + 1, I);
+    const size_t roundoff = VT_SCRATCH_BYTES(snv * (snc + 1), D) + VT_SCRATCH_BYTES(snv, D) +
+                            VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(4 * nb1, D) +
+                            2 * VT_SCRATCH_BYTES(snc + 1, I); /* B, β, vt_rate_bounds' T and w, flags */
     const size_t square = 2 * VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
     return held + route + small + lapack + roundoff + square + VT_SCRATCH_BYTES(snc, D) + 8 * VT_DATA_ALIGN;
 }

@@ -647,7 +647,9 @@ static void test_refused_states_reported(void **state)
     if (st != VT_ERR_NONFINITE || !strstr(d->message, "refused") || !strstr(d->message, "not finite"))
         fail_msg("status %d (%s): %s", st, vt_status_string(st), d->message);
     assert_true(d->ida_flag < 0); /* IDA's own code is kept */
-    assert_int_equal(tr->nfilled, 5);  /* the rows up to t = 0.4 */
+    /* the rows up to t = 0.4, and the one at the reach itself, t = 0.5, where IDA reaches it before
+     * giving up a step later (which, round-off decides: the rates there are ~5e3 rad/s) */
+    assert_in_range(tr->nfilled, 5, 6);
     for (int k = 0; k < tr->nfilled; k++) { /* and they hold the drive: 2 cos q1 + 2 cos(q1 + q2) = 3 + 2t */
         const double q1 = tr->q[2 * k], q2 = tr->q[2 * k + 1];
         assert_near(2.0 * cos(q1) + 2.0 * cos(q1 + q2), 3.0 + 2.0 * tr->t[k], 1e-6);
