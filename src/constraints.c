@@ -280,8 +280,8 @@ static void relative_row(vt_data *d, int r, int k, const body_state *A, const bo
 }
 
 /* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
- * (gathered into Si, 7 x maxpath, with row: maxpath), or column by column from the rates'
- * twists (the recursive path, which has no dense S) */
+ * (gathered into Si, 7 x maxpath, with row: maxpath), or column by column as the dense S forms
+ * them (the recursive path, which has no dense S): lever arms along the tree (vt_lever) */
 static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si)
 {
     const int nc = m->nc;
@@ -299,47 +299,57 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si
         } else {
             double E[12], col[7];
             vt_euler_E(E, d->x + vt_xoff(b) + 3);
-            for (int c = 0; c < k; c++) {
-                vt_S_column(col, m, d, b, E, path[c]);
-                double v = 0.0;
-                for (int e = 0; e < 7; e++) v += px[e] * col[e];
-                d->Phiq[r + (size_t)path[c] * (size_t)nc] += v;
-            }
+            vt_lever L;
+            vt_lever_start(&L, m, d, b);
+            do {
+                for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++) {
+                    vt_S_column(col, m, d, b, E, a, L.u);
+                    double v = 0.0;
+                    for (int e = 0; e < 7; e++) v += px[e] * col[e];
+                    d->Phiq[r + (size_t)a * (size_t)nc] += v;
+                }
+            } while (vt_lever_up(&L, m, d));
         }
     }
 }
 
 /* The recursive path's Φ_q for a row whose rate on body b is Φ̇ = jv·v_b + jw·ω_b (v_b the
- * centre of mass's velocity): with each rate's twist (ω_c, v_c) about o (r_b from o),
- * v_b = v_c + ω_c × r_b, so Φ_q[r, c] = jv·v_c + (jw + r_b × jv)·ω_c — no E, no 7-vectors.
- * It equals Φ_x S: along the rates (2 E^T jw)·ṗ = jw·ω, ω = 2 E ṗ (16), for a base body's
- * own ṗ too (its twist is ω = 2 E e_k about r_b). */
-static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3])
+ * centre of mass's velocity): a turning rate c of a joint at P moves the centre by ω_c × u,
+ * u = r_b − P (vt_lever: along the tree, exact far from o), a sliding one by its axis v_c, so
+ * Φ_q[r, c] = (jw + u × jv)·ω_c or jv·v_c — no E, no 7-vectors. It equals Φ_x S: along the
+ * rates (2 E^T jw)·ṗ = jw·ω, ω = 2 E ṗ (16), for a base body's own ṗ too (ω = 2 E e_k about r_b,
+ * u = 0). s: a point of the body, P − r_b, added to u (NULL: none). */
+static void phiq_twist_at(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3],
+                          const double *s)
 {
     if (b == 0) return;
-    double jwo[3];
-    vt_cross3(jwo, d->xrel + 6 * b, jv);
-    for (int k = 0; k < 3; k++) jwo[k] += jw[k];
-    const int *path = m->path_dof + m->body_pathadr[b];
-    for (int c = 0; c < m->body_pathnum[b]; c++) {
-        const double *w = d->twist + 6 * path[c];
-        d->Phiq[r + (size_t)path[c] * (size_t)m->nc] += vt_dot3(jv, w + 3) + vt_dot3(jwo, w);
-    }
+    vt_lever L;
+    vt_lever_start(&L, m, d, b);
+    do {
+        double jwu[3], u[3];
+        for (int k = 0; k < 3; k++) u[k] = s ? L.u[k] + s[k] : L.u[k];
+        vt_cross3(jwu, u, jv);
+        for (int k = 0; k < 3; k++) jwu[k] += jw[k];
+        for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++) {
+            const double *w = d->twist + 6 * a;
+            d->Phiq[r + (size_t)a * (size_t)m->nc] += vt_dof_turns(m, a) ? vt_dot3(jwu, w) : vt_dot3(jv, w + 3);
+        }
+    } while (vt_lever_up(&L, m, d));
 }
 
-/* Φ_q rows r..r+2 += sign × the velocity Jacobian of the point P moving with body b: column c
- * is v_c + w_c × P for each rate's twist (phiq_twist with jv = e_k, jw = (P − r_b) × e_k) */
-static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, const double P[3], double sign)
+static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3])
 {
-    if (b == 0) return;
-    const int *path = m->path_dof + m->body_pathadr[b];
-    for (int c = 0; c < m->body_pathnum[b]; c++) {
-        const double *w = d->twist + 6 * path[c];
-        double J[3];
-        vt_copy3(J, w + 3);
-        vt_addcross3(J, w, P);
-        double *col = d->Phiq + r + (size_t)path[c] * (size_t)m->nc;
-        for (int k = 0; k < 3; k++) col[k] += sign * J[k];
+    phiq_twist_at(m, d, r, b, jv, jw, NULL);
+}
+
+/* Φ_q rows r..r+2 += sign × the velocity Jacobian of the point s (P − r_b) moving with body b:
+ * phiq_twist with jv = e_k, jw = 0 at u + s, for k = 0, 1, 2 */
+static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, const double s[3], double sign)
+{
+    for (int k = 0; k < 3; k++) {
+        double e[3] = {0, 0, 0};
+        e[k] = sign;
+        phiq_twist_at(m, d, r + k, b, e, zero3, s);
     }
 }
 
@@ -363,8 +373,8 @@ static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_stat
         if (dense && (parts & VT_CON_PHIQ)) phiq_row(m, d, r + k, 1, Si);
     }
     if (!dense && (parts & VT_CON_PHIQ)) {
-        point_jacobian_rows(m, d, r, A->id, pa->P, -1.0);
-        point_jacobian_rows(m, d, r, B->id, pb->P, 1.0);
+        point_jacobian_rows(m, d, r, A->id, pa->s, -1.0);
+        point_jacobian_rows(m, d, r, B->id, pb->s, 1.0);
     }
 }
 

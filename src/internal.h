@@ -351,6 +351,10 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
 /* The same from d->Sdqd and d->twist (both current), with T (6 x (nbody+1)) the twists q̈ adds
  * to the bodies' spatial accelerations; alpha may be NULL. */
 void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, double *T);
+/* The same from the dense S (vt_kinematics' lever arms along the tree), alpha not NULL */
+void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
+/* s^{ji} = A^i s'^{ji}, body i's centre of mass to its joint point (a base body's: 0) */
+void vt_joint_child(double s[3], const vt_model *m, const vt_data *d, int i);
 
 /* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
  * state is checked. */
@@ -359,8 +363,16 @@ vt_status vt_kinematics_tree(const vt_model *m, vt_data *d, int Sdqd);
  * checked), then the velocities and (Sdqd != 0) Ṡq̇ at those positions (q̇ checked) */
 vt_status vt_kinematics_positions(const vt_model *m, vt_data *d);
 vt_status vt_kinematics_velocities(const vt_model *m, vt_data *d, int Sdqd);
-/* A column of S in body i's rows, from the rate's twist d->twist (kinematics.c) */
-void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof);
+/* Column dof of S in body i's rows (kinematics.c), from the rate's twist d->twist's axis and the
+ * lever arm u = r^i − P of the rate's joint point (vt_lever); Ei = E(p^i) */
+void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof, const double u[3]);
+/* whether rate dof turns (a rotational axis or a base body's ṗ: its twist's w), else slides */
+static inline int vt_dof_turns(const vt_model *m, int dof)
+{
+    int ax;
+    const int b = m->dof_body[dof], kind = vt_dof_kind(m->body_joint[b], dof - m->body_vadr[b], &ax);
+    return kind == VT_DOF_ROT || kind == VT_DOF_BASE_P;
+}
 /* The dense S's lever arms (kinematics.c): from body i up its path, u = r^i − P_k at joint k,
  * summed along the tree from the joints' own vectors; len, the sum of their lengths (u's
  * round-off is ε len); s, s^{ji} of joint k. vt_lever_up moves to k's reference body (0 at the
@@ -371,6 +383,10 @@ typedef struct {
 } vt_lever;
 void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i);
 int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d);
+/* |r^i − o| bounded by the lengths it is summed from (kinematics.c): the size of its round-off */
+double vt_length_from_o(const vt_model *m, const vt_data *d, int i);
+/* the same for every body, into L[stride i] (kinematics.c) */
+void vt_lengths_from_o(const vt_model *m, const vt_data *d, double *L, int stride);
 
 /* every multiplier unique (vt_solve's exact routes) */
 void vt_mark_unique(const vt_model *m, vt_data *d);
@@ -378,7 +394,10 @@ void vt_mark_unique(const vt_model *m, vt_data *d);
  * rank nc, no residual, every multiplier unique (solve.c) */
 void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
 /* vt_solve without the argument check and without clearing d->fallback (solve.c): the
- * recursive evaluation's general route, after its own shortcuts have flagged their fallbacks */
+ * recursive evaluation's general route, after its own shortcuts have flagged their fallbacks.
+ * On its composite M* about o, a rate whose M*_aa is round-off of those terms and that no row
+ * fixes is not refused: VT_NEEDS_DENSE (positive), the dense stages decide (recursive.c) */
+#define VT_NEEDS_DENSE ((vt_status)1)
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
 /* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl)
  * and the form of M* (dense: S^T M S, else the composite inertias about o, as vt_rate_bounds),
@@ -402,7 +421,7 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
 int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
 /* Round-off of exact zeros (solve.c): T (2 nv) the magnitudes of the terms of each rate's M*_aa,
- * T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,
+ * T_a = Σ_k m_k (|v_a| + |ω_a| L_k)² (L_k ≥ |c_k − o|: vt_length_from_o) and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,
  * from the twists (w: 4 (nbody + 1) scratch); vt_rate_roundoff, the size below which M*_aa is
  * round-off, τ ε (T_a + R_a). */
 #define VT_ROUND_TAU 64.0
@@ -416,6 +435,8 @@ int vt_rate_bounds(const vt_model *m, vt_data *d, int dense, double *beta);
 /* the number of rows of Φ_q that are round-off of a zero row (judged against the terms they are
  * summed from), or a negative vt_status (solve.c) */
 int vt_zero_rows(const vt_model *m, vt_data *d);
+/* the same on the free rates alone (known[a] < 0): rows dependent on the known rates' (solve.c) */
+int vt_zero_rows_free(const vt_model *m, vt_data *d, const int *known);
 /* dgelsd's integer workspace for an m x n problem (solve.c) */
 int vt_dgelsd_iwork(int m, int n);
 /* S b' = b for the symmetric positive definite n x n S (its lower triangle, overwritten: scaled

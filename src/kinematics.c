@@ -287,26 +287,8 @@ void vt_kinematics_body(const vt_model *m, vt_data *d, int i)
     velocity(m, d, i);
 }
 
-/* Column `dof` of S in body i's rows (dof on i's path): ṙ^i = v + w × (r^i − o), ṗ^i = ½ E^{iT} w,
- * except a base body's own ṗ, which is q̇ itself (S's block I). Ei = E(p^i). The recursive path's
- * form (its Φ_q from the twists about o); the dense S takes each lever arm along the tree
- * (lever_column). */
-void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof)
-{
-    if (m->body_joint[i] == VT_JOINT_BASE && m->dof_body[dof] == i && dof - m->body_vadr[i] >= 3) {
-        memset(c, 0, 7 * sizeof(double));
-        c[3 + dof - m->body_vadr[i] - 3] = 1.0;
-        return;
-    }
-    const double *w = d->twist + 6 * dof, *v = w + 3;
-    vt_copy3(c, v);
-    vt_addcross3(c, w, d->xrel + 6 * i);
-    vt_mulE_t(c + 3, Ei, w);
-    for (int r = 3; r < 7; r++) c[r] *= 0.5;
-}
-
 /* s^{ji} = A^i s'^{ji}, body i's centre of mass to its joint point (a base body's: 0) */
-static void joint_child(double s[3], const vt_model *m, const vt_data *d, int i)
+void vt_joint_child(double s[3], const vt_model *m, const vt_data *d, int i)
 {
     if (m->body_joint[i] == VT_JOINT_BASE) s[0] = s[1] = s[2] = 0.0;
     else vt_mulmat3(s, d->A + 9 * i, m->body_jchild + 3 * i);
@@ -323,7 +305,7 @@ static void joint_child(double s[3], const vt_model *m, const vt_data *d, int i)
 void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i)
 {
     L->k = i;
-    joint_child(L->s, m, d, i);
+    vt_joint_child(L->s, m, d, i);
     for (int c = 0; c < 3; c++) L->u[c] = -L->s[c];
     L->len = sqrt(vt_dot3(L->s, L->s));
 }
@@ -335,7 +317,7 @@ int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d)
     double a[3], sj[3];
     const double *sij = d->jsij + 3 * k, *dk = d->jd + 3 * k;
     for (int c = 0; c < 3; c++) a[c] = sij[c] + (dk[c] + L->s[c]); /* P_k − r^j */
-    joint_child(sj, m, d, j);
+    vt_joint_child(sj, m, d, j);
     for (int c = 0; c < 3; c++) L->u[c] += a[c] - sj[c];
     L->len += sqrt(vt_dot3(a, a)) + sqrt(vt_dot3(sj, sj));
     vt_copy3(L->s, sj);
@@ -343,11 +325,41 @@ int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d)
     return 1;
 }
 
+/* An upper bound on |r^i − o| and on the size of its round-off: the lengths of the vectors r^i − o
+ * is summed from (xrel: the root's joint point from o, then s^{ij} + t and s^{ji} down the tree),
+ * as vt_lever sums them. Two point masses at o at the ends of 7.5 m links have |r − o| = 0 but
+ * round-off of 7.5 ε in it. */
+double vt_length_from_o(const vt_model *m, const vt_data *d, int i)
+{
+    vt_lever L;
+    vt_lever_start(&L, m, d, i);
+    while (vt_lever_up(&L, m, d)) {}
+    const double *P = d->xrel + 6 * L.k + 3; /* the root's joint point from o */
+    return L.len + sqrt(vt_dot3(P, P));
+}
+
+/* The same for every body at once, into L[stride i] (O(n), parents first):
+ *   L_i = |s^{ji}_i| + (|s^{ij}_i + t_i| + L_j, or |P_i − o| for a root) */
+void vt_lengths_from_o(const vt_model *m, const vt_data *d, double *L, int stride)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const int j = m->body_parent[i];
+        double s[3], a[3];
+        vt_joint_child(s, m, d, i);
+        if (j) {
+            for (int c = 0; c < 3; c++) a[c] = d->jsij[3 * i + c] + (d->jd[3 * i + c] + s[c]);
+            L[stride * i] = sqrt(vt_dot3(s, s)) + sqrt(vt_dot3(a, a)) + L[stride * j];
+        } else {
+            const double *P = d->xrel + 6 * i + 3;
+            L[stride * i] = sqrt(vt_dot3(s, s)) + sqrt(vt_dot3(P, P));
+        }
+    }
+}
+
 /* Column `dof` (a rate of joint L->k) of S in body i's rows, with the lever arm u = r^i − P_k:
- * a turning rate (axis or base body's ω = 2 E e) ṙ^i = w × u, ṗ^i = ½ E^{iT} w; a sliding one
- * ṙ^i = e; a base body's own ṗ, S's block I */
-static void lever_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof,
-                         const double u[3])
+ * a turning rate (axis or base body's ω = 2 E e, its twist's w) ṙ^i = w × u, ṗ^i = ½ E^{iT} w;
+ * a sliding one ṙ^i = e; a base body's own ṗ, S's block I. Ei = E(p^i). */
+void vt_S_column(double c[7], const vt_model *m, const vt_data *d, int i, const double Ei[12], int dof, const double u[3])
 {
     int ax;
     const int kind = vt_dof_kind(m->body_joint[m->dof_body[dof]], dof - m->body_vadr[m->dof_body[dof]], &ax);
@@ -373,7 +385,7 @@ static void fill_S(const vt_model *m, vt_data *d)
         vt_lever_start(&L, m, d, i);
         do {
             for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++)
-                lever_column(d->S + (size_t)a * ld + (size_t)vt_xoff(i), m, d, i, Ei, a, L.u);
+                vt_S_column(d->S + (size_t)a * ld + (size_t)vt_xoff(i), m, d, i, Ei, a, L.u);
         } while (vt_lever_up(&L, m, d));
     }
 }
@@ -411,7 +423,7 @@ static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd
         }
         const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
         double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
-        joint_child(sji, m, d, i); /* not (P_i − o) − (r^i − o): exact far from o */
+        vt_joint_child(sji, m, d, i); /* not (P_i − o) − (r^i − o): exact far from o */
 
         vt_copy3(al, alj);
         vt_copy3(a, aj);
@@ -502,6 +514,31 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
             const double pq = pi[0] * qp[0] + pi[1] * qp[1] + pi[2] * qp[2] + pi[3] * qp[3];
             for (int c = 0; c < 4; c++) ai[3 + c] += pq * pi[c];
         }
+    }
+}
+
+/* The same from the dense S (its lever arms along the tree, fill_S): ẍ^i = Ṡq̇^i + Σ_c S_ic q̈_c over
+ * i's path, α^i = α0^i + Σ_c w_c q̈_c; no term carries |r − o|, so the accelerations of a mechanism
+ * far from o keep the digits of its own lengths */
+void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+{
+    const size_t ld = (size_t)m->nx;
+    memset(alpha, 0, 3 * sizeof(double));
+    for (int i = 1; i <= m->nbody; i++) {
+        const int o = vt_xoff(i), *path = m->path_dof + m->body_pathadr[i];
+        const double *a0 = d->Sdqd + o;
+        double a[7], al[3];
+        memcpy(a, a0, sizeof a);
+        vt_mulEp(al, d->x + o + 3, a0 + 3);
+        for (int c = 0; c < 3; c++) al[c] *= 2.0;
+        for (int k = 0; k < m->body_pathnum[i]; k++) {
+            const int c = path[k];
+            const double *col = d->S + (size_t)c * ld + (size_t)o, *w = d->twist + 6 * c;
+            for (int r = 0; r < 7; r++) a[r] += col[r] * qdd[c];
+            for (int r = 0; r < 3; r++) al[r] += w[r] * qdd[c];
+        }
+        memcpy(out + o, a, sizeof a);
+        vt_copy3(alpha + 3 * i, al);
     }
 }
 

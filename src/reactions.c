@@ -44,21 +44,18 @@ void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const doub
         }
 }
 
-/* sum of the wrenches rw of rows [r0, r1) on side `side`, moved to the point P of their body
- * (P − o, as d->xrel) */
-static void rows_wrench_at(const vt_model *m, const vt_data *d, const double *rw, int r0, int r1, int side,
-                           const double P[3], double f[3], double n[3])
+/* sum of the wrenches rw of rows [r0, r1) on side `side`, moved to the point P of their body,
+ * s = P − r (from the body's own vectors: exact far from o) */
+static void rows_wrench_at(const double *rw, int r0, int r1, int side, const double s[3], double f[3], double n[3])
 {
-    double s[3], t[3];
+    double t[3];
     memset(f, 0, 3 * sizeof(double));
     memset(n, 0, 3 * sizeof(double));
     if (r0 >= r1) return;
-    const int k = m->con_body[2 * r0 + side];
     for (int r = r0; r < r1; r++) {
         vt_axpy3(f, 1.0, rw + 12 * r + 6 * side);
         vt_axpy3(n, 1.0, rw + 12 * r + 6 * side + 3);
     }
-    for (int c = 0; c < 3; c++) s[c] = P[c] - d->xrel[6 * k + c];
     vt_cross3(t, s, f);
     for (int c = 0; c < 3; c++) n[c] -= t[c];
 }
@@ -83,16 +80,10 @@ static void drive_efforts(const vt_model *m, vt_data *d, const double *rw)
     for (int k = 0; k < m->ndrive; k++) {
         const vt_drive_def *dr = &m->drive[k];
         const int r0 = m->drive_row[k], b = dr->body;
-        double P[3]; /* from o */
-        if (dr->type == VT_DRIVE_JOINT) {
-            vt_copy3(P, d->xrel + 6 * b + 3);
-        } else if (dr->type == VT_DRIVE_POINT) {
-            vt_mulmat3(P, d->A + 9 * b, dr->point);
-            vt_axpy3(P, 1.0, d->xrel + 6 * b);
-        } else {
-            vt_copy3(P, d->xrel + 6 * b);
-        }
-        rows_wrench_at(m, d, rw, r0, r0 + vt_drive_nrows(dr), 1, P, d->drive_force + 3 * k, d->drive_moment + 3 * k);
+        double s[3] = {0, 0, 0}; /* the drive's point from the body's centre of mass */
+        if (dr->type == VT_DRIVE_JOINT) vt_joint_child(s, m, d, b);
+        else if (dr->type == VT_DRIVE_POINT) vt_mulmat3(s, d->A + 9 * b, dr->point);
+        rows_wrench_at(rw, r0, r0 + vt_drive_nrows(dr), 1, s, d->drive_force + 3 * k, d->drive_moment + 3 * k);
         d->drive_effort[k] = vt_drive_turns(dr->type) ? 0.0 : d->lambda[r0];
     }
 
@@ -206,11 +197,10 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
         const vt_cut_joint_def *c = &m->cut[k];
         const int r0 = m->cut_row[k];
         const int rend = r0 + vt_cut_nrows(c);
-        double P[3];
-        vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
-        vt_axpy3(P, 1.0, d->xrel + 6 * c->body_b);
+        double s[3];
+        vt_mulmat3(s, d->A + 9 * c->body_b, c->point_b);
         double *f = d->cut_force + 3 * k, *mo = d->cut_moment + 3 * k;
-        rows_wrench_at(m, d, rw, r0, rend, 1, P, f, mo);
+        rows_wrench_at(rw, r0, rend, 1, s, f, mo);
         vt_mulmat3t(d->cut_force_body + 3 * k, d->A + 9 * c->body_b, f);
         vt_mulmat3t(d->cut_moment_body + 3 * k, d->A + 9 * c->body_b, mo);
     }
@@ -336,7 +326,8 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
     if (!rw) return vt_scratch_fail(d, mark);
     double *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
-    vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
+    if (dense) vt_accelerations_dense(m, d, d->qdd, d->xdd, alpha);
+    else vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
     /* applied: gravity, xfrc, and every row and generalized force */
     memset(cf, 0, 6 * nb * sizeof(double));
@@ -351,7 +342,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     /* tree joints, inward (26) */
     for (int i = n; i >= 1; i--) {
         const int j = m->body_parent[i];
-        const double *ri = d->xrel + 6 * i, *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
+        const double *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
         const double *w = d->omega + 3 * i, *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
         double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
         double wb[3], ab[3], Jw[3], Ja[3], t[3], s[3], Nc[3];
@@ -362,16 +353,18 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
         vt_mulmat3(Ja, Jb, ab);
         vt_addcross3(Ja, wb, Jw);
         vt_mulmat3(Nc, Ai, Ja);
+        double sji[3]; /* P_i − r^i and P_i − r^j from the joint's own vectors, not as differences
+                        * of positions from o (exact far from o) */
+        vt_joint_child(sji, m, d, i);
         for (int c = 0; c < 3; c++) {
             f[c] = m->body_mass[i] * a[c] - fe[6 * i + c] + cf[6 * i + c];
             Nc[c] += -fe[6 * i + 3 + c] + cf[6 * i + 3 + c];
-            s[c] = ri[3 + c] - ri[c];
         }
-        vt_cross3(t, s, f);
+        vt_cross3(t, sji, f);
         for (int c = 0; c < 3; c++) mo[c] = Nc[c] - t[c];
         if (j) { /* into the parent: f and its moment about the parent's centre of mass */
-            const double *rj = d->xrel + 6 * j;
-            for (int c = 0; c < 3; c++) s[c] = d->xrel[6 * i + 3 + c] - rj[c];
+            const double *sij = d->jsij + 3 * i, *di = d->jd + 3 * i;
+            for (int c = 0; c < 3; c++) s[c] = sij[c] + (di[c] + sji[c]); /* s^{ij} + t */
             vt_cross3(t, s, f);
             for (int c = 0; c < 3; c++) {
                 cf[6 * j + c] += f[c];
@@ -538,10 +531,9 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
     for (int k = 0; k < m->ncut; k++) {
         const vt_cut_joint_def *c = &m->cut[k];
         const int r0 = m->cut_row[k];
-        double P[3], f[3], mo[3];
-        vt_mulmat3(P, d->A + 9 * c->body_b, c->point_b);
-        vt_axpy3(P, 1.0, d->xrel + 6 * c->body_b);
-        rows_wrench_at(m, d, rw, r0, r0 + vt_cut_nrows(c), 1, P, f, mo);
+        double s[3], f[3], mo[3];
+        vt_mulmat3(s, d->A + 9 * c->body_b, c->point_b);
+        rows_wrench_at(rw, r0, r0 + vt_cut_nrows(c), 1, s, f, mo);
         for (int e = 0; e < 3; e++) {
             cmag[6 * k + e] = fabs(f[e]);
             cmag[6 * k + 3 + e] = fabs(mo[e]);

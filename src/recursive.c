@@ -668,12 +668,12 @@ static vt_status mass_and_bias(const vt_model *m, vt_data *d)
  * vouch for its answer, and the instant is computed again by the dense stages, whose S^T M S sums
  * positive terms (kinetic energies, no cancellation: round-off relative to each entry itself) and
  * is judged by vt_solve's own estimate (VT_FALLBACK_COMPOSITE_ROUNDOFF; returned as
- * NEEDS_DENSE). Rates whose M* row vt_solve zeroed (round-off held by a row) are not measured:
+ * VT_NEEDS_DENSE, as vt_solve_impl does for a rate whose M*_aa is round-off of these terms and
+ * that no row fixes). Rates whose M* row vt_solve zeroed (round-off held by a row) are not measured:
  * they are exactly zero. The bound is a worst case: a 100-link chain driven at its tip, 72 m
  * long, meets it (nv max δ = 3.7e-5 against rcond 6.7e-7) while its two paths agree to 3e-9;
  * the articulated route, about each body's joint point, keeps such a chain and does not come
  * here. */
-#define NEEDS_DENSE ((vt_status)1)
 static vt_status composite_precision(const vt_model *m, vt_data *d)
 {
     const int nv = m->nv;
@@ -688,7 +688,20 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
         if (maa > 0.0 && vt_rate_roundoff(T, a) / maa > delta) delta = vt_rate_roundoff(T, a) / maa;
     }
     vt_scratch_release(d, mark);
-    return nv * delta >= d->rcond ? NEEDS_DENSE : VT_OK;
+    return nv * delta >= d->rcond ? VT_NEEDS_DENSE : VT_OK;
+}
+
+/* (5) solved by vt_solve on the composite M*: its answer judged by composite_precision against
+ * its estimate; its refusal (singular or dependent) is the dense stages' to give. A verdict on the
+ * composite M* may be its round-off's: a point mass 1e6 m from o whose exact zero inertia the
+ * composite inertias blur into an indefinite pivot, a base body 1e34 m from o whose real inertia
+ * they cannot tell from none (its rates zeroed, which composite_precision does not measure).
+ * Refusals are rare; the dense stages, about each joint, decide them. */
+static vt_status composite_solve(const vt_model *m, vt_data *d)
+{
+    const vt_status st = vt_solve_impl(m, d);
+    if (st == VT_ERR_SINGULAR || st == VT_ERR_DEPENDENT_CONSTRAINTS) return VT_NEEDS_DENSE;
+    return st ? st : composite_precision(m, d);
 }
 
 /* M* and Q formed, (5) solved by vt_solve (which also diagnoses), the reactions inward:
@@ -696,8 +709,7 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
 static vt_status factorized_instant(const vt_model *m, vt_data *d)
 {
     vt_status st = mass_and_bias(m, d);
-    if (!st) st = vt_solve_impl(m, d);
-    if (!st) st = composite_precision(m, d);
+    if (!st) st = composite_solve(m, d);
     return st ? st : vt_reactions_impl(m, d, 0);
 }
 
@@ -1203,7 +1215,10 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     const int nr = aba_sides(m);
     /* a row that is round-off of zero would pass for a row once S is at unit diagonal: the
      * general route names it */
-    const int zero_rows = vt_zero_rows(m, d);
+    int zero_rows = vt_zero_rows(m, d);
+    /* with joint-driven rates known (articulated_solve), a row that only they move beyond
+     * round-off is round-off on the free rates: dependent on their drives */
+    if (zero_rows == 0 && nr <= m->nc) zero_rows = vt_zero_rows_free(m, d, m->dof_drive);
     if (zero_rows < 0) return (vt_status)zero_rows;
     if (zero_rows > 0) return factorized_instant(m, d);
     const size_t mark = vt_scratch_mark(d), sr = 6 * (size_t)nr;
@@ -1323,9 +1338,10 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
  * vt_reactions_total forms them */
 static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int formed, int totals)
 {
-    if (st == NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
+    if (st == VT_NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
+        const int left = d->fallback; /* the routes left before, kept */
         st = vt_inverse_dynamics(m, d);
-        d->fallback |= VT_FALLBACK_COMPOSITE_ROUNDOFF;
+        d->fallback |= left | VT_FALLBACK_COMPOSITE_ROUNDOFF;
         return st;
     }
     if (st) return st;
@@ -1400,7 +1416,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         }
         if (r < 0) return (vt_status)r;
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
-        else if ((st = mass_and_bias(m, d)) || (st = vt_solve_impl(m, d)) || (st = composite_precision(m, d)) ||
+        else if ((st = mass_and_bias(m, d)) || (st = composite_solve(m, d)) ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", 0))) /* or from M*_FF, which also diagnoses */
             return st;
         *formed = !has_base(m);

@@ -46,11 +46,13 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
  * centre), and what is computed there is round-off of the terms' size, not a small inertia or a
  * small row. Each is judged against the magnitude of what it was summed from, never by itself:
  *   rate a   M*_aa = Σ_k m_k |v_a + ω_a × c_k|² + u^T J'_k u over the bodies k it moves, whose
- *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| |c_k|)² and R_a = |ω_a|² Σ_k tr J'_k: round-off
- *            when M*_aa ≤ τ ε (T_a + R_a) (first order: the composite-inertia form s · Ī s about O
- *            subtracts terms of that size; S^T M S's squares would leave less)
+ *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| L_k)² (L_k ≥ |c_k − o|, the lengths c_k − o
+ *            is summed from, vt_length_from_o: its round-off's size) and R_a = |ω_a|² Σ_k tr J'_k:
+ *            round-off when M*_aa ≤ τ ε (T_a + R_a) (first order: the composite-inertia form
+ *            s · Ī s about O subtracts terms of that size); the dense S^T M S by the second order
+ *            (vt_rate_bounds)
  *   row r    Φ_q,ra = Σ_j Φ_x,rj S_ja over the row's two bodies, terms bounded by B_ra = Σ_j
- *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| |r| for a position, ½ |ω_a| for an Euler
+ *            |Φ_x,rj| |S_ja|max (|S_ja| ≤ |v_a| + |ω_a| L_r for a position, ½ |ω_a| for an Euler
  *            parameter, 1 for a base body's own ṗ): round-off when ‖Φ_q,r‖ ≤ τ ε ‖B_r‖. A dot
  *            product's Φ_x is itself a sum, 2 (u × v)^T E: its Euler-parameter entries are taken
  *            as at least their terms' size, 2 |u| |v| = 2 (u ∥ v makes them round-off)
@@ -60,9 +62,9 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
 void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T)
 {
     for (int k = 0; k < 4; k++) w[k] = 0.0;
+    vt_lengths_from_o(m, d, w + 1, 4); /* |c − o|, as the twists, with its round-off's size */
     for (int i = 1; i <= m->nbody; i++) {
-        const double *c = d->xrel + 6 * i, *J = m->body_inertia + 9 * i, mi = m->body_mass[i]; /* from o, as the twists */
-        const double rc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        const double *J = m->body_inertia + 9 * i, mi = m->body_mass[i], rc = w[4 * i + 1];
         w[4 * i] = mi, w[4 * i + 1] = mi * rc, w[4 * i + 2] = mi * rc * rc;
         w[4 * i + 3] = fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
     }
@@ -143,11 +145,11 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
     for (int side = 0; side < 2; side++) {
         const int b = m->con_body[2 * r + side];
         if (b <= 0) continue;
-        const double *fx = d->Phix + 14 * (size_t)r + 7 * side, *c = d->xrel + 6 * b; /* from o, as the twists */
+        const double *fx = d->Phix + 14 * (size_t)r + 7 * side;
         const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
         double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
         if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
-        const double rc = sqrt(vt_dot3(c, c));
+        const double rc = vt_length_from_o(m, d, b); /* |r_b − o|, as the twists, with its round-off's size */
         const int *path = m->path_dof + m->body_pathadr[b];
         for (int k = 0; k < m->body_pathnum[b]; k++) {
             const int a = path[k];
@@ -174,6 +176,7 @@ static double row_norm(const vt_model *m, const vt_data *d, int r)
  * row (other than a flagged one) touches beyond round-off: VT_ERR_SINGULAR, named (nothing
  * fixes a motion that has no inertia). withM: M* is formed (else only the rows are judged).
  * Returns the number of rows flagged or a negative vt_status. */
+#define ROUNDOFF_COMPOSITE (-1000) /* below every vt_status */
 static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int dense)
 {
     const int nv = m->nv, nc = m->nc;
@@ -200,7 +203,7 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
         if (st < 0) return vt_scratch_release(d, mark), st;
         for (int a = 0; a < nv; a++) {
             const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
-            if (maa > beta[a]) continue;
+            if (maa > beta[a] && maa >= DBL_MIN) continue; /* subnormal: its bound underflows, and it has lost its digits */
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
@@ -211,6 +214,9 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
             }
             const double bound = beta[a]; /* read before the scratch is released */
             vt_scratch_release(d, mark);
+            /* the composite inertias about o cannot tell this inertia from round-off; S^T M S's
+             * lever arms along the tree may (a body 1e9 m from its joint): the dense stages decide */
+            if (!dense) return ROUNDOFF_COMPOSITE;
             return vt_fail(d->message, VT_ERR_SINGULAR,
                            "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is below its round-off "
                            "%.3g) and no row fixes it", a, m->dof_body[a], maa, bound);
@@ -223,6 +229,34 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
 int vt_zero_rows(const vt_model *m, vt_data *d)
 {
     return m->nc > 0 ? roundoff_check(m, d, NULL, 0, 0) : 0;
+}
+
+/* The same on the free rates alone (known[a] < 0; the others' q̈ known, as the recursive
+ * articulated route takes joint-driven rates): a row whose part on the free rates is round-off
+ * of zero, ‖Φ_q,rF‖ ≤ τ ε ‖B_rF‖, is dependent on the known rates' rows, though it is not zero
+ * as a whole (a point drive whose point the free rates move by round-off only). Returns the
+ * number of such rows or a negative vt_status. */
+int vt_zero_rows_free(const vt_model *m, vt_data *d, const int *known)
+{
+    const int nv = m->nv, nc = m->nc;
+    const size_t mark = vt_scratch_mark(d);
+    double *B = VT_SCRATCH(d, double, (size_t)nv, "terms of Φ_q's row");
+    if (!B) return vt_scratch_fail(d, mark);
+    const double te = VT_ROUND_TAU * DBL_EPSILON;
+    int zero = 0;
+    for (int r = 0; r < nc; r++) {
+        if (!judged_row(m, r)) continue;
+        row_terms(m, d, r, B);
+        double rn = 0.0, bn = 0.0;
+        for (int a = 0; a < nv; a++) {
+            if (known[a] >= 0) continue;
+            const double v = d->Phiq[r + (size_t)a * (size_t)nc];
+            rn += v * v, bn += B[a] * B[a];
+        }
+        zero += !(sqrt(rn) > te * sqrt(bn));
+    }
+    vt_scratch_release(d, mark);
+    return zero;
 }
 
 /* Small systems (n ≤ EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
@@ -1285,6 +1319,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
     /* round-off of an exact zero is neither a row nor an inertia: a rate without inertia that
      * nothing fixes is refused here, zero rows are dependent (rows_decide below says so) */
     const int zero_rows = roundoff_check(m, d, NULL, 1, dense);
+    if (zero_rows == ROUNDOFF_COMPOSITE) return VT_NEEDS_DENSE;
     if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
     if (m->joint_rows_only) {
