@@ -1340,6 +1340,7 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, in
 {
     if (st == VT_NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
         const int left = d->fallback; /* the routes left before, kept */
+        d->message[0] = '\0'; /* a refusal the dense stages decide again is no diagnosis */
         st = vt_inverse_dynamics(m, d);
         d->fallback |= left | VT_FALLBACK_COMPOSITE_ROUNDOFF;
         return st;
