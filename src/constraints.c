@@ -300,7 +300,7 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si
             double E[12], col[7];
             vt_euler_E(E, d->x + vt_xoff(b) + 3);
             vt_lever L;
-            vt_lever_start(&L, m, d, b);
+            vt_lever_start(&L, m, d, b, 0);
             do {
                 for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++) {
                     vt_S_column(col, m, d, b, E, a, L.u);
@@ -318,39 +318,44 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si
  * u = r_b − P (vt_lever: along the tree, exact far from o), a sliding one by its axis v_c, so
  * Φ_q[r, c] = (jw + u × jv)·ω_c or jv·v_c — no E, no 7-vectors. It equals Φ_x S: along the
  * rates (2 E^T jw)·ṗ = jw·ω, ω = 2 E ṗ (16), for a base body's own ṗ too (ω = 2 E e_k about r_b,
- * u = 0). s: a point of the body, P − r_b, added to u (NULL: none). */
-static void phiq_twist_at(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3],
-                          const double *s)
+ * u = 0). */
+static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3])
 {
     if (b == 0) return;
     vt_lever L;
-    vt_lever_start(&L, m, d, b);
+    vt_lever_start(&L, m, d, b, 0);
     do {
-        double jwu[3], u[3];
-        for (int k = 0; k < 3; k++) u[k] = s ? L.u[k] + s[k] : L.u[k];
-        vt_cross3(jwu, u, jv);
+        double jwu[3];
+        vt_cross3(jwu, L.u, jv);
         for (int k = 0; k < 3; k++) jwu[k] += jw[k];
+        const int jt = m->body_joint[L.k], turn = jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL;
         for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++) {
             const double *w = d->twist + 6 * a;
-            d->Phiq[r + (size_t)a * (size_t)m->nc] += vt_dof_turns(m, a) ? vt_dot3(jwu, w) : vt_dot3(jv, w + 3);
+            d->Phiq[r + (size_t)a * (size_t)m->nc] += turn || vt_dof_turns(m, a) ? vt_dot3(jwu, w) : vt_dot3(jv, w + 3);
         }
     } while (vt_lever_up(&L, m, d));
 }
 
-static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double jv[3], const double jw[3])
-{
-    phiq_twist_at(m, d, r, b, jv, jw, NULL);
-}
-
 /* Φ_q rows r..r+2 += sign × the velocity Jacobian of the point s (P − r_b) moving with body b:
- * phiq_twist with jv = e_k, jw = 0 at u + s, for k = 0, 1, 2 */
+ * a turning rate's column w × (u + s), a sliding one's its axis (phiq_twist with jv = e_k) */
 static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, const double s[3], double sign)
 {
-    for (int k = 0; k < 3; k++) {
-        double e[3] = {0, 0, 0};
-        e[k] = sign;
-        phiq_twist_at(m, d, r + k, b, e, zero3, s);
-    }
+    if (b == 0) return;
+    vt_lever L;
+    vt_lever_start(&L, m, d, b, 0);
+    do {
+        double u[3];
+        for (int k = 0; k < 3; k++) u[k] = L.u[k] + s[k];
+        const int jt = m->body_joint[L.k], turn = jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL;
+        for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++) {
+            const double *w = d->twist + 6 * a;
+            double J[3];
+            if (turn || vt_dof_turns(m, a)) vt_cross3(J, w, u);
+            else vt_copy3(J, w + 3);
+            double *col = d->Phiq + r + (size_t)a * (size_t)m->nc;
+            for (int k = 0; k < 3; k++) col[k] += sign * J[k];
+        }
+    } while (vt_lever_up(&L, m, d));
 }
 
 /* The three point rows of a cut joint, P_b − P_a = 0 along the global axes e_k, at once */

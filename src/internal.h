@@ -353,8 +353,6 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
 void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, double *T);
 /* The same from the dense S (vt_kinematics' lever arms along the tree), alpha not NULL */
 void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
-/* s^{ji} = A^i s'^{ji}, body i's centre of mass to its joint point (a base body's: 0) */
-void vt_joint_child(double s[3], const vt_model *m, const vt_data *d, int i);
 
 /* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
  * state is checked. */
@@ -373,19 +371,54 @@ static inline int vt_dof_turns(const vt_model *m, int dof)
     const int b = m->dof_body[dof], kind = vt_dof_kind(m->body_joint[b], dof - m->body_vadr[b], &ax);
     return kind == VT_DOF_ROT || kind == VT_DOF_BASE_P;
 }
-/* The dense S's lever arms (kinematics.c): from body i up its path, u = r^i − P_k at joint k,
- * summed along the tree from the joints' own vectors; len, the sum of their lengths (u's
- * round-off is ε len); s, s^{ji} of joint k. vt_lever_up moves to k's reference body (0 at the
- * ground). */
+/* s^{ji} = A^i s'^{ji}, body i's centre of mass to its joint point (a base body's: 0). A joint
+ * without translation has d^i = −s^{ji} exactly (kinematics.c forms d^i = t − s^{ji}, t = 0) */
+static inline void vt_joint_child(double s[3], const vt_model *m, const vt_data *d, int i)
+{
+    const int jt = m->body_joint[i];
+    if (jt == VT_JOINT_BASE) s[0] = s[1] = s[2] = 0.0;
+    else if (jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL)
+        s[0] = -d->jd[3 * i], s[1] = -d->jd[3 * i + 1], s[2] = -d->jd[3 * i + 2];
+    else vt_mulmat3(s, d->A + 9 * i, m->body_jchild + 3 * i);
+}
+
+/* The lever arms of the dense S (and of the recursive path's Φ_q), walked from body i up its
+ * path: at joint k, u = r^i − P_k (P_k the point the joint's rates turn about; a base body's,
+ * its centre of mass), summed from the joints' own short vectors,
+ *   r^i − P_i = −s^{ji}_i,   r^i − P_j = (r^i − P_k) + (s^{ij}_k + t_k) − s^{ji}_j   (j = k's reference)
+ * with t_k = d^k + s^{ji}_k the joint's translation (17); with with_len, len = the sum of those
+ * vectors' lengths, the size of u's round-off; s = s^{ji} of joint k. The difference
+ * (r^i − o) − (P_k − o) of positions from o would carry ε |r − o| of round-off: a mechanism 1e9 m
+ * from o would have no digit of a 1 m lever arm. vt_lever_up moves to k's reference body and
+ * returns 0 at the ground. */
 typedef struct {
-    int k;
+    int k, with_len;
     double u[3], s[3], len;
 } vt_lever;
-void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i);
-int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d);
-/* |r^i − o| bounded by the lengths it is summed from (kinematics.c): the size of its round-off */
-double vt_length_from_o(const vt_model *m, const vt_data *d, int i);
-/* the same for every body, into L[stride i] (kinematics.c) */
+static inline void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i, int with_len)
+{
+    L->k = i;
+    L->with_len = with_len;
+    vt_joint_child(L->s, m, d, i);
+    for (int c = 0; c < 3; c++) L->u[c] = -L->s[c];
+    L->len = with_len ? sqrt(vt_dot3(L->s, L->s)) : 0.0;
+}
+static inline int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d)
+{
+    const int k = L->k, j = m->body_parent[k];
+    if (j == 0) return 0;
+    double a[3], sj[3];
+    const double *sij = d->jsij + 3 * k, *dk = d->jd + 3 * k;
+    for (int c = 0; c < 3; c++) a[c] = sij[c] + (dk[c] + L->s[c]); /* P_k − r^j */
+    vt_joint_child(sj, m, d, j);
+    for (int c = 0; c < 3; c++) L->u[c] += a[c] - sj[c];
+    if (L->with_len) L->len += sqrt(vt_dot3(a, a)) + sqrt(vt_dot3(sj, sj));
+    vt_copy3(L->s, sj);
+    L->k = j;
+    return 1;
+}
+/* |r^i − o| bounded by the lengths it is summed from, the size of its round-off, for every body
+ * into L[stride i] (kinematics.c) */
 void vt_lengths_from_o(const vt_model *m, const vt_data *d, double *L, int stride);
 
 /* every multiplier unique (vt_solve's exact routes) */
@@ -421,7 +454,7 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
 int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
 /* Round-off of exact zeros (solve.c): T (2 nv) the magnitudes of the terms of each rate's M*_aa,
- * T_a = Σ_k m_k (|v_a| + |ω_a| L_k)² (L_k ≥ |c_k − o|: vt_length_from_o) and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,
+ * T_a = Σ_k m_k (|v_a| + |ω_a| L_k)² (L_k ≥ |c_k − o|: vt_lengths_from_o) and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,
  * from the twists (w: 4 (nbody + 1) scratch); vt_rate_roundoff, the size below which M*_aa is
  * round-off, τ ε (T_a + R_a). */
 #define VT_ROUND_TAU 64.0

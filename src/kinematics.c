@@ -287,58 +287,12 @@ void vt_kinematics_body(const vt_model *m, vt_data *d, int i)
     velocity(m, d, i);
 }
 
-/* s^{ji} = A^i s'^{ji}, body i's centre of mass to its joint point (a base body's: 0) */
-void vt_joint_child(double s[3], const vt_model *m, const vt_data *d, int i)
-{
-    if (m->body_joint[i] == VT_JOINT_BASE) s[0] = s[1] = s[2] = 0.0;
-    else vt_mulmat3(s, d->A + 9 * i, m->body_jchild + 3 * i);
-}
 
-/* The lever arms of the dense S, walked from body i up its path: at joint k, u = r^i − P_k (P_k
- * the point the joint's rates turn about; a base body's, its centre of mass), summed from the
- * joints' own short vectors,
- *   r^i − P_i = −s^{ji}_i,   r^i − P_j = (r^i − P_k) + (s^{ij}_k + t_k) − s^{ji}_j   (j = k's reference)
- * with t_k = d^k + s^{ji}_k the joint's translation (17), and len = the sum of those vectors'
- * lengths, the size of u's round-off. The difference (r^i − o) − (P_k − o) of positions from o
- * would carry ε |r − o| of it: a mechanism 1e9 m from o would have no digit of a 1 m lever arm,
- * S's columns and M*'s entries none of the inertia about the joint. */
-void vt_lever_start(vt_lever *L, const vt_model *m, const vt_data *d, int i)
-{
-    L->k = i;
-    vt_joint_child(L->s, m, d, i);
-    for (int c = 0; c < 3; c++) L->u[c] = -L->s[c];
-    L->len = sqrt(vt_dot3(L->s, L->s));
-}
 
-int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d)
-{
-    const int k = L->k, j = m->body_parent[k];
-    if (j == 0) return 0;
-    double a[3], sj[3];
-    const double *sij = d->jsij + 3 * k, *dk = d->jd + 3 * k;
-    for (int c = 0; c < 3; c++) a[c] = sij[c] + (dk[c] + L->s[c]); /* P_k − r^j */
-    vt_joint_child(sj, m, d, j);
-    for (int c = 0; c < 3; c++) L->u[c] += a[c] - sj[c];
-    L->len += sqrt(vt_dot3(a, a)) + sqrt(vt_dot3(sj, sj));
-    vt_copy3(L->s, sj);
-    L->k = j;
-    return 1;
-}
-
-/* An upper bound on |r^i − o| and on the size of its round-off: the lengths of the vectors r^i − o
- * is summed from (xrel: the root's joint point from o, then s^{ij} + t and s^{ji} down the tree),
- * as vt_lever sums them. Two point masses at o at the ends of 7.5 m links have |r − o| = 0 but
- * round-off of 7.5 ε in it. */
-double vt_length_from_o(const vt_model *m, const vt_data *d, int i)
-{
-    vt_lever L;
-    vt_lever_start(&L, m, d, i);
-    while (vt_lever_up(&L, m, d)) {}
-    const double *P = d->xrel + 6 * L.k + 3; /* the root's joint point from o */
-    return L.len + sqrt(vt_dot3(P, P));
-}
-
-/* The same for every body at once, into L[stride i] (O(n), parents first):
+/* An upper bound on |r^i − o| and on the size of its round-off, for every body, into L[stride i]:
+ * the lengths of the vectors r^i − o is summed from (xrel: the root's joint point from o, then
+ * s^{ij} + t and s^{ji} down the tree, as vt_lever sums them); two point masses at o at the ends
+ * of 7.5 m links have |r − o| = 0 but round-off of 7.5 ε in it. O(n), parents first:
  *   L_i = |s^{ji}_i| + (|s^{ij}_i + t_i| + L_j, or |P_i − o| for a root) */
 void vt_lengths_from_o(const vt_model *m, const vt_data *d, double *L, int stride)
 {
@@ -382,7 +336,7 @@ static void fill_S(const vt_model *m, vt_data *d)
         double Ei[12];
         vt_euler_E(Ei, d->x + vt_xoff(i) + 3);
         vt_lever L;
-        vt_lever_start(&L, m, d, i);
+        vt_lever_start(&L, m, d, i, 0);
         do {
             for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++)
                 vt_S_column(d->S + (size_t)a * ld + (size_t)vt_xoff(i), m, d, i, Ei, a, L.u);

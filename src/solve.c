@@ -47,7 +47,7 @@ static const char *owner_name(const vt_model *m, int row, char *buf, size_t n)
  * small row. Each is judged against the magnitude of what it was summed from, never by itself:
  *   rate a   M*_aa = Σ_k m_k |v_a + ω_a × c_k|² + u^T J'_k u over the bodies k it moves, whose
  *            terms are T_a = Σ_k m_k (|v_a| + |ω_a| L_k)² (L_k ≥ |c_k − o|, the lengths c_k − o
- *            is summed from, vt_length_from_o: its round-off's size) and R_a = |ω_a|² Σ_k tr J'_k:
+ *            is summed from, vt_lengths_from_o: its round-off's size) and R_a = |ω_a|² Σ_k tr J'_k:
  *            round-off when M*_aa ≤ τ ε (T_a + R_a) (first order: the composite-inertia form
  *            s · Ī s about O subtracts terms of that size); the dense S^T M S by the second order
  *            (vt_rate_bounds)
@@ -97,7 +97,7 @@ static void dense_rate_bounds(const vt_model *m, const vt_data *d, double *T, do
         const double *J = m->body_inertia + 9 * i, mi = m->body_mass[i];
         const double trJ = fabs(J[0]) + fabs(J[4]) + fabs(J[8]);
         vt_lever L;
-        vt_lever_start(&L, m, d, i);
+        vt_lever_start(&L, m, d, i, 1);
         do {
             const int b = L.k;
             for (int a = m->body_vadr[b]; a < m->body_vadr[b] + m->body_nv[b]; a++) {
@@ -139,7 +139,7 @@ static int judged_row(const vt_model *m, int r)
 }
 
 /* B_r (as above) into B (nv) for row r; returns ‖B_r‖ */
-static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
+static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, const double *Lo)
 {
     for (int a = 0; a < m->nv; a++) B[a] = 0.0;
     for (int side = 0; side < 2; side++) {
@@ -149,7 +149,7 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B)
         const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
         double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
         if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
-        const double rc = vt_length_from_o(m, d, b); /* |r_b − o|, as the twists, with its round-off's size */
+        const double rc = Lo[b]; /* |r_b − o|, as the twists, with its round-off's size (vt_lengths_from_o) */
         const int *path = m->path_dof + m->body_pathadr[b];
         for (int k = 0; k < m->body_pathnum[b]; k++) {
             const int a = path[k];
@@ -183,10 +183,12 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
     const size_t mark = vt_scratch_mark(d);
     double *B = VT_SCRATCH(d, double, (size_t)nv * ((size_t)nc + 1), "terms of Φ_q's rows");
     double *beta = VT_SCRATCH(d, double, (size_t)nv, "round-off of M*'s diagonal");
+    double *Lo = VT_SCRATCH(d, double, (size_t)m->nbody + 1, "lengths from o");
     int *fl = VT_SCRATCH(d, int, nc + 1, "round-off rows");
     if (!fl) return vt_scratch_fail(d, mark);
     const double te = VT_ROUND_TAU * DBL_EPSILON;
     int zero_rows = 0;
+    vt_lengths_from_o(m, d, Lo, 1);
     for (int r = 0; r < nc; r++) {
         double *Br = B + (size_t)r * (size_t)nv;
         fl[r] = 0;
@@ -194,7 +196,7 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
             for (int a = 0; a < nv; a++) Br[a] = 0.0; /* exact entries: any non-zero one counts */
             continue;
         }
-        const double bn = row_terms(m, d, r, Br), rn = row_norm(m, d, r);
+        const double bn = row_terms(m, d, r, Br, Lo), rn = row_norm(m, d, r);
         if (!(rn > te * bn)) fl[r] = 1, zero_rows++;
     }
     if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
@@ -241,12 +243,14 @@ int vt_zero_rows_free(const vt_model *m, vt_data *d, const int *known)
     const int nv = m->nv, nc = m->nc;
     const size_t mark = vt_scratch_mark(d);
     double *B = VT_SCRATCH(d, double, (size_t)nv, "terms of Φ_q's row");
-    if (!B) return vt_scratch_fail(d, mark);
+    double *Lo = VT_SCRATCH(d, double, (size_t)m->nbody + 1, "lengths from o");
+    if (!Lo) return vt_scratch_fail(d, mark);
     const double te = VT_ROUND_TAU * DBL_EPSILON;
     int zero = 0;
+    vt_lengths_from_o(m, d, Lo, 1);
     for (int r = 0; r < nc; r++) {
         if (!judged_row(m, r)) continue;
-        row_terms(m, d, r, B);
+        row_terms(m, d, r, B, Lo);
         double rn = 0.0, bn = 0.0;
         for (int a = 0; a < nv; a++) {
             if (known[a] >= 0) continue;
@@ -1520,8 +1524,8 @@ size_t vt_solve_scratch(const vt_model *m)
      * condition (G Φ_q C, its pivots, its inverse) and vt_solve_spd's unit diagonal */
     const size_t nb1 = (size_t)m->nbody + 1;
     const size_t roundoff = VT_SCRATCH_BYTES(snv * (snc + 1), D) + VT_SCRATCH_BYTES(snv, D) +
-                            VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(4 * nb1, D) +
-                            2 * VT_SCRATCH_BYTES(snc + 1, I); /* B, β, vt_rate_bounds' T and w, flags */
+                            VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(5 * nb1, D) +
+                            2 * VT_SCRATCH_BYTES(snc + 1, I); /* B, β, vt_rate_bounds' T and w, L, flags */
     const size_t square = 2 * VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
     return held + route + small + lapack + roundoff + square + VT_SCRATCH_BYTES(snc, D) + 8 * VT_DATA_ALIGN;
 }
