@@ -487,9 +487,11 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense);
  * leave the efforts without a certain digit (reactions.c); who names the caller; dense as
  * vt_rate_bounds */
 vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, int dense);
-/* the same from the subtrees' needed wrenches about O at the full accelerations, Wbar
- * (6 x (nbody+1), recursive.c), the rows' wrenches already taken off it with rows_in_wbar;
- * G: scratch of 6 x (nbody+1), apart from Wbar */
+/* subtree sums about each joint point of wrenches about it: moment at noff, force at foff (reactions.c) */
+void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, int foff);
+/* the same from the subtrees' needed wrenches about each joint point P_i at the full
+ * accelerations, Wbar ([n; f], 6 x (nbody+1), recursive.c), the rows' wrenches already taken off
+ * it with rows_in_wbar; G: scratch of 6 x (nbody+1), apart from Wbar */
 vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G, int rows_in_wbar);
 /* Every row's wrench on its two bodies, for the multipliers lam (1 each when NULL), about each
  * body's centre of mass: [f_a n_a f_b n_b] into rw (12 x nc) (reactions.c). */

@@ -34,11 +34,11 @@ void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double
         break;
     case VT_DOF_TRANS: {
         /* free: d^i → r^i − P and s^{ij} → P − r^j (t turns with j, s^{ji} with i) */
-        double dI[3], sJ[3];
-        const double *P = d->xrel + 6 * i + 3, *ri_ = d->xrel + 6 * i, *rj_ = d->xrel + 6 * j; /* from o */
+        double dI[3], sJ[3], s[3]; /* from the joint's own vectors, not positions from o */
+        vt_joint_child(s, m, d, i);
         for (int c = 0; c < 3; c++) {
-            dI[c] = jt == VT_JOINT_FREE ? ri_[c] - P[c] : d->jd[3 * i + c];
-            sJ[c] = jt == VT_JOINT_FREE ? P[c] - rj_[c] : d->jsij[3 * i + c];
+            dI[c] = jt == VT_JOINT_FREE ? -s[c] : d->jd[3 * i + c];
+            sJ[c] = jt == VT_JOINT_FREE ? d->jsij[3 * i + c] + (d->jd[3 * i + c] + s[c]) : d->jsij[3 * i + c];
         }
         vt_copy3(ri, e + 3 * ax);
         vt_cross3(u, e + 3 * ax, dI);

@@ -217,11 +217,11 @@ static inline void velocity(const vt_model *m, vt_data *d, int i)
         }
         if (jt == VT_JOINT_FREE) { /* t turns with the reference body, s^{ji} with this one:
                                     * ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
-            const double *rr = d->xrel + 6 * i;
             double dw[3], u[3];
+            vt_joint_child(u, m, d, i); /* r^i − P = −s^{ji}, not (r^i − o) − (P − o) */
             for (int k = 0; k < 3; k++) {
                 dw[k] = w[k] - wj[k];
-                u[k] = rr[k] - rr[3 + k];
+                u[k] = -u[k];
             }
             vt_addcross3(v, wj, d->jd + 3 * i);
             vt_addcross3(v, dw, u);

@@ -376,9 +376,28 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     return joint_reactions_done(m, d);
 }
 
-/* The same reactions from the subtrees' needed wrenches W̄ about o = d->origin (recursive.c, which has them
- * from its inward passes): the reaction at joint i is W̄_i less the rows' and the generalized
- * forces' wrenches G over i's subtree, about o, its moment then moved to P_i. With rows_in_wbar
+/* Subtree sums about each body's joint point P_i of wrenches X_i about P_i (moment at noff,
+ * force at foff of each 6), leaf first, moved by the short P_i − P_j = s^{ij}_i + t_i − s^{ji}_j:
+ * no term carries |P − o| */
+void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, int foff)
+{
+    for (int i = m->nbody; i >= 1; i--) {
+        const int j = m->body_parent[i];
+        if (j == 0) continue;
+        double si[3], sj[3], r[3];
+        vt_joint_child(si, m, d, i);
+        vt_joint_child(sj, m, d, j);
+        for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + (d->jd[3 * i + k] + si[k]) - sj[k]; /* P_i − P_j */
+        const double *Xi = X + 6 * i;
+        double *Xj = X + 6 * j;
+        vt_addcross3(Xj + noff, r, Xi + foff);
+        for (int k = 0; k < 3; k++) Xj[noff + k] += Xi[noff + k], Xj[foff + k] += Xi[foff + k];
+    }
+}
+
+/* The same reactions from the subtrees' needed wrenches W̄ about each joint point P_i (recursive.c,
+ * which has them from its inward passes): the reaction at joint i is W̄_i less the rows' and the
+ * generalized forces' wrenches G over i's subtree, about P_i (vt_sum_at_joints). With rows_in_wbar
  * W̄ already has the rows' wrenches taken off (the articulated path starts its row right sides
  * from them) and G holds the generalized forces' alone, when there are any.
  * G: scratch of 6 x (nbody+1). */
@@ -398,18 +417,21 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
         memset(G, 0, 6 * ((size_t)n + 1) * sizeof(double));
         qfrc_loads(m, d, G);
         if (!rows_in_wbar) add_row_wrenches(m, rw, G);
-        for (int i = 1; i <= n; i++) vt_addcross3(G + 6 * i + 3, d->xrel + 6 * i, G + 6 * i); /* about o */
-        vt_subtree_sum(m, G, 6);
+        for (int i = 1; i <= n; i++) { /* about the centre of mass → about P_i: (r_i − P_i) × f */
+            double c[3];
+            vt_joint_child(c, m, d, i);
+            for (int k = 0; k < 3; k++) c[k] = -c[k];
+            vt_addcross3(G + 6 * i + 3, c, G + 6 * i);
+        }
+        vt_sum_at_joints(m, d, G, 3, 0);
     }
     for (int i = 1; i <= n; i++) {
         const double *W = Wbar + 6 * i, *g = loads ? G + 6 * i : zero6;
-        double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+        double f[3], mo[3]; /* locals, stored once: the outputs might alias the inputs */
         for (int c = 0; c < 3; c++) {
             f[c] = W[3 + c] - g[c];
-            mo[c] = W[c] - g[3 + c];
+            mo[c] = W[c] - g[3 + c]; /* about P_i */
         }
-        vt_cross3(t, d->xrel + 6 * i + 3, f);
-        for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
         vt_copy3(d->jnt_force + 3 * i, f);
         vt_copy3(d->jnt_moment + 3 * i, mo);
     }

@@ -73,8 +73,10 @@ static inline void needed_wrench_at(double W[6], const vt_model *m, const vt_dat
     vt_copy3(W + 3, f);
 }
 
-/* W = needed wrench of body i about O, given its accelerations a (3) and α (3) */
-static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i, const double *a, const double *al)
+/* W = needed wrench of body i about the point from which its centre of mass lies at c (O: c =
+ * xrel), given its accelerations a (3) and α (3) */
+static void body_wrench_at(double W[6], const vt_model *m, const vt_data *d, int i, const double *a, const double *al,
+                           const double *c)
 {
     const double *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i, *w = d->omega + 3 * i;
     double wb[3], ab[3], Jw[3], Ja[3], n[3];
@@ -84,15 +86,30 @@ static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i,
     vt_mulmat3(Ja, Jb, ab);
     vt_addcross3(Ja, wb, Jw);
     vt_mulmat3(n, Ai, Ja); /* J α + ω × J ω, body axes and back */
-    needed_wrench_at(W, m, d, i, n, a, d->xrel + 6 * i);
+    needed_wrench_at(W, m, d, i, n, a, c);
 }
 
-/* W̄: every subtree's needed wrench about O at the accelerations d->xdd and alpha (3 x (nbody+1)) */
-static void subtree_wrenches(const vt_model *m, const vt_data *d, const double *alpha, double *W /* 6 x (nbody+1) */)
+/* W = needed wrench of body i about O, given its accelerations a (3) and α (3) */
+static void body_wrench(double W[6], const vt_model *m, const vt_data *d, int i, const double *a, const double *al)
 {
-    for (int i = 1; i <= m->nbody; i++) body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
-    vt_subtree_sum(m, W, 6);
+    body_wrench_at(W, m, d, i, a, al, d->xrel + 6 * i);
 }
+
+/* W̄: every subtree's needed wrench about its joint point P_i at the accelerations d->xdd and
+ * alpha (3 x (nbody+1)): each body's about its own P_i (c = −s^{ji}), summed leaf first with the
+ * short shifts P_i − P_j = s^{ij}_i + t_i − s^{ji}_j, so that no term carries |P − O| (a
+ * mechanism far from O keeps its digits; about O the moments hold |P − O| |f| terms that cancel) */
+static void subtree_wrenches_at_joints(const vt_model *m, const vt_data *d, const double *alpha, double *W)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        double c[3];
+        vt_joint_child(c, m, d, i);
+        for (int k = 0; k < 3; k++) c[k] = -c[k];
+        body_wrench_at(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i, c);
+    }
+    vt_sum_at_joints(m, d, W, 0, 3);
+}
+
 
 static double pair(const double w[3], const double v[3], const double W[6])
 {
@@ -259,14 +276,16 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 __attribute__((always_inline))
 #endif
 static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given,
-                                 const int totals)
+                                 const int totals, const int at_joint)
 {
     const double *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
     double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
     vt_copy3(f, Wi + 3);
     vt_copy3(mo, Wi);
-    vt_cross3(t, P, f);
-    for (int c = 0; c < 3; c++) mo[c] -= t[c]; /* about P_i */
+    if (!at_joint) { /* W̄_i about O: moved to P_i */
+        vt_cross3(t, P, f);
+        for (int c = 0; c < 3; c++) mo[c] -= t[c];
+    }
     if (totals) {
         double tb[3];
         vt_mulmat3t(tb, d->A + 9 * i, f);
@@ -281,12 +300,13 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
         int ax;
         const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
         double tau = 0.0;
-        if (given) {
+        if (given || dr >= 0) { /* the rate's twist paired with W̄_i: about O, or about P_i, where a
+                                 * turning rate's twist is (w, 0) and a sliding one's (0, v) */
             const double *w = d->twist + 6 * c;
-            tau = pair(w, w + 3, Wi) - d->qfrc[c];
-        } else if (dr >= 0) {
-            const double *w = d->twist + 6 * c;
-            tau = pair(w, w + 3, Wi) - d->qfrc[c];
+            tau = (at_joint ? (rot || vt_dof_turns(m, c) ? vt_dot3(w, Wi) : vt_dot3(w + 3, Wi + 3)) : pair(w, w + 3, Wi)) -
+                  d->qfrc[c];
+        }
+        if (!given && dr >= 0) {
             d->lambda[m->drive_row[dr]] = tau;
             d->drive_effort[dr] = tau;
             double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
@@ -326,9 +346,9 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
     if (!W) return vt_scratch_fail(d, mark);
     vt_accelerations(m, d, d->qdd, d->xdd, d->alpha);
-    subtree_wrenches(m, d, d->alpha, W);
+    subtree_wrenches_at_joints(m, d, d->alpha, W);
     for (int i = 1; i <= n; i++)
-        if (totals ? joint_reaction(m, d, W + 6 * i, i, given, 1) : joint_reaction(m, d, W + 6 * i, i, given, 0))
+        if (totals ? joint_reaction(m, d, W + 6 * i, i, given, 1, 1) : joint_reaction(m, d, W + 6 * i, i, given, 0, 1))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     vt_scratch_release(d, mark);
@@ -383,9 +403,12 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
     alpha[0] = alpha[1] = alpha[2] = 0.0;
     for (int i = 1; i <= m->nbody; i++) {
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) { /* the general code's stages for this body */
+            double c[3]; /* about the joint point: c = r^i − P_i = −s^{ji} */
             vt_kinematics_body(m, d, i);
             vt_acceleration_body(m, d, d->qdd, d->xdd, alpha, i);
-            body_wrench(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i);
+            vt_joint_child(c, m, d, i);
+            for (int k = 0; k < 3; k++) c[k] = -c[k];
+            body_wrench_at(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i, c);
             continue;
         }
         const int j = m->body_parent[i], c = m->body_vadr[i];
@@ -511,7 +534,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
                 f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
                 nn[k] -= xf[3 + k];
             }
-            vt_addcross3(nn, rr, f);
+            vt_addcross3(nn, f, sji); /* about P_i: (r^i − P_i) × f = f × s^{ji} */
             double *Wi = W + 6 * i;
             vt_copy3(Wi, nn);
             vt_copy3(Wi + 3, f);
@@ -570,6 +593,22 @@ static vt_status fused_check(const vt_model *m, vt_data *d, const int given, con
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
+/* W̄_j += W̄_i moved from P_i to P_j by the short P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *W, int i, int j)
+{
+    double si[3], sj[3], r[3];
+    vt_joint_child(si, m, d, i);
+    vt_joint_child(sj, m, d, j);
+    for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + (d->jd[3 * i + k] + si[k]) - sj[k];
+    const double *Wi = W + 6 * i;
+    double *Wj = W + 6 * j;
+    vt_addcross3(Wj, r, Wi + 3);
+    for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
+}
+
 static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed)
 {
     const int n = m->nbody;
@@ -585,17 +624,15 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
-            (void)joint_reaction(m, d, W + 6 * i, i, given, 1); /* checked with the rest: fused_check */
-            if (j > 0)
-                for (int k = 0; k < 6; k++) W[6 * j + k] += W[6 * i + k];
+            (void)joint_reaction(m, d, W + 6 * i, i, given, 1, 1); /* checked with the rest: fused_check */
+            if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
-        const double *Wi = W + 6 * i, *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
-        double f[3], Wn[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+        const double *Wi = W + 6 * i, *e = d->jaxis + 9 * i;
+        double f[3], Wn[3], mo[3]; /* locals, stored once: the outputs might alias the inputs */
         vt_copy3(f, Wi + 3);
         vt_copy3(Wn, Wi);
-        vt_cross3(t, P, f);
-        for (int k = 0; k < 3; k++) mo[k] = Wn[k] - t[k]; /* about P_i */
+        vt_copy3(mo, Wn); /* W̄_i is about P_i */
         const double qf = d->qfrc[c];
         double tau = 0.0;
         if (given || dr >= 0) tau = vt_dot3(e, mo) - qf; /* s · W̄ = e · (the moment about P_i) */
@@ -622,8 +659,12 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         vt_copy3(d->jnt_moment + 3 * i, mo);
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
-        if (j > 0) { /* W̄_j += W̄_i */
+        if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
+            double sj[3], r[3];
+            vt_joint_child(sj, m, d, j);
+            for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] - sj[k];
             double *Wj = W + 6 * j;
+            vt_addcross3(Wj, r, f);
             for (int k = 0; k < 3; k++) {
                 Wj[k] += Wn[k];
                 Wj[3 + k] += f[k];
@@ -761,10 +802,10 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     if (!alpha) return vt_scratch_fail(d, mark);
     double *G = alpha + 3 * nb, *W = alpha + 9 * nb; /* one after the other, as in inward */
     vt_accelerations_add(m, d, sq.x, d->xdd, alpha, G);
-    subtree_wrenches(m, d, alpha, W);
-    for (int a = 0; a < nv; a++) {
-        const double *s = d->twist + 6 * a;
-        sq.h[a] = pair(s, s + 3, W + 6 * m->dof_body[a]) - d->qfrc[a]; /* M* q̈ − Q */
+    subtree_wrenches_at_joints(m, d, alpha, W);
+    for (int a = 0; a < nv; a++) { /* M* q̈ − Q = s_a · W̄_i − qfrc_a, s_a about P_i: (e, 0) or (0, e) */
+        const double *s = d->twist + 6 * a, *Wi = W + 6 * m->dof_body[a];
+        sq.h[a] = (vt_dof_turns(m, a) ? vt_dot3(s, Wi) : vt_dot3(s + 3, Wi + 3)) - d->qfrc[a];
     }
     vt_status st = vt_solve_square_end(m, d, &sq, rcond);
     if (!st) st = vt_reactions_subtree(m, d, W, G, 0);
@@ -1201,9 +1242,8 @@ static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, d
  * Σ_r λ_r p^r, and the part q̈ adds to body i's spatial acceleration about P_i is T_i = A⁰_i +
  * Σ_r λ_r A^r_i (the outward pass's, linear in the right sides), so
  *   W̄_i = I^A_i (T_j moved to P_i) + p⁰_i + Σ_r λ_r p^r_i   (= Σ over i's subtree of W⁰ + I T − Σ_r λ_r w_r)
- * about P_i, then about O for vt_reactions_subtree (n + (P_i − O) × f: a sum whose round-off
- * grows with |P_i − O| once, as vt_reactions_subtree's own move back to the joint point; no
- * cancellation of squared lengths), the rows' loads already off (the p^r start from them); and
+ * about P_i, as vt_reactions_subtree takes it (no term carries |P_i − O|), the rows' loads
+ * already off (the p^r start from them); and
  * ẍ from the same T_i (T about O, as vt_accelerations_add sums it, carries |P − O| |q̈| terms:
  * the forces of a mechanism 1 km from o changed by 2e-11 with it, 5e-13 with T_i). A known joint
  * drive's λ_r on rate a of body i is s_a · W̄_i − qfrc_a with W̄_i about P_i (s_a = (e, 0) or
@@ -1240,7 +1280,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
             vt_cross3(t, tj, L + 6 * i + 3);
             for (int k = 0; k < 3; k++) Tj[k] = tj[k], Tj[3 + k] = tj[3 + k] + t[k];
         }
-        const double *p = w.P + sr * (size_t)i, *Ai = w.A + sr * (size_t)i, *Po = d->xrel + 6 * i + 3;
+        const double *p = w.P + sr * (size_t)i, *Ai = w.A + sr * (size_t)i;
         mul_cols8(IT, w.IA + 48 * i, Tj);
         for (int k = 0; k < 6; k++) Wi[k] = IT[k] + p[k], Ti[k] = Ai[k];
         for (int c = 1; c < nr; c++) {
@@ -1257,7 +1297,6 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
             twist_at_joint(e, &off, m, d, i, a);
             d->lambda[m->drive_row[k]] = vt_dot3(e, Wi + off) - d->qfrc[a];
         }
-        vt_addcross3(Wi, Po, Wi + 3); /* about O */
         /* ẍ = S q̈ + Ṡq̇ (vt_accelerations_add's, from T about P_i): the centre of mass, c_i from
          * P_i, a = a⁰ + T_v + T_ω × c_i; p̈ = p̈⁰ + ½ E^T T_ω (no base body on this route) */
         const double *a0 = d->Sdqd + o, *ci = L + 6 * i;
@@ -1268,7 +1307,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         vt_copy3(xi, a);
         for (int k = 0; k < 4; k++) xi[3 + k] = a0[3 + k] + pdd[k];
     }
-    if (nr <= m->nc) { /* the known joint drives' loads off W̄ too (about O, over each subtree) */
+    if (nr <= m->nc) { /* the known joint drives' loads off W̄ too (about P_i, over each subtree) */
         double *J = w.T;
         if (nr == 1) vt_row_wrenches(w.rw, m, d, NULL); /* articulated_solve formed them with other rows */
         memset(J, 0, 6 * ((size_t)m->nbody + 1) * sizeof(double));
@@ -1279,14 +1318,14 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
                 if (b == 0) continue;
                 const double *f = w.rw + 12 * q + 6 * side, l = d->lambda[q];
                 double *Jb = J + 6 * b, t[3];
-                vt_cross3(t, d->xrel + 6 * b, f);
+                vt_cross3(t, L + 6 * b, f); /* about the centre of mass → about P_b */
                 for (int c = 0; c < 3; c++) {
                     Jb[c] += l * (f[3 + c] + t[c]);
                     Jb[3 + c] += l * f[c];
                 }
             }
         }
-        vt_subtree_sum(m, J, 6);
+        vt_sum_at_joints(m, d, J, 0, 3);
         for (int k = 6; k < 6 * (m->nbody + 1); k++) w.W[k] -= J[k];
     }
     const vt_status st = vt_reactions_subtree(m, d, w.W, w.G, 1);
