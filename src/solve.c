@@ -209,8 +209,13 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
-            if (held) { /* M* is semi-definite, so its row a is round-off too: exactly zero, as the
-                         * dense path forms it, not a unit pivot once scaled */
+            if (held) {
+                /* the composite inertias about o cannot tell a non-zero M*_aa below their bound
+                 * from none (a point mass 1e-6 m off a spherical joint's line: 5e-11 kg m² against
+                 * a bound of 1e-10); the dense S^T M S, about each joint, can: it decides */
+                if (!dense && maa != 0.0) return vt_scratch_release(d, mark), ROUNDOFF_COMPOSITE;
+                /* M* is semi-definite, so its row a is round-off too: exactly zero, as the dense
+                 * path forms it, not a unit pivot once scaled */
                 for (int b = 0; b < nv; b++) d->Mstar[a + (size_t)b * (size_t)nv] = d->Mstar[b + (size_t)a * (size_t)nv] = 0.0;
                 continue;
             }
