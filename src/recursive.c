@@ -17,6 +17,12 @@
  *   Q  (4)               Q_a = qfrc_a − s_a · W̄⁰_i   with W̄⁰ from the accelerations at q̈ = 0 (Ṡq̇);
  *                        a base body's own ṗ rates add h's normal part 2 (ω^T J ω) p
  *   W linear in q̈        W_k = W⁰_k + I_k T_k,  T_k = Σ_{a on k's path} s_a q̈_a
+ * The inward passes of every route but the general one take each body's W_k about its own joint
+ * point P_k and sum the subtree about P_i, W̄_i = W_i + Σ_c (n_c + (P_c − P_i) × f_c, f_c)
+ * (vt_sum_at_joints, shift_to_parent: P_c − P_i from the joints' own vectors), where s_a is
+ * (e, 0) or (0, e): no term carries |P − O|, and a mechanism far from O keeps every digit (about
+ * O the moments hold |P − O| |f| terms that cancel at the joints). The general route's composite
+ * inertias and Q stay about O (an instant they cannot vouch for goes to the dense stages).
  * The routes (vt_data.route), by the rows the drives and cut joints give:
  * - JOINT_DRIVEN, every rate driven by one joint drive (joint_driven): q̈ = f''(t) is known and
  *   nothing is factorized (rcond 1); the efforts are τ_a = s_a · W̄_i − qfrc_a (the paper's

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Builds one tree's vtdyn into a self-contained shared object for the A/B driver.
 # usage: build.sh <tree> <out.so>
-# The tree's libvtdyn.a (meson, release, -march=native, no SUNDIALS: the project's release
+# The tree's libvtdyn.a (meson, release, -march=native or $VT_AB_MARCH, no SUNDIALS: the project's release
 # benchmark flags) + bench/ab/ab_entry.c + the tree's examples/scenes.c, both compiled with the
 # same flags against the tree's headers, -fvisibility=hidden; linked with --exclude-libs,ALL and
 # -Bsymbolic so that only ab_setup/ab_batch/ab_check are exported and every vtdyn call binds
@@ -15,8 +15,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 cc=${CC:-cc}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# VT_AB_MARCH=x86-64-v3 where valgrind cannot decode the host's own instructions (AVX-512)
+march=${VT_AB_MARCH:-native}
 
-meson setup "$tmp/b" "$tree" --buildtype=release -Dc_args=-march=native -Dsundials=disabled \
+meson setup "$tmp/b" "$tree" --buildtype=release -Dc_args=-march=$march -Dsundials=disabled \
     >"$tmp/setup.log" 2>&1 || { cat "$tmp/setup.log" >&2; echo "build.sh: meson setup failed for $tree" >&2; exit 1; }
 ninja -C "$tmp/b" libvtdyn.a >"$tmp/ninja.log" 2>&1 || { tail -40 "$tmp/ninja.log" >&2; echo "build.sh: libvtdyn.a failed for $tree" >&2; exit 1; }
 
@@ -26,7 +28,7 @@ for f in vt_scene_chain vt_scene_double_link vt_scene_fourbar vt_scene_fourbar_r
     if grep -Eq "^[A-Za-z_][A-Za-z0-9_ ]*[ *]$f\(" "$tree/examples/scenes.h"; then have="$have -DAB_HAVE_$f"; fi
 done
 
-flags="-std=c11 -O3 -march=native -fPIC -fvisibility=hidden -I$tree/include -I$tmp/b/include -I$tree/examples"
+flags="-std=c11 -O3 -march=$march -fPIC -fvisibility=hidden -I$tree/include -I$tmp/b/include -I$tree/examples"
 # shellcheck disable=SC2086
 $cc $flags $have -c "$here/ab_entry.c" -o "$tmp/ab_entry.o"
 # shellcheck disable=SC2086
