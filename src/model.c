@@ -283,6 +283,12 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
         if (fabs(c) > 1e-9)
             return vt_fail(msg, VT_ERR_AXES_NOT_PERPENDICULAR,
                            "body %d: universal axes not perpendicular (cosine %g)", id, c);
+        /* within the tolerance, made perpendicular to round-off (axis2 less its part along
+         * axis1): the joint's R rows are S's left inverse only for perpendicular axes, and a
+         * cosine of 1e-10 left R S = I off by 1e-10 on the dense path (a joint drive's
+         * Φ_q = R S, its effort leaking to the other rate) */
+        for (int k = 0; k < 3; k++) d->axis2[k] -= c * d->axis1[k];
+        normalize(d->axis2, 3);
     }
     if (d->joint == VT_JOINT_BASE) {
         d->orientation[0] = 1.0;

@@ -716,6 +716,59 @@ static void test_planar_cut_joint(void **state)
     vt_model_free(m);
 }
 
+/* Universal axes within the 1e-9 tolerance of perpendicular are made perpendicular to round-off:
+ * with axis1 at a cosine of 1.35e-10 to axis2 (a fuzz input, crash-d87f…), the joint's R rows
+ * were not S's left inverse, and a joint drive on the second rate, whose row the dense path forms
+ * as Φ_x S = R S, leaked 1.35e-10 of its effort (4e-4 N·m of 3e6) onto the first rate, where the
+ * recursive path's unit row puts none. Now the stored axes are perpendicular to 1e-16, the dense
+ * row is the unit row to round-off, and the two paths' qfrc_drive agree. */
+static void test_universal_axes_made_perpendicular(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    d.mass = 2.7;
+    d.joint_child[1] = 3.9;
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    d = vt_default_body_def();
+    d.parent = 1;
+    d.joint = VT_JOINT_UNIVERSAL;
+    d.mass = 0.6;
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 0.01;
+    d.axis1[0] = 1.35472e-10, d.axis1[1] = -0.719693, d.axis1[2] = -0.694292; /* cosine 1.35e-10 to x */
+    d.joint_parent[0] = -7.0, d.joint_parent[1] = 6.75;
+    d.joint_child[0] = -6.9, d.joint_child[1] = -4.4, d.joint_child[2] = -1.0;
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 2;
+    dr.index = 1;
+    dr.f = vt_function_polynomial(3, (const double[3]){0.3, 0.0, 0.0});
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    const double *a1 = m->body_axis + 6 * 2, *a2 = a1 + 3;
+    assert_true(fabs(a1[0] * a2[0] + a1[1] * a2[1] + a1[2] * a2[2]) <= 4e-16);
+    vt_data *dd, *dr_;
+    assert_ok(vt_data_create(&dd, m));
+    assert_ok(vt_data_create(&dr_, m));
+    const double q[3] = {1.1625, 1.89375, -1.78125}, qd[3] = {-1.0, -1.25, 4.375};
+    memcpy(dd->q, q, sizeof q), memcpy(dr_->q, q, sizeof q);
+    memcpy(dd->qd, qd, sizeof qd), memcpy(dr_->qd, qd, sizeof qd);
+    dd->time = dr_->time = 6.0625;
+    assert_ok(vt_inverse_dynamics(m, dd));
+    assert_ok(vt_inverse_dynamics_recursive(m, dr_));
+    const double big = fabs(dd->qfrc_drive[2]);
+    print_message("dense Φ_q on rate 1: %.3g; qfrc_drive[1] dense %.3g, recursive %.3g (effort %.3g)\n", dd->Phiq[1],
+                  dd->qfrc_drive[1], dr_->qfrc_drive[1], big);
+    assert_true(fabs(dd->Phiq[1]) <= 1e-15); /* the row on the first rate */
+    assert_true(fabs(dd->qfrc_drive[1] - dr_->qfrc_drive[1]) <= 64 * 2.220446049250313e-16 * big);
+    vt_data_free(dd);
+    vt_data_free(dr_);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -733,6 +786,7 @@ int main(void)
         cmocka_unit_test(test_free_joint),
         cmocka_unit_test(test_sequence_splines_owned),
         cmocka_unit_test(test_planar_cut_joint),
+        cmocka_unit_test(test_universal_axes_made_perpendicular),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -340,7 +340,8 @@ typedef struct vt_body_def {
                                 ///< default 0
     double axis1[3];            ///< first joint axis, reference-body axes at q = 0; normalized; default (0,0,1)
     double axis2[3];            ///< universal only: second axis (fixed on this body), reference-body axes at
-                                ///< q = 0, perpendicular to axis1; normalized; default (1,0,0)
+                                ///< q = 0, perpendicular to axis1 (a cosine up to 1e-9 is accepted and
+                                ///< removed: axis2 less its part along axis1); normalized; default (1,0,0)
     double orientation[4];      ///< Euler parameters of this body's axes relative to the reference body's
                                 ///< at q = 0 (for a base body: ignored); normalized; default (1,0,0,0)
     const char *name;           ///< the body's name (copied); NULL or "": unnamed; default NULL
