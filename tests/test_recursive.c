@@ -582,6 +582,63 @@ static void test_far_base_body(void **state)
     }
 }
 
+/* A point mass 1e6 m out along its revolute axis (6.3 m off it) on a universal joint's body, a
+ * point drive on that body (a fuzz input, crash-175b…): the articulated route's elimination of
+ * the light rate cancels terms of 1e12 far beyond the composite inertia's round-off bound, and
+ * its pivot for the universal joint came out negative, -1.5e7 of 1.1e12: the route refused the
+ * instant as singular ("negative beyond round-off") where the dense path solves it (rcond 0.014).
+ * Such a pivot is now one the route cannot trust: the general route, then the dense stages,
+ * decide, and the answer is the dense one. */
+static void test_far_point_mass_pivot(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def d = vt_default_body_def();
+    d.joint = VT_JOINT_UNIVERSAL;
+    d.mass = 4.1875;
+    d.inertia[0] = d.inertia[4] = d.inertia[8] = 0.6875;
+    d.joint_parent[0] = -6.3125, d.joint_parent[1] = -5.3125, d.joint_parent[2] = -5.625;
+    d.joint_child[0] = -4.75, d.joint_child[1] = 0.1875, d.joint_child[2] = -3.5625;
+    assert_int_equal(vt_builder_add_body(b, &d), 1);
+    d = vt_default_body_def();
+    d.parent = 1;
+    d.mass = 1.85;
+    d.joint_parent[0] = -2.9375, d.joint_parent[1] = -1.5, d.joint_parent[2] = 3.6875;
+    d.joint_child[0] = -3.75, d.joint_child[1] = -5.0625, d.joint_child[2] = 1e6;
+    assert_int_equal(vt_builder_add_body(b, &d), 2);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_POINT;
+    dr.body = 1;
+    dr.index = 0;
+    dr.point[0] = 7.25, dr.point[1] = -2.125, dr.point[2] = 2.0;
+    dr.f = vt_function_polynomial(3, (const double[3]){-2.0, 1.0, 0.5});
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *dd, *dv;
+    assert_ok(vt_data_create(&dd, m));
+    assert_ok(vt_data_create(&dv, m));
+    const double q[3] = {1.81875, -2.25, -7.5}, qd[3] = {-7.5, -7.5, -7.5};
+    memcpy(dd->q, q, sizeof q), memcpy(dv->q, q, sizeof q);
+    memcpy(dd->qd, qd, sizeof qd), memcpy(dv->qd, qd, sizeof qd);
+    dd->time = dv->time = -7.5;
+    assert_ok(vt_inverse_dynamics(m, dd));
+    const vt_status st = vt_inverse_dynamics_recursive(m, dv);
+    print_message("dense rcond %.3g; recursive %s (%s), route %d, fallback %d\n", dd->rcond, vt_status_string(st), dv->message,
+                  dv->route, dv->fallback);
+    assert_ok(st);
+    assert_true(dv->fallback & VT_FALLBACK_ARTICULATED_PIVOT);
+    for (int c = 0; c < 3; c++) {
+        assert_near(dv->qdd[c], dd->qdd[c], 1e-9 * fabs(dd->qdd[c]) + 1e-12);
+        assert_near(dv->qfrc_drive[c], dd->qfrc_drive[c], 1e-9 * vt_test_maxabs(dd->qfrc_drive, 3));
+    }
+    vt_data_free(dd);
+    vt_data_free(dv);
+    vt_model_free(m);
+}
+
 /* The motion given for every rate of a tree (vt_inverse_dynamics_motion), held to two things it
  * does not compute itself: the efforts equal M* q̈ − Q from the dense stages (2), and applied as
  * generalized forces to the same tree without drives, the dense path's forward solve gives back
@@ -2105,6 +2162,7 @@ int main(void)
         cmocka_unit_test(test_dependent),
         cmocka_unit_test(test_row_on_known_rates),
         cmocka_unit_test(test_far_base_body),
+        cmocka_unit_test(test_far_point_mass_pivot),
         cmocka_unit_test(test_motion),
         cmocka_unit_test(test_motion_loops),
         cmocka_unit_test(test_motion_refused),
