@@ -47,12 +47,23 @@ static void run_model(const vt_model *m, unsigned pick)
                 for (int k = 0; k < 3; k++) far = fmax(far, fabs(d->x[7 * i + k]));
             if (far <= 100.0 && vt_kinematics(m, d) == VT_OK && vt_mass_matrix(m, d) == VT_OK &&
                 vt_forces(m, d) == VT_OK) {
-                /* round-off of both evaluations grows with the largest terms, not the sums */
-                double scale = 1e-300;
+                /* round-off of both evaluations grows with the largest terms, not the sums: those
+                 * of M* q̈ − Q, and those M* and Q are summed from, each body's inertia and mass
+                 * times the rates' accelerations (a zero inertia about an axis is summed from terms
+                 * of |J|: a link of J = diag(0, 33, 33) about x gave M*_aa = 1e-15 against τ = 0) */
+                double scale = 1e-300, qdd = 0.0, qd = 0.0;
                 for (int a = 0; a < m->nv; a++) {
+                    qdd = fmax(qdd, fabs(d->qdd[a]));
+                    qd = fmax(qd, fabs(d->qd[a]));
                     scale = fmax(scale, fabs(d->Q[a]));
                     for (int b = 0; b < m->nv; b++)
                         scale = fmax(scale, fabs(d->Mstar[a + (size_t)b * (size_t)m->nv] * d->qdd[b]));
+                }
+                const double g = fabs(m->gravity[0]) + fabs(m->gravity[1]) + fabs(m->gravity[2]);
+                for (int i = 1; i <= m->nbody; i++) {
+                    const double *J = m->body_inertia + 9 * i, mass = m->body_mass[i];
+                    scale = fmax(scale, (fabs(J[0]) + fabs(J[4]) + fabs(J[8])) * (qdd + qd * qd));
+                    scale = fmax(scale, mass * far * (g + far * (qdd + qd * qd)));
                 }
                 for (int a = 0; a < m->nv && isfinite(scale) && scale < 1e150; a++) {
                     double t = -d->Q[a];
