@@ -382,6 +382,16 @@ static inline void vt_joint_child(double s[3], const vt_model *m, const vt_data 
     else vt_mulmat3(s, d->A + 9 * i, m->body_jchild + 3 * i);
 }
 
+/* P_i − P_j, body i's joint point from its reference body j's, from the joints' own vectors:
+ * s^{ij}_i + t_i − s^{ji}_j with t_i = d^i + s^{ji}_i the joint's translation (17) */
+static inline void vt_joint_shift(double r[3], const vt_model *m, const vt_data *d, int i, int j)
+{
+    double si[3], sj[3];
+    vt_joint_child(si, m, d, i);
+    vt_joint_child(sj, m, d, j);
+    for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + (d->jd[3 * i + k] + si[k]) - sj[k];
+}
+
 /* The lever arms of the dense S (and of the recursive path's Φ_q), walked from body i up its
  * path: at joint k, u = r^i − P_k (P_k the point the joint's rates turn about; a base body's,
  * its centre of mass), summed from the joints' own short vectors,

@@ -384,10 +384,8 @@ void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, 
     for (int i = m->nbody; i >= 1; i--) {
         const int j = m->body_parent[i];
         if (j == 0) continue;
-        double si[3], sj[3], r[3];
-        vt_joint_child(si, m, d, i);
-        vt_joint_child(sj, m, d, j);
-        for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + (d->jd[3 * i + k] + si[k]) - sj[k]; /* P_i − P_j */
+        double r[3];
+        vt_joint_shift(r, m, d, i, j);
         const double *Xi = X + 6 * i;
         double *Xj = X + 6 * j;
         vt_addcross3(Xj + noff, r, Xi + foff);

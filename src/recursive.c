@@ -282,16 +282,12 @@ static vt_status drive_accelerations(const vt_model *m, vt_data *d)
 __attribute__((always_inline))
 #endif
 static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const int given,
-                                 const int totals, const int at_joint)
+                                 const int totals)
 {
-    const double *P = d->xrel + 6 * i + 3, *e = d->jaxis + 9 * i;
-    double f[3], mo[3], t[3]; /* locals, stored once: the outputs might alias the inputs */
+    const double *e = d->jaxis + 9 * i;
+    double f[3], mo[3]; /* locals, stored once: the outputs might alias the inputs; W̄_i about P_i */
     vt_copy3(f, Wi + 3);
     vt_copy3(mo, Wi);
-    if (!at_joint) { /* W̄_i about O: moved to P_i */
-        vt_cross3(t, P, f);
-        for (int c = 0; c < 3; c++) mo[c] -= t[c];
-    }
     if (totals) {
         double tb[3];
         vt_mulmat3t(tb, d->A + 9 * i, f);
@@ -306,11 +302,10 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
         int ax;
         const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
         double tau = 0.0;
-        if (given || dr >= 0) { /* the rate's twist paired with W̄_i: about O, or about P_i, where a
-                                 * turning rate's twist is (w, 0) and a sliding one's (0, v) */
+        if (given || dr >= 0) { /* the rate's twist paired with W̄_i about P_i, where a turning
+                                 * rate's twist is (w, 0) and a sliding one's (0, v) */
             const double *w = d->twist + 6 * c;
-            tau = (at_joint ? (rot || vt_dof_turns(m, c) ? vt_dot3(w, Wi) : vt_dot3(w + 3, Wi + 3)) : pair(w, w + 3, Wi)) -
-                  d->qfrc[c];
+            tau = (rot || vt_dof_turns(m, c) ? vt_dot3(w, Wi) : vt_dot3(w + 3, Wi + 3)) - d->qfrc[c];
         }
         if (!given && dr >= 0) {
             d->lambda[m->drive_row[dr]] = tau;
@@ -354,7 +349,7 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
     vt_accelerations(m, d, d->qdd, d->xdd, d->alpha);
     subtree_wrenches_at_joints(m, d, d->alpha, W);
     for (int i = 1; i <= n; i++)
-        if (totals ? joint_reaction(m, d, W + 6 * i, i, given, 1, 1) : joint_reaction(m, d, W + 6 * i, i, given, 0, 1))
+        if (totals ? joint_reaction(m, d, W + 6 * i, i, given, 1) : joint_reaction(m, d, W + 6 * i, i, given, 0))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     vt_scratch_release(d, mark);
@@ -605,10 +600,8 @@ __attribute__((always_inline))
 #endif
 static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *W, int i, int j)
 {
-    double si[3], sj[3], r[3];
-    vt_joint_child(si, m, d, i);
-    vt_joint_child(sj, m, d, j);
-    for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + (d->jd[3 * i + k] + si[k]) - sj[k];
+    double r[3];
+    vt_joint_shift(r, m, d, i, j);
     const double *Wi = W + 6 * i;
     double *Wj = W + 6 * j;
     vt_addcross3(Wj, r, Wi + 3);
@@ -630,7 +623,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
-            (void)joint_reaction(m, d, W + 6 * i, i, given, 1, 1); /* checked with the rest: fused_check */
+            (void)joint_reaction(m, d, W + 6 * i, i, given, 1); /* checked with the rest: fused_check */
             if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
