@@ -468,6 +468,20 @@ static scales pair_scales(const vt_model *m, const vt_data *ref, const vt_data *
         }
     }
     s.tq = s.e * fmax(maxabs(a->qdd, m->nv), maxabs(b->qdd, m->nv));
+    /* a rate without inertia: the dense routes scale it by 1 (solve.c, scaling_diag: a unit
+     * inertia, 1 kg or 1 kg·m²), so their solution [ỹ; μ] holds its q̈ as it is, and the SVD's and
+     * LDL^T's error, relative to that whole solution, reaches the multipliers as e |q̈_a| × that
+     * unit: the loads' floor where every load is round-off of zero (a massless body held by two
+     * identical drives: recursive 0 N·m, dense SVD 2e-31) */
+    if (massless) {
+        for (int c = 0; c < m->nv; c++)
+            if (!(ref->Mstar[(size_t)c + (size_t)c * (size_t)m->nv] > 0.0))
+                qs = fmax(qs, fmax(fabs(a->qdd[c]), fabs(b->qdd[c])));
+        gs = fmax(gs, s.Gs);
+        mdmax = fmax(mdmax, 1.0);
+        s.mmax = fmax(s.mmax, 1.0);
+        s.Jmax = fmax(s.Jmax, 1.0);
+    }
     /* the rates with inertia in the mass metric whether or not others have none (a point mass's
      * turning rates, fixed by rows): their q̈ carries the loads' round-off, Gs / sqrt(M*_aa),
      * as anywhere (a rate turning at 1e9 rad/s: 1e18 N centripetal terms) */
