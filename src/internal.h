@@ -170,6 +170,73 @@ static inline int vt_finite_ok(const vt_finite_scan *s)
     return !(any >> 63);
 }
 
+/* The largest |a_k| of several arrays, scanned as one (as vt_finite_scan): a double's bits with
+ * the sign cleared order as the magnitudes do, and Inf's and NaN's lie above every finite one,
+ * so one integer maximum gives both. vt_max_result: the largest magnitude, +Inf if any entry is
+ * Inf or NaN. */
+#if defined(__GNUC__)
+typedef int64_t vt_i64x4 __attribute__((vector_size(32)));
+#else
+typedef struct {
+    int64_t l[4];
+} vt_i64x4;
+#endif
+typedef struct {
+    vt_i64x4 l;
+} vt_max_scan;
+static inline void vt_max_add4(vt_max_scan *s, const double *a)
+{
+#if defined(__GNUC__)
+    vt_i64x4 u;
+    memcpy(&u, a, sizeof u);
+    u &= 0x7fffffffffffffff;
+    const vt_i64x4 gt = u > s->l;
+    s->l = (u & gt) | (s->l & ~gt);
+#else
+    for (int j = 0; j < 4; j++) {
+        int64_t u;
+        memcpy(&u, a + j, sizeof u);
+        u &= 0x7fffffffffffffff;
+        if (u > s->l.l[j]) s->l.l[j] = u;
+    }
+#endif
+}
+static inline void vt_max_add(vt_max_scan *s, const double *a, int n)
+{
+    if (n < 4) {
+        double t[4] = {0, 0, 0, 0};
+        for (int k = 0; k < n; k++) t[k] = a[k];
+        vt_max_add4(s, t);
+        return;
+    }
+    for (int k = 0; k < n - 4; k += 4) vt_max_add4(s, a + k);
+    vt_max_add4(s, a + n - 4);
+}
+static inline double vt_max_result(const vt_max_scan *s)
+{
+#if defined(__GNUC__)
+    const int64_t l0 = s->l[0], l1 = s->l[1], l2 = s->l[2], l3 = s->l[3];
+#else
+    const int64_t l0 = s->l.l[0], l1 = s->l.l[1], l2 = s->l.l[2], l3 = s->l.l[3];
+#endif
+    int64_t mx = l0 > l1 ? l0 : l1;
+    mx = mx > l2 ? mx : l2;
+    mx = mx > l3 ? mx : l3;
+    if (mx >= 0x7ff0000000000000) return HUGE_VAL;
+    double r;
+    memcpy(&r, &mx, sizeof r);
+    return r;
+}
+
+/* 1 when p holds (1, 0, 0, 0) bit for bit (a −0 counts as not: p ⊗ it is then formed, the same
+ * numbers): four integer loads, where four double compares cost 25 instructions a body */
+static inline int vt_quat_is_identity(const double *p)
+{
+    uint64_t u[4];
+    memcpy(u, p, sizeof u);
+    return ((u[0] ^ 0x3ff0000000000000u) | u[1] | u[2] | u[3]) == 0;
+}
+
 /* a ← a/|a| for a vector of n entries, with |a| = s·sqrt(Σ (a_k/s)²) and s = max |a_k|: no
  * overflow of the sum of squares for lengths near DBL_MAX (1e160 and more), no underflow to zero
  * for tiny non-zero ones, so any finite non-zero vector keeps its direction. Returns |a| (Inf

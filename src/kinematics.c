@@ -163,7 +163,7 @@ static inline void position(const vt_model *m, vt_data *d, int i)
         }
         vt_quat_mul(pi, pj, pJ);
         const double *p0 = m->body_quat0 + 4 * i;
-        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) vt_quat_mul(pi, pi, p0);
+        if (!vt_quat_is_identity(p0)) vt_quat_mul(pi, pi, p0);
         vt_euler_A(Ai, pi);
 
         double sji[3];

@@ -801,6 +801,21 @@ static void build_rows(vt_model *m)
     for (int row = 0; row < m->nc && rows_ok; row++)
         if (m->con_kind[row] != VT_ROW_JOINT || m->drive_row[m->dof_drive[m->con_dof[row]]] != row) rows_ok = 0;
     m->joint_rows_only = rows_ok;
+    /* the sizes behind the fused passes' overflow bound (recursive.c, fused_bounded): every lever
+     * arm of the tree at any pose is shorter than the sum of its offsets (Inf if that overflows:
+     * no bound, the outputs are scanned) */
+    double len = 0.0, mass = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        double a[3], b[3];
+        vt_copy3(a, m->body_jpar + 3 * i);
+        vt_copy3(b, m->body_jchild + 3 * i);
+        len += vt_normalize(a, 3) + vt_normalize(b, 3);
+        double jmax = 0.0;
+        for (int k = 0; k < 9; k++) jmax = fmax(jmax, fabs(m->body_inertia[9 * i + k]));
+        mass = fmax(mass, m->body_mass[i] + 3.0 * jmax);
+    }
+    m->bound_length = len;
+    m->bound_mass = mass;
 }
 
 void vt_model_free(vt_model *m)

@@ -427,7 +427,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
         }
         const double *p0 = m->body_quat0 + 4 * i;
-        if (p0[0] != 1.0 || p0[1] != 0.0 || p0[2] != 0.0 || p0[3] != 0.0) { /* p ⊗ p0 (vt_quat_mul) */
+        if (!vt_quat_is_identity(p0)) { /* p ⊗ p0 (vt_quat_mul) */
             const double a0 = p[0], a1 = p[1], a2 = p[2], a3 = p[3], b0 = p0[0], b1 = p0[1], b2 = p0[2], b3 = p0[3];
             p[0] = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3;
             p[1] = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2;
@@ -608,14 +608,15 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
     for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
 }
 
-static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed)
+/* bounded: fused_bounded holds, the outputs need no scan */
+static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed, const int bounded)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
     double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
     if (!W) return vt_scratch_fail(d, mark);
     fused_outward(m, d, d->alpha, W, mixed);
-    vt_status st = vt_kinematics_check_outputs(m, d);
+    vt_status st = bounded ? VT_OK : vt_kinematics_check_outputs(m, d);
     if (st) { /* as vt_kinematics_tree's failure before any route */
         d->route = VT_ROUTE_NONE;
         return vt_scratch_release(d, mark), st;
@@ -675,7 +676,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     memset(d->jnt_moment_total, 0, 3 * sizeof(double));
     memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
     memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
-    if ((st = fused_check(m, d, given, mixed))) return st;
+    if (!bounded && (st = fused_check(m, d, given, mixed))) return st;
     return vt_reactions_unique(m, d);
 }
 
@@ -1327,20 +1328,42 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     return st;
 }
 
-/* xfrc and qfrc, and q and q̇, each pair scanned as one */
-static inline int loads_finite(const vt_model *m, const vt_data *d)
+/* the largest |xfrc| and |qfrc| (one scan), of |q|, of |q̇|, of |q̈|: +Inf where one is not finite */
+static inline double loads_max(const vt_model *m, const vt_data *d)
 {
-    vt_finite_scan s = {0};
-    vt_finite_add(&s, d->xfrc, 6 * (m->nbody + 1));
-    vt_finite_add(&s, d->qfrc, m->nv);
-    return vt_finite_ok(&s);
+    vt_max_scan s = {0};
+    vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
+    vt_max_add(&s, d->qfrc, m->nv);
+    return vt_max_result(&s);
 }
-static inline int state_finite(const vt_model *m, const vt_data *d)
+static inline double array_max(const double *a, int n)
 {
-    vt_finite_scan s = {0};
-    vt_finite_add(&s, d->q, m->nq);
-    vt_finite_add(&s, d->qd, m->nv);
-    return vt_finite_ok(&s);
+    vt_max_scan s = {0};
+    vt_max_add(&s, a, n);
+    return vt_max_result(&s);
+}
+
+/* 1 when no output of the fused passes can overflow, from the inputs' sizes alone: then their
+ * scans (vt_kinematics_check_outputs, fused_check) are skipped. With U = 1 + Σ_i (|s^{ij}| +
+ * |s^{ji}|) + nq max|q| (every position, lever arm and o itself: a path's offsets and
+ * translations; every orientation is unit, the Euler parameters normalized), R = 1 + nv max|q̇|,
+ * A = 1 + nv max|q̈| + 4 R² + |g|, M = 1 + max (m + 3 max|J_kl|), F = 1 + max(|xfrc|, |qfrc|):
+ *   |ω| ≤ R, |v| ≤ 2 R U, |α| ≤ Σ|q̈| + Σ|q̇| |ω| ≤ A, |a| ≤ 2 A U + 2 R² U + 2 R² + Σ|q̈| ≤ 4 A U,
+ *   |p̈| ≤ ½ |α| + ¼ |ω|² ≤ A, a body's force ≤ 5 M A U + 2 F, its moment about its joint point
+ *   ≤ 6 M A + 2 F + 2 U × the force ≤ 16 U² (M A + F), a subtree's (n bodies, moved by lever arms
+ *   < 2U) ≤ 26 n U² (M A + F), efforts and reactions at most twice that (the actuation taken off),
+ *   in either frame (a rotation keeps lengths);
+ * so every output is below B = 64 (n + 1) U² (M A + F), and B < 1e300 leaves round-off (relative
+ * ε per operation) 8 orders of magnitude from DBL_MAX. Where B is not below it (a rate of 1e150
+ * rad/s, loads near DBL_MAX, B itself Inf), the scans decide, as before. */
+static inline int fused_bounded(const vt_model *m, double qmax, double vmax, double amax,
+                                double fmax_)
+{
+    const double g = fabs(m->gravity[0]) + fabs(m->gravity[1]) + fabs(m->gravity[2]);
+    const double U = 1.0 + m->bound_length + m->nq * qmax, R = 1.0 + m->nv * vmax;
+    const double A = 1.0 + m->nv * amax + 4.0 * R * R + g;
+    const double B = 64.0 * (m->nbody + 1) * U * U * ((1.0 + m->bound_mass) * A + 1.0 + fmax_);
+    return B < 1e300;
 }
 
 static int has_base(const vt_model *m)
@@ -1403,13 +1426,15 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
     vt_solve_reset(d);
-    if (!loads_finite(m, d))
+    const double fx = loads_max(m, d);
+    if (!(fx < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
     const int mix = joint_mix(m);
     if (m->joint_driven && mix >= 0) { /* the outward passes fused */
-        if ((mix == 0 && has_quaternions(m)) || !state_finite(m, d)) /* Euler parameters to check */
+        const double qmax = array_max(d->q, m->nq), vmax = array_max(d->qd, m->nv);
+        if ((mix == 0 && has_quaternions(m)) || !(qmax < HUGE_VAL && vmax < HUGE_VAL)) /* Euler parameters to check */
             if ((st = vt_kinematics_check_state(m, d))) return st;
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
@@ -1422,7 +1447,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         d->residual = 0.0;
         vt_mark_unique(m, d);
         *formed = 2;
-        return mix ? fused_pass(m, d, 0, 0) : fused_pass(m, d, 0, 1);
+        const int bounded = fused_bounded(m, qmax, vmax, array_max(d->qdd, m->nv), fx);
+        return mix ? fused_pass(m, d, 0, 0, bounded) : fused_pass(m, d, 0, 1, bounded);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
@@ -1529,7 +1555,8 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     if (st) return st;
     vt_solve_reset(d);
     d->fallback = 0;
-    if (!vt_all_finite(d->qdd, m->nv)) {
+    const double amax = array_max(d->qdd, m->nv);
+    if (!(amax < HUGE_VAL)) {
         for (int c = 0; c < m->nv; c++)
             if (!isfinite(d->qdd[c]))
                 return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: qdd[%d] = %g", c, d->qdd[c]);
@@ -1548,18 +1575,21 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
                            "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
                            "use VT_JOINT_FREE", i);
-    if (!loads_finite(m, d))
+    const double fx = loads_max(m, d);
+    if (!(fx < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
     const int mix = joint_mix(m);
-    if ((mix == 0 && has_quaternions(m)) || !state_finite(m, d)) /* Euler parameters to check */
+    const double qmax = array_max(d->q, m->nq), vmax = array_max(d->qd, m->nv);
+    if ((mix == 0 && has_quaternions(m)) || !(qmax < HUGE_VAL && vmax < HUGE_VAL)) /* Euler parameters to check */
         if ((st = vt_kinematics_check_state(m, d))) return st;
+    const int bounded = fused_bounded(m, qmax, vmax, amax, fx);
     d->rcond = 1.0;
     d->warning = 0;
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = mix ? fused_pass(m, d, 1, 0) : fused_pass(m, d, 1, 1))) return st; /* α and the totals formed in it */
+    if ((st = mix ? fused_pass(m, d, 1, 0, bounded) : fused_pass(m, d, 1, 1, bounded))) return st; /* α and the totals formed in it */
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }
