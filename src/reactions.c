@@ -207,7 +207,7 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
 
     for (int k = 0; k < m->ncoupling; k++) d->coupling_effort[k] = d->lambda[m->coupling_row[k]];
     if (!vt_all_finite(d->coupling_effort, m->ncoupling) || !vt_all_finite(d->drive_force, 3 * m->ndrive) ||
-        !vt_all_finite(d->drive_moment, 3 * m->ndrive) ||
+        !vt_all_finite(d->drive_moment, 3 * m->ndrive) || !vt_all_finite(d->qfrc_drive, m->nv) ||
         !vt_all_finite(d->cut_force, 3 * m->ncut) || !vt_all_finite(d->cut_moment, 3 * m->ncut))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_reactions: an effort overflowed (an ill-posed instant?)");
     return VT_OK;
