@@ -409,7 +409,7 @@ static void model_check(const vt_model *m)
 typedef struct {
     double kappa; /* 1/rcond */
     double e;     /* C (nv + nc + 1) ε κ */
-    double Fs, Ns, Gs, L, mmax, Jmax;
+    double Fs, Ns, Gs, L, mmax, Jmax, mA;
     double dq;            /* q̈'s tolerance in the mass metric (0: plain units) */
     double tq, tf, tn, tg; /* q̈ in plain units (rates without inertia), forces, moments, generalized */
 } scales;
@@ -430,6 +430,10 @@ static void data_scales(const vt_model *m, const vt_data *d, scales *s)
         s->Ns = fmax(s->Ns, maxabs(m->body_inertia + 9 * i, 9) * (w * w + 4.0 * (pdd + pd * pd) + 4.0 * w * pd));
         const double c = maxabs(x, 3);
         s->Ns = fmax(s->Ns, m->body_mass[i] * c * c * (qdd + qd * qd));
+        /* ẍ is summed from terms α × s and ω × (ω × s) along the lever arms: m (|α| + |ω|²), times
+         * the lengths in pair_scales (centres on a common axis turning at α = 5.8e14 rad/s²: a of
+         * 1e-15 m/s² exactly, each route's round-off 1.3 m/s²) */
+        s->mA = fmax(s->mA, m->body_mass[i] * (maxabs(d->alpha + 3 * i, 3) + w * w));
     }
     for (int k = 0; k < m->ndrive; k++) s->L = fmax(s->L, maxabs(m->drive[k].point, 3));
     for (int k = 0; k < m->ncut; k++) s->L = fmax(s->L, fmax(maxabs(m->cut[k].point_a, 3), maxabs(m->cut[k].point_b, 3)));
@@ -452,6 +456,7 @@ static scales pair_scales(const vt_model *m, const vt_data *ref, const vt_data *
     memset(&s, 0, sizeof s);
     data_scales(m, a, &s);
     data_scales(m, b, &s);
+    s.Fs = fmax(s.Fs, s.mA * s.L);
     s.Ns += s.Fs * s.L;
     s.Gs = fmax(s.Gs, s.Fs + s.Ns);
     s.kappa = 1.0 / fmin(rcond, 1.0);
