@@ -618,6 +618,13 @@ enum {
 /* Which kind of object owns a row: drive, cut joint or base body. */
 enum { VT_OWNER_DRIVE, VT_OWNER_CUT, VT_OWNER_COUPLING, VT_OWNER_BASE };
 int vt_row_owner_kind(const vt_model *m, int row);
+/* row r a joint drive whose rate is known: the rate's only joint drive (dof_drive), its q̈ the
+ * drive's f'' = γ_r exactly; the recursive articulated route and the dense Schur route solve the
+ * other rows on the remaining rates */
+static inline int vt_known_row(const vt_model *m, int r)
+{
+    return m->con_kind[r] == VT_ROW_JOINT && m->drive_row[m->dof_drive[m->con_dof[r]]] == r;
+}
 /* Rows of a cut joint: its kind's, or 2 for a planar pin. */
 int vt_cut_nrows(const vt_cut_joint_def *c);
 /* Number of rows that belong to drives (they come first). */

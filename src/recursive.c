@@ -43,8 +43,8 @@
  *   is a joint drive (joint_rows_only) the inward pass as above gives them.
  *   rcond is the other rows' S's exact condition at unit diagonal (1 for one row, none without)
  *   times min/max of M*_FF's pivots (the free rates') taken leaf first, each over its diagonal
- *   entry, times the point drives' grip²: vt_solve's number on the system left once the driven
- *   rates are known, which the dense path's, on the whole M* and every row, does not exceed; a
+ *   entry, times the point drives' grip²: the number vt_solve's Schur route reports on the
+ *   same system (it takes the driven rates as known too); a
  *   pivot below 1e-8 or round-off of 0 (VT_FALLBACK_ARTICULATED_PIVOT) or rcond below rcond_min
  *   (VT_FALLBACK_ARTICULATED_CONDITION) hands the instant to the general route;
  * - SQUARE, as many rows as rates, no base body: q̈ = Φ_q^-1 γ, then Φ_q^T λ = M* q̈ − Q =
@@ -982,20 +982,13 @@ static size_t aba_bytes(const vt_model *m, int nr)
            3 * VT_SCRATCH_BYTES(6 * nb, D) + VT_SCRATCH_BYTES((size_t)m->nc, sizeof(int));
 }
 
-/* row r a joint drive whose rate is known (the rate's only joint drive, dof_drive): its q̈ is
- * the drive's f'' and its multiplier follows from the subtree's needed wrench */
-static inline int known_row(const vt_model *m, int r)
-{
-    return m->con_kind[r] == VT_ROW_JOINT && m->drive_row[m->dof_drive[m->con_dof[r]]] == r;
-}
-
 /* the rows that stay in the Schur system (every row but the known joint drives) into rows (or
  * only counted with NULL); their count */
 static int schur_rows(const vt_model *m, int *rows)
 {
     int k = 0;
     for (int r = 0; r < m->nc; r++)
-        if (!known_row(m, r)) {
+        if (!vt_known_row(m, r)) {
             if (rows) rows[k] = r;
             k++;
         }
@@ -1030,7 +1023,7 @@ static int schur_rows(const vt_model *m, int *rows)
  * point drives' grip², the number the Schur path computes from its leaf-first Cholesky pivots:
  * both fall where a motion loses its inertia. A D_a that is round-off of 0 (below VT_ROUND_TAU ε
  * of the subtree's terms about P_i it is a difference of) is no pivot: the general route decides.
- * A rate with a joint drive (drv, its only one: known_row) has its q̈ known, f'' = γ of the
+ * A rate with a joint drive (drv, its only one: vt_known_row) has its q̈ known, f'' = γ of the
  * drive's row, and that row is no right side: such a rate articulates nothing,
  *   inward  p ← p + U_a q̈_a for Q (0 for a row's side; I^A unchanged),   outward  A ← A + s_a q̈_a,
  * the others are the free rates, M*_FF's pivots and the other rows' S = Φ_oF M*_FF^-1 Φ_oF^T
@@ -1307,7 +1300,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
         if (nr == 1) vt_row_wrenches(w.rw, m, d, NULL); /* articulated_solve formed them with other rows */
         memset(J, 0, 6 * ((size_t)m->nbody + 1) * sizeof(double));
         for (int q = 0; q < m->nc; q++) {
-            if (!known_row(m, q)) continue;
+            if (!vt_known_row(m, q)) continue;
             for (int side = 0; side < 2; side++) {
                 const int b = m->con_body[2 * q + side];
                 if (b == 0) continue;

@@ -602,11 +602,16 @@ static int moves_with(const vt_model *m, int i, int j)
 }
 
 /* ℓ, the rows' lever arm: the largest, over the point and line rows and the rates that turn, of
- * the speed a unit rate gives the row's point relative to its partner, |W_ra| (a length per
- * radian: how far the rate moves the rows' points), with
+ * the speed a unit rate gives the row's point on body b relative to what it is measured from
+ * (a point row: the partner point P_a; a line row: body a, which carries the line), |W_ra| (a
+ * length per radian: how far the rate moves the rows' points), with
  *   W_ra = v_a + ω_a × P_b            rate a moves body b (side b of row r) and not body a
- *        = −(v_a + ω_a × P_a)         rate a moves body a and not body b
- *        = ω_a × (P_b − P_a)          rate a moves both
+ *        = −(v_a + ω_a × P_a)         rate a moves body a and not body b (a point row)
+ *        = −(v_a + ω_a × P_b)         the same for a line row: its entry is −u · that, the line's
+ *                                     turning acting over P_b − P_a (a cut joint whose points
+ *                                     lie 3e43 m apart: ℓ 6 m without it, Φ̂'s line rows then
+ *                                     1e42 of its angle rows, and its rank 2 of 4)
+ *        = ω_a × (P_b − P_a)          rate a moves both (a point row; a line row's is 0)
  * ((ω_a, v_a) its twist about o, P the row's points from o) — all three components, not the one
  * the row measures: a row that measures y beside a rate turning about y would otherwise make ℓ
  * collapse with the direction it measures, and scale a nearly dependent column to unit size.
@@ -637,13 +642,13 @@ static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
                 const int a = path[k];
                 if (!turning_rate(m, a)) continue;
                 const int both = moves_with(m, m->dof_body[a], other);
-                if (both && s == 0) continue; /* taken once, from side b */
+                if (both && (s == 0 || kind == VT_ROW_LINE)) continue; /* once, from side b; a line's: 0 */
                 const double *w = d->twist + 6 * a;
                 double W[3];
                 if (both) vt_cross3(W, w, dP);
-                else {
+                else { /* a line's: at P_b also where the rate moves body a */
                     vt_copy3(W, w + 3);
-                    vt_addcross3(W, w, P[s]);
+                    vt_addcross3(W, w, P[kind == VT_ROW_LINE ? 1 : s]);
                 }
                 arm = fmax(arm, sqrt(vt_dot3(W, W)));
             }
@@ -1099,17 +1104,28 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
 
 /* Fewer rows than rates, M* well conditioned (the usual case: a chain whose tip follows a
  * path, an arm partly driven): (5) by its Schur complement on the constraint rows, in the
- * scaled variables (M̃ = D M* D with unit diagonal, Φ̃ = R Φ_q D, as factor_solve; R is c below):
+ * scaled variables (M̃ = D M* D with unit diagonal, Φ̃ = R Φ_q D, R each row to unit norm in
+ * that metric):
  *
  *   M̃ = L L^T,   Y = L^-1 Φ̃^T,   z = L^-1 D Q,   S = Y^T Y = Φ̃ M̃^-1 Φ̃^T,
- *   S λ̃ = c γ − Y^T z,   ỹ = L^-T (z + Y λ̃),   q̈ = D ỹ,   λ = c λ̃,
+ *   S λ̃ = R γ − Y^T z,   ỹ = L^-T (z + Y λ̃),   q̈ = D ỹ,   λ = R λ̃,
  *
  * two Cholesky factorizations (LAPACK dpotf2, unblocked like dgetf2 above, of nv and of nc
  * unknowns) instead of the symmetric indefinite one of nv + nc: about a third of the work, and
- * no pivoting. It applies when every pivot of L is at least 1e-4 (M̃'s unit diagonal bounds them
- * by 1 from above): below that M* is (nearly) singular on some rates, which only the constraints
- * may fix, and factor_solve takes over (return 2). M̃ is factorized with its rates in descending
- * order (leaf first), so that L_kk² are the articulated-body pivots each over its diagonal entry.
+ * no pivoting. With known rates (known: a joint drive on a rate of its own, its q̈_D = γ_D
+ * exact, as the recursive articulated route takes it) the same on the free rates F and the
+ * other rows o alone, the known ones moved to the right sides:
+ *
+ *   M*_FF q̈_F = Q_F − M*_FD q̈_D + Φ_oF^T λ_o,   Φ_oF q̈_F = γ_o − Φ_oD q̈_D,
+ *   λ_D = (M* q̈ − Q − Φ_o^T λ_o)_D
+ *
+ * so that a point row beside a joint drive is judged by what it fixes on the rates that are
+ * not known (a row [692208, −4.85, 0] beside the drive [1, 0, 0] fixes rate 1; in the mass
+ * metric of all rates the two rows look parallel, 3e-6 apart, and the estimate squares that).
+ * It applies when every pivot of L is at least 1e-4 (M̃'s unit diagonal bounds them by 1 from
+ * above): below that M* is (nearly) singular on some rates, which only the constraints may fix,
+ * and factor_solve takes over (return 2). M̃ is factorized with its rates in descending order
+ * (leaf first), so that L_kk² are the articulated-body pivots each over its diagonal entry.
  * The reported reciprocal condition is S's at unit diagonal (vt_solve_spd: exact, 1 for one row,
  * for nc ≤ 16 from its inverse; dpocon's estimate above) times (min L_kk / max L_kk)² times the
  * point drives' grip² (vt_rows_grip): the recursive articulated route's number. It falls where
@@ -1117,94 +1133,125 @@ static int square_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
  * point drive loses its grip (a lone one too). Returns 0, 2, 3 (below rcond_min: not solved), 4
  * (solved, below rcond_warn: vt_solve_band tries the augmented route too) or a negative vt_status. */
 #define SCHUR_FEW 3 /* rows up to which S and its right side are formed by loops */
-static int schur_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_out)
+static int schur_solve(const vt_model *m, vt_data *d, int known, double *sol, double *rcond_out)
 {
-    const int nv = m->nv, nc = m->nc, nrhs = nc + 1;
+    const int nv = m->nv, nc = m->nc;
     const size_t mark = vt_scratch_mark(d);
-    double *L = VT_SCRATCH(d, double, (size_t)nv * (size_t)nv, "Cholesky factor of M̃");
-    double *B = VT_SCRATCH(d, double, (size_t)nv * (size_t)nrhs, "L^-1 [Φ̃^T, D Q]");
-    double *S = VT_SCRATCH(d, double, (size_t)nc * (size_t)nc, "Schur complement");
-    double *s = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "scaling");
-    if (!s) return vt_scratch_fail(d, mark);
-    double *x = sol, *lam = sol + nv;
-    scaling(m, d, s, 1);
-    /* M̃ with its rates in descending order (P M̃ P, P the reversal): leaf first, the order of
-     * the articulated-body pivots (no fill-in on a tree; M* is stored whole) */
-    for (int j = 0; j < nv; j++) {
-        const int cj = nv - 1 - j;
-        const double *restrict Mc = d->Mstar + (size_t)cj * (size_t)nv;
-        double *restrict Lc = L + (size_t)j * (size_t)nv;
-        const double sj = s[cj];
-        for (int i = j; i < nv; i++) Lc[i] = Mc[nv - 1 - i] * s[nv - 1 - i] * sj;
+    int *fr = VT_SCRATCH(d, int, (size_t)nv + (size_t)nc, "free rates, other rows"), *ro = fr + nv;
+    if (!fr) return vt_scratch_fail(d, mark);
+    int nf = 0, no = 0;
+    for (int a = nv - 1; a >= 0; a--) /* descending: leaf first, as the articulated pivots */
+        if (!known || m->dof_drive[a] < 0) fr[nf++] = a;
+    for (int r = 0; r < nc; r++)
+        if (!known || !vt_known_row(m, r)) ro[no++] = r;
+    const int nrhs = no + 1;
+    double *L = VT_SCRATCH(d, double, (size_t)nf * (size_t)nf, "Cholesky factor of M̃");
+    double *B = VT_SCRATCH(d, double, (size_t)nf * (size_t)nrhs, "L^-1 [Φ̃^T, D Q]");
+    double *S = VT_SCRATCH(d, double, (size_t)no * (size_t)no, "Schur complement");
+    double *s = VT_SCRATCH(d, double, (size_t)nv + (size_t)no, "scaling");
+    double *x = VT_SCRATCH(d, double, (size_t)nv + (size_t)no, "q̈ and λ̃");
+    if (!x) return vt_scratch_fail(d, mark);
+    double *lam = x + nv, *g = s + nv;
+#define PHI(r, c) d->Phiq[(size_t)(r) + (size_t)(c) * (size_t)nc]
+#define MS(r, c) d->Mstar[(size_t)(r) + (size_t)(c) * (size_t)nv]
+    /* q̈_D = γ of the known rates' drives (0 elsewhere), D = M*_aa^(-1/2) on the free ones */
+    for (int a = 0; a < nv; a++) x[a] = known && m->dof_drive[a] >= 0 ? d->gamma[m->drive_row[m->dof_drive[a]]] : 0.0;
+    scaling_diag(m, d->Mstar, nv + 1, s);
+    for (int k = 0; k < no; k++) {
+        double rn = 0.0;
+        for (int a = 0; a < nf; a++) {
+            const double v = PHI(ro[k], fr[a]) * s[fr[a]];
+            rn += v * v;
+        }
+        g[k] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
     }
+    for (int j = 0; j < nf; j++)
+        for (int i = j; i < nf; i++) L[i + (size_t)j * (size_t)nf] = MS(fr[i], fr[j]) * s[fr[i]] * s[fr[j]];
     int info = 0;
-    dpotf2_("L", &nv, L, &nv, &info, 1);
+    if (nf > 0) dpotf2_("L", &nf, L, &nf, &info, 1);
     if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
     if (info > 0) return vt_scratch_release(d, mark), 2;
     double lmin = 1.0, lmax = 0.0;
-    for (int k = 0; k < nv; k++) {
-        const double lk = L[k + (size_t)k * (size_t)nv];
+    for (int k = 0; k < nf; k++) {
+        const double lk = L[k + (size_t)k * (size_t)nf];
         if (!(lk >= 1e-4)) return vt_scratch_release(d, mark), 2;
         lmin = lk < lmin ? lk : lmin; /* not fmin/fmax: lk is a number here, and they are calls */
         lmax = lk > lmax ? lk : lmax;
     }
-    /* B = [Φ̃^T, D Q], then L^-1 B */
-    for (int r = 0; r < nc; r++)
-        for (int a = 0; a < nv; a++)
-            B[a + (size_t)r * (size_t)nv] = s[nv + r] * d->Phiq[r + (size_t)(nv - 1 - a) * (size_t)nc] * s[nv - 1 - a];
-    for (int a = 0; a < nv; a++) B[a + (size_t)nc * (size_t)nv] = d->Q[nv - 1 - a] * s[nv - 1 - a];
-    cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nv, nrhs, 1.0, L, nv, B, nv);
-    const double *Y = B, *z = B + (size_t)nc * (size_t)nv;
-    /* S = Y^T Y and its right-hand side c γ − Y^T z. With a few rows (a point drive: 1 to 3)
-     * these are a few dot products of nv terms, cheaper as loops than as BLAS calls (whose
+    /* B = [Φ̃_oF^T, D (Q − M* q̈_D)_F], then L^-1 B */
+    for (int k = 0; k < no; k++)
+        for (int a = 0; a < nf; a++) B[a + (size_t)k * (size_t)nf] = g[k] * PHI(ro[k], fr[a]) * s[fr[a]];
+    double *z = B + (size_t)no * (size_t)nf;
+    for (int a = 0; a < nf; a++) {
+        const int c = fr[a];
+        double v = d->Q[c];
+        if (known)
+            for (int b = 0; b < nv; b++) v -= MS(c, b) * x[b]; /* x: q̈_D, 0 on the free rates */
+        z[a] = v * s[c];
+    }
+    if (nf > 0) cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nf, nrhs, 1.0, L, nf, B, nf);
+    const double *Y = B;
+    /* S = Y^T Y and its right-hand side R (γ − Φ q̈_D) − Y^T z. With a few rows (a point drive: 1
+     * to 3) these are a few dot products of nf terms, cheaper as loops than as BLAS calls (whose
      * argument checks cost more than the products); one row makes S a positive number, its
      * Cholesky factor a square root, and S's condition exactly 1. */
-    const int few = nc <= SCHUR_FEW;
+    for (int k = 0; k < no; k++) {
+        double t = d->gamma[ro[k]];
+        if (known)
+            for (int b = 0; b < nv; b++) t -= PHI(ro[k], b) * x[b];
+        lam[k] = g[k] * t;
+    }
+    const int few = no <= SCHUR_FEW;
     if (few) {
-        for (int r = 0; r < nc; r++) {
-            const double *yr = Y + (size_t)r * (size_t)nv;
-            double t = s[nv + r] * d->gamma[r];
-            for (int a = 0; a < nv; a++) t -= yr[a] * z[a];
+        for (int r = 0; r < no; r++) {
+            const double *yr = Y + (size_t)r * (size_t)nf;
+            double t = lam[r];
+            for (int a = 0; a < nf; a++) t -= yr[a] * z[a];
             lam[r] = t;
-            for (int k = r; k < nc; k++) {
-                const double *yk = Y + (size_t)k * (size_t)nv;
+            for (int k = r; k < no; k++) {
+                const double *yk = Y + (size_t)k * (size_t)nf;
                 double v = 0.0;
-                for (int a = 0; a < nv; a++) v += yk[a] * yr[a];
-                S[k + (size_t)r * (size_t)nc] = v;
+                for (int a = 0; a < nf; a++) v += yk[a] * yr[a];
+                S[k + (size_t)r * (size_t)no] = v;
             }
         }
     } else {
-        cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, nc, nv, 1.0, Y, nv, 0.0, S, nc);
-        for (int r = 0; r < nc; r++) lam[r] = s[nv + r] * d->gamma[r];
-        cblas_dgemv(CblasColMajor, CblasTrans, nv, nc, -1.0, Y, nv, z, 1, 1.0, lam, 1);
+        cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, no, nf, 1.0, Y, nf, 0.0, S, no);
+        cblas_dgemv(CblasColMajor, CblasTrans, nf, no, -1.0, Y, nf, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
-    const int st = vt_solve_spd(d, S, nc, lam, &rcond);
+    const int st = vt_solve_spd(d, S, no, lam, &rcond);
     if (st) return vt_scratch_release(d, mark), st;
     rcond *= (lmin / lmax) * (lmin / lmax) * vt_rows_grip(m, d);
     *rcond_out = rcond;
     /* below rcond_min: not solved, 3 (vt_solve_band tries the augmented route before refusing) */
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), 3;
-    /* ỹ = L^-T (z + Y λ̃) */
-    memcpy(x, z, (size_t)nv * sizeof(double));
+    /* ỹ = L^-T (z + Y λ̃), in place of z */
     if (few) {
-        for (int r = 0; r < nc; r++) {
-            const double *yr = Y + (size_t)r * (size_t)nv, l = lam[r];
-            for (int a = 0; a < nv; a++) x[a] += yr[a] * l;
+        for (int r = 0; r < no; r++) {
+            const double *yr = Y + (size_t)r * (size_t)nf, l = lam[r];
+            for (int a = 0; a < nf; a++) z[a] += yr[a] * l;
         }
     } else {
-        cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nc, 1.0, Y, nv, lam, 1, 1.0, x, 1);
+        cblas_dgemv(CblasColMajor, CblasNoTrans, nf, no, 1.0, Y, nf, lam, 1, 1.0, z, 1);
     }
-    cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nv, L, nv, x, 1);
-    for (int a = 0; a < nv - 1 - a; a++) { /* back to ascending order */
-        const double t = x[a];
-        x[a] = x[nv - 1 - a];
-        x[nv - 1 - a] = t;
-    }
-    for (int a = 0; a < nv; a++) x[a] *= s[a];
-    for (int r = 0; r < nc; r++) lam[r] *= s[nv + r];
+    if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nf, L, nf, z, 1);
+    for (int a = 0; a < nf; a++) x[fr[a]] = z[a] * s[fr[a]];
+    for (int k = 0; k < no; k++) lam[k] *= g[k];
+    memcpy(sol, x, (size_t)nv * sizeof(double));
+    for (int k = 0; k < no; k++) sol[nv + ro[k]] = lam[k];
+    if (known)
+        for (int a = 0; a < nv; a++) { /* λ_D = (M* q̈ − Q − Φ_o^T λ_o)_D on each known rate */
+            if (m->dof_drive[a] < 0) continue;
+            double v = -d->Q[a];
+            for (int b = 0; b < nv; b++) v += MS(a, b) * x[b];
+            for (int k = 0; k < no; k++) v -= PHI(ro[k], a) * lam[k];
+            sol[nv + m->drive_row[m->dof_drive[a]]] = v;
+        }
+#undef PHI
+#undef MS
     vt_scratch_release(d, mark);
-    if (!vt_all_finite(x, nv + nc)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    if (!vt_all_finite(sol, nv + nc)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     /* below rcond_warn: solved, 4 (vt_solve_band also tries the augmented route) */
     return rcond >= m->rcond_warn ? 0 : 4;
 }
@@ -1310,8 +1357,9 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  *               solves too and the answer of the higher estimate is kept (the augmented one:
  *               VT_FALLBACK_SCHUR_CONDITION)
  * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
- * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio of
- * the whole M* times the unit-diagonal Schur complement's and the point drives' grip² (SCHUR); the
+ * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio
+ * over the rates no joint drive fixes times the other rows' unit-diagonal Schur complement's and
+ * the point drives' grip² (SCHUR); the
  * scaled augmented matrix's times the grip² (AUGMENTED); the kept rows' matrix's singular value
  * ratio or (σ_kept / σ_max)² of Φ̂, the smaller (REDUNDANT). Round-off of an exact zero taken for a row or an inertia is caught first
  * (roundoff_check). Below rcond_min the rows' rank (rows_decide)
@@ -1362,7 +1410,19 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
     int r = zero_rows ? 1 : 2; /* sol holds [q̈; λ], or [q̈; −λ] on the augmented route (factor_solve) */
     if (r == 1) {} /* a zero row: nothing solved, diagnosed below */
     else if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
-    else if (route == VT_ROUTE_SCHUR) r = schur_solve(m, d, sol, &rcond);
+    else if (route == VT_ROUTE_SCHUR) {
+        /* joint-driven rates known (as the recursive articulated route takes them), unless a
+         * row is round-off of zero on the other rates: dependent on their drives, which the
+         * whole system's rank names */
+        int known = 0;
+        for (int a = 0; a < nv && !known; a++) known = m->dof_drive[a] >= 0;
+        if (known) {
+            const int zf = vt_zero_rows_free(m, d, m->dof_drive);
+            if (zf < 0) return vt_scratch_release(d, mark), (vt_status)zf;
+            known = zf == 0;
+        }
+        r = schur_solve(m, d, known, sol, &rcond);
+    }
     if (r == 3 || r == 4) {
         /* the Schur route's estimate below rcond_warn (4: solved) or rcond_min (3: not): the rows'
          * Schur complement in the mass metric can lose digits that the whole matrix keeps (a chain
@@ -1517,6 +1577,10 @@ size_t vt_solve_scratch(const vt_model *m)
                          VT_SCRATCH_BYTES(sN, D) + /* an exact inverse, or dlansy's / dpocon's work */
                          VT_SCRATCH_BYTES((size_t)m->nbody + 1, D); /* massless()'s subtree inertias */
     size_t route = VT_SCRATCH_BYTES(sN * sN, D) + 4 * VT_SCRATCH_BYTES(2 * sN, D) + VT_SCRATCH_BYTES(sN, I);
+    /* schur_solve: its index lists, L, B, S, the scaling, q̈ and λ̃ */
+    const size_t schur = VT_SCRATCH_BYTES(sN, I) + VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(snv * (snc + 1), D) +
+                         VT_SCRATCH_BYTES(snc * snc, D) + 2 * VT_SCRATCH_BYTES(sN, D);
+    if (schur > route) route = schur;
     /* rows_decide's SVD (U, V^T, σ, both scalings; the scaled Φ_q while it runs), then
      * redundant_solve's reduced system */
     const size_t rows = VT_SCRATCH_BYTES(snc * snc, D) + VT_SCRATCH_BYTES((size_t)k * snv, D) +

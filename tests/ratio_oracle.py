@@ -32,10 +32,11 @@ solves the very problem vtdyn was given. Checks:
  3. vtdyn's error on every chain and path, normwise: q'' within 20 eps / rcond (at least 100 eps)
     of the exact one, and lambda too, except where vtdyn is known to lose more (KNOWN below);
  4. no warning and no failure on the chains of 1e3 a rod (a rising one, joints 1-2 and the tip
-    driven, was refused: the Schur route's estimate, 6.6e-13, where the augmented route's is
-    2.1e-3 and its answers exact to 50 eps);
- 5. the recursive path keeps joints 1-2 and the tip driven on its articulated route (the driven
-    rates known, only the tip's rows in its Schur complement), so that 3. holds that route.
+    driven, has a Schur estimate of 6.6e-13 over the whole M*, from the light driven rods'
+    pivots, where its answers are exact to 1e4 eps);
+ 5. both paths keep joints 1-2 and the tip driven on their own routes, the recursive one on the
+    articulated route and the dense one on the Schur route (the driven rates known, only the
+    tip's rows in the Schur complement), so that 3. holds those routes.
 It prints every case: route, rcond, the problem's condition and vtdyn's errors in eps.
 
     ratio_oracle.py RATIO_CHAIN        (exit 77, skipped, without mpmath)
@@ -57,6 +58,7 @@ N = 5
 # driven at joint 1 alone: the joint-1 effort (~1 N m) is the difference of terms of the heavy rods'
 # size, and M* and Q, whose every entry carries the tip, hold it only so far (docs/accuracy.md, "Mass
 # ratios"; measured 2.4e-2 and 4e-9): beyond eps / rcond, silently at 1e3 a rod
+ROUTE_SCHUR = 4  # VT_ROUTE_SCHUR
 ROUTE_ARTICULATED = 5  # VT_ROUTE_ARTICULATED
 KNOWN = {(6, 1, 3): (0.1, True), (3, 1, 3): (1e-7, False)}
 
@@ -220,8 +222,9 @@ def main():
                 failures.append("%s: lambda off by %.3g, more than 20 eps / rcond = %.3g" % (name, el, bound))
             if case["step"] == 3 and case["warning"]:
                 failures.append("%s: warns (rcond %.3g) on a chain of 1e3 a rod" % (name, rcond))
-            if case["path"] and case["drive"] == 2 and case["route"] != ROUTE_ARTICULATED:
-                failures.append("%s: route %d, not the articulated route" % (name, case["route"]))
+            want = ROUTE_ARTICULATED if case["path"] else ROUTE_SCHUR
+            if case["drive"] == 2 and case["route"] != want:
+                failures.append("%s: route %d, not route %d" % (name, case["route"], want))
         print(line)
     for f in failures:
         print("FAIL " + f)

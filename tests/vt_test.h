@@ -129,9 +129,10 @@ static inline void vt_test_point_rate(const vt_model *m, const vt_data *d, int b
 
 /* ℓ, the rows' lever arm (docs/method.md, "The condition estimate"), from the dense S: the
  * largest, over the point and line rows and the rates that turn, of |V_b − V_a|, the velocity a
- * unit rate gives the row's point on body b less that of its point on body a (differences below
- * 1e-13 of their terms taken as round-off); without any, the reciprocal of the largest column
- * norm of the couplings whose first rate turns on rates that translate; without either, 1 */
+ * unit rate gives the row's point on body b less that of its point on body a (a line row: less
+ * that of body a's point at P_b, the body that carries the line) (differences below 1e-13 of
+ * their terms taken as round-off); without any, the reciprocal of the largest column norm of the
+ * couplings whose first rate turns on rates that translate; without either, 1 */
 static inline double vt_test_rows_length(const vt_model *m, const vt_data *d)
 {
     double arm = 0.0, inv = 0.0;
@@ -139,8 +140,23 @@ static inline double vt_test_rows_length(const vt_model *m, const vt_data *d)
         if (m->con_kind[r] != VT_ROW_POINT && m->con_kind[r] != VT_ROW_LINE) continue;
         for (int a = 0; a < m->nv; a++) {
             if (!vt_test_rate_turns(m, a)) continue;
-            double Va[3], Vb[3], W = 0.0, T = 0.0;
-            vt_test_point_rate(m, d, m->con_body[2 * r], m->con_point + 6 * r, a, Va);
+            double Va[3], Vb[3], W = 0.0, T = 0.0, ua[3];
+            const int ba = m->con_body[2 * r];
+            memcpy(ua, m->con_point + 6 * r, sizeof ua);
+            if (m->con_kind[r] == VT_ROW_LINE && ba > 0) { /* P_b in body a's axes, from its centre */
+                const int bb = m->con_body[2 * r + 1];
+                const double *ub = m->con_point + 6 * r + 3, *Aa = d->A + 9 * ba, *ra = d->x + 7 * (ba - 1);
+                double Pb[3] = {0, 0, 0};
+                if (bb > 0) {
+                    const double *Ab = d->A + 9 * bb, *rb = d->x + 7 * (bb - 1);
+                    for (int i = 0; i < 3; i++) Pb[i] = rb[i] + Ab[i] * ub[0] + Ab[i + 3] * ub[1] + Ab[i + 6] * ub[2];
+                } else {
+                    for (int i = 0; i < 3; i++) Pb[i] = ub[i];
+                }
+                for (int i = 0; i < 3; i++)
+                    ua[i] = Aa[3 * i] * (Pb[0] - ra[0]) + Aa[3 * i + 1] * (Pb[1] - ra[1]) + Aa[3 * i + 2] * (Pb[2] - ra[2]);
+            }
+            vt_test_point_rate(m, d, ba, ua, a, Va);
             vt_test_point_rate(m, d, m->con_body[2 * r + 1], m->con_point + 6 * r + 3, a, Vb);
             for (int k = 0; k < 3; k++) {
                 W += (Vb[k] - Va[k]) * (Vb[k] - Va[k]);
@@ -200,6 +216,55 @@ static inline double vt_test_grip2(const vt_model *m, const vt_data *d, double r
     }
     return worst;
 }
+
+#ifdef VTDYN_INTERNAL_H
+/* The Schur and articulated routes' condition (docs/method.md, "The condition estimate"), from
+ * the dense path's M* and Φ_q by LAPACK, on the system left once the joint-driven rates (D) are
+ * known: the exact 1-norm condition of the other rows' S = Φ_oF M*_FF^-1 Φ_oF^T (F the free
+ * rates, o the rows but the joint drives; vt_test_schur_rcond) times min/max of M*_FF's pivots
+ * taken in descending rate order (the Cholesky factor of M*_FF scaled to unit diagonal, rows and
+ * columns reversed: L_kk²) times the point drives' grip² (vt_test_grip2). */
+static inline double vt_test_known_rcond(const vt_model *m, const vt_data *dd)
+{
+    int *fr = calloc((size_t)m->nv, sizeof(int)), nf = 0, info = 0, *orow = calloc((size_t)m->nc + 1, sizeof(int)), no = 0;
+    assert_non_null(fr);
+    assert_non_null(orow);
+    for (int a = 0; a < m->nv; a++)
+        if (m->dof_drive[a] < 0) fr[nf++] = a;
+    for (int r = 0; r < m->nc; r++)
+        if (m->con_kind[r] != VT_ROW_JOINT) orow[no++] = r;
+    double *Mff = calloc((size_t)nf * (size_t)nf + 1, sizeof(double)), *Pof = calloc((size_t)no * (size_t)nf + 1, sizeof(double));
+    assert_non_null(Mff);
+    assert_non_null(Pof);
+    for (int c = 0; c < nf; c++) {
+        for (int r = 0; r < nf; r++) Mff[r + c * nf] = dd->Mstar[fr[r] + fr[c] * m->nv];
+        for (int r = 0; r < no; r++) Pof[r + c * no] = dd->Phiq[orow[r] + fr[c] * m->nc];
+    }
+    const double schur = no > 0 ? vt_test_schur_rcond(Mff, Pof, nf, no) * vt_test_grip2(m, dd, vt_test_rows_length(m, dd)) : 1.0;
+    free(Mff);
+    free(Pof);
+    free(orow);
+    double *K = calloc((size_t)nf * (size_t)nf, sizeof(double));
+    assert_non_null(K);
+    for (int c = 0; c < nf; c++)
+        for (int r = 0; r < nf; r++) {
+            const int rr = fr[nf - 1 - r], cc = fr[nf - 1 - c], ld = m->nv;
+            const double *Ms = dd->Mstar;
+            K[r + c * nf] = Ms[rr + cc * ld] / sqrt(Ms[rr + rr * ld] * Ms[cc + cc * ld]);
+        }
+    dpotrf_("L", &nf, K, &nf, &info, 1);
+    assert_int_equal(info, 0);
+    double pmin = 1e300, pmax = 0.0;
+    for (int k = 0; k < nf; k++) {
+        const double p = K[k + k * nf] * K[k + k * nf];
+        pmin = fmin(pmin, p);
+        pmax = fmax(pmax, p);
+    }
+    free(K);
+    free(fr);
+    return schur * pmin / pmax;
+}
+#endif
 
 static inline double vt_test_maxabs(const double *a, int n)
 {
