@@ -519,10 +519,10 @@ void vt_solve_reset(vt_data *d);
 /* the rank of Φ_q to round-off, in the scaling of the redundant decision (from the current M*
  * and Φ_q), or a negative vt_status (solve.c) */
 int vt_rows_rank(const vt_model *m, vt_data *d);
-/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of R Φ_q D
- * (X: NULL, no inverse kept); D (s) and R (g); q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
+/* vt_solve's square route in two halves (solve.c), its state on the arena: the LU of R Φ_q D;
+ * D (s) and R (g); q̈ (x) and then M* q̈ − Q, overwritten by λ (h) */
 typedef struct {
-    double *A, *X, *s, *g, *x, *h;
+    double *A, *s, *g, *x, *h;
     int *ipiv;
 } vt_square;
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);

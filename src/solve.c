@@ -594,13 +594,6 @@ static int turning_rate(const vt_model *m, int a)
     return kind == VT_DOF_ROT || kind == VT_DOF_BASE_P;
 }
 
-/* 1 when body j is body i or one of its descendants (parents come before their children) */
-static int moves_with(const vt_model *m, int i, int j)
-{
-    while (j > i) j = m->body_parent[j];
-    return j == i;
-}
-
 /* ℓ, the rows' lever arm: the largest, over the point and line rows and the rates that turn, of
  * the speed a unit rate gives the row's point on body b relative to what it is measured from
  * (a point row: the partner point P_a; a line row: body a, which carries the line), |W_ra| (a
@@ -635,13 +628,20 @@ static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
             for (int k = 0; k < 3; k++) P[s][k] += d->xrel[6 * b + k];
         }
         for (int k = 0; k < 3; k++) dP[k] = P[1][k] - P[0][k];
+        /* the rates that move both bodies: their paths' common prefix (root first) */
+        int shared = 0;
+        if (ba > 0 && bb > 0) {
+            const int *pa = m->path_dof + m->body_pathadr[ba], *pb = m->path_dof + m->body_pathadr[bb];
+            const int na = m->body_pathnum[ba], nb = m->body_pathnum[bb];
+            while (shared < na && shared < nb && pa[shared] == pb[shared]) shared++;
+        }
         for (int s = 0; s < 2; s++) {
-            const int b = s ? bb : ba, other = s ? ba : bb;
+            const int b = s ? bb : ba;
             const int *path = m->path_dof + m->body_pathadr[b];
             for (int k = 0; k < m->body_pathnum[b]; k++) {
                 const int a = path[k];
                 if (!turning_rate(m, a)) continue;
-                const int both = moves_with(m, m->dof_body[a], other);
+                const int both = k < shared;
                 if (both && (s == 0 || kind == VT_ROW_LINE)) continue; /* once, from side b; a line's: 0 */
                 const double *w = d->twist + 6 * a;
                 double W[3];
@@ -974,9 +974,10 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * unit norm in that metric) serving both solves (dgetrs, then its transpose): M* is not
  * factorized at all. The motion is the rows' alone, and so is the question of its
  * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
- * the condition of Φ̂ = G Φ_q C (its own LU; exact from the inverse up to 16 rates, dgecon
- * above), a scaling that makes Φ̂ dimensionless and its condition independent of units and of
- * the scene's frame, and in which no mass takes part: rows that measure angles by ℓ and
+ * the condition of Φ̂ = G Φ_q C (exact up to 16 rates, from the inverse of the solves' R Φ_q D
+ * below, rescaled: one LU for both; dgecon on Φ̂'s own LU above), a scaling that makes Φ̂
+ * dimensionless and its condition independent of units and of the scene's frame, and in which
+ * no mass takes part: rows that measure angles by ℓ and
  * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
  * parameters) by 1/ℓ and those that translate by 1 (C), ℓ the rows' own lever arm (rows_length,
  * a length of the rows' geometry). The two solves in sequence amplify errors by
@@ -993,51 +994,27 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
     sq->g = sq->s + n;
-    sq->X = NULL;
     double *A = sq->A, *s = sq->s, *g = sq->g, *x = sq->x;
-    /* the condition: of Φ̂ = G Φ_q C, on a copy */
     const size_t mark = vt_scratch_mark(d);
-    double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
-    int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C");
-    if (!ip) return vt_scratch_fail(d, mark);
+    double *gk = VT_SCRATCH(d, double, 2 * (size_t)n, "G and C");
+    if (!gk) return vt_scratch_fail(d, mark);
+    double *ck = gk + n;
+    /* Φ̂ = G Φ_q C's scalings and its 1-norm, the largest column sum */
     const double rho = rows_length(m, d, NULL);
     for (int a = 0; a < n; a++) {
         const int i = m->dof_body[a];
         int ax = 0;
         const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
-        s[a] = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+        ck[a] = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
     }
-    for (int r = 0; r < n; r++) g[r] = length_row(m, d, r) ? 1.0 : rho;
-    double anorm = 0.0; /* ‖G Φ_q C‖_1, the largest column sum */
+    for (int r = 0; r < n; r++) gk[r] = length_row(m, d, r) ? 1.0 : rho;
+    double anorm = 0.0;
     for (int c = 0; c < n; c++) {
         double cs = 0.0;
-        for (int r = 0; r < n; r++) {
-            const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
-            K[r + (size_t)c * (size_t)n] = v;
-            cs += fabs(v);
-        }
+        for (int r = 0; r < n; r++) cs += fabs(gk[r] * d->Phiq[r + (size_t)c * (size_t)n] * ck[c]);
         anorm = cs > anorm ? cs : anorm;
     }
-    int info = 0;
-    dgetf2_(&n, &n, K, &n, ip, &info);
-    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
-    double rcond = 0.0;
-    double *X = info == 0 ? small_inverse(d, n, 0) : NULL;
-    if (X) { /* the inverse X */
-        dgetrs_("N", &n, &n, K, &n, ip, X, &n, &info, 1);
-        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-        rcond = rcond_from_inverse(X, n, anorm);
-    } else if (info == 0) {
-        double *work = VT_SCRATCH(d, double, 4 * (size_t)n, "dgecon workspace");
-        int *iwork = VT_SCRATCH(d, int, n, "dgecon integer workspace");
-        if (!iwork) return vt_scratch_fail(d, mark);
-        dgecon_("1", &n, K, &n, &anorm, &rcond, work, iwork, &info, 1);
-        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
-    }
-    vt_scratch_release(d, mark);
-    *rcond_out = rcond * rcond;
-    if (!(*rcond_out >= m->rcond_min)) return 1;
-    /* the solves: with R Φ_q D, D the mass metric and R each row to unit norm in it. Its LU's
+    /* the solves' matrix R Φ_q D, D the mass metric and R each row to unit norm in it. Its LU's
      * pivots then take the rows that act on heavy rates for those rates, and the substitutions
      * keep apart what the structure keeps apart: a light link's drive force is not made of a
      * heavy one's round-off (the inverse, a dense product, would mix them) */
@@ -1049,9 +1026,38 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
     }
     for (int c = 0; c < n; c++)
         for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+    int info = 0;
     dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
-    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
-    if (info > 0) return *rcond_out = 0.0, 1; /* an exactly zero pivot after all */
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    if (info > 0) return vt_scratch_release(d, mark), *rcond_out = 0.0, 1; /* an exactly zero pivot */
+    /* the condition of Φ̂ = G R^-1 (R Φ_q D) D^-1 C: up to 16 rates exactly, from the inverse of
+     * R Φ_q D (one solve with the identity on the factors at hand), Φ̂^-1 = C^-1 D (R Φ_q D)^-1 R G^-1
+     * entry by entry; above, LAPACK's dgecon on Φ̂'s own LU */
+    double rcond = 0.0;
+    double *X = small_inverse(d, n, 0);
+    if (X) {
+        dgetrs_("N", &n, &n, A, &n, sq->ipiv, X, &n, &info, 1);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+        for (int c = 0; c < n; c++) {
+            const double fc = g[c] / gk[c];
+            for (int r = 0; r < n; r++) X[r + (size_t)c * (size_t)n] *= s[r] / ck[r] * fc;
+        }
+        rcond = rcond_from_inverse(X, n, anorm);
+    } else {
+        double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
+        double *work = VT_SCRATCH(d, double, 4 * (size_t)n, "dgecon workspace");
+        int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C"), *iwork = VT_SCRATCH(d, int, n, "dgecon integer workspace");
+        if (!iwork) return vt_scratch_fail(d, mark);
+        for (int c = 0; c < n; c++)
+            for (int r = 0; r < n; r++) K[r + (size_t)c * (size_t)n] = gk[r] * d->Phiq[r + (size_t)c * (size_t)n] * ck[c];
+        dgetf2_(&n, &n, K, &n, ip, &info);
+        if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+        if (info == 0) dgecon_("1", &n, K, &n, &anorm, &rcond, work, iwork, &info, 1);
+        if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
+    }
+    vt_scratch_release(d, mark);
+    *rcond_out = rcond * rcond;
+    if (!(*rcond_out >= m->rcond_min)) return 1;
     /* y = (R Φ_q D)^-1 R γ, q̈ = D y */
     const int one = 1;
     for (int r = 0; r < n; r++) x[r] = g[r] * d->gamma[r];
@@ -1067,19 +1073,8 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
     double *g = sq->h;
     int info = 0;
     for (int a = 0; a < n; a++) g[a] *= sq->s[a];
-    if (sq->X) { /* λ = X^T g, by loops at n ≤ 16; the inverse's extra column holds g */
-        const double *X = sq->X;
-        double *h = sq->X + (size_t)n * (size_t)n;
-        memcpy(h, g, (size_t)n * sizeof(double));
-        for (int a = 0; a < n; a++) {
-            double v = 0.0;
-            for (int r = 0; r < n; r++) v += X[r + (size_t)a * (size_t)n] * h[r];
-            g[a] = v;
-        }
-    } else {
-        dgetrs_("T", &n, &one, sq->A, &n, sq->ipiv, g, &n, &info, 1);
-        if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-    }
+    dgetrs_("T", &n, &one, sq->A, &n, sq->ipiv, g, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
     for (int a = 0; a < n; a++) g[a] *= sq->g[a];
     if (!vt_all_finite(sq->x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
