@@ -1251,6 +1251,27 @@ static int schur_solve(const vt_model *m, vt_data *d, int known, double *sol, do
     return rcond >= m->rcond_warn ? 0 : 4;
 }
 
+/* Whether the Schur route may take the joint-driven rates as known: some rate has a joint
+ * drive, and no row depends on the known rates by its kind alone, a second joint drive on a
+ * driven rate or a coupling of two driven rates: their parts on the free rates are exactly zero,
+ * where the dense S leaves round-off (R S = I to ε) that the rows' scaling would make a unit row.
+ * Those the whole system decides, and names (rows that are round-off on the free rates:
+ * vt_zero_rows_free, at the call). */
+static int rates_known(const vt_model *m)
+{
+    int any = 0;
+    for (int a = 0; a < m->nv; a++) any |= m->dof_drive[a] >= 0;
+    for (int r = 0; r < m->nc && any; r++) {
+        if (m->con_kind[r] == VT_ROW_JOINT && !vt_known_row(m, r)) return 0;
+        if (m->con_kind[r] == VT_ROW_COUPLING) {
+            const vt_coupling_def *c = m->coupling + m->con_owner[r];
+            if (m->dof_drive[m->body_vadr[c->body_a] + c->index_a] >= 0 && m->dof_drive[m->body_vadr[c->body_b] + c->index_b] >= 0)
+                return 0;
+        }
+    }
+    return any;
+}
+
 void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond)
 {
     d->route = route;
@@ -1407,10 +1428,9 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
     else if (route == VT_ROUTE_SQUARE) r = square_solve(m, d, sol, &rcond);
     else if (route == VT_ROUTE_SCHUR) {
         /* joint-driven rates known (as the recursive articulated route takes them), unless a
-         * row is round-off of zero on the other rates: dependent on their drives, which the
-         * whole system's rank names */
-        int known = 0;
-        for (int a = 0; a < nv && !known; a++) known = m->dof_drive[a] >= 0;
+         * row is dependent on their drives by its kind (rates_known) or is round-off of zero on
+         * the other rates: the whole system's rank then names it */
+        int known = rates_known(m);
         if (known) {
             const int zf = vt_zero_rows_free(m, d, m->dof_drive);
             if (zf < 0) return vt_scratch_release(d, mark), (vt_status)zf;
