@@ -1346,8 +1346,8 @@ static void test_redundant_rank_fuzz_findings(void **state)
 
 /* The Schur route's estimate below rcond_warn: the augmented route solves too and the answer with
  * the higher estimate is kept. Five planar rods of 0.4 m whose masses rise by 1e3 a rod (1e-6 …
- * 1e6 kg, vt_test_add_rods), the far end of rod 2 and the tip driven in x and y by point drives
- * (4 rows, 5 rates): the rows fix the light rods' rates, whose pivots in the leaf-first Cholesky
+ * 1e6 kg), the far end of rod 2 and the tip driven in x and y by point drives (4 rows, 5 rates:
+ * vt_test_ratio_chain's drive 4): the rows fix the light rods' rates, whose pivots in the leaf-first Cholesky
  * of the whole M* are tiny, so the Schur estimate is 3.9e-10, the whole augmented matrix's
  * 1.5e-3: the augmented route's answer, flagged, no warning; and the Schur route's own answer,
  * with rcond_warn and rcond_min set below its estimate so that it is kept, agrees with it to
@@ -1356,23 +1356,7 @@ static void test_redundant_rank_fuzz_findings(void **state)
 static void test_schur_condition_fallback(void **state)
 {
     (void)state;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    double mass[5];
-    for (int k = 0; k < 5; k++) mass[k] = pow(10.0, 3.0 * (k - 2));
-    vt_test_add_rods(b, 5, 0.4, mass);
-    for (int k = 0; k < 4; k++) {
-        vt_drive_def dr = vt_default_drive_def();
-        dr.type = VT_DRIVE_POINT;
-        dr.body = k < 2 ? 2 : 5;
-        dr.index = k % 2;
-        dr.point[0] = 0.2;
-        dr.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * k);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
+    vt_model *m = vt_test_ratio_chain(1, 4, 3.0);
     vt_data *d[2];
     for (int k = 0; k < 2; k++) {
         assert_ok(vt_data_create(&d[k], m));

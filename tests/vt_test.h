@@ -355,9 +355,11 @@ static inline void vt_test_S_times(double *y, const vt_model *m, const vt_data *
  *   1  joints 1-3 and the tip's x, y (square: the rows fix the motion)
  *   2  joints 1-2 and the tip's x, y (one rate free)
  *   3  joint 1 alone (four free rates)
+ *   4  no joint; the far end of rod 2 and the tip, x and y (one rate free: test_solve)
  * joint k by f = 0.3 + 0.2 k + 0.4 sin(1.5 t + 0.2 k) (k from 0), the tip's x and y by
- * 0.05 sin(t + 0.3 c) (c = 0, 1). test_recursive and the high-precision oracle (ratio_oracle.py,
- * which writes the same chain's equations itself) use it. */
+ * 0.05 sin(t + 0.3 c) (c = 0, 1), rod 2's by 0.05 sin(t + 0.3 (c + 2)). test_recursive and the
+ * high-precision oracle (ratio_oracle.py, which writes the same chain's equations itself) use
+ * it. */
 static inline vt_model *vt_test_ratio_chain(int rising, int drive, double step)
 {
     double mass[5];
@@ -365,20 +367,20 @@ static inline vt_model *vt_test_ratio_chain(int rising, int drive, double step)
     vt_builder *b;
     assert_ok(vt_builder_create(&b, NULL));
     vt_test_add_rods(b, 5, 0.4, mass);
-    const int joints = drive == 0 ? 5 : drive == 1 ? 3 : drive == 2 ? 2 : 1;
+    const int joints = drive == 0 ? 5 : drive == 1 ? 3 : drive == 2 ? 2 : drive == 3 ? 1 : 0;
     for (int k = 0; k < joints; k++) {
         vt_drive_def dr = vt_default_drive_def();
         dr.body = k + 1;
         dr.f = vt_function_sine(0.3 + 0.2 * k, 0.4, 1.5, 0.2 * k);
         assert_true(vt_builder_add_drive(b, &dr) >= 0);
     }
-    for (int c = 0; c < 2 && (drive == 1 || drive == 2); c++) {
-        vt_drive_def tip = vt_default_drive_def();
+    for (int c = drive == 4 ? -2 : 0; c < 2 && (drive == 1 || drive == 2 || drive == 4); c++) {
+        vt_drive_def tip = vt_default_drive_def(); /* c < 0: rod 2's far end */
         tip.type = VT_DRIVE_POINT;
-        tip.body = 5;
-        tip.index = c;
+        tip.body = c < 0 ? 2 : 5;
+        tip.index = c < 0 ? c + 2 : c;
         tip.point[0] = 0.2;
-        tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * c); /* only its derivatives matter here */
+        tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * (c < 0 ? c + 4 : c)); /* only its derivatives matter here */
         assert_true(vt_builder_add_drive(b, &tip) >= 0);
     }
     vt_model *m;
