@@ -103,6 +103,8 @@ static void describe(void)
         print_vec("jnt_moment", d->jnt_moment, 3 * (m->nbody + 1));
         print_vec("Phiq", d->Phiq, m->nc * m->nv);
         print_vec("gamma", d->gamma, m->nc);
+        print_vec("Q", d->Q, m->nv);
+        print_vec("lambda", d->lambda, m->nc);
         fprintf(stderr, "  Mstar diagonal:");
         for (int c = 0; c < m->nv; c++) fprintf(stderr, " %.6g", d->Mstar[c + c * m->nv]);
         fputc('\n', stderr);
