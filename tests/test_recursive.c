@@ -1407,6 +1407,68 @@ static vt_model *beside_pendulum(const vt_model *m0, const double D[3])
     return m;
 }
 
+/* A huge load at a fixed point (the fuzzer's crash-31ead535): a point mass of 0.1 kg without
+ * inertia on a spherical joint at the origin, closed by a cylindrical cut joint to a body on a
+ * cylindrical joint 7 m away (o is that body's joint point), a force of 1e50 N and a moment of a
+ * few N·m applied to the point mass. The force acts where the mass cannot move: it reaches only
+ * the spherical joint's reaction, and the moment must be carried by the cut joint (a spherical
+ * joint carries none). The recursive general route forms Q about o, where the force's ω · (c − o)
+ * × f and v · f are 7e50 each and cancel, taking the moment with them; it must see that Q has no
+ * digit there and hand the instant to the dense stages (VT_FALLBACK_COMPOSITE_ROUNDOFF), so that
+ * both paths give the same q̈ and λ (1e-10) and the spherical joint's reaction moment is zero
+ * (to 1e-12 of the moments). */
+static void test_load_at_fixed_point(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    vt_body_def one = vt_default_body_def();
+    one.joint = VT_JOINT_CYLINDRICAL;
+    one.axis1[0] = 0.0, one.axis1[1] = -1.0, one.axis1[2] = 0.0;
+    one.mass = 7.475;
+    one.inertia[0] = one.inertia[4] = one.inertia[8] = 0.5;
+    const double jp[3] = {6.25, -1.6875, 2.6875}, jc[3] = {2.0, 2.9375, 7.1875};
+    memcpy(one.joint_parent, jp, sizeof jp);
+    memcpy(one.joint_child, jc, sizeof jc);
+    assert_int_equal(vt_builder_add_body(b, &one), 1);
+    vt_body_def dot = vt_default_body_def(); /* at its joint: no lever, no inertia */
+    dot.joint = VT_JOINT_SPHERICAL;
+    dot.mass = 0.1;
+    dot.inertia[0] = dot.inertia[4] = dot.inertia[8] = 0.0;
+    assert_int_equal(vt_builder_add_body(b, &dot), 2);
+    vt_cut_joint_def cut = vt_default_cut_joint_def();
+    cut.joint = VT_JOINT_CYLINDRICAL;
+    cut.body_a = 2, cut.body_b = 1;
+    cut.point_b[0] = 0.5;
+    assert_true(vt_builder_add_cut_joint(b, &cut) >= 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nv, 5);
+    assert_int_equal(m->nc, 4);
+    vt_data *d[2];
+    for (int k = 0; k < 2; k++) {
+        assert_ok(vt_data_create(&d[k], m));
+        const double q[6] = {1.14375, 0.4125, 0.813193, -0.0139804, 0.475333, -0.335529};
+        const double qd[5] = {-6.125, -1.0, 0.625, 0.0, 0.0};
+        const double xf[12] = {-6.3125, 2.9375, -7.1875, -1.0, 5.5625, 4.375, -1e50, 1.375, 5.5625, 1.5625, 2.3125, 5.8125};
+        memcpy(d[k]->q, q, sizeof q);
+        memcpy(d[k]->qd, qd, sizeof qd);
+        memcpy(d[k]->xfrc + 6, xf, sizeof xf);
+        const vt_status st = k ? vt_inverse_dynamics_recursive(m, d[k]) : vt_inverse_dynamics(m, d[k]);
+        if (st) fail_msg("%s: %s", k ? "recursive" : "dense", d[k]->message);
+    }
+    if (!(d[1]->fallback & VT_FALLBACK_COMPOSITE_ROUNDOFF)) fail_msg("recursive fallback %d: kept Q about o", d[1]->fallback);
+    compare(d[1]->qdd, d[0]->qdd, m->nv, 1e-10, "qdd");
+    compare(d[1]->lambda, d[0]->lambda, m->nc, 1e-10, "lambda");
+    for (int k = 0; k < 2; k++) {
+        const double ms = vt_test_maxabs(d[k]->jnt_moment, 9);
+        for (int c = 0; c < 3; c++) assert_near(d[k]->jnt_moment[6 + c], 0.0, 1e-12 * ms);
+        vt_data_free(d[k]);
+    }
+    vt_model_free(m);
+}
+
 /* A mechanism standing D = 1 km and 1e6 m from o (body 1's joint point, the twists' and the
  * routes' reference): a pendulum at the global origin is body 1, and beside it, D away,
  *   0  the tip-driven chain (12 links: one point row, articulated bodies with a row),
@@ -2189,6 +2251,7 @@ int main(void)
         cmocka_unit_test(test_free_body),
         cmocka_unit_test(test_translation_invariance),
         cmocka_unit_test(test_far_from_o),
+        cmocka_unit_test(test_load_at_fixed_point),
         cmocka_unit_test(test_inertia_spread),
         cmocka_unit_test(test_heavy_link),
         cmocka_unit_test(test_roundoff_zeros),
