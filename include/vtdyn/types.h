@@ -177,8 +177,9 @@ enum {
                                           ///< pivots' round-off reaching rcond
     VT_FALLBACK_SQUARE_CONDITION = 8,     ///< recursive square route: rcond below rcond_min
     VT_FALLBACK_COMPOSITE_ROUNDOFF = 16,  ///< recursive general route: M* formed from composite inertias
-                                          ///< about o is not known to one digit at its rcond (a mechanism
-                                          ///< long against its bodies' radii of gyration), or it found the
+                                          ///< about o, or Q about o, is not known to one digit at its rcond
+                                          ///< (a mechanism long against its bodies' radii of gyration, a
+                                          ///< huge load near a rate's axis), or it found the
                                           ///< instant singular (a verdict the dense stages give): the
                                           ///< instant was computed by the dense stages (vt_inverse_dynamics)
     VT_FALLBACK_SCHUR_CONDITION = 32      ///< vt_solve's Schur route: its estimate below rcond_warn (the
