@@ -1132,11 +1132,14 @@ static int schur_solve(const vt_model *m, vt_data *d, int known, double *sol, do
 {
     const int nv = m->nv, nc = m->nc;
     const size_t mark = vt_scratch_mark(d);
-    int *fr = VT_SCRATCH(d, int, (size_t)nv + (size_t)nc, "free rates, other rows"), *ro = fr + nv;
+    int *fr = VT_SCRATCH(d, int, (size_t)nv + (size_t)nc, "free rates, known rates, other rows"), *ro = fr + nv;
     if (!fr) return vt_scratch_fail(d, mark);
     int nf = 0, no = 0;
     for (int a = nv - 1; a >= 0; a--) /* descending: leaf first, as the articulated pivots */
         if (!known || m->dof_drive[a] < 0) fr[nf++] = a;
+    const int *kr = fr + nf; /* the known rates after them, ascending: fr[nf..nv) */
+    for (int a = 0, k = nf; a < nv; a++)
+        if (known && m->dof_drive[a] >= 0) fr[k++] = a;
     for (int r = 0; r < nc; r++)
         if (!known || !vt_known_row(m, r)) ro[no++] = r;
     const int nrhs = no + 1;
@@ -1180,8 +1183,7 @@ static int schur_solve(const vt_model *m, vt_data *d, int known, double *sol, do
     for (int a = 0; a < nf; a++) {
         const int c = fr[a];
         double v = d->Q[c];
-        if (known)
-            for (int b = 0; b < nv; b++) v -= MS(c, b) * x[b]; /* x: q̈_D, 0 on the free rates */
+        for (int j = 0; j < nv - nf; j++) v -= MS(c, kr[j]) * x[kr[j]]; /* M*_FD q̈_D */
         z[a] = v * s[c];
     }
     if (nf > 0) cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nf, nrhs, 1.0, L, nf, B, nf);
@@ -1192,8 +1194,7 @@ static int schur_solve(const vt_model *m, vt_data *d, int known, double *sol, do
      * Cholesky factor a square root, and S's condition exactly 1. */
     for (int k = 0; k < no; k++) {
         double t = d->gamma[ro[k]];
-        if (known)
-            for (int b = 0; b < nv; b++) t -= PHI(ro[k], b) * x[b];
+        for (int j = 0; j < nv - nf; j++) t -= PHI(ro[k], kr[j]) * x[kr[j]]; /* Φ_oD q̈_D */
         lam[k] = g[k] * t;
     }
     const int few = no <= SCHUR_FEW;
@@ -1235,14 +1236,13 @@ static int schur_solve(const vt_model *m, vt_data *d, int known, double *sol, do
     for (int k = 0; k < no; k++) lam[k] *= g[k];
     memcpy(sol, x, (size_t)nv * sizeof(double));
     for (int k = 0; k < no; k++) sol[nv + ro[k]] = lam[k];
-    if (known)
-        for (int a = 0; a < nv; a++) { /* λ_D = (M* q̈ − Q − Φ_o^T λ_o)_D on each known rate */
-            if (m->dof_drive[a] < 0) continue;
-            double v = -d->Q[a];
-            for (int b = 0; b < nv; b++) v += MS(a, b) * x[b];
-            for (int k = 0; k < no; k++) v -= PHI(ro[k], a) * lam[k];
-            sol[nv + m->drive_row[m->dof_drive[a]]] = v;
-        }
+    for (int j = 0; j < nv - nf; j++) { /* λ_D = (M* q̈ − Q − Φ_o^T λ_o)_D on each known rate */
+        const int a = kr[j];
+        double v = -d->Q[a];
+        for (int b = 0; b < nv; b++) v += MS(a, b) * x[b];
+        for (int k = 0; k < no; k++) v -= PHI(ro[k], a) * lam[k];
+        sol[nv + m->drive_row[m->dof_drive[a]]] = v;
+    }
 #undef PHI
 #undef MS
     vt_scratch_release(d, mark);
