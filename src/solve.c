@@ -742,11 +742,12 @@ static double null_part(const vt_model *m, const rows_svd *o, int r)
  * stays itself and the rows of two unrelated bodies are not mixed), then factor_solve's scaling:
  * rates by the mass metric D = diag(M*_aa^(-1/2)), M̃ = D M* D, and each row to unit norm in it,
  * N = diag(1 / ‖(Y D)_r‖):
- *   [M̃ (N Y D)^T; N Y D 0] [ỹ; −μ] = [D Q; N P G γ],   q̈ = D ỹ,   λ = G P N μ
+ *   [M̃ (N Y D)^T; N Y D 0] [ỹ; −μ] = [D Q; N P G γ],   q̈ = D ỹ
  * solved by dgelsd (least squares, minimum norm: the matrix has rank nv + kept, the dropped
  * directions being exactly dependent rows of N Y D, and M* may be singular on directions the
  * rows fix). Exactly dependent rows with consistent γ: this is (5) itself, q̈ and the efforts
- * unique, λ the one whose G^(-1) λ lies in the kept directions (the minimum norm one). Directions
+ * unique, λ the one whose G^(-1) λ lies in the kept directions (the minimum norm one: G P N μ,
+ * formed from Φ_q^T λ = M* q̈ − Q on the kept directions of Φ̂, below). Directions
  * dropped by a time analysis's band (not dependent to round-off) hold in the least-squares sense:
  * d->residual = max |Φ_q q̈ − γ| says how well. Which multipliers are not unique: those in the
  * null directions z = G w of Φ_q^T, left in d->lambda_null for the reactions stage to tell which
@@ -851,17 +852,26 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
                        "vt_solve: ill-conditioned: Φ_q has rank %d of %d rows (%d directions kept, the smallest kept "
                        "one %.3g of the largest), reciprocal condition %.3g below rcond_min %.3g: a pose near a "
                        "singular one", o->rank, nc, nr, kin, d->rcond, m->rcond_min);
-    /* q̈ = D ỹ; λ = G P N μ, with b = [ỹ; −μ] */
+    /* q̈ = D ỹ. The multipliers from the kept directions of Φ̂ = U Σ V^T, not as G P N μ: N
+     * makes a row far smaller than the others (a row 8e-10 of its partners, all three along one
+     * direction) a unit row, the minimum-norm μ shares the load among them, and w = N μ carries
+     * 1e9 times its share on that row, which P takes back through U's entries (each known to ε):
+     * round-off of 1e9 ε on every λ. With F = M* q̈ − Q = Φ_q^T λ (the first block row) and
+     * λ̂ = G^-1 λ in the kept directions (the minimum-norm one, as before: F lies in the range of
+     * the kept rows, Y^T = C^-1 V_k Σ_k U_k^T, so the same λ in exact arithmetic),
+     *   λ = G U_k Σ_k^-1 V_k^T C F. */
     for (int a = 0; a < nv; a++) b[a] *= s[a];
-    for (int r = 0; r < nc; r++) h[r] *= -b[nv + r]; /* w = N μ */
-    for (int j = 0; j < nd; j++) {
+    double *F = W; /* nv (W holds at least nv + 1): F = M* q̈ − Q */
+    for (int a = 0; a < nv; a++) F[a] = -d->Q[a];
+    if (nv > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, b, 1, 1.0, F, 1);
+    for (int j = 0; j < nr; j++) {
         double v = 0.0;
-        for (int r = 0; r < nc; r++) v += U[r + (size_t)(nr + j) * snc] * h[r];
-        W[j] = v; /* U_d^T w */
+        for (int a = 0; a < nv; a++) v += o->VT[j + (size_t)a * (size_t)o->k] * o->c[a] * F[a];
+        b0[j] = v / o->sig[j];
     }
     for (int r = 0; r < nc; r++) {
-        double v = h[r];
-        for (int j = 0; j < nd; j++) v -= U[r + (size_t)(nr + j) * snc] * W[j];
+        double v = 0.0;
+        for (int j = 0; j < nr && !o->flag[r]; j++) v += U[r + (size_t)j * snc] * b0[j];
         sv[r] = g[r] * v;
     }
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))

@@ -1520,6 +1520,59 @@ static void test_driven_twice_beside_rows(void **state)
     vt_model_free(m);
 }
 
+/* A row far smaller than the rows it depends on (the fuzzer's crash-cf08ebee): one point mass on
+ * a cylindrical joint whose axis is (8e-10, −0.6, 0.8), held by an orientation drive (three rows,
+ * ω_x, ω_y, ω_z, all on the turning rate: rank 1), at rest; allow_redundant. The closed form:
+ * the turning rate still, the sliding one falls with g · u, and the drive holds gravity's moment
+ * about the axis: qfrc_drive = −u · (r × m g) on the turning rate (r from the axis to the mass),
+ * 0 on the sliding one. The route once scaled each kept row to unit norm and took the multipliers
+ * back through the dropped directions: the 8e-10 row grew 1e9-fold and the moment carried 1e9 ε
+ * of round-off (1e-10 of itself; the fuzzer's state 1.9e-8 N·m on 200). */
+static void test_redundant_tiny_dependent_row(void **state)
+{
+    (void)state;
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = 1;
+    md.gravity[0] = 0.0, md.gravity[1] = -6.875, md.gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def bd = vt_default_body_def();
+    bd.joint = VT_JOINT_CYLINDRICAL;
+    bd.mass = 6.85;
+    for (int k = 0; k < 9; k++) bd.inertia[k] = 0.0;
+    const double u0[3] = {8e-10, -0.6, 0.8}, jp[3] = {-7.0625, -4.1875, -7.0625}, jc[3] = {4.875, -4.875, 6.125};
+    memcpy(bd.axis1, u0, sizeof u0);
+    memcpy(bd.joint_parent, jp, sizeof jp);
+    memcpy(bd.joint_child, jc, sizeof jc);
+    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    od.body = 1;
+    assert_int_equal(vt_builder_add_drive(b, &od), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nv, 2);
+    assert_int_equal(m->nc, 3);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_inverse_dynamics(m, d));
+    assert_int_equal(d->rank, 1);
+    const double nu = sqrt(u0[0] * u0[0] + u0[1] * u0[1] + u0[2] * u0[2]);
+    const double u[3] = {u0[0] / nu, u0[1] / nu, u0[2] / nu};
+    double f[3], r[3], rf[3];
+    for (int k = 0; k < 3; k++) f[k] = bd.mass * md.gravity[k], r[k] = -jc[k];
+    rf[0] = r[1] * f[2] - r[2] * f[1], rf[1] = r[2] * f[0] - r[0] * f[2], rf[2] = r[0] * f[1] - r[1] * f[0];
+    const double moment = u[0] * rf[0] + u[1] * rf[1] + u[2] * rf[2], fall = u[1] * md.gravity[1];
+    if (!(fabs(d->qfrc_drive[0] + moment) <= 1e-13 * fabs(moment)))
+        fail_msg("drive's moment %.17g, exact %.17g (%.3g apart)", d->qfrc_drive[0], -moment, d->qfrc_drive[0] + moment);
+    assert_near(d->qfrc_drive[1], 0.0, 0.0);
+    assert_near(d->qdd[0], 0.0, 1e-15);
+    assert_near(d->qdd[1], fall, 1e-14 * fabs(fall));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1538,6 +1591,7 @@ int main(void)
         cmocka_unit_test(test_band_unit_independent_mixed_rows),
         cmocka_unit_test(test_line_rows_far_apart),
         cmocka_unit_test(test_driven_twice_beside_rows),
+        cmocka_unit_test(test_redundant_tiny_dependent_row),
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
         cmocka_unit_test(test_reach),
