@@ -367,8 +367,9 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
  * loop over the bodies, the subtree wrenches, efforts and reactions in one inward loop; the same
  * equations as vt_kinematics_tree, vt_accelerations, body_wrench and inward_pass. A revolute body
  * has its own code, written for one rotational rate (e = A^j u, its twist (e, (P − o) × e),
- * t = 0, ė = ω^j × e, τ = e · the moment about P); any other joint takes the general code's
- * stages for its body. */
+ * t = 0, ė = ω^j × e, τ = e · the moment about P), a translational one its own outward code
+ * (fused_slide); any other joint, and a translational one's inward step, take the general
+ * code's stages for the body. */
 /* 1: every joint revolute, 0: some other, but no base body (the fused passes take each other
  * joint through the general code body by body), -1: a base body */
 static int joint_mix(const vt_model *m)
@@ -395,6 +396,95 @@ static int has_quaternions(const vt_model *m)
 
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
+/* fused_outward's body on a translational joint (vt_kinematics_body, vt_acceleration_body and
+ * body_wrench_at for one sliding rate, written out): the body keeps its reference body's
+ * orientation (p = p^j ⊗ p0), e = A^j u, t = q e, its twist (0, e); ω = ω^j,
+ * v = v^j + ω^j × s^{ij} + q̇ e + ω × d^i (d^i = t − s^{ji}); α = α^j,
+ * a = a^j + α^j × s^{ij} + ω^j × (ω^j × s^{ij}) + q̈ e + 2 q̇ ω^j × e + q (α^j × e + ω^j × (ω^j × e))
+ *     − α × s^{ji} − ω × (ω × s^{ji});
+ * its needed wrench about P_i. A gripper's fingers, a linear axis: the robot stays on the
+ * fused passes' own code instead of the general stages' loops over kinds and rates. Not inlined:
+ * in the revolute loop's body it cost the chain 5–11 % (bench/ab/run.sh), its code laid out anew. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i)
+{
+    double *o = d->origin;
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
+    const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j, *p0 = m->body_quat0 + 4 * i;
+    double p[4], A[9], e[3], sij[3], sji[3], t[3];
+    memcpy(p, j ? d->x + vt_xoff(j) + 3 : unit_quat, sizeof p);
+    if (!vt_quat_is_identity(p0)) vt_quat_mul(p, p, p0);
+    vt_euler_A(A, p);
+    vt_mulmat3(e, Aj, u);
+    for (int k = 0; k < 3; k++) t[k] = q * e[k];
+    vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
+    vt_mulmat3(sji, A, m->body_jchild + 3 * i);
+    if (i == 1) { /* o = P_1 */
+        for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
+        for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+    }
+    const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
+    const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
+    double rj[3], wj[3], alj[3], vj[3], aj[3];
+    for (int k = 0; k < 3; k++) rj[k] = rjp[k], wj[k] = wjp[k], alj[k] = aljp[k], vj[k] = vjp[k], aj[k] = ajp[k];
+    double di[3], v[3], a[3], ed[3], edd[3], tt[3], pd[4], pdd[4];
+    double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
+    for (int k = 0; k < 3; k++) { /* positions from o (r^i − o from P_i − o, as position()) */
+        const double b = rj[k] + sij[k], Pr = b + t[k], rr = Pr - sji[k];
+        di[k] = t[k] - sji[k];
+        x[k] = o[k] + rr;
+        d->jpoint[3 * i + k] = o[k] + Pr;
+        d->xrel[6 * i + k] = rr;
+        d->xrel[6 * i + 3 + k] = Pr;
+        d->jsij[3 * i + k] = sij[k];
+        d->jd[3 * i + k] = di[k];
+        ej[k] = e[k];
+        ej[3 + k] = ej[6 + k] = 0.0;
+        twc[k] = 0.0;
+        twc[3 + k] = e[k];
+    }
+    memcpy(x + 3, p, sizeof p);
+    memcpy(d->A + 9 * i, A, sizeof A);
+    /* velocities: ω = ω^j */
+    vt_copy3(v, vj);
+    vt_addcross3(v, wj, sij);
+    vt_axpy3(v, qd, e);
+    vt_addcross3(v, wj, di);
+    vt_quat_rate(pd, p, wj);
+    double *xd = d->xd + vt_xoff(i);
+    vt_copy3(d->omega + 3 * i, wj);
+    vt_copy3(xd, v);
+    memcpy(xd + 3, pd, sizeof pd);
+    /* accelerations: α = α^j */
+    vt_copy3(a, aj);
+    vt_addcross3(a, alj, sij);
+    vt_cross3(tt, wj, sij);
+    vt_addcross3(a, wj, tt);
+    vt_cross3(ed, wj, e);
+    vt_cross3(edd, alj, e);
+    vt_addcross3(edd, wj, ed);
+    vt_axpy3(a, qdd, e);
+    vt_axpy3(a, 2.0 * qd, ed);
+    vt_axpy3(a, q, edd);
+    vt_cross3(tt, alj, sji);
+    for (int k = 0; k < 3; k++) a[k] -= tt[k];
+    vt_cross3(tt, wj, sji);
+    vt_cross3(ed, wj, tt);
+    for (int k = 0; k < 3; k++) a[k] -= ed[k];
+    vt_quat_rate(pdd, p, alj);
+    const double w2 = vt_dot3(wj, wj);
+    for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
+    double *xdd = d->xdd + vt_xoff(i);
+    vt_copy3(alpha + 3 * i, alj);
+    vt_copy3(xdd, a);
+    memcpy(xdd + 3, pdd, sizeof pdd);
+    for (int k = 0; k < 3; k++) sji[k] = -sji[k]; /* about P_i: r^i − P_i = −s^{ji} */
+    body_wrench_at(W + 6 * i, m, d, i, a, alj, sji);
+}
+
 /* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
 static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const int mixed)
 {
@@ -403,6 +493,10 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
     memset(d->xrel, 0, 6 * sizeof(double));
     alpha[0] = alpha[1] = alpha[2] = 0.0;
     for (int i = 1; i <= m->nbody; i++) {
+        if (mixed && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
+            fused_slide(m, d, alpha, W, i);
+            continue;
+        }
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) { /* the general code's stages for this body */
             double c[3]; /* about the joint point: c = r^i − P_i = −s^{ji} */
             vt_kinematics_body(m, d, i);
