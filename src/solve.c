@@ -852,26 +852,41 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
                        "vt_solve: ill-conditioned: Φ_q has rank %d of %d rows (%d directions kept, the smallest kept "
                        "one %.3g of the largest), reciprocal condition %.3g below rcond_min %.3g: a pose near a "
                        "singular one", o->rank, nc, nr, kin, d->rcond, m->rcond_min);
-    /* q̈ = D ỹ. The multipliers from the kept directions of Φ̂ = U Σ V^T, not as G P N μ: N
+    /* q̈ = D ỹ. The multipliers in the kept row directions of Φ̂ = U Σ V^T, not as G P N μ: N
      * makes a row far smaller than the others (a row 8e-10 of its partners, all three along one
      * direction) a unit row, the minimum-norm μ shares the load among them, and w = N μ carries
      * 1e9 times its share on that row, which P takes back through U's entries (each known to ε):
-     * round-off of 1e9 ε on every λ. With F = M* q̈ − Q = Φ_q^T λ (the first block row) and
-     * λ̂ = G^-1 λ in the kept directions (the minimum-norm one, as before: F lies in the range of
-     * the kept rows, Y^T = C^-1 V_k Σ_k U_k^T, so the same λ in exact arithmetic),
-     *   λ = G U_k Σ_k^-1 V_k^T C F. */
+     * round-off of 1e9 ε on every λ. Instead λ = G U_k t with t from the first block row,
+     * Φ_q^T λ = M* q̈ − Q = F, in the mass metric:
+     *   (D Φ_q^T G U_k) t = D F   (least squares, LAPACK dgels; consistent: F lies in the range
+     *                              of the kept rows, Y^T = Φ_q^T G U_k U_k^T)
+     * the same minimum-norm λ (G^-1 λ in the kept directions) in exact arithmetic. Not from
+     * Σ_k^-1 V_k^T C F: C scales a turning rate by 1/ℓ, and where ℓ is round-off (a point row
+     * whose point lies on the rate's axis: ℓ 1e-15) C F carries F's round-off on that rate 1e15-fold. */
     for (int a = 0; a < nv; a++) b[a] *= s[a];
-    double *F = W; /* nv (W holds at least nv + 1): F = M* q̈ − Q */
+    double *F = W; /* nv (W holds at least nv + 1): D (M* q̈ − Q) */
     for (int a = 0; a < nv; a++) F[a] = -d->Q[a];
     if (nv > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, b, 1, 1.0, F, 1);
-    for (int j = 0; j < nr; j++) {
-        double v = 0.0;
-        for (int a = 0; a < nv; a++) v += o->VT[j + (size_t)a * (size_t)o->k] * o->c[a] * F[a];
-        b0[j] = v / o->sig[j];
+    for (int a = 0; a < nv; a++) F[a] *= s[a];
+    double *B = K; /* nv x nr, leading dimension nv: D Φ_q^T G U_k */
+    for (int j = 0; j < nr; j++)
+        for (int a = 0; a < nv; a++) {
+            double v = 0.0;
+            for (int r = 0; r < nc; r++)
+                if (!o->flag[r]) v += d->Phiq[r + (size_t)a * snc] * g[r] * U[r + (size_t)j * snc];
+            B[a + (size_t)j * (size_t)nv] = s[a] * v;
+        }
+    if (nr > 0) {
+        const int ldf = nv > 1 ? nv : 1;
+        dgels_("N", &nv, &nr, &one, B, &ldf, F, &ldf, lsq_work, &lwd, &info, 1);
+        if (info != 0)
+            return vt_scratch_release(d, mark),
+                   vt_fail(d->message, info < 0 ? VT_ERR_LAPACK : VT_ERR_SINGULAR,
+                           "vt_solve: the kept rows' multipliers (dgels info %d)", info);
     }
-    for (int r = 0; r < nc; r++) {
+    for (int r = 0; r < nc; r++) { /* λ = G U_k t, t in F[0..nr) */
         double v = 0.0;
-        for (int j = 0; j < nr && !o->flag[r]; j++) v += U[r + (size_t)j * snc] * b0[j];
+        for (int j = 0; j < nr && !o->flag[r]; j++) v += U[r + (size_t)j * snc] * F[j];
         sv[r] = g[r] * v;
     }
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))

@@ -1573,6 +1573,66 @@ static void test_redundant_tiny_dependent_row(void **state)
     vt_model_free(m);
 }
 
+/* Two equal point drives whose point lies on a turning rate's axis (the fuzzer's crash-0bd142b6):
+ * a body on a cylindrical joint, both drives on the y of a point of the axis; allow_redundant
+ * (rank 1 of 2). The dense Φ_q has round-off (1e-16) where the turning rate's entries are zero,
+ * and the rows' lever arm ℓ that scales turning rates by 1/ℓ in the rank decision is round-off
+ * too. The closed form: the point moves along the axis alone, q̈_1 = f'' / u_y; the sliding
+ * rate's equation m q̈_1 − m g · u is the drives' generalized force on it; on the turning rate
+ * the drives act by round-off only (the turning rate is free: J_u q̈_0 = u · (r × m g)). The
+ * multipliers taken as Σ_k^-1 V_k^T C (M* q̈ − Q) carried the turning rate's round-off 1/ℓ-fold:
+ * 4e-6 of the effort. */
+static void test_redundant_rows_through_axis(void **state)
+{
+    (void)state;
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = 1;
+    md.gravity[0] = 0.0, md.gravity[1] = -6.875, md.gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def bd = vt_default_body_def();
+    bd.joint = VT_JOINT_CYLINDRICAL;
+    bd.mass = 5.1625;
+    bd.inertia[0] = bd.inertia[4] = bd.inertia[8] = 6.0625;
+    const double u0[3] = {0.606938, -0.513082, 0.606938}, jp[3] = {6.0625, -6.25, -4.8125}, jc[3] = {6.0625, 6.0625, 6.0625};
+    memcpy(bd.axis1, u0, sizeof u0);
+    memcpy(bd.joint_parent, jp, sizeof jp);
+    memcpy(bd.joint_child, jc, sizeof jc);
+    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    const double nu = sqrt(u0[0] * u0[0] + u0[1] * u0[1] + u0[2] * u0[2]);
+    const double u[3] = {u0[0] / nu, u0[1] / nu, u0[2] / nu};
+    const double c2 = 1.4e5; /* f = 0.3 + 0.2 t + c2 t²: f'' = 2 c2 */
+    for (int k = 0; k < 2; k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.type = VT_DRIVE_POINT;
+        dr.body = 1;
+        dr.index = 1;
+        for (int c = 0; c < 3; c++) dr.point[c] = jc[c] + 2.5 * u[c]; /* on the axis (A = I at q = 0: body axes) */
+        dr.f = vt_function_polynomial(3, (const double[3]){0.3, 0.2, c2});
+        assert_int_equal(vt_builder_add_drive(b, &dr), k);
+    }
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    d->q[0] = 1.81875, d->q[1] = 1.81875;
+    d->qd[0] = 6.0625, d->qd[1] = 6.0625;
+    d->time = 6.0625;
+    assert_ok(vt_inverse_dynamics(m, d));
+    assert_int_equal(d->route, VT_ROUTE_REDUNDANT);
+    assert_int_equal(d->rank, 1);
+    const double g_u = md.gravity[1] * u[1], qdd1 = 2.0 * c2 / u[1], effort = bd.mass * (qdd1 - g_u);
+    if (!(fabs(d->qdd[1] - qdd1) <= 1e-13 * fabs(qdd1))) fail_msg("q̈_1 %.17g, exact %.17g", d->qdd[1], qdd1);
+    if (!(fabs(d->qfrc_drive[1] - effort) <= 1e-12 * fabs(effort)))
+        fail_msg("the drives' force on the sliding rate %.17g, exact %.17g (%.3g apart)", d->qfrc_drive[1], effort,
+                 d->qfrc_drive[1] - effort);
+    /* on the turning rate: round-off of the drives' force times their lever about the axis */
+    if (!(fabs(d->qfrc_drive[0]) <= 1e-12 * fabs(effort) * 12.0)) fail_msg("on the turning rate %.3g", d->qfrc_drive[0]);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1592,6 +1652,7 @@ int main(void)
         cmocka_unit_test(test_line_rows_far_apart),
         cmocka_unit_test(test_driven_twice_beside_rows),
         cmocka_unit_test(test_redundant_tiny_dependent_row),
+        cmocka_unit_test(test_redundant_rows_through_axis),
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
         cmocka_unit_test(test_reach),
