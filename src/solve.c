@@ -747,7 +747,7 @@ static double null_part(const vt_model *m, const rows_svd *o, int r)
  * directions being exactly dependent rows of N Y D, and M* may be singular on directions the
  * rows fix). Exactly dependent rows with consistent γ: this is (5) itself, q̈ and the efforts
  * unique, λ the one whose G^(-1) λ lies in the kept directions (the minimum norm one: G P N μ,
- * formed from Φ_q^T λ = M* q̈ − Q on the kept directions of Φ̂, below). Directions
+ * formed from Φ_q^T λ = M* q̈ − Q in the kept row directions, below). Directions
  * dropped by a time analysis's band (not dependent to round-off) hold in the least-squares sense:
  * d->residual = max |Φ_q q̈ − γ| says how well. Which multipliers are not unique: those in the
  * null directions z = G w of Φ_q^T, left in d->lambda_null for the reactions stage to tell which
