@@ -607,7 +607,9 @@ static int turning_rate(const vt_model *m, int a)
  *        = ω_a × (P_b − P_a)          rate a moves both (a point row; a line row's is 0)
  * ((ω_a, v_a) its twist about o, P the row's points from o) — all three components, not the one
  * the row measures: a row that measures y beside a rate turning about y would otherwise make ℓ
- * collapse with the direction it measures, and scale a nearly dependent column to unit size.
+ * collapse with the direction it measures, and scale a nearly dependent column to unit size. A W
+ * that is round-off of the terms it is formed from (|v_a| + |ω_a| (|P_a| + |P_b|), τ ε of them: a
+ * point on the rate's axis) counts as zero.
  * Without point and line rows (or when every W is zero), the reciprocal of the largest column
  * norm of the couplings that measure angles on the rates that translate (rad/m); without
  * either, 1 (then Φ̂'s blocks do not mix the two kinds and its singular values do not depend on
@@ -650,7 +652,12 @@ static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
                     vt_copy3(W, w + 3);
                     vt_addcross3(W, w, P[kind == VT_ROW_LINE ? 1 : s]);
                 }
-                arm = fmax(arm, sqrt(vt_dot3(W, W)));
+                /* round-off of the terms W is formed from is no lever arm (a point on the rate's
+                 * axis: W 1e-15, whose 1/ℓ would scale that rate's round-off entries to O(1)) */
+                const double terms = sqrt(vt_dot3(w + 3, w + 3)) +
+                                     sqrt(vt_dot3(w, w)) * (sqrt(vt_dot3(P[0], P[0])) + sqrt(vt_dot3(P[1], P[1])));
+                const double wn = sqrt(vt_dot3(W, W));
+                if (wn > VT_ROUND_TAU * DBL_EPSILON * terms) arm = fmax(arm, wn);
             }
         }
     }

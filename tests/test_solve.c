@@ -1633,6 +1633,66 @@ static void test_redundant_rows_through_axis(void **state)
     vt_model_free(m);
 }
 
+/* A point mass on a cylindrical joint's axis, held by an orientation drive (three rows on the
+ * turning rate) and a point drive on a point of the axis (the fuzzer's crash-1cff7a3e):
+ * allow_redundant, rank 2 of 4. The point drive's entry on the turning rate is round-off (the
+ * point lies on the axis), and so was the rows' lever arm ℓ (1e-15) until rows_length judged it
+ * against its terms: the angle rows, weighed by ℓ, made the multipliers a cancellation of 1e15
+ * (1 % of the efforts). The closed form: M*'s turning rate has no inertia, the orientation drive
+ * takes the applied moment about the axis, −u · N; the sliding rate moves the point along the
+ * axis, q̈_1 = f'' / u_y, its force m q̈_1 − m g · u. */
+static void test_redundant_point_on_axis(void **state)
+{
+    (void)state;
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = 1;
+    md.gravity[0] = 0.0, md.gravity[1] = -6.875, md.gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def bd = vt_default_body_def();
+    bd.joint = VT_JOINT_CYLINDRICAL;
+    bd.mass = 2.9125;
+    for (int k = 0; k < 9; k++) bd.inertia[k] = 0.0;
+    const double u0[3] = {-0.57735, -0.57735, -0.57735};
+    for (int k = 0; k < 3; k++) bd.axis1[k] = u0[k], bd.joint_parent[k] = -2.8125, bd.joint_child[k] = -2.8125;
+    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    const double nu = sqrt(u0[0] * u0[0] + u0[1] * u0[1] + u0[2] * u0[2]);
+    const double u[3] = {u0[0] / nu, u0[1] / nu, u0[2] / nu}, c2 = -0.625;
+    vt_drive_def pd = vt_default_drive_def();
+    pd.type = VT_DRIVE_POINT;
+    pd.body = 1;
+    pd.index = 1;
+    for (int k = 0; k < 3; k++) pd.point[k] = 6.0625; /* on the axis */
+    pd.f = vt_function_polynomial(3, (const double[3]){0.1, 0.2, c2});
+    assert_int_equal(vt_builder_add_drive(b, &pd), 0);
+    vt_drive_def od = vt_default_drive_def();
+    od.type = VT_DRIVE_ORIENTATION;
+    od.body = 1;
+    memcpy(od.axis, u0, sizeof u0);
+    assert_int_equal(vt_builder_add_drive(b, &od), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(m->nc, 4);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    d->q[0] = -7.5, d->q[1] = -7.5;
+    const double N[3] = {0.4, -1.1, 1.7};
+    memcpy(d->xfrc + 9, N, sizeof N); /* body 1's applied moment */
+    assert_ok(vt_inverse_dynamics(m, d));
+    assert_int_equal(d->route, VT_ROUTE_REDUNDANT);
+    assert_int_equal(d->rank, 2);
+    const double uN = u[0] * N[0] + u[1] * N[1] + u[2] * N[2];
+    const double qdd1 = 2.0 * c2 / u[1], force = bd.mass * (qdd1 - md.gravity[1] * u[1]);
+    if (!(fabs(d->qfrc_drive[0] + uN) <= 1e-12 * (fabs(uN) + fabs(force))))
+        fail_msg("the drives' moment about the axis %.17g, exact %.17g", d->qfrc_drive[0], -uN);
+    if (!(fabs(d->qfrc_drive[1] - force) <= 1e-12 * fabs(force)))
+        fail_msg("the drives' force along the axis %.17g, exact %.17g", d->qfrc_drive[1], force);
+    assert_near(d->qdd[1], qdd1, 1e-13 * fabs(qdd1));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1653,6 +1713,7 @@ int main(void)
         cmocka_unit_test(test_driven_twice_beside_rows),
         cmocka_unit_test(test_redundant_tiny_dependent_row),
         cmocka_unit_test(test_redundant_rows_through_axis),
+        cmocka_unit_test(test_redundant_point_on_axis),
         cmocka_unit_test(test_stale_diagnostics_cleared),
         cmocka_unit_test(test_ill_conditioned_message),
         cmocka_unit_test(test_reach),
