@@ -1520,6 +1520,27 @@ static void test_driven_twice_beside_rows(void **state)
     vt_model_free(m);
 }
 
+/* The redundant-row tests' body: one body on a cylindrical joint (isotropic inertia J about its
+ * centre), allow_redundant, gravity −6.875 m/s² along y; md and bd as built, for the closed forms */
+static vt_builder *cylinder_body(vt_model_def *md, vt_body_def *bd, double mass, double J, const double axis[3],
+                                 const double jp[3], const double jc[3])
+{
+    *md = vt_default_model_def();
+    md->allow_redundant = 1;
+    md->gravity[0] = 0.0, md->gravity[1] = -6.875, md->gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, md));
+    *bd = vt_default_body_def();
+    bd->joint = VT_JOINT_CYLINDRICAL;
+    bd->mass = mass;
+    for (int k = 0; k < 9; k++) bd->inertia[k] = k % 4 == 0 ? J : 0.0;
+    memcpy(bd->axis1, axis, 3 * sizeof(double));
+    memcpy(bd->joint_parent, jp, 3 * sizeof(double));
+    memcpy(bd->joint_child, jc, 3 * sizeof(double));
+    assert_int_equal(vt_builder_add_body(b, bd), 1);
+    return b;
+}
+
 /* A row far smaller than the rows it depends on (the fuzzer's crash-cf08ebee): one point mass on
  * a cylindrical joint whose axis is (8e-10, −0.6, 0.8), held by an orientation drive (three rows,
  * ω_x, ω_y, ω_z, all on the turning rate: rank 1), at rest; allow_redundant. The closed form:
@@ -1531,20 +1552,10 @@ static void test_driven_twice_beside_rows(void **state)
 static void test_redundant_tiny_dependent_row(void **state)
 {
     (void)state;
-    vt_model_def md = vt_default_model_def();
-    md.allow_redundant = 1;
-    md.gravity[0] = 0.0, md.gravity[1] = -6.875, md.gravity[2] = 0.0;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, &md));
-    vt_body_def bd = vt_default_body_def();
-    bd.joint = VT_JOINT_CYLINDRICAL;
-    bd.mass = 6.85;
-    for (int k = 0; k < 9; k++) bd.inertia[k] = 0.0;
     const double u0[3] = {8e-10, -0.6, 0.8}, jp[3] = {-7.0625, -4.1875, -7.0625}, jc[3] = {4.875, -4.875, 6.125};
-    memcpy(bd.axis1, u0, sizeof u0);
-    memcpy(bd.joint_parent, jp, sizeof jp);
-    memcpy(bd.joint_child, jc, sizeof jc);
-    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    vt_model_def md;
+    vt_body_def bd;
+    vt_builder *b = cylinder_body(&md, &bd, 6.85, 0.0, u0, jp, jc);
     vt_drive_def od = vt_default_drive_def();
     od.type = VT_DRIVE_ORIENTATION;
     od.body = 1;
@@ -1585,20 +1596,10 @@ static void test_redundant_tiny_dependent_row(void **state)
 static void test_redundant_rows_through_axis(void **state)
 {
     (void)state;
-    vt_model_def md = vt_default_model_def();
-    md.allow_redundant = 1;
-    md.gravity[0] = 0.0, md.gravity[1] = -6.875, md.gravity[2] = 0.0;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, &md));
-    vt_body_def bd = vt_default_body_def();
-    bd.joint = VT_JOINT_CYLINDRICAL;
-    bd.mass = 5.1625;
-    bd.inertia[0] = bd.inertia[4] = bd.inertia[8] = 6.0625;
     const double u0[3] = {0.606938, -0.513082, 0.606938}, jp[3] = {6.0625, -6.25, -4.8125}, jc[3] = {6.0625, 6.0625, 6.0625};
-    memcpy(bd.axis1, u0, sizeof u0);
-    memcpy(bd.joint_parent, jp, sizeof jp);
-    memcpy(bd.joint_child, jc, sizeof jc);
-    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    vt_model_def md;
+    vt_body_def bd;
+    vt_builder *b = cylinder_body(&md, &bd, 5.1625, 6.0625, u0, jp, jc);
     const double nu = sqrt(u0[0] * u0[0] + u0[1] * u0[1] + u0[2] * u0[2]);
     const double u[3] = {u0[0] / nu, u0[1] / nu, u0[2] / nu};
     const double c2 = 1.4e5; /* f = 0.3 + 0.2 t + c2 t²: f'' = 2 c2 */
@@ -1644,18 +1645,10 @@ static void test_redundant_rows_through_axis(void **state)
 static void test_redundant_point_on_axis(void **state)
 {
     (void)state;
-    vt_model_def md = vt_default_model_def();
-    md.allow_redundant = 1;
-    md.gravity[0] = 0.0, md.gravity[1] = -6.875, md.gravity[2] = 0.0;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, &md));
-    vt_body_def bd = vt_default_body_def();
-    bd.joint = VT_JOINT_CYLINDRICAL;
-    bd.mass = 2.9125;
-    for (int k = 0; k < 9; k++) bd.inertia[k] = 0.0;
-    const double u0[3] = {-0.57735, -0.57735, -0.57735};
-    for (int k = 0; k < 3; k++) bd.axis1[k] = u0[k], bd.joint_parent[k] = -2.8125, bd.joint_child[k] = -2.8125;
-    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    const double u0[3] = {-0.57735, -0.57735, -0.57735}, jpc[3] = {-2.8125, -2.8125, -2.8125};
+    vt_model_def md;
+    vt_body_def bd;
+    vt_builder *b = cylinder_body(&md, &bd, 2.9125, 0.0, u0, jpc, jpc);
     const double nu = sqrt(u0[0] * u0[0] + u0[1] * u0[1] + u0[2] * u0[2]);
     const double u[3] = {u0[0] / nu, u0[1] / nu, u0[2] / nu}, c2 = -0.625;
     vt_drive_def pd = vt_default_drive_def();
