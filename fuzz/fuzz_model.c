@@ -458,7 +458,11 @@ static scales pair_scales(const vt_model *m, const vt_data *ref, const vt_data *
     memset(&s, 0, sizeof s);
     data_scales(m, a, &s);
     data_scales(m, b, &s);
-    s.Fs = fmax(s.Fs, s.mA * s.L);
+    /* below DBL_MIN a number is known only to DBL_TRUE_MIN (ε DBL_MIN / 2) absolute, not to ε of
+     * itself: the scales of forces and of q̈ are floored there (a subnormal gravity's torque of
+     * 7e-211 N·m over 1e100 m on M*_aa = 1e199: the true q̈ of 7e-410 rounds to 0, and the motion
+     * given as 0 needs that torque back) */
+    s.Fs = fmax(fmax(s.Fs, s.mA * s.L), DBL_MIN);
     s.Ns += s.Fs * s.L;
     s.Gs = fmax(s.Gs, s.Fs + s.Ns);
     s.kappa = 1.0 / fmin(rcond, 1.0);
@@ -470,11 +474,11 @@ static scales pair_scales(const vt_model *m, const vt_data *ref, const vt_data *
         mdmax = fmax(mdmax, mc);
         if (!(mc > 0.0)) massless = 1;
         else {
-            qs = fmax(qs, fmax(fabs(a->qdd[c]), fabs(b->qdd[c])) * sqrt(mc));
+            qs = fmax(qs, fmax(fmax(fabs(a->qdd[c]), fabs(b->qdd[c])), DBL_MIN) * sqrt(mc));
             gs = fmax(gs, s.Gs / sqrt(mc));
         }
     }
-    s.tq = s.e * fmax(maxabs(a->qdd, m->nv), maxabs(b->qdd, m->nv));
+    s.tq = s.e * fmax(fmax(maxabs(a->qdd, m->nv), maxabs(b->qdd, m->nv)), DBL_MIN);
     /* a rate without inertia: the dense routes scale it by 1 (solve.c, scaling_diag: a unit
      * inertia, 1 kg or 1 kg·m²), so their solution [ỹ; μ] holds its q̈ as it is, and the SVD's and
      * LDL^T's error, relative to that whole solution, reaches the multipliers as e |q̈_a| × that

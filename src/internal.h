@@ -535,6 +535,10 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
  * from the twists (w: 4 (nbody + 1) scratch); vt_rate_roundoff, the size below which M*_aa is
  * round-off, τ ε (T_a + R_a). */
 #define VT_ROUND_TAU 64.0
+/* Below DBL_MIN a number has lost digits (the dense path refuses an M*_aa there, naming the
+ * rate); the recursive routes, whose pivots round differently, hand every pivot below DBL_MIN / ε
+ * to the dense stages, so that both paths decide the edge by the same numbers */
+#define VT_PIVOT_NORMAL (DBL_MIN / DBL_EPSILON)
 void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T);
 double vt_rate_roundoff(const double *T, int a);
 /* The bound below which M*_aa is round-off, for every rate, into beta (nv): of the M* the

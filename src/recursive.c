@@ -1222,8 +1222,9 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             /* M* is semi-definite: a pivot below PIVOT_MIN of its diagonal or within its round-off,
              * or negative (M* lost to round-off: the elimination of a light rate far out, a
              * 1.85 kg point mass 1e6 m along its axis, cancels terms far beyond the composite
-             * inertia's bound), is no pivot this route can trust: the general route decides */
-            if (!(piv >= PIVOT_MIN) || !(Da > tol)) return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
+             * inertia's bound), is no pivot this route can trust; nor is one near the subnormal
+             * range (VT_PIVOT_NORMAL): the general route decides */
+            if (!(piv >= PIVOT_MIN) || !(Da > tol) || !(Da >= VT_PIVOT_NORMAL)) return d->fallback |= VT_FALLBACK_ARTICULATED_PIVOT, 1;
             pmin = piv < pmin ? piv : pmin;
             pmax = piv > pmax ? piv : pmax;
             dmax = fmax(dmax, tol / maa);

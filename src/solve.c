@@ -205,7 +205,8 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
         if (st < 0) return vt_scratch_release(d, mark), st;
         for (int a = 0; a < nv; a++) {
             const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
-            if (maa > beta[a] && maa >= DBL_MIN) continue; /* subnormal: its bound underflows, and it has lost its digits */
+            /* subnormal: its bound underflows, and it has lost its digits; near it, the dense stages decide */
+            if (maa > beta[a] && maa >= (dense ? DBL_MIN : VT_PIVOT_NORMAL)) continue;
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
@@ -224,6 +225,10 @@ static int roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, i
             /* the composite inertias about o cannot tell this inertia from round-off; S^T M S's
              * lever arms along the tree may (a body 1e9 m from its joint): the dense stages decide */
             if (!dense) return ROUNDOFF_COMPOSITE;
+            if (maa > bound) /* then below DBL_MIN */
+                return vt_fail(d->message, VT_ERR_SINGULAR,
+                               "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is below the smallest "
+                               "normal number, where it has lost its digits) and no row fixes it", a, m->dof_body[a], maa);
             return vt_fail(d->message, VT_ERR_SINGULAR,
                            "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is below its round-off "
                            "%.3g) and no row fixes it", a, m->dof_body[a], maa, bound);

@@ -1761,6 +1761,59 @@ static void test_roundoff_singular(void **state)
     }
 }
 
+/* A pivot at the bottom of the normal range (the fuzzer's crash-bad72ed5…): a body on a spherical
+ * joint at its centre of mass, inertia DBL_MIN I, spinning freely. S^T Ī S rounds M*_aa just below
+ * DBL_MIN, where a number has lost its digits: the dense path refused, the articulated route took
+ * its own pivot (DBL_MIN) and returned VT_OK. Both paths must refuse it alike (the recursive one
+ * hands pivots below DBL_MIN / ε to the dense stages); at 1e-300 I (there too) and 1e-280 I (on
+ * the articulated route) both solve it, and an isotropic inertia spinning at its centre feels no
+ * moment: q̈ = 0. */
+static void test_subnormal_pivot(void **state)
+{
+    (void)state;
+    const double k[3] = {DBL_MIN, 1e-300, 1e-280};
+    for (int c = 0; c < 3; c++) {
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_body_def body = vt_default_body_def();
+        body.joint = VT_JOINT_SPHERICAL;
+        body.mass = 7.5375;
+        body.inertia[0] = body.inertia[4] = body.inertia[8] = k[c];
+        body.joint_parent[0] = 1.0;
+        assert_int_equal(vt_builder_add_body(b, &body), 1);
+        vt_model *m;
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_data *dd, *dr;
+        assert_ok(vt_data_create(&dd, m));
+        assert_ok(vt_data_create(&dr, m));
+        const double q[4] = {0.0652584, -0.171303, -0.978876, 0.090546}, qd[3] = {2.3125, 2.3125, 2.3125};
+        const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        for (int i = 0; i < 4; i++) dd->q[i] = dr->q[i] = q[i] / n;
+        memcpy(dd->qd, qd, sizeof qd);
+        memcpy(dr->qd, qd, sizeof qd);
+        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
+        print_message("inertia %.3g I: dense %s (%s), recursive %s (%s)\n", k[c], vt_status_string(sd), dd->message,
+                      vt_status_string(sr), dr->message);
+        if (c == 0) {
+            assert_int_equal(sd, VT_ERR_SINGULAR);
+            assert_int_equal(sr, VT_ERR_SINGULAR);
+            assert_non_null(strstr(dr->message, "below the smallest normal number"));
+        } else {
+            assert_ok(sd);
+            assert_ok(sr);
+            assert_int_equal(dr->route == VT_ROUTE_ARTICULATED, c == 2);
+            for (int a = 0; a < 3; a++) {
+                assert_true(fabs(dd->qdd[a]) <= 1e-12);
+                assert_true(fabs(dr->qdd[a]) <= 1e-12);
+            }
+        }
+        vt_data_free(dd);
+        vt_data_free(dr);
+        vt_model_free(m);
+    }
+}
+
 /* A point mass on a spherical joint turns freely about the joint–mass line: M* is exactly
  * singular (the rates along u = (c − P)/|c − P| have no inertia, M* u = 0). Beside it a revolute
  * body whose joint point, the reference point o of the twists, stands D from it. Near (D = 10)
@@ -2256,6 +2309,7 @@ int main(void)
         cmocka_unit_test(test_heavy_link),
         cmocka_unit_test(test_roundoff_zeros),
         cmocka_unit_test(test_roundoff_singular),
+        cmocka_unit_test(test_subnormal_pivot),
         cmocka_unit_test(test_roundoff_hides_singular),
         cmocka_unit_test(test_long_chain),
         cmocka_unit_test(test_mass_ratios),
