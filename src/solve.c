@@ -778,6 +778,7 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
     const size_t mark = vt_scratch_mark(d), ld = (size_t)N, snc = (size_t)nc;
     const double *s = o->s, *g = o->g, *U = o->U;
     double *h = VT_SCRATCH(d, double, nc, "rows' scaling");
+    double *P = VT_SCRATCH(d, double, snc * (size_t)(nv + 1), "G [Φ_q, γ], round-off rows zero");
     double *W = VT_SCRATCH(d, double, (size_t)(nd > 0 ? nd : 1) * (size_t)(nv + 1), "U_d^T G [Φ_q, γ]");
     double *K = VT_SCRATCH(d, double, ld * ld, "augmented matrix of the kept rows");
     double *K0 = VT_SCRATCH(d, double, ld * ld, "its copy, for the refinement");
@@ -788,23 +789,21 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
     int lwd = 0;
     double *lsq_work = vt_scratch_rest(d, 1, sizeof(double), &lwd, "dgelsd workspace");
     if (!lsq_work) return vt_scratch_fail(d, mark);
-    /* W = U_d^T G [Φ_q, γ]: the rows' parts along the dropped directions */
-    for (int j = 0; j < nd; j++) {
-        const double *u = U + (size_t)(nr + j) * snc;
-        for (int a = 0; a <= nv; a++) {
-            double v = 0.0;
-            for (int r = 0; r < nc; r++)
-                if (!o->flag[r]) v += u[r] * g[r] * (a < nv ? d->Phiq[r + (size_t)a * snc] : d->gamma[r]);
-            W[j + (size_t)a * (size_t)nd] = v;
-        }
-    }
+    /* P = G [Φ_q, γ] (nc x (nv + 1)), the round-off rows zero; W = U_d^T P (nd x (nv + 1)): the
+     * rows' parts along the dropped directions */
+    for (int a = 0; a <= nv; a++)
+        for (int r = 0; r < nc; r++)
+            P[r + (size_t)a * snc] = o->flag[r] ? 0.0 : g[r] * (a < nv ? d->Phiq[r + (size_t)a * snc] : d->gamma[r]);
+    if (nd > 0)
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nd, nv + 1, nc, 1.0, U + (size_t)nr * snc, nc, P, nc, 0.0,
+                    W, nd);
     /* Y D = (G Φ_q − U_d W) D into K's lower left block, each row to unit norm (N); the right side
      * N (G γ − U_d W_γ) */
     const double zero = o->k > 0 ? ROWS_TAU * (double)(nc > nv ? nc : nv) * DBL_EPSILON * o->sig[0] : 0.0;
     for (int r = 0; r < nc; r++) {
         double n2 = 0.0, c2 = 0.0;
         for (int a = 0; a <= nv; a++) {
-            double v = o->flag[r] ? 0.0 : g[r] * (a < nv ? d->Phiq[r + (size_t)a * snc] : d->gamma[r]);
+            double v = P[r + (size_t)a * snc];
             for (int j = 0; j < nd; j++) v -= U[r + (size_t)(nr + j) * snc] * W[j + (size_t)a * (size_t)nd];
             if (a < nv) {
                 c2 += v * o->c[a] * v * o->c[a];
@@ -880,14 +879,12 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
     for (int a = 0; a < nv; a++) F[a] = -d->Q[a];
     if (nv > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, b, 1, 1.0, F, 1);
     for (int a = 0; a < nv; a++) F[a] *= s[a];
-    double *B = K; /* nv x nr, leading dimension nv: D Φ_q^T G U_k */
-    for (int j = 0; j < nr; j++)
-        for (int a = 0; a < nv; a++) {
-            double v = 0.0;
-            for (int r = 0; r < nc; r++)
-                if (!o->flag[r]) v += d->Phiq[r + (size_t)a * snc] * g[r] * U[r + (size_t)j * snc];
-            B[a + (size_t)j * (size_t)nv] = s[a] * v;
-        }
+    double *B = K; /* nv x nr, leading dimension nv: D Φ_q^T G U_k = D P^T U_k */
+    if (nr > 0 && nv > 0) {
+        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nv, nr, nc, 1.0, P, nc, U, nc, 0.0, B, nv);
+        for (int j = 0; j < nr; j++)
+            for (int a = 0; a < nv; a++) B[a + (size_t)j * (size_t)nv] *= s[a];
+    }
     if (nr > 0) {
         const int ldf = nv > 1 ? nv : 1;
         dgels_("N", &nv, &nr, &one, B, &ldf, F, &ldf, lsq_work, &lwd, &info, 1);
@@ -896,19 +893,17 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
                    vt_fail(d->message, info < 0 ? VT_ERR_LAPACK : VT_ERR_SINGULAR,
                            "vt_solve: the kept rows' multipliers (dgels info %d)", info);
     }
-    for (int r = 0; r < nc; r++) { /* λ = G U_k t, t in F[0..nr) */
-        double v = 0.0;
-        for (int j = 0; j < nr && !o->flag[r]; j++) v += U[r + (size_t)j * snc] * F[j];
-        sv[r] = g[r] * v;
-    }
+    /* λ = G U_k t, t in F[0..nr); the round-off rows' zero */
+    for (int r = 0; r < nc; r++) sv[r] = 0.0;
+    if (nr > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nr, 1.0, U, nc, F, 1, 0.0, sv, 1);
+    for (int r = 0; r < nc; r++) sv[r] = o->flag[r] ? 0.0 : g[r] * sv[r];
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     double resid = 0.0; /* how well the kept rows hold: max |Φ_q q̈ − γ| (it may overflow: refused) */
-    for (int r = 0; r < nc; r++) {
-        double v = -d->gamma[r];
-        for (int a = 0; a < nv; a++) v += d->Phiq[r + (size_t)a * (size_t)nc] * b[a];
-        resid = fmax(resid, fabs(v));
-    }
+    double *res = P; /* nc: P is no longer read */
+    for (int r = 0; r < nc; r++) res[r] = -d->gamma[r];
+    if (nv > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, b, 1, 1.0, res, 1);
+    for (int r = 0; r < nc; r++) resid = fmax(resid, fabs(res[r]));
     if (!isfinite(resid))
         return vt_scratch_release(d, mark),
                vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: the rows' residual |Φ_q q̈ − γ| overflows (not finite)");
@@ -1638,7 +1633,7 @@ size_t vt_solve_scratch(const vt_model *m)
     const size_t rows = VT_SCRATCH_BYTES(snc * snc, D) + VT_SCRATCH_BYTES((size_t)k * snv, D) +
                         VT_SCRATCH_BYTES((size_t)k, D) + VT_SCRATCH_BYTES(snc, D) + 2 * VT_SCRATCH_BYTES(snv, D);
     const size_t solve_kept = 2 * VT_SCRATCH_BYTES(sN * sN, D) + 3 * VT_SCRATCH_BYTES(sN, D) + VT_SCRATCH_BYTES(snc, D) +
-                              VT_SCRATCH_BYTES(snc * (snv + 1) + 1, D) + VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
+                              VT_SCRATCH_BYTES(snc * (snv + 1), D) + VT_SCRATCH_BYTES(snc * (snv + 1) + 1, D) + VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(N, N), I);
     const size_t after = VT_SCRATCH_BYTES(snc * snv, D) > solve_kept ? VT_SCRATCH_BYTES(snc * snv, D) : solve_kept;
     if (rows + after > route) route = rows + after;
     /* roundoff_check (before a route, and inside rows_decide with its flags), the square route's
