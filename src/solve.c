@@ -556,14 +556,16 @@ static int factor_solve(const vt_model *m, vt_data *d, double *b, double *rcond_
 /* Dependent rows: what is truly dependent, decided on Φ_q alone (kinematics: the masses do not
  * take part) in a scaling that neither the directions of the global axes nor the units change.
  * Φ̂ = G Φ_q C: C = 1 for rates that translate and 1/ℓ for rates that turn (rotations, Euler
- * parameters), G = c diag(w) with w = 1 for the rows that measure lengths (points, lines, joint
- * drives and couplings on a translation) and w = ℓ for those that measure angles (dot products,
- * orientations, Euler parameters, joint drives and couplings on a rotation), so that every entry
- * is dimensionless; ℓ the rows' own lever arm (rows_length: a length of the rows' geometry, not
- * of the mass distribution); c = 1 / (largest row norm of diag(w) Φ_q C), one factor for all rows
- * so that no row's own size is scaled away. A rotation of the scene turns a point's rows among
- * themselves (and leaves joint rates alone) and a change of units scales every entry alike, so
- * the singular values of Φ̂ are unchanged by both, and by inertia spread, which does not enter.
+ * parameters), ℓ the rows' own lever arm (rows_length: a length of the rows' geometry, not of the
+ * mass distribution), so that every rate is dimensionless; G = diag(1 / t_r), t_r the size of
+ * row r's terms in that scaling (row_size: what its entries are formed from, the speeds the rates
+ * can give its points), so that each row's round-off is ε of 1 whatever its size: a row whose
+ * lever arms are 1e17 times another's (a point drive 1e17 m out beside one at 1 m) keeps its
+ * directions, where one factor for all rows put the short row below the rank's round-off. A row
+ * losing its grip (its entries cancel at a singular pose while its terms do not) stays small. A
+ * rotation of the scene turns a point's rows among themselves, which have one size, and a change
+ * of units scales every entry and size alike, so the singular values of Φ̂ are unchanged by both,
+ * and by inertia spread, which does not enter.
  * Its SVD Φ̂ = U Σ V^T (LAPACK dgesvd, U of nc columns) gives
  *   rank    the number of σ above max(nc, nv) ε σ_max (ε = DBL_EPSILON): dependence to round-off
  *           (rows that are round-off of zero, roundoff_check, are zero rows here)
@@ -681,6 +683,49 @@ static double rows_length(const vt_model *m, const vt_data *d, const int *flag)
     return isfinite(len) && len > 0.0 ? len : 1.0;
 }
 
+/* The size of row r's terms in the rates' scaling c (nv), ‖(t_a c_a)_a‖, B (nv) scratch: what
+ * the row's entries are formed from, each rate's
+ *   t_a = Σ_sides |v_a| + |ω_a| |P|   a point or line row (P its point on that side, from o: the
+ *                                     speed the rate can give it)
+ *       = Σ_sides |ω_a|               a row that measures an angle (dot products, orientations)
+ *       = |Φ_q,ra|                     joint drives and couplings (exact)
+ * over the rates that move either side ((ω_a, v_a) the rate's twist about o). Isotropic: a
+ * point's rows measuring x, y or z (or any axis) get the same size, so a rotation of the scene,
+ * which mixes them, leaves the scaled rows' singular values as they are; a change of units
+ * scales entries and sizes alike. */
+static double row_size(const vt_model *m, const vt_data *d, int r, const double *c, double *B)
+{
+    const int nv = m->nv, nc = m->nc, kind = m->con_kind[r];
+    for (int a = 0; a < nv; a++) B[a] = 0.0;
+    if (!judged_row(m, r)) {
+        for (int a = 0; a < nv; a++) B[a] = fabs(d->Phiq[r + (size_t)a * (size_t)nc]);
+    } else {
+        const int pt = kind == VT_ROW_POINT || kind == VT_ROW_LINE;
+        for (int side = 0; side < 2; side++) {
+            const int b = m->con_body[2 * r + side];
+            if (b <= 0) continue;
+            double P[3];
+            vt_mulmat3(P, d->A + 9 * b, m->con_point + 6 * r + 3 * side);
+            for (int k = 0; k < 3; k++) P[k] += d->xrel[6 * b + k];
+            const double pn = sqrt(vt_dot3(P, P));
+            const int *path = m->path_dof + m->body_pathadr[b];
+            for (int k = 0; k < m->body_pathnum[b]; k++) {
+                const int a = path[k];
+                const double *w = d->twist + 6 * a, wn = sqrt(vt_dot3(w, w));
+                B[a] += pt ? sqrt(vt_dot3(w + 3, w + 3)) + wn * pn : wn;
+            }
+        }
+    }
+    double tmax = 0.0, t2 = 0.0;
+    for (int a = 0; a < nv; a++) tmax = fmax(tmax, B[a] * c[a]);
+    if (!(tmax > 0.0) || !isfinite(tmax)) return tmax;
+    for (int a = 0; a < nv; a++) {
+        const double v = B[a] * c[a] / tmax;
+        t2 += v * v;
+    }
+    return tmax * sqrt(t2);
+}
+
 /* Φ̂ and its SVD into o (arrays on the arena: the caller releases them); band as above.
  * Returns 0 or a negative vt_status. */
 static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
@@ -698,25 +743,24 @@ static int rows_decide(const vt_model *m, vt_data *d, double band, rows_svd *o)
     const int ro = roundoff_check(m, d, flag, 0, 0); /* a row that is round-off of zero counts as zero */
     if (ro < 0) return ro;
     const size_t mark = vt_scratch_mark(d);
+    double *g = o->g, *s = o->c;
+    scaling_diag(m, d->Mstar, nv + 1, o->s);
+    const double len = rows_length(m, d, flag);
+    for (int a = 0; a < nv; a++) s[a] = turning_rate(m, a) ? 1.0 / len : 1.0;
+    {
+        double *B = VT_SCRATCH(d, double, nv, "terms of a row");
+        if (!B) return vt_scratch_fail(d, mark);
+        for (int r = 0; r < nc; r++) {
+            const double t = row_size(m, d, r, s, B);
+            g[r] = t > 0.0 && isfinite(t) ? 1.0 / t : 1.0;
+        }
+        vt_scratch_release(d, mark);
+    }
     double *P = VT_SCRATCH(d, double, (size_t)nc * (size_t)nv, "scaled Φ_q");
     int lw = 0;
     double *work = vt_scratch_rest(d, 5 * (size_t)(nc + nv), sizeof(double), &lw, "dgesvd workspace");
     if (!work) return vt_scratch_fail(d, mark);
-    double *g = o->g, *s = o->c, rmax = 0.0;
-    scaling_diag(m, d->Mstar, nv + 1, o->s);
-    const double len = rows_length(m, d, flag);
-    for (int a = 0; a < nv; a++) s[a] = turning_rate(m, a) ? 1.0 / len : 1.0;
     for (int r = 0; r < nc; r++) {
-        g[r] = length_row(m, d, r) ? 1.0 : len;
-        double rn = 0.0;
-        for (int c = 0; c < nv; c++) {
-            const double v = g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
-            rn += v * v;
-        }
-        if (!flag[r]) rmax = fmax(rmax, sqrt(rn));
-    }
-    for (int r = 0; r < nc; r++) {
-        g[r] *= rmax > 0.0 ? 1.0 / rmax : 1.0;
         for (int c = 0; c < nv; c++)
             P[r + (size_t)c * (size_t)nc] = flag[r] ? 0.0 : g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
     }
@@ -844,7 +888,7 @@ static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *
     }
     /* the estimate: the kept part's smallest singular value over the largest, or, if smaller,
      * (σ_kept / σ_max)² of Φ̂: its rows unit, the matrix cannot show a row losing its grip (a cut
-     * joint's point row at a four-bar's singular pose), which Φ̂, all rows scaled alike, does; squared,
+     * joint's point row at a four-bar's singular pose), which Φ̂, each row over its own terms, does; squared,
      * the scale of the rows' Schur complement on the other routes */
     const double kin = nr > 0 && o->sig[0] > 0.0 ? o->sig[nr - 1] / o->sig[0] : 1.0;
     d->rcond = rk > 0 ? fmin(sv[(rk < want ? rk : want) - 1] / sv[0], kin * kin) : 0.0;
@@ -1010,7 +1054,7 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * below, rescaled: one LU for both; dgecon on Φ̂'s own LU above), a scaling that makes Φ̂
  * dimensionless and its condition independent of units and of the scene's frame, and in which
  * no mass takes part: rows that measure angles by ℓ and
- * those that measure lengths by 1 (G, as rows_decide's), rates that turn (rotations, Euler
+ * those that measure lengths by 1 (G; rows_decide scales each row by its own terms instead), rates that turn (rotations, Euler
  * parameters) by 1/ℓ and those that translate by 1 (C), ℓ the rows' own lever arm (rows_length,
  * a length of the rows' geometry). The two solves in sequence amplify errors by
  * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented

@@ -1458,6 +1458,68 @@ static void test_line_rows_far_apart(void **state)
     }
 }
 
+/* Point rows whose lever arms differ by 1e17 (the fuzzer's crash-7a3c08a1…): one body on a
+ * spherical joint at the origin, two point drives, y of the body point (D, 0, 0.3) and x of
+ * (0.2, 0.5, −0.4): rows [−0.3, 0, D] and [0, −0.4, −0.5] on the three turning rates, independent
+ * at every D. The rank decision once scaled every row by one factor, the largest row's: the
+ * second row came out 1e-17 of the first and fell below the rank's round-off (rank 1 with
+ * allow_redundant, refused, where the plain model solves). Each row is now scaled by the size of
+ * its own terms. For D = 10, 1e6 and 1e17: allow_redundant finds rank 2 and gives the plain
+ * model's q̈ (to 1e-9 of its largest) and each drive's effort (to 1e-9 of itself). */
+static void test_point_rows_far_apart(void **state)
+{
+    (void)state;
+    const double Ds[3] = {10.0, 1e6, 1e17};
+    for (int k = 0; k < 3; k++) {
+        const double D = Ds[k];
+        vt_model *m[2];
+        vt_data *d[2];
+        for (int red = 0; red < 2; red++) {
+            vt_model_def md = vt_default_model_def();
+            md.allow_redundant = red;
+            vt_builder *b;
+            assert_ok(vt_builder_create(&b, &md));
+            vt_body_def one = vt_default_body_def(); /* centre at (1, 0, 0), joint at the origin */
+            one.joint = VT_JOINT_SPHERICAL;
+            one.mass = 2.0;
+            one.inertia[0] = 0.1, one.inertia[4] = 0.4, one.inertia[8] = 0.5;
+            one.joint_child[0] = -1.0;
+            assert_int_equal(vt_builder_add_body(b, &one), 1);
+            const double pts[2][3] = {{D - 1.0, 0.0, 0.3}, {-0.8, 0.5, -0.4}}; /* from the centre */
+            for (int j = 0; j < 2; j++) {
+                vt_drive_def pd = vt_default_drive_def();
+                pd.type = VT_DRIVE_POINT;
+                pd.body = 1;
+                pd.index = j ? 0 : 1;
+                memcpy(pd.point, pts[j], sizeof pd.point);
+                pd.f = vt_function_sine(0.0, 0.2, 1.5, 0.0);
+                assert_int_equal(vt_builder_add_drive(b, &pd), j);
+            }
+            assert_ok(vt_builder_build(&m[red], b));
+            vt_builder_free(b);
+            assert_ok(vt_data_create(&d[red], m[red]));
+            const double tau[3] = {1.0, -2.0, 0.5}, w[3] = {0.3, -0.2, 0.1};
+            memcpy(d[red]->qfrc, tau, sizeof tau);
+            memcpy(d[red]->qd, w, sizeof w);
+            const vt_status st = vt_inverse_dynamics(m[red], d[red]);
+            if (st) fail_msg("D = %g, allow_redundant %d: %s", D, red, d[red]->message);
+            assert_int_equal(d[red]->rank, 2);
+        }
+        const double qs = vt_test_maxabs(d[0]->qdd, 3);
+        print_message("D = %g: route %d, rcond %.3g; efforts %.17g %.17g and %.17g %.17g\n", D, d[0]->route, d[0]->rcond,
+                      d[0]->drive_effort[0], d[1]->drive_effort[0], d[0]->drive_effort[1], d[1]->drive_effort[1]);
+        for (int a = 0; a < 3; a++) assert_near(d[1]->qdd[a], d[0]->qdd[a], 1e-9 * qs);
+        for (int j = 0; j < 2; j++) {
+            assert_true(fabs(d[0]->drive_effort[j]) > 0.0);
+            assert_near(d[1]->drive_effort[j], d[0]->drive_effort[j], 1e-9 * fabs(d[0]->drive_effort[j]));
+        }
+        for (int red = 0; red < 2; red++) {
+            vt_data_free(d[red]);
+            vt_model_free(m[red]);
+        }
+    }
+}
+
 /* A rate driven twice beside a point drive, on sliding joints along skew axes (the fuzzer's
  * crash-07a0f942 in a smaller tree): the dense Φ_q's joint rows are R S, exact to round-off only,
  * so the second drive's row keeps round-off on the other rates, and with the driven rate known
@@ -1703,6 +1765,7 @@ int main(void)
         cmocka_unit_test(test_band_frame_and_unit_independent),
         cmocka_unit_test(test_band_unit_independent_mixed_rows),
         cmocka_unit_test(test_line_rows_far_apart),
+        cmocka_unit_test(test_point_rows_far_apart),
         cmocka_unit_test(test_driven_twice_beside_rows),
         cmocka_unit_test(test_redundant_tiny_dependent_row),
         cmocka_unit_test(test_redundant_rows_through_axis),
