@@ -583,7 +583,15 @@ static void agree_loads(const char *pair, const vt_model *m, const vt_data *a, c
     if (!isfinite(tg) || !isfinite(tn) || !isfinite(tf)) return; /* scales at overflow's edge: nothing to compare to */
     agree(pair, "qfrc_drive", a->qfrc_drive, b->qfrc_drive, m->nv, tg, s);
     if (drives) {
-        agree(pair, "drive_effort", a->drive_effort, b->drive_effort, m->ndrive, tg, s);
+        /* a point drive's effort is its force λ, an orientation drive's a moment: their
+         * tolerances as drive_force's and drive_moment's below (a driven point 1e-9 m off its
+         * axis: λ = τ / 5.8e-10 m, the moments' round-off over that lever arm, 1e-6 N where the
+         * exact effort is 0) */
+        for (int k = 0; k < m->ndrive; k++) {
+            const vt_drive_type ty = m->drive[k].type;
+            const double te = ty == VT_DRIVE_JOINT ? tg : fmax(ty == VT_DRIVE_POINT ? tf : tn, tg);
+            agree(pair, "drive_effort", a->drive_effort + k, b->drive_effort + k, 1, te, s);
+        }
         /* a drive's force and moment are its effort times its unit axis: the effort's tolerance
          * (a point drive's λ = τ_a / Φ_q,ra carries the moments' round-off over the row's lever
          * arm: 0.0625 m under moments of 1e14 N·m, 0.125 N of 2.4e5 N) */
