@@ -1394,6 +1394,23 @@ static void test_schur_condition_fallback(void **state)
     vt_model_free(m);
 }
 
+/* A builder (allow_redundant as given) with body 1 on a spherical joint at the origin, its centre
+ * at (1, 0, 0), 2 kg; its definition in one (the far-apart tests' first body) */
+static vt_builder *sphere_at_origin(int allow_redundant, vt_body_def *one)
+{
+    vt_model_def md = vt_default_model_def();
+    md.allow_redundant = allow_redundant;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    *one = vt_default_body_def();
+    one->joint = VT_JOINT_SPHERICAL;
+    one->mass = 2.0;
+    one->inertia[0] = 0.1, one->inertia[4] = one->inertia[8] = 0.5;
+    one->joint_child[0] = -1.0;
+    assert_int_equal(vt_builder_add_body(b, one), 1);
+    return b;
+}
+
 /* A line row's lever arm includes the distance between its two points: two bodies on spherical
  * joints, one at the origin and one hung from a ground point D along y, joined by a cylindrical
  * cut joint whose axis (y) runs from one to the other, its points D − 2 m apart (4 rows: two
@@ -1412,16 +1429,8 @@ static void test_line_rows_far_apart(void **state)
         vt_model *m[2];
         vt_data *d[2];
         for (int red = 0; red < 2; red++) {
-            vt_model_def md = vt_default_model_def();
-            md.allow_redundant = red;
-            vt_builder *b;
-            assert_ok(vt_builder_create(&b, &md));
-            vt_body_def one = vt_default_body_def(); /* centre at (1, 0, 0), joint at the origin */
-            one.joint = VT_JOINT_SPHERICAL;
-            one.mass = 2.0;
-            one.inertia[0] = 0.1, one.inertia[4] = one.inertia[8] = 0.5;
-            one.joint_child[0] = -1.0;
-            assert_int_equal(vt_builder_add_body(b, &one), 1);
+            vt_body_def one;
+            vt_builder *b = sphere_at_origin(red, &one);
             vt_body_def two = one; /* centre at (0, D − 1, 0), joint at (0, D, 0) on the ground */
             two.mass = 3.0;
             two.joint_child[0] = 0.0, two.joint_child[1] = 1.0;
@@ -1475,16 +1484,8 @@ static void test_point_rows_far_apart(void **state)
         vt_model *m[2];
         vt_data *d[2];
         for (int red = 0; red < 2; red++) {
-            vt_model_def md = vt_default_model_def();
-            md.allow_redundant = red;
-            vt_builder *b;
-            assert_ok(vt_builder_create(&b, &md));
-            vt_body_def one = vt_default_body_def(); /* centre at (1, 0, 0), joint at the origin */
-            one.joint = VT_JOINT_SPHERICAL;
-            one.mass = 2.0;
-            one.inertia[0] = 0.1, one.inertia[4] = 0.4, one.inertia[8] = 0.5;
-            one.joint_child[0] = -1.0;
-            assert_int_equal(vt_builder_add_body(b, &one), 1);
+            vt_body_def one;
+            vt_builder *b = sphere_at_origin(red, &one);
             const double pts[2][3] = {{D - 1.0, 0.0, 0.3}, {-0.8, 0.5, -0.4}}; /* from the centre */
             for (int j = 0; j < 2; j++) {
                 vt_drive_def pd = vt_default_drive_def();
