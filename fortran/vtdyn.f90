@@ -244,6 +244,8 @@ module vtdyn
     type(c_ptr)            :: con_point
     integer(c_int)         :: joint_driven
     integer(c_int)         :: joint_rows_only
+    integer(c_int)         :: joint_mix
+    integer(c_int)         :: has_quaternions
     real(c_double)         :: bound_length
     real(c_double)         :: bound_mass
   end type vt_model

@@ -198,22 +198,9 @@ vt_status vt_function_eval(double out[3], const vt_function *f, double t)
     return vt_function_eval_valid(out, f, t);
 }
 
-vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t)
+vt_status vt_function_eval_other(double v[3], const vt_function *f, double t)
 {
-    if (!isfinite(t)) return VT_ERR_NONFINITE;
-    double v[3] = {0, 0, 0};
     switch (f->type) {
-    case VT_FUNCTION_CONSTANT:
-        v[0] = f->c[0];
-        break;
-    case VT_FUNCTION_POLYNOMIAL:
-        /* Horner for f, f', f'' together */
-        for (int k = f->ncoef - 1; k >= 0; k--) {
-            v[2] = v[2] * t + 2.0 * v[1];
-            v[1] = v[1] * t + v[0];
-            v[0] = v[0] * t + f->c[k];
-        }
-        break;
     case VT_FUNCTION_SINE: {
         const double a = f->c[2] * t + f->c[3];
         v[0] = f->c[0] + f->c[1] * sin(a);
@@ -228,9 +215,5 @@ vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t)
         if (f->callback(t, v, f->user) != 0) return VT_ERR_CALLBACK;
         break;
     }
-    if (!vt_all_finite(v, 3)) return VT_ERR_NONFINITE;
-    out[0] = v[0];
-    out[1] = v[1];
-    out[2] = v[2];
     return VT_OK;
 }

@@ -499,7 +499,11 @@ static inline int vt_lever_up(vt_lever *L, const vt_model *m, const vt_data *d)
 void vt_lengths_from_o(const vt_model *m, const vt_data *d, double *L, int stride);
 
 /* every multiplier unique (vt_solve's exact routes) */
-void vt_mark_unique(const vt_model *m, vt_data *d);
+static inline void vt_mark_unique(const vt_model *m, vt_data *d)
+{
+    int *lu = d->lambda_unique;
+    for (int r = 0; r < m->nc; r++) lu[r] = 1;
+}
 /* what a successful solve with independent rows records: the route, rcond and its warning,
  * rank nc, no residual, every multiplier unique (solve.c) */
 void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
@@ -577,8 +581,19 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
 /* Every row's wrench on its two bodies, for the multipliers lam (1 each when NULL), about each
  * body's centre of mass: [f_a n_a f_b n_b] into rw (12 x nc) (reactions.c). */
 void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const double *lam);
-/* jnt_unique and cut_unique from the solve's rank and null directions (reactions.c) */
-vt_status vt_reactions_unique(const vt_model *m, vt_data *d);
+/* jnt_unique and cut_unique, every one set, then those that a null direction of Φ_q^T (rank < nc:
+ * the redundant solve's, in d->lambda_null) changes cleared (reactions.c) */
+vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d);
+/* Which reactions are unique: every one when the rows are independent (rank nc), otherwise
+ * vt_reactions_nonunique's; inline, as vt_mark_unique: every instant ends with it */
+static inline vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
+{
+    const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut;
+    int *ju = d->jnt_unique, *cu = d->cut_unique;
+    for (int i = 0; i < nj; i++) ju[i] = 1;
+    for (int k = 0; k < ncut; k++) cu[k] = 1;
+    return m->nc - d->rank > 0 ? vt_reactions_nonunique(m, d) : VT_OK;
+}
 /* what every instant path ends with: α of every body (from ẍ) and each joint's total wrench,
  * reaction plus actuation (given: the motion given, every rate's qfrc_drive its effort) */
 vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
@@ -602,8 +617,33 @@ void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double
 
 /* Validates a time function (functions.c); msg may be NULL. */
 vt_status vt_function_check(char *msg, const vt_function *f);
-/* vt_function_eval for a function already validated (a model's drives: a spline's sample_d2 set) */
-vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t);
+/* f, f′, f″ of a sine, a spline or a user's function (functions.c), into v; not checked for Inf */
+vt_status vt_function_eval_other(double v[3], const vt_function *f, double t);
+/* vt_function_eval for a function already validated (a model's drives: a spline's sample_d2 set);
+ * inline, a polynomial or constant computed here: the drives' functions are evaluated rate by rate
+ * in every instant, and a call cost a joint-driven chain more than the polynomial itself */
+static inline vt_status vt_function_eval_valid(double out[3], const vt_function *f, double t)
+{
+    if (!isfinite(t)) return VT_ERR_NONFINITE;
+    double v[3] = {0, 0, 0};
+    if (f->type == VT_FUNCTION_POLYNOMIAL) {
+        for (int k = f->ncoef - 1; k >= 0; k--) { /* Horner for f, f′, f″ together */
+            v[2] = v[2] * t + 2.0 * v[1];
+            v[1] = v[1] * t + v[0];
+            v[0] = v[0] * t + f->c[k];
+        }
+    } else if (f->type == VT_FUNCTION_CONSTANT) {
+        v[0] = f->c[0];
+    } else {
+        const vt_status st = vt_function_eval_other(v, f, t);
+        if (st) return st;
+    }
+    if (!vt_all_finite(v, 3)) return VT_ERR_NONFINITE;
+    out[0] = v[0];
+    out[1] = v[1];
+    out[2] = v[2];
+    return VT_OK;
+}
 /* A spline's second derivatives d2 (n) at its samples (functions.c), by LAPACK's dgtsv; work
  * holds 3n doubles; the samples already validated (vt_function_check); msg may be NULL.
  * Statuses: VT_ERR_LAPACK, VT_ERR_NONFINITE (spacings so uneven that d2 overflows). */

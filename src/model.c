@@ -801,6 +801,15 @@ static void build_rows(vt_model *m)
     for (int row = 0; row < m->nc && rows_ok; row++)
         if (m->con_kind[row] != VT_ROW_JOINT || m->drive_row[m->dof_drive[m->con_dof[row]]] != row) rows_ok = 0;
     m->joint_rows_only = rows_ok;
+    /* the recursive routes' selectors: the joints' kinds (recursive.c) */
+    m->joint_mix = 1;
+    m->has_quaternions = 0;
+    for (int i = 1; i <= m->nbody; i++) {
+        const int jt = m->body_joint[i];
+        if (jt != VT_JOINT_REVOLUTE && m->joint_mix > 0) m->joint_mix = 0;
+        if (jt == VT_JOINT_BASE) m->joint_mix = -1;
+        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE || jt == VT_JOINT_BASE) m->has_quaternions = 1;
+    }
     /* the sizes behind the fused passes' overflow bound (recursive.c, fused_bounded): every lever
      * arm of the tree at any pose is shorter than the sum of its offsets (Inf if that overflows:
      * no bound, the outputs are scanned) */

@@ -597,15 +597,9 @@ static void reaction_sensitivity(const vt_model *m, vt_data *d, const double *z,
             if (cmag[6 * k + e] > tol * big) d->cut_unique[6 * k + e] = 0;
 }
 
-/* Which reactions are unique: every one when the rows are independent (rank nc); otherwise
- * those that no null direction of Φ_q^T, left by the redundant solve in d->lambda_null, changes. */
-vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
+vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d)
 {
-    const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut, nnull = m->nc - d->rank;
-    int *ju = d->jnt_unique, *cu = d->cut_unique;
-    for (int i = 0; i < nj; i++) ju[i] = 1;
-    for (int k = 0; k < ncut; k++) cu[k] = 1;
-    if (nnull <= 0) return VT_OK;
+    const int nnull = m->nc - d->rank;
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
     double *fe = VT_SCRATCH(d, double, 6 * nb, "applied wrenches"), *cf = VT_SCRATCH(d, double, 6 * nb, "children's reactions");
     double *mag = VT_SCRATCH(d, double, 6 * nb + 6 * (size_t)m->ncut, "reaction changes");

@@ -370,30 +370,6 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
  * t = 0, ė = ω^j × e, τ = e · the moment about P), a translational one its own outward code
  * (fused_slide); any other joint, and a translational one's inward step, take the general
  * code's stages for the body. */
-/* 1: every joint revolute, 0: some other, but no base body (the fused passes take each other
- * joint through the general code body by body), -1: a base body */
-static int joint_mix(const vt_model *m)
-{
-    int r = 1;
-    for (int i = 1; i <= m->nbody; i++) {
-        if (m->body_joint[i] == VT_JOINT_BASE) return -1;
-        if (m->body_joint[i] != VT_JOINT_REVOLUTE) r = 0;
-    }
-    return r;
-}
-
-/* 1 if some joint's q holds Euler parameters (spherical, free, base): the state's check then
- * looks at their norms (vt_kinematics_check_state); otherwise finite q and q̇ are the whole check
- * (a revolute or translational joint's coordinates are any finite numbers) */
-static int has_quaternions(const vt_model *m)
-{
-    for (int i = 1; i <= m->nbody; i++) {
-        const int jt = m->body_joint[i];
-        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE || jt == VT_JOINT_BASE) return 1;
-    }
-    return 0;
-}
-
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
 /* fused_outward's body on a translational joint (vt_kinematics_body, vt_acceleration_body and
@@ -1484,13 +1460,6 @@ static inline int fused_bounded(const vt_model *m, double qmax, double vmax, dou
     return B < 1e300;
 }
 
-static int has_base(const vt_model *m)
-{
-    for (int i = 1; i <= m->nbody; i++)
-        if (m->body_joint[i] == VT_JOINT_BASE) return 1;
-    return 0;
-}
-
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -1549,10 +1518,11 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
-    const int mix = joint_mix(m);
+    const int mix = m->joint_mix;
     if (m->joint_driven && mix >= 0) { /* the outward passes fused */
         const double qmax = array_max(d->q, m->nq), vmax = array_max(d->qd, m->nv);
-        if ((mix == 0 && has_quaternions(m)) || !(qmax < HUGE_VAL && vmax < HUGE_VAL)) /* Euler parameters to check */
+        /* Euler parameters' norms to check (a revolute or translational joint's q is any finite number) */
+        if ((mix == 0 && m->has_quaternions) || !(qmax < HUGE_VAL && vmax < HUGE_VAL))
             if ((st = vt_kinematics_check_state(m, d))) return st;
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
@@ -1577,7 +1547,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         d->rank = m->nc; /* one unit row per rate: independent, every multiplier and reaction unique */
         d->residual = 0.0;
         vt_mark_unique(m, d);
-        *formed = !has_base(m);
+        *formed = m->joint_mix >= 0;
         return inward(m, d, *formed);
     }
     if (m->joint_rows_only) { /* q̈ of the free rates, then the inward pass */
@@ -1586,7 +1556,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         if ((st = drive_accelerations(m, d))) return st;
         double rcond = 0.0;
         int r = 1;
-        if (!has_base(m)) { /* by articulated bodies */
+        if (m->joint_mix >= 0) { /* by articulated bodies */
             const size_t mark = vt_scratch_mark(d);
             aba_work w;
             r = aba_take(m, d, 1, &w) ? VT_ERR_NO_MEMORY : articulated_solve(m, d, &w, &rcond);
@@ -1597,7 +1567,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         else if ((st = mass_and_bias(m, d)) || (st = composite_solve(m, d)) ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", 0))) /* or from M*_FF, which also diagnoses */
             return st;
-        *formed = !has_base(m);
+        *formed = m->joint_mix >= 0;
         return inward(m, d, *formed);
     }
     if ((st = vt_constraints_impl(m, d, 0))) return st;
@@ -1611,7 +1581,7 @@ static vt_status constrained_instant(const vt_model *m, vt_data *d)
     /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
      * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
     /* (and no coupling, whose force acts through two rates, not through the rows' wrenches) */
-    if (!m->allow_redundant && !has_base(m) && m->ncoupling == 0) {
+    if (!m->allow_redundant && m->joint_mix >= 0 && m->ncoupling == 0) {
         if (m->nc == m->nv) return square_instant(m, d);
         if (m->nc < m->nv) return articulated_instant(m, d);
     }
@@ -1688,7 +1658,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
                            "drive the rates whose motion is given", m->ncut, m->ncoupling);
         return vt_motion_rows(m, d);
     }
-    for (int i = 1; i <= m->nbody; i++)
+    for (int i = 1; m->joint_mix < 0 && i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
                            "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
@@ -1697,9 +1667,10 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     if (!(fx < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
-    const int mix = joint_mix(m);
+    const int mix = m->joint_mix;
     const double qmax = array_max(d->q, m->nq), vmax = array_max(d->qd, m->nv);
-    if ((mix == 0 && has_quaternions(m)) || !(qmax < HUGE_VAL && vmax < HUGE_VAL)) /* Euler parameters to check */
+    /* Euler parameters' norms to check (a revolute or translational joint's q is any finite number) */
+    if ((mix == 0 && m->has_quaternions) || !(qmax < HUGE_VAL && vmax < HUGE_VAL))
         if ((st = vt_kinematics_check_state(m, d))) return st;
     const int bounded = fused_bounded(m, qmax, vmax, amax, fx);
     d->rcond = 1.0;

@@ -808,13 +808,6 @@ static double null_part(const vt_model *m, const rows_svd *o, int r)
  * d->residual = max |Φ_q q̈ − γ| says how well. Which multipliers are not unique: those in the
  * null directions z = G w of Φ_q^T, left in d->lambda_null for the reactions stage to tell which
  * reactions are not unique. */
-void vt_mark_unique(const vt_model *m, vt_data *d)
-{
-    const int nc = m->nc;
-    int *lu = d->lambda_unique;
-    for (int r = 0; r < nc; r++) lu[r] = 1;
-}
-
 #define ROWS_TAU 64.0 /* a row's part outside the dropped directions below τ max(nc, nv) ε σ_max: zero */
 static vt_status redundant_solve(const vt_model *m, vt_data *d, const rows_svd *o)
 {

@@ -81,31 +81,34 @@ static void rotate_quat(double p[4], const double w[3], double h)
     vt_normalize(p, 4);
 }
 
-/* body i's coordinates advanced, into qi (body_nq[i] entries, at most 7) */
-static void advance(double *qi, const vt_model *m, int i, const double *v, double h)
+/* 1 for a joint whose coordinates advance as q + h q̇ (all but those holding Euler parameters) */
+static inline int advances_linearly(int jt)
 {
-    {
-        const double *vi = v + m->body_vadr[i];
-        switch (m->body_joint[i]) {
-        case VT_JOINT_SPHERICAL:
-            rotate_quat(qi, vi, h);
-            break;
-        case VT_JOINT_FREE: /* translation in the reference axes, then as spherical */
-            vt_axpy3(qi, h, vi);
-            rotate_quat(qi + 3, vi + 3, h);
-            break;
-        case VT_JOINT_BASE: {
-            double E[12], w[3];
-            vt_euler_E(E, qi + 3);
-            vt_mulE(w, E, vi + 3);
-            w[0] *= 2; w[1] *= 2; w[2] *= 2; /* ω = 2 E ṗ */
-            vt_axpy3(qi, h, vi);
-            rotate_quat(qi + 3, w, h);
-            break;
-        }
-        default:
-            for (int k = 0; k < m->body_nq[i]; k++) qi[k] += h * vi[k];
-        }
+    return jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_FREE && jt != VT_JOINT_BASE;
+}
+
+/* body i's coordinates advanced, into qi (body_nq[i] entries, at most 7), for a joint with Euler
+ * parameters */
+static void advance_rotation(double *qi, const vt_model *m, int i, const double *v, double h)
+{
+    const double *vi = v + m->body_vadr[i];
+    switch (m->body_joint[i]) {
+    case VT_JOINT_SPHERICAL:
+        rotate_quat(qi, vi, h);
+        break;
+    case VT_JOINT_FREE: /* translation in the reference axes, then as spherical */
+        vt_axpy3(qi, h, vi);
+        rotate_quat(qi + 3, vi + 3, h);
+        break;
+    default: { /* base: ṗ's rates */
+        double E[12], w[3];
+        vt_euler_E(E, qi + 3);
+        vt_mulE(w, E, vi + 3);
+        w[0] *= 2; w[1] *= 2; w[2] *= 2; /* ω = 2 E ṗ */
+        vt_axpy3(qi, h, vi);
+        rotate_quat(qi + 3, w, h);
+        break;
+    }
     }
 }
 
@@ -113,16 +116,30 @@ vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, cons
 {
     if (!q_out || !m || !q || !v) return VT_ERR_NULL;
     if (!isfinite(h) || !vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
-    /* finite inputs can still overflow (q + h q̇ past DBL_MAX): every body is advanced into a
-     * local first, and q_out is written only when all are finite (each body reads only its own
-     * entries, so q_out may alias q) */
+    /* finite inputs can still overflow (q + h q̇ past DBL_MAX): every body's result is checked
+     * first (a rotating one advanced into a local), and q_out is written only when all are finite
+     * (each body reads only its own entries, so q_out may alias q); q + h q̇ is written as checked */
+    int finite = 1;
     for (int i = 1; i <= m->nbody; i++) {
+        const int n = m->body_nq[i];
+        const double *qi0 = q + m->body_qadr[i], *vi = v + m->body_vadr[i];
+        if (advances_linearly(m->body_joint[i])) {
+            for (int k = 0; k < n; k++) finite &= isfinite(qi0[k] + h * vi[k]) != 0;
+            continue;
+        }
         double qi[7];
-        memcpy(qi, q + m->body_qadr[i], (size_t)m->body_nq[i] * sizeof(double));
-        advance(qi, m, i, v, h);
-        if (!vt_all_finite(qi, m->body_nq[i])) return VT_ERR_NONFINITE;
+        memcpy(qi, qi0, (size_t)n * sizeof(double));
+        advance_rotation(qi, m, i, v, h);
+        finite &= vt_all_finite(qi, n);
     }
+    if (!finite) return VT_ERR_NONFINITE;
     if (q_out != q) memcpy(q_out, q, (size_t)m->nq * sizeof(double));
-    for (int i = 1; i <= m->nbody; i++) advance(q_out + m->body_qadr[i], m, i, v, h);
+    for (int i = 1; i <= m->nbody; i++) {
+        double *qo = q_out + m->body_qadr[i];
+        const double *vi = v + m->body_vadr[i];
+        if (!advances_linearly(m->body_joint[i])) advance_rotation(qo, m, i, v, h);
+        else
+            for (int k = 0; k < m->body_nq[i]; k++) qo[k] = qo[k] + h * vi[k];
+    }
     return VT_OK;
 }

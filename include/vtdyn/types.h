@@ -440,6 +440,8 @@ typedef struct vt_model {
     double *con_point;       ///< internal: point on a then on b (6 x nc)
     int joint_driven;        ///< internal: every rate has exactly one joint drive, no other row
     int joint_rows_only;     ///< internal: every row a joint drive on a rate of its own, some rates free
+    int joint_mix;           ///< internal: 1 every joint revolute, 0 some other but no base body, −1 a base body
+    int has_quaternions;     ///< internal: 1 if some joint's q holds Euler parameters (spherical, free, base)
     double bound_length;     ///< internal: m, Σ of the joints' offsets |s^{ij}| + |s^{ji}| over the bodies
     double bound_mass;       ///< internal: the largest m + 3 max |J_kl| of a body
 } vt_model;
