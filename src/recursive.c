@@ -1422,12 +1422,22 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     return st;
 }
 
-/* the largest |xfrc| and |qfrc| (one scan), of |q|, of |q̇|, of |q̈|: +Inf where one is not finite */
+/* the largest |xfrc| and |qfrc| (one scan), the largest of those and |q|, |q̇| (one scan), of
+ * |q̈|: +Inf where one is not finite */
 static inline double loads_max(const vt_model *m, const vt_data *d)
 {
     vt_max_scan s = {0};
     vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
     vt_max_add(&s, d->qfrc, m->nv);
+    return vt_max_result(&s);
+}
+static inline double state_max(const vt_model *m, const vt_data *d)
+{
+    vt_max_scan s = {0};
+    vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
+    vt_max_add(&s, d->qfrc, m->nv);
+    vt_max_add(&s, d->q, m->nq);
+    vt_max_add(&s, d->qd, m->nv);
     return vt_max_result(&s);
 }
 static inline double array_max(const double *a, int n)
@@ -1449,7 +1459,9 @@ static inline double array_max(const double *a, int n)
  *   in either frame (a rotation keeps lengths);
  * so every output is below B = 64 (n + 1) U² (M A + F), and B < 1e300 leaves round-off (relative
  * ε per operation) 8 orders of magnitude from DBL_MAX. Where B is not below it (a rate of 1e150
- * rad/s, loads near DBL_MAX, B itself Inf), the scans decide, as before. */
+ * rad/s, loads near DBL_MAX, B itself Inf), the scans decide, as before. B only grows with each
+ * maximum, so the instants pass one maximum of |xfrc|, |qfrc|, |q| and |q̇| (state_max: one scan)
+ * for all four. */
 static inline int fused_bounded(const vt_model *m, double qmax, double vmax, double amax,
                                 double fmax_)
 {
@@ -1513,16 +1525,16 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
     vt_solve_reset(d);
-    const double fx = loads_max(m, d);
-    if (!(fx < HUGE_VAL))
+    const double smax = state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    if (!(smax < HUGE_VAL) && !(loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
     const int mix = m->joint_mix;
     if (m->joint_driven && mix >= 0) { /* the outward passes fused */
-        const double qmax = array_max(d->q, m->nq), vmax = array_max(d->qd, m->nv);
-        /* Euler parameters' norms to check (a revolute or translational joint's q is any finite number) */
-        if ((mix == 0 && m->has_quaternions) || !(qmax < HUGE_VAL && vmax < HUGE_VAL))
+        /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
+         * number), or q or q̇ not finite */
+        if ((mix == 0 && m->has_quaternions) || !(smax < HUGE_VAL))
             if ((st = vt_kinematics_check_state(m, d))) return st;
         if ((st = drive_accelerations(m, d))) { /* the status the separate passes would give */
             const vt_status sk = vt_kinematics_tree(m, d, 0);
@@ -1535,7 +1547,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         d->residual = 0.0;
         vt_mark_unique(m, d);
         *formed = 2;
-        const int bounded = fused_bounded(m, qmax, vmax, array_max(d->qdd, m->nv), fx);
+        const int bounded = fused_bounded(m, smax, smax, array_max(d->qdd, m->nv), smax);
         return mix ? fused_pass(m, d, 0, 0, bounded) : fused_pass(m, d, 0, 1, bounded);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
@@ -1663,16 +1675,16 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
                            "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
                            "use VT_JOINT_FREE", i);
-    const double fx = loads_max(m, d);
-    if (!(fx < HUGE_VAL))
+    const double smax = state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    if (!(smax < HUGE_VAL) && !(loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
     const int mix = m->joint_mix;
-    const double qmax = array_max(d->q, m->nq), vmax = array_max(d->qd, m->nv);
-    /* Euler parameters' norms to check (a revolute or translational joint's q is any finite number) */
-    if ((mix == 0 && m->has_quaternions) || !(qmax < HUGE_VAL && vmax < HUGE_VAL))
+    /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
+     * number), or q or q̇ not finite */
+    if ((mix == 0 && m->has_quaternions) || !(smax < HUGE_VAL))
         if ((st = vt_kinematics_check_state(m, d))) return st;
-    const int bounded = fused_bounded(m, qmax, vmax, amax, fx);
+    const int bounded = fused_bounded(m, smax, smax, amax, smax);
     d->rcond = 1.0;
     d->warning = 0;
     d->rank = m->nc;
