@@ -336,6 +336,54 @@ static void phiq_twist(const vt_model *m, vt_data *d, int r, int b, const double
     } while (vt_lever_up(&L, m, d));
 }
 
+/* A point's velocity Jacobian along its body's path, for the recursive Φ_q of point drives: P =
+ * r_b + s moves by w_a × (u + s) for a turning rate a of a joint on the path (u = r_b − P_k,
+ * vt_lever: exact far from o; w_a the rate's twist's angular part), by v_a for a sliding one.
+ * Its columns are kept for every drive on the same point (a tool point's x, y and z, in any
+ * order: JAC_SLOTS points at once), and each row pairs its direction c with them,
+ * Φ_q[r, a] = c · (J_b,a − J_a,a): one walk up the tree per point instead of one per row. */
+enum { JAC_SLOTS = 4 };
+typedef struct {
+    int body, n;    /* the body (−1: empty slot), the rates on its path */
+    double sp[3];   /* the point in the body's axes: with the body, the slot's key */
+    int *rate;      /* the path's rates (maxpath) */
+    double *J;      /* their columns (3 x maxpath) */
+} point_jac;
+
+static const point_jac *point_jac_get(point_jac *slots, int *next, const vt_model *m, const vt_data *d, int b,
+                                      const double sp[3], const double s[3])
+{
+    for (int k = 0; k < JAC_SLOTS; k++)
+        if (slots[k].body == b && slots[k].sp[0] == sp[0] && slots[k].sp[1] == sp[1] && slots[k].sp[2] == sp[2])
+            return &slots[k];
+    point_jac *p = &slots[*next];
+    *next = (*next + 1) % JAC_SLOTS;
+    p->body = b;
+    vt_copy3(p->sp, sp);
+    p->n = 0;
+    vt_lever L;
+    vt_lever_start(&L, m, d, b, 0);
+    do {
+        double us[3];
+        for (int k = 0; k < 3; k++) us[k] = L.u[k] + s[k]; /* P − P_k */
+        const int jt = m->body_joint[L.k], turn = jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL;
+        for (int a = m->body_vadr[L.k]; a < m->body_vadr[L.k] + m->body_nv[L.k]; a++) {
+            const double *w = d->twist + 6 * a;
+            double *J = p->J + 3 * p->n;
+            if (turn || vt_dof_turns(m, a)) vt_cross3(J, w, us);
+            else vt_copy3(J, w + 3);
+            p->rate[p->n++] = a;
+        }
+    } while (vt_lever_up(&L, m, d));
+    return p;
+}
+
+/* Φ_q[r, ·] += sign × c · the point's columns */
+static void phiq_point(const vt_model *m, vt_data *d, int r, const point_jac *p, const double c[3], double sign)
+{
+    for (int k = 0; k < p->n; k++) d->Phiq[r + (size_t)p->rate[k] * (size_t)m->nc] += sign * vt_dot3(c, p->J + 3 * k);
+}
+
 /* Φ_q rows r..r+2 += sign × the velocity Jacobian of the point s (P − r_b) moving with body b:
  * a turning rate's column w × (u + s), a sliding one's its axis (phiq_twist with jv = e_k) */
 static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, const double s[3], double sign)
@@ -428,6 +476,15 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
     double *Si = dense && phiq ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
     if (dense && phiq && !Si) return vt_scratch_fail(d, mark);
     if (phiq) memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
+    point_jac jac[JAC_SLOTS];
+    int jac_next = 0;
+    if (phiq && !dense) {
+        const size_t mp = (size_t)m->maxpath;
+        double *J = VT_SCRATCH(d, double, JAC_SLOTS * 3 * mp, "points' Jacobian columns");
+        int *rate = VT_SCRATCH(d, int, JAC_SLOTS * mp, "their rates");
+        if (!rate) return vt_scratch_fail(d, mark);
+        for (int k = 0; k < JAC_SLOTS; k++) jac[k] = (point_jac){.body = -1, .rate = rate + k * mp, .J = J + 3 * k * mp};
+    }
 
     body_state A = {.id = -1}, B = {.id = -1}; /* loaded when a row's bodies change */
     point_memo ma = {.id = -1}, mb = {.id = -1};
@@ -468,14 +525,16 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
                 continue;
             }
             const point_memo *pa = point_motion_memo(&ma, &A, sa, rates), *pb = point_motion_memo(&mb, &B, sb, rates);
-            if (phix || (phiq && !dense)) {
+            if (phix) {
                 vt_cross3(jw, pa->s, va);
                 for (int k = 0; k < 3; k++) { jv[k] = -va[k]; jw[k] = -jw[k]; }
-                if (phix) phix_from(pxa, &A, jv, jw);
-                if (phiq && !dense) phiq_twist(m, d, r, A.id, jv, jw);
+                phix_from(pxa, &A, jv, jw);
                 vt_cross3(jw, pb->s, va);
-                if (phix) phix_from(pxb, &B, va, jw);
-                if (phiq && !dense) phiq_twist(m, d, r, B.id, va, jw);
+                phix_from(pxb, &B, va, jw);
+            }
+            if (phiq && !dense) {
+                if (A.id > 0) phiq_point(m, d, r, point_jac_get(jac, &jac_next, m, d, A.id, sa, pa->s), va, -1.0);
+                if (B.id > 0) phiq_point(m, d, r, point_jac_get(jac, &jac_next, m, d, B.id, sb, pb->s), va, 1.0);
             }
             double dP[3], daP[3];
             for (int k = 0; k < 3; k++) dP[k] = pb->P[k] - pa->P[k];
@@ -599,8 +658,11 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
     return VT_OK;
 }
 
-/* a body's S block and its product with a row (the dense Φ_q) */
+/* a body's S block and its product with a row (the dense Φ_q), or the points' Jacobian columns
+ * (the recursive Φ_q) */
 size_t vt_constraints_scratch(const vt_model *m)
 {
-    return VT_SCRATCH_BYTES(8 * (size_t)m->maxpath, sizeof(double));
+    const size_t mp = (size_t)m->maxpath, dense = VT_SCRATCH_BYTES(8 * mp, sizeof(double));
+    const size_t points = VT_SCRATCH_BYTES(JAC_SLOTS * 3 * mp, sizeof(double)) + VT_SCRATCH_BYTES(JAC_SLOTS * mp, sizeof(int));
+    return dense > points ? dense : points;
 }

@@ -659,11 +659,6 @@ static vt_status fused_check(const vt_model *m, vt_data *d, const int given, con
                    "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
 }
 
-/* the joint-driven (given = 0) or given (1) instant of an all-revolute tree: inward_pass's
- * outputs, and vt_kinematics_tree's (without Ṡq̇) */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
 /* W̄_j += W̄_i moved from P_i to P_j by the short P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
 #if defined(__GNUC__)
 __attribute__((always_inline))
@@ -678,7 +673,9 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
     for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
 }
 
-/* bounded: fused_bounded holds, the outputs need no scan */
+/* the joint-driven (given = 0) or given (1) instant of a tree without base bodies: inward_pass's
+ * outputs, and vt_kinematics_tree's (without Ṡq̇); bounded: fused_bounded holds, the outputs need
+ * no scan */
 static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed, const int bounded)
 {
     const int n = m->nbody;

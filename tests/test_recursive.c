@@ -385,6 +385,60 @@ static void test_articulated(void **state)
     }
 }
 
+/* point drives on five points of four bodies, in an order that revisits points (the recursive
+ * Φ_q keeps each point's Jacobian columns for the drives on it, four points at a time): the
+ * tip's x, y and z, two points of the tip's body, and points further in, one after another
+ * and back; Φ_q and every output against the dense path (Φ_q = Φ_x S) */
+static void test_point_drives_share_points(void **state)
+{
+    (void)state;
+    static const struct { int back, pt, comp; } rows[] = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 0},
+                                                          {0, 4, 1}, {0, 0, 2}, {1, 1, 0}};
+    static const double pts[5][3] = {{0.2, 0.0, 0.05}, {0.1, -0.1, 0.0}, {-0.05, 0.15, 0.1}, {0.0, 0.0, 0.2}, {-0.2, 0.1, 0.0}};
+    int ran = 0;
+    for (uint64_t seed = 1; seed <= 12; seed++) {
+        const int n = 14;
+        vt_model *probe, *m;
+        assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
+        int line[4], tip = 1; /* the body with the most rates on its path, and three bodies up it */
+        for (int i = 2; i <= n; i++)
+            if (probe->body_pathnum[i] > probe->body_pathnum[tip]) tip = i;
+        line[0] = tip;
+        for (int k = 1; k < 4; k++) line[k] = line[k - 1] ? probe->body_parent[line[k - 1]] : 0;
+        const int deep = line[3] > 0 && probe->body_pathnum[line[3]] >= 2 && probe->body_pathnum[tip] >= 9;
+        vt_model_free(probe);
+        if (!deep) continue;
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_NO_BASE));
+        for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+            vt_drive_def pd = vt_default_drive_def();
+            pd.type = VT_DRIVE_POINT;
+            pd.body = line[rows[k].back];
+            pd.index = rows[k].comp;
+            memcpy(pd.point, pts[rows[k].pt], sizeof pd.point);
+            pd.f = vt_function_sine(0.05 * (double)k, 0.2, 1.5, 0.1 * (double)k);
+            assert_true(vt_builder_add_drive(b, &pd) >= 0);
+        }
+        assert_ok(vt_builder_build(&m, b));
+        vt_builder_free(b);
+        vt_data *dr, *dd;
+        assert_ok(vt_data_create(&dr, m));
+        assert_ok(vt_data_create(&dd, m));
+        uint64_t s = seed * 11;
+        vt_scene_random_state(m, dr, &s);
+        memcpy(dd->q, dr->q, (size_t)m->nq * sizeof(double));
+        memcpy(dd->qd, dr->qd, (size_t)m->nv * sizeof(double));
+        both(m, dr, dd);
+        assert_int_equal(path_of(dr), ARTICULATED);
+        ran++;
+        vt_data_free(dr);
+        vt_data_free(dd);
+        vt_model_free(m);
+    }
+    assert_true(ran >= 4);
+}
+
 /* dependent rows (one joint driven twice), square (2 rods) and with a free rate (3 rods): the
  * square and articulated shortcuts hand the ill-conditioned system to the general path, which
  * names the rows, as the dense path does, and leaves q̈ and λ as they were */
@@ -2293,6 +2347,7 @@ int main(void)
         cmocka_unit_test(test_scenes),
         cmocka_unit_test(test_articulated),
         cmocka_unit_test(test_dependent),
+        cmocka_unit_test(test_point_drives_share_points),
         cmocka_unit_test(test_row_on_known_rates),
         cmocka_unit_test(test_far_base_body),
         cmocka_unit_test(test_far_point_mass_pivot),
