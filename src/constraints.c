@@ -477,14 +477,7 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
     if (dense && phiq && !Si) return vt_scratch_fail(d, mark);
     if (phiq) memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
     point_jac jac[JAC_SLOTS];
-    int jac_next = 0;
-    if (phiq && !dense) {
-        const size_t mp = (size_t)m->maxpath;
-        double *J = VT_SCRATCH(d, double, JAC_SLOTS * 3 * mp, "points' Jacobian columns");
-        int *rate = VT_SCRATCH(d, int, JAC_SLOTS * mp, "their rates");
-        if (!rate) return vt_scratch_fail(d, mark);
-        for (int k = 0; k < JAC_SLOTS; k++) jac[k] = (point_jac){.body = -1, .rate = rate + k * mp, .J = J + 3 * k * mp};
-    }
+    int jac_next = -1; /* the slots taken from the scratch at the first point drive */
 
     body_state A = {.id = -1}, B = {.id = -1}; /* loaded when a row's bodies change */
     point_memo ma = {.id = -1}, mb = {.id = -1};
@@ -533,6 +526,14 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
                 phix_from(pxb, &B, va, jw);
             }
             if (phiq && !dense) {
+                if (jac_next < 0) {
+                    const size_t mp = (size_t)m->maxpath;
+                    double *J = VT_SCRATCH(d, double, JAC_SLOTS * 3 * mp, "points' Jacobian columns");
+                    int *rate = VT_SCRATCH(d, int, JAC_SLOTS * mp, "their rates");
+                    if (!rate) return vt_scratch_fail(d, mark);
+                    for (int k = 0; k < JAC_SLOTS; k++) jac[k] = (point_jac){.body = -1, .rate = rate + k * mp, .J = J + 3 * k * mp};
+                    jac_next = 0;
+                }
                 if (A.id > 0) phiq_point(m, d, r, point_jac_get(jac, &jac_next, m, d, A.id, sa, pa->s), va, -1.0);
                 if (B.id > 0) phiq_point(m, d, r, point_jac_get(jac, &jac_next, m, d, B.id, sb, pb->s), va, 1.0);
             }
