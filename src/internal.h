@@ -203,10 +203,17 @@ static inline void vt_max_add4(vt_max_scan *s, const double *a)
 }
 static inline void vt_max_add(vt_max_scan *s, const double *a, int n)
 {
-    if (n < 4) {
-        double t[4] = {0, 0, 0, 0};
-        for (int k = 0; k < n; k++) t[k] = a[k];
-        vt_max_add4(s, t);
+    if (n < 4) { /* one by one into the first lane: a copy to pad four cost more */
+        for (int k = 0; k < n; k++) {
+            int64_t u;
+            memcpy(&u, a + k, sizeof u);
+            u &= 0x7fffffffffffffff;
+#if defined(__GNUC__)
+            if (u > s->l[0]) s->l[0] = u;
+#else
+            if (u > s->l.l[0]) s->l.l[0] = u;
+#endif
+        }
         return;
     }
     for (int k = 0; k < n - 4; k += 4) vt_max_add4(s, a + k);

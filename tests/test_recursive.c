@@ -2339,6 +2339,43 @@ static void test_finite_scan(void **state)
         }
 }
 
+/* vt_max_scan over two arrays of 0..13 entries (the short ones one by one, the others four at a
+ * time): the largest magnitude as fmax of fabs says, +Inf with any Inf or NaN among them */
+static void test_max_scan(void **state)
+{
+    (void)state;
+    const double bad[3] = {NAN, INFINITY, -INFINITY};
+    double a[13], b[13];
+    for (int n = 0; n <= 13; n++)
+        for (int nb = 0; nb <= 13; nb += 3)
+            for (int big = -1; big < n + nb; big++) { /* the largest entry at each place in turn */
+                for (int k = 0; k < 13; k++) {
+                    a[k] = (k % 3 == 0) ? -4.9e-324 : (k % 3 == 1 ? 0.5 + k : -(1.0 + k));
+                    b[k] = -0.75 * a[k];
+                }
+                if (big >= 0) (big < n ? a : b)[big < n ? big : big - n] = big % 2 ? -1e300 : 1e300;
+                double expect = 0.0;
+                for (int k = 0; k < n; k++) expect = fmax(expect, fabs(a[k]));
+                for (int k = 0; k < nb; k++) expect = fmax(expect, fabs(b[k]));
+                vt_max_scan s = {0};
+                vt_max_add(&s, a, n);
+                vt_max_add(&s, b, nb);
+                assert_true(vt_max_result(&s) == expect);
+                if (big >= 0) continue;
+                for (int w = 0; w < 2; w++)
+                    for (int pos = 0; pos < (w ? nb : n); pos++)
+                        for (int v = 0; v < 3; v++) {
+                            double *x = w ? b : a, keep = x[pos];
+                            x[pos] = bad[v];
+                            vt_max_scan t = {0};
+                            vt_max_add(&t, a, n);
+                            vt_max_add(&t, b, nb);
+                            assert_true(vt_max_result(&t) == HUGE_VAL);
+                            x[pos] = keep;
+                        }
+            }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2371,6 +2408,7 @@ int main(void)
         cmocka_unit_test(test_fused_kinematics),
         cmocka_unit_test(test_fused_overflow),
         cmocka_unit_test(test_finite_scan),
+        cmocka_unit_test(test_max_scan),
         cmocka_unit_test(test_bounded_outputs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
