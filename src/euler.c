@@ -27,22 +27,12 @@ void vt_euler_G(double G[12], const double p[4])
 
 void vt_euler_A(double A[9], const double p[4])
 {
-    /* A = E G^T, written out: (p0² − e·e) I + 2 e e^T + 2 p0 ẽ */
-    const double p0 = p[0], p1 = p[1], p2 = p[2], p3 = p[3];
-    const double s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
-    A[0] = s + 2 * p1 * p1;      A[3] = 2 * (p1 * p2 - p0 * p3); A[6] = 2 * (p1 * p3 + p0 * p2);
-    A[1] = 2 * (p1 * p2 + p0 * p3); A[4] = s + 2 * p2 * p2;      A[7] = 2 * (p2 * p3 - p0 * p1);
-    A[2] = 2 * (p1 * p3 - p0 * p2); A[5] = 2 * (p2 * p3 + p0 * p1); A[8] = s + 2 * p3 * p3;
+    vt_euler_A_inline(A, p);
 }
 
 void vt_quat_mul(double r[4], const double a[4], const double b[4])
 {
-    double t[4];
-    t[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
-    t[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
-    t[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
-    t[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
-    r[0] = t[0]; r[1] = t[1]; r[2] = t[2]; r[3] = t[3];
+    vt_quat_mul_inline(r, a, b);
 }
 
 void vt_quat_axis_angle(double p[4], const double u[3], double angle)

@@ -76,6 +76,25 @@ static inline void vt_mulE(double r[3], const double E[12], const double a[4])
     for (int k = 0; k < 3; k++) r[k] = E[k] * a[0] + E[3 + k] * a[1] + E[6 + k] * a[2] + E[9 + k] * a[3];
 }
 
+/* A(p) = E G^T written out, (p0² − e·e) I + 2 e e^T + 2 p0 ẽ: vt_euler_A, inline for the fused
+ * passes (no call with their vectors live) */
+static inline void vt_euler_A_inline(double A[9], const double p[4])
+{
+    const double p0 = p[0], p1 = p[1], p2 = p[2], p3 = p[3], s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
+    A[0] = s + 2 * p1 * p1, A[3] = 2 * (p1 * p2 - p0 * p3), A[6] = 2 * (p1 * p3 + p0 * p2);
+    A[1] = 2 * (p1 * p2 + p0 * p3), A[4] = s + 2 * p2 * p2, A[7] = 2 * (p2 * p3 - p0 * p1);
+    A[2] = 2 * (p1 * p3 - p0 * p2), A[5] = 2 * (p2 * p3 + p0 * p1), A[8] = s + 2 * p3 * p3;
+}
+/* r = a ⊗ b (r may be a or b): vt_quat_mul, inline */
+static inline void vt_quat_mul_inline(double r[4], const double a[4], const double b[4])
+{
+    const double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3], b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3];
+    r[0] = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3;
+    r[1] = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2;
+    r[2] = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1;
+    r[3] = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0;
+}
+
 /* r = ½ E(p)^T w = ½ [0; w] ⊗ p: the rate of Euler parameters p turning at w (global) */
 static inline void vt_quat_rate(double r[4], const double p[4], const double w[3])
 {

@@ -392,8 +392,8 @@ static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, d
     const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j, *p0 = m->body_quat0 + 4 * i;
     double p[4], A[9], e[3], sij[3], sji[3], t[3];
     memcpy(p, j ? d->x + vt_xoff(j) + 3 : unit_quat, sizeof p);
-    if (!vt_quat_is_identity(p0)) vt_quat_mul(p, p, p0);
-    vt_euler_A(A, p);
+    if (!vt_quat_is_identity(p0)) vt_quat_mul_inline(p, p, p0);
+    vt_euler_A_inline(A, p);
     vt_mulmat3(e, Aj, u);
     for (int k = 0; k < 3; k++) t[k] = q * e[k];
     vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
@@ -497,19 +497,8 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
             p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
         }
         const double *p0 = m->body_quat0 + 4 * i;
-        if (!vt_quat_is_identity(p0)) { /* p ⊗ p0 (vt_quat_mul) */
-            const double a0 = p[0], a1 = p[1], a2 = p[2], a3 = p[3], b0 = p0[0], b1 = p0[1], b2 = p0[2], b3 = p0[3];
-            p[0] = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3;
-            p[1] = a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2;
-            p[2] = a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1;
-            p[3] = a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0;
-        }
-        { /* vt_euler_A, inlined: no call with the vectors live */
-            const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3], sq = e0 * e0 - e1 * e1 - e2 * e2 - e3 * e3;
-            A[0] = sq + 2 * e1 * e1, A[3] = 2 * (e1 * e2 - e0 * e3), A[6] = 2 * (e1 * e3 + e0 * e2);
-            A[1] = 2 * (e1 * e2 + e0 * e3), A[4] = sq + 2 * e2 * e2, A[7] = 2 * (e2 * e3 - e0 * e1);
-            A[2] = 2 * (e1 * e3 - e0 * e2), A[5] = 2 * (e2 * e3 + e0 * e1), A[8] = sq + 2 * e3 * e3;
-        }
+        if (!vt_quat_is_identity(p0)) vt_quat_mul_inline(p, p, p0);
+        vt_euler_A_inline(A, p);
         vt_mulmat3(e, Aj, u);
         vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
         vt_mulmat3(sji, A, m->body_jchild + 3 * i);
@@ -673,6 +662,47 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
     for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
 }
 
+/* fused_pass's inward step on a translational joint (joint_reaction and shift_to_parent for one
+ * sliding rate, written out): its twist (0, e) paired with W̄_i gives τ = e · f − qfrc, the
+ * reaction is W̄_i less the actuation (τ + qfrc) e along the axis, its whole moment kept. Not
+ * inlined, as fused_slide. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, const int given)
+{
+    const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
+    const double *Wi = W + 6 * i, *e = d->jaxis + 9 * i, *A = d->A + 9 * i, qf = d->qfrc[c];
+    double f[3], mo[3], fb[3], mb[3]; /* locals, stored once: the outputs might alias the inputs */
+    vt_copy3(f, Wi + 3);
+    vt_copy3(mo, Wi);
+    vt_mulmat3t(fb, A, f);
+    vt_mulmat3t(mb, A, mo);
+    vt_copy3(d->jnt_force_total + 3 * i, f); /* the total: W̄_i about P_i, actuation included */
+    vt_copy3(d->jnt_moment_total + 3 * i, mo);
+    vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+    vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+    double tau = 0.0;
+    if (given || dr >= 0) tau = vt_dot3(e, f) - qf;
+    if (!given && dr >= 0) {
+        d->lambda[m->drive_row[dr]] = tau;
+        d->drive_effort[dr] = tau;
+        double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+        for (int k = 0; k < 3; k++) {
+            df[k] = tau * e[k];
+            dm[k] = 0.0;
+        }
+    }
+    d->qfrc_drive[c] = tau;
+    vt_axpy3(f, -(tau + qf), e); /* actuation is not reaction */
+    vt_mulmat3t(fb, A, f);
+    vt_copy3(d->jnt_force + 3 * i, f);
+    vt_copy3(d->jnt_moment + 3 * i, mo);
+    vt_copy3(d->jnt_force_body + 3 * i, fb);
+    vt_copy3(d->jnt_moment_body + 3 * i, mb);
+    if (j > 0) shift_to_parent(m, d, W, i, j);
+}
+
 /* the joint-driven (given = 0) or given (1) instant of a tree without base bodies: inward_pass's
  * outputs, and vt_kinematics_tree's (without Ṡq̇); bounded: fused_bounded holds, the outputs need
  * no scan */
@@ -690,6 +720,10 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
     }
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
+        if (mixed && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
+            fused_slide_inward(m, d, W, i, given);
+            continue;
+        }
         if (mixed && m->body_joint[i] != VT_JOINT_REVOLUTE) {
             (void)joint_reaction(m, d, W + 6 * i, i, given, 1); /* checked with the rest: fused_check */
             if (j > 0) shift_to_parent(m, d, W, i, j);
