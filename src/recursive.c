@@ -367,9 +367,9 @@ static inline vt_status inward_pass(const vt_model *m, vt_data *d, const int giv
  * loop over the bodies, the subtree wrenches, efforts and reactions in one inward loop; the same
  * equations as vt_kinematics_tree, vt_accelerations, body_wrench and inward_pass. A revolute body
  * has its own code, written for one rotational rate (e = A^j u, its twist (e, (P − o) × e),
- * t = 0, ė = ω^j × e, τ = e · the moment about P), a translational one its own outward code
- * (fused_slide); any other joint, and a translational one's inward step, take the general
- * code's stages for the body. */
+ * t = 0, ė = ω^j × e, τ = e · the moment about P), a translational one its own code both ways
+ * (fused_slide, fused_slide_inward); any other joint takes the general code's stages for the
+ * body. */
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
 /* fused_outward's body on a translational joint (vt_kinematics_body, vt_acceleration_body and
