@@ -371,8 +371,12 @@ VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double
 /// naming the entry, before anything is written.
 /// With opt->forward_check, the forward check integrates the model without drives under
 /// the drives' generalized forces, evaluated exactly at every time IDA asks for (the kinematic
-/// solution there to opt->newton_tol, Newton started from the rows around it; at the output
-/// times the rows' own efforts) (in a build
+/// solution there, Newton started from the rows around it and taken one step past
+/// opt->newton_tol; at the output times the rows' own efforts). IDA integrates the deviation
+/// from that exact motion (the same equations, the motion exact rather than integrated): with
+/// right efforts it stays at round-off and IDA takes few steps whatever rtol; q_fwd, q̇_fwd at a
+/// row are the row plus the deviation there, so that tr->fwd_err_q is the deviation the efforts
+/// cause, not IDA's error in integrating the motion (in a build
 /// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).

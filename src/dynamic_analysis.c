@@ -34,7 +34,18 @@
  * forward_independent = 0, both share one IDA run, y = [y_driven; y_forward], the efforts from
  * the driven block's λ at the same t.) For a fully driven model they are exact: the kinematic
  * solution at every t that IDA asks for, Newton started from the analysis's rows around t
- * interpolated, and at the output times the rows themselves. A forward model without constraint
+ * interpolated and taken one step past newton_tol (VT_SOLVE_POLISH: its error is then
+ * round-off), and at the output times the rows themselves. There IDA's unknowns are the
+ * deviation from that exact motion y_ref(t) = [q; v; 0], y_ref' = [T(q) v; q̈; 0]:
+ *   e = y − y_ref(t),   G(t, e, e') = F(t, y_ref(t) + e, y_ref'(t) + e') = 0,
+ * the same equations in shifted unknowns (y_ref and y_ref' exact, not integrated), so that IDA's
+ * error test and steps follow what the efforts' error drives and not the motion itself: with
+ * exact efforts e stays at round-off and IDA takes a few long steps (the five-link arm: 18 for
+ * 100 rows, where y itself took about 500 at rtol 1e-8, its 1.4e-6 rad error IDA's own), and a
+ * wrong effort shows as the deviation it causes (test_forward_check_measures_wrong_efforts). The
+ * reference must sit on the forward model's constraints to round-off (GGL's Φ(q) = 0 rows):
+ * Newton's error left within newton_tol would jitter from one t to the next, and IDA would chase
+ * it. A forward model without constraint
  * rows (a tree) has its residual M* v' − Q by one recursive pass (vt_inverse_dynamics_motion
  * with q̈ = v'): the same equations, O(n), M* and Q not formed.
  */
@@ -106,6 +117,8 @@ typedef struct {
         int dk_valid;   /* dk holds the exact efforts at dk->time (they depend on t alone) */
         int motion;     /* the forward block's residual by motion_residual (set by start()) */
         const vt_trajectory *rows; /* exact efforts: the kinematic analysis's rows, Newton's starts */
+        double *ref;    /* exact efforts: y_ref, y'_ref of the reference motion at dk->time, then
+                           y = y_ref + e and y' (4 x N); NULL: IDA's unknowns are y itself */
     } s;
 } dae;
 
@@ -306,11 +319,11 @@ static vt_status exact_efforts(const dae *p, const vt_model *m, double t)
     else if (hi + 1 < tr->nfilled) third = hi + 1;
     if (far == near) third = -1;
     vt_status st = vt_kinematic_start(m, dk, tr, near, far == near ? -1 : far, third);
-    if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS, NULL, NULL, 0.0);
+    if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS | VT_SOLVE_POLISH, NULL, NULL, 0.0);
     if (st == VT_ERR_NEWTON) {
         memcpy(dk->q, tr->q + (size_t)near * (size_t)m->nq, (size_t)m->nq * sizeof(double));
         memcpy(dk->qd, tr->qd + (size_t)near * (size_t)m->nv, (size_t)m->nv * sizeof(double));
-        st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS, NULL, NULL, 0.0);
+        st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS | VT_SOLVE_POLISH, NULL, NULL, 0.0);
     }
     return st;
 }
@@ -333,6 +346,35 @@ static void row_efforts(const dae *p, const vt_model *m, int k)
     dk->time = tr->t[k];
 }
 
+/* y_ref, y'_ref of one block at a state in d: [q; v; 0], [T(q) v; q̈; 0] */
+static void block_reference(const vt_model *m, const vt_data *d, int n, double *yr, double *ypr)
+{
+    const int nq = m->nq, nv = m->nv;
+    memcpy(yr, d->q, (size_t)nq * sizeof(double));
+    memcpy(yr + nq, d->qd, (size_t)nv * sizeof(double));
+    memset(yr + nq + nv, 0, (size_t)(n - nq - nv) * sizeof(double));
+    qdot_from_v(m, d->q, d->qd, ypr);
+    memcpy(ypr + nq, d->qdd, (size_t)nv * sizeof(double));
+    memset(ypr + nq + nv, 0, (size_t)(n - nq - nv) * sizeof(double));
+}
+
+/* the exact efforts at t in dk (IDA's iterations and Jacobian at one t reuse them), and the
+ * reference motion there */
+static vt_status reference(dae *p, const vt_model *m, double t)
+{
+    if (p->s.dk_valid && p->dk->time == t) return VT_OK;
+    p->dk->time = t;
+    p->s.dk_valid = 0;
+    const vt_status st = exact_efforts(p, m, t);
+    if (st) return st;
+    p->s.dk_valid = 1;
+    if (p->s.ref) {
+        const int n = block_size(p->mf, p->form);
+        block_reference(m, p->dk, n, p->s.ref, p->s.ref + n);
+    }
+    return VT_OK;
+}
+
 static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)
 {
     dae *p = user;
@@ -350,11 +392,16 @@ static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
         p->dk->time = t;
         if ((st = vt_inverse_dynamics(m, p->dk))) return refused(p, st, p->dk->message, t);
     } else if (p->dk) {
-        if (!p->s.dk_valid || p->dk->time != t) { /* (IDA's iterations and Jacobian at one t reuse them) */
-            p->dk->time = t;
-            p->s.dk_valid = 0;
-            if ((st = exact_efforts(p, m, t))) return refused(p, st, p->dk->message, t);
-            p->s.dk_valid = 1;
+        if ((st = reference(p, m, t))) return refused(p, st, p->dk->message, t);
+        if (p->s.ref) { /* IDA's unknowns are the deviation e from the reference: y = y_ref + e */
+            const int n = block_size(p->mf, p->form);
+            double *yf = p->s.ref + 2 * (size_t)n, *ypf = yf + n;
+            for (int k = 0; k < n; k++) {
+                yf[k] = p->s.ref[k] + y[k];
+                ypf[k] = p->s.ref[n + k] + yp[k];
+            }
+            y = yf;
+            yp = ypf;
         }
     } else { /* the efforts of the driven block's current λ */
         /* (the ODE form has no λ in y: its residual's vt_solve left them in d already) */
@@ -379,16 +426,24 @@ static int jacobian(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_
 {
     dae *p = user;
     (void)tmp3;
+    if (p->s.ref) { /* (the reference at t: the residual's at t, unless IDA evaluated another t since) */
+        const vt_status st = reference(p, p->dk->model, t);
+        if (st) return refused(p, st, p->dk->message, t);
+    }
     double h = 0.0;
     if (IDAGetCurrentStep(p->s.ida, &h) < 0 || IDAGetErrWeights(p->s.ida, tmp2) < 0) return -1;
     double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
     const double *r = N_VGetArrayPointer(rr), *rj = N_VGetArrayPointer(tmp1), *w = N_VGetArrayPointer(tmp2);
     const double srur = sqrt(DBL_EPSILON);
     const sunindextype n = SUNDenseMatrix_Columns(J);
+    /* with the deviation as unknowns the increments are those of y = y_ref + e: round-off is
+     * relative to y, not to e */
+    const double *yr = p->s.ref, *ypr = p->s.ref ? p->s.ref + n : NULL;
     for (sunindextype j = 0; j < n; j++) {
         const double yj = y[j], ypj = yp[j];
-        double inc = fmax(srur * fmax(fabs(yj), fabs(h * ypj)), 1.0 / w[j]);
-        if (h * ypj < 0.0) inc = -inc;
+        const double ya = yr ? yr[j] + yj : yj, ypa = ypr ? ypr[j] + ypj : ypj;
+        double inc = fmax(srur * fmax(fabs(ya), fabs(h * ypa)), 1.0 / w[j]);
+        if (h * ypa < 0.0) inc = -inc;
         inc = (yj + inc) - yj; /* the increment as represented */
         y[j] += inc;
         yp[j] += cj * inc;
@@ -580,8 +635,20 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
             CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
         }
         const double *yv = N_VGetArrayPointer(y);
+        double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
+        if (p->s.ref) { /* the state: the row (the reference at tout) + the deviation */
+            row_efforts(p, p->dk->model, k);
+            p->s.dk_valid = 1;
+            block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
+            yw = p->s.ref + 2 * (size_t)N;
+            ypw = yw + N;
+            for (int c = 0; c < N; c++) {
+                yw[c] = p->s.ref[c] + N_VGetArrayPointer(y)[c];
+                ypw[c] = p->s.ref[N + c] + N_VGetArrayPointer(yp)[c];
+            }
+            yv = yw;
+        }
         if (p->form == VT_FORMULATION_PROJECTION) { /* back onto the constraints, then restart IDA */
-            double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
             const vt_data *dp = p->m ? p->d : p->df;
             if ((p->m && (st = block_project(p, p->m, p->d, tret, yw, ypw))) ||
                 (p->mf && (dp = p->df, st = block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd)))) {
@@ -590,6 +657,11 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                 vt_fail(md->message, st, "projection at t = %g failed: %.200s", tret, why);
                 goto done;
             }
+            if (p->s.ref) /* back to the deviation */
+                for (int c = 0; c < N; c++) {
+                    N_VGetArrayPointer(y)[c] = yw[c] - p->s.ref[c];
+                    N_VGetArrayPointer(yp)[c] = ypw[c] - p->s.ref[N + c];
+                }
             long a = 0, b = 0;
             IDAGetNumSteps(mem, &a);
             IDAGetNumResEvals(mem, &b);
@@ -613,7 +685,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                     vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
                     goto done;
                 }
-            } else if (p->dk) { /* exact efforts: the kinematic row already stored at this time */
+            } else if (p->dk && !p->s.ref) { /* exact efforts: the kinematic row already stored at this time */
                 row_efforts(p, m, k);
                 p->s.dk_valid = 1;
             }
@@ -634,6 +706,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                 goto done;
             }
             vt_trajectory_store_forward(tr, p->mf, p->df, k);
+            if (p->s.ref) p->s.dk_valid = 0; /* the residual's reference is Newton's polished solution, not the row */
         }
         if (opt->progress && opt->progress(tret, tend, opt->user)) {
             st = vt_fail(md->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
@@ -708,9 +781,11 @@ static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
 {
     const int nd = p->m ? block_size(p->m, p->form) : 0, N = nd + (p->mf ? block_size(p->mf, p->form) : 0);
     const int nv = p->m ? p->m->nv : p->mf->nv;
-    double *buf = malloc((3 * (size_t)N + (size_t)nv) * sizeof(double));
+    const int dev = p->dk && !p->src && !p->m; /* exact efforts: the deviation from the rows */
+    double *buf = malloc(((3 + (dev ? 4 : 0)) * (size_t)N + (size_t)nv) * sizeof(double));
     if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
     p->w = buf + 3 * (size_t)N;
+    p->s.ref = dev ? p->w + nv : NULL;
     p->band = p->form == VT_FORMULATION_ODE ? opt->redundant_band : 0.0; /* the ODE form's solves */
     /* a forward model without rows (no loop, no base body): its residual by one recursive pass */
     p->s.motion = p->mf && p->mf->nc == 0 && p->form != VT_FORMULATION_ODE;
@@ -723,6 +798,16 @@ static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
         block_ids(p->mf, p->form, buf + 2 * N + nd);
     }
     p->nd = nd;
+    if (dev) { /* e = y − y_ref at t0, the first row */
+        row_efforts(p, p->dk->model, 0);
+        p->s.dk_valid = 1;
+        block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
+        p->s.dk_valid = 0;
+        for (int k = 0; k < N; k++) {
+            buf[k] -= p->s.ref[k];
+            buf[N + k] -= p->s.ref[N + k];
+        }
+    }
     const vt_status st = run(p, opt, tr, N, buf, buf + N, buf + 2 * N);
     free(buf);
     return st;
@@ -732,7 +817,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
 {
     vt_model *mf = NULL;
     vt_data *df = NULL;
-    vt_status st = vt_kinematic_solve(m, dk, opt->newton_tol, opt->newton_maxit);
+    vt_status st = vt_kinematic_solve(dk->model, dk, opt->newton_tol, opt->newton_maxit);
     if (st == VT_OK) st = forward_setup(m, dk, d->xfrc, opt->forward_as_loads, &mf, &df);
     if (st) {
         vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);

@@ -385,8 +385,9 @@ size_t vt_inverse_transform_scratch(const vt_model *m);
 vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals);
 /* vt_kinematic_solve_impl's instants: the dense one, the recursive one, the recursive one
  * without α and the joints' total wrenches (vt_reactions_total; the analyses' rows and the
- * exact efforts do not keep them) */
-enum { VT_SOLVE_DENSE = 0, VT_SOLVE_RECURSIVE = 1, VT_SOLVE_RECURSIVE_NO_TOTALS = 2 };
+ * exact efforts do not keep them); or'ed with VT_SOLVE_POLISH, one Newton step more once
+ * max |Φ| ≤ tol (from within tol the error is then round-off: the forward check's reference) */
+enum { VT_SOLVE_DENSE = 0, VT_SOLVE_RECURSIVE = 1, VT_SOLVE_RECURSIVE_NO_TOTALS = 2, VT_SOLVE_POLISH = 4 };
 vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
                                   const double *qprev, const double *qdprev, double h);
 /* Newton's start at d->time into d->q, d->qd: the Hermite polynomial through q, q̇, q̈ of rows k1
@@ -763,11 +764,12 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
 int vt_run_rows(const vt_run_options *opt);
 double vt_run_time(const vt_run_options *opt, int k);
 
-/* The forward check with IDA (dynamic_analysis.c): integrates the model without drives (mf, df)
- * from the driven state at opt->t0, with df->qfrc = the drives' generalized force at each
- * time, evaluated exactly on dk by vt_kinematic_solve_impl from the rows of tr around it,
- * interpolated (vt_kinematic_start), and at the output times taken from tr's rows (fully driven
- * models). */
+/* The forward check with IDA (dynamic_analysis.c): integrates m without drives from the driven
+ * state at opt->t0, with the drives' generalized force at each time, evaluated exactly on dk (of
+ * dk->model: m itself, or in a test a model of other inertia with the same joints and drives) by
+ * vt_kinematic_solve_impl from the rows of tr around it, interpolated (vt_kinematic_start), and at
+ * the output times taken from tr's rows (fully driven models). IDA's unknowns are the deviation
+ * from that exact motion. */
 vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr);
 
 #endif

@@ -168,6 +168,8 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     if (!(tol > 0.0) || !isfinite(tol) || maxit < 1)
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_kinematic_solve: tol %g must be finite and positive, maxit %d positive",
                        tol, maxit);
+    const int polish = recursive & VT_SOLVE_POLISH;
+    recursive &= ~VT_SOLVE_POLISH;
     const size_t mark = vt_scratch_mark(d);
     double *qsave = VT_SCRATCH(d, double, (size_t)m->nq + (size_t)m->nv, "q and q̇ as given");
     double *step = VT_SCRATCH(d, double, m->nv, "Newton step");
@@ -183,7 +185,7 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     memcpy(qsave, d->q, (size_t)m->nq * sizeof(double));
     memcpy(qsave + m->nq, d->qd, (size_t)m->nv * sizeof(double));
     double res = 0.0;
-    int it = 0;
+    int it = 0, polished = !polish;
     vt_status st;
     if (m->nc > 0) {
         if ((st = vt_drive_values(m, d, fd))) return restore(m, d, qsave, mark, st); /* once: t is fixed */
@@ -202,8 +204,10 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
                 it--;
                 continue;
             }
-            if (res <= tol) break;
-            if (it == maxit)
+            if (res <= tol) {
+                if (polished) break;
+                polished = 1; /* one step more: its error is the square of this one's */
+            } else if (it >= maxit)
                 return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NEWTON,
                                              "vt_kinematic_solve: max |Φ| = %.3g after %d iterations at t = %g", res,
                                              maxit, d->time));

@@ -5,6 +5,7 @@
 #include <ida/ida.h>
 
 #include "vt_test.h"
+#include "../src/internal.h" /* vt_forward_exact */
 
 static void tip(double out[2], const vt_model *m, vt_data *d, const double *q)
 {
@@ -606,6 +607,76 @@ static int toward_stretch(double t, double out[3], void *user)
     return 0;
 }
 
+/* A rotor about a vertical axis (no gravity moment): I q̈ = τ. The forward check of a kinematic
+ * analysis must report what efforts of the wrong inertia do: efforts I (1 + ε) q̈ on the rotor
+ * of inertia I turn it by q + ε (q − q0 − q̇0 t) exactly. vt_forward_exact takes the efforts of a
+ * second model (ε) for the forward run of the first; with ε = 0 the deviation is round-off. */
+static vt_model *rotor(double eps)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = md.gravity[2] = 0.0;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.mass = 2.0;
+    body.joint_child[0] = -0.5;                                  /* I = 0.1 + 2 · 0.5² = 0.6 about the axis */
+    body.inertia[0] = body.inertia[4] = 0.2;
+    body.inertia[8] = 0.1 + eps * 0.6;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    static const double c[4] = {0.2, 0.5, 1.5, -0.8};             /* q = 0.2 + 0.5 t + 1.5 t² − 0.8 t³ */
+    vt_drive_def dr = vt_default_drive_def();
+    dr.f = vt_function_polynomial(4, c);
+    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void test_forward_check_measures_wrong_efforts(void **state)
+{
+    (void)state;
+    static const double eps[2] = {0.0, 1e-6};
+    vt_model *m = rotor(0.0);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    for (int e = 0; e < 2; e++) {
+        vt_model *m2 = rotor(eps[e]); /* the efforts' model */
+        vt_data *d2, *dk;
+        vt_trajectory *tr;
+        assert_ok(vt_data_create(&d2, m2));
+        assert_ok(vt_data_create(&dk, m2));
+        vt_run_options opt = vt_default_run_options();
+        opt.nout = 50;
+        opt.forward_check = 0;
+        assert_ok(vt_trajectory_create(&tr, m2, opt.nout + 1));
+        assert_ok(vt_kinematic_analysis(m2, d2, &opt, tr));
+        dk->q[0] = tr->q[0];
+        dk->qd[0] = tr->qd[0];
+        dk->time = opt.t0;
+        assert_ok(vt_forward_exact(m, d, dk, &opt, tr));
+        const double q0 = tr->q[0], v0 = tr->qd[0];
+        assert_near(q0, 0.2, 1e-12);
+        assert_near(v0, 0.5, 1e-12);
+        double worst = 0.0, dev = 0.0;
+        for (int k = 0; k < tr->nfilled; k++) {
+            const double t = tr->t[k], q = tr->q[k], v = tr->qd[k];
+            const double eq = eps[e] * (q - q0 - v0 * t), ev = eps[e] * (v - v0); /* exact deviations */
+            worst = fmax(worst, fmax(fabs(tr->q_fwd[k] - q - eq), fabs(tr->qd_fwd[k] - v - ev)));
+            dev = fmax(dev, fabs(eq));
+        }
+        print_message("rotor, efforts of inertia (1 + %g) I: deviation %.3g rad, its error %.3g\n", eps[e], dev, worst);
+        if (e == 0) assert_true(worst <= 1e-13 && tr->fwd_err_q <= 1e-13);
+        else assert_true(dev > 5e-7 && worst <= 1e-3 * dev && fabs(tr->fwd_err_q - dev) <= 1e-3 * dev);
+        vt_trajectory_free(tr);
+        vt_data_free(dk);
+        vt_data_free(d2);
+        vt_model_free(m2);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* Trial states a stage refuses stay recoverable (IDA retries with smaller steps), and when IDA
  * gives up the refusing stage's status and message are returned, not IDA's generic failure:
  * two 2 m links whose tip's x is driven to 3 + 2t, their full reach at t = 0.5 (the rates grow
@@ -721,6 +792,7 @@ int main(void)
         cmocka_unit_test(test_drive_fails_midway),
         cmocka_unit_test(test_orientation_callback_fails_midway),
         cmocka_unit_test(test_refused_states_reported),
+        cmocka_unit_test(test_forward_check_measures_wrong_efforts),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -174,7 +174,7 @@ static void test_strides_forward_power(void **state)
     assert_int_equal(vt_scene_knee_assemble(m, d, -0.25 * PI, 0.35 * om, 0.5 * PI + 0.4 * sin(0.8), 0.4 * om * cos(0.8), NULL), 0);
     assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
     assert_int_equal(tr->nfilled, opt.nout + 1);
-    assert_true(tr->fwd_err_q <= 1e-6);
+    assert_true(tr->fwd_err_q <= 1e-10);
     double pmax = 0.0, perr = 0.0, rworst = 0.0;
     for (int k = 0; k < tr->nfilled; k++) {
         const double *q = tr->q + m->nq * k, *qd = tr->qd + m->nv * k;

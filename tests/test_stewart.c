@@ -202,7 +202,7 @@ static void test_period_pose_forward_power(void **state)
     vt_scene_stewart_assemble(m, d, &sg, 0.0);
     assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
     assert_int_equal(tr->nfilled, opt.nout + 1);
-    assert_true(tr->fwd_err_q <= 1e-6);
+    assert_true(tr->fwd_err_q <= 1e-9);
     double pmax = 0.0, perr = 0.0, dyn = 0.0;
     for (int k = 0; k < tr->nfilled; k++) {
         const double *q = tr->q + m->nq * k;
