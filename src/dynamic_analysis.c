@@ -42,7 +42,8 @@
  * error test and steps follow what the efforts' error drives and not the motion itself: with
  * exact efforts e stays at round-off and IDA takes a few long steps (the five-link arm: 18 for
  * 100 rows, where y itself took about 500 at rtol 1e-8, its 1.4e-6 rad error IDA's own), and a
- * wrong effort shows as the deviation it causes (test_forward_check_measures_wrong_efforts). The
+ * wrong effort shows as the deviation it causes (test_forward_check_measures_wrong_efforts). IDA's
+ * error weights stay those of y, 1 / (rtol |y_ref + e| + atol) (deviation_weights). The
  * reference must sit on the forward model's constraints to round-off (GGL's Φ(q) = 0 rows):
  * Newton's error left within newton_tol would jitter from one t to the next, and IDA would chase
  * it. A forward model without constraint
@@ -119,6 +120,8 @@ typedef struct {
         const vt_trajectory *rows; /* exact efforts: the kinematic analysis's rows, Newton's starts */
         double *ref;    /* exact efforts: y_ref, y'_ref of the reference motion at dk->time, then
                            y = y_ref + e and y' (4 x N); NULL: IDA's unknowns are y itself */
+        double rtol;    /* with ref: IDA's weights are those of y, 1 / (rtol |y_ref + e| + atol) */
+        const double *atol;
     } s;
 } dae;
 
@@ -458,6 +461,22 @@ static int jacobian(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_
     return 0;
 }
 
+/* The error weights of the deviation e are those IDA would give y = y_ref + e: the tolerances
+ * keep their meaning (rtol relative to the state), and e's round-off, which is relative to y,
+ * stays far below them whatever atol (weights of e alone, 1 / (rtol |e| + atol), would make IDA
+ * chase that round-off once atol nears ε |y|). y_ref is the one last taken, within a step of
+ * IDA's current time: weights are scales, and a fresh exact solution for them would cost as
+ * much as a step's efforts */
+static int deviation_weights(N_Vector yy, N_Vector ewt, void *user)
+{
+    const dae *p = user;
+    const double *y = N_VGetArrayPointer(yy);
+    double *w = N_VGetArrayPointer(ewt);
+    const sunindextype n = N_VGetLength(yy);
+    for (sunindextype k = 0; k < n; k++) w[k] = 1.0 / (p->s.rtol * fabs(p->s.ref[k] + y[k]) + p->s.atol[k]);
+    return 0;
+}
+
 static void on_ida_error(int code, const char *module, const char *function, char *msg, void *user)
 {
     dae *p = user;
@@ -564,8 +583,14 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
         goto ida_failed;
     }
     for (int k = 0; k < N; k++) N_VGetArrayPointer(atol)[k] = ids[k] > 0.5 ? opt->atol : 1.0;
-    CHECK(IDASVtolerances(mem, opt->rtol, atol), "IDASVtolerances");
-    CHECK(IDASetUserData(mem, p), "IDASetUserData");
+    CHECK(IDASetUserData(mem, p), "IDASetUserData"); /* (before IDAWFtolerances: its function's data) */
+    if (p->s.ref) {
+        p->s.rtol = opt->rtol;
+        p->s.atol = N_VGetArrayPointer(atol);
+        CHECK(IDAWFtolerances(mem, deviation_weights), "IDAWFtolerances");
+    } else {
+        CHECK(IDASVtolerances(mem, opt->rtol, atol), "IDASVtolerances");
+    }
     CHECK(IDASetLinearSolver(mem, LS, A), "IDASetLinearSolver");
     CHECK(IDASetJacFn(mem, jacobian), "IDASetJacFn");
     CHECK(IDASetId(mem, id), "IDASetId");

@@ -57,6 +57,37 @@ static void test_five_link_circle_and_forward_check(void **state)
     vt_data_free(d);
     vt_model_free(m);
 }
+/* The forward check integrates the deviation from the exact motion, which the exact efforts keep
+ * at round-off: IDA crosses the period in a few dozen steps at any tolerance, also with an atol
+ * far below the round-off of q (its weights are those of the state, rtol |q| + atol, so it does
+ * not chase the deviation's round-off), and the deviation stays round-off */
+static void test_forward_check_few_steps_any_tolerance(void **state)
+{
+    (void)state;
+    static const double tol[4][2] = {{1e-4, 1e-6}, {1e-8, 1e-10}, {1e-12, 1e-14}, {1e-10, 1e-18}};
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 101));
+    for (int k = 0; k < 4; k++) {
+        vt_run_options opt = vt_default_run_options();
+        opt.rtol = tol[k][0];
+        opt.atol = tol[k][1];
+        vt_scene_five_link_guess(m, d, 0.0);
+        memset(d->qd, 0, 5 * sizeof(double));
+        assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+        print_message("five-link forward check, rtol %g atol %g: %ld IDA steps, |q_fwd - q| %.2g rad\n", opt.rtol, opt.atol,
+                      tr->steps_fwd, tr->fwd_err_q);
+        assert_true(tr->steps_fwd > 0 && tr->steps_fwd <= 60);
+        assert_true(tr->fwd_err_q <= 1e-10 && tr->fwd_err_qd <= 1e-9);
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* A spherical joint driven by a relative orientation drive (vt_scene_spherical_chain): the
  * kinematic analysis's Newton from the assembled pose, and the forward check both ways — the
  * generalized forces Φ_q^T λ, and each drive's own load (the relative drive's moment on body 2
@@ -764,6 +795,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_five_link_circle_and_forward_check),
+        cmocka_unit_test(test_forward_check_few_steps_any_tolerance),
         cmocka_unit_test(test_relative_orientation_forward_check),
         cmocka_unit_test(test_free_joint_forward_check),
 #else
