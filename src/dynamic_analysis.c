@@ -663,7 +663,7 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
         double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
         if (p->s.ref) { /* the state: the row (the reference at tout) + the deviation */
             row_efforts(p, p->dk->model, k);
-            p->s.dk_valid = 1;
+            p->s.dk_valid = 0; /* dk holds the row, not the residual's polished reference */
             block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
             yw = p->s.ref + 2 * (size_t)N;
             ypw = yw + N;
@@ -731,7 +731,6 @@ static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N
                 goto done;
             }
             vt_trajectory_store_forward(tr, p->mf, p->df, k);
-            if (p->s.ref) p->s.dk_valid = 0; /* the residual's reference is Newton's polished solution, not the row */
         }
         if (opt->progress && opt->progress(tret, tend, opt->user)) {
             st = vt_fail(md->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
@@ -825,9 +824,8 @@ static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
     p->nd = nd;
     if (dev) { /* e = y − y_ref at t0, the first row */
         row_efforts(p, p->dk->model, 0);
-        p->s.dk_valid = 1;
+        p->s.dk_valid = 0; /* (as at the output rows) */
         block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
-        p->s.dk_valid = 0;
         for (int k = 0; k < N; k++) {
             buf[k] -= p->s.ref[k];
             buf[N + k] -= p->s.ref[N + k];
