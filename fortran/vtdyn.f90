@@ -67,11 +67,12 @@ module vtdyn
   ! vt_route: the route by which the last solve found qdd and lambda (vt_data%route)
   integer(c_int), parameter :: VT_ROUTE_NONE = 0, VT_ROUTE_JOINT_DRIVEN = 1, VT_ROUTE_FREE_RATES = 2, &
       VT_ROUTE_SQUARE = 3, VT_ROUTE_SCHUR = 4, VT_ROUTE_ARTICULATED = 5, VT_ROUTE_AUGMENTED = 6, &
-      VT_ROUTE_REDUNDANT = 7, VT_ROUTE_MOTION = 8, VT_ROUTE_COUNT = 9
+      VT_ROUTE_REDUNDANT = 7, VT_ROUTE_MOTION = 8, VT_ROUTE_MAXIMAL = 9, VT_ROUTE_COUNT = 10
   ! fallback flags in vt_data%fallback: faster routes the last instant left, and why
   integer(c_int), parameter :: VT_FALLBACK_SCHUR_PIVOT = 1, VT_FALLBACK_ARTICULATED_PIVOT = 2, &
       VT_FALLBACK_ARTICULATED_CONDITION = 4, VT_FALLBACK_SQUARE_CONDITION = 8, &
-      VT_FALLBACK_COMPOSITE_ROUNDOFF = 16, VT_FALLBACK_SCHUR_CONDITION = 32
+      VT_FALLBACK_COMPOSITE_ROUNDOFF = 16, VT_FALLBACK_SCHUR_CONDITION = 32, &
+      VT_FALLBACK_MAXIMAL_CONDITION = 64
   ! redundant rows: directions below this fraction of the largest singular value are dropped
   real(c_double), parameter :: VT_REDUNDANT_TOL = 5.0e-4_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()

@@ -22,7 +22,7 @@ static void *take(char *base, size_t *used, size_t bytes)
 static size_t arena_size(const vt_model *m)
 {
     return vt_kinematics_scratch(m) + vt_mass_scratch(m) + vt_forces_scratch(m) + vt_constraints_scratch(m) +
-           vt_solve_scratch(m) + vt_reactions_scratch(m) + vt_recursive_scratch(m) + vt_kinematic_solve_scratch(m) +
+           vt_solve_scratch(m) + vt_maximal_scratch(m) + vt_reactions_scratch(m) + vt_recursive_scratch(m) + vt_kinematic_solve_scratch(m) +
            vt_inverse_transform_scratch(m);
 }
 

@@ -539,6 +539,9 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
  * On its composite M* about o, a rate whose M*_aa is round-off of those terms and that no row
  * fixes is not refused: VT_NEEDS_DENSE (positive), the dense stages decide (recursive.c) */
 #define VT_NEEDS_DENSE ((vt_status)1)
+/* a free-rate route's estimate below √rcond_warn where the maximal-coordinate route (maximal.c)
+ * can solve: the dense stages, which form what it needs, solve the instant again (recursive.c) */
+#define VT_NEEDS_MAXIMAL ((vt_status)2)
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
 /* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl)
  * and the form of M* (dense: S^T M S, else the composite inertias about o, as vt_rate_bounds),
@@ -749,6 +752,24 @@ void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, 
              double *b, const int *ldb, int *info, size_t ltrans);
 void dgecon_(const char *norm, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
              double *work, int *iwork, int *info, size_t lnorm);
+/* and of the maximal-coordinate route (maximal.c) */
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgeequb_(const int *m, const int *n, const double *a, const int *lda, double *r, double *c, double *rowcnd,
+              double *colcnd, double *amax, int *info);
+void dlacn2_(const int *n, double *v, double *x, int *isgn, double *est, int *kase, int *isave);
+
+/* The maximal-coordinate route (maximal.c): vt_maximal_size is its number of unknowns, 0 where
+ * it is not taken (base bodies, every rate joint-driven, more than VT_MAXIMAL_MAX unknowns);
+ * vt_maximal_solve puts [q̈; λ] into sol (nv + nc) and the reciprocal of the answer's condition
+ * into *rcond (without the grip g²). It needs the dense stages' S, Ṡq̇, Φ_x, Φ_q and γ. Returns
+ * 0, 1 (singular: nothing solved) or a negative vt_status. */
+enum { VT_MAXIMAL_MAX = 256 };
+int vt_maximal_size(const vt_model *m);
+int vt_maximal_wanted(const vt_model *m, double rcond);
+int vt_maximal_solve(const vt_model *m, vt_data *d, double *sol, double *rcond);
+size_t vt_maximal_scratch(const vt_model *m);
+/* its matrix A (N x N, ld N, N = vt_maximal_size) and right side b, unscaled: for the tests */
+void vt_maximal_system(const vt_model *m, const vt_data *d, double *A, double *b);
 
 /* Efforts of the drives from d->lambda (reactions.c), and the forward check's loads */
 vt_status vt_drive_efforts(const vt_model *m, vt_data *d);

@@ -45,9 +45,6 @@ static void phiq_rhs(const vt_model *m, const vt_data *d, int velocities, double
     }
 }
 
-/* LAPACK's blocked LU, for large square Φ_q (dgetf2, unblocked, below) */
-void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
-
 /* A square Φ_q's LU factors and pivots, held by the caller across Newton's steps: the last
  * step's (held = 1) serve the velocities at the converged q (held_velocities) */
 typedef struct {

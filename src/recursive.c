@@ -863,6 +863,13 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
     return lost || nv * delta >= d->rcond ? VT_NEEDS_DENSE : VT_OK;
 }
 
+/* a free-rate route's estimate below √rcond_warn (vt_maximal_wanted): the dense stages try the
+ * maximal-coordinate route too (maximal.c; solve.c keeps the answer with the higher estimate) */
+static int maximal_instead(const vt_model *m, vt_route route, double rcond)
+{
+    return route != VT_ROUTE_SQUARE && route != VT_ROUTE_REDUNDANT && vt_maximal_wanted(m, rcond);
+}
+
 /* (5) solved by vt_solve on the composite M*: its answer judged by composite_precision against
  * its estimate; its refusal (singular or dependent) is the dense stages' to give. A verdict on the
  * composite M* may be its round-off's: a point mass 1e6 m from o whose exact zero inertia the
@@ -873,7 +880,8 @@ static vt_status composite_solve(const vt_model *m, vt_data *d)
 {
     const vt_status st = vt_solve_impl(m, d);
     if (st == VT_ERR_SINGULAR || st == VT_ERR_DEPENDENT_CONSTRAINTS) return VT_NEEDS_DENSE;
-    return st ? st : composite_precision(m, d);
+    const vt_status sp = st ? st : composite_precision(m, d);
+    return !sp && maximal_instead(m, d->route, d->rcond) ? VT_NEEDS_MAXIMAL : sp;
 }
 
 /* M* and Q formed, (5) solved by vt_solve (which also diagnoses), the reactions inward:
@@ -1385,9 +1393,9 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
     const int r = articulated_solve(m, d, &w, &rcond);
-    if (r) {
+    if (r || maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) {
         vt_scratch_release(d, mark);
-        return r < 0 ? (vt_status)r : factorized_instant(m, d);
+        return r < 0 ? (vt_status)r : r ? factorized_instant(m, d) : VT_NEEDS_MAXIMAL;
     }
     vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
     const double *L = w.G; /* the lever arms (articulated_solve) */
@@ -1524,11 +1532,13 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
  * vt_reactions_total forms them */
 static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int formed, int totals)
 {
-    if (st == VT_NEEDS_DENSE) { /* the composite inertias about o cannot vouch for a digit: the dense stages */
-        const int left = d->fallback; /* the routes left before, kept */
+    if (st == VT_NEEDS_DENSE || st == VT_NEEDS_MAXIMAL) {
+        /* the composite inertias about o cannot vouch for a digit, or the estimate is below
+         * rcond_warn where the maximal route can solve: the dense stages */
+        const int left = d->fallback | (st == VT_NEEDS_DENSE ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
         d->message[0] = '\0'; /* a refusal the dense stages decide again is no diagnosis */
         st = vt_inverse_dynamics(m, d);
-        d->fallback |= left | VT_FALLBACK_COMPOSITE_ROUNDOFF;
+        d->fallback |= left;
         return st;
     }
     if (st) return st;
@@ -1606,6 +1616,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
             vt_scratch_release(d, mark);
         }
         if (r < 0) return (vt_status)r;
+        if (r == 0 && maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) return VT_NEEDS_MAXIMAL;
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
         else if ((st = mass_and_bias(m, d)) || (st = composite_solve(m, d)) ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", 0))) /* or from M*_FF, which also diagnoses */

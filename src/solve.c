@@ -1452,6 +1452,51 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
  * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
+/* A free-rate route's answer whose estimate is below √rcond_warn (vt_maximal_wanted): over a
+ * spread of inertia M* and Q can have lost what the problem keeps (a tiny driven link carrying a
+ * huge free body; docs/accuracy.md, "Mass ratios"). The maximal-coordinate route (maximal.c)
+ * keeps each body's equations at its own size; where the dense stages have formed S and Φ_x it
+ * solves too, and its answer is kept where its estimate is the higher. Only after a route that
+ * solved (r = 0): a refusal (dependent rows, a motion without inertia) stands. */
+static int maximal_wanted(const vt_model *m, int r, double rcond)
+{
+    return r == 0 && vt_maximal_wanted(m, rcond);
+}
+
+/* The maximal route's [q̈; λ] into sol and its estimate into *rcond where it is the higher:
+ * returns 1 then, 0 where the answer in sol stays, or a negative vt_status. Its estimate is the
+ * answer's condition (maximal.c) bounded by the rows' own: (σ_min / σ_max)² of Φ̂ = G Φ_q C
+ * (rows_decide: no masses), times the grip g². The answer's condition alone, relative to the
+ * answer, does not see rows that lose their independence (their multipliers grow with the
+ * answer); the rows' condition does, whatever the inertias. */
+static int maximal_alternative(const vt_model *m, vt_data *d, double *rcond, double *sol)
+{
+    const size_t n = (size_t)m->nv + (size_t)m->nc, mark = vt_scratch_mark(d);
+    double rho = 1.0;
+    if (m->nc > 0) {
+        rows_svd o;
+        const int r = rows_decide(m, d, 0.0, &o);
+        if (r < 0) return vt_scratch_release(d, mark), r;
+        const double ratio = o.sig[0] > 0.0 ? o.sig[o.k - 1] / o.sig[0] : 0.0;
+        rho = o.rank < m->nc ? 0.0 : ratio * ratio;
+        vt_scratch_release(d, mark);
+    }
+    if (!(rho > *rcond)) return 0; /* cannot be the higher */
+    double *alt = VT_SCRATCH(d, double, n, "maximal route's solution");
+    if (!alt) return vt_scratch_fail(d, mark);
+    double rc = 0.0;
+    const int r = vt_maximal_solve(m, d, alt, &rc);
+    if (r == 0) rc = fmin(rc, rho) * vt_rows_grip(m, d);
+    const int take = r == 0 && rc >= m->rcond_min && rc > *rcond;
+    if (take) {
+        memcpy(sol, alt, n * sizeof(double));
+        *rcond = rc;
+        d->fallback |= VT_FALLBACK_MAXIMAL_CONDITION;
+    }
+    vt_scratch_release(d, mark);
+    return r < 0 ? r : take;
+}
+
 vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
 {
     const int nv = m->nv, nc = m->nc;
@@ -1465,11 +1510,26 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
     if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
     if (m->joint_rows_only) {
-        const int r = joint_rows_solve(m, d, &rcond);
+        int r = joint_rows_solve(m, d, &rcond);
         if (r < 0) return (vt_status)r;
         d->rank = nc; /* one unit row on a rate of its own each: independent */
+        vt_route route = VT_ROUTE_FREE_RATES;
+        if (dense && maximal_wanted(m, r, rcond)) {
+            const size_t mark = vt_scratch_mark(d);
+            double *sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution");
+            if (!sol) return vt_scratch_fail(d, mark);
+            const int t = maximal_alternative(m, d, &rcond, sol);
+            if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
+            if (t == 1) {
+                memcpy(d->qdd, sol, (size_t)nv * sizeof(double));
+                memcpy(d->lambda, sol + nv, (size_t)nc * sizeof(double));
+                route = VT_ROUTE_MAXIMAL;
+                r = 0;
+            }
+            vt_scratch_release(d, mark);
+        }
         if (r == 1) return d->rcond = rcond, singular(m, d, "free rates' scaled M*", rcond, NULL);
-        vt_solved(m, d, VT_ROUTE_FREE_RATES, rcond);
+        vt_solved(m, d, route, rcond);
         return VT_OK;
     }
     const size_t mark = vt_scratch_mark(d);
@@ -1535,6 +1595,11 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
         r = factor_solve(m, d, sol, &rcond);
     }
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
+    if (dense && !zero_rows && route != VT_ROUTE_SQUARE && maximal_wanted(m, r, rcond)) {
+        const int t = maximal_alternative(m, d, &rcond, sol);
+        if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
+        if (t == 1) route = VT_ROUTE_MAXIMAL, r = 0;
+    }
     if (r == 1) {
         /* below rcond_min: dependent rows, or a singular or ill-conditioned matrix */
         d->rcond = rcond;

@@ -960,17 +960,21 @@ static void test_stale_diagnostics_cleared(void **state)
 
 /* An ill-conditioned free chain (no rows: M* alone) is refused as such, not as a motion
  * without inertia: twelve planar rods, every other one 1 mm long and of 1 g (its two joints
- * turn the rest of the chain almost alike), its reciprocal condition
- * against the exact 1-norm one of D M* D (explicit inverse by dgesv); with rcond_min above it,
- * VT_ERR_SINGULAR says "ill-conditioned" with that condition and names no body. */
+ * turn the rest of the chain almost alike). With rcond_warn at 1e-11 the route on M* keeps
+ * the instant: its reciprocal condition against the exact 1-norm one of D M* D (explicit
+ * inverse by dgesv). With the defaults that estimate (1.6e-10) is below rcond_warn and the
+ * maximal route solves too, with a higher estimate: its answer is kept, without a warning, and
+ * agrees with the first to what the first's estimate allows. With rcond_min above both,
+ * VT_ERR_SINGULAR says "ill-conditioned" with the first route's condition and names no body. */
 static void test_ill_conditioned_message(void **state)
 {
     (void)state;
     enum { N = 12 };
-    double rc = 0.0;
-    for (int pass = 0; pass < 2; pass++) {
+    double rc = 0.0, rcmax = 0.0, qdd[N];
+    for (int pass = 0; pass < 3; pass++) {
         vt_model_def md = vt_default_model_def();
-        if (pass) md.rcond_min = fmin(1.0, 10.0 * rc);
+        if (pass == 0) md.rcond_warn = 1e-11;
+        if (pass == 2) md.rcond_min = md.rcond_warn = fmin(1.0, 10.0 * fmax(rc, rcmax));
         vt_builder *b;
         assert_ok(vt_builder_create(&b, &md));
         for (int k = 0; k < N; k++) {
@@ -1014,6 +1018,17 @@ static void test_ill_conditioned_message(void **state)
             }
             assert_near(rc, 1.0 / (an * xn), 1e-6 * rc);
             if (!(rc < 1e-6)) fail_msg("rcond %g", rc);
+            assert_int_equal(d->route, VT_ROUTE_AUGMENTED); /* no rows: (5) is M* alone */
+            memcpy(qdd, d->qdd, sizeof qdd);
+        } else if (pass == 1) {
+            assert_ok(st);
+            assert_int_equal(d->route, VT_ROUTE_MAXIMAL);
+            assert_int_equal(d->fallback, VT_FALLBACK_MAXIMAL_CONDITION);
+            assert_int_equal(d->warning, 0);
+            rcmax = d->rcond;
+            if (!(rcmax > 1e-6)) fail_msg("maximal route's rcond %g", rcmax);
+            const double qs = vt_test_maxabs(d->qdd, N);
+            for (int a = 0; a < N; a++) assert_near(qdd[a], d->qdd[a], 1e-14 / rc * qs);
         } else {
             assert_int_equal(st, VT_ERR_SINGULAR);
             assert_non_null(strstr(d->message, "ill-conditioned"));
@@ -1364,7 +1379,8 @@ static void test_schur_condition_fallback(void **state)
             d[k]->q[a] = 0.3 + 0.25 * a; /* test_mass_ratios' first state */
             d[k]->qd[a] = 0.5 - 0.2 * a;
         }
-        if (k) m->rcond_warn = 1e-14, m->rcond_min = 1e-15; /* the Schur route keeps the instant */
+        if (k) m->rcond_warn = 1e-20, m->rcond_min = 1e-21; /* the Schur route keeps the instant (and no
+                                                               * maximal route, from √rcond_warn down) */
         assert_ok(vt_inverse_dynamics(m, d[k]));
     }
     assert_int_equal(d[0]->route, VT_ROUTE_AUGMENTED);

@@ -162,6 +162,8 @@ typedef enum vt_route {
     VT_ROUTE_AUGMENTED,      ///< the augmented matrix of (5): symmetric indefinite LDL^T
     VT_ROUTE_REDUNDANT,      ///< dependent rows (allow_redundant): SVD, least squares, minimum norm
     VT_ROUTE_MOTION,         ///< the motion given for every rate (vt_inverse_dynamics_motion): nothing solved
+    VT_ROUTE_MAXIMAL,        ///< every body's accelerations and joint wrench as unknowns beside q̈ and λ:
+                             ///< equilibrated LU (where a free-rate route's estimate fell below rcond_warn)
     VT_ROUTE_COUNT           ///< number of routes (not a route)
 } vt_route;
 
@@ -182,9 +184,13 @@ enum {
                                           ///< huge load near a rate's axis), or it found the
                                           ///< instant singular (a verdict the dense stages give): the
                                           ///< instant was computed by the dense stages (vt_inverse_dynamics)
-    VT_FALLBACK_SCHUR_CONDITION = 32      ///< vt_solve's Schur route: its estimate below rcond_warn (the
+    VT_FALLBACK_SCHUR_CONDITION = 32,     ///< vt_solve's Schur route: its estimate below rcond_warn (the
                                           ///< rows' Schur complement can lose digits the whole matrix
                                           ///< keeps); the augmented route's estimate is reported
+    VT_FALLBACK_MAXIMAL_CONDITION = 64    ///< a free-rate route's estimate below rcond_warn (M* and Q
+                                          ///< sum each subtree's terms: a tiny driven link carrying a
+                                          ///< huge free body); the maximal-coordinate route's answer and
+                                          ///< estimate, the higher one, are reported (VT_ROUTE_MAXIMAL)
 };
 
 /// Prescribed function of time f(t), evaluated exactly with f' and f''.
