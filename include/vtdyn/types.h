@@ -527,11 +527,12 @@ typedef struct vt_data {
                              ///< turning rates by 1/ℓ (ℓ the rows' own lever arm); some motion free:
                              ///< min/max of M*'s leaf-first pivots each over its diagonal entry, times
                              ///< the reciprocal condition of Φ_q M*^-1 Φ_q^T at unit diagonal, times
-                             ///< the point drives' smallest grip² (docs/method.md, "The condition
-                             ///< estimate"). Independent of units, of the scene's frame and of inertia
-                             ///< spread alone; the same on the dense and recursive paths. It falls
-                             ///< toward a singular pose. After a failure: what the failed route
-                             ///< measured, 0 if nothing
+                             ///< the point drives' smallest grip²; on VT_ROUTE_MAXIMAL the answer's
+                             ///< componentwise condition, bounded by Φ̂'s and the grip (docs/method.md,
+                             ///< "The condition estimate"). Independent of units, of the scene's frame
+                             ///< and of inertia spread alone; the same on the dense and recursive
+                             ///< paths. It falls toward a singular pose. After a failure: what the
+                             ///< failed route measured, 0 if nothing
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none, and after a failure)
     int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent;
                              ///< after a failure what it found, 0 if nothing)
