@@ -539,8 +539,9 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
  * On its composite M* about o, a rate whose M*_aa is round-off of those terms and that no row
  * fixes is not refused: VT_NEEDS_DENSE (positive), the dense stages decide (recursive.c) */
 #define VT_NEEDS_DENSE ((vt_status)1)
-/* a free-rate route's estimate below √rcond_warn where the maximal-coordinate route (maximal.c)
- * can solve: the dense stages, which form what it needs, solve the instant again (recursive.c) */
+/* a free-rate route's estimate low enough that the maximal-coordinate route (maximal.c) may be
+ * wanted (vt_maximal_wanted): the dense stages, which form what it needs, solve the instant
+ * again and decide (recursive.c) */
 #define VT_NEEDS_MAXIMAL ((vt_status)2)
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
 /* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl)

@@ -1,6 +1,7 @@
 /* The maximal-coordinate form of (2)-(5): every body's accelerations and every joint's wrench
  * as unknowns beside q̈ and λ, so that no equation sums the wrenches of a whole subtree. Used
- * where a free-rate route's estimate falls below rcond_warn (solve.c): a well-posed motion over
+ * where a route with free motion leaves its answer in doubt (solve.c: its estimate below
+ * rcond_warn, or a joint drive's effort cancelling below √rcond_warn): a well-posed motion over
  * a spread of inertia (docs/accuracy.md, "Mass ratios"; docs/method.md, "The maximal-coordinate
  * route").
  *
@@ -86,11 +87,9 @@ int vt_maximal_size(const vt_model *m)
     return N <= VT_MAXIMAL_MAX ? (int)N : 0;
 }
 
-/* A free-rate route loses up to ε / rcond in q̈ and in the rows' λ, and below rcond_warn it
- * warns; a joint drive's effort beside free rates, λ_D = (M* q̈ − Q)_D, loses up to about
- * ε / rcond² (beside much heavier free bodies: docs/accuracy.md, "Mass ratios"), so with such
- * drives the maximal route solves from √rcond_warn down: no answer kept loses more than
- * ε / rcond_warn unwarned */
+/* Where the maximal route may be tried after a route with free motion solved at estimate rcond:
+ * below rcond_warn, or below √rcond_warn with a joint drive beside the free rates (whose effort
+ * can lose about ε / rcond² over a spread of inertia: solve.c then measures its cancellation) */
 int vt_maximal_wanted(const vt_model *m, double rcond)
 {
     if (!(rcond < sqrt(m->rcond_warn)) || vt_maximal_size(m) == 0) return 0;

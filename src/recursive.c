@@ -863,8 +863,10 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
     return lost || nv * delta >= d->rcond ? VT_NEEDS_DENSE : VT_OK;
 }
 
-/* a free-rate route's estimate below √rcond_warn (vt_maximal_wanted): the dense stages try the
- * maximal-coordinate route too (maximal.c; solve.c keeps the answer with the higher estimate) */
+/* a free-rate route's estimate below rcond_warn, or below √rcond_warn with a joint drive beside
+ * the free rates (vt_maximal_wanted): the dense stages solve the instant again, measure the
+ * drives' cancellation and may try the maximal-coordinate route (maximal.c; solve.c keeps the
+ * answer with the higher estimate) */
 static int maximal_instead(const vt_model *m, vt_route route, double rcond)
 {
     return route != VT_ROUTE_SQUARE && route != VT_ROUTE_REDUNDANT && vt_maximal_wanted(m, rcond);
@@ -1395,6 +1397,7 @@ static vt_status articulated_instant(const vt_model *m, vt_data *d)
     const int r = articulated_solve(m, d, &w, &rcond);
     if (r || maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) {
         vt_scratch_release(d, mark);
+        if (r == 0) d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
         return r < 0 ? (vt_status)r : r ? factorized_instant(m, d) : VT_NEEDS_MAXIMAL;
     }
     vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
@@ -1616,7 +1619,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
             vt_scratch_release(d, mark);
         }
         if (r < 0) return (vt_status)r;
-        if (r == 0 && maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) return VT_NEEDS_MAXIMAL;
+        if (r == 0 && maximal_instead(m, VT_ROUTE_ARTICULATED, rcond))
+            return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, VT_NEEDS_MAXIMAL;
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
         else if ((st = mass_and_bias(m, d)) || (st = composite_solve(m, d)) ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", 0))) /* or from M*_FF, which also diagnoses */

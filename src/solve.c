@@ -1452,15 +1452,33 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
  * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
-/* A free-rate route's answer whose estimate is below √rcond_warn (vt_maximal_wanted): over a
+/* A free-rate route's answer whose estimate is below rcond_warn, or below √rcond_warn with a
+ * joint drive's multiplier that is the difference of terms 1/rcond_warn times its size: over a
  * spread of inertia M* and Q can have lost what the problem keeps (a tiny driven link carrying a
- * huge free body; docs/accuracy.md, "Mass ratios"). The maximal-coordinate route (maximal.c)
- * keeps each body's equations at its own size; where the dense stages have formed S and Φ_x it
- * solves too, and its answer is kept where its estimate is the higher. Only after a route that
- * solved (r = 0): a refusal (dependent rows, a motion without inertia) stands. */
-static int maximal_wanted(const vt_model *m, int r, double rcond)
+ * huge free body; docs/accuracy.md, "Mass ratios"). q̈ loses up to ε / rcond, which the
+ * warning covers; a joint drive's effort λ_r = (M* q̈ − Q − Φ_q,oᵀ λ_o)_c (rate c) also loses ε
+ * times its cancellation, g_r / |λ_r| with g_r = |Q_c| + Σ_j |M*_cj q̈_j| + Σ_o |Φ_q,oc λ_o|,
+ * which grows as 1 / rcond² there and stays near 1 / rcond otherwise. The maximal-coordinate route
+ * (maximal.c) keeps each body's equations at its own size; where the dense stages have formed
+ * S and Φ_x it solves too, and its answer is kept where its estimate is the higher. Only after a
+ * route that solved (r = 0): a refusal (dependent rows, a motion without inertia) stands. sol:
+ * [q̈; λ], or [q̈; −λ] (neg). */
+static int maximal_wanted(const vt_model *m, const vt_data *d, int r, double rcond, const double *sol, int neg)
 {
-    return r == 0 && vt_maximal_wanted(m, rcond);
+    if (r != 0 || !vt_maximal_wanted(m, rcond)) return 0;
+    if (rcond < m->rcond_warn) return 1;
+    const int nv = m->nv, nc = m->nc;
+    const double *lam = sol + nv, sg = neg ? -1.0 : 1.0;
+    for (int q = 0; q < nc; q++) {
+        if (!vt_known_row(m, q)) continue;
+        const int c = m->con_dof[q];
+        double g = fabs(d->Q[c]);
+        for (int j = 0; j < nv; j++) g += fabs(d->Mstar[c + (size_t)j * (size_t)nv] * sol[j]);
+        for (int o = 0; o < nc; o++)
+            if (o != q) g += fabs(d->Phiq[o + (size_t)c * (size_t)nc] * lam[o]);
+        if (!(g * m->rcond_warn < fabs(sg * lam[q]))) return 1; /* g / |λ| ≥ 1 / rcond_warn */
+    }
+    return 0;
 }
 
 /* The maximal route's [q̈; λ] into sol and its estimate into *rcond where it is the higher:
@@ -1514,11 +1532,13 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
         if (r < 0) return (vt_status)r;
         d->rank = nc; /* one unit row on a rate of its own each: independent */
         vt_route route = VT_ROUTE_FREE_RATES;
-        if (dense && maximal_wanted(m, r, rcond)) {
+        if (dense && r == 0 && vt_maximal_wanted(m, rcond)) {
             const size_t mark = vt_scratch_mark(d);
             double *sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution");
             if (!sol) return vt_scratch_fail(d, mark);
-            const int t = maximal_alternative(m, d, &rcond, sol);
+            memcpy(sol, d->qdd, (size_t)nv * sizeof(double));
+            memcpy(sol + nv, d->lambda, (size_t)nc * sizeof(double));
+            const int t = maximal_wanted(m, d, r, rcond, sol, 0) ? maximal_alternative(m, d, &rcond, sol) : 0;
             if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
             if (t == 1) {
                 memcpy(d->qdd, sol, (size_t)nv * sizeof(double));
@@ -1595,7 +1615,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
         r = factor_solve(m, d, sol, &rcond);
     }
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
-    if (dense && !zero_rows && route != VT_ROUTE_SQUARE && maximal_wanted(m, r, rcond)) {
+    if (dense && !zero_rows && route != VT_ROUTE_SQUARE && maximal_wanted(m, d, r, rcond, sol, route == VT_ROUTE_AUGMENTED)) {
         const int t = maximal_alternative(m, d, &rcond, sol);
         if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
         if (t == 1) route = VT_ROUTE_MAXIMAL, r = 0;

@@ -2054,10 +2054,12 @@ static void test_mass_ratios(void **state)
                     for (int a = 0; a < m->nv; a++)
                         assert_near(dr->qdd[a], dd->qdd[a], tol * (1.0 + vt_test_maxabs(dd->qdd, m->nv)));
                     /* the free-rate routes' estimate (the system left once the joint-driven
-                     * rates are known) below √rcond_warn: both paths take the maximal route,
-                     * and neither warns (its answers against the exact ones: ratio_oracle) */
+                     * rates are known) below rcond_warn, or below √rcond_warn with the joint-1
+                     * effort the difference of the tip's terms (rising, joint 1 driven): both
+                     * paths take the maximal route, and neither warns (its answers against the
+                     * exact ones: ratio_oracle) */
                     const double expect = vt_test_known_rcond(m, dd);
-                    if (expect < 1e-3) {
+                    if (expect < 1e-6 || (rising && drive == 3)) {
                         assert_int_equal(dd->route, VT_ROUTE_MAXIMAL);
                         assert_int_equal(dr->route, VT_ROUTE_MAXIMAL);
                         assert_true(dd->fallback & VT_FALLBACK_MAXIMAL_CONDITION);
@@ -2066,8 +2068,12 @@ static void test_mass_ratios(void **state)
                     }
                     /* joint and point drives mixed: the articulated route itself, the joint
                      * drives' efforts from the subtrees' wrenches, as the dense path's */
-                    else if (drive == 2) {
-                        assert_int_equal(dr->route, VT_ROUTE_ARTICULATED);
+                    else if (drive == 2 && dr->route != VT_ROUTE_ARTICULATED) {
+                        /* below √rcond_warn: handed to the dense stages, which kept their route */
+                        assert_true(expect < 1e-3);
+                        assert_int_equal(dr->fallback, VT_FALLBACK_ARTICULATED_CONDITION);
+                        assert_int_equal(dr->route, dd->route);
+                    } else if (drive == 2) {
                         assert_int_equal(dr->fallback, 0);
                         for (int r = 0; r < m->nc; r++)
                             assert_near(dr->lambda[r], dd->lambda[r], tol * (1.0 + vt_test_maxabs(dd->lambda, m->nc)));

@@ -176,7 +176,9 @@ enum {
                                           ///< its diagonal entry, or round-off of 0 against the terms
                                           ///< it is summed from
     VT_FALLBACK_ARTICULATED_CONDITION = 4,///< recursive articulated route: rcond below rcond_min, or its
-                                          ///< pivots' round-off reaching rcond
+                                          ///< pivots' round-off reaching rcond, or below √rcond_warn
+                                          ///< where the maximal route may do better (the dense stages
+                                          ///< then solve the instant and decide)
     VT_FALLBACK_SQUARE_CONDITION = 8,     ///< recursive square route: rcond below rcond_min
     VT_FALLBACK_COMPOSITE_ROUNDOFF = 16,  ///< recursive general route: M* formed from composite inertias
                                           ///< about o, or Q about o, is not known to one digit at its rcond
