@@ -18,77 +18,11 @@
 void dgeequb_(const int *m, const int *n, const double *a, const int *lda, double *r, double *c, double *rowcnd,
               double *colcnd, double *amax, int *info);
 
-/* random trees of every joint kind but the base body (free roots too), joint drives, a point
- * drive, an orientation drive (absolute, or relative to another body or to its joint's parent),
- * a spherical cut joint on odd seeds, a coupling on seeds divisible by 4, loads on every body and
- * rate (test_recursive's test_articulated's scenes, with free joints and couplings) */
+/* random trees of every joint kind but the base body (free roots too) with joint, point and
+ * orientation drives, spherical cut joints and couplings (vt_test_partly_driven_tree) */
 static vt_model *tree_scene(uint64_t seed)
 {
-    const int n = 8 + (int)seed;
-    vt_builder *b;
-    vt_model *probe, *m;
-    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_WITH_FREE));
-    assert_ok(vt_builder_create(&b, NULL));
-    assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_WITH_FREE));
-    int first = 0, second = 0; /* two revolute joints, for the coupling */
-    for (int i = 2; i <= n; i++)
-        if (probe->body_joint[i] == VT_JOINT_REVOLUTE) {
-            if (!first) first = i;
-            else if (!second && i % 3 != 2) second = i;
-        }
-    for (int i = 2; i <= n; i += 3) {
-        if (probe->body_joint[i] == VT_JOINT_SPHERICAL || probe->body_joint[i] == VT_JOINT_FREE) continue;
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = i;
-        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
-    }
-    vt_drive_def pd = vt_default_drive_def();
-    pd.type = VT_DRIVE_POINT;
-    pd.body = n;
-    pd.index = (int)(seed % 3);
-    pd.point[0] = 0.2;
-    pd.f = vt_function_sine(0.05, 0.2, 1.5, 0.0);
-    assert_true(vt_builder_add_drive(b, &pd) >= 0);
-    if (seed % 3 == 0) { /* an orientation drive on body 3, or a relative one on a spherical joint's body */
-        vt_drive_def od = vt_default_drive_def();
-        od.type = VT_DRIVE_ORIENTATION;
-        od.body = 3;
-        od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
-        assert_true(vt_builder_add_drive(b, &od) >= 0);
-    } else {
-        int sph = n;
-        while (sph > 1 && probe->body_joint[sph] != VT_JOINT_SPHERICAL) sph--;
-        if (sph > 1) {
-            vt_drive_def od = vt_default_drive_def();
-            od.type = VT_DRIVE_RELATIVE_ORIENTATION;
-            od.body = sph;
-            od.reference = seed % 3 == 1 ? probe->body_parent[probe->body_parent[sph]] : -1;
-            od.sequence = seed % 3 == 1 ? "XYZ" : NULL;
-            od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
-            od.f2 = vt_function_sine(-0.2, 0.3, 2.0, 0.5);
-            od.f3 = vt_function_sine(0.3, -0.2, 1.5, 0.1);
-            assert_true(vt_builder_add_drive(b, &od) >= 0);
-        }
-    }
-    if (seed % 2) {
-        vt_cut_joint_def cj = vt_default_cut_joint_def();
-        cj.joint = VT_JOINT_SPHERICAL;
-        cj.body_a = 0;
-        cj.body_b = n - 1;
-        assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
-    }
-    if (seed % 4 == 0 && first && second) {
-        vt_coupling_def cp = vt_default_coupling_def();
-        cp.body_a = second;
-        cp.body_b = first;
-        cp.ratio = 0.5;
-        assert_true(vt_builder_add_coupling(b, &cp) >= 0);
-    }
-    vt_model_free(probe);
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    return m;
+    return vt_test_partly_driven_tree(seed, VT_SCENE_WITH_FREE, 1);
 }
 
 static void scene_state(const vt_model *m, vt_data *d, uint64_t seed)

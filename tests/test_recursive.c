@@ -309,56 +309,7 @@ static void test_articulated(void **state)
 {
     (void)state;
     for (uint64_t seed = 1; seed <= 8; seed++) {
-        const int n = 8 + (int)seed;
-        vt_builder *b;
-        vt_model *probe, *m;
-        assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
-        assert_ok(vt_builder_create(&b, NULL));
-        assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_NO_BASE));
-        for (int i = 2; i <= n; i += 3) {
-            if (probe->body_joint[i] == VT_JOINT_SPHERICAL) continue;
-            vt_drive_def dr = vt_default_drive_def();
-            dr.body = i;
-            dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
-            assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        }
-        vt_drive_def pd = vt_default_drive_def();
-        pd.type = VT_DRIVE_POINT;
-        pd.body = n;
-        pd.index = (int)(seed % 3);
-        pd.point[0] = 0.2;
-        pd.f = vt_function_sine(0.05, 0.2, 1.5, 0.0);
-        assert_true(vt_builder_add_drive(b, &pd) >= 0);
-        if (seed % 3 == 0) {
-            vt_drive_def od = vt_default_drive_def();
-            od.type = VT_DRIVE_ORIENTATION;
-            od.body = 3;
-            od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
-            assert_true(vt_builder_add_drive(b, &od) >= 0);
-        } else { /* a relative orientation drive on a spherical joint's body: three angles to its
-                  * grandparent, or the joint's own drive */
-            int sph = n;
-            while (probe->body_joint[sph] != VT_JOINT_SPHERICAL) sph--;
-            vt_drive_def od = vt_default_drive_def();
-            od.type = VT_DRIVE_RELATIVE_ORIENTATION;
-            od.body = sph;
-            od.reference = seed % 3 == 1 ? probe->body_parent[probe->body_parent[sph]] : -1;
-            od.sequence = seed % 3 == 1 ? "XYZ" : NULL;
-            od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
-            od.f2 = vt_function_sine(-0.2, 0.3, 2.0, 0.5);
-            od.f3 = vt_function_sine(0.3, -0.2, 1.5, 0.1);
-            assert_true(vt_builder_add_drive(b, &od) >= 0);
-        }
-        if (seed % 2) {
-            vt_cut_joint_def cj = vt_default_cut_joint_def();
-            cj.joint = VT_JOINT_SPHERICAL;
-            cj.body_a = 0;
-            cj.body_b = n - 1;
-            assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
-        }
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_model_free(probe);
+        vt_model *m = vt_test_partly_driven_tree(seed, VT_SCENE_NO_BASE, 0);
         int joint_rows = 0; /* joint drives among other rows: their rates known, their efforts from
                              * the subtrees' wrenches (both: against the dense path's λ and reactions) */
         for (int r = 0; r < m->nc; r++) joint_rows += m->con_kind[r] == VT_ROW_JOINT;

@@ -389,4 +389,77 @@ static inline vt_model *vt_test_ratio_chain(int rising, int drive, double step)
     return m;
 }
 
+/* A random tree of n = 8 + seed bodies (vt_scene_random_bodies with `kinds`) with fewer rows
+ * than rates: joint drives on bodies 2, 5, 8, ... (not on spherical or free joints), a point drive
+ * on body n, an orientation drive (on body 3 when seed % 3 == 0, else a relative one on the last
+ * spherical joint's body: three angles to its grandparent, or the joint's own drive), a spherical
+ * cut joint from the ground to body n − 1 on odd seeds and, with `coupling` and seed % 4 == 0, a
+ * coupling of two revolute joints (test_recursive's articulated route, test_maximal) */
+static inline vt_model *vt_test_partly_driven_tree(uint64_t seed, unsigned kinds, int coupling)
+{
+    const int n = 8 + (int)seed;
+    vt_builder *b;
+    vt_model *probe, *m;
+    assert_ok(vt_scene_random_tree(&probe, seed, n, kinds));
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, seed, n, kinds));
+    for (int i = 2; i <= n; i += 3) {
+        if (probe->body_joint[i] == VT_JOINT_SPHERICAL || probe->body_joint[i] == VT_JOINT_FREE) continue;
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = i;
+        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    vt_drive_def pd = vt_default_drive_def();
+    pd.type = VT_DRIVE_POINT;
+    pd.body = n;
+    pd.index = (int)(seed % 3);
+    pd.point[0] = 0.2;
+    pd.f = vt_function_sine(0.05, 0.2, 1.5, 0.0);
+    assert_true(vt_builder_add_drive(b, &pd) >= 0);
+    int sph = n;
+    while (sph > 1 && probe->body_joint[sph] != VT_JOINT_SPHERICAL) sph--;
+    if (seed % 3 == 0) {
+        vt_drive_def od = vt_default_drive_def();
+        od.type = VT_DRIVE_ORIENTATION;
+        od.body = 3;
+        od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
+        assert_true(vt_builder_add_drive(b, &od) >= 0);
+    } else if (probe->body_joint[sph] == VT_JOINT_SPHERICAL) {
+        vt_drive_def od = vt_default_drive_def();
+        od.type = VT_DRIVE_RELATIVE_ORIENTATION;
+        od.body = sph;
+        od.reference = seed % 3 == 1 ? probe->body_parent[probe->body_parent[sph]] : -1;
+        od.sequence = seed % 3 == 1 ? "XYZ" : NULL;
+        od.f = vt_function_sine(0.1, 0.4, 1.0, 0.0);
+        od.f2 = vt_function_sine(-0.2, 0.3, 2.0, 0.5);
+        od.f3 = vt_function_sine(0.3, -0.2, 1.5, 0.1);
+        assert_true(vt_builder_add_drive(b, &od) >= 0);
+    }
+    if (seed % 2) {
+        vt_cut_joint_def cj = vt_default_cut_joint_def();
+        cj.joint = VT_JOINT_SPHERICAL;
+        cj.body_a = 0;
+        cj.body_b = n - 1;
+        assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
+    }
+    int first = 0, second = 0; /* two revolute joints, for the coupling */
+    for (int i = 2; i <= n; i++)
+        if (probe->body_joint[i] == VT_JOINT_REVOLUTE) {
+            if (!first) first = i;
+            else if (!second && i % 3 != 2) second = i;
+        }
+    if (coupling && seed % 4 == 0 && first && second) {
+        vt_coupling_def cp = vt_default_coupling_def();
+        cp.body_a = second;
+        cp.body_b = first;
+        cp.ratio = 0.5;
+        assert_true(vt_builder_add_coupling(b, &cp) >= 0);
+    }
+    vt_model_free(probe);
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
 #endif
