@@ -1536,8 +1536,8 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, int formed, int totals)
 {
     if (st == VT_NEEDS_DENSE || st == VT_NEEDS_MAXIMAL) {
-        /* the composite inertias about o cannot vouch for a digit, or the estimate is below
-         * rcond_warn where the maximal route can solve: the dense stages */
+        /* the composite inertias about o cannot vouch for a digit, or the estimate is low enough
+         * that the maximal route may be wanted (maximal_instead): the dense stages */
         const int left = d->fallback | (st == VT_NEEDS_DENSE ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
         d->message[0] = '\0'; /* a refusal the dense stages decide again is no diagnosis */
         st = vt_inverse_dynamics(m, d);

@@ -1431,27 +1431,6 @@ static vt_status singular(const vt_model *m, vt_data *d, const char *what, doubl
                    "rcond_min asks for", what, rcond, m->rcond_min, rows);
 }
 
-/* The routes, cheapest first (the model's rows decide; vt_data.route records the one taken):
- *   FREE_RATES  every row a joint drive on a rate of its own (joint_rows_solve)
- *   REDUNDANT   allow_redundant, and rows_decide drops a direction: dependent to round-off, or
- *               within a time analysis's band (redundant_solve)
- *   SQUARE      as many rows as rates (square_solve); ill-conditioned: diagnosed, no fallback
- *   SCHUR       fewer rows than rates (schur_solve); a small pivot of M̃ gives way to
- *   AUGMENTED   the whole augmented matrix (factor_solve, also every other case), flagged
- *               VT_FALLBACK_SCHUR_PIVOT; with an estimate below rcond_warn the augmented route
- *               solves too and the answer of the higher estimate is kept (the augmented one:
- *               VT_FALLBACK_SCHUR_CONDITION)
- * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
- * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio
- * over the rates no joint drive fixes times the other rows' unit-diagonal Schur complement's and
- * the point drives' grip² (SCHUR); the
- * scaled augmented matrix's times the grip² (AUGMENTED); the kept rows' matrix's singular value
- * ratio or (σ_kept / σ_max)² of Φ̂, the smaller (REDUNDANT). Round-off of an exact zero taken for a row or an inertia is caught first
- * (roundoff_check). Below rcond_min the rows' rank (rows_decide)
- * tells dependent rows (VT_ERR_DEPENDENT_CONSTRAINTS, named) from a singular or ill-conditioned
- * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
- * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
- * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
 /* A free-rate route's answer whose estimate is below rcond_warn, or below √rcond_warn with a
  * joint drive's multiplier that is the difference of terms 1/rcond_warn times its size: over a
  * spread of inertia M* and Q can have lost what the problem keeps (a tiny driven link carrying a
@@ -1515,6 +1494,31 @@ static int maximal_alternative(const vt_model *m, vt_data *d, double *rcond, dou
     return r < 0 ? r : take;
 }
 
+/* The routes, cheapest first (the model's rows decide; vt_data.route records the one taken):
+ *   FREE_RATES  every row a joint drive on a rate of its own (joint_rows_solve)
+ *   REDUNDANT   allow_redundant, and rows_decide drops a direction: dependent to round-off, or
+ *               within a time analysis's band (redundant_solve)
+ *   SQUARE      as many rows as rates (square_solve); ill-conditioned: diagnosed, no fallback
+ *   SCHUR       fewer rows than rates (schur_solve); a small pivot of M̃ gives way to
+ *   AUGMENTED   the whole augmented matrix (factor_solve, also every other case), flagged
+ *               VT_FALLBACK_SCHUR_PIVOT; with an estimate below rcond_warn the augmented route
+ *               solves too and the answer of the higher estimate is kept (the augmented one:
+ *               VT_FALLBACK_SCHUR_CONDITION)
+ *   MAXIMAL     after FREE_RATES, SCHUR or AUGMENTED solved with an answer in doubt
+ *               (maximal_wanted): the bodies' equations unreduced (maximal.c), kept where its
+ *               estimate is the higher (VT_FALLBACK_MAXIMAL_CONDITION)
+ * d->rcond is the pose's condition estimate (docs/method.md, "The condition estimate"): the free
+ * rates' leaf-first pivot ratio (FREE_RATES); G Φ_q C's, squared (SQUARE); the same pivot ratio
+ * over the rates no joint drive fixes times the other rows' unit-diagonal Schur complement's and
+ * the point drives' grip² (SCHUR); the
+ * scaled augmented matrix's times the grip² (AUGMENTED); the kept rows' matrix's singular value
+ * ratio or (σ_kept / σ_max)² of Φ̂, the smaller (REDUNDANT); the answer's componentwise condition
+ * bounded by Φ̂'s squared, times the grip² (MAXIMAL, maximal_alternative). Round-off of an exact zero taken for a row or an inertia is caught first
+ * (roundoff_check). Below rcond_min the rows' rank (rows_decide)
+ * tells dependent rows (VT_ERR_DEPENDENT_CONSTRAINTS, named) from a singular or ill-conditioned
+ * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
+ * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
+ * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
 vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
 {
     const int nv = m->nv, nc = m->nc;
@@ -1544,7 +1548,6 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
                 memcpy(d->qdd, sol, (size_t)nv * sizeof(double));
                 memcpy(d->lambda, sol + nv, (size_t)nc * sizeof(double));
                 route = VT_ROUTE_MAXIMAL;
-                r = 0;
             }
             vt_scratch_release(d, mark);
         }
