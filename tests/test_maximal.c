@@ -1,7 +1,8 @@
 /* The maximal-coordinate route (src/maximal.c): its system against (5) solved by the dense
- * stages, its estimate against an explicit computation of its definition, where it is and is
- * not offered. Its answers on the chains of spread masses against the exact ones are
- * tests/ratio_oracle.py's; its translation invariance is test_recursive's. */
+ * stages, its estimate against an explicit computation of its definition, rows losing their
+ * independence shown whatever route solves, where it is and is not offered. Its answers on the
+ * chains of spread masses against the exact ones are tests/ratio_oracle.py's; its translation
+ * invariance is test_recursive's. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -11,12 +12,9 @@
 
 #include <cmocka.h>
 
-#include "../src/internal.h" /* vt_maximal_*: internal */
+#include "../src/internal.h" /* vt_maximal_*, LAPACK's dgeequb: internal */
 #include "scenes.h"
 #include "vt_test.h"
-
-void dgeequb_(const int *m, const int *n, const double *a, const int *lda, double *r, double *c, double *rowcnd,
-              double *colcnd, double *amax, int *info);
 
 /* random trees of every joint kind but the base body (free roots too) with joint, point and
  * orientation drives, spherical cut joints and couplings (vt_test_partly_driven_tree) */
