@@ -88,15 +88,11 @@ int vt_maximal_size(const vt_model *m)
 }
 
 /* Where the maximal route may be tried after a route with free motion solved at estimate rcond:
- * below rcond_warn, or below √rcond_warn with a joint drive beside the free rates (whose effort
- * can lose about ε / rcond² over a spread of inertia: solve.c then measures its cancellation) */
+ * below √rcond_warn (solve.c then decides: below rcond_warn, or where a joint drive's effort
+ * cancels, which loses about ε / rcond² over a spread of inertia) */
 int vt_maximal_wanted(const vt_model *m, double rcond)
 {
-    if (!(rcond < sqrt(m->rcond_warn)) || vt_maximal_size(m) == 0) return 0;
-    if (rcond < m->rcond_warn) return 1;
-    for (int r = 0; r < m->nc; r++)
-        if (vt_known_row(m, r)) return 1;
-    return 0;
+    return rcond < sqrt(m->rcond_warn) && vt_maximal_size(m) > 0;
 }
 
 size_t vt_maximal_scratch(const vt_model *m)

@@ -863,10 +863,12 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
     return lost || nv * delta >= d->rcond ? VT_NEEDS_DENSE : VT_OK;
 }
 
-/* a free-rate route's estimate below rcond_warn, or below √rcond_warn with a joint drive beside
- * the free rates (vt_maximal_wanted): the dense stages solve the instant again, measure the
- * drives' cancellation and may try the maximal-coordinate route (maximal.c; solve.c keeps the
- * answer with the higher estimate) */
+/* a free-rate route's estimate below √rcond_warn where the maximal-coordinate route is offered
+ * (vt_maximal_wanted): the dense stages solve the instant again and decide for both paths (their
+ * estimate on M*, the drives' cancellation; maximal.c, solve.c). The two paths' estimates
+ * measure the same system but not always alike: a point mass 1e6 m from its joint gave 7.6e-6
+ * here and below rcond_warn on M*, where the articulated answer had lost 1.45e-6 and the
+ * maximal route's kept 5e-12 (fuzz/findings.md) */
 static int maximal_instead(const vt_model *m, vt_route route, double rcond)
 {
     return route != VT_ROUTE_SQUARE && route != VT_ROUTE_REDUNDANT && vt_maximal_wanted(m, rcond);
