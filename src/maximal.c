@@ -257,9 +257,7 @@ int vt_maximal_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_o
     double *v = VT_SCRATCH(d, double, sN, "dlacn2's v"), *z = VT_SCRATCH(d, double, sN, "dlacn2's x");
     int *ipiv = VT_SCRATCH(d, int, sN, "pivots"), *isgn = VT_SCRATCH(d, int, sN, "dlacn2's signs");
     if (!isgn) return vt_scratch_fail(d, mark);
-    memset(A, 0, sN * sN * sizeof(double));
-    sink s = {A, NULL, NULL, N, 0};
-    assemble(m, d, &s, b);
+    vt_maximal_system(m, d, A, b);
     if (!vt_all_finite(A, (int)(sN * sN)) || !vt_all_finite(b, N)) return vt_scratch_release(d, mark), 1;
     double rowcnd = 0.0, colcnd = 0.0, amax = 0.0;
     int info = 0;
