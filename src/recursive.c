@@ -173,15 +173,6 @@ static void inertia_mul(double F[6], const double I[13], const double w[3], cons
     vt_addcross3(F + 3, w, h);
 }
 
-/* s · (I s) for s = (w, v): w · J_O w + 2 w · (h × v) + m v · v */
-static inline double inertia_quad(const double I[13], const double w[3], const double v[3])
-{
-    double Jw[3], hv[3];
-    vt_mulmat3(Jw, I + 4, w);
-    vt_cross3(hv, I + 1, v);
-    return vt_dot3(w, Jw) + 2.0 * vt_dot3(w, hv) + I[0] * vt_dot3(v, v);
-}
-
 /* composite inertias about O, summed over subtrees: (m, h = m c, J_O) per body */
 static void composite(const vt_model *m, const vt_data *d, double *Ic /* 13 x (nbody+1) */)
 {

@@ -174,7 +174,7 @@ void vt_trajectory_reset(vt_trajectory *tr)
 {
     tr->nfilled = 0;
     tr->nwarn = 0;
-    tr->t_warn = NAN;
+    tr->t_warn = (double)NAN; /* NAN is a float */
     tr->fwd_err_q = tr->fwd_err_qd = tr->fwd_err_force = tr->fwd_err_moment = tr->fwd_interp_err = 0.0;
     tr->steps = tr->res_evals = tr->steps_fwd = tr->res_evals_fwd = 0;
 }

@@ -109,6 +109,7 @@ static void motors_at_row(const vt_model *mm, vt_data *dm, const vt_trajectory *
 }
 
 /* 1. the scene's assembly closes every loop; the forward check; the motors' model moves alike */
+#if VT_HAVE_SUNDIALS /* the forward check needs IDA */
 static void test_forward_check(void **state)
 {
     (void)state;
@@ -158,6 +159,7 @@ static void test_forward_check(void **state)
     vt_model_free(mm);
     vt_model_free(m);
 }
+#endif
 
 /* 2. statics: at rest at poses of the path, then along the path a million times slower */
 static void test_quasi_static(void **state)
