@@ -752,9 +752,14 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int give
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
         if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
-            double sj[3], r[3];
-            vt_joint_child(sj, m, d, j);
-            for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] - sj[k];
+            double r[3];
+            if (mixed) {
+                double sj[3];
+                vt_joint_child(sj, m, d, j);
+                for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] - sj[k];
+            } else { /* j revolute: −s^{ji}_j = d^j */
+                for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + d->jd[3 * j + k];
+            }
             double *Wj = W + 6 * j;
             vt_addcross3(Wj, r, f);
             for (int k = 0; k < 3; k++) {
