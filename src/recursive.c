@@ -408,8 +408,7 @@ static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, d
         d->xrel[6 * i + 3 + k] = Pr;
         d->jsij[3 * i + k] = sij[k];
         d->jd[3 * i + k] = di[k];
-        ej[k] = e[k];
-        ej[3 + k] = ej[6 + k] = 0.0;
+        ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
         twc[k] = 0.0;
         twc[3 + k] = e[k];
     }
@@ -527,8 +526,7 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
                 d->xrel[6 * i + 3 + k] = Pr[k];
                 d->jsij[3 * i + k] = sij[k];
                 d->jd[3 * i + k] = di[k];
-                ej[k] = e[k];
-                ej[3 + k] = ej[6 + k] = 0.0;
+                ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
                 twc[k] = e[k];
                 twc[3 + k] = tw[k];
             }

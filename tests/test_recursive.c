@@ -642,6 +642,11 @@ static void test_fused_kinematics(void **state)
         compare(d->jpoint, dk->jpoint, 3 * nb, 1e-14, "jpoint");
         compare(d->xrel, dk->xrel, 6 * nb, 1e-14, "xrel");
         compare(d->origin, dk->origin, 3, 1e-14, "origin");
+        for (int i = 1; i <= m->nbody; i++) { /* the rows past the joint's own axes are 0 (types.h) */
+            const int jt = m->body_joint[i];
+            const int nax = jt == VT_JOINT_UNIVERSAL ? 2 : jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE ? 3 : 1;
+            for (int k = 3 * nax; k < 9; k++) assert_true(d->jaxis[9 * i + k] == 0.0);
+        }
         vt_data_free(d);
         vt_data_free(dk);
         vt_model_free(m);

@@ -483,7 +483,8 @@ typedef struct vt_data {
     double *xd;              ///< Cartesian velocities ẋ = S q̇ (7n)
     double *A;               ///< rotation body → global, 3x3 col-major (9 x (nbody+1))
     double *omega;           ///< angular velocity, global, rad/s (3 x (nbody+1))
-    double *jaxis;           ///< current global unit axes e_k of each body's joint (9 x (nbody+1))
+    double *jaxis;           ///< current global unit axes e_k of each body's joint (9 x (nbody+1));
+                             ///< the rows past the joint's own axes are 0
     double *jsij;            ///< s^{ij}: reference origin → joint point on reference, global (3 x (nbody+1))
     double *jd;              ///< d^i = -s^{ji} + Σ ε_k q_k e_k, eq (17), global (3 x (nbody+1))
     double *jpoint;          ///< joint point on the body, global position (3 x (nbody+1))
