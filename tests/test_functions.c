@@ -56,6 +56,15 @@ static int nan_out(double t, double out[3], void *user)
     return 0;
 }
 
+/* *user = 3 k + w: slot k of the result is w = 0 NaN, 1 +Inf, 2 −Inf, the others finite */
+static int bad_slot(double t, double out[3], void *user)
+{
+    const int code = *(const int *)user, k = code / 3, w = code % 3;
+    out[0] = 1.0 + t, out[1] = -2.0, out[2] = 1e308;
+    out[k] = w == 0 ? (double)NAN : w == 1 ? (double)INFINITY : -(double)INFINITY;
+    return 0;
+}
+
 static void test_callbacks_and_errors(void **state)
 {
     (void)state;
@@ -74,6 +83,14 @@ static void test_callbacks_and_errors(void **state)
     assert_int_equal(vt_function_eval(v, &f, 0.0), VT_ERR_BAD_DRIVE);
     f = vt_function_sine(0, INFINITY, 1, 0);
     assert_int_equal(vt_function_eval(v, &f, 0.0), VT_ERR_NONFINITE);
+    assert_memory_equal(v, keep, sizeof keep);
+    for (int code = 0; code < 9; code++) { /* any slot, NaN or either infinity */
+        f = vt_function_user(bad_slot, &code);
+        assert_int_equal(vt_function_eval(v, &f, 0.0), VT_ERR_NONFINITE);
+    }
+    const double big[2] = {1e300, 1e300}; /* finite coefficients: f overflows at t = 1e10, f′ and f″ do not */
+    f = vt_function_polynomial(2, big);
+    assert_int_equal(vt_function_eval(v, &f, 1e10), VT_ERR_NONFINITE);
     assert_memory_equal(v, keep, sizeof keep);
     assert_int_equal(vt_function_eval(NULL, &f, 0.0), VT_ERR_NULL);
 }
