@@ -669,7 +669,7 @@ static inline vt_status vt_function_eval_valid(double out[3], const vt_function 
         const vt_status st = vt_function_eval_other(v, f, t);
         if (st) return st;
     }
-    if (!(0.0 * v[0] + 0.0 * v[1] + 0.0 * v[2] == 0.0)) return VT_ERR_NONFINITE; /* 0 · (Inf or NaN) is NaN */
+    if (!(isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]))) return VT_ERR_NONFINITE; /* in registers */
     out[0] = v[0];
     out[1] = v[1];
     out[2] = v[2];
