@@ -594,7 +594,9 @@ static void test_far_point_mass_pivot(void **state)
     print_message("dense rcond %.3g; recursive %s (%s), route %d, fallback %d\n", dd->rcond, vt_status_string(st), dv->message,
                   dv->route, dv->fallback);
     assert_ok(st);
-    assert_true(dv->fallback & VT_FALLBACK_ARTICULATED_PIVOT);
+    /* left for its pivot; where FMA contracts the elimination (a -march=native build), its
+     * estimate already fails (VT_FALLBACK_ARTICULATED_CONDITION) before the pivot is judged */
+    assert_true(dv->fallback & (VT_FALLBACK_ARTICULATED_PIVOT | VT_FALLBACK_ARTICULATED_CONDITION));
     for (int c = 0; c < 3; c++) {
         assert_near(dv->qdd[c], dd->qdd[c], 1e-9 * fabs(dd->qdd[c]) + 1e-12);
         assert_near(dv->qfrc_drive[c], dd->qfrc_drive[c], 1e-9 * vt_test_maxabs(dd->qfrc_drive, 3));
