@@ -37,7 +37,7 @@ void vt_quat_mul(double r[4], const double a[4], const double b[4])
 
 void vt_quat_axis_angle(double p[4], const double u[3], double angle)
 {
-    const double s = sin(0.5 * angle);
-    p[0] = cos(0.5 * angle);
+    double s;
+    vt_sincos(0.5 * angle, &s, p);
     p[1] = s * u[0]; p[2] = s * u[1]; p[3] = s * u[2];
 }

@@ -254,6 +254,71 @@ static inline double vt_max_result(const vt_max_scan *s)
     return r;
 }
 
+/* sin x and cos x together, for the half angles of revolute joints (vt_quat_axis_angle and the
+ * fused passes), within 0.81 ulp of the exact values where the C library's took 0.52
+ * (tests/test_euler.c measures both against long double; docs/method.md "Sines and cosines"):
+ *   x = n π/2 + r + rr,   |r| ≤ π/4 (a hair more), rr below half an ulp of r,
+ *   sin(r + rr) = r − r³/3! + r⁵/5! − … − r¹⁵/15! + r¹⁷/17! + rr (1 − r²/2),
+ *   cos(r + rr) = 1 − r²/2 + r⁴/4! − … + r¹⁶/16! − r rr,
+ * then rotated by the quadrant n mod 4. The truncated Taylor terms stay below 1.2e-19 relative
+ * for |r| ≤ π/4 (an ulp is 1.1e-16); 1 − r²/2 is summed with its own rounding error carried
+ * (w + ((1 − w) − r²/2)), so that cos's largest term costs no more than half an ulp. π/2 is held
+ * in four pieces of 33, 33, 33 and 53 bits: for |n| < 2^20 each n P_k is exact (no FMA needed), and
+ * the two sums that follow carry their rounding errors exactly (two-sum), so r + rr has 150 bits of
+ * π/2 behind it, enough for the closest double to a multiple of π/2 below 2^14 (2^-60.5 away).
+ * No library call, no table: inline in the fused passes' loop, where libm's sincos cost a body
+ * 101 instructions and a spill of every live value around the call. vt_sincos_small needs
+ * |x| ≤ 2^14 (its callers know it from a scan of q); vt_sincos takes any x, the C library's sin
+ * and cos beyond (and for NaN and ±Inf). sin(±0) = ±0. */
+static inline void vt_sincos_kernel(double r, double rr, double *s, double *c, const int tail)
+{
+    const double z = r * r, v = z * r, hz = 0.5 * z, w = 1.0 - hz;
+    const double qs = 0x1.1111111111111p-7 + z * (-0x1.a01a01a01a01ap-13 + z * (0x1.71de3a556c734p-19 +
+                      z * (-0x1.ae64567f544e4p-26 + z * (0x1.6124613a86d09p-33 +
+                      z * (-0x1.ae7f3e733b81fp-41 + z * 0x1.952c77030ad4ap-49))))); /* 1/5!, −1/7!, … 1/17! */
+    const double qc = 0x1.5555555555555p-5 + z * (-0x1.6c16c16c16c17p-10 + z * (0x1.a01a01a01a01ap-16 +
+                      z * (-0x1.27e4fb7789f5cp-22 + z * (0x1.1eed8eff8d898p-29 +
+                      z * (-0x1.93974a8c07c9dp-37 + z * 0x1.ae7f3e733b81fp-45))))); /* 1/4!, −1/6!, … 1/16! */
+    if (tail) { /* the reduced argument's low part, rr */
+        *s = copysign(r + (v * (-0x1.5555555555555p-3 + z * qs) + rr * w), r);
+        *c = w + (((1.0 - w) - hz) + (z * z * qc - r * rr));
+    } else { /* |x| ≤ π/4 itself: r = x, rr = 0 (0 · rr is not folded away in IEEE arithmetic) */
+        *s = copysign(r + v * (-0x1.5555555555555p-3 + z * qs), r);
+        *c = w + (((1.0 - w) - hz) + z * z * qc);
+    }
+}
+static inline void vt_sincos_small(double x, double *s, double *c)
+{
+    if (fabs(x) <= 0x1.921fb54442d18p-1) { /* π/4: no reduction (a revolute joint within ±π/2) */
+        vt_sincos_kernel(x, 0.0, s, c, 0);
+        return;
+    }
+    const long n = (long)(x * 0x1.45f306dc9c883p-1 + copysign(0.5, x)); /* x 2/π to the nearest */
+    const double k = (double)n;
+    const double a = x - k * 0x1.921fb54400000p+0; /* exact: n P1 exact, a near x (Sterbenz) */
+    const double b = k * 0x1.0b4611a600000p-34, s1 = a - b, v1 = s1 - a;
+    const double e1 = (a - (s1 - v1)) + (-b - v1); /* s1 + e1 = a − n P2 exactly */
+    const double c3 = k * 0x1.3198a2e000000p-69, s2 = s1 - c3, v2 = s2 - s1;
+    const double e2 = (s1 - (s2 - v2)) + (-c3 - v2); /* s2 + e2 = s1 − n P3 exactly */
+    const double t = (e1 + e2) - k * 0x1.b839a252049c1p-104;
+    const double r = s2 + t, rr = (s2 - r) + t;
+    double sr, cr;
+    vt_sincos_kernel(r, rr, &sr, &cr, 1);
+    double so = (n & 1) ? cr : sr, co = (n & 1) ? -sr : cr; /* sin(r + π/2) = cos r, cos(r + π/2) = −sin r */
+    if (n & 2) so = -so, co = -co;
+    *s = so;
+    *c = co;
+}
+static inline void vt_sincos(double x, double *s, double *c)
+{
+    if (fabs(x) <= 0x1p14) {
+        vt_sincos_small(x, s, c);
+    } else {
+        *s = sin(x);
+        *c = cos(x);
+    }
+}
+
 /* 1 when p holds (1, 0, 0, 0) bit for bit (a −0 counts as not: p ⊗ it is then formed, the same
  * numbers): four integer loads, where four double compares cost 25 instructions a body */
 static inline int vt_quat_is_identity(const double *p)
@@ -658,7 +723,8 @@ static inline vt_status vt_function_eval_valid(double out[3], const vt_function 
     if (!isfinite(t)) return VT_ERR_NONFINITE;
     double v[3] = {0, 0, 0};
     if (f->type == VT_FUNCTION_POLYNOMIAL) {
-        for (int k = f->ncoef - 1; k >= 0; k--) { /* Horner for f, f′, f″ together */
+        v[0] = f->c[f->ncoef - 1]; /* the first step from zeros: f′ and f″ stay 0 */
+        for (int k = f->ncoef - 2; k >= 0; k--) { /* Horner for f, f′, f″ together */
             v[2] = v[2] * t + 2.0 * v[1];
             v[1] = v[1] * t + v[0];
             v[0] = v[0] * t + f->c[k];

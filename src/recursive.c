@@ -452,7 +452,13 @@ static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, d
 }
 
 /* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
-static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const int mixed)
+/* small: every |q| ≤ 2^15, so every half angle is vt_sincos_small's (no call in the loop); compiled
+ * once for each (fused_outward, fused_outward_any) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W,
+                                      const int mixed, const int small)
 {
     double *o = d->origin;
     o[0] = o[1] = o[2] = 0.0;
@@ -479,7 +485,9 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
         double p[4], A[9], e[3], sij[3], sji[3];
         { /* p = p^j ⊗ (cos ½q, sin ½q u) written out, (c p0 − s p·u, c p + s p0 u + s p × u): no
            * calls with the vectors live */
-            const double h = 0.5 * q, cs = cos(h), sn = sin(h);
+            double cs, sn;
+            if (small) vt_sincos_small(0.5 * q, &sn, &cs);
+            else vt_sincos(0.5 * q, &sn, &cs);
             const double a0 = pj[0], a1 = pj[1], a2 = pj[2], a3 = pj[3];
             p[0] = cs * a0 - sn * (a1 * u[0] + a2 * u[1] + a3 * u[2]);
             p[1] = cs * a1 + sn * (a0 * u[0] + a2 * u[2] - a3 * u[1]);
@@ -591,6 +599,21 @@ static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha,
     }
 }
 
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const int mixed)
+{
+    fused_outward_impl(m, d, alpha, W, mixed, 1);
+}
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_outward_any(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const int mixed)
+{
+    fused_outward_impl(m, d, alpha, W, mixed, 0);
+}
+
 /* The fused passes' results checked at once after both loops (a scan of whole arrays costs less
  * than checks joint by joint in the inward loop): ẍ, α, the efforts, the reactions and the total
  * wrenches. Copies are not scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute
@@ -695,13 +718,15 @@ static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, 
 /* the joint-driven (given = 0) or given (1) instant of a tree without base bodies: inward_pass's
  * outputs, and vt_kinematics_tree's (without Ṡq̇); bounded: fused_bounded holds, the outputs need
  * no scan */
-static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed, const int bounded)
+static inline vt_status fused_pass(const vt_model *m, vt_data *d, const int given, const int mixed, const int bounded,
+                                   const int small)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
     double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
     if (!W) return vt_scratch_fail(d, mark);
-    fused_outward(m, d, d->alpha, W, mixed);
+    if (small) fused_outward(m, d, d->alpha, W, mixed);
+    else fused_outward_any(m, d, d->alpha, W, mixed);
     vt_status st = bounded ? VT_OK : vt_kinematics_check_outputs(m, d);
     if (st) { /* as vt_kinematics_tree's failure before any route */
         d->route = VT_ROUTE_NONE;
@@ -1469,12 +1494,13 @@ static inline double loads_max(const vt_model *m, const vt_data *d)
     vt_max_add(&s, d->qfrc, m->nv);
     return vt_max_result(&s);
 }
-static inline double state_max(const vt_model *m, const vt_data *d)
+static inline double state_max(const vt_model *m, const vt_data *d, double *qmax)
 {
     vt_max_scan s = {0};
+    vt_max_add(&s, d->q, m->nq);
+    *qmax = vt_max_result(&s); /* the half angles' bound (fused_outward) */
     vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
     vt_max_add(&s, d->qfrc, m->nv);
-    vt_max_add(&s, d->q, m->nq);
     vt_max_add(&s, d->qd, m->nv);
     return vt_max_result(&s);
 }
@@ -1565,7 +1591,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
     vt_solve_reset(d);
-    const double smax = state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    double qmax;
+    const double smax = state_max(m, d, &qmax); /* loads, q and q̇; the loads alone where one is not finite */
     if (!(smax < HUGE_VAL) && !(loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
@@ -1588,7 +1615,8 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         vt_mark_unique(m, d);
         *formed = 2;
         const int bounded = fused_bounded(m, smax, smax, array_max(d->qdd, m->nv), smax);
-        return mix ? fused_pass(m, d, 0, 0, bounded) : fused_pass(m, d, 0, 1, bounded);
+        const int small = qmax <= 0x1p15;
+        return mix ? fused_pass(m, d, 0, 0, bounded, small) : fused_pass(m, d, 0, 1, bounded, small);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
@@ -1717,7 +1745,8 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
                            "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
                            "use VT_JOINT_FREE", i);
-    const double smax = state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    double qmax;
+    const double smax = state_max(m, d, &qmax); /* loads, q and q̇; the loads alone where one is not finite */
     if (!(smax < HUGE_VAL) && !(loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
@@ -1732,7 +1761,8 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    if ((st = mix ? fused_pass(m, d, 1, 0, bounded) : fused_pass(m, d, 1, 1, bounded))) return st; /* α and the totals formed in it */
+    const int small = qmax <= 0x1p15;
+    if ((st = mix ? fused_pass(m, d, 1, 0, bounded, small) : fused_pass(m, d, 1, 1, bounded, small))) return st; /* α and the totals formed in it */
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
 }
