@@ -1494,13 +1494,12 @@ static inline double loads_max(const vt_model *m, const vt_data *d)
     vt_max_add(&s, d->qfrc, m->nv);
     return vt_max_result(&s);
 }
-static inline double state_max(const vt_model *m, const vt_data *d, double *qmax)
+static inline double state_max(const vt_model *m, const vt_data *d)
 {
     vt_max_scan s = {0};
-    vt_max_add(&s, d->q, m->nq);
-    *qmax = vt_max_result(&s); /* the half angles' bound (fused_outward) */
     vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
     vt_max_add(&s, d->qfrc, m->nv);
+    vt_max_add(&s, d->q, m->nq);
     vt_max_add(&s, d->qd, m->nv);
     return vt_max_result(&s);
 }
@@ -1591,8 +1590,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
     vt_solve_reset(d);
-    double qmax;
-    const double smax = state_max(m, d, &qmax); /* loads, q and q̇; the loads alone where one is not finite */
+    const double smax = state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
     if (!(smax < HUGE_VAL) && !(loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
@@ -1615,7 +1613,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         vt_mark_unique(m, d);
         *formed = 2;
         const int bounded = fused_bounded(m, smax, smax, array_max(d->qdd, m->nv), smax);
-        const int small = qmax <= 0x1p15;
+        const int small = smax <= 0x1p15 || array_max(d->q, m->nq) <= 0x1p15; /* every half angle's */
         return mix ? fused_pass(m, d, 0, 0, bounded, small) : fused_pass(m, d, 0, 1, bounded, small);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
@@ -1745,8 +1743,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
                            "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
                            "use VT_JOINT_FREE", i);
-    double qmax;
-    const double smax = state_max(m, d, &qmax); /* loads, q and q̇; the loads alone where one is not finite */
+    const double smax = state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
     if (!(smax < HUGE_VAL) && !(loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
     /* the outward passes fused (no base body here) */
@@ -1761,7 +1758,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    const int small = qmax <= 0x1p15;
+    const int small = smax <= 0x1p15 || array_max(d->q, m->nq) <= 0x1p15; /* every half angle's */
     if ((st = mix ? fused_pass(m, d, 1, 0, bounded, small) : fused_pass(m, d, 1, 1, bounded, small))) return st; /* α and the totals formed in it */
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
