@@ -268,7 +268,7 @@ static inline double vt_max_result(const vt_max_scan *s)
  * π/2 behind it, enough for the closest double to a multiple of π/2 below 2^14 (2^-60.5 away).
  * No library call, no table: inline in the fused passes' loop, where libm's sincos cost a body
  * 101 instructions and a spill of every live value around the call. vt_sincos_small needs
- * |x| ≤ 2^14 (its callers know it from a scan of q); vt_sincos takes any x, the C library's sin
+ * |x| ≤ 2^14 (its callers know it from a scan of the state); vt_sincos takes any x, the C library's sin
  * and cos beyond (and for NaN and ±Inf). sin(±0) = ±0. */
 static inline void vt_sincos_kernel(double r, double rr, double *s, double *c, const int tail)
 {
