@@ -261,8 +261,8 @@ static inline double vt_max_result(const vt_max_scan *s)
  *   sin(r + rr) = r − r³/3! + r⁵/5! − … − r¹⁵/15! + r¹⁷/17! + rr (1 − r²/2),
  *   cos(r + rr) = 1 − r²/2 + r⁴/4! − … + r¹⁶/16! − r rr,
  * then rotated by the quadrant n mod 4. The truncated Taylor terms stay below 1.2e-19 relative
- * for |r| ≤ π/4 (an ulp is 1.1e-16); 1 − r²/2 is summed with its own rounding error carried
- * (w + ((1 − w) − r²/2)), so that cos's largest term costs no more than half an ulp. π/2 is held
+ * for |r| ≤ π/4 (an ulp is 1.1e-16); 1 − r²/2 is summed with that subtraction's rounding error
+ * carried (w + ((1 − w) − r²/2)), so that only r²'s own rounding is left of it. π/2 is held
  * in four pieces of 33, 33, 33 and 53 bits: for |n| < 2^20 each n P_k is exact (no FMA needed), and
  * the two sums that follow carry their rounding errors exactly (two-sum), so r + rr has 150 bits of
  * π/2 behind it, enough for the closest double to a multiple of π/2 below 2^14 (2^-60.5 away).
