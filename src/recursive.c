@@ -1509,6 +1509,12 @@ static inline double array_max(const double *a, int n)
     vt_max_add(&s, a, n);
     return vt_max_result(&s);
 }
+/* 1 when every half angle is within vt_sincos_small's 2^14 (fused_outward, not _any): from the
+ * state's maximum smax (state_max), q scanned again alone only where that is above 2^15 */
+static inline int angles_small(const vt_model *m, const vt_data *d, double smax)
+{
+    return smax <= 0x1p15 || array_max(d->q, m->nq) <= 0x1p15;
+}
 
 /* 1 when no output of the fused passes can overflow, from the inputs' sizes alone: then their
  * scans (vt_kinematics_check_outputs, fused_check) are skipped. With U = 1 + Σ_i (|s^{ij}| +
@@ -1613,7 +1619,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
         vt_mark_unique(m, d);
         *formed = 2;
         const int bounded = fused_bounded(m, smax, smax, array_max(d->qdd, m->nv), smax);
-        const int small = smax <= 0x1p15 || array_max(d->q, m->nq) <= 0x1p15; /* every half angle's */
+        const int small = angles_small(m, d, smax);
         return mix ? fused_pass(m, d, 0, 0, bounded, small) : fused_pass(m, d, 0, 1, bounded, small);
     }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
@@ -1758,7 +1764,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     d->rank = m->nc;
     d->residual = 0.0;
     vt_mark_unique(m, d);
-    const int small = smax <= 0x1p15 || array_max(d->q, m->nq) <= 0x1p15; /* every half angle's */
+    const int small = angles_small(m, d, smax);
     if ((st = mix ? fused_pass(m, d, 1, 0, bounded, small) : fused_pass(m, d, 1, 1, bounded, small))) return st; /* α and the totals formed in it */
     d->route = VT_ROUTE_MOTION;
     return VT_OK;
