@@ -445,9 +445,10 @@ size_t vt_inverse_transform_scratch(const vt_model *m);
  * solution at t − h: qprev nq, qdprev nv) d->q is a start predicted from it, abandoned for qprev
  * itself when its max |Φ| exceeds ½ h max |Φ_t| (roughly qprev's own residual at t) */
 /* vt_inverse_dynamics_recursive with d's positions, twists, Φ, Φ_t and Φ_q current at d->q and
- * d->time (Newton's last evaluation), q̇ new; fd: the drives' functions at d->time
+ * d->time (Newton's last evaluation), q̇ new, or with rates, q̇ solved from Φ_q q̇ = −Φ_t by the
+ * square route's LU (else VT_NEEDS_RATES, d->qd as it was); fd: the drives' functions at d->time
  * (vt_drive_values) or NULL; α and the joints' total wrenches only with totals (recursive.c) */
-vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals);
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates);
 /* vt_kinematic_solve_impl's instants: the dense one, the recursive one, the recursive one
  * without α and the joints' total wrenches (vt_reactions_total; the analyses' rows and the
  * exact efforts do not keep them); or'ed with VT_SOLVE_POLISH, one Newton step more once
@@ -608,6 +609,9 @@ void vt_solved(const vt_model *m, vt_data *d, vt_route route, double rcond);
  * wanted (vt_maximal_wanted): the dense stages, which form what it needs, solve the instant
  * again and decide (recursive.c) */
 #define VT_NEEDS_MAXIMAL ((vt_status)2)
+/* vt_inverse_dynamics_recursive_positioned asked for q̇ as well, where its route has no LU of
+ * Φ_q to solve them (recursive.c): the caller solves them, and asks again without */
+#define VT_NEEDS_RATES ((vt_status)3)
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
 /* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl)
  * and the form of M* (dense: S^T M S, else the composite inertias about o, as vt_rate_bounds),
@@ -627,8 +631,12 @@ typedef struct {
 } vt_square;
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);
 int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
-/* the same for the recursive evaluation: from M*'s diagonal mdiag (nv), and its outcome */
-int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
+/* x = sign Φ_q^-1 b (nv) by the factors of sq: D (R Φ_q D)^-1 R b */
+int vt_square_apply(const vt_model *m, vt_data *d, const vt_square *sq, const double *b, double sign, double *x);
+/* the same for the recursive evaluation: the factors from M*'s diagonal mdiag (nv) and the
+ * positions, q̈, and the outcome */
+int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
+int vt_solve_square_accelerations(const vt_model *m, vt_data *d, vt_square *sq);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
 /* Round-off of exact zeros (solve.c): T (2 nv) the magnitudes of the terms of each rate's M*_aa,
  * T_a = Σ_k m_k (|v_a| + |ω_a| L_k)² (L_k ≥ |c_k − o|: vt_lengths_from_o) and R_a = |ω_a|² Σ_k tr J'_k over the bodies k it moves,

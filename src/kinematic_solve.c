@@ -10,9 +10,11 @@
  * velocities, Ṡq̇, Φ_x and γ (vt_inverse_dynamics_recursive_positioned). Each linear step: with
  * as many independent rows as rates, Φ_q is square and the step is Φ_q^-1 b by LU with partial
  * pivoting (LAPACK's dgetf2/dgetrf, dgetrs), one factorization at each Newton iterate; the
- * velocities at the converged q by the last iterate's LU, refined (q̇ += LU^-1 (−Φ_t − Φ_q q̇)
- * with the converged Φ_q: its error shrinks by the O(|Δq|) the two Φ_q differ by) until the
- * residual is round-off, or by a fresh LU after two corrections or without a step; with fewer rows
+ * velocities at the converged q, where the recursive instant takes the square route, by that
+ * route's LU of the scaled Φ_q, which it forms there anyway (one solve, q̇ = −Φ_q^-1 Φ_t);
+ * otherwise by the last iterate's LU, refined (q̇ += LU^-1 (−Φ_t − Φ_q q̇) with the converged Φ_q:
+ * its error shrinks by the O(|Δq|) the two Φ_q differ by) until the residual is round-off, or by
+ * a fresh LU after two corrections or without a step; with fewer rows
  * (consistent initial values of a dynamic analysis) LAPACK's dgels gives the least-norm
  * correction, a projection onto the constraint manifold; dependent rows of a model that allows
  * them, the least-norm least-squares step (dgelsd).
@@ -28,7 +30,7 @@
 static double max_abs(const double *a, int n)
 {
     double s = 0.0;
-    for (int k = 0; k < n; k++) s = fmax(s, fabs(a[k]));
+    for (int k = 0; k < n; k++) s = fabs(a[k]) > s ? fabs(a[k]) : s; /* NaN passed over, as fmax does */
     return s;
 }
 
@@ -213,17 +215,22 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
                 return restore(m, d, qsave, mark, vt_fail(d->message, st, "vt_kinematic_solve: Newton step %d overflows q (max |Φ| = %.3g at t = %g)",
                                                           it + 1, res, d->time));
         }
+    }
+    /* the recursive instant takes the positions, twists, Φ and Φ_q of Newton's last evaluation,
+     * and on its square route, whose LU of Φ_q at the converged q solves q̇ too, the velocities */
+    const int totals = recursive != VT_SOLVE_RECURSIVE_NO_TOTALS;
+    st = recursive && m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, totals, 1) : VT_NEEDS_RATES;
+    if (st == VT_NEEDS_RATES) {
         /* velocities: the correction of q̇ that makes Φ_q q̇ = −Φ_t, Φ_q at the converged q; by
          * the last Newton step's LU when it gets the residual to round-off */
-        if (!lu.held || !held_velocities(m, d, &lu)) {
+        if (m->nc > 0 && (!lu.held || !held_velocities(m, d, &lu))) {
             if ((st = solve_phiq(m, d, 1, step, NULL))) return restore(m, d, qsave, mark, st);
             for (int c = 0; c < m->nv; c++) d->qd[c] += step[c];
         }
+        st = !recursive ? vt_inverse_dynamics(m, d)
+             : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, totals, 0)
+                         : vt_inverse_dynamics_recursive(m, d);
     }
-    /* the recursive instant takes the positions, twists, Φ and Φ_q of Newton's last evaluation */
-    st = !recursive ? vt_inverse_dynamics(m, d)
-         : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, recursive != VT_SOLVE_RECURSIVE_NO_TOTALS)
-                     : vt_inverse_dynamics_recursive(m, d);
     if (st) return restore(m, d, qsave, mark, st);
     vt_scratch_release(d, mark);
     return VT_OK;
@@ -241,8 +248,9 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
  *   h q̇1 + ½ h² q̈1 + w2 h s² / 3 + w3 h s³ / 4,  w3 = S1 + 2 S0,  w2 = 3 S0 + S1,
  *   S0 = q̇2 − q̇1 + δ q̈1,  S1 = δ (q̈2 − q̈1);
  * from row k1 alone, Taylor's h q̇1 + ½ h² q̈1. Then q ← q1 ⊕ increment, and q̇ the same
- * polynomial's rate at t (Taylor's q̇1 + h q̈1 from one row): the velocities' solve then corrects
- * q̇ by O(h⁵), which the LU of Newton's last iterate does to round-off in one or two steps.
+ * polynomial's rate at t (Taylor's q̇1 + h q̈1 from one row): where the velocities are refined
+ * from it, it is off by O(h⁵), which the LU of Newton's last iterate corrects to round-off in one
+ * or two steps.
  * d->qd holds the increment while vt_integrate_q turns it into q (Euler parameters on the sphere).
  * The analysis extrapolates from its last two rows; the forward check interpolates between the
  * two rows around the time IDA asks for (at mid-interval 2⁶ × 2³ times closer than extrapolated). */

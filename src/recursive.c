@@ -942,35 +942,53 @@ static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
  * M*'s diagonal, for the solves' scaling (its condition is kinematic: vt_solve's square route),
  * and the right side of Φ_q^T λ = M* q̈ − Q is S^T W̄ − qfrc with
  * the needed wrenches W at the full accelerations, one inward pass as for joint drives: neither
- * M* nor Q is formed. Where Φ_q is ill-conditioned, the general path diagnoses it. */
-static vt_status square_instant(const vt_model *m, vt_data *d)
+ * M* nor Q is formed. Where Φ_q is ill-conditioned, the general path diagnoses it.
+ * square_factor: the LU of the scaled Φ_q and its condition, from the positions alone (0, 1
+ * ill-conditioned, or a negative vt_status), on the arena from its mark; square_solved: the rest,
+ * from γ. */
+static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, double *rcond)
+{
+    double *mdiag = VT_SCRATCH(d, double, m->nv, "M*'s diagonal");
+    if (!mdiag) return VT_ERR_NO_MEMORY;
+    mass_diagonal(m, d, mdiag);
+    return vt_solve_square_factor(m, d, sq, mdiag, rcond);
+}
+
+static vt_status square_solved(const vt_model *m, vt_data *d, vt_square *sq, double rcond)
 {
     const int nv = m->nv;
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
+    vt_status st = (vt_status)vt_solve_square_accelerations(m, d, sq);
+    if (st) return st;
+    /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
+    double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, twists of q̈ then G, subtree wrenches");
+    if (!alpha) return vt_scratch_fail(d, mark);
+    double *G = alpha + 3 * nb, *W = alpha + 9 * nb; /* one after the other, as in inward */
+    vt_accelerations_add(m, d, sq->x, d->xdd, alpha, G);
+    subtree_wrenches_at_joints(m, d, alpha, W);
+    for (int a = 0; a < nv; a++) { /* M* q̈ − Q = s_a · W̄_i − qfrc_a, s_a about P_i: (e, 0) or (0, e) */
+        const double *s = d->twist + 6 * a, *Wi = W + 6 * m->dof_body[a];
+        sq->h[a] = (vt_dof_turns(m, a) ? vt_dot3(s, Wi) : vt_dot3(s + 3, Wi + 3)) - d->qfrc[a];
+    }
+    st = vt_solve_square_end(m, d, sq, rcond);
+    if (!st) st = vt_reactions_subtree(m, d, W, G, 0);
+    vt_scratch_release(d, mark);
+    return st;
+}
+
+static vt_status square_instant(const vt_model *m, vt_data *d)
+{
+    const size_t mark = vt_scratch_mark(d);
     double rcond = 0.0;
-    double *mdiag = VT_SCRATCH(d, double, nv, "M*'s diagonal");
-    if (!mdiag) return vt_scratch_fail(d, mark);
-    mass_diagonal(m, d, mdiag);
     vt_square sq;
-    const int r = vt_solve_square_begin(m, d, &sq, mdiag, &rcond);
+    const int r = square_factor(m, d, &sq, &rcond);
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
     if (r == 1) {
         vt_scratch_release(d, mark);
         d->fallback |= VT_FALLBACK_SQUARE_CONDITION;
         return factorized_instant(m, d);
     }
-    /* α, then vt_accelerations_add's scratch of 6 (n+1) (free after it: G of the reactions), W̄ */
-    double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, twists of q̈ then G, subtree wrenches");
-    if (!alpha) return vt_scratch_fail(d, mark);
-    double *G = alpha + 3 * nb, *W = alpha + 9 * nb; /* one after the other, as in inward */
-    vt_accelerations_add(m, d, sq.x, d->xdd, alpha, G);
-    subtree_wrenches_at_joints(m, d, alpha, W);
-    for (int a = 0; a < nv; a++) { /* M* q̈ − Q = s_a · W̄_i − qfrc_a, s_a about P_i: (e, 0) or (0, e) */
-        const double *s = d->twist + 6 * a, *Wi = W + 6 * m->dof_body[a];
-        sq.h[a] = (vt_dof_turns(m, a) ? vt_dot3(s, Wi) : vt_dot3(s + 3, Wi + 3)) - d->qfrc[a];
-    }
-    vt_status st = vt_solve_square_end(m, d, &sq, rcond);
-    if (!st) st = vt_reactions_subtree(m, d, W, G, 0);
+    const vt_status st = square_solved(m, d, &sq, rcond);
     vt_scratch_release(d, mark);
     return st;
 }
@@ -1662,12 +1680,17 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
 
 /* The instant of a model with rows other than joint drives, its kinematics and constraints
  * evaluated */
+/* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
+ * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
+/* (and no coupling, whose force acts through two rates, not through the rows' wrenches) */
+static int shortcuts(const vt_model *m)
+{
+    return !m->allow_redundant && m->joint_mix >= 0 && m->ncoupling == 0;
+}
+
 static vt_status constrained_instant(const vt_model *m, vt_data *d)
 {
-    /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
-     * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
-    /* (and no coupling, whose force acts through two rates, not through the rows' wrenches) */
-    if (!m->allow_redundant && m->joint_mix >= 0 && m->ncoupling == 0) {
+    if (shortcuts(m)) {
         if (m->nc == m->nv) return square_instant(m, d);
         if (m->nc < m->nv) return articulated_instant(m, d);
     }
@@ -1682,9 +1705,11 @@ static vt_status constrained_instant(const vt_model *m, vt_data *d)
  * vt_inverse_dynamics_recursive, bitwise (α and the joints' total wrenches only with totals).
  * A model whose rows are all joint drives (the fused passes, or the free rates' solve) takes
  * vt_inverse_dynamics_recursive. */
-vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals)
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates)
 {
-    if (m->joint_driven || m->joint_rows_only) return vt_inverse_dynamics_recursive(m, d);
+    const int joints = m->joint_driven || m->joint_rows_only;
+    if (rates && (joints || !shortcuts(m) || m->nc != m->nv)) return VT_NEEDS_RATES;
+    if (joints) return vt_inverse_dynamics_recursive(m, d);
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
     vt_solve_reset(d);
@@ -1692,8 +1717,22 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
-    if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
-        st = constrained_instant(m, d);
+    if (!rates) {
+        if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
+            st = constrained_instant(m, d);
+        return outputs_scanned(m, d, st, 0, totals);
+    }
+    /* the square route's LU of Φ_q, from the positions, solves q̇ = −Φ_q^-1 Φ_t before it
+     * solves q̈: the instant then runs as square_instant does */
+    const size_t mark = vt_scratch_mark(d);
+    double rcond = 0.0;
+    vt_square sq;
+    const int r = square_factor(m, d, &sq, &rcond);
+    if (r) return vt_scratch_release(d, mark), r == 1 ? VT_NEEDS_RATES : (vt_status)r;
+    if (!(st = (vt_status)vt_square_apply(m, d, &sq, d->Phit, -1.0, d->qd)) && !(st = vt_kinematics_velocities(m, d, 1)) &&
+        !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
+        st = square_solved(m, d, &sq, rcond);
+    vt_scratch_release(d, mark);
     return outputs_scanned(m, d, st, 0, totals);
 }
 

@@ -1053,7 +1053,7 @@ static int joint_rows_solve(const vt_model *m, vt_data *d, double *rcond_out)
  * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
  * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
  * same number. Returns 0, 1 (below rcond_min: nothing solved) or a negative vt_status. */
-int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
+static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
 {
     const int n = m->nv;
     sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of R Φ_q D");
@@ -1063,7 +1063,7 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
     sq->g = sq->s + n;
-    double *A = sq->A, *s = sq->s, *g = sq->g, *x = sq->x;
+    double *A = sq->A, *s = sq->s, *g = sq->g;
     const size_t mark = vt_scratch_mark(d);
     double *gk = VT_SCRATCH(d, double, 2 * (size_t)n, "G and C");
     if (!gk) return vt_scratch_fail(d, mark);
@@ -1126,14 +1126,24 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
     }
     vt_scratch_release(d, mark);
     *rcond_out = rcond * rcond;
-    if (!(*rcond_out >= m->rcond_min)) return 1;
-    /* y = (R Φ_q D)^-1 R γ, q̈ = D y */
-    const int one = 1;
-    for (int r = 0; r < n; r++) x[r] = g[r] * d->gamma[r];
-    dgetrs_("N", &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
+    return *rcond_out >= m->rcond_min ? 0 : 1;
+}
+
+int vt_square_apply(const vt_model *m, vt_data *d, const vt_square *sq, const double *b, double sign, double *x)
+{
+    const int n = m->nv, one = 1;
+    int info = 0;
+    for (int r = 0; r < n; r++) x[r] = sq->g[r] * b[r]; /* y = (R Φ_q D)^-1 R b, x = ± D y */
+    dgetrs_("N", &n, &one, sq->A, &n, sq->ipiv, x, &n, &info, 1);
     if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-    for (int a = 0; a < n; a++) x[a] *= s[a];
+    for (int a = 0; a < n; a++) x[a] *= sign * sq->s[a];
     return 0;
+}
+
+int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
+{
+    const int r = square_factor(m, d, sq, mdiag, stride, rcond_out);
+    return r ? r : vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x); /* q̈ = Φ_q^-1 γ */
 }
 
 int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
@@ -1687,20 +1697,27 @@ int vt_rows_rank(const vt_model *m, vt_data *d)
     return r < 0 ? r : o.rank;
 }
 
-/* The recursive evaluation's square route (recursive.c): vt_solve's square route in two halves
- * with M* q̈ − Q computed between them by a Newton–Euler pass instead of from M* and Q (neither
- * is formed). vt_solve_square_begin: mdiag (nv) holds M*'s diagonal, which scales the solves;
- * the route's state goes to *sq on the arena (the caller releases it), q̈ to sq->x, the
- * condition to *rcond. Returns 0, 1 (ill-conditioned: the caller falls back to vt_solve, which
- * diagnoses it) or a negative vt_status. vt_solve_square_end: with h = M* q̈ − Q in sq->h, λ,
- * and everything vt_solve sets on success. */
-int vt_solve_square_begin(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
+/* The recursive evaluation's square route (recursive.c): vt_solve's square route in three steps
+ * with M* q̈ − Q computed between the last two by a Newton–Euler pass instead of from M* and Q
+ * (neither is formed). vt_solve_square_factor, from the positions alone: mdiag (nv) holds M*'s
+ * diagonal, which scales the solves; the route's state (the LU of R Φ_q D) goes to *sq on the
+ * arena (the caller releases it), the condition to *rcond. Returns 0, 1 (a zero row or
+ * ill-conditioned: the caller falls back to vt_solve, which diagnoses it) or a negative
+ * vt_status. Its LU also solves other right sides (vt_square_apply: the kinematic analysis's
+ * velocities). vt_solve_square_accelerations: q̈ = Φ_q^-1 γ to sq->x. vt_solve_square_end: with
+ * h = M* q̈ − Q in sq->h, λ, and everything vt_solve sets on success. */
+int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
+{
+    const int zero_rows = roundoff_check(m, d, NULL, 0, 0); /* a zero row: the general route diagnoses it */
+    if (zero_rows) return zero_rows < 0 ? zero_rows : 1;
+    return square_factor(m, d, sq, mdiag, 1, rcond);
+}
+
+int vt_solve_square_accelerations(const vt_model *m, vt_data *d, vt_square *sq)
 {
     if (!vt_all_finite(d->gamma, m->nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
-    const int zero_rows = roundoff_check(m, d, NULL, 0, 0); /* a zero row: the general route diagnoses it */
-    if (zero_rows) return zero_rows < 0 ? zero_rows : 1;
-    return vt_square_first(m, d, sq, mdiag, 1, rcond);
+    return vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x);
 }
 
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond)

@@ -115,7 +115,15 @@ static void advance_rotation(double *qi, const vt_model *m, int i, const double 
 vt_status vt_integrate_q(double *q_out, const vt_model *m, const double *q, const double *v, double h)
 {
     if (!q_out || !m || !q || !v) return VT_ERR_NULL;
-    if (!isfinite(h) || !vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
+    if (!isfinite(h)) return VT_ERR_NONFINITE;
+    if (!m->has_quaternions) { /* every q advances linearly (nq = nv): a NaN or Inf in q or v gives one in q + h v */
+        int finite = 1;
+        for (int k = 0; k < m->nq; k++) finite &= isfinite(q[k] + h * v[k]) != 0;
+        if (!finite) return VT_ERR_NONFINITE;
+        for (int k = 0; k < m->nq; k++) q_out[k] = q[k] + h * v[k];
+        return VT_OK;
+    }
+    if (!vt_all_finite(q, m->nq) || !vt_all_finite(v, m->nv)) return VT_ERR_NONFINITE;
     /* finite inputs can still overflow (q + h q̇ past DBL_MAX): every body's result is checked
      * first (a rotating one advanced into a local), and q_out is written only when all are finite
      * (each body reads only its own entries, so q_out may alias q); q + h q̇ is written as checked */

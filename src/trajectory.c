@@ -117,8 +117,8 @@ void vt_trajectory_store(vt_trajectory *tr, const vt_model *m, const vt_data *d,
     for (int r = 0; r < m->nc; r++) {
         double v = d->Phit[r];
         for (int c = 0; c < m->nv; c++) v += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->qd[c];
-        pn = fmax(pn, fabs(d->Phi[r]));
-        pdn = fmax(pdn, fabs(v));
+        pn = fabs(d->Phi[r]) > pn ? fabs(d->Phi[r]) : pn; /* NaN passed over, as fmax does */
+        pdn = fabs(v) > pdn ? fabs(v) : pdn;
     }
     tr->phi_norm[row] = pn;
     tr->phid_norm[row] = pdn;
