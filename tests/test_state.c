@@ -228,6 +228,27 @@ static void test_overflow_changes_nothing(void **state)
     free(q); free(q_out); free(v);
     vt_data_free(d);
     vt_model_free(m);
+
+    /* without Euler parameters every q advances linearly: q + h v entry by entry; a NaN or Inf
+     * in q, v or h, or a sum past DBL_MAX, refused with the output untouched */
+    assert_ok(vt_scene_chain(&m, 4, VT_CHAIN_FREE));
+    double ql[4] = {0.1, -0.2, 0.3, 1e308}, vl[4] = {1.0, 2.0, -3.0, 0.0}, ol[4], keep[4] = {42.0, 42.0, 42.0, 42.0};
+    assert_ok(vt_integrate_q(ol, m, ql, vl, 0.5));
+    for (int k = 0; k < 4; k++) assert_true(ol[k] == ql[k] + 0.5 * vl[k]);
+    const struct { int k; double q, v, h; } bad[] = {
+        {0, NAN, 1.0, 0.5}, {1, 0.0, NAN, 0.5}, {2, INFINITY, 0.0, 0.5}, {3, 1e308, 1e308, 1.0}, {0, 0.0, INFINITY, 0.0},
+        {1, 0.0, 1.0, INFINITY}};
+    for (size_t c = 0; c < sizeof bad / sizeof bad[0]; c++) {
+        double qb[4], vb[4];
+        memcpy(qb, ql, sizeof qb);
+        memcpy(vb, vl, sizeof vb);
+        qb[bad[c].k] = bad[c].q;
+        vb[bad[c].k] = bad[c].v;
+        memcpy(ol, keep, sizeof ol);
+        assert_int_equal(vt_integrate_q(ol, m, qb, vb, bad[c].h), VT_ERR_NONFINITE);
+        assert_memory_equal(ol, keep, sizeof ol);
+    }
+    vt_model_free(m);
 }
 
 /* A frame whose position overflows (a point 1.5e308 m out on a body 1.5e308 m out along the same
