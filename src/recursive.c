@@ -948,8 +948,9 @@ static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
  * from γ. */
 static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, double *rcond)
 {
+    const size_t mark = vt_scratch_mark(d);
     double *mdiag = VT_SCRATCH(d, double, m->nv, "M*'s diagonal");
-    if (!mdiag) return VT_ERR_NO_MEMORY;
+    if (!mdiag) return vt_scratch_fail(d, mark);
     mass_diagonal(m, d, mdiag);
     return vt_solve_square_factor(m, d, sq, mdiag, rcond);
 }
@@ -1678,16 +1679,16 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, int *fo
     return constrained_instant(m, d);
 }
 
-/* The instant of a model with rows other than joint drives, its kinematics and constraints
- * evaluated */
-/* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows: the square and
- * articulated shortcuts, each falling back to factorized_instant when ill-conditioned */
-/* (and no coupling, whose force acts through two rates, not through the rows' wrenches) */
+/* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows, no coupling (whose
+ * force acts through two rates, not through the rows' wrenches): the square and articulated
+ * shortcuts, each falling back to factorized_instant when ill-conditioned */
 static int shortcuts(const vt_model *m)
 {
     return !m->allow_redundant && m->joint_mix >= 0 && m->ncoupling == 0;
 }
 
+/* The instant of a model with rows other than joint drives, its kinematics and constraints
+ * evaluated */
 static vt_status constrained_instant(const vt_model *m, vt_data *d)
 {
     if (shortcuts(m)) {
