@@ -31,11 +31,11 @@ IFS=. read -r major minor patch <<< "$version"
 sed -e "s/@VT_VERSION_MAJOR@/$major/" -e "s/@VT_VERSION_MINOR@/$minor/" -e "s/@VT_VERSION_PATCH@/$patch/" \
     -e "s/@VT_VERSION_STRING@/$version/" -e "s/@VT_HAVE_SUNDIALS@/1/" -e "s/@VT_HAVE_URDF@/1/" \
     include/vtdyn/version.h.in > "$out/include/vtdyn/version.h"
-flags="-g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Iinclude -I$out/include"
+flags="-g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Iinclude -Isrc -I$out/include"
 libs="-lsundials_ida -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense -llapack -lblas -lm"
 # fuzz_model: every source but the URDF loader (its input is XML, not this harness's bytes)
-clang $flags $(ls src/*.c | grep -v '^src/urdf\.c$') fuzz/fuzz_model.c -o "$out/fuzz_model" $libs
-[ "$urdf_seconds" -gt 0 ] && clang $flags -I/usr/include/libxml2 src/*.c fuzz/fuzz_urdf.c -o "$out/fuzz_urdf" $libs -lxml2
+clang $flags $(ls src/*/*.c | grep -v '^src/model/urdf\.c$') fuzz/fuzz_model.c -o "$out/fuzz_model" $libs
+[ "$urdf_seconds" -gt 0 ] && clang $flags -I/usr/include/libxml2 src/*/*.c fuzz/fuzz_urdf.c -o "$out/fuzz_urdf" $libs -lxml2
 # a fresh copy of the seed corpus: new inputs go to build-fuzz/corpus, the repository stays clean
 cp fuzz/corpus/* "$out/corpus/" 2>/dev/null || true
 cp fuzz/corpus_urdf/* "$out/corpus_urdf/" 2>/dev/null || true

@@ -3,7 +3,7 @@
  * should_fail, so the test passes only if the overrun is caught where it happens. */
 #include <stdio.h>
 
-#include "../src/internal.h"
+#include "base/arena.h"
 #include "scenes.h"
 
 int main(void)

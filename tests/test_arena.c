@@ -6,7 +6,7 @@
  * own query; tests/arena_overrun.c overruns on purpose and must be stopped). */
 #include "vt_test.h"
 
-#include "../src/internal.h"
+#include "base/arena.h"
 
 #ifdef VT_ASAN
 int __asan_address_is_poisoned(void const volatile *addr);

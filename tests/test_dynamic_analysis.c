@@ -5,7 +5,7 @@
 #include <ida/ida.h>
 
 #include "vt_test.h"
-#include "../src/internal.h" /* vt_forward_exact */
+#include "analysis/dynamic_analysis.h" /* vt_forward_exact */
 
 static void tip(double out[2], const vt_model *m, vt_data *d, const double *q)
 {

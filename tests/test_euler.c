@@ -1,7 +1,7 @@
 /* src/euler.c: the Euler-parameter identities of method.md, at random parameters. */
 #include <float.h>
 
-#include "../src/internal.h" /* vt_sincos */
+#include "base/euler.h" /* vt_sincos */
 #include "vt_test.h"
 
 static void mat34_mul_t(double *C, const double *X, const double *Y) /* C = X Y^T, X,Y 3x4 */

@@ -3,7 +3,7 @@
  * rates: the least-norm corrections; Newton's starts from a trajectory's rows (vt_kinematic_start)
  * exact for the polynomials of their degree. */
 #include "vt_test.h"
-#include "../src/internal.h" /* vt_kinematic_start */
+#include "analysis/kinematic_solve.h" /* vt_kinematic_start */
 
 /* q̇ and q̈ of the Newton solutions against central differences of q(t) and q̇(t) */
 static void test_rates_against_differences(void **state)

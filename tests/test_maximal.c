@@ -12,7 +12,8 @@
 
 #include <cmocka.h>
 
-#include "../src/internal.h" /* vt_maximal_*, LAPACK's dgeequb: internal */
+#include "base/lapack.h" /* dgeequb */
+#include "numeric/maximal.h" /* vt_maximal_*: internal */
 #include "scenes.h"
 #include "vt_test.h"
 

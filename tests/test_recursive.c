@@ -5,7 +5,9 @@
  * same quantity computed from the dense M* and Φ_q by LAPACK). */
 #include <float.h>
 
-#include "../src/internal.h" /* the rows' kinds, for vt_test_rows_length */
+#include "base/scan.h" /* the scans, tested here */
+#include "base/vec3.h"
+#include "model/model.h" /* the rows' kinds, for vt_test_rows_length */
 
 #include "vt_test.h"
 

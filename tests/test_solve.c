@@ -1,7 +1,9 @@
 /* src/solve.c: the augmented system (5) against second methods (a fully joint-driven chain:
  * q̈ = f'', λ = M* q̈ − Q; a free tree: M* q̈ = Q by Cholesky), and every failure status:
  * singular system, dependent rows, bad drive and cut-joint definitions. */
-#include "../src/internal.h" /* vt_solve_run: the ODE form's solve with its band; rows' kinds */
+#include "base/lapack.h"
+#include "dense/solve.h" /* vt_solve_run: the ODE form's solve with its band */
+#include "model/model.h" /* the rows' kinds */
 
 #include "vt_test.h"
 

@@ -98,7 +98,7 @@ static inline double vt_test_gyration_radius(const vt_model *m, const vt_data *d
     return sqrt(i2 / mt);
 }
 
-#ifdef VTDYN_INTERNAL_H /* the rows' kinds (con_kind): tests that include src/internal.h first */
+#ifdef VT_MODEL_MODEL_H /* the rows' kinds (con_kind): tests that include src/model/model.h first */
 /* 1 when rate a turns (a rotation, an Euler parameter), 0 when it translates */
 static inline int vt_test_rate_turns(const vt_model *m, int a)
 {
@@ -217,7 +217,7 @@ static inline double vt_test_grip2(const vt_model *m, const vt_data *d, double r
     return worst;
 }
 
-#ifdef VTDYN_INTERNAL_H
+#ifdef VT_MODEL_MODEL_H
 /* The Schur and articulated routes' condition (docs/method.md, "The condition estimate"), from
  * the dense path's M* and Φ_q by LAPACK, on the system left once the joint-driven rates (D) are
  * known: the exact 1-norm condition of the other rows' S = Φ_oF M*_FF^-1 Φ_oF^T (F the free

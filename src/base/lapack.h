@@ -1,0 +1,52 @@
+/* vtdyn — LAPACK's Fortran entry points that vtdyn calls, and CBLAS. The trailing size_t are the hidden
+ * lengths of the character arguments, as gfortran passes them. */
+#ifndef VT_BASE_LAPACK_H
+#define VT_BASE_LAPACK_H
+
+#include <stddef.h>
+#include <cblas.h>
+
+
+void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
+            double *w, double *work, const int *lwork, int *info, size_t ljobz, size_t luplo);
+
+/* tridiagonal solve with partial pivoting (the spline's second derivatives, functions.c) */
+void dgtsv_(const int *n, const int *nrhs, double *dl, double *d, double *du, double *b, const int *ldb, int *info);
+
+/* LAPACK routines of the solve (solve.c) */
+void dsytrf_rk_(const char *uplo, const int *n, double *a, const int *lda, double *e, int *ipiv, double *work,
+                const int *lwork, int *info, size_t luplo);
+void dsytrs_3_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, const double *e,
+               const int *ipiv, double *b, const int *ldb, int *info, size_t luplo);
+void dsycon_3_(const char *uplo, const int *n, const double *a, const int *lda, const double *e, const int *ipiv,
+               const double *anorm, double *rcond, double *work, int *iwork, int *info, size_t luplo);
+double dlansy_(const char *norm, const char *uplo, const int *n, const double *a, const int *lda,
+               double *work, size_t lnorm, size_t luplo);
+void dgels_(const char *trans, const int *m, const int *n, const int *nrhs, double *a, const int *lda,
+            double *b, const int *ldb, double *work, const int *lwork, int *info, size_t ltrans);
+void dgelsd_(const int *m, const int *n, const int *nrhs, double *a, const int *lda, double *b, const int *ldb,
+             double *s, const double *rcond, int *rank, double *work, const int *lwork, int *iwork, int *info);
+void dtrtrs_(const char *uplo, const char *trans, const char *diag, const int *n, const int *nrhs, const double *a,
+             const int *lda, double *b, const int *ldb, int *info, size_t l1, size_t l2, size_t l3);
+void dpotf2_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
+void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+             const int *ldb, int *info, size_t l);
+void dpocon_(const char *uplo, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
+             double *work, int *iwork, int *info, size_t l);
+void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt, double *tau,
+             double *work, const int *lwork, int *info);
+void dgesvd_(const char *jobu, const char *jobvt, const int *m, const int *n, double *a, const int *lda, double *s,
+             double *u, const int *ldu, double *vt, const int *ldvt, double *work, const int *lwork, int *info,
+             size_t lu, size_t lvt);
+void dgetf2_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a, const int *lda, const int *ipiv,
+             double *b, const int *ldb, int *info, size_t ltrans);
+void dgecon_(const char *norm, const int *n, const double *a, const int *lda, const double *anorm, double *rcond,
+             double *work, int *iwork, int *info, size_t lnorm);
+/* and of the maximal-coordinate route (maximal.c) */
+void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+void dgeequb_(const int *m, const int *n, const double *a, const int *lda, double *r, double *c, double *rowcnd,
+              double *colcnd, double *amax, int *info);
+void dlacn2_(const int *n, double *v, double *x, int *isgn, double *est, int *kase, int *isave);
+
+#endif

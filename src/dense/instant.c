@@ -1,0 +1,51 @@
+/* One instant by the dense reference path, stage after stage: the paper's method as written.
+ *
+ *   vt_kinematics          x, ẋ, S, Ṡq̇                    (15)-(18)
+ *   vt_mass_matrix         M* = S^T M S                     (3)
+ *   vt_forces              Q = S^T [F − M Ṡq̇ + h]          (4)
+ *   vt_constraints         Φ, Φ_q = Φ_x S, Φ_t, γ           (22), (23)
+ *   vt_solve               q̈, λ from the augmented system   (5)
+ *   vt_reactions           efforts and joint reactions       (24)-(28)
+ * R (vt_inverse_transform) is left out: only (14) needs it. The recursive evaluation of the same
+ * instant is src/recursive.c.
+ *
+ * A motion given through the data for a mechanism with loops or couplings (vt_motion_rows, for
+ * vt_inverse_dynamics_motion): the same stages, with each joint drive's row Φ̈ = q̈_k − f'' = 0
+ * taking its acceleration from the data instead of its time function, γ = q̈_k(given); the cut
+ * joints and couplings give the other rates' q̈, and the drives' multipliers are the efforts.
+ */
+#include <stddef.h>
+#include <string.h>
+
+#include "dense/instant.h"
+#include "base/arena.h"
+#include "model/model.h"
+
+vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
+{
+    vt_status st;
+    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
+        (st = vt_constraints(m, d)) || (st = vt_solve(m, d)))
+        return st;
+    return vt_reactions(m, d);
+}
+
+vt_status vt_motion_rows(const vt_model *m, vt_data *d)
+{
+    /* the given q̈ is an input: kept here and put back when a stage fails, since vt_solve
+     * writes every rate's q̈ into d->qdd */
+    const size_t mark = vt_scratch_mark(d);
+    double *given = VT_SCRATCH(d, double, m->nv, "the given q̈");
+    if (!given) return vt_scratch_fail(d, mark);
+    memcpy(given, d->qdd, (size_t)m->nv * sizeof(double));
+    vt_status st;
+    if (!(st = vt_kinematics(m, d)) && !(st = vt_mass_matrix(m, d)) && !(st = vt_forces(m, d)) &&
+        !(st = vt_constraints(m, d))) {
+        for (int r = 0; r < m->nc; r++)
+            if (m->con_kind[r] == VT_ROW_JOINT) d->gamma[r] = given[m->con_dof[r]];
+        if (!(st = vt_solve(m, d))) st = vt_reactions(m, d);
+    }
+    if (st) memcpy(d->qdd, given, (size_t)m->nv * sizeof(double));
+    vt_scratch_release(d, mark);
+    return st;
+}

@@ -1,0 +1,49 @@
+/* vtdyn — The reactions stage (dense/reactions.c). */
+#ifndef VT_DENSE_REACTIONS_H
+#define VT_DENSE_REACTIONS_H
+
+#include <stddef.h>
+
+#include "vtdyn.h"
+
+size_t vt_reactions_scratch(const vt_model *m);
+
+/* vt_reactions without the argument checks (ẍ and α from d->qdd); dense: M* and S are the
+ * dense stages' (else the recursive general route's composite M* about o) */
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense);
+/* after vt_solve: VT_ERR_SINGULAR when rates whose M* row it zeroed (round-off held by rows)
+ * leave the efforts without a certain digit (reactions.c); who names the caller; dense as
+ * vt_rate_bounds */
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, int dense);
+/* subtree sums about each joint point of wrenches about it: moment at noff, force at foff (reactions.c) */
+void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, int foff);
+/* the same from the subtrees' needed wrenches about each joint point P_i at the full
+ * accelerations, Wbar ([n; f], 6 x (nbody+1), recursive.c), the rows' wrenches already taken off
+ * it with rows_in_wbar; G: scratch of 6 x (nbody+1), apart from Wbar */
+vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G, int rows_in_wbar);
+/* Every row's wrench on its two bodies, for the multipliers lam (1 each when NULL), about each
+ * body's centre of mass: [f_a n_a f_b n_b] into rw (12 x nc) (reactions.c). */
+void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const double *lam);
+/* jnt_unique and cut_unique, every one set, then those that a null direction of Φ_q^T (rank < nc:
+ * the redundant solve's, in d->lambda_null) changes cleared (reactions.c) */
+vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d);
+/* Which reactions are unique: every one when the rows are independent (rank nc), otherwise
+ * vt_reactions_nonunique's; inline, as vt_mark_unique: every instant ends with it */
+static inline vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
+{
+    const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut;
+    int *ju = d->jnt_unique, *cu = d->cut_unique;
+    for (int i = 0; i < nj; i++) ju[i] = 1;
+    for (int k = 0; k < ncut; k++) cu[k] = 1;
+    return m->nc - d->rank > 0 ? vt_reactions_nonunique(m, d) : VT_OK;
+}
+/* what every instant path ends with: α of every body (from ẍ) and each joint's total wrench,
+ * reaction plus actuation (given: the motion given, every rate's qfrc_drive its effort) */
+vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
+
+/* Efforts of the drives from d->lambda (reactions.c), and the forward check's loads */
+vt_status vt_drive_efforts(const vt_model *m, vt_data *d);
+void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
+                          int as_loads);
+
+#endif

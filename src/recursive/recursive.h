@@ -1,0 +1,17 @@
+/* vtdyn — The recursive evaluation of one instant (recursive/recursive.c). */
+#ifndef VT_RECURSIVE_RECURSIVE_H
+#define VT_RECURSIVE_RECURSIVE_H
+
+#include <stddef.h>
+
+#include "vtdyn.h"
+
+size_t vt_recursive_scratch(const vt_model *m);
+
+/* vt_inverse_dynamics_recursive with d's positions, twists, Φ, Φ_t and Φ_q current at d->q and
+ * d->time (Newton's last evaluation), q̇ new, or with rates, q̇ solved from Φ_q q̇ = −Φ_t by the
+ * square route's LU (else VT_NEEDS_RATES, d->qd as it was); fd: the drives' functions at d->time
+ * (vt_drive_values) or NULL; α and the joints' total wrenches only with totals (recursive.c) */
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates);
+
+#endif
