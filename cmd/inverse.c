@@ -161,13 +161,36 @@ static int map_floating_roots(run *x)
     return 0;
 }
 
-/* the samples' times, column t, into x->ts; 0 or 1 */
+/* v in the fewest significant digits that read back as v (at most 17), into buf */
+static const char *shortest(char buf[32], double v)
+{
+    for (int digits = 1; digits <= 17; digits++) {
+        snprintf(buf, 32, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v) break;
+    }
+    return buf;
+}
+
+/* the samples' times, column t, into x->ts: strictly increasing, or the first row whose t is not
+ * after the row before's named (as the other row errors: its line in a file without blank lines,
+ * the header line 1); 0 or 1 */
 static int sample_times(run *x)
 {
     const int n = x->t.nrow;
     x->ts = malloc((size_t)n * sizeof *x->ts);
     if (!x->ts) return cmd_fail("out of memory");
     for (int r = 0; r < n; r++) x->ts[r] = table_row(&x->t, r)[x->ct];
+    for (int r = 1; r < n; r++) {
+        if (x->ts[r] > x->ts[r - 1]) continue;
+        char now[32], before[32];
+        if (x->ts[r] == x->ts[r - 1])
+            return cmd_fail("%s:%d: column 't': %s again (as on the row before): samples of a trajectory (positions "
+                            "alone) need 't' increasing from row to row",
+                            x->states, r + 2, shortest(now, x->ts[r]));
+        return cmd_fail("%s:%d: column 't': %s after %s on the row before: samples of a trajectory (positions "
+                        "alone) need 't' increasing from row to row",
+                        x->states, r + 2, shortest(now, x->ts[r]), shortest(before, x->ts[r - 1]));
+    }
     return 0;
 }
 
