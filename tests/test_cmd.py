@@ -11,9 +11,10 @@ and the joint-1 reaction: the arm's total momentum rate, f = sum m a_c (gravity 
 the hinge's vertical force, f_z = 2 m g). States given (to 1e-9), states as samples of a smooth
 motion (velocities and accelerations from the splines, to 1e-4 of the largest torque at the
 interior samples), the link axes' reaction, and the errors: a missing column, a bad number
-(file, row and column named, exit 1, no output file left), --help. A floating body (a URDF
-floating joint from the world, and a root link with --floating): its six efforts against
-Newton-Euler written here (1e-12), zero in free flight; samples and a non-unit quaternion refused.
+(file, row and column named, exit 1, no output file left), samples whose t does not increase (the
+row and 't' named), --help. A floating body (a URDF floating joint from the world, and a root
+link with --floating): its six efforts against Newton-Euler written here (1e-12), zero in free
+flight; samples and a non-unit quaternion refused.
 
     test_cmd.py VTDYN URDF_DIR WORKDIR
 """
@@ -310,6 +311,15 @@ def main():
         f.write("joint1,joint2\n0,0\n")
     r = run(vtdyn, "inverse", urdf, bad)
     check(r.returncode == 1 and "'t'" in r.stderr, "samples need t: %r" % r.stderr)
+    # samples whose t does not increase (repeated, then going back): the row and the column named
+    # in the file's terms (the line, as the other row errors), not the drive's spline samples
+    for rows, line in (("0,0,0\n0.1,0.1,0.1\n0.1,0.2,0.2\n0.3,0.3,0.3\n", 4), ("0,0,0\n0.2,0.1,0.1\n0.1,0.2,0.2\n", 4)):
+        with open(bad, "w") as f:
+            f.write("t,joint1,joint2\n" + rows)
+        r = run(vtdyn, "inverse", urdf, bad)
+        check(r.returncode == 1 and "bad.csv:%d: column 't'" % line in r.stderr and "increasing" in r.stderr
+              and "drive" not in r.stderr and "t[" not in r.stderr,
+              "samples with t not increasing name the row and 't': %r" % r.stderr)
     r = run(vtdyn, "inverse", os.path.join(work, "missing.urdf"), states)
     check(r.returncode == 1 and "missing.urdf" in r.stderr, "a missing URDF is named: %r" % r.stderr)
     # a byte-order mark before the header, a subnormal number; an existing .part left alone

@@ -1,0 +1,46 @@
+/* The command's files (cmd/csv.c): a CSV table of numbers read whole, and an output written
+ * beside its name and renamed when complete. */
+#ifndef VTDYN_CMD_CSV_H
+#define VTDYN_CMD_CSV_H
+
+#include <stdio.h>
+
+/* a CSV file of numbers under a header row */
+typedef struct {
+    int ncol, nrow;
+    char **name;  /* header cells (ncol) */
+    double *cell; /* nrow x ncol, row-major */
+} table;
+
+/* reads the CSV file at path: a header row of distinct names, then rows of as many finite
+ * numbers (a '.' decimal point whatever the locale; blank lines, a UTF-8 byte-order mark and
+ * spaces around cells skipped); 0, or 1 with the message, naming the file's line, printed and *t
+ * empty */
+int table_read(table *t, const char *path);
+/* frees the table's cells and names; *t is then empty */
+void table_free(table *t);
+/* the index of the column named name, or -1 */
+int table_column(const table *t, const char *name);
+/* data row r (0-based): its ncol cells */
+static inline const double *table_row(const table *t, int r)
+{
+    return t->cell + (size_t)r * (size_t)t->ncol;
+}
+
+/* an output: standard output, or a file written as PATH.part and renamed PATH when complete */
+typedef struct {
+    FILE *f;          /* where to write */
+    const char *path; /* the name asked for, or NULL for standard output */
+    char *tmp;        /* PATH.part while writing, created by us (NULL for standard output) */
+} output;
+
+/* opens the output: standard output when path is NULL, else PATH.part, created new (an existing
+ * one is left alone and refused); 0, or 1 with the message printed */
+int output_open(output *o, const char *path);
+/* ends the output: when complete is nonzero, checks that every write succeeded and renames
+ * PATH.part to PATH (or flushes standard output); otherwise, or when that fails, removes
+ * PATH.part. 0 when the output is complete under its name, else 1 (a message printed when the
+ * failure is the output's own) */
+int output_close(output *o, int complete);
+
+#endif

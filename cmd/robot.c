@@ -1,0 +1,22 @@
+/* The command's robot: the URDF loaded with the command's options, and the joint types' names. */
+#include "robot.h"
+
+#include "message.h"
+
+int cmd_load_urdf(vt_builder **b, const char *path, int floating)
+{
+    char msg[256] = "";
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.floating = floating;
+    opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */
+    const vt_status st = vt_urdf_builder(b, path, &opt, msg);
+    if (st) return cmd_fail("%s: %s (%s)", path, msg, vt_status_string(st));
+    return 0;
+}
+
+const char *cmd_joint_kind(int jt)
+{
+    static const char *const kinds[VT_JOINT_TYPE_COUNT] = {"base",      "revolute",    "universal", "spherical",
+                                                           "prismatic", "cylindrical", "floating"};
+    return jt >= 0 && jt < VT_JOINT_TYPE_COUNT ? kinds[jt] : "?";
+}
