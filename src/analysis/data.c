@@ -55,6 +55,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
         d->arena->base = mem;
         d->arena->size = scratch;
         d->arena->top = 0;
+        d->arena->peak = 0;
         d->arena->failed = 0;
     }
     d->x = take(base, &used, nx * sizeof(double));

@@ -22,8 +22,11 @@ void *vt_scratch_rest(vt_data *d, size_t need, size_t size, int *count, const ch
     size_t n = (a->size - a->top) / size;
     if (n > (size_t)1 << 30) n = (size_t)1 << 30; /* LAPACK counts in int */
     if (n < need) n = need;                        /* does not fit: vt_scratch_take says so */
+    const size_t peak = a->peak, need_top = a->top + VT_SCRATCH_BYTES(need, size);
     void *p = vt_scratch_take(d, n, size, name);
     *count = p ? (int)n : 0;
+    /* the peak counts what was needed, not the rest handed over (the bounds reserve `need`) */
+    d->arena->peak = peak > need_top ? peak : need_top;
     return p;
 }
 

@@ -22,6 +22,8 @@ struct vt_arena {
     char *base;   /* on a VT_DATA_ALIGN boundary */
     size_t size;  /* bytes */
     size_t top;   /* bytes in use */
+    size_t peak;  /* the highest top since the data was laid out or vt_scratch_peak_reset: the
+                   * measured use that each file's bound is tested against (MuJoCo's maxuse_arena) */
     int failed;   /* an allocation did not fit since the last release below it */
     int poison;   /* AddressSanitizer builds: poison what is not taken (vt_data_create()'s data) */
 };
@@ -63,6 +65,7 @@ static inline void *vt_scratch_take(vt_data *d, size_t n, size_t size, const cha
         return vt_scratch_refuse(d, n, size, name);
     char *p = a->base + a->top;
     a->top += VT_SCRATCH_BYTES(n, size);
+    a->peak = a->top > a->peak ? a->top : a->peak;
     if (a->poison) VT_UNPOISON(p, n * size); /* the padding up to the next cache line stays poisoned */
     return p;
 }
@@ -84,6 +87,17 @@ static inline void vt_scratch_release(vt_data *d, size_t mark)
 static inline int vt_scratch_ok(const vt_data *d)
 {
     return !d->arena->failed;
+}
+
+/* the arena's peak use in bytes, and its reset (tests/test_scratch_bounds.c measures each file's
+ * bound against it) */
+static inline size_t vt_scratch_peak(const vt_data *d)
+{
+    return d->arena->peak;
+}
+static inline void vt_scratch_peak_reset(vt_data *d)
+{
+    d->arena->peak = d->arena->top;
 }
 
 /* releases to mark and returns the failure (the message names the allocation) */
