@@ -357,7 +357,7 @@ static inline void vt_test_S_times(double *y, const vt_model *m, const vt_data *
  *   3  joint 1 alone (four free rates)
  *   4  no joint; the far end of rod 2 and the tip, x and y (one rate free: test_solve)
  * joint k by f = 0.3 + 0.2 k + 0.4 sin(1.5 t + 0.2 k) (k from 0), the tip's x and y by
- * 0.05 sin(t + 0.3 c) (c = 0, 1), rod 2's by 0.05 sin(t + 0.3 (c + 2)). test_recursive and the
+ * 0.05 sin(t + 0.3 c) (c = 0, 1), rod 2's by 0.05 sin(t + 0.3 (c + 2)). test_accuracy and the
  * high-precision oracle (ratio_oracle.py, which writes the same chain's equations itself) use
  * it. */
 static inline vt_model *vt_test_ratio_chain(int rising, int drive, double step)
