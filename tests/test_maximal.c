@@ -2,7 +2,7 @@
  * stages, its estimate against an explicit computation of its definition, rows losing their
  * independence shown whatever route solves, where it is and is not offered. Its answers on the
  * chains of spread masses against the exact ones are tests/ratio_oracle.py's; its translation
- * invariance is test_recursive's. */
+ * invariance is test_accuracy's. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

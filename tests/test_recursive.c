@@ -1,103 +1,19 @@
-/* src/recursive.c: the recursive evaluation against the dense reference path, to 1e-12
- * relative, on random trees with every joint kind, with and without drives and cut joints,
- * on fully joint-driven chains and trees (the path that factorizes nothing), square systems
- * (the four-bars) and partly driven trees (articulated bodies, whose condition is held to the
- * same quantity computed from the dense M* and Φ_q by LAPACK). */
+/* src/recursive.c: the recursive evaluation's routes and behaviour. A table of scenes (random
+ * trees with every joint kind, with and without drives and cut joints; fully joint-driven chains
+ * and trees, the path that factorizes nothing; the paper's scenes; square systems, the four-bars;
+ * partly driven trees, articulated bodies; couplings), each at its states against the dense
+ * reference path to 1e-12 relative (vt_test_both) and held to the routes and fallback flags it
+ * must take; then dependent rows, the motion given (vt_inverse_dynamics_motion), free joints
+ * against base bodies, the fused passes' overflow checks and their scans. The accuracy under
+ * mass ratios, far poses, large angles, long chains and round-off: test_accuracy.c. */
 #include <float.h>
 
-#include "base/scan.h" /* the scans, tested here */
-#include "base/vec3.h"
-#include "model/model.h" /* the rows' kinds, for vt_test_rows_length */
+#include "base/scan.h"   /* vt_finite_scan, vt_max_scan: tested here */
+#include "model/model.h" /* the rows' kinds (VT_ROW_JOINT, and vt_test.h's vt_test_known_rcond) */
 
 #include "vt_test.h"
 
-static void compare_at(const double *a, const double *b, int n, double rel, double scale, const char *what)
-{
-    for (int k = 0; k < n; k++)
-        if (!(fabs(a[k] - b[k]) <= rel * scale))
-            fail_msg("%s[%d]: recursive %.17g, dense %.17g (scale %.3g)", what, k, a[k], b[k], scale);
-}
-
-static void compare(const double *a, const double *b, int n, double rel, const char *what)
-{
-    compare_at(a, b, n, rel, 1.0 + fmax(vt_test_maxabs(a, n), vt_test_maxabs(b, n)), what);
-}
-
-/* which intermediates the recursive evaluation forms on the route it recorded: INWARD none
- * (every rate joint-driven), SQUARE Ṡq̇ and Φ_q (square Φ_q: M* and Q are never formed),
- * ARTICULATED the same (articulated bodies, no M*), FACTORIZED those and M*, Q (vt_solve's
- * routes, which the dense path takes too) */
-enum { INWARD, SQUARE, ARTICULATED, FACTORIZED };
-static int path_of(const vt_data *dr)
-{
-    switch (dr->route) {
-    case VT_ROUTE_JOINT_DRIVEN: return INWARD;
-    case VT_ROUTE_ARTICULATED: return ARTICULATED;
-    case VT_ROUTE_SQUARE: return dr->fallback ? FACTORIZED : SQUARE;
-    default: return FACTORIZED;
-    }
-}
-
-/* run both on the same state and compare every output, and the intermediates that the recursive
- * path forms (path_of) */
-static void both(const vt_model *m, vt_data *dr, vt_data *dd)
-{
-    assert_ok(vt_inverse_dynamics(m, dd));
-    assert_ok(vt_inverse_dynamics_recursive(m, dr));
-    const int path = path_of(dr);
-    assert_true(dr->route > VT_ROUTE_NONE && dr->route < VT_ROUTE_COUNT);
-    /* when the recursive evaluation factorizes, vt_solve takes the dense path's route */
-    if (path == FACTORIZED) assert_int_equal(dr->route, dd->route);
-    assert_int_equal(dd->fallback & ~(VT_FALLBACK_SCHUR_PIVOT | VT_FALLBACK_SCHUR_CONDITION | VT_FALLBACK_MAXIMAL_CONDITION),
-                     0); /* the dense path's only fallbacks */
-    const int nb3 = 3 * (m->nbody + 1);
-    /* a reaction moment that is zero in exact arithmetic (a planar scene's) is the round-off of
-     * the moments through the joint: measure it against them */
-    const double mscale = 1.0 + fmax(fmax(vt_test_maxabs(dd->jnt_moment, nb3), vt_test_maxabs(dd->drive_effort, m->ndrive)),
-                                     fmax(vt_test_maxabs(dd->drive_moment, 3 * m->ndrive), vt_test_maxabs(dd->qfrc_drive, m->nv)));
-    compare(dr->x, dd->x, m->nx, 1e-12, "x");
-    compare(dr->xd, dd->xd, m->nx, 1e-12, "xd");
-    compare(dr->qdd, dd->qdd, m->nv, 1e-12, "qdd");
-    compare(dr->lambda, dd->lambda, m->nc, 1e-12, "lambda");
-    compare(dr->xdd, dd->xdd, m->nx, 1e-12, "xdd");
-    compare(dr->qfrc_drive, dd->qfrc_drive, m->nv, 1e-12, "qfrc_drive");
-    compare(dr->drive_effort, dd->drive_effort, m->ndrive, 1e-12, "drive_effort");
-    compare(dr->drive_force, dd->drive_force, 3 * m->ndrive, 1e-12, "drive_force");
-    compare(dr->drive_moment, dd->drive_moment, 3 * m->ndrive, 1e-12, "drive_moment");
-    compare(dr->jnt_force, dd->jnt_force, nb3, 1e-12, "jnt_force");
-    compare_at(dr->jnt_moment, dd->jnt_moment, nb3, 1e-12, mscale, "jnt_moment");
-    compare(dr->jnt_force_body, dd->jnt_force_body, nb3, 1e-12, "jnt_force_body");
-    compare_at(dr->jnt_moment_body, dd->jnt_moment_body, nb3, 1e-12, mscale, "jnt_moment_body");
-    compare(dr->cut_force, dd->cut_force, 3 * m->ncut, 1e-12, "cut_force");
-    compare(dr->cut_moment, dd->cut_moment, 3 * m->ncut, 1e-12, "cut_moment");
-    compare(dr->alpha, dd->alpha, nb3, 1e-12, "alpha");
-    compare(dr->jnt_force_total, dd->jnt_force_total, nb3, 1e-12, "jnt_force_total");
-    compare_at(dr->jnt_moment_total, dd->jnt_moment_total, nb3, 1e-12, mscale, "jnt_moment_total");
-    compare(dr->jnt_force_total_body, dd->jnt_force_total_body, nb3, 1e-12, "jnt_force_total_body");
-    compare_at(dr->jnt_moment_total_body, dd->jnt_moment_total_body, nb3, 1e-12, mscale, "jnt_moment_total_body");
-    compare(dr->Phi, dd->Phi, m->nc, 1e-12, "Phi");
-    if (path == SQUARE) { /* the square path computes the condition of the same Φ_q D itself */
-        assert_near(dr->rcond, dd->rcond, 1e-9 * dd->rcond);
-        assert_int_equal(dr->warning, dd->warning);
-    }
-    if (path == ARTICULATED) {
-        const double expect = vt_test_known_rcond(m, dd);
-        assert_near(dr->rcond, expect, 1e-9 * expect);
-        if (dd->route == VT_ROUTE_SCHUR) assert_near(dd->rcond, expect, 1e-9 * expect); /* the same system */
-    }
-    compare(dr->gamma, dd->gamma, m->nc, 1e-12, "gamma");
-    assert_int_equal(dr->rank, dd->rank); /* and the same uniqueness flags (vt_solve's) */
-    for (int r = 0; r < m->nc; r++) assert_int_equal(dr->lambda_unique[r], dd->lambda_unique[r]);
-    for (int k = 6; k < 6 * (m->nbody + 1); k++) assert_int_equal(dr->jnt_unique[k], dd->jnt_unique[k]);
-    if (path != INWARD) {
-        compare(dr->Sdqd, dd->Sdqd, m->nx, 1e-12, "Sdqd");
-        compare(dr->Phiq, dd->Phiq, m->nc * m->nv, 1e-12, "Phiq");
-    }
-    if (path == FACTORIZED) {
-        compare(dr->Mstar, dd->Mstar, m->nv * m->nv, 1e-12, "Mstar");
-        compare(dr->Q, dd->Q, m->nv, 1e-12, "Q");
-    }
-}
+/* ---- the route table: a scene, its states, and the routes the two paths must take ---- */
 
 static vt_model *tree_with(uint64_t seed, int n, unsigned kinds, int drives, int cuts)
 {
@@ -109,10 +25,7 @@ static vt_model *tree_with(uint64_t seed, int n, unsigned kinds, int drives, int
     for (int i = 2; drives && i <= n; i += 2) {
         const int jt = probe->body_joint[i];
         if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE) continue;
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = i;
-        dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        vt_test_add_joint_drive(b, i, 0, vt_function_sine(0.1, 0.3, 2.0, 0.5));
     }
     if (cuts && (probe->body_joint[7] == VT_JOINT_BASE || probe->body_joint[7] == VT_JOINT_FREE)) {
         vt_cut_joint_def cj = vt_default_cut_joint_def();
@@ -121,282 +34,351 @@ static vt_model *tree_with(uint64_t seed, int n, unsigned kinds, int drives, int
         cj.body_b = 7;
         assert_true(vt_builder_add_cut_joint(b, &cj) >= 0);
     }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
+    vt_model *m = vt_test_build(b);
     vt_model_free(probe);
     return m;
 }
 
-static void test_random_trees(void **state)
+/* a random tree of 8 bodies, rate 7 coupled to rate 3 (q_7 = 1.3 q_3 − 0.1), body 5 joint-driven */
+static vt_model *coupled_tree(uint64_t seed)
 {
-    (void)state;
-    for (uint64_t seed = 1; seed <= 18; seed++) { /* 13..18: free joints (square and articulated routes) */
-        const unsigned kinds = seed > 12 ? VT_SCENE_WITH_FREE : seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE;
-        vt_model *m = tree_with(seed, 9 + (int)seed, kinds, seed % 2, seed % 4 == 1);
-        vt_data *dr, *dd;
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        uint64_t s = seed * 11;
-        vt_scene_random_state(m, dd, &s);
-        for (int i = 1; i <= m->nbody; i++) /* applied loads too */
-            for (int k = 0; k < 6; k++) dd->xfrc[6 * i + k] = vt_rand_uniform(&s, -3, 3);
-        for (int c = 0; c < m->nv; c++) dd->qfrc[c] = vt_rand_uniform(&s, -1, 1);
-        dd->time = 0.4;
-        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-        memcpy(dr->xfrc, dd->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
-        memcpy(dr->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
-        dr->time = dd->time;
-        assert_int_equal(m->joint_driven, 0);
-        both(m, dr, dd);
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, seed, 8, VT_SCENE_SCALAR_JOINTS));
+    vt_coupling_def c = vt_default_coupling_def();
+    c.body_a = 7;
+    c.body_b = 3;
+    c.ratio = 1.3;
+    c.offset = -0.1;
+    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+    vt_test_add_joint_drive(b, 5, 0, vt_function_sine(0.1, 0.3, 2.0, 0.5));
+    vt_model *m = vt_test_build(b);
+    return m;
+}
+
+/* applied loads on every body (within ±3) and rate (±1), in that order from s */
+static void random_loads(const vt_model *m, vt_data *d, uint64_t *s)
+{
+    for (int i = 1; i <= m->nbody; i++)
+        for (int k = 0; k < 6; k++) d->xfrc[6 * i + k] = vt_rand_uniform(s, -3, 3);
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = vt_rand_uniform(s, -1, 1);
+}
+
+/* random trees with every joint kind, with and without drives and cut joints: seeds 1..18
+ * (13..18: free joints, the square and articulated routes), every output against the dense path */
+static vt_model *random_tree(int v)
+{
+    const uint64_t seed = (uint64_t)v + 1;
+    const unsigned kinds = seed > 12 ? VT_SCENE_WITH_FREE : seed % 3 ? VT_SCENE_ALL_JOINTS : VT_SCENE_NO_BASE;
+    return tree_with(seed, 9 + (int)seed, kinds, seed % 2, seed % 4 == 1);
+}
+
+static void random_tree_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)k;
+    uint64_t s = ((uint64_t)v + 1) * 11;
+    vt_scene_random_state(m, d, &s);
+    random_loads(m, d, &s); /* applied loads too */
+    d->time = 0.4;
+}
+
+/* every rate driven: the inward pass alone, against the dense solve; chains of n = 1, 14, 27, 40 */
+static vt_model *joint_driven_chain(int v)
+{
+    vt_model *m;
+    assert_ok(vt_scene_chain(&m, 1 + 13 * v, VT_CHAIN_JOINT_DRIVEN));
+    return m;
+}
+
+static void joint_driven_chain_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)v, (void)k;
+    vt_test_chain_state(m, d, 0);
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = 0.1 * c;
+    d->xfrc[6 * m->nbody + 1] = -2.0; /* a load on the last link */
+}
+
+static void prescribed_qdd(const vt_model *m, const vt_data *dr, const vt_data *dd, int v)
+{
+    (void)dd, (void)v;
+    for (int k = 0; k < m->nv; k++) { /* and q̈ is the prescribed one */
+        double q, qd, qdd;
+        vt_scene_chain_state(k, &q, &qd, &qdd);
+        assert_near(dr->qdd[k], qdd, 1e-15);
     }
 }
 
-/* every rate driven: the inward pass alone, against the dense solve */
-static void test_joint_driven(void **state)
+/* a random tree of scalar joints (seed 5, 12 bodies), every rate driven */
+static vt_model *joint_driven_tree(int v)
 {
-    (void)state;
-    for (int n = 1; n <= 40; n += 13) {
-        vt_model *m;
-        vt_data *dr, *dd;
-        assert_ok(vt_scene_chain(&m, n, VT_CHAIN_JOINT_DRIVEN));
-        assert_int_equal(m->joint_driven, 1);
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        for (int k = 0; k < n; k++) {
-            double qdd;
-            vt_scene_chain_state(k, &dd->q[k], &dd->qd[k], &qdd);
-            dr->q[k] = dd->q[k];
-            dr->qd[k] = dd->qd[k];
-            dr->qfrc[k] = dd->qfrc[k] = 0.1 * k;
-        }
-        dr->xfrc[6 * n + 1] = dd->xfrc[6 * n + 1] = -2.0; /* a load on the last link */
-        both(m, dr, dd);
-        assert_int_equal(dr->route, VT_ROUTE_JOINT_DRIVEN);
-        assert_int_equal(dr->fallback, 0);
-        for (int k = 0; k < n; k++) { /* and q̈ is the prescribed one */
-            double q, qd, qdd;
-            vt_scene_chain_state(k, &q, &qd, &qdd);
-            assert_near(dr->qdd[k], qdd, 1e-15);
-        }
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
-    }
-    /* a random tree of scalar joints, every rate driven */
+    (void)v;
     vt_model *probe;
     assert_ok(vt_scene_random_tree(&probe, 5, 12, VT_SCENE_SCALAR_JOINTS));
     vt_builder *b;
     assert_ok(vt_builder_create(&b, NULL));
     assert_ok(vt_scene_random_bodies(b, 5, 12, VT_SCENE_SCALAR_JOINTS));
     for (int c = 0; c < probe->nv; c++) {
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = probe->dof_body[c];
-        dr.index = c - probe->body_vadr[dr.body];
-        dr.f = vt_function_sine(0.2, 0.5, 1.0 + c, 0.1 * c);
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+        const int i = probe->dof_body[c];
+        vt_test_add_joint_drive(b, i, c - probe->body_vadr[i], vt_function_sine(0.2, 0.5, 1.0 + c, 0.1 * c));
     }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    assert_int_equal(m->joint_driven, 1);
-    vt_data *dr, *dd;
-    assert_ok(vt_data_create(&dr, m));
-    assert_ok(vt_data_create(&dd, m));
-    uint64_t s = 3;
-    vt_scene_random_state(m, dd, &s);
-    memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-    memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-    dr->time = dd->time = 0.7;
-    both(m, dr, dd);
-    assert_int_equal(dr->route, VT_ROUTE_JOINT_DRIVEN);
-    vt_data_free(dr);
-    vt_data_free(dd);
-    vt_model_free(m);
+    vt_model *m = vt_test_build(b);
     vt_model_free(probe);
+    return m;
 }
 
-/* the paper's scenes */
-static void test_scenes(void **state)
+static void joint_driven_tree_state(const vt_model *m, vt_data *d, int v, int k)
 {
-    (void)state;
+    (void)v, (void)k;
+    uint64_t s = 3;
+    vt_scene_random_state(m, d, &s);
+    d->time = 0.7;
+}
+
+/* the paper's scenes: the double link, the chain of 12 links driven at its tip */
+static vt_model *double_link(int v)
+{
+    (void)v;
     vt_model *m;
-    vt_data *dr, *dd;
     assert_ok(vt_scene_double_link(&m, 1));
-    assert_ok(vt_data_create(&dr, m));
-    assert_ok(vt_data_create(&dd, m));
-    dr->q[0] = dd->q[0] = -0.7;
-    dr->qd[0] = dd->qd[0] = -1.5;
-    both(m, dr, dd);
-    vt_data_free(dr);
-    vt_data_free(dd);
-    vt_model_free(m);
+    return m;
+}
+
+static void double_link_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)m, (void)v, (void)k;
+    d->q[0] = -0.7;
+    d->qd[0] = -1.5;
+}
+
+static vt_model *tip_driven_chain(int v)
+{
+    (void)v;
+    vt_model *m;
     assert_ok(vt_scene_chain(&m, 12, VT_CHAIN_TIP_DRIVE));
-    assert_ok(vt_data_create(&dr, m));
-    assert_ok(vt_data_create(&dd, m));
-    for (int k = 0; k < 12; k++) {
-        double qdd;
-        vt_scene_chain_state(k, &dd->q[k], &dd->qd[k], &qdd);
-        dr->q[k] = dd->q[k];
-        dr->qd[k] = dd->qd[k];
-    }
-    both(m, dr, dd);
-    assert_int_equal(dr->route, VT_ROUTE_ARTICULATED); /* the tip's one row: articulated bodies */
-    assert_int_equal(dr->fallback, 0);
-    assert_int_equal(dd->route, VT_ROUTE_SCHUR);
-    vt_data_free(dr);
-    vt_data_free(dd);
-    vt_model_free(m);
-    /* square Φ_q: the four-bar built both ways, through several crank angles */
-    for (int rusr = 0; rusr < 2; rusr++) {
-        const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
-        assert_ok(rusr ? vt_scene_fourbar_rusr(&m, crank) : vt_scene_fourbar(&m, crank));
-        assert_int_equal(m->nc, m->nv);
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        for (int k = 0; k < 5; k++) {
-            const double th = 0.3 + 1.1 * k, w = 1.0 - 0.4 * k;
-            assert_int_equal(rusr ? vt_scene_fourbar_rusr_assemble(m, dd, th, w, NULL, NULL)
-                                  : vt_scene_fourbar_assemble(m, dd, th, w, NULL, NULL), 0);
-            memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-            memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-            /* applied loads: a torque on every rate (the coupler's act between two moving
-             * bodies) and a force on the coupler */
-            for (int c = 0; c < m->nv; c++) dr->qfrc[c] = dd->qfrc[c] = 0.7 - 0.3 * c;
-            dr->xfrc[6 * 2 + 2] = dd->xfrc[6 * 2 + 2] = -3.0;
-            both(m, dr, dd);
-            assert_int_equal(dr->route, VT_ROUTE_SQUARE);
-            assert_int_equal(dr->fallback, 0);
-            assert_int_equal(dd->route, VT_ROUTE_SQUARE);
-        }
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
-    }
-    /* planar pins (2 rows each): the four-bar and the slider-crank square with the crank driven,
-     * and without the drive (the loop moving freely) by articulated bodies */
-    for (int k = 0; k < 4; k++) {
-        const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
-        vt_model *md;
-        assert_ok(k % 2 ? vt_scene_slider_crank(&md, crank, 1) : vt_scene_fourbar_pin(&md, crank));
-        if (k < 2) {
-            m = md;
-        } else {
-            assert_ok(vt_model_without_drives(&m, md));
-            vt_model_free(md);
-        }
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        assert_int_equal(k % 2 ? vt_scene_slider_crank_assemble(m, dd, 0.9, 1.3) : vt_scene_fourbar_planar_assemble(m, dd, 0.9, 1.3), 0);
-        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-        for (int c = 0; c < m->nv; c++) dr->qfrc[c] = dd->qfrc[c] = 0.4 - 0.3 * c;
-        both(m, dr, dd);
-        assert_int_equal(dr->route, k < 2 ? VT_ROUTE_SQUARE : VT_ROUTE_ARTICULATED);
-        assert_int_equal(dr->fallback, 0);
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
-    }
+    return m;
+}
+
+static void chain_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)v, (void)k;
+    vt_test_chain_state(m, d, 0);
+}
+
+/* square Φ_q: the four-bar built both ways (v = 1: RUSR), through five crank angles k */
+static vt_model *fourbar(int v)
+{
+    vt_model *m;
+    const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
+    assert_ok(v ? vt_scene_fourbar_rusr(&m, crank) : vt_scene_fourbar(&m, crank));
+    assert_int_equal(m->nc, m->nv);
+    return m;
+}
+
+static void fourbar_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    const double th = 0.3 + 1.1 * k, w = 1.0 - 0.4 * k;
+    assert_int_equal(v ? vt_scene_fourbar_rusr_assemble(m, d, th, w, NULL, NULL) : vt_scene_fourbar_assemble(m, d, th, w, NULL, NULL),
+                     0);
+    /* applied loads: a torque on every rate (the coupler's act between two moving bodies) and a
+     * force on the coupler */
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = 0.7 - 0.3 * c;
+    d->xfrc[6 * 2 + 2] = -3.0;
+}
+
+/* planar pins (2 rows each): the four-bar (v = 0) and the slider-crank (1), square with the crank
+ * driven, and without the drive (the loop moving freely) by articulated bodies */
+static vt_model *planar_loop(int v)
+{
+    vt_model *m;
+    const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
+    assert_ok(v ? vt_scene_slider_crank(&m, crank, 1) : vt_scene_fourbar_pin(&m, crank));
+    return m;
+}
+
+static vt_model *planar_loop_undriven(int v)
+{
+    vt_model *m, *md = planar_loop(v);
+    assert_ok(vt_model_without_drives(&m, md));
+    vt_model_free(md);
+    return m;
+}
+
+static void planar_loop_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)k;
+    assert_int_equal(v ? vt_scene_slider_crank_assemble(m, d, 0.9, 1.3) : vt_scene_fourbar_planar_assemble(m, d, 0.9, 1.3), 0);
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = 0.4 - 0.3 * c;
 }
 
 /* fewer rows than rates, no base body (the articulated path), every other joint kind: random
- * trees with joint drives, a point drive, an orientation drive (absolute, or relative to another
- * body or to its joint's parent) and a spherical cut joint, loads on every body and rate */
-static void test_articulated(void **state)
+ * trees (seeds 1..8) with joint drives, a point drive, an orientation drive (absolute, or relative
+ * to another body or to its joint's parent) and a spherical cut joint, loads on every body and rate */
+static vt_model *partly_driven_tree(int v)
 {
-    (void)state;
-    for (uint64_t seed = 1; seed <= 8; seed++) {
-        vt_model *m = vt_test_partly_driven_tree(seed, VT_SCENE_NO_BASE, 0);
-        int joint_rows = 0; /* joint drives among other rows: their rates known, their efforts from
-                             * the subtrees' wrenches (both: against the dense path's λ and reactions) */
-        for (int r = 0; r < m->nc; r++) joint_rows += m->con_kind[r] == VT_ROW_JOINT;
-        assert_true(joint_rows > 0 && joint_rows < m->nc);
-        /* the articulated route itself: random poses whose estimate falls below √rcond_warn
-         * would have the maximal route solve them (vt_maximal_wanted) */
-        m->rcond_warn = m->rcond_min;
-        vt_data *dr, *dd;
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        uint64_t s = seed * 7;
-        vt_scene_random_state(m, dd, &s);
-        for (int i = 1; i <= m->nbody; i++)
-            for (int k = 0; k < 6; k++) dd->xfrc[6 * i + k] = vt_rand_uniform(&s, -3, 3);
-        for (int c = 0; c < m->nv; c++) dd->qfrc[c] = vt_rand_uniform(&s, -1, 1);
-        dd->time = 0.3;
-        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-        memcpy(dr->xfrc, dd->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
-        memcpy(dr->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
-        dr->time = dd->time;
-        both(m, dr, dd);
-        assert_int_equal(dr->route, VT_ROUTE_ARTICULATED);
-        assert_int_equal(dr->fallback, 0);
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
-    }
+    vt_model *m = vt_test_partly_driven_tree((uint64_t)v + 1, VT_SCENE_NO_BASE, 0);
+    int joint_rows = 0; /* joint drives among other rows: their rates known, their efforts from
+                         * the subtrees' wrenches (vt_test_both: against the dense path's λ and reactions) */
+    for (int r = 0; r < m->nc; r++) joint_rows += m->con_kind[r] == VT_ROW_JOINT;
+    assert_true(joint_rows > 0 && joint_rows < m->nc);
+    /* the articulated route itself: random poses whose estimate falls below √rcond_warn
+     * would have the maximal route solve them (vt_maximal_wanted) */
+    m->rcond_warn = m->rcond_min;
+    return m;
+}
+
+static void partly_driven_tree_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)k;
+    uint64_t s = ((uint64_t)v + 1) * 7;
+    vt_scene_random_state(m, d, &s);
+    random_loads(m, d, &s);
+    d->time = 0.3;
 }
 
 /* point drives on five points of four bodies, in an order that revisits points (the recursive
  * Φ_q keeps each point's Jacobian columns for the drives on it, four points at a time): the
  * tip's x, y and z, two points of the tip's body, and points further in, one after another
- * and back; Φ_q and every output against the dense path (Φ_q = Φ_x S) */
-static void test_point_drives_share_points(void **state)
+ * and back; Φ_q and every output against the dense path (Φ_q = Φ_x S). Seeds 1..12, those whose
+ * tree is deep enough (NULL for the others; at least 4 must be). */
+static vt_model *shared_points_tree(int v)
 {
-    (void)state;
     static const struct { int back, pt, comp; } rows[] = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 0},
                                                           {0, 4, 1}, {0, 0, 2}, {1, 1, 0}};
     static const double pts[5][3] = {{0.2, 0.0, 0.05}, {0.1, -0.1, 0.0}, {-0.05, 0.15, 0.1}, {0.0, 0.0, 0.2}, {-0.2, 0.1, 0.0}};
-    int ran = 0;
-    for (uint64_t seed = 1; seed <= 12; seed++) {
-        const int n = 14;
-        vt_model *probe, *m;
-        assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
-        int line[4], tip = 1; /* the body with the most rates on its path, and three bodies up it */
-        for (int i = 2; i <= n; i++)
-            if (probe->body_pathnum[i] > probe->body_pathnum[tip]) tip = i;
-        line[0] = tip;
-        for (int k = 1; k < 4; k++) line[k] = line[k - 1] ? probe->body_parent[line[k - 1]] : 0;
-        const int deep = line[3] > 0 && probe->body_pathnum[line[3]] >= 2 && probe->body_pathnum[tip] >= 9;
-        vt_model_free(probe);
-        if (!deep) continue;
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_NO_BASE));
-        for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
-            vt_drive_def pd = vt_default_drive_def();
-            pd.type = VT_DRIVE_POINT;
-            pd.body = line[rows[k].back];
-            pd.index = rows[k].comp;
-            memcpy(pd.point, pts[rows[k].pt], sizeof pd.point);
-            pd.f = vt_function_sine(0.05 * (double)k, 0.2, 1.5, 0.1 * (double)k);
-            assert_true(vt_builder_add_drive(b, &pd) >= 0);
-        }
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        /* the articulated route itself: random poses whose estimate falls below √rcond_warn
-         * would be handed to the dense stages (vt_maximal_wanted) */
-        m->rcond_warn = m->rcond_min;
+    const uint64_t seed = (uint64_t)v + 1;
+    const int n = 14;
+    vt_model *probe, *m;
+    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
+    int line[4], tip = 1; /* the body with the most rates on its path, and three bodies up it */
+    for (int i = 2; i <= n; i++)
+        if (probe->body_pathnum[i] > probe->body_pathnum[tip]) tip = i;
+    line[0] = tip;
+    for (int k = 1; k < 4; k++) line[k] = line[k - 1] ? probe->body_parent[line[k - 1]] : 0;
+    const int deep = line[3] > 0 && probe->body_pathnum[line[3]] >= 2 && probe->body_pathnum[tip] >= 9;
+    vt_model_free(probe);
+    if (!deep) return NULL;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_ok(vt_scene_random_bodies(b, seed, n, VT_SCENE_NO_BASE));
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        vt_drive_def pd = vt_default_drive_def();
+        pd.type = VT_DRIVE_POINT;
+        pd.body = line[rows[k].back];
+        pd.index = rows[k].comp;
+        memcpy(pd.point, pts[rows[k].pt], sizeof pd.point);
+        pd.f = vt_function_sine(0.05 * (double)k, 0.2, 1.5, 0.1 * (double)k);
+        assert_true(vt_builder_add_drive(b, &pd) >= 0);
+    }
+    m = vt_test_build(b);
+    /* the articulated route itself: random poses whose estimate falls below √rcond_warn
+     * would be handed to the dense stages (vt_maximal_wanted) */
+    m->rcond_warn = m->rcond_min;
+    return m;
+}
+
+static void shared_points_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)k;
+    uint64_t s = ((uint64_t)v + 1) * 11;
+    vt_scene_random_state(m, d, &s);
+}
+
+/* a coupling of two coordinates (the general route: M* and Q formed, vt_solve) against the dense
+ * path, on random trees (seeds 2..6) with a joint drive and loads */
+static vt_model *coupled(int v)
+{
+    return coupled_tree((uint64_t)v + 2);
+}
+
+static void coupled_state(const vt_model *m, vt_data *d, int v, int k)
+{
+    (void)k;
+    uint64_t s = ((uint64_t)v + 2) * 3;
+    vt_scene_random_state(m, d, &s);
+    for (int c = 0; c < m->nv; c++) d->qfrc[c] = vt_rand_uniform(&s, -1, 1);
+    d->time = 0.3;
+}
+
+static void coupling_effort_agrees(const vt_model *m, const vt_data *dr, const vt_data *dd, int v)
+{
+    (void)m, (void)v;
+    vt_test_compare(dr->coupling_effort, dd->coupling_effort, 1, 1e-12, "coupling_effort");
+}
+
+/* One row: `models` scenes (build(v), v = 0 .. models − 1; NULL: a seed the row passes over, at
+ * least min_built of them built), `states` instants of each (set(m, d, v, k): q, q̇, loads, time,
+ * into fresh data, then data reused from state to state). At every instant vt_test_both (every
+ * output and intermediate against the dense path), then what the row holds the paths to:
+ * m->joint_driven (−1: not held), the dense path's route and the recursive one's (VT_ROUTE_NONE:
+ * not held), the recursive path's fallback flags (−1: not held), and check (NULL: nothing more). */
+typedef struct {
+    const char *name;
+    vt_model *(*build)(int v);
+    void (*set)(const vt_model *m, vt_data *d, int v, int k);
+    int models, states, min_built, joint_driven;
+    vt_route dense, recursive;
+    int fallback;
+    void (*check)(const vt_model *m, const vt_data *dr, const vt_data *dd, int v);
+} route_case;
+
+#define ANY VT_ROUTE_NONE
+#define FREE_RATES VT_ROUTE_FREE_RATES
+#define SQUARE VT_ROUTE_SQUARE
+#define SCHUR VT_ROUTE_SCHUR
+#define ARTICULATED VT_ROUTE_ARTICULATED
+#define INWARD VT_ROUTE_JOINT_DRIVEN
+static const route_case route_table[] = {
+    /* name                       build                 set                       models states built
+     *                                                                            joint_driven dense recursive fallback check */
+    {"random trees",              random_tree,          random_tree_state,        18, 1, 18, 0, ANY, ANY, -1, NULL},
+    /* every rate joint-driven: the dense path's square Φ_q, the recursive inward pass alone */
+    {"joint-driven chains",       joint_driven_chain,   joint_driven_chain_state, 4, 1, 4, 1, SQUARE, INWARD, 0, prescribed_qdd},
+    {"joint-driven tree",         joint_driven_tree,    joint_driven_tree_state,  1, 1, 1, 1, SQUARE, INWARD, -1, NULL},
+    /* the paper's scenes: the double link (rows of joint drives, a rate free), the tip's one row */
+    {"double link",               double_link,          double_link_state,        1, 1, 1, 0, FREE_RATES, ARTICULATED, 0, NULL},
+    {"tip-driven chain",          tip_driven_chain,     chain_state,              1, 1, 1, 0, SCHUR, ARTICULATED, 0, NULL},
+    {"four-bars (square)",        fourbar,              fourbar_state,            2, 5, 2, 0, SQUARE, SQUARE, 0, NULL},
+    {"planar loops, driven",      planar_loop,          planar_loop_state,        2, 1, 2, 0, SQUARE, SQUARE, 0, NULL},
+    {"planar loops, undriven",    planar_loop_undriven, planar_loop_state,        2, 1, 2, 0, SCHUR, ARTICULATED, 0, NULL},
+    {"partly driven trees",       partly_driven_tree,   partly_driven_tree_state, 8, 1, 8, 0, SCHUR, ARTICULATED, 0, NULL},
+    {"point drives share points", shared_points_tree,   shared_points_state,      12, 1, 4, 0, SCHUR, ARTICULATED, 0, NULL},
+    /* the general route (M* and Q formed, vt_solve's Schur route) */
+    {"coupled trees",             coupled,              coupled_state,            5, 1, 5, 0, SCHUR, SCHUR, 0, coupling_effort_agrees},
+};
+#undef ANY
+#undef FREE_RATES
+#undef SQUARE
+#undef SCHUR
+#undef ARTICULATED
+#undef INWARD
+
+static void test_route(void **state)
+{
+    const route_case *row = *state;
+    int built = 0;
+    for (int v = 0; v < row->models; v++) {
+        vt_model *m = row->build(v);
+        if (!m) continue;
+        built++;
+        if (row->joint_driven >= 0) assert_int_equal(m->joint_driven, row->joint_driven);
         vt_data *dr, *dd;
         assert_ok(vt_data_create(&dr, m));
         assert_ok(vt_data_create(&dd, m));
-        uint64_t s = seed * 11;
-        vt_scene_random_state(m, dr, &s);
-        memcpy(dd->q, dr->q, (size_t)m->nq * sizeof(double));
-        memcpy(dd->qd, dr->qd, (size_t)m->nv * sizeof(double));
-        both(m, dr, dd);
-        assert_int_equal(path_of(dr), ARTICULATED);
-        ran++;
+        for (int k = 0; k < row->states; k++) {
+            row->set(m, dd, v, k);
+            vt_test_copy_inputs(m, dr, dd);
+            vt_test_both(m, dr, dd);
+            if (row->recursive != VT_ROUTE_NONE) assert_int_equal(dr->route, row->recursive);
+            if (row->dense != VT_ROUTE_NONE) assert_int_equal(dd->route, row->dense);
+            if (row->fallback >= 0) assert_int_equal(dr->fallback, row->fallback);
+            if (row->check) row->check(m, dr, dd, v);
+        }
         vt_data_free(dr);
         vt_data_free(dd);
         vt_model_free(m);
     }
-    assert_true(ran >= 4);
+    print_message("%s: %d scenes of %d\n", row->name, built, row->models);
+    assert_true(built >= row->min_built);
 }
 
 /* dependent rows (one joint driven twice), square (2 rods) and with a free rate (3 rods): the
@@ -411,14 +393,9 @@ static void test_dependent(void **state)
         vt_data *d;
         assert_ok(vt_builder_create(&b, NULL));
         vt_test_add_rods(b, nrod, 1.0, (const double[3]){1.0, 1.0, 1.0});
-        for (int k = 0; k < 2; k++) {
-            vt_drive_def dr = vt_default_drive_def();
-            dr.body = 1;
-            dr.f = vt_function_sine(0.2, 1.0, 2.0, 0.0);
-            assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        }
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
+        for (int k = 0; k < 2; k++)
+            vt_test_add_joint_drive(b, 1, 0, vt_function_sine(0.2, 1.0, 2.0, 0.0));
+        m = vt_test_build(b);
         assert_ok(vt_data_create(&d, m));
         for (int recursive = 0; recursive < 2; recursive++) {
             memset(d->q, 0, (size_t)m->nq * sizeof(double));
@@ -478,9 +455,7 @@ static void test_row_on_known_rates(void **state)
     pd.point[0] = -0.3 + 1.3, pd.point[1] = 0.4; /* the joint point plus 1.3 along axis2 (body x) */
     pd.f = vt_function_polynomial(3, (const double[3]){0.2, 0.1, 0.0});
     assert_int_equal(vt_builder_add_drive(b, &pd), 1);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
+    vt_model *m = vt_test_build(b);
     vt_data *d;
     assert_ok(vt_data_create(&d, m));
     int roundoff = 0;
@@ -501,117 +476,6 @@ static void test_row_on_known_rates(void **state)
     vt_model_free(m);
 }
 
-/* Two free-flying base bodies (the paper's 7 rates and p^T p − 1 each), the second D from the
- * first (o): the recursive path has only its general route for base bodies, whose composite
- * inertias about o hold m D² terms, so the second body's own rotational inertia (6 kg m²) is
- * round-off of them beyond D ~ 1e8 m and the route refused the instant as singular. Its
- * refusals are now the dense stages' (about each joint): the answer, exact here, is r̈ = g and
- * p̈ = −¼ |ω|² p (torque-free, ω about a principal axis of an isotropic body). */
-static void test_far_base_body(void **state)
-{
-    (void)state;
-    const double D[3] = {1e3, 1e9, 1e34};
-    for (int k = 0; k < 3; k++) {
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        vt_body_def body = vt_default_body_def();
-        body.joint = VT_JOINT_BASE;
-        body.mass = 1.2;
-        body.inertia[0] = body.inertia[4] = body.inertia[8] = 6.9;
-        assert_int_equal(vt_builder_add_body(b, &body), 1);
-        body.mass = 6.2;
-        body.inertia[0] = body.inertia[4] = body.inertia[8] = 6.0;
-        assert_int_equal(vt_builder_add_body(b, &body), 2);
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_data *d;
-        assert_ok(vt_data_create(&d, m));
-        const double p[4] = {0.5, 0.5, -0.5, 0.5};
-        memcpy(d->q + 3, p, sizeof p);
-        d->q[7] = 1.8, d->q[8] = D[k], d->q[9] = 1.8;
-        memcpy(d->q + 10, p, sizeof p);
-        /* ṗ = ½ E^T ω, E = [−p1 p0 −p3 p2; −p2 p3 p0 −p1; −p3 −p2 p1 p0] (rows) */
-        const double w[3] = {0.3, -0.2, 0.5};
-        const double E[3][4] = {{-p[1], p[0], -p[3], p[2]}, {-p[2], p[3], p[0], -p[1]}, {-p[3], -p[2], p[1], p[0]}};
-        double pd[4];
-        for (int c = 0; c < 4; c++) pd[c] = 0.5 * (E[0][c] * w[0] + E[1][c] * w[1] + E[2][c] * w[2]);
-        memcpy(d->qd + 10, pd, sizeof pd);
-        const vt_status st = vt_inverse_dynamics_recursive(m, d);
-        print_message("second base body %g m from o: %s (%s), fallback %d\n", D[k], vt_status_string(st), d->message, d->fallback);
-        assert_ok(st);
-        if (k > 0) assert_int_equal(d->fallback & VT_FALLBACK_COMPOSITE_ROUNDOFF, VT_FALLBACK_COMPOSITE_ROUNDOFF);
-        const double w2 = vt_dot3(w, w);
-        for (int c = 0; c < 3; c++) assert_near(d->qdd[7 + c], m->gravity[c], 1e-14);
-        for (int c = 0; c < 4; c++) assert_near(d->qdd[10 + c], -0.25 * w2 * p[c], 1e-14);
-        vt_data_free(d);
-        vt_model_free(m);
-    }
-}
-
-/* A point mass 1e6 m out along its revolute axis (6.3 m off it) on a universal joint's body, a
- * point drive on that body (a fuzz input, crash-175b…): the articulated route's elimination of
- * the light rate cancels terms of 1e12 far beyond the composite inertia's round-off bound, and
- * its pivot for the universal joint came out negative, -1.5e7 of 1.1e12: the route refused the
- * instant as singular ("negative beyond round-off") where the dense path solves it (rcond 0.014).
- * Such a pivot is now one the route cannot trust: the general route, then the dense stages,
- * decide, and the answer is the dense one. */
-static void test_far_point_mass_pivot(void **state)
-{
-    (void)state;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def d = vt_default_body_def();
-    d.joint = VT_JOINT_UNIVERSAL;
-    d.mass = 4.1875;
-    d.inertia[0] = d.inertia[4] = d.inertia[8] = 0.6875;
-    d.joint_parent[0] = -6.3125, d.joint_parent[1] = -5.3125, d.joint_parent[2] = -5.625;
-    d.joint_child[0] = -4.75, d.joint_child[1] = 0.1875, d.joint_child[2] = -3.5625;
-    assert_int_equal(vt_builder_add_body(b, &d), 1);
-    d = vt_default_body_def();
-    d.parent = 1;
-    d.mass = 1.85;
-    d.joint_parent[0] = -2.9375, d.joint_parent[1] = -1.5, d.joint_parent[2] = 3.6875;
-    d.joint_child[0] = -3.75, d.joint_child[1] = -5.0625, d.joint_child[2] = 1e6;
-    assert_int_equal(vt_builder_add_body(b, &d), 2);
-    vt_drive_def dr = vt_default_drive_def();
-    dr.type = VT_DRIVE_POINT;
-    dr.body = 1;
-    dr.index = 0;
-    dr.point[0] = 7.25, dr.point[1] = -2.125, dr.point[2] = 2.0;
-    dr.f = vt_function_polynomial(3, (const double[3]){-2.0, 1.0, 0.5});
-    assert_int_equal(vt_builder_add_drive(b, &dr), 0);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    vt_data *dd, *dv;
-    assert_ok(vt_data_create(&dd, m));
-    assert_ok(vt_data_create(&dv, m));
-    const double q[3] = {1.81875, -2.25, -7.5}, qd[3] = {-7.5, -7.5, -7.5};
-    memcpy(dd->q, q, sizeof q), memcpy(dv->q, q, sizeof q);
-    memcpy(dd->qd, qd, sizeof qd), memcpy(dv->qd, qd, sizeof qd);
-    dd->time = dv->time = -7.5;
-    assert_ok(vt_inverse_dynamics(m, dd));
-    const vt_status st = vt_inverse_dynamics_recursive(m, dv);
-    print_message("dense rcond %.3g; recursive %s (%s), route %d, fallback %d\n", dd->rcond, vt_status_string(st), dv->message,
-                  dv->route, dv->fallback);
-    assert_ok(st);
-    /* left for its pivot; where FMA contracts the elimination (a -march=native build), its
-     * estimate already fails (VT_FALLBACK_ARTICULATED_CONDITION) before the pivot is judged */
-    assert_true(dv->fallback & (VT_FALLBACK_ARTICULATED_PIVOT | VT_FALLBACK_ARTICULATED_CONDITION));
-    for (int c = 0; c < 3; c++) {
-        assert_near(dv->qdd[c], dd->qdd[c], 1e-9 * fabs(dd->qdd[c]) + 1e-12);
-        assert_near(dv->qfrc_drive[c], dd->qfrc_drive[c], 1e-9 * vt_test_maxabs(dd->qfrc_drive, 3));
-    }
-    vt_data_free(dd);
-    vt_data_free(dv);
-    vt_model_free(m);
-}
-
-/* The motion given for every rate of a tree (vt_inverse_dynamics_motion), held to two things it
- * does not compute itself: the efforts equal M* q̈ − Q from the dense stages (2), and applied as
- * generalized forces to the same tree without drives, the dense path's forward solve gives back
- * the given q̈ and the same reactions (the actuation is not reaction either way) */
 /* The fused outward pass of vt_inverse_dynamics_motion (a revolute body by its own code, other
  * joints by the general code body by body) leaves every kinematic output of the data as
  * vt_kinematics, the general code in its separate loops, computes it: on all-revolute trees
@@ -635,17 +499,17 @@ static void test_fused_kinematics(void **state)
         assert_ok(vt_inverse_dynamics_motion(m, d));
         assert_ok(vt_kinematics(m, dk));
         const int nb = m->nbody + 1;
-        compare(d->x, dk->x, m->nx, 1e-14, "x");
-        compare(d->A, dk->A, 9 * nb, 1e-14, "A");
-        compare(d->xd, dk->xd, m->nx, 1e-14, "xd");
-        compare(d->omega, dk->omega, 3 * nb, 1e-14, "omega");
-        compare(d->twist, dk->twist, 6 * m->nv, 1e-14, "twist");
-        compare(d->jaxis, dk->jaxis, 9 * nb, 1e-14, "jaxis");
-        compare(d->jsij, dk->jsij, 3 * nb, 1e-14, "jsij");
-        compare(d->jd, dk->jd, 3 * nb, 1e-14, "jd");
-        compare(d->jpoint, dk->jpoint, 3 * nb, 1e-14, "jpoint");
-        compare(d->xrel, dk->xrel, 6 * nb, 1e-14, "xrel");
-        compare(d->origin, dk->origin, 3, 1e-14, "origin");
+        vt_test_compare(d->x, dk->x, m->nx, 1e-14, "x");
+        vt_test_compare(d->A, dk->A, 9 * nb, 1e-14, "A");
+        vt_test_compare(d->xd, dk->xd, m->nx, 1e-14, "xd");
+        vt_test_compare(d->omega, dk->omega, 3 * nb, 1e-14, "omega");
+        vt_test_compare(d->twist, dk->twist, 6 * m->nv, 1e-14, "twist");
+        vt_test_compare(d->jaxis, dk->jaxis, 9 * nb, 1e-14, "jaxis");
+        vt_test_compare(d->jsij, dk->jsij, 3 * nb, 1e-14, "jsij");
+        vt_test_compare(d->jd, dk->jd, 3 * nb, 1e-14, "jd");
+        vt_test_compare(d->jpoint, dk->jpoint, 3 * nb, 1e-14, "jpoint");
+        vt_test_compare(d->xrel, dk->xrel, 6 * nb, 1e-14, "xrel");
+        vt_test_compare(d->origin, dk->origin, 3, 1e-14, "origin");
         for (int i = 1; i <= m->nbody; i++) { /* the rows past the joint's own axes are 0 (types.h) */
             const int jt = m->body_joint[i];
             const int nax = jt == VT_JOINT_UNIVERSAL ? 2 : jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE ? 3 : 1;
@@ -674,8 +538,7 @@ static void test_fused_overflow(void **state)
         else assert_ok(vt_scene_chain(&m, 6, VT_CHAIN_FREE));
         assert_ok(vt_data_create(&d, m));
         uint64_t s = 11u + (uint64_t)c;
-        if (c == 0 || c == 3)
-            for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, d->q + k, d->qd + k, d->qdd + k);
+        if (c == 0 || c == 3) vt_test_chain_state(m, d, 1);
         else vt_scene_random_state(m, d, &s);
         d->time = 0.3;
         for (int k = 0; k < m->nv; k++) d->qdd[k] = c == 3 ? 1e308 : vt_rand_uniform(&s, -2, 2);
@@ -706,6 +569,10 @@ static void test_fused_overflow(void **state)
     }
 }
 
+/* The motion given for every rate of a tree (vt_inverse_dynamics_motion), held to two things it
+ * does not compute itself: the efforts equal M* q̈ − Q from the dense stages (2), and applied as
+ * generalized forces to the same tree without drives, the dense path's forward solve gives back
+ * the given q̈ and the same reactions (the actuation is not reaction either way) */
 static void test_motion(void **state)
 {
     (void)state;
@@ -751,64 +618,17 @@ static void test_motion(void **state)
         memcpy(df->xfrc, ds->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
         for (int c = 0; c < m->nv; c++) df->qfrc[c] = d->qfrc[c] + d->qfrc_drive[c];
         assert_ok(vt_inverse_dynamics(m, df));
-        compare(df->qdd, qdd, m->nv, 1e-9, "forward q̈");
+        vt_test_compare(df->qdd, qdd, m->nv, 1e-9, "forward q̈");
         const int nb3 = 3 * (m->nbody + 1);
-        compare(d->jnt_force, df->jnt_force, nb3, 1e-10, "jnt_force");
-        compare(d->jnt_moment, df->jnt_moment, nb3, 1e-10, "jnt_moment");
-        compare(d->jnt_force_body, df->jnt_force_body, nb3, 1e-10, "jnt_force_body");
-        compare(d->jnt_moment_body, df->jnt_moment_body, nb3, 1e-10, "jnt_moment_body");
-        compare(d->xdd, df->xdd, m->nx, 1e-9, "xdd");
+        vt_test_compare(d->jnt_force, df->jnt_force, nb3, 1e-10, "jnt_force");
+        vt_test_compare(d->jnt_moment, df->jnt_moment, nb3, 1e-10, "jnt_moment");
+        vt_test_compare(d->jnt_force_body, df->jnt_force_body, nb3, 1e-10, "jnt_force_body");
+        vt_test_compare(d->jnt_moment_body, df->jnt_moment_body, nb3, 1e-10, "jnt_moment_body");
+        vt_test_compare(d->xdd, df->xdd, m->nx, 1e-9, "xdd");
         free(qdd);
         vt_data_free(d);
         vt_data_free(ds);
         vt_data_free(df);
-        vt_model_free(m);
-    }
-}
-
-/* a random tree of 8 bodies, rate 7 coupled to rate 3 (q_7 = 1.3 q_3 − 0.1), body 5 joint-driven */
-static vt_model *coupled_tree(uint64_t seed)
-{
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    assert_ok(vt_scene_random_bodies(b, seed, 8, VT_SCENE_SCALAR_JOINTS));
-    vt_coupling_def c = vt_default_coupling_def();
-    c.body_a = 7;
-    c.body_b = 3;
-    c.ratio = 1.3;
-    c.offset = -0.1;
-    assert_int_equal(vt_builder_add_coupling(b, &c), 0);
-    vt_drive_def dr = vt_default_drive_def();
-    dr.body = 5;
-    dr.f = vt_function_sine(0.1, 0.3, 2.0, 0.5);
-    assert_true(vt_builder_add_drive(b, &dr) >= 0);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    return m;
-}
-
-/* a coupling of two coordinates (the general route: M* and Q formed, vt_solve) against the dense
- * path, on random trees with a joint drive and loads */
-static void test_coupled(void **state)
-{
-    (void)state;
-    for (uint64_t seed = 2; seed <= 6; seed++) {
-        vt_model *m = coupled_tree(seed);
-        vt_data *dr_, *dd;
-        assert_ok(vt_data_create(&dr_, m));
-        assert_ok(vt_data_create(&dd, m));
-        uint64_t s = seed * 3;
-        vt_scene_random_state(m, dd, &s);
-        for (int cc = 0; cc < m->nv; cc++) dd->qfrc[cc] = vt_rand_uniform(&s, -1, 1);
-        memcpy(dr_->q, dd->q, (size_t)m->nq * sizeof(double));
-        memcpy(dr_->qd, dd->qd, (size_t)m->nv * sizeof(double));
-        memcpy(dr_->qfrc, dd->qfrc, (size_t)m->nv * sizeof(double));
-        dr_->time = dd->time = 0.3;
-        both(m, dr_, dd);
-        compare(dr_->coupling_effort, dd->coupling_effort, 1, 1e-12, "coupling_effort");
-        vt_data_free(dr_);
-        vt_data_free(dd);
         vt_model_free(m);
     }
 }
@@ -835,13 +655,13 @@ static void motion_matches(const vt_model *m, const vt_data *ref, double t_other
     assert_ok(vt_inverse_dynamics_motion(m, d));
     assert_int_equal(d->route, ref->route);
     const int nb3 = 3 * (m->nbody + 1);
-    compare(d->qdd, ref->qdd, m->nv, 1e-12, "q̈");
-    compare(d->drive_effort, ref->drive_effort, m->ndrive, 1e-12, "drive_effort");
-    compare(d->coupling_effort, ref->coupling_effort, m->ncoupling, 1e-12, "coupling_effort");
-    compare(d->lambda, ref->lambda, m->nc, 1e-12, "λ");
-    compare(d->jnt_force, ref->jnt_force, nb3, 1e-12, "jnt_force");
-    compare(d->jnt_moment, ref->jnt_moment, nb3, 1e-12, "jnt_moment");
-    compare(d->cut_force, ref->cut_force, 3 * m->ncut, 1e-12, "cut_force");
+    vt_test_compare(d->qdd, ref->qdd, m->nv, 1e-12, "q̈");
+    vt_test_compare(d->drive_effort, ref->drive_effort, m->ndrive, 1e-12, "drive_effort");
+    vt_test_compare(d->coupling_effort, ref->coupling_effort, m->ncoupling, 1e-12, "coupling_effort");
+    vt_test_compare(d->lambda, ref->lambda, m->nc, 1e-12, "λ");
+    vt_test_compare(d->jnt_force, ref->jnt_force, nb3, 1e-12, "jnt_force");
+    vt_test_compare(d->jnt_moment, ref->jnt_moment, nb3, 1e-12, "jnt_moment");
+    vt_test_compare(d->cut_force, ref->cut_force, 3 * m->ncut, 1e-12, "cut_force");
     /* a failed call leaves the given q̈ as it was: refused by the forces, or (overflow) the load
      * on the last body overflowing the reactions after the solve has written q̈ */
     double *given = malloc((size_t)m->nv * sizeof(double));
@@ -949,44 +769,6 @@ static void cross3(double c[3], const double a[3], const double b[3])
     memcpy(c, t, sizeof t);
 }
 
-/* A floating tree: root body 1 on a free joint (root_free) or the paper's base joint, and under
- * it the bodies of a random tree (its ground-hung bodies hung from the root instead); the free
- * joint's point is c' from the root's centre of mass (joint_child). */
-static vt_model *floating_tree(uint64_t seed, int n, int root_free, const double c[3])
-{
-    vt_model *probe;
-    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
-    vt_builder *b;
-    vt_model_def md = vt_default_model_def();
-    md.gravity[0] = 1.0, md.gravity[1] = -9.81, md.gravity[2] = 2.0;
-    assert_ok(vt_builder_create(&b, &md));
-    vt_body_def root = vt_default_body_def();
-    root.joint = root_free ? VT_JOINT_FREE : VT_JOINT_BASE;
-    root.mass = 4.0;
-    const double J[9] = {0.5, 0.05, -0.02, 0.05, 0.7, 0.03, -0.02, 0.03, 0.9};
-    memcpy(root.inertia, J, sizeof J);
-    if (root_free) memcpy(root.joint_child, c, 3 * sizeof(double));
-    assert_int_equal(vt_builder_add_body(b, &root), 1);
-    for (int i = 1; i <= probe->nbody; i++) {
-        vt_body_def d = vt_default_body_def();
-        d.parent = probe->body_parent[i] + 1;
-        d.joint = (vt_joint_type)probe->body_joint[i];
-        d.mass = probe->body_mass[i];
-        memcpy(d.inertia, probe->body_inertia + 9 * i, 9 * sizeof(double));
-        memcpy(d.joint_parent, probe->body_jpar + 3 * i, 3 * sizeof(double));
-        memcpy(d.joint_child, probe->body_jchild + 3 * i, 3 * sizeof(double));
-        memcpy(d.axis1, probe->body_axis + 6 * i, 3 * sizeof(double));
-        memcpy(d.axis2, probe->body_axis + 6 * i + 3, 3 * sizeof(double));
-        memcpy(d.orientation, probe->body_quat0 + 4 * i, 4 * sizeof(double));
-        assert_int_equal(vt_builder_add_body(b, &d), i + 1);
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    vt_model_free(probe);
-    return m;
-}
-
 /* The same floating tree with a free root and with the paper's base root: the base model's
  * forward dynamics (dense) under a wrench (f, n about the free joint's point P) applied through
  * its root's generalized forces, Q_r = f, Q_p = 2 E^T (n + (P − r) × f), against the free model:
@@ -999,7 +781,7 @@ static void test_free_vs_base(void **state)
     (void)state;
     for (uint64_t seed = 1; seed <= 6; seed++) {
         const double c[3] = {0.3, -0.2, 0.15};
-        vt_model *mb = floating_tree(seed, 4 + (int)seed, 0, c), *mf = floating_tree(seed, 4 + (int)seed, 1, c);
+        vt_model *mb = vt_test_floating_tree(seed, 4 + (int)seed, 0, c), *mf = vt_test_floating_tree(seed, 4 + (int)seed, 1, c);
         assert_int_equal(mf->nv, mb->nv - 1);
         assert_int_equal(mf->nc, 0);
         vt_data *db, *df, *dr, *dm;
@@ -1066,26 +848,26 @@ static void test_free_vs_base(void **state)
         assert_ok(vt_inverse_dynamics_motion(mf, dm));
         assert_int_equal(dm->route, VT_ROUTE_MOTION);
         const int nb = mf->nbody, nb3 = 3 * (nb + 1);
-        compare(df->qdd, qdd, nvf, 1e-11, "dense free q̈ against the base's converted");
-        compare(dr->qdd, qdd, nvf, 1e-11, "recursive free q̈ against the base's converted");
+        vt_test_compare(df->qdd, qdd, nvf, 1e-11, "dense free q̈ against the base's converted");
+        vt_test_compare(dr->qdd, qdd, nvf, 1e-11, "recursive free q̈ against the base's converted");
         double tau[6];
         memcpy(tau, f, sizeof f);
         memcpy(tau + 3, n, sizeof n);
-        compare(dm->qfrc_drive, tau, 6, 1e-11, "the root's efforts against the wrench applied");
+        vt_test_compare(dm->qfrc_drive, tau, 6, 1e-11, "the root's efforts against the wrench applied");
         const double zero[64] = {0};
         assert_true(nvf - 6 <= 64);
-        compare_at(dm->qfrc_drive + 6, zero, nvf - 6, 1e-11, 1.0 + vt_test_maxabs(tau, 6), "the other efforts");
+        vt_test_compare_at(dm->qfrc_drive + 6, zero, nvf - 6, 1e-11, 1.0 + vt_test_maxabs(tau, 6), "the other efforts");
         for (int k = 1; k < 3; k++) { /* every body's motion and the joints' reactions: bodies 2.. */
-            compare(all[k]->x, db->x, mf->nx, 1e-12, "x");
-            compare(all[k]->xdd, db->xdd, mf->nx, 1e-10, "xdd");
-            compare(all[k]->jnt_force + 6, db->jnt_force + 6, nb3 - 6, 1e-11, "jnt_force");
-            compare(all[k]->jnt_moment + 6, db->jnt_moment + 6, nb3 - 6, 1e-11, "jnt_moment");
-            compare(all[k]->jnt_force_body + 6, db->jnt_force_body + 6, nb3 - 6, 1e-11, "jnt_force_body");
-            compare(all[k]->jnt_moment_body + 6, db->jnt_moment_body + 6, nb3 - 6, 1e-11, "jnt_moment_body");
+            vt_test_compare(all[k]->x, db->x, mf->nx, 1e-12, "x");
+            vt_test_compare(all[k]->xdd, db->xdd, mf->nx, 1e-10, "xdd");
+            vt_test_compare(all[k]->jnt_force + 6, db->jnt_force + 6, nb3 - 6, 1e-11, "jnt_force");
+            vt_test_compare(all[k]->jnt_moment + 6, db->jnt_moment + 6, nb3 - 6, 1e-11, "jnt_moment");
+            vt_test_compare(all[k]->jnt_force_body + 6, db->jnt_force_body + 6, nb3 - 6, 1e-11, "jnt_force_body");
+            vt_test_compare(all[k]->jnt_moment_body + 6, db->jnt_moment_body + 6, nb3 - 6, 1e-11, "jnt_moment_body");
         }
-        compare(df->xdd, db->xdd, mf->nx, 1e-10, "dense xdd");
-        compare(df->jnt_force + 6, db->jnt_force + 6, nb3 - 6, 1e-11, "dense jnt_force");
-        compare(df->jnt_moment + 6, db->jnt_moment + 6, nb3 - 6, 1e-11, "dense jnt_moment");
+        vt_test_compare(df->xdd, db->xdd, mf->nx, 1e-10, "dense xdd");
+        vt_test_compare(df->jnt_force + 6, db->jnt_force + 6, nb3 - 6, 1e-11, "dense jnt_force");
+        vt_test_compare(df->jnt_moment + 6, db->jnt_moment + 6, nb3 - 6, 1e-11, "dense jnt_moment");
         for (int k = 0; k < 3; k++) /* the free joint transmits nothing */
             assert_true(dm->jnt_force[3 + k] == 0.0 && dm->jnt_moment[3 + k] == 0.0 && df->jnt_force[3 + k] == 0.0);
         free(qdd);
@@ -1115,9 +897,7 @@ static void test_free_body(void **state)
     memcpy(d.inertia, J0, sizeof J0);
     d.joint_child[0] = 0.4, d.joint_child[1] = -0.1, d.joint_child[2] = 0.25;
     assert_int_equal(vt_builder_add_body(b, &d), 1);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
+    vt_model *m = vt_test_build(b);
     vt_data *dm;
     assert_ok(vt_data_create(&dm, m));
     uint64_t s = 17;
@@ -1172,1060 +952,6 @@ static void test_free_body(void **state)
     vt_model_free(m);
 }
 
-/* Translation invariance: the same mechanism at D = 1 km and 1e6 m from the global origin as at
- * the origin. The mechanism at D is the reference one translated exactly: each ground point p
- * (a root's joint point on the ground, the ground side of a constraint row: a point drive's
- * reference, a cut joint's point) and each free or base root's position is fl(p + D) there and
- * fl(p + D) − D in the reference (exact, by Sterbenz's lemma), so any change in the results is
- * the evaluation's, not the data's rounding. q̈, λ, every effort and every reaction (both frames)
- * must agree to 1e-13 of each array's largest entry at 1 km and 1e-10 at 1e6 m and 1e9 m, for the dense
- * evaluation, the recursive one and, on trees, the motion given. */
-static void shift3(double *p, const double D[3], int back)
-{
-    for (int k = 0; k < 3; k++) {
-        const double x = p[k] + D[k];
-        p[k] = back ? x - D[k] : x;
-    }
-}
-
-static void place_model(vt_model *m, const double D[3], int back)
-{
-    for (int i = 1; i <= m->nbody; i++)
-        if (m->body_parent[i] == 0 && m->body_joint[i] != VT_JOINT_FREE && m->body_joint[i] != VT_JOINT_BASE)
-            shift3(m->body_jpar + 3 * i, D, back);
-    for (int r = 0; r < m->nc; r++) /* a row's point on the ground, global (rows without points ignore it) */
-        for (int side = 0; side < 2; side++)
-            if (m->con_body[2 * r + side] == 0) shift3(m->con_point + 6 * r + 3 * side, D, back);
-}
-
-static void place_state(const vt_model *m, vt_data *d, const double D[3], int back)
-{
-    for (int i = 1; i <= m->nbody; i++) /* a free root's translation is in the ground's axes */
-        if (m->body_parent[i] == 0 && (m->body_joint[i] == VT_JOINT_FREE || m->body_joint[i] == VT_JOINT_BASE))
-            shift3(d->q + m->body_qadr[i], D, back);
-}
-
-/* the largest change of an output array from the reference's, over the larger of the reference's
- * largest entry and floor (a moment that is zero in exact arithmetic, as a point drive's about
- * its own point, is measured against the moments through the joints) */
-static double change(const double *a, const double *ref, int n, double floor)
-{
-    double num = 0.0, den = floor;
-    for (int k = 0; k < n; k++) {
-        num = fmax(num, fabs(a[k] - ref[k]));
-        den = fmax(den, fabs(ref[k]));
-    }
-    return den > 0.0 ? num / den : num;
-}
-
-static double outputs_change(const vt_model *m, const vt_data *a, const vt_data *b, const char **what)
-{
-    const int nb3 = 3 * (m->nbody + 1), nd3 = 3 * m->ndrive, nk3 = 3 * m->ncut;
-    const struct { const char *name; const double *x, *y; int n, kind; /* 0 own, 1 force, 2 moment */ } out[] = {
-        {"qdd", a->qdd, b->qdd, m->nv, 0}, {"lambda", a->lambda, b->lambda, m->nc, 0},
-        {"qfrc_drive", a->qfrc_drive, b->qfrc_drive, m->nv, 2}, {"drive_effort", a->drive_effort, b->drive_effort, m->ndrive, 0},
-        {"drive_force", a->drive_force, b->drive_force, nd3, 1}, {"drive_moment", a->drive_moment, b->drive_moment, nd3, 2},
-        {"jnt_force", a->jnt_force, b->jnt_force, nb3, 1}, {"jnt_moment", a->jnt_moment, b->jnt_moment, nb3, 2},
-        {"jnt_force_body", a->jnt_force_body, b->jnt_force_body, nb3, 1},
-        {"jnt_moment_body", a->jnt_moment_body, b->jnt_moment_body, nb3, 2},
-        {"cut_force", a->cut_force, b->cut_force, nk3, 1}, {"cut_moment", a->cut_moment, b->cut_moment, nk3, 2},
-        {"cut_force_body", a->cut_force_body, b->cut_force_body, nk3, 1},
-        {"cut_moment_body", a->cut_moment_body, b->cut_moment_body, nk3, 2}};
-    const size_t nout = sizeof out / sizeof out[0];
-    double floor[3] = {0.0, 0.0, 0.0}, worst = 0.0;
-    for (size_t k = 0; k < nout; k++)
-        if (out[k].kind) floor[out[k].kind] = fmax(floor[out[k].kind], vt_test_maxabs(out[k].y, out[k].n));
-    for (size_t k = 0; k < nout; k++) {
-        const double c = change(out[k].x, out[k].y, out[k].n, floor[out[k].kind]);
-        if (c > worst) worst = c, *what = out[k].name;
-    }
-    return worst;
-}
-
-/* m0's bodies and cut joints without its drives: a loop with fewer rows than rates */
-static vt_model *without_drives(const vt_model *m0)
-{
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    for (int i = 1; i <= m0->nbody; i++) {
-        vt_body_def d = vt_default_body_def();
-        d.parent = m0->body_parent[i];
-        d.joint = (vt_joint_type)m0->body_joint[i];
-        d.mass = m0->body_mass[i];
-        memcpy(d.inertia, m0->body_inertia + 9 * i, 9 * sizeof(double));
-        memcpy(d.joint_parent, m0->body_jpar + 3 * i, 3 * sizeof(double));
-        memcpy(d.joint_child, m0->body_jchild + 3 * i, 3 * sizeof(double));
-        memcpy(d.axis1, m0->body_axis + 6 * i, 3 * sizeof(double));
-        memcpy(d.axis2, m0->body_axis + 6 * i + 3, 3 * sizeof(double));
-        memcpy(d.orientation, m0->body_quat0 + 4 * i, 4 * sizeof(double));
-        assert_int_equal(vt_builder_add_body(b, &d), i);
-    }
-    for (int k = 0; k < m0->ncut; k++) assert_true(vt_builder_add_cut_joint(b, &m0->cut[k]) >= 0);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    return m;
-}
-
-/* the benchmark's chain of n links with every other joint driven (1, 3, 5…: joint rows only) */
-static vt_model *partly_driven_chain(int n)
-{
-    vt_model *mc;
-    assert_ok(vt_scene_chain(&mc, n, VT_CHAIN_FREE));
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    for (int i = 1; i <= mc->nbody; i++) {
-        vt_body_def d = vt_default_body_def();
-        d.parent = mc->body_parent[i];
-        d.mass = mc->body_mass[i];
-        memcpy(d.inertia, mc->body_inertia + 9 * i, 9 * sizeof(double));
-        memcpy(d.joint_parent, mc->body_jpar + 3 * i, 3 * sizeof(double));
-        memcpy(d.joint_child, mc->body_jchild + 3 * i, 3 * sizeof(double));
-        memcpy(d.axis1, mc->body_axis + 6 * i, 3 * sizeof(double));
-        assert_int_equal(vt_builder_add_body(b, &d), i);
-        if (i % 2) {
-            vt_drive_def dr = vt_default_drive_def();
-            dr.body = i;
-            dr.f = vt_function_sine(0.2, 0.3, 1.5, 0.1 * i);
-            assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        }
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    vt_model_free(mc);
-    return m;
-}
-
-enum { INV_CHAIN, INV_FREE_TREE, INV_BASE_TREE, INV_FOURBAR, INV_FOURBAR_RUSR, INV_PARTLY_CHAIN, INV_RUSR_UNDRIVEN, INV_RATIO, INV_SCENES };
-
-static vt_model *inv_model(int scene)
-{
-    vt_model *m = NULL;
-    const double c[3] = {0.1, -0.05, 0.2};
-    const vt_function crank = vt_function_sine(0.3, 1.0, 2.0, 0.0);
-    switch (scene) {
-    case INV_CHAIN: assert_ok(vt_scene_chain(&m, 12, VT_CHAIN_TIP_DRIVE)); break;
-    case INV_FREE_TREE: m = floating_tree(7, 10, 1, c); break;
-    case INV_BASE_TREE: m = floating_tree(7, 10, 0, c); break;
-    case INV_FOURBAR: assert_ok(vt_scene_fourbar(&m, crank)); break;
-    case INV_PARTLY_CHAIN: m = partly_driven_chain(12); break;
-    case INV_RATIO: m = vt_test_ratio_chain(1, 3, 6.0); break; /* the maximal route (masses rise by 1e6 a rod) */
-    default: assert_ok(vt_scene_fourbar_rusr(&m, crank)); break;
-    }
-    if (scene == INV_RUSR_UNDRIVEN) {
-        vt_model *m0 = m;
-        m = without_drives(m0);
-        vt_model_free(m0);
-    }
-    return m;
-}
-
-/* the scene's state (time 0), loads and, for the motion given, q̈ */
-static void inv_state(const vt_model *m, vt_data *d, int scene)
-{
-    uint64_t s = 11;
-    if (scene == INV_CHAIN || scene == INV_PARTLY_CHAIN) {
-        for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, &d->q[k], &d->qd[k], &d->qdd[k]);
-    } else if (scene == INV_RATIO) {
-        for (int k = 0; k < m->nv; k++) d->q[k] = 0.3 + 0.25 * k, d->qd[k] = 0.5 - 0.2 * k, d->qdd[k] = 0.1 * k;
-    } else if (scene == INV_FOURBAR || scene == INV_FOURBAR_RUSR || scene == INV_RUSR_UNDRIVEN) {
-        assert_int_equal(scene == INV_FOURBAR ? vt_scene_fourbar_assemble(m, d, 0.9, 1.3, NULL, NULL)
-                                              : vt_scene_fourbar_rusr_assemble(m, d, 0.9, 1.3, NULL, NULL), 0);
-    } else {
-        vt_scene_random_state(m, d, &s);
-        for (int c = 0; c < m->nv; c++) d->qdd[c] = vt_rand_uniform(&s, -3, 3);
-    }
-    for (int c = 0; c < m->nv; c++) d->qfrc[c] = vt_rand_uniform(&s, -1, 1);
-    for (int i = 1; i <= m->nbody; i++)
-        for (int k = 0; k < 6; k++) d->xfrc[6 * i + k] = vt_rand_uniform(&s, -2, 2);
-}
-
-static void test_translation_invariance(void **state)
-{
-    (void)state;
-    static const char *scene_name[] = {"tip-driven chain", "free-rooted tree", "base-rooted tree", "four-bar RSUR",
-                                       "four-bar RUSR", "partly joint-driven chain", "four-bar RUSR without its drive",
-                                       "chain rising by 1e6 a rod, driven at joint 1"};
-    static const char *path_name[] = {"dense", "recursive", "motion"};
-    /* 1e9 m: where the issue's chain came back as −1004 N instead of 4.98 N */
-    const double dist[3] = {1e3, 1e6, 1e9}, tol[3] = {1e-13, 1e-10, 1e-10}, u[3] = {0.48, -0.6, 0.64};
-    for (int scene = 0; scene < INV_SCENES; scene++)
-        for (int k = 0; k < 3; k++) {
-            const double D[3] = {dist[k] * u[0], dist[k] * u[1], dist[k] * u[2]};
-            vt_model *mr = inv_model(scene), *mt = inv_model(scene);
-            place_model(mr, D, 1);
-            place_model(mt, D, 0);
-            const int trees = mr->ncut == 0 && mr->body_joint[1] != VT_JOINT_BASE;
-            for (int path = 0; path < 2 + trees; path++) {
-                vt_data *dr, *dt;
-                assert_ok(vt_data_create(&dr, mr));
-                assert_ok(vt_data_create(&dt, mt));
-                inv_state(mr, dr, scene);
-                inv_state(mt, dt, scene);
-                place_state(mr, dr, D, 1);
-                place_state(mt, dt, D, 0);
-                vt_status (*f)(const vt_model *, vt_data *) =
-                    path == 0 ? vt_inverse_dynamics : path == 1 ? vt_inverse_dynamics_recursive : vt_inverse_dynamics_motion;
-                assert_ok(f(mr, dr));
-                assert_ok(f(mt, dt));
-                assert_int_equal(dt->route, dr->route);
-                if (scene == INV_RATIO && path < 2) assert_int_equal(dt->route, VT_ROUTE_MAXIMAL);
-                const char *what = "";
-                const double c = outputs_change(mr, dt, dr, &what);
-                print_message("%s, %s, D = %g m: largest change %.3g (%s)\n", scene_name[scene], path_name[path], dist[k],
-                              c, what);
-                if (!(c <= tol[k]))
-                    fail_msg("%s, %s, D = %g m: %s changed by %.3g of its largest entry (> %g)", scene_name[scene],
-                             path_name[path], dist[k], what, c, tol[k]);
-                vt_data_free(dr);
-                vt_data_free(dt);
-            }
-            vt_model_free(mr);
-            vt_model_free(mt);
-        }
-}
-
-/* The scene m0 D from o: body 1 a pendulum at the global origin (a revolute root, its rate free),
- * bodies 2.. m0's own, their roots and the ground points of m0's rows moved by D as in
- * place_model; m0's drives and cut joints on the same bodies. */
-static vt_model *beside_pendulum(const vt_model *m0, const double D[3])
-{
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def pend = vt_default_body_def();
-    pend.mass = 0.8;
-    pend.inertia[0] = 0.01, pend.inertia[4] = 0.02, pend.inertia[8] = 0.015;
-    pend.joint_child[0] = -0.3, pend.joint_child[1] = 0.05;
-    assert_int_equal(vt_builder_add_body(b, &pend), 1);
-    for (int i = 1; i <= m0->nbody; i++) {
-        vt_body_def d = vt_default_body_def();
-        d.parent = m0->body_parent[i] ? m0->body_parent[i] + 1 : 0;
-        d.joint = (vt_joint_type)m0->body_joint[i];
-        d.mass = m0->body_mass[i];
-        memcpy(d.inertia, m0->body_inertia + 9 * i, 9 * sizeof(double));
-        memcpy(d.joint_parent, m0->body_jpar + 3 * i, 3 * sizeof(double));
-        memcpy(d.joint_child, m0->body_jchild + 3 * i, 3 * sizeof(double));
-        memcpy(d.axis1, m0->body_axis + 6 * i, 3 * sizeof(double));
-        memcpy(d.axis2, m0->body_axis + 6 * i + 3, 3 * sizeof(double));
-        memcpy(d.orientation, m0->body_quat0 + 4 * i, 4 * sizeof(double));
-        assert_int_equal(vt_builder_add_body(b, &d), i + 1);
-    }
-    for (int k = 0; k < m0->ndrive; k++) {
-        vt_drive_def dr = m0->drive[k];
-        dr.body += 1;
-        assert_true(vt_builder_add_drive(b, &dr) >= 0);
-    }
-    for (int k = 0; k < m0->ncut; k++) {
-        vt_cut_joint_def c = m0->cut[k];
-        c.body_a = c.body_a ? c.body_a + 1 : 0;
-        c.body_b = c.body_b ? c.body_b + 1 : 0;
-        assert_true(vt_builder_add_cut_joint(b, &c) >= 0);
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    for (int i = 2; i <= m->nbody; i++)
-        if (m->body_parent[i] == 0) shift3(m->body_jpar + 3 * i, D, 0);
-    for (int r = 0; r < m->nc; r++)
-        for (int side = 0; side < 2; side++)
-            if (m->con_body[2 * r + side] == 0) shift3(m->con_point + 6 * r + 3 * side, D, 0);
-    return m;
-}
-
-/* A huge load at a fixed point (the fuzzer's crash-31ead535): a point mass of 0.1 kg without
- * inertia on a spherical joint at the origin, closed by a cylindrical cut joint to a body on a
- * cylindrical joint 7 m away (o is that body's joint point), a force of 1e50 N and a moment of a
- * few N·m applied to the point mass. The force acts where the mass cannot move: it reaches only
- * the spherical joint's reaction, and the moment must be carried by the cut joint (a spherical
- * joint carries none). The recursive general route forms Q about o, where the force's ω · (c − o)
- * × f and v · f are 7e50 each and cancel, taking the moment with them; it must see that Q has no
- * digit there and hand the instant to the dense stages (VT_FALLBACK_COMPOSITE_ROUNDOFF), so that
- * both paths give the same q̈ and λ (1e-10) and the spherical joint's reaction moment is zero
- * (to 1e-12 of the moments). */
-static void test_load_at_fixed_point(void **state)
-{
-    (void)state;
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def one = vt_default_body_def();
-    one.joint = VT_JOINT_CYLINDRICAL;
-    one.axis1[0] = 0.0, one.axis1[1] = -1.0, one.axis1[2] = 0.0;
-    one.mass = 7.475;
-    one.inertia[0] = one.inertia[4] = one.inertia[8] = 0.5;
-    const double jp[3] = {6.25, -1.6875, 2.6875}, jc[3] = {2.0, 2.9375, 7.1875};
-    memcpy(one.joint_parent, jp, sizeof jp);
-    memcpy(one.joint_child, jc, sizeof jc);
-    assert_int_equal(vt_builder_add_body(b, &one), 1);
-    vt_body_def dot = vt_default_body_def(); /* at its joint: no lever, no inertia */
-    dot.joint = VT_JOINT_SPHERICAL;
-    dot.mass = 0.1;
-    dot.inertia[0] = dot.inertia[4] = dot.inertia[8] = 0.0;
-    assert_int_equal(vt_builder_add_body(b, &dot), 2);
-    vt_cut_joint_def cut = vt_default_cut_joint_def();
-    cut.joint = VT_JOINT_CYLINDRICAL;
-    cut.body_a = 2, cut.body_b = 1;
-    cut.point_b[0] = 0.5;
-    assert_true(vt_builder_add_cut_joint(b, &cut) >= 0);
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    assert_int_equal(m->nv, 5);
-    assert_int_equal(m->nc, 4);
-    vt_data *d[2];
-    for (int k = 0; k < 2; k++) {
-        assert_ok(vt_data_create(&d[k], m));
-        const double q[6] = {1.14375, 0.4125, 0.813193, -0.0139804, 0.475333, -0.335529};
-        const double qd[5] = {-6.125, -1.0, 0.625, 0.0, 0.0};
-        const double xf[12] = {-6.3125, 2.9375, -7.1875, -1.0, 5.5625, 4.375, -1e50, 1.375, 5.5625, 1.5625, 2.3125, 5.8125};
-        memcpy(d[k]->q, q, sizeof q);
-        memcpy(d[k]->qd, qd, sizeof qd);
-        memcpy(d[k]->xfrc + 6, xf, sizeof xf);
-        const vt_status st = k ? vt_inverse_dynamics_recursive(m, d[k]) : vt_inverse_dynamics(m, d[k]);
-        if (st) fail_msg("%s: %s", k ? "recursive" : "dense", d[k]->message);
-    }
-    if (!(d[1]->fallback & VT_FALLBACK_COMPOSITE_ROUNDOFF)) fail_msg("recursive fallback %d: kept Q about o", d[1]->fallback);
-    compare(d[1]->qdd, d[0]->qdd, m->nv, 1e-10, "qdd");
-    compare(d[1]->lambda, d[0]->lambda, m->nc, 1e-10, "lambda");
-    for (int k = 0; k < 2; k++) {
-        const double ms = vt_test_maxabs(d[k]->jnt_moment, 9);
-        for (int c = 0; c < 3; c++) assert_near(d[k]->jnt_moment[6 + c], 0.0, 1e-12 * ms);
-        vt_data_free(d[k]);
-    }
-    vt_model_free(m);
-}
-
-/* A mechanism standing D = 1 km and 1e6 m from o (body 1's joint point, the twists' and the
- * routes' reference): a pendulum at the global origin is body 1, and beside it, D away,
- *   0  the tip-driven chain (12 links: one point row, articulated bodies with a row),
- *   1  the same chain with every other joint driven (joint rows only: the free rates' solve),
- *   2  the RSUR four-bar without its crank drive (a loop: 4 rows, 5 rates),
- *   3  a floating robot (free root, 12 links of masses 1e-9 to 1e2 kg, every joint driven).
- * The mechanism's rates, rows and joints are decoupled from the pendulum's (M* and Φ_q block
- * diagonal, no shared body): its q̈, λ, efforts and reactions must be those of the same mechanism
- * alone at the origin (there o is its own first joint point), on both paths and with the motion
- * given (the trees: vt_inverse_dynamics_motion's fused passes), to issue 18's 1e-13
- * at 1 km and 1e-10 at 1e6 m of each array's largest entry. Both paths form their lever arms
- * from the joints' own vectors (S, Φ_q, ẍ, the subtrees' wrenches about each joint point, the
- * reactions' arms): scenes 0-2 come out bitwise the same, the robot to 5e-14 at either distance.
- * About o they lost digits with D (the recursive articulated route's pivots about o sent the
- * tip-driven chain at 1e6 m to the dense stages, changed by 3e-8; its wrenches about o left
- * 4e-12 and 2e-10, the dense path 9e-11 and 5e-8). */
-static vt_model *spread_tree(uint64_t seed, int n, int root_free, int drive_all);
-
-static void test_far_from_o(void **state)
-{
-    (void)state;
-    const double dist[2] = {1e3, 1e6}, tol[2] = {1e-13, 1e-10};
-    const double u[3] = {0.48, -0.6, 0.64};
-    static const char *name[4] = {"tip-driven chain", "partly joint-driven chain", "RUSR four-bar without its drive",
-                                  "floating robot, joints driven"};
-    for (int scene = 0; scene < 4; scene++)
-        for (int k = 0; k < 2; k++) {
-            const double D[3] = {dist[k] * u[0], dist[k] * u[1], dist[k] * u[2]};
-            vt_model *m0 = scene == 0 ? inv_model(INV_CHAIN)
-                         : scene == 1 ? inv_model(INV_PARTLY_CHAIN)
-                         : scene == 2 ? inv_model(INV_RUSR_UNDRIVEN)
-                                      : spread_tree(11, 12, 1, 1);
-            vt_model *m = beside_pendulum(m0, D);
-            const vt_model *alone = m0;
-            vt_data *d, *da;
-            assert_ok(vt_data_create(&d, m));
-            assert_ok(vt_data_create(&da, alone));
-            /* the state: the chain's reference state or the assembled four-bar, random loads */
-            if (scene < 3) inv_state(alone, da, scene == 0 ? INV_CHAIN : scene == 1 ? INV_PARTLY_CHAIN : INV_RUSR_UNDRIVEN);
-            else { /* the free root at (0.1, 0.2, 0.3) from its ground point, turned; every rate moving */
-                const double nq = sqrt(0.81 + 0.01 + 0.04 + 0.09);
-                const double root[7] = {0.1, 0.2, 0.3, 0.9 / nq, 0.1 / nq, -0.2 / nq, 0.3 / nq};
-                memcpy(da->q, root, sizeof root);
-                for (int c = 7; c < alone->nq; c++) da->q[c] = 0.8 * sin(1.3 * c);
-                for (int c = 0; c < alone->nv; c++) da->qd[c] = 0.5 * cos(0.7 * c);
-            }
-            d->q[0] = 0.4, d->qd[0] = 0.7;
-            memcpy(d->q + 1, da->q, (size_t)alone->nq * sizeof(double));
-            memcpy(d->qd + 1, da->qd, (size_t)alone->nv * sizeof(double));
-            memcpy(d->qfrc + 1, da->qfrc, (size_t)alone->nv * sizeof(double));
-            memcpy(d->xfrc + 12, da->xfrc + 6, 6 * (size_t)alone->nbody * sizeof(double));
-            for (int path = 0; path < 3; path++) {
-                const int dense = path == 1;
-                if (path == 2) { /* the motion given (trees): the fused passes */
-                    if (alone->ncut > 0) continue;
-                    d->qdd[0] = 0.0;
-                    memcpy(d->qdd + 1, da->qdd, (size_t)alone->nv * sizeof(double));
-                    assert_ok(vt_inverse_dynamics_motion(alone, da));
-                    assert_ok(vt_inverse_dynamics_motion(m, d));
-                } else if (dense) {
-                    assert_ok(vt_inverse_dynamics(alone, da));
-                    assert_ok(vt_inverse_dynamics(m, d));
-                } else {
-                    assert_ok(vt_inverse_dynamics_recursive(alone, da));
-                    assert_ok(vt_inverse_dynamics_recursive(m, d));
-                }
-                const int nb3 = 3 * alone->nbody, nv = alone->nv, nc = alone->nc, nk3 = 3 * alone->ncut;
-                const struct { const char *what; const double *x, *y; int n; } out[] = {
-                    {"qdd", d->qdd + 1, da->qdd, nv}, {"lambda", d->lambda, da->lambda, nc},
-                    {"qfrc_drive", d->qfrc_drive + 1, da->qfrc_drive, nv},
-                    {"jnt_force", d->jnt_force + 6, da->jnt_force + 3, nb3}, {"jnt_moment", d->jnt_moment + 6, da->jnt_moment + 3, nb3},
-                    {"jnt_force_body", d->jnt_force_body + 6, da->jnt_force_body + 3, nb3},
-                    {"jnt_moment_body", d->jnt_moment_body + 6, da->jnt_moment_body + 3, nb3},
-                    {"cut_force", d->cut_force, da->cut_force, nk3}, {"cut_moment", d->cut_moment, da->cut_moment, nk3}};
-                const double mfloor = fmax(vt_test_maxabs(da->jnt_moment, 3 * (alone->nbody + 1)), vt_test_maxabs(da->qfrc_drive, nv));
-                double worst = 0.0;
-                const char *what = "";
-                for (size_t o = 0; o < sizeof out / sizeof out[0]; o++) {
-                    const double c = change(out[o].x, out[o].y, out[o].n, strstr(out[o].what, "moment") ? mfloor : 0.0);
-                    if (c > worst) worst = c, what = out[o].what;
-                }
-                print_message("%s, %s, D = %g m from o: route %d (alone %d), fallback %d, largest change %.3g (%s)\n",
-                              path == 2 ? "motion" : dense ? "dense" : "recursive", name[scene], dist[k], d->route, da->route,
-                              d->fallback, worst, what);
-                assert_int_equal(d->route, da->route);
-                if (path == 0) assert_int_equal(d->route, VT_ROUTE_ARTICULATED);
-                const double t = tol[k];
-                if (!(worst <= t))
-                    fail_msg("%s, D = %g m from o: %s changed by %.3g of its largest entry (> %g)", name[scene], dist[k], what, worst, t);
-            }
-            vt_data_free(d);
-            vt_data_free(da);
-            vt_model_free(m);
-            vt_model_free(m0);
-        }
-}
-
-/* A floating robot with an inertia spread like Talos' and beyond: a root (free joint or the
- * paper's base body) and a random tree of scalar joints whose masses are log-uniform in
- * [1e-9, 1e2] kg, inertias in proportion; every joint rate driven (drive_all) or every other
- * body's. */
-static vt_model *spread_tree(uint64_t seed, int n, int root_free, int drive_all)
-{
-    vt_model *probe;
-    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_SCALAR_JOINTS));
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def root = vt_default_body_def();
-    root.joint = root_free ? VT_JOINT_FREE : VT_JOINT_BASE;
-    root.mass = 30.0;
-    const double J[9] = {1.5, 0.05, -0.02, 0.05, 1.7, 0.03, -0.02, 0.03, 0.9};
-    memcpy(root.inertia, J, sizeof J);
-    const double c[3] = {0.02, -0.05, 0.1};
-    if (root_free) memcpy(root.joint_child, c, sizeof c);
-    assert_int_equal(vt_builder_add_body(b, &root), 1);
-    uint64_t s = seed * 977;
-    for (int i = 1; i <= probe->nbody; i++) {
-        vt_body_def d = vt_default_body_def();
-        d.parent = probe->body_parent[i] + 1;
-        d.joint = (vt_joint_type)probe->body_joint[i];
-        d.mass = pow(10.0, vt_rand_uniform(&s, -9.0, 2.0));
-        for (int k = 0; k < 9; k++) d.inertia[k] = probe->body_inertia[9 * i + k] * d.mass / probe->body_mass[i];
-        memcpy(d.joint_parent, probe->body_jpar + 3 * i, 3 * sizeof(double));
-        memcpy(d.joint_child, probe->body_jchild + 3 * i, 3 * sizeof(double));
-        memcpy(d.axis1, probe->body_axis + 6 * i, 3 * sizeof(double));
-        memcpy(d.axis2, probe->body_axis + 6 * i + 3, 3 * sizeof(double));
-        memcpy(d.orientation, probe->body_quat0 + 4 * i, 4 * sizeof(double));
-        assert_int_equal(vt_builder_add_body(b, &d), i + 1);
-        for (int k = 0; k < probe->body_nv[i] && (drive_all || i % 2); k++) {
-            vt_drive_def dr = vt_default_drive_def();
-            dr.body = i + 1;
-            dr.index = k;
-            dr.f = vt_function_sine(0.1 + 0.01 * k, 0.3, 2.0, 0.5);
-            assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        }
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    vt_model_free(probe);
-    return m;
-}
-
-/* Inertia spread alone is not ill-conditioning: floating trees with masses from 1e-9 to 1e2 kg at
- * random states, fully and partly driven, free and base roots: no warning and no failure on
- * either path, the results the same (both: the dense solve as the second method), and the
- * estimate the same number on both paths where both estimate by the same definition */
-static void test_inertia_spread(void **state)
-{
-    (void)state;
-    int states = 0;
-    double worst = 1.0;
-    for (uint64_t seed = 1; seed <= 8; seed++) {
-        vt_model *m = spread_tree(seed, 14, seed % 2, seed % 4 < 2);
-        vt_data *dr, *dd;
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        for (int k = 0; k < 5; k++, states++) {
-            uint64_t s = seed * 31 + (uint64_t)k;
-            vt_scene_random_state(m, dd, &s);
-            dd->time = 0.1 * k;
-            memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-            memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-            dr->time = dd->time;
-            both(m, dr, dd);
-            if (dd->warning || dr->warning)
-                fail_msg("seed %d state %d: warning (rcond %.3g dense route %d, %.3g recursive route %d)", (int)seed, k,
-                         dd->rcond, dd->route, dr->rcond, dr->route);
-            if (dr->route == VT_ROUTE_ARTICULATED && dd->route == VT_ROUTE_FREE_RATES)
-                assert_near(dr->rcond, dd->rcond, 1e-9 * dd->rcond);
-            if (dd->route == VT_ROUTE_FREE_RATES || dd->route == VT_ROUTE_SCHUR) { /* by LAPACK, as the docs define it */
-                const double expect = vt_test_known_rcond(m, dd);
-                assert_near(dd->rcond, expect, 1e-9 * expect);
-            }
-            worst = fmin(worst, fmin(dd->rcond, dr->rcond));
-        }
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
-    }
-    print_message("inertia spread 1e-9..1e2 kg: %d states, smallest rcond %.3g\n", states, worst);
-}
-
-/* The fuzzer's four round-off findings (fuzz/findings/new-*), each with an exact zero that the
- * paths compute as round-off: an arm (a heavy revolute link hung 30 m from the origin) carrying
- *   0  (beside it) a body on a spherical joint to the ground with a point drive at the joint's
- *      centre: a zero row
- *   1  a point mass on a cylindrical joint through it: its spin has no inertia
- *   2  a point mass on a spherical joint at its centre: three rates without inertia
- *   3  a point mass on a spherical joint off its centre: it spins freely about the joint–mass
- *      line (M* singular, no single rate without inertia)
- * Both paths must refuse, with the same status: 0 dependent rows, 1-3 singular. */
-static vt_model *roundoff_model(int which)
-{
-    vt_builder *b;
-    assert_ok(vt_builder_create(&b, NULL));
-    vt_body_def arm = vt_default_body_def();
-    arm.mass = 3.0;
-    arm.inertia[0] = 0.2, arm.inertia[4] = 0.3, arm.inertia[8] = 0.25;
-    arm.joint_parent[0] = 30.0, arm.joint_parent[1] = 20.0, arm.joint_parent[2] = -10.0;
-    /* 3 near the origin: M* about O, 36 m away, carries round-off of 1e-12 of its size in the free
-     * spin's direction (no single rate's: not judged per rate), and the general route's estimate
-     * stays just above rcond_min there: that is translation invariance's part (#18 item 2) */
-    if (which == 3) arm.joint_parent[0] = 0.3, arm.joint_parent[1] = 0.2, arm.joint_parent[2] = -0.1;
-    arm.joint_child[0] = -0.4, arm.joint_child[1] = 0.1;
-    arm.axis1[0] = 0.3, arm.axis1[1] = 0.5, arm.axis1[2] = 0.8;
-    assert_int_equal(vt_builder_add_body(b, &arm), 1);
-    vt_body_def e = vt_default_body_def();
-    e.parent = which == 0 ? 0 : 1; /* the zero row: a spherical root, far from the origin */
-    e.joint = which == 1 ? VT_JOINT_CYLINDRICAL : VT_JOINT_SPHERICAL;
-    e.mass = 0.7;
-    if (which == 0) e.inertia[0] = 0.01, e.inertia[4] = 0.02, e.inertia[8] = 0.015;
-    e.joint_parent[0] = 0.5, e.joint_parent[1] = -0.2, e.joint_parent[2] = 0.1;
-    if (which == 0) e.joint_parent[0] = 29.0, e.joint_parent[1] = 21.0, e.joint_parent[2] = -11.0;
-    if (which == 0 || which == 3) e.joint_child[0] = 0.3, e.joint_child[1] = -0.1, e.joint_child[2] = 0.2;
-    e.axis1[0] = 0.6, e.axis1[1] = -0.3, e.axis1[2] = 0.74;
-    assert_int_equal(vt_builder_add_body(b, &e), 2);
-    if (which == 0) {
-        vt_drive_def pd = vt_default_drive_def();
-        pd.type = VT_DRIVE_POINT;
-        pd.body = 2;
-        pd.index = 1;
-        memcpy(pd.point, e.joint_child, sizeof pd.point); /* the joint's centre */
-        pd.f = vt_function_sine(0.0, 0.2, 1.5, 0.0);
-        assert_true(vt_builder_add_drive(b, &pd) >= 0);
-    }
-    vt_model *m;
-    assert_ok(vt_builder_build(&m, b));
-    vt_builder_free(b);
-    return m;
-}
-
-/* Motions without inertia that round-off hides, found by the differential fuzzer. (a) A base body
- * that is a point mass turns without inertia: its M* rows are exactly zero in the dense path and
- * round-off in the recursive one, which once scaled to unit diagonal passed for inertia (a
- * state a little off p^T p = 1 made it so). (b) A point mass on a spherical joint 1e6 m from its
- * centre of mass does not resist turning about the line from the joint to the mass: the
- * articulated pivot of that direction came out negative (round-off of terms of 1e11), and the
- * general route's M* passed for regular. Both paths must refuse both as singular. */
-static void test_roundoff_singular(void **state)
-{
-    (void)state;
-    for (int c = 0; c < 2; c++) {
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        vt_body_def body = vt_default_body_def();
-        if (c == 0) {
-            body.joint = VT_JOINT_UNIVERSAL;
-            body.mass = 4.1875;
-            body.inertia[0] = body.inertia[4] = body.inertia[8] = 0.6875;
-            body.axis1[2] = -1.0;
-            assert_int_equal(vt_builder_add_body(b, &body), 1);
-            body = vt_default_body_def();
-            body.joint = VT_JOINT_BASE;
-            body.mass = 0.1;
-            assert_int_equal(vt_builder_add_body(b, &body), 2);
-        } else {
-            body.joint = VT_JOINT_TRANSLATIONAL;
-            body.mass = 2.5;
-            body.inertia[0] = body.inertia[4] = body.inertia[8] = 2.4;
-            assert_int_equal(vt_builder_add_body(b, &body), 1);
-            body = vt_default_body_def();
-            body.parent = 1;
-            body.joint = VT_JOINT_SPHERICAL;
-            body.mass = 0.1;
-            body.joint_child[0] = 3.2e5, body.joint_child[1] = 1.2e5, body.joint_child[2] = 9.4e5;
-            assert_int_equal(vt_builder_add_body(b, &body), 2);
-        }
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_data *dd, *dr;
-        assert_ok(vt_data_create(&dd, m));
-        assert_ok(vt_data_create(&dr, m));
-        const double q0[9] = {1.875, 1.875, -2.1, -7.5, -7.5, -0.643563, 0.536303, -0.386138, -0.386138};
-        const double qd0[9] = {-4.5, -4.5, -4.5, -4.5, -4.5, -1.98389, -6.59676, -2.99034, -2.86534};
-        const double q1[5] = {-0.5, -0.5, -0.5, -0.5, -0.5}, qd1[4] = {-7.5, -7.5, -7.5, -7.5};
-        memcpy(dd->q, c ? q1 : q0, (size_t)m->nq * sizeof(double));
-        memcpy(dd->qd, c ? qd1 : qd0, (size_t)m->nv * sizeof(double));
-        memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-        memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
-        print_message("case %d: dense %s (%s), recursive %s (%s)\n", c, vt_status_string(sd), dd->message,
-                      vt_status_string(sr), dr->message);
-        assert_int_equal(sd, VT_ERR_SINGULAR);
-        assert_int_equal(sr, VT_ERR_SINGULAR);
-        vt_data_free(dd);
-        vt_data_free(dr);
-        vt_model_free(m);
-    }
-}
-
-/* A pivot at the bottom of the normal range (the fuzzer's crash-bad72ed5…): a body on a spherical
- * joint at its centre of mass, inertia DBL_MIN I, spinning freely. S^T Ī S rounds M*_aa just below
- * DBL_MIN, where a number has lost its digits: the dense path refused, the articulated route took
- * its own pivot (DBL_MIN) and returned VT_OK. Both paths must refuse it alike (the recursive one
- * hands pivots below DBL_MIN / ε to the dense stages); at 1e-300 I (there too) and 1e-280 I (on
- * the articulated route) both solve it, and an isotropic inertia spinning at its centre feels no
- * moment: q̈ = 0. */
-static void test_subnormal_pivot(void **state)
-{
-    (void)state;
-    const double k[3] = {DBL_MIN, 1e-300, 1e-280};
-    for (int c = 0; c < 3; c++) {
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        vt_body_def body = vt_default_body_def();
-        body.joint = VT_JOINT_SPHERICAL;
-        body.mass = 7.5375;
-        body.inertia[0] = body.inertia[4] = body.inertia[8] = k[c];
-        body.joint_parent[0] = 1.0;
-        assert_int_equal(vt_builder_add_body(b, &body), 1);
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_data *dd, *dr;
-        assert_ok(vt_data_create(&dd, m));
-        assert_ok(vt_data_create(&dr, m));
-        const double q[4] = {0.0652584, -0.171303, -0.978876, 0.090546}, qd[3] = {2.3125, 2.3125, 2.3125};
-        const double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        for (int i = 0; i < 4; i++) dd->q[i] = dr->q[i] = q[i] / n;
-        memcpy(dd->qd, qd, sizeof qd);
-        memcpy(dr->qd, qd, sizeof qd);
-        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
-        print_message("inertia %.3g I: dense %s (%s), recursive %s (%s)\n", k[c], vt_status_string(sd), dd->message,
-                      vt_status_string(sr), dr->message);
-        if (c == 0) {
-            assert_int_equal(sd, VT_ERR_SINGULAR);
-            assert_int_equal(sr, VT_ERR_SINGULAR);
-            assert_non_null(strstr(dr->message, "below the smallest normal number"));
-        } else {
-            assert_ok(sd);
-            assert_ok(sr);
-            assert_int_equal(dr->route == VT_ROUTE_ARTICULATED, c == 2);
-            for (int a = 0; a < 3; a++) {
-                assert_true(fabs(dd->qdd[a]) <= 1e-12);
-                assert_true(fabs(dr->qdd[a]) <= 1e-12);
-            }
-        }
-        vt_data_free(dd);
-        vt_data_free(dr);
-        vt_model_free(m);
-    }
-}
-
-/* A point mass on a spherical joint turns freely about the joint–mass line: M* is exactly
- * singular (the rates along u = (c − P)/|c − P| have no inertia, M* u = 0). Beside it a revolute
- * body whose joint point, the reference point o of the twists, stands D from it. Near (D = 10)
- * both paths refuse; at D = 1e6 the recursive general route's composite inertias about o hold
- * m D² terms, their round-off (64 ε of them, 0.03 of the spherical rates' M*_aa) hid the
- * singularity, and it returned VT_OK with rcond 2.6e-5 and q̈ of 1e5 (the fuzzer's
- * crash-5bde61aefa…): now it hands the instant to the dense stages, whose rcond refuses. The dense M*
- * is checked against the identity M* u = 0 (to 64 ε of its largest entry × D/|c − P|: S's
- * lever arms from o). */
-static void test_roundoff_hides_singular(void **state)
-{
-    (void)state;
-    const double Ds[2] = {10.0, 1e6};
-    for (int k = 0; k < 2; k++) {
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        vt_body_def body = vt_default_body_def();
-        body.joint = VT_JOINT_REVOLUTE;
-        body.mass = 1.6;
-        body.axis1[0] = 0.0, body.axis1[1] = 0.0, body.axis1[2] = -1.0;
-        body.joint_parent[1] = Ds[k], body.joint_parent[2] = -4.5;
-        body.joint_child[0] = -7.5, body.joint_child[1] = 6.125, body.joint_child[2] = 4.1875;
-        assert_int_equal(vt_builder_add_body(b, &body), 1);
-        body = vt_default_body_def();
-        body.joint = VT_JOINT_SPHERICAL;
-        body.mass = 0.1;
-        body.joint_parent[2] = -1.75;
-        body.joint_child[1] = -1.3125, body.joint_child[2] = -4.25;
-        assert_int_equal(vt_builder_add_body(b, &body), 2);
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_data *dd, *dr;
-        assert_ok(vt_data_create(&dd, m));
-        assert_ok(vt_data_create(&dr, m));
-        for (int c = 0; c < m->nv; c++) dd->qfrc[c] = dr->qfrc[c] = -7.0;
-        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
-        print_message("D = %g: dense %s (%s), recursive %s (%s)\n", Ds[k], vt_status_string(sd), dd->message,
-                      vt_status_string(sr), dr->message);
-        assert_int_equal(sd, VT_ERR_SINGULAR);
-        assert_int_equal(sr, VT_ERR_SINGULAR);
-        assert_int_equal(dr->route, VT_ROUTE_NONE);
-        /* the identity: u along the joint–mass line (global = the spherical rates' axes at p = 1) */
-        assert_ok(vt_kinematics(m, dd));
-        assert_ok(vt_mass_matrix(m, dd));
-        const double u[3] = {0.0, -1.3125 / hypot(1.3125, 4.25), -4.25 / hypot(1.3125, 4.25)};
-        double big = 0.0;
-        for (int e = 0; e < m->nv * m->nv; e++) big = fmax(big, fabs(dd->Mstar[e]));
-        for (int r = 0; r < m->nv; r++) {
-            double mu = 0.0;
-            for (int c = 0; c < 3; c++) mu += dd->Mstar[r + (size_t)(1 + c) * (size_t)m->nv] * -u[c];
-            assert_true(fabs(mu) <= 64.0 * 2.220446049250313e-16 * big * (1.0 + Ds[k] / 4.45));
-        }
-        vt_data_free(dd);
-        vt_data_free(dr);
-        vt_model_free(m);
-    }
-}
-
-static void test_roundoff_zeros(void **state)
-{
-    (void)state;
-    const vt_status expect[4] = {VT_ERR_DEPENDENT_CONSTRAINTS, VT_ERR_SINGULAR, VT_ERR_SINGULAR, VT_ERR_SINGULAR};
-    for (int which = 0; which < 4; which++) {
-        vt_model *m = roundoff_model(which);
-        vt_data *dr, *dd;
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        for (int k = 0; k < 20; k++) {
-            uint64_t s = 101 * (uint64_t)which + (uint64_t)k + 1;
-            vt_scene_random_state(m, dd, &s);
-            dd->time = 0.05 * k;
-            memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-            memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-            dr->time = dd->time;
-            const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
-            if (sd != expect[which] || sr != expect[which])
-                fail_msg("case %d state %d: dense %s (%s, rcond %.3g), recursive %s (%s, rcond %.3g, route %d)", which, k,
-                         vt_status_string(sd), dd->message, dd->rcond, vt_status_string(sr), dr->message, dr->rcond, dr->route);
-        }
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_model_free(m);
-    }
-}
-
-static void residuals_hold(const vt_model *m, const vt_data *d, double tol)
-{
-    const int nv = m->nv, nc = m->nc;
-    const double qmax = vt_test_maxabs(d->qdd, nv); /* the rows are kinematic: q̈ normwise */
-    for (int r = 0; r < nc; r++) {
-        double v = -d->gamma[r], t = fabs(d->gamma[r]);
-        for (int a = 0; a < nv; a++) {
-            v += d->Phiq[r + a * nc] * d->qdd[a];
-            t += fabs(d->Phiq[r + a * nc]) * qmax;
-        }
-        if (!(fabs(v) <= tol * t + 1e-300)) fail_msg("row %d: Φ_q q̈ − γ = %.3g of terms %.3g", r, v, t);
-    }
-    for (int a = 0; a < nv; a++) {
-        double v = -d->Q[a], t = fabs(d->Q[a]);
-        for (int b = 0; b < nv; b++) {
-            v += d->Mstar[a + b * nv] * d->qdd[b];
-            t += fabs(d->Mstar[a + b * nv] * d->qdd[b]);
-        }
-        for (int r = 0; r < nc; r++) {
-            v -= d->Phiq[r + a * nc] * d->lambda[r];
-            t += fabs(d->Phiq[r + a * nc] * d->lambda[r]);
-        }
-        if (!(fabs(v) <= tol * t + 1e-300)) fail_msg("rate %d: M* q̈ − Q − Φ_q^T λ = %.3g of terms %.3g", a, v, t);
-    }
-}
-
-/* Mass ratios of 1e24 along a chain (vt_test_ratio_chain: five planar rods whose masses fall
- * from 1e12 to 1e-12 kg, or rise; and of 1e12, 1e3 a rod), driven in four ways, at three states
- * each. No failure on
- * either path, no warning where the rows fix the motion (the estimate is the pose's alone); each
- * path's q̈ and λ satisfy (5) in the dense M*, Q and Φ_q, Φ_q q̈ = γ against ‖Φ_q,r‖ max|q̈| and
- * each rate's M* q̈ − Q − Φ_q^T λ = 0 against the size of its own terms (a backward error that
- * the light rods' rates, 1e24 below the heavy ones', cannot hide in) to 1e-14 / rcond; the paths
- * agree (both; with free motion q̈ to 1e-14 / rcond, and the same estimate). With free motion
- * the free-rate routes' estimate falls below √rcond_warn = 1e-3 on some of these chains (a
- * 1e12 kg tip on links of 1e-12 … 1e6 kg with joint 1 driven, 6e-8; the chain falling from
- * 1e12 kg with joints 1-2 and the tip driven, 5e-7), where they lose digits the problem keeps:
- * both paths take the maximal route there (VT_FALLBACK_MAXIMAL_CONDITION) and do not warn; the
- * test ratio_oracle holds every answer against the exact ones (mpmath). */
-static void test_mass_ratios(void **state)
-{
-    (void)state;
-    double worst = 1.0;
-    for (int chain = 0; chain < 4; chain++)
-        for (int drive = 0; drive < 4; drive++) {
-            const int rising = chain % 2, step = chain < 2 ? 6 : 3; /* 1e6 a rod, then 1e3 */
-            vt_model *m = vt_test_ratio_chain(rising, drive, step);
-            vt_data *dr, *dd;
-            assert_ok(vt_data_create(&dr, m));
-            assert_ok(vt_data_create(&dd, m));
-            for (int k = 0; k < 3; k++) {
-                for (int c = 0; c < m->nv; c++) {
-                    dd->q[c] = 0.3 + 0.25 * c + 0.4 * k; /* bent: a regular pose */
-                    dd->qd[c] = 0.5 - 0.2 * c + 0.1 * k;
-                }
-                dd->time = 0.2 * k;
-                memcpy(dr->q, dd->q, (size_t)m->nq * sizeof(double));
-                memcpy(dr->qd, dd->qd, (size_t)m->nv * sizeof(double));
-                dr->time = dd->time;
-                assert_ok(vt_inverse_dynamics(m, dd));
-                assert_ok(vt_inverse_dynamics_recursive(m, dr));
-                /* both paths' answers in the dense equations, to what the estimate promises */
-                const double tol = fmax(1e-12, 1e-14 / fmin(dd->rcond, dr->rcond));
-                residuals_hold(m, dd, tol);
-                vt_data *dx;
-                assert_ok(vt_data_create(&dx, m));
-                memcpy(dx->q, dd->q, (size_t)m->nq * sizeof(double));
-                memcpy(dx->qd, dd->qd, (size_t)m->nv * sizeof(double));
-                dx->time = dd->time;
-                assert_ok(vt_inverse_dynamics(m, dx));
-                memcpy(dx->qdd, dr->qdd, (size_t)m->nv * sizeof(double));
-                memcpy(dx->lambda, dr->lambda, (size_t)m->nc * sizeof(double));
-                residuals_hold(m, dx, tol);
-                vt_data_free(dx);
-                /* 1e3 a rod: no warning on any (the rising chain with joints 1-2 and the tip driven:
-                 * both paths know the driven rates' q̈ and keep only the tip's rows in S, 8.5e-3 on
-                 * the dense Schur route; over the whole M* the light driven rods' pivots give
-                 * 6.6e-13) */
-                if (step == 3 && (dd->warning || dr->warning))
-                    fail_msg("1e3 a rod, rising %d drive %d state %d: warning (rcond %.3g)", rising, drive, k, dd->rcond);
-                if (step == 3 && rising && drive == 2) {
-                    assert_int_equal(dd->route, VT_ROUTE_SCHUR);
-                    assert_int_equal(dd->fallback, 0);
-                }
-                if (drive < 2) { /* the rows fix the motion: the estimate is the pose's, 1e24 or not */
-                    both(m, dr, dd);
-                    if (dd->warning || dr->warning) fail_msg("rising %d drive %d state %d: warning", rising, drive, k);
-                } else { /* free motion: the paths agree to what the estimate says */
-                    for (int a = 0; a < m->nv; a++)
-                        assert_near(dr->qdd[a], dd->qdd[a], tol * (1.0 + vt_test_maxabs(dd->qdd, m->nv)));
-                    /* the free-rate routes' estimate (the system left once the joint-driven
-                     * rates are known) below rcond_warn, or below √rcond_warn with the joint-1
-                     * effort the difference of the tip's terms (rising, joint 1 driven): both
-                     * paths take the maximal route, and neither warns (its answers against the
-                     * exact ones: ratio_oracle) */
-                    const double expect = vt_test_known_rcond(m, dd);
-                    if (expect < 1e-6 || (rising && drive == 3)) {
-                        assert_int_equal(dd->route, VT_ROUTE_MAXIMAL);
-                        assert_int_equal(dr->route, VT_ROUTE_MAXIMAL);
-                        assert_true(dd->fallback & VT_FALLBACK_MAXIMAL_CONDITION);
-                        assert_true(dr->fallback & VT_FALLBACK_MAXIMAL_CONDITION);
-                        if (dd->warning || dr->warning) fail_msg("rising %d drive %d state %d: warning", rising, drive, k);
-                    }
-                    /* joint and point drives mixed: the articulated route itself, the joint
-                     * drives' efforts from the subtrees' wrenches, as the dense path's */
-                    else if (drive == 2 && dr->route != VT_ROUTE_ARTICULATED) {
-                        /* below √rcond_warn: handed to the dense stages, which kept their route */
-                        assert_true(expect < 1e-3);
-                        assert_int_equal(dr->fallback, VT_FALLBACK_ARTICULATED_CONDITION);
-                        assert_int_equal(dr->route, dd->route);
-                    } else if (drive == 2) {
-                        assert_int_equal(dr->fallback, 0);
-                        for (int r = 0; r < m->nc; r++)
-                            assert_near(dr->lambda[r], dd->lambda[r], tol * (1.0 + vt_test_maxabs(dd->lambda, m->nc)));
-                    }
-                    /* both estimates measure the system left once the joint-driven rates are
-                     * known (vt_test_known_rcond): the articulated route's and the dense Schur
-                     * route's */
-                    if (dr->route == VT_ROUTE_ARTICULATED) assert_near(dr->rcond, expect, tol * expect); /* itself computed to that */
-                    if (dd->route == VT_ROUTE_SCHUR) assert_near(dd->rcond, expect, tol * expect);
-                }
-                worst = fmin(worst, fmin(dd->rcond, dr->rcond));
-            }
-            vt_data_free(dr);
-            vt_data_free(dd);
-            vt_model_free(m);
-        }
-    print_message("mass ratios 1e24 and 1e12: smallest rcond %.3g\n", worst);
-}
-
-/* A 1e154 kg link (6 kg·m²) in a planar chain of 1 kg rods, fully driven (joints 1-3 and the
- * tip's x, y: the square route) and with a rate free (joints 1-2 and the tip: Schur, articulated):
- * no failure and no warning on either path (a radius of gyration of 1e-77 m weighted the rows
- * before: the square route refused, calling three joint drives dependent); both paths' answers in
- * the dense equations (residuals_hold), and the square route's estimate against its definition,
- * κ₁(G Φ_q C)^-2 with ℓ from vt_test_rows_length, the inverse by LAPACK's dgesv. */
-static void test_heavy_link(void **state)
-{
-    (void)state;
-    for (int drive = 1; drive < 3; drive++) {
-        vt_builder *b;
-        assert_ok(vt_builder_create(&b, NULL));
-        for (int k = 0; k < 5; k++) {
-            vt_body_def link = vt_default_body_def();
-            link.parent = k;
-            link.mass = k == 2 ? 1e154 : 1.0;
-            link.inertia[0] = k == 2 ? 3.0 : 0.0; /* the heavy one: 3, 3, 6 kg·m² */
-            link.inertia[4] = k == 2 ? 3.0 : 0.4 * 0.4 / 12.0;
-            link.inertia[8] = k == 2 ? 6.0 : 0.4 * 0.4 / 12.0;
-            link.joint_child[0] = -0.2;
-            link.joint_parent[0] = k ? 0.2 : 0.0;
-            assert_int_equal(vt_builder_add_body(b, &link), k + 1);
-        }
-        for (int k = 0; k < (drive == 1 ? 3 : 2); k++) {
-            vt_drive_def dr = vt_default_drive_def();
-            dr.body = k + 1;
-            dr.f = vt_function_sine(0.3 + 0.2 * k, 0.4, 1.5, 0.2 * k);
-            assert_true(vt_builder_add_drive(b, &dr) >= 0);
-        }
-        for (int c = 0; c < 2; c++) {
-            vt_drive_def tip = vt_default_drive_def();
-            tip.type = VT_DRIVE_POINT;
-            tip.body = 5;
-            tip.index = c;
-            tip.point[0] = 0.2;
-            tip.f = vt_function_sine(0.0, 0.05, 1.0, 0.3 * c);
-            assert_true(vt_builder_add_drive(b, &tip) >= 0);
-        }
-        vt_model *m;
-        assert_ok(vt_builder_build(&m, b));
-        vt_builder_free(b);
-        vt_data *dd, *dr;
-        assert_ok(vt_data_create(&dd, m));
-        assert_ok(vt_data_create(&dr, m));
-        for (int a = 0; a < 5; a++) {
-            dd->q[a] = dr->q[a] = 0.3 + 0.25 * a;
-            dd->qd[a] = dr->qd[a] = 0.5 - 0.2 * a;
-        }
-        const vt_status sd = vt_inverse_dynamics(m, dd), sr = vt_inverse_dynamics_recursive(m, dr);
-        if (sd || sr) fail_msg("drive %d: dense %s (%s), recursive %s (%s)", drive, vt_status_string(sd), dd->message,
-                               vt_status_string(sr), dr->message);
-        if (dd->warning || dr->warning) fail_msg("drive %d: warning (rcond %.3g, %.3g)", drive, dd->rcond, dr->rcond);
-        /* the square route's estimate is vt_solve's; the articulated one's the system left once
-         * the joint-driven rates are known (vt_test_known_rcond), not the dense path's */
-        const double expect = dr->route == VT_ROUTE_ARTICULATED ? vt_test_known_rcond(m, dd) : dd->rcond;
-        assert_near(dr->rcond, expect, 1e-9 * expect);
-        const double tol = fmax(1e-12, 1e-14 / dd->rcond);
-        residuals_hold(m, dd, tol);
-        memcpy(dd->qdd, dr->qdd, sizeof(double) * 5);
-        memcpy(dd->lambda, dr->lambda, sizeof(double) * (size_t)m->nc);
-        residuals_hold(m, dd, tol);
-        if (drive == 1) { /* κ₁(G Φ_q C)^-2: all rates turn (C = 1/ℓ); the joint rows measure angles (G = ℓ) */
-            assert_int_equal(dd->route, VT_ROUTE_SQUARE);
-            const double l = vt_test_rows_length(m, dd);
-            double A[25], X[25], an = 0.0, xn = 0.0;
-            int ipiv[5], info = 0;
-            const int n = 5;
-            for (int c = 0; c < 5; c++) {
-                double cs = 0.0;
-                for (int r = 0; r < 5; r++) {
-                    A[r + 5 * c] = dd->Phiq[r + 5 * c] / l * (r < 3 ? l : 1.0);
-                    X[r + 5 * c] = r == c;
-                    cs += fabs(A[r + 5 * c]);
-                }
-                an = fmax(an, cs);
-            }
-            dgesv_(&n, &n, A, &n, ipiv, X, &n, &info);
-            assert_int_equal(info, 0);
-            for (int c = 0; c < 5; c++) {
-                double cs = 0.0;
-                for (int r = 0; r < 5; r++) cs += fabs(X[r + 5 * c]);
-                xn = fmax(xn, cs);
-            }
-            const double expect = 1.0 / (an * xn * an * xn);
-            assert_near(dd->rcond, expect, 1e-9 * expect);
-        }
-        vt_data_free(dd);
-        vt_data_free(dr);
-        vt_model_free(m);
-    }
-}
-
-/* A chain of n revolute links driven at its tip only (the benchmark's chain_tip), n = 12, 100 and
- * 200, up to 135 m long against links of 0.5 m. Its articulated inertias about o held m L² terms
- * that the pivots of the tip's rates cancel, and the route's round-off bound sent n = 100 and 200
- * to the general route, whose composite inertias about o sent them to the dense stages
- * (VT_FALLBACK_COMPOSITE_ROUNDOFF: 6.5 ms an instant). About each body's own joint point the
- * pivots are differences of the subtree's own terms: the articulated route keeps them (no
- * fallback) and must give the dense path's q̈, λ, effort and reactions (S^T M S, no composite
- * inertia) to what its estimate allows, 1e-13 / rcond relative (rcond 1.7e-3, 6.7e-7, 1.6e-8), and
- * the estimate itself from the dense M* and Φ_q by LAPACK (vt_test_known_rcond) to the larger of
- * 1e-9 and that. The general route, whose M* is still formed about o, still hands n = 100 to the
- * dense stages (VT_FALLBACK_COMPOSITE_ROUNDOFF; taken here by allowing redundant rows). */
-static void test_long_chain(void **state)
-{
-    (void)state;
-    const int ns[3] = {12, 100, 200};
-    for (int k = 0; k < 3; k++) {
-        vt_model *m;
-        assert_ok(vt_scene_chain(&m, ns[k], VT_CHAIN_TIP_DRIVE));
-        vt_data *dd, *dr;
-        assert_ok(vt_data_create(&dd, m));
-        assert_ok(vt_data_create(&dr, m));
-        for (int a = 0; a < m->nv; a++) {
-            double qdd;
-            vt_scene_chain_state(a, &dd->q[a], &dd->qd[a], &qdd);
-            dr->q[a] = dd->q[a];
-            dr->qd[a] = dd->qd[a];
-        }
-        assert_ok(vt_inverse_dynamics(m, dd));
-        assert_ok(vt_inverse_dynamics_recursive(m, dr));
-        const int nb3 = 3 * (m->nbody + 1);
-        const double tol = 1e-13 / dr->rcond, expect = vt_test_known_rcond(m, dd);
-        const struct { const char *name; const double *x, *y; int n; } out[] = {
-            {"qdd", dr->qdd, dd->qdd, m->nv}, {"lambda", dr->lambda, dd->lambda, m->nc},
-            {"drive_effort", dr->drive_effort, dd->drive_effort, m->ndrive}, {"jnt_force", dr->jnt_force, dd->jnt_force, nb3},
-            {"jnt_moment", dr->jnt_moment, dd->jnt_moment, nb3}, {"jnt_force_total", dr->jnt_force_total, dd->jnt_force_total, nb3},
-            {"jnt_moment_total", dr->jnt_moment_total, dd->jnt_moment_total, nb3}};
-        double worst = 0.0;
-        for (size_t o = 0; o < sizeof out / sizeof out[0]; o++) {
-            const double c = change(out[o].x, out[o].y, out[o].n, 0.0);
-            worst = fmax(worst, c);
-            if (!(c <= tol)) fail_msg("n = %d: %s differs from the dense path by %.3g of its largest (> %.3g)", ns[k], out[o].name, c, tol);
-        }
-        print_message("n = %d: route %d, fallback %d, rcond %.3g (LAPACK %.3g), largest difference from the dense path %.3g\n",
-                      ns[k], dr->route, dr->fallback, dr->rcond, expect, worst);
-        assert_int_equal(dr->route, VT_ROUTE_ARTICULATED);
-        assert_int_equal(dr->fallback, 0);
-        assert_near(dr->rcond, expect, fmax(1e-9, tol) * expect); /* an estimate has round-off of its own */
-        vt_data_free(dd);
-        vt_data_free(dr);
-        if (ns[k] == 100) { /* the general route (taken when redundant rows are allowed) still forms M*
-                             * from composite inertias about o: it hands the instant to the dense stages */
-            m->allow_redundant = 1;
-            assert_ok(vt_data_create(&dd, m));
-            assert_ok(vt_data_create(&dr, m));
-            for (int a = 0; a < m->nv; a++) {
-                double qdd;
-                vt_scene_chain_state(a, &dd->q[a], &dd->qd[a], &qdd);
-                dr->q[a] = dd->q[a];
-                dr->qd[a] = dd->qd[a];
-            }
-            assert_ok(vt_inverse_dynamics(m, dd));
-            assert_ok(vt_inverse_dynamics_recursive(m, dr));
-            print_message("n = %d, redundant rows allowed: route %d, fallback %d\n", ns[k], dr->route, dr->fallback);
-            assert_int_equal(dr->fallback, VT_FALLBACK_COMPOSITE_ROUNDOFF);
-            assert_int_equal(dr->route, dd->route);
-            for (int a = 0; a < m->nv; a++) assert_true(dr->qdd[a] == dd->qdd[a]); /* the same stages */
-            assert_true(dr->drive_effort[0] == dd->drive_effort[0]);
-            vt_data_free(dd);
-            vt_data_free(dr);
-        }
-        vt_model_free(m);
-    }
-}
-
-/* The scans of several arrays as one (vt_finite_add, vt_finite_ok: the fused passes' checks)
- * against isfinite entry by entry: every length 0..13 in one or two arrays, a NaN, +Inf or −Inf
- * at every position of either array (the overlapping last four included), DBL_MAX and the
- * smallest subnormal finite. */
 /* The fused passes skip their output scans where the inputs' sizes bound every output below
  * 1e300 (fused_bounded): across that threshold and up to overflow, a result is either VT_OK
  * with every output finite or VT_ERR_NONFINITE, never VT_OK with Inf or NaN. Checked by an
@@ -2295,6 +1021,10 @@ static void test_bounded_outputs(void **state)
     }
 }
 
+/* The scans of several arrays as one (vt_finite_add, vt_finite_ok: the fused passes' checks)
+ * against isfinite entry by entry: every length 0..13 in one or two arrays, a NaN, +Inf or −Inf
+ * at every position of either array (the overlapping last four included), DBL_MAX and the
+ * smallest subnormal finite. */
 static void test_finite_scan(void **state)
 {
     (void)state;
@@ -2365,84 +1095,28 @@ static void test_max_scan(void **state)
             }
 }
 
-/* Joint angles beyond 2^15 rad (a wheel's or a turntable's after many turns): the fused passes
- * take their loop compiled with the C library's sine and cosine (fused_outward_any), the dense
- * path the same through vt_quat_axis_angle. Against the dense path, and against the same chain
- * with the turns taken off (q − 4π K: the same Euler parameters; q + 4π K itself is known to
- * its ulp, 7e-12 rad at 3.8e4, so to 1e-9 of the efforts), both with angles just inside 2^15
- * (the loop without a call) and beyond it. */
-static void test_large_angles(void **state)
-{
-    (void)state;
-    const int n = 6;
-    const double turns[2][6] = {{0, 2600, 0, -2600, 0, 1}, {0, 3000, 0, -2700, 0, 1}}; /* |q| < 2^15, > 2^15 */
-    for (int c = 0; c < 2; c++) {
-        vt_model *m;
-        vt_data *dr, *dd, *d0;
-        assert_ok(vt_scene_chain(&m, n, VT_CHAIN_JOINT_DRIVEN));
-        assert_ok(vt_data_create(&dr, m));
-        assert_ok(vt_data_create(&dd, m));
-        assert_ok(vt_data_create(&d0, m));
-        double qmax = 0.0;
-        for (int k = 0; k < n; k++) {
-            double qdd;
-            vt_scene_chain_state(k, &d0->q[k], &d0->qd[k], &qdd);
-            dr->q[k] = dd->q[k] = d0->q[k] + 4.0 * 3.14159265358979323846 * turns[c][k];
-            dr->qd[k] = dd->qd[k] = d0->qd[k];
-            qmax = fmax(qmax, fabs(dr->q[k]));
-        }
-        assert_true(c == 0 ? qmax < 0x1p15 : qmax > 0x1p15);
-        both(m, dr, dd);
-        assert_int_equal(dr->route, VT_ROUTE_JOINT_DRIVEN);
-        assert_ok(vt_inverse_dynamics_recursive(m, d0));
-        const double scale = vt_test_maxabs(d0->qfrc_drive, n);
-        for (int k = 0; k < n; k++) assert_near(dr->qfrc_drive[k], d0->qfrc_drive[k], 1e-9 * scale);
-        for (int k = 0; k < 3 * (n + 1); k++) {
-            assert_near(dr->jnt_force[k], d0->jnt_force[k], 1e-9 * (1.0 + vt_test_maxabs(d0->jnt_force, 3 * (n + 1))));
-            assert_near(dr->jnt_moment_body[k], d0->jnt_moment_body[k], 1e-9 * (1.0 + vt_test_maxabs(d0->jnt_moment_body, 3 * (n + 1))));
-        }
-        vt_data_free(dr);
-        vt_data_free(dd);
-        vt_data_free(d0);
-        vt_model_free(m);
-    }
-}
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_random_trees),
-        cmocka_unit_test(test_joint_driven),
-        cmocka_unit_test(test_large_angles),
-        cmocka_unit_test(test_scenes),
-        cmocka_unit_test(test_articulated),
+    static const struct CMUnitTest others[] = {
         cmocka_unit_test(test_dependent),
-        cmocka_unit_test(test_point_drives_share_points),
         cmocka_unit_test(test_row_on_known_rates),
-        cmocka_unit_test(test_far_base_body),
-        cmocka_unit_test(test_far_point_mass_pivot),
         cmocka_unit_test(test_motion),
         cmocka_unit_test(test_motion_loops),
         cmocka_unit_test(test_motion_refused),
-        cmocka_unit_test(test_coupled),
         cmocka_unit_test(test_free_vs_base),
         cmocka_unit_test(test_free_body),
-        cmocka_unit_test(test_translation_invariance),
-        cmocka_unit_test(test_far_from_o),
-        cmocka_unit_test(test_load_at_fixed_point),
-        cmocka_unit_test(test_inertia_spread),
-        cmocka_unit_test(test_heavy_link),
-        cmocka_unit_test(test_roundoff_zeros),
-        cmocka_unit_test(test_roundoff_singular),
-        cmocka_unit_test(test_subnormal_pivot),
-        cmocka_unit_test(test_roundoff_hides_singular),
-        cmocka_unit_test(test_long_chain),
-        cmocka_unit_test(test_mass_ratios),
         cmocka_unit_test(test_fused_kinematics),
         cmocka_unit_test(test_fused_overflow),
         cmocka_unit_test(test_finite_scan),
         cmocka_unit_test(test_max_scan),
         cmocka_unit_test(test_bounded_outputs),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    enum { NROW = sizeof route_table / sizeof route_table[0], NOTHER = sizeof others / sizeof others[0] };
+    struct CMUnitTest tests[NROW + NOTHER];
+    for (int k = 0; k < NROW; k++) /* a test per row of the route table, named by it */
+        tests[k] = (struct CMUnitTest){.name = route_table[k].name, .test_func = test_route,
+                                       .initial_state = (void *)&route_table[k]};
+    for (int k = 0; k < NOTHER; k++) tests[NROW + k] = others[k];
+    return _cmocka_run_group_tests("test_recursive", tests, NROW + NOTHER, NULL, NULL);
 }

@@ -357,7 +357,7 @@ static inline void vt_test_S_times(double *y, const vt_model *m, const vt_data *
  *   3  joint 1 alone (four free rates)
  *   4  no joint; the far end of rod 2 and the tip, x and y (one rate free: test_solve)
  * joint k by f = 0.3 + 0.2 k + 0.4 sin(1.5 t + 0.2 k) (k from 0), the tip's x and y by
- * 0.05 sin(t + 0.3 c) (c = 0, 1), rod 2's by 0.05 sin(t + 0.3 (c + 2)). test_recursive and the
+ * 0.05 sin(t + 0.3 c) (c = 0, 1), rod 2's by 0.05 sin(t + 0.3 (c + 2)). test_accuracy and the
  * high-precision oracle (ratio_oracle.py, which writes the same chain's equations itself) use
  * it. */
 static inline vt_model *vt_test_ratio_chain(int rising, int drive, double step)
@@ -461,5 +461,183 @@ static inline vt_model *vt_test_partly_driven_tree(uint64_t seed, unsigned kinds
     vt_builder_free(b);
     return m;
 }
+
+/* the model of builder b, which it frees */
+static inline vt_model *vt_test_build(vt_builder *b)
+{
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+/* a joint drive of rate `index` of body `body`'s joint, q = f(t) */
+static inline void vt_test_add_joint_drive(vt_builder *b, int body, int index, vt_function f)
+{
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = body;
+    dr.index = index;
+    dr.f = f;
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+}
+
+/* The recursive evaluation against the dense path (test_recursive, test_accuracy) */
+
+/* every |a_k − b_k| within rel × scale, each failure naming the entry and both values */
+static inline void vt_test_compare_at(const double *a, const double *b, int n, double rel, double scale, const char *what)
+{
+    for (int k = 0; k < n; k++)
+        if (!(fabs(a[k] - b[k]) <= rel * scale))
+            fail_msg("%s[%d]: recursive %.17g, dense %.17g (scale %.3g)", what, k, a[k], b[k], scale);
+}
+
+/* the same against 1 + the larger of the two arrays' largest entries */
+static inline void vt_test_compare(const double *a, const double *b, int n, double rel, const char *what)
+{
+    vt_test_compare_at(a, b, n, rel, 1.0 + fmax(vt_test_maxabs(a, n), vt_test_maxabs(b, n)), what);
+}
+
+/* an instant's inputs from src to dst (data of the same model): q, q̇, the loads and the time */
+static inline void vt_test_copy_inputs(const vt_model *m, vt_data *dst, const vt_data *src)
+{
+    memcpy(dst->q, src->q, (size_t)m->nq * sizeof(double));
+    memcpy(dst->qd, src->qd, (size_t)m->nv * sizeof(double));
+    memcpy(dst->qfrc, src->qfrc, (size_t)m->nv * sizeof(double));
+    memcpy(dst->xfrc, src->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+    dst->time = src->time;
+}
+
+/* vt_scene_chain's reference state for every rate (vt_scene_chain_state), its q̈ into d->qdd
+ * when with_qdd (the motion given) */
+static inline void vt_test_chain_state(const vt_model *m, vt_data *d, int with_qdd)
+{
+    for (int k = 0; k < m->nv; k++) {
+        double qdd;
+        vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd);
+        if (with_qdd) d->qdd[k] = qdd;
+    }
+}
+
+/* body i of m as a definition (its parent, joint, mass, inertia, joint points, axes and
+ * orientation; names and limits left at their defaults), to build another model from */
+static inline vt_body_def vt_test_body_of(const vt_model *m, int i)
+{
+    vt_body_def d = vt_default_body_def();
+    d.parent = m->body_parent[i];
+    d.joint = (vt_joint_type)m->body_joint[i];
+    d.mass = m->body_mass[i];
+    memcpy(d.inertia, m->body_inertia + 9 * i, 9 * sizeof(double));
+    memcpy(d.joint_parent, m->body_jpar + 3 * i, 3 * sizeof(double));
+    memcpy(d.joint_child, m->body_jchild + 3 * i, 3 * sizeof(double));
+    memcpy(d.axis1, m->body_axis + 6 * i, 3 * sizeof(double));
+    memcpy(d.axis2, m->body_axis + 6 * i + 3, 3 * sizeof(double));
+    memcpy(d.orientation, m->body_quat0 + 4 * i, 4 * sizeof(double));
+    return d;
+}
+
+/* A floating tree: root body 1 on a free joint (root_free) or the paper's base joint, and under
+ * it the bodies of a random tree (its ground-hung bodies hung from the root instead); the free
+ * joint's point is c' from the root's centre of mass (joint_child). */
+static inline vt_model *vt_test_floating_tree(uint64_t seed, int n, int root_free, const double c[3])
+{
+    vt_model *probe;
+    assert_ok(vt_scene_random_tree(&probe, seed, n, VT_SCENE_NO_BASE));
+    vt_builder *b;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = 1.0, md.gravity[1] = -9.81, md.gravity[2] = 2.0;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def root = vt_default_body_def();
+    root.joint = root_free ? VT_JOINT_FREE : VT_JOINT_BASE;
+    root.mass = 4.0;
+    const double J[9] = {0.5, 0.05, -0.02, 0.05, 0.7, 0.03, -0.02, 0.03, 0.9};
+    memcpy(root.inertia, J, sizeof J);
+    if (root_free) memcpy(root.joint_child, c, 3 * sizeof(double));
+    assert_int_equal(vt_builder_add_body(b, &root), 1);
+    for (int i = 1; i <= probe->nbody; i++) {
+        vt_body_def d = vt_test_body_of(probe, i);
+        d.parent += 1;
+        assert_int_equal(vt_builder_add_body(b, &d), i + 1);
+    }
+    vt_model_free(probe);
+    return vt_test_build(b);
+}
+
+#ifdef VT_MODEL_MODEL_H /* vt_test_known_rcond */
+/* which intermediates the recursive evaluation forms on the route it recorded: INWARD none
+ * (every rate joint-driven), SQUARE Ṡq̇ and Φ_q (square Φ_q: M* and Q are never formed),
+ * ARTICULATED the same (articulated bodies, no M*), FACTORIZED those and M*, Q (vt_solve's
+ * routes, which the dense path takes too) */
+enum { VT_TEST_INWARD, VT_TEST_SQUARE, VT_TEST_ARTICULATED, VT_TEST_FACTORIZED };
+static inline int vt_test_path_of(const vt_data *dr)
+{
+    switch (dr->route) {
+    case VT_ROUTE_JOINT_DRIVEN: return VT_TEST_INWARD;
+    case VT_ROUTE_ARTICULATED: return VT_TEST_ARTICULATED;
+    case VT_ROUTE_SQUARE: return dr->fallback ? VT_TEST_FACTORIZED : VT_TEST_SQUARE;
+    default: return VT_TEST_FACTORIZED;
+    }
+}
+
+/* vt_inverse_dynamics on dd and vt_inverse_dynamics_recursive on dr (the same inputs), every
+ * output compared to 1e-12, and the intermediates that the recursive path forms (vt_test_path_of) */
+static inline void vt_test_both(const vt_model *m, vt_data *dr, vt_data *dd)
+{
+    assert_ok(vt_inverse_dynamics(m, dd));
+    assert_ok(vt_inverse_dynamics_recursive(m, dr));
+    const int path = vt_test_path_of(dr);
+    assert_true(dr->route > VT_ROUTE_NONE && dr->route < VT_ROUTE_COUNT);
+    /* when the recursive evaluation factorizes, vt_solve takes the dense path's route */
+    if (path == VT_TEST_FACTORIZED) assert_int_equal(dr->route, dd->route);
+    assert_int_equal(dd->fallback & ~(VT_FALLBACK_SCHUR_PIVOT | VT_FALLBACK_SCHUR_CONDITION | VT_FALLBACK_MAXIMAL_CONDITION),
+                     0); /* the dense path's only fallbacks */
+    const int nb3 = 3 * (m->nbody + 1);
+    /* a reaction moment that is zero in exact arithmetic (a planar scene's) is the round-off of
+     * the moments through the joint: measure it against them */
+    const double mscale = 1.0 + fmax(fmax(vt_test_maxabs(dd->jnt_moment, nb3), vt_test_maxabs(dd->drive_effort, m->ndrive)),
+                                     fmax(vt_test_maxabs(dd->drive_moment, 3 * m->ndrive), vt_test_maxabs(dd->qfrc_drive, m->nv)));
+    const struct { const char *what; const double *r, *d; int n, moment; } out[] = {
+        {"x", dr->x, dd->x, m->nx, 0}, {"xd", dr->xd, dd->xd, m->nx, 0}, {"qdd", dr->qdd, dd->qdd, m->nv, 0},
+        {"lambda", dr->lambda, dd->lambda, m->nc, 0}, {"xdd", dr->xdd, dd->xdd, m->nx, 0},
+        {"qfrc_drive", dr->qfrc_drive, dd->qfrc_drive, m->nv, 0},
+        {"drive_effort", dr->drive_effort, dd->drive_effort, m->ndrive, 0},
+        {"drive_force", dr->drive_force, dd->drive_force, 3 * m->ndrive, 0},
+        {"drive_moment", dr->drive_moment, dd->drive_moment, 3 * m->ndrive, 0},
+        {"jnt_force", dr->jnt_force, dd->jnt_force, nb3, 0}, {"jnt_moment", dr->jnt_moment, dd->jnt_moment, nb3, 1},
+        {"jnt_force_body", dr->jnt_force_body, dd->jnt_force_body, nb3, 0},
+        {"jnt_moment_body", dr->jnt_moment_body, dd->jnt_moment_body, nb3, 1},
+        {"cut_force", dr->cut_force, dd->cut_force, 3 * m->ncut, 0},
+        {"cut_moment", dr->cut_moment, dd->cut_moment, 3 * m->ncut, 0}, {"alpha", dr->alpha, dd->alpha, nb3, 0},
+        {"jnt_force_total", dr->jnt_force_total, dd->jnt_force_total, nb3, 0},
+        {"jnt_moment_total", dr->jnt_moment_total, dd->jnt_moment_total, nb3, 1},
+        {"jnt_force_total_body", dr->jnt_force_total_body, dd->jnt_force_total_body, nb3, 0},
+        {"jnt_moment_total_body", dr->jnt_moment_total_body, dd->jnt_moment_total_body, nb3, 1},
+        {"Phi", dr->Phi, dd->Phi, m->nc, 0}};
+    for (size_t k = 0; k < sizeof out / sizeof out[0]; k++) {
+        if (out[k].moment) vt_test_compare_at(out[k].r, out[k].d, out[k].n, 1e-12, mscale, out[k].what);
+        else vt_test_compare(out[k].r, out[k].d, out[k].n, 1e-12, out[k].what);
+    }
+    if (path == VT_TEST_SQUARE) { /* the square path computes the condition of the same Φ_q D itself */
+        assert_near(dr->rcond, dd->rcond, 1e-9 * dd->rcond);
+        assert_int_equal(dr->warning, dd->warning);
+    }
+    if (path == VT_TEST_ARTICULATED) {
+        const double expect = vt_test_known_rcond(m, dd);
+        assert_near(dr->rcond, expect, 1e-9 * expect);
+        if (dd->route == VT_ROUTE_SCHUR) assert_near(dd->rcond, expect, 1e-9 * expect); /* the same system */
+    }
+    vt_test_compare(dr->gamma, dd->gamma, m->nc, 1e-12, "gamma");
+    assert_int_equal(dr->rank, dd->rank); /* and the same uniqueness flags (vt_solve's) */
+    for (int r = 0; r < m->nc; r++) assert_int_equal(dr->lambda_unique[r], dd->lambda_unique[r]);
+    for (int k = 6; k < 6 * (m->nbody + 1); k++) assert_int_equal(dr->jnt_unique[k], dd->jnt_unique[k]);
+    if (path != VT_TEST_INWARD) {
+        vt_test_compare(dr->Sdqd, dd->Sdqd, m->nx, 1e-12, "Sdqd");
+        vt_test_compare(dr->Phiq, dd->Phiq, m->nc * m->nv, 1e-12, "Phiq");
+    }
+    if (path == VT_TEST_FACTORIZED) {
+        vt_test_compare(dr->Mstar, dd->Mstar, m->nv * m->nv, 1e-12, "Mstar");
+        vt_test_compare(dr->Q, dd->Q, m->nv, 1e-12, "Q");
+    }
+}
+#endif
 
 #endif
