@@ -34,7 +34,7 @@
 extern "C" {
 #endif
 
-/* ---- statuses (src/status.c) ------------------------------------------------------------- */
+/* ---- statuses and the version ---------------------------------------------------------------- */
 
 /// Text for a status code (never NULL).
 VT_API const char *vt_status_string(vt_status status);
@@ -42,7 +42,7 @@ VT_API const char *vt_status_string(vt_status status);
 /// when the headers and the library come from the same build.
 VT_API const char *vt_version(void);
 
-/* ---- model building (src/model.c) ------------------------------------------------- */
+/* ---- model building -------------------------------------------------------------------------- */
 
 /// Defaults: gravity (0, -9.81, 0), rcond_min 1e-12, rcond_warn 1e-6, allow_redundant 0.
 VT_API vt_model_def vt_default_model_def(void);
@@ -93,7 +93,7 @@ VT_API int vt_find_drive(const vt_model *model, const char *name);
 VT_API int vt_find_cut_joint(const vt_model *model, const char *name);
 VT_API int vt_find_frame(const vt_model *model, const char *name);
 
-/* ---- URDF robots (src/urdf.c; only in builds with libxml2, VT_HAVE_URDF) ------------------ */
+/* ---- URDF robots (only in builds with libxml2, VT_HAVE_URDF) --------------------------------- */
 
 #if VT_HAVE_URDF
 /// Options of vt_urdf_builder(). Fill from vt_default_urdf_options().
@@ -136,7 +136,7 @@ VT_API vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, c
                                  char *message);
 #endif
 
-/* ---- the data (src/data.c) --------------------------------------------------------------- */
+/* ---- the data -------------------------------------------------------------------------------- */
 
 /// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with
 /// vt_data_init(). Free it with vt_data_free(). On failure *data is NULL.
@@ -169,7 +169,7 @@ VT_API size_t vt_data_size(const vt_model *model);
 /// the data: nothing is written to it). On failure *data is NULL (if data is not NULL).
 VT_API vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
 
-/* ---- state helpers (src/state.c) ----------------------------------------------------------- */
+/* ---- state helpers --------------------------------------------------------------------------- */
 
 /// Adds to d->xfrc a force f (N) and moment n (N·m), both global, applied at the point
 /// `point` of body `body` (m, body axes from its centre of mass); f or n may be NULL.
@@ -197,7 +197,7 @@ VT_API vt_status vt_frame_pose(const vt_model *model, vt_data *data, int frame, 
 VT_API vt_status vt_integrate_q(double *q_out, const vt_model *model, const double *q,
                          const double *v, double h);
 
-/* ---- time functions (src/functions.c) ---------------------------------------------- */
+/* ---- time functions -------------------------------------------------------------------------- */
 
 /// f = c (a time function is a value: copy it into a drive's f).
 VT_API vt_function vt_function_constant(double c);
@@ -229,7 +229,7 @@ VT_API vt_function vt_function_spline(int n, const double *t, const double *y);
 /// more than VT_SPLINE_EVAL_MAX samples), VT_ERR_LAPACK. out is untouched on failure.
 VT_API vt_status vt_function_eval(double out[3], const vt_function *f, double t);
 
-/* ---- drives and cut joints (src/model.c) -------------------------------------------- */
+/* ---- drives and cut joints ------------------------------------------------------------------- */
 
 /// Defaults: joint drive of body 1's first rate, constant 0; axis z; identity orientation.
 VT_API vt_drive_def vt_default_drive_def(void);
@@ -330,8 +330,7 @@ VT_API vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data
 /// 7(i−1)). Needs vt_solve(). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (drive not in 0..ndrive−1).
 VT_API vt_status vt_drive_cartesian_force(double *F, const vt_model *model, vt_data *data, int drive);
 
-/* ---- analyses over time (src/kinematic_solve.c, src/kinematic_analysis.c, src/trajectory.c,
- *      src/dynamic_analysis.c) ------------------------------------------------------------ */
+/* ---- analyses over time ---------------------------------------------------------------------- */
 
 /// Defaults: t in [0, 1], 100 output intervals, IDA rtol 1e-8 and atol 1e-10, Newton to
 /// 1e-12 in at most 30 iterations, forward check on (off in a build without SUNDIALS), the ODE
@@ -357,27 +356,21 @@ VT_API void vt_trajectory_free(vt_trajectory *trajectory);
 /// and those of the stages.
 VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double tol, int maxit);
 
-/// Kinematic analysis of a fully driven model (its constraint rows fix every rate: as many
+/// Kinematic analysis of a fully driven model: its constraint rows fix every rate (as many
 /// independent rows as rates, or more of that rank when the model allows redundant rows; the rank
 /// decided as vt_solve decides dependent rows, at t0 and d->q before the run for a model that
-/// does not allow them, at the first row for one that does): at every output time
-/// vt_kinematic_solve()'s Newton–Raphson, from a start extrapolated from the previous two rows
-/// (Hermite through their q, q̇, q̈; the previous row itself when that start is worse, the first
-/// from d->q), each row's instant by vt_inverse_dynamics_recursive() (S, R, M* and Q are not left
-/// in the data). The output
-/// times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
+/// does not allow them, at the first row for one that does). Each output row holds the
+/// consistent q, q̇ at its time (vt_kinematic_solve()'s Newton–Raphson to opt->newton_tol) and
+/// the instant of vt_inverse_dynamics_recursive() there (S, R, M* and Q are not left in the data).
+/// The output times: t0, then opt->tout[0..ntout−1] when given (each row exact at its time), else
 /// t0 + k (t1 − t0)/nout. A bad list (not finite, not strictly increasing after t0, beyond t1, or
 /// more entries than the trajectory's rows − 1) is refused with VT_ERR_BAD_OPTION, the message
 /// naming the entry, before anything is written.
-/// With opt->forward_check, the forward check integrates the model without drives under
-/// the drives' generalized forces, evaluated exactly at every time IDA asks for (the kinematic
-/// solution there, Newton started from the rows around it and taken one step past
-/// opt->newton_tol; at the output times the rows' own efforts). IDA integrates the deviation
-/// from that exact motion (the same equations, the motion exact rather than integrated): with
-/// right efforts it stays at round-off and IDA takes few steps whatever rtol; q_fwd, q̇_fwd at a
-/// row are the row plus the deviation there, so that tr->fwd_err_q is the deviation the efforts
-/// cause, not IDA's error in integrating the motion (in a build
-/// without SUNDIALS, VT_HAVE_SUNDIALS 0, the forward check is refused with VT_ERR_BAD_OPTION).
+/// With opt->forward_check, the model without drives is integrated (SUNDIALS IDA) under the
+/// drives' generalized forces, exact at every time IDA asks for: tr->fwd_err_q and the other
+/// forward errors are the deviation those efforts cause, not IDA's error in integrating the
+/// motion (docs/method.md, "Analyses over time"). In a build without SUNDIALS
+/// (VT_HAVE_SUNDIALS 0) the forward check is refused with VT_ERR_BAD_OPTION.
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).
 /// Statuses: VT_ERR_NOT_FULLY_DRIVEN (fewer rows than rates, or of lower rank),

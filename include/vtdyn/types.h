@@ -125,18 +125,19 @@ typedef struct vt_model_def {
     double rcond_warn;  ///< below this (and above rcond_min) vt_solve succeeds but sets
                         ///< VT_WARN_ILL_CONDITIONED in the data's warning: a pose near a singular one,
                         ///< where efforts grow without bound; default 1e-6
-    int allow_redundant;///< 1: dependent constraint rows (redundant cut joints) are solved instead of
-                        ///< refused: on their independent directions, the multipliers of minimum
-                        ///< (scaled) norm. Rows count as dependent when the singular values of
-                        ///< G Φ_q C are at or below max(nc, nv) ε σ_max (ε = DBL_EPSILON: round-off),
-                        ///< C = 1/ℓ on rates that turn, G = ℓ on rows that measure angles (one common
-                        ///< factor), ℓ the rows' own lever arm (docs/method.md): neither the global
-                        ///< axes' directions, the units nor the masses change the decision; any other pose, however ill-conditioned, is solved exactly as
-                        ///< without the option. The motion and the efforts stay unique, the
-                        ///< multipliers and some reactions do not (see vt_data.rank, lambda_unique,
-                        ///< jnt_unique, cut_unique). A dynamic analysis in the ODE formulation may
-                        ///< also drop nearly dependent directions (vt_run_options.redundant_band);
-                        ///< default 0
+    int allow_redundant;///< 1: constraint rows dependent to round-off (redundant cut joints) are
+                        ///< solved instead of refused (VT_ERR_DEPENDENT_CONSTRAINTS): on their
+                        ///< independent directions, the multipliers of minimum (scaled) norm,
+                        ///< VT_WARN_REDUNDANT set, vt_data.rank and residual filled. Which rows are
+                        ///< dependent is decided on Φ_q alone, whatever the units, the axes or the
+                        ///< masses (docs/method.md, "Redundant rows"); any other pose, however
+                        ///< ill-conditioned, is solved exactly as without the option. The motion
+                        ///< q̈ stays unique; a multiplier, and so a drive's effort, and a reaction
+                        ///< component may not be (a robot standing on four feet: every torque).
+                        ///< vt_data.lambda_unique (per row: a drive's effort at its drive_row),
+                        ///< jnt_unique and cut_unique say which are. A dynamic analysis in the ODE
+                        ///< formulation may also drop nearly dependent directions
+                        ///< (vt_run_options.redundant_band); default 0
 } vt_model_def;
 
 /// Warning flags a successful call may leave in vt_data.warning.
@@ -150,8 +151,8 @@ enum {
 };
 
 /// The route by which the last solve found q̈ and λ (vt_data.route). Which route a model and an
-/// instant take, and when a faster one gives way, is documented where it is chosen: src/solve.c
-/// (vt_solve) and src/recursive.c (vt_inverse_dynamics_recursive).
+/// instant take, and when a faster one gives way: docs/method.md, "The augmented system (5)" and
+/// "The recursive evaluation".
 typedef enum vt_route {
     VT_ROUTE_NONE = 0,       ///< no solve yet, or the last one failed
     VT_ROUTE_JOINT_DRIVEN,   ///< every rate has a joint drive: q̈ = f'', nothing factorized (recursive)
@@ -526,16 +527,12 @@ typedef struct vt_data {
     vt_route route;          ///< the route by which the last solve found q̈ and λ (VT_ROUTE_NONE after a failure)
     int fallback;            ///< VT_FALLBACK_* flags: faster routes the last instant left, and why (0: none)
     double rcond;            ///< condition estimate of the pose, in (0, 1]: 1 when joint drives fix every
-                             ///< rate; the rows fix the motion: κ₁(G Φ_q C)^-2, rows in angles by ℓ,
-                             ///< turning rates by 1/ℓ (ℓ the rows' own lever arm); some motion free:
-                             ///< min/max of M*'s leaf-first pivots each over its diagonal entry, times
-                             ///< the reciprocal condition of Φ_q M*^-1 Φ_q^T at unit diagonal, times
-                             ///< the point drives' smallest grip²; on VT_ROUTE_MAXIMAL the answer's
-                             ///< componentwise condition, bounded by Φ̂'s and the grip (docs/method.md,
-                             ///< "The condition estimate"). Independent of units, of the scene's frame
-                             ///< and of inertia spread alone; the same on the dense and recursive
-                             ///< paths. It falls toward a singular pose. After a failure: what the
-                             ///< failed route measured, 0 if nothing
+                             ///< rate, falling toward 0 as the pose nears a singular one; below
+                             ///< rcond_warn the solve warns, below rcond_min it refuses. Independent of
+                             ///< the units and of the scene's frame; the same on the dense and recursive
+                             ///< paths (its definition on each route: docs/method.md, "The condition
+                             ///< estimate"). After a failure: what the failed route measured, 0 if
+                             ///< nothing
     int warning;             ///< VT_WARN_* flags of the last vt_solve (0: none, and after a failure)
     int rank;                ///< rank of Φ_q found by the last solve (nc when the rows are independent;
                              ///< after a failure what it found, 0 if nothing)
@@ -601,7 +598,7 @@ typedef struct vt_data {
 /// (VT_ERR_ABORTED).
 typedef int (*vt_progress_callback)(double t, double t_end, void *user);
 
-/// How a dynamic analysis hands (5) to IDA (see src/dynamic_analysis.c).
+/// How a dynamic analysis hands (5) to IDA (docs/method.md, "Analyses over time").
 typedef enum vt_formulation {
     VT_FORMULATION_INDEX1 = 0,  ///< (5) as it stands: acceleration-level constraints; Φ and Φ̇ drift
     VT_FORMULATION_BAUMGARTE,   ///< Φ̈ + 2α Φ̇ + β² Φ = 0 in place of Φ̈ = 0
