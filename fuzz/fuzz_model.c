@@ -743,7 +743,7 @@ static int consistent(const char *pair, const vt_model *m, vt_status sa, const v
  * of the rows' terms (|γ_r| + Σ_a |Φ_q,ra q̈_a|), that q̈, given to vt_inverse_dynamics_motion, poses
  * another problem (its joint-driven rates held at values their drives do not ask for), whose
  * answer has nothing to agree with (a 1.3e154 kg body weighs its rows to nothing in the mass
- * metric: crash-c4b3… in fuzz/findings.md) */
+ * metric: the corpus input fuzz/corpus/crash-c4b3cebe…) */
 static int rows_hold(const vt_model *m, const vt_data *d, double e)
 {
     if (!(d->residual > 0.0)) return 1;
