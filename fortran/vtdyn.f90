@@ -54,6 +54,7 @@ module vtdyn
       VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30, &
       VT_ERR_FILE = -31, VT_ERR_XML = -32
   integer(c_int), parameter :: VT_NAME_MAX = 64
+  integer(c_int), parameter :: VT_MESSAGE_SIZE = 256
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   real(c_double), parameter :: VT_INERTIA_ABS_TOL = 1.0e-15_c_double
   real(c_double), parameter :: VT_INERTIA_MAX = 1.0e307_c_double
@@ -316,7 +317,7 @@ module vtdyn
     type(c_ptr)            :: cut_unique
     type(c_ptr)            :: arena
     integer(c_int)         :: ida_flag
-    character(kind=c_char) :: message(256)
+    character(kind=c_char) :: message(VT_MESSAGE_SIZE)
   end type vt_data
 
   type, bind(C) :: vt_run_options
@@ -564,7 +565,7 @@ module vtdyn
       integer(c_int) :: vt_find_coupling
     end function
     ! URDF robots: only in a library built with libxml2 (VT_HAVE_URDF). path and xml are C
-    ! strings (end them with c_null_char); message, if given, receives 256 C characters
+    ! strings (end them with c_null_char); message, if given, receives VT_MESSAGE_SIZE C characters
     function vt_default_urdf_options() bind(C, name='vt_default_urdf_options')
       import :: vt_urdf_options
       type(vt_urdf_options) :: vt_default_urdf_options

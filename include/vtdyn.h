@@ -121,7 +121,7 @@ VT_API vt_urdf_options vt_default_urdf_options(void);
 /// after it, at its link frame. Bodies are numbered breadth-first from the root, so the joint
 /// coordinates are the URDF joints' in that order, with the same sign and zero. Body axes are
 /// the link's inertial frame (docs/method.md, "URDF robots"). options may be NULL (the defaults).
-/// On failure *builder is NULL and message (256 bytes, may be NULL) says why, naming the element
+/// On failure *builder is NULL and message (VT_MESSAGE_SIZE bytes, may be NULL) says why, naming the element
 /// and its line. Statuses: VT_ERR_NULL (builder, path), VT_ERR_FILE (missing or unreadable),
 /// VT_ERR_XML (malformed XML; no <robot>), VT_ERR_PARENT (a link with two parents, a loop),
 /// VT_ERR_NOT_FOUND (a joint names a missing link),

@@ -4,6 +4,7 @@
  * axis, three angles body-fixed and about fixed axes, callback; absolute and relative to
  * another body, a spherical joint's drive), cut joints of every kind and a planar pin, the base
  * bodies' p^T p = 1, and a coupling of two joint coordinates. */
+#include "model/model.h" /* the rows' kinds */
 #include "vt_test.h"
 
 /* prescribed orientation with a turning axis: p = [a t about u1] ⊗ [b t about u2] */
@@ -408,7 +409,7 @@ static void test_joint_rows_are_unit(void **state)
     assert_ok(vt_kinematics(m, d));
     assert_ok(vt_constraints(m, d));
     for (int r = 0; r < m->nc; r++) {
-        if (m->con_kind[r] != 0 /* VT_ROW_JOINT */) continue;
+        if (m->con_kind[r] != VT_ROW_JOINT) continue;
         for (int c = 0; c < m->nv; c++)
             assert_near(d->Phiq[r + (size_t)c * (size_t)m->nc], c == m->con_dof[r] ? 1.0 : 0.0, 1e-13);
     }

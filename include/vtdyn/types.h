@@ -74,6 +74,9 @@ typedef enum vt_status {
 /// among their kind; an empty name (or NULL in a definition) leaves the object unnamed.
 #define VT_NAME_MAX 64
 
+/// Bytes of a message buffer (a data's or builder's message, vt_urdf_builder's): part of the ABI, stays 256.
+#define VT_MESSAGE_SIZE 256
+
 /// Relative tolerance of a body's inertia checks: symmetric, positive semi-definite and within
 /// the triangle inequality to VT_INERTIA_TOL times its largest entry (what files that print
 /// inertias to a few digits are off by); the model keeps the symmetric part.
@@ -590,8 +593,8 @@ typedef struct vt_data {
     vt_arena *arena;         ///< scratch of the stages: internal, sized when the data is laid out
     int ida_flag;            ///< return code of the last failing IDA call (0 if none)
 
-    char message[256];       ///< detail of the last failed call on this data (a successful call need
-                             ///< not clear it: read it after a failure)
+    char message[VT_MESSAGE_SIZE]; ///< detail of the last failed call on this data (a successful
+                                   ///< call need not clear it: read it after a failure)
 } vt_data;
 
 /// Progress of a run: called at every output time; a non-zero return stops the run

@@ -10,6 +10,7 @@
 
 #include "analysis/data.h"
 #include "base/arena.h"
+#include "base/block.h"
 #include "base/status.h"
 #include "kinematics/inverse_transform.h"
 #include "kinematics/kinematics.h"
@@ -22,15 +23,6 @@
 #include "recursive/recursive.h"
 #include "analysis/kinematic_solve.h"
 
-/* the next array, on a cache line (VT_DATA_ALIGN: the vectorized kernels' 8-double columns) */
-static void *take(char *base, size_t *used, size_t bytes)
-{
-    *used = (*used + (VT_DATA_ALIGN - 1)) & ~(size_t)(VT_DATA_ALIGN - 1);
-    void *p = base ? base + *used : NULL;
-    *used += bytes;
-    return p;
-}
-
 /* the scratch every file may hold at once (base/arena.h) */
 static size_t arena_size(const vt_model *m)
 {
@@ -42,15 +34,16 @@ static size_t arena_size(const vt_model *m)
 static size_t layout(const vt_model *m, vt_data *d, char *base)
 {
     const size_t n = (size_t)m->nbody, nb = n + 1, nx = 7 * n, nv = (size_t)m->nv;
-    size_t used = sizeof(vt_data);
-    d->q = take(base, &used, (size_t)m->nq * sizeof(double));
-    d->qd = take(base, &used, nv * sizeof(double));
-    d->xfrc = take(base, &used, 6 * nb * sizeof(double));
-    d->qfrc = take(base, &used, nv * sizeof(double));
+    /* every array on a cache line (VT_DATA_ALIGN: the vectorized kernels' 8-double columns) */
+    vt_block blk = {.base = base, .used = sizeof(vt_data), .align = VT_DATA_ALIGN};
+    d->q = vt_block_take(&blk, (size_t)m->nq, sizeof(double));
+    d->qd = vt_block_take(&blk, nv, sizeof(double));
+    d->xfrc = vt_block_take(&blk, 6 * nb, sizeof(double));
+    d->qfrc = vt_block_take(&blk, nv, sizeof(double));
     /* the arena, beside the inputs: its header, then the sum of the files' bounds (base/arena.h) */
-    d->arena = take(base, &used, sizeof(vt_arena));
+    d->arena = vt_block_take(&blk, 1, sizeof(vt_arena));
     const size_t scratch = arena_size(m);
-    char *mem = take(base, &used, scratch);
+    char *mem = vt_block_take(&blk, scratch, 1);
     if (base) {
         d->arena->base = mem;
         d->arena->size = scratch;
@@ -58,60 +51,60 @@ static size_t layout(const vt_model *m, vt_data *d, char *base)
         d->arena->peak = 0;
         d->arena->failed = 0;
     }
-    d->x = take(base, &used, nx * sizeof(double));
-    d->xd = take(base, &used, nx * sizeof(double));
-    d->A = take(base, &used, 9 * nb * sizeof(double));
-    d->omega = take(base, &used, 3 * nb * sizeof(double));
-    d->jaxis = take(base, &used, 9 * nb * sizeof(double));
-    d->jsij = take(base, &used, 3 * nb * sizeof(double));
-    d->jd = take(base, &used, 3 * nb * sizeof(double));
-    d->jpoint = take(base, &used, 3 * nb * sizeof(double));
-    d->twist = take(base, &used, 6 * nv * sizeof(double));
-    d->xrel = take(base, &used, 6 * nb * sizeof(double));
-    d->S = take(base, &used, nx * nv * sizeof(double));
-    d->Sdqd = take(base, &used, nx * sizeof(double));
-    d->R = take(base, &used, nv * nx * sizeof(double));
-    d->Mp = take(base, &used, 16 * nb * sizeof(double));
-    d->Mstar = take(base, &used, nv * nv * sizeof(double));
-    d->F = take(base, &used, nx * sizeof(double));
-    d->h = take(base, &used, nx * sizeof(double));
-    d->Q = take(base, &used, nv * sizeof(double));
+    d->x = vt_block_take(&blk, nx, sizeof(double));
+    d->xd = vt_block_take(&blk, nx, sizeof(double));
+    d->A = vt_block_take(&blk, 9 * nb, sizeof(double));
+    d->omega = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jaxis = vt_block_take(&blk, 9 * nb, sizeof(double));
+    d->jsij = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jd = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jpoint = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->twist = vt_block_take(&blk, 6 * nv, sizeof(double));
+    d->xrel = vt_block_take(&blk, 6 * nb, sizeof(double));
+    d->S = vt_block_take(&blk, nx * nv, sizeof(double));
+    d->Sdqd = vt_block_take(&blk, nx, sizeof(double));
+    d->R = vt_block_take(&blk, nv * nx, sizeof(double));
+    d->Mp = vt_block_take(&blk, 16 * nb, sizeof(double));
+    d->Mstar = vt_block_take(&blk, nv * nv, sizeof(double));
+    d->F = vt_block_take(&blk, nx, sizeof(double));
+    d->h = vt_block_take(&blk, nx, sizeof(double));
+    d->Q = vt_block_take(&blk, nv, sizeof(double));
     const size_t nc = (size_t)m->nc, nd = (size_t)m->ndrive, nk = (size_t)m->ncut;
-    d->Phi = take(base, &used, nc * sizeof(double));
-    d->Phix = take(base, &used, 14 * nc * sizeof(double));
-    d->Phiq = take(base, &used, nc * nv * sizeof(double));
-    d->Phit = take(base, &used, nc * sizeof(double));
-    d->gamma = take(base, &used, nc * sizeof(double));
-    d->qdd = take(base, &used, nv * sizeof(double));
-    d->lambda = take(base, &used, nc * sizeof(double));
-    d->xdd = take(base, &used, nx * sizeof(double));
-    d->alpha = take(base, &used, 3 * nb * sizeof(double));
-    d->qfrc_drive = take(base, &used, nv * sizeof(double));
-    d->drive_effort = take(base, &used, nd * sizeof(double));
-    d->drive_force = take(base, &used, 3 * nd * sizeof(double));
-    d->drive_moment = take(base, &used, 3 * nd * sizeof(double));
-    d->jnt_force = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_moment = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_force_body = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_moment_body = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_force_total = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_moment_total = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_force_total_body = take(base, &used, 3 * nb * sizeof(double));
-    d->jnt_moment_total_body = take(base, &used, 3 * nb * sizeof(double));
-    d->cut_force = take(base, &used, 3 * nk * sizeof(double));
-    d->cut_moment = take(base, &used, 3 * nk * sizeof(double));
-    d->cut_force_body = take(base, &used, 3 * nk * sizeof(double));
-    d->cut_moment_body = take(base, &used, 3 * nk * sizeof(double));
-    d->coupling_effort = take(base, &used, (size_t)m->ncoupling * sizeof(double));
-    d->lambda_unique = take(base, &used, (nc ? nc : 1) * sizeof(int));
-    d->lambda_null = take(base, &used, (nc ? nc * nc : 1) * sizeof(double));
-    d->jnt_unique = take(base, &used, 6 * nb * sizeof(int));
-    d->cut_unique = take(base, &used, 6 * (nk ? nk : 1) * sizeof(int));
-    return used;
+    d->Phi = vt_block_take(&blk, nc, sizeof(double));
+    d->Phix = vt_block_take(&blk, 14 * nc, sizeof(double));
+    d->Phiq = vt_block_take(&blk, nc * nv, sizeof(double));
+    d->Phit = vt_block_take(&blk, nc, sizeof(double));
+    d->gamma = vt_block_take(&blk, nc, sizeof(double));
+    d->qdd = vt_block_take(&blk, nv, sizeof(double));
+    d->lambda = vt_block_take(&blk, nc, sizeof(double));
+    d->xdd = vt_block_take(&blk, nx, sizeof(double));
+    d->alpha = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->qfrc_drive = vt_block_take(&blk, nv, sizeof(double));
+    d->drive_effort = vt_block_take(&blk, nd, sizeof(double));
+    d->drive_force = vt_block_take(&blk, 3 * nd, sizeof(double));
+    d->drive_moment = vt_block_take(&blk, 3 * nd, sizeof(double));
+    d->jnt_force = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_moment = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_force_body = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_moment_body = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_force_total = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_moment_total = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_force_total_body = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_moment_total_body = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->cut_force = vt_block_take(&blk, 3 * nk, sizeof(double));
+    d->cut_moment = vt_block_take(&blk, 3 * nk, sizeof(double));
+    d->cut_force_body = vt_block_take(&blk, 3 * nk, sizeof(double));
+    d->cut_moment_body = vt_block_take(&blk, 3 * nk, sizeof(double));
+    d->coupling_effort = vt_block_take(&blk, (size_t)m->ncoupling, sizeof(double));
+    d->lambda_unique = vt_block_take(&blk, nc ? nc : 1, sizeof(int));
+    d->lambda_null = vt_block_take(&blk, nc ? nc * nc : 1, sizeof(double));
+    d->jnt_unique = vt_block_take(&blk, 6 * nb, sizeof(int));
+    d->cut_unique = vt_block_take(&blk, 6 * (nk ? nk : 1), sizeof(int));
+    return blk.used;
 }
 
 /* Bytes from the buffer's start to its first VT_DATA_ALIGN boundary: the struct and every
- * array (take) start on a cache line. */
+ * array (vt_block_take) start on a cache line. */
 static size_t align_pad(const void *buffer)
 {
     const uintptr_t a = (uintptr_t)buffer % VT_DATA_ALIGN;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "analysis/trajectory.h"
+#include "base/block.h"
 #include "base/status.h"
 
 vt_run_options vt_default_run_options(void)
@@ -35,42 +36,35 @@ vt_run_options vt_default_run_options(void)
     return o;
 }
 
-static double *take(char *base, size_t *used, size_t count)
-{
-    *used = (*used + 15u) & ~(size_t)15u;
-    double *p = base ? (double *)(base + *used) : NULL;
-    *used += count * sizeof(double);
-    return p;
-}
-
 static size_t layout(const vt_model *m, vt_trajectory *tr, char *base, int nrow)
 {
     const size_t r = (size_t)nrow, nq = (size_t)m->nq, nv = (size_t)m->nv, nc = (size_t)m->nc;
     const size_t nd = (size_t)m->ndrive, nb = (size_t)m->nbody + 1, nk = (size_t)m->ncut;
-    size_t used = sizeof(vt_trajectory);
-    tr->t = take(base, &used, r);
-    tr->q = take(base, &used, nq * r);
-    tr->qd = take(base, &used, nv * r);
-    tr->qdd = take(base, &used, nv * r);
-    tr->lambda = take(base, &used, nc * r);
-    tr->qfrc_drive = take(base, &used, nv * r);
-    tr->drive_effort = take(base, &used, nd * r);
-    tr->drive_force = take(base, &used, 3 * nd * r);
-    tr->drive_moment = take(base, &used, 3 * nd * r);
-    tr->jnt_force = take(base, &used, 3 * nb * r);
-    tr->jnt_moment = take(base, &used, 3 * nb * r);
-    tr->cut_force = take(base, &used, 3 * nk * r);
-    tr->cut_moment = take(base, &used, 3 * nk * r);
-    tr->phi_norm = take(base, &used, r);
-    tr->phid_norm = take(base, &used, r);
-    tr->rcond = take(base, &used, r);
-    tr->q_fwd = take(base, &used, nq * r);
-    tr->qd_fwd = take(base, &used, nv * r);
-    tr->jnt_force_fwd = take(base, &used, 3 * nb * r);
-    tr->jnt_moment_fwd = take(base, &used, 3 * nb * r);
-    tr->cut_force_fwd = take(base, &used, 3 * nk * r);
-    tr->cut_moment_fwd = take(base, &used, 3 * nk * r);
-    return used;
+    /* every array of doubles on 16 bytes (calloc's alignment) */
+    vt_block blk = {.base = base, .used = sizeof(vt_trajectory), .align = 16};
+    tr->t = vt_block_take(&blk, r, sizeof(double));
+    tr->q = vt_block_take(&blk, nq * r, sizeof(double));
+    tr->qd = vt_block_take(&blk, nv * r, sizeof(double));
+    tr->qdd = vt_block_take(&blk, nv * r, sizeof(double));
+    tr->lambda = vt_block_take(&blk, nc * r, sizeof(double));
+    tr->qfrc_drive = vt_block_take(&blk, nv * r, sizeof(double));
+    tr->drive_effort = vt_block_take(&blk, nd * r, sizeof(double));
+    tr->drive_force = vt_block_take(&blk, 3 * nd * r, sizeof(double));
+    tr->drive_moment = vt_block_take(&blk, 3 * nd * r, sizeof(double));
+    tr->jnt_force = vt_block_take(&blk, 3 * nb * r, sizeof(double));
+    tr->jnt_moment = vt_block_take(&blk, 3 * nb * r, sizeof(double));
+    tr->cut_force = vt_block_take(&blk, 3 * nk * r, sizeof(double));
+    tr->cut_moment = vt_block_take(&blk, 3 * nk * r, sizeof(double));
+    tr->phi_norm = vt_block_take(&blk, r, sizeof(double));
+    tr->phid_norm = vt_block_take(&blk, r, sizeof(double));
+    tr->rcond = vt_block_take(&blk, r, sizeof(double));
+    tr->q_fwd = vt_block_take(&blk, nq * r, sizeof(double));
+    tr->qd_fwd = vt_block_take(&blk, nv * r, sizeof(double));
+    tr->jnt_force_fwd = vt_block_take(&blk, 3 * nb * r, sizeof(double));
+    tr->jnt_moment_fwd = vt_block_take(&blk, 3 * nb * r, sizeof(double));
+    tr->cut_force_fwd = vt_block_take(&blk, 3 * nk * r, sizeof(double));
+    tr->cut_moment_fwd = vt_block_take(&blk, 3 * nk * r, sizeof(double));
+    return blk.used;
 }
 
 vt_status vt_trajectory_create(vt_trajectory **out, const vt_model *m, int nrow)

@@ -1,5 +1,5 @@
 /* Statuses and messages: the text of every vt_status, the library's version, vt_fail, which
- * writes a call's message into the 256-byte buffer of a builder or a data struct, and the
+ * writes a call's message into the VT_MESSAGE_SIZE-byte buffer of a builder or a data struct, and the
  * argument check every stage makes first. */
 #include <stdarg.h>
 #include <stdio.h>
@@ -56,7 +56,7 @@ vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
     if (buf) {
         va_list ap;
         va_start(ap, fmt);
-        vsnprintf(buf, 256, fmt, ap);
+        vsnprintf(buf, VT_MESSAGE_SIZE, fmt, ap);
         va_end(ap);
     }
     return status;

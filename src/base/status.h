@@ -4,7 +4,7 @@
 
 #include "vtdyn.h"
 
-/* Writes a formatted message into buf (size 256) and returns status. */
+/* Writes a formatted message into buf (VT_MESSAGE_SIZE bytes) and returns status. */
 vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))

@@ -52,7 +52,7 @@ static inline void vt_mulmat3t(double r[3], const double M[9], const double a[3]
  * for tiny non-zero ones, so any finite non-zero vector keeps its direction. Returns |a| (Inf
  * when the length itself overflows; a is still normalized), or 0 for the zero vector (and a
  * NaN), which is left as it was. Axes and Euler parameters of definitions are directions: only
- * the zero vector has none (model.c). */
+ * the zero vector has none (model/builder.c). */
 static inline double vt_normalize(double *a, int n)
 {
     double s = 0.0;

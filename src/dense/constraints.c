@@ -202,7 +202,7 @@ static vt_status prescribed_orientation(char *msg, int k, const vt_drive_def *dr
         for (int c = 0; c < 4; c++) pdes[c] = p[c];
         if (!(vt_normalize(pdes, 4) > 1e-12)) /* of norm 1 ideally (scaled: no overflow or underflow) */
             return vt_fail(msg, VT_ERR_QUATERNION, "vt_constraints: drive %d: orientation of zero norm", k);
-        /* a relative drive's callback gives the turn before `orientation` (a joint's p0: model.c);
+        /* a relative drive's callback gives the turn before `orientation` (a joint's p0: builder.c);
          * a constant right factor leaves ω_d and ω̇_d as they are */
         if (dr->type == VT_DRIVE_RELATIVE_ORIENTATION) vt_quat_mul(pdes, pdes, dr->orientation);
     } else {

@@ -1,4 +1,6 @@
-/* The model: bodies, joints and the tree's reference (path) structure.
+/* The model: vt_builder_build lays a builder's definitions (model/builder.c) out as one block
+ * (base/block.h) and builds the constraint rows; the model without drives, the finds by name,
+ * the rows' kinds and owners, vt_model_free.
  *
  * Body i (1..n) has Cartesian coordinates x^i = [r^i; p^i] (1) and relative coordinates q^i
  * of its joint to its reference body j < i (Table 1). The coordinates per joint kind:
@@ -11,660 +13,19 @@
  * The path of body i is the list of rates of the joints between the ground and i: the
  * columns of S that are non-zero in body i's rows (S is block lower triangular in tree order,
  * the paper's "reference matrix").
- * A drive's spline time functions (src/functions.c: f, and f2, f3 of an orientation drive's
- * sequence) own their samples and second derivatives: one block per drive in the builder
- * (each spline's t, y, f'' in turn), and a part of the model's one block.
+ * The drives' spline samples (t, y, f'' of each spline, copied from the builder's blocks) are a
+ * part of the model's one block.
  */
 #include <math.h>
 #include <stddef.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "model/model.h"
-#include "base/lapack.h"
-#include "base/scan.h"
+#include "base/block.h"
 #include "base/status.h"
 #include "base/vec3.h"
-#include "model/functions.h"
-
-typedef char vt_name[VT_NAME_MAX];
-
-struct vt_builder {
-    vt_model_def def;
-    vt_body_def *bodies;  /* validated and normalized definitions (cap) */
-    vt_name *body_names, *joint_names; /* (cap each, grown with bodies) */
-    int n, cap, capnames;
-    vt_drive_def *drives;
-    vt_name *drive_names;
-    int ndrive, capdrive, capdrivenames;
-    double **samples; /* per drive: its splines' t, y and f'' (3 nsample each), the builder's; or NULL */
-    int capsamples;
-    vt_cut_joint_def *cuts;
-    vt_name *cut_names;
-    int ncut, capcut, capcutnames;
-    vt_frame_def *frames;
-    vt_name *frame_names;
-    int nframe, capframe, capframenames;
-    vt_coupling_def *couplings;
-    vt_name *coupling_names;
-    int ncoupling, capcoupling, capcouplingnames;
-    char message[256];
-};
-
-static const int cut_rows[VT_JOINT_TYPE_COUNT] = {0, 5, 4, 3, 5, 4, 0};
-
-static const int joint_nq[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 4, 1, 2, 7};
-static const int joint_nv[VT_JOINT_TYPE_COUNT] = {7, 1, 2, 3, 1, 2, 6};
-
-vt_model_def vt_default_model_def(void)
-{
-    vt_model_def d;
-    memset(&d, 0, sizeof d); /* every field has a default, also those added later */
-    d.gravity[0] = 0.0;
-    d.gravity[1] = -9.81;
-    d.gravity[2] = 0.0;
-    d.rcond_min = 1e-12;
-    d.rcond_warn = 1e-6;
-    d.allow_redundant = 0;
-    return d;
-}
-
-vt_drive_def vt_default_drive_def(void)
-{
-    vt_drive_def d;
-    memset(&d, 0, sizeof d);
-    d.type = VT_DRIVE_JOINT;
-    d.body = 1;
-    d.f = vt_function_constant(0.0);
-    d.f2 = vt_function_constant(0.0);
-    d.f3 = vt_function_constant(0.0);
-    d.axis[2] = 1.0;
-    d.orientation[0] = 1.0;
-    d.reference = -1;
-    return d;
-}
-
-vt_cut_joint_def vt_default_cut_joint_def(void)
-{
-    vt_cut_joint_def d;
-    memset(&d, 0, sizeof d);
-    d.joint = VT_JOINT_REVOLUTE;
-    d.body_a = 0;
-    d.body_b = 1;
-    d.axis1[2] = 1.0;
-    d.axis2[0] = 1.0;
-    d.orientation[0] = 1.0;
-    return d;
-}
-
-vt_coupling_def vt_default_coupling_def(void)
-{
-    vt_coupling_def d;
-    memset(&d, 0, sizeof d);
-    d.body_a = 2;
-    d.body_b = 1;
-    d.ratio = 1.0;
-    return d;
-}
-
-vt_frame_def vt_default_frame_def(void)
-{
-    vt_frame_def d;
-    memset(&d, 0, sizeof d);
-    d.body = 1;
-    d.orientation[0] = 1.0;
-    return d;
-}
-
-vt_body_def vt_default_body_def(void)
-{
-    vt_body_def d;
-    memset(&d, 0, sizeof d);
-    for (int k = 0; k < 2; k++) {
-        d.limit_lower[k] = -HUGE_VAL;
-        d.limit_upper[k] = d.limit_velocity[k] = d.limit_effort[k] = HUGE_VAL;
-    }
-    d.parent = 0;
-    d.joint = VT_JOINT_REVOLUTE;
-    d.mass = 1.0;
-    d.axis1[2] = 1.0;
-    d.axis2[0] = 1.0;
-    d.orientation[0] = 1.0;
-    return d;
-}
-
-vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def)
-{
-    if (!builder) return VT_ERR_NULL;
-    *builder = NULL;
-    vt_model_def md = def ? *def : vt_default_model_def();
-    if (!vt_all_finite(md.gravity, 3) || !isfinite(md.rcond_min) || !isfinite(md.rcond_warn)) return VT_ERR_NONFINITE;
-    if (!(md.rcond_min > 0.0) || md.rcond_min > 1.0 || md.rcond_warn < md.rcond_min) return VT_ERR_BAD_OPTION;
-    vt_builder *b = calloc(1, sizeof *b);
-    if (!b) return VT_ERR_NO_MEMORY;
-    b->def = md;
-    *builder = b;
-    return VT_OK;
-}
-
-const char *vt_builder_message(const vt_builder *builder)
-{
-    return builder ? builder->message : "builder is NULL";
-}
-
-void vt_builder_free(vt_builder *builder)
-{
-    if (!builder) return;
-    free(builder->bodies);
-    free(builder->body_names);
-    free(builder->joint_names);
-    for (int k = 0; k < builder->ndrive; k++) free(builder->samples[k]);
-    free(builder->samples);
-    free(builder->drives);
-    free(builder->drive_names);
-    free(builder->cuts);
-    free(builder->cut_names);
-    free(builder->frames);
-    free(builder->couplings);
-    free(builder->coupling_names);
-    free(builder->frame_names);
-    free(builder);
-}
-
-/* name into dst ("" for NULL), refused when too long or when one of the n names taken has it */
-static vt_status take_name(char *msg, vt_name dst, const char *name, const vt_name *taken_names, int n, const char *what,
-                           int id)
-{
-    const char *taken = (const char *)taken_names;
-    if (!name || !name[0]) {
-        dst[0] = '\0';
-        return VT_OK;
-    }
-    const char *end = memchr(name, '\0', VT_NAME_MAX);
-    const size_t len = end ? (size_t)(end - name) : VT_NAME_MAX;
-    if (len >= VT_NAME_MAX)
-        return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%.20s...\" longer than %d bytes", what, id, name, VT_NAME_MAX - 1);
-    for (int k = 0; k < n; k++)
-        if (strcmp(taken + (size_t)VT_NAME_MAX * (size_t)k, name) == 0)
-            return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%s\" already taken by %s %d", what, id, name, what,
-                           k + (strcmp(what, "body") == 0 || strcmp(what, "joint") == 0));
-    memcpy(dst, name, len + 1);
-    return VT_OK;
-}
-
-/* index of name among n names, or VT_ERR_NOT_FOUND */
-static int find_name(const char *names, int n, const char *name)
-{
-    if (!name || !name[0]) return VT_ERR_NOT_FOUND;
-    for (int k = 0; k < n; k++)
-        if (strcmp(names + (size_t)VT_NAME_MAX * (size_t)k, name) == 0) return k;
-    return VT_ERR_NOT_FOUND;
-}
-
-/* Normalizes a in place (vt_normalize: scaled, so lengths near overflow or underflow keep their
- * direction); refuses only the zero vector: an axis or orientation is a direction, its length
- * a unit of the caller's, so no other length is "too short" in itself. */
-static int normalize(double *a, int n)
-{
-    return vt_normalize(a, n) > 0.0;
-}
-
-/* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two, to the relative
- * tolerance VT_INERTIA_TOL of its largest entry (files such as URDF print inertias to a few
- * digits: moments off the triangle inequality, or an entry of −5e-20, by round-off; a genuinely
- * bad inertia is off by far more). Zero is a point mass and allowed. Principal moments from
- * LAPACK's dsyev, on J divided by its largest entry: no overflow near DBL_MAX. */
-vt_status vt_check_inertia(char *msg, const char *who, const double J[9])
-{
-    double scale = 0.0;
-    for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
-    /* the rotational mass 4 GᵀJ'G has entries up to 12 times the largest (G's rows orthonormal
-     * for unit p): VT_INERTIA_MAX = 1e307 < DBL_MAX/16 keeps it finite; beyond, it cannot be used */
-    if (scale > VT_INERTIA_MAX)
-        return vt_fail(msg, VT_ERR_NONFINITE, "%s: inertia entry of magnitude %g beyond %g: its mass matrix would overflow",
-                       who, scale, VT_INERTIA_MAX);
-    if (scale == 0.0) return VT_OK;
-    /* checked on J/scale (entries in [−1, 1]): no difference, tolerance or moment overflows */
-    double a[9], w[3], work[16];
-    for (int k = 0; k < 9; k++) a[k] = J[k] / scale;
-    const double tol = VT_INERTIA_TOL + VT_INERTIA_ABS_TOL / scale; /* the floor: a point mass written −5e-20 */
-    if (!(fabs(a[1] - a[3]) <= tol) || !(fabs(a[2] - a[6]) <= tol) || !(fabs(a[5] - a[7]) <= tol))
-        return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
-                       "%s: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g)",
-                       who, J[3], J[1], J[6], J[2], J[7], J[5]);
-    const int n = 3, lwork = 16;
-    int info = 0;
-    dsyev_("N", "L", &n, a, &n, w, work, &lwork, &info, 1, 1);
-    if (info != 0)
-        return vt_fail(msg, VT_ERR_LAPACK, "%s: dsyev info %d on the inertia matrix", who, info);
-    if (w[0] < -tol)
-        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "%s: principal moment %g < 0", who, w[0] * scale);
-    if (w[0] + w[1] < w[2] - tol)
-        return vt_fail(msg, VT_ERR_INERTIA_TRIANGLE,
-                       "%s: principal moments %g + %g < %g", who, w[0] * scale, w[1] * scale, w[2] * scale);
-    return VT_OK;
-}
-
-/* Grows a builder array; 0 on failure. */
-static int grow(void **arr, int *cap, int n, size_t size)
-{
-    if (n < *cap) return 1;
-    int nc = *cap ? 2 * *cap : 8;
-    void *p = realloc(*arr, (size_t)nc * size);
-    if (!p) return 0;
-    *arr = p;
-    *cap = nc;
-    return 1;
-}
-
-static vt_status validate_body(char *msg, int id, vt_body_def *d)
-{
-    if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
-        return vt_fail(msg, VT_ERR_JOINT_TYPE, "body %d: joint type %d unknown", id, (int)d->joint);
-    if (d->parent < 0 || d->parent >= id)
-        return vt_fail(msg, VT_ERR_PARENT, "body %d: reference body %d is not an earlier body",
-                       id, d->parent);
-    if (d->joint == VT_JOINT_BASE && d->parent != 0)
-        return vt_fail(msg, VT_ERR_PARENT, "body %d: a base body must have the ground (0) as reference, not %d",
-                       id, d->parent);
-    if (!isfinite(d->mass) || !vt_all_finite(d->inertia, 9) || !vt_all_finite(d->joint_parent, 3) ||
-        !vt_all_finite(d->joint_child, 3) || !vt_all_finite(d->axis1, 3) ||
-        !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
-        return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN or Inf in its definition", id);
-    if (!(d->mass >= 0.0)) /* zero: a massless link (a frame, a gimbal), refused only by a solve it leaves singular */
-        return vt_fail(msg, VT_ERR_MASS, "body %d: mass %g kg is negative", id, d->mass);
-    char who[32];
-    snprintf(who, sizeof who, "body %d", id);
-    vt_status st = vt_check_inertia(msg, who, d->inertia);
-    if (st) return st;
-    for (int r = 0; r < 3; r++) /* the symmetric part: off-symmetric by round-off at most */
-        for (int c = r + 1; c < 3; c++) d->inertia[r + 3 * c] = d->inertia[c + 3 * r] = 0.5 * (d->inertia[r + 3 * c] + d->inertia[c + 3 * r]);
-    const int uses_axis1 = d->joint != VT_JOINT_BASE && d->joint != VT_JOINT_SPHERICAL && d->joint != VT_JOINT_FREE;
-    if (uses_axis1 && !normalize(d->axis1, 3))
-        return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis1 has zero length", id);
-    if (d->joint == VT_JOINT_UNIVERSAL) {
-        if (!normalize(d->axis2, 3))
-            return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis2 has zero length", id);
-        const double c = vt_dot3(d->axis1, d->axis2);
-        if (fabs(c) > 1e-9)
-            return vt_fail(msg, VT_ERR_AXES_NOT_PERPENDICULAR,
-                           "body %d: universal axes not perpendicular (cosine %g)", id, c);
-        /* within the tolerance, made perpendicular to round-off (axis2 less its part along
-         * axis1): the joint's R rows are S's left inverse only for perpendicular axes, and a
-         * cosine of 1e-10 left R S = I off by 1e-10 on the dense path (a joint drive's
-         * Φ_q = R S, its effort leaking to the other rate) */
-        for (int k = 0; k < 3; k++) d->axis2[k] -= c * d->axis1[k];
-        normalize(d->axis2, 3);
-    }
-    if (d->joint == VT_JOINT_BASE) {
-        d->orientation[0] = 1.0;
-        d->orientation[1] = d->orientation[2] = d->orientation[3] = 0.0;
-    } else if (!normalize(d->orientation, 4)) {
-        return vt_fail(msg, VT_ERR_QUATERNION, "body %d: orientation has zero norm", id);
-    }
-    for (int k = 0; k < 2; k++) { /* limits: ±∞ allowed, NaN not */
-        if (isnan(d->limit_lower[k]) || isnan(d->limit_upper[k]) || isnan(d->limit_velocity[k]) ||
-            isnan(d->limit_effort[k]))
-            return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN in the limits of rate %d", id, k);
-        if (d->limit_lower[k] > d->limit_upper[k] || d->limit_velocity[k] < 0.0 || d->limit_effort[k] < 0.0)
-            return vt_fail(msg, VT_ERR_BAD_OPTION,
-                           "body %d: limits of rate %d: lower %g > upper %g, or a negative velocity %g or effort %g", id,
-                           k, d->limit_lower[k], d->limit_upper[k], d->limit_velocity[k], d->limit_effort[k]);
-    }
-    return VT_OK;
-}
-
-int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
-{
-    if (!b) return VT_ERR_NULL;
-    if (!def) return vt_fail(b->message, VT_ERR_NULL, "body definition is NULL");
-    const int id = b->n + 1;
-    if (id > VT_MAX_BODIES)
-        return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "body %d: at most %d bodies", id, VT_MAX_BODIES);
-    vt_body_def d = *def;
-    vt_status st = validate_body(b->message, id, &d);
-    if (st) return st;
-    vt_name name, joint;
-    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->body_names, b->n, "body", id)) ||
-        (st = take_name(b->message, joint, d.joint_name, (const vt_name *)b->joint_names, b->n, "joint", id)))
-        return st;
-    int capn = b->capnames; /* grown together: a failure leaves the builder as it was */
-    if (!grow((void **)&b->bodies, &b->cap, b->n, sizeof d) ||
-        !grow((void **)&b->body_names, &capn, b->n, sizeof(vt_name)) ||
-        !grow((void **)&b->joint_names, &b->capnames, b->n, sizeof(vt_name)))
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "body %d: out of memory", id);
-    d.name = d.joint_name = NULL; /* the caller's memory: the builder keeps its own copies */
-    memcpy(b->body_names[b->n], name, sizeof name);
-    memcpy(b->joint_names[b->n], joint, sizeof joint);
-    b->bodies[b->n++] = d;
-    b->message[0] = '\0';
-    return id;
-}
-
-int vt_builder_find_body(const vt_builder *b, const char *name)
-{
-    if (!b || !name) return VT_ERR_NULL;
-    const int k = find_name((const char *)b->body_names, b->n, name);
-    return k < 0 ? k : k + 1;
-}
-
-/* the frame of that name added so far into *body and point, or a status with the message */
-static vt_status resolve_frame(const vt_builder *b, char *msg, const char *frame, const char *what, int k, int *body,
-                               double point[3])
-{
-    const int f = find_name((const char *)b->frame_names, b->nframe, frame);
-    if (f < 0) return vt_fail(msg, VT_ERR_NOT_FOUND, "%s %d: no frame \"%.64s\" added so far", what, k, frame);
-    *body = b->frames[f].body;
-    memcpy(point, b->frames[f].point, 3 * sizeof(double));
-    return VT_OK;
-}
-
-int vt_builder_add_frame(vt_builder *b, const vt_frame_def *def)
-{
-    if (!b) return VT_ERR_NULL;
-    if (!def) return vt_fail(b->message, VT_ERR_NULL, "frame definition is NULL");
-    const int k = b->nframe;
-    vt_frame_def f = *def;
-    if (!f.name || !f.name[0]) return vt_fail(b->message, VT_ERR_BAD_NAME, "frame %d: a frame needs a name", k);
-    vt_name name;
-    vt_status st = take_name(b->message, name, f.name, (const vt_name *)b->frame_names, b->nframe, "frame", k);
-    if (st) return st;
-    if (f.body < 0 || f.body > b->n)
-        return vt_fail(b->message, VT_ERR_BAD_INDEX, "frame %d (%s): body %d is not the ground or a body added so far (1..%d)",
-                       k, name, f.body, b->n);
-    if (!vt_all_finite(f.point, 3) || !vt_all_finite(f.orientation, 4))
-        return vt_fail(b->message, VT_ERR_NONFINITE, "frame %d (%s): NaN or Inf in its definition", k, name);
-    if (!normalize(f.orientation, 4))
-        return vt_fail(b->message, VT_ERR_QUATERNION, "frame %d (%s): orientation of zero norm", k, name);
-    int capn = b->capframenames;
-    if (!grow((void **)&b->frames, &b->capframe, b->nframe, sizeof f) ||
-        !grow((void **)&b->frame_names, &capn, b->nframe, sizeof(vt_name)))
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "frame %d: out of memory", k);
-    b->capframenames = capn;
-    f.name = NULL;
-    memcpy(b->frame_names[k], name, sizeof name);
-    b->frames[b->nframe++] = f;
-    b->message[0] = '\0';
-    return k;
-}
-
-
-/* The library's copy of an orientation drive's sequence name, or NULL if it names none: three
- * axes of one case, no letter twice in a row (upper case body-fixed, lower case fixed axes) */
-static const char *sequence_literal(const char *s)
-{
-    static const char *const known[] = {"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY",
-                                        "ZXZ", "ZYZ", "xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx",
-                                        "yxy", "yzy", "zxz", "zyz"};
-    for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
-        if (strcmp(s, known[k]) == 0) return known[k];
-    return NULL;
-}
-
-static vt_status validate_drive(const vt_builder *b, char *msg, int k, vt_drive_def *d)
-{
-    if ((int)d->type < 0 || d->type >= VT_DRIVE_TYPE_COUNT)
-        return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: unknown type %d", k, (int)d->type);
-    if (d->body < 1 || d->body > b->n)
-        return vt_fail(msg, VT_ERR_BAD_INDEX, "drive %d: body %d is not a body added so far (1..%d)", k,
-                       d->body, b->n);
-    const vt_body_def *body = &b->bodies[d->body - 1];
-    if (d->sequence && !vt_drive_turns(d->type))
-        return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: a sequence of angles belongs to orientation drives", k);
-    switch (d->type) {
-    case VT_DRIVE_JOINT:
-        if (d->index < 0 || d->index >= joint_nv[body->joint])
-            return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: body %d's joint has no rate %d", k, d->body, d->index);
-        if (body->joint == VT_JOINT_SPHERICAL)
-            return vt_fail(msg, VT_ERR_BAD_DRIVE,
-                           "drive %d: a spherical joint has no scalar coordinate; use an orientation drive", k);
-        if (body->joint == VT_JOINT_FREE && d->index >= 3)
-            return vt_fail(msg, VT_ERR_BAD_DRIVE,
-                           "drive %d: a free joint's rotation rates (3..5) have no scalar coordinate; drive 0..2 "
-                           "(translation) and use an orientation drive for the rotation", k);
-        if (body->joint == VT_JOINT_BASE && d->index >= 3)
-            return vt_fail(msg, VT_ERR_BAD_DRIVE,
-                           "drive %d: a base body's Euler parameters are not driven one by one; use an orientation drive", k);
-        break;
-    case VT_DRIVE_POINT:
-        if (d->index < 0 || d->index > 2)
-            return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: component %d is not 0 (x), 1 (y) or 2 (z)", k, d->index);
-        if (!vt_all_finite(d->point, 3))
-            return vt_fail(msg, VT_ERR_NONFINITE, "drive %d: point not finite", k);
-        break;
-    default: /* orientation, absolute or relative */
-        if (!vt_all_finite(d->axis, 3) || !vt_all_finite(d->orientation, 4))
-            return vt_fail(msg, VT_ERR_NONFINITE, "drive %d: axis or orientation not finite", k);
-        if (d->sequence && d->orientation_callback)
-            return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: a sequence and an orientation callback both given; use one", k);
-        if (d->sequence && !(d->sequence = sequence_literal(d->sequence)))
-            return vt_fail(msg, VT_ERR_BAD_DRIVE,
-                           "drive %d: unknown sequence (three of X, Y, Z body-fixed or of x, y, z about fixed axes, "
-                           "no letter twice in a row, e.g. \"ZYX\", \"ZXZ\", \"xyz\")", k);
-        if (!d->orientation_callback && !d->sequence && !normalize(d->axis, 3))
-            return vt_fail(msg, VT_ERR_AXIS_ZERO, "drive %d: axis of zero length", k);
-        if ((!d->orientation_callback || d->type == VT_DRIVE_RELATIVE_ORIENTATION) && !normalize(d->orientation, 4))
-            return vt_fail(msg, VT_ERR_QUATERNION, "drive %d: orientation of zero norm", k);
-        if (d->type == VT_DRIVE_RELATIVE_ORIENTATION) {
-            if (d->reference < -1 || d->reference > b->n)
-                return vt_fail(msg, VT_ERR_BAD_INDEX,
-                               "drive %d: reference %d is not the ground (0), a body added so far (1..%d) or the body's "
-                               "joint (-1)", k, d->reference, b->n);
-            if (d->reference == d->body)
-                return vt_fail(msg, VT_ERR_BAD_DRIVE, "drive %d: body %d's orientation relative to itself", k, d->body);
-            if (d->reference == -1) { /* the joint's drive: p_a* ⊗ p_b = p_J ⊗ p0 (kinematics.c) */
-                d->reference = body->parent;
-                vt_quat_mul(d->orientation, d->orientation, body->orientation);
-            }
-        }
-        break;
-    }
-    const vt_function *fs[3];
-    const int nf = vt_drive_functions(d, fs);
-    for (int e = 0; e < nf; e++) {
-        char fmsg[256];
-        vt_status st = vt_function_check(fmsg, fs[e]);
-        if (st) return vt_fail(msg, st, "drive %d: %s%s", k, e == 0 ? "" : e == 1 ? "f2: " : "f3: ", fmsg);
-    }
-    return VT_OK;
-}
-
-/* the samples of a drive's spline functions (f, f2, f3) copied, with their second derivatives,
- * into one block of the builder's (each spline's t, y, f'': 3n doubles), so that the caller's
- * arrays are free after the drive is added; *block NULL if the drive has no spline */
-static vt_status own_splines(char *msg, int k, vt_drive_def *d, double **block)
-{
-    vt_function *fs[3] = {&d->f, &d->f2, &d->f3};
-    const vt_function *used[3];
-    const int nf = vt_drive_functions(d, used);
-    size_t total = 0, most = 0;
-    for (int e = 0; e < nf; e++)
-        if (fs[e]->type == VT_FUNCTION_SPLINE) {
-            total += (size_t)fs[e]->nsample;
-            most = (size_t)fs[e]->nsample > most ? (size_t)fs[e]->nsample : most;
-        }
-    *block = NULL;
-    if (total == 0) return VT_OK;
-    double *own = malloc(3 * total * sizeof(double)), *work = malloc(3 * most * sizeof(double));
-    if (!own || !work) {
-        free(own);
-        free(work);
-        return vt_fail(msg, VT_ERR_NO_MEMORY, "drive %d: out of memory for %zu spline samples", k, total);
-    }
-    double *at = own;
-    for (int e = 0; e < nf; e++) {
-        vt_function *f = fs[e];
-        if (f->type != VT_FUNCTION_SPLINE) continue;
-        const size_t n = (size_t)f->nsample;
-        memcpy(at, f->sample_t, n * sizeof(double));
-        memcpy(at + n, f->sample_y, n * sizeof(double));
-        char fmsg[256];
-        const vt_status st = vt_spline_d2(fmsg, f->nsample, at, at + n, at + 2 * n, work);
-        if (st) {
-            free(work);
-            free(own);
-            return vt_fail(msg, st, "drive %d: %s%s", k, e == 0 ? "" : e == 1 ? "f2: " : "f3: ", fmsg);
-        }
-        at += 3 * n;
-    }
-    free(work);
-    at = own;
-    for (int e = 0; e < nf; e++) { /* every spline checked: the definition now points at the block */
-        vt_function *f = fs[e];
-        if (f->type != VT_FUNCTION_SPLINE) continue;
-        const size_t n = (size_t)f->nsample;
-        f->sample_t = at;
-        f->sample_y = at + n;
-        f->sample_d2 = at + 2 * n;
-        at += 3 * n;
-    }
-    *block = own;
-    return VT_OK;
-}
-
-int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
-{
-    if (!b) return VT_ERR_NULL;
-    if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
-    vt_drive_def d = *def;
-    if (d.f.type == VT_FUNCTION_SPLINE) d.f.sample_d2 = NULL; /* computed here, never trusted */
-    if (d.f2.type == VT_FUNCTION_SPLINE) d.f2.sample_d2 = NULL;
-    if (d.f3.type == VT_FUNCTION_SPLINE) d.f3.sample_d2 = NULL;
-    vt_status st = VT_OK;
-    if (d.frame) {
-        if (d.type != VT_DRIVE_POINT)
-            return vt_fail(b->message, VT_ERR_BAD_DRIVE, "drive %d: a frame places point drives only", b->ndrive);
-        if ((st = resolve_frame(b, b->message, d.frame, "drive", b->ndrive, &d.body, d.point))) return st;
-    }
-    if ((st = validate_drive(b, b->message, b->ndrive, &d))) return st;
-    vt_name name;
-    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->drive_names, b->ndrive, "drive", b->ndrive))) return st;
-    double *own = NULL;
-    if ((st = own_splines(b->message, b->ndrive, &d, &own))) return st;
-    int capn = b->capdrivenames;
-    if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d) ||
-        !grow((void **)&b->drive_names, &capn, b->ndrive, sizeof(vt_name)) ||
-        !grow((void **)&b->samples, &b->capsamples, b->ndrive, sizeof own)) {
-        b->capdrivenames = capn; /* only capacities may have grown: the builder's content is as it was */
-        free(own);
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "drive %d: out of memory", b->ndrive);
-    }
-    b->capdrivenames = capn;
-    d.name = d.frame = NULL;
-    memcpy(b->drive_names[b->ndrive], name, sizeof name);
-    b->drives[b->ndrive] = d;
-    b->samples[b->ndrive] = own;
-    b->message[0] = '\0';
-    return b->ndrive++;
-}
-
-static vt_status validate_cut(const vt_builder *b, char *msg, int k, vt_cut_joint_def *d)
-{
-    if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
-        return vt_fail(msg, VT_ERR_JOINT_TYPE, "cut joint %d: joint type %d unknown", k, (int)d->joint);
-    if (d->joint == VT_JOINT_BASE || d->joint == VT_JOINT_FREE)
-        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: a base or free (floating) joint constrains nothing", k);
-    if (d->body_a < 0 || d->body_a > b->n || d->body_b < 1 || d->body_b > b->n)
-        return vt_fail(msg, VT_ERR_BAD_INDEX, "cut joint %d: bodies %d and %d not both added so far (b: 1..%d, a: 0..%d)",
-                       k, d->body_a, d->body_b, b->n, b->n);
-    if (d->body_a == d->body_b)
-        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: joins body %d to itself", k, d->body_a);
-    if (d->planar != 0 && d->planar != 1)
-        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT, "cut joint %d: planar is %d (0 or 1)", k, d->planar);
-    if (d->planar && d->joint != VT_JOINT_REVOLUTE)
-        return vt_fail(msg, VT_ERR_BAD_CUT_JOINT,
-                       "cut joint %d: planar is a revolute's pin in the plane ⟂ axis1 (joint VT_JOINT_REVOLUTE), not joint type %d",
-                       k, (int)d->joint);
-    if (!vt_all_finite(d->point_a, 3) || !vt_all_finite(d->point_b, 3) || !vt_all_finite(d->axis1, 3) ||
-        !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
-        return vt_fail(msg, VT_ERR_NONFINITE, "cut joint %d: NaN or Inf in its definition", k);
-    if (d->joint != VT_JOINT_SPHERICAL && !normalize(d->axis1, 3))
-        return vt_fail(msg, VT_ERR_AXIS_ZERO, "cut joint %d: axis1 has zero length", k);
-    if (d->joint == VT_JOINT_UNIVERSAL) {
-        if (!normalize(d->axis2, 3)) return vt_fail(msg, VT_ERR_AXIS_ZERO, "cut joint %d: axis2 has zero length", k);
-        const double c = vt_dot3(d->axis1, d->axis2);
-        if (fabs(c) > 1e-9)
-            return vt_fail(msg, VT_ERR_AXES_NOT_PERPENDICULAR, "cut joint %d: universal axes not perpendicular (cosine %g)", k, c);
-    }
-    if (!normalize(d->orientation, 4)) return vt_fail(msg, VT_ERR_QUATERNION, "cut joint %d: orientation of zero norm", k);
-    return VT_OK;
-}
-
-int vt_builder_add_cut_joint(vt_builder *b, const vt_cut_joint_def *def)
-{
-    if (!b) return VT_ERR_NULL;
-    if (!def) return vt_fail(b->message, VT_ERR_NULL, "cut joint definition is NULL");
-    vt_cut_joint_def d = *def;
-    vt_status st = VT_OK;
-    if (d.frame_a && (st = resolve_frame(b, b->message, d.frame_a, "cut joint", b->ncut, &d.body_a, d.point_a))) return st;
-    if (d.frame_b && (st = resolve_frame(b, b->message, d.frame_b, "cut joint", b->ncut, &d.body_b, d.point_b))) return st;
-    if ((st = validate_cut(b, b->message, b->ncut, &d))) return st;
-    vt_name name;
-    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->cut_names, b->ncut, "cut joint", b->ncut))) return st;
-    int capn = b->capcutnames;
-    if (!grow((void **)&b->cuts, &b->capcut, b->ncut, sizeof d) ||
-        !grow((void **)&b->cut_names, &capn, b->ncut, sizeof(vt_name)))
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "cut joint %d: out of memory", b->ncut);
-    b->capcutnames = capn;
-    d.name = d.frame_a = d.frame_b = NULL;
-    memcpy(b->cut_names[b->ncut], name, sizeof name);
-    b->cuts[b->ncut] = d;
-    b->message[0] = '\0';
-    return b->ncut++;
-}
-
-/* a coupling's coordinate: body in 1..n, a scalar rate of its joint */
-static vt_status coupling_side(const vt_builder *b, char *msg, int k, int body, int index, const char *side)
-{
-    if (body < 1 || body > b->n)
-        return vt_fail(msg, VT_ERR_BAD_INDEX, "coupling %d: body_%s %d is not a body added so far (1..%d)", k, side, body,
-                       b->n);
-    const int jt = b->bodies[body - 1].joint;
-    if (index < 0 || index >= joint_nv[jt])
-        return vt_fail(msg, VT_ERR_BAD_INDEX, "coupling %d: body %d's joint has no rate %d", k, body, index);
-    if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_BASE || (jt == VT_JOINT_FREE && index >= 3))
-        return vt_fail(msg, VT_ERR_BAD_DRIVE,
-                       "coupling %d: body %d's joint has no scalar coordinate %d (spherical, base, or a free joint's rotation)",
-                       k, body, index);
-    return VT_OK;
-}
-
-int vt_builder_add_coupling(vt_builder *b, const vt_coupling_def *def)
-{
-    if (!b) return VT_ERR_NULL;
-    if (!def) return vt_fail(b->message, VT_ERR_NULL, "coupling definition is NULL");
-    const int k = b->ncoupling;
-    vt_coupling_def c = *def;
-    vt_status st;
-    if ((st = coupling_side(b, b->message, k, c.body_a, c.index_a, "a")) ||
-        (st = coupling_side(b, b->message, k, c.body_b, c.index_b, "b")))
-        return st;
-    if (c.body_a == c.body_b && c.index_a == c.index_b)
-        return vt_fail(b->message, VT_ERR_BAD_DRIVE, "coupling %d: couples body %d's rate %d with itself", k, c.body_a,
-                       c.index_a);
-    if (!isfinite(c.ratio) || !isfinite(c.offset))
-        return vt_fail(b->message, VT_ERR_NONFINITE, "coupling %d: ratio %g or offset %g not finite", k, c.ratio, c.offset);
-    vt_name name;
-    if ((st = take_name(b->message, name, c.name, (const vt_name *)b->coupling_names, k, "coupling", k))) return st;
-    int capn = b->capcouplingnames;
-    if (!grow((void **)&b->couplings, &b->capcoupling, k, sizeof c) ||
-        !grow((void **)&b->coupling_names, &capn, k, sizeof(vt_name))) {
-        b->capcouplingnames = capn;
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "coupling %d: out of memory", k);
-    }
-    b->capcouplingnames = capn;
-    c.name = NULL;
-    memcpy(b->coupling_names[k], name, sizeof name);
-    b->couplings[b->ncoupling++] = c;
-    b->message[0] = '\0';
-    return k;
-}
-
-int vt_cut_nrows(const vt_cut_joint_def *c)
-{
-    return c->planar ? 2 : cut_rows[c->joint];
-}
+#include "model/builder.h"
 
 int vt_drive_rows(const vt_model *m)
 {
@@ -686,7 +47,7 @@ static void perpendiculars(double h1[3], double h2[3], const double u[3])
 {
     const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
     vt_cross3(h1, u, fabs(u[0]) < 0.6 ? ex : ey);
-    normalize(h1, 3);
+    vt_normalize(h1, 3);
     vt_cross3(h2, u, h1);
 }
 
@@ -839,63 +200,54 @@ void vt_model_free(vt_model *m)
     free(m); /* one block */
 }
 
-/* Carves aligned arrays from one block; with base == NULL only counts the bytes. */
-typedef struct { char *base; size_t used; } arena;
-static void *take(arena *a, size_t bytes)
-{
-    a->used = (a->used + 15u) & ~(size_t)15u;
-    void *p = a->base ? a->base + a->used : NULL;
-    a->used += bytes;
-    return p;
-}
-
-static void layout_model(arena *a, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc,
+/* The model's arrays in the block (a sizing pass with b->base NULL, then the carving pass) */
+static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc,
                          int nframe, int ncoupling)
 {
     const size_t nu = (size_t)(ncoupling ? ncoupling : 1);
-    m->coupling = take(a, nu * sizeof(vt_coupling_def));
-    m->coupling_row = take(a, nu * sizeof(int));
-    m->coupling_name = take(a, nu * VT_NAME_MAX);
+    m->coupling = vt_block_take(b, nu, sizeof(vt_coupling_def));
+    m->coupling_row = vt_block_take(b, nu, sizeof(int));
+    m->coupling_name = vt_block_take(b, nu, VT_NAME_MAX);
     const size_t nd = (size_t)(ndrive ? ndrive : 1), nk = (size_t)(ncut ? ncut : 1), ncc = (size_t)(nc ? nc : 1);
-    m->drive = take(a, nd * sizeof(vt_drive_def));
-    m->drive_row = take(a, nd * sizeof(int));
-    m->cut = take(a, nk * sizeof(vt_cut_joint_def));
-    m->cut_row = take(a, nk * sizeof(int));
-    m->con_kind = take(a, ncc * sizeof(int));
-    m->con_body = take(a, 2 * ncc * sizeof(int));
-    m->con_owner = take(a, ncc * sizeof(int));
-    m->con_dof = take(a, ncc * sizeof(int));
-    m->con_vec = take(a, 6 * ncc * sizeof(double));
-    m->con_point = take(a, 6 * ncc * sizeof(double));
-    m->dof_drive = take(a, (size_t)(nv ? nv : 1) * sizeof(int));
+    m->drive = vt_block_take(b, nd, sizeof(vt_drive_def));
+    m->drive_row = vt_block_take(b, nd, sizeof(int));
+    m->cut = vt_block_take(b, nk, sizeof(vt_cut_joint_def));
+    m->cut_row = vt_block_take(b, nk, sizeof(int));
+    m->con_kind = vt_block_take(b, ncc, sizeof(int));
+    m->con_body = vt_block_take(b, 2 * ncc, sizeof(int));
+    m->con_owner = vt_block_take(b, ncc, sizeof(int));
+    m->con_dof = vt_block_take(b, ncc, sizeof(int));
+    m->con_vec = vt_block_take(b, 6 * ncc, sizeof(double));
+    m->con_point = vt_block_take(b, 6 * ncc, sizeof(double));
+    m->dof_drive = vt_block_take(b, (size_t)(nv ? nv : 1), sizeof(int));
     const size_t nb = (size_t)n + 1;
-    m->body_parent = take(a, nb * sizeof(int));
-    m->body_joint = take(a, nb * sizeof(int));
-    m->body_qadr = take(a, nb * sizeof(int));
-    m->body_nq = take(a, nb * sizeof(int));
-    m->body_vadr = take(a, nb * sizeof(int));
-    m->body_nv = take(a, nb * sizeof(int));
-    m->body_mass = take(a, nb * sizeof(double));
-    m->body_inertia = take(a, 9 * nb * sizeof(double));
-    m->body_jpar = take(a, 3 * nb * sizeof(double));
-    m->body_jchild = take(a, 3 * nb * sizeof(double));
-    m->body_axis = take(a, 6 * nb * sizeof(double));
-    m->body_quat0 = take(a, 4 * nb * sizeof(double));
-    m->body_pathadr = take(a, nb * sizeof(int));
-    m->body_pathnum = take(a, nb * sizeof(int));
-    m->path_dof = take(a, (size_t)(npath ? npath : 1) * sizeof(int));
-    m->dof_body = take(a, (size_t)nv * sizeof(int));
-    m->q0 = take(a, (size_t)nq * sizeof(double));
-    m->dof_limit = take(a, 4 * (size_t)nv * sizeof(double));
+    m->body_parent = vt_block_take(b, nb, sizeof(int));
+    m->body_joint = vt_block_take(b, nb, sizeof(int));
+    m->body_qadr = vt_block_take(b, nb, sizeof(int));
+    m->body_nq = vt_block_take(b, nb, sizeof(int));
+    m->body_vadr = vt_block_take(b, nb, sizeof(int));
+    m->body_nv = vt_block_take(b, nb, sizeof(int));
+    m->body_mass = vt_block_take(b, nb, sizeof(double));
+    m->body_inertia = vt_block_take(b, 9 * nb, sizeof(double));
+    m->body_jpar = vt_block_take(b, 3 * nb, sizeof(double));
+    m->body_jchild = vt_block_take(b, 3 * nb, sizeof(double));
+    m->body_axis = vt_block_take(b, 6 * nb, sizeof(double));
+    m->body_quat0 = vt_block_take(b, 4 * nb, sizeof(double));
+    m->body_pathadr = vt_block_take(b, nb, sizeof(int));
+    m->body_pathnum = vt_block_take(b, nb, sizeof(int));
+    m->path_dof = vt_block_take(b, (size_t)(npath ? npath : 1), sizeof(int));
+    m->dof_body = vt_block_take(b, (size_t)nv, sizeof(int));
+    m->q0 = vt_block_take(b, (size_t)nq, sizeof(double));
+    m->dof_limit = vt_block_take(b, 4 * (size_t)nv, sizeof(double));
     const size_t nf = (size_t)(nframe ? nframe : 1);
-    m->body_name = take(a, nb * VT_NAME_MAX);
-    m->joint_name = take(a, nb * VT_NAME_MAX);
-    m->drive_name = take(a, nd * VT_NAME_MAX);
-    m->cut_name = take(a, nk * VT_NAME_MAX);
-    m->frame_name = take(a, nf * VT_NAME_MAX);
-    m->frame_body = take(a, nf * sizeof(int));
-    m->frame_point = take(a, 3 * nf * sizeof(double));
-    m->frame_quat = take(a, 4 * nf * sizeof(double));
+    m->body_name = vt_block_take(b, nb, VT_NAME_MAX);
+    m->joint_name = vt_block_take(b, nb, VT_NAME_MAX);
+    m->drive_name = vt_block_take(b, nd, VT_NAME_MAX);
+    m->cut_name = vt_block_take(b, nk, VT_NAME_MAX);
+    m->frame_name = vt_block_take(b, nf, VT_NAME_MAX);
+    m->frame_body = vt_block_take(b, nf, sizeof(int));
+    m->frame_point = vt_block_take(b, 3 * nf, sizeof(double));
+    m->frame_quat = vt_block_take(b, 4 * nf, sizeof(double));
 }
 
 vt_status vt_builder_build(vt_model **model, vt_builder *b)
@@ -912,9 +264,9 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     if (!depth_nv) return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory");
     for (int i = 1; i <= n; i++) {
         const vt_body_def *d = &b->bodies[i - 1];
-        nq += joint_nq[d->joint];
-        nv += joint_nv[d->joint];
-        depth_nv[i] = depth_nv[d->parent] + joint_nv[d->joint];
+        nq += vt_joint_nq(d->joint);
+        nv += vt_joint_nv(d->joint);
+        depth_nv[i] = depth_nv[d->parent] + vt_joint_nv(d->joint);
         npath += depth_nv[i];
         nc += d->joint == VT_JOINT_BASE;
     }
@@ -930,20 +282,21 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
             if (fs[e]->type == VT_FUNCTION_SPLINE) nsample += (size_t)fs[e]->nsample;
     }
 
-    arena a = {NULL, sizeof(vt_model)};
+    /* sizing pass, then the carving pass: every array on 16 bytes (calloc's alignment; none needs more) */
+    vt_block blk = {.base = NULL, .used = sizeof(vt_model), .align = 16};
     vt_model tmp;
-    layout_model(&a, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
-    take(&a, 3 * nsample * sizeof(double));
-    char *block = calloc(1, a.used);
+    layout_model(&blk, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
+    vt_block_take(&blk, 3 * nsample, sizeof(double));
+    char *block = calloc(1, blk.used);
     if (!block) {
         free(depth_nv);
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory (%zu bytes)", a.used);
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory (%zu bytes)", blk.used);
     }
     vt_model *m = (vt_model *)block;
-    a.base = block;
-    a.used = sizeof(vt_model);
-    layout_model(&a, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
-    double *samples = take(&a, 3 * nsample * sizeof(double));
+    blk.base = block;
+    blk.used = sizeof(vt_model);
+    layout_model(&blk, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
+    double *samples = vt_block_take(&blk, 3 * nsample, sizeof(double));
 
     m->nbody = n;
     m->nq = nq;
@@ -1016,9 +369,9 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         m->body_parent[i] = d->parent;
         m->body_joint[i] = jt;
         m->body_qadr[i] = qadr;
-        m->body_nq[i] = joint_nq[jt];
+        m->body_nq[i] = vt_joint_nq(jt);
         m->body_vadr[i] = vadr;
-        m->body_nv[i] = joint_nv[jt];
+        m->body_nv[i] = vt_joint_nv(jt);
         m->body_mass[i] = d->mass;
         memcpy(m->body_inertia + 9 * i, d->inertia, 9 * sizeof(double));
         memcpy(m->body_jpar + 3 * i, d->joint_parent, 3 * sizeof(double));
@@ -1026,7 +379,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         memcpy(m->body_axis + 6 * i, d->axis1, 3 * sizeof(double));
         memcpy(m->body_axis + 6 * i + 3, d->axis2, 3 * sizeof(double));
         memcpy(m->body_quat0 + 4 * i, d->orientation, 4 * sizeof(double));
-        for (int k = 0; k < joint_nv[jt]; k++) {
+        for (int k = 0; k < vt_joint_nv(jt); k++) {
             m->dof_body[vadr + k] = i;
             double *lim = m->dof_limit + 4 * (vadr + k);
             const int own = k < 2 && jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_FREE;
@@ -1051,11 +404,11 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
                    (size_t)m->body_pathnum[j] * sizeof(int));
             padr += m->body_pathnum[j];
         }
-        for (int k = 0; k < joint_nv[jt]; k++) m->path_dof[padr++] = vadr + k;
+        for (int k = 0; k < vt_joint_nv(jt); k++) m->path_dof[padr++] = vadr + k;
         if (depth_nv[i] > m->maxpath) m->maxpath = depth_nv[i];
 
-        qadr += joint_nq[jt];
-        vadr += joint_nv[jt];
+        qadr += vt_joint_nq(jt);
+        vadr += vt_joint_nv(jt);
     }
     free(depth_nv);
     build_rows(m);
@@ -1123,33 +476,33 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
 int vt_find_body(const vt_model *m, const char *name)
 {
     if (!m || !name) return VT_ERR_NULL;
-    const int k = find_name(m->body_name + VT_NAME_MAX, m->nbody, name); /* past the ground's */
+    const int k = vt_find_name(m->body_name + VT_NAME_MAX, m->nbody, name); /* past the ground's */
     return k < 0 ? k : k + 1;
 }
 
 int vt_find_joint(const vt_model *m, const char *name)
 {
     if (!m || !name) return VT_ERR_NULL;
-    const int k = find_name(m->joint_name + VT_NAME_MAX, m->nbody, name);
+    const int k = vt_find_name(m->joint_name + VT_NAME_MAX, m->nbody, name);
     return k < 0 ? k : k + 1;
 }
 
 int vt_find_drive(const vt_model *m, const char *name)
 {
-    return !m || !name ? VT_ERR_NULL : find_name(m->drive_name, m->ndrive, name);
+    return !m || !name ? VT_ERR_NULL : vt_find_name(m->drive_name, m->ndrive, name);
 }
 
 int vt_find_cut_joint(const vt_model *m, const char *name)
 {
-    return !m || !name ? VT_ERR_NULL : find_name(m->cut_name, m->ncut, name);
+    return !m || !name ? VT_ERR_NULL : vt_find_name(m->cut_name, m->ncut, name);
 }
 
 int vt_find_frame(const vt_model *m, const char *name)
 {
-    return !m || !name ? VT_ERR_NULL : find_name(m->frame_name, m->nframe, name);
+    return !m || !name ? VT_ERR_NULL : vt_find_name(m->frame_name, m->nframe, name);
 }
 
 int vt_find_coupling(const vt_model *m, const char *name)
 {
-    return !m || !name ? VT_ERR_NULL : find_name(m->coupling_name, m->ncoupling, name);
+    return !m || !name ? VT_ERR_NULL : vt_find_name(m->coupling_name, m->ncoupling, name);
 }

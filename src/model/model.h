@@ -1,9 +1,11 @@
 /* vtdyn — The model's internal layout as the stages read it (model/model.c): row kinds and owners, rate
- * kinds, drive rows, subtree sums. */
+ * kinds, drive rows, subtree sums. A drive's and a cut joint's rows and the joints' sizes are the
+ * definitions' (model/builder.h, included). */
 #ifndef VT_MODEL_MODEL_H
 #define VT_MODEL_MODEL_H
 
 #include "vtdyn.h"
+#include "model/builder.h"
 
 /* Cartesian block of body i (1..n) in the paper's stacked 7n vectors. */
 static inline int vt_xoff(int body) { return 7 * (body - 1); }
@@ -19,11 +21,6 @@ static inline void vt_subtree_sum(const vt_model *m, double *W, int stride)
         for (int c = 0; c < stride; c++) dst[c] += src[c];
     }
 }
-
-/* A body's inertia J (3x3 column-major) as the builder accepts it: symmetric, positive
- * semi-definite and within the triangle inequality to VT_INERTIA_TOL (model.c); the message
- * starts with who ("body 3", a URDF link). */
-vt_status vt_check_inertia(char *msg, const char *who, const double J[9]);
 
 /* Rotational (0) or translational (1) kind of each joint rate, and which of the joint's
  * axes it uses; base rates are reported separately. */
@@ -63,27 +60,7 @@ static inline int vt_known_row(const vt_model *m, int r)
 {
     return m->con_kind[r] == VT_ROW_JOINT && m->drive_row[m->dof_drive[m->con_dof[r]]] == r;
 }
-/* Rows of a cut joint: its kind's, or 2 for a planar pin. */
-int vt_cut_nrows(const vt_cut_joint_def *c);
 /* Number of rows that belong to drives (they come first). */
 int vt_drive_rows(const vt_model *m);
-/* An orientation drive, absolute or relative (3 rows, p_d(t) from prescribed orientation) */
-static inline int vt_drive_turns(vt_drive_type type)
-{
-    return type == VT_DRIVE_ORIENTATION || type == VT_DRIVE_RELATIVE_ORIENTATION;
-}
-/* Rows of one drive */
-static inline int vt_drive_nrows(const vt_drive_def *d) { return vt_drive_turns(d->type) ? 3 : 1; }
-/* A drive's time functions (f; with an orientation drive's sequence also f2, f3; none for an
- * orientation callback) into fs; returns how many */
-static inline int vt_drive_functions(const vt_drive_def *d, const vt_function *fs[3])
-{
-    if (vt_drive_turns(d->type) && d->orientation_callback) return 0;
-    fs[0] = &d->f;
-    if (!vt_drive_turns(d->type) || !d->sequence) return 1;
-    fs[1] = &d->f2;
-    fs[2] = &d->f3;
-    return 3;
-}
 
 #endif

@@ -132,7 +132,7 @@ typedef struct {
 } urdf_body;
 
 typedef struct {
-    char *msg;          /* 256 bytes or NULL */
+    char *msg;          /* VT_MESSAGE_SIZE bytes or NULL */
     int mimic;          /* vt_urdf_options.mimic */
     urdf_link *link;
     urdf_joint *joint;
@@ -154,11 +154,11 @@ static vt_status fail_at(const urdf *u, vt_status st, const char *kind, const xm
     const long line = node ? xmlGetLineNo(node) : -1;
     const char *who = name ? (const char *)name : "";
     if (!name)
-        snprintf(u->msg, 256, "<%.24s> (line %ld): ", node ? (const char *)node->name : kind, line);
+        snprintf(u->msg, VT_MESSAGE_SIZE, "<%.24s> (line %ld): ", node ? (const char *)node->name : kind, line);
     else if (node && strcmp((const char *)node->name, kind) != 0)
-        snprintf(u->msg, 256, "%s \"%.64s\", <%.24s> (line %ld): ", kind, who, (const char *)node->name, line);
+        snprintf(u->msg, VT_MESSAGE_SIZE, "%s \"%.64s\", <%.24s> (line %ld): ", kind, who, (const char *)node->name, line);
     else
-        snprintf(u->msg, 256, "%s \"%.64s\" (line %ld): ", kind, who, line);
+        snprintf(u->msg, VT_MESSAGE_SIZE, "%s \"%.64s\" (line %ld): ", kind, who, line);
     const size_t n = strlen(u->msg), w = strlen(what), room = 255 - n; /* the reason after the place */
     memcpy(u->msg + n, what, w < room ? w : room);
     u->msg[n + (w < room ? w : room)] = '\0';
