@@ -1,27 +1,9 @@
-/* Dynamic analysis and the forward check with SUNDIALS IDA: the index-1 form of (5).
+/* Dynamic analysis and the forward check with SUNDIALS IDA: the set-up, the steps and the
+ * outputs. The equations IDA solves (the index-1 form of (5), the other formulations, the
+ * iteration matrix, the deviation from an exact motion) are in analysis/dae.c.
  *
- * Unknowns y = [q; v; λ] (nq + nv + nc), v = q̇ the rates; residual F(t, y, y') = 0 with
- *   q' − T(q) v                  T = I, except a spherical joint: p' = ½ E(p)^T v
- *   M*(q) v' − Q(q, v, t) − Φ_q^T λ          (2)
- *   Φ_q v' − γ                               (5), second row
- * q and v are differential, λ algebraic (excluded from IDA's error test). The residual
- * follows SUNDIALS's rules: 0 ok, > 0 recoverable, < 0 fatal. A stage that refuses a trial state
- * (a singular or non-finite solve) is recoverable: IDA retries with a smaller step, at most
- * VT_REFUSALS_MAX times between two outputs (IDA's own limits, 10 failures a step and max_steps,
- * bound it as well). A failure of the user's functions at t (a drive's time function or
- * orientation callback: they depend on t alone, so no smaller step cures it) is fatal: the run
- * ends at once with its status and message. Either way the stage's status and message are kept
- * and reported, not IDA's generic one.
- * Consistent initial values are computed, not guessed: q and v projected onto
- * Φ = 0 and Φ_q v = −Φ_t (vt_kinematic_solve), then q̈ and λ from (5).
- *
- * The iteration matrix J = ∂F/∂y + c_j ∂F/∂y' (c_j from IDA's step): by forward differences,
- * column j from F(t, y + δ_j e_j, y' + c_j δ_j e_j) with IDA's own increments
- * δ_j = max(√ε max(|y_j|, |h y'_j|), 1/w_j), signed as h y'_j (w: IDA's error weights, h its
- * step) — the Jacobian IDA's dense difference quotient forms, written straight into IDA's matrix
- * with IDA's work vectors, so that a run allocates nothing after its start (IDA's own routine
- * clones a vector at every Jacobian). An analytic J needs ∂(M*)/∂q, ∂Q/∂q and ∂(Φ_q^T λ)/∂q:
- * not cheap.
+ * Consistent initial values are computed, not guessed: q and v projected onto Φ = 0 and
+ * Φ_q v = −Φ_t (vt_kinematic_solve), then q̈ and λ from (5).
  *
  * Forward check (the paper's Figs. 6-8, 10): the model without drives (cut joints and p^T p = 1
  * kept) under the drives' efforts: by default their generalized force Φ_q,d^T λ_d as qfrc (the
@@ -35,24 +17,11 @@
  * the driven block's λ at the same t.) For a fully driven model they are exact: the kinematic
  * solution at every t that IDA asks for, Newton started from the analysis's rows around t
  * interpolated and taken one step past newton_tol (VT_SOLVE_POLISH: its error is then
- * round-off), and at the output times the rows themselves. There IDA's unknowns are the
- * deviation from that exact motion y_ref(t) = [q; v; 0], y_ref' = [T(q) v; q̈; 0]:
- *   e = y − y_ref(t),   G(t, e, e') = F(t, y_ref(t) + e, y_ref'(t) + e') = 0,
- * the same equations in shifted unknowns (y_ref and y_ref' exact, not integrated), so that IDA's
- * error test and steps follow what the efforts' error drives and not the motion itself: with
- * exact efforts e stays at round-off and IDA takes a few long steps (the five-link arm: 18 for
- * 100 rows, where y itself took about 500 at rtol 1e-8, its 1.4e-6 rad error IDA's own), and a
- * wrong effort shows as the deviation it causes (test_forward_check_measures_wrong_efforts). IDA's
- * error weights stay those of y, 1 / (rtol |y_ref + e| + atol) (deviation_weights). The
- * reference must sit on the forward model's constraints to round-off (GGL's Φ(q) = 0 rows):
- * Newton's error left within newton_tol would jitter from one t to the next, and IDA would chase
- * it. A forward model without constraint
- * rows (a tree) has its residual M* v' − Q by one recursive pass (vt_inverse_dynamics_motion
- * with q̈ = v'): the same equations, O(n), M* and Q not formed.
+ * round-off), and at the output times the rows themselves; IDA's unknowns are then the
+ * deviation from that exact motion (analysis/dae.c).
  */
 #include <math.h>
 #include <stddef.h>
-#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,740 +32,315 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "analysis/dynamic_analysis.h"
-#include "base/lapack.h"
-#include "base/euler.h"
-#include "base/scan.h"
 #include "base/status.h"
-#include "model/functions.h"
 #include "model/model.h"
 #include "kinematics/kinematics.h"
 #include "dense/reactions.h"
-#include "dense/solve.h"
+#include "analysis/dae.h"
 #include "analysis/kinematic_solve.h"
 #include "analysis/trajectory.h"
 
-/* The driven run's steps, kept for an independent forward run: t, y = [q; v] and y' at every
- * step IDA takes; between steps y is the cubic Hermite interpolant of the two ends. */
+/* IDA's objects for one run (NULL until made; ida_free releases them), the call that failed and
+ * the steps counted before a restart */
 typedef struct {
-    int cap, n, dim;
-    double *t, *y, *yp; /* (cap), (dim x cap), (dim x cap) */
-    double *tmp;        /* an interpolated y (dim) */
-    double err;         /* largest |Hermite − IDA's own interpolant| at step midpoints */
-} history;
+    SUNContext ctx;
+    N_Vector y, yp, id, atol;
+    N_Vector yint;      /* IDA's own interpolant (a run that keeps its history) */
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    void *mem;          /* IDA's memory */
+    int N;              /* the length of y */
+    double tend;        /* the last output time, IDA's stop time */
+    const char *call;   /* the last SUNDIALS call made, named in a failure's message */
+    int flag;           /* its return value: < 0 it failed (ida_failure reports it) */
+    long nst_done, nre_done; /* steps and residuals before IDAReInit restarts the counters */
+} ida_run;
 
-static void hermite(const history *h, double t, double *out)
-{
-    int lo = 0, hi = h->n - 1;
-    if (t <= h->t[0]) hi = 1;
-    else if (t >= h->t[h->n - 1]) lo = h->n - 2;
-    else
-        while (hi - lo > 1) { /* bisection: t[lo] <= t < t[hi] */
-            const int mid = (lo + hi) / 2;
-            if (h->t[mid] <= t) lo = mid;
-            else hi = mid;
-        }
-    const double t0 = h->t[lo], dt = h->t[lo + 1] - t0, sv = (t - t0) / dt;
-    const double h00 = (2 * sv - 3) * sv * sv + 1, h10 = ((sv - 2) * sv + 1) * sv, h01 = (3 - 2 * sv) * sv * sv,
-                 h11 = (sv - 1) * sv * sv;
-    const double *y0 = h->y + (size_t)lo * (size_t)h->dim, *y1 = y0 + h->dim;
-    const double *d0 = h->yp + (size_t)lo * (size_t)h->dim, *d1 = d0 + h->dim;
-    for (int c = 0; c < h->dim; c++) out[c] = h00 * y0[c] + h10 * dt * d0[c] + h01 * y1[c] + h11 * dt * d1[c];
-}
-
-typedef struct {
-    const vt_model *m;  /* driven block (NULL when Q_d is exact) */
-    vt_data *d;
-    const vt_model *mf; /* forward block (NULL without the forward check) */
-    vt_data *df;
-    vt_data *dk;        /* exact Q_d (fully driven) */
-    vt_data *msg;       /* where IDA's messages go */
-    const double *xfrc0;/* applied loads of the driven run, kept in the forward one */
-    int as_loads;       /* vt_run_options.forward_as_loads */
-    double newton_tol;
-    int newton_maxit;
-    int nd;             /* size of the driven block in y */
-    int form;           /* vt_formulation */
-    double alpha, beta; /* Baumgarte */
-    history *rec;       /* driven run: record its steps here */
-    history *src;       /* forward run: the driven steps, efforts from their interpolant */
-    double *w;          /* the GGL residual's v + Φ_q^T μ (nv) */
-    double band;        /* vt_run_options.redundant_band (ODE form) */
-    struct {            /* set by run() */
-        void *ida;      /* IDA's memory: the Jacobian's increments use its step and weights */
-        vt_status why;  /* the last refusal's status since the current IDASolve call began */
-        int fatal;      /* 1: the user's functions failed, 2: too many refusals; the run ends with it */
-        int refusals;   /* recoverable refusals since the current IDASolve call began */
-        double t;       /* the last refusal's time */
-        char msg[256];  /* and its message */
-        int dk_valid;   /* dk holds the exact efforts at dk->time (they depend on t alone) */
-        int motion;     /* the forward block's residual by motion_residual (set by start()) */
-        const vt_trajectory *rows; /* exact efforts: the kinematic analysis's rows, Newton's starts */
-        double *ref;    /* exact efforts: y_ref, y'_ref of the reference motion at dk->time, then
-                           y = y_ref + e and y' (4 x N); NULL: IDA's unknowns are y itself */
-        double rtol;    /* with ref: IDA's weights are those of y, 1 / (rtol |y_ref + e| + atol) */
-        const double *atol;
-    } s;
-} dae;
-
-/* recoverable refusals of trial states allowed between two outputs (or in one step of a run
- * that keeps its history) before the run ends with the last one */
-#define VT_REFUSALS_MAX 100
-
-/* The drives' functions at t (they depend on t alone): VT_OK, or the first failure with a
- * message naming the drive. */
-static vt_status drive_functions(const vt_model *m, double t, char *msg, size_t size)
-{
-    for (int k = 0; k < m->ndrive; k++) {
-        const vt_drive_def *dr = &m->drive[k];
-        const char *name = m->drive_name ? m->drive_name + (size_t)VT_NAME_MAX * (size_t)k : "";
-        double v[3], p[4], w[3], wd[3];
-        vt_status st = VT_OK;
-        if (vt_drive_turns(dr->type) && dr->orientation_callback) {
-            if (dr->orientation_callback(t, p, w, wd, dr->user) != 0) st = VT_ERR_CALLBACK;
-            else if (!vt_all_finite(p, 4) || !vt_all_finite(w, 3) || !vt_all_finite(wd, 3)) st = VT_ERR_NONFINITE;
-            if (st) {
-                snprintf(msg, size, "drive %d%s%s: orientation callback %s at t = %.17g", k, name[0] ? " " : "", name,
-                         st == VT_ERR_CALLBACK ? "failed" : "returned NaN or Inf", t);
-                return st;
-            }
-        } else {
-            const vt_function *fs[3];
-            const int nf = vt_drive_functions(dr, fs);
-            for (int e = 0; e < nf; e++)
-                if ((st = vt_function_eval_valid(v, fs[e], t))) {
-                    snprintf(msg, size, "drive %d%s%s: time function %s%s at t = %.17g", k, name[0] ? " " : "", name,
-                             e == 0 ? "" : e == 1 ? "f2 " : "f3 ",
-                             st == VT_ERR_CALLBACK ? "failed" : st == VT_ERR_NONFINITE ? "returned NaN or Inf" : "failed",
-                             t);
-                    return st;
-                }
-        }
-    }
-    return VT_OK;
-}
-
-/* A stage refused (t, y) with status st and the message in msg: kept for the report. Fatal
- * (< 0) if the user's functions fail at t, or after VT_REFUSALS_MAX refusals; else recoverable
- * (> 0): IDA retries with a smaller step. */
-static int refused(dae *p, vt_status st, const char *msg, double t)
-{
-    const vt_model *drv = p->dk ? p->dk->model : p->m; /* the driven model: the drives are its */
-    const vt_status user = drv ? drive_functions(drv, t, p->s.msg, sizeof p->s.msg) : VT_OK;
-    p->s.t = t;
-    if (user) {
-        p->s.why = user;
-        p->s.fatal = 1;
-        return -1;
-    }
-    p->s.why = st ? st : VT_ERR_IDA;
-    snprintf(p->s.msg, sizeof p->s.msg, "%s", msg);
-    if (++p->s.refusals > VT_REFUSALS_MAX) {
-        p->s.fatal = 2;
-        return -1;
-    }
-    return 1;
-}
-
-/* before each IDASolve call: no refusal yet */
-static void fresh(dae *p)
-{
-    p->s.why = VT_OK;
-    p->s.fatal = 0;
-    p->s.refusals = 0;
-}
-
-static int block_size(const vt_model *m, int form)
-{
-    if (form == VT_FORMULATION_ODE) return m->nq + m->nv;
-    return m->nq + m->nv + (form == VT_FORMULATION_GGL ? 2 : 1) * m->nc;
-}
-
-/* q' = T(q) v */
-static void qdot_from_v(const vt_model *m, const double *q, const double *v, double *qd)
-{
-    for (int i = 1; i <= m->nbody; i++) {
-        const int qa = m->body_qadr[i], va = m->body_vadr[i];
-        const int jt = m->body_joint[i];
-        if (jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE) { /* free: ṫ' = its rates, then as spherical */
-            const int o = jt == VT_JOINT_FREE ? 3 : 0;
-            double E[12];
-            for (int k = 0; k < o; k++) qd[qa + k] = v[va + k];
-            vt_euler_E(E, q + qa + o);
-            vt_mulE_t(qd + qa + o, E, v + va + o);
-            for (int k = 0; k < 4; k++) qd[qa + o + k] *= 0.5;
-        } else {
-            for (int k = 0; k < m->body_nq[i]; k++) qd[qa + k] = v[va + k];
-        }
-    }
-}
-
-/* The residual of one model's block; p gives the formulation:
- *   index-1 (and projection)  q' − T v,          M* v' − Q − Φ_q^T λ,   Φ_q v' − γ
- *   Baumgarte                 q' − T v,          M* v' − Q − Φ_q^T λ,   Φ_q v' − γ + 2α Φ̇ + β² Φ
- *   GGL (index 2)             q' − T (v + Φ_q^T μ), M* v' − Q − Φ_q^T λ,   Φ,   Φ_q v + Φ_t
- *   ODE                       q' − T v,          v' − q̈   with q̈ from vt_solve, γ − 2α Φ̇ − β² Φ
- * with Φ̇ = Φ_q v + Φ_t; λ (and μ) algebraic. */
-static vt_status block_residual(const dae *p, const vt_model *m, vt_data *d, double t, const double *y,
-                                const double *yp, double *r)
-{
-    const int nq = m->nq, nv = m->nv, nc = m->nc, ggl = p->form == VT_FORMULATION_GGL;
-    memcpy(d->q, y, (size_t)nq * sizeof(double));
-    memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
-    d->time = t;
-    vt_status st;
-    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
-        (st = vt_constraints(m, d)))
-        return st;
-    if (p->form == VT_FORMULATION_ODE) { /* q' − T q̇, q̇' − q̈(q, q̇, t) with γ − 2α Φ̇ − β² Φ */
-        const double a2 = 2.0 * p->alpha, b2 = p->beta * p->beta;
-        for (int k = 0; k < nc; k++) {
-            double phid = d->Phit[k];
-            for (int c = 0; c < nv; c++) phid += d->Phiq[k + (size_t)c * (size_t)nc] * y[nq + c];
-            d->gamma[k] -= a2 * phid + b2 * d->Phi[k];
-        }
-        if ((st = vt_solve_run(m, d, p->band))) return st;
-        qdot_from_v(m, y, y + nq, r);
-        for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
-        for (int k = 0; k < nv; k++) r[nq + k] = yp[nq + k] - d->qdd[k];
-        return vt_all_finite(r, nq + nv) ? VT_OK
-                                         : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
-    }
-    const double *qp = yp, *vp = yp + nq, *lam = y + nq + nv;
-    double *rq = r, *rv = r + nq, *rl = r + nq + nv;
-    if (ggl && nc > 0) { /* T (v + Φ_q^T μ) */
-        double *w = p->w;
-        memcpy(w, y + nq, (size_t)nv * sizeof(double));
-        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, 1.0, d->Phiq, nc, lam + nc, 1, 1.0, w, 1);
-        qdot_from_v(m, y, w, rq);
-    } else {
-        qdot_from_v(m, y, y + nq, rq);
-    }
-    for (int k = 0; k < nq; k++) rq[k] = qp[k] - rq[k];
-    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, vp, 1, 0.0, rv, 1);
-    for (int k = 0; k < nv; k++) rv[k] -= d->Q[k];
-    if (nc > 0) {
-        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, -1.0, d->Phiq, nc, lam, 1, 1.0, rv, 1);
-        if (ggl) {
-            double *rm = rl + nc;
-            memcpy(rl, d->Phi, (size_t)nc * sizeof(double));
-            memcpy(rm, d->Phit, (size_t)nc * sizeof(double));
-            cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, y + nq, 1, 1.0, rm, 1);
-        } else {
-            cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, vp, 1, 0.0, rl, 1);
-            for (int k = 0; k < nc; k++) rl[k] -= d->gamma[k];
-            if (p->form == VT_FORMULATION_BAUMGARTE) {
-                const double a2 = 2.0 * p->alpha, b2 = p->beta * p->beta;
-                for (int k = 0; k < nc; k++) rl[k] += a2 * d->Phit[k] + b2 * d->Phi[k];
-                cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, a2, d->Phiq, nc, y + nq, 1, 1.0, rl, 1);
-            }
-        }
-    }
-    return vt_all_finite(r, block_size(m, p->form))
-               ? VT_OK
-               : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
-}
-
-/* The residual of a block without constraint rows (a tree: the forward model of most
- * mechanisms), q' − T v and M* v' − Q, by one recursive pass: M* v' − Q is the effort
- * s · W̄ − qfrc that the motion v' needs (vt_inverse_dynamics_motion, O(n)), neither M* nor Q
- * formed; the loads already in d */
-static vt_status motion_residual(const vt_model *m, vt_data *d, double t, const double *y, const double *yp, double *r)
-{
-    const int nq = m->nq, nv = m->nv;
-    memcpy(d->q, y, (size_t)nq * sizeof(double));
-    memcpy(d->qd, y + nq, (size_t)nv * sizeof(double));
-    memcpy(d->qdd, yp + nq, (size_t)nv * sizeof(double));
-    d->time = t;
-    const vt_status st = vt_inverse_dynamics_motion(m, d);
-    if (st) return st;
-    qdot_from_v(m, y, y + nq, r);
-    for (int k = 0; k < nq; k++) r[k] = yp[k] - r[k];
-    memcpy(r + nq, d->qfrc_drive, (size_t)nv * sizeof(double));
-    return vt_all_finite(r, nq + nv) ? VT_OK : vt_fail(d->message, VT_ERR_NONFINITE, "the residual at t = %.10g is not finite", t);
-}
-
-/* The drives' exact efforts at t into dk: the kinematic solution at t by Newton from the analysis's
- * two rows around t interpolated (vt_kinematic_start: at mid-interval often within newton_tol
- * already, so that the solve is one evaluation of Φ and Φ_q, the velocities' solve and the
- * instant), or, should Newton fail from there, from the nearer row itself */
-static vt_status exact_efforts(const dae *p, const vt_model *m, double t)
-{
-    const vt_trajectory *tr = p->s.rows;
-    vt_data *dk = p->dk;
-    int lo = 0, hi = tr->nfilled - 1; /* t[lo] ≤ t < t[hi], or the last two rows */
-    while (hi - lo > 1) {
-        const int mid = (lo + hi) / 2;
-        if (tr->t[mid] <= t) lo = mid;
-        else hi = mid;
-    }
-    const int near = t - tr->t[lo] <= tr->t[hi] - t ? lo : hi, far = near == lo ? hi : lo;
-    int third = -1; /* the next row out on either side, the nearer one */
-    if (lo > 0 && (hi + 1 >= tr->nfilled || t - tr->t[lo - 1] <= tr->t[hi + 1] - t)) third = lo - 1;
-    else if (hi + 1 < tr->nfilled) third = hi + 1;
-    if (far == near) third = -1;
-    vt_status st = vt_kinematic_start(m, dk, tr, near, far == near ? -1 : far, third);
-    if (!st) st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS | VT_SOLVE_POLISH, NULL, NULL, 0.0);
-    if (st == VT_ERR_NEWTON) {
-        memcpy(dk->q, tr->q + (size_t)near * (size_t)m->nq, (size_t)m->nq * sizeof(double));
-        memcpy(dk->qd, tr->qd + (size_t)near * (size_t)m->nv, (size_t)m->nv * sizeof(double));
-        st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS | VT_SOLVE_POLISH, NULL, NULL, 0.0);
-    }
-    return st;
-}
-
-/* At an output time the drives' efforts are row k of the analysis (stored at exactly that time):
- * what vt_apply_drive_loads reads, copied into dk */
-static void row_efforts(const dae *p, const vt_model *m, int k)
-{
-    const vt_trajectory *tr = p->s.rows;
-    vt_data *dk = p->dk;
-    const size_t r = (size_t)k, nv = (size_t)m->nv, nd = (size_t)m->ndrive, D = sizeof(double);
-    memcpy(dk->q, tr->q + r * (size_t)m->nq, (size_t)m->nq * D);
-    memcpy(dk->qd, tr->qd + r * nv, nv * D);
-    memcpy(dk->qdd, tr->qdd + r * nv, nv * D);
-    memcpy(dk->lambda, tr->lambda + r * (size_t)m->nc, (size_t)m->nc * D);
-    memcpy(dk->qfrc_drive, tr->qfrc_drive + r * nv, nv * D);
-    memcpy(dk->drive_effort, tr->drive_effort + r * nd, nd * D);
-    memcpy(dk->drive_force, tr->drive_force + 3 * r * nd, 3 * nd * D);
-    memcpy(dk->drive_moment, tr->drive_moment + 3 * r * nd, 3 * nd * D);
-    dk->time = tr->t[k];
-}
-
-/* y_ref, y'_ref of one block at a state in d: [q; v; 0], [T(q) v; q̈; 0] */
-static void block_reference(const vt_model *m, const vt_data *d, int n, double *yr, double *ypr)
-{
-    const int nq = m->nq, nv = m->nv;
-    memcpy(yr, d->q, (size_t)nq * sizeof(double));
-    memcpy(yr + nq, d->qd, (size_t)nv * sizeof(double));
-    memset(yr + nq + nv, 0, (size_t)(n - nq - nv) * sizeof(double));
-    qdot_from_v(m, d->q, d->qd, ypr);
-    memcpy(ypr + nq, d->qdd, (size_t)nv * sizeof(double));
-    memset(ypr + nq + nv, 0, (size_t)(n - nq - nv) * sizeof(double));
-}
-
-/* the exact efforts at t in dk (IDA's iterations and Jacobian at one t reuse them), and the
- * reference motion there */
-static vt_status reference(dae *p, const vt_model *m, double t)
-{
-    if (p->s.dk_valid && p->dk->time == t) return VT_OK;
-    p->dk->time = t;
-    p->s.dk_valid = 0;
-    const vt_status st = exact_efforts(p, m, t);
-    if (st) return st;
-    p->s.dk_valid = 1;
-    if (p->s.ref) {
-        const int n = block_size(p->mf, p->form);
-        block_reference(m, p->dk, n, p->s.ref, p->s.ref + n);
-    }
-    return VT_OK;
-}
-
-static int residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void *user)
-{
-    dae *p = user;
-    const double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
-    double *r = N_VGetArrayPointer(rr);
-    vt_status st;
-    if (p->m && (st = block_residual(p, p->m, p->d, t, y, yp, r))) return refused(p, st, p->d->message, t);
-    if (!p->mf) return 0;
-    const vt_model *m = p->dk ? p->dk->model : p->m;
-    vt_data *src = p->dk ? p->dk : p->d;
-    if (p->src) { /* the driven run's state at t, interpolated, and its efforts */
-        hermite(p->src, t, p->src->tmp);
-        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
-        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
-        p->dk->time = t;
-        if ((st = vt_inverse_dynamics(m, p->dk))) return refused(p, st, p->dk->message, t);
-    } else if (p->dk) {
-        if ((st = reference(p, m, t))) return refused(p, st, p->dk->message, t);
-        if (p->s.ref) { /* IDA's unknowns are the deviation e from the reference: y = y_ref + e */
-            const int n = block_size(p->mf, p->form);
-            double *yf = p->s.ref + 2 * (size_t)n, *ypf = yf + n;
-            for (int k = 0; k < n; k++) {
-                yf[k] = p->s.ref[k] + y[k];
-                ypf[k] = p->s.ref[n + k] + yp[k];
-            }
-            y = yf;
-            yp = ypf;
-        }
-    } else { /* the efforts of the driven block's current λ */
-        /* (the ODE form has no λ in y: its residual's vt_solve left them in d already) */
-        if (p->form != VT_FORMULATION_ODE) memcpy(p->d->lambda, y + m->nq + m->nv, (size_t)m->nc * sizeof(double));
-        if ((st = vt_drive_efforts(m, p->d))) return refused(p, st, p->d->message, t);
-    }
-    /* the forward block's positions first: body drives' loads act at its body points (joint
-     * torques, the default, need none) */
-    memcpy(p->df->q, y + p->nd, (size_t)p->mf->nq * sizeof(double));
-    memcpy(p->df->qd, y + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
-    if (p->as_loads && (st = vt_kinematics_tree(p->mf, p->df, 0))) return refused(p, st, p->df->message, t);
-    vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-    st = p->s.motion ? motion_residual(p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd)
-                   : block_residual(p, p->mf, p->df, t, y + p->nd, yp + p->nd, r + p->nd);
-    return st ? refused(p, st, p->df->message, t) : 0;
-}
-
-/* J = ∂F/∂y + c_j ∂F/∂y' by IDA's dense difference quotient (see the top of the file), in IDA's
- * matrix, with tmp1 for the perturbed residual and tmp2 for the weights: nothing allocated */
-static int jacobian(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_Vector rr, SUNMatrix J, void *user,
-                    N_Vector tmp1, N_Vector tmp2, N_Vector tmp3)
-{
-    dae *p = user;
-    (void)tmp3;
-    if (p->s.ref) { /* (the reference at t: the residual's at t, unless IDA evaluated another t since) */
-        const vt_status st = reference(p, p->dk->model, t);
-        if (st) return refused(p, st, p->dk->message, t);
-    }
-    double h = 0.0;
-    if (IDAGetCurrentStep(p->s.ida, &h) < 0 || IDAGetErrWeights(p->s.ida, tmp2) < 0) return -1;
-    double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
-    const double *r = N_VGetArrayPointer(rr), *rj = N_VGetArrayPointer(tmp1), *w = N_VGetArrayPointer(tmp2);
-    const double srur = sqrt(DBL_EPSILON);
-    const sunindextype n = SUNDenseMatrix_Columns(J);
-    /* with the deviation as unknowns the increments are those of y = y_ref + e: round-off is
-     * relative to y, not to e */
-    const double *yr = p->s.ref, *ypr = p->s.ref ? p->s.ref + n : NULL;
-    for (sunindextype j = 0; j < n; j++) {
-        const double yj = y[j], ypj = yp[j];
-        const double ya = yr ? yr[j] + yj : yj, ypa = ypr ? ypr[j] + ypj : ypj;
-        double inc = fmax(srur * fmax(fabs(ya), fabs(h * ypa)), 1.0 / w[j]);
-        if (h * ypa < 0.0) inc = -inc;
-        inc = (yj + inc) - yj; /* the increment as represented */
-        y[j] += inc;
-        yp[j] += cj * inc;
-        const int res = residual(t, yy, yyp, tmp1, p);
-        y[j] = yj;
-        yp[j] = ypj;
-        if (res) return res;
-        const double s = 1.0 / inc;
-        double *col = SUNDenseMatrix_Column(J, j);
-        for (sunindextype i = 0; i < n; i++) col[i] = s * (rj[i] - r[i]);
-    }
-    return 0;
-}
-
-/* The error weights of the deviation e are those IDA would give y = y_ref + e: the tolerances
- * keep their meaning (rtol relative to the state), and e's round-off, which is relative to y,
- * stays far below them whatever atol (weights of e alone, 1 / (rtol |e| + atol), would make IDA
- * chase that round-off once atol nears ε |y|). y_ref is the one last taken, within a step of
- * IDA's current time: weights are scales, and a fresh exact solution for them would cost as
- * much as a step's efforts */
-static int deviation_weights(N_Vector yy, N_Vector ewt, void *user)
-{
-    const dae *p = user;
-    const double *y = N_VGetArrayPointer(yy);
-    double *w = N_VGetArrayPointer(ewt);
-    const sunindextype n = N_VGetLength(yy);
-    for (sunindextype k = 0; k < n; k++) w[k] = 1.0 / (p->s.rtol * fabs(p->s.ref[k] + y[k]) + p->s.atol[k]);
-    return 0;
-}
-
-static void on_ida_error(int code, const char *module, const char *function, char *msg, void *user)
-{
-    dae *p = user;
-    (void)module;
-    snprintf(p->msg->message, sizeof p->msg->message, "IDA %s (%d): %s", function, code, msg);
-}
-
-/* y and y' of one block at a consistent state in d: [q; v; λ (; μ = 0)], [T(q) v; q̈; 0] */
-static void block_initial(const vt_model *m, const vt_data *d, int form, double *y, double *yp)
-{
-    const int nq = m->nq, nv = m->nv, nc = m->nc, na = block_size(m, form) - nq - nv;
-    memcpy(y, d->q, (size_t)nq * sizeof(double));
-    memcpy(y + nq, d->qd, (size_t)nv * sizeof(double));
-    memset(y + nq + nv, 0, (size_t)na * sizeof(double));
-    if (na >= nc) memcpy(y + nq + nv, d->lambda, (size_t)nc * sizeof(double));
-    qdot_from_v(m, d->q, d->qd, yp);
-    memcpy(yp + nq, d->qdd, (size_t)nv * sizeof(double));
-    memset(yp + nq + nv, 0, (size_t)na * sizeof(double));
-}
-
-static void block_ids(const vt_model *m, int form, double *id)
-{
-    const int nd = m->nq + m->nv, n = block_size(m, form);
-    for (int k = 0; k < n; k++) id[k] = k < nd ? 1.0 : 0.0;
-}
-
-/* coordinate projection of a block of y onto Φ = 0 and Φ_q v = −Φ_t (least-norm corrections,
- * vt_kinematic_solve), with y' and λ made consistent again; nonzero on failure */
-static vt_status block_project(const dae *p, const vt_model *m, vt_data *d, double t, double *y, double *yp)
-{
-    memcpy(d->q, y, (size_t)m->nq * sizeof(double));
-    memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
-    d->time = t;
-    const vt_status st = vt_kinematic_solve(m, d, p->newton_tol, p->newton_maxit);
-    if (st) return st;
-    block_initial(m, d, p->form, y, yp);
-    return VT_OK;
-}
-
-/* the state of a block of y into its data, then the whole instant (efforts, reactions), its
- * solve with the residual's band */
-static vt_status block_output(const vt_model *m, vt_data *d, double t, const double *y, double band)
-{
-    memcpy(d->q, y, (size_t)m->nq * sizeof(double));
-    memcpy(d->qd, y + m->nq, (size_t)m->nv * sizeof(double));
-    d->time = t;
-    vt_status st;
-    if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
-        (st = vt_constraints(m, d)) || (st = vt_solve_run(m, d, band)))
-        return st;
-    return vt_reactions(m, d);
-}
-
-/* rows 1..nout (or 1..ntout, at the caller's times): integrate, and at every output store the driven and the forward rows */
-static vt_status run(dae *p, const vt_run_options *opt, vt_trajectory *tr, int N, const double *y0,
-                     const double *yp0, const double *ids)
-{
-    vt_data *md = p->msg;
-    SUNContext ctx = NULL;
-    N_Vector y = NULL, yp = NULL, id = NULL, atol = NULL, yint = NULL; /* yint: IDA's own interpolant */
-    SUNMatrix A = NULL;
-    SUNLinearSolver LS = NULL;
-    void *mem = NULL;
-    vt_status st = VT_OK;
-    int flag = 0;
-    long nst_done = 0, nre_done = 0; /* steps before IDAReInit restarts the counters */
-    const char *call = "SUNContext_Create";
+/* SUNDIALS' check_retval: the call named, and on failure (< 0) out with VT_ERR_IDA, r->flag the
+ * failed call's value (the caller reports it with ida_failure) */
 #define CHECK(expr, name)                                                                             \
     do {                                                                                              \
-        call = name;                                                                                  \
-        if ((flag = (expr)) < 0) goto ida_failed;                                                     \
+        r->call = name;                                                                               \
+        if ((r->flag = (expr)) < 0) return VT_ERR_IDA;                                                \
     } while (0)
-    CHECK(SUNContext_Create(NULL, &ctx), "SUNContext_Create");
-    y = N_VNew_Serial(N, ctx);
-    yp = N_VNew_Serial(N, ctx);
-    id = N_VNew_Serial(N, ctx);
-    A = SUNDenseMatrix(N, N, ctx);
-    mem = IDACreate(ctx);
-    p->s.ida = mem;
-    fresh(p);
-    call = "allocation of IDA's vectors, matrix and memory";
-    if (!y || !yp || !id || !A || !mem) {
-        flag = -1;
-        goto ida_failed;
-    }
-    LS = SUNLinSol_Dense(y, A, ctx);
-    if (!LS) {
-        call = "SUNLinSol_Dense";
-        flag = -1;
-        goto ida_failed;
-    }
-    memcpy(N_VGetArrayPointer(y), y0, (size_t)N * sizeof(double));
-    memcpy(N_VGetArrayPointer(yp), yp0, (size_t)N * sizeof(double));
-    memcpy(N_VGetArrayPointer(id), ids, (size_t)N * sizeof(double));
-    CHECK(IDASetErrHandlerFn(mem, on_ida_error, p), "IDASetErrHandlerFn");
-    CHECK(IDAInit(mem, residual, opt->t0, y, yp), "IDAInit");
+
+/* an allocation that failed: reported as a SUNDIALS call returning -1 */
+static vt_status no_memory(ida_run *r, const char *call)
+{
+    r->call = call;
+    r->flag = -1;
+    return VT_ERR_IDA;
+}
+
+/* IDA set up on y0, y'0 and the ids (r->N each): its vectors, matrix and dense solver, the
+ * residual, Jacobian and tolerances of dae.c, the limits of opt and the stop time r->tend (the
+ * last output: IDA never steps past it, so an independent forward check's driven history covers
+ * every time the forward run asks for, no extrapolation); with p->rec the interpolant's vector */
+static vt_status ida_setup(vt_dae *p, const vt_run_options *opt, const double *y0, const double *yp0,
+                           const double *ids, ida_run *r)
+{
+    const int N = r->N;
+    CHECK(SUNContext_Create(NULL, &r->ctx), "SUNContext_Create");
+    r->y = N_VNew_Serial(N, r->ctx);
+    r->yp = N_VNew_Serial(N, r->ctx);
+    r->id = N_VNew_Serial(N, r->ctx);
+    r->A = SUNDenseMatrix(N, N, r->ctx);
+    r->mem = IDACreate(r->ctx);
+    p->s.ida = r->mem;
+    vt_dae_fresh(p);
+    if (!r->y || !r->yp || !r->id || !r->A || !r->mem)
+        return no_memory(r, "allocation of IDA's vectors, matrix and memory");
+    r->LS = SUNLinSol_Dense(r->y, r->A, r->ctx);
+    if (!r->LS) return no_memory(r, "SUNLinSol_Dense");
+    memcpy(N_VGetArrayPointer(r->y), y0, (size_t)N * sizeof(double));
+    memcpy(N_VGetArrayPointer(r->yp), yp0, (size_t)N * sizeof(double));
+    memcpy(N_VGetArrayPointer(r->id), ids, (size_t)N * sizeof(double));
+    void *mem = r->mem;
+    CHECK(IDASetErrHandlerFn(mem, vt_dae_ida_error, p), "IDASetErrHandlerFn");
+    CHECK(IDAInit(mem, vt_dae_residual, opt->t0, r->y, r->yp), "IDAInit");
     /* absolute tolerances: atol on q and q̇; the multipliers are out of the error test, and a
      * loose weight keeps them from stalling the corrector's convergence test (their index-2
      * errors are O(1/h) in GGL) */
-    atol = N_VNew_Serial(N, ctx);
-    if (!atol) {
-        call = "N_VNew_Serial";
-        flag = -1;
-        goto ida_failed;
-    }
-    for (int k = 0; k < N; k++) N_VGetArrayPointer(atol)[k] = ids[k] > 0.5 ? opt->atol : 1.0;
+    r->atol = N_VNew_Serial(N, r->ctx);
+    if (!r->atol) return no_memory(r, "N_VNew_Serial");
+    for (int k = 0; k < N; k++) N_VGetArrayPointer(r->atol)[k] = ids[k] > 0.5 ? opt->atol : 1.0;
     CHECK(IDASetUserData(mem, p), "IDASetUserData"); /* (before IDAWFtolerances: its function's data) */
     if (p->s.ref) {
         p->s.rtol = opt->rtol;
-        p->s.atol = N_VGetArrayPointer(atol);
-        CHECK(IDAWFtolerances(mem, deviation_weights), "IDAWFtolerances");
+        p->s.atol = N_VGetArrayPointer(r->atol);
+        CHECK(IDAWFtolerances(mem, vt_dae_deviation_weights), "IDAWFtolerances");
     } else {
-        CHECK(IDASVtolerances(mem, opt->rtol, atol), "IDASVtolerances");
+        CHECK(IDASVtolerances(mem, opt->rtol, r->atol), "IDASVtolerances");
     }
-    CHECK(IDASetLinearSolver(mem, LS, A), "IDASetLinearSolver");
-    CHECK(IDASetJacFn(mem, jacobian), "IDASetJacFn");
-    CHECK(IDASetId(mem, id), "IDASetId");
+    CHECK(IDASetLinearSolver(mem, r->LS, r->A), "IDASetLinearSolver");
+    CHECK(IDASetJacFn(mem, vt_dae_jacobian), "IDASetJacFn");
+    CHECK(IDASetId(mem, r->id), "IDASetId");
     CHECK(IDASetSuppressAlg(mem, SUNTRUE), "IDASetSuppressAlg");
     CHECK(IDASetMaxNumSteps(mem, opt->max_steps), "IDASetMaxNumSteps");
     if (opt->max_step > 0.0) CHECK(IDASetMaxStep(mem, opt->max_step), "IDASetMaxStep");
-    /* the last output time: IDA never steps past it, so an independent forward check's driven
-     * history covers every time the forward run asks for (no extrapolation) */
-    const int nrow = vt_run_rows(opt);
-    const double tend = vt_run_time(opt, nrow);
-    CHECK(IDASetStopTime(mem, tend), "IDASetStopTime");
-
-
-    history *h = p->rec;
+    CHECK(IDASetStopTime(mem, r->tend), "IDASetStopTime");
+    vt_dae_history *h = p->rec;
     if (h) {
-        yint = N_VNew_Serial(N, ctx);
-        if (!yint) {
-            call = "N_VNew_Serial";
-            flag = -1;
-            goto ida_failed;
-        }
+        r->yint = N_VNew_Serial(N, r->ctx);
+        if (!r->yint) return no_memory(r, "N_VNew_Serial");
         h->n = 0;
         h->err = 0.0;
     }
-    double tstep = opt->t0;
-    for (int k = 1; k <= nrow; k++) {
-        const double tout = vt_run_time(opt, k);
-        double tret = 0.0;
-        if (h) { /* one step at a time, every step recorded, the outputs from IDA's interpolant */
-            if (h->n == 0) { /* the start */
-                h->t[0] = opt->t0;
-                memcpy(h->y, y0, (size_t)h->dim * sizeof(double));
-                memcpy(h->yp, yp0, (size_t)h->dim * sizeof(double));
-                h->n = 1;
-            }
-            long taken = 0;
-            while (tstep < tout) {
-                if (++taken > opt->max_steps) { /* IDA's own mxstep limit does not apply to one-step mode */
-                    md->ida_flag = IDA_TOO_MUCH_WORK;
-                    st = vt_fail(md->message, VT_ERR_IDA,
-                                 "IDASolve: IDA_TOO_MUCH_WORK: %ld steps taken before t = %g (at t = %g)",
-                                 opt->max_steps, tout, tstep);
-                    goto done;
-                }
-                fresh(p);
-                CHECK(IDASolve(mem, tend, &tstep, y, yp, IDA_ONE_STEP), "IDASolve");
-                if (h->n == h->cap) {
-                    st = vt_fail(md->message, VT_ERR_BAD_OPTION,
-                                 "forward check: the driven run took more than history_steps = %d steps", h->cap);
-                    goto done;
-                }
-                h->t[h->n] = tstep;
-                memcpy(h->y + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(y), (size_t)h->dim * sizeof(double));
-                memcpy(h->yp + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(yp), (size_t)h->dim * sizeof(double));
-                h->n++;
-                /* the interpolation's error, against IDA's own interpolant at the step's middle */
-                CHECK(IDAGetDky(mem, 0.5 * (h->t[h->n - 2] + tstep), 0, yint), "IDAGetDky");
-                hermite(h, 0.5 * (h->t[h->n - 2] + tstep), h->tmp);
-                for (int c = 0; c < h->dim; c++)
-                    h->err = fmax(h->err, fabs(h->tmp[c] - N_VGetArrayPointer(yint)[c]));
-            }
-            CHECK(IDAGetDky(mem, tout, 0, yint), "IDAGetDky");
-            tret = tout;
-            memcpy(N_VGetArrayPointer(y), N_VGetArrayPointer(yint), (size_t)N * sizeof(double));
-        } else {
-            fresh(p);
-            CHECK(IDASolve(mem, tout, &tret, y, yp, IDA_NORMAL), "IDASolve");
-        }
-        const double *yv = N_VGetArrayPointer(y);
-        double *yw = N_VGetArrayPointer(y), *ypw = N_VGetArrayPointer(yp);
-        if (p->s.ref) { /* the state: the row (the reference at tout) + the deviation */
-            row_efforts(p, p->dk->model, k);
-            p->s.dk_valid = 0; /* dk holds the row, not the residual's polished reference */
-            block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
-            yw = p->s.ref + 2 * (size_t)N;
-            ypw = yw + N;
-            for (int c = 0; c < N; c++) {
-                yw[c] = p->s.ref[c] + N_VGetArrayPointer(y)[c];
-                ypw[c] = p->s.ref[N + c] + N_VGetArrayPointer(yp)[c];
-            }
-            yv = yw;
-        }
-        if (p->form == VT_FORMULATION_PROJECTION) { /* back onto the constraints, then restart IDA */
-            const vt_data *dp = p->m ? p->d : p->df;
-            if ((p->m && (st = block_project(p, p->m, p->d, tret, yw, ypw))) ||
-                (p->mf && (dp = p->df, st = block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd)))) {
-                char why[256]; /* (dp's message may be md's) */
-                snprintf(why, sizeof why, "%s", dp->message);
-                vt_fail(md->message, st, "projection at t = %g failed: %.200s", tret, why);
-                goto done;
-            }
-            if (p->s.ref) /* back to the deviation */
-                for (int c = 0; c < N; c++) {
-                    N_VGetArrayPointer(y)[c] = yw[c] - p->s.ref[c];
-                    N_VGetArrayPointer(yp)[c] = ypw[c] - p->s.ref[N + c];
-                }
-            long a = 0, b = 0;
-            IDAGetNumSteps(mem, &a);
-            IDAGetNumResEvals(mem, &b);
-            nst_done += a;
-            nre_done += b;
-            CHECK(IDAReInit(mem, tret, y, yp), "IDAReInit");
-        }
-        if (p->m) {
-            if ((st = block_output(p->m, p->d, tret, yv, p->band))) goto done;
-            vt_trajectory_store(tr, p->m, p->d, k);
-        }
-        if (p->mf) {
-            const vt_model *m = p->dk ? p->dk->model : p->m;
-            vt_data *src = p->dk ? p->dk : p->d;
-            if (p->src) { /* the driven run's interpolated state and its efforts */
-                hermite(p->src, tret, p->src->tmp);
-                memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
-                memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
-                p->dk->time = tret;
-                if ((st = vt_inverse_dynamics(m, p->dk))) {
-                    vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
-                    goto done;
-                }
-            } else if (p->dk && !p->s.ref) { /* exact efforts: the kinematic row already stored at this time */
-                row_efforts(p, m, k);
-                p->s.dk_valid = 1;
-            }
-            memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
-            if (p->s.motion) { /* a tree: its q̈ and reactions by the recursive instant (articulated bodies) */
-                memcpy(p->df->qd, yv + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
-                p->df->time = tret;
-                if (p->as_loads && (st = vt_kinematics_tree(p->mf, p->df, 0))) goto done;
-                vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-                st = vt_inverse_dynamics_recursive(p->mf, p->df);
-            } else {
-                if ((st = vt_kinematics(p->mf, p->df))) goto done;
-                vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
-                st = block_output(p->mf, p->df, tret, yv + p->nd, p->band);
-            }
-            if (st) {
-                vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->df->message);
-                goto done;
-            }
-            vt_trajectory_store_forward(tr, p->mf, p->df, k);
-        }
-        if (opt->progress && opt->progress(tret, tend, opt->user)) {
-            st = vt_fail(md->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
-            goto done;
-        }
+    return VT_OK;
+}
+
+/* IDA from *tstep on to row k's time tout, *tret the time reached. A run that keeps its history
+ * (p->rec) goes one step at a time, records every step and the interpolation's error, and takes
+ * the output from IDA's interpolant; any other run lets IDA step to tout */
+static vt_status advance(vt_dae *p, const vt_run_options *opt, ida_run *r, const double *y0, const double *yp0,
+                         double tout, double *tstep, double *tret)
+{
+    vt_data *md = p->msg;
+    vt_dae_history *h = p->rec;
+    if (!h) {
+        vt_dae_fresh(p);
+        CHECK(IDASolve(r->mem, tout, tret, r->y, r->yp, IDA_NORMAL), "IDASolve");
+        return VT_OK;
     }
-    {
-        long nst = 0, nre = 0;
-        IDAGetNumSteps(mem, &nst);
-        IDAGetNumResEvals(mem, &nre);
-        nst += nst_done;
-        nre += nre_done;
-        if (p->m) { tr->steps = nst; tr->res_evals = nre; }
-        if (p->mf) { tr->steps_fwd = nst; tr->res_evals_fwd = nre; }
+    if (h->n == 0) { /* the start */
+        h->t[0] = opt->t0;
+        memcpy(h->y, y0, (size_t)h->dim * sizeof(double));
+        memcpy(h->yp, yp0, (size_t)h->dim * sizeof(double));
+        h->n = 1;
     }
-    goto done;
-ida_failed:
+    long taken = 0;
+    while (*tstep < tout) {
+        if (++taken > opt->max_steps) { /* IDA's own mxstep limit does not apply to one-step mode */
+            md->ida_flag = IDA_TOO_MUCH_WORK;
+            return vt_fail(md->message, VT_ERR_IDA,
+                           "IDASolve: IDA_TOO_MUCH_WORK: %ld steps taken before t = %g (at t = %g)", opt->max_steps,
+                           tout, *tstep);
+        }
+        vt_dae_fresh(p);
+        CHECK(IDASolve(r->mem, r->tend, tstep, r->y, r->yp, IDA_ONE_STEP), "IDASolve");
+        if (h->n == h->cap)
+            return vt_fail(md->message, VT_ERR_BAD_OPTION,
+                           "forward check: the driven run took more than history_steps = %d steps", h->cap);
+        h->t[h->n] = *tstep;
+        memcpy(h->y + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(r->y), (size_t)h->dim * sizeof(double));
+        memcpy(h->yp + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(r->yp), (size_t)h->dim * sizeof(double));
+        h->n++;
+        /* the interpolation's error, against IDA's own interpolant at the step's middle */
+        CHECK(IDAGetDky(r->mem, 0.5 * (h->t[h->n - 2] + *tstep), 0, r->yint), "IDAGetDky");
+        vt_dae_hermite(h, 0.5 * (h->t[h->n - 2] + *tstep), h->tmp);
+        for (int c = 0; c < h->dim; c++) h->err = fmax(h->err, fabs(h->tmp[c] - N_VGetArrayPointer(r->yint)[c]));
+    }
+    CHECK(IDAGetDky(r->mem, tout, 0, r->yint), "IDAGetDky");
+    *tret = tout;
+    memcpy(N_VGetArrayPointer(r->y), N_VGetArrayPointer(r->yint), (size_t)r->N * sizeof(double));
+    return VT_OK;
+}
+
+/* The state at row k (time tret) into *yv: IDA's y, or with exact efforts the row's reference
+ * plus IDA's deviation. The projection formulation puts it back onto the constraints and
+ * restarts IDA there */
+static vt_status row_state(vt_dae *p, ida_run *r, int k, double tret, const double **yv)
+{
+    vt_data *md = p->msg;
+    const int N = r->N;
+    *yv = N_VGetArrayPointer(r->y);
+    double *yw = N_VGetArrayPointer(r->y), *ypw = N_VGetArrayPointer(r->yp);
+    if (p->s.ref) { /* the state: the row (the reference at tout) + the deviation */
+        vt_dae_row_efforts(p, p->dk->model, k);
+        p->s.dk_valid = 0; /* dk holds the row, not the residual's polished reference */
+        vt_dae_block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
+        yw = p->s.ref + 2 * (size_t)N;
+        ypw = yw + N;
+        for (int c = 0; c < N; c++) {
+            yw[c] = p->s.ref[c] + N_VGetArrayPointer(r->y)[c];
+            ypw[c] = p->s.ref[N + c] + N_VGetArrayPointer(r->yp)[c];
+        }
+        *yv = yw;
+    }
+    if (p->form != VT_FORMULATION_PROJECTION) return VT_OK;
+    /* back onto the constraints, then restart IDA */
+    const vt_data *dp = p->m ? p->d : p->df;
+    vt_status st = VT_OK;
+    if ((p->m && (st = vt_dae_block_project(p, p->m, p->d, tret, yw, ypw))) ||
+        (p->mf && (dp = p->df, st = vt_dae_block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd)))) {
+        char why[256]; /* (dp's message may be md's) */
+        snprintf(why, sizeof why, "%s", dp->message);
+        vt_fail(md->message, st, "projection at t = %g failed: %.200s", tret, why);
+        return st;
+    }
+    if (p->s.ref) /* back to the deviation */
+        for (int c = 0; c < N; c++) {
+            N_VGetArrayPointer(r->y)[c] = yw[c] - p->s.ref[c];
+            N_VGetArrayPointer(r->yp)[c] = ypw[c] - p->s.ref[N + c];
+        }
+    long a = 0, b = 0;
+    IDAGetNumSteps(r->mem, &a);
+    IDAGetNumResEvals(r->mem, &b);
+    r->nst_done += a;
+    r->nre_done += b;
+    CHECK(IDAReInit(r->mem, tret, r->y, r->yp), "IDAReInit");
+    return VT_OK;
+}
+
+/* Row k of the trajectory from the state yv at tret: the driven block's instant and the forward
+ * block's (its efforts from the interpolated driven run, the analysis's row or the driven block,
+ * then its q̈ and reactions) */
+static vt_status store_rows(vt_dae *p, vt_trajectory *tr, int k, double tret, const double *yv)
+{
+    vt_data *md = p->msg;
+    vt_status st;
+    if (p->m) {
+        if ((st = vt_dae_block_output(p->m, p->d, tret, yv, p->band))) return st;
+        vt_trajectory_store(tr, p->m, p->d, k);
+    }
+    if (!p->mf) return VT_OK;
+    const vt_model *m = p->dk ? p->dk->model : p->m;
+    vt_data *src = p->dk ? p->dk : p->d;
+    if (p->src) { /* the driven run's interpolated state and its efforts */
+        vt_dae_hermite(p->src, tret, p->src->tmp);
+        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
+        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
+        p->dk->time = tret;
+        if ((st = vt_inverse_dynamics(m, p->dk)))
+            return vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
+    } else if (p->dk && !p->s.ref) { /* exact efforts: the kinematic row already stored at this time */
+        vt_dae_row_efforts(p, m, k);
+        p->s.dk_valid = 1;
+    }
+    memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
+    if (p->s.motion) { /* a tree: its q̈ and reactions by the recursive instant (articulated bodies) */
+        memcpy(p->df->qd, yv + p->nd + p->mf->nq, (size_t)p->mf->nv * sizeof(double));
+        p->df->time = tret;
+        if (p->as_loads && (st = vt_kinematics_tree(p->mf, p->df, 0))) return st;
+        vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+        st = vt_inverse_dynamics_recursive(p->mf, p->df);
+    } else {
+        if ((st = vt_kinematics(p->mf, p->df))) return st;
+        vt_apply_drive_loads(p->mf, p->df, m, src, p->xfrc0, p->as_loads);
+        st = vt_dae_block_output(p->mf, p->df, tret, yv + p->nd, p->band);
+    }
+    if (st) return vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->df->message);
+    vt_trajectory_store_forward(tr, p->mf, p->df, k);
+    return VT_OK;
+}
+
+/* A failed SUNDIALS call (r->call returned r->flag < 0) into p->msg: the residual's own status and
+ * message when a refusal caused it, else the call, IDA's flag name and IDA's message */
+static vt_status ida_failure(vt_dae *p, const ida_run *r)
+{
+    vt_data *md = p->msg;
+    const int flag = r->flag;
     md->ida_flag = flag;
     if (p->s.why && (p->s.fatal || flag == IDA_CONV_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_RES_FAIL ||
-                   flag == IDA_LSETUP_FAIL || flag == IDA_FIRST_RES_FAIL)) {
+                     flag == IDA_LSETUP_FAIL || flag == IDA_FIRST_RES_FAIL)) {
         /* the residual's own failure, not IDA's generic report of it */
         char detail[256];
         snprintf(detail, sizeof detail, "%s", p->s.msg);
         if (p->s.fatal == 1)
             snprintf(md->message, sizeof md->message, "%.250s", detail);
         else
-            snprintf(md->message, sizeof md->message, "%.20s returned %d after %d refused trial states; the last, at t = %.10g: %.120s",
-                     call, flag, p->s.refusals, p->s.t, detail);
-        st = p->s.why;
-        goto done;
+            snprintf(md->message, sizeof md->message,
+                     "%.20s returned %d after %d refused trial states; the last, at t = %.10g: %.120s", r->call, flag,
+                     p->s.refusals, p->s.t, detail);
+        return p->s.why;
     }
-    {
-        char *name = IDAGetReturnFlagName(flag);
-        char detail[200];
-        snprintf(detail, sizeof detail, "%.150s", md->message);
-        snprintf(md->message, sizeof md->message, "%.40s returned %d (%.30s)%s%.150s", call, flag, name ? name : "?",
-                 detail[0] ? ": " : "", detail);
-        free(name);
+    char *name = IDAGetReturnFlagName(flag);
+    char detail[200];
+    snprintf(detail, sizeof detail, "%.150s", md->message);
+    snprintf(md->message, sizeof md->message, "%.40s returned %d (%.30s)%s%.150s", r->call, flag, name ? name : "?",
+             detail[0] ? ": " : "", detail);
+    free(name);
+    return VT_ERR_IDA;
+}
+
+/* IDA's objects released, in the reverse order of their making */
+static void ida_free(ida_run *r)
+{
+    if (r->mem) IDAFree(&r->mem);
+    if (r->LS) SUNLinSolFree(r->LS);
+    if (r->A) SUNMatDestroy(r->A);
+    if (r->id) N_VDestroy(r->id);
+    if (r->atol) N_VDestroy(r->atol);
+    if (r->yint) N_VDestroy(r->yint);
+    if (r->yp) N_VDestroy(r->yp);
+    if (r->y) N_VDestroy(r->y);
+    if (r->ctx) SUNContext_Free(&r->ctx);
+}
+
+/* rows 1..nout (or 1..ntout, at the caller's times): IDA set up, then for every output the step
+ * to its time, the state there and the driven and forward rows stored; the steps and residual
+ * evaluations counted into tr; a failed SUNDIALS call reported (ida_failure) */
+static vt_status run(vt_dae *p, const vt_run_options *opt, vt_trajectory *tr, int N, const double *y0,
+                     const double *yp0, const double *ids)
+{
+    const int nrow = vt_run_rows(opt);
+    ida_run r = {.N = N, .tend = vt_run_time(opt, nrow)};
+    vt_status st = ida_setup(p, opt, y0, yp0, ids, &r);
+    double tstep = opt->t0;
+    for (int k = 1; !st && k <= nrow; k++) {
+        double tret = 0.0;
+        const double *yv = NULL;
+        if ((st = advance(p, opt, &r, y0, yp0, vt_run_time(opt, k), &tstep, &tret)) ||
+            (st = row_state(p, &r, k, tret, &yv)) || (st = store_rows(p, tr, k, tret, yv)))
+            break;
+        if (opt->progress && opt->progress(tret, r.tend, opt->user))
+            st = vt_fail(p->msg->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
     }
-    st = VT_ERR_IDA;
-done:
-#undef CHECK
-    if (mem) IDAFree(&mem);
-    if (LS) SUNLinSolFree(LS);
-    if (A) SUNMatDestroy(A);
-    if (id) N_VDestroy(id);
-    if (atol) N_VDestroy(atol);
-    if (yint) N_VDestroy(yint);
-    if (yp) N_VDestroy(yp);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
+    if (!st) {
+        long nst = 0, nre = 0;
+        IDAGetNumSteps(r.mem, &nst);
+        IDAGetNumResEvals(r.mem, &nre);
+        nst += r.nst_done;
+        nre += r.nre_done;
+        if (p->m) { tr->steps = nst; tr->res_evals = nre; }
+        if (p->mf) { tr->steps_fwd = nst; tr->res_evals_fwd = nre; }
+    } else if (r.flag < 0) {
+        st = ida_failure(p, &r);
+    }
+    ida_free(&r);
     return st;
 }
+#undef CHECK
 
 /* the forward model and its data, started from the state in d (efforts already computed) */
 static vt_status forward_setup(const vt_model *m, const vt_data *d, const double *xfrc0, int as_loads, vt_model **mf,
@@ -813,10 +357,24 @@ static vt_status forward_setup(const vt_model *m, const vt_data *d, const double
     return vt_inverse_dynamics(*mf, *df);
 }
 
-/* y0, y'0 and the ids of the blocks present in p (driven first), then the run */
-static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
+/* a run's dae with the options filled; the caller names its blocks (m and d, mf and df, dk) and
+ * histories, everything else starts zero */
+static vt_dae dae_options(vt_data *d, const vt_run_options *opt)
 {
-    const int nd = p->m ? block_size(p->m, p->form) : 0, N = nd + (p->mf ? block_size(p->mf, p->form) : 0);
+    return (vt_dae){.msg = d,
+                    .xfrc0 = d->xfrc,
+                    .as_loads = opt->forward_as_loads,
+                    .newton_tol = opt->newton_tol,
+                    .newton_maxit = opt->newton_maxit,
+                    .form = opt->formulation,
+                    .alpha = opt->baumgarte_alpha,
+                    .beta = opt->baumgarte_beta};
+}
+
+/* y0, y'0 and the ids of the blocks present in p (driven first), then the run */
+static vt_status start(vt_dae *p, const vt_run_options *opt, vt_trajectory *tr)
+{
+    const int nd = p->m ? vt_dae_block_size(p->m, p->form) : 0, N = nd + (p->mf ? vt_dae_block_size(p->mf, p->form) : 0);
     const int nv = p->m ? p->m->nv : p->mf->nv;
     const int dev = p->dk && !p->src && !p->m; /* exact efforts: the deviation from the rows */
     double *buf = malloc(((3 + (dev ? 4 : 0)) * (size_t)N + (size_t)nv) * sizeof(double));
@@ -827,18 +385,18 @@ static vt_status start(dae *p, const vt_run_options *opt, vt_trajectory *tr)
     /* a forward model without rows (no loop, no base body): its residual by one recursive pass */
     p->s.motion = p->mf && p->mf->nc == 0 && p->form != VT_FORMULATION_ODE;
     if (p->m) {
-        block_initial(p->m, p->d, p->form, buf, buf + N);
-        block_ids(p->m, p->form, buf + 2 * N);
+        vt_dae_block_initial(p->m, p->d, p->form, buf, buf + N);
+        vt_dae_block_ids(p->m, p->form, buf + 2 * N);
     }
     if (p->mf) {
-        block_initial(p->mf, p->df, p->form, buf + nd, buf + N + nd);
-        block_ids(p->mf, p->form, buf + 2 * N + nd);
+        vt_dae_block_initial(p->mf, p->df, p->form, buf + nd, buf + N + nd);
+        vt_dae_block_ids(p->mf, p->form, buf + 2 * N + nd);
     }
     p->nd = nd;
     if (dev) { /* e = y − y_ref at t0, the first row */
-        row_efforts(p, p->dk->model, 0);
+        vt_dae_row_efforts(p, p->dk->model, 0);
         p->s.dk_valid = 0; /* (as at the output rows) */
-        block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
+        vt_dae_block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
         for (int k = 0; k < N; k++) {
             buf[k] -= p->s.ref[k];
             buf[N + k] -= p->s.ref[N + k];
@@ -859,8 +417,10 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
         vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);
     } else {
         vt_trajectory_store_forward(tr, mf, df, 0);
-        dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, 0.0, {0}};
+        vt_dae p = dae_options(d, opt); /* the forward block, its efforts exact */
+        p.mf = mf;
+        p.df = df;
+        p.dk = dk;
         p.s.rows = tr;
         st = start(&p, opt, tr);
     }
@@ -880,7 +440,7 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     vt_trajectory_store(tr, m, d, 0);
     vt_model *mf = NULL;
     vt_data *df = NULL, *dk = NULL;
-    history h = {0, 0, 0, NULL, NULL, NULL, NULL, 0.0};
+    vt_dae_history h = {.cap = opt->history_steps, .dim = m->nq + m->nv}; /* (an independent forward check) */
     double *hbuf = NULL;
     if (opt->forward_check && (st = forward_setup(m, d, d->xfrc, opt->forward_as_loads, &mf, &df))) {
         vt_fail(d->message, st, "vt_dynamic_analysis: forward check set-up: %s", df ? df->message : vt_status_string(st));
@@ -888,15 +448,16 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     }
     if (mf) vt_trajectory_store_forward(tr, mf, df, 0);
     if (!mf || !opt->forward_independent) { /* the driven run, and the forward one in the same system */
-        dae p = {m, d, mf, df, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, NULL, NULL, 0.0, {0}};
+        vt_dae p = dae_options(d, opt);
+        p.m = m;
+        p.d = d;
+        p.mf = mf;
+        p.df = df;
         st = start(&p, opt, tr);
         goto out;
     }
     /* independent forward check: the driven run first, every step kept; then the forward run,
      * its efforts from the driven state interpolated at each time it asks for */
-    h.cap = opt->history_steps;
-    h.dim = m->nq + m->nv;
     const size_t per = 1 + 2 * (size_t)h.dim;
     hbuf = malloc(((size_t)h.cap * per + (size_t)h.dim) * sizeof(double));
     if (!hbuf || (st = vt_data_create(&dk, m))) {
@@ -910,14 +471,19 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     memcpy(dk->xfrc, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
     memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
     {
-        dae p = {m, d, NULL, NULL, NULL, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, &h, NULL, NULL, 0.0, {0}};
+        vt_dae p = dae_options(d, opt); /* the driven block, its steps recorded */
+        p.m = m;
+        p.d = d;
+        p.rec = &h;
         if ((st = start(&p, opt, tr))) goto out;
     }
     {
         const long steps = tr->steps, res = tr->res_evals;
-        dae p = {NULL, NULL, mf, df, dk, d, d->xfrc, opt->forward_as_loads, opt->newton_tol, opt->newton_maxit, 0,
-                 opt->formulation, opt->baumgarte_alpha, opt->baumgarte_beta, NULL, &h, NULL, 0.0, {0}};
+        vt_dae p = dae_options(d, opt); /* the forward block, its efforts from the recorded steps */
+        p.mf = mf;
+        p.df = df;
+        p.dk = dk;
+        p.src = &h;
         st = start(&p, opt, tr);
         tr->steps = steps;
         tr->res_evals = res;
