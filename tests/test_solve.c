@@ -1,4 +1,8 @@
-/* src/solve.c: the augmented system (5) against second methods (a fully joint-driven chain:
+/* The test file of src/dense/solve.c (the dispatcher, vt_solve); through it also of the files cut
+ * from it that have no test file of their own: dense/routes.c (the five routes), numeric/roundoff.c
+ * (round-off of exact zeros), numeric/rank.c (the scalings, grip and rank decision) and
+ * numeric/route.c (the diagnostics every route ends with); numeric/kkt.c has tests/test_kkt.c.
+ * The augmented system (5) against second methods (a fully joint-driven chain:
  * q̈ = f'', λ = M* q̈ − Q; a free tree: M* q̈ = Q by Cholesky), and every failure status:
  * singular system, dependent rows, bad drive and cut-joint definitions. */
 #include "base/lapack.h"

@@ -14,11 +14,15 @@
 #include "base/status.h"
 #include "kinematics/inverse_transform.h"
 #include "kinematics/kinematics.h"
+#include "numeric/kkt.h"
 #include "numeric/maximal.h"
+#include "numeric/rank.h"
+#include "numeric/roundoff.h"
 #include "dense/constraints.h"
 #include "dense/forces.h"
 #include "dense/mass.h"
 #include "dense/reactions.h"
+#include "dense/routes.h"
 #include "dense/solve.h"
 #include "recursive/recursive.h"
 #include "analysis/kinematic_solve.h"
@@ -27,7 +31,8 @@
 static size_t arena_size(const vt_model *m)
 {
     return vt_kinematics_scratch(m) + vt_mass_scratch(m) + vt_forces_scratch(m) + vt_constraints_scratch(m) +
-           vt_solve_scratch(m) + vt_maximal_scratch(m) + vt_reactions_scratch(m) + vt_recursive_scratch(m) + vt_kinematic_solve_scratch(m) +
+           vt_roundoff_scratch(m) + vt_rank_scratch(m) + vt_kkt_scratch(m) + vt_routes_scratch(m) + vt_solve_scratch(m) +
+           vt_maximal_scratch(m) + vt_reactions_scratch(m) + vt_recursive_scratch(m) + vt_kinematic_solve_scratch(m) +
            vt_inverse_transform_scratch(m);
 }
 

@@ -15,7 +15,7 @@
 #include "analysis/kinematic_analysis.h"
 #include "base/status.h"
 #include "dense/reactions.h"
-#include "dense/solve.h"
+#include "numeric/rank.h"
 #include "analysis/dynamic_analysis.h"
 #include "analysis/kinematic_solve.h"
 #include "analysis/trajectory.h"

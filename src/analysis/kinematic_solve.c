@@ -33,6 +33,7 @@
 #include "base/scan.h"
 #include "base/status.h"
 #include "kinematics/kinematics.h"
+#include "numeric/rank.h"
 #include "dense/constraints.h"
 #include "dense/solve.h"
 #include "recursive/recursive.h"

@@ -33,7 +33,8 @@
 #include "model/model.h"
 #include "kinematics/inverse_transform.h"
 #include "kinematics/kinematics.h"
-#include "dense/solve.h"
+#include "numeric/roundoff.h"
+#include "numeric/route.h"
 
 /* Every row's wrench on its two bodies for the multipliers lam (each 1 when lam is NULL), about
  * each body's centre of mass, [f_a n_a f_b n_b] into rw (12 x nc); the ground's side and the

@@ -1,0 +1,314 @@
+/* The small dense kernels of the solve stage, called by its dense routes (dense/routes.c) and
+ * by the recursive evaluation's routes alike, without the dense stage in between:
+ *   - the exact reciprocal condition of small systems from their inverse (vt_small_inverse,
+ *     vt_rcond_from_inverse) and the 1-norm of a symmetric matrix (vt_norm1_sym);
+ *   - S b' = b for a symmetric positive definite S at unit diagonal, with its reciprocal
+ *     condition (vt_solve_spd: the rows' Schur complement S = Φ̃ M̃^-1 Φ̃^T of (5));
+ *   - the square route's LU: with as many independent rows as rates, (5) splits into its two
+ *     block rows, Φ_q q̈ = γ and Φ_q^T λ = M* q̈ − Q ((5), (2)), both solved by one LU of the
+ *     scaled Φ_q (vt_square_first/second/apply, and for the recursive evaluation
+ *     vt_solve_square_factor/accelerations/end).
+ * The augmented system they serve:
+ *
+ *   [ M*   Φ_q^T ] [  q̈ ]   [ Q ]
+ *   [ Φ_q  0     ] [ −λ ] = [ γ ]                                        (5)
+ */
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "numeric/kkt.h"
+#include "base/arena.h"
+#include "base/lapack.h"
+#include "base/scan.h"
+#include "base/status.h"
+#include "model/model.h"
+#include "numeric/rank.h"
+#include "numeric/roundoff.h"
+
+/* Small systems (n ≤ VT_EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
+ * itself, the factors applied to the identity in one multi-right-hand-side solve (as much work
+ * as the factorization), costs fewer instructions than LAPACK's estimators (dgecon, dsycon_3:
+ * iterations of overflow-guarded triangular solves, dlatrs) and is exact, not a bound.
+ * vt_small_inverse takes the identity X (n x n) with `extra` columns after it from the arena, or
+ * returns NULL for a larger n (the caller then estimates) or when the arena failed (the
+ * caller's next allocation says so). */
+double *vt_small_inverse(vt_data *d, int n, int extra)
+{
+    if (n > VT_EXACT_RCOND_N) return NULL;
+    double *X = VT_SCRATCH(d, double, (size_t)n * (size_t)(n + extra), "exact inverse");
+    if (!X) return NULL;
+    memset(X, 0, (size_t)n * (size_t)n * sizeof(double));
+    for (int k = 0; k < n; k++) X[k + (size_t)k * (size_t)n] = 1.0;
+    return X;
+}
+
+double vt_rcond_from_inverse(const double *X, int n, double anorm)
+{
+    double xn = 0.0;
+    for (int c = 0; c < n; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < n; r++) cs += fabs(X[r + (size_t)c * (size_t)n]);
+        xn = cs > xn ? cs : xn; /* fmax without the call (a NaN is skipped by both) */
+    }
+    return anorm > 0.0 && xn > 0.0 ? 1.0 / (anorm * xn) : 0.0;
+}
+
+/* Cholesky of the symmetric n x n K (its lower triangle; 1-norm anorm) and its reciprocal
+ * condition into *rcond (0 when K is not positive definite): exact from the inverse for n ≤ 16,
+ * which then also solves, dpocon's estimate above; once factorized, b (n) is solved in place.
+ * Returns 0 or a negative vt_status. */
+static int chol_solve(vt_data *d, double *K, int n, double anorm, double *b, double *rcond)
+{
+    int info = 0;
+    *rcond = 0.0;
+    dpotf2_("L", &n, K, &n, &info, 1);
+    if (info < 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotf2 info %d", info);
+    if (info > 0) return 0;
+    const size_t mark = vt_scratch_mark(d);
+    double *X = vt_small_inverse(d, n, 1);
+    if (X) { /* K^-1 and the solution in one solve: [I, b] */
+        const int ncol = n + 1;
+        double *xb = X + (size_t)n * (size_t)n;
+        memcpy(xb, b, (size_t)n * sizeof(double));
+        dpotrs_("L", &n, &ncol, K, &n, X, &n, &info, 1);
+        if (info == 0) {
+            *rcond = vt_rcond_from_inverse(X, n, anorm);
+            memcpy(b, xb, (size_t)n * sizeof(double));
+        }
+        vt_scratch_release(d, mark);
+        return info ? vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info) : 0;
+    }
+    double *work = VT_SCRATCH(d, double, 3 * (size_t)n, "dpocon workspace");
+    int *iwork = VT_SCRATCH(d, int, n, "dpocon integer workspace");
+    if (!iwork) return vt_scratch_fail(d, mark);
+    dpocon_("L", &n, K, &n, &anorm, rcond, work, iwork, &info, 1);
+    vt_scratch_release(d, mark);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpocon info %d", info);
+    const int one = 1;
+    dpotrs_("L", &n, &one, K, &n, b, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dpotrs info %d", info);
+    return 0;
+}
+
+/* *out = the 1-norm of the symmetric n x n K from its lower triangle (LAPACK's dlansy) */
+int vt_norm1_sym(vt_data *d, const double *K, int n, double *out)
+{
+    const size_t mark = vt_scratch_mark(d);
+    double *work = VT_SCRATCH(d, double, n, "dlansy workspace");
+    if (!work) return vt_scratch_fail(d, mark);
+    *out = dlansy_("1", "L", &n, K, &n, work, 1, 1);
+    vt_scratch_release(d, mark);
+    return 0;
+}
+
+int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
+{
+    /* S to unit diagonal first (E S E, E = diag(S_rr^(-1/2)); b by E, the solution by E after):
+     * its condition then measures how independent the rows are, not their sizes */
+    for (int r = 0; r < n; r++) {
+        const double srr = S[r + (size_t)r * (size_t)n];
+        if (!(srr > 0.0)) return *rcond = 0.0, 0; /* not positive definite: nothing solved */
+    }
+    for (int c = 0; c < n; c++) {
+        const double ec = 1.0 / sqrt(S[c + (size_t)c * (size_t)n]);
+        for (int r = c + 1; r < n; r++) S[r + (size_t)c * (size_t)n] *= ec / sqrt(S[r + (size_t)r * (size_t)n]);
+    }
+    double *e = NULL;
+    const size_t mark = vt_scratch_mark(d);
+    if (n > 0 && !(e = VT_SCRATCH(d, double, n, "unit diagonal"))) return vt_scratch_fail(d, mark);
+    for (int r = 0; r < n; r++) {
+        const double er = 1.0 / sqrt(S[r + (size_t)r * (size_t)n]);
+        if (e) e[r] = er;
+        b[r] *= er;
+        S[r + (size_t)r * (size_t)n] = 1.0;
+    }
+    int st = 0;
+    if (n <= 1) *rcond = 1.0; /* one row: S is 1, its condition exactly 1, b solved */
+    else {
+        double snorm = 0.0;
+        st = vt_norm1_sym(d, S, n, &snorm);
+        if (!st) st = chol_solve(d, S, n, snorm, b, rcond);
+    }
+    for (int r = 0; r < n && e; r++) b[r] *= e[r];
+    vt_scratch_release(d, mark);
+    return st;
+}
+
+/* As many independent constraint rows as rates (a kinematically determined mechanism: the
+ * drives fix the whole motion, as the crank of a four-bar does): Φ_q is square and (5) splits
+ * into its two block rows,
+ *
+ *   Φ_q q̈ = γ,        Φ_q^T λ = M* q̈ − Q,                                   (5), (2)
+ *
+ one LU factorization of R Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes
+ * the blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), R each row to
+ * unit norm in that metric) serving both solves (dgetrs, then its transpose): M* is not
+ * factorized at all. The motion is the rows' alone, and so is the question of its
+ * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
+ * the condition of Φ̂ = G Φ_q C (exact up to 16 rates, from the inverse of the solves' R Φ_q D
+ * below, rescaled: one LU for both; dgecon on Φ̂'s own LU above), a scaling that makes Φ̂
+ * dimensionless and its condition independent of units and of the scene's frame, and in which
+ * no mass takes part: rows that measure angles by ℓ and
+ * those that measure lengths by 1 (G; vt_rows_decide scales each row by its own terms instead), rates that turn (rotations, Euler
+ * parameters) by 1/ℓ and those that translate by 1 (C), ℓ the rows' own lever arm (vt_rows_length,
+ * a length of the rows' geometry). The two solves in sequence amplify errors by
+ * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
+ * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
+ * same number. Returns VT_SOLVED, VT_BELOW_MIN (nothing solved) or a negative vt_status. */
+static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
+{
+    const int n = m->nv;
+    sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of R Φ_q D");
+    sq->s = VT_SCRATCH(d, double, 2 * (size_t)n, "scalings D and R");
+    sq->x = VT_SCRATCH(d, double, 2 * (size_t)n, "q̈ and M* q̈ − Q");
+    sq->ipiv = VT_SCRATCH(d, int, n, "pivots");
+    if (!sq->ipiv) return VT_ERR_NO_MEMORY;
+    sq->h = sq->x + n;
+    sq->g = sq->s + n;
+    double *A = sq->A, *s = sq->s, *g = sq->g;
+    const size_t mark = vt_scratch_mark(d);
+    double *gk = VT_SCRATCH(d, double, 2 * (size_t)n, "G and C");
+    if (!gk) return vt_scratch_fail(d, mark);
+    double *ck = gk + n;
+    /* Φ̂ = G Φ_q C's scalings and its 1-norm, the largest column sum */
+    const double rho = vt_rows_length(m, d, NULL);
+    for (int a = 0; a < n; a++) {
+        const int i = m->dof_body[a];
+        int ax = 0;
+        const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
+        ck[a] = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+    }
+    for (int r = 0; r < n; r++) gk[r] = vt_length_row(m, d, r) ? 1.0 : rho;
+    double anorm = 0.0;
+    for (int c = 0; c < n; c++) {
+        double cs = 0.0;
+        for (int r = 0; r < n; r++) cs += fabs(gk[r] * d->Phiq[r + (size_t)c * (size_t)n] * ck[c]);
+        anorm = cs > anorm ? cs : anorm;
+    }
+    /* the solves' matrix R Φ_q D, D the mass metric and R each row to unit norm in it. Its LU's
+     * pivots then take the rows that act on heavy rates for those rates, and the substitutions
+     * keep apart what the structure keeps apart: a light link's drive force is not made of a
+     * heavy one's round-off (the inverse, a dense product, would mix them) */
+    vt_scaling_diag(m, mdiag, stride, s);
+    for (int r = 0; r < n; r++) {
+        double rn = 0.0;
+        for (int c = 0; c < n; c++) rn += d->Phiq[r + (size_t)c * (size_t)n] * s[c] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+        g[r] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
+    }
+    for (int c = 0; c < n; c++)
+        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+    int info = 0;
+    dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
+    if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+    if (info > 0) return vt_scratch_release(d, mark), *rcond_out = 0.0, VT_BELOW_MIN; /* an exactly zero pivot */
+    /* the condition of Φ̂ = G R^-1 (R Φ_q D) D^-1 C: up to 16 rates exactly, from the inverse of
+     * R Φ_q D (one solve with the identity on the factors at hand), Φ̂^-1 = C^-1 D (R Φ_q D)^-1 R G^-1
+     * entry by entry; above, LAPACK's dgecon on Φ̂'s own LU */
+    double rcond = 0.0;
+    double *X = vt_small_inverse(d, n, 0);
+    if (X) {
+        dgetrs_("N", &n, &n, A, &n, sq->ipiv, X, &n, &info, 1);
+        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+        for (int c = 0; c < n; c++) {
+            const double fc = g[c] / gk[c];
+            for (int r = 0; r < n; r++) X[r + (size_t)c * (size_t)n] *= s[r] / ck[r] * fc;
+        }
+        rcond = vt_rcond_from_inverse(X, n, anorm);
+    } else {
+        double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
+        double *work = VT_SCRATCH(d, double, 4 * (size_t)n, "dgecon workspace");
+        int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C"), *iwork = VT_SCRATCH(d, int, n, "dgecon integer workspace");
+        if (!iwork) return vt_scratch_fail(d, mark);
+        for (int c = 0; c < n; c++)
+            for (int r = 0; r < n; r++) K[r + (size_t)c * (size_t)n] = gk[r] * d->Phiq[r + (size_t)c * (size_t)n] * ck[c];
+        dgetf2_(&n, &n, K, &n, ip, &info);
+        if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
+        if (info == 0) dgecon_("1", &n, K, &n, &anorm, &rcond, work, iwork, &info, 1);
+        if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
+    }
+    vt_scratch_release(d, mark);
+    *rcond_out = rcond * rcond;
+    return *rcond_out >= m->rcond_min ? VT_SOLVED : VT_BELOW_MIN;
+}
+
+int vt_square_apply(const vt_model *m, vt_data *d, const vt_square *sq, const double *b, double sign, double *x)
+{
+    const int n = m->nv, one = 1;
+    int info = 0;
+    for (int r = 0; r < n; r++) x[r] = sq->g[r] * b[r]; /* y = (R Φ_q D)^-1 R b, x = ± D y */
+    dgetrs_("N", &n, &one, sq->A, &n, sq->ipiv, x, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    for (int a = 0; a < n; a++) x[a] *= sign * sq->s[a];
+    return 0;
+}
+
+int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
+{
+    const int r = square_factor(m, d, sq, mdiag, stride, rcond_out);
+    return r ? r : vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x); /* q̈ = Φ_q^-1 γ */
+}
+
+int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
+{
+    const int n = m->nv, one = 1;
+    double *g = sq->h;
+    int info = 0;
+    for (int a = 0; a < n; a++) g[a] *= sq->s[a];
+    dgetrs_("T", &n, &one, sq->A, &n, sq->ipiv, g, &n, &info, 1);
+    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    for (int a = 0; a < n; a++) g[a] *= sq->g[a];
+    if (!vt_all_finite(sq->x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
+    return 0;
+}
+
+/* The recursive evaluation's square route (recursive.c): vt_solve's square route in three steps
+ * with M* q̈ − Q computed between the last two by a Newton–Euler pass instead of from M* and Q
+ * (neither is formed). vt_solve_square_factor, from the positions alone: mdiag (nv) holds M*'s
+ * diagonal, which scales the solves; the route's state (the LU of R Φ_q D) goes to *sq on the
+ * arena (the caller releases it), the condition to *rcond. Returns VT_SOLVED, VT_BELOW_MIN (a zero row or
+ * ill-conditioned: the caller falls back to vt_solve, which diagnoses it) or a negative
+ * vt_status. Its LU also solves other right sides (vt_square_apply: the kinematic analysis's
+ * velocities). vt_solve_square_accelerations: q̈ = Φ_q^-1 γ to sq->x. vt_solve_square_end: with
+ * h = M* q̈ − Q in sq->h, λ, and everything vt_solve sets on success. */
+int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
+{
+    const int zero_rows = vt_roundoff_check(m, d, NULL, 0, 0); /* a zero row: the general route diagnoses it */
+    if (zero_rows) return zero_rows < 0 ? zero_rows : VT_BELOW_MIN;
+    return square_factor(m, d, sq, mdiag, 1, rcond);
+}
+
+int vt_solve_square_accelerations(const vt_model *m, vt_data *d, vt_square *sq)
+{
+    if (!vt_all_finite(d->gamma, m->nc))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
+    return vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x);
+}
+
+vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond)
+{
+    const int r = vt_square_second(m, d, sq);
+    if (r) return (vt_status)r;
+    vt_solved(m, d, VT_ROUTE_SQUARE, rcond);
+    memcpy(d->qdd, sq->x, (size_t)m->nv * sizeof(double));
+    memcpy(d->lambda, sq->h, (size_t)m->nc * sizeof(double));
+    return VT_OK;
+}
+
+/* The scratch kkt.c takes at once: the square route's state (the LU of R Φ_q D, its scalings,
+ * q̈ and M* q̈ − Q, its pivots), held by its caller, with G and C and the condition's inverse or
+ * G Φ_q C's LU and dgecon's workspace; or vt_solve_spd's unit diagonal and its Cholesky's
+ * inverse or dlansy's and dpocon's workspaces (n ≤ nc: the rows' Schur complement): the larger,
+ * since different routes take them and neither calls the other */
+size_t vt_kkt_scratch(const vt_model *m)
+{
+    const size_t snv = (size_t)m->nv, snc = (size_t)m->nc, D = sizeof(double), I = sizeof(int);
+    const size_t square = VT_SCRATCH_BYTES(snv * snv, D) + 3 * VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I) +
+                          VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
+    const size_t exact = VT_SCRATCH_BYTES((size_t)VT_EXACT_RCOND_N * (VT_EXACT_RCOND_N + VT_EXACT_EXTRA), D);
+    const size_t pocon = VT_SCRATCH_BYTES(3 * snc, D) + VT_SCRATCH_BYTES(snc, I);
+    size_t spd = exact > pocon ? exact : pocon;
+    if (VT_SCRATCH_BYTES(snc, D) > spd) spd = VT_SCRATCH_BYTES(snc, D); /* dlansy's */
+    spd += VT_SCRATCH_BYTES(snc, D);
+    return square > spd ? square : spd; /* the square route and the SPD solve never nest */
+}
