@@ -5,7 +5,7 @@
 
 int cmd_load_urdf(vt_builder **b, const char *path, int floating)
 {
-    char msg[256] = "";
+    char msg[VT_MESSAGE_SIZE] = "";
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
     opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */

@@ -1,4 +1,4 @@
-/* src/arena.c: the scratch arena inside the data. A stack: allocations on cache lines, released
+/* src/base/arena.c: the scratch arena inside the data. A stack: allocations on cache lines, released
  * to a mark in order, the same addresses again after a release; an allocation that does not fit
  * fails (and every later one until the release) with a message naming it, instead of writing
  * past the arena; every public entry point releases all it took, on success and on failure, on

@@ -1,4 +1,4 @@
-/* src/constraints.c: Φ_q = Φ_x S (22) against central differences of Φ(x(q), t) along every
+/* src/dense/constraints.c: Φ_q = Φ_x S (22) against central differences of Φ(x(q), t) along every
  * rate, Φ_t against differences in t, and γ (23) against the second difference of Φ along a
  * motion with q̈ = 0 — for every kind of row: joint, point and orientation drives (about an
  * axis, three angles body-fixed and about fixed axes, callback; absolute and relative to

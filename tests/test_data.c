@@ -1,4 +1,4 @@
-/* src/data.c: data creation and reset, and data of another model refused. */
+/* src/analysis/data.c: data creation and reset, and data of another model refused. */
 #include "vt_test.h"
 
 static void test_create_reset_mismatch(void **state)

@@ -1,4 +1,4 @@
-/* src/dynamic_analysis.c: the dynamic analysis and its forward check against the paper's exact
+/* src/analysis/dynamic_analysis.c: the dynamic analysis and its forward check against the paper's exact
  * double link (29) and its first integral; a free four-bar (cut joint, spherical joint)
  * against energy conservation; IDA's failures reaching the caller with IDA's own code; a
  * spherical joint's relative orientation drive against Newton's solution at each output. */

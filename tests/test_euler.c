@@ -1,4 +1,4 @@
-/* src/euler.c: the Euler-parameter identities of method.md, at random parameters. */
+/* src/base/euler.c: the Euler-parameter identities of method.md, at random parameters. */
 #include <float.h>
 
 #include "base/euler.h" /* vt_sincos */

@@ -1,4 +1,4 @@
-/* src/forces.c: Q's gravity part against −∂V/∂q (finite differences of the potential),
+/* src/dense/forces.c: Q's gravity part against −∂V/∂q (finite differences of the potential),
  * Q's velocity part against the Lagrangian d/dt(∂T/∂q̇) − ∂T/∂q (finite differences along a
  * motion), against Newton–Euler, and against the power balance; (7) and (10) against the
  * virtual power of a load. */

@@ -1,4 +1,4 @@
-/* src/functions.c: f' and f'' of every built-in time function against central differences
+/* src/model/functions.c: f' and f'' of every built-in time function against central differences
  * of f and f', exact values, and the error paths of user callbacks. The spline: exact on the
  * polynomials its end conditions reproduce, its order of convergence on sin (error ratios
  * when the spacing halves), continuity at the knots, and the model's own copy of the samples. */

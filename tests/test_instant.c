@@ -1,4 +1,4 @@
-/* src/instant.c: vt_inverse_dynamics is the stages called one after another, so on every scene
+/* src/dense/instant.c: vt_inverse_dynamics is the stages called one after another, so on every scene
  * its results equal those of the stages run by hand, bitwise; the first stage that fails stops
  * it, with that stage's status and name in the message. */
 #include "vt_test.h"

@@ -1,4 +1,4 @@
-/* src/inverse_transform.c: R S = I on random trees with every joint kind, and F_eq = R^T Q (14)
+/* src/kinematics/inverse_transform.c: R S = I on random trees with every joint kind, and F_eq = R^T Q (14)
  * against the forces a joint effort puts on its two bodies, written with (7). */
 #include "vt_test.h"
 

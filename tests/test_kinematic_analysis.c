@@ -1,4 +1,4 @@
-/* src/kinematic_analysis.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
+/* src/analysis/kinematic_analysis.c: the kinematic analysis of the five-link arm (tip on the prescribed circle,
  * the forward check; the free joint's forward check under the drives' loads), its rows
  * (recursive instants from predicted starts) against the dense vt_kinematic_solve from
  * independent starts, one Newton step per row, the stretched arm that warns then fails, and

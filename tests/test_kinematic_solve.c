@@ -1,4 +1,4 @@
-/* src/kinematic_solve.c: the consistent q̇ and q̈ of an instant against differences of the Newton
+/* src/analysis/kinematic_solve.c: the consistent q̇ and q̈ of an instant against differences of the Newton
  * solutions in time; a free joint driven by joint drives and an orientation drive; fewer rows than
  * rates: the least-norm corrections; Newton's starts from a trajectory's rows (vt_kinematic_start)
  * exact for the polynomials of their degree. */

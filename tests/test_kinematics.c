@@ -1,4 +1,4 @@
-/* src/kinematics.c: S against central finite differences of x(q), Ṡq̇ against finite
+/* src/kinematics/kinematics.c: S against central finite differences of x(q), Ṡq̇ against finite
  * differences of S along q̇, ẋ from the recursion (15)-(16) against S q̇, and the joints'
  * geometric closure — on random trees that use every joint kind. */
 #include <stdio.h>

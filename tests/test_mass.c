@@ -1,4 +1,4 @@
-/* src/mass.c: ½ q̇^T M* q̇ against the bodies' kinetic energies, every entry of M* by
+/* src/dense/mass.c: ½ q̇^T M* q̇ against the bodies' kinetic energies, every entry of M* by
  * polarization of those energies, symmetry and positive definiteness (Cholesky), and
  * 4 G^T J' G = 4 E^T J E. */
 #include "vt_test.h"

@@ -1,4 +1,4 @@
-/* The maximal-coordinate route (src/maximal.c): its system against (5) solved by the dense
+/* The maximal-coordinate route (src/numeric/maximal.c): its system against (5) solved by the dense
  * stages, its estimate against an explicit computation of its definition, rows losing their
  * independence shown whatever route solves, where it is and is not offered. Its answers on the
  * chains of spread masses against the exact ones are tests/ratio_oracle.py's; its translation

@@ -1,4 +1,4 @@
-/* src/reactions.c: efforts (24) and reactions (25)-(28) against the paper's exact double-link
+/* src/dense/reactions.c: efforts (24) and reactions (25)-(28) against the paper's exact double-link
  * solution (29), a planar Newton–Euler solution of a four-bar, the power balance of every
  * effort, Newton–Euler balance of every body, and the reaction's orthogonality to a joint's
  * free directions; relative orientation drives against the same motion given to

@@ -1,4 +1,4 @@
-/* src/state.c: applied point loads, and q advanced along q̇ against the rotation it should
+/* src/kinematics/state.c: applied point loads, and q advanced along q̇ against the rotation it should
  * produce. */
 #include "vt_test.h"
 

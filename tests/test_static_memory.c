@@ -1,4 +1,4 @@
-/* src/data.c, caller-provided memory (vt_data_init): the data of a model laid out in a static
+/* src/analysis/data.c, caller-provided memory (vt_data_init): the data of a model laid out in a static
  * buffer, and no allocator call at all while instants run in it (issue 8: a firmware build
  * never calls malloc after start-up).
  *

@@ -1,4 +1,4 @@
-/* src/status.c: every status has its own text; vt_version() and the header's macros equal
+/* src/base/status.c: every status has its own text; vt_version() and the header's macros equal
  * meson's project version. */
 #include <stdio.h>
 

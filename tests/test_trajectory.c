@@ -1,4 +1,4 @@
-/* src/trajectory.c: allocation, defaults, and the forward check's error norms measured
+/* src/analysis/trajectory.c: allocation, defaults, and the forward check's error norms measured
  * against a hand-made difference. */
 #include "vt_test.h"
 

@@ -1,4 +1,4 @@
-/* src/urdf.c: URDF robots into a builder. The paper's two examples written as URDF files
+/* src/model/urdf.c: URDF robots into a builder. The paper's two examples written as URDF files
  * (tests/urdf/, in URDF's conventions, independently of examples/scenes.c) against the C scenes,
  * every output of an instant to 1e-12; a fixed joint merged and rotated inertial frames against
  * a model whose inertias are combined and rotated by hand here (rotation matrices, the parallel

@@ -203,7 +203,7 @@ static vt_status row_state(vt_dae *p, ida_run *r, int k, double tret, const doub
     vt_status st = VT_OK;
     if ((p->m && (st = vt_dae_block_project(p, p->m, p->d, tret, yw, ypw))) ||
         (p->mf && (dp = p->df, st = vt_dae_block_project(p, p->mf, p->df, tret, yw + p->nd, ypw + p->nd)))) {
-        char why[256]; /* (dp's message may be md's) */
+        char why[VT_MESSAGE_SIZE]; /* (dp's message may be md's) */
         snprintf(why, sizeof why, "%s", dp->message);
         vt_fail(md->message, st, "projection at t = %g failed: %.200s", tret, why);
         return st;
@@ -274,7 +274,7 @@ static vt_status ida_failure(vt_dae *p, const ida_run *r)
     if (p->s.why && (p->s.fatal || flag == IDA_CONV_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_RES_FAIL ||
                      flag == IDA_LSETUP_FAIL || flag == IDA_FIRST_RES_FAIL)) {
         /* the residual's own failure, not IDA's generic report of it */
-        char detail[256];
+        char detail[VT_MESSAGE_SIZE];
         snprintf(detail, sizeof detail, "%s", p->s.msg);
         if (p->s.fatal == 1)
             snprintf(md->message, sizeof md->message, "%.250s", detail);

@@ -1,9 +1,9 @@
 /* The kinematic analysis over time: a fully driven model (its constraint rows fix every rate) at
  * every output time, each instant by vt_kinematic_solve's Newton–Raphson from the previous rows
- * extrapolated (vt_kinematic_start in src/kinematic_solve.c: Hermite through q, q̇, q̈ of the last
+ * extrapolated (vt_kinematic_start in analysis/kinematic_solve.c: Hermite through q, q̇, q̈ of the last
  * two, O(h⁶)), or from the previous row itself when that start's residual is not below ½ h max |Φ_t| or Newton fails
  * from it; the instant after the solve by the recursive evaluation. Then the forward check
- * (src/dynamic_analysis.c): the model without drives integrated under the drives' efforts,
+ * (analysis/dynamic_analysis.c, its residual in analysis/dae.c): the model without drives integrated under the drives' efforts,
  * which must reproduce the motion. Rows at t0 and the output times (the uniform ones, or the
  * caller's list vt_run_options.tout): each exact at its time. A model is fully driven when its
  * rows fix every rate: as many independent rows as rates, or more rows of that rank (dependent
