@@ -79,14 +79,46 @@ static int read_row(table *t, char *s, const char *path, int line, int *cap_rows
     return 0;
 }
 
+/* the next line of f into *text (grown as needed, *cap bytes), its line end kept: 1, 0 at the
+ * end of the file, -1 when it is longer than CSV_MAX_LINE (read no further than
+ * CSV_MAX_LINE + 2 bytes), -2 out of memory */
+static int next_line(FILE *f, char **text, size_t *cap)
+{
+    size_t n = 0;
+    for (int c = 0; c != '\n';) {
+        if (n + 2 > *cap) {
+            const size_t nc = *cap ? 2 * *cap : 4096;
+            char *p = realloc(*text, nc);
+            if (!p) return -2;
+            *text = p;
+            *cap = nc;
+        }
+        if ((c = getc(f)) == EOF) break;
+        (*text)[n++] = (char)c;
+        if (n > (size_t)CSV_MAX_LINE + 1 && c != '\n') return -1; /* more than the bound and "\r" */
+    }
+    (*text)[n] = '\0';
+    const size_t body = n - (n > 0 && (*text)[n - 1] == '\n') - (n > 1 && (*text)[n - 1] == '\n' && (*text)[n - 2] == '\r');
+    if (body > (size_t)CSV_MAX_LINE) return -1;
+    return n > 0;
+}
+
 /* the lines of f: the first non-blank one the header, the others data rows; 0 or 1 */
 static int read_lines(table *t, FILE *f, const char *path)
 {
     char *text = NULL;
     size_t cap = 0;
-    int line = 0, cap_rows = 0, status = 0;
-    while (!status && getline(&text, &cap, f) >= 0) {
+    int line = 0, cap_rows = 0, status = 0, got;
+    while (!status && (got = next_line(f, &text, &cap)) != 0) {
         line++;
+        if (got == -2) {
+            status = cmd_fail("out of memory");
+            break;
+        }
+        if (got == -1) {
+            status = cmd_fail("%s:%d: a line longer than %d bytes (a CSV line's limit)", path, line, CSV_MAX_LINE);
+            break;
+        }
         char *s = trim(text);
         if (line == 1 && (unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF)
             s = trim(s + 3); /* a UTF-8 byte-order mark */

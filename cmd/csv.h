@@ -12,10 +12,16 @@ typedef struct {
     double *cell; /* nrow x ncol, row-major */
 } table;
 
+/* longest line of a CSV file, in bytes, its line end not counted (docs/command.md): a robot at
+ * VT_MAX_BODIES has about 3000 columns, 75 kB of numbers at full precision and about 200 kB of
+ * header names; a longer line (a file that is not a table, /dev/zero) is refused, naming it,
+ * once the bound is passed (nothing after it is read) */
+#define CSV_MAX_LINE (1024 * 1024)
+
 /* reads the CSV file at path: a header row of distinct names, then rows of as many finite
  * numbers (a '.' decimal point whatever the locale; blank lines, a UTF-8 byte-order mark and
- * spaces around cells skipped); 0, or 1 with the message, naming the file's line, printed and *t
- * empty */
+ * spaces around cells skipped; lines of at most CSV_MAX_LINE bytes); 0, or 1 with the message,
+ * naming the file's line, printed and *t empty */
 int table_read(table *t, const char *path);
 /* frees the table's cells and names; *t is then empty */
 void table_free(table *t);

@@ -96,6 +96,14 @@ VT_API int vt_find_frame(const vt_model *model, const char *name);
 /* ---- URDF robots (only in builds with libxml2, VT_HAVE_URDF) --------------------------------- */
 
 #if VT_HAVE_URDF
+/// Largest URDF input, in bytes (16 MiB), a file's or a string's: larger ones are refused before
+/// they are read whole (a file by its size, or after reading VT_URDF_MAX_BYTES + 1 bytes of a
+/// device or pipe; a string after as many), VT_ERR_FILE for a file and VT_ERR_XML for a string,
+/// the message naming the bound. Robot descriptions are far smaller (UR5 14 kB, Talos 190 kB);
+/// a robot at VT_MAX_BODIES with inertial, visual and collision elements on every link is about
+/// 4 MB. The bound is on memory: libxml2's tree takes about 25 times the text of dense markup,
+/// so 16 MiB keeps a parse under about 400 MB.
+#define VT_URDF_MAX_BYTES (16 * 1024 * 1024)
 /// Options of vt_urdf_builder(). Fill from vt_default_urdf_options().
 typedef struct vt_urdf_options {
     vt_model_def model;   ///< the builder's model options; default vt_default_model_def() with gravity
@@ -122,13 +130,21 @@ VT_API vt_urdf_options vt_default_urdf_options(void);
 /// coordinates are the URDF joints' in that order, with the same sign and zero. Body axes are
 /// the link's inertial frame (docs/method.md, "URDF robots"). options may be NULL (the defaults).
 /// On failure *builder is NULL and message (VT_MESSAGE_SIZE bytes, may be NULL) says why, naming the element
-/// and its line. Statuses: VT_ERR_NULL (builder, path), VT_ERR_FILE (missing or unreadable),
-/// VT_ERR_XML (malformed XML; no <robot>), VT_ERR_PARENT (a link with two parents, a loop),
+/// and its line. The XML is parsed with this loader's settings whatever the process's libxml2
+/// defaults are (xmlSubstituteEntitiesDefault(), xmlLoadExtDtdDefaultValue, ...), which it leaves
+/// as they were: nothing but the input is read (no external DTD, entity or XInclude, no network),
+/// a document that declares or refers to an entity (other than &lt; &gt; &amp; &apos; &quot;) is
+/// refused, and libxml2's errors go to the message, never to standard error (those libxml2
+/// reports outside a parser context, such as a failed allocation, reach the loader through the
+/// calling thread's structured error handler, which is the loader's during the call only).
+/// Statuses: VT_ERR_NULL (builder, path), VT_ERR_FILE (missing or unreadable, or larger than
+/// VT_URDF_MAX_BYTES), VT_ERR_XML (malformed XML; an entity; no <robot>; a string larger than
+/// VT_URDF_MAX_BYTES), VT_ERR_PARENT (a link with two parents, a loop),
 /// VT_ERR_NOT_FOUND (a joint names a missing link),
 /// VT_ERR_JOINT_TYPE (planar, unknown, mimic), VT_ERR_MASS, VT_ERR_NONFINITE (a non-finite or
 /// malformed number), VT_ERR_BAD_NAME (a missing or duplicate link or joint name), the builder's
 /// statuses (an inertia, an axis of zero length, limits), VT_ERR_BAD_OPTION (options),
-/// VT_ERR_NO_MEMORY.
+/// VT_ERR_NO_MEMORY (also when libxml2 runs out of memory while parsing).
 VT_API vt_status vt_urdf_builder(vt_builder **builder, const char *path, const vt_urdf_options *options, char *message);
 /// The same from a string holding the XML (for tests and embedded use); line numbers are the
 /// string's.

@@ -334,6 +334,28 @@ def main():
     check(r.returncode == 1 and ".part" in r.stderr, "an existing .part refused: %r" % r.stderr)
     check(open(part).read() == "someone else's\n" and not os.path.exists(out3), "an existing .part left as it was")
     os.remove(part)
+    # the CSV line bound (1 MiB, docs/command.md): a row of exactly that many bytes (spaces
+    # before a number) is read, one byte more is refused naming the file and the line, and so is
+    # /dev/zero (a line that never ends: refused at the bound, not when memory runs out)
+    limit = 1024 * 1024
+    with open(bad, "w") as f:
+        f.write("t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc\n0,0,0,0,0,0,0\n")
+        f.write(" " * (limit - 13) + "1,0,0,0,0,0,0\r\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 0 and len(r.stdout.splitlines()) == 3, "a line of the CSV bound is read: %r" % r.stderr[:300])
+    with open(bad, "w") as f:
+        f.write("t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc\n0,0,0,0,0,0,0\n")
+        f.write(" " * (limit - 12) + "1,0,0,0,0,0,0\n0,0,0,0,0,0,0\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "bad.csv:3" in r.stderr and "1048576 bytes" in r.stderr,
+          "a line over the CSV bound names the file and line: %r" % r.stderr[:300])
+    r = run(vtdyn, "inverse", urdf, "/dev/zero")
+    check(r.returncode == 1 and "/dev/zero:1" in r.stderr and "1048576 bytes" in r.stderr,
+          "/dev/zero as the CSV is refused at the line bound: %r" % r.stderr[:300])
+    # the URDF's bound (VT_URDF_MAX_BYTES): /dev/zero as the robot is refused, named
+    r = run(vtdyn, "info", "/dev/zero")
+    check(r.returncode == 1 and "/dev/zero" in r.stderr and "VT_URDF_MAX_BYTES" in r.stderr,
+          "/dev/zero as the URDF is refused at the bound: %r" % r.stderr[:300])
     r = run(vtdyn, "--help")
     check(r.returncode == 0 and "J_effort" in r.stdout, "--help documents the columns")
     r = run(vtdyn, "info", urdf)

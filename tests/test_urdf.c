@@ -8,6 +8,7 @@
 #include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h> /* rmdir */
 
 #include "vt_test.h"
 
@@ -674,6 +675,124 @@ static void test_bad_input(void **state)
     assert_null(b);
 }
 
+/* Entities: URDF needs none, so a document that declares one is refused, its expansion never
+ * done: one internal entity of 16 kB used 300 times in an attribute (an 18 kB file that would
+ * expand to 4.8 MB), and in content; the predefined entities and character references are
+ * still read (a name "a&b<c" written "a&amp;b&#60;c"). */
+static void test_entities(void **state)
+{
+    (void)state;
+    const size_t big = 16000, uses = 300;
+    char *xml = malloc(big + 6 * uses + 512);
+    assert_non_null(xml);
+    char *p = xml + sprintf(xml, "<?xml version=\"1.0\"?>\n<!DOCTYPE robot [\n<!ENTITY e \"");
+    memset(p, 'x', big);
+    p += big;
+    p += sprintf(p, "\">\n]>\n<robot name=\"r\"><link name=\"world\"/><link name=\"");
+    for (size_t k = 0; k < uses; k++) p += sprintf(p, "&e;");
+    sprintf(p, "\"/></robot>\n");
+    assert_true(strlen(xml) < 18000);
+    char msg[256] = "";
+    vt_builder *b = (vt_builder *)&msg;
+    vt_status st = vt_urdf_builder_string(&b, xml, NULL, msg);
+    if (st != VT_ERR_XML || b || !strstr(msg, "entities") || !strstr(msg, "<!ENTITY e>") || !strstr(msg, "line 3"))
+        fail_msg("the large entity: status %d, message \"%s\"", (int)st, msg);
+    free(xml);
+    static const char *const refused[] = {
+        /* used in content, and a parameter entity */
+        "<!DOCTYPE robot [<!ENTITY e \"xyz\">]><robot><link name=\"a\">&e;</link></robot>",
+        "<!DOCTYPE robot [<!ENTITY % e \"<!ENTITY f 'b'>\"> %e;]><robot><link name=\"&f;\"/></robot>",
+        /* declared, not used: refused too (nothing in URDF declares one) */
+        "<!DOCTYPE robot [<!ENTITY e \"xyz\">]><robot><link name=\"a\"/></robot>",
+        "<!DOCTYPE robot [<!NOTATION n SYSTEM \"n\"><!ENTITY e SYSTEM \"e.bin\" NDATA n>]><robot><link name=\"a\"/></robot>",
+    };
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        st = vt_urdf_builder_string(&b, refused[k], NULL, msg);
+        if (st != VT_ERR_XML || b || !strstr(msg, "entities are refused"))
+            fail_msg("refused[%zu]: status %d, message \"%s\"", k, (int)st, msg);
+    }
+    /* a DOCTYPE without entities, the predefined entities and character references: read */
+    const char *fine = "<?xml version=\"1.0\"?><!DOCTYPE robot [<!ELEMENT robot ANY>]>"
+                       "<robot name=\"r\"><link name=\"world\"/><link name=\"a&amp;b&#60;c\"/>"
+                       "<joint name=\"j&gt;\" type=\"revolute\"><parent link=\"world\"/><child link=\"a&amp;b&lt;c\"/>"
+                       "</joint><!-- &amp; --></robot>";
+    st = vt_urdf_builder_string(&b, fine, NULL, msg);
+    if (st != VT_OK) fail_msg("predefined entities: status %d, message \"%s\"", (int)st, msg);
+    assert_int_equal(vt_builder_find_body(b, "a&b<c"), 1);
+    vt_model *m;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_int_equal(vt_find_joint(m, "j>"), 1);
+    vt_model_free(m);
+}
+
+/* The input's bound, VT_URDF_MAX_BYTES: a robot padded with spaces to exactly that size is
+ * read (from a string and from a file), one byte more is refused naming the bound, from a
+ * string (VT_ERR_XML) and a file (VT_ERR_FILE, by its size: a sparse file); /dev/zero, which
+ * never ends, is refused once the bound is passed instead of growing a buffer until memory
+ * runs out. */
+static void test_size_bound(void **state)
+{
+    (void)state;
+    const size_t max = (size_t)VT_URDF_MAX_BYTES;
+    assert_true(max == 16u * 1024u * 1024u);
+    const char *robot = "<robot name=\"r\"><link name=\"world\"/><link name=\"a\"/>"
+                        "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/><child link=\"a\"/></joint>",
+               *end = "</robot>";
+    char *xml = malloc(max + 2);
+    assert_non_null(xml);
+    const size_t n = strlen(robot), ne = strlen(end);
+    memcpy(xml, robot, n);
+    /* padded with lines of comment, as a generated file's, to exactly max bytes */
+    size_t at = n;
+    while (max - ne - at >= 80) {
+        memcpy(xml + at, "<!--", 4);
+        memset(xml + at + 4, '-' + 1, 72);
+        memcpy(xml + at + 76, "-->\n", 4);
+        at += 80;
+    }
+    memset(xml + at, ' ', max - ne - at);
+    memcpy(xml + max - ne, end, ne);
+    xml[max] = '\0';
+    char msg[256];
+    vt_builder *b;
+    vt_status st = vt_urdf_builder_string(&b, xml, NULL, msg);
+    if (st != VT_OK) fail_msg("a string of VT_URDF_MAX_BYTES: status %d, message \"%s\"", (int)st, msg);
+    vt_builder_free(b);
+    xml[max] = ' ';
+    xml[max + 1] = '\0'; /* one byte more */
+    st = vt_urdf_builder_string(&b, xml, NULL, msg);
+    if (st != VT_ERR_XML || b || !strstr(msg, "VT_URDF_MAX_BYTES") || !strstr(msg, "16777216"))
+        fail_msg("a string of VT_URDF_MAX_BYTES + 1: status %d, message \"%s\"", (int)st, msg);
+    /* files: exactly the bound, one byte more (sparse: refused by its size) */
+    char dir[] = "/tmp/vtdyn_urdf_size_XXXXXX", path[64];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/big.urdf", dir);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(xml, 1, max, f), max);
+    assert_int_equal(fclose(f), 0);
+    st = vt_urdf_builder(&b, path, NULL, msg);
+    if (st != VT_OK) fail_msg("a file of VT_URDF_MAX_BYTES: status %d, message \"%s\"", (int)st, msg);
+    vt_builder_free(b);
+    f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(robot, 1, n, f), n);
+    assert_int_equal(fseek(f, (long)max, SEEK_SET), 0); /* a hole up to byte max + 1 */
+    assert_int_equal(fputc(' ', f), ' ');
+    assert_int_equal(fclose(f), 0);
+    st = vt_urdf_builder(&b, path, NULL, msg);
+    if (st != VT_ERR_FILE || b || !strstr(msg, "big.urdf") || !strstr(msg, "VT_URDF_MAX_BYTES"))
+        fail_msg("a file of VT_URDF_MAX_BYTES + 1: status %d, message \"%s\"", (int)st, msg);
+    remove(path);
+    rmdir(dir);
+    free(xml);
+    /* a device that never ends */
+    st = vt_urdf_builder(&b, "/dev/zero", NULL, msg);
+    if (st != VT_ERR_FILE || b || !strstr(msg, "/dev/zero") || !strstr(msg, "VT_URDF_MAX_BYTES"))
+        fail_msg("/dev/zero: status %d, message \"%s\"", (int)st, msg);
+}
+
 static int report(void **state)
 {
     (void)state;
@@ -760,6 +879,8 @@ int main(void)
         cmocka_unit_test(test_comma_locale),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_mimic_and_placeholders),
+        cmocka_unit_test(test_entities),
+        cmocka_unit_test(test_size_bound),
     };
     return cmocka_run_group_tests(tests, NULL, report);
 }
