@@ -387,22 +387,8 @@ static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *res
             vt_copy3(xdd, a);
             memcpy(xdd + 3, pdd, sizeof pdd);
         }
-        { /* the needed wrench (body_wrench) */
-            const double *Jb = m->body_inertia + 9 * i, *xf = d->xfrc + 6 * i, mass = m->body_mass[i];
-            double Jw[3], Ja[3], nn[3], f[3];
-            vt_mulmat3(Jw, Jb, wb);
-            vt_mulmat3(Ja, Jb, ab);
-            vt_addcross3(Ja, wb, Jw);
-            vt_mulmat3(nn, A, Ja);
-            for (int k = 0; k < 3; k++) {
-                f[k] = mass * (a[k] - m->gravity[k]) - xf[k];
-                nn[k] -= xf[3 + k];
-            }
-            vt_addcross3(nn, f, sji); /* about P_i: (r^i − P_i) × f = f × s^{ji} */
-            double *Wi = W + 6 * i;
-            vt_copy3(Wi, nn);
-            vt_copy3(Wi + 3, f);
-        }
+        /* the needed wrench about P_i: r^i − P_i = −s^{ji} = d^i (no translation) */
+        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, di);
     }
 }
 
