@@ -30,12 +30,13 @@
 #include "base/status.h"
 #include "base/vec3.h"
 #include "model/model.h"
+#include "kinematics/body.h"
 #include "kinematics/kinematics.h"
 #include "dense/constraints.h"
 #include "dense/reactions.h"
 #include "dense/solve.h"
 
-/* G = body inertia I (inertia_O's form) as a full 6x6, columns of 8 (the last two zero, so that
+/* G = body inertia I (vt_body_inertia's form) as a full 6x6, columns of 8 (the last two zero, so that
  * a column is two 4-wide vectors), acting on (w, v): [J_O  h̃; h̃^T  m 1] with h̃ v = h × v */
 static inline void column8(double *restrict g, double a, double b, double c, double d, double e, double f)
 {
@@ -112,7 +113,7 @@ static inline void shift_inertia_add(double *restrict Gj, const double *restrict
         }
 }
 
-/* a composite inertia (m, h, J) about P_i (13 numbers, inertia_at's form) added about P_j:
+/* a composite inertia (m, h, J) about P_i (13 numbers, vt_body_inertia's form) added about P_j:
  * h' = h + m r, J' = J + 2 (g · r) 1 − (g r^T + r g^T) with g = h + ½ m r
  * (= J + 2 (h · r) 1 − (h r^T + r h^T) + m (|r|² 1 − r r^T)) */
 static inline void shift_composite_add(double *restrict Ij, const double *restrict I, const double r[3])
@@ -268,7 +269,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     for (int i = 1; i <= n; i++) { /* p⁰ = W⁰, I^A = Ī = I_i, about P_i (the children's added below) */
         double *p = P + sr * (size_t)i;
         for (int k = 6; k < 6 * nr; k++) p[k] = 0.0; /* the rows' sides */
-        vt_inertia_bias(Ic + 13 * i, p, m, d, i, L + 6 * i);
+        vt_body_inertia_bias(Ic + 13 * i, p, m, d, i, L + 6 * i);
         inertia_full(IA + 48 * i, Ic + 13 * i);
     }
     if (nc > 0) { /* p^r: the row's wrench for λ_r = 1 on its bodies, about P_b, as an applied load */

@@ -511,7 +511,10 @@ static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, 
 
 /* the joint-driven (MOTION_DRIVEN) or given (MOTION_GIVEN) instant of a tree without base bodies:
  * inward_pass's outputs, and vt_kinematics_tree's (without Ṡq̇); OUTPUTS_BOUNDED: fused_bounded
- * holds, the outputs need no scan */
+ * holds, the outputs need no scan. Inlined: each caller's constants compiled apart */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_motion motion, const fused_tree tree,
                                    const fused_outputs outputs, const fused_angles angles)
 {

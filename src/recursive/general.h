@@ -8,9 +8,6 @@
 /* W̄: every subtree's needed wrench about its joint point P_i at the accelerations d->xdd and
  * alpha (3 x (nbody+1)), into W (6 x (nbody+1)) */
 void vt_subtree_wrenches_at_joints(const vt_model *m, const vt_data *d, const double *alpha, double *W);
-/* body i's spatial inertia (m, h, J_O) about the point from which its centre of mass lies at c,
- * into I (13), and its needed wrench at q̈ = 0 about that point into W */
-void vt_inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i, const double c[3]);
 /* M* by composite bodies and Q by a Newton–Euler pass, into d->Mstar and d->Q */
 vt_status vt_mass_and_bias(const vt_model *m, vt_data *d);
 /* (5) by vt_solve on the composite M*, its answer judged (VT_NEEDS_DENSE, VT_NEEDS_MAXIMAL) */
