@@ -162,103 +162,136 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
 
 /* The fused passes: a tree without base bodies, every q̈ known (every rate joint-driven, or the
  * motion given): the kinematics, the accelerations and each body's needed wrench in one outward
- * loop over the bodies, the subtree wrenches, efforts and reactions in one inward loop; the same
- * equations as vt_kinematics_tree, vt_accelerations, body_wrench and inward_pass. A revolute body
- * has its own code, written for one rotational rate (e = A^j u, its twist (e, (P − o) × e),
- * t = 0, ė = ω^j × e, τ = e · the moment about P), a translational one its own code both ways
- * (fused_slide, fused_slide_inward); any other joint takes the general code's stages for the
- * body. */
+ * loop over the bodies (the kernels of kinematics/body.h, as vt_kinematics_tree and
+ * vt_accelerations call them), the subtree wrenches, efforts and reactions in one inward loop (as
+ * inward_pass). A revolute and a translational body each have the kernels compiled for their one
+ * rate (fused_body: e = A^j u; a revolute's twist (e, (P − o) × e), t = 0, τ = e · the moment
+ * about P; a translational one's (0, e), t = q e, τ = e · f); any other joint takes the general
+ * code's stages for the body (fused_other). */
 static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
 
-/* fused_outward's body on a translational joint (vt_kinematics_body, vt_acceleration_body and
- * body_wrench_at for one sliding rate, written out): the body keeps its reference body's
- * orientation (p = p^j ⊗ p0), e = A^j u, t = q e, its twist (0, e); ω = ω^j,
- * v = v^j + ω^j × s^{ij} + q̇ e + ω × d^i (d^i = t − s^{ji}); α = α^j,
- * a = a^j + α^j × s^{ij} + ω^j × (ω^j × s^{ij}) + q̈ e + 2 q̇ ω^j × e + q (α^j × e + ω^j × (ω^j × e))
- *     − α × s^{ji} − ω × (ω × s^{ji});
- * its needed wrench about P_i. A gripper's fingers, a linear axis: the robot stays on the
- * fused passes' own code instead of the general stages' loops over kinds and rates. Not inlined:
- * in the revolute loop's body it cost the chain 5–11 % (bench/ab/run.sh), its code laid out anew. */
+/* fused_outward's body i on a revolute or translational joint (jt, a constant): its positions,
+ * its rate's twist, velocities, accelerations and needed wrench W_i about P_i */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void fused_body(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
+                              const int jt, const fused_angles angles)
+{
+    double *o = d->origin;
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
+    const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
+    const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
+    double p[4], A[9], e[3], sij[3], sji[3], t[3];
+    if (jt == VT_JOINT_REVOLUTE) { /* no calls with the vectors live */
+        double cs, sn;
+        if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
+        else vt_sincos(0.5 * q, &sn, &cs);
+        vt_body_turn(p, pj, cs, sn, u);
+    } else {
+        memcpy(p, pj, sizeof p);
+    }
+    vt_body_orientation(p, A, m->body_quat0 + 4 * i);
+    vt_mulmat3(e, Aj, u);
+    if (jt == VT_JOINT_TRANSLATIONAL)
+        for (int k = 0; k < 3; k++) t[k] = q * e[k];
+    vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
+    vt_mulmat3(sji, A, m->body_jchild + 3 * i);
+    if (i == 1) { /* o = P_1 */
+        if (jt == VT_JOINT_TRANSLATIONAL)
+            for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
+        else vt_copy3(o, sij);
+        for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+    }
+    /* the reference body's values in locals before the first store (the outputs might alias
+     * them as far as the compiler knows); each output stored as soon as it is known, so that
+     * fewer values stay live (spilled) to the end */
+    const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
+    const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
+    double rj[3], wj[3], alj[3], vj[3], aj[3];
+    for (int k = 0; k < 3; k++) {
+        rj[k] = rjp[k];
+        wj[k] = wjp[k];
+        alj[k] = aljp[k];
+        vj[k] = vjp[k];
+        aj[k] = ajp[k];
+    }
+    double di[3], w[3], al[3], a[3], wb[3], ab[3];
+    { /* positions from o, the rate's twist */
+        double Pr[3], rr[3], tw[3];
+        vt_body_position(Pr, rr, di, rj, sij, jt == VT_JOINT_TRANSLATIONAL ? t : NULL, sji);
+        if (jt == VT_JOINT_REVOLUTE) vt_cross3(tw, Pr, e);
+        double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
+        for (int k = 0; k < 3; k++) {
+            x[k] = o[k] + rr[k];
+            d->jpoint[3 * i + k] = o[k] + Pr[k];
+            d->xrel[6 * i + k] = rr[k];
+            d->xrel[6 * i + 3 + k] = Pr[k];
+            d->jsij[3 * i + k] = sij[k];
+            d->jd[3 * i + k] = di[k];
+            ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
+            twc[k] = jt == VT_JOINT_REVOLUTE ? e[k] : 0.0;
+            twc[3 + k] = jt == VT_JOINT_REVOLUTE ? tw[k] : e[k];
+        }
+        memcpy(x + 3, p, sizeof p);
+        memcpy(d->A + 9 * i, A, sizeof A);
+    }
+    { /* velocities */
+        double v[3], pd[4];
+        vt_body_velocity(w, v, pd, wj, vj, sij, di, NULL, p, jt, 1, e, &qd);
+        vt_mulmat3t(wb, A, w); /* ω in body axes for the wrench */
+        double *xd = d->xd + vt_xoff(i);
+        vt_copy3(d->omega + 3 * i, w);
+        vt_copy3(xd, v);
+        memcpy(xd + 3, pd, sizeof pd);
+    }
+    { /* accelerations */
+        double pdd[4];
+        vt_body_acceleration(al, a, pdd, alj, aj, wj, w, sij, sji, p, jt, 1, e, &q, &qd, &qdd);
+        vt_mulmat3t(ab, A, al); /* α in body axes for the wrench */
+        double *xdd = d->xdd + vt_xoff(i);
+        vt_copy3(alpha + 3 * i, al);
+        vt_copy3(xdd, a);
+        memcpy(xdd + 3, pdd, sizeof pdd);
+    }
+    /* the needed wrench about P_i: r^i − P_i = −s^{ji} (= d^i without translation) */
+    if (jt == VT_JOINT_REVOLUTE) {
+        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, di);
+    } else {
+        double ci[3];
+        for (int k = 0; k < 3; k++) ci[k] = -sji[k];
+        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, ci);
+    }
+}
+
+/* A gripper's fingers, a linear axis: the robot stays on the fused passes' own code instead of
+ * the general stages' loops over kinds and rates. Not inlined: its code in the revolute loop's
+ * body would have that loop laid out anew, and slower. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i)
 {
-    double *o = d->origin;
-    const int j = m->body_parent[i], c = m->body_vadr[i];
-    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
-    const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j, *p0 = m->body_quat0 + 4 * i;
-    double p[4], A[9], e[3], sij[3], sji[3], t[3];
-    memcpy(p, j ? d->x + vt_xoff(j) + 3 : unit_quat, sizeof p);
-    if (!vt_quat_is_identity(p0)) vt_quat_mul_inline(p, p, p0);
-    vt_euler_A_inline(A, p);
-    vt_mulmat3(e, Aj, u);
-    for (int k = 0; k < 3; k++) t[k] = q * e[k];
-    vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
-    vt_mulmat3(sji, A, m->body_jchild + 3 * i);
-    if (i == 1) { /* o = P_1 */
-        for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
-        for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
-    }
-    const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
-    const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
-    double rj[3], wj[3], alj[3], vj[3], aj[3];
-    for (int k = 0; k < 3; k++) rj[k] = rjp[k], wj[k] = wjp[k], alj[k] = aljp[k], vj[k] = vjp[k], aj[k] = ajp[k];
-    double di[3], v[3], a[3], ed[3], edd[3], tt[3], pd[4], pdd[4];
-    double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
-    for (int k = 0; k < 3; k++) { /* positions from o (r^i − o from P_i − o, as position()) */
-        const double b = rj[k] + sij[k], Pr = b + t[k], rr = Pr - sji[k];
-        di[k] = t[k] - sji[k];
-        x[k] = o[k] + rr;
-        d->jpoint[3 * i + k] = o[k] + Pr;
-        d->xrel[6 * i + k] = rr;
-        d->xrel[6 * i + 3 + k] = Pr;
-        d->jsij[3 * i + k] = sij[k];
-        d->jd[3 * i + k] = di[k];
-        ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
-        twc[k] = 0.0;
-        twc[3 + k] = e[k];
-    }
-    memcpy(x + 3, p, sizeof p);
-    memcpy(d->A + 9 * i, A, sizeof A);
-    /* velocities: ω = ω^j */
-    vt_copy3(v, vj);
-    vt_addcross3(v, wj, sij);
-    vt_axpy3(v, qd, e);
-    vt_addcross3(v, wj, di);
-    vt_quat_rate(pd, p, wj);
-    double *xd = d->xd + vt_xoff(i);
-    vt_copy3(d->omega + 3 * i, wj);
-    vt_copy3(xd, v);
-    memcpy(xd + 3, pd, sizeof pd);
-    /* accelerations: α = α^j */
-    vt_copy3(a, aj);
-    vt_addcross3(a, alj, sij);
-    vt_cross3(tt, wj, sij);
-    vt_addcross3(a, wj, tt);
-    vt_cross3(ed, wj, e);
-    vt_cross3(edd, alj, e);
-    vt_addcross3(edd, wj, ed);
-    vt_axpy3(a, qdd, e);
-    vt_axpy3(a, 2.0 * qd, ed);
-    vt_axpy3(a, q, edd);
-    vt_cross3(tt, alj, sji);
-    for (int k = 0; k < 3; k++) a[k] -= tt[k];
-    vt_cross3(tt, wj, sji);
-    vt_cross3(ed, wj, tt);
-    for (int k = 0; k < 3; k++) a[k] -= ed[k];
-    vt_quat_rate(pdd, p, alj);
-    const double w2 = vt_dot3(wj, wj);
-    for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
-    double *xdd = d->xdd + vt_xoff(i);
-    vt_copy3(alpha + 3 * i, alj);
-    vt_copy3(xdd, a);
-    memcpy(xdd + 3, pdd, sizeof pdd);
-    for (int k = 0; k < 3; k++) sji[k] = -sji[k]; /* about P_i: r^i − P_i = −s^{ji} */
-    vt_body_wrench_global(W + 6 * i, m, d, i, a, alj, sji);
+    fused_body(m, d, alpha, W, i, VT_JOINT_TRANSLATIONAL, ANGLES_ANY);
 }
 
-/* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about o) */
+/* any other joint: the general code's stages for body i, its wrench about P_i (c = r^i − P_i =
+ * −s^{ji}). Not inlined, as fused_slide. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_other(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i)
+{
+    double c[3];
+    vt_kinematics_body(m, d, i);
+    vt_acceleration_body(m, d, d->qdd, d->xdd, alpha, i);
+    vt_joint_child(c, m, d, i);
+    for (int k = 0; k < 3; k++) c[k] = -c[k];
+    vt_body_wrench_global(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i, c);
+}
+
+/* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about P_i) */
 /* ANGLES_SMALL: every |q| ≤ 2^15, so every half angle is vt_sincos_small's (no call in the loop);
  * compiled once for each (fused_outward, fused_outward_any) */
 #if defined(__GNUC__)
@@ -272,123 +305,9 @@ static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *res
     memset(d->xrel, 0, 6 * sizeof(double));
     alpha[0] = alpha[1] = alpha[2] = 0.0;
     for (int i = 1; i <= m->nbody; i++) {
-        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
-            fused_slide(m, d, alpha, W, i);
-            continue;
-        }
-        if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) { /* the general code's stages for this body */
-            double c[3]; /* about the joint point: c = r^i − P_i = −s^{ji} */
-            vt_kinematics_body(m, d, i);
-            vt_acceleration_body(m, d, d->qdd, d->xdd, alpha, i);
-            vt_joint_child(c, m, d, i);
-            for (int k = 0; k < 3; k++) c[k] = -c[k];
-            vt_body_wrench_global(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i, c);
-            continue;
-        }
-        const int j = m->body_parent[i], c = m->body_vadr[i];
-        const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
-        const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
-        const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
-        double p[4], A[9], e[3], sij[3], sji[3];
-        { /* p = p^j ⊗ (cos ½q, sin ½q u) written out, (c p0 − s p·u, c p + s p0 u + s p × u): no
-           * calls with the vectors live */
-            double cs, sn;
-            if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
-            else vt_sincos(0.5 * q, &sn, &cs);
-            const double a0 = pj[0], a1 = pj[1], a2 = pj[2], a3 = pj[3];
-            p[0] = cs * a0 - sn * (a1 * u[0] + a2 * u[1] + a3 * u[2]);
-            p[1] = cs * a1 + sn * (a0 * u[0] + a2 * u[2] - a3 * u[1]);
-            p[2] = cs * a2 + sn * (a0 * u[1] + a3 * u[0] - a1 * u[2]);
-            p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
-        }
-        const double *p0 = m->body_quat0 + 4 * i;
-        if (!vt_quat_is_identity(p0)) vt_quat_mul_inline(p, p, p0);
-        vt_euler_A_inline(A, p);
-        vt_mulmat3(e, Aj, u);
-        vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
-        vt_mulmat3(sji, A, m->body_jchild + 3 * i);
-        if (i == 1) { /* o = P_1 */
-            vt_copy3(o, sij);
-            for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
-        }
-        /* the reference body's values in locals before the first store (the outputs might alias
-         * them as far as the compiler knows); each output stored as soon as it is known, so that
-         * fewer values stay live (spilled) to the end */
-        const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
-        const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
-        double rj[3], wj[3], alj[3], vj[3], aj[3];
-        for (int k = 0; k < 3; k++) {
-            rj[k] = rjp[k];
-            wj[k] = wjp[k];
-            alj[k] = aljp[k];
-            vj[k] = vjp[k];
-            aj[k] = ajp[k];
-        }
-        double rr[3], di[3], w[3], al[3], a[3], t[3], ed[3], wb[3], ab[3];
-        { /* positions from o, the rate's twist */
-            double Pr[3], tw[3];
-            for (int k = 0; k < 3; k++) {
-                Pr[k] = rj[k] + sij[k];
-                rr[k] = Pr[k] - sji[k];
-                di[k] = 0.0 - sji[k];
-            }
-            vt_cross3(tw, Pr, e);
-            double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
-            for (int k = 0; k < 3; k++) {
-                x[k] = o[k] + rr[k];
-                d->jpoint[3 * i + k] = o[k] + Pr[k];
-                d->xrel[6 * i + k] = rr[k];
-                d->xrel[6 * i + 3 + k] = Pr[k];
-                d->jsij[3 * i + k] = sij[k];
-                d->jd[3 * i + k] = di[k];
-                ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
-                twc[k] = e[k];
-                twc[3 + k] = tw[k];
-            }
-            memcpy(x + 3, p, sizeof p);
-            memcpy(d->A + 9 * i, A, sizeof A);
-        }
-        { /* velocities */
-            double v[3], pd[4];
-            for (int k = 0; k < 3; k++) {
-                w[k] = wj[k] + qd * e[k];
-                v[k] = vj[k];
-            }
-            vt_addcross3(v, wj, sij);
-            vt_addcross3(v, w, di);
-            vt_quat_rate(pd, p, w);
-            vt_mulmat3t(wb, A, w); /* ω in body axes for the wrench */
-            double *xd = d->xd + vt_xoff(i);
-            vt_copy3(d->omega + 3 * i, w);
-            vt_copy3(xd, v);
-            memcpy(xd + 3, pd, sizeof pd);
-        }
-        { /* accelerations */
-            double pdd[4];
-            vt_copy3(al, alj);
-            vt_copy3(a, aj);
-            vt_addcross3(a, alj, sij);
-            vt_cross3(t, wj, sij);
-            vt_addcross3(a, wj, t);
-            vt_cross3(ed, wj, e);
-            vt_axpy3(al, qdd, e);
-            vt_axpy3(al, qd, ed);
-            vt_cross3(ed, al, sji);
-            for (int k = 0; k < 3; k++) a[k] -= ed[k];
-            vt_cross3(t, w, sji);
-            vt_cross3(ed, w, t);
-            for (int k = 0; k < 3; k++) a[k] -= ed[k];
-            vt_quat_rate(pdd, p, al);
-            vt_mulmat3t(ab, A, al); /* α in body axes for the wrench */
-            const double w2 = vt_dot3(w, w);
-            for (int k = 0; k < 4; k++) pdd[k] -= 0.25 * w2 * p[k];
-            double *xdd = d->xdd + vt_xoff(i);
-            vt_copy3(alpha + 3 * i, al);
-            vt_copy3(xdd, a);
-            memcpy(xdd + 3, pdd, sizeof pdd);
-        }
-        /* the needed wrench about P_i: r^i − P_i = −s^{ji} = d^i (no translation) */
-        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, di);
+        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) fused_slide(m, d, alpha, W, i);
+        else if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) fused_other(m, d, alpha, W, i);
+        else fused_body(m, d, alpha, W, i, VT_JOINT_REVOLUTE, angles);
     }
 }
 
