@@ -332,8 +332,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     if (st0) return st0;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    /* α, the applied wrenches and the children's reactions one after the other (the layout the
-     * kernels were timed with) */
+    /* α, the applied wrenches and the children's reactions one after the other, in one block */
     double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, applied wrenches, children's reactions");
     double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
     if (!rw) return vt_scratch_fail(d, mark);

@@ -76,38 +76,47 @@ vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
-/* joint i's efforts and reaction from its subtree's wrench Wi (about o): inward_pass's step for one
- * body; 1 if the reaction overflowed. With totals, also the joint's total wrench (reaction plus
- * actuation): W̄_i itself, its moment about P_i, before the actuation is taken off; d->jnt_force_total
- * is then the reaction's force but for a free joint, whose reaction is zeroed. */
+/* Joint i's efforts and reaction from its subtree's wrench W̄_i (Wi, about P_i): a turning rate's
+ * twist (e, 0) and a sliding one's (0, e) about P_i paired with W̄_i give τ = s · W̄_i − qfrc (a
+ * base body's rates: their twists); the reaction is W̄_i less the actuation (τ + qfrc) along each
+ * axis (actuation — a drive's τ and an applied qfrc — is not reaction), a free joint's zeroed (it
+ * transmits nothing: what is left is round-off). With TOTALS_FORMED also the joint's total wrench
+ * (reaction plus actuation), W̄_i itself. jt and nv: the joint's kind and rates, constants where
+ * the caller knows them (one rate of a revolute or translational joint), else m's. W̄_i is copied
+ * into Wo (locals for the caller's shift to the parent: the outputs might alias W as far as the
+ * compiler knows); 1 if the reaction overflowed. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, int i, const fused_motion motion,
-                                 const fused_totals totals)
+static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, double Wo[6], int i, const int jt,
+                                 const int nv, const fused_motion motion, const fused_totals totals)
 {
-    const double *e = d->jaxis + 9 * i;
-    double f[3], mo[3]; /* locals, stored once: the outputs might alias the inputs; W̄_i about P_i */
-    vt_copy3(f, Wi + 3);
-    vt_copy3(mo, Wi);
+    const double *e = d->jaxis + 9 * i, *A = d->A + 9 * i;
+    /* rates that all turn leave the force, rates that all slide the moment: its axes once */
+    const int turns = jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL;
+    const int slides = jt == VT_JOINT_TRANSLATIONAL;
+    double f[3], mo[3], fb[3], mb[3];
+    for (int k = 0; k < 6; k++) Wo[k] = Wi[k];
+    vt_copy3(f, Wo + 3);
+    vt_copy3(mo, Wo);
     if (totals == TOTALS_FORMED) {
-        double tb[3];
-        vt_mulmat3t(tb, d->A + 9 * i, f);
+        vt_mulmat3t(fb, A, f);
+        vt_mulmat3t(mb, A, mo);
         vt_copy3(d->jnt_force_total + 3 * i, f);
-        vt_copy3(d->jnt_force_total_body + 3 * i, tb);
-        vt_mulmat3t(tb, d->A + 9 * i, mo);
         vt_copy3(d->jnt_moment_total + 3 * i, mo);
-        vt_copy3(d->jnt_moment_total_body + 3 * i, tb);
+        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
     }
-    for (int k = 0; k < m->body_nv[i]; k++) {
+    for (int k = 0; k < nv; k++) {
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
-        const int rot = vt_dof_kind(m->body_joint[i], k, &ax) == VT_DOF_ROT;
+        const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
+        const double qf = d->qfrc[c];
         double tau = 0.0;
-        if (motion == MOTION_GIVEN || dr >= 0) { /* the rate's twist paired with W̄_i about P_i, where a turning
-                                 * rate's twist is (w, 0) and a sliding one's (0, v) */
+        if (motion == MOTION_GIVEN || dr >= 0) {
             const double *w = d->twist + 6 * c;
-            tau = (rot || vt_dof_turns(m, c) ? vt_dot3(w, Wi) : vt_dot3(w + 3, Wi + 3)) - d->qfrc[c];
+            const double *s = rot || kind == VT_DOF_TRANS ? e + 3 * ax : kind == VT_DOF_BASE_P ? w : w + 3;
+            tau = (rot || kind == VT_DOF_BASE_P ? vt_dot3(s, Wo) : vt_dot3(s, Wo + 3)) - qf;
         }
         if (motion == MOTION_DRIVEN && dr >= 0) {
             d->lambda[m->drive_row[dr]] = tau;
@@ -119,13 +128,11 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
             }
         }
         d->qfrc_drive[c] = tau;
-        vt_axpy3(rot ? mo : f, -(tau + d->qfrc[c]), e + 3 * ax); /* actuation is not reaction */
+        vt_axpy3(rot ? mo : f, -(tau + qf), e + 3 * ax);
     }
-    if (m->body_joint[i] == VT_JOINT_FREE) /* transmits nothing: what is left is round-off */
-        f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
-    double fb[3], mb[3];
-    vt_mulmat3t(fb, d->A + 9 * i, f);
-    vt_mulmat3t(mb, d->A + 9 * i, mo);
+    if (jt == VT_JOINT_FREE) f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
+    if (!(turns && totals == TOTALS_FORMED)) vt_mulmat3t(fb, A, f);
+    if (!(slides && totals == TOTALS_FORMED)) vt_mulmat3t(mb, A, mo);
     vt_copy3(d->jnt_force + 3 * i, f);
     vt_copy3(d->jnt_moment + 3 * i, mo);
     vt_copy3(d->jnt_force_body + 3 * i, fb);
@@ -145,11 +152,14 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
     if (!W) return vt_scratch_fail(d, mark);
     vt_accelerations(m, d, d->qdd, d->xdd, d->alpha);
     vt_subtree_wrenches_at_joints(m, d, d->alpha, W);
-    for (int i = 1; i <= n; i++)
-        if (totals == TOTALS_FORMED ? joint_reaction(m, d, W + 6 * i, i, MOTION_DRIVEN, TOTALS_FORMED)
-                                    : joint_reaction(m, d, W + 6 * i, i, MOTION_DRIVEN, TOTALS_LEFT))
+    for (int i = 1; i <= n; i++) {
+        double Wo[6];
+        const int jt = m->body_joint[i], nv = m->body_nv[i];
+        if (totals == TOTALS_FORMED ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED)
+                                    : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT))
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+    }
     vt_scratch_release(d, mark);
     if (totals == TOTALS_FORMED) { /* the ground's rows */
         memset(d->jnt_force_total, 0, 3 * sizeof(double));
@@ -387,44 +397,15 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
     for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
 }
 
-/* fused_pass's inward step on a translational joint (joint_reaction and shift_to_parent for one
- * sliding rate, written out): its twist (0, e) paired with W̄_i gives τ = e · f − qfrc, the
- * reaction is W̄_i less the actuation (τ + qfrc) e along the axis, its whole moment kept. Not
- * inlined, as fused_slide. */
+/* fused_pass's inward step on a translational joint. Not inlined, as fused_slide. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, const fused_motion motion)
 {
-    const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
-    const double *Wi = W + 6 * i, *e = d->jaxis + 9 * i, *A = d->A + 9 * i, qf = d->qfrc[c];
-    double f[3], mo[3], fb[3], mb[3]; /* locals, stored once: the outputs might alias the inputs */
-    vt_copy3(f, Wi + 3);
-    vt_copy3(mo, Wi);
-    vt_mulmat3t(fb, A, f);
-    vt_mulmat3t(mb, A, mo);
-    vt_copy3(d->jnt_force_total + 3 * i, f); /* the total: W̄_i about P_i, actuation included */
-    vt_copy3(d->jnt_moment_total + 3 * i, mo);
-    vt_copy3(d->jnt_force_total_body + 3 * i, fb);
-    vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
-    double tau = 0.0;
-    if (motion == MOTION_GIVEN || dr >= 0) tau = vt_dot3(e, f) - qf;
-    if (motion == MOTION_DRIVEN && dr >= 0) {
-        d->lambda[m->drive_row[dr]] = tau;
-        d->drive_effort[dr] = tau;
-        double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
-        for (int k = 0; k < 3; k++) {
-            df[k] = tau * e[k];
-            dm[k] = 0.0;
-        }
-    }
-    d->qfrc_drive[c] = tau;
-    vt_axpy3(f, -(tau + qf), e); /* actuation is not reaction */
-    vt_mulmat3t(fb, A, f);
-    vt_copy3(d->jnt_force + 3 * i, f);
-    vt_copy3(d->jnt_moment + 3 * i, mo);
-    vt_copy3(d->jnt_force_body + 3 * i, fb);
-    vt_copy3(d->jnt_moment_body + 3 * i, mb);
+    double Wo[6];
+    const int j = m->body_parent[i];
+    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED);
     if (j > 0) shift_to_parent(m, d, W, i, j);
 }
 
@@ -449,47 +430,19 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         return vt_scratch_release(d, mark), st;
     }
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
-        const int c = m->body_vadr[i], dr = m->dof_drive[c], j = m->body_parent[i];
+        const int j = m->body_parent[i];
         if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
             fused_slide_inward(m, d, W, i, motion);
             continue;
         }
+        double Wo[6];
         if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
-            (void)joint_reaction(m, d, W + 6 * i, i, motion, TOTALS_FORMED); /* checked with the rest: fused_check */
+            /* checked with the rest: fused_check */
+            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED);
             if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
-        const double *Wi = W + 6 * i, *e = d->jaxis + 9 * i;
-        double f[3], Wn[3], mo[3]; /* locals, stored once: the outputs might alias the inputs */
-        vt_copy3(f, Wi + 3);
-        vt_copy3(Wn, Wi);
-        vt_copy3(mo, Wn); /* W̄_i is about P_i */
-        const double qf = d->qfrc[c];
-        double tau = 0.0;
-        if (motion == MOTION_GIVEN || dr >= 0) tau = vt_dot3(e, mo) - qf; /* s · W̄ = e · (the moment about P_i) */
-        if (motion == MOTION_DRIVEN && dr >= 0) {
-            d->lambda[m->drive_row[dr]] = tau;
-            d->drive_effort[dr] = tau;
-            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
-            for (int k = 0; k < 3; k++) {
-                df[k] = 0.0;
-                dm[k] = tau * e[k];
-            }
-        }
-        d->qfrc_drive[c] = tau;
-        double fb[3], mb[3];
-        vt_mulmat3t(fb, d->A + 9 * i, f);
-        vt_mulmat3t(mb, d->A + 9 * i, mo);
-        vt_copy3(d->jnt_force_total + 3 * i, f); /* the total: W̄_i about P_i, actuation included */
-        vt_copy3(d->jnt_moment_total + 3 * i, mo);
-        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
-        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
-        vt_axpy3(mo, -(tau + qf), e); /* actuation is not reaction */
-        vt_mulmat3t(mb, d->A + 9 * i, mo);
-        vt_copy3(d->jnt_force + 3 * i, f);
-        vt_copy3(d->jnt_moment + 3 * i, mo);
-        vt_copy3(d->jnt_force_body + 3 * i, fb);
-        vt_copy3(d->jnt_moment_body + 3 * i, mb);
+        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED);
         if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
             double r[3];
             if (tree == TREE_MIXED) {
@@ -500,11 +453,8 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
                 for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + d->jd[3 * j + k];
             }
             double *Wj = W + 6 * j;
-            vt_addcross3(Wj, r, f);
-            for (int k = 0; k < 3; k++) {
-                Wj[k] += Wn[k];
-                Wj[3 + k] += f[k];
-            }
+            vt_addcross3(Wj, r, Wo + 3);
+            for (int k = 0; k < 6; k++) Wj[k] += Wo[k];
         }
     }
     vt_scratch_release(d, mark);
