@@ -399,7 +399,7 @@ void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, 
     }
 }
 
-/* The same reactions from the subtrees' needed wrenches W̄ about each joint point P_i (recursive.c,
+/* The same reactions from the subtrees' needed wrenches W̄ about each joint point P_i (recursive/,
  * which has them from its inward passes): the reaction at joint i is W̄_i less the rows' and the
  * generalized forces' wrenches G over i's subtree, about P_i (vt_sum_at_joints). With rows_in_wbar
  * W̄ already has the rows' wrenches taken off (the articulated path starts its row right sides

@@ -493,8 +493,8 @@ static inline vt_status check_outputs(const vt_model *m, vt_data *d, const int p
     return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: an output overflows (q or q̇ too large)");
 }
 
-/* vt_kinematics_tree's checks, for a pass that computes the same outputs (recursive.c's
- * revolute one): the state before, the outputs (without Ṡq̇) after */
+/* vt_kinematics_tree's checks, for a pass that computes the same outputs (recursive/fused.c's
+ * outward pass): the state before, the outputs (without Ṡq̇) after */
 vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d)
 {
     return check_state(m, d);

@@ -526,6 +526,18 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d, double smax)
                : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
 }
 
+/* the given motion's fused passes: not inlined, and the tree a variable, so that one compact copy
+ * serves both kinds of tree (a floating robot's tree is mixed: its free root takes fused_other),
+ * where copies compiled for each kind lengthen the mixed trees' loops */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static vt_status fused_given(const vt_model *m, vt_data *d, const fused_tree tree, const fused_outputs outputs,
+                             const fused_angles angles)
+{
+    return fused_pass(m, d, MOTION_GIVEN, tree, outputs, angles);
+}
+
 /* The motion given for every rate of a tree: q̈ is known, and one outward and one inward pass
  * give every rate's effort τ_a = s_a · W̄_i − qfrc_a (= (M* q̈ − Q)_a) and the reactions, the
  * actuation taken off (route VT_ROUTE_MOTION, nothing factorized). A loop's or a coupling's
@@ -571,8 +583,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     const fused_outputs outputs = fused_bounded(m, smax, smax, amax, smax);
     vt_solved(m, d, VT_ROUTE_MOTION, 1.0); /* nothing factorized */
     const fused_angles angles = angles_small(m, d, smax);
-    st = mix ? fused_pass(m, d, MOTION_GIVEN, TREE_REVOLUTE, outputs, angles)
-             : fused_pass(m, d, MOTION_GIVEN, TREE_MIXED, outputs, angles); /* α and the totals formed in it */
+    st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles); /* α and the totals formed in it */
     if (st) d->route = VT_ROUTE_NONE; /* as vt_solve_reset left it */
     return st;
 }
