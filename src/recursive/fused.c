@@ -506,10 +506,18 @@ static inline fused_outputs fused_bounded(const vt_model *m, double qmax, double
 }
 
 /* The joint-driven instant of a tree without base bodies (joint_mix ≥ 0), every rate driven by a
- * joint drive: q̈ = f'' known, the fused passes; smax the state's maximum (vt_state_max) */
-vt_status vt_fused_driven(const vt_model *m, vt_data *d, double smax)
+ * joint drive: q̈ = f'' known, the fused passes; the whole of vt_inverse_dynamics_recursive for
+ * such a model, its inputs checked here and its outputs in fused_pass */
+vt_status vt_fused_driven(const vt_model *m, vt_data *d)
 {
-    vt_status st;
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    if (st) return st;
+    vt_solve_reset(d);
+    const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
+    d->route = VT_ROUTE_NONE;
+    d->fallback = 0;
     const int mix = m->joint_mix;
     /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
      * number), or q or q̇ not finite */

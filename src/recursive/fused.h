@@ -37,8 +37,9 @@ vt_status vt_drive_accelerations(const vt_model *m, vt_data *d);
 /* the inward pass after the kinematics and q̈: the joint drives' efforts and every reaction; with
  * totals (no base body) also α and the joints' total wrenches */
 vt_status vt_inward(const vt_model *m, vt_data *d, int totals);
-/* the joint-driven instant of a tree without base bodies by the fused passes, after the inputs'
- * check; smax: vt_state_max; its outputs checked (α and the total wrenches formed) */
-vt_status vt_fused_driven(const vt_model *m, vt_data *d, double smax);
+/* vt_inverse_dynamics_recursive of a model whose every rate is joint-driven, without base bodies
+ * (joint_driven, joint_mix ≥ 0): the fused passes, α and the total wrenches formed, the inputs and
+ * outputs checked */
+vt_status vt_fused_driven(const vt_model *m, vt_data *d);
 
 #endif

@@ -42,9 +42,9 @@
 #include "dense/solve.h"
 
 /* who formed α and the joints' total wrenches: nobody (vt_reactions_total forms them after the
- * outputs' scan), the inward pass (its outputs scanned here), or the fused passes (which scanned
- * their outputs themselves) */
-typedef enum { FORMED_NONE, FORMED_INWARD, FORMED_FUSED } formed_by;
+ * outputs' scan) or the inward pass (its outputs scanned here); the fused passes
+ * (vt_fused_driven) check their own */
+typedef enum { FORMED_NONE, FORMED_INWARD } formed_by;
 
 /* M*'s diagonal without the composite inertias: M*_aa = s_a · (Ī_i s_a) is twice the kinetic
  * energy of the bodies k below rate a moving with its twist s_a = (w, v) alone,
@@ -131,11 +131,23 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_
 static vt_status constrained_instant(const vt_model *m, vt_data *d);
 static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, formed_by formed, int totals);
 
-vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
+/* every other model's instant: not inlined, so that the fused passes' models reach
+ * vt_fused_driven without this one's set-up */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static vt_status routed_instant(const vt_model *m, vt_data *d)
 {
     formed_by formed = FORMED_NONE;
     const vt_status st = recursive_instant(m, d, &formed);
     return outputs_scanned(m, d, st, formed, 1);
+}
+
+vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
+{
+    /* every rate joint-driven, no base body: the fused passes, whole (the checks of m and d there) */
+    if (m && m->joint_driven && m->joint_mix >= 0) return vt_fused_driven(m, d);
+    return routed_instant(m, d);
 }
 
 /* The instant after it, its outputs scanned: finite inputs whose products overflow (an
@@ -154,7 +166,6 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, fo
         return st;
     }
     if (st) return st;
-    if (formed == FORMED_FUSED) return VT_OK; /* its outputs checked by fused_check */
     const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
     if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||
         !vt_all_finite(d->drive_effort, m->ndrive) || !vt_all_finite(d->drive_force, nd) ||
@@ -183,10 +194,6 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
-    if (m->joint_driven && m->joint_mix >= 0) { /* the outward passes fused */
-        *formed = FORMED_FUSED;
-        return vt_fused_driven(m, d, smax);
-    }
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
         if ((st = vt_drive_accelerations(m, d))) return st;
