@@ -62,6 +62,7 @@
 #include "dense/reactions.h"
 #include "dense/solve.h"
 #include "analysis/kinematic_solve.h"
+#include "model/builder.h"
 
 /* the driven run's y at t: the cubic Hermite interpolant of the recorded steps around t */
 void vt_dae_hermite(const vt_dae_history *h, double t, double *out)

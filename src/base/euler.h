@@ -68,8 +68,8 @@ static inline void vt_mulEp(double r[3], const double p[4], const double a[4])
  * in four pieces of 33, 33, 33 and 53 bits: for |n| < 2^20 each n P_k is exact (no FMA needed), and
  * the two sums that follow carry their rounding errors exactly (two-sum), so r + rr has 150 bits of
  * π/2 behind it, enough for the closest double to a multiple of π/2 below 2^14 (2^-60.5 away).
- * No library call, no table: inline in the fused passes' loop, where libm's sincos cost a body
- * 101 instructions and a spill of every live value around the call. vt_sincos_small needs
+ * No library call, no table: inline in the fused passes' loop, where a call to libm's sincos
+ * would spill every live value around it. vt_sincos_small needs
  * |x| ≤ 2^14 (its callers know it from a scan of the state); vt_sincos takes any x, the C library's sin
  * and cos beyond (and for NaN and ±Inf). sin(±0) = ±0. */
 static inline void vt_sincos_kernel(double r, double rr, double *s, double *c, const int tail)
@@ -122,7 +122,7 @@ static inline void vt_sincos(double x, double *s, double *c)
 }
 
 /* 1 when p holds (1, 0, 0, 0) bit for bit (a −0 counts as not: p ⊗ it is then formed, the same
- * numbers): four integer loads, where four double compares cost 25 instructions a body */
+ * numbers): four integer loads instead of four double compares, once a body */
 static inline int vt_quat_is_identity(const double *p)
 {
     uint64_t u[4];

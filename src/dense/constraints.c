@@ -42,6 +42,7 @@
 #include "model/model.h"
 #include "kinematics/inverse_transform.h"
 #include "kinematics/kinematics.h"
+#include "model/builder.h"
 
 /* Motion of one body as a row sees it; the ground is at rest with identity axes. Positions are
  * taken from the reference point o (d->xrel, kinematics.c), the ground's at −o: a point P below

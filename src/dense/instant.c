@@ -7,7 +7,7 @@
  *   vt_solve               q̈, λ from the augmented system   (5)
  *   vt_reactions           efforts and joint reactions       (24)-(28)
  * R (vt_inverse_transform) is left out: only (14) needs it. The recursive evaluation of the same
- * instant is recursive/recursive.c.
+ * instant is src/recursive/.
  *
  * A motion given through the data for a mechanism with loops or couplings (vt_motion_rows, for
  * vt_inverse_dynamics_motion): the same stages, with each joint drive's row Φ̈ = q̈_k − f'' = 0

@@ -32,9 +32,11 @@
 #include "base/vec3.h"
 #include "model/model.h"
 #include "kinematics/inverse_transform.h"
+#include "kinematics/body.h"
 #include "kinematics/kinematics.h"
 #include "numeric/roundoff.h"
 #include "numeric/route.h"
+#include "model/builder.h"
 
 /* Every row's wrench on its two bodies for the multipliers lam (each 1 when lam is NULL), about
  * each body's centre of mass, [f_a n_a f_b n_b] into rw (12 x nc); the ground's side and the
@@ -332,8 +334,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     if (st0) return st0;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    /* α, the applied wrenches and the children's reactions one after the other (the layout the
-     * kernels were timed with) */
+    /* α, the applied wrenches and the children's reactions one after the other, in one block */
     double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, applied wrenches, children's reactions");
     double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
     if (!rw) return vt_scratch_fail(d, mark);
@@ -341,12 +342,11 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     if (dense) vt_accelerations_dense(m, d, d->qdd, d->xdd, alpha);
     else vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
-    /* applied: gravity, xfrc, and every row and generalized force */
+    /* applied: xfrc, and every row and generalized force (gravity: vt_body_wrench) */
     memset(cf, 0, 6 * nb * sizeof(double));
     for (int i = 1; i <= n; i++) {
         double *w = fe + 6 * i;
-        for (int c = 0; c < 3; c++) w[c] = m->body_mass[i] * m->gravity[c] + d->xfrc[6 * i + c];
-        for (int c = 0; c < 3; c++) w[3 + c] = d->xfrc[6 * i + 3 + c];
+        for (int c = 0; c < 6; c++) w[c] = d->xfrc[6 * i + c];
     }
     vt_status st = row_loads(m, d, fe, rw);
     if (st) return vt_scratch_release(d, mark), st;
@@ -355,25 +355,21 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     for (int i = n; i >= 1; i--) {
         const int j = m->body_parent[i];
         const double *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
-        const double *w = d->omega + 3 * i, *Ai = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
+        const double *w = d->omega + 3 * i, *Ai = d->A + 9 * i;
         double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
-        double wb[3], ab[3], Jw[3], Ja[3], t[3], s[3], Nc[3];
-        /* J α + ω̃ J ω with J = A J' A^T, in body axes then back */
-        vt_mulmat3t(wb, Ai, w);
-        vt_mulmat3t(ab, Ai, al);
-        vt_mulmat3(Jw, Jb, wb);
-        vt_mulmat3(Ja, Jb, ab);
-        vt_addcross3(Ja, wb, Jw);
-        vt_mulmat3(Nc, Ai, Ja);
+        double wb[3], ab[3], t[3], s[3], ci[3], app[6], Wi[6];
         double sji[3]; /* P_i − r^i and P_i − r^j from the joint's own vectors, not as differences
                         * of positions from o (exact far from o) */
         vt_joint_child(sji, m, d, i);
-        for (int c = 0; c < 3; c++) {
-            f[c] = m->body_mass[i] * a[c] - fe[6 * i + c] + cf[6 * i + c];
-            Nc[c] += -fe[6 * i + 3 + c] + cf[6 * i + 3 + c];
-        }
-        vt_cross3(t, sji, f);
-        for (int c = 0; c < 3; c++) mo[c] = Nc[c] - t[c];
+        for (int c = 0; c < 3; c++) ci[c] = -sji[c];
+        /* the reaction at P_i is the needed wrench about P_i with the loads less the children's
+         * reactions as the applied wrench */
+        for (int c = 0; c < 6; c++) app[c] = fe[6 * i + c] - cf[6 * i + c];
+        vt_mulmat3t(wb, Ai, w);
+        vt_mulmat3t(ab, Ai, al);
+        vt_body_wrench(Wi, m, i, Ai, wb, ab, a, app, ci);
+        vt_copy3(mo, Wi);
+        vt_copy3(f, Wi + 3);
         if (j) { /* into the parent: f and its moment about the parent's centre of mass */
             const double *sij = d->jsij + 3 * i, *di = d->jd + 3 * i;
             for (int c = 0; c < 3; c++) s[c] = sij[c] + (di[c] + sji[c]); /* s^{ij} + t */
@@ -405,7 +401,7 @@ void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, 
     }
 }
 
-/* The same reactions from the subtrees' needed wrenches W̄ about each joint point P_i (recursive.c,
+/* The same reactions from the subtrees' needed wrenches W̄ about each joint point P_i (recursive/,
  * which has them from its inward passes): the reaction at joint i is W̄_i less the rows' and the
  * generalized forces' wrenches G over i's subtree, about P_i (vt_sum_at_joints). With rows_in_wbar
  * W̄ already has the rows' wrenches taken off (the articulated path starts its row right sides

@@ -18,7 +18,7 @@ vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, 
 /* subtree sums about each joint point of wrenches about it: moment at noff, force at foff (reactions.c) */
 void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, int foff);
 /* the same from the subtrees' needed wrenches about each joint point P_i at the full
- * accelerations, Wbar ([n; f], 6 x (nbody+1), recursive.c), the rows' wrenches already taken off
+ * accelerations, Wbar ([n; f], 6 x (nbody+1), recursive/), the rows' wrenches already taken off
  * it with rows_in_wbar; G: scratch of 6 x (nbody+1), apart from Wbar */
 vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar, double *G, int rows_in_wbar);
 /* Every row's wrench on its two bodies, for the multipliers lam (1 each when NULL), about each

@@ -41,6 +41,7 @@
 #include <string.h>
 
 #include "kinematics/kinematics.h"
+#include "kinematics/body.h"
 #include "base/arena.h"
 #include "base/euler.h"
 #include "base/scan.h"
@@ -140,11 +141,14 @@ static inline void position(const vt_model *m, vt_data *d, int i)
         double pJ[4] = {1, 0, 0, 0}, t[3] = {0, 0, 0};
         switch (jt) {
         case VT_JOINT_REVOLUTE:
-        case VT_JOINT_CYLINDRICAL:
-            vt_quat_axis_angle(pJ, ax1, qi[0]);
+        case VT_JOINT_CYLINDRICAL: { /* p^i = p^j ⊗ (cos ½q, sin ½q u): vt_body_turn */
+            double cs, sn;
+            vt_sincos(0.5 * qi[0], &sn, &cs);
+            vt_body_turn(pi, pj, cs, sn, ax1);
             vt_mulmat3(e, Aj, ax1);
             if (jt == VT_JOINT_CYLINDRICAL) vt_axpy3(t, qi[1], e);
             break;
+        }
         case VT_JOINT_UNIVERSAL: {
             double p1[4], p2[4], A1[9], a2[3];
             vt_quat_axis_angle(p1, ax1, qi[0]);
@@ -164,15 +168,14 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             if (jt == VT_JOINT_FREE) vt_mulmat3(t, Aj, qi);
             break;
         }
-        default: /* translational */
+        default: /* translational: p^i = p^j */
+            memcpy(pi, pj, 4 * sizeof(double));
             vt_mulmat3(e, Aj, ax1);
             vt_axpy3(t, qi[0], e);
             break;
         }
-        vt_quat_mul(pi, pj, pJ);
-        const double *p0 = m->body_quat0 + 4 * i;
-        if (!vt_quat_is_identity(p0)) vt_quat_mul(pi, pi, p0);
-        vt_euler_A(Ai, pi);
+        if (jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE) vt_quat_mul(pi, pj, pJ);
+        vt_body_orientation(pi, Ai, m->body_quat0 + 4 * i);
 
         double sji[3];
         vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
@@ -181,11 +184,8 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
             for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
         }
-        for (int k = 0; k < 3; k++) { /* r^i − o from P_i − o, not via d^i (see above) */
-            const double b = rj[k] + sij[k]; /* for a root: (point on the ground − o), rounded once */
-            di[k] = t[k] - sji[k];
-            Pr[k] = b + t[k];
-            rr[k] = Pr[k] - sji[k];
+        vt_body_position(Pr, rr, di, rj, sij, t, sji);
+        for (int k = 0; k < 3; k++) {
             ri[k] = o[k] + rr[k];
             P[k] = o[k] + Pr[k];
         }
@@ -213,32 +213,13 @@ static inline void velocity(const vt_model *m, vt_data *d, int i)
             wi[0] *= 2; wi[1] *= 2; wi[2] *= 2;
             return;
         }
-        const double *e = d->jaxis + 9 * i;
-        double w[3], v[3]; /* locals, stored once: the outputs might alias the inputs */
-        vt_copy3(w, wj);
-        vt_copy3(v, vj);
-        vt_addcross3(v, wj, d->jsij + 3 * i);
-        for (int k = 0; k < m->body_nv[i]; k++) {
-            int ax;
-            if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) vt_axpy3(w, qdi[k], e + 3 * ax);
-            else vt_axpy3(v, qdi[k], e + 3 * ax);
-        }
-        if (jt == VT_JOINT_FREE) { /* t turns with the reference body, s^{ji} with this one:
-                                    * ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
-            double dw[3], u[3];
-            vt_joint_child(u, m, d, i); /* r^i − P = −s^{ji}, not (r^i − o) − (P − o) */
-            for (int k = 0; k < 3; k++) {
-                dw[k] = w[k] - wj[k];
-                u[k] = -u[k];
-            }
-            vt_addcross3(v, wj, d->jd + 3 * i);
-            vt_addcross3(v, dw, u);
-        } else {
-            vt_addcross3(v, w, d->jd + 3 * i);
-        }
+        double w[3], v[3], pd[4], sji[3]; /* locals, stored once: the outputs might alias the inputs */
+        if (jt == VT_JOINT_FREE) vt_joint_child(sji, m, d, i);
+        vt_body_velocity(w, v, pd, wj, vj, d->jsij + 3 * i, d->jd + 3 * i, sji, pi, jt, m->body_nv[i], d->jaxis + 9 * i,
+                         qdi);
         vt_copy3(wi, w);
         vt_copy3(vi, v);
-        vt_quat_rate(pdi, pi, w);
+        memcpy(pdi, pd, sizeof pd);
     }
 }
 
@@ -383,46 +364,11 @@ static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd
             ali[0] *= 2; ali[1] *= 2; ali[2] *= 2;
             return;
         }
-        const double *e = d->jaxis + 9 * i, *sij = d->jsij + 3 * i;
-        double sji[3], t[3], al[3], a[3]; /* α and a in locals, stored once: out may alias the inputs */
+        double sji[3], al[3], a[3], pdd[4]; /* in locals, stored once: out may alias the inputs */
         vt_joint_child(sji, m, d, i); /* not (P_i − o) − (r^i − o): exact far from o */
-
-        vt_copy3(al, alj);
-        vt_copy3(a, aj);
-        vt_addcross3(a, alj, sij);
-        vt_cross3(t, wj, sij);
-        vt_addcross3(a, wj, t);
-        for (int k = 0; k < m->body_nv[i]; k++) {
-            int ax;
-            const int kind = vt_dof_kind(jt, k, &ax);
-            const double *ek = e + 3 * ax;
-            const double qddk = qddi ? qddi[k] : 0.0;
-            double ed[3];
-            if (kind == VT_DOF_ROT) {
-                /* ė: the universal's second axis rides on the body, all others on the reference */
-                vt_cross3(ed, (jt == VT_JOINT_UNIVERSAL && k == 1) ? wi : wj, ek);
-                vt_axpy3(al, qddk, ek);
-                vt_axpy3(al, qdi[k], ed);
-            } else {
-                double edd[3];
-                const double qk = qi[jt == VT_JOINT_CYLINDRICAL ? 1 : (jt == VT_JOINT_FREE ? k : 0)];
-                vt_cross3(ed, wj, ek);
-                vt_cross3(edd, alj, ek);
-                vt_addcross3(edd, wj, ed);
-                vt_axpy3(a, qddk, ek);
-                vt_axpy3(a, 2.0 * qdi[k], ed);
-                vt_axpy3(a, qk, edd);
-            }
-        }
-        double u[3], pdd[4];
-        vt_cross3(u, al, sji);
-        for (int r = 0; r < 3; r++) a[r] -= u[r];
-        vt_cross3(t, wi, sji);
-        vt_cross3(u, wi, t);
-        for (int r = 0; r < 3; r++) a[r] -= u[r];
-        vt_quat_rate(pdd, pi, al);
-        const double w2 = vt_dot3(wi, wi);
-        for (int r = 0; r < 4; r++) pddi[r] = pdd[r] - 0.25 * w2 * pi[r];
+        vt_body_acceleration(al, a, pdd, alj, aj, wj, wi, d->jsij + 3 * i, sji, pi, jt, m->body_nv[i], d->jaxis + 9 * i,
+                             qi, qdi, qddi);
+        memcpy(pddi, pdd, sizeof pdd);
         vt_copy3(ali, al);
         vt_copy3(ai, a);
     }
@@ -547,8 +493,8 @@ static inline vt_status check_outputs(const vt_model *m, vt_data *d, const int p
     return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: an output overflows (q or q̇ too large)");
 }
 
-/* vt_kinematics_tree's checks, for a pass that computes the same outputs (recursive.c's
- * revolute one): the state before, the outputs (without Ṡq̇) after */
+/* vt_kinematics_tree's checks, for a pass that computes the same outputs (recursive/fused.c's
+ * outward pass): the state before, the outputs (without Ṡq̇) after */
 vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d)
 {
     return check_state(m, d);

@@ -15,7 +15,7 @@ size_t vt_kinematics_scratch(const vt_model *m);
 void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 
 /* vt_kinematics_tree's and vt_accelerations' rows of one body i, its reference body's done
- * (kinematics.c): for a pass that fuses them with other work body by body (recursive.c) */
+ * (kinematics.c): for a pass that fuses them with other work body by body (recursive/fused.c) */
 void vt_kinematics_body(const vt_model *m, vt_data *d, int i);
 void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i);
 /* vt_kinematics_tree's checks of the state and of its outputs (without Ṡq̇) (kinematics.c) */

@@ -25,6 +25,7 @@
 #include "model/model.h"
 #include "numeric/rank.h"
 #include "numeric/roundoff.h"
+#include "numeric/route.h"
 
 /* Small systems (n ≤ VT_EXACT_RCOND_N): the exact 1-norm reciprocal condition from the inverse
  * itself, the factors applied to the identity in one multi-right-hand-side solve (as much work

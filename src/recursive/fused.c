@@ -1,0 +1,598 @@
+/* The fused passes: the joint-driven and the given-motion instants of a tree without base bodies,
+ * every q̈ known, in one outward and one inward loop; and the inward pass after q̈ is known.
+ *
+ * The needed wrench of body k about its joint point P_k (kinematics/body.h), and the subtree's
+ *   W̄_i = W_i + Σ_c (n_c + (P_c − P_i) × f_c, f_c)                          (the inward pass)
+ * give the efforts and the reactions:
+ *   τ_a = s_a · W̄_i − qfrc_a   (the paper's Φ_q^T λ with unit rows, λ = τ; (M* q̈ − Q)_a),
+ *   reaction at joint i = W̄_i at P_i less the actuation (τ + qfrc) along the joint's axes (26),
+ * W̄_i at P_i itself being the joint's total wrench. About P_i a rate's twist s_a is (e, 0) or
+ * (0, e): no term carries |P − O|, and a mechanism far from O keeps every digit.
+ * - JOINT_DRIVEN (vt_fused_driven), every rate driven by one joint drive: q̈ = f''(t) is known
+ *   and nothing is factorized (rcond 1); the kinematics (15)-(18) of kinematics/body.h, the
+ *   accelerations and each body's needed wrench in one outward loop (fused_outward), the subtree
+ *   wrenches, efforts and reactions in one inward loop (fused_pass), which also store α = ω̇;
+ * - MOTION (vt_inverse_dynamics_motion, declared in vtdyn.h, defined here): q̈ given for every
+ *   rate, the same two loops, every rate's effort;
+ * - vt_inward: the inward pass alone, after the kinematics and q̈ (a base body's tree, or the
+ *   free rates solved by articulated bodies).
+ * A free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
+ * normal part.
+ */
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "recursive/fused.h"
+#include "recursive/general.h"
+#include "base/arena.h"
+#include "base/euler.h"
+#include "base/scan.h"
+#include "base/status.h"
+#include "base/vec3.h"
+#include "model/functions.h"
+#include "model/model.h"
+#include "kinematics/body.h"
+#include "kinematics/kinematics.h"
+#include "dense/instant.h"
+#include "dense/reactions.h"
+#include "dense/solve.h"
+#include "numeric/route.h"
+
+/* The fused passes' choices, each compiled apart where it is a constant (no branch in the loops):
+ * whose efforts (the joint drives', or every rate's when the motion is given); which joints (all
+ * revolute, or revolute, translational and others mixed); whether the outputs need a scan
+ * (fused_bounded); whether every half angle is within vt_sincos_small's range (angles_small);
+ * whether the joints' total wrenches are formed */
+typedef enum { MOTION_DRIVEN, MOTION_GIVEN } fused_motion;
+typedef enum { TREE_REVOLUTE, TREE_MIXED } fused_tree;
+typedef enum { OUTPUTS_SCANNED, OUTPUTS_BOUNDED } fused_outputs;
+typedef enum { ANGLES_ANY, ANGLES_SMALL } fused_angles;
+typedef enum { TOTALS_LEFT, TOTALS_FORMED } fused_totals;
+
+/* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
+vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
+{
+    /* the arrays in locals: the time function's call would have them all read again per rate */
+    const int nv = m->nv, *dof_drive = m->dof_drive, *drive_row = m->drive_row, *dof_body = m->dof_body;
+    const int *qadr = m->body_qadr, *vadr = m->body_vadr;
+    const vt_drive_def *drive = m->drive;
+    const double t = d->time, *q = d->q;
+    double *Phi = d->Phi, *Phit = d->Phit, *gamma = d->gamma, *qdd = d->qdd;
+    for (int c = 0; c < nv; c++) {
+        const int k = dof_drive[c];
+        if (k < 0) continue;
+        const int row = drive_row[k];
+        double f[3];
+        vt_status st = vt_function_eval_valid(f, &drive[k].f, t);
+        if (st)
+            return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
+                           d->time);
+        const int i = dof_body[c];
+        Phi[row] = q[qadr[i] + c - vadr[i]] - f[0];
+        Phit[row] = -f[1];
+        gamma[row] = f[2];
+        qdd[c] = f[2];
+    }
+    return VT_OK;
+}
+
+/* Joint i's efforts and reaction from its subtree's wrench W̄_i (Wi, about P_i): a turning rate's
+ * twist (e, 0) and a sliding one's (0, e) about P_i paired with W̄_i give τ = s · W̄_i − qfrc (a
+ * base body's rates: their twists); the reaction is W̄_i less the actuation (τ + qfrc) along each
+ * axis (actuation — a drive's τ and an applied qfrc — is not reaction), a free joint's zeroed (it
+ * transmits nothing: what is left is round-off). With TOTALS_FORMED also the joint's total wrench
+ * (reaction plus actuation), W̄_i itself. jt and nv: the joint's kind and rates, constants where
+ * the caller knows them (one rate of a revolute or translational joint), else m's. W̄_i is copied
+ * into Wo (locals for the caller's shift to the parent: the outputs might alias W as far as the
+ * compiler knows); 1 if the reaction overflowed. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, double Wo[6], int i, const int jt,
+                                 const int nv, const fused_motion motion, const fused_totals totals)
+{
+    const double *e = d->jaxis + 9 * i, *A = d->A + 9 * i;
+    /* rates that all turn leave the force, rates that all slide the moment: its axes once */
+    const int turns = jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL;
+    const int slides = jt == VT_JOINT_TRANSLATIONAL;
+    double f[3], mo[3], fb[3], mb[3];
+    for (int k = 0; k < 6; k++) Wo[k] = Wi[k];
+    vt_copy3(f, Wo + 3);
+    vt_copy3(mo, Wo);
+    if (totals == TOTALS_FORMED) {
+        vt_mulmat3t(fb, A, f);
+        vt_mulmat3t(mb, A, mo);
+        vt_copy3(d->jnt_force_total + 3 * i, f);
+        vt_copy3(d->jnt_moment_total + 3 * i, mo);
+        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+    }
+    for (int k = 0; k < nv; k++) {
+        const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
+        int ax;
+        const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
+        const double qf = d->qfrc[c];
+        double tau = 0.0;
+        if (motion == MOTION_GIVEN || dr >= 0) {
+            const double *w = d->twist + 6 * c;
+            const double *s = rot || kind == VT_DOF_TRANS ? e + 3 * ax : kind == VT_DOF_BASE_P ? w : w + 3;
+            tau = (rot || kind == VT_DOF_BASE_P ? vt_dot3(s, Wo) : vt_dot3(s, Wo + 3)) - qf;
+        }
+        if (motion == MOTION_DRIVEN && dr >= 0) {
+            d->lambda[m->drive_row[dr]] = tau;
+            d->drive_effort[dr] = tau;
+            double *df = d->drive_force + 3 * dr, *dm = d->drive_moment + 3 * dr;
+            for (int r = 0; r < 3; r++) {
+                df[r] = rot ? 0.0 : tau * e[3 * ax + r];
+                dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
+            }
+        }
+        d->qfrc_drive[c] = tau;
+        vt_axpy3(rot ? mo : f, -(tau + qf), e + 3 * ax);
+    }
+    if (jt == VT_JOINT_FREE) f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
+    if (!(turns && totals == TOTALS_FORMED)) vt_mulmat3t(fb, A, f);
+    if (!(slides && totals == TOTALS_FORMED)) vt_mulmat3t(mb, A, mo);
+    vt_copy3(d->jnt_force + 3 * i, f);
+    vt_copy3(d->jnt_moment + 3 * i, mo);
+    vt_copy3(d->jnt_force_body + 3 * i, fb);
+    vt_copy3(d->jnt_moment_body + 3 * i, mb);
+    return !vt_all_finite(f, 3) || !vt_all_finite(mo, 3);
+}
+
+/* with q̈ known for every rate: one inward pass for the joint drives' efforts τ = s · W̄ − qfrc
+ * and every reaction (actuation — a drive's τ and an applied qfrc — is not reaction) */
+/* The joint-driven trees without base bodies take the fused passes below (fused_pass); this one
+ * follows the articulated solve of the free rates, or a base body's tree. */
+static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals totals)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    vt_accelerations(m, d, d->qdd, d->xdd, d->alpha);
+    vt_subtree_wrenches_at_joints(m, d, d->alpha, W);
+    for (int i = 1; i <= n; i++) {
+        double Wo[6];
+        const int jt = m->body_joint[i], nv = m->body_nv[i];
+        if (totals == TOTALS_FORMED ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED)
+                                    : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT))
+            return vt_scratch_release(d, mark),
+                   vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+    }
+    vt_scratch_release(d, mark);
+    if (totals == TOTALS_FORMED) { /* the ground's rows */
+        memset(d->jnt_force_total, 0, 3 * sizeof(double));
+        memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+        memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+        memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    }
+    return vt_reactions_unique(m, d);
+}
+
+/* The fused passes: a tree without base bodies, every q̈ known (every rate joint-driven, or the
+ * motion given): the kinematics, the accelerations and each body's needed wrench in one outward
+ * loop over the bodies (the kernels of kinematics/body.h, as vt_kinematics_tree and
+ * vt_accelerations call them), the subtree wrenches, efforts and reactions in one inward loop (as
+ * inward_pass). A revolute and a translational body each have the kernels compiled for their one
+ * rate (fused_body: e = A^j u; a revolute's twist (e, (P − o) × e), t = 0, τ = e · the moment
+ * about P; a translational one's (0, e), t = q e, τ = e · f); any other joint takes the general
+ * code's stages for the body (fused_other). */
+static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
+
+/* fused_outward's body i on a revolute or translational joint (jt, a constant): its positions,
+ * its rate's twist, velocities, accelerations and needed wrench W_i about P_i */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void fused_body(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
+                              const int jt, const fused_angles angles)
+{
+    double *o = d->origin;
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
+    const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
+    const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
+    double p[4], A[9], e[3], sij[3], sji[3], t[3];
+    if (jt == VT_JOINT_REVOLUTE) { /* no calls with the vectors live */
+        double cs, sn;
+        if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
+        else vt_sincos(0.5 * q, &sn, &cs);
+        vt_body_turn(p, pj, cs, sn, u);
+    } else {
+        memcpy(p, pj, sizeof p);
+    }
+    vt_body_orientation(p, A, m->body_quat0 + 4 * i);
+    vt_mulmat3(e, Aj, u);
+    if (jt == VT_JOINT_TRANSLATIONAL)
+        for (int k = 0; k < 3; k++) t[k] = q * e[k];
+    vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
+    vt_mulmat3(sji, A, m->body_jchild + 3 * i);
+    if (i == 1) { /* o = P_1 */
+        if (jt == VT_JOINT_TRANSLATIONAL)
+            for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
+        else vt_copy3(o, sij);
+        for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
+    }
+    /* the reference body's values in locals before the first store (the outputs might alias
+     * them as far as the compiler knows); each output stored as soon as it is known, so that
+     * fewer values stay live (spilled) to the end */
+    const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
+    const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
+    double rj[3], wj[3], alj[3], vj[3], aj[3];
+    for (int k = 0; k < 3; k++) {
+        rj[k] = rjp[k];
+        wj[k] = wjp[k];
+        alj[k] = aljp[k];
+        vj[k] = vjp[k];
+        aj[k] = ajp[k];
+    }
+    double di[3], w[3], al[3], a[3], wb[3], ab[3];
+    { /* positions from o, the rate's twist */
+        double Pr[3], rr[3], tw[3];
+        vt_body_position(Pr, rr, di, rj, sij, jt == VT_JOINT_TRANSLATIONAL ? t : NULL, sji);
+        if (jt == VT_JOINT_REVOLUTE) vt_cross3(tw, Pr, e);
+        double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
+        for (int k = 0; k < 3; k++) {
+            x[k] = o[k] + rr[k];
+            d->jpoint[3 * i + k] = o[k] + Pr[k];
+            d->xrel[6 * i + k] = rr[k];
+            d->xrel[6 * i + 3 + k] = Pr[k];
+            d->jsij[3 * i + k] = sij[k];
+            d->jd[3 * i + k] = di[k];
+            ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
+            twc[k] = jt == VT_JOINT_REVOLUTE ? e[k] : 0.0;
+            twc[3 + k] = jt == VT_JOINT_REVOLUTE ? tw[k] : e[k];
+        }
+        memcpy(x + 3, p, sizeof p);
+        memcpy(d->A + 9 * i, A, sizeof A);
+    }
+    { /* velocities */
+        double v[3], pd[4];
+        vt_body_velocity(w, v, pd, wj, vj, sij, di, NULL, p, jt, 1, e, &qd);
+        vt_mulmat3t(wb, A, w); /* ω in body axes for the wrench */
+        double *xd = d->xd + vt_xoff(i);
+        vt_copy3(d->omega + 3 * i, w);
+        vt_copy3(xd, v);
+        memcpy(xd + 3, pd, sizeof pd);
+    }
+    { /* accelerations */
+        double pdd[4];
+        vt_body_acceleration(al, a, pdd, alj, aj, wj, w, sij, sji, p, jt, 1, e, &q, &qd, &qdd);
+        vt_mulmat3t(ab, A, al); /* α in body axes for the wrench */
+        double *xdd = d->xdd + vt_xoff(i);
+        vt_copy3(alpha + 3 * i, al);
+        vt_copy3(xdd, a);
+        memcpy(xdd + 3, pdd, sizeof pdd);
+    }
+    /* the needed wrench about P_i: r^i − P_i = −s^{ji} (= d^i without translation) */
+    if (jt == VT_JOINT_REVOLUTE) {
+        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, di);
+    } else {
+        double ci[3];
+        for (int k = 0; k < 3; k++) ci[k] = -sji[k];
+        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, ci);
+    }
+}
+
+/* A gripper's fingers, a linear axis: the robot stays on the fused passes' own code instead of
+ * the general stages' loops over kinds and rates. Not inlined: its code in the revolute loop's
+ * body would have that loop laid out anew, and slower. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i)
+{
+    fused_body(m, d, alpha, W, i, VT_JOINT_TRANSLATIONAL, ANGLES_ANY);
+}
+
+/* any other joint: the general code's stages for body i, its wrench about P_i (c = r^i − P_i =
+ * −s^{ji}). Not inlined, as fused_slide. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_other(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i)
+{
+    double c[3];
+    vt_kinematics_body(m, d, i);
+    vt_acceleration_body(m, d, d->qdd, d->xdd, alpha, i);
+    vt_joint_child(c, m, d, i);
+    for (int k = 0; k < 3; k++) c[k] = -c[k];
+    vt_body_wrench_global(W + 6 * i, m, d, i, d->xdd + vt_xoff(i), alpha + 3 * i, c);
+}
+
+/* the outward pass: d's kinematic outputs, d->xdd, α and every body's needed wrench W (about P_i) */
+/* ANGLES_SMALL: every |q| ≤ 2^15, so every half angle is vt_sincos_small's (no call in the loop);
+ * compiled once for each (fused_outward, fused_outward_any) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W,
+                                      const fused_tree tree, const fused_angles angles)
+{
+    double *o = d->origin;
+    o[0] = o[1] = o[2] = 0.0;
+    memset(d->xrel, 0, 6 * sizeof(double));
+    alpha[0] = alpha[1] = alpha[2] = 0.0;
+    for (int i = 1; i <= m->nbody; i++) {
+        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) fused_slide(m, d, alpha, W, i);
+        else if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) fused_other(m, d, alpha, W, i);
+        else fused_body(m, d, alpha, W, i, VT_JOINT_REVOLUTE, angles);
+    }
+}
+
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_outward(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, const fused_tree tree)
+{
+    fused_outward_impl(m, d, alpha, W, tree, ANGLES_SMALL);
+}
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_outward_any(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W,
+                              const fused_tree tree)
+{
+    fused_outward_impl(m, d, alpha, W, tree, ANGLES_ANY);
+}
+
+/* The fused passes' results checked at once after both loops (a scan of whole arrays costs less
+ * than checks joint by joint in the inward loop): ẍ, α, the efforts, the reactions and the total
+ * wrenches. Copies are not scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute
+ * joint's drive force is zero and its total force is its reaction's (f, stored twice); q̈ is the
+ * drives' f'' (checked by vt_function_eval_valid) or the given one (checked on entry). The given
+ * motion (vt_inverse_dynamics_motion) scans what it always did, the reactions and the totals, in
+ * which an overflow of ẍ or τ shows (W̄ sums every body's wrench below the joint). A failure names
+ * the first joint from the tree's ends, as a check in the inward loop would. */
+static vt_status fused_check(const vt_model *m, vt_data *d, const fused_motion motion, const fused_tree tree)
+{
+    const int n = m->nbody, nb3 = 3 * (n + 1), nd = 3 * m->ndrive;
+    vt_finite_scan s = {0};
+    vt_finite_add(&s, d->alpha, nb3);
+    vt_finite_add(&s, d->jnt_force, nb3);
+    vt_finite_add(&s, d->jnt_moment, nb3);
+    vt_finite_add(&s, d->jnt_force_body, nb3);
+    vt_finite_add(&s, d->jnt_moment_total, nb3);
+    vt_finite_add(&s, d->jnt_moment_total_body, nb3);
+    if (tree == TREE_MIXED) {
+        vt_finite_add(&s, d->jnt_force_total, nb3);
+        vt_finite_add(&s, d->jnt_force_total_body, nb3);
+    }
+    if (motion == MOTION_DRIVEN) { /* the driver's scan */
+        vt_finite_add(&s, d->xdd, m->nx);
+        vt_finite_add(&s, d->qfrc_drive, m->nv);
+        vt_finite_add(&s, d->jnt_moment_body, nb3);
+        vt_finite_add(&s, d->drive_moment, nd);
+        if (tree == TREE_MIXED) vt_finite_add(&s, d->drive_force, nd);
+    }
+    if (vt_finite_ok(&s)) return VT_OK;
+    d->route = VT_ROUTE_NONE;
+    for (int i = n; i >= 1; i--) {
+        if (!vt_all_finite(d->jnt_force + 3 * i, 3) || !vt_all_finite(d->jnt_moment + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
+            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
+    }
+    for (int i = 1; i <= n; i++)
+        if (!vt_all_finite(d->alpha + 3 * i, 3))
+            return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
+    return vt_fail(d->message, VT_ERR_NONFINITE,
+                   "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
+}
+
+/* W̄_j += W̄_i moved from P_i to P_j by the short P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *W, int i, int j)
+{
+    double r[3];
+    vt_joint_shift(r, m, d, i, j);
+    const double *Wi = W + 6 * i;
+    double *Wj = W + 6 * j;
+    vt_addcross3(Wj, r, Wi + 3);
+    for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
+}
+
+/* fused_pass's inward step on a translational joint. Not inlined, as fused_slide. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, const fused_motion motion)
+{
+    double Wo[6];
+    const int j = m->body_parent[i];
+    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED);
+    if (j > 0) shift_to_parent(m, d, W, i, j);
+}
+
+/* the joint-driven (MOTION_DRIVEN) or given (MOTION_GIVEN) instant of a tree without base bodies:
+ * inward_pass's outputs, and vt_kinematics_tree's (without Ṡq̇); OUTPUTS_BOUNDED: fused_bounded
+ * holds, the outputs need no scan. Inlined: each caller's constants compiled apart */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_motion motion, const fused_tree tree,
+                                   const fused_outputs outputs, const fused_angles angles)
+{
+    const int n = m->nbody;
+    const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
+    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    if (angles == ANGLES_SMALL) fused_outward(m, d, d->alpha, W, tree);
+    else fused_outward_any(m, d, d->alpha, W, tree);
+    vt_status st = outputs == OUTPUTS_BOUNDED ? VT_OK : vt_kinematics_check_outputs(m, d);
+    if (st) { /* as vt_kinematics_tree's failure before any route */
+        d->route = VT_ROUTE_NONE;
+        return vt_scratch_release(d, mark), st;
+    }
+    for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
+        const int j = m->body_parent[i];
+        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
+            fused_slide_inward(m, d, W, i, motion);
+            continue;
+        }
+        double Wo[6];
+        if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
+            /* checked with the rest: fused_check */
+            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED);
+            if (j > 0) shift_to_parent(m, d, W, i, j);
+            continue;
+        }
+        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED);
+        if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
+            double r[3];
+            if (tree == TREE_MIXED) {
+                double sj[3];
+                vt_joint_child(sj, m, d, j);
+                for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] - sj[k];
+            } else { /* j revolute: −s^{ji}_j = d^j */
+                for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + d->jd[3 * j + k];
+            }
+            double *Wj = W + 6 * j;
+            vt_addcross3(Wj, r, Wo + 3);
+            for (int k = 0; k < 6; k++) Wj[k] += Wo[k];
+        }
+    }
+    vt_scratch_release(d, mark);
+    memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
+    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
+    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
+    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    if (outputs == OUTPUTS_SCANNED && (st = fused_check(m, d, motion, tree))) return st;
+    return vt_reactions_unique(m, d);
+}
+
+/* the inward pass after q̈ is known; without base bodies it also forms the total wrenches, W̄_i
+ * about P_i (a base body's rates act at its centre of mass and through p: vt_reactions_total) */
+vt_status vt_inward(const vt_model *m, vt_data *d, int totals)
+{
+    return inward_pass(m, d, totals ? TOTALS_FORMED : TOTALS_LEFT);
+}
+
+/* 1 when every half angle is within vt_sincos_small's 2^14 (fused_outward, not _any): from the
+ * state's maximum smax (vt_state_max), q scanned again alone only where that is above 2^15 */
+static inline fused_angles angles_small(const vt_model *m, const vt_data *d, double smax)
+{
+    return smax <= 0x1p15 || vt_array_max(d->q, m->nq) <= 0x1p15 ? ANGLES_SMALL : ANGLES_ANY;
+}
+
+/* 1 when no output of the fused passes can overflow, from the inputs' sizes alone: then their
+ * scans (vt_kinematics_check_outputs, fused_check) are skipped. With U = 1 + Σ_i (|s^{ij}| +
+ * |s^{ji}|) + nq max|q| (every position, lever arm and o itself: a path's offsets and
+ * translations; every orientation is unit, the Euler parameters normalized), R = 1 + nv max|q̇|,
+ * A = 1 + nv max|q̈| + 4 R² + |g|, M = 1 + max (m + 3 max|J_kl|), F = 1 + max(|xfrc|, |qfrc|):
+ *   |ω| ≤ R, |v| ≤ 2 R U, |α| ≤ Σ|q̈| + Σ|q̇| |ω| ≤ A, |a| ≤ 2 A U + 2 R² U + 2 R² + Σ|q̈| ≤ 4 A U,
+ *   |p̈| ≤ ½ |α| + ¼ |ω|² ≤ A, a body's force ≤ 5 M A U + 2 F, its moment about its joint point
+ *   ≤ 6 M A + 2 F + 2 U × the force ≤ 16 U² (M A + F), a subtree's (n bodies, moved by lever arms
+ *   < 2U) ≤ 26 n U² (M A + F), efforts and reactions at most twice that (the actuation taken off),
+ *   in either frame (a rotation keeps lengths);
+ * so every output is below B = 64 (n + 1) U² (M A + F), and B < 1e300 leaves round-off (relative
+ * ε per operation) 8 orders of magnitude from DBL_MAX. Where B is not below it (a rate of 1e150
+ * rad/s, loads near DBL_MAX, B itself Inf), the scans decide, as before. B only grows with each
+ * maximum, so the instants pass one maximum of |xfrc|, |qfrc|, |q| and |q̇| (vt_state_max: one scan)
+ * for all four. */
+static inline fused_outputs fused_bounded(const vt_model *m, double qmax, double vmax, double amax,
+                                double fmax_)
+{
+    const double g = fabs(m->gravity[0]) + fabs(m->gravity[1]) + fabs(m->gravity[2]);
+    const double U = 1.0 + m->bound_length + m->nq * qmax, R = 1.0 + m->nv * vmax;
+    const double A = 1.0 + m->nv * amax + 4.0 * R * R + g;
+    const double B = 64.0 * (m->nbody + 1) * U * U * ((1.0 + m->bound_mass) * A + 1.0 + fmax_);
+    return B < 1e300 ? OUTPUTS_BOUNDED : OUTPUTS_SCANNED;
+}
+
+/* The joint-driven instant of a tree without base bodies (joint_mix ≥ 0), every rate driven by a
+ * joint drive: q̈ = f'' known, the fused passes; the whole of vt_inverse_dynamics_recursive for
+ * such a model, its inputs checked here and its outputs in fused_pass */
+vt_status vt_fused_driven(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    if (st) return st;
+    vt_solve_reset(d);
+    const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
+    d->route = VT_ROUTE_NONE;
+    d->fallback = 0;
+    const int mix = m->joint_mix;
+    /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
+     * number), or q or q̇ not finite */
+    if ((mix == 0 && m->has_quaternions) || !(smax < HUGE_VAL))
+        if ((st = vt_kinematics_check_state(m, d))) return st;
+    if ((st = vt_drive_accelerations(m, d))) { /* the status the separate passes would give */
+        const vt_status sk = vt_kinematics_tree(m, d, 0);
+        return sk ? sk : st;
+    }
+    vt_solved(m, d, VT_ROUTE_JOINT_DRIVEN, 1.0); /* nothing factorized: one unit row per rate */
+    const fused_outputs outputs = fused_bounded(m, smax, smax, vt_array_max(d->qdd, m->nv), smax);
+    const fused_angles angles = angles_small(m, d, smax);
+    return mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles)
+               : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
+}
+
+/* the given motion's fused passes: not inlined, and the tree a variable, so that one compact copy
+ * serves both kinds of tree (a floating robot's tree is mixed: its free root takes fused_other),
+ * where copies compiled for each kind lengthen the mixed trees' loops */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static vt_status fused_given(const vt_model *m, vt_data *d, const fused_tree tree, const fused_outputs outputs,
+                             const fused_angles angles)
+{
+    return fused_pass(m, d, MOTION_GIVEN, tree, outputs, angles);
+}
+
+/* The motion given for every rate of a tree: q̈ is known, and one outward and one inward pass
+ * give every rate's effort τ_a = s_a · W̄_i − qfrc_a (= (M* q̈ − Q)_a) and the reactions, the
+ * actuation taken off (route VT_ROUTE_MOTION, nothing factorized). A loop's or a coupling's
+ * rates are not independent: there the joint-driven rates are the given ones and the rest
+ * follows from the rows (vt_motion_rows, instant.c). Base bodies of a tree are refused: a base
+ * body's ṗ rates carry (4)'s normal part (its multiplier); a free joint (VT_JOINT_FREE), whose
+ * six rates are twists, is what a floating robot uses here. */
+vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
+    if (st) return st;
+    vt_solve_reset(d);
+    d->fallback = 0;
+    const double amax = vt_array_max(d->qdd, m->nv);
+    if (!(amax < HUGE_VAL)) {
+        for (int c = 0; c < m->nv; c++)
+            if (!isfinite(d->qdd[c]))
+                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: qdd[%d] = %g", c, d->qdd[c]);
+    }
+    if (m->ncut > 0 || m->ncoupling > 0) { /* loops or couplings: the joint-driven rates are the given ones */
+        int given = 0;
+        for (int r = 0; r < m->nc; r++) given += m->con_kind[r] == VT_ROW_JOINT;
+        if (!given)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "vt_inverse_dynamics_motion: the model has %d cut joints and %d couplings and no joint drive: "
+                           "drive the rates whose motion is given", m->ncut, m->ncoupling);
+        return vt_motion_rows(m, d);
+    }
+    for (int i = 1; m->joint_mix < 0 && i <= m->nbody; i++)
+        if (m->body_joint[i] == VT_JOINT_BASE)
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "vt_inverse_dynamics_motion: body %d has a base (floating) joint, not supported here; "
+                           "use VT_JOINT_FREE", i);
+    const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in xfrc or qfrc");
+    /* the outward passes fused (no base body here) */
+    const int mix = m->joint_mix;
+    /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
+     * number), or q or q̇ not finite */
+    if ((mix == 0 && m->has_quaternions) || !(smax < HUGE_VAL))
+        if ((st = vt_kinematics_check_state(m, d))) return st;
+    const fused_outputs outputs = fused_bounded(m, smax, smax, amax, smax);
+    vt_solved(m, d, VT_ROUTE_MOTION, 1.0); /* nothing factorized */
+    const fused_angles angles = angles_small(m, d, smax);
+    st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles); /* α and the totals formed in it */
+    if (st) d->route = VT_ROUTE_NONE; /* as vt_solve_reset left it */
+    return st;
+}

@@ -1,0 +1,45 @@
+/* vtdyn — The fused passes (recursive/fused.c): the joint-driven and the given-motion instants of a
+ * tree without base bodies, and the inward pass after q̈ is known. vt_inverse_dynamics_motion
+ * (declared in vtdyn.h) is defined in recursive/fused.c. */
+#ifndef VT_RECURSIVE_FUSED_H
+#define VT_RECURSIVE_FUSED_H
+
+#include "vtdyn.h"
+#include "base/scan.h"
+
+/* the largest |xfrc| and |qfrc| (one scan), the largest of those and |q|, |q̇| (one scan), of
+ * |q̈|: +Inf where one is not finite */
+static inline double vt_loads_max(const vt_model *m, const vt_data *d)
+{
+    vt_max_scan s = {0};
+    vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
+    vt_max_add(&s, d->qfrc, m->nv);
+    return vt_max_result(&s);
+}
+static inline double vt_state_max(const vt_model *m, const vt_data *d)
+{
+    vt_max_scan s = {0};
+    vt_max_add(&s, d->xfrc, 6 * (m->nbody + 1));
+    vt_max_add(&s, d->qfrc, m->nv);
+    vt_max_add(&s, d->q, m->nq);
+    vt_max_add(&s, d->qd, m->nv);
+    return vt_max_result(&s);
+}
+static inline double vt_array_max(const double *a, int n)
+{
+    vt_max_scan s = {0};
+    vt_max_add(&s, a, n);
+    return vt_max_result(&s);
+}
+
+/* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
+vt_status vt_drive_accelerations(const vt_model *m, vt_data *d);
+/* the inward pass after the kinematics and q̈: the joint drives' efforts and every reaction; with
+ * totals (no base body) also α and the joints' total wrenches */
+vt_status vt_inward(const vt_model *m, vt_data *d, int totals);
+/* vt_inverse_dynamics_recursive of a model whose every rate is joint-driven, without base bodies
+ * (joint_driven, joint_mix ≥ 0): the fused passes, α and the total wrenches formed, the inputs and
+ * outputs checked */
+vt_status vt_fused_driven(const vt_model *m, vt_data *d);
+
+#endif
