@@ -200,7 +200,7 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     if (m->nc > 0) {
         if ((st = vt_drive_values(m, d, fd))) return restore(m, d, qsave, mark, st); /* once: t is fixed */
         for (;; it++) { /* Φ, Φ_t and Φ_q from the positions and twists alone */
-            if ((st = vt_kinematics_positions(m, d)) || (st = vt_constraints_parts(m, d, 0, VT_CON_PHIQ, fd)))
+            if ((st = vt_kinematics_positions(m, d)) || (st = vt_constraints_parts(m, d, VT_FORM_TWISTS, VT_CON_PHIQ, fd)))
                 return restore(m, d, qsave, mark, st);
             if (!vt_all_finite(d->Phi, m->nc))
                 return restore(m, d, qsave, mark, vt_fail(d->message, VT_ERR_NONFINITE,

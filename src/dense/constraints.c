@@ -295,7 +295,7 @@ static void relative_row(vt_data *d, int r, int k, const body_state *A, const bo
 /* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
  * (gathered into Si, 7 x maxpath, with row: maxpath), or column by column as the dense S forms
  * them (the recursive path, which has no dense S): lever arms along the tree (vt_lever) */
-static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si)
+static void phiq_row(const vt_model *m, vt_data *d, int r, vt_form form, double *Si)
 {
     const int nc = m->nc;
     for (int side = 0; side < 2; side++) {
@@ -304,7 +304,7 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, int dense, double *Si
         const int k = m->body_pathnum[b];
         const int *path = m->path_dof + m->body_pathadr[b];
         const double *px = d->Phix + 14 * r + 7 * side;
-        if (dense) {
+        if (form == VT_FORM_DENSE) {
             double *row = Si + 7 * m->maxpath;
             vt_gather_S(Si, m, d, b);
             cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
@@ -421,7 +421,7 @@ static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, con
 
 /* The three point rows of a cut joint, P_b − P_a = 0 along the global axes e_k, at once */
 static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_state *A, const body_state *B,
-                           const point_memo *pa, const point_memo *pb, int dense, double *Si, int parts)
+                           const point_memo *pa, const point_memo *pb, vt_form form, double *Si, int parts)
 {
     for (int k = 0; k < 3; k++) {
         double *pxa = d->Phix + 14 * (r + k), *pxb = pxa + 7, e[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3];
@@ -436,9 +436,9 @@ static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_stat
         d->Phi[r + k] = pb->P[k] - pa->P[k];
         d->Phit[r + k] = 0.0;
         if (parts & VT_CON_GAMMA) d->gamma[r + k] = pa->aP[k] - pb->aP[k];
-        if (dense && (parts & VT_CON_PHIQ)) phiq_row(m, d, r + k, 1, Si);
+        if (form == VT_FORM_DENSE && (parts & VT_CON_PHIQ)) phiq_row(m, d, r + k, VT_FORM_DENSE, Si);
     }
-    if (!dense && (parts & VT_CON_PHIQ)) {
+    if (form != VT_FORM_DENSE && (parts & VT_CON_PHIQ)) {
         point_jacobian_rows(m, d, r, A->id, pa->s, -1.0);
         point_jacobian_rows(m, d, r, B->id, pb->s, 1.0);
     }
@@ -448,12 +448,12 @@ vt_status vt_constraints(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_constraints");
     if (st) return st;
-    return vt_constraints_impl(m, d, 1);
+    return vt_constraints_impl(m, d, VT_FORM_DENSE);
 }
 
-vt_status vt_constraints_impl(const vt_model *m, vt_data *d, int dense)
+vt_status vt_constraints_impl(const vt_model *m, vt_data *d, vt_form form)
 {
-    return vt_constraints_parts(m, d, dense, VT_CON_ALL, NULL);
+    return vt_constraints_parts(m, d, form, VT_CON_ALL, NULL);
 }
 
 /* The joint and point drives' f, f', f'' at d->time into fd (3 per drive; an orientation
@@ -476,7 +476,7 @@ vt_status vt_drive_values(const vt_model *m, vt_data *d, double *fd)
  * positions and twists), γ (d's kinematics complete: the velocities and Ṡq̇); a part not asked
  * for may be left as it was. fd: the joint and point drives' functions at d->time
  * (vt_drive_values), or NULL to evaluate them here. */
-vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int parts, const double *fd)
+vt_status vt_constraints_parts(const vt_model *m, vt_data *d, vt_form form, int parts, const double *fd)
 {
     vt_status st;
     const int rates = parts & VT_CON_GAMMA, phiq = parts & VT_CON_PHIQ, phix = parts & VT_CON_PHIX;
@@ -486,8 +486,8 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
     double prel[4] = {1, 0, 0, 0}, prel_d[4] = {0}, prel_dd0[4] = {0}; /* p_a* ⊗ p_b and its rates */
     const int drive_rows = vt_drive_rows(m);
     const size_t mark = vt_scratch_mark(d);
-    double *Si = dense && phiq ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
-    if (dense && phiq && !Si) return vt_scratch_fail(d, mark);
+    double *Si = form == VT_FORM_DENSE && phiq ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
+    if (form == VT_FORM_DENSE && phiq && !Si) return vt_scratch_fail(d, mark);
     if (phiq) memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
     point_jac jac[JAC_SLOTS];
     int jac_next = -1; /* the slots taken from the scratch at the first point drive */
@@ -519,14 +519,14 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
                 vt_R_row(m, d, dof, pxa, pxb);
                 if (A.id == 0) memset(pxa, 0, 7 * sizeof(double));
             }
-            if (phiq && dense) phiq_row(m, d, r, 1, Si);
+            if (phiq && form == VT_FORM_DENSE) phiq_row(m, d, r, VT_FORM_DENSE, Si);
             else if (phiq) d->Phiq[r + (size_t)dof * (size_t)m->nc] = 1.0; /* R S = I */
             break;
         }
         case VT_ROW_POINT: {
             if (r >= drive_rows && r == m->cut_row[owner]) { /* a cut joint's three point rows */
                 cut_point_rows(m, d, r, &A, &B, point_motion_memo(&ma, &A, sa, rates), point_motion_memo(&mb, &B, sb, rates),
-                               dense, Si, parts);
+                               form, Si, parts);
                 r += 2;
                 continue;
             }
@@ -538,7 +538,7 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
                 vt_cross3(jw, pb->s, va);
                 phix_from(pxb, &B, va, jw);
             }
-            if (phiq && !dense) {
+            if (phiq && form != VT_FORM_DENSE) {
                 if (jac_next < 0) {
                     const size_t mp = (size_t)m->maxpath;
                     double *J = VT_SCRATCH(d, double, JAC_SLOTS * 3 * mp, "points' Jacobian columns");
@@ -567,10 +567,10 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
             memset(jv, 0, sizeof jv);
             vt_cross3(jw, u, v);
             if (phix) phix_from(pxa, &A, jv, jw);
-            if (phiq && !dense) phiq_twist(m, d, r, A.id, jv, jw);
+            if (phiq && form != VT_FORM_DENSE) phiq_twist(m, d, r, A.id, jv, jw);
             vt_cross3(jw, v, u);
             if (phix) phix_from(pxb, &B, jv, jw);
-            if (phiq && !dense) phiq_twist(m, d, r, B.id, jv, jw);
+            if (phiq && form != VT_FORM_DENSE) phiq_twist(m, d, r, B.id, jv, jw);
             d->Phi[r] = vt_dot3(u, v);
             d->Phit[r] = 0.0;
             if (rates) d->gamma[r] = -(vt_dot3(udd, v) + 2.0 * vt_dot3(ud, vd) + vt_dot3(u, vdd));
@@ -588,10 +588,10 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
             vt_cross3(t2, s_a, u);
             for (int k = 0; k < 3; k++) { jv[k] = -u[k]; jw[k] = t1[k] - t2[k]; }
             if (phix) phix_from(pxa, &A, jv, jw);
-            if (phiq && !dense) phiq_twist(m, d, r, A.id, jv, jw);
+            if (phiq && form != VT_FORM_DENSE) phiq_twist(m, d, r, A.id, jv, jw);
             vt_cross3(jw, s_b, u);
             if (phix) phix_from(pxb, &B, u, jw);
-            if (phiq && !dense) phiq_twist(m, d, r, B.id, u, jw);
+            if (phiq && form != VT_FORM_DENSE) phiq_twist(m, d, r, B.id, u, jw);
             d->Phi[r] = vt_dot3(u, dd);
             d->Phit[r] = 0.0;
             if (rates) {
@@ -612,7 +612,7 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
             if (m->drive[owner].type == VT_DRIVE_RELATIVE_ORIENTATION) {
                 if (k == 0) relative_motion(&A, &B, prel, prel_d, prel_dd0, rates);
                 relative_row(d, r, k, &A, &B, pdes, pdes_d, pdes_dd, prel, prel_d, prel_dd0, rates);
-                if (phiq) phiq_row(m, d, r, dense, Si);
+                if (phiq) phiq_row(m, d, r, form, Si);
                 break;
             }
             double G[12];
@@ -624,7 +624,7 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
             d->Phit[r] = 2.0 * G_row(pdes_d, B.p, k);
             if (rates)
                 d->gamma[r] = -(2.0 * G_row(pdes_dd, B.p, k) + 4.0 * G_row(pdes_d, B.pd, k) + 2.0 * G_row(pdes, B.pdd0, k));
-            if (phiq) phiq_row(m, d, r, dense, Si);
+            if (phiq) phiq_row(m, d, r, form, Si);
             break;
         }
         case VT_ROW_COUPLING: { /* on the coordinates themselves: Φ_q = e_a − ratio e_b, Φ̈ = Φ_q q̈ (no γ) */
@@ -648,11 +648,11 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, int dense, int par
             d->Phi[r] = dot4(B.p, B.p) - 1.0;
             d->Phit[r] = 0.0;
             if (rates) d->gamma[r] = -2.0 * dot4(B.pd, B.pd);
-            if (phiq) phiq_row(m, d, r, dense, Si);
+            if (phiq) phiq_row(m, d, r, form, Si);
             break;
         }
         }
-        if (phiq && dense && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, 1, Si);
+        if (phiq && form == VT_FORM_DENSE && kind != VT_ROW_JOINT && kind != VT_ROW_ORIENT && kind != VT_ROW_NORM) phiq_row(m, d, r, VT_FORM_DENSE, Si);
     }
     vt_scratch_release(d, mark);
     /* finite inputs can still overflow (q − f(t) with both near DBL_MAX, far points): scanned */

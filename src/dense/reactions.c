@@ -154,7 +154,7 @@ vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions");
     if (st) return st;
-    if ((st = vt_reactions_impl(m, d, 1))) return st;
+    if ((st = vt_reactions_impl(m, d, VT_FORM_DENSE))) return st;
     return vt_reactions_total(m, d, 0);
 }
 
@@ -294,7 +294,7 @@ static int coupled(const vt_model *m, int a, int b)
     return on_path(m, m->dof_body[b], a) || on_path(m, m->dof_body[a], b);
 }
 
-vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, int dense)
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, vt_form form)
 {
     const int nv = m->nv;
     const size_t mark = vt_scratch_mark(d);
@@ -303,7 +303,7 @@ vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, 
     int zeroed = 0;
     for (int a = 0; a < nv; a++) zeroed += d->Mstar[a + (size_t)a * (size_t)nv] == 0.0;
     if (!zeroed) return vt_scratch_release(d, mark), VT_OK;
-    const int r = vt_rate_bounds(m, d, dense, beta);
+    const int r = vt_rate_bounds(m, d, form, beta);
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
     double worst = 0.0, ub = 0.0, gb = 0.0;
     int wb = 0;
@@ -328,9 +328,9 @@ vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, 
                    who, wb, ub, gb, rcond);
 }
 
-vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, vt_form form)
 {
-    vt_status st0 = vt_zeroed_rates_check(m, d, "vt_reactions", dense);
+    vt_status st0 = vt_zeroed_rates_check(m, d, "vt_reactions", form);
     if (st0) return st0;
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
@@ -339,7 +339,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense)
     double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
     if (!rw) return vt_scratch_fail(d, mark);
     double *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
-    if (dense) vt_accelerations_dense(m, d, d->qdd, d->xdd, alpha);
+    if (form == VT_FORM_DENSE) vt_accelerations_dense(m, d, d->qdd, d->xdd, alpha);
     else vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
     /* applied: xfrc, and every row and generalized force (gravity: vt_body_wrench) */

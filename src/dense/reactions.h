@@ -5,16 +5,17 @@
 #include <stddef.h>
 
 #include "vtdyn.h"
+#include "kinematics/kinematics.h" /* vt_form */
 
 size_t vt_reactions_scratch(const vt_model *m);
 
-/* vt_reactions without the argument checks (ẍ and α from d->qdd); dense: M* and S are the
- * dense stages' (else the recursive general route's composite M* about o) */
-vt_status vt_reactions_impl(const vt_model *m, vt_data *d, int dense);
+/* vt_reactions without the argument checks (ẍ and α from d->qdd); form: M* and S are the dense
+ * stages' (VT_FORM_DENSE) or the recursive general route's composite M* about o */
+vt_status vt_reactions_impl(const vt_model *m, vt_data *d, vt_form form);
 /* after vt_solve: VT_ERR_SINGULAR when rates whose M* row it zeroed (round-off held by rows)
- * leave the efforts without a certain digit (reactions.c); who names the caller; dense as
+ * leave the efforts without a certain digit (reactions.c); who names the caller; form as
  * vt_rate_bounds */
-vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, int dense);
+vt_status vt_zeroed_rates_check(const vt_model *m, vt_data *d, const char *who, vt_form form);
 /* subtree sums about each joint point of wrenches about it: moment at noff, force at foff (reactions.c) */
 void vt_sum_at_joints(const vt_model *m, const vt_data *d, double *X, int noff, int foff);
 /* the same from the subtrees' needed wrenches about each joint point P_i at the full

@@ -215,7 +215,7 @@ static int maximal_alternative(const vt_model *m, vt_data *d, double *rcond, dou
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
  * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
-vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form)
 {
     const int nv = m->nv, nc = m->nc;
     vt_solve_reset(d);
@@ -223,7 +223,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
     /* round-off of an exact zero is neither a row nor an inertia: a rate without inertia that
      * nothing fixes is refused here, zero rows are dependent (vt_rows_decide below says so) */
-    const int zero_rows = vt_roundoff_check(m, d, NULL, 1, dense);
+    const int zero_rows = vt_roundoff_check(m, d, NULL, 1, form);
     if (zero_rows == VT_ROUNDOFF_COMPOSITE) return VT_NEEDS_DENSE;
     if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
@@ -233,7 +233,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
         if ((st = vt_free_rates_solve(m, d, &rcond, &r))) return st;
         d->rank = nc; /* one unit row on a rate of its own each: independent */
         vt_route route = VT_ROUTE_FREE_RATES;
-        if (dense && r == VT_SOLVED && vt_maximal_wanted(m, rcond)) {
+        if (form == VT_FORM_DENSE && r == VT_SOLVED && vt_maximal_wanted(m, rcond)) {
             const size_t mark = vt_scratch_mark(d);
             double *sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution");
             if (!sol) return vt_scratch_fail(d, mark);
@@ -328,7 +328,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
         break;
     }
     /* r is VT_SOLVED or VT_BELOW_MIN here */
-    if (dense && !zero_rows && route != VT_ROUTE_SQUARE && maximal_wanted(m, d, r, rcond, sol, route == VT_ROUTE_AUGMENTED)) {
+    if (form == VT_FORM_DENSE && !zero_rows && route != VT_ROUTE_SQUARE && maximal_wanted(m, d, r, rcond, sol, route == VT_ROUTE_AUGMENTED)) {
         const int t = maximal_alternative(m, d, &rcond, sol);
         if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
         if (t == 1) route = VT_ROUTE_MAXIMAL, r = VT_SOLVED;
@@ -368,7 +368,7 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense)
 
 vt_status vt_solve_impl(const vt_model *m, vt_data *d)
 {
-    return vt_solve_band(m, d, 0.0, 0);
+    return vt_solve_band(m, d, 0.0, VT_FORM_TWISTS);
 }
 
 vt_status vt_solve(const vt_model *m, vt_data *d)
@@ -376,7 +376,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
-    return vt_solve_band(m, d, 0.0, 1);
+    return vt_solve_band(m, d, 0.0, VT_FORM_DENSE);
 }
 
 vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
@@ -384,7 +384,7 @@ vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
-    return vt_solve_band(m, d, band, 1);
+    return vt_solve_band(m, d, band, VT_FORM_DENSE);
 }
 
 /* The scratch solve.c takes at once, beside what its routes and kernels take (dense/routes.c,

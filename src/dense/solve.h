@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "vtdyn.h"
+#include "kinematics/kinematics.h" /* vt_form */
 
 size_t vt_solve_scratch(const vt_model *m);
 
@@ -23,9 +24,9 @@ size_t vt_solve_scratch(const vt_model *m);
 #define VT_NEEDS_RATES ((vt_status)3)
 vt_status vt_solve_impl(const vt_model *m, vt_data *d);
 /* vt_solve_impl with a time analysis's band (vt_run_options.redundant_band; 0 is vt_solve_impl)
- * and the form of M* (dense: S^T M S, else the composite inertias about o, as vt_rate_bounds),
+ * and the form of M* (vt_form: S^T M S, or the composite inertias about o, as vt_rate_bounds),
  * and vt_solve with it on the dense M*: the ODE formulation's residual */
-vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, int dense);
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form);
 vt_status vt_solve_run(const vt_model *m, vt_data *d, double band);
 
 #endif

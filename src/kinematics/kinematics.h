@@ -14,6 +14,11 @@ size_t vt_kinematics_scratch(const vt_model *m);
 /* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (kinematics.c) */
 void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
 
+/* How M* and Φ_q are formed: from the dense S of vt_kinematics (S^T M S, Φ_x S, lever arms along
+ * the tree: the dense stages) or from the rates' twists about o (the recursive evaluation's
+ * composite inertias and Φ_q). The stages that judge round-off or pick a route take it. */
+typedef enum { VT_FORM_TWISTS = 0, VT_FORM_DENSE = 1 } vt_form;
+
 /* vt_kinematics_tree's and vt_accelerations' rows of one body i, its reference body's done
  * (kinematics.c): for a pass that fuses them with other work body by body (recursive/fused.c) */
 void vt_kinematics_body(const vt_model *m, vt_data *d, int i);

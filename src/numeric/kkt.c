@@ -274,7 +274,7 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
  * h = M* q̈ − Q in sq->h, λ, and everything vt_solve sets on success. */
 int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
 {
-    const int zero_rows = vt_roundoff_check(m, d, NULL, 0, 0); /* a zero row: the general route diagnoses it */
+    const int zero_rows = vt_roundoff_check(m, d, NULL, 0, VT_FORM_TWISTS); /* a zero row: the general route diagnoses it */
     if (zero_rows) return zero_rows < 0 ? zero_rows : VT_BELOW_MIN;
     return square_factor(m, d, sq, mdiag, 1, rcond);
 }

@@ -270,7 +270,7 @@ int vt_rows_decide(const vt_model *m, vt_data *d, double band, vt_rows_svd *o)
     o->c = VT_SCRATCH(d, double, nv, "rate scaling");
     int *flag = o->flag = VT_SCRATCH(d, int, nc, "round-off rows");
     if (!flag) return vt_scratch_fail(d, vt_scratch_mark(d)); /* the caller releases o's arrays */
-    const int ro = vt_roundoff_check(m, d, flag, 0, 0); /* a row that is round-off of zero counts as zero */
+    const int ro = vt_roundoff_check(m, d, flag, 0, VT_FORM_TWISTS); /* a row that is round-off of zero counts as zero */
     if (ro < 0) return ro;
     const size_t mark = vt_scratch_mark(d);
     double *g = o->g, *s = o->c;

@@ -96,13 +96,13 @@ static void dense_rate_bounds(const vt_model *m, const vt_data *d, double *T, do
     for (int a = 0; a < nv; a++) beta[a] = te * te * T[2 * a] + te * T[2 * a + 1];
 }
 
-int vt_rate_bounds(const vt_model *m, vt_data *d, int dense, double *beta)
+int vt_rate_bounds(const vt_model *m, vt_data *d, vt_form form, double *beta)
 {
     const size_t mark = vt_scratch_mark(d);
     double *T = VT_SCRATCH(d, double, 2 * (size_t)m->nv, "terms of M*'s diagonal");
     double *w = VT_SCRATCH(d, double, 4 * ((size_t)m->nbody + 1), "subtree sums");
     if (!w) return vt_scratch_fail(d, mark);
-    if (dense) dense_rate_bounds(m, d, T, beta);
+    if (form == VT_FORM_DENSE) dense_rate_bounds(m, d, T, beta);
     else {
         vt_rate_terms(m, d, w, T);
         for (int a = 0; a < m->nv; a++) beta[a] = vt_rate_roundoff(T, a);
@@ -149,7 +149,7 @@ static double row_norm(const vt_model *m, const vt_data *d, int r)
  * row (other than a flagged one) touches beyond round-off: VT_ERR_SINGULAR, named (nothing
  * fixes a motion that has no inertia). withM: M* is formed (else only the rows are judged).
  * Returns the number of rows flagged or a negative vt_status. */
-int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int dense)
+int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, vt_form form)
 {
     const int nv = m->nv, nc = m->nc;
     const size_t mark = vt_scratch_mark(d);
@@ -173,12 +173,12 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int d
     }
     if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
     if (withM) {
-        const int st = vt_rate_bounds(m, d, dense, beta);
+        const int st = vt_rate_bounds(m, d, form, beta);
         if (st < 0) return vt_scratch_release(d, mark), st;
         for (int a = 0; a < nv; a++) {
             const double maa = d->Mstar[a + (size_t)a * (size_t)nv];
             /* subnormal: its bound underflows, and it has lost its digits; near it, the dense stages decide */
-            if (maa > beta[a] && maa >= (dense ? DBL_MIN : VT_PIVOT_NORMAL)) continue;
+            if (maa > beta[a] && maa >= (form == VT_FORM_DENSE ? DBL_MIN : VT_PIVOT_NORMAL)) continue;
             int held = 0;
             for (int r = 0; r < nc && !held; r++)
                 held = !fl[r] && fabs(d->Phiq[r + (size_t)a * (size_t)nc]) > te * B[(size_t)r * (size_t)nv + (size_t)a];
@@ -186,7 +186,7 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int d
                 /* the composite inertias about o cannot tell a non-zero M*_aa below their bound
                  * from none (a point mass 1e-6 m off a spherical joint's line: 5e-11 kg m² against
                  * a bound of 1e-10); the dense S^T M S, about each joint, can: it decides */
-                if (!dense && maa != 0.0) return vt_scratch_release(d, mark), VT_ROUNDOFF_COMPOSITE;
+                if (form != VT_FORM_DENSE && maa != 0.0) return vt_scratch_release(d, mark), VT_ROUNDOFF_COMPOSITE;
                 /* M* is semi-definite, so its row a is round-off too: exactly zero, as the dense
                  * path forms it, not a unit pivot once scaled */
                 for (int b = 0; b < nv; b++) d->Mstar[a + (size_t)b * (size_t)nv] = d->Mstar[b + (size_t)a * (size_t)nv] = 0.0;
@@ -196,7 +196,7 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int d
             vt_scratch_release(d, mark);
             /* the composite inertias about o cannot tell this inertia from round-off; S^T M S's
              * lever arms along the tree may (a body 1e9 m from its joint): the dense stages decide */
-            if (!dense) return VT_ROUNDOFF_COMPOSITE;
+            if (form != VT_FORM_DENSE) return VT_ROUNDOFF_COMPOSITE;
             if (maa > bound) /* then below DBL_MIN */
                 return vt_fail(d->message, VT_ERR_SINGULAR,
                                "vt_solve: singular: rate %d (body %d) has no inertia (M*_aa = %.3g is below the smallest "
@@ -212,7 +212,7 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int d
 
 int vt_zero_rows(const vt_model *m, vt_data *d)
 {
-    return m->nc > 0 ? vt_roundoff_check(m, d, NULL, 0, 0) : 0;
+    return m->nc > 0 ? vt_roundoff_check(m, d, NULL, 0, VT_FORM_TWISTS) : 0;
 }
 
 /* The same on the free rates alone (known[a] < 0; the others' q̈ known, as the recursive

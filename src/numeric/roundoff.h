@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "vtdyn.h"
+#include "kinematics/kinematics.h" /* vt_form */
 #include "model/model.h"
 
 size_t vt_roundoff_scratch(const vt_model *m);
@@ -23,10 +24,10 @@ size_t vt_roundoff_scratch(const vt_model *m);
 void vt_rate_terms(const vt_model *m, const vt_data *d, double *w, double *T);
 double vt_rate_roundoff(const double *T, int a);
 /* The bound below which M*_aa is round-off, for every rate, into beta (nv): of the M* the
- * dense stages form as S^T M S (dense != 0: S's columns squared, (τ ε)² T_a + τ ε R_a, T_a with
+ * dense stages form as S^T M S (VT_FORM_DENSE: S's columns squared, (τ ε)² T_a + τ ε R_a, T_a with
  * the dense S's lever arms, vt_lever) or of the recursive general route's composite inertias
- * about o (dense == 0: vt_rate_roundoff). Scratch: 2 nv + 4 (nbody + 1) doubles */
-int vt_rate_bounds(const vt_model *m, vt_data *d, int dense, double *beta);
+ * about o (VT_FORM_TWISTS: vt_rate_roundoff). Scratch: 2 nv + 4 (nbody + 1) doubles */
+int vt_rate_bounds(const vt_model *m, vt_data *d, vt_form form, double *beta);
 
 /* the rows that Φ_x S builds (points, lines, dot products, orientations), whose entries are
  * sums and can be round-off; joint drives', couplings' and p^T p − 1's entries are exact */
@@ -38,11 +39,11 @@ static inline int vt_judged_row(const vt_model *m, int r)
 
 /* Rows that are round-off of a zero row, flagged 1 in flag (nc; NULL: not kept), and, with
  * withM (M* formed), the rates whose M*_aa is round-off and that no row fixes: VT_ERR_SINGULAR,
- * named. dense: M* is the dense S^T M S, else the recursive general route's composite inertias
+ * named. form: M* is the dense S^T M S (VT_FORM_DENSE), else the recursive general route's composite inertias
  * about o, which cannot decide every such rate: VT_ROUNDOFF_COMPOSITE then (the dense stages
  * decide). Returns the number of rows flagged, VT_ROUNDOFF_COMPOSITE or a negative vt_status. */
 #define VT_ROUNDOFF_COMPOSITE (-1000) /* below every vt_status */
-int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, int dense);
+int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, vt_form form);
 /* the number of rows of Φ_q that are round-off of a zero row (judged against the terms they are
  * summed from), or a negative vt_status */
 int vt_zero_rows(const vt_model *m, vt_data *d);

@@ -249,5 +249,5 @@ vt_status vt_factorized_instant(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_mass_and_bias(m, d);
     if (!st) st = vt_composite_solve(m, d);
-    return st ? st : vt_reactions_impl(m, d, 0);
+    return st ? st : vt_reactions_impl(m, d, VT_FORM_TWISTS);
 }

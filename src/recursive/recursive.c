@@ -220,12 +220,12 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_
             return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, VT_NEEDS_MAXIMAL;
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
         else if ((st = vt_mass_and_bias(m, d)) || (st = vt_composite_solve(m, d)) ||
-                 (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", 0))) /* or from M*_FF, which also diagnoses */
+                 (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", VT_FORM_TWISTS))) /* or from M*_FF, which also diagnoses */
             return st;
         *formed = m->joint_mix >= 0 ? FORMED_INWARD : FORMED_NONE;
         return vt_inward(m, d, *formed == FORMED_INWARD);
     }
-    if ((st = vt_constraints_impl(m, d, 0))) return st;
+    if ((st = vt_constraints_impl(m, d, VT_FORM_TWISTS))) return st;
     return constrained_instant(m, d);
 }
 
@@ -269,7 +269,7 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     d->route = VT_ROUTE_NONE;
     d->fallback = 0;
     if (!rates) {
-        if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
+        if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, VT_FORM_TWISTS, VT_CON_PHIX | VT_CON_GAMMA, fd)))
             st = constrained_instant(m, d);
         return outputs_scanned(m, d, st, FORMED_NONE, totals);
     }
@@ -281,7 +281,7 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     const int r = square_factor(m, d, &sq, &rcond);
     if (r) return vt_scratch_release(d, mark), r == 1 ? VT_NEEDS_RATES : (vt_status)r;
     if (!(st = (vt_status)vt_square_apply(m, d, &sq, d->Phit, -1.0, d->qd)) && !(st = vt_kinematics_velocities(m, d, 1)) &&
-        !(st = vt_constraints_parts(m, d, 0, VT_CON_PHIX | VT_CON_GAMMA, fd)))
+        !(st = vt_constraints_parts(m, d, VT_FORM_TWISTS, VT_CON_PHIX | VT_CON_GAMMA, fd)))
         st = square_solved(m, d, &sq, rcond);
     vt_scratch_release(d, mark);
     return outputs_scanned(m, d, st, FORMED_NONE, totals);
