@@ -223,7 +223,8 @@ VT_API vt_function vt_function_user(vt_function_callback callback, void *user);
 VT_API vt_function vt_function_spline(int n, const double *t, const double *y);
 /// out = [f(t), f'(t), f''(t)], exact for the built-in kinds. A spline not yet in a model
 /// (sample_d2 NULL) has its second derivatives solved at each call in a fixed local buffer:
-/// at most VT_SPLINE_EVAL_MAX samples (a model's drives, m->drive[k].f, have no limit).
+/// at most VT_SPLINE_EVAL_MAX samples. A model's drives, m->drive[k].f, have no limit and are
+/// evaluated in O(log n) (bisection): their samples were checked when the drive was added.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_DRIVE (malformed function), VT_ERR_CALLBACK,
 /// VT_ERR_NONFINITE (a value that is not finite), VT_ERR_BAD_SIZE (a spline not in a model with
 /// more than VT_SPLINE_EVAL_MAX samples), VT_ERR_LAPACK. out is untouched on failure.
