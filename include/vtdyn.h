@@ -159,7 +159,8 @@ VT_API vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, c
 /// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 VT_API vt_status vt_data_create(vt_data **data, const vt_model *model);
 /// The state at rest in the reference configuration: q = q0, q̇ = 0, xfrc = 0, qfrc = 0,
-/// time = 0; clears warning, ida_flag and message. Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH.
+/// time = 0; clears the diagnostics (route, fallback, warning, rank, rcond, residual), ida_flag
+/// and message. Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH.
 VT_API vt_status vt_data_reset(const vt_model *model, vt_data *data);
 /// Releases data made by vt_data_create(); does nothing for NULL or for data laid out by
 /// vt_data_init() in the caller's buffer (that memory stays the caller's to reuse or drop).
@@ -239,7 +240,8 @@ VT_API vt_function vt_function_user(vt_function_callback callback, void *user);
 VT_API vt_function vt_function_spline(int n, const double *t, const double *y);
 /// out = [f(t), f'(t), f''(t)], exact for the built-in kinds. A spline not yet in a model
 /// (sample_d2 NULL) has its second derivatives solved at each call in a fixed local buffer:
-/// at most VT_SPLINE_EVAL_MAX samples (a model's drives, m->drive[k].f, have no limit).
+/// at most VT_SPLINE_EVAL_MAX samples. A model's drives, m->drive[k].f, have no limit and are
+/// evaluated in O(log n) (bisection): their samples were checked when the drive was added.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_DRIVE (malformed function), VT_ERR_CALLBACK,
 /// VT_ERR_NONFINITE (a value that is not finite), VT_ERR_BAD_SIZE (a spline not in a model with
 /// more than VT_SPLINE_EVAL_MAX samples), VT_ERR_LAPACK. out is untouched on failure.
@@ -272,6 +274,12 @@ VT_API int vt_find_coupling(const vt_model *model, const char *name);
 VT_API int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);
 
 /* ---- stages: each reads the model and fills its part of the data ------------------ */
+/* The diagnostics in vt_data (route, fallback, warning, rank, rcond, residual) are those of the
+ * last instant or solve: vt_solve, vt_inverse_dynamics, vt_inverse_dynamics_recursive,
+ * vt_inverse_dynamics_motion, vt_kinematic_solve and the analyses clear them at their start
+ * (after the NULL and model check), so that a call refused before its solve (NaN in q, an
+ * option out of range) leaves none of an earlier call's; the other stages neither write nor
+ * clear them. */
 
 /// From d->q and d->qd: x, A, ω, joint axes and points, S (15)-(18), ẋ = S q̇ and Ṡq̇.
 /// A spherical joint's Euler parameters are normalized (scaled first: any length works).

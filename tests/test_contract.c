@@ -392,6 +392,83 @@ static void test_indices_and_options(void **state)
     vt_model_free(m);
 }
 
+/* the diagnostics of the last instant or solve, all cleared */
+static void assert_no_diagnostics(const vt_data *d, const char *who, const char *what)
+{
+    if (d->route != VT_ROUTE_NONE || d->fallback != 0 || d->warning != 0 || d->rank != 0 || d->rcond != 0.0 ||
+        d->residual != 0.0)
+        fail_msg("%s, %s: stale diagnostics: route %d, fallback %d, warning %d, rank %d, rcond %.3g, residual %.3g", who,
+                 what, (int)d->route, d->fallback, d->warning, d->rank, d->rcond, d->residual);
+}
+
+/* Every entry point that owns the diagnostics (the instants, vt_kinematic_solve, vt_solve, the
+ * analyses, vt_data_reset) clears route, fallback, warning, rank, rcond and residual at its
+ * start: after a successful ill-conditioned instant (the five-rod chain with masses rising over
+ * 12 orders, driven at two points: the Schur route gives way to the augmented one, which warns
+ * below rcond_warn), a call that fails before its solve (NaN in q, in a load or in Q; an
+ * option out of range; a model not fully driven) leaves none of that instant's diagnostics. */
+static void test_stale_diagnostics(void **state)
+{
+    (void)state;
+    vt_model *m = vt_test_ratio_chain(1, 4, 3.0);
+    m->rcond_warn = 0.5; /* its estimate, about 1e-3, warns */
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    vt_trajectory *tr;
+    assert_ok(vt_trajectory_create(&tr, m, 3));
+    vt_run_options opt = vt_default_run_options(), badopt = opt;
+    opt.nout = 2;
+    badopt.nout = 0;
+    enum { NAN_Q, NAN_XFRC, NAN_QSTAR, BAD_OPTION, AS_IS };
+    const struct {
+        const char *who;
+        int how;
+    } calls[] = {{"vt_inverse_dynamics", NAN_Q},           {"vt_inverse_dynamics", NAN_XFRC},
+                 {"vt_inverse_dynamics_recursive", NAN_Q}, {"vt_inverse_dynamics_recursive", NAN_XFRC},
+                 {"vt_inverse_dynamics_motion", NAN_Q},    {"vt_inverse_dynamics_motion", NAN_XFRC},
+                 {"vt_kinematic_solve", NAN_Q},            {"vt_kinematic_solve", BAD_OPTION},
+                 {"vt_solve", NAN_QSTAR},                  {"vt_kinematic_analysis", AS_IS},
+                 {"vt_kinematic_analysis", BAD_OPTION},    {"vt_dynamic_analysis", NAN_Q},
+                 {"vt_dynamic_analysis", BAD_OPTION},      {"vt_data_reset", AS_IS}};
+    const char *what[] = {"NaN in q", "NaN in xfrc", "NaN in Q", "an option out of range", "as it is"};
+    for (size_t c = 0; c < sizeof calls / sizeof calls[0]; c++) {
+        const char *who = calls[c].who;
+#if !VT_HAVE_SUNDIALS
+        if (!strcmp(who, "vt_dynamic_analysis")) continue;
+#endif
+        vt_data_reset(m, d);
+        for (int a = 0; a < m->nv; a++) {
+            d->q[a] = 0.3 + 0.25 * a;
+            d->qd[a] = 0.5 - 0.2 * a;
+        }
+        assert_ok(vt_inverse_dynamics(m, d));
+        if (d->route == VT_ROUTE_NONE || !d->fallback || !(d->warning & VT_WARN_ILL_CONDITIONED) || d->rank != m->nc ||
+            !(d->rcond > 0.0))
+            fail_msg("the ill-conditioned instant: route %d, fallback %d, warning %d, rank %d, rcond %.3g", (int)d->route,
+                     d->fallback, d->warning, d->rank, d->rcond);
+        const int how = calls[c].how;
+        if (how == NAN_Q) d->q[2] = NAN;
+        if (how == NAN_XFRC) d->xfrc[6 * 3 + 1] = NAN;
+        if (how == NAN_QSTAR) d->Q[1] = NAN;
+        vt_status st = VT_OK;
+        if (!strcmp(who, "vt_inverse_dynamics")) st = vt_inverse_dynamics(m, d);
+        else if (!strcmp(who, "vt_inverse_dynamics_recursive")) st = vt_inverse_dynamics_recursive(m, d);
+        else if (!strcmp(who, "vt_inverse_dynamics_motion")) st = vt_inverse_dynamics_motion(m, d);
+        else if (!strcmp(who, "vt_kinematic_solve")) st = vt_kinematic_solve(m, d, how == BAD_OPTION ? -1.0 : 1e-12, 20);
+        else if (!strcmp(who, "vt_solve")) st = vt_solve(m, d);
+        else if (!strcmp(who, "vt_kinematic_analysis")) st = vt_kinematic_analysis(m, d, how == BAD_OPTION ? &badopt : &opt, tr);
+#if VT_HAVE_SUNDIALS
+        else if (!strcmp(who, "vt_dynamic_analysis")) st = vt_dynamic_analysis(m, d, how == BAD_OPTION ? &badopt : &opt, tr);
+#endif
+        else st = vt_data_reset(m, d) == VT_OK ? VT_ERR_ABORTED : VT_OK; /* its success is what clears */
+        if (st == VT_OK) fail_msg("%s, %s: succeeded", who, what[how]);
+        assert_no_diagnostics(d, who, what[how]);
+    }
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* every status has a text of its own; unknown codes get one too */
 static void test_status_strings(void **state)
 {
@@ -418,6 +495,7 @@ int main(void)
         cmocka_unit_test(test_time_functions),
         cmocka_unit_test(test_spline_drives),
         cmocka_unit_test(test_indices_and_options),
+        cmocka_unit_test(test_stale_diagnostics),
         cmocka_unit_test(test_status_strings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,11 @@
 /* src/model/functions.c: f' and f'' of every built-in time function against central differences
  * of f and f', exact values, and the error paths of user callbacks. The spline: exact on the
  * polynomials its end conditions reproduce, its order of convergence on sin (error ratios
- * when the spacing halves), continuity at the knots, and the model's own copy of the samples. */
+ * when the spacing halves), continuity at the knots, the model's own copy of the samples, and
+ * a model's drive evaluated by bisection (bitwise the cubic of the interval a linear search
+ * finds, reading only its own interval's samples). */
+#include <float.h>
+
 #include "vt_test.h"
 
 static void check_derivatives(const vt_function *f, double t)
@@ -279,6 +283,176 @@ static void test_spline_ownership_and_errors(void **state)
     }
 }
 
+/* the cubic of interval lo of a spline (samples t, y, curvatures M), written out as
+ * functions.c's header states it, evaluated at x */
+static void spline_reference(double v[3], const double *t, const double *y, const double *M, int lo, double x)
+{
+    const double h = t[lo + 1] - t[lo], s = x - t[lo], dM = M[lo + 1] - M[lo];
+    const double b = (y[lo + 1] - y[lo]) / h - h * (2.0 * M[lo] + M[lo + 1]) / 6.0;
+    v[0] = y[lo] + s * (b + s * (0.5 * M[lo] + s * dM / (6.0 * h)));
+    v[1] = b + s * (M[lo] + s * dM / (2.0 * h));
+    v[2] = M[lo] + s * dM / h;
+}
+
+/* the interval of x by a linear search: the last k ≤ n − 2 with t[k] ≤ x (0 before t[0]) */
+static int linear_interval(const double *t, int n, double x)
+{
+    int lo = 0;
+    for (int k = 1; k <= n - 2; k++)
+        if (t[k] <= x) lo = k;
+    return lo;
+}
+
+/* f, f', f'' equal to the reference: bitwise, except where the build may fuse a * b + c
+ * differently in the test and in the library (FMA targets: -ffp-contract=fast) */
+static void assert_spline_equal(const double v[3], const double e[3], double x)
+{
+    for (int c = 0; c < 3; c++) {
+#if defined(__FP_FAST_FMA)
+        const double tol = 8 * DBL_EPSILON * (fabs(e[0]) + fabs(e[1]) + fabs(e[2]) + 1.0);
+#else
+        const double tol = 0.0;
+#endif
+        if (!(fabs(v[c] - e[c]) <= tol))
+            fail_msg("x %.17g: component %d %.17g, reference %.17g", x, c, v[c], e[c]);
+    }
+}
+
+/* A model's spline drive (uneven spacing, 4097 samples) evaluated by vt_function_eval (the
+ * bisection) equals the cubic formula on the interval a linear search finds, bitwise: at the
+ * first and the last sample, at every sample and the doubles either side of it, at every
+ * interval's midpoint, at 2000 pseudo-random points and outside [t_0, t_{n−1}] (the end pieces
+ * continued) */
+static void test_spline_interval_search(void **state)
+{
+    (void)state;
+    const int n = 4097;
+    double *tk = malloc(2 * (size_t)n * sizeof(double)), *yk = tk + n;
+    assert_non_null(tk);
+    for (int k = 0; k < n; k++) {
+        tk[k] = 0.01 * k + 0.003 * sin(1.7 * k);
+        yk[k] = cos(0.37 * tk[k]) + 0.01 * sin(5.0 * k);
+    }
+    const vt_function g = vt_function_spline(n, tk, yk);
+    vt_model *m = model_with(&g);
+    free(tk);
+    const vt_function *f = &m->drive[0].f;
+    const double *t = f->sample_t, *y = f->sample_y, *M = f->sample_d2;
+    double v[3], e[3];
+#define CHECK_AT(xx)                                                    \
+    do {                                                                \
+        const double x_ = (xx);                                         \
+        assert_ok(vt_function_eval(v, f, x_));                          \
+        spline_reference(e, t, y, M, linear_interval(t, n, x_), x_);    \
+        assert_spline_equal(v, e, x_);                                  \
+    } while (0)
+    for (int k = 0; k < n; k++) {
+        CHECK_AT(t[k]);
+        CHECK_AT(nextafter(t[k], -INFINITY));
+        CHECK_AT(nextafter(t[k], INFINITY));
+        if (k < n - 1) CHECK_AT(0.5 * (t[k] + t[k + 1]));
+    }
+    uint64_t r = 0x9e3779b97f4a7c15u;
+    const double span = t[n - 1] - t[0];
+    for (int j = 0; j < 2000; j++) {
+        r = r * 6364136223846793005u + 1442695040888963407u;
+        CHECK_AT(t[0] - 0.05 * span + 1.1 * span * (double)(r >> 11) / 9007199254740992.0);
+    }
+    const double outside[4] = {t[0] - 1.0, t[0] - 1e-300, t[n - 1] + 1e-9, t[n - 1] + 3.0};
+    for (int j = 0; j < 4; j++) CHECK_AT(outside[j]);
+#undef CHECK_AT
+    vt_model_free(m);
+}
+
+/* a straight line is every spline's exact answer (its curvatures solve to exact zeros when the
+ * samples' slopes are exact): y = 3 + t/2 at dyadic, uneven times, every value exact at dyadic
+ * points inside and outside, standalone (n ≤ VT_SPLINE_EVAL_MAX) and as a model's drive */
+static void test_spline_line_exact(void **state)
+{
+    (void)state;
+    double tk[40], yk[40];
+    for (int k = 0; k < 40; k++) {
+        tk[k] = 0.25 * k + 0.0625 * (k % 3);
+        yk[k] = 3.0 + 0.5 * tk[k];
+    }
+    for (int n = 2; n <= 40; n += n < 6 ? 1 : 17) {
+        const vt_function f = vt_function_spline(n, tk, yk);
+        vt_model *m = model_with(&f);
+        for (int j = -32; j <= 16 * n + 32; j++) {
+            const double x = j / 64.0;
+            for (int route = 0; route < 2; route++) {
+                double v[3];
+                assert_ok(vt_function_eval(v, route ? &m->drive[0].f : &f, x));
+                if (!(v[0] == 3.0 + 0.5 * x && v[1] == 0.5 && v[2] == 0.0))
+                    fail_msg("n %d, x %g, %s: %.17g %.17g %.17g", n, x, route ? "model" : "standalone", v[0], v[1], v[2]);
+            }
+        }
+        vt_model_free(m);
+    }
+}
+
+/* Evaluating a model's spline drive reads the samples of its own interval, not all n (the
+ * samples were checked when the drive was added): with every other sample's value and curvature
+ * in the model's copy overwritten by NaN (white box: the test writes into the model it owns),
+ * f, f', f'' at points of the kept interval are bitwise what they were, and a point of an
+ * interval whose samples are NaN is refused (VT_ERR_NONFINITE). A check of the n samples at
+ * each call refused every one. A raw function (the caller's arrays, its sample_d2 set by the
+ * caller) is still checked in full. */
+static void test_spline_drive_reads_its_interval(void **state)
+{
+    (void)state;
+    const int n = 3001;
+    double *tk = malloc(2 * (size_t)n * sizeof(double)), *yk = tk + n;
+    assert_non_null(tk);
+    for (int k = 0; k < n; k++) {
+        tk[k] = 0.5 * k + 0.1 * sin((double)k);
+        yk[k] = sin(0.05 * tk[k]);
+    }
+    const vt_function g = vt_function_spline(n, tk, yk);
+    vt_model *m = model_with(&g);
+    const vt_function *f = &m->drive[0].f;
+    double *y = (double *)f->sample_y, *M = (double *)f->sample_d2; /* the model's own block */
+    double *ykeep = malloc(2 * (size_t)n * sizeof(double)), *Mkeep = ykeep + n;
+    assert_non_null(ykeep);
+    memcpy(ykeep, y, (size_t)n * sizeof(double));
+    memcpy(Mkeep, M, (size_t)n * sizeof(double));
+    const int intervals[5] = {0, 1, 1234, n / 2, n - 2};
+    for (int j = 0; j < 5; j++) {
+        const int i = intervals[j];
+        const double x[3] = {f->sample_t[i], 0.3 * f->sample_t[i] + 0.7 * f->sample_t[i + 1],
+                             nextafter(f->sample_t[i + 1], -INFINITY)};
+        double before[9], v[3] = {1, 2, 3};
+        for (int p = 0; p < 3; p++) assert_ok(vt_function_eval(before + 3 * p, f, x[p]));
+        for (int k = 0; k < n; k++)
+            if (k != i && k != i + 1) y[k] = M[k] = NAN;
+        for (int p = 0; p < 3; p++) {
+            const vt_status st = vt_function_eval(v, f, x[p]);
+            if (st != VT_OK) fail_msg("interval %d, x %.17g: status %d with the other samples NaN", i, x[p], (int)st);
+            assert_memory_equal(v, before + 3 * p, sizeof v);
+        }
+        const int other = i < n / 2 ? n - 2 : 0; /* an interval of NaN samples */
+        assert_int_equal(vt_function_eval(v, f, 0.5 * (f->sample_t[other] + f->sample_t[other + 1])), VT_ERR_NONFINITE);
+        assert_memory_equal(v, before + 6, sizeof v); /* untouched */
+        memcpy(y, ykeep, (size_t)n * sizeof(double));
+        memcpy(M, Mkeep, (size_t)n * sizeof(double));
+    }
+    /* the caller's own arrays with its own sample_d2: checked in full (here a far value NaN) */
+    double *d2 = malloc((size_t)n * sizeof(double));
+    assert_non_null(d2);
+    memcpy(d2, Mkeep, (size_t)n * sizeof(double));
+    yk[n - 7] = NAN;
+    vt_function raw = g;
+    raw.sample_d2 = d2;
+    double v[3];
+    assert_int_equal(vt_function_eval(v, &raw, tk[3]), VT_ERR_NONFINITE);
+    yk[n - 7] = sin(0.05 * tk[n - 7]);
+    assert_ok(vt_function_eval(v, &raw, tk[3]));
+    free(d2);
+    free(ykeep);
+    free(tk);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -288,6 +462,9 @@ int main(void)
         cmocka_unit_test(test_spline_convergence),
         cmocka_unit_test(test_spline_derivatives_and_continuity),
         cmocka_unit_test(test_spline_ownership_and_errors),
+        cmocka_unit_test(test_spline_interval_search),
+        cmocka_unit_test(test_spline_line_exact),
+        cmocka_unit_test(test_spline_drive_reads_its_interval),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

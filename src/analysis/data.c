@@ -185,9 +185,7 @@ vt_status vt_data_reset(const vt_model *m, vt_data *d)
     memset(d->xfrc, 0, 6 * ((size_t)m->nbody + 1) * sizeof(double));
     memset(d->qfrc, 0, (size_t)m->nv * sizeof(double));
     d->ida_flag = 0;
-    d->warning = 0;
-    d->route = VT_ROUTE_NONE;
-    d->fallback = 0;
+    vt_diagnostics_reset(d);
     d->time = 0.0;
     d->message[0] = '\0';
     return VT_OK;

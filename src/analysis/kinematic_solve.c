@@ -175,6 +175,7 @@ static vt_status restore(const vt_model *m, vt_data *d, const double *qsave, siz
 vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int maxit, int recursive,
                                   const double *qprev, const double *qdprev, double h)
 {
+    vt_diagnostics_reset(d); /* the instant's: an option or a Newton step refused leaves no earlier one's */
     if (!(tol > 0.0) || !isfinite(tol) || maxit < 1)
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_kinematic_solve: tol %g must be finite and positive, maxit %d positive",
                        tol, maxit);

@@ -180,6 +180,7 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
 {
     vt_status st = vt_check_pair(m, d, who);
     if (st) return st;
+    vt_diagnostics_reset(d); /* the analyses' diagnostics: those of their last instant, none before */
     if (!opt || !tr) return vt_fail(d->message, VT_ERR_NULL, "%s: NULL options or trajectory", who);
     if (tr->model != m) return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "%s: trajectory made for another model", who);
     if (!isfinite(opt->t0) || !isfinite(opt->t1) || !(opt->t1 > opt->t0))

@@ -14,4 +14,20 @@ vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
 /* Common argument check of every stage: non-NULL, data made for this model. */
 vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who);
 
+/* The diagnostics of the last instant or solve cleared (route none, no fallback, no warning,
+ * rank 0, rcond 0, residual 0): what every entry point that owns them (the instants, vt_solve,
+ * vt_kinematic_solve, the analyses, vt_data_reset) does first, after its argument check and
+ * before anything that can fail, so that a call refused before its solve leaves nothing of
+ * the previous call's. vt_solve_reset (dense/solve.h) is the same without the fallback, which
+ * the recursive routes set before the solve they hand on to. */
+static inline void vt_diagnostics_reset(vt_data *d)
+{
+    d->route = VT_ROUTE_NONE;
+    d->fallback = 0;
+    d->warning = 0;
+    d->rank = 0;
+    d->rcond = 0.0;
+    d->residual = 0.0;
+}
+
 #endif

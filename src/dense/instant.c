@@ -18,12 +18,15 @@
 #include <string.h>
 
 #include "dense/instant.h"
+#include "base/status.h"
 #include "base/arena.h"
 #include "model/model.h"
 
 vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
 {
-    vt_status st;
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics");
+    if (st) return st;
+    vt_diagnostics_reset(d); /* a stage refusing before vt_solve leaves no earlier call's */
     if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
         (st = vt_constraints(m, d)) || (st = vt_solve(m, d)))
         return st;

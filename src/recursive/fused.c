@@ -513,7 +513,7 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
-    vt_solve_reset(d);
+    vt_diagnostics_reset(d);
     const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
     if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
@@ -558,8 +558,7 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
     if (st) return st;
-    vt_solve_reset(d);
-    d->fallback = 0;
+    vt_diagnostics_reset(d);
     const double amax = vt_array_max(d->qdd, m->nv);
     if (!(amax < HUGE_VAL)) {
         for (int c = 0; c < m->nv; c++)

@@ -194,7 +194,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
-    vt_solve_reset(d);
+    vt_diagnostics_reset(d);
     const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
     if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
@@ -263,7 +263,7 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     if (joints) return vt_inverse_dynamics_recursive(m, d);
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
-    vt_solve_reset(d);
+    vt_diagnostics_reset(d);
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
     d->route = VT_ROUTE_NONE;
