@@ -231,8 +231,9 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     /* the recursive instant takes the positions, twists, Φ and Φ_q of Newton's last evaluation,
      * and on its square route, whose LU of Φ_q at the converged q solves q̇ too, the velocities */
     const int totals = recursive != VT_SOLVE_RECURSIVE_NO_TOTALS;
-    st = recursive && m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, totals, 1) : VT_NEEDS_RATES;
-    if (st == VT_NEEDS_RATES) {
+    vt_handoff to = VT_HANDOFF_RATES;
+    st = recursive && m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, totals, 1, &to) : VT_OK;
+    if (!st && to == VT_HANDOFF_RATES) {
         /* velocities: the correction of q̇ that makes Φ_q q̇ = −Φ_t, Φ_q at the converged q; by
          * the last Newton step's LU when it gets the residual to round-off */
         if (m->nc > 0 && (!lu.held || !held_velocities(m, d, &lu))) {
@@ -240,7 +241,7 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
             for (int c = 0; c < m->nv; c++) d->qd[c] += step[c];
         }
         st = !recursive ? vt_inverse_dynamics(m, d)
-             : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, totals, 0)
+             : m->nc > 0 ? vt_inverse_dynamics_recursive_positioned(m, d, fd, totals, 0, &to)
                          : vt_inverse_dynamics_recursive(m, d);
     }
     if (st) return restore(m, d, qsave, mark, st);

@@ -215,16 +215,20 @@ static int maximal_alternative(const vt_model *m, vt_data *d, double *rcond, dou
  * matrix (VT_ERR_SINGULAR, saying which). Every solve starts from cleared diagnostics
  * (vt_solve_reset): on failure q̈ and λ are left as they were, the route is VT_ROUTE_NONE, the
  * warning 0, rcond what the route measured (0 if nothing) and rank what was found (0 if nothing). */
-vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form)
+vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form, vt_handoff *to)
 {
     const int nv = m->nv, nc = m->nc;
     vt_solve_reset(d);
+    if (to) *to = VT_HANDOFF_NONE;
     if (!vt_all_finite(d->Q, nv) || !vt_all_finite(d->gamma, nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
     /* round-off of an exact zero is neither a row nor an inertia: a rate without inertia that
      * nothing fixes is refused here, zero rows are dependent (vt_rows_decide below says so) */
     const int zero_rows = vt_roundoff_check(m, d, NULL, 1, form);
-    if (zero_rows == VT_ROUNDOFF_COMPOSITE) return VT_NEEDS_DENSE;
+    if (zero_rows == VT_ROUNDOFF_COMPOSITE) { /* only VT_FORM_TWISTS, whose callers pass to */
+        *to = VT_HANDOFF_DENSE;
+        return VT_OK;
+    }
     if (zero_rows < 0) return (vt_status)zero_rows;
     double rcond = 0.0;
     vt_outcome r = VT_BELOW_MIN;
@@ -366,9 +370,9 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form
     return VT_OK;
 }
 
-vt_status vt_solve_impl(const vt_model *m, vt_data *d)
+vt_status vt_solve_impl(const vt_model *m, vt_data *d, vt_handoff *to)
 {
-    return vt_solve_band(m, d, 0.0, VT_FORM_TWISTS);
+    return vt_solve_band(m, d, 0.0, VT_FORM_TWISTS, to);
 }
 
 vt_status vt_solve(const vt_model *m, vt_data *d)
@@ -376,7 +380,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
-    return vt_solve_band(m, d, 0.0, VT_FORM_DENSE);
+    return vt_solve_band(m, d, 0.0, VT_FORM_DENSE, NULL);
 }
 
 vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
@@ -384,7 +388,7 @@ vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
     vt_status st = vt_check_pair(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
-    return vt_solve_band(m, d, band, VT_FORM_DENSE);
+    return vt_solve_band(m, d, band, VT_FORM_DENSE, NULL);
 }
 
 /* The scratch solve.c takes at once, beside what its routes and kernels take (dense/routes.c,

@@ -9,6 +9,18 @@
  * numeric/kkt.c), and so what the dispatcher (vt_solve_band, dense/solve.c) does next. A route
  * function returns VT_OK with its outcome, or a negative vt_status (an error: nothing more is
  * tried). */
+/* What a recursive route hands on when it does not answer the instant itself, returned beside a
+ * status of VT_OK (never cast into a vt_status): the caller acts on it. */
+typedef enum {
+    VT_HANDOFF_NONE = 0, /* answered here */
+    VT_HANDOFF_DENSE,    /* the composite inertias about o cannot vouch for a digit (a rate's M*_aa
+                          * or the answer within their round-off): the dense stages decide */
+    VT_HANDOFF_MAXIMAL,  /* a free-rate route's estimate low enough that the maximal-coordinate
+                          * route may be wanted: the dense stages solve again and decide for both */
+    VT_HANDOFF_RATES     /* q̇ was asked for where the route has no LU of Φ_q: the caller solves q̇
+                          * and asks again without */
+} vt_handoff;
+
 typedef enum {
     /* solved: q̈ and λ written, the estimate at least rcond_min (on the Schur route, at least
      * rcond_warn too) */

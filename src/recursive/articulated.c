@@ -465,8 +465,9 @@ static int articulated_solve(const vt_model *m, vt_data *d, const aba_work *w, d
  * drive's λ_r on rate a of body i is s_a · W̄_i − qfrc_a with W̄_i about P_i (s_a = (e, 0) or
  * (0, e) there), W̄_i being then M* q̈ − Q less the other rows' loads over the subtree; its own
  * load (on its two bodies) is then taken off W̄ over each subtree too, as the reactions want. */
-vt_status vt_articulated_instant(const vt_model *m, vt_data *d)
+vt_status vt_articulated_instant(const vt_model *m, vt_data *d, vt_handoff *to)
 {
+    *to = VT_HANDOFF_NONE;
     double rcond = 0.0;
     const int nr = aba_sides(m);
     /* a row that is round-off of zero would pass for a row once S is at unit diagonal: the
@@ -476,15 +477,18 @@ vt_status vt_articulated_instant(const vt_model *m, vt_data *d)
      * round-off is round-off on the free rates: dependent on their drives */
     if (zero_rows == 0 && nr <= m->nc) zero_rows = vt_zero_rows_free(m, d, m->dof_drive);
     if (zero_rows < 0) return (vt_status)zero_rows;
-    if (zero_rows > 0) return vt_factorized_instant(m, d);
+    if (zero_rows > 0) return vt_factorized_instant(m, d, to);
     const size_t mark = vt_scratch_mark(d), sr = 6 * (size_t)nr;
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
     const int r = articulated_solve(m, d, &w, &rcond);
     if (r || vt_maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) {
         vt_scratch_release(d, mark);
-        if (r == 0) d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
-        return r < 0 ? (vt_status)r : r ? vt_factorized_instant(m, d) : VT_NEEDS_MAXIMAL;
+        if (r < 0) return (vt_status)r;
+        if (r) return vt_factorized_instant(m, d, to);
+        d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
+        *to = VT_HANDOFF_MAXIMAL; /* solved, but the maximal route may be wanted: the dense stages decide */
+        return VT_OK;
     }
     vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
     const double *L = w.G; /* the lever arms (articulated_solve) */

@@ -21,7 +21,7 @@
  * SCHUR, AUGMENTED, REDUNDANT: dense/solve.c), which also diagnose, and the reactions (25)-(28) as
  * in the dense path. This route takes every model (base bodies, couplings, redundant rows) and
  * every instant the shortcuts give up. Its composite inertias and Q stay about O: an instant they
- * cannot vouch for goes to the dense stages (composite_precision, VT_NEEDS_DENSE).
+ * cannot vouch for goes to the dense stages (composite_precision, VT_HANDOFF_DENSE).
  * vt_subtree_wrenches_at_joints sums the same W_k about the joint points instead, for the routes
  * above this file (the joint-driven inward pass, the square route).
  */
@@ -164,14 +164,14 @@ vt_status vt_mass_and_bias(const vt_model *m, vt_data *d)
  * its own round-off: a mechanism long against its bodies' radii of gyration), this route cannot
  * vouch for its answer, and the instant is computed again by the dense stages, whose S^T M S sums
  * positive terms (kinetic energies, no cancellation: round-off relative to each entry itself) and
- * is judged by vt_solve's own estimate (VT_FALLBACK_COMPOSITE_ROUNDOFF; returned as
- * VT_NEEDS_DENSE, as vt_solve_impl does for a rate whose M*_aa is round-off of these terms and
+ * is judged by vt_solve's own estimate (VT_FALLBACK_COMPOSITE_ROUNDOFF; handed on as
+ * VT_HANDOFF_DENSE, as vt_solve_impl does for a rate whose M*_aa is round-off of these terms and
  * that no row fixes). Rates whose M* row vt_solve zeroed (round-off held by a row) are not measured:
  * they are exactly zero. The bound is a worst case: a 100-link chain driven at its tip, 72 m
  * long, meets it (nv max δ = 3.7e-5 against rcond 6.7e-7) while its two paths agree to 3e-9;
  * the articulated route, about each body's joint point, keeps such a chain and does not come
  * here. */
-static vt_status composite_precision(const vt_model *m, vt_data *d)
+static vt_status composite_precision(const vt_model *m, vt_data *d, vt_handoff *to)
 {
     const int nv = m->nv, nc = m->nc;
     const size_t mark = vt_scratch_mark(d);
@@ -215,7 +215,8 @@ static vt_status composite_precision(const vt_model *m, vt_data *d)
         lost = u > 0.0 && !(nv * u < d->rcond * g);
     }
     vt_scratch_release(d, mark);
-    return lost || nv * delta >= d->rcond ? VT_NEEDS_DENSE : VT_OK;
+    if (lost || nv * delta >= d->rcond) *to = VT_HANDOFF_DENSE;
+    return VT_OK;
 }
 
 /* a free-rate route's estimate below √rcond_warn where the maximal-coordinate route is offered
@@ -235,19 +236,25 @@ int vt_maximal_instead(const vt_model *m, vt_route route, double rcond)
  * composite inertias blur into an indefinite pivot, a base body 1e34 m from o whose real inertia
  * they cannot tell from none (its rates zeroed, which composite_precision does not measure).
  * Refusals are rare; the dense stages, about each joint, decide them. */
-vt_status vt_composite_solve(const vt_model *m, vt_data *d)
+vt_status vt_composite_solve(const vt_model *m, vt_data *d, vt_handoff *to)
 {
-    const vt_status st = vt_solve_impl(m, d);
-    if (st == VT_ERR_SINGULAR || st == VT_ERR_DEPENDENT_CONSTRAINTS) return VT_NEEDS_DENSE;
-    const vt_status sp = st ? st : composite_precision(m, d);
-    return !sp && vt_maximal_instead(m, d->route, d->rcond) ? VT_NEEDS_MAXIMAL : sp;
+    const vt_status st = vt_solve_impl(m, d, to);
+    if (st == VT_ERR_SINGULAR || st == VT_ERR_DEPENDENT_CONSTRAINTS) {
+        *to = VT_HANDOFF_DENSE;
+        return VT_OK;
+    }
+    if (st || *to) return st;
+    const vt_status sp = composite_precision(m, d, to);
+    if (!sp && !*to && vt_maximal_instead(m, d->route, d->rcond)) *to = VT_HANDOFF_MAXIMAL;
+    return sp;
 }
 
 /* M* and Q formed, (5) solved by vt_solve (which also diagnoses), the reactions inward:
  * constraints already evaluated */
-vt_status vt_factorized_instant(const vt_model *m, vt_data *d)
+vt_status vt_factorized_instant(const vt_model *m, vt_data *d, vt_handoff *to)
 {
+    *to = VT_HANDOFF_NONE;
     vt_status st = vt_mass_and_bias(m, d);
-    if (!st) st = vt_composite_solve(m, d);
-    return st ? st : vt_reactions_impl(m, d, VT_FORM_TWISTS);
+    if (!st) st = vt_composite_solve(m, d, to);
+    return st || *to ? st : vt_reactions_impl(m, d, VT_FORM_TWISTS);
 }

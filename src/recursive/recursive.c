@@ -113,8 +113,9 @@ static vt_status square_solved(const vt_model *m, vt_data *d, vt_square *sq, dou
     return st;
 }
 
-static vt_status square_instant(const vt_model *m, vt_data *d)
+static vt_status square_instant(const vt_model *m, vt_data *d, vt_handoff *to)
 {
+    *to = VT_HANDOFF_NONE;
     const size_t mark = vt_scratch_mark(d);
     double rcond = 0.0;
     vt_square sq;
@@ -123,7 +124,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
     if (r == 1) {
         vt_scratch_release(d, mark);
         d->fallback |= VT_FALLBACK_SQUARE_CONDITION;
-        return vt_factorized_instant(m, d);
+        return vt_factorized_instant(m, d, to);
     }
     const vt_status st = square_solved(m, d, &sq, rcond);
     vt_scratch_release(d, mark);
@@ -133,9 +134,9 @@ static vt_status square_instant(const vt_model *m, vt_data *d)
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_by *formed);
-static vt_status constrained_instant(const vt_model *m, vt_data *d);
-static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, formed_by formed, int totals);
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_by *formed, vt_handoff *to);
+static vt_status constrained_instant(const vt_model *m, vt_data *d, vt_handoff *to);
+static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, vt_handoff to, formed_by formed, int totals);
 
 /* every other model's instant: not inlined, so that the fused passes' models reach
  * vt_fused_driven without this one's set-up */
@@ -145,8 +146,9 @@ __attribute__((noinline))
 static vt_status routed_instant(const vt_model *m, vt_data *d)
 {
     formed_by formed = FORMED_NONE;
-    const vt_status st = recursive_instant(m, d, &formed);
-    return outputs_scanned(m, d, st, formed, 1);
+    vt_handoff to = VT_HANDOFF_NONE;
+    const vt_status st = recursive_instant(m, d, &formed, &to);
+    return outputs_scanned(m, d, st, to, formed, 1);
 }
 
 vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
@@ -157,15 +159,15 @@ vt_status vt_inverse_dynamics_recursive(const vt_model *m, vt_data *d)
 }
 
 /* The instant after it, its outputs scanned: finite inputs whose products overflow (an
- * acceleration of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK. formed: who
- * formed α and the joints' total wrenches (formed_by); with FORMED_NONE and totals,
- * vt_reactions_total forms them */
-static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, formed_by formed, int totals)
+ * acceleration of −Inf from loads near DBL_MAX) are refused, not returned with VT_OK. to: what the
+ * routes handed on (the dense stages then solve the instant); formed: who formed α and the joints'
+ * total wrenches (formed_by); with FORMED_NONE and totals, vt_reactions_total forms them */
+static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, vt_handoff to, formed_by formed, int totals)
 {
-    if (st == VT_NEEDS_DENSE || st == VT_NEEDS_MAXIMAL) {
+    if (!st && (to == VT_HANDOFF_DENSE || to == VT_HANDOFF_MAXIMAL)) {
         /* the composite inertias about o cannot vouch for a digit, or the estimate is low enough
          * that the maximal route may be wanted (vt_maximal_instead): the dense stages */
-        const int left = d->fallback | (st == VT_NEEDS_DENSE ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
+        const int left = d->fallback | (to == VT_HANDOFF_DENSE ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
         d->message[0] = '\0'; /* a refusal the dense stages decide again is no diagnosis */
         st = vt_inverse_dynamics(m, d);
         d->fallback |= left;
@@ -190,7 +192,7 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, fo
     return st;
 }
 
-static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_by *formed)
+static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_by *formed, vt_handoff *to)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
@@ -216,17 +218,20 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_
         int r = 1;
         if (m->joint_mix >= 0) r = vt_articulated_free_rates(m, d, &rcond); /* by articulated bodies */
         if (r < 0) return (vt_status)r;
-        if (r == 0 && vt_maximal_instead(m, VT_ROUTE_ARTICULATED, rcond))
-            return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, VT_NEEDS_MAXIMAL;
+        if (r == 0 && vt_maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) {
+            d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
+            *to = VT_HANDOFF_MAXIMAL;
+            return VT_OK;
+        }
         if (r == 0) vt_solved(m, d, VT_ROUTE_ARTICULATED, rcond);
-        else if ((st = vt_mass_and_bias(m, d)) || (st = vt_composite_solve(m, d)) ||
+        else if ((st = vt_mass_and_bias(m, d)) || (st = vt_composite_solve(m, d, to)) || *to ||
                  (st = vt_zeroed_rates_check(m, d, "vt_inverse_dynamics_recursive", VT_FORM_TWISTS))) /* or from M*_FF, which also diagnoses */
             return st;
         *formed = m->joint_mix >= 0 ? FORMED_INWARD : FORMED_NONE;
         return vt_inward(m, d, *formed == FORMED_INWARD);
     }
     if ((st = vt_constraints_impl(m, d, VT_FORM_TWISTS))) return st;
-    return constrained_instant(m, d);
+    return constrained_instant(m, d, to);
 }
 
 /* no base body (whose ṗ rates carry (4)'s normal part), no redundant rows, no coupling (whose
@@ -239,13 +244,13 @@ static int shortcuts(const vt_model *m)
 
 /* The instant of a model with rows other than joint drives, its kinematics and constraints
  * evaluated */
-static vt_status constrained_instant(const vt_model *m, vt_data *d)
+static vt_status constrained_instant(const vt_model *m, vt_data *d, vt_handoff *to)
 {
     if (shortcuts(m)) {
-        if (m->nc == m->nv) return square_instant(m, d);
-        if (m->nc < m->nv) return vt_articulated_instant(m, d);
+        if (m->nc == m->nv) return square_instant(m, d, to);
+        if (m->nc < m->nv) return vt_articulated_instant(m, d, to);
     }
-    return vt_factorized_instant(m, d);
+    return vt_factorized_instant(m, d, to);
 }
 
 /* vt_inverse_dynamics_recursive at a state whose positions d already holds, as Newton's last
@@ -256,10 +261,15 @@ static vt_status constrained_instant(const vt_model *m, vt_data *d)
  * vt_inverse_dynamics_recursive, bitwise (α and the joints' total wrenches only with totals).
  * A model whose rows are all joint drives (the fused passes, or the free rates' solve) takes
  * vt_inverse_dynamics_recursive. */
-vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates)
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates,
+                                                   vt_handoff *to)
 {
     const int joints = m->joint_driven || m->joint_rows_only;
-    if (rates && (joints || !shortcuts(m) || m->nc != m->nv)) return VT_NEEDS_RATES;
+    *to = VT_HANDOFF_NONE;
+    if (rates && (joints || !shortcuts(m) || m->nc != m->nv)) {
+        *to = VT_HANDOFF_RATES;
+        return VT_OK;
+    }
     if (joints) return vt_inverse_dynamics_recursive(m, d);
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
     if (st) return st;
@@ -270,8 +280,8 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     d->fallback = 0;
     if (!rates) {
         if (!(st = vt_kinematics_velocities(m, d, 1)) && !(st = vt_constraints_parts(m, d, VT_FORM_TWISTS, VT_CON_PHIX | VT_CON_GAMMA, fd)))
-            st = constrained_instant(m, d);
-        return outputs_scanned(m, d, st, FORMED_NONE, totals);
+            st = constrained_instant(m, d, to);
+        return outputs_scanned(m, d, st, *to, FORMED_NONE, totals);
     }
     /* the square route's LU of Φ_q, from the positions, solves q̇ = −Φ_q^-1 Φ_t before it
      * solves q̈: the instant then runs as square_instant does */
@@ -279,12 +289,17 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     double rcond = 0.0;
     vt_square sq;
     const int r = square_factor(m, d, &sq, &rcond);
-    if (r) return vt_scratch_release(d, mark), r == 1 ? VT_NEEDS_RATES : (vt_status)r;
+    if (r) { /* an error, or Φ_q ill-conditioned: the caller solves q̇ and asks again */
+        vt_scratch_release(d, mark);
+        if (r < 0) return (vt_status)r;
+        *to = VT_HANDOFF_RATES;
+        return VT_OK;
+    }
     if (!(st = (vt_status)vt_square_apply(m, d, &sq, d->Phit, -1.0, d->qd)) && !(st = vt_kinematics_velocities(m, d, 1)) &&
         !(st = vt_constraints_parts(m, d, VT_FORM_TWISTS, VT_CON_PHIX | VT_CON_GAMMA, fd)))
         st = square_solved(m, d, &sq, rcond);
     vt_scratch_release(d, mark);
-    return outputs_scanned(m, d, st, FORMED_NONE, totals);
+    return outputs_scanned(m, d, st, VT_HANDOFF_NONE, FORMED_NONE, totals);
 }
 
 /* The scratch recursive.c takes at once: the articulated route's work (the largest, with the

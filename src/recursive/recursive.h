@@ -15,14 +15,16 @@
 #include <stddef.h>
 
 #include "vtdyn.h"
+#include "numeric/route.h" /* vt_handoff */
 
 /* the scratch the recursive files take at once */
 size_t vt_recursive_scratch(const vt_model *m);
 
 /* vt_inverse_dynamics_recursive with d's positions, twists, Φ, Φ_t and Φ_q current at d->q and
  * d->time (Newton's last evaluation), q̇ new, or with rates, q̇ solved from Φ_q q̇ = −Φ_t by the
- * square route's LU (else VT_NEEDS_RATES, d->qd as it was); fd: the drives' functions at d->time
+ * square route's LU (else VT_OK with *to = VT_HANDOFF_RATES, d->qd as it was); fd: the drives' functions at d->time
  * (vt_drive_values) or NULL; α and the joints' total wrenches only with totals (recursive.c) */
-vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates);
+vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d, const double *fd, int totals, int rates,
+                                                   vt_handoff *to);
 
 #endif
