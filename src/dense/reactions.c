@@ -515,10 +515,7 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
         vt_mulmat3t(fb, Ai, f);
         vt_mulmat3t(mb, Ai, mo);
         vt_copy3(d->alpha + 3 * i, al);
-        vt_copy3(d->jnt_force_total + 3 * i, f);
-        vt_copy3(d->jnt_moment_total + 3 * i, mo);
-        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
-        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+        vt_total_store(d, i, f, mo, fb, mb);
     }
     vt_scratch_release(d, mark);
     const int nb3 = 3 * (n + 1);
@@ -529,8 +526,7 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
         if (!vt_all_finite(d->alpha + 3 * i, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
     for (int i = 1; i <= n; i++)
-        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
-            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+        if (!vt_total_finite(d, i))
             return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
     return vt_fail(d->message, VT_ERR_NONFINITE, "a total wrench or angular acceleration overflows");
 }

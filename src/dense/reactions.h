@@ -5,6 +5,8 @@
 #include <stddef.h>
 
 #include "vtdyn.h"
+#include "base/scan.h"
+#include "base/vec3.h"
 #include "kinematics/kinematics.h" /* vt_form */
 
 size_t vt_reactions_scratch(const vt_model *m);
@@ -46,5 +48,22 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
 vt_status vt_drive_efforts(const vt_model *m, vt_data *d);
 void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
                           int as_loads);
+
+/* joint i's total wrench (reaction plus actuation, about P_i) into the data: force f and moment mo
+ * in global axes, fb and mb the same in body i's */
+static inline void vt_total_store(vt_data *d, int i, const double f[3], const double mo[3], const double fb[3],
+                                  const double mb[3])
+{
+    vt_copy3(d->jnt_force_total + 3 * i, f);
+    vt_copy3(d->jnt_moment_total + 3 * i, mo);
+    vt_copy3(d->jnt_force_total_body + 3 * i, fb);
+    vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+}
+/* 1 when joint i's total wrench, as vt_total_store left it, is finite */
+static inline int vt_total_finite(const vt_data *d, int i)
+{
+    return vt_all_finite(d->jnt_force_total + 3 * i, 3) && vt_all_finite(d->jnt_moment_total + 3 * i, 3) &&
+           vt_all_finite(d->jnt_force_total_body + 3 * i, 3) && vt_all_finite(d->jnt_moment_total_body + 3 * i, 3);
+}
 
 #endif

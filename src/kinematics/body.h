@@ -47,41 +47,6 @@
 #define VT_ALWAYS_INLINE __attribute__((always_inline)) inline
 #else
 #define VT_ALWAYS_INLINE inline
-/* body i's spatial inertia about the point from which its centre of mass lies at c, in 13 numbers:
- * (m, h = m c, J_O = J − m c̃ c̃), and J = A J' A^T (global axes, about the centre of mass) into J */
-static inline void vt_body_inertia(double I[13], double J[9], const vt_model *m, const vt_data *d, int i, const double c[3])
-{
-    double t[9];
-    const double mass = m->body_mass[i], *A = d->A + 9 * i, *Jb = m->body_inertia + 9 * i;
-    for (int col = 0; col < 3; col++) vt_mulmat3(t + 3 * col, Jb, (double[3]){A[col], A[col + 3], A[col + 6]});
-    double u[6]; /* A t, symmetric: its upper triangle */
-    for (int col = 0, k = 0; col < 3; col++)
-        for (int r = 0; r <= col; r++, k++) u[k] = A[r] * t[3 * col] + A[r + 3] * t[1 + 3 * col] + A[r + 6] * t[2 + 3 * col];
-    J[0] = u[0], J[1] = J[3] = u[1], J[4] = u[2], J[2] = J[6] = u[3], J[5] = J[7] = u[4], J[8] = u[5];
-    const double h0 = mass * c[0], h1 = mass * c[1], h2 = mass * c[2];
-    const double o0 = h1 * c[1] + h2 * c[2], o1 = h0 * c[0] + h2 * c[2], o2 = h0 * c[0] + h1 * c[1];
-    I[0] = mass, I[1] = h0, I[2] = h1, I[3] = h2; /* J_O = J + m (|c|² 1 − c c^T) */
-    I[4] = u[0] + o0, I[5] = I[7] = u[1] - h0 * c[1], I[8] = u[2] + o1;
-    I[6] = I[10] = u[3] - h0 * c[2], I[9] = I[11] = u[4] - h1 * c[2], I[12] = u[5] + o2;
-}
-
-/* vt_body_inertia, and body i's needed wrench at q̈ = 0 from the same global J (the general
- * route's bias wrench, without its turns to body axes: vt_body_wrench_n): W⁰ = (J α + ω × J ω − n_e + c × f, f = m (a − g) − f_e) about the
- * point from which the centre of mass lies at c, at the accelerations Ṡq̇ (α = 2 E p̈) */
-static inline void vt_body_inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i, const double c[3])
-{
-    const int o = vt_xoff(i);
-    const double *w = d->omega + 3 * i, *a = d->Sdqd + o;
-    double J[9], al[3], Jw[3], n[3];
-    vt_body_inertia(I, J, m, d, i, c);
-    vt_mulEp(al, d->x + o + 3, a + 3);
-    for (int k = 0; k < 3; k++) al[k] *= 2.0;
-    vt_mulmat3(n, J, al);
-    vt_mulmat3(Jw, J, w);
-    vt_addcross3(n, w, Jw);
-    vt_body_wrench_n(W, m, i, n, a, d->xfrc + 6 * i, c);
-}
-
 #endif
 
 /* p = p^j ⊗ (cs, sn u), the reference body's orientation turned by an angle whose half has

@@ -100,13 +100,10 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
     for (int k = 0; k < 6; k++) Wo[k] = Wi[k];
     vt_copy3(f, Wo + 3);
     vt_copy3(mo, Wo);
-    if (totals == TOTALS_FORMED) {
+    if (totals == TOTALS_FORMED) { /* fb and mb serve the reaction below too */
         vt_mulmat3t(fb, A, f);
         vt_mulmat3t(mb, A, mo);
-        vt_copy3(d->jnt_force_total + 3 * i, f);
-        vt_copy3(d->jnt_moment_total + 3 * i, mo);
-        vt_copy3(d->jnt_force_total_body + 3 * i, fb);
-        vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
+        vt_total_store(d, i, f, mo, fb, mb);
     }
     for (int k = 0; k < nv; k++) {
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
@@ -373,8 +370,7 @@ static vt_status fused_check(const vt_model *m, vt_data *d, const fused_motion m
         if (!vt_all_finite(d->jnt_force + 3 * i, 3) || !vt_all_finite(d->jnt_moment + 3 * i, 3) ||
             !vt_all_finite(d->jnt_force_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_body + 3 * i, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
-        if (!vt_all_finite(d->jnt_force_total + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total + 3 * i, 3) ||
-            !vt_all_finite(d->jnt_force_total_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_total_body + 3 * i, 3))
+        if (!vt_total_finite(d, i))
             return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
     }
     for (int i = 1; i <= n; i++)
@@ -511,14 +507,9 @@ static inline fused_outputs fused_bounded(const vt_model *m, double qmax, double
  * such a model, its inputs checked here and its outputs in fused_pass */
 vt_status vt_fused_driven(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    double smax;
+    vt_status st = vt_recursive_start(m, d, &smax);
     if (st) return st;
-    vt_diagnostics_reset(d);
-    const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
-    if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
-        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
-    d->route = VT_ROUTE_NONE;
-    d->fallback = 0;
     const int mix = m->joint_mix;
     /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
      * number), or q or q̇ not finite */

@@ -4,8 +4,11 @@
 #ifndef VT_RECURSIVE_FUSED_H
 #define VT_RECURSIVE_FUSED_H
 
+#include <math.h>
+
 #include "vtdyn.h"
 #include "base/scan.h"
+#include "base/status.h"
 
 /* the largest |xfrc| and |qfrc| (one scan), the largest of those and |q|, |q̇| (one scan), of
  * |q̈|: +Inf where one is not finite */
@@ -30,6 +33,19 @@ static inline double vt_array_max(const double *a, int n)
     vt_max_scan s = {0};
     vt_max_add(&s, a, n);
     return vt_max_result(&s);
+}
+
+/* The start of every recursive instant: the pair checked, the diagnostics cleared, the loads
+ * finite; *smax the largest |·| of the loads, q and q̇ (+Inf where q or q̇ is not finite) */
+static inline vt_status vt_recursive_start(const vt_model *m, vt_data *d, double *smax)
+{
+    const vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    if (st) return st;
+    vt_diagnostics_reset(d);
+    *smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
+    if (!(*smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
+    return VT_OK;
 }
 
 /* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */

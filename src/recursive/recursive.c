@@ -194,14 +194,9 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, vt
 
 static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_by *formed, vt_handoff *to)
 {
-    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_recursive");
+    double smax;
+    vt_status st = vt_recursive_start(m, d, &smax);
     if (st) return st;
-    vt_diagnostics_reset(d);
-    const double smax = vt_state_max(m, d); /* loads, q and q̇; the loads alone where one is not finite */
-    if (!(smax < HUGE_VAL) && !(vt_loads_max(m, d) < HUGE_VAL))
-        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: NaN or Inf in xfrc or qfrc");
-    d->route = VT_ROUTE_NONE;
-    d->fallback = 0;
     if ((st = vt_kinematics_tree(m, d, !m->joint_driven))) return st; /* Ṡq̇ only when factorizing */
     if (m->joint_driven) { /* nothing to factorize: always well defined */
         if ((st = vt_drive_accelerations(m, d))) return st;
