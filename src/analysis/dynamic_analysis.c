@@ -19,6 +19,18 @@
  * interpolated and taken one step past newton_tol (VT_SOLVE_POLISH: its error is then
  * round-off), and at the output times the rows themselves; IDA's unknowns are then the
  * deviation from that exact motion (analysis/dae.c).
+ *
+ * Windows (vt_run_options.check_window, s): the forward motion of a chaotic or unstable mechanism
+ * leaves the driven one exponentially whatever the efforts' accuracy, so one check over a long
+ * run measures the chaos. At the first output row check_window or more past a window's start the
+ * forward block restarts from the driven state of that row (restart_forward) and a new window
+ * begins. In seconds, not rows: the growth is a matter of time, whatever the output rate; at
+ * output rows, so that a restart sits on a stored driven state and a trajectory holds at most
+ * nrow windows (no allocation at a run's start or per window). The default, 5 s, keeps every
+ * run of a few seconds in one window, bit for bit as before. The independent check interleaves
+ * its two runs window by window (run_independent), so that the history need hold one window's
+ * steps; history_steps is a capacity, not a limit: a full history makes the forward run catch up
+ * with the driven run's newest step (catch_up; not a restart), then keeps that step alone.
  */
 #include <float.h>
 #include <math.h>
