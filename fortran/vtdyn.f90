@@ -77,6 +77,7 @@ module vtdyn
       VT_FALLBACK_MAXIMAL_CONDITION = 64
   ! redundant rows: directions below this fraction of the largest singular value are dropped
   real(c_double), parameter :: VT_REDUNDANT_TOL = 5.0e-4_c_double
+  real(c_double), parameter :: VT_CHECK_WINDOW = 5.0_c_double
   ! vt_function_type, renamed VT_FUNC_*: VT_FUNCTION_SINE would be vt_function_sine()
   integer(c_int), parameter :: VT_FUNC_CONSTANT = 0, VT_FUNC_POLYNOMIAL = 1, VT_FUNC_SINE = 2, &
       VT_FUNC_CALLBACK = 3, VT_FUNC_SPLINE = 4
@@ -343,6 +344,7 @@ module vtdyn
     type(c_ptr)            :: tout      ! the address of a TARGET real(c_double) array, or c_null_ptr
     integer(c_int)         :: ntout
     real(c_double)         :: redundant_band
+    real(c_double)         :: check_window
   end type vt_run_options
 
   type, bind(C) :: vt_trajectory
@@ -382,6 +384,12 @@ module vtdyn
     integer(c_long)        :: res_evals
     integer(c_long)        :: steps_fwd
     integer(c_long)        :: res_evals_fwd
+    integer(c_int)         :: nwindow
+    type(c_ptr)            :: fwd_window_row
+    type(c_ptr)            :: fwd_window_err_q
+    type(c_ptr)            :: fwd_window_err_qd
+    type(c_ptr)            :: fwd_window_err_force
+    type(c_ptr)            :: fwd_window_err_moment
   end type vt_trajectory
 
 

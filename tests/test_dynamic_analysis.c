@@ -777,6 +777,131 @@ static void test_redundant_band_option(void **state)
     vt_model_free(m);
 }
 
+/* max over row k's n coordinates of |fwd − drv| */
+static double row_deviation(int n, int k, const double *fwd, const double *drv)
+{
+    double e = 0.0;
+    for (int c = 0; c < n; c++) e = fmax(e, fabs(fwd[(size_t)k * (size_t)n + (size_t)c] - drv[(size_t)k * (size_t)n + (size_t)c]));
+    return e;
+}
+
+/* A long run of the free double pendulum (no drive, chaotic: a single forward check over it means
+ * nothing, its deviation grows exponentially whatever the efforts' accuracy), 40 s with room for
+ * 2000 driven steps (it takes over 12000): it used to stop with VT_ERR_BAD_OPTION "the driven run
+ * took more than history_steps" (the same refusal as 1000 s at the default 100000). Now it
+ * succeeds in 2 s windows: one per 20 rows, each starting at its row, each window's deviation
+ * the largest of its rows', the run's the largest of the windows'; each small beside a 2 s run
+ * of its own (an independent check of the same length) and far below the single 40 s window's. */
+static void test_long_run_in_windows(void **state)
+{
+    (void)state;
+    vt_model *m;
+    assert_ok(vt_scene_double_link(&m, 0));
+    vt_data *d;
+    vt_trajectory *tr, *one;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 401));
+    assert_ok(vt_trajectory_create(&one, m, 401));
+    vt_run_options opt = vt_default_run_options();
+    double short_q = 0.0, short_qd = 0.0;
+    for (int indep = 1; indep >= 0; indep--) {
+        memset(d->q, 0, (size_t)m->nq * sizeof(double));
+        memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+        opt.t1 = 40.0;
+        opt.nout = 400;
+        opt.history_steps = 2000;
+        opt.check_window = 2.0;
+        opt.forward_independent = indep;
+        const vt_status st = vt_dynamic_analysis(m, d, &opt, tr);
+        if (st) fail_msg("independent %d: %s: %s", indep, vt_status_string(st), d->message);
+        assert_int_equal(tr->nfilled, 401);
+        if (indep) { /* the short run: 2 s, one window (its own independent check) */
+            vt_run_options o2 = vt_default_run_options();
+            o2.t1 = 2.0;
+            o2.nout = 20;
+            vt_data *d2;
+            assert_ok(vt_data_create(&d2, m));
+            assert_ok(vt_dynamic_analysis(m, d2, &o2, one));
+            assert_int_equal(one->nwindow, 1);
+            short_q = one->fwd_err_q;
+            short_qd = one->fwd_err_qd;
+            vt_data_free(d2);
+        }
+        if (indep) assert_true(tr->steps > 5 * opt.history_steps); /* it outgrew the history, and went on */
+        assert_int_equal(tr->nwindow, 20);
+        double worst_q = 0.0, worst_qd = 0.0;
+        for (int w = 0; w < tr->nwindow; w++) {
+            assert_int_equal(tr->fwd_window_row[w], 20 * w);
+            double eq = 0.0, eqd = 0.0; /* the window's rows */
+            for (int k = 20 * w + (w > 0); k <= 20 * w + 20; k++) {
+                eq = fmax(eq, row_deviation(m->nq, k, tr->q_fwd, tr->q));
+                eqd = fmax(eqd, row_deviation(m->nv, k, tr->qd_fwd, tr->qd));
+            }
+            assert_near(tr->fwd_window_err_q[w], eq, 0.0);
+            assert_near(tr->fwd_window_err_qd[w], eqd, 0.0);
+            if (!(eq <= 1e3 * short_q && eqd <= 1e3 * short_qd && eq < 1e-3))
+                fail_msg("independent %d, window %d: deviation %.3g (q̇ %.3g), a 2 s run's %.3g (%.3g)", indep, w, eq, eqd,
+                         short_q, short_qd);
+            worst_q = fmax(worst_q, eq);
+            worst_qd = fmax(worst_qd, eqd);
+        }
+        assert_near(tr->fwd_err_q, worst_q, 0.0); /* the worst window's */
+        assert_near(tr->fwd_err_qd, worst_qd, 0.0);
+        /* the same run in one window: its deviation is the chaos's, not the efforts' */
+        memset(d->q, 0, (size_t)m->nq * sizeof(double));
+        memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+        opt.check_window = INFINITY;
+        assert_ok(vt_dynamic_analysis(m, d, &opt, one));
+        assert_int_equal(one->nwindow, 1);
+        assert_true(one->fwd_err_q > 1e3 * worst_q);
+    }
+    vt_trajectory_free(one);
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* A window's boundary restarts the forward run from the driven state: rows at 1, 2, 3 and 4 s,
+ * then 1 µs later and at 5 s, windows of 4 s. The free double pendulum's forward deviation has
+ * grown by row 4 (the first window's end); at the row 1 µs after it, the first of the second
+ * window, it is at round-off (a forward run carried on from row 4 keeps its deviation there) —
+ * with the forward check in its own run and in one system with the driven run. */
+static void test_window_restarts_from_driven_state(void **state)
+{
+    (void)state;
+    vt_model *m;
+    assert_ok(vt_scene_double_link(&m, 0));
+    const double tout[6] = {1.0, 2.0, 3.0, 4.0, 4.000001, 5.0};
+    for (int indep = 0; indep < 2; indep++) {
+        vt_data *d;
+        vt_trajectory *tr;
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_trajectory_create(&tr, m, 7));
+        vt_run_options opt = vt_default_run_options();
+        opt.t1 = 5.0;
+        opt.tout = tout;
+        opt.ntout = 6;
+        opt.check_window = 4.0;
+        opt.forward_independent = indep;
+        assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+        assert_int_equal(tr->nfilled, 7);
+        const double end_q = row_deviation(m->nq, 4, tr->q_fwd, tr->q), end_qd = row_deviation(m->nv, 4, tr->qd_fwd, tr->qd);
+        const double next_q = row_deviation(m->nq, 5, tr->q_fwd, tr->q), next_qd = row_deviation(m->nv, 5, tr->qd_fwd, tr->qd);
+        if (!(end_q > 1e-9 && next_q < 1e-12 && next_qd < 1e-11))
+            fail_msg("independent %d: deviation %.3g (q̇ %.3g) at the window's end, %.3g (%.3g) 1 µs after", indep, end_q,
+                     end_qd, next_q, next_qd);
+        assert_int_equal(tr->nwindow, 2);
+        assert_int_equal(tr->fwd_window_row[0], 0);
+        assert_int_equal(tr->fwd_window_row[1], 4);
+        assert_near(tr->fwd_window_err_q[0], fmax(end_q, fmax(row_deviation(m->nq, 1, tr->q_fwd, tr->q),
+                                                              fmax(row_deviation(m->nq, 2, tr->q_fwd, tr->q),
+                                                                   row_deviation(m->nq, 3, tr->q_fwd, tr->q)))), 0.0);
+        vt_trajectory_free(tr);
+        vt_data_free(d);
+    }
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -795,6 +920,8 @@ int main(void)
         cmocka_unit_test(test_orientation_callback_fails_midway),
         cmocka_unit_test(test_refused_states_reported),
         cmocka_unit_test(test_forward_check_measures_wrong_efforts),
+        cmocka_unit_test(test_long_run_in_windows),
+        cmocka_unit_test(test_window_restarts_from_driven_state),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

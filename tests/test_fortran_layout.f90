@@ -108,7 +108,8 @@ program test_fortran_layout
          a(c_loc(x_run_options%forward_as_loads)), a(c_loc(x_run_options%formulation)), &
          a(c_loc(x_run_options%baumgarte_alpha)), a(c_loc(x_run_options%baumgarte_beta)), &
          a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user)), a(c_loc(x_run_options%tout)), &
-         a(c_loc(x_run_options%ntout)), a(c_loc(x_run_options%redundant_band))])
+         a(c_loc(x_run_options%ntout)), a(c_loc(x_run_options%redundant_band)), &
+         a(c_loc(x_run_options%check_window))])
     call check(8_c_int, 'vt_trajectory', c_sizeof(x_trajectory), a(c_loc(x_trajectory)), [ &
          a(c_loc(x_trajectory%model)), a(c_loc(x_trajectory%nrow)), a(c_loc(x_trajectory%nfilled)), &
          a(c_loc(x_trajectory%t)), a(c_loc(x_trajectory%q)), a(c_loc(x_trajectory%qd)), &
@@ -124,7 +125,10 @@ program test_fortran_layout
          a(c_loc(x_trajectory%fwd_err_qd)), a(c_loc(x_trajectory%fwd_err_force)), &
          a(c_loc(x_trajectory%fwd_err_moment)), a(c_loc(x_trajectory%fwd_interp_err)), &
          a(c_loc(x_trajectory%steps)), a(c_loc(x_trajectory%res_evals)), a(c_loc(x_trajectory%steps_fwd)), &
-         a(c_loc(x_trajectory%res_evals_fwd))])
+         a(c_loc(x_trajectory%res_evals_fwd)), a(c_loc(x_trajectory%nwindow)), &
+         a(c_loc(x_trajectory%fwd_window_row)), a(c_loc(x_trajectory%fwd_window_err_q)), &
+         a(c_loc(x_trajectory%fwd_window_err_qd)), a(c_loc(x_trajectory%fwd_window_err_force)), &
+         a(c_loc(x_trajectory%fwd_window_err_moment))])
     call check(10_c_int, 'vt_coupling_def', c_sizeof(x_coupling_def), a(c_loc(x_coupling_def)), [ &
          a(c_loc(x_coupling_def%body_a)), a(c_loc(x_coupling_def%index_a)), a(c_loc(x_coupling_def%body_b)), &
          a(c_loc(x_coupling_def%index_b)), a(c_loc(x_coupling_def%ratio)), a(c_loc(x_coupling_def%offset)), &
@@ -188,7 +192,8 @@ program test_fortran_layout
   call expect(same([x_run_options%t1], [1]) .and. x_run_options%nout == 100 .and. x_run_options%max_steps == 100000 &
       .and. x_run_options%newton_maxit == 30 .and. x_run_options%formulation == VT_FORMULATION_GGL &
       .and. .not. c_associated(x_run_options%tout) .and. x_run_options%ntout == 0 &
-      .and. same([x_run_options%redundant_band], [5e-4_c_double]), &
+      .and. same([x_run_options%redundant_band], [5e-4_c_double]) &
+      .and. same([x_run_options%check_window], [VT_CHECK_WINDOW]), &
       'vt_default_run_options')
   call expect(vt_string(vt_status_string(VT_ERR_BAD_SIZE)) /= vt_string(vt_status_string(VT_ERR_BAD_OPTION)), &
       'vt_status_string')

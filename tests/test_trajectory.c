@@ -92,10 +92,67 @@ static void test_infinite_options(void **state)
     vt_model_free(m);
 }
 
+/* The forward check's window (vt_run_options.check_window): 0, negative and NaN refused with
+ * VT_ERR_BAD_OPTION and a message naming it, by both analyses, before anything is written: the
+ * data's state and the trajectory as they were (the contract's promise, tests/test_contract.c);
+ * +Inf (the whole run one window) and the default accepted. */
+static void test_check_window_option(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_double_link(&m, 1));
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_trajectory_create(&tr, m, 11));
+    const double bad[4] = {0.0, -1.0, NAN, -INFINITY};
+    for (int k = 0; k < 4; k++) {
+        vt_run_options opt = vt_default_run_options();
+        opt.nout = 10;
+        opt.check_window = bad[k];
+        for (int a = 0; a < 1 + VT_HAVE_SUNDIALS; a++) {
+            d->q[0] = 0.25;
+            d->q[1] = -0.5;
+            d->time = 7.0;
+            d->message[0] = '\0';
+            tr->nfilled = 5;
+            tr->t[3] = 42.0;
+            tr->nwindow = 3;
+            tr->fwd_err_q = 9.0;
+#if VT_HAVE_SUNDIALS
+            const vt_status st = a ? vt_dynamic_analysis(m, d, &opt, tr) : vt_kinematic_analysis(m, d, &opt, tr);
+#else
+            const vt_status st = vt_kinematic_analysis(m, d, &opt, tr);
+#endif
+            assert_int_equal(st, VT_ERR_BAD_OPTION);
+            if (!strstr(d->message, "check_window")) fail_msg("check_window %g: message \"%s\"", bad[k], d->message);
+            assert_true(d->q[0] == 0.25 && d->q[1] == -0.5 && d->time == 7.0);
+            assert_true(tr->nfilled == 5 && tr->t[3] == 42.0 && tr->nwindow == 3 && tr->fwd_err_q == 9.0);
+        }
+    }
+    assert_near(vt_default_run_options().check_window, VT_CHECK_WINDOW, 0.0);
+#if VT_HAVE_SUNDIALS
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 10;
+    opt.t1 = 0.5;
+    opt.check_window = INFINITY;
+    d->q[0] = d->q[1] = 0.0;
+    d->time = 0.0;
+    assert_ok(vt_dynamic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nwindow, 1);
+    assert_int_equal(tr->fwd_window_row[0], 0);
+    assert_near(tr->fwd_window_err_q[0], tr->fwd_err_q, 0.0);
+#endif
+    vt_trajectory_free(tr);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_create_and_defaults),
+        cmocka_unit_test(test_check_window_option),
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_forward_error_norms),
 #endif

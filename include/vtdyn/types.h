@@ -633,8 +633,11 @@ typedef struct vt_run_options {
                              ///< steps (cubic Hermite interpolation; its error, measured against IDA's own
                              ///< interpolant, in vt_trajectory.fwd_interp_err) (default); 0 integrates both
                              ///< in one IDA system, the efforts from the driven λ at the same time
-    int history_steps;       ///< most driven steps kept for an independent forward check; default 100000
-                             ///< (memory: 8 (1 + 2 (nq + nv)) bytes a step)
+    int history_steps;       ///< most driven steps kept for an independent forward check (≥ 2); default
+                             ///< 100000 (memory: 8 (1 + 2 (nq + nv)) bytes a step). A capacity, not a
+                             ///< limit on the run: the history keeps the steps from the forward run's
+                             ///< time on (one window at most), and when it fills the forward run first
+                             ///< catches up with the driven run's last step
     int forward_as_loads;    ///< forward check: 0 applies the drives' generalized force Φ_q^T λ (joint
                              ///< torques, the paper's check; default); 1 applies each drive's own load
                              ///< (a point drive's force at its point), so the reactions compare too
@@ -655,7 +658,18 @@ typedef struct vt_run_options {
                              ///< closed afterwards by Baumgarte's terms: what carries a run through a
                              ///< singular pose instead of amplifying the drift there by 1/σ². 0 drops
                              ///< only rows dependent to round-off; in [0, 1); default VT_REDUNDANT_TOL
+    double check_window;     ///< s, the forward check's window (> 0; +Inf: the whole run one window): the
+                             ///< forward run restarts from the driven state at the first output row at
+                             ///< least check_window after its window's start, so that each window's
+                             ///< deviation measures the efforts' error over a bounded time (over a long
+                             ///< run the deviation of a chaotic or unstable motion grows exponentially
+                             ///< whatever the efforts' accuracy); vt_trajectory.fwd_window_* per window,
+                             ///< fwd_err_* the worst. Windows end at output rows. Default
+                             ///< VT_CHECK_WINDOW (5 s: every run of a few seconds is one window)
 } vt_run_options;
+
+/// Default of vt_run_options.check_window, s.
+#define VT_CHECK_WINDOW 5.0
 
 /// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
 /// Every array is column-major with one column per row (output time).
@@ -699,6 +713,16 @@ typedef struct vt_trajectory {
     long res_evals;          ///< IDA residual evaluations of the driven run
     long steps_fwd;          ///< IDA steps of the forward check
     long res_evals_fwd;      ///< its residual evaluations
+    /* the forward check's windows (vt_run_options.check_window): window w restarts from the driven
+     * state at row fwd_window_row[w] and covers the rows after it up to the next window's first row
+     * (the last window: to the last row); at most nrow windows */
+    int nwindow;             ///< windows of the last run's forward check (1 for a run in one window; 0
+                             ///< without the forward check)
+    int *fwd_window_row;     ///< the row each window starts from (nrow; the first nwindow used)
+    double *fwd_window_err_q;     ///< each window's max |q_fwd − q| over its rows (nrow)
+    double *fwd_window_err_qd;    ///< its max |q̇_fwd − q̇| (nrow)
+    double *fwd_window_err_force; ///< its max reaction force difference, N (nrow)
+    double *fwd_window_err_moment;///< its max reaction moment difference, N·m (nrow)
 } vt_trajectory;
 
 /// Incremental model builder (opaque).

@@ -9,7 +9,9 @@
 #include "vtdyn.h"
 
 /* The driven run's steps, kept for an independent forward run: t, y = [q; v] and y' at every
- * step IDA takes; between steps y is the cubic Hermite interpolant of the two ends. */
+ * step IDA takes from the forward run's time on (analysis/dynamic_analysis.c drops the older ones
+ * at each window's end, or when full); between steps y is the cubic Hermite interpolant of the
+ * two ends. */
 typedef struct vt_dae_history {
     int cap;            /* steps the arrays hold */
     int n;              /* steps recorded */

@@ -19,7 +19,20 @@
  * interpolated and taken one step past newton_tol (VT_SOLVE_POLISH: its error is then
  * round-off), and at the output times the rows themselves; IDA's unknowns are then the
  * deviation from that exact motion (analysis/dae.c).
+ *
+ * Windows (vt_run_options.check_window, s): the forward motion of a chaotic or unstable mechanism
+ * leaves the driven one exponentially whatever the efforts' accuracy, so one check over a long
+ * run measures the chaos. At the first output row check_window or more past a window's start the
+ * forward block restarts from the driven state of that row (restart_forward) and a new window
+ * begins. In seconds, not rows: the growth is a matter of time, whatever the output rate; at
+ * output rows, so that a restart sits on a stored driven state and a trajectory holds at most
+ * nrow windows (no allocation at a run's start or per window). The default, 5 s, keeps every
+ * run of a few seconds in one window, bit for bit as before. The independent check interleaves
+ * its two runs window by window (run_independent), so that the history need hold one window's
+ * steps; history_steps is a capacity, not a limit: a full history makes the forward run catch up
+ * with the driven run's newest step (catch_up; not a restart), then keeps that step alone.
  */
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -50,7 +63,8 @@ typedef struct {
     SUNLinearSolver LS;
     void *mem;          /* IDA's memory */
     int N;              /* the length of y */
-    double tend;        /* the last output time, IDA's stop time */
+    double tend;        /* the last output time */
+    double tstop;       /* IDA's stop time: tend, or a forward run's bound (run_state.stop) */
     const char *call;   /* the last SUNDIALS call made, named in a failure's message */
     int flag;           /* its return value: < 0 it failed (ida_failure reports it) */
     long nst_done, nre_done; /* steps and residuals before IDAReInit restarts the counters */
@@ -119,6 +133,7 @@ static vt_status ida_setup(vt_dae *p, const vt_run_options *opt, const double *y
     CHECK(IDASetMaxNumSteps(mem, opt->max_steps), "IDASetMaxNumSteps");
     if (opt->max_step > 0.0) CHECK(IDASetMaxStep(mem, opt->max_step), "IDASetMaxStep");
     CHECK(IDASetStopTime(mem, r->tend), "IDASetStopTime");
+    r->tstop = r->tend;
     vt_dae_history *h = p->rec;
     if (h) {
         r->yint = N_VNew_Serial(N, r->ctx);
@@ -129,12 +144,44 @@ static vt_status ida_setup(vt_dae *p, const vt_run_options *opt, const double *y
     return VT_OK;
 }
 
-/* IDA from *tstep on to row k's time tout, *tret the time reached. A run that keeps its history
- * (p->rec) goes one step at a time, records every step and the interpolation's error, and takes
- * the output from IDA's interpolant; any other run lets IDA step to tout */
-static vt_status advance(vt_dae *p, const vt_run_options *opt, ida_run *r, const double *y0, const double *yp0,
-                         double tout, double *tstep, double *tret)
+/* One IDA run in progress: the driven run, the forward run, or both in one system. An
+ * independent forward check has two, interleaved: the driven run keeps its steps in a history,
+ * and the forward run that reads them follows it window by window (run_independent) */
+typedef struct run_state {
+    vt_dae *p;
+    const vt_run_options *opt;
+    vt_trajectory *tr;
+    ida_run r;
+    double *buf;            /* y0, y'0, ids (3 N), then p->w and p->s.ref */
+    double tstep;           /* a run that keeps its history: its last step's time */
+    int k;                  /* the last row stored */
+    int nrow;               /* rows after row 0 */
+    double stop;            /* a forward run reading a history: how far it may go (IDA's stop time):
+                               the newest recorded step, or its window's end */
+    struct run_state *fwd;  /* a run that keeps its history: the forward run reading it */
+} run_state;
+
+static vt_status catch_up(run_state *fw);
+
+/* IDA's stop time moved to t (only when it changes: a run in one window keeps tend, set once) */
+static vt_status stop_at(ida_run *r, double t)
 {
+    if (t == r->tstop) return VT_OK;
+    CHECK(IDASetStopTime(r->mem, t), "IDASetStopTime");
+    r->tstop = t;
+    return VT_OK;
+}
+
+/* IDA from rs->tstep on to row k's time tout, *tret the time reached. A run that keeps its
+ * history (p->rec) goes one step at a time, records every step and the interpolation's error,
+ * and takes the output from IDA's interpolant; when the history is full the forward run reading
+ * it first catches up (catch_up: it then needs only the newest step). Any other run lets IDA step
+ * to tout */
+static vt_status advance(run_state *rs, double tout, double *tret)
+{
+    vt_dae *p = rs->p;
+    const vt_run_options *opt = rs->opt;
+    ida_run *r = &rs->r;
     vt_data *md = p->msg;
     vt_dae_history *h = p->rec;
     if (!h) {
@@ -144,11 +191,12 @@ static vt_status advance(vt_dae *p, const vt_run_options *opt, ida_run *r, const
     }
     if (h->n == 0) { /* the start */
         h->t[0] = opt->t0;
-        memcpy(h->y, y0, (size_t)h->dim * sizeof(double));
-        memcpy(h->yp, yp0, (size_t)h->dim * sizeof(double));
+        memcpy(h->y, rs->buf, (size_t)h->dim * sizeof(double));
+        memcpy(h->yp, rs->buf + r->N, (size_t)h->dim * sizeof(double));
         h->n = 1;
     }
     long taken = 0;
+    double *tstep = &rs->tstep;
     while (*tstep < tout) {
         if (++taken > opt->max_steps) { /* IDA's own mxstep limit does not apply to one-step mode */
             md->ida_flag = IDA_TOO_MUCH_WORK;
@@ -158,9 +206,8 @@ static vt_status advance(vt_dae *p, const vt_run_options *opt, ida_run *r, const
         }
         vt_dae_fresh(p);
         CHECK(IDASolve(r->mem, r->tend, tstep, r->y, r->yp, IDA_ONE_STEP), "IDASolve");
-        if (h->n == h->cap)
-            return vt_fail(md->message, VT_ERR_BAD_OPTION,
-                           "forward check: the driven run took more than history_steps = %d steps", h->cap);
+        vt_status st;
+        if (h->n == h->cap && (st = catch_up(rs->fwd))) return st;
         h->t[h->n] = *tstep;
         memcpy(h->y + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(r->y), (size_t)h->dim * sizeof(double));
         memcpy(h->yp + (size_t)h->n * (size_t)h->dim, N_VGetArrayPointer(r->yp), (size_t)h->dim * sizeof(double));
@@ -307,37 +354,154 @@ static void ida_free(ida_run *r)
     if (r->ctx) SUNContext_Free(&r->ctx);
 }
 
-/* rows 1..nout (or 1..ntout, at the caller's times): IDA set up, then for every output the step
- * to its time, the state there and the driven and forward rows stored; the steps and residual
- * evaluations counted into tr; a failed SUNDIALS call reported (ida_failure) */
-static vt_status run(vt_dae *p, const vt_run_options *opt, vt_trajectory *tr, int N, const double *y0,
-                     const double *yp0, const double *ids)
+/* Row k of a run: IDA to its time (a forward run reading a history no further than rs->stop),
+ * the state there, the driven and forward rows stored, the progress reported; a failed SUNDIALS
+ * call reported (ida_failure) */
+static vt_status row(run_state *rs, int k)
 {
-    const int nrow = vt_run_rows(opt);
-    ida_run r = {.N = N, .tend = vt_run_time(opt, nrow)};
-    vt_status st = ida_setup(p, opt, y0, yp0, ids, &r);
-    double tstep = opt->t0;
-    for (int k = 1; !st && k <= nrow; k++) {
-        double tret = 0.0;
-        const double *yv = NULL;
-        if ((st = advance(p, opt, &r, y0, yp0, vt_run_time(opt, k), &tstep, &tret)) ||
-            (st = row_state(p, &r, k, tret, &yv)) || (st = store_rows(p, tr, k, tret, yv)))
-            break;
-        if (opt->progress && opt->progress(tret, r.tend, opt->user))
+    vt_dae *p = rs->p;
+    const vt_run_options *opt = rs->opt;
+    ida_run *r = &rs->r;
+    double tret = 0.0;
+    const double *yv = NULL;
+    vt_status st = p->src ? stop_at(r, rs->stop) : VT_OK;
+    if (!st && !(st = advance(rs, vt_run_time(opt, k), &tret)) && !(st = row_state(p, r, k, tret, &yv)) &&
+        !(st = store_rows(p, rs->tr, k, tret, yv))) {
+        rs->k = k;
+        if (opt->progress && opt->progress(tret, r->tend, opt->user))
             st = vt_fail(p->msg->message, VT_ERR_ABORTED, "stopped at t = %g", tret);
     }
-    if (!st) {
-        long nst = 0, nre = 0;
-        IDAGetNumSteps(r.mem, &nst);
-        IDAGetNumResEvals(r.mem, &nre);
-        nst += r.nst_done;
-        nre += r.nre_done;
-        if (p->m) { tr->steps = nst; tr->res_evals = nre; }
-        if (p->mf) { tr->steps_fwd = nst; tr->res_evals_fwd = nre; }
-    } else if (r.flag < 0) {
-        st = ida_failure(p, &r);
+    if (st && r->flag < 0) {
+        st = ida_failure(p, r);
+        r->flag = 0; /* (reported) */
     }
-    ida_free(&r);
+    return st;
+}
+
+/* the history from the step at or before t on: all that a forward run at t still reads */
+static void history_from(vt_dae_history *h, double t)
+{
+    int j = 0;
+    while (j + 1 < h->n && h->t[j + 1] <= t) j++;
+    if (j == 0) return;
+    const size_t n = (size_t)(h->n - j), dim = (size_t)h->dim;
+    memmove(h->t, h->t + j, n * sizeof(double));
+    memmove(h->y, h->y + (size_t)j * dim, n * dim * sizeof(double));
+    memmove(h->yp, h->yp + (size_t)j * dim, n * dim * sizeof(double));
+    h->n = (int)n;
+}
+
+/* The history is full: the forward run catches up with its newest step T (its rows up to T, then
+ * IDA to T, its stop time), and the history keeps that step alone. The forward check is not
+ * restarted: history_steps bounds the memory, not the run (the forward run's steps are only cut
+ * at T) */
+static vt_status catch_up(run_state *fw)
+{
+    vt_dae_history *h = fw->p->src;
+    ida_run *r = &fw->r;
+    const double T = h->t[h->n - 1];
+    vt_status st = VT_OK;
+    fw->stop = T;
+    for (int k = fw->k + 1; k <= fw->nrow && vt_run_time(fw->opt, k) <= T; k++)
+        if ((st = row(fw, k))) return st;
+    double tn = 0.0, hh = 0.0, tret = 0.0;
+    IDAGetCurrentTime(r->mem, &tn);
+    IDAGetCurrentStep(r->mem, &hh);
+    if (T - tn > 100.0 * DBL_EPSILON * (fabs(tn) + fabs(hh))) { /* (IDA's own round-off of a time) */
+        vt_dae_fresh(fw->p);
+        r->call = "IDASolve";
+        if ((st = stop_at(r, T)) || (r->flag = IDASolve(r->mem, T, &tret, r->y, r->yp, IDA_NORMAL)) < 0) {
+            st = ida_failure(fw->p, r);
+            r->flag = 0;
+            return st;
+        }
+    }
+    history_from(h, T);
+    return VT_OK;
+}
+
+/* A window of the forward check ends at row k (time t): the forward block restarts from the
+ * driven state there (the row's q and q̇, the drives' efforts as its residual takes them at t:
+ * the interpolated driven run's, the row's exact ones, or the driven block's), consistent
+ * accelerations and multipliers by the forward instant, IDA restarted; a new window in the
+ * trajectory */
+static vt_status restart_forward(run_state *rs, int k)
+{
+    vt_dae *p = rs->p;
+    ida_run *r = &rs->r;
+    vt_trajectory *tr = rs->tr;
+    vt_data *md = p->msg, *df = p->df;
+    const vt_model *m = p->dk ? p->dk->model : p->m, *mf = p->mf;
+    vt_data *src = p->dk ? p->dk : p->d;
+    const double t = tr->t[k];
+    const int nf = vt_dae_block_size(mf, p->form);
+    double *y = N_VGetArrayPointer(r->y) + p->nd, *yp = N_VGetArrayPointer(r->yp) + p->nd;
+    vt_status st = VT_OK;
+    if (p->src) { /* the efforts of the driven state interpolated at t, as the residual's */
+        vt_dae_hermite(p->src, t, p->src->tmp);
+        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
+        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
+        p->dk->time = t;
+        if ((st = vt_inverse_dynamics(m, p->dk)))
+            return vt_fail(md->message, st, "forward check: restart at t = %g: %s", t, p->dk->message);
+    } else if (p->dk) { /* exact efforts: the row's */
+        vt_dae_row_efforts(p, m, k);
+        p->s.dk_valid = 0;
+    } /* (else the driven block's: d holds row k's instant) */
+    memcpy(df->q, tr->q + (size_t)k * (size_t)m->nq, (size_t)mf->nq * sizeof(double));
+    memcpy(df->qd, tr->qd + (size_t)k * (size_t)m->nv, (size_t)mf->nv * sizeof(double));
+    df->time = t;
+    if ((st = vt_kinematics(mf, df)) == VT_OK) {
+        vt_apply_drive_loads(mf, df, m, src, p->xfrc0, p->as_loads);
+        st = vt_inverse_dynamics(mf, df);
+    }
+    if (st) return vt_fail(md->message, st, "forward check: restart at t = %g: %s", t, df->message);
+    vt_dae_block_initial(mf, df, p->form, y, yp);
+    if (p->s.ref) { /* the deviation from the reference motion at t: 0 in q and v */
+        vt_dae_block_reference(m, p->dk, nf, p->s.ref, p->s.ref + nf);
+        for (int c = 0; c < nf; c++) {
+            y[c] -= p->s.ref[c];
+            yp[c] -= p->s.ref[nf + c];
+        }
+    }
+    long a = 0, b = 0;
+    IDAGetNumSteps(r->mem, &a);
+    IDAGetNumResEvals(r->mem, &b);
+    r->nst_done += a;
+    r->nre_done += b;
+    r->call = "IDAReInit";
+    if ((r->flag = IDAReInit(r->mem, t, r->y, r->yp)) < 0) {
+        st = ida_failure(p, r);
+        r->flag = 0;
+        return st;
+    }
+    vt_trajectory_window(tr, k);
+    return VT_OK;
+}
+
+/* row k ends the forward check's window that began at row s: the first row check_window or more
+ * after s */
+static int window_ends(const vt_run_options *opt, int s, int k)
+{
+    return vt_run_time(opt, k) - vt_run_time(opt, s) >= opt->check_window;
+}
+
+/* The end of a run: its steps and residual evaluations counted into tr (on success), IDA's
+ * objects and the initial values freed; st passed on */
+static vt_status close_run(run_state *rs, vt_status st)
+{
+    if (!st && rs->r.mem) {
+        long nst = 0, nre = 0;
+        IDAGetNumSteps(rs->r.mem, &nst);
+        IDAGetNumResEvals(rs->r.mem, &nre);
+        nst += rs->r.nst_done;
+        nre += rs->r.nre_done;
+        if (rs->p->m) { rs->tr->steps = nst; rs->tr->res_evals = nre; }
+        if (rs->p->mf) { rs->tr->steps_fwd = nst; rs->tr->res_evals_fwd = nre; }
+    }
+    ida_free(&rs->r);
+    free(rs->buf);
+    rs->buf = NULL;
     return st;
 }
 #undef CHECK
@@ -371,14 +535,17 @@ static vt_dae dae_options(vt_data *d, const vt_run_options *opt)
                     .beta = opt->baumgarte_beta};
 }
 
-/* y0, y'0 and the ids of the blocks present in p (driven first), then the run */
-static vt_status start(vt_dae *p, const vt_run_options *opt, vt_trajectory *tr)
+/* A run opened: y0, y'0 and the ids of the blocks present in p (driven first), IDA set up on
+ * them (a failure reported: ida_failure); close_run ends it, whatever the outcome */
+static vt_status open_run(run_state *rs, vt_dae *p, const vt_run_options *opt, vt_trajectory *tr)
 {
+    *rs = (run_state){.p = p, .opt = opt, .tr = tr, .tstep = opt->t0, .nrow = vt_run_rows(opt)};
     const int nd = p->m ? vt_dae_block_size(p->m, p->form) : 0, N = nd + (p->mf ? vt_dae_block_size(p->mf, p->form) : 0);
     const int nv = p->m ? p->m->nv : p->mf->nv;
     const int dev = p->dk && !p->src && !p->m; /* exact efforts: the deviation from the rows */
     double *buf = malloc(((3 + (dev ? 4 : 0)) * (size_t)N + (size_t)nv) * sizeof(double));
     if (!buf) return vt_fail(p->msg->message, VT_ERR_NO_MEMORY, "IDA set-up: out of memory");
+    rs->buf = buf;
     p->w = buf + 3 * (size_t)N;
     p->s.ref = dev ? p->w + nv : NULL;
     p->band = p->form == VT_FORMULATION_ODE ? opt->redundant_band : 0.0; /* the ODE form's solves */
@@ -402,9 +569,52 @@ static vt_status start(vt_dae *p, const vt_run_options *opt, vt_trajectory *tr)
             buf[N + k] -= p->s.ref[N + k];
         }
     }
-    const vt_status st = run(p, opt, tr, N, buf, buf + N, buf + 2 * N);
-    free(buf);
+    rs->r = (ida_run){.N = N, .tend = vt_run_time(opt, rs->nrow)};
+    rs->stop = rs->r.tend;
+    vt_status st = ida_setup(p, opt, buf, buf + N, buf + 2 * N, &rs->r);
+    if (st && rs->r.flag < 0) st = ida_failure(p, &rs->r);
     return st;
+}
+
+/* One run of every block in p (the driven run alone, both in one system, or the forward run with
+ * exact efforts): rows 1..nrow; with a forward block, a new window of the check wherever one ends */
+static vt_status start(vt_dae *p, const vt_run_options *opt, vt_trajectory *tr)
+{
+    run_state rs;
+    vt_status st = open_run(&rs, p, opt, tr);
+    for (int k = 1, s = 0; !st && k <= rs.nrow; k++)
+        if (!(st = row(&rs, k)) && p->mf && k < rs.nrow && window_ends(opt, s, k)) {
+            st = restart_forward(&rs, k);
+            s = k;
+        }
+    return close_run(&rs, st);
+}
+
+/* The independent forward check: the driven run (its steps recorded in h) and the forward run
+ * (its efforts from them) interleaved window by window: the driven run to the window's last row,
+ * then the forward run to the same row, where it restarts from the driven state; the history
+ * then keeps the steps from that row on. A run in one window is the driven run, then the forward
+ * run, as before windows */
+static vt_status run_independent(vt_dae *pd, vt_dae *pf, const vt_run_options *opt, vt_trajectory *tr)
+{
+    run_state dr, fr;
+    vt_status st = open_run(&dr, pd, opt, tr);
+    fr.buf = NULL;
+    fr.r = (ida_run){.N = 0};
+    if (!st) st = open_run(&fr, pf, opt, tr);
+    dr.fwd = &fr;
+    for (int k = 1, s = 0; !st && k <= dr.nrow; k++) {
+        if ((st = row(&dr, k))) break;
+        if (k < dr.nrow && !window_ends(opt, s, k)) continue;
+        fr.stop = tr->t[k];
+        for (int j = fr.k + 1; !st && j <= k; j++) st = row(&fr, j);
+        if (!st && k < dr.nrow && !(st = restart_forward(&fr, k))) {
+            history_from(pd->rec, tr->t[k]);
+            s = k;
+        }
+    }
+    st = close_run(&dr, st);
+    return close_run(&fr, st);
 }
 
 vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_run_options *opt, vt_trajectory *tr)
@@ -456,8 +666,8 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
         st = start(&p, opt, tr);
         goto out;
     }
-    /* independent forward check: the driven run first, every step kept; then the forward run,
-     * its efforts from the driven state interpolated at each time it asks for */
+    /* independent forward check: the driven run, its steps kept, and the forward run, its efforts
+     * from the driven state interpolated at each time it asks for (run_independent) */
     const size_t per = 1 + 2 * (size_t)h.dim;
     hbuf = malloc(((size_t)h.cap * per + (size_t)h.dim) * sizeof(double));
     if (!hbuf || (st = vt_data_create(&dk, m))) {
@@ -471,22 +681,16 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
     memcpy(dk->xfrc, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
     memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
     {
-        vt_dae p = dae_options(d, opt); /* the driven block, its steps recorded */
-        p.m = m;
-        p.d = d;
-        p.rec = &h;
-        if ((st = start(&p, opt, tr))) goto out;
-    }
-    {
-        const long steps = tr->steps, res = tr->res_evals;
-        vt_dae p = dae_options(d, opt); /* the forward block, its efforts from the recorded steps */
-        p.mf = mf;
-        p.df = df;
-        p.dk = dk;
-        p.src = &h;
-        st = start(&p, opt, tr);
-        tr->steps = steps;
-        tr->res_evals = res;
+        vt_dae pd = dae_options(d, opt); /* the driven block, its steps recorded */
+        pd.m = m;
+        pd.d = d;
+        pd.rec = &h;
+        vt_dae pf = dae_options(d, opt); /* the forward block, its efforts from the recorded steps */
+        pf.mf = mf;
+        pf.df = df;
+        pf.dk = dk;
+        pf.src = &h;
+        st = run_independent(&pd, &pf, opt, tr);
         tr->fwd_interp_err = h.err;
     }
 out:

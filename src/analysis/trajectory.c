@@ -1,7 +1,8 @@
 /* Trajectories: the rows of an analysis over time (one allocation), the default run options,
  * the output times (row 0 at t0, then t_k = t0 + k (t1 − t0)/nout, k = 1..nout, or the caller's
  * list t_k = tout[k − 1], k = 1..ntout), and the comparison of the forward check with the driven run (the built-in self-check:
- * max |q_fwd − q|, max |q̇_fwd − q̇| and the reactions' largest differences). */
+ * max |q_fwd − q|, max |q̇_fwd − q̇| and the reactions' largest differences, over the run and per
+ * window of the forward check, vt_run_options.check_window). */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -33,6 +34,7 @@ vt_run_options vt_default_run_options(void)
     o.tout = NULL; /* the uniform rows */
     o.ntout = 0;
     o.redundant_band = VT_REDUNDANT_TOL;
+    o.check_window = VT_CHECK_WINDOW;
     return o;
 }
 
@@ -64,6 +66,12 @@ static size_t layout(const vt_model *m, vt_trajectory *tr, char *base, int nrow)
     tr->jnt_moment_fwd = vt_block_take(&blk, 3 * nb * r, sizeof(double));
     tr->cut_force_fwd = vt_block_take(&blk, 3 * nk * r, sizeof(double));
     tr->cut_moment_fwd = vt_block_take(&blk, 3 * nk * r, sizeof(double));
+    /* the forward check's windows: each ends at an output row, so at most nrow */
+    tr->fwd_window_err_q = vt_block_take(&blk, r, sizeof(double));
+    tr->fwd_window_err_qd = vt_block_take(&blk, r, sizeof(double));
+    tr->fwd_window_err_force = vt_block_take(&blk, r, sizeof(double));
+    tr->fwd_window_err_moment = vt_block_take(&blk, r, sizeof(double));
+    tr->fwd_window_row = vt_block_take(&blk, r, sizeof(int));
     return blk.used;
 }
 
@@ -145,13 +153,33 @@ void vt_trajectory_store_forward(vt_trajectory *tr, const vt_model *mf, const vt
     put(tr->jnt_moment_fwd, df->jnt_moment, nb3, row);
     put(tr->cut_force_fwd, df->cut_force, 3 * mf->ncut, row);
     put(tr->cut_moment_fwd, df->cut_moment, 3 * mf->ncut, row);
-    const size_t r = (size_t)row;
-    tr->fwd_err_q = fmax(tr->fwd_err_q, maxdiff(tr->q_fwd + r * (size_t)mf->nq, tr->q + r * (size_t)mf->nq, (size_t)mf->nq));
-    tr->fwd_err_qd = fmax(tr->fwd_err_qd, maxdiff(tr->qd_fwd + r * (size_t)mf->nv, tr->qd + r * (size_t)mf->nv, (size_t)mf->nv));
-    tr->fwd_err_force = fmax(tr->fwd_err_force, maxdiff(tr->jnt_force_fwd + r * (size_t)nb3, tr->jnt_force + r * (size_t)nb3, (size_t)nb3));
-    tr->fwd_err_moment = fmax(tr->fwd_err_moment, maxdiff(tr->jnt_moment_fwd + r * (size_t)nb3, tr->jnt_moment + r * (size_t)nb3, (size_t)nb3));
-    tr->fwd_err_force = fmax(tr->fwd_err_force, maxdiff(tr->cut_force_fwd + r * 3 * (size_t)mf->ncut, tr->cut_force + r * 3 * (size_t)mf->ncut, 3 * (size_t)mf->ncut));
-    tr->fwd_err_moment = fmax(tr->fwd_err_moment, maxdiff(tr->cut_moment_fwd + r * 3 * (size_t)mf->ncut, tr->cut_moment + r * 3 * (size_t)mf->ncut, 3 * (size_t)mf->ncut));
+    const size_t r = (size_t)row, nk3 = 3 * (size_t)mf->ncut;
+    const double eq = maxdiff(tr->q_fwd + r * (size_t)mf->nq, tr->q + r * (size_t)mf->nq, (size_t)mf->nq);
+    const double eqd = maxdiff(tr->qd_fwd + r * (size_t)mf->nv, tr->qd + r * (size_t)mf->nv, (size_t)mf->nv);
+    const double ef = fmax(maxdiff(tr->jnt_force_fwd + r * (size_t)nb3, tr->jnt_force + r * (size_t)nb3, (size_t)nb3),
+                           maxdiff(tr->cut_force_fwd + r * nk3, tr->cut_force + r * nk3, nk3));
+    const double em = fmax(maxdiff(tr->jnt_moment_fwd + r * (size_t)nb3, tr->jnt_moment + r * (size_t)nb3, (size_t)nb3),
+                           maxdiff(tr->cut_moment_fwd + r * nk3, tr->cut_moment + r * nk3, nk3));
+    tr->fwd_err_q = fmax(tr->fwd_err_q, eq);
+    tr->fwd_err_qd = fmax(tr->fwd_err_qd, eqd);
+    tr->fwd_err_force = fmax(tr->fwd_err_force, ef);
+    tr->fwd_err_moment = fmax(tr->fwd_err_moment, em);
+    if (row == 0) vt_trajectory_window(tr, 0); /* the forward check's start: its first window */
+    const int w = tr->nwindow - 1;
+    tr->fwd_window_err_q[w] = fmax(tr->fwd_window_err_q[w], eq);
+    tr->fwd_window_err_qd[w] = fmax(tr->fwd_window_err_qd[w], eqd);
+    tr->fwd_window_err_force[w] = fmax(tr->fwd_window_err_force[w], ef);
+    tr->fwd_window_err_moment[w] = fmax(tr->fwd_window_err_moment[w], em);
+}
+
+/* a new window of the forward check, restarted from the driven state at row `row` (row 0: the
+ * first, the list started again) */
+void vt_trajectory_window(vt_trajectory *tr, int row)
+{
+    if (row == 0) tr->nwindow = 0;
+    const int w = tr->nwindow++;
+    tr->fwd_window_row[w] = row;
+    tr->fwd_window_err_q[w] = tr->fwd_window_err_qd[w] = tr->fwd_window_err_force[w] = tr->fwd_window_err_moment[w] = 0.0;
 }
 
 int vt_run_rows(const vt_run_options *opt)
@@ -174,6 +202,7 @@ void vt_trajectory_reset(vt_trajectory *tr)
     tr->t_warn = (double)NAN; /* NAN is a float */
     tr->fwd_err_q = tr->fwd_err_qd = tr->fwd_err_force = tr->fwd_err_moment = tr->fwd_interp_err = 0.0;
     tr->steps = tr->res_evals = tr->steps_fwd = tr->res_evals_fwd = 0;
+    tr->nwindow = 0;
 }
 
 vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr, const char *who)
@@ -218,5 +247,8 @@ vt_status vt_check_run(const vt_model *m, vt_data *d, const vt_run_options *opt,
                        opt->formulation);
     if (!(opt->redundant_band >= 0.0 && opt->redundant_band < 1.0))
         return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: redundant_band %g outside [0, 1)", who, opt->redundant_band);
+    if (!(opt->check_window > 0.0)) /* (NaN fails; +Inf is one window) */
+        return vt_fail(d->message, VT_ERR_BAD_OPTION, "%s: check_window %g s must be > 0 (+Inf: the whole run one window)",
+                       who, opt->check_window);
     return VT_OK;
 }
