@@ -533,6 +533,46 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
     if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nf, L, nf, z, 1);
     for (int a = 0; a < nf; a++) x[fr[a]] = z[a] * s[fr[a]];
     for (int k = 0; k < no; k++) lam[k] *= g[k];
+    /* below √rcond_warn, where the answer may have lost more than 1e3 ε: one step of iterative
+     * refinement against the unscaled reduced system, on the same factors (the residual
+     * r = [Q_F − M*_FD q̈_D + Φ_oF^T λ_o − M*_FF q̈_F; γ_o − Φ_o q̈] solved as Q and γ above) */
+    if (rcond < sqrt(m->rcond_warn) && no > 0) {
+        double *t = VT_SCRATCH(d, double, no, "refinement's right side");
+        if (!t) return vt_scratch_fail(d, mark);
+        for (int a = 0; a < nf; a++) {
+            const int c = fr[a];
+            double v = d->Q[c];
+            for (int b = 0; b < nv; b++) v -= MS(c, b) * x[b];
+            for (int k = 0; k < no; k++) v += PHI(ro[k], c) * lam[k];
+            z[a] = v * s[c];
+        }
+        for (int k = 0; k < no; k++) {
+            double v = d->gamma[ro[k]];
+            for (int b = 0; b < nv; b++) v -= PHI(ro[k], b) * x[b];
+            t[k] = g[k] * v;
+        }
+        if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasNoTrans, CblasNonUnit, nf, L, nf, z, 1);
+        for (int r = 0; r < no; r++) {
+            const double *yr = Y + (size_t)r * (size_t)nf;
+            for (int a = 0; a < nf; a++) t[r] -= yr[a] * z[a];
+            for (int k = r; k < no; k++) {
+                const double *yk = Y + (size_t)k * (size_t)nf;
+                double v = 0.0;
+                for (int a = 0; a < nf; a++) v += yk[a] * yr[a];
+                S[k + (size_t)r * (size_t)no] = v;
+            }
+        }
+        double rc = 0.0;
+        const int st2 = vt_solve_spd(d, S, no, t, &rc);
+        if (st2) return vt_scratch_release(d, mark), (vt_status)st2;
+        for (int r = 0; r < no; r++) {
+            const double *yr = Y + (size_t)r * (size_t)nf;
+            for (int a = 0; a < nf; a++) z[a] += yr[a] * t[r];
+        }
+        if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nf, L, nf, z, 1);
+        for (int a = 0; a < nf; a++) x[fr[a]] += z[a] * s[fr[a]];
+        for (int k = 0; k < no; k++) lam[k] += g[k] * t[k];
+    }
     memcpy(sol, x, (size_t)nv * sizeof(double));
     for (int k = 0; k < no; k++) sol[nv + ro[k]] = lam[k];
     for (int j = 0; j < nv - nf; j++) { /* λ_D = (M* q̈ − Q − Φ_o^T λ_o)_D on each known rate */
