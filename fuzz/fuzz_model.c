@@ -20,7 +20,9 @@
  *   vt_integrate_q, vt_cartesian_force, the kinematic solve and the analyses' trajectories);
  * - a failure gives a non-empty message and leaves the inputs (q, q̇, xfrc, qfrc, time) as they
  *   were; an option that is not finite is refused; a time function that fails inside an
- *   analysis ends it at once with VT_ERR_CALLBACK or VT_ERR_NONFINITE.
+ *   analysis ends it at once with VT_ERR_CALLBACK or VT_ERR_NONFINITE;
+ * - at overflow's edge (motion_edge, the last bytes): the motion given with q̇ and q̈ up to
+ *   DBL_MAX, and the two paths at that q̇, each VT_OK with finite outputs or refused as above.
  * A broken promise prints which comparison failed, with the values, and aborts (libFuzzer keeps
  * the input as crash-*). Build and run: bash fuzz/run.sh [seconds]. */
 #include <float.h>
@@ -1147,6 +1149,79 @@ static void trajectory_finite(const vt_model *m, const vt_trajectory *tr, const 
     finite(tr->cut_moment, 3 * m->ncut * r, call, "trajectory cut_moment");
 }
 
+/* The motion given at overflow's edge (issue 38, item 7): the instants above give the motion call
+ * the dense q̈, which a modest input keeps far from DBL_MAX, so the call met q̈ and q̇ near
+ * overflow only rarely. Here the last bytes (after every other piece: older inputs end before
+ * them and read 0, which skips this step) pick them: a selector byte, q̇'s mode in its bits 0–1
+ * and q̈'s in bits 2–3, each 0 the state's q̇ (q̈: a number of the bytes), 1 a number times 10^k,
+ * k = 150..308 from a byte (clamped to ±DBL_MAX), 2 an edge of the double range (EDGES, sign from
+ * the byte's top bit), 3 a number times 1e300 (clamped). vt_inverse_dynamics_motion, then
+ * vt_inverse_dynamics_recursive and vt_inverse_dynamics at that q̇, each on fresh data: VT_OK with
+ * every output finite, or a failure with a message and its inputs as they were; the given q̈
+ * left as it was (a tree) or put back (a failure with loops). No comparison: at this edge one
+ * route's intermediate may overflow where another's does not. */
+static const double EDGES[8] = {DBL_MAX, 1.5e308, 1e308, 8.98846567431158e307 /* DBL_MAX / 2 */,
+                                1e300, 1.3407807929942596e154 /* sqrt(DBL_MAX) */, 1e154, 1.0};
+
+static double clamped(double x)
+{
+    return isnan(x) ? x : fmax(-DBL_MAX, fmin(DBL_MAX, x));
+}
+
+static double edge_number(bytes *b, unsigned mode, double keep)
+{
+    switch (mode & 3) {
+    case 0: return keep;
+    case 1: {
+        const double x = num(b);
+        return clamped(x * pow(10.0, 150.0 + (double)(byte(b) % 159)));
+    }
+    case 2: {
+        const unsigned k = byte(b);
+        return (k & 128 ? -1.0 : 1.0) * EDGES[k % 8];
+    }
+    default: return clamped(num(b) * 1e300);
+    }
+}
+
+static void edge_instant(const vt_model *m, const vt_data *state, const double *qd, const double *qdd,
+                         vt_status (*fn)(const vt_model *, vt_data *), const char *call)
+{
+    vt_data *d = NULL;
+    double *given = malloc((size_t)m->nv * sizeof(double) + 1);
+    if (!given || vt_data_create(&d, m)) {
+        free(given);
+        return;
+    }
+    copy_state(m, d, state);
+    memcpy(d->qd, qd, (size_t)m->nv * sizeof(double));
+    memcpy(d->qdd, qdd, (size_t)m->nv * sizeof(double));
+    memcpy(given, qdd, (size_t)m->nv * sizeof(double));
+    context.b = d;
+    const vt_status st = instant(m, d, fn, call);
+    if (fn == vt_inverse_dynamics_motion && (st != VT_OK || (m->ncut == 0 && m->ncoupling == 0)) &&
+        memcmp(given, d->qdd, (size_t)m->nv * sizeof(double)) != 0)
+        fail("%s (%s) changed the given q̈ or did not put it back", call, vt_status_string(st));
+    context.b = NULL;
+    free(given);
+    vt_data_free(d);
+}
+
+static void motion_edge(const vt_model *m, const vt_data *state, bytes *b)
+{
+    const unsigned sel = byte(b);
+    if (sel == 0 || m->nv == 0) return;
+    double *qd = malloc(2 * (size_t)m->nv * sizeof(double));
+    if (!qd) return;
+    double *qdd = qd + m->nv;
+    for (int c = 0; c < m->nv; c++) qd[c] = edge_number(b, sel, state->qd[c]);
+    for (int c = 0; c < m->nv; c++) qdd[c] = ((sel >> 2) & 3) == 0 ? num(b) : edge_number(b, sel >> 2, 0.0);
+    edge_instant(m, state, qd, qdd, vt_inverse_dynamics_motion, "vt_inverse_dynamics_motion (q̇, q̈ at overflow's edge)");
+    edge_instant(m, state, qd, qdd, vt_inverse_dynamics_recursive, "vt_inverse_dynamics_recursive (q̇ at overflow's edge)");
+    edge_instant(m, state, qd, qdd, vt_inverse_dynamics, "vt_inverse_dynamics (q̇ at overflow's edge)");
+    free(qd);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     bytes b = {data, size};
@@ -1262,6 +1337,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             vt_trajectory_free(tr);
         }
     }
+    motion_edge(m, d, &b);
     context.m = NULL;
     vt_data_free(d);
     vt_model_free(m);

@@ -757,6 +757,67 @@ static void test_motion_refused(void **state)
     vt_model_free(m);
 }
 
+/* Issue 38, item 7 (the fuzzer's finding, fuzz/corpus/motion-euler-rates-overflow): one body on
+ * a spherical joint, inertia DBL_MIN, q̈ = 1.5e308 on every rate, p = (½, ½, ½, ½) (A a cyclic
+ * permutation: α = (1.5e308, 1.5e308, 1.5e308) in body axes stays finite, and so does every
+ * wrench of a body this light). The Euler parameters' p̈ = ½ E^T α − ¼ |ω|² p sums p_1 α_1 + p_2 α_2 +
+ * p_3 α_3 = 2.25e308: Inf. The given motion returned VT_OK with ẍ = Inf (nothing scanned p̈);
+ * it must refuse with VT_ERR_NONFINITE and a message, and leave its inputs as they were. */
+static void test_motion_euler_rates_overflow(void **state)
+{
+    (void)state;
+    vt_builder *b;
+    vt_model_def md = vt_default_model_def();
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def bd = vt_default_body_def();
+    bd.joint = VT_JOINT_SPHERICAL;
+    bd.mass = 1e-300;
+    bd.inertia[0] = bd.inertia[4] = bd.inertia[8] = 2.2250738585072014e-308; /* DBL_MIN, as the fuzzer's */
+    assert_int_equal(vt_builder_add_body(b, &bd), 1);
+    vt_model *m = vt_test_build(b);
+    assert_int_equal(m->nv, 3);
+    assert_true(m->body_inertia[9] == bd.inertia[0]); /* accepted as given */
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    for (int k = 0; k < 4; k++) d->q[k] = 0.5;
+    for (int k = 0; k < 3; k++) d->qd[k] = 0.25 * (k + 1), d->qdd[k] = 1.5e308;
+    d->time = 0.3;
+    const size_t nq = (size_t)m->nq * sizeof(double), nv = (size_t)m->nv * sizeof(double),
+                 nf = 6 * ((size_t)m->nbody + 1) * sizeof(double);
+    double q[4], qd[3], qdd[3], xfrc[12], qfrc[3];
+    memcpy(q, d->q, nq);
+    memcpy(qd, d->qd, nv);
+    memcpy(qdd, d->qdd, nv);
+    memcpy(xfrc, d->xfrc, nf);
+    memcpy(qfrc, d->qfrc, nv);
+    d->message[0] = '\0';
+    const vt_status st = vt_inverse_dynamics_motion(m, d);
+    if (st == VT_OK) { /* what the bug gave: name the entry that is not finite */
+        for (int k = 0; k < m->nx; k++)
+            if (!isfinite(d->xdd[k])) fail_msg("VT_OK with xdd[%d] = %g", k, d->xdd[k]);
+        fail_msg("VT_OK (the Euler parameters' p̈ should overflow)");
+    }
+    assert_int_equal(st, VT_ERR_NONFINITE);
+    print_message("%s\n", d->message);
+    assert_true(d->message[0] != '\0');
+    assert_non_null(strstr(d->message, "overflow"));
+    assert_int_equal(d->route, VT_ROUTE_NONE); /* no route claims the outputs */
+    assert_memory_equal(q, d->q, nq);
+    assert_memory_equal(qd, d->qd, nv);
+    assert_memory_equal(qdd, d->qdd, nv);
+    assert_memory_equal(xfrc, d->xfrc, nf);
+    assert_memory_equal(qfrc, d->qfrc, nv);
+    assert_true(d->time == 0.3);
+    /* the same model at q̈ 1e300: every output finite, VT_OK */
+    for (int k = 0; k < 3; k++) d->qdd[k] = 1e300;
+    assert_ok(vt_inverse_dynamics_motion(m, d));
+    assert_int_equal(d->route, VT_ROUTE_MOTION);
+    for (int k = 0; k < m->nx; k++) assert_true(isfinite(d->xdd[k]));
+    for (int k = 0; k < 3 * (m->nbody + 1); k++) assert_true(isfinite(d->alpha[k]));
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* by hand, not the library's: y = A x (3x3 column-major), c = a × b */
 static void mul3(double y[3], const double A[9], const double x[3])
 {
@@ -1104,6 +1165,7 @@ int main(void)
         cmocka_unit_test(test_motion),
         cmocka_unit_test(test_motion_loops),
         cmocka_unit_test(test_motion_refused),
+        cmocka_unit_test(test_motion_euler_rates_overflow),
         cmocka_unit_test(test_free_vs_base),
         cmocka_unit_test(test_free_body),
         cmocka_unit_test(test_fused_kinematics),

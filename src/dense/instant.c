@@ -13,6 +13,10 @@
  * vt_inverse_dynamics_motion): the same stages, with each joint drive's row Φ̈ = q̈_k − f'' = 0
  * taking its acceleration from the data instead of its time function, γ = q̈_k(given); the cut
  * joints and couplings give the other rates' q̈, and the drives' multipliers are the efforts.
+ *
+ * Both scan ẍ when the stages are done (accelerations_scanned): vt_reactions forms it from q̈ and
+ * checks α and the loads, but the Euler parameters' p̈ enters no load, and q̈ near DBL_MAX (given,
+ * or solved for a body of DBL_MIN inertia) overflows it alone (issue 38, item 7).
  */
 #include <stddef.h>
 #include <string.h>
@@ -20,7 +24,20 @@
 #include "dense/instant.h"
 #include "base/status.h"
 #include "base/arena.h"
+#include "base/scan.h"
 #include "model/model.h"
+
+/* ẍ after the stages: one scan, then the first body whose ẍ overflows named; the route cleared
+ * (no route claims outputs that are not finite) */
+static vt_status accelerations_scanned(const vt_model *m, vt_data *d, const char *who)
+{
+    if (vt_all_finite(d->xdd, m->nx)) return VT_OK;
+    d->route = VT_ROUTE_NONE;
+    int i = 1;
+    while (i < m->nbody && vt_all_finite(d->xdd + vt_xoff(i), 7)) i++;
+    return vt_fail(d->message, VT_ERR_NONFINITE, "%s: body %d's acceleration ẍ (a, or the Euler parameters' p̈) overflows",
+                   who, i);
+}
 
 vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
 {
@@ -28,9 +45,9 @@ vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
     if (st) return st;
     vt_diagnostics_reset(d); /* a stage refusing before vt_solve leaves no earlier call's */
     if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
-        (st = vt_constraints(m, d)) || (st = vt_solve(m, d)))
+        (st = vt_constraints(m, d)) || (st = vt_solve(m, d)) || (st = vt_reactions(m, d)))
         return st;
-    return vt_reactions(m, d);
+    return accelerations_scanned(m, d, "vt_inverse_dynamics");
 }
 
 vt_status vt_motion_rows(const vt_model *m, vt_data *d)
@@ -46,7 +63,8 @@ vt_status vt_motion_rows(const vt_model *m, vt_data *d)
         !(st = vt_constraints(m, d))) {
         for (int r = 0; r < m->nc; r++)
             if (m->con_kind[r] == VT_ROW_JOINT) d->gamma[r] = given[m->con_dof[r]];
-        if (!(st = vt_solve(m, d))) st = vt_reactions(m, d);
+        if (!(st = vt_solve(m, d)) && !(st = vt_reactions(m, d)))
+            st = accelerations_scanned(m, d, "vt_inverse_dynamics_motion");
     }
     if (st) memcpy(d->qdd, given, (size_t)m->nv * sizeof(double));
     vt_scratch_release(d, mark);

@@ -336,48 +336,55 @@ static void fused_outward_any(const vt_model *m, vt_data *d, double *restrict al
 }
 
 /* The fused passes' results checked at once after both loops (a scan of whole arrays costs less
- * than checks joint by joint in the inward loop): ẍ, α, the efforts, the reactions and the total
- * wrenches. Copies are not scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute
- * joint's drive force is zero and its total force is its reaction's (f, stored twice); q̈ is the
- * drives' f'' (checked by vt_function_eval_valid) or the given one (checked on entry). The given
- * motion (vt_inverse_dynamics_motion) scans what it always did, the reactions and the totals, in
- * which an overflow of ẍ or τ shows (W̄ sums every body's wrench below the joint). A failure names
- * the first joint from the tree's ends, as a check in the inward loop would. */
+ * than checks joint by joint in the inward loop): ẍ (the Euler parameters' p̈ among them), α, the
+ * efforts, the reactions and the total wrenches, the same for the driven and the given motion.
+ * An overflow of p̈ shows nowhere else: ½ E^T α sums p_k α_k, which overflows where |α| is near
+ * DBL_MAX while α, and a light body's wrench, stay finite (issue 38, item 7). Copies are not
+ * scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute joint's drive force is zero
+ * and its total force is its reaction's (f, stored twice); q̈ is the drives' f'' (checked by
+ * vt_function_eval_valid) or the given one (checked on entry). A failure names the first joint
+ * from the tree's ends, as a check in the inward loop would, then the first body whose α or ẍ
+ * overflows. */
 static vt_status fused_check(const vt_model *m, vt_data *d, const fused_motion motion, const fused_tree tree)
 {
     const int n = m->nbody, nb3 = 3 * (n + 1), nd = 3 * m->ndrive;
     vt_finite_scan s = {0};
+    vt_finite_add(&s, d->xdd, m->nx);
     vt_finite_add(&s, d->alpha, nb3);
+    vt_finite_add(&s, d->qfrc_drive, m->nv);
     vt_finite_add(&s, d->jnt_force, nb3);
     vt_finite_add(&s, d->jnt_moment, nb3);
     vt_finite_add(&s, d->jnt_force_body, nb3);
+    vt_finite_add(&s, d->jnt_moment_body, nb3);
     vt_finite_add(&s, d->jnt_moment_total, nb3);
     vt_finite_add(&s, d->jnt_moment_total_body, nb3);
     if (tree == TREE_MIXED) {
         vt_finite_add(&s, d->jnt_force_total, nb3);
         vt_finite_add(&s, d->jnt_force_total_body, nb3);
     }
-    if (motion == MOTION_DRIVEN) { /* the driver's scan */
-        vt_finite_add(&s, d->xdd, m->nx);
-        vt_finite_add(&s, d->qfrc_drive, m->nv);
-        vt_finite_add(&s, d->jnt_moment_body, nb3);
+    if (motion == MOTION_DRIVEN) { /* the drives' own outputs */
         vt_finite_add(&s, d->drive_moment, nd);
         if (tree == TREE_MIXED) vt_finite_add(&s, d->drive_force, nd);
     }
     if (vt_finite_ok(&s)) return VT_OK;
     d->route = VT_ROUTE_NONE;
+    const char *who = motion == MOTION_GIVEN ? "vt_inverse_dynamics_motion" : "vt_inverse_dynamics_recursive";
     for (int i = n; i >= 1; i--) {
         if (!vt_all_finite(d->jnt_force + 3 * i, 3) || !vt_all_finite(d->jnt_moment + 3 * i, 3) ||
             !vt_all_finite(d->jnt_force_body + 3 * i, 3) || !vt_all_finite(d->jnt_moment_body + 3 * i, 3))
-            return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
+            return vt_fail(d->message, VT_ERR_NONFINITE, "%s: joint %d's reaction overflowed", who, i);
         if (!vt_total_finite(d, i))
-            return vt_fail(d->message, VT_ERR_NONFINITE, "joint %d's total wrench (reaction and actuation) overflows", i);
+            return vt_fail(d->message, VT_ERR_NONFINITE, "%s: joint %d's total wrench (reaction and actuation) overflows",
+                           who, i);
     }
-    for (int i = 1; i <= n; i++)
+    for (int i = 1; i <= n; i++) {
         if (!vt_all_finite(d->alpha + 3 * i, 3))
-            return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);
-    return vt_fail(d->message, VT_ERR_NONFINITE,
-                   "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
+            return vt_fail(d->message, VT_ERR_NONFINITE, "%s: body %d's angular acceleration overflows", who, i);
+        if (!vt_all_finite(d->xdd + vt_xoff(i), 7))
+            return vt_fail(d->message, VT_ERR_NONFINITE,
+                           "%s: body %d's acceleration ẍ (a, or the Euler parameters' p̈) overflows", who, i);
+    }
+    return vt_fail(d->message, VT_ERR_NONFINITE, "%s: the accelerations, efforts or reactions overflow (not finite)", who);
 }
 
 /* W̄_j += W̄_i moved from P_i to P_j by the short P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
