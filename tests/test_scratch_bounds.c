@@ -234,7 +234,7 @@ static void test_bounds(void **state)
     SCENE("spherical chain", vt_scene_spherical_chain(&m, 0));
     SCENE("spherical chain relative", vt_scene_spherical_chain(&m, 1));
     for (uint64_t s = 1; s <= 12; s++) SCENE("random tree", vt_scene_random_tree(&m, s, 3 + (int)(s % 7), ~0u));
-    vt_stewart sg;
+    vt_stewart sg = {2.0, 0.3, {{0}}}; /* the pose's phase rate and phase; the legs filled by the scene */
     SCENE("stewart", vt_scene_stewart(&m, &sg));
     SCENE("knee", vt_scene_knee(&m, crank, crank, 0));
     SCENE("knee planar", vt_scene_knee(&m, crank, crank, 1));
