@@ -9,6 +9,7 @@ int cmd_load_urdf(vt_builder **b, const char *path, int floating)
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
     opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */
+    opt.model.layout = VT_LAYOUT_RECURSIVE; /* the rows' given motion and kinematic solve: O(n) data */
     const vt_status st = vt_urdf_builder(b, path, &opt, msg);
     if (st) return cmd_fail("%s: %s (%s)", path, msg, vt_status_string(st));
     return 0;

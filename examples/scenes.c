@@ -123,8 +123,15 @@ void vt_scene_chain_state(int k, double *q, double *qd, double *qdd)
 
 vt_status vt_scene_chain(vt_model **model, int n, int drives)
 {
+    return vt_scene_chain_layout(model, n, drives, VT_LAYOUT_FULL);
+}
+
+vt_status vt_scene_chain_layout(vt_model **model, int n, int drives, vt_layout layout)
+{
     vt_builder *b;
-    vt_status st = vt_builder_create(&b, NULL);
+    vt_model_def def = vt_default_model_def();
+    def.layout = layout;
+    vt_status st = vt_builder_create(&b, &def);
     if (st) return st;
     const double len = 0.5;
     for (int i = 1; i <= n && st == VT_OK; i++) {
@@ -152,14 +159,15 @@ vt_status vt_scene_chain(vt_model **model, int n, int drives)
         }
     }
     if (st == VT_OK && drives == VT_CHAIN_TIP_DRIVE) {
-        /* the tip's y at the reference state, from a model without the drive */
+        /* the tip's y at the reference state, from the joint-driven chain's instant there (its
+         * O(n) data: the positions without the dense S, at any n) */
         vt_model *free_chain = NULL;
         vt_data *d;
-        st = vt_scene_chain(&free_chain, n, VT_CHAIN_FREE);
+        st = vt_scene_chain_layout(&free_chain, n, VT_CHAIN_JOINT_DRIVEN, VT_LAYOUT_RECURSIVE);
         if (st == VT_OK && (st = vt_data_create(&d, free_chain)) == VT_OK) {
             double dummy;
             for (int k = 0; k < n; k++) vt_scene_chain_state(k, &d->q[k], &dummy, &dummy);
-            st = vt_kinematics(free_chain, d);
+            st = vt_inverse_dynamics_recursive(free_chain, d);
             const double y0 = d->x[7 * (n - 1) + 1] + 0.5 * len * d->A[9 * n + 1];
             vt_data_free(d);
             vt_drive_def dr = vt_default_drive_def();

@@ -38,6 +38,8 @@ vt_status vt_scene_free_joint_driven(vt_model **model);
  *                                   y0 + 0.05 sin(2π t) with y0 its value at the state */
 enum { VT_CHAIN_FREE, VT_CHAIN_JOINT_DRIVEN, VT_CHAIN_TIP_DRIVE };
 vt_status vt_scene_chain(vt_model **model, int n, int drives);
+/* the same with the model's data layout chosen (vt_scene_chain: VT_LAYOUT_FULL) */
+vt_status vt_scene_chain_layout(vt_model **model, int n, int drives, vt_layout layout);
 /* the chain's reference state of joint k = 0..n−1: q = 0.3 sin(1.3 k + 0.2),
  * q̇ = 0.5 cos(0.7 k), q̈ = 0.4 sin(0.9 k + 1) */
 void vt_scene_chain_state(int k, double *q, double *qd, double *qdd);

@@ -52,7 +52,8 @@ module vtdyn
       VT_ERR_SINGULAR = -21, VT_ERR_DEPENDENT_CONSTRAINTS = -22, VT_ERR_NEWTON = -23, &
       VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
       VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30, &
-      VT_ERR_FILE = -31, VT_ERR_XML = -32
+      VT_ERR_FILE = -31, VT_ERR_XML = -32, VT_ERR_LAYOUT = -33
+  integer(c_int), parameter :: VT_LAYOUT_FULL = 0, VT_LAYOUT_RECURSIVE = 1
   integer(c_int), parameter :: VT_NAME_MAX = 64
   integer(c_int), parameter :: VT_MESSAGE_SIZE = 256
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
@@ -100,6 +101,7 @@ module vtdyn
     real(c_double)         :: rcond_min
     real(c_double)         :: rcond_warn
     integer(c_int)         :: allow_redundant
+    integer(c_int)         :: layout
   end type vt_model_def
 
   ! include/vtdyn.h (VT_HAVE_URDF): the options of vt_urdf_builder; mirrored in every build
@@ -228,6 +230,7 @@ module vtdyn
     real(c_double)         :: rcond_min
     real(c_double)         :: rcond_warn
     integer(c_int)         :: allow_redundant
+    integer(c_int)         :: layout
     integer(c_int)         :: ndrive
     integer(c_int)         :: ncut
     integer(c_int)         :: nc

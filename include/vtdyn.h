@@ -52,7 +52,7 @@ VT_API vt_body_def vt_default_body_def(void);
 
 /// Starts a builder. def may be NULL for the defaults.
 /// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY, VT_ERR_NONFINITE (gravity, thresholds),
-/// VT_ERR_BAD_OPTION (rcond_min outside (0, 1] or rcond_warn below it).
+/// VT_ERR_BAD_OPTION (rcond_min outside (0, 1] or rcond_warn below it, layout not a vt_layout).
 VT_API vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
 /// Validates and adds a body. Returns its id (1, 2, ...) or a negative vt_status, with the
 /// reason in vt_builder_message(). Non-unit axes and orientations are normalized; zero ones

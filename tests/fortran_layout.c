@@ -10,7 +10,7 @@
 
 static const size_t vt_model_def_layout[] = {sizeof(vt_model_def),
     offsetof(vt_model_def, gravity), offsetof(vt_model_def, rcond_min), offsetof(vt_model_def, rcond_warn),
-    offsetof(vt_model_def, allow_redundant), VT_END};
+    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), VT_END};
 static const size_t vt_function_layout[] = {sizeof(vt_function),
     offsetof(vt_function, type), offsetof(vt_function, ncoef), offsetof(vt_function, c),
     offsetof(vt_function, callback), offsetof(vt_function, user), offsetof(vt_function, nsample),
@@ -55,7 +55,7 @@ static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, cut_name), offsetof(vt_model, coupling_name), offsetof(vt_model, nframe), offsetof(vt_model, frame_name),
     offsetof(vt_model, frame_body), offsetof(vt_model, frame_point), offsetof(vt_model, frame_quat),
     offsetof(vt_model, rcond_min),
-    offsetof(vt_model, rcond_warn), offsetof(vt_model, allow_redundant), offsetof(vt_model, ndrive),
+    offsetof(vt_model, rcond_warn), offsetof(vt_model, allow_redundant), offsetof(vt_model, layout), offsetof(vt_model, ndrive),
     offsetof(vt_model, ncut), offsetof(vt_model, nc), offsetof(vt_model, drive),
     offsetof(vt_model, drive_row), offsetof(vt_model, cut), offsetof(vt_model, cut_row),
     offsetof(vt_model, ncoupling), offsetof(vt_model, coupling), offsetof(vt_model, coupling_row),

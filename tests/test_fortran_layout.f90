@@ -31,7 +31,7 @@ program test_fortran_layout
   nfail = 0
     call check(0_c_int, 'vt_model_def', c_sizeof(x_model_def), a(c_loc(x_model_def)), [ &
          a(c_loc(x_model_def%gravity)), a(c_loc(x_model_def%rcond_min)), a(c_loc(x_model_def%rcond_warn)), &
-         a(c_loc(x_model_def%allow_redundant))])
+         a(c_loc(x_model_def%allow_redundant)), a(c_loc(x_model_def%layout))])
     call check(1_c_int, 'vt_function', c_sizeof(x_function), a(c_loc(x_function)), [ &
          a(c_loc(x_function%type)), a(c_loc(x_function%ncoef)), a(c_loc(x_function%c)), &
          a(c_loc(x_function%callback)), a(c_loc(x_function%user)), a(c_loc(x_function%nsample)), &
@@ -69,7 +69,8 @@ program test_fortran_layout
          a(c_loc(x_model%frame_name)), &
          a(c_loc(x_model%frame_body)), a(c_loc(x_model%frame_point)), a(c_loc(x_model%frame_quat)), &
          a(c_loc(x_model%rcond_min)), &
-         a(c_loc(x_model%rcond_warn)), a(c_loc(x_model%allow_redundant)), a(c_loc(x_model%ndrive)), &
+         a(c_loc(x_model%rcond_warn)), a(c_loc(x_model%allow_redundant)), a(c_loc(x_model%layout)), &
+         a(c_loc(x_model%ndrive)), &
          a(c_loc(x_model%ncut)), a(c_loc(x_model%nc)), a(c_loc(x_model%drive)), a(c_loc(x_model%drive_row)), &
          a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%ncoupling)), &
          a(c_loc(x_model%coupling)), a(c_loc(x_model%coupling_row)), a(c_loc(x_model%con_body)), &

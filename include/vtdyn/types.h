@@ -66,8 +66,11 @@ typedef enum vt_status {
     VT_ERR_BAD_NAME = -29,             ///< a name too long (VT_NAME_MAX) or already used by another of its kind
     VT_ERR_NOT_FOUND = -30,            ///< no body, joint, drive, cut joint or frame of that name
     VT_ERR_FILE = -31,                 ///< a file cannot be opened or read (the message names it and why)
-    VT_ERR_XML = -32                   ///< malformed XML, or not the document expected (no <robot>); the
+    VT_ERR_XML = -32,                  ///< malformed XML, or not the document expected (no <robot>); the
                                        ///< message gives the parser's reason and the line
+    VT_ERR_LAYOUT = -33                ///< the data does not hold what the call needs: a dense stage, or an
+                                       ///< instant that needs M*, on data laid out VT_LAYOUT_RECURSIVE
+                                       ///< (the message says what needed it; vt_model_def.layout)
 } vt_status;
 
 /// Names of bodies, joints, drives, cut joints and frames: at most VT_NAME_MAX − 1 bytes, unique
@@ -121,6 +124,21 @@ typedef enum vt_joint_type {
 /// dependent rows are those dependent to round-off (see vt_model_def.allow_redundant).
 #define VT_REDUNDANT_TOL 5e-4
 
+/// Which arrays a model's data holds (vt_model_def.layout): what a data costs, and which entry
+/// points it serves (docs/guide.md, "Memory").
+typedef enum vt_layout {
+    VT_LAYOUT_FULL = 0,      ///< default: every entry point. The dense stages' S (7n x nv) and R (nv x 7n),
+                             ///< M* (nv x nv), the maximal route's matrix and the dense routes' scratch:
+                             ///< O(n²) bytes (about 170 MB for a chain of 1,000 bodies)
+    VT_LAYOUT_RECURSIVE = 1  ///< O(n) bytes beside what the constraint rows need (nc x nv): for
+                             ///< vt_inverse_dynamics_recursive(), vt_inverse_dynamics_motion(),
+                             ///< vt_kinematic_solve() and vt_kinematic_analysis() on the routes that
+                             ///< form no M* (joint-driven, given motion of a tree, square, articulated).
+                             ///< The dense stages, vt_dynamic_analysis() and an instant that needs M*
+                             ///< (base bodies, couplings, redundant rows, a loop's given motion, an
+                             ///< ill-conditioned shortcut's fallback) are refused with VT_ERR_LAYOUT
+} vt_layout;
+
 typedef struct vt_model_def {
     double gravity[3];  ///< m/s², global; default (0, -9.81, 0): y up, as in the paper's Fig. 4
     double rcond_min;   ///< smallest accepted condition estimate of the pose (vt_data.rcond);
@@ -141,6 +159,8 @@ typedef struct vt_model_def {
                         ///< jnt_unique and cut_unique say which are. A dynamic analysis in the ODE
                         ///< formulation may also drop nearly dependent directions
                         ///< (vt_run_options.redundant_band); default 0
+    vt_layout layout;   ///< which arrays the model's data holds, and so its size (vt_data_size());
+                        ///< default VT_LAYOUT_FULL
 } vt_model_def;
 
 /// Warning flags a successful call may leave in vt_data.warning.
@@ -429,6 +449,7 @@ typedef struct vt_model {
     double rcond_min;        ///< see vt_model_def
     double rcond_warn;       ///< see vt_model_def
     int allow_redundant;     ///< see vt_model_def
+    vt_layout layout;        ///< see vt_model_def
     int ndrive;              ///< number of drives
     int ncut;                ///< number of cut joints
     int nc;                  ///< number of constraint rows (drives, cut joints, couplings, one p^T p − 1

@@ -45,6 +45,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "analysis/dynamic_analysis.h"
+#include "analysis/data.h"
 #include "base/status.h"
 #include "model/model.h"
 #include "kinematics/kinematics.h"
@@ -643,6 +644,10 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
 {
     vt_status st = vt_check_run(m, d, opt, tr, "vt_dynamic_analysis");
     if (st) return st;
+    if (!d->Mstar) /* IDA's residual and iteration matrix are M*'s */
+        return vt_fail(d->message, VT_ERR_LAYOUT,
+                       "vt_dynamic_analysis: integrates (5) with M*, and the data holds none: its model was built with "
+                       "layout VT_LAYOUT_RECURSIVE (VT_LAYOUT_FULL lays it out)");
     vt_trajectory_reset(tr);
     d->ida_flag = 0;
     d->time = opt->t0;
@@ -670,7 +675,7 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
      * from the driven state interpolated at each time it asks for (run_independent) */
     const size_t per = 1 + 2 * (size_t)h.dim;
     hbuf = malloc(((size_t)h.cap * per + (size_t)h.dim) * sizeof(double));
-    if (!hbuf || (st = vt_data_create(&dk, m))) {
+    if (!hbuf || (st = vt_data_create_full(&dk, m))) {
         st = vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_dynamic_analysis: out of memory for %d steps", h.cap);
         goto out;
     }

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "analysis/kinematic_analysis.h"
+#include "analysis/data.h"
 #include "base/status.h"
 #include "dense/reactions.h"
 #include "numeric/rank.h"
@@ -78,7 +79,7 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         /* row 0 by the dense instant: its M* and Φ_q decide the rank below; the rows after by the
          * recursive one without α and the joints' total wrenches, which the rows do not keep
          * (the last row's after the loop) */
-        const int solve = k > 0 ? VT_SOLVE_RECURSIVE_NO_TOTALS : VT_SOLVE_DENSE;
+        const int solve = k > 0 ? VT_SOLVE_RECURSIVE_NO_TOTALS : d->Mstar ? VT_SOLVE_DENSE : VT_SOLVE_RECURSIVE;
         if ((st = vt_kinematic_solve_impl(m, d, opt->newton_tol, opt->newton_maxit, solve, qp, qdp, k ? d->time - tr->t[k - 1] : 0.0))) {
             if (k == 0 || st != VT_ERR_NEWTON) return st;
             /* Newton from the prediction failed: once more from the previous row */
@@ -98,7 +99,8 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
     if (!opt->forward_check) return VT_OK;
     /* the forward check starts from the first row's state */
     vt_data *dk;
-    if ((st = vt_data_create(&dk, m))) return vt_fail(d->message, st, "vt_kinematic_analysis: %s", vt_status_string(st));
+    /* the forward check's own data: the forward model's stages are the dense ones, whatever d holds */
+    if ((st = vt_data_create_full(&dk, m))) return vt_fail(d->message, st, "vt_kinematic_analysis: %s", vt_status_string(st));
     memcpy(dk->q, tr->q, (size_t)m->nq * sizeof(double));
     memcpy(dk->qd, tr->qd, (size_t)m->nv * sizeof(double));
     dk->time = opt->t0;

@@ -18,6 +18,8 @@
  * (consistent initial values of a dynamic analysis) LAPACK's dgels gives the least-norm
  * correction, a projection onto the constraint manifold; dependent rows of a model that allows
  * them, the least-norm least-squares step (dgelsd).
+ * A joint-driven model (every rate driven on its own, no other row) needs none of it: q = f(t)
+ * and q̇ = f'(t) exactly, Φ = 0.
  * Newton's starts for the analyses over time (vt_kinematic_start, below): the Hermite polynomial
  * through q, q̇, q̈ of two or three rows of a trajectory, extrapolated to the next row's time by
  * the kinematic analysis, interpolated to the times IDA asks for by its forward check.
@@ -186,7 +188,7 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     double *step = VT_SCRATCH(d, double, m->nv, "Newton step");
     double *fd = VT_SCRATCH(d, double, 3 * (size_t)m->ndrive + 1, "the drives' functions at t");
     phiq_lu lu = {.held = 0}, *plu = NULL;
-    if (m->nc == m->nv && !m->allow_redundant) {
+    if (m->nc == m->nv && !m->allow_redundant && !m->joint_driven) {
         lu.A = VT_SCRATCH(d, double, (size_t)m->nv * (size_t)m->nv, "Φ_q's LU, held");
         lu.b = VT_SCRATCH(d, double, m->nv, "velocities' residual");
         lu.ipiv = VT_SCRATCH(d, int, m->nv, "Φ_q's LU pivots, held");
@@ -198,6 +200,21 @@ vt_status vt_kinematic_solve_impl(const vt_model *m, vt_data *d, double tol, int
     double res = 0.0;
     int it = 0, polished = !polish;
     vt_status st;
+    if (m->joint_driven) { /* every rate driven on its own: q = f(t), q̇ = f'(t), exact, no Newton */
+        if ((st = vt_drive_values(m, d, fd))) return restore(m, d, qsave, mark, st);
+        for (int r = 0; r < m->nc; r++) {
+            const int dof = m->con_dof[r], i = m->dof_body[dof];
+            const double *f = fd + 3 * m->con_owner[r];
+            d->q[m->body_qadr[i] + dof - m->body_vadr[i]] = f[0];
+            d->qd[dof] = f[1];
+            d->Phi[r] = 0.0;
+            d->Phit[r] = -f[1];
+        }
+        st = recursive ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d);
+        if (st) return restore(m, d, qsave, mark, st);
+        vt_scratch_release(d, mark);
+        return VT_OK;
+    }
     if (m->nc > 0) {
         if ((st = vt_drive_values(m, d, fd))) return restore(m, d, qsave, mark, st); /* once: t is fixed */
         for (;; it++) { /* Φ, Φ_t and Φ_q from the positions and twists alone */
@@ -365,7 +382,8 @@ vt_status vt_kinematic_start(const vt_model *m, vt_data *d, const vt_trajectory 
 vt_status vt_kinematic_solve(const vt_model *m, vt_data *d, double tol, int maxit)
 {
     const vt_status st = vt_check_pair(m, d, "vt_kinematic_solve");
-    return st ? st : vt_kinematic_solve_impl(m, d, tol, maxit, VT_SOLVE_DENSE, NULL, NULL, 0.0);
+    /* the dense instant where the data holds it, else the recursive one */
+    return st ? st : vt_kinematic_solve_impl(m, d, tol, maxit, d->Mstar ? VT_SOLVE_DENSE : VT_SOLVE_RECURSIVE, NULL, NULL, 0.0);
 }
 
 /* q and q̇ as given, the Newton step and the drives' functions, held across the instant; solve_phiq's arrays (the LU's
@@ -377,15 +395,22 @@ size_t vt_kinematic_solve_scratch(const vt_model *m)
     int info = 0, rank = 0, iq = 0;
     double q = 0.0, dummy = 0.0, rc = -1.0;
     size_t lapack = 1;
+    /* a joint-driven model's state is its drives' values: no Φ_q, no Newton */
+    if (m->joint_driven)
+        return VT_SCRATCH_BYTES((size_t)m->nq + (size_t)nv, D) + 2 * VT_SCRATCH_BYTES(nv, D) +
+               VT_SCRATCH_BYTES(3 * (size_t)m->ndrive + 1, D);
     if (nc > 0) {
         dgels_("N", &nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &q, &lw, &info, 1);
         if (info == 0 && q > (double)lapack) lapack = (size_t)q;
         dgelsd_(&nc, &nv, &one, &dummy, &nc, &dummy, &ldb, &dummy, &rc, &rank, &q, &lw, &iq, &info);
         if (info == 0 && q > (double)lapack) lapack = (size_t)q;
     }
+    /* Φ_q's LU held between Newton's last step and the velocities: square rows only */
+    const size_t held = nc == nv && !m->allow_redundant ? VT_SCRATCH_BYTES((size_t)nv * (size_t)nv, D) +
+                                                              VT_SCRATCH_BYTES(nv, D) + VT_SCRATCH_BYTES(nv, sizeof(int))
+                                                        : 0;
     return VT_SCRATCH_BYTES((size_t)m->nq + (size_t)nv, D) + 2 * VT_SCRATCH_BYTES(nv, D) +
-           VT_SCRATCH_BYTES(3 * (size_t)m->ndrive + 1, D) + VT_SCRATCH_BYTES((size_t)nv * (size_t)nv, D) +
-           VT_SCRATCH_BYTES(nv, D) + VT_SCRATCH_BYTES(nv, sizeof(int)) +
+           VT_SCRATCH_BYTES(3 * (size_t)m->ndrive + 1, D) + held +
            VT_SCRATCH_BYTES((size_t)nc * (size_t)nv, D) + 2 * VT_SCRATCH_BYTES(ldb, D) +
            VT_SCRATCH_BYTES((size_t)vt_dgelsd_iwork(nc, nv), sizeof(int)) + VT_SCRATCH_BYTES(lapack, D) +
            VT_SCRATCH_BYTES(nv, sizeof(int));

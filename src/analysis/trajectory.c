@@ -121,7 +121,9 @@ void vt_trajectory_store(vt_trajectory *tr, const vt_model *m, const vt_data *d,
     double pn = 0.0, pdn = 0.0;
     for (int r = 0; r < m->nc; r++) {
         double v = d->Phit[r];
-        for (int c = 0; c < m->nv; c++) v += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->qd[c];
+        if (!d->Phiq) v += d->qd[m->con_dof[r]]; /* a joint-driven model's data without Φ_q: its unit rows */
+        else
+            for (int c = 0; c < m->nv; c++) v += d->Phiq[r + (size_t)c * (size_t)m->nc] * d->qd[c];
         pn = fabs(d->Phi[r]) > pn ? fabs(d->Phi[r]) : pn; /* NaN passed over, as fmax does */
         pdn = fabs(v) > pdn ? fabs(v) : pdn;
     }

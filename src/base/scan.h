@@ -9,10 +9,10 @@
 
 /* 1 when no a[k] is Inf or NaN. Branch-free, so that it vectorizes: an IEEE 754 double's
  * exponent field is all ones exactly then, and adding one to it carries into the sign bit. */
-static inline int vt_all_finite(const double *a, int n)
+static inline int vt_all_finite(const double *a, size_t n)
 {
     uint64_t any = 0;
-    for (int k = 0; k < n; k++) {
+    for (size_t k = 0; k < n; k++) {
         uint64_t u;
         memcpy(&u, a + k, sizeof u);
         any |= (u & 0x7ff0000000000000u) + 0x0010000000000000u;

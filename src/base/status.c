@@ -42,6 +42,7 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_NOT_FOUND: return "no object of that name";
     case VT_ERR_FILE: return "file cannot be opened or read";
     case VT_ERR_XML: return "malformed XML or not the expected document";
+    case VT_ERR_LAYOUT: return "the data does not hold what the call needs (layout)";
     }
     return "unknown status";
 }
@@ -67,5 +68,16 @@ vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who)
     if (!m || !d) return VT_ERR_NULL;
     if (d->model != m)
         return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "%s: data made for another model", who);
+    return VT_OK;
+}
+
+vt_status vt_check_dense(const vt_model *m, vt_data *d, const char *who)
+{
+    const vt_status st = vt_check_pair(m, d, who);
+    if (st) return st;
+    if (!d->Mstar)
+        return vt_fail(d->message, VT_ERR_LAYOUT,
+                       "%s: a dense stage, and the data holds no S, R or M*: its model was built with layout "
+                       "VT_LAYOUT_RECURSIVE (vt_model_def.layout = VT_LAYOUT_FULL lays them out)", who);
     return VT_OK;
 }

@@ -14,6 +14,10 @@ vt_status vt_fail(char *buf, vt_status status, const char *fmt, ...)
 /* Common argument check of every stage: non-NULL, data made for this model. */
 vt_status vt_check_pair(const vt_model *m, vt_data *d, const char *who);
 
+/* The same for the dense stages and what calls them: the data must hold S, R and M* (laid out
+ * VT_LAYOUT_FULL, or the analyses' own full data), else VT_ERR_LAYOUT naming who. */
+vt_status vt_check_dense(const vt_model *m, vt_data *d, const char *who);
+
 /* The diagnostics of the last instant or solve cleared (route none, no fallback, no warning,
  * rank 0, rcond 0, residual 0): what every entry point that owns them (the instants, vt_solve,
  * vt_kinematic_solve, the analyses, vt_data_reset) does first, after its argument check and

@@ -446,7 +446,7 @@ static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_stat
 
 vt_status vt_constraints(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_constraints");
+    vt_status st = vt_check_dense(m, d, "vt_constraints");
     if (st) return st;
     return vt_constraints_impl(m, d, VT_FORM_DENSE);
 }

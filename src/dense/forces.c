@@ -61,7 +61,7 @@ static vt_status apply_St(double *Q, const vt_model *m, vt_data *d, const double
 
 vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const double *F)
 {
-    vt_status st = vt_check_pair(m, d, "vt_generalized_force");
+    vt_status st = vt_check_dense(m, d, "vt_generalized_force");
     if (st) return st;
     if (!Q || !F) return vt_fail(d->message, VT_ERR_NULL, "vt_generalized_force: NULL argument");
     if (!vt_all_finite(F, m->nx))
@@ -80,7 +80,7 @@ vt_status vt_generalized_force(double *Q, const vt_model *m, vt_data *d, const d
 
 vt_status vt_forces(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_forces");
+    vt_status st = vt_check_dense(m, d, "vt_forces");
     if (st) return st;
     if (!vt_all_finite(d->xfrc, 6 * (m->nbody + 1)) || !vt_all_finite(d->qfrc, m->nv))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_forces: NaN or Inf in xfrc or qfrc");

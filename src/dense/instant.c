@@ -41,7 +41,7 @@ static vt_status accelerations_scanned(const vt_model *m, vt_data *d, const char
 
 vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics");
+    vt_status st = vt_check_dense(m, d, "vt_inverse_dynamics");
     if (st) return st;
     vt_diagnostics_reset(d); /* a stage refusing before vt_solve leaves no earlier call's */
     if ((st = vt_kinematics(m, d)) || (st = vt_mass_matrix(m, d)) || (st = vt_forces(m, d)) ||
@@ -52,6 +52,11 @@ vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
 
 vt_status vt_motion_rows(const vt_model *m, vt_data *d)
 {
+    if (!d->Mstar)
+        return vt_fail(d->message, VT_ERR_LAYOUT,
+                       "vt_inverse_dynamics_motion: a loop's or coupling's given motion takes the dense stages, and the "
+                       "data holds no S or M*: its model was built with layout VT_LAYOUT_RECURSIVE (VT_LAYOUT_FULL lays "
+                       "them out)");
     /* the given q̈ is an input: kept here and put back when a stage fails, since vt_solve
      * writes every rate's q̈ into d->qdd */
     const size_t mark = vt_scratch_mark(d);

@@ -31,7 +31,7 @@ void vt_rot_mass(double Mp[16], const double J[9], const double p[4])
 
 vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_mass_matrix");
+    vt_status st = vt_check_dense(m, d, "vt_mass_matrix");
     if (st) return st;
     const int nv = m->nv;
     const size_t k7 = 7 * (size_t)m->maxpath, mark = vt_scratch_mark(d);

@@ -152,7 +152,7 @@ void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, co
 
 vt_status vt_reactions(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_reactions");
+    vt_status st = vt_check_dense(m, d, "vt_reactions");
     if (st) return st;
     if ((st = vt_reactions_impl(m, d, VT_FORM_DENSE))) return st;
     return vt_reactions_total(m, d, 0);
@@ -634,7 +634,7 @@ size_t vt_reactions_scratch(const vt_model *m)
 
 vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int k)
 {
-    vt_status st = vt_check_pair(m, d, "vt_drive_cartesian_force");
+    vt_status st = vt_check_dense(m, d, "vt_drive_cartesian_force");
     if (st) return st;
     if (!F) return vt_fail(d->message, VT_ERR_NULL, "vt_drive_cartesian_force: F is NULL");
     if (k < 0 || k >= m->ndrive)

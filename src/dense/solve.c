@@ -377,7 +377,7 @@ vt_status vt_solve_impl(const vt_model *m, vt_data *d, vt_handoff *to)
 
 vt_status vt_solve(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_solve");
+    vt_status st = vt_check_dense(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
     return vt_solve_band(m, d, 0.0, VT_FORM_DENSE, NULL);
@@ -385,7 +385,7 @@ vt_status vt_solve(const vt_model *m, vt_data *d)
 
 vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
 {
-    vt_status st = vt_check_pair(m, d, "vt_solve");
+    vt_status st = vt_check_dense(m, d, "vt_solve");
     if (st) return st;
     d->fallback = 0;
     return vt_solve_band(m, d, band, VT_FORM_DENSE, NULL);

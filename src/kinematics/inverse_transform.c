@@ -67,7 +67,7 @@ void vt_R_row(const vt_model *m, const vt_data *d, int dof, double rj[7], double
 
 vt_status vt_inverse_transform(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_inverse_transform");
+    vt_status st = vt_check_dense(m, d, "vt_inverse_transform");
     if (st) return st;
     const size_t ld = (size_t)m->nv;
     for (int dof = 0; dof < m->nv; dof++) {
@@ -85,7 +85,7 @@ vt_status vt_inverse_transform(const vt_model *m, vt_data *d)
 
 vt_status vt_equivalent_force(double *Feq, const vt_model *m, vt_data *d, const double *Q)
 {
-    vt_status st = vt_check_pair(m, d, "vt_equivalent_force");
+    vt_status st = vt_check_dense(m, d, "vt_equivalent_force");
     if (st) return st;
     if (!Feq || !Q) return vt_fail(d->message, VT_ERR_NULL, "vt_equivalent_force: NULL argument");
     if (!vt_all_finite(Q, m->nv))

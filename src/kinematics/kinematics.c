@@ -560,12 +560,12 @@ size_t vt_kinematics_scratch(const vt_model *m)
 
 vt_status vt_kinematics(const vt_model *m, vt_data *d)
 {
-    vt_status st = vt_check_pair(m, d, "vt_kinematics");
+    vt_status st = vt_check_dense(m, d, "vt_kinematics");
     if (st) return st;
     if ((st = vt_kinematics_tree(m, d, 1))) return st;
     fill_S(m, d);
-    const size_t nS = (size_t)m->nx * (size_t)m->nv; /* ≤ 7 VT_MAX_BODIES × 6 VT_MAX_BODIES: an int */
-    if (vt_all_finite(d->S, (int)nS)) return VT_OK;
+    const size_t nS = (size_t)m->nx * (size_t)m->nv;
+    if (vt_all_finite(d->S, nS)) return VT_OK;
     for (size_t k = 0; k < nS; k++)
         if (!isfinite(d->S[k]))
             return vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematics: S of body %d, rate %d overflows (q too large)",

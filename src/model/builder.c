@@ -31,6 +31,7 @@ vt_model_def vt_default_model_def(void)
     d.rcond_min = 1e-12;
     d.rcond_warn = 1e-6;
     d.allow_redundant = 0;
+    d.layout = VT_LAYOUT_FULL;
     return d;
 }
 
@@ -105,6 +106,7 @@ vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def)
     vt_model_def md = def ? *def : vt_default_model_def();
     if (!vt_all_finite(md.gravity, 3) || !isfinite(md.rcond_min) || !isfinite(md.rcond_warn)) return VT_ERR_NONFINITE;
     if (!(md.rcond_min > 0.0) || md.rcond_min > 1.0 || md.rcond_warn < md.rcond_min) return VT_ERR_BAD_OPTION;
+    if (md.layout != VT_LAYOUT_FULL && md.layout != VT_LAYOUT_RECURSIVE) return VT_ERR_BAD_OPTION;
     vt_builder *b = calloc(1, sizeof *b);
     if (!b) return VT_ERR_NO_MEMORY;
     b->def = md;

@@ -307,6 +307,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->rcond_min = b->def.rcond_min;
     m->rcond_warn = b->def.rcond_warn;
     m->allow_redundant = b->def.allow_redundant != 0;
+    m->layout = b->def.layout;
     m->ndrive = b->ndrive;
     m->ncut = b->ncut;
     m->nc = nc;

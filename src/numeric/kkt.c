@@ -304,8 +304,10 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 size_t vt_kkt_scratch(const vt_model *m)
 {
     const size_t snv = (size_t)m->nv, snc = (size_t)m->nc, D = sizeof(double), I = sizeof(int);
-    const size_t square = VT_SCRATCH_BYTES(snv * snv, D) + 3 * VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I) +
-                          VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
+    /* the square route's LU: only with as many rows as rates (nv² is then the rows' own size) */
+    const size_t square = m->nc != m->nv ? 0
+                          : VT_SCRATCH_BYTES(snv * snv, D) + 3 * VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I) +
+                                VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
     const size_t exact = VT_SCRATCH_BYTES((size_t)VT_EXACT_RCOND_N * (VT_EXACT_RCOND_N + VT_EXACT_EXTRA), D);
     const size_t pocon = VT_SCRATCH_BYTES(3 * snc, D) + VT_SCRATCH_BYTES(snc, I);
     size_t spd = exact > pocon ? exact : pocon;

@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "recursive/general.h"
+#include "base/status.h"
 #include "base/arena.h"
 #include "base/euler.h"
 #include "base/vec3.h"
@@ -143,9 +144,27 @@ static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
     }
 }
 
-/* M* by composite bodies and Q by a Newton–Euler pass */
+/* Why an instant needs M* (the general route), for the refusal on data without it */
+static const char *general_reason(const vt_model *m, const vt_data *d)
+{
+    if (m->joint_mix < 0) return "a base body";
+    if (m->ncoupling > 0) return "couplings";
+    if (m->allow_redundant) return "redundant rows allowed";
+    if (d->fallback & VT_FALLBACK_SQUARE_CONDITION) return "the square route's Φ_q ill-conditioned";
+    if (d->fallback & (VT_FALLBACK_ARTICULATED_CONDITION | VT_FALLBACK_ARTICULATED_PIVOT))
+        return "the articulated route gave way: an ill-conditioned instant, or a pivot near zero";
+    return "a row that is round-off of zero";
+}
+
+/* M* by composite bodies and Q by a Newton–Euler pass; refused on data without M* (laid out
+ * VT_LAYOUT_RECURSIVE), which the O(n) routes serve */
 vt_status vt_mass_and_bias(const vt_model *m, vt_data *d)
 {
+    if (!d->Mstar)
+        return vt_fail(d->message, VT_ERR_LAYOUT,
+                       "vt_inverse_dynamics_recursive: this instant needs M* (%s), and the data holds none: its model "
+                       "was built with layout VT_LAYOUT_RECURSIVE (VT_LAYOUT_FULL lays it out)",
+                       general_reason(m, d));
     const size_t nb = (size_t)m->nbody + 1, mark = vt_scratch_mark(d);
     double *Ic = VT_SCRATCH(d, double, 13 * nb, "composite inertias");
     if (!Ic) return vt_scratch_fail(d, mark);

@@ -167,6 +167,15 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, vt
     if (!st && (to == VT_HANDOFF_DENSE || to == VT_HANDOFF_MAXIMAL)) {
         /* the composite inertias about o cannot vouch for a digit, or the estimate is low enough
          * that the maximal route may be wanted (vt_maximal_instead): the dense stages */
+        if (!d->Mstar) {
+            d->route = VT_ROUTE_NONE;
+            return vt_fail(d->message, VT_ERR_LAYOUT,
+                           "vt_inverse_dynamics_recursive: this instant needs the dense stages (%s), and the data "
+                           "holds no S or M*: its model was built with layout VT_LAYOUT_RECURSIVE (VT_LAYOUT_FULL "
+                           "lays them out)",
+                           to == VT_HANDOFF_DENSE ? "the composite inertias cannot vouch for a digit"
+                                                  : "an estimate low enough that the maximal route may be wanted");
+        }
         const int left = d->fallback | (to == VT_HANDOFF_DENSE ? VT_FALLBACK_COMPOSITE_ROUNDOFF : 0);
         d->message[0] = '\0'; /* a refusal the dense stages decide again is no diagnosis */
         st = vt_inverse_dynamics(m, d);
@@ -303,7 +312,7 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
 size_t vt_recursive_scratch(const vt_model *m)
 {
     const size_t nb = (size_t)m->nbody + 1, D = sizeof(double);
-    size_t n = vt_articulated_scratch(m);
+    size_t n = m->joint_driven ? 0 : vt_articulated_scratch(m); /* the fused passes need no rows' work */
     const size_t square = VT_SCRATCH_BYTES(m->nv, D) + VT_SCRATCH_BYTES(15 * nb, D);
     if (square > n) n = square;
     if (VT_SCRATCH_BYTES(13 * nb, D) > n) n = VT_SCRATCH_BYTES(13 * nb, D);
