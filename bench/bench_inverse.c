@@ -150,9 +150,13 @@ static void time_methods(timed *t, int nt, int ref, int rounds, double *median, 
     for (int k = 0; k < nt; k++) median[k] = median_of(samples[k], rounds);
 }
 
-static void set_chain_state(const vt_model *m, vt_data *d, double *qdd)
+/* the chain's reference q and q̇ (its q̈ is the drives' or the solve's) */
+static void set_chain_state(const vt_model *m, vt_data *d)
 {
-    for (int k = 0; k < m->nv; k++) vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd[k]);
+    for (int k = 0; k < m->nv; k++) {
+        double qdd;
+        vt_scene_chain_state(k, &d->q[k], &d->qd[k], &qdd);
+    }
     d->time = 0.0;
 }
 
@@ -318,8 +322,7 @@ static vt_status make_five_link(vt_model **m, int n) { (void)n; return vt_scene_
 
 static void state_chain(const vt_model *m, vt_data *d)
 {
-    double qdd[256];
-    set_chain_state(m, d, qdd);
+    set_chain_state(m, d);
 }
 static void state_double_link(const vt_model *m, vt_data *d)
 {

@@ -73,7 +73,8 @@ VT_API void vt_builder_free(vt_builder *builder);
 /// As with free(), freeing the same model twice is undefined.
 VT_API void vt_model_free(vt_model *model);
 /// A new model with the same bodies and cut joints and no drives: the model of the forward
-/// check. Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
+/// check, laid out VT_LAYOUT_FULL (a forward run integrates M*) whatever the model's layout.
+/// Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 VT_API vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
 /// Defaults: body 1, at its centre of mass, its axes; no name (a frame needs one).
@@ -155,8 +156,12 @@ VT_API vt_status vt_urdf_builder_string(vt_builder **builder, const char *xml, c
 /* ---- the data -------------------------------------------------------------------------------- */
 
 /// Allocates the data of a model (one block of vt_data_size() bytes) and lays it out with
-/// vt_data_init(). Free it with vt_data_free(). On failure *data is NULL.
-/// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
+/// vt_data_init(). Free it with vt_data_free(). On failure *data is NULL. Which arrays it holds,
+/// and so its size, is the model's layout (vt_model_def.layout): VT_LAYOUT_FULL for every entry
+/// point, O(n²) bytes; VT_LAYOUT_RECURSIVE O(n) bytes beside the constraint rows' (nc x nv), for
+/// the recursive and given-motion instants and the kinematic solve and analysis (S, R, M* and
+/// lambda_null then NULL, and Φ_q too for a model whose every rate has a joint drive of its own).
+/// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY, VT_ERR_TOO_MANY_BODIES (a size beyond size_t).
 VT_API vt_status vt_data_create(vt_data **data, const vt_model *model);
 /// The state at rest in the reference configuration: q = q0, q̇ = 0, xfrc = 0, qfrc = 0,
 /// time = 0; clears the diagnostics (route, fallback, warning, rank, rcond, residual), ida_flag
@@ -171,7 +176,8 @@ VT_API void vt_data_free(vt_data *data);
 #define VT_DATA_ALIGN 64
 /// Bytes a model's data needs in a caller-provided buffer, including up to VT_DATA_ALIGN − 1
 /// bytes of alignment slack: a buffer of this size at any address is enough (one aligned to
-/// VT_DATA_ALIGN needs VT_DATA_ALIGN − 1 bytes fewer). Fixed by the model. 0 for a NULL model.
+/// VT_DATA_ALIGN needs VT_DATA_ALIGN − 1 bytes fewer). Fixed by the model and its layout. 0 for
+/// a NULL model, or one whose data's size cannot be counted in size_t.
 VT_API size_t vt_data_size(const vt_model *model);
 /// Lays the data of a model out in `buffer` (size bytes, owned by the caller) for builds that
 /// must not allocate after start-up: the same data as vt_data_create() (zeroed, the ground at
@@ -183,7 +189,7 @@ VT_API size_t vt_data_size(const vt_model *model);
 /// model and data, the driven steps' history), as many calls however long the run, and free
 /// it at their end.
 /// Statuses: VT_ERR_NULL (data, model or buffer NULL), VT_ERR_BAD_SIZE (the buffer cannot hold
-/// the data: nothing is written to it). On failure *data is NULL (if data is not NULL).
+/// the data: nothing is written to it), VT_ERR_TOO_MANY_BODIES (its size beyond size_t). On failure *data is NULL (if data is not NULL).
 VT_API vt_status vt_data_init(vt_data **data, const vt_model *model, void *buffer, size_t size);
 
 /* ---- state helpers --------------------------------------------------------------------------- */
@@ -274,6 +280,10 @@ VT_API int vt_find_coupling(const vt_model *model, const char *name);
 VT_API int vt_builder_add_cut_joint(vt_builder *builder, const vt_cut_joint_def *def);
 
 /* ---- stages: each reads the model and fills its part of the data ------------------ */
+/* The stages below (vt_kinematics to vt_reactions), vt_inverse_dynamics(), the force transforms
+ * and vt_dynamic_analysis() need the dense arrays: on data laid out VT_LAYOUT_RECURSIVE they return
+ * VT_ERR_LAYOUT, naming the call, and write nothing else; so do vt_inverse_dynamics_recursive()
+ * and vt_inverse_dynamics_motion() for an instant that needs M* (the message says why). */
 /* The diagnostics in vt_data (route, fallback, warning, rank, rcond, residual) are those of the
  * last instant or solve: vt_solve, vt_inverse_dynamics, vt_inverse_dynamics_recursive,
  * vt_inverse_dynamics_motion, vt_kinematic_solve and the analyses clear them at their start
@@ -365,7 +375,7 @@ VT_API vt_run_options vt_default_run_options(void);
 /// Allocates a trajectory of nrow rows for the model (all arrays in one block, zeroed); a run
 /// with nout output intervals needs nrow ≥ nout + 1, one with ntout output times (tout)
 /// nrow ≥ ntout + 1 (row 0 is always t0). On failure *trajectory is NULL.
-/// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY.
+/// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY (also a size beyond size_t).
 VT_API vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
 /// Frees a trajectory; NULL does nothing. As with free(), freeing it twice is undefined.
 VT_API void vt_trajectory_free(vt_trajectory *trajectory);

@@ -5,6 +5,7 @@
  * window of the forward check, vt_run_options.check_window). */
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -81,6 +82,10 @@ vt_status vt_trajectory_create(vt_trajectory **out, const vt_model *m, int nrow)
     *out = NULL;
     if (nrow < 1) return VT_ERR_BAD_OPTION;
     vt_trajectory probe;
+    /* every array is one row's size times nrow (+ 1): countable in size_t where nrow + 1 rows'
+     * bytes, counted in double, are */
+    if ((double)layout(m, &probe, NULL, 1) * ((double)nrow + 1.0) > (double)SIZE_MAX / 4.0)
+        return VT_ERR_NO_MEMORY;
     const size_t bytes = layout(m, &probe, NULL, nrow);
     char *block = calloc(1, bytes);
     if (!block) return VT_ERR_NO_MEMORY;
