@@ -135,6 +135,71 @@ static void test_recursive_layout_same_answers(void **state)
     }
 }
 
+/* A planar two-link arm about z whose tip's x and y follow drives (the square route: as many
+ * rows as rates), and a random tree of every joint kind with a point drive at its last body
+ * (the articulated route), on the given layout */
+static vt_model *driven_tip(vt_layout layout, int tree)
+{
+    vt_model_def def = vt_default_model_def();
+    def.layout = layout;
+    vt_builder *b = NULL;
+    assert_ok(vt_builder_create(&b, &def));
+    if (tree) {
+        assert_ok(vt_scene_random_bodies(b, 11, 6, VT_SCENE_NO_BASE));
+    } else {
+        for (int i = 1; i <= 2; i++) {
+            vt_body_def link = vt_default_body_def();
+            link.parent = i - 1;
+            link.joint_parent[0] = i > 1 ? 0.25 : 0.0;
+            link.joint_child[0] = -0.25;
+            assert_true(vt_builder_add_body(b, &link) > 0);
+        }
+    }
+    for (int k = 0; k < (tree ? 1 : 2); k++) {
+        vt_drive_def dr = vt_default_drive_def();
+        dr.type = VT_DRIVE_POINT;
+        dr.body = tree ? 6 : 2;
+        dr.index = k;
+        dr.point[0] = 0.25;
+        dr.f = vt_function_sine(0.1, 0.05, 3.0, 0.0);
+        assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    }
+    return vt_test_build(b);
+}
+
+/* The square and articulated routes on the recursive layout: the full data's answers, bitwise,
+ * at a state the recursive layout's kinematic solve made consistent */
+static void test_recursive_layout_rows(void **state)
+{
+    (void)state;
+    for (int tree = 0; tree < 2; tree++) {
+        vt_model *mf = driven_tip(VT_LAYOUT_FULL, tree), *ml = driven_tip(VT_LAYOUT_RECURSIVE, tree);
+        vt_data *df = NULL, *dl = NULL;
+        assert_ok(vt_data_create(&df, mf));
+        assert_ok(vt_data_create(&dl, ml));
+        assert_true(vt_data_size(ml) < vt_data_size(mf));
+        uint64_t seed = 3;
+        vt_scene_random_state(mf, df, &seed);
+        if (!tree) df->q[0] = 0.3, df->q[1] = 1.2; /* away from the stretched arm */
+        vt_test_copy_inputs(mf, dl, df);
+        memcpy(dl->q, df->q, (size_t)mf->nq * sizeof(double));
+        df->time = dl->time = 0.2;
+        /* consistent q and q̇ by the recursive layout's kinematic solve, then the recursive
+         * instant on both */
+        assert_ok(vt_kinematic_solve(ml, dl, 1e-13, 30));
+        memcpy(df->q, dl->q, (size_t)mf->nq * sizeof(double));
+        memcpy(df->qd, dl->qd, (size_t)mf->nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_recursive(mf, df));
+        assert_ok(vt_inverse_dynamics_recursive(ml, dl));
+        assert_int_equal(dl->route, tree ? VT_ROUTE_ARTICULATED : VT_ROUTE_SQUARE);
+        same_outputs(mf, df, dl);
+        vt_data_free(df);
+        vt_data_free(dl);
+        vt_model_free(mf);
+        vt_model_free(ml);
+    }
+}
+
 /* a call refused with VT_ERR_LAYOUT, its message naming who, the state left as it was */
 static void refused(vt_status st, const vt_model *m, const vt_data *d, const double *q, const char *who)
 {
@@ -235,6 +300,7 @@ int main(void)
         cmocka_unit_test(test_create_reset_mismatch),
         cmocka_unit_test(test_recursive_layout_linear),
         cmocka_unit_test(test_recursive_layout_same_answers),
+        cmocka_unit_test(test_recursive_layout_rows),
         cmocka_unit_test(test_recursive_layout_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
