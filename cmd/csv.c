@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "message.h"
 
@@ -16,6 +17,8 @@ void table_free(table *t)
 {
     for (int c = 0; c < t->ncol; c++) free(t->name[c]);
     free(t->name);
+    free(t->order);
+    free(t->used);
     free(t->cell);
     memset(t, 0, sizeof *t);
 }
@@ -29,25 +32,71 @@ static char *trim(char *s)
     return s;
 }
 
-/* the header row s (line `line` of path) as the table's names: each named, none twice; 0 or 1 */
+/* the next cell of a header row at *p, cut in place and unquoted: a cell in double quotes may
+ * hold commas, and "" stands for one quote (RFC 4180); *p moves past the cell's comma, or to NULL
+ * after the last cell. NULL, with *p untouched, for a quote that is not closed */
+static char *next_name(char **p)
+{
+    char *s = *p;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s != '"') {
+        char *comma = strchr(s, ',');
+        if (comma) *comma = '\0';
+        *p = comma ? comma + 1 : NULL;
+        return trim(s);
+    }
+    char *w = s, *r = s + 1; /* unquoted in place: w writes, r reads */
+    for (;; r++) {
+        if (!*r) return NULL;
+        if (*r == '"') {
+            if (r[1] != '"') break;
+            r++;
+        }
+        *w++ = *r;
+    }
+    *w = '\0';
+    r++; /* past the closing quote: spaces, then a comma or the end */
+    while (*r == ' ' || *r == '\t' || *r == '\r' || *r == '\n') r++;
+    if (*r && *r != ',') return NULL;
+    *p = *r == ',' ? r + 1 : NULL;
+    return s;
+}
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(((const table_key *)a)->name, ((const table_key *)b)->name);
+}
+
+/* the header row s (line `line` of path) as the table's names: each named, none twice, indexed
+ * by name (sorted: a lookup in log ncol, the whole header in ncol log ncol); 0 or 1 */
 static int read_header(table *t, char *s, const char *path, int line)
 {
-    for (char *p = s;;) {
-        char *comma = strchr(p, ',');
-        if (comma) *comma = '\0';
-        char **nn = realloc(t->name, (size_t)(t->ncol + 1) * sizeof *nn);
-        if (!nn) return cmd_fail("out of memory");
-        t->name = nn;
-        t->name[t->ncol] = strdup(trim(p));
-        if (!t->name[t->ncol]) return cmd_fail("out of memory");
+    int cap = 0;
+    for (char *p = s; p;) {
+        char *nm = next_name(&p);
+        if (!nm) return cmd_fail("%s:%d: column %d: a quote not closed", path, line, t->ncol + 1);
+        if (!nm[0]) return cmd_fail("%s:%d: column %d has no name", path, line, t->ncol + 1);
+        if (t->ncol == cap) {
+            cap = cap ? 2 * cap : 64;
+            char **nn = realloc(t->name, (size_t)cap * sizeof *nn);
+            if (!nn) return cmd_fail("out of memory");
+            t->name = nn;
+        }
+        if (!(t->name[t->ncol] = strdup(nm))) return cmd_fail("out of memory");
         t->ncol++;
-        const char *nm = t->name[t->ncol - 1];
-        if (!nm[0]) return cmd_fail("%s:%d: column %d has no name", path, line, t->ncol);
-        for (int c = 0; c + 1 < t->ncol; c++)
-            if (strcmp(t->name[c], nm) == 0) return cmd_fail("%s:%d: column '%s' twice", path, line, nm);
-        if (!comma) return 0;
-        p = comma + 1;
     }
+    t->order = malloc((size_t)t->ncol * sizeof *t->order);
+    t->used = calloc((size_t)t->ncol, 1);
+    if (!t->order || !t->used) return cmd_fail("out of memory");
+    for (int c = 0; c < t->ncol; c++) t->order[c] = (table_key){t->name[c], c};
+    qsort(t->order, (size_t)t->ncol, sizeof *t->order, by_name);
+    for (int k = 1; k < t->ncol; k++) {
+        const table_key *a = &t->order[k - 1], *b = &t->order[k];
+        if (strcmp(a->name, b->name) == 0)
+            return cmd_fail("%s:%d: column '%s' twice (columns %d and %d)", path, line, b->name,
+                            (a->col < b->col ? a->col : b->col) + 1, (a->col < b->col ? b->col : a->col) + 1);
+    }
+    return 0;
 }
 
 /* the data row s (line `line` of path) appended to the table: one finite number per column,
@@ -67,6 +116,11 @@ static int read_row(table *t, char *s, const char *path, int line, int *cap_rows
         if (comma) *comma = '\0';
         if (c >= t->ncol) return cmd_fail("%s:%d: more cells than the %d columns of the header", path, line, t->ncol);
         char *cell = trim(p), *end = NULL;
+        const size_t len = strlen(cell);
+        if (len >= 2 && cell[0] == '"' && cell[len - 1] == '"') { /* a quoted number */
+            cell[len - 1] = '\0';
+            cell++;
+        }
         errno = 0;
         out[c] = strtod(cell, &end);
         if (!*cell || *end || (errno == ERANGE && fabs(out[c]) == HUGE_VAL) || !isfinite(out[c]))
@@ -123,6 +177,7 @@ static int read_lines(table *t, FILE *f, const char *path)
         if (line == 1 && (unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF)
             s = trim(s + 3); /* a UTF-8 byte-order mark */
         if (!*s) continue;   /* blank lines */
+        if (!t->ncol) t->header_line = line;
         status = t->ncol ? read_row(t, s, path, line, &cap_rows) : read_header(t, s, path, line);
     }
     free(text);
@@ -155,17 +210,39 @@ int table_read(table *t, const char *path)
 
 int table_column(const table *t, const char *name)
 {
-    for (int c = 0; c < t->ncol; c++)
-        if (strcmp(t->name[c], name) == 0) return c;
+    int lo = 0, hi = t->ncol - 1;
+    while (lo <= hi) {
+        const int mid = lo + (hi - lo) / 2, c = t->order[mid].col, cmp = strcmp(name, t->order[mid].name);
+        if (cmp == 0) {
+            t->used[c] = 1;
+            return c;
+        }
+        if (cmp < 0) hi = mid - 1;
+        else lo = mid + 1;
+    }
     return -1;
 }
 
-int output_open(output *o, const char *path)
+int output_open(output *o, const char *path, const char *const *inputs, int ninputs)
 {
     o->f = stdout;
     o->path = path;
     o->tmp = NULL;
     if (!path) return 0;
+    /* a new path, or a regular file that is none of the inputs (under any of its names): a device,
+     * a pipe or a directory would be replaced by a regular file, an input by the results */
+    struct stat so, si;
+    if (stat(path, &so) == 0) {
+        if (!S_ISREG(so.st_mode))
+            return cmd_fail("%s: not a regular file: -o writes a new file or replaces a regular one (without -o the "
+                            "results go to standard output)",
+                            path);
+        for (int k = 0; k < ninputs; k++)
+            if (stat(inputs[k], &si) == 0 && si.st_dev == so.st_dev && si.st_ino == so.st_ino)
+                return cmd_fail("%s: is the input %s: -o would replace it with the results", path, inputs[k]);
+    } else if (errno != ENOENT) {
+        return cmd_fail("%s: %s", path, strerror(errno));
+    }
     char *tmp = malloc(strlen(path) + 8);
     if (!tmp) return cmd_fail("out of memory");
     sprintf(tmp, "%s.part", path);

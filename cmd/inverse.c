@@ -74,7 +74,8 @@ static void run_free(run *x)
 static int load_robot(run *x, int floating)
 {
     if (cmd_load_urdf(&x->b, x->urdf, floating)) return 1;
-    if (vt_builder_build(&x->probe, x->b)) return cmd_fail("%s: %s", x->urdf, vt_builder_message(x->b));
+    const vt_status st = vt_builder_build(&x->probe, x->b);
+    if (st) return cmd_fail("%s: %s%s", x->urdf, vt_builder_message(x->b), cmd_empty_hint(st, floating));
     x->jc = calloc((size_t)x->probe->nbody, sizeof *x->jc);
     x->effort = calloc(6 * ((size_t)x->probe->nbody + 1), sizeof *x->effort);
     if (!x->jc || !x->effort) return cmd_fail("out of memory");
@@ -150,14 +151,55 @@ static int map_floating_roots(run *x)
             char key[VT_NAME_MAX + 8];
             snprintf(key, sizeof key, "%s_%s", name, free_suffix[k]);
             if ((j->fcol[k] = table_column(&x->t, key)) < 0)
-                return cmd_fail("%s: no column '%s' (floating root %s: %s_x ... %s_alz, see --help)", x->states, key,
-                                name, name, name);
+                return cmd_fail("%s: no column '%s' (floating root %s: %s_x ... %s_alz, see --help%s)", x->states,
+                                key, name, name, name,
+                                p->body_joint[i] == VT_JOINT_FREE && p->joint_name[VT_NAME_MAX * i] == '\0'
+                                    ? "; without --floating the root link is fixed to the world"
+                                    : "");
         }
     }
     if (x->form == FORM_SAMPLES && x->ct < 0)
         return cmd_fail("%s: positions without velocities and accelerations are samples of a trajectory: a column "
                         "'t' is needed",
                         x->states);
+    return 0;
+}
+
+/* the suffix of a floating root's input column that name ends with after its '_', or NULL */
+static const char *free_column_suffix(const char *name)
+{
+    const char *us = strrchr(name, '_');
+    if (!us) return NULL;
+    for (int k = 0; k < NFREE; k++)
+        if (strcmp(us + 1, free_suffix[k]) == 0) return us + 1;
+    return NULL;
+}
+
+/* every input column is one of the robot's (nothing ignored): an unknown column stops the run,
+ * named, with the way out where it is a floating root's on a robot loaded fixed; 0 or 1 */
+static int check_columns(const run *x, int floating)
+{
+    const vt_model *p = x->probe;
+    for (int c = 0; c < x->t.ncol; c++) {
+        if (x->t.used[c]) continue;
+        const char *name = x->t.name[c], *sfx = free_column_suffix(name);
+        if (!floating && sfx) { /* P_x ... with P a link fixed to the world: the root, floating in the file */
+            char root[VT_NAME_MAX];
+            const size_t len = (size_t)(sfx - 1 - name);
+            if (len < sizeof root) {
+                memcpy(root, name, len);
+                root[len] = '\0';
+                const int f = vt_find_frame(p, root);
+                if (f >= 0 && p->frame_body[f] == 0)
+                    return cmd_fail("%s:%d: column %d '%s': a floating root's column, but %s is loaded with its root "
+                                    "link '%s' fixed to the world: run with --floating",
+                                    x->states, x->t.header_line, c + 1, name, x->urdf, root);
+            }
+        }
+        return cmd_fail("%s:%d: column %d '%s' is none of the robot's (%s): every column must be t, a moving joint J's "
+                        "J, J_vel or J_acc, or a floating root R's R_x ... R_alz (vtdyn info lists the joints)",
+                        x->states, x->t.header_line, c + 1, name, x->urdf);
+    }
     return 0;
 }
 
@@ -328,29 +370,36 @@ static int solve_row(run *x, int r)
     return 0;
 }
 
-/* "row R of N" on standard error when it is a terminal and the file long, at most twice a second;
- * *last is the time of the previous line */
-static void progress(int row, int nrow, double *last)
+/* "row R of N, rows per second, time left" on standard error when it is a terminal and the file
+ * long, refreshed at most twice a second (and at the last row); *start is the time of the first
+ * row, *last that of the previous line (0 before the first) */
+static void progress(int row, int nrow, double *start, double *last)
 {
     if (!isatty(2) || nrow < 2000) return;
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     const double now = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    if (*last == 0.0) *start = *last = now;
     if (now - *last < 0.5 && row + 1 < nrow) return;
     *last = now;
-    fprintf(stderr, "\rvtdyn: row %d of %d", row + 1, nrow);
+    const double rate = now > *start ? (double)(row + 1) / (now - *start) : 0.0;
+    if (rate > 0.0)
+        fprintf(stderr, "\rvtdyn: row %d of %d, %.0f rows/s, %.0f s left ", row + 1, nrow, rate,
+                (double)(nrow - row - 1) / rate);
+    else
+        fprintf(stderr, "\rvtdyn: row %d of %d", row + 1, nrow);
     if (row + 1 == nrow) fputc('\n', stderr);
 }
 
 /* the header, then each row solved and written; 0, or 1 at the first row that fails */
 static int write_rows(run *x, FILE *out)
 {
-    double last = 0.0;
+    double start = 0.0, last = 0.0;
     write_header(out, x);
     for (int r = 0; r < x->t.nrow; r++) {
         if (solve_row(x, r)) return 1;
         write_row(out, x, table_row(&x->t, r));
-        progress(r, x->t.nrow, &last);
+        progress(r, x->t.nrow, &start, &last);
     }
     return 0;
 }
@@ -360,10 +409,13 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, int f
     /* Newton's tolerance and iteration limit for the samples: the library's defaults (1e-12, 30) */
     run x = {.urdf = urdf, .states = states, .form = FORM_UNKNOWN, .opt = vt_default_run_options()};
     int status = table_read(&x.t, states);
-    if (!status) status = load_robot(&x, floating) || map_joints(&x) || map_floating_roots(&x) || build_model(&x);
+    if (!status)
+        status = load_robot(&x, floating) || map_joints(&x) || map_floating_roots(&x) || check_columns(&x, floating) ||
+                 build_model(&x);
     if (!status) {
         output out;
-        status = output_open(&out, outpath);
+        const char *inputs[2] = {urdf, states};
+        status = output_open(&out, outpath, inputs, 2);
         if (!status) status = output_close(&out, !write_rows(&x, out.f));
     }
     run_free(&x);

@@ -21,3 +21,10 @@ const char *cmd_joint_kind(int jt)
                                                            "prismatic", "cylindrical", "floating"};
     return jt >= 0 && jt < VT_JOINT_TYPE_COUNT ? kinds[jt] : "?";
 }
+
+const char *cmd_empty_hint(vt_status st, int floating)
+{
+    return st == VT_ERR_EMPTY_MODEL && !floating
+               ? " (every link is fixed to the world; with --floating the root link floats)"
+               : "";
+}

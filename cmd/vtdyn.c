@@ -2,6 +2,7 @@
  *
  *   vtdyn info [--floating] MODEL.urdf
  *   vtdyn inverse [--floating] MODEL.urdf STATES.csv [-o OUT.csv]
+ *   vtdyn --version
  *
  * `inverse` reads one row per instant. With the columns J, J_vel and J_acc for every moving
  * joint J (and `t` optionally) each row is a state: vt_inverse_dynamics_motion() gives every
@@ -18,8 +19,10 @@
  * (R_x … R_alz, R the joint's name, or the root link's when the joint is implicit) and gives
  * the six efforts of its rates: the wrench the world would have to apply at the link frame's
  * origin, `R_effort_fx … R_effort_nz` in world axes and `…_link` in the link's axes.
- * Errors name the file, the row and the column, and exit 1; an output file is written beside
- * its name and renamed when complete, so a failed run leaves no partial file under that name.
+ * Every input column must be one of these (an unknown one stops the run, named), and -o must
+ * name a new path or a regular file that is no input. Errors name the file, the row and the
+ * column, and exit 1; an output file is written beside its name and renamed when complete, so a
+ * failed run leaves no partial file under that name.
  *
  * This file: the usage, `info` and main. `inverse` is cmd/inverse.c; the CSV table read and the
  * output written beside its name, cmd/csv.c; the URDF loaded, cmd/robot.c; the messages,
@@ -37,6 +40,7 @@
 static const char usage[] =
     "usage: vtdyn info [--floating] MODEL.urdf\n"
     "       vtdyn inverse [--floating] MODEL.urdf STATES.csv [-o OUT.csv]\n"
+    "       vtdyn --version | --help\n"
     "\n"
     "--floating  the robot's root link (one no joint attaches to the world) floats: a free joint\n"
     "            from the world, with the columns below; without it the root is fixed to the world.\n"
@@ -87,7 +91,7 @@ static int info(const char *path, int floating)
     if (cmd_load_urdf(&b, path, floating)) return 1;
     const vt_status st = vt_builder_build(&m, b);
     if (st) {
-        cmd_fail("%s: %s", path, vt_builder_message(b));
+        cmd_fail("%s: %s%s", path, vt_builder_message(b), cmd_empty_hint(st, floating));
         vt_builder_free(b);
         return 1;
     }
@@ -125,6 +129,10 @@ static int info(const char *path, int floating)
 
 int main(int argc, char **argv)
 {
+    if (argc == 2 && strcmp(argv[1], "--version") == 0) {
+        printf("vtdyn %s\n", vt_version());
+        return 0;
+    }
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
         fputs(usage, stdout);
         return 0;

@@ -226,6 +226,80 @@ def floating(vtdyn, work, check):
           "--help documents the floating root's columns")
 
 
+def strict(vtdyn, urdf, states, work, check):
+    """Nothing ignored, nothing overwritten: an unknown column (a typo), a floating root's columns
+    on a robot loaded fixed, a column twice (in a header of 110,000 names) each stop the run naming
+    the file, the header's line and the column; -o naming an input (under its own or another name),
+    a directory or a device is refused and leaves it as it was; a quoted header reads as the plain
+    one; --version; a one-link robot loaded fixed says how to float it"""
+    lines = open(states).read().splitlines()
+    bad = os.path.join(work, "strict.csv")
+
+    def write(header, rows=lines[1:3]):
+        with open(bad, "w") as f:
+            f.write(header + "\n" + "\n".join(rows) + "\n")
+
+    write(lines[0].replace("joint2_acc", "joint2_acc,joint3_vel"), [r + ",0" for r in lines[1:3]])
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "strict.csv:1: column 8 'joint3_vel' is none of the robot's" in r.stderr
+          and r.stdout == "", "an unknown column stops the run, named: %r" % r.stderr)
+    write(lines[0].replace("joint2_vel", "joint2_vell"))
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "joint2" in r.stderr and r.stdout == "", "a misspelt column stops the run: %r" % r.stderr)
+    # the double link on a root link "base" (not "world": fixed to the world unless --floating),
+    # its columns given as a floating root's
+    based = os.path.join(work, "double_link_base.urdf")
+    with open(based, "w") as f:
+        f.write(open(urdf).read().replace('"world"', '"base"'))
+    root = ",".join("base_" + c for c in "x y z qw qx qy qz vx vy vz wx wy wz ax ay az alx aly alz".split())
+    write(lines[0] + "," + root, [r + "," + ",".join(["0"] * 3 + ["1"] + ["0"] * 15) for r in lines[1:3]])
+    r = run(vtdyn, "inverse", based, bad)
+    check(r.returncode == 1 and "'base_x'" in r.stderr and "run with --floating" in r.stderr,
+          "a floating root's columns on a fixed robot say --floating: %r" % r.stderr)
+    r = run(vtdyn, "inverse", "--floating", based, states)
+    check(r.returncode == 1 and "'base_x'" in r.stderr and "without --floating" in r.stderr,
+          "--floating without the root's columns says the way back: %r" % r.stderr)
+    # a header of 110,000 names with one twice, far apart
+    names = ["c%d" % k for k in range(110000)]
+    names[109999] = "c17"
+    write(",".join(names), [",".join(["0"] * 110000)])
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "column 'c17' twice (columns 18 and 110000)" in r.stderr,
+          "a name twice in a wide header: %r" % r.stderr[:300])
+    # quoted names (RFC 4180, one with a comma inside, unknown) and quoted numbers
+    quoted = ",".join('"%s"' % n for n in lines[0].split(","))
+    write(quoted, [",".join('"%s"' % c if k % 2 else c for k, c in enumerate(row.split(","))) for row in lines[1:3]])
+    r = run(vtdyn, "inverse", urdf, bad)
+    plain = run(vtdyn, "inverse", urdf, states)
+    check(r.returncode == 0 and r.stdout.splitlines() == plain.stdout.splitlines()[:3],
+          "a quoted header and quoted numbers read as plain ones: %r" % r.stderr)
+    write(quoted + ',"a ""b"", c"', [row + ",0" for row in lines[1:3]])
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "column 8 'a \"b\", c'" in r.stderr, "a quoted name unquoted in the message: %r" % r.stderr)
+    write(quoted + ',"open')
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "column 8: a quote not closed" in r.stderr, "an open quote named: %r" % r.stderr)
+    # -o: an input (the states, the URDF, a hard link to the states), a directory, a device
+    before = {p: open(p, "rb").read() for p in (states, urdf)}
+    link = os.path.join(work, "states_link.csv")
+    if os.path.exists(link):
+        os.remove(link)
+    os.link(states, link)
+    for target, what in ((states, "is the input"), (urdf, "is the input"), (link, "is the input"),
+                         (work, "not a regular file"), ("/dev/null", "not a regular file")):
+        r = run(vtdyn, "inverse", urdf, states, "-o", target)
+        check(r.returncode == 1 and what in r.stderr, "-o %s refused: %r" % (target, r.stderr))
+    check(all(open(p, "rb").read() == b for p, b in before.items()), "the inputs untouched by a refused -o")
+    check(os.path.exists("/dev/null") and not os.path.isfile("/dev/null"), "/dev/null still a device")
+    os.remove(link)
+    r = run(vtdyn, "--version")
+    check(r.returncode == 0 and r.stdout.startswith("vtdyn ") and r.stdout.count(".") == 2, "--version: %r" % r.stdout)
+    floater_urdf(os.path.join(work, "one_link.urdf"), 0)
+    r = run(vtdyn, "info", os.path.join(work, "one_link.urdf"))
+    check(r.returncode == 1 and "with --floating the root link floats" in r.stderr,
+          "a one-link robot loaded fixed says how to float it: %r" % r.stderr)
+
+
 def main():
     vtdyn, urdf_dir, work = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(work, exist_ok=True)
@@ -356,6 +430,7 @@ def main():
     r = run(vtdyn, "info", "/dev/zero")
     check(r.returncode == 1 and "/dev/zero" in r.stderr and "VT_URDF_MAX_BYTES" in r.stderr,
           "/dev/zero as the URDF is refused at the bound: %r" % r.stderr[:300])
+    strict(vtdyn, urdf, states, work, check)
     r = run(vtdyn, "--help")
     check(r.returncode == 0 and "J_effort" in r.stdout, "--help documents the columns")
     r = run(vtdyn, "info", urdf)
