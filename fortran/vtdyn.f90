@@ -52,7 +52,8 @@ module vtdyn
       VT_ERR_SINGULAR = -21, VT_ERR_DEPENDENT_CONSTRAINTS = -22, VT_ERR_NEWTON = -23, &
       VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
       VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30, &
-      VT_ERR_FILE = -31, VT_ERR_XML = -32, VT_ERR_LAYOUT = -33
+      VT_ERR_FILE = -31, VT_ERR_XML = -32, VT_ERR_LAYOUT = -33, &
+      VT_ERR_SKIPPED = -34
   integer(c_int), parameter :: VT_LAYOUT_FULL = 0, VT_LAYOUT_RECURSIVE = 1
   integer(c_int), parameter :: VT_NAME_MAX = 64
   integer(c_int), parameter :: VT_MESSAGE_SIZE = 256

@@ -442,6 +442,35 @@ VT_API vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const
                               vt_trajectory *trajectory);
 #endif
 
+/* ---- batches: many states on threads -------------------------------------------------------- */
+
+/// Defaults: threads 0 (every CPU the process may run on), stop_on_error 0.
+VT_API vt_batch_def vt_default_batch_def(void);
+/// A batch of the model (which must outlive it) with the def's threads (NULL: the defaults): one
+/// data per thread, made here once, so that a call allocates nothing per row. Statuses: VT_ERR_NULL,
+/// VT_ERR_BAD_OPTION (threads < 0, stop_on_error not 0 or 1), VT_ERR_NO_MEMORY, and those of
+/// vt_data_create(). On failure *batch is NULL.
+VT_API vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batch_def *def);
+/// Frees the batch and its data (NULL is allowed).
+VT_API void vt_batch_free(vt_batch *batch);
+/// The threads a call uses (the def's, or the CPUs counted when it asked for 0).
+VT_API int vt_batch_threads(const vt_batch *batch);
+/// vt_inverse_dynamics_motion() on every row of io (vt_batch_io: the layout), the rows shared among
+/// the batch's threads in contiguous blocks (threads created for the call and joined before it
+/// returns; no allocation per row). Each row is solved from its own inputs alone (the data's applied
+/// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
+/// whatever the number of threads. A failing row's outputs are not written; its status goes to
+/// io->status, and the other rows are solved (unless stop_on_error). Returns VT_OK when every row
+/// succeeded, else the status of the failing row of lowest index (vt_batch_failed_row(), its
+/// message vt_batch_message()). Before any row: VT_ERR_NULL (batch, io, q, qd or qdd NULL with
+/// rows), VT_ERR_BAD_SIZE (nrow < 0, a stride below its row's length), nothing written.
+VT_API vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *io);
+/// The failing row of lowest index of the last call, or −1 when every row succeeded.
+VT_API int vt_batch_failed_row(const vt_batch *batch);
+/// The last call's message: "row R: ..." for its failing row of lowest index, or what the call
+/// refused before any row; "" after a success (never NULL).
+VT_API const char *vt_batch_message(const vt_batch *batch);
+
 /* ---- force transforms ---------------------------------------------------------------- */
 
 /// Eq (7): the Cartesian force on a body with Euler parameters p of a force f and moment n

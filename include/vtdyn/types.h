@@ -68,9 +68,11 @@ typedef enum vt_status {
     VT_ERR_FILE = -31,                 ///< a file cannot be opened or read (the message names it and why)
     VT_ERR_XML = -32,                  ///< malformed XML, or not the document expected (no <robot>); the
                                        ///< message gives the parser's reason and the line
-    VT_ERR_LAYOUT = -33                ///< the data does not hold what the call needs: a dense stage, or an
+    VT_ERR_LAYOUT = -33,               ///< the data does not hold what the call needs: a dense stage, or an
                                        ///< instant that needs M*, on data laid out VT_LAYOUT_RECURSIVE
                                        ///< (the message says what needed it; vt_model_def.layout)
+    VT_ERR_SKIPPED = -34               ///< a batch row not solved: the batch stopped at a failing row
+                                       ///< (vt_batch_def.stop_on_error)
 } vt_status;
 
 /// Names of bodies, joints, drives, cut joints and frames: at most VT_NAME_MAX − 1 bytes, unique
@@ -691,6 +693,44 @@ typedef struct vt_run_options {
 
 /// Default of vt_run_options.check_window, s.
 #define VT_CHECK_WINDOW 5.0
+
+/// Options of a batch (vt_batch_create). Fill from vt_default_batch_def().
+typedef struct vt_batch_def {
+    int threads;       ///< threads of each call, the caller's own counted: 0 = every CPU the process may
+                       ///< run on (default), else 1 or more (1: the caller's thread alone, none created)
+    int stop_on_error; ///< 0 (default): a failing row is reported and every other row solved; 1: the call
+                       ///< stops at a failure, the rows it did not solve reported VT_ERR_SKIPPED (with
+                       ///< more than one thread, which ones depends on the threads' timing)
+} vt_batch_def;
+
+/// Many states in and their results out (vt_batch_inverse_dynamics_motion). Row r of an array X
+/// starts at X + r X_stride, in doubles (X_stride 0: the row's own length, rows packed; else at
+/// least that length, so a row may sit in a wider table). The inputs q, qd, qdd are required; the
+/// optional input qfrc and every output may be NULL (not read, not written).
+typedef struct vt_batch_io {
+    int nrow;                       ///< rows (states), ≥ 0
+    const double *q; size_t q_stride;       ///< nq coordinates a row, as vt_data.q (Euler parameters unit)
+    const double *qd; size_t qd_stride;     ///< nv rates a row, as vt_data.qd
+    const double *qdd; size_t qdd_stride;   ///< nv accelerations a row, as vt_data.qdd (with loops or
+                                            ///< couplings the jointly driven rates' are read, as
+                                            ///< vt_inverse_dynamics_motion() reads them)
+    const double *qfrc; size_t qfrc_stride; ///< nv applied generalized forces a row, as vt_data.qfrc (NULL: 0)
+    double *effort; size_t effort_stride;   ///< nv a row: every rate's generalized force vt_data.qfrc_drive
+    double *drive_effort; size_t drive_effort_stride; ///< ndrive a row: vt_data.drive_effort (with loops)
+    double *qdd_out; size_t qdd_out_stride; ///< nv a row: q̈ of every rate (with loops the dependent ones solved)
+    double *reaction; size_t reaction_stride;           ///< 6 nbody a row: body i's joint reaction at
+                                            ///< 6 (i − 1): force (N) then moment (N·m, about the joint
+                                            ///< point), global axes (vt_data.jnt_force, jnt_moment)
+    double *reaction_body; size_t reaction_body_stride; ///< the same in the body's axes (jnt_force_body, ...)
+    double *total; size_t total_stride;     ///< 6 nbody a row: each joint's total wrench, reaction plus
+                                            ///< actuation, global (jnt_force_total, jnt_moment_total)
+    double *total_body; size_t total_body_stride;       ///< the same in the body's axes
+    int *status;                            ///< nrow: each row's vt_status (VT_OK, the row's failure, or
+                                            ///< VT_ERR_SKIPPED)
+} vt_batch_io;
+
+/// A batch: one data per thread for many states of one model (vt_batch_create).
+typedef struct vt_batch vt_batch;
 
 /// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
 /// Every array is column-major with one column per row (output time).

@@ -213,28 +213,28 @@ static vt_status block_residual(const vt_dae *p, const vt_model *m, vt_data *d, 
     if (ggl && nc > 0) { /* T (v + Φ_q^T μ) */
         double *w = p->w;
         memcpy(w, y + nq, (size_t)nv * sizeof(double));
-        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, 1.0, d->Phiq, nc, lam + nc, 1, 1.0, w, 1);
+        vt_dgemv('T', nc, nv, 1.0, d->Phiq, nc, lam + nc, 1, 1.0, w, 1);
         qdot_from_v(m, y, w, rq);
     } else {
         qdot_from_v(m, y, y + nq, rq);
     }
     for (int k = 0; k < nq; k++) rq[k] = qp[k] - rq[k];
-    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, vp, 1, 0.0, rv, 1);
+    vt_dgemv('N', nv, nv, 1.0, d->Mstar, nv, vp, 1, 0.0, rv, 1);
     for (int k = 0; k < nv; k++) rv[k] -= d->Q[k];
     if (nc > 0) {
-        cblas_dgemv(CblasColMajor, CblasTrans, nc, nv, -1.0, d->Phiq, nc, lam, 1, 1.0, rv, 1);
+        vt_dgemv('T', nc, nv, -1.0, d->Phiq, nc, lam, 1, 1.0, rv, 1);
         if (ggl) {
             double *rm = rl + nc;
             memcpy(rl, d->Phi, (size_t)nc * sizeof(double));
             memcpy(rm, d->Phit, (size_t)nc * sizeof(double));
-            cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, y + nq, 1, 1.0, rm, 1);
+            vt_dgemv('N', nc, nv, 1.0, d->Phiq, nc, y + nq, 1, 1.0, rm, 1);
         } else {
-            cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, vp, 1, 0.0, rl, 1);
+            vt_dgemv('N', nc, nv, 1.0, d->Phiq, nc, vp, 1, 0.0, rl, 1);
             for (int k = 0; k < nc; k++) rl[k] -= d->gamma[k];
             if (p->form == VT_FORMULATION_BAUMGARTE) {
                 const double a2 = 2.0 * p->alpha, b2 = p->beta * p->beta;
                 for (int k = 0; k < nc; k++) rl[k] += a2 * d->Phit[k] + b2 * d->Phi[k];
-                cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, a2, d->Phiq, nc, y + nq, 1, 1.0, rl, 1);
+                vt_dgemv('N', nc, nv, a2, d->Phiq, nc, y + nq, 1, 1.0, rl, 1);
             }
         }
     }

@@ -1,10 +1,51 @@
-/* vtdyn — LAPACK's Fortran entry points that vtdyn calls, and CBLAS. The trailing size_t are the hidden
- * lengths of the character arguments, as gfortran passes them. */
+/* vtdyn — LAPACK's and BLAS's Fortran entry points that vtdyn calls. The trailing size_t are the
+ * hidden lengths of the character arguments, as gfortran passes them. BLAS is called through its
+ * Fortran entry points, not CBLAS: the reference CBLAS writes process-wide variables
+ * (RowMajorStrg, CBLAS_CallFromC) at every call, a data race between threads that call it (the
+ * batches' threads); the Fortran routines keep no state. */
 #ifndef VT_BASE_LAPACK_H
 #define VT_BASE_LAPACK_H
 
 #include <stddef.h>
-#include <cblas.h>
+
+void dgemv_(const char *trans, const int *m, const int *n, const double *alpha, const double *a, const int *lda,
+            const double *x, const int *incx, const double *beta, double *y, const int *incy, size_t ltrans);
+void dgemm_(const char *transa, const char *transb, const int *m, const int *n, const int *k, const double *alpha,
+            const double *a, const int *lda, const double *b, const int *ldb, const double *beta, double *c,
+            const int *ldc, size_t la, size_t lb);
+void dtrsm_(const char *side, const char *uplo, const char *transa, const char *diag, const int *m, const int *n,
+            const double *alpha, const double *a, const int *lda, double *b, const int *ldb, size_t l1, size_t l2,
+            size_t l3, size_t l4);
+void dtrsv_(const char *uplo, const char *trans, const char *diag, const int *n, const double *a, const int *lda,
+            double *x, const int *incx, size_t l1, size_t l2, size_t l3);
+void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k, const double *alpha, const double *a,
+            const int *lda, const double *beta, double *c, const int *ldc, size_t l1, size_t l2);
+
+/* the BLAS calls by value, column-major, the options as LAPACK's letters ('N', 'T', 'L', ...) */
+static inline void vt_dgemv(char trans, int m, int n, double alpha, const double *a, int lda, const double *x, int incx,
+                            double beta, double *y, int incy)
+{
+    dgemv_(&trans, &m, &n, &alpha, a, &lda, x, &incx, &beta, y, &incy, 1);
+}
+static inline void vt_dgemm(char ta, char tb, int m, int n, int k, double alpha, const double *a, int lda,
+                            const double *b, int ldb, double beta, double *c, int ldc)
+{
+    dgemm_(&ta, &tb, &m, &n, &k, &alpha, a, &lda, b, &ldb, &beta, c, &ldc, 1, 1);
+}
+static inline void vt_dtrsm(char side, char uplo, char ta, char diag, int m, int n, double alpha, const double *a,
+                            int lda, double *b, int ldb)
+{
+    dtrsm_(&side, &uplo, &ta, &diag, &m, &n, &alpha, a, &lda, b, &ldb, 1, 1, 1, 1);
+}
+static inline void vt_dtrsv(char uplo, char trans, char diag, int n, const double *a, int lda, double *x, int incx)
+{
+    dtrsv_(&uplo, &trans, &diag, &n, a, &lda, x, &incx, 1, 1, 1);
+}
+static inline void vt_dsyrk(char uplo, char trans, int n, int k, double alpha, const double *a, int lda, double beta,
+                            double *c, int ldc)
+{
+    dsyrk_(&uplo, &trans, &n, &k, &alpha, a, &lda, &beta, c, &ldc, 1, 1);
+}
 
 
 void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,

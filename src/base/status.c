@@ -43,6 +43,7 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_FILE: return "file cannot be opened or read";
     case VT_ERR_XML: return "malformed XML or not the expected document";
     case VT_ERR_LAYOUT: return "the data does not hold what the call needs (layout)";
+    case VT_ERR_SKIPPED: return "not solved: the batch stopped at a failing row";
     }
     return "unknown status";
 }

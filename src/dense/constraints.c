@@ -307,7 +307,7 @@ static void phiq_row(const vt_model *m, vt_data *d, int r, vt_form form, double 
         if (form == VT_FORM_DENSE) {
             double *row = Si + 7 * m->maxpath;
             vt_gather_S(Si, m, d, b);
-            cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
+            vt_dgemv('T', 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
             for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
         } else {
             double E[12], col[7];

@@ -52,7 +52,7 @@ static vt_status apply_St(double *Q, const vt_model *m, vt_data *d, const double
         const int k = m->body_pathnum[i];
         const int *path = m->path_dof + m->body_pathadr[i];
         vt_gather_S(Si, m, d, i);
-        cblas_dgemv(CblasColMajor, CblasTrans, 7, k, 1.0, Si, 7, G + vt_xoff(i), 1, 0.0, Qk, 1);
+        vt_dgemv('T', 7, k, 1.0, Si, 7, G + vt_xoff(i), 1, 0.0, Qk, 1);
         for (int c = 0; c < k; c++) Q[path[c]] += Qk[c];
     }
     vt_scratch_release(d, mark);

@@ -49,8 +49,8 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
         vt_gather_S(Si, m, d, i);
         for (int c = 0; c < k; c++)
             for (int r = 0; r < 3; r++) W[r + 7 * c] = mass * Si[r + 7 * c];
-        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, 4, k, 4, 1.0, Mp, 4, Si + 3, 7, 0.0, W + 3, 7);
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, k, k, 7, 1.0, Si, 7, W, 7, 0.0, C, k);
+        vt_dgemm('N', 'N', 4, k, 4, 1.0, Mp, 4, Si + 3, 7, 0.0, W + 3, 7);
+        vt_dgemm('T', 'N', k, k, 7, 1.0, Si, 7, W, 7, 0.0, C, k);
         for (int b = 0; b < k; b++)
             for (int a = 0; a < k; a++) d->Mstar[path[a] + (size_t)path[b] * (size_t)nv] += C[a + k * b];
     }

@@ -93,7 +93,7 @@ vt_status vt_augmented_solve(const vt_model *m, vt_data *d, double *b, double *r
      * factors */
     if (inverse) {
         memcpy(t, b, (size_t)N * sizeof(double));
-        cblas_dgemv(CblasColMajor, CblasNoTrans, N, N, 1.0, X, N, t, 1, 0.0, b, 1);
+        vt_dgemv('N', N, N, 1.0, X, N, t, 1, 0.0, b, 1);
     } else {
         dsytrs_3_("L", &N, &one, K, &N, E, ipiv, b, &N, &info, 1);
         if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsytrs_3 info %d", info);
@@ -103,7 +103,7 @@ vt_status vt_augmented_solve(const vt_model *m, vt_data *d, double *b, double *r
      * themselves, the correction from the same factors): the symmetric scaling balances the
      * matrix only as far as its diagonal and its rows' norms show */
     memcpy(res, d->Q, (size_t)nv * sizeof(double));
-    cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
+    vt_dgemv('N', nv, nv, -1.0, d->Mstar, nv, b, 1, 1.0, res, 1);
     for (int r = 0; r < nr; r++) {
         double v = d->gamma[r];
         for (int c = 0; c < nv; c++) {
@@ -115,7 +115,7 @@ vt_status vt_augmented_solve(const vt_model *m, vt_data *d, double *b, double *r
 #undef PHI
     for (int k = 0; k < N; k++) res[k] *= s[k];
     if (inverse) {
-        cblas_dgemv(CblasColMajor, CblasNoTrans, N, N, 1.0, X, N, res, 1, 0.0, t, 1);
+        vt_dgemv('N', N, N, 1.0, X, N, res, 1, 0.0, t, 1);
         memcpy(res, t, (size_t)N * sizeof(double));
     } else {
         dsytrs_3_("L", &N, &one, K, &N, E, ipiv, res, &N, &info, 1);
@@ -169,7 +169,7 @@ vt_status vt_redundant_solve(const vt_model *m, vt_data *d, const vt_rows_svd *o
         for (int r = 0; r < nc; r++)
             P[r + (size_t)a * snc] = o->flag[r] ? 0.0 : g[r] * (a < nv ? d->Phiq[r + (size_t)a * snc] : d->gamma[r]);
     if (nd > 0)
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nd, nv + 1, nc, 1.0, U + (size_t)nr * snc, nc, P, nc, 0.0,
+        vt_dgemm('T', 'N', nd, nv + 1, nc, 1.0, U + (size_t)nr * snc, nc, P, nc, 0.0,
                     W, nd);
     /* Y D = (G Φ_q − U_d W) D into K's lower left block, each row to unit norm (N); the right side
      * N (G γ − U_d W_γ) */
@@ -210,7 +210,7 @@ vt_status vt_redundant_solve(const vt_model *m, vt_data *d, const vt_rows_svd *o
     /* one step of iterative refinement (residual and correction in the same scaling): the SVD's
      * error is relative to the whole solution, whose multipliers may be far larger than ỹ (a row
      * on a rate of tiny inertia is large in the mass metric, and unit once scaled) */
-    cblas_dgemv(CblasColMajor, CblasNoTrans, N, N, -1.0, K0, N, b, 1, 1.0, b0, 1);
+    vt_dgemv('N', N, N, -1.0, K0, N, b, 1, 1.0, b0, 1);
     if (vt_all_finite(b, N) && vt_all_finite(b0, N)) {
         dgelsd_(&N, &N, &one, K0, &N, b0, &N, K, &rc, &rk2, lsq_work, &lwd, iwork, &info);
         if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgelsd info %d", info);
@@ -251,11 +251,11 @@ vt_status vt_redundant_solve(const vt_model *m, vt_data *d, const vt_rows_svd *o
     for (int a = 0; a < nv; a++) b[a] *= s[a];
     double *F = W; /* nv (W holds at least nv + 1): D (M* q̈ − Q) */
     for (int a = 0; a < nv; a++) F[a] = -d->Q[a];
-    if (nv > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nv, nv, 1.0, d->Mstar, nv, b, 1, 1.0, F, 1);
+    if (nv > 0) vt_dgemv('N', nv, nv, 1.0, d->Mstar, nv, b, 1, 1.0, F, 1);
     for (int a = 0; a < nv; a++) F[a] *= s[a];
     double *B = K; /* nv x nr, leading dimension nv: D Φ_q^T G U_k = D P^T U_k */
     if (nr > 0 && nv > 0) {
-        cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, nv, nr, nc, 1.0, P, nc, U, nc, 0.0, B, nv);
+        vt_dgemm('T', 'N', nv, nr, nc, 1.0, P, nc, U, nc, 0.0, B, nv);
         for (int j = 0; j < nr; j++)
             for (int a = 0; a < nv; a++) B[a + (size_t)j * (size_t)nv] *= s[a];
     }
@@ -269,14 +269,14 @@ vt_status vt_redundant_solve(const vt_model *m, vt_data *d, const vt_rows_svd *o
     }
     /* λ = G U_k t, t in F[0..nr); the round-off rows' zero */
     for (int r = 0; r < nc; r++) sv[r] = 0.0;
-    if (nr > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nr, 1.0, U, nc, F, 1, 0.0, sv, 1);
+    if (nr > 0) vt_dgemv('N', nc, nr, 1.0, U, nc, F, 1, 0.0, sv, 1);
     for (int r = 0; r < nc; r++) sv[r] = o->flag[r] ? 0.0 : g[r] * sv[r];
     if (!vt_all_finite(b, nv) || !vt_all_finite(sv, nc))
         return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     double resid = 0.0; /* how well the kept rows hold: max |Φ_q q̈ − γ| (it may overflow: refused) */
     double *res = P; /* nc: P is no longer read */
     for (int r = 0; r < nc; r++) res[r] = -d->gamma[r];
-    if (nv > 0) cblas_dgemv(CblasColMajor, CblasNoTrans, nc, nv, 1.0, d->Phiq, nc, b, 1, 1.0, res, 1);
+    if (nv > 0) vt_dgemv('N', nc, nv, 1.0, d->Phiq, nc, b, 1, 1.0, res, 1);
     for (int r = 0; r < nc; r++) resid = fmax(resid, fabs(res[r]));
     if (!isfinite(resid))
         return vt_scratch_release(d, mark),
@@ -384,7 +384,7 @@ vt_status vt_square_solve(const vt_model *m, vt_data *d, double *b, double *rcon
     int r = vt_square_first(m, d, &sq, d->Mstar, n + 1, rcond_out);
     if (r == 0) {
         memcpy(sq.h, d->Q, (size_t)n * sizeof(double)); /* h = M* q̈ − Q */
-        cblas_dgemv(CblasColMajor, CblasNoTrans, n, n, 1.0, d->Mstar, n, sq.x, 1, -1.0, sq.h, 1);
+        vt_dgemv('N', n, n, 1.0, d->Mstar, n, sq.x, 1, -1.0, sq.h, 1);
         r = vt_square_second(m, d, &sq);
         if (r == 0) memcpy(b, sq.x, 2 * (size_t)n * sizeof(double));
     }
@@ -485,7 +485,7 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
         for (int j = 0; j < nv - nf; j++) v -= MS(c, kr[j]) * x[kr[j]]; /* M*_FD q̈_D */
         z[a] = v * s[c];
     }
-    if (nf > 0) cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, nf, nrhs, 1.0, L, nf, B, nf);
+    if (nf > 0) vt_dtrsm('L', 'L', 'N', 'N', nf, nrhs, 1.0, L, nf, B, nf);
     const double *Y = B;
     /* S = Y^T Y and its right-hand side R (γ − Φ q̈_D) − Y^T z. With a few rows (a point drive: 1
      * to 3) these are a few dot products of nf terms, cheaper as loops than as BLAS calls (whose
@@ -511,8 +511,8 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
             }
         }
     } else {
-        cblas_dsyrk(CblasColMajor, CblasLower, CblasTrans, no, nf, 1.0, Y, nf, 0.0, S, no);
-        cblas_dgemv(CblasColMajor, CblasTrans, nf, no, -1.0, Y, nf, z, 1, 1.0, lam, 1);
+        vt_dsyrk('L', 'T', no, nf, 1.0, Y, nf, 0.0, S, no);
+        vt_dgemv('T', nf, no, -1.0, Y, nf, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
     const int st = vt_solve_spd(d, S, no, lam, &rcond);
@@ -528,9 +528,9 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
             for (int a = 0; a < nf; a++) z[a] += yr[a] * l;
         }
     } else {
-        cblas_dgemv(CblasColMajor, CblasNoTrans, nf, no, 1.0, Y, nf, lam, 1, 1.0, z, 1);
+        vt_dgemv('N', nf, no, 1.0, Y, nf, lam, 1, 1.0, z, 1);
     }
-    if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nf, L, nf, z, 1);
+    if (nf > 0) vt_dtrsv('L', 'T', 'N', nf, L, nf, z, 1);
     for (int a = 0; a < nf; a++) x[fr[a]] = z[a] * s[fr[a]];
     for (int k = 0; k < no; k++) lam[k] *= g[k];
     /* below √rcond_warn, where the answer may have lost more than 1e3 ε: one step of iterative
@@ -551,7 +551,7 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
             for (int b = 0; b < nv; b++) v -= PHI(ro[k], b) * x[b];
             t[k] = g[k] * v;
         }
-        if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasNoTrans, CblasNonUnit, nf, L, nf, z, 1);
+        if (nf > 0) vt_dtrsv('L', 'N', 'N', nf, L, nf, z, 1);
         for (int r = 0; r < no; r++) {
             const double *yr = Y + (size_t)r * (size_t)nf;
             for (int a = 0; a < nf; a++) t[r] -= yr[a] * z[a];
@@ -569,7 +569,7 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
             const double *yr = Y + (size_t)r * (size_t)nf;
             for (int a = 0; a < nf; a++) z[a] += yr[a] * t[r];
         }
-        if (nf > 0) cblas_dtrsv(CblasColMajor, CblasLower, CblasTrans, CblasNonUnit, nf, L, nf, z, 1);
+        if (nf > 0) vt_dtrsv('L', 'T', 'N', nf, L, nf, z, 1);
         for (int a = 0; a < nf; a++) x[fr[a]] += z[a] * s[fr[a]];
         for (int k = 0; k < no; k++) lam[k] += g[k] * t[k];
     }

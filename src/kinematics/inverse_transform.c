@@ -100,10 +100,10 @@ vt_status vt_equivalent_force(double *Feq, const vt_model *m, vt_data *d, const 
     /* only the blocks R_ii and R_ij of each joint are non-zero */
     for (int i = 1; i <= m->nbody; i++) {
         const int j = m->body_parent[i], row = m->body_vadr[i], nvi = m->body_nv[i];
-        cblas_dgemv(CblasColMajor, CblasTrans, nvi, 7, 1.0, d->R + row + (size_t)vt_xoff(i) * (size_t)ld, ld,
+        vt_dgemv('T', nvi, 7, 1.0, d->R + row + (size_t)vt_xoff(i) * (size_t)ld, ld,
                     Q + row, 1, 1.0, Feq + vt_xoff(i), 1);
         if (j)
-            cblas_dgemv(CblasColMajor, CblasTrans, nvi, 7, 1.0, d->R + row + (size_t)vt_xoff(j) * (size_t)ld, ld,
+            vt_dgemv('T', nvi, 7, 1.0, d->R + row + (size_t)vt_xoff(j) * (size_t)ld, ld,
                         Q + row, 1, 1.0, Feq + vt_xoff(j), 1);
     }
     if (!vt_all_finite(Feq, m->nx))

@@ -1,0 +1,332 @@
+/* src/analysis/batch.c: a batch's rows bitwise those of vt_inverse_dynamics_motion() called on
+ * each state alone (on a data of its own), on 1, 2 and 8 threads: a random tree with free joints
+ * (q in a wider table: strides), the RUSR four-bar (a loop: the drive's effort and the solved
+ * q̈), failing rows in the middle (reported by index, status and message, their outputs
+ * untouched, the others solved; or the call stopped), and the arguments refused before any row. */
+#include <math.h>
+
+#include "vt_test.h"
+
+#define NROW 203 /* not a multiple of the threads */
+
+/* the batch's outputs of one call */
+typedef struct {
+    double *effort, *drive_effort, *qdd, *reaction, *reaction_body, *total, *total_body;
+    int *status;
+} outputs;
+
+static void outputs_alloc(outputs *o, const vt_model *m, int nrow)
+{
+    const size_t nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody, nd = m->ndrive > 0 ? (size_t)m->ndrive : 1;
+    o->effort = calloc(nv * (size_t)nrow, sizeof(double));
+    o->drive_effort = calloc(nd * (size_t)nrow, sizeof(double));
+    o->qdd = calloc(nv * (size_t)nrow, sizeof(double));
+    o->reaction = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->reaction_body = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->total = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->total_body = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->status = calloc((size_t)nrow, sizeof(int));
+    assert_non_null(o->status);
+}
+
+static void outputs_free(outputs *o)
+{
+    free(o->effort);
+    free(o->drive_effort);
+    free(o->qdd);
+    free(o->reaction);
+    free(o->reaction_body);
+    free(o->total);
+    free(o->total_body);
+    free(o->status);
+}
+
+static void outputs_fill(outputs *o, const vt_model *m, int nrow, double v)
+{
+    const size_t nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody, nd = m->ndrive > 0 ? (size_t)m->ndrive : 1;
+    for (size_t k = 0; k < nv * (size_t)nrow; k++) o->effort[k] = o->qdd[k] = v;
+    for (size_t k = 0; k < nd * (size_t)nrow; k++) o->drive_effort[k] = v;
+    for (size_t k = 0; k < nb6 * (size_t)nrow; k++) o->reaction[k] = o->reaction_body[k] = o->total[k] = o->total_body[k] = v;
+}
+
+static vt_batch_io io_of(const outputs *o, int nrow, const double *q, size_t q_stride, const double *qd,
+                         const double *qdd)
+{
+    vt_batch_io io = {0};
+    io.nrow = nrow;
+    io.q = q;
+    io.q_stride = q_stride;
+    io.qd = qd;
+    io.qdd = qdd;
+    io.effort = o->effort;
+    io.drive_effort = o->drive_effort;
+    io.qdd_out = o->qdd;
+    io.reaction = o->reaction;
+    io.reaction_body = o->reaction_body;
+    io.total = o->total;
+    io.total_body = o->total_body;
+    io.status = o->status;
+    return io;
+}
+
+/* two doubles the same bits (NaN never expected here) */
+static int same(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* row r of the batch's outputs against vt_inverse_dynamics_motion on a fresh data: bitwise */
+static void check_row(const vt_model *m, const outputs *o, int r, const double *q, const double *qd, const double *qdd)
+{
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    const int nv = m->nv, nb = m->nbody;
+    memcpy(d->q, q, (size_t)m->nq * sizeof(double));
+    memcpy(d->qd, qd, (size_t)nv * sizeof(double));
+    memcpy(d->qdd, qdd, (size_t)nv * sizeof(double));
+    assert_ok(vt_inverse_dynamics_motion(m, d));
+    assert_int_equal(o->status[r], VT_OK);
+    for (int k = 0; k < nv; k++) {
+        assert_true(same(o->effort[(size_t)r * nv + k], d->qfrc_drive[k]));
+        assert_true(same(o->qdd[(size_t)r * nv + k], d->qdd[k]));
+    }
+    for (int k = 0; k < m->ndrive; k++) assert_true(same(o->drive_effort[(size_t)r * m->ndrive + k], d->drive_effort[k]));
+    for (int i = 1; i <= nb; i++)
+        for (int c = 0; c < 3; c++) {
+            const size_t at = (size_t)r * 6 * nb + 6 * (size_t)(i - 1) + c;
+            assert_true(same(o->reaction[at], d->jnt_force[3 * i + c]));
+            assert_true(same(o->reaction[at + 3], d->jnt_moment[3 * i + c]));
+            assert_true(same(o->reaction_body[at], d->jnt_force_body[3 * i + c]));
+            assert_true(same(o->reaction_body[at + 3], d->jnt_moment_body[3 * i + c]));
+            assert_true(same(o->total[at], d->jnt_force_total[3 * i + c]));
+            assert_true(same(o->total[at + 3], d->jnt_moment_total[3 * i + c]));
+            assert_true(same(o->total_body[at], d->jnt_force_total_body[3 * i + c]));
+            assert_true(same(o->total_body[at + 3], d->jnt_moment_total_body[3 * i + c]));
+        }
+    vt_data_free(d);
+}
+
+/* a random tree with free joints: NROW random states, q in a table 3 columns wider than nq */
+static void test_tree_bitwise(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    assert_ok(vt_scene_random_tree(&m, 11, 9, VT_SCENE_WITH_FREE));
+    assert_ok(vt_data_create(&d, m));
+    const int nq = m->nq, nv = m->nv;
+    const size_t qs = (size_t)nq + 3;
+    double *q = malloc(qs * NROW * sizeof(double)), *qd = malloc((size_t)nv * NROW * sizeof(double)),
+           *qdd = malloc((size_t)nv * NROW * sizeof(double));
+    uint64_t seed = 3;
+    for (int r = 0; r < NROW; r++) {
+        vt_scene_random_state(m, d, &seed);
+        memcpy(q + r * qs, d->q, (size_t)nq * sizeof(double));
+        for (int c = 0; c < 3; c++) q[r * qs + (size_t)nq + c] = NAN; /* beside the row: never read */
+        memcpy(qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
+        for (int k = 0; k < nv; k++) qdd[(size_t)r * nv + k] = vt_rand_uniform(&seed, -3.0, 3.0);
+    }
+    const int threads[3] = {1, 2, 8};
+    for (int t = 0; t < 3; t++) {
+        vt_batch_def def = vt_default_batch_def();
+        def.threads = threads[t];
+        vt_batch *b = NULL;
+        assert_ok(vt_batch_create(&b, m, &def));
+        assert_int_equal(vt_batch_threads(b), threads[t]);
+        outputs o;
+        outputs_alloc(&o, m, NROW);
+        vt_batch_io io = io_of(&o, NROW, q, qs, qd, qdd);
+        assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+        assert_int_equal(vt_batch_failed_row(b), -1);
+        assert_string_equal(vt_batch_message(b), "");
+        for (int r = 0; r < NROW; r++) check_row(m, &o, r, q + r * qs, qd + (size_t)r * nv, qdd + (size_t)r * nv);
+        outputs_free(&o);
+        vt_batch_free(b);
+    }
+    free(q);
+    free(qd);
+    free(qdd);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* the RUSR four-bar, crank given: the drive's effort and the solved q̈ of the loop */
+static void test_loop_bitwise(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    assert_ok(vt_scene_fourbar_rusr(&m, vt_function_constant(0.0)));
+    assert_ok(vt_data_create(&d, m));
+    const int nq = m->nq, nv = m->nv, n = 60;
+    double *q = malloc((size_t)nq * n * sizeof(double)), *qd = malloc((size_t)nv * n * sizeof(double)),
+           *qdd = calloc((size_t)nv * n, sizeof(double));
+    for (int r = 0; r < n; r++) {
+        assert_int_equal(vt_scene_fourbar_rusr_assemble(m, d, 0.1 * r, 1.0 + 0.05 * r, NULL, NULL), 0);
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        memcpy(qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
+        qdd[(size_t)r * nv + m->body_vadr[1]] = 0.3 * sin(0.2 * r); /* the crank's: the others solved */
+    }
+    for (int threads = 1; threads <= 8; threads *= 2) {
+        vt_batch_def def = vt_default_batch_def();
+        def.threads = threads;
+        vt_batch *b = NULL;
+        assert_ok(vt_batch_create(&b, m, &def));
+        outputs o;
+        outputs_alloc(&o, m, n);
+        vt_batch_io io = io_of(&o, n, q, 0, qd, qdd);
+        assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+        for (int r = 0; r < n; r++) check_row(m, &o, r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv);
+        outputs_free(&o);
+        vt_batch_free(b);
+    }
+    free(q);
+    free(qd);
+    free(qdd);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* rows 37 and 101 with a NaN: reported (the lowest first), their outputs untouched, the others
+ * solved bitwise; with stop_on_error on one thread the rows after 37 are skipped */
+static void test_failing_rows(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    assert_ok(vt_scene_random_tree(&m, 5, 6, VT_SCENE_NO_BASE));
+    assert_ok(vt_data_create(&d, m));
+    const int nq = m->nq, nv = m->nv;
+    double *q = malloc((size_t)nq * NROW * sizeof(double)), *qd = malloc((size_t)nv * NROW * sizeof(double)),
+           *qdd = malloc((size_t)nv * NROW * sizeof(double));
+    uint64_t seed = 9;
+    for (int r = 0; r < NROW; r++) {
+        vt_scene_random_state(m, d, &seed);
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        memcpy(qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
+        for (int k = 0; k < nv; k++) qdd[(size_t)r * nv + k] = vt_rand_uniform(&seed, -3.0, 3.0);
+    }
+    q[37 * (size_t)nq] = NAN;
+    qdd[101 * (size_t)nv + 1] = INFINITY;
+    for (int threads = 1; threads <= 8; threads *= 2) {
+        vt_batch_def def = vt_default_batch_def();
+        def.threads = threads;
+        vt_batch *b = NULL;
+        assert_ok(vt_batch_create(&b, m, &def));
+        outputs o;
+        outputs_alloc(&o, m, NROW);
+        outputs_fill(&o, m, NROW, 42.0);
+        vt_batch_io io = io_of(&o, NROW, q, 0, qd, qdd);
+        assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
+        assert_int_equal(vt_batch_failed_row(b), 37);
+        assert_non_null(strstr(vt_batch_message(b), "row 37: "));
+        assert_int_equal(o.status[37], VT_ERR_NONFINITE);
+        assert_int_equal(o.status[101], VT_ERR_NONFINITE);
+        for (int k = 0; k < nv; k++) {
+            assert_true(same(o.effort[37 * (size_t)nv + k], 42.0));
+            assert_true(same(o.effort[101 * (size_t)nv + k], 42.0));
+        }
+        for (int k = 0; k < 6 * m->nbody; k++) assert_true(same(o.reaction[101 * 6 * (size_t)m->nbody + k], 42.0));
+        for (int r = 0; r < NROW; r++)
+            if (r != 37 && r != 101) check_row(m, &o, r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv);
+        outputs_free(&o);
+        vt_batch_free(b);
+    }
+    /* stop_on_error, one thread: rows before 37 solved, 37 failed, the rest skipped */
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = 1;
+    def.stop_on_error = 1;
+    vt_batch *b = NULL;
+    assert_ok(vt_batch_create(&b, m, &def));
+    outputs o;
+    outputs_alloc(&o, m, NROW);
+    vt_batch_io io = io_of(&o, NROW, q, 0, qd, qdd);
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
+    for (int r = 0; r < NROW; r++)
+        assert_int_equal(o.status[r], r < 37 ? VT_OK : r == 37 ? VT_ERR_NONFINITE : VT_ERR_SKIPPED);
+    vt_batch_free(b);
+    /* two threads (rows 0-100 and 101-202): each block stops at a failure, its own or the other's,
+     * whichever comes first; the failing row reported is the lowest of those reached, and every
+     * row reported solved is right */
+    def.threads = 2;
+    assert_ok(vt_batch_create(&b, m, &def));
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
+    const int failed = vt_batch_failed_row(b);
+    assert_true(failed == 37 || failed == 101);
+    for (int r = 0; r < NROW; r++) {
+        const int bad = r == 37 || r == 101;
+        assert_true(o.status[r] == VT_ERR_SKIPPED || o.status[r] == (bad ? VT_ERR_NONFINITE : VT_OK));
+        if (o.status[r] == VT_OK) check_row(m, &o, r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv);
+        if (r < failed && bad) assert_int_equal(o.status[r], VT_ERR_SKIPPED);
+    }
+    assert_int_equal(o.status[failed], VT_ERR_NONFINITE);
+    vt_batch_free(b);
+    outputs_free(&o);
+    free(q);
+    free(qd);
+    free(qdd);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* refusals before any row: nothing written */
+static void test_arguments(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_double_link(&m, 0));
+    vt_batch *b = NULL;
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = -1;
+    assert_int_equal(vt_batch_create(&b, m, &def), VT_ERR_BAD_OPTION);
+    assert_null(b);
+    def.threads = 0;
+    def.stop_on_error = 2;
+    assert_int_equal(vt_batch_create(&b, m, &def), VT_ERR_BAD_OPTION);
+    assert_int_equal(vt_batch_create(&b, NULL, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_batch_create(NULL, m, NULL), VT_ERR_NULL);
+    assert_ok(vt_batch_create(&b, m, NULL));
+    assert_true(vt_batch_threads(b) >= 1); /* 0: the CPUs counted */
+    double q[4] = {0.1, 0.2, 0.3, 0.4}, qd[4] = {0}, qdd[4] = {0}, effort[4] = {7, 7, 7, 7};
+    int status[2] = {5, 5};
+    vt_batch_io io = {0};
+    io.nrow = 2;
+    io.q = q;
+    io.qd = qd;
+    io.qdd = qdd;
+    io.effort = effort;
+    io.status = status;
+    io.effort_stride = 1; /* below nv = 2 */
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_SIZE);
+    assert_non_null(strstr(vt_batch_message(b), "effort_stride"));
+    io.effort_stride = 0;
+    io.qd = NULL;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NULL);
+    io.qd = qd;
+    io.nrow = -1;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_SIZE);
+    for (int k = 0; k < 4; k++) assert_true(same(effort[k], 7.0));
+    assert_int_equal(status[0], 5);
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, NULL), VT_ERR_NULL);
+    assert_int_equal(vt_batch_inverse_dynamics_motion(NULL, &io), VT_ERR_NULL);
+    io.nrow = 0;
+    assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+    io.nrow = 2;
+    assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+    assert_int_equal(status[0], VT_OK);
+    assert_int_equal(status[1], VT_OK);
+    vt_batch_free(b);
+    vt_batch_free(NULL);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_tree_bitwise),
+        cmocka_unit_test(test_loop_bitwise),
+        cmocka_unit_test(test_failing_rows),
+        cmocka_unit_test(test_arguments),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
