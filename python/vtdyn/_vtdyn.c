@@ -1,0 +1,592 @@
+/* vtdyn._vtdyn — the Python extension module: a URDF robot loaded (vt_urdf_builder) and its
+ * given-motion inverse dynamics on one state or on N states (vt_batch_inverse_dynamics_motion),
+ * NumPy arrays in and out. Written with the CPython and NumPy C APIs only (docs/python.md says
+ * why). The library is linked statically into this module.
+ *
+ * A Model owns its vt_model and, per thread count asked for, one vt_batch made at the first call
+ * and reused (the batch holds one vt_data per thread: no allocation per row). A lock per Model
+ * serialises calls on it, since a batch's data are reused by every call; the GIL is released
+ * while the lock is waited for and while the rows are solved, so other Python threads run (and
+ * other Models' calls proceed in parallel). */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <structmember.h>
+
+#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
+#include <numpy/arrayobject.h>
+
+#include <stdint.h>
+#include <string.h>
+
+#include "vtdyn.h"
+
+#define NCACHE 8 /* batches kept per Model (distinct thread counts); the oldest is replaced */
+
+static PyObject *VtError;             /* vtdyn.Error */
+static PyTypeObject ResultType;       /* vtdyn.Result, a struct sequence */
+static int result_type_ready = 0;
+
+/* the enum's name of a status ("VT_ERR_NONFINITE"), as in vtdyn/types.h */
+static const char *status_name(int s)
+{
+    switch (s) {
+    case VT_OK: return "VT_OK";
+    case VT_ERR_NULL: return "VT_ERR_NULL";
+    case VT_ERR_NO_MEMORY: return "VT_ERR_NO_MEMORY";
+    case VT_ERR_NONFINITE: return "VT_ERR_NONFINITE";
+    case VT_ERR_MASS: return "VT_ERR_MASS";
+    case VT_ERR_INERTIA_ASYMMETRIC: return "VT_ERR_INERTIA_ASYMMETRIC";
+    case VT_ERR_INERTIA_NOT_PSD: return "VT_ERR_INERTIA_NOT_PSD";
+    case VT_ERR_INERTIA_TRIANGLE: return "VT_ERR_INERTIA_TRIANGLE";
+    case VT_ERR_AXIS_ZERO: return "VT_ERR_AXIS_ZERO";
+    case VT_ERR_AXES_NOT_PERPENDICULAR: return "VT_ERR_AXES_NOT_PERPENDICULAR";
+    case VT_ERR_PARENT: return "VT_ERR_PARENT";
+    case VT_ERR_JOINT_TYPE: return "VT_ERR_JOINT_TYPE";
+    case VT_ERR_TOO_MANY_BODIES: return "VT_ERR_TOO_MANY_BODIES";
+    case VT_ERR_QUATERNION: return "VT_ERR_QUATERNION";
+    case VT_ERR_EMPTY_MODEL: return "VT_ERR_EMPTY_MODEL";
+    case VT_ERR_BAD_INDEX: return "VT_ERR_BAD_INDEX";
+    case VT_ERR_MODEL_MISMATCH: return "VT_ERR_MODEL_MISMATCH";
+    case VT_ERR_LAPACK: return "VT_ERR_LAPACK";
+    case VT_ERR_BAD_DRIVE: return "VT_ERR_BAD_DRIVE";
+    case VT_ERR_BAD_CUT_JOINT: return "VT_ERR_BAD_CUT_JOINT";
+    case VT_ERR_CALLBACK: return "VT_ERR_CALLBACK";
+    case VT_ERR_SINGULAR: return "VT_ERR_SINGULAR";
+    case VT_ERR_DEPENDENT_CONSTRAINTS: return "VT_ERR_DEPENDENT_CONSTRAINTS";
+    case VT_ERR_NEWTON: return "VT_ERR_NEWTON";
+    case VT_ERR_NOT_FULLY_DRIVEN: return "VT_ERR_NOT_FULLY_DRIVEN";
+    case VT_ERR_IDA: return "VT_ERR_IDA";
+    case VT_ERR_ABORTED: return "VT_ERR_ABORTED";
+    case VT_ERR_BAD_OPTION: return "VT_ERR_BAD_OPTION";
+    case VT_ERR_BAD_SIZE: return "VT_ERR_BAD_SIZE";
+    case VT_ERR_BAD_NAME: return "VT_ERR_BAD_NAME";
+    case VT_ERR_NOT_FOUND: return "VT_ERR_NOT_FOUND";
+    case VT_ERR_FILE: return "VT_ERR_FILE";
+    case VT_ERR_XML: return "VT_ERR_XML";
+    case VT_ERR_LAYOUT: return "VT_ERR_LAYOUT";
+    case VT_ERR_SKIPPED: return "VT_ERR_SKIPPED";
+    default: return "VT_ERR_UNKNOWN";
+    }
+}
+
+/* raises vtdyn.Error(message) with .status (the name), .code and .row (None when < 0); NULL */
+static PyObject *raise_vt(int status, const char *message, long row)
+{
+    PyObject *exc = PyObject_CallFunction(VtError, "s", message && message[0] ? message : vt_status_string(status));
+    if (!exc) return NULL;
+    PyObject *code = PyLong_FromLong(status), *name = PyUnicode_FromString(status_name(status));
+    PyObject *r = row >= 0 ? PyLong_FromLong(row) : (Py_INCREF(Py_None), Py_None);
+    if (code && name && r && !PyObject_SetAttrString(exc, "code", code) && !PyObject_SetAttrString(exc, "status", name) &&
+        !PyObject_SetAttrString(exc, "row", r))
+        PyErr_SetObject(VtError, exc);
+    Py_XDECREF(code);
+    Py_XDECREF(name);
+    Py_XDECREF(r);
+    Py_DECREF(exc);
+    return NULL;
+}
+
+/* ---- Model ------------------------------------------------------------------------------------ */
+
+typedef struct {
+    PyObject_HEAD
+    vt_model *m;
+    PyThread_type_lock lock;
+    int nbatch;
+    int batch_threads[NCACHE];
+    vt_batch *batch[NCACHE];
+    int next;             /* the cache slot replaced next once full */
+    int *status;          /* per-row statuses, grown as needed (under the lock) */
+    size_t status_cap;
+    PyObject *body_names, *joint_names, *frame_names, *body_joint_names; /* tuples, made at load */
+} ModelObject;
+
+static PyTypeObject ModelType;
+
+static void model_dealloc(ModelObject *self)
+{
+    for (int k = 0; k < self->nbatch; k++) vt_batch_free(self->batch[k]);
+    vt_model_free(self->m);
+    PyMem_RawFree(self->status);
+    if (self->lock) PyThread_free_lock(self->lock);
+    Py_XDECREF(self->body_names);
+    Py_XDECREF(self->joint_names);
+    Py_XDECREF(self->frame_names);
+    Py_XDECREF(self->body_joint_names);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+/* a tuple of n names at base + VT_NAME_MAX * (first + k) */
+static PyObject *names_tuple(const char *base, int first, int n)
+{
+    PyObject *t = PyTuple_New(n);
+    for (int k = 0; t && k < n; k++) {
+        PyObject *s = PyUnicode_DecodeUTF8(base + (size_t)VT_NAME_MAX * (size_t)(first + k),
+                                           (Py_ssize_t)strlen(base + (size_t)VT_NAME_MAX * (size_t)(first + k)),
+                                           "replace");
+        if (!s) {
+            Py_DECREF(t);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(t, k, s);
+    }
+    return t;
+}
+
+/* body i's joint's name as the command names it: an implicit floating root (no URDF joint) is
+ * named after its link */
+static const char *joint_label(const vt_model *m, int i)
+{
+    const char *name = m->joint_name + (size_t)VT_NAME_MAX * (size_t)i;
+    return name[0] ? name : m->body_name + (size_t)VT_NAME_MAX * (size_t)i;
+}
+
+static int model_names(ModelObject *self)
+{
+    const vt_model *m = self->m;
+    self->body_names = names_tuple(m->body_name, 1, m->nbody);
+    self->frame_names = names_tuple(m->frame_name, 0, m->nframe);
+    self->body_joint_names = PyTuple_New(m->nbody);
+    if (!self->body_names || !self->frame_names || !self->body_joint_names) return -1;
+    int nmoving = 0;
+    for (int i = 1; i <= m->nbody; i++) {
+        PyObject *s = PyUnicode_DecodeUTF8(joint_label(m, i), (Py_ssize_t)strlen(joint_label(m, i)), "replace");
+        if (!s) return -1;
+        PyTuple_SET_ITEM(self->body_joint_names, i - 1, s);
+        nmoving += m->body_nv[i] > 0;
+    }
+    /* the moving joints in rate order (bodies are numbered in it; sorted here all the same) */
+    self->joint_names = PyTuple_New(nmoving);
+    if (!self->joint_names) return -1;
+    int k = 0, last = -1;
+    while (k < nmoving) {
+        int best = 0;
+        for (int i = 1; i <= m->nbody; i++)
+            if (m->body_nv[i] > 0 && m->body_vadr[i] > last && (!best || m->body_vadr[i] < m->body_vadr[best])) best = i;
+        last = m->body_vadr[best];
+        PyObject *s = PyUnicode_DecodeUTF8(joint_label(m, best), (Py_ssize_t)strlen(joint_label(m, best)), "replace");
+        if (!s) return -1;
+        PyTuple_SET_ITEM(self->joint_names, k++, s);
+    }
+    return 0;
+}
+
+static PyObject *load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
+{
+    (void)mod;
+    static char *kwlist[] = {"path", "floating", "mimic", NULL};
+    PyObject *pathb = NULL;
+    int floating = 0, mimic = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O&|pp:load_urdf", kwlist, PyUnicode_FSConverter, &pathb, &floating,
+                                     &mimic))
+        return NULL;
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.floating = floating;
+    opt.mimic = mimic;
+    /* the given-motion instant needs O(n) data only; a coupling (mimic) needs the full layout */
+    opt.model.layout = mimic ? VT_LAYOUT_FULL : VT_LAYOUT_RECURSIVE;
+    char msg[VT_MESSAGE_SIZE] = "";
+    vt_builder *b = NULL;
+    vt_model *m = NULL;
+    vt_status st;
+    Py_BEGIN_ALLOW_THREADS
+    st = vt_urdf_builder(&b, PyBytes_AS_STRING(pathb), &opt, msg);
+    if (!st) {
+        st = vt_builder_build(&m, b);
+        if (st) snprintf(msg, sizeof msg, "%s", vt_builder_message(b));
+    }
+    vt_builder_free(b);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(pathb);
+    if (st) return raise_vt(st, msg, -1);
+    ModelObject *self = PyObject_New(ModelObject, &ModelType);
+    if (!self) {
+        vt_model_free(m);
+        return NULL;
+    }
+    self->m = m;
+    self->lock = NULL;
+    self->nbatch = self->next = 0;
+    self->status = NULL;
+    self->status_cap = 0;
+    self->body_names = self->joint_names = self->frame_names = self->body_joint_names = NULL;
+    self->lock = PyThread_allocate_lock();
+    if (!self->lock) {
+        Py_DECREF(self);
+        return PyErr_NoMemory();
+    }
+    if (model_names(self)) {
+        Py_DECREF(self);
+        return NULL;
+    }
+    return (PyObject *)self;
+}
+
+static PyObject *get_nq(ModelObject *s, void *c) { (void)c; return PyLong_FromLong(s->m->nq); }
+static PyObject *get_nv(ModelObject *s, void *c) { (void)c; return PyLong_FromLong(s->m->nv); }
+static PyObject *get_nbody(ModelObject *s, void *c) { (void)c; return PyLong_FromLong(s->m->nbody); }
+static PyObject *get_body_names(ModelObject *s, void *c) { (void)c; return Py_NewRef(s->body_names); }
+static PyObject *get_joint_names(ModelObject *s, void *c) { (void)c; return Py_NewRef(s->joint_names); }
+static PyObject *get_frame_names(ModelObject *s, void *c) { (void)c; return Py_NewRef(s->frame_names); }
+static PyObject *get_body_joint_names(ModelObject *s, void *c) { (void)c; return Py_NewRef(s->body_joint_names); }
+
+/* a new float64 array of the given shape */
+static PyObject *new_array(int nd, npy_intp *dims)
+{
+    return PyArray_SimpleNew(nd, dims, NPY_DOUBLE);
+}
+
+static PyObject *get_masses(ModelObject *s, void *c)
+{
+    (void)c;
+    npy_intp n = s->m->nbody;
+    PyObject *a = new_array(1, &n);
+    if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->body_mass + 1, (size_t)n * sizeof(double));
+    return a;
+}
+
+static PyObject *get_gravity(ModelObject *s, void *c)
+{
+    (void)c;
+    npy_intp n = 3;
+    PyObject *a = new_array(1, &n);
+    if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->gravity, 3 * sizeof(double));
+    return a;
+}
+
+static PyObject *get_q0(ModelObject *s, void *c)
+{
+    (void)c;
+    npy_intp n = s->m->nq;
+    PyObject *a = new_array(1, &n);
+    if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->q0, (size_t)n * sizeof(double));
+    return a;
+}
+
+static PyObject *get_limits(ModelObject *s, void *c)
+{
+    (void)c;
+    npy_intp d[2] = {s->m->nv, 4}; /* dof_limit is 4 x nv column-major: row-major nv x 4 */
+    PyObject *a = new_array(2, d);
+    if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->dof_limit, (size_t)d[0] * 4 * sizeof(double));
+    return a;
+}
+
+/* per body: its first index in q, its count, its first rate, its count (nbody x 4, int) */
+static PyObject *get_body_index(ModelObject *s, void *c)
+{
+    (void)c;
+    npy_intp d[2] = {s->m->nbody, 4};
+    PyObject *a = PyArray_SimpleNew(2, d, NPY_INT64);
+    if (!a) return NULL;
+    int64_t *p = PyArray_DATA((PyArrayObject *)a);
+    for (int i = 1; i <= s->m->nbody; i++) {
+        p[4 * (i - 1)] = s->m->body_qadr[i];
+        p[4 * (i - 1) + 1] = s->m->body_nq[i];
+        p[4 * (i - 1) + 2] = s->m->body_vadr[i];
+        p[4 * (i - 1) + 3] = s->m->body_nv[i];
+    }
+    return a;
+}
+
+static PyObject *get_floating(ModelObject *s, void *c)
+{
+    (void)c;
+    for (int i = 1; i <= s->m->nbody; i++)
+        if (s->m->body_joint[i] == VT_JOINT_FREE) Py_RETURN_TRUE;
+    Py_RETURN_FALSE;
+}
+
+/* one input as a float64 array whose rows the C call can take: ndim 1 (n) or 2 (N x n), entries
+ * of a row contiguous, the row stride a non-negative multiple of 8 bytes at least the row's
+ * length (else a C-contiguous copy); a new reference, or NULL with ValueError naming it */
+static PyArrayObject *as_rows(PyObject *obj, const char *name, int n)
+{
+    PyArray_Descr *dt = PyArray_DescrFromType(NPY_DOUBLE);
+    PyArrayObject *a = (PyArrayObject *)PyArray_FromAny(obj, dt, 0, 0, NPY_ARRAY_ALIGNED | NPY_ARRAY_NOTSWAPPED, NULL);
+    if (!a) {
+        PyObject *type, *value, *tb;
+        PyErr_Fetch(&type, &value, &tb);
+        PyObject *text = value ? PyObject_Str(value) : NULL;
+        PyErr_Format(PyExc_ValueError, "%s: not convertible to a float64 array (%S)", name,
+                     text ? text : Py_None);
+        Py_XDECREF(text);
+        Py_XDECREF(type);
+        Py_XDECREF(value);
+        Py_XDECREF(tb);
+        return NULL;
+    }
+    const int nd = PyArray_NDIM(a);
+    if (nd != 1 && nd != 2) {
+        PyErr_Format(PyExc_ValueError, "%s: %d dimensions, expected 1 (one state of %d) or 2 (N states x %d)", name,
+                     nd, n, n);
+        Py_DECREF(a);
+        return NULL;
+    }
+    const npy_intp *dims = PyArray_DIMS(a), *st = PyArray_STRIDES(a);
+    if (dims[nd - 1] != n) {
+        PyErr_Format(PyExc_ValueError, "%s: %zd entries a state, expected %d", name, (Py_ssize_t)dims[nd - 1], n);
+        Py_DECREF(a);
+        return NULL;
+    }
+    int ok = n <= 1 || st[nd - 1] == (npy_intp)sizeof(double);
+    if (nd == 2 && dims[0] > 1)
+        ok = ok && st[0] > 0 && st[0] % (npy_intp)sizeof(double) == 0 && st[0] >= (npy_intp)n * (npy_intp)sizeof(double);
+    if (!ok) {
+        PyArrayObject *c = (PyArrayObject *)PyArray_NewCopy(a, NPY_CORDER);
+        Py_DECREF(a);
+        a = c;
+    }
+    return a;
+}
+
+/* the row stride, in doubles, to pass for a: 0 (packed) for one row */
+static size_t row_stride(PyArrayObject *a)
+{
+    if (PyArray_NDIM(a) != 2 || PyArray_DIMS(a)[0] <= 1) return 0;
+    return (size_t)(PyArray_STRIDES(a)[0] / (npy_intp)sizeof(double));
+}
+
+/* the cached batch of this thread count, made at its first use (under the lock, GIL released) */
+static vt_status model_batch(ModelObject *self, int threads, vt_batch **out)
+{
+    for (int k = 0; k < self->nbatch; k++)
+        if (self->batch_threads[k] == threads) {
+            *out = self->batch[k];
+            return VT_OK;
+        }
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = threads;
+    vt_batch *b = NULL;
+    const vt_status st = vt_batch_create(&b, self->m, &def);
+    if (st) return st;
+    int slot;
+    if (self->nbatch < NCACHE) {
+        slot = self->nbatch++;
+    } else { /* full: the oldest made goes */
+        slot = self->next;
+        vt_batch_free(self->batch[slot]);
+        self->next = (slot + 1) % NCACHE;
+    }
+    self->batch[slot] = b;
+    self->batch_threads[slot] = threads;
+    *out = b;
+    return VT_OK;
+}
+
+static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"q", "v", "a", "threads", NULL};
+    PyObject *oq, *ov, *oa;
+    int threads = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|i:inverse", kwlist, &oq, &ov, &oa, &threads)) return NULL;
+    if (threads < 0) return PyErr_Format(PyExc_ValueError, "threads: %d, expected 0 (every CPU) or more", threads);
+    const vt_model *m = self->m;
+    PyArrayObject *q = as_rows(oq, "q", m->nq), *v = q ? as_rows(ov, "v", m->nv) : NULL;
+    PyArrayObject *a = v ? as_rows(oa, "a", m->nv) : NULL;
+    PyObject *res = NULL, *out[5] = {NULL, NULL, NULL, NULL, NULL};
+    if (!a) goto done;
+    const int nd = PyArray_NDIM(q);
+    if (PyArray_NDIM(v) != nd || PyArray_NDIM(a) != nd) {
+        PyErr_Format(PyExc_ValueError, "%s: %d dimensions, q has %d (one state: all 1-D; N states: all N x n)",
+                     PyArray_NDIM(v) != nd ? "v" : "a", PyArray_NDIM(v) != nd ? PyArray_NDIM(v) : PyArray_NDIM(a), nd);
+        goto done;
+    }
+    const npy_intp N = nd == 2 ? PyArray_DIMS(q)[0] : 1;
+    if (nd == 2 && (PyArray_DIMS(v)[0] != N || PyArray_DIMS(a)[0] != N)) {
+        const int bad_v = PyArray_DIMS(v)[0] != N;
+        PyErr_Format(PyExc_ValueError, "%s: %zd states, q has %zd", bad_v ? "v" : "a",
+                     (Py_ssize_t)PyArray_DIMS(bad_v ? v : a)[0], (Py_ssize_t)N);
+        goto done;
+    }
+    if (N > INT_MAX) {
+        PyErr_Format(PyExc_ValueError, "q: %zd states, at most %d a call", (Py_ssize_t)N, INT_MAX);
+        goto done;
+    }
+    npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6};
+    for (int k = 0; k < 5; k++) {
+        out[k] = k == 0 ? (nd == 2 ? new_array(2, de) : new_array(1, de + 1))
+                        : (nd == 2 ? new_array(3, dr) : new_array(2, dr + 1));
+        if (!out[k]) goto done;
+    }
+    vt_batch_io io;
+    memset(&io, 0, sizeof io);
+    io.nrow = (int)N;
+    io.q = PyArray_DATA(q), io.q_stride = row_stride(q);
+    io.qd = PyArray_DATA(v), io.qd_stride = row_stride(v);
+    io.qdd = PyArray_DATA(a), io.qdd_stride = row_stride(a);
+    io.effort = PyArray_DATA((PyArrayObject *)out[0]);
+    io.reaction = PyArray_DATA((PyArrayObject *)out[1]);
+    io.reaction_body = PyArray_DATA((PyArrayObject *)out[2]);
+    io.total = PyArray_DATA((PyArrayObject *)out[3]);
+    io.total_body = PyArray_DATA((PyArrayObject *)out[4]);
+    vt_status st = VT_OK;
+    int failed = -1, nomem = 0;
+    char msg[VT_MESSAGE_SIZE + 32] = "";
+    Py_BEGIN_ALLOW_THREADS
+    PyThread_acquire_lock(self->lock, WAIT_LOCK);
+    vt_batch *b = NULL;
+    if ((size_t)N > self->status_cap) {
+        int *p = PyMem_RawRealloc(self->status, (size_t)N * sizeof(int));
+        if (p) {
+            self->status = p;
+            self->status_cap = (size_t)N;
+        } else {
+            nomem = 1;
+        }
+    }
+    if (!nomem) st = model_batch(self, threads, &b);
+    if (!nomem && !st) {
+        io.status = self->status;
+        st = vt_batch_inverse_dynamics_motion(b, &io);
+        if (st) {
+            failed = vt_batch_failed_row(b);
+            snprintf(msg, sizeof msg, "%s", vt_batch_message(b));
+        }
+    } else if (!nomem) {
+        snprintf(msg, sizeof msg, "vt_batch_create (threads %d): %s", threads, vt_status_string(st));
+    }
+    PyThread_release_lock(self->lock);
+    Py_END_ALLOW_THREADS
+    if (nomem) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    if (st) {
+        const char *text = msg;
+        if (nd == 1 && strncmp(text, "row 0: ", 7) == 0) text += 7; /* one state: no row to name */
+        raise_vt(st, text, nd == 2 ? failed : -1);
+        goto done;
+    }
+    res = PyStructSequence_New(&ResultType);
+    if (!res) goto done;
+    for (int k = 0; k < 5; k++) {
+        PyStructSequence_SET_ITEM(res, k, out[k]);
+        out[k] = NULL;
+    }
+done:
+    for (int k = 0; k < 5; k++) Py_XDECREF(out[k]);
+    Py_XDECREF(q);
+    Py_XDECREF(v);
+    Py_XDECREF(a);
+    return res;
+}
+
+static PyObject *model_repr(ModelObject *self)
+{
+    return PyUnicode_FromFormat("<vtdyn.Model: %d bodies, nq %d, nv %d>", self->m->nbody, self->m->nq, self->m->nv);
+}
+
+static PyGetSetDef model_getset[] = {
+    {"nq", (getter)get_nq, NULL, "length of q (a floating root: 7, position then Euler parameters w x y z)", NULL},
+    {"nv", (getter)get_nv, NULL, "length of v and a (a floating root: 6, world linear then angular)", NULL},
+    {"nbody", (getter)get_nbody, NULL, "moving bodies (URDF links merged through fixed joints)", NULL},
+    {"body_names", (getter)get_body_names, NULL, "the moving bodies' link names (nbody), the rows of reaction", NULL},
+    {"body_joint_names", (getter)get_body_joint_names, NULL, "each body's joint's name (nbody)", NULL},
+    {"joint_names", (getter)get_joint_names, NULL, "the moving joints in rate order, as the command names them", NULL},
+    {"frame_names", (getter)get_frame_names, NULL, "the model's frames (every URDF link)", NULL},
+    {"masses", (getter)get_masses, NULL, "each body's mass, kg (nbody)", NULL},
+    {"gravity", (getter)get_gravity, NULL, "gravity, m/s^2, world axes (3)", NULL},
+    {"q0", (getter)get_q0, NULL, "the reference configuration (nq): zero angles, unit Euler parameters", NULL},
+    {"limits", (getter)get_limits, NULL,
+     "per rate (nv x 4): lowest and highest coordinate, largest |rate| and |effort| (inf where none)", NULL},
+    {"body_index", (getter)get_body_index, NULL,
+     "per body (nbody x 4, int64): first index in q, count in q, first rate in v, count in v", NULL},
+    {"floating", (getter)get_floating, NULL, "True when a body has a free joint (a floating root)", NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyMethodDef model_methods[] = {
+    {"inverse", (PyCFunction)(void (*)(void))model_inverse, METH_VARARGS | METH_KEYWORDS,
+     "inverse(q, v, a, threads=0) -> Result: the given motion's efforts and joint reactions "
+     "(vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n)"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyTypeObject ModelType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "vtdyn.Model",
+    .tp_basicsize = sizeof(ModelObject),
+    .tp_dealloc = (destructor)model_dealloc,
+    .tp_repr = (reprfunc)model_repr,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "A robot loaded by vtdyn.load_urdf (no public constructor).",
+    .tp_methods = model_methods,
+    .tp_getset = model_getset,
+};
+
+/* ---- Result ------------------------------------------------------------------------------------ */
+
+static PyStructSequence_Field result_fields[] = {
+    {"effort", "every rate's generalized force (N x nv, or nv): N m or N; a floating root's six in world axes"},
+    {"reaction", "each body's joint reaction (N x nbody x 6): force, then moment about the joint point, world axes"},
+    {"reaction_body", "the same in the body's axes (the link's inertial axes)"},
+    {"total", "each joint's total wrench, reaction plus actuation, world axes"},
+    {"total_body", "the same in the body's axes"},
+    {NULL, NULL},
+};
+
+static PyStructSequence_Desc result_desc = {
+    "vtdyn.Result", "The results of Model.inverse (NumPy float64 arrays).", result_fields, 5,
+};
+
+/* ---- the module --------------------------------------------------------------------------------- */
+
+static PyObject *version(PyObject *mod, PyObject *unused)
+{
+    (void)mod;
+    (void)unused;
+    return PyUnicode_FromString(vt_version());
+}
+
+static PyMethodDef module_methods[] = {
+    {"load_urdf", (PyCFunction)(void (*)(void))load_urdf, METH_VARARGS | METH_KEYWORDS,
+     "load_urdf(path, floating=False, mimic=False) -> Model: a URDF robot (vt_urdf_builder)"},
+    {"version", version, METH_NOARGS, "the C library's version (vt_version)"},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module_def = {
+    PyModuleDef_HEAD_INIT, "vtdyn._vtdyn", "vtdyn's C extension (see the package vtdyn).", -1, module_methods,
+    NULL, NULL, NULL, NULL,
+};
+
+PyMODINIT_FUNC PyInit__vtdyn(void)
+{
+    import_array();
+    if (PyType_Ready(&ModelType) < 0) return NULL;
+    if (!result_type_ready) {
+        if (PyStructSequence_InitType2(&ResultType, &result_desc) < 0) return NULL;
+        result_type_ready = 1;
+    }
+    PyObject *mod = PyModule_Create(&module_def);
+    if (!mod) return NULL;
+    if (!VtError) {
+        VtError = PyErr_NewExceptionWithDoc(
+            "vtdyn.Error",
+            "A status the library returned: .status its name (\"VT_ERR_NONFINITE\"), .code the int, "
+            ".row the failing row of N states (None otherwise); the message is the library's.",
+            PyExc_RuntimeError, NULL);
+        if (!VtError) goto fail;
+    }
+    Py_INCREF(VtError);
+    if (PyModule_AddObject(mod, "Error", VtError) < 0) {
+        Py_DECREF(VtError);
+        goto fail;
+    }
+    Py_INCREF(&ModelType);
+    if (PyModule_AddObject(mod, "Model", (PyObject *)&ModelType) < 0) {
+        Py_DECREF(&ModelType);
+        goto fail;
+    }
+    Py_INCREF(&ResultType);
+    if (PyModule_AddObject(mod, "Result", (PyObject *)&ResultType) < 0) {
+        Py_DECREF(&ResultType);
+        goto fail;
+    }
+    if (PyModule_AddIntConstant(mod, "VT_HAVE_SUNDIALS", VT_HAVE_SUNDIALS) < 0) goto fail;
+    return mod;
+fail:
+    Py_DECREF(mod);
+    return NULL;
+}

@@ -1,0 +1,276 @@
+"""The Python package vtdyn (python/vtdyn) against Pinocchio and against itself.
+
+Run by tests/python/run.sh (the meson test 'python') with the venv of tests/peers, which has pin
+and example-robot-data, after `pip install .` of this tree into it.
+
+* UR5, Panda, Solo-12 (root welded and floating) and Talos at 1,000 random states each:
+  Model.inverse's efforts against pin.rnea and its world-axes joint reactions against
+  Pinocchio's data.f less the actuation (f - S tau, turned into world axes), to 1e-12 of the
+  largest torque or wrench component of the state. A floating root's state is turned into
+  Pinocchio's free flyer here: vtdyn's q = (x, y, z, w, qx, qy, qz) and world-axes rates
+  (v = the root origin's velocity then the angular velocity; a = the origin's classical
+  acceleration then the angular acceleration); Pinocchio's q = (x, y, z, qx, qy, qz, w) and
+  root-frame rates: v_lin = R^T pdot, w = R^T omega, a_lin = R^T pddot - w x v_lin,
+  a_ang = R^T omegadot; its tau of the root is vtdyn's world wrench turned into the root
+  frame (R^T f, R^T n) (the formulas of tests/peers/pinocchio_reference.py).
+* One state equals its row of a batch bitwise; threads 1, 2 and 4 give bitwise the same arrays;
+  strided, Fortran-ordered, integer and list inputs give the same arrays as C-contiguous ones.
+* Every error path: a wrong shape or a non-convertible dtype (ValueError naming the argument),
+  a NaN row (vtdyn.Error with .row, .status, .code), a missing file (VT_ERR_FILE).
+"""
+import math
+import threading
+from importlib.metadata import distribution
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import vtdyn
+
+NSTATES = 1000
+TOL = 1e-12
+ROBOTS = {
+    "UR5": "ur_description/urdf/ur5_robot.urdf",
+    "Panda": "panda_description/urdf/panda.urdf",
+    "Solo-12": "solo_description/robots/solo12.urdf",
+    "Talos": "talos_data/robots/talos_reduced.urdf",
+}
+
+
+def robots_dir():
+    dist = distribution("example-robot-data")
+    urdf = next(Path(dist.locate_file(f)) for f in dist.files or [] if str(f).endswith(".urdf"))
+    return Path(*urdf.parts[: urdf.parts.index("robots") + 1])
+
+
+ROOT = robots_dir()
+
+
+def urdf(name):
+    return str(ROOT / ROBOTS[name])
+
+
+def quat_to_rot(w, x, y, z):
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def random_states(model, n, seed):
+    """n random states in vtdyn's layout: joint coordinates within the limits (else [-pi, pi]),
+    a floating root at a random position in [-1, 1]^3 with a uniform random unit quaternion;
+    v and a uniform in [-2, 2]."""
+    rng = np.random.default_rng(seed)
+    q = np.empty((n, model.nq))
+    lim = model.limits
+    for b, (qa, nq, va, nv) in enumerate(model.body_index):
+        if nq == 7:  # the floating root
+            q[:, qa:qa + 3] = rng.uniform(-1, 1, (n, 3))
+            e = rng.normal(size=(n, 4))
+            q[:, qa + 3:qa + 7] = e / np.linalg.norm(e, axis=1, keepdims=True)
+            continue
+        assert nq == 1 and nv == 1, model.body_joint_names[b]
+        lo, hi = lim[va, 0], lim[va, 1]
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            lo, hi = -math.pi, math.pi
+        q[:, qa] = rng.uniform(lo, hi, n)
+    v = rng.uniform(-2, 2, (n, model.nv))
+    a = rng.uniform(-2, 2, (n, model.nv))
+    return q, v, a
+
+
+def compare_with_pinocchio(name, floating):
+    m = vtdyn.load_urdf(urdf(name), floating=floating)
+    pm = (pin.buildModelFromUrdf(urdf(name), pin.JointModelFreeFlyer()) if floating
+          else pin.buildModelFromUrdf(urdf(name)))
+    pd, kin = pm.createData(), pm.createData()
+    assert m.nv == pm.nv and m.nq == pm.nq
+    q, v, a = random_states(m, NSTATES, seed=len(name) + 10 * floating)
+    r = m.inverse(q, v, a)
+    assert r.effort.shape == (NSTATES, m.nv) and r.reaction.shape == (NSTATES, m.nbody, 6)
+    # vtdyn's bodies to Pinocchio's joints, by the URDF joint's name ("root_joint": the free flyer)
+    joints = []
+    for b, (qa, nq, va, nv) in enumerate(m.body_index):
+        jname = "root_joint" if nq == 7 else m.body_joint_names[b]
+        j = pm.getJointId(jname)
+        assert j < pm.njoints, jname
+        joints.append((b, j, qa, nq, va, nv, pm.joints[j].idx_q, pm.joints[j].idx_v))
+    worst = 0.0
+    for s in range(NSTATES):
+        qp, vp, ap = np.empty(pm.nq), np.empty(pm.nv), np.empty(pm.nv)
+        root_R = None
+        for b, j, qa, nq, va, nv, iq, iv in joints:
+            if nq == 7:
+                w, x, y, z = q[s, qa + 3:qa + 7]
+                R = quat_to_rot(w, x, y, z)
+                root_R = (R, iv, va)
+                qp[iq:iq + 7] = np.r_[q[s, qa:qa + 3], x, y, z, w]
+                vl, wl = R.T @ v[s, va:va + 3], R.T @ v[s, va + 3:va + 6]
+                vp[iv:iv + 6] = np.r_[vl, wl]
+                ap[iv:iv + 6] = np.r_[R.T @ a[s, va:va + 3] - np.cross(wl, vl), R.T @ a[s, va + 3:va + 6]]
+            else:
+                qp[iq], vp[iv], ap[iv] = q[s, qa], v[s, va], a[s, va]
+        tau = pin.rnea(pm, pd, qp, vp, ap)
+        pin.forwardKinematics(pm, kin, qp)
+        mine_tau = np.empty(pm.nv)
+        for b, j, qa, nq, va, nv, iq, iv in joints:
+            mine_tau[iv:iv + nv] = r.effort[s, va:va + nv]
+        if root_R is not None:
+            R, iv, va = root_R
+            mine_tau[iv:iv + 3] = R.T @ r.effort[s, va:va + 3]
+            mine_tau[iv + 3:iv + 6] = R.T @ r.effort[s, va + 3:va + 6]
+        ref_w, mine_w = [], []
+        for b, j, qa, nq, va, nv, iq, iv in joints:
+            S = np.asarray(pd.joints[j].S).reshape(6, nv)
+            fr = pd.f[j].vector - S @ tau[iv:iv + nv]
+            Rj = kin.oMi[j].rotation
+            ref_w.append(np.r_[Rj @ fr[:3], Rj @ fr[3:]])
+            mine_w.append(r.reaction[s, b])
+        ref_w, mine_w = np.array(ref_w), np.array(mine_w)
+        scale = max(1.0, np.abs(tau).max(), np.abs(ref_w).max())
+        worst = max(worst, np.abs(mine_tau - tau).max() / scale, np.abs(mine_w - ref_w).max() / scale)
+    assert worst <= TOL, "%s%s: largest relative difference %.3g" % (name, " floating" if floating else "", worst)
+    # the body axes' arrays are the world ones turned: the same norms per force and moment
+    for world, body in ((r.reaction, r.reaction_body), (r.total, r.total_body)):
+        for part in (slice(0, 3), slice(3, 6)):
+            nw, nb = np.linalg.norm(world[..., part], axis=-1), np.linalg.norm(body[..., part], axis=-1)
+            assert np.allclose(nw, nb, rtol=1e-12, atol=1e-12 * max(1.0, nw.max()))
+    return worst
+
+
+@pytest.mark.parametrize("name,floating", [("UR5", False), ("Panda", False), ("Solo-12", False),
+                                           ("Solo-12", True), ("Talos", False), ("Talos", True)])
+def test_against_pinocchio(name, floating):
+    worst = compare_with_pinocchio(name, floating)
+    print("%s%s: %d states, largest relative difference %.2g" % (name, " floating" if floating else "", NSTATES, worst))
+
+
+@pytest.fixture(scope="module")
+def ur5():
+    return vtdyn.load_urdf(urdf("UR5"))
+
+
+def test_model(ur5):
+    assert ur5.nq == ur5.nv == ur5.nbody == 6
+    assert ur5.joint_names == ("shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint",
+                               "wrist_2_joint", "wrist_3_joint")
+    assert ur5.body_names[0] == "shoulder_link" and "tool0" in ur5.frame_names
+    assert ur5.masses.shape == (6,) and ur5.masses[0] == 3.7
+    assert list(ur5.gravity) == [0.0, 0.0, -9.81]
+    assert not ur5.floating
+    solo = vtdyn.load_urdf(urdf("Solo-12"), floating=True)
+    assert solo.floating and solo.nq == 19 and solo.nv == 18
+    assert solo.joint_names[0] == "base_link" and list(solo.q0[:7]) == [0, 0, 0, 1, 0, 0, 0]
+    assert isinstance(vtdyn.__version__, str) and vtdyn.__version__.count(".") == 2
+
+
+def test_one_state_is_its_row_bitwise(ur5):
+    q, v, a = random_states(ur5, 50, seed=3)
+    r = ur5.inverse(q, v, a)
+    for s in (0, 17, 49):
+        one = ur5.inverse(q[s], v[s], a[s])
+        assert one.effort.shape == (6,) and one.reaction.shape == (6, 6)
+        for k in range(5):
+            assert np.array_equal(one[k], r[k][s])
+
+
+@pytest.mark.parametrize("name,floating", [("UR5", False), ("Talos", False), ("Solo-12", True)])
+def test_threads_bitwise(name, floating):
+    m = vtdyn.load_urdf(urdf(name), floating=floating)
+    q, v, a = random_states(m, 257, seed=5)
+    ref = m.inverse(q, v, a, threads=1)
+    for t in (2, 4, 0):
+        got = m.inverse(q, v, a, threads=t)
+        for k in range(5):
+            assert np.array_equal(got[k], ref[k]), (t, k)
+
+
+def test_layouts_and_types(ur5):
+    q, v, a = random_states(ur5, 40, seed=9)
+    ref = ur5.inverse(q, v, a)
+    wide = np.zeros((40, 20))
+    wide[:, 3:9], wide[:, 10:16] = q, v  # rows in a wider table: strided, passed as they are
+    wa = np.zeros((80, 6))
+    wa[::2] = a  # every other row: strided rows
+    for args in ((wide[:, 3:9], wide[:, 10:16], wa[::2]),
+                 (np.asfortranarray(q), v.tolist(), a),  # copies
+                 (q[::-1][::-1], v.astype(">f8"), a)):  # big-endian: converted
+        got = ur5.inverse(*args)
+        for k in range(5):
+            assert np.array_equal(got[k], ref[k])
+    zi = ur5.inverse(np.zeros((2, 6), dtype=np.int32), [[0] * 6] * 2, np.zeros((2, 6), dtype=np.int64))
+    z = ur5.inverse(np.zeros((2, 6)), np.zeros((2, 6)), np.zeros((2, 6)))
+    assert np.array_equal(zi.effort, z.effort)
+    empty = ur5.inverse(np.zeros((0, 6)), np.zeros((0, 6)), np.zeros((0, 6)))
+    assert empty.effort.shape == (0, 6) and empty.reaction.shape == (0, 6, 6)
+
+
+def test_python_threads(ur5):
+    q, v, a = random_states(ur5, 2000, seed=11)
+    ref = ur5.inverse(q, v, a, threads=1)
+    out = [None] * 4
+
+    def work(k):
+        out[k] = ur5.inverse(q, v, a, threads=1 + k % 2)
+
+    ts = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+    for r in out:
+        assert np.array_equal(r.effort, ref.effort) and np.array_equal(r.reaction, ref.reaction)
+
+
+def test_value_errors(ur5):
+    z6, z7 = np.zeros(6), np.zeros(7)
+    cases = [
+        ((z7, z6, z6), "q"),  # a state of 7
+        ((z6, z7, z6), "v"),
+        ((z6, z6, z7), "a"),
+        ((np.zeros((2, 6)), np.zeros((3, 6)), np.zeros((2, 6))), "v"),  # row counts
+        ((np.zeros((2, 6)), np.zeros((2, 6)), np.zeros((1, 6))), "a"),
+        ((np.zeros((2, 6)), z6, z6), "v"),  # 2-D and 1-D mixed
+        ((np.zeros((2, 2, 6)), z6, z6), "q"),  # 3-D
+        ((np.float64(1.0), z6, z6), "q"),  # 0-D
+        ((z6, np.zeros(6, dtype=complex), z6), "v"),  # not convertible
+        ((z6, z6, ["x"] * 6), "a"),
+        ((z6, z6, None), "a"),
+    ]
+    for args, name in cases:
+        with pytest.raises(ValueError, match="^%s: " % name):
+            ur5.inverse(*args)
+    with pytest.raises(ValueError, match="^threads: "):
+        ur5.inverse(z6, z6, z6, threads=-1)
+    with pytest.raises(TypeError):
+        ur5.inverse(z6, z6)
+
+
+def test_library_errors(ur5):
+    q, v, a = random_states(ur5, 100, seed=13)
+    v[37, 2] = np.nan
+    a[60, 0] = np.inf
+    with pytest.raises(vtdyn.Error) as e:
+        ur5.inverse(q, v, a, threads=2)
+    err = e.value
+    assert err.row == 37 and err.status == "VT_ERR_NONFINITE" and err.code == -3
+    assert str(err).startswith("row 37: ")
+    assert isinstance(err, RuntimeError)
+    with pytest.raises(vtdyn.Error) as e:
+        ur5.inverse(q[37], v[37], a[37])
+    assert e.value.row is None and e.value.status == "VT_ERR_NONFINITE" and not str(e.value).startswith("row")
+    with pytest.raises(vtdyn.Error) as e:
+        vtdyn.load_urdf("/nonexistent/robot.urdf")
+    assert e.value.status == "VT_ERR_FILE" and e.value.code == -31 and e.value.row is None
+    assert "/nonexistent/robot.urdf" in str(e.value)
+    # a floating root's quaternion of zero norm
+    solo = vtdyn.load_urdf(urdf("Solo-12"), floating=True)
+    q = solo.q0.copy()
+    q[3] = 0.0
+    with pytest.raises(vtdyn.Error) as e:
+        solo.inverse(q, np.zeros(18), np.zeros(18))
+    assert e.value.status == "VT_ERR_QUATERNION"
