@@ -21,9 +21,9 @@ typedef struct {
     double *cell;     /* nrow x ncol, row-major */
 } table;
 
-/* longest line of a CSV file, in bytes, its line end not counted (docs/command.md): a robot at
- * VT_MAX_BODIES has about 3000 columns, 75 kB of numbers at full precision and about 200 kB of
- * header names; a longer line (a file that is not a table, /dev/zero) is refused, naming it,
+/* longest line of a CSV file, in bytes, its line end not counted (docs/command.md): a robot of
+ * 1,000 bodies has about 3000 columns, 75 kB of numbers at full precision and about 200 kB of
+ * header names, so a line holds the states of some 3,500 bodies; a longer line (a file that is not a table, /dev/zero) is refused, naming it,
  * once the bound is passed (nothing after it is read) */
 #define CSV_MAX_LINE (1024 * 1024)
 

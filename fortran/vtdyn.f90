@@ -60,8 +60,8 @@ module vtdyn
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
   real(c_double), parameter :: VT_INERTIA_ABS_TOL = 1.0e-15_c_double
   real(c_double), parameter :: VT_INERTIA_MAX = 1.0e307_c_double
-  integer(c_int), parameter :: VT_MAX_BODIES = 1000
-  integer(c_int), parameter :: VT_URDF_MAX_BYTES = 16 * 1024 * 1024
+  integer(c_int), parameter :: VT_COUNT_MAX = 16777216
+  integer(c_int), parameter :: VT_URDF_MAX_BYTES = 256 * 1024 * 1024
   ! vt_joint_type
   integer(c_int), parameter :: VT_JOINT_BASE = 0, VT_JOINT_REVOLUTE = 1, VT_JOINT_UNIVERSAL = 2, &
       VT_JOINT_SPHERICAL = 3, VT_JOINT_TRANSLATIONAL = 4, VT_JOINT_CYLINDRICAL = 5, &

@@ -97,14 +97,16 @@ VT_API int vt_find_frame(const vt_model *model, const char *name);
 /* ---- URDF robots (only in builds with libxml2, VT_HAVE_URDF) --------------------------------- */
 
 #if VT_HAVE_URDF
-/// Largest URDF input, in bytes (16 MiB), a file's or a string's: larger ones are refused before
+/// Largest URDF input, in bytes (256 MiB), a file's or a string's: larger ones are refused before
 /// they are read whole (a file by its size, or after reading VT_URDF_MAX_BYTES + 1 bytes of a
 /// device or pipe; a string after as many), VT_ERR_FILE for a file and VT_ERR_XML for a string,
-/// the message naming the bound. Robot descriptions are far smaller (UR5 14 kB, Talos 190 kB);
-/// a robot at VT_MAX_BODIES with inertial, visual and collision elements on every link is about
-/// 4 MB. The bound is on memory: libxml2's tree takes about 25 times the text of dense markup,
-/// so 16 MiB keeps a parse under about 400 MB.
-#define VT_URDF_MAX_BYTES (16 * 1024 * 1024)
+/// the message naming the bound. Robot descriptions are far smaller (UR5 14 kB, Talos 190 kB); a
+/// chain of 100,000 links with inertial elements is 32 MB. Links and joints are not refused for
+/// their number below VT_COUNT_MAX (the loader's work is O(n log n) in them): the bound is on
+/// memory, libxml2's tree taking about 15 times the text of dense markup (the 32 MB chain parses
+/// in 550 MB), so a file at the bound may need some 4 GB; an allocation that fails on the way is
+/// VT_ERR_NO_MEMORY.
+#define VT_URDF_MAX_BYTES (256 * 1024 * 1024)
 /// Options of vt_urdf_builder(). Fill from vt_default_urdf_options().
 typedef struct vt_urdf_options {
     vt_model_def model;   ///< the builder's model options; default vt_default_model_def() with gravity

@@ -3,7 +3,8 @@
  * the data uses), and on an aligned address when the base is; the total is the sum of the parts
  * and of the gaps before them, each gap shorter than the alignment (none when the parts are whole
  * multiples of it); a sizing pass (base NULL) and a carving pass give the same offsets and total,
- * and the carved arrays fill the allocation without overlapping. */
+ * and the carved arrays fill the allocation without overlapping; a size that does not fit in size_t
+ * marks the block (overflow) instead of wrapping. */
 #include "vt_test.h"
 
 #include "base/block.h"
@@ -79,11 +80,47 @@ static void test_no_gap_between_whole_parts(void **state)
     assert_int_equal(b.used, sum);
 }
 
+/* sizes past size_t: n x size that wraps, used + n x size that wraps, the alignment's round-up
+ * that wraps; each marks the block (used SIZE_MAX, NULL returned), and the mark stays for every
+ * later take, even a small one; sizes just within it are counted exactly */
+static void test_overflow_marked(void **state)
+{
+    (void)state;
+    const size_t half = SIZE_MAX / 2 + 1; /* 2^63 on 64 bits */
+    vt_block b = {.base = NULL, .used = 0, .align = 16};
+    vt_block_take(&b, half / 8, 8); /* 2^63 bytes: fits */
+    assert_false(b.overflow);
+    assert_true(b.used == half);
+    vt_block_take(&b, 2, SIZE_MAX / 2); /* n x size = SIZE_MAX − 1: fits, but not after used */
+    assert_true(b.overflow);
+    assert_true(b.used == SIZE_MAX);
+    assert_null(vt_block_take(&b, 1, 1)); /* the mark stays */
+    assert_true(b.overflow && b.used == SIZE_MAX);
+
+    vt_block p = {.base = NULL, .used = 0, .align = 16};
+    vt_block_take(&p, SIZE_MAX / 3 + 1, 3); /* the product itself wraps */
+    assert_true(p.overflow && p.used == SIZE_MAX);
+
+    char byte;
+    vt_block a = {.base = &byte, .used = SIZE_MAX - 3, .align = 16}; /* rounding up to 16 wraps */
+    assert_null(vt_block_take(&a, 0, 1));
+    assert_true(a.overflow);
+
+    vt_block e = {.base = NULL, .used = SIZE_MAX - 31, .align = 16}; /* near the top, aligned: fits */
+    vt_block_take(&e, 15, 1);
+    assert_false(e.overflow);
+    assert_true(e.used == SIZE_MAX - 16);
+    vt_block_take(&e, 15, 1); /* rounded up to SIZE_MAX − 15, then 15 bytes: SIZE_MAX exactly */
+    assert_false(e.overflow);
+    assert_true(e.used == SIZE_MAX);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_alignment_total_and_passes),
         cmocka_unit_test(test_no_gap_between_whole_parts),
+        cmocka_unit_test(test_overflow_marked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

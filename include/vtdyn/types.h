@@ -41,7 +41,11 @@ typedef enum vt_status {
     VT_ERR_AXES_NOT_PERPENDICULAR = -9,///< universal joint axes not perpendicular
     VT_ERR_PARENT = -10,               ///< reference body is not an earlier body (base: not ground)
     VT_ERR_JOINT_TYPE = -11,           ///< unknown joint type
-    VT_ERR_TOO_MANY_BODIES = -12,      ///< more than VT_MAX_BODIES bodies
+    VT_ERR_TOO_MANY_BODIES = -12,      ///< a count or size beyond what the library can index (int) or
+                                       ///< address (size_t): more than VT_COUNT_MAX bodies, coordinates,
+                                       ///< rates, rows, drives, cut joints, frames or couplings (the
+                                       ///< message names the count), or a model or data whose bytes do
+                                       ///< not fit in size_t
     VT_ERR_QUATERNION = -13,           ///< Euler parameters of (near) zero norm
     VT_ERR_EMPTY_MODEL = -14,          ///< a model needs at least one moving body
     VT_ERR_BAD_INDEX = -15,            ///< a body or coordinate index out of range
@@ -92,9 +96,13 @@ typedef enum vt_status {
 /// times it, which must not overflow. An inertia beyond it is refused with VT_ERR_NONFINITE.
 #define VT_INERTIA_MAX 1e307
 
-/// Largest number of moving bodies a model may have: keeps the dense S (7n x nv) and
-/// R (nv x 7n) of the reference path below about 400 MB.
-#define VT_MAX_BODIES 1000
+/// Largest count of each kind in a model (2^24 = 16,777,216): bodies, coordinates (nq), rates (nv),
+/// constraint rows (nc), drives, cut joints, frames and couplings; beyond it the builder refuses
+/// with VT_ERR_TOO_MANY_BODIES, naming the count. Not a limit on memory (a model is bounded by
+/// what memory holds, its sizes counted in size_t and checked): the bound on what the library
+/// indexes with int, so that every count times a constant below 128 (7 nbody, 6 nv, 14 nc, ...)
+/// fits an int; products of two counts (nc x nv, nv x nv) are formed in size_t.
+#define VT_COUNT_MAX (1 << 24)
 
 /// Joint of a body to its reference body: the six rows of the paper's Table 1, and a 6-rate
 /// floating joint (VT_JOINT_FREE) beside the paper's 7-rate base body.

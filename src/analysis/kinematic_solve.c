@@ -114,7 +114,7 @@ static vt_status solve_phiq(const vt_model *m, vt_data *d, int velocities, doubl
         const double rc = 1e-10;
         int rank = 0;
         /* LAPACK's dgelsd stops the program (xerbla) on a NaN norm: refuse non-finite input */
-        if (!vt_all_finite(A, nc * nv) || !vt_all_finite(B, ldb))
+        if (!vt_all_finite(A, (size_t)nc * (size_t)nv) || !vt_all_finite(B, (size_t)ldb))
             return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_NONFINITE, "vt_kinematic_solve: NaN or Inf in Φ_q or Φ");
         dgelsd_(&nc, &nv, &one, A, &nc, B, &ldb, sv, &rc, &rank, work, &lwork, iwork, &info);
         if (info != 0)

@@ -21,7 +21,7 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_AXES_NOT_PERPENDICULAR: return "universal joint axes not perpendicular";
     case VT_ERR_PARENT: return "reference body must be an earlier body (the ground for a base body)";
     case VT_ERR_JOINT_TYPE: return "unknown joint type";
-    case VT_ERR_TOO_MANY_BODIES: return "too many bodies";
+    case VT_ERR_TOO_MANY_BODIES: return "a count or size beyond what the library can index or address";
     case VT_ERR_QUATERNION: return "Euler parameters of zero norm";
     case VT_ERR_EMPTY_MODEL: return "the model has no moving body";
     case VT_ERR_BAD_INDEX: return "index out of range";

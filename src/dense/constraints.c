@@ -656,7 +656,8 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, vt_form form, int 
     }
     vt_scratch_release(d, mark);
     /* finite inputs can still overflow (q − f(t) with both near DBL_MAX, far points): scanned */
-    const int nc = m->nc, nphiq = m->nc * m->nv; /* ≤ nv + 7 n rows (cut joints, base bodies): an int */
+    const int nc = m->nc;
+    const size_t nphiq = (size_t)m->nc * (size_t)m->nv; /* nc x nv: may pass an int */
     if (vt_all_finite(d->Phi, nc) && vt_all_finite(d->Phit, nc) && (!rates || vt_all_finite(d->gamma, nc)) &&
         (!phix || vt_all_finite(d->Phix, 14 * nc)) && (!phiq || vt_all_finite(d->Phiq, nphiq)))
         return VT_OK;

@@ -56,11 +56,12 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
     }
     vt_scratch_release(d, mark);
     /* a state or inertia near overflow can make a product Inf: refused, naming the entry */
-    if (!vt_all_finite(d->Mstar, nv * nv))
-        for (int c = 0; c < nv * nv; c++)
+    const size_t nm = (size_t)nv * (size_t)nv; /* past an int from nv = 46,341 */
+    if (!vt_all_finite(d->Mstar, nm))
+        for (size_t c = 0; c < nm; c++)
             if (!isfinite(d->Mstar[c]))
-                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_mass_matrix: M*[%d, %d] = %g (overflow)", c % nv,
-                               c / nv, d->Mstar[c]);
+                return vt_fail(d->message, VT_ERR_NONFINITE, "vt_mass_matrix: M*[%zu, %zu] = %g (overflow)",
+                               c % (size_t)nv, c / (size_t)nv, d->Mstar[c]);
     if (!vt_all_finite(d->Mp + 16, 16 * m->nbody))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_mass_matrix: a body's rotational mass block overflows");
     return VT_OK;

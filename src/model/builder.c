@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "model/builder.h"
+#include "base/checked.h"
 #include "base/lapack.h"
 #include "base/scan.h"
 #include "base/status.h"
@@ -135,14 +136,20 @@ void vt_builder_free(vt_builder *builder)
     free(builder->couplings);
     free(builder->coupling_names);
     free(builder->frame_names);
+    vt_names_free(&builder->body_index);
+    vt_names_free(&builder->joint_index);
+    vt_names_free(&builder->drive_index);
+    vt_names_free(&builder->cut_index);
+    vt_names_free(&builder->frame_index);
+    vt_names_free(&builder->coupling_index);
     free(builder);
 }
 
-/* name into dst ("" for NULL), refused when too long or when one of the n names taken has it */
-static vt_status take_name(char *msg, vt_name dst, const char *name, const vt_name *taken_names, int n, const char *what,
-                           int id)
+/* name into dst ("" for NULL), refused when too long or when one of the names taken (index,
+ * over the list taken_names) has it */
+static vt_status take_name(char *msg, vt_name dst, const char *name, const vt_names *index, const vt_name *taken_names,
+                           const char *what, int id)
 {
-    const char *taken = (const char *)taken_names;
     if (!name || !name[0]) {
         dst[0] = '\0';
         return VT_OK;
@@ -151,12 +158,26 @@ static vt_status take_name(char *msg, vt_name dst, const char *name, const vt_na
     const size_t len = end ? (size_t)(end - name) : VT_NAME_MAX;
     if (len >= VT_NAME_MAX)
         return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%.20s...\" longer than %d bytes", what, id, name, VT_NAME_MAX - 1);
-    for (int k = 0; k < n; k++)
-        if (strcmp(taken + (size_t)VT_NAME_MAX * (size_t)k, name) == 0)
-            return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%s\" already taken by %s %d", what, id, name, what,
-                           k + (strcmp(what, "body") == 0 || strcmp(what, "joint") == 0));
+    const int k = vt_names_find(index, taken_names, vt_name_in_array, name);
+    if (k >= 0)
+        return vt_fail(msg, VT_ERR_BAD_NAME, "%s %d: name \"%s\" already taken by %s %d", what, id, name, what,
+                       k + (strcmp(what, "body") == 0 || strcmp(what, "joint") == 0));
     memcpy(dst, name, len + 1);
     return VT_OK;
+}
+
+/* entry k's name (copied to the list already) into its kind's index, unless unnamed */
+static void index_name(vt_names *index, const vt_name *names, int k)
+{
+    if (names[k][0]) vt_names_insert(index, names, vt_name_in_array, k);
+}
+
+/* a count that would pass VT_COUNT_MAX with one more: the message names it */
+static vt_status count_full(char *msg, int count, const char *what)
+{
+    return vt_fail(msg, VT_ERR_TOO_MANY_BODIES, "%s %d: more than VT_COUNT_MAX (%d) %s", what, count, VT_COUNT_MAX,
+                   strcmp(what, "body") == 0 ? "bodies" : strcmp(what, "coupling") == 0 ? "couplings"
+                   : strcmp(what, "frame") == 0 ? "frames" : strcmp(what, "drive") == 0 ? "drives" : "cut joints");
 }
 
 int vt_find_name(const char *names, int n, const char *name)
@@ -211,12 +232,15 @@ vt_status vt_check_inertia(char *msg, const char *who, const double J[9])
     return VT_OK;
 }
 
-/* Grows a builder array; 0 on failure. */
+/* Grows a builder array to hold entry n (its capacity doubled, at most VT_COUNT_MAX entries; the
+ * bytes checked); 0 on failure, the array as it was. */
 static int grow(void **arr, int *cap, int n, size_t size)
 {
     if (n < *cap) return 1;
-    int nc = *cap ? 2 * *cap : 8;
-    void *p = realloc(*arr, (size_t)nc * size);
+    const int nc = *cap == 0 ? 8 : *cap > VT_COUNT_MAX / 2 ? VT_COUNT_MAX : 2 * *cap;
+    size_t bytes;
+    if (n >= nc || !vt_size_mul(&bytes, (size_t)nc, size)) return 0;
+    void *p = realloc(*arr, bytes);
     if (!p) return 0;
     *arr = p;
     *cap = nc;
@@ -285,24 +309,33 @@ int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "body definition is NULL");
     const int id = b->n + 1;
-    if (id > VT_MAX_BODIES)
-        return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "body %d: at most %d bodies", id, VT_MAX_BODIES);
+    if (b->n >= VT_COUNT_MAX) return count_full(b->message, id, "body");
     vt_body_def d = *def;
     vt_status st = validate_body(b->message, id, &d);
     if (st) return st;
+    int nq = 0, nv = 0;
+    if (!vt_count_add(&nq, b->nq, vt_joint_nq(d.joint), VT_COUNT_MAX) ||
+        !vt_count_add(&nv, b->nv, vt_joint_nv(d.joint), VT_COUNT_MAX))
+        return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "body %d: more than VT_COUNT_MAX (%d) coordinates or rates", id,
+                       VT_COUNT_MAX);
     vt_name name, joint;
-    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->body_names, b->n, "body", id)) ||
-        (st = take_name(b->message, joint, d.joint_name, (const vt_name *)b->joint_names, b->n, "joint", id)))
+    if ((st = take_name(b->message, name, d.name, &b->body_index, (const vt_name *)b->body_names, "body", id)) ||
+        (st = take_name(b->message, joint, d.joint_name, &b->joint_index, (const vt_name *)b->joint_names, "joint", id)))
         return st;
     int capn = b->capnames; /* grown together: a failure leaves the builder as it was */
     if (!grow((void **)&b->bodies, &b->cap, b->n, sizeof d) ||
         !grow((void **)&b->body_names, &capn, b->n, sizeof(vt_name)) ||
-        !grow((void **)&b->joint_names, &b->capnames, b->n, sizeof(vt_name)))
+        !grow((void **)&b->joint_names, &b->capnames, b->n, sizeof(vt_name)) ||
+        vt_names_reserve(&b->body_index, id) || vt_names_reserve(&b->joint_index, id))
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "body %d: out of memory", id);
     d.name = d.joint_name = NULL; /* the caller's memory: the builder keeps its own copies */
     memcpy(b->body_names[b->n], name, sizeof name);
     memcpy(b->joint_names[b->n], joint, sizeof joint);
+    index_name(&b->body_index, (const vt_name *)b->body_names, b->n);
+    index_name(&b->joint_index, (const vt_name *)b->joint_names, b->n);
     b->bodies[b->n++] = d;
+    b->nq = nq;
+    b->nv = nv;
     b->message[0] = '\0';
     return id;
 }
@@ -310,15 +343,15 @@ int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
 int vt_builder_find_body(const vt_builder *b, const char *name)
 {
     if (!b || !name) return VT_ERR_NULL;
-    const int k = vt_find_name((const char *)b->body_names, b->n, name);
-    return k < 0 ? k : k + 1;
+    const int k = name[0] ? vt_names_find(&b->body_index, b->body_names, vt_name_in_array, name) : -1;
+    return k < 0 ? VT_ERR_NOT_FOUND : k + 1;
 }
 
 /* the frame of that name added so far into *body and point, or a status with the message */
 static vt_status resolve_frame(const vt_builder *b, char *msg, const char *frame, const char *what, int k, int *body,
                                double point[3])
 {
-    const int f = vt_find_name((const char *)b->frame_names, b->nframe, frame);
+    const int f = vt_names_find(&b->frame_index, b->frame_names, vt_name_in_array, frame);
     if (f < 0) return vt_fail(msg, VT_ERR_NOT_FOUND, "%s %d: no frame \"%.64s\" added so far", what, k, frame);
     *body = b->frames[f].body;
     memcpy(point, b->frames[f].point, 3 * sizeof(double));
@@ -331,9 +364,10 @@ int vt_builder_add_frame(vt_builder *b, const vt_frame_def *def)
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "frame definition is NULL");
     const int k = b->nframe;
     vt_frame_def f = *def;
+    if (k >= VT_COUNT_MAX) return count_full(b->message, k, "frame");
     if (!f.name || !f.name[0]) return vt_fail(b->message, VT_ERR_BAD_NAME, "frame %d: a frame needs a name", k);
     vt_name name;
-    vt_status st = take_name(b->message, name, f.name, (const vt_name *)b->frame_names, b->nframe, "frame", k);
+    vt_status st = take_name(b->message, name, f.name, &b->frame_index, (const vt_name *)b->frame_names, "frame", k);
     if (st) return st;
     if (f.body < 0 || f.body > b->n)
         return vt_fail(b->message, VT_ERR_BAD_INDEX, "frame %d (%s): body %d is not the ground or a body added so far (1..%d)",
@@ -344,11 +378,14 @@ int vt_builder_add_frame(vt_builder *b, const vt_frame_def *def)
         return vt_fail(b->message, VT_ERR_QUATERNION, "frame %d (%s): orientation of zero norm", k, name);
     int capn = b->capframenames;
     if (!grow((void **)&b->frames, &b->capframe, b->nframe, sizeof f) ||
-        !grow((void **)&b->frame_names, &capn, b->nframe, sizeof(vt_name)))
+        !grow((void **)&b->frame_names, &capn, b->nframe, sizeof(vt_name)) || vt_names_reserve(&b->frame_index, k + 1)) {
+        b->capframenames = capn;
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "frame %d: out of memory", k);
+    }
     b->capframenames = capn;
     f.name = NULL;
     memcpy(b->frame_names[k], name, sizeof name);
+    index_name(&b->frame_index, (const vt_name *)b->frame_names, k);
     b->frames[b->nframe++] = f;
     b->message[0] = '\0';
     return k;
@@ -451,7 +488,10 @@ static vt_status own_splines(char *msg, int k, vt_drive_def *d, double **block)
         }
     *block = NULL;
     if (total == 0) return VT_OK;
-    double *own = malloc(3 * total * sizeof(double)), *work = malloc(3 * most * sizeof(double));
+    size_t bytes; /* 3 total doubles (most <= total) */
+    if (!vt_size_mul(&bytes, total, 3 * sizeof(double)))
+        return vt_fail(msg, VT_ERR_TOO_MANY_BODIES, "drive %d: %zu spline samples do not fit in memory", k, total);
+    double *own = malloc(bytes), *work = malloc(3 * most * sizeof(double));
     if (!own || !work) {
         free(own);
         free(work);
@@ -492,6 +532,7 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
 {
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "drive definition is NULL");
+    if (b->ndrive >= VT_COUNT_MAX) return count_full(b->message, b->ndrive, "drive");
     vt_drive_def d = *def;
     if (d.f.type == VT_FUNCTION_SPLINE) d.f.sample_d2 = NULL; /* computed here, never trusted */
     if (d.f2.type == VT_FUNCTION_SPLINE) d.f2.sample_d2 = NULL;
@@ -504,13 +545,15 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
     }
     if ((st = validate_drive(b, b->message, b->ndrive, &d))) return st;
     vt_name name;
-    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->drive_names, b->ndrive, "drive", b->ndrive))) return st;
+    if ((st = take_name(b->message, name, d.name, &b->drive_index, (const vt_name *)b->drive_names, "drive", b->ndrive)))
+        return st;
     double *own = NULL;
     if ((st = own_splines(b->message, b->ndrive, &d, &own))) return st;
     int capn = b->capdrivenames;
     if (!grow((void **)&b->drives, &b->capdrive, b->ndrive, sizeof d) ||
         !grow((void **)&b->drive_names, &capn, b->ndrive, sizeof(vt_name)) ||
-        !grow((void **)&b->samples, &b->capsamples, b->ndrive, sizeof own)) {
+        !grow((void **)&b->samples, &b->capsamples, b->ndrive, sizeof own) ||
+        vt_names_reserve(&b->drive_index, b->ndrive + 1)) {
         b->capdrivenames = capn; /* only capacities may have grown: the builder's content is as it was */
         free(own);
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "drive %d: out of memory", b->ndrive);
@@ -518,6 +561,7 @@ int vt_builder_add_drive(vt_builder *b, const vt_drive_def *def)
     b->capdrivenames = capn;
     d.name = d.frame = NULL;
     memcpy(b->drive_names[b->ndrive], name, sizeof name);
+    index_name(&b->drive_index, (const vt_name *)b->drive_names, b->ndrive);
     b->drives[b->ndrive] = d;
     b->samples[b->ndrive] = own;
     b->message[0] = '\0';
@@ -560,20 +604,25 @@ int vt_builder_add_cut_joint(vt_builder *b, const vt_cut_joint_def *def)
 {
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "cut joint definition is NULL");
+    if (b->ncut >= VT_COUNT_MAX) return count_full(b->message, b->ncut, "cut joint");
     vt_cut_joint_def d = *def;
     vt_status st = VT_OK;
     if (d.frame_a && (st = resolve_frame(b, b->message, d.frame_a, "cut joint", b->ncut, &d.body_a, d.point_a))) return st;
     if (d.frame_b && (st = resolve_frame(b, b->message, d.frame_b, "cut joint", b->ncut, &d.body_b, d.point_b))) return st;
     if ((st = validate_cut(b, b->message, b->ncut, &d))) return st;
     vt_name name;
-    if ((st = take_name(b->message, name, d.name, (const vt_name *)b->cut_names, b->ncut, "cut joint", b->ncut))) return st;
+    if ((st = take_name(b->message, name, d.name, &b->cut_index, (const vt_name *)b->cut_names, "cut joint", b->ncut)))
+        return st;
     int capn = b->capcutnames;
     if (!grow((void **)&b->cuts, &b->capcut, b->ncut, sizeof d) ||
-        !grow((void **)&b->cut_names, &capn, b->ncut, sizeof(vt_name)))
+        !grow((void **)&b->cut_names, &capn, b->ncut, sizeof(vt_name)) || vt_names_reserve(&b->cut_index, b->ncut + 1)) {
+        b->capcutnames = capn;
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "cut joint %d: out of memory", b->ncut);
+    }
     b->capcutnames = capn;
     d.name = d.frame_a = d.frame_b = NULL;
     memcpy(b->cut_names[b->ncut], name, sizeof name);
+    index_name(&b->cut_index, (const vt_name *)b->cut_names, b->ncut);
     b->cuts[b->ncut] = d;
     b->message[0] = '\0';
     return b->ncut++;
@@ -600,6 +649,7 @@ int vt_builder_add_coupling(vt_builder *b, const vt_coupling_def *def)
     if (!b) return VT_ERR_NULL;
     if (!def) return vt_fail(b->message, VT_ERR_NULL, "coupling definition is NULL");
     const int k = b->ncoupling;
+    if (k >= VT_COUNT_MAX) return count_full(b->message, k, "coupling");
     vt_coupling_def c = *def;
     vt_status st;
     if ((st = coupling_side(b, b->message, k, c.body_a, c.index_a, "a")) ||
@@ -611,16 +661,18 @@ int vt_builder_add_coupling(vt_builder *b, const vt_coupling_def *def)
     if (!isfinite(c.ratio) || !isfinite(c.offset))
         return vt_fail(b->message, VT_ERR_NONFINITE, "coupling %d: ratio %g or offset %g not finite", k, c.ratio, c.offset);
     vt_name name;
-    if ((st = take_name(b->message, name, c.name, (const vt_name *)b->coupling_names, k, "coupling", k))) return st;
+    if ((st = take_name(b->message, name, c.name, &b->coupling_index, (const vt_name *)b->coupling_names, "coupling", k)))
+        return st;
     int capn = b->capcouplingnames;
     if (!grow((void **)&b->couplings, &b->capcoupling, k, sizeof c) ||
-        !grow((void **)&b->coupling_names, &capn, k, sizeof(vt_name))) {
+        !grow((void **)&b->coupling_names, &capn, k, sizeof(vt_name)) || vt_names_reserve(&b->coupling_index, k + 1)) {
         b->capcouplingnames = capn;
         return vt_fail(b->message, VT_ERR_NO_MEMORY, "coupling %d: out of memory", k);
     }
     b->capcouplingnames = capn;
     c.name = NULL;
     memcpy(b->coupling_names[k], name, sizeof name);
+    index_name(&b->coupling_index, (const vt_name *)b->coupling_names, k);
     b->couplings[b->ncoupling++] = c;
     b->message[0] = '\0';
     return k;

@@ -5,16 +5,21 @@
 #define VT_MODEL_BUILDER_H
 
 #include "vtdyn.h"
+#include "model/names.h"
 
 /* A name as the builder and the model keep it (VT_NAME_MAX bytes, "" when unnamed). */
 typedef char vt_name[VT_NAME_MAX];
 
-/* The definitions added so far; vt_builder_build reads them. */
+/* The definitions added so far; vt_builder_build reads them. Each kind's names are indexed
+ * (model/names.h: duplicates refused and finds in O(log n)); every count stays within
+ * VT_COUNT_MAX. */
 struct vt_builder {
     vt_model_def def;
     vt_body_def *bodies;  /* validated and normalized definitions (cap) */
     vt_name *body_names, *joint_names; /* (cap each, grown with bodies) */
     int n, cap, capnames;
+    int nq, nv;           /* the bodies' coordinates and rates so far */
+    vt_names body_index, joint_index, drive_index, cut_index, frame_index, coupling_index;
     vt_drive_def *drives;
     vt_name *drive_names;
     int ndrive, capdrive, capdrivenames;

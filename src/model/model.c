@@ -16,6 +16,7 @@
  * The drives' spline samples (t, y, f'' of each spline, copied from the builder's blocks) are a
  * part of the model's one block.
  */
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -23,6 +24,7 @@
 
 #include "model/model.h"
 #include "base/block.h"
+#include "base/checked.h"
 #include "base/status.h"
 #include "base/vec3.h"
 #include "model/builder.h"
@@ -258,8 +260,9 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     const int n = b->n;
     if (n == 0) return vt_fail(b->message, VT_ERR_EMPTY_MODEL, "the model has no moving body");
 
-    /* sizes: coordinates and path lengths */
-    int nq = 0, nv = 0, npath = 0, nc = 0;
+    /* sizes: coordinates and path lengths (nq and nv within VT_COUNT_MAX: the builder's counts;
+     * the rows and the paths' total checked here) */
+    int nq = 0, nv = 0, npath = 0, nc = 0, paths_ok = 1, rows_ok = 1;
     int *depth_nv = calloc((size_t)n + 1, sizeof(int)); /* rates on the path to each body */
     if (!depth_nv) return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory");
     for (int i = 1; i <= n; i++) {
@@ -267,12 +270,19 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         nq += vt_joint_nq(d->joint);
         nv += vt_joint_nv(d->joint);
         depth_nv[i] = depth_nv[d->parent] + vt_joint_nv(d->joint);
-        npath += depth_nv[i];
+        paths_ok = paths_ok && vt_count_add(&npath, npath, depth_nv[i], INT_MAX);
         nc += d->joint == VT_JOINT_BASE;
     }
-    for (int k = 0; k < b->ndrive; k++) nc += vt_drive_nrows(&b->drives[k]);
-    for (int k = 0; k < b->ncut; k++) nc += vt_cut_nrows(&b->cuts[k]);
-    nc += b->ncoupling;
+    for (int k = 0; k < b->ndrive; k++) rows_ok = rows_ok && vt_count_add(&nc, nc, vt_drive_nrows(&b->drives[k]), VT_COUNT_MAX);
+    for (int k = 0; k < b->ncut; k++) rows_ok = rows_ok && vt_count_add(&nc, nc, vt_cut_nrows(&b->cuts[k]), VT_COUNT_MAX);
+    rows_ok = rows_ok && vt_count_add(&nc, nc, b->ncoupling, VT_COUNT_MAX);
+    if (!paths_ok || !rows_ok) {
+        free(depth_nv);
+        return rows_ok ? vt_fail(b->message, VT_ERR_TOO_MANY_BODIES,
+                                 "the bodies' paths hold more than %d rates in all (the tree's reference structure)", INT_MAX)
+                       : vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "more than VT_COUNT_MAX (%d) constraint rows",
+                                 VT_COUNT_MAX);
+    }
 
     size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */
     for (int k = 0; k < b->ndrive; k++) {
@@ -287,6 +297,10 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     vt_model tmp;
     layout_model(&blk, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
     vt_block_take(&blk, 3 * nsample, sizeof(double));
+    if (blk.overflow) {
+        free(depth_nv);
+        return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "the model's size does not fit in size_t");
+    }
     char *block = calloc(1, blk.used);
     if (!block) {
         free(depth_nv);

@@ -31,9 +31,12 @@
  * root, P's origin's global position and P's frame's global orientation. Every link is a frame
  * named after it: body its body, point and orientation T_{B,l}.
  *
- * Bad input gives a status and a message naming the element and its line (xmlGetLineNo). The
+ * Bad input gives a status and a message naming the element and its line (vt_xml_line). The
  * XML is read by model/xml.c: this library's libxml2 settings only, no entity, nothing printed,
- * the input at most VT_URDF_MAX_BYTES.
+ * the input at most VT_URDF_MAX_BYTES. No count of links or joints is refused below
+ * VT_COUNT_MAX: links and joints are found by name through an index (model/names.h) and the
+ * tree is walked once, so the loader's work is O(n log n) in them (the builder's, which it
+ * calls, too).
  */
 #define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 #include <math.h>
@@ -50,11 +53,10 @@
 #include <libxml/xmlerror.h>
 
 #include "model/urdf.h"
+#include "model/names.h"
 #include "model/xml.h"
 #include "base/status.h"
 #include "base/vec3.h"
-
-#define VT_URDF_MAX_ELEMENTS (4 * VT_MAX_BODIES) /* links, and joints, in one file */
 
 /* x_outer = A(p) x_inner + t */
 typedef struct {
@@ -138,7 +140,18 @@ typedef struct {
     urdf_joint *joint;
     urdf_body *body;
     int nlink, njoint, nbody;
+    vt_names link_index, joint_index; /* the links and joints by name (model/names.h) */
 } urdf;
+
+static const char *link_name(const void *links, int k)
+{
+    return (const char *)((const urdf_link *)links)[k].name;
+}
+
+static const char *joint_name(const void *joints, int k)
+{
+    return (const char *)((const urdf_joint *)joints)[k].name;
+}
 
 /* "<kind> "<name>" (line L): ..." when node is the link or joint itself, else
  * "<kind> "<name>", <element> (line L): ..." */
@@ -151,7 +164,7 @@ static vt_status fail_at(const urdf *u, vt_status st, const char *kind, const xm
     va_start(ap, fmt);
     vsnprintf(what, sizeof what, fmt, ap);
     va_end(ap);
-    const long line = node ? xmlGetLineNo(node) : -1;
+    const long line = node ? vt_xml_line(node) : -1;
     const char *who = name ? (const char *)name : "";
     if (!name)
         snprintf(u->msg, VT_MESSAGE_SIZE, "<%.24s> (line %ld): ", node ? (const char *)node->name : kind, line);
@@ -172,7 +185,7 @@ static vt_status attr_value(const urdf *u, xmlNodePtr node, const char *attr, xm
     *value = node ? xmlGetNoNsProp(node, (const xmlChar *)attr) : NULL;
     if (!*value && node && xmlHasNsProp(node, (const xmlChar *)attr, NULL))
         return vt_fail(u->msg, VT_ERR_NO_MEMORY, "out of memory (libxml2, the attribute %s on line %ld)", attr,
-                       xmlGetLineNo(node));
+                       vt_xml_line(node));
     return VT_OK;
 }
 
@@ -275,9 +288,7 @@ static int joint_type(const xmlChar *t)
 
 static int find_link(const urdf *u, const xmlChar *name)
 {
-    for (int k = 0; name && k < u->nlink; k++)
-        if (xmlStrcmp(u->link[k].name, name) == 0) return k;
-    return -1;
+    return vt_names_find(&u->link_index, u->link, link_name, (const char *)name);
 }
 
 /* Mimic joints (<mimic joint multiplier offset>): a joint coordinate tied to another's,
@@ -336,7 +347,7 @@ static vt_status read_joint(urdf *u, int k)
         const urdf_joint *o = &u->joint[c->parent_joint];
         return fail_at(u, VT_ERR_PARENT, "joint", j->name, j->node,
                        "link \"%.64s\" has two parents: joint \"%.64s\" (line %ld) and this one", (const char *)c->name,
-                       (const char *)o->name, xmlGetLineNo(o->node));
+                       (const char *)o->name, vt_xml_line(o->node));
     }
     c->parent_joint = k;
     if ((st = origin(u, "joint", j->name, j->node, &j->origin))) return st;
@@ -357,7 +368,8 @@ static vt_status read_joint(urdf *u, int k)
     return VT_OK;
 }
 
-/* Links and joints of <robot>: names unique, every joint's links found, one parent each. */
+/* Links and joints of <robot>: names unique (each kind's index), every joint's links found, one
+ * parent each. */
 static vt_status read_robot(urdf *u, xmlNodePtr robot)
 {
     int nl = 0, nj = 0;
@@ -365,16 +377,16 @@ static vt_status read_robot(urdf *u, xmlNodePtr robot)
         if (c->type != XML_ELEMENT_NODE) continue;
         nl += xmlStrcmp(c->name, (const xmlChar *)"link") == 0;
         nj += xmlStrcmp(c->name, (const xmlChar *)"joint") == 0;
+        if (nl > VT_COUNT_MAX || nj > VT_COUNT_MAX) /* each link a frame, each joint at most a body */
+            return fail_at(u, VT_ERR_TOO_MANY_BODIES, "robot", NULL, robot, "more than VT_COUNT_MAX (%d) %s",
+                           VT_COUNT_MAX, nl > VT_COUNT_MAX ? "links" : "joints");
     }
-    /* the name checks and the tree's order are quadratic in the counts: a bound keeps a hostile
-     * file from taking minutes (a robot has at most VT_MAX_BODIES moving links) */
-    if (nl > VT_URDF_MAX_ELEMENTS || nj > VT_URDF_MAX_ELEMENTS)
-        return fail_at(u, VT_ERR_TOO_MANY_BODIES, "robot", NULL, robot, "%d links and %d joints: at most %d of each", nl,
-                       nj, VT_URDF_MAX_ELEMENTS);
     u->link = calloc((size_t)nl + 1, sizeof *u->link);
     u->joint = calloc((size_t)nj + 1, sizeof *u->joint);
     u->body = calloc((size_t)nl + 1, sizeof *u->body);
-    if (!u->link || !u->joint || !u->body) return vt_fail(u->msg, VT_ERR_NO_MEMORY, "out of memory");
+    if (!u->link || !u->joint || !u->body || vt_names_reserve(&u->link_index, nl) ||
+        vt_names_reserve(&u->joint_index, nj))
+        return vt_fail(u->msg, VT_ERR_NO_MEMORY, "out of memory");
     for (xmlNodePtr c = robot->children; c; c = c->next) {
         if (c->type != XML_ELEMENT_NODE) continue;
         const int is_link = xmlStrcmp(c->name, (const xmlChar *)"link") == 0;
@@ -391,13 +403,14 @@ static vt_status read_robot(urdf *u, xmlNodePtr robot)
             u->joint[u->njoint++].name = name;
         }
         if (!name || !name[0]) return fail_at(u, VT_ERR_BAD_NAME, kind, name, c, "a %s needs a name", kind);
-        const int n = is_link ? u->nlink - 1 : u->njoint - 1;
-        for (int k = 0; k < n; k++) {
-            xmlNodePtr other = is_link ? u->link[k].node : u->joint[k].node;
-            if (xmlStrcmp(is_link ? u->link[k].name : u->joint[k].name, name) == 0)
-                return fail_at(u, VT_ERR_BAD_NAME, kind, name, c, "name already taken by the %s on line %ld", kind,
-                               xmlGetLineNo(other));
-        }
+        vt_names *index = is_link ? &u->link_index : &u->joint_index;
+        const void *list = is_link ? (const void *)u->link : (const void *)u->joint;
+        const vt_name_at at = is_link ? link_name : joint_name;
+        const int n = is_link ? u->nlink - 1 : u->njoint - 1, k = vt_names_find(index, list, at, (const char *)name);
+        if (k >= 0)
+            return fail_at(u, VT_ERR_BAD_NAME, kind, name, c, "name already taken by the %s on line %ld", kind,
+                           vt_xml_line(is_link ? u->link[k].node : u->joint[k].node));
+        vt_names_insert(index, list, at, n);
     }
     if (u->nlink == 0) return fail_at(u, VT_ERR_EMPTY_MODEL, "robot", NULL, robot, "no <link>");
     vt_status st = VT_OK;
@@ -406,11 +419,26 @@ static vt_status read_robot(urdf *u, xmlNodePtr robot)
     return st;
 }
 
-/* Bodies breadth-first from the roots (parents before children): each link's body and T_{P,l}. */
+/* Bodies breadth-first from the roots (parents before children): each link's body and T_{P,l}.
+ * The joints grouped by parent link (a counting sort, each link's joints in the file's order),
+ * so that the walk is linear in the links and joints. */
 static vt_status order_tree(urdf *u, int floating)
 {
-    int *queue = malloc((size_t)(u->nlink > 0 ? u->nlink : 1) * sizeof *queue), head = 0, tail = 0;
-    if (!queue) return vt_fail(u->msg, VT_ERR_NO_MEMORY, "out of memory");
+    const size_t nl = (size_t)u->nlink, nj = (size_t)u->njoint;
+    int *queue = malloc((nl > 0 ? nl : 1) * sizeof *queue), head = 0, tail = 0;
+    int *first = calloc(nl + 1, sizeof *first), *by_parent = malloc((nj > 0 ? nj : 1) * sizeof *by_parent);
+    if (!queue || !first || !by_parent) {
+        free(queue);
+        free(first);
+        free(by_parent);
+        return vt_fail(u->msg, VT_ERR_NO_MEMORY, "out of memory");
+    }
+    /* link p's joints are by_parent[first[p] .. first[p + 1] − 1] */
+    for (int k = 0; k < u->njoint; k++) first[u->joint[k].parent + 1]++;
+    for (int p = 0; p < u->nlink; p++) first[p + 1] += first[p];
+    for (int k = 0; k < u->njoint; k++) by_parent[first[u->joint[k].parent]++] = k; /* first[p] ends at p + 1's start */
+    for (int p = u->nlink; p > 0; p--) first[p] = first[p - 1];
+    first[0] = 0;
     for (int k = 0; k < u->nlink; k++) {
         urdf_link *l = &u->link[k];
         if (l->parent_joint >= 0) continue;
@@ -424,12 +452,11 @@ static vt_status order_tree(urdf *u, int floating)
         }
         queue[tail++] = k;
     }
-    vt_status st = VT_OK;
-    while (head < tail && st == VT_OK) {
+    while (head < tail) {
         const int p = queue[head++];
-        for (int k = 0; k < u->njoint && st == VT_OK; k++) {
+        for (int e = first[p]; e < first[p + 1]; e++) {
+            const int k = by_parent[e];
             const urdf_joint *j = &u->joint[k];
-            if (j->parent != p) continue;
             urdf_link *c = &u->link[j->child], *l = &u->link[p];
             if (j->type == J_FIXED) {
                 c->body = l->body;
@@ -444,6 +471,9 @@ static vt_status order_tree(urdf *u, int floating)
         }
     }
     free(queue);
+    free(first);
+    free(by_parent);
+    vt_status st = VT_OK;
     for (int k = 0; k < u->nlink && st == VT_OK; k++) /* one parent each: what no root reaches is a loop */
         if (u->link[k].body < 0) {
             const urdf_joint *j = &u->joint[u->link[k].parent_joint];
@@ -571,9 +601,7 @@ static vt_status add_couplings(const urdf *u, vt_builder *bld)
         xmlChar *other;
         vt_status st = attr_value(u, j->mimic, "joint", &other);
         if (st) return st;
-        int o = -1;
-        for (int i = 0; other && i < u->njoint; i++)
-            if (xmlStrcmp(u->joint[i].name, other) == 0) o = i;
+        const int o = vt_names_find(&u->joint_index, u->joint, joint_name, (const char *)other);
         if (!other) st = fail_at(u, VT_ERR_NOT_FOUND, "joint", j->name, j->mimic, "<mimic> names no joint");
         else if (o < 0)
             st = fail_at(u, VT_ERR_NOT_FOUND, "joint", j->name, j->mimic, "mimics \"%.64s\", not a joint of the robot",
@@ -620,6 +648,8 @@ static vt_status from_doc(vt_builder **builder, xmlDocPtr doc, const vt_urdf_opt
     free(u.link);
     free(u.joint);
     free(u.body);
+    vt_names_free(&u.link_index);
+    vt_names_free(&u.joint_index);
     if (st) {
         vt_builder_free(b);
         return st;

@@ -10,6 +10,7 @@
  */
 #define _POSIX_C_SOURCE 200809L /* fileno */
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +21,7 @@
 #include <libxml/globals.h> /* xmlStructuredError: the calling thread's */
 #include <libxml/parser.h>
 #include <libxml/parserInternals.h> /* xmlCreateMemoryParserCtxt */
+#include <libxml/SAX2.h>
 #include <libxml/xmlerror.h>
 
 #include "model/xml.h"
@@ -162,29 +164,58 @@ static void on_thread_error(void *data, VT_XML_ERROR *e)
     keep_error(x, e);
 }
 
+/* An element's line past 65535: libxml2 2.9 keeps an element's line in 16 bits (65535 beyond)
+ * and XML_PARSE_BIG_LINES the full line of text nodes only, so the element created here gets
+ * its line, as libxml2 takes it (the input's line when the start tag is read), in its psvi,
+ * which nothing else uses without schema validation (vt_xml_line reads it). */
+static void on_start_element(void *ctx, const xmlChar *localname, const xmlChar *prefix, const xmlChar *uri,
+                             int nb_namespaces, const xmlChar **namespaces, int nb_attributes, int nb_defaulted,
+                             const xmlChar **attributes)
+{
+    xmlParserCtxtPtr ctxt = (xmlParserCtxtPtr)ctx;
+    const xmlNodePtr parent = ctxt->node;
+    xmlSAX2StartElementNs(ctx, localname, prefix, uri, nb_namespaces, namespaces, nb_attributes, nb_defaulted,
+                          attributes);
+    xmlNodePtr node = ctxt->node; /* the new element, or the parent when it could not be made */
+    if (node && node != parent && node->type == XML_ELEMENT_NODE && node->line == 65535 && ctxt->input &&
+        ctxt->input->line >= 65535)
+        node->psvi = (void *)(intptr_t)ctxt->input->line;
+}
+
+long vt_xml_line(const xmlNode *node)
+{
+    if (node->type == XML_ELEMENT_NODE && node->line == 65535 && node->psvi) return (long)(intptr_t)node->psvi;
+    return xmlGetLineNo(node);
+}
+
 /* The parser context's settings, all of them this loader's, none the process's: libxml2 2.9's
  * xmlNewParserCtxt copies the host's defaults into the context (xmlSubstituteEntitiesDefault,
  * xmlLoadExtDtdDefaultValue, xmlDoValidityCheckingDefaultValue, xmlPedanticParserDefault,
  * xmlKeepBlanksDefault, xmlLineNumbersDefault, xmlGetWarningsDefaultValue, the default SAX
  * version): each is set here. Errors go to this context's structured handler only (no generic
  * or validity channel, which print), entities are refused, nothing outside the input is loaded,
- * no network (NONET), no XInclude (never processed). */
+ * no network (NONET), no XInclude (never processed). The tree is kept small, a robot of 100,000
+ * links being some 30 MB of text: short texts and attribute values stored in their node
+ * (COMPACT; the tree is never modified), and the white space between elements, which URDF does
+ * not read, left out (NOBLANKS; the lines of the elements are their own, on_start_element). */
 static void configure(xmlParserCtxtPtr ctxt, xml_error *err)
 {
     xmlSAXVersion(ctxt->sax, 2); /* SAX2 callbacks, whatever xmlSAXDefaultVersion() said */
-    xmlCtxtUseOptions(ctxt, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES);
+    xmlCtxtUseOptions(ctxt, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES |
+                                XML_PARSE_COMPACT | XML_PARSE_NOBLANKS);
     ctxt->replaceEntities = 0;
     ctxt->loadsubset = 0;
     ctxt->validate = 0;
     ctxt->pedantic = 0;
-    ctxt->keepBlanks = 1;
+    ctxt->keepBlanks = 0;
     ctxt->linenumbers = 1;
     ctxt->recovery = 0;
     ctxt->vctxt.error = NULL;
     ctxt->vctxt.warning = NULL;
     ctxt->_private = err;
     xmlSAXHandlerPtr sax = ctxt->sax;
-    sax->ignorableWhitespace = sax->characters;
+    sax->ignorableWhitespace = xmlSAX2IgnorableWhitespace; /* blanks between elements: dropped */
+    sax->startElementNs = on_start_element;
     sax->warning = NULL;
     sax->error = NULL;
     sax->fatalError = NULL;

@@ -20,6 +20,10 @@ typedef vt_status (*vt_xml_reader)(xmlDocPtr doc, void *user, char *msg);
  * why. */
 vt_status vt_xml_read(const char *xml, size_t size, const char *url, vt_xml_reader read, void *user, char *msg);
 
+/* The line of an element of the document vt_xml_read hands over, past line 65535 too (where
+ * libxml2 2.9's xmlGetLineNo says 65535 for an element); other nodes: xmlGetLineNo's. */
+long vt_xml_line(const xmlNode *node);
+
 /* A file's bytes into *text (malloc'ed, size bytes, the caller frees it; NULL on failure), at
  * most VT_URDF_MAX_BYTES read. Statuses: VT_ERR_FILE (cannot be opened or read, too large),
  * VT_ERR_NO_MEMORY. */

@@ -295,7 +295,8 @@ int vt_rows_decide(const vt_model *m, vt_data *d, double band, vt_rows_svd *o)
             P[r + (size_t)c * (size_t)nc] = flag[r] ? 0.0 : g[r] * d->Phiq[r + (size_t)c * (size_t)nc] * s[c];
     }
     /* LAPACK stops the program (xerbla) on some NaN inputs: refuse non-finite input first */
-    if (!vt_all_finite(P, nc * nv) || !vt_all_finite(o->s, nv) || !vt_all_finite(d->Mstar, nv * nv))
+    if (!vt_all_finite(P, (size_t)nc * (size_t)nv) || !vt_all_finite(o->s, (size_t)nv) ||
+        !vt_all_finite(d->Mstar, (size_t)nv * (size_t)nv))
         return vt_scratch_release(d, mark),
                vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in the scaled M* or Φ_q (overflow)");
     int info = 0;
