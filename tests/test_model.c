@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "vt_test.h"
+#include "model/model.h"
 
 static void test_sizes_and_paths(void **state)
 {
@@ -12,7 +13,9 @@ static void test_sizes_and_paths(void **state)
     for (uint64_t seed = 1; seed <= 5; seed++) {
         vt_model *m = NULL;
         assert_ok(vt_scene_random_tree(&m, seed, 12, VT_SCENE_ALL_JOINTS));
-        int sq = 0, sv = 0;
+        int sq = 0, sv = 0, maxpath = 0;
+        int *path = malloc((size_t)m->maxpath * sizeof(int));
+        assert_non_null(path);
         for (int i = 1; i <= m->nbody; i++) {
             const int jt = m->body_joint[i];
             assert_int_equal(m->body_qadr[i], sq);
@@ -23,8 +26,11 @@ static void test_sizes_and_paths(void **state)
             int count = 0;
             for (int b = i; b; b = m->body_parent[b]) count += m->body_nv[b];
             assert_int_equal(m->body_pathnum[i], count);
-            const int *path = m->path_dof + m->body_pathadr[i];
+            maxpath = count > maxpath ? count : maxpath;
+            for (int c = 0; c < m->maxpath; c++) path[c] = -1;
+            assert_int_equal(vt_body_path(m, i, path), count);
             for (int c = 0; c < count; c++) {
+                assert_true(path[c] >= 0 && path[c] < m->nv);
                 if (c) assert_true(path[c] > path[c - 1]);
                 int owner = m->dof_body[path[c]], on_path = 0;
                 for (int b = i; b; b = m->body_parent[b]) on_path |= b == owner;
@@ -34,6 +40,8 @@ static void test_sizes_and_paths(void **state)
         assert_int_equal(m->nq, sq);
         assert_int_equal(m->nv, sv);
         assert_int_equal(m->nx, 7 * m->nbody);
+        assert_int_equal(m->maxpath, maxpath);
+        free(path);
         vt_model_free(m);
     }
 }
