@@ -210,12 +210,10 @@ module vtdyn
     type(c_ptr)            :: body_jchild
     type(c_ptr)            :: body_axis
     type(c_ptr)            :: body_quat0
-    type(c_ptr)            :: body_pathadr
     type(c_ptr)            :: body_pathnum
-    type(c_ptr)            :: path_dof
-    integer(c_int)         :: npath
     integer(c_int)         :: maxpath
     type(c_ptr)            :: dof_body
+    type(c_ptr)            :: dof_parent
     type(c_ptr)            :: q0
     type(c_ptr)            :: dof_limit
     type(c_ptr)            :: body_name

@@ -61,9 +61,8 @@ program test_fortran_layout
          a(c_loc(x_model%body_qadr)), a(c_loc(x_model%body_nq)), a(c_loc(x_model%body_vadr)), &
          a(c_loc(x_model%body_nv)), a(c_loc(x_model%body_mass)), a(c_loc(x_model%body_inertia)), &
          a(c_loc(x_model%body_jpar)), a(c_loc(x_model%body_jchild)), a(c_loc(x_model%body_axis)), &
-         a(c_loc(x_model%body_quat0)), a(c_loc(x_model%body_pathadr)), a(c_loc(x_model%body_pathnum)), &
-         a(c_loc(x_model%path_dof)), a(c_loc(x_model%npath)), a(c_loc(x_model%maxpath)), &
-         a(c_loc(x_model%dof_body)), a(c_loc(x_model%q0)), a(c_loc(x_model%dof_limit)), &
+         a(c_loc(x_model%body_quat0)), a(c_loc(x_model%body_pathnum)), a(c_loc(x_model%maxpath)), &
+         a(c_loc(x_model%dof_body)), a(c_loc(x_model%dof_parent)), a(c_loc(x_model%q0)), a(c_loc(x_model%dof_limit)), &
          a(c_loc(x_model%body_name)), a(c_loc(x_model%joint_name)), a(c_loc(x_model%drive_name)), &
          a(c_loc(x_model%cut_name)), a(c_loc(x_model%coupling_name)), a(c_loc(x_model%nframe)), &
          a(c_loc(x_model%frame_name)), &

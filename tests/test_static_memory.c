@@ -124,12 +124,6 @@ void free(void *p)
     if (resolve()) real_free(p);
 }
 
-static int under_valgrind(void)
-{
-    const char *preload = getenv("LD_PRELOAD");
-    return preload && strstr(preload, "vgpreload");
-}
-
 static int uncounted; /* valgrind took this file's malloc over: nothing can be counted */
 
 /* Arms the allocator; checks first that a malloc call reaches this file's malloc. */

@@ -727,14 +727,6 @@ static void test_entities(void **state)
     vt_model_free(m);
 }
 
-/* valgrind's memcheck runs the tests in CI (its LD_PRELOAD names its vgpreload): the loads of
- * hundreds of megabytes and the timed loads are left to the other runs there */
-static int under_valgrind(void)
-{
-    const char *preload = getenv("LD_PRELOAD");
-    return preload && strstr(preload, "vgpreload");
-}
-
 /* The input's bound, VT_URDF_MAX_BYTES (256 MiB): a robot padded with white space to exactly that
  * size is read from a string, one byte more is refused naming the bound, from a string
  * (VT_ERR_XML) and a file (VT_ERR_FILE, by its size: a sparse file); a sparse file of exactly

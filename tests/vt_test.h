@@ -640,4 +640,12 @@ static inline void vt_test_both(const vt_model *m, vt_data *dr, vt_data *dd)
 }
 #endif
 
+/* valgrind's memcheck runs the tests in CI (its LD_PRELOAD names its vgpreload): what takes
+ * hundreds of megabytes is left to the other runs there */
+static inline int under_valgrind(void)
+{
+    const char *preload = getenv("LD_PRELOAD");
+    return preload && strstr(preload, "vgpreload");
+}
+
 #endif

@@ -430,13 +430,17 @@ typedef struct vt_model {
     double *body_axis;       ///< unit axis1 and axis2 in reference axes at q = 0 (6 x (nbody+1))
     double *body_quat0;      ///< orientation relative to the reference at q = 0 (4 x (nbody+1))
 
-    /* the tree's reference (path) structure */
-    int *body_pathadr;       ///< start of the body's path list in path_dof (nbody+1)
+    /* the tree's reference (path) structure: body i's path is the rates of its own joint and of
+     * every joint between it and the ground, the columns of S non-zero in its rows. The model
+     * keeps each path's length and each rate's link to the rate before it, not the lists
+     * (n(n+1)/2 rates for a chain of n), so that it is O(n): i's path is dof_parent walked from
+     * its joint's last rate, body_vadr[i] + body_nv[i] − 1, down to −1 (descending) */
     int *body_pathnum;       ///< number of rates on the path from the root to the body (nbody+1)
-    int *path_dof;           ///< rate indices of every path, ascending within a path (npath)
-    int npath;               ///< total length of path_dof
     int maxpath;             ///< largest body_pathnum
     int *dof_body;           ///< body whose joint owns each rate (nv)
+    int *dof_parent;         ///< the rate before each on its path: its joint's previous rate, or for a
+                             ///< joint's first the last rate of its reference body's joint; −1 at
+                             ///< the ground (nv)
 
     double *q0;              ///< reference configuration: zero angles and translations, unit
                              ///< Euler parameters (nq)

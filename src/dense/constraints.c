@@ -292,23 +292,28 @@ static void relative_row(vt_data *d, int r, int k, const body_state *A, const bo
     if (rates) d->gamma[r] = -(2.0 * G_row(pdes_dd, pr, k) + 4.0 * G_row(pdes_d, prd, k) + 2.0 * G_row(pdes, prdd, k));
 }
 
+/* The dense Φ_q's scratch: a body's S block (7 x maxpath), its product with a row (maxpath) and
+ * the body's path (maxpath) */
+typedef struct {
+    double *S, *row;
+    int *path;
+} s_block;
+
 /* Φ_q = Φ_x S (22) for row r, body by body on the body's path columns: from the dense S
- * (gathered into Si, 7 x maxpath, with row: maxpath), or column by column as the dense S forms
- * them (the recursive path, which has no dense S): lever arms along the tree (vt_lever) */
-static void phiq_row(const vt_model *m, vt_data *d, int r, vt_form form, double *Si)
+ * (gathered into Si), or column by column as the dense S forms them (the recursive path, which
+ * has no dense S): lever arms along the tree (vt_lever) */
+static void phiq_row(const vt_model *m, vt_data *d, int r, vt_form form, const s_block *Si)
 {
     const int nc = m->nc;
     for (int side = 0; side < 2; side++) {
         const int b = m->con_body[2 * r + side];
         if (b == 0) continue;
-        const int k = m->body_pathnum[b];
-        const int *path = m->path_dof + m->body_pathadr[b];
         const double *px = d->Phix + 14 * r + 7 * side;
         if (form == VT_FORM_DENSE) {
-            double *row = Si + 7 * m->maxpath;
-            vt_gather_S(Si, m, d, b);
-            vt_dgemv('T', 7, k, 1.0, Si, 7, px, 1, 0.0, row, 1);
-            for (int c = 0; c < k; c++) d->Phiq[r + (size_t)path[c] * (size_t)nc] += row[c];
+            const int k = vt_body_path(m, b, Si->path);
+            vt_gather_S(Si->S, m, d, b, Si->path);
+            vt_dgemv('T', 7, k, 1.0, Si->S, 7, px, 1, 0.0, Si->row, 1);
+            for (int c = 0; c < k; c++) d->Phiq[r + (size_t)Si->path[c] * (size_t)nc] += Si->row[c];
         } else {
             double E[12], col[7];
             vt_euler_E(E, d->x + vt_xoff(b) + 3);
@@ -421,7 +426,7 @@ static void point_jacobian_rows(const vt_model *m, vt_data *d, int r, int b, con
 
 /* The three point rows of a cut joint, P_b − P_a = 0 along the global axes e_k, at once */
 static void cut_point_rows(const vt_model *m, vt_data *d, int r, const body_state *A, const body_state *B,
-                           const point_memo *pa, const point_memo *pb, vt_form form, double *Si, int parts)
+                           const point_memo *pa, const point_memo *pb, vt_form form, const s_block *Si, int parts)
 {
     for (int k = 0; k < 3; k++) {
         double *pxa = d->Phix + 14 * (r + k), *pxb = pxa + 7, e[3] = {0, 0, 0}, jv[3] = {0, 0, 0}, jw[3];
@@ -486,8 +491,13 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, vt_form form, int 
     double prel[4] = {1, 0, 0, 0}, prel_d[4] = {0}, prel_dd0[4] = {0}; /* p_a* ⊗ p_b and its rates */
     const int drive_rows = vt_drive_rows(m);
     const size_t mark = vt_scratch_mark(d);
-    double *Si = form == VT_FORM_DENSE && phiq ? VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block") : NULL;
-    if (form == VT_FORM_DENSE && phiq && !Si) return vt_scratch_fail(d, mark);
+    s_block blk = {NULL, NULL, NULL}, *Si = form == VT_FORM_DENSE && phiq ? &blk : NULL;
+    if (Si) {
+        blk.S = VT_SCRATCH(d, double, 8 * (size_t)m->maxpath, "S block");
+        blk.path = VT_SCRATCH(d, int, m->maxpath, "a body's path");
+        if (!blk.path) return vt_scratch_fail(d, mark); /* after a failed allocation every later one fails */
+        blk.row = blk.S + 7 * (size_t)m->maxpath;
+    }
     if (phiq) memset(d->Phiq, 0, (size_t)m->nc * (size_t)m->nv * sizeof(double));
     point_jac jac[JAC_SLOTS];
     int jac_next = -1; /* the slots taken from the scratch at the first point drive */
@@ -673,11 +683,12 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, vt_form form, int 
     return VT_OK;
 }
 
-/* a body's S block and its product with a row (the dense Φ_q), or the points' Jacobian columns
- * (the recursive Φ_q) */
+/* a body's S block, its product with a row and its path (the dense Φ_q), or the points' Jacobian
+ * columns (the recursive Φ_q) */
 size_t vt_constraints_scratch(const vt_model *m)
 {
-    const size_t mp = (size_t)m->maxpath, dense = VT_SCRATCH_BYTES(8 * mp, sizeof(double));
+    const size_t mp = (size_t)m->maxpath;
+    const size_t dense = VT_SCRATCH_BYTES(8 * mp, sizeof(double)) + VT_SCRATCH_BYTES(mp, sizeof(int));
     const size_t points = VT_SCRATCH_BYTES(JAC_SLOTS * 3 * mp, sizeof(double)) + VT_SCRATCH_BYTES(JAC_SLOTS * mp, sizeof(int));
     return dense > points ? dense : points;
 }

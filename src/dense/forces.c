@@ -46,12 +46,12 @@ static vt_status apply_St(double *Q, const vt_model *m, vt_data *d, const double
     const size_t mark = vt_scratch_mark(d);
     double *Si = VT_SCRATCH(d, double, 7 * (size_t)m->maxpath, "S block");
     double *Qk = VT_SCRATCH(d, double, m->maxpath, "S block^T G");
-    if (!Qk) return vt_scratch_fail(d, mark);
+    int *path = VT_SCRATCH(d, int, m->maxpath, "a body's path");
+    if (!path) return vt_scratch_fail(d, mark);
     memset(Q, 0, (size_t)m->nv * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
-        const int k = m->body_pathnum[i];
-        const int *path = m->path_dof + m->body_pathadr[i];
-        vt_gather_S(Si, m, d, i);
+        const int k = vt_body_path(m, i, path);
+        vt_gather_S(Si, m, d, i, path);
         vt_dgemv('T', 7, k, 1.0, Si, 7, G + vt_xoff(i), 1, 0.0, Qk, 1);
         for (int c = 0; c < k; c++) Q[path[c]] += Qk[c];
     }
@@ -139,5 +139,6 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
 size_t vt_forces_scratch(const vt_model *m)
 {
     const size_t D = sizeof(double);
-    return VT_SCRATCH_BYTES(m->nx, D) + VT_SCRATCH_BYTES(7 * (size_t)m->maxpath, D) + VT_SCRATCH_BYTES(m->maxpath, D);
+    return VT_SCRATCH_BYTES(m->nx, D) + VT_SCRATCH_BYTES(7 * (size_t)m->maxpath, D) + VT_SCRATCH_BYTES(m->maxpath, D) +
+           VT_SCRATCH_BYTES(m->maxpath, sizeof(int));
 }

@@ -37,16 +37,16 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
     const size_t k7 = 7 * (size_t)m->maxpath, mark = vt_scratch_mark(d);
     double *Si = VT_SCRATCH(d, double, k7, "S block"), *W = VT_SCRATCH(d, double, k7, "M S block");
     double *C = VT_SCRATCH(d, double, (size_t)m->maxpath * (size_t)m->maxpath, "M* block");
-    if (!C) return vt_scratch_fail(d, mark);
+    int *path = VT_SCRATCH(d, int, m->maxpath, "a body's path");
+    if (!path) return vt_scratch_fail(d, mark);
     memset(d->Mstar, 0, (size_t)nv * (size_t)nv * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
-        const int k = m->body_pathnum[i];
-        const int *path = m->path_dof + m->body_pathadr[i];
+        const int k = vt_body_path(m, i, path);
         const double mass = m->body_mass[i];
         double *Mp = d->Mp + 16 * i;
         vt_rot_mass(Mp, m->body_inertia + 9 * i, d->x + vt_xoff(i) + 3);
 
-        vt_gather_S(Si, m, d, i);
+        vt_gather_S(Si, m, d, i, path);
         for (int c = 0; c < k; c++)
             for (int r = 0; r < 3; r++) W[r + 7 * c] = mass * Si[r + 7 * c];
         vt_dgemm('N', 'N', 4, k, 4, 1.0, Mp, 4, Si + 3, 7, 0.0, W + 3, 7);
@@ -67,9 +67,10 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
-/* a body's S block, M S block and M* block */
+/* a body's S block, M S block, M* block and path */
 size_t vt_mass_scratch(const vt_model *m)
 {
     const size_t k = (size_t)m->maxpath;
-    return 2 * VT_SCRATCH_BYTES(7 * k, sizeof(double)) + VT_SCRATCH_BYTES(k * k, sizeof(double));
+    return 2 * VT_SCRATCH_BYTES(7 * k, sizeof(double)) + VT_SCRATCH_BYTES(k * k, sizeof(double)) +
+           VT_SCRATCH_BYTES(k, sizeof(int));
 }

@@ -283,9 +283,8 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
  * structure (separate trees or branches), whatever the round-off of their diagonals */
 static int on_path(const vt_model *m, int body, int rate)
 {
-    const int *path = m->path_dof + m->body_pathadr[body];
-    for (int k = 0; k < m->body_pathnum[body]; k++)
-        if (path[k] == rate) return 1;
+    for (int a = vt_last_rate(m, body); a >= rate; a = m->dof_parent[a]) /* descending */
+        if (a == rate) return 1;
     return 0;
 }
 
@@ -337,9 +336,10 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, vt_form form)
     /* α, the applied wrenches and the children's reactions one after the other, in one block */
     double *alpha = VT_SCRATCH(d, double, 15 * nb, "α, applied wrenches, children's reactions");
     double *rw = VT_SCRATCH(d, double, 12 * (size_t)m->nc, "rows' wrenches");
-    if (!rw) return vt_scratch_fail(d, mark);
+    int *path = form == VT_FORM_DENSE ? VT_SCRATCH(d, int, m->maxpath, "a body's path") : NULL;
+    if (!rw || (form == VT_FORM_DENSE && !path)) return vt_scratch_fail(d, mark);
     double *fe = alpha + 3 * nb, *cf = fe + 6 * nb;
-    if (form == VT_FORM_DENSE) vt_accelerations_dense(m, d, d->qdd, d->xdd, alpha);
+    if (form == VT_FORM_DENSE) vt_accelerations_dense(m, d, d->qdd, d->xdd, alpha, path);
     else vt_accelerations_add(m, d, d->qdd, d->xdd, alpha, fe); /* T: scratch, in fe before fe is set */
 
     /* applied: xfrc, and every row and generalized force (gravity: vt_body_wrench) */
@@ -616,12 +616,12 @@ vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d)
 }
 
 /* The scratch reactions.c takes at once: the inward pass (α, two wrenches a body, the rows'
- * wrenches) or the uniqueness (three wrenches a body, the cuts', the rows'), or the total
- * wrenches' actuation per rate (alone). */
+ * wrenches, the dense accelerations' path) or the uniqueness (three wrenches a body, the cuts',
+ * the rows'), or the total wrenches' actuation per rate (alone). */
 size_t vt_reactions_scratch(const vt_model *m)
 {
     const size_t nb = (size_t)m->nbody + 1, rw = VT_SCRATCH_BYTES(12 * (size_t)m->nc, sizeof(double));
-    const size_t inward = VT_SCRATCH_BYTES(15 * nb, sizeof(double));
+    const size_t inward = VT_SCRATCH_BYTES(15 * nb, sizeof(double)) + VT_SCRATCH_BYTES(m->maxpath, sizeof(int));
     const size_t unique = 2 * VT_SCRATCH_BYTES(6 * nb, sizeof(double)) +
                           VT_SCRATCH_BYTES(6 * nb + 6 * (size_t)m->ncut, sizeof(double));
     const size_t total = VT_SCRATCH_BYTES(m->nv > 0 ? (size_t)m->nv : 1, sizeof(double));

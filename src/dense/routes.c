@@ -85,7 +85,11 @@ vt_status vt_augmented_solve(const vt_model *m, vt_data *d, double *b, double *r
         dsycon_3_("L", &N, K, &N, E, ipiv, &anorm, &rcond, work, iwork, &info, 1);
         if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dsycon_3 info %d", info);
     }
-    if (nc > 0) rcond *= vt_rows_grip(m, d);
+    if (nc > 0) {
+        double grip = 1.0;
+        if ((st = vt_rows_grip(m, d, &grip))) return vt_scratch_release(d, mark), (vt_status)st;
+        rcond *= grip;
+    }
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), *out = VT_BELOW_MIN, VT_OK;
     double *t = res + N;
@@ -515,9 +519,11 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
         vt_dgemv('T', nf, no, -1.0, Y, nf, z, 1, 1.0, lam, 1);
     }
     double rcond = 0.0;
-    const int st = vt_solve_spd(d, S, no, lam, &rcond);
+    int st = vt_solve_spd(d, S, no, lam, &rcond);
     if (st) return vt_scratch_release(d, mark), (vt_status)st;
-    rcond *= (lmin / lmax) * (lmin / lmax) * vt_rows_grip(m, d);
+    double grip = 1.0;
+    if ((st = vt_rows_grip(m, d, &grip))) return vt_scratch_release(d, mark), (vt_status)st;
+    rcond *= (lmin / lmax) * (lmin / lmax) * grip;
     *rcond_out = rcond;
     /* below rcond_min: not solved (vt_solve_band tries the augmented route before refusing) */
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), *out = VT_SCHUR_BELOW_MIN, VT_OK;

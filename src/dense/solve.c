@@ -179,7 +179,10 @@ static int maximal_alternative(const vt_model *m, vt_data *d, double *rcond, dou
     if (!alt) return vt_scratch_fail(d, mark);
     double rc = 0.0;
     const int r = vt_maximal_solve(m, d, alt, &rc);
-    if (r == 0) rc = fmin(rc, rho) * vt_rows_grip(m, d);
+    double grip = 1.0;
+    const int rg = r == 0 ? vt_rows_grip(m, d, &grip) : 0;
+    if (rg < 0) return vt_scratch_release(d, mark), rg;
+    if (r == 0) rc = fmin(rc, rho) * grip;
     const int take = r == 0 && rc >= m->rcond_min && rc > *rcond;
     if (take) {
         memcpy(sol, alt, n * sizeof(double));

@@ -334,9 +334,8 @@ static void fill_S(const vt_model *m, vt_data *d)
 }
 
 /* Copies body i's rows of S on its path columns into Si (7 x k, ld 7). */
-void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i)
+void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i, const int *path)
 {
-    const int *path = m->path_dof + m->body_pathadr[i];
     for (int c = 0; c < m->body_pathnum[i]; c++)
         memcpy(Si + 7 * c, d->S + (size_t)path[c] * (size_t)m->nx + (size_t)vt_xoff(i), 7 * sizeof(double));
 }
@@ -427,19 +426,19 @@ void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, doub
 
 /* The same from the dense S (its lever arms along the tree, fill_S): ẍ^i = Ṡq̇^i + Σ_c S_ic q̈_c over
  * i's path, α^i = α0^i + Σ_c w_c q̈_c; no term carries |r − o|, so the accelerations of a mechanism
- * far from o keep the digits of its own lengths */
-void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha)
+ * far from o keep the digits of its own lengths. The sums run root first (vt_body_path). */
+void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int *path)
 {
     const size_t ld = (size_t)m->nx;
     memset(alpha, 0, 3 * sizeof(double));
     for (int i = 1; i <= m->nbody; i++) {
-        const int o = vt_xoff(i), *path = m->path_dof + m->body_pathadr[i];
+        const int o = vt_xoff(i), np = vt_body_path(m, i, path);
         const double *a0 = d->Sdqd + o;
         double a[7], al[3];
         memcpy(a, a0, sizeof a);
         vt_mulEp(al, d->x + o + 3, a0 + 3);
         for (int c = 0; c < 3; c++) al[c] *= 2.0;
-        for (int k = 0; k < m->body_pathnum[i]; k++) {
+        for (int k = 0; k < np; k++) {
             const int c = path[k];
             const double *col = d->S + (size_t)c * ld + (size_t)o, *w = d->twist + 6 * c;
             for (int r = 0; r < 7; r++) a[r] += col[r] * qdd[c];

@@ -11,8 +11,9 @@
 
 size_t vt_kinematics_scratch(const vt_model *m);
 
-/* Body i's rows of S on its path columns, into Si (7 x body_pathnum[i], ld 7) (kinematics.c) */
-void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i);
+/* Body i's rows of S on its path columns (path: vt_body_path's of i), into Si (7 x body_pathnum[i],
+ * ld 7) (kinematics.c) */
+void vt_gather_S(double *Si, const vt_model *m, const vt_data *d, int i, const int *path);
 
 /* How M* and Φ_q are formed: from the dense S of vt_kinematics (S^T M S, Φ_x S, lever arms along
  * the tree: the dense stages) or from the rates' twists about o (the recursive evaluation's
@@ -32,8 +33,9 @@ void vt_accelerations(const vt_model *m, vt_data *d, const double *qdd, double *
 /* The same from d->Sdqd and d->twist (both current), with T (6 x (nbody+1)) the twists q̈ adds
  * to the bodies' spatial accelerations; alpha may be NULL. */
 void vt_accelerations_add(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, double *T);
-/* The same from the dense S (vt_kinematics' lever arms along the tree), alpha not NULL */
-void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha);
+/* The same from the dense S (vt_kinematics' lever arms along the tree), alpha not NULL; path:
+ * scratch of maxpath ints */
+void vt_accelerations_dense(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int *path);
 
 /* Positions, velocities and (with Sdqd != 0) Ṡq̇, without the dense S (kinematics.c); the
  * state is checked. */

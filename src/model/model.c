@@ -12,13 +12,17 @@
  *   cylindrical   θ about e1, then s along e1          (2, 2)
  * The path of body i is the list of rates of the joints between the ground and i: the
  * columns of S that are non-zero in body i's rows (S is block lower triangular in tree order,
- * the paper's "reference matrix").
+ * the paper's "reference matrix"). The model keeps each path's length (body_pathnum) and each
+ * rate's link to the one before it on its path (dof_parent), not the lists themselves
+ * (n(n+1)/2 rates for a chain of n): a path is walked down from its body's last rate, so the
+ * model is O(n).
  * The drives' spline samples (t, y, f'' of each spline, copied from the builder's blocks) are a
  * part of the model's one block.
  */
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -203,8 +207,8 @@ void vt_model_free(vt_model *m)
 }
 
 /* The model's arrays in the block (a sizing pass with b->base NULL, then the carving pass) */
-static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int npath, int ndrive, int ncut, int nc,
-                         int nframe, int ncoupling)
+static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int ndrive, int ncut, int nc, int nframe,
+                         int ncoupling)
 {
     const size_t nu = (size_t)(ncoupling ? ncoupling : 1);
     m->coupling = vt_block_take(b, nu, sizeof(vt_coupling_def));
@@ -235,10 +239,9 @@ static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int np
     m->body_jchild = vt_block_take(b, 3 * nb, sizeof(double));
     m->body_axis = vt_block_take(b, 6 * nb, sizeof(double));
     m->body_quat0 = vt_block_take(b, 4 * nb, sizeof(double));
-    m->body_pathadr = vt_block_take(b, nb, sizeof(int));
     m->body_pathnum = vt_block_take(b, nb, sizeof(int));
-    m->path_dof = vt_block_take(b, (size_t)(npath ? npath : 1), sizeof(int));
     m->dof_body = vt_block_take(b, (size_t)nv, sizeof(int));
+    m->dof_parent = vt_block_take(b, (size_t)nv, sizeof(int));
     m->q0 = vt_block_take(b, (size_t)nq, sizeof(double));
     m->dof_limit = vt_block_take(b, 4 * (size_t)nv, sizeof(double));
     const size_t nf = (size_t)(nframe ? nframe : 1);
@@ -252,6 +255,36 @@ static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int np
     m->frame_quat = vt_block_take(b, 4 * nf, sizeof(double));
 }
 
+/* the drives' spline samples: t, y and f'' of each */
+static size_t spline_samples(const vt_drive_def *drives, int ndrive)
+{
+    size_t nsample = 0;
+    for (int k = 0; k < ndrive; k++) {
+        const vt_function *fs[3];
+        const int nf = vt_drive_functions(&drives[k], fs);
+        for (int e = 0; e < nf; e++)
+            if (fs[e]->type == VT_FUNCTION_SPLINE) nsample += (size_t)fs[e]->nsample;
+    }
+    return nsample;
+}
+
+/* the sizing pass: every array on 16 bytes (calloc's alignment; none needs more) */
+static size_t block_bytes(int n, int nv, int nq, int ndrive, int ncut, int nc, int nframe, int ncoupling,
+                          size_t nsample)
+{
+    vt_block blk = {.base = NULL, .used = sizeof(vt_model), .align = 16};
+    vt_model tmp;
+    layout_model(&blk, &tmp, n, nv, nq, ndrive, ncut, nc, nframe, ncoupling);
+    vt_block_take(&blk, 3 * nsample, sizeof(double));
+    return blk.overflow ? SIZE_MAX : blk.used; /* SIZE_MAX: beyond size_t */
+}
+
+size_t vt_model_bytes(const vt_model *m)
+{
+    return block_bytes(m->nbody, m->nv, m->nq, m->ndrive, m->ncut, m->nc, m->nframe, m->ncoupling,
+                       spline_samples(m->drive, m->ndrive));
+}
+
 vt_status vt_builder_build(vt_model **model, vt_builder *b)
 {
     if (!model) return VT_ERR_NULL;
@@ -261,8 +294,8 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     if (n == 0) return vt_fail(b->message, VT_ERR_EMPTY_MODEL, "the model has no moving body");
 
     /* sizes: coordinates and path lengths (nq and nv within VT_COUNT_MAX: the builder's counts;
-     * the rows and the paths' total checked here) */
-    int nq = 0, nv = 0, npath = 0, nc = 0, paths_ok = 1, rows_ok = 1;
+     * the rows checked here) */
+    int nq = 0, nv = 0, nc = 0, rows_ok = 1;
     int *depth_nv = calloc((size_t)n + 1, sizeof(int)); /* rates on the path to each body */
     if (!depth_nv) return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory");
     for (int i = 1; i <= n; i++) {
@@ -270,53 +303,37 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         nq += vt_joint_nq(d->joint);
         nv += vt_joint_nv(d->joint);
         depth_nv[i] = depth_nv[d->parent] + vt_joint_nv(d->joint);
-        paths_ok = paths_ok && vt_count_add(&npath, npath, depth_nv[i], INT_MAX);
         nc += d->joint == VT_JOINT_BASE;
     }
     for (int k = 0; k < b->ndrive; k++) rows_ok = rows_ok && vt_count_add(&nc, nc, vt_drive_nrows(&b->drives[k]), VT_COUNT_MAX);
     for (int k = 0; k < b->ncut; k++) rows_ok = rows_ok && vt_count_add(&nc, nc, vt_cut_nrows(&b->cuts[k]), VT_COUNT_MAX);
     rows_ok = rows_ok && vt_count_add(&nc, nc, b->ncoupling, VT_COUNT_MAX);
-    if (!paths_ok || !rows_ok) {
+    if (!rows_ok) {
         free(depth_nv);
-        return rows_ok ? vt_fail(b->message, VT_ERR_TOO_MANY_BODIES,
-                                 "the bodies' paths hold more than %d rates in all (the tree's reference structure)", INT_MAX)
-                       : vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "more than VT_COUNT_MAX (%d) constraint rows",
-                                 VT_COUNT_MAX);
+        return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "more than VT_COUNT_MAX (%d) constraint rows", VT_COUNT_MAX);
     }
 
-    size_t nsample = 0; /* the drives' spline samples: t, y and f'' of each */
-    for (int k = 0; k < b->ndrive; k++) {
-        const vt_function *fs[3];
-        const int nf = vt_drive_functions(&b->drives[k], fs);
-        for (int e = 0; e < nf; e++)
-            if (fs[e]->type == VT_FUNCTION_SPLINE) nsample += (size_t)fs[e]->nsample;
-    }
-
-    /* sizing pass, then the carving pass: every array on 16 bytes (calloc's alignment; none needs more) */
-    vt_block blk = {.base = NULL, .used = sizeof(vt_model), .align = 16};
-    vt_model tmp;
-    layout_model(&blk, &tmp, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
-    vt_block_take(&blk, 3 * nsample, sizeof(double));
-    if (blk.overflow) {
+    /* sizing pass, then the carving pass */
+    const size_t nsample = spline_samples(b->drives, b->ndrive);
+    const size_t bytes = block_bytes(n, nv, nq, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling, nsample);
+    if (bytes == SIZE_MAX) {
         free(depth_nv);
         return vt_fail(b->message, VT_ERR_TOO_MANY_BODIES, "the model's size does not fit in size_t");
     }
-    char *block = calloc(1, blk.used);
+    char *block = calloc(1, bytes);
     if (!block) {
         free(depth_nv);
-        return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory (%zu bytes)", blk.used);
+        return vt_fail(b->message, VT_ERR_NO_MEMORY, "out of memory (%zu bytes)", bytes);
     }
     vt_model *m = (vt_model *)block;
-    blk.base = block;
-    blk.used = sizeof(vt_model);
-    layout_model(&blk, m, n, nv, nq, npath, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
+    vt_block blk = {.base = block, .used = sizeof(vt_model), .align = 16};
+    layout_model(&blk, m, n, nv, nq, b->ndrive, b->ncut, nc, b->nframe, b->ncoupling);
     double *samples = vt_block_take(&blk, 3 * nsample, sizeof(double));
 
     m->nbody = n;
     m->nq = nq;
     m->nv = nv;
     m->nx = 7 * n;
-    m->npath = npath;
     memcpy(m->gravity, b->def.gravity, sizeof m->gravity);
     m->rcond_min = b->def.rcond_min;
     m->rcond_warn = b->def.rcond_warn;
@@ -376,7 +393,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->body_parent[0] = -1;
     m->body_joint[0] = -1;
     m->body_quat0[0] = 1.0;
-    int qadr = 0, vadr = 0, padr = 0;
+    int qadr = 0, vadr = 0;
     m->maxpath = 0;
     for (int i = 1; i <= n; i++) {
         const vt_body_def *d = &b->bodies[i - 1];
@@ -396,6 +413,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         memcpy(m->body_quat0 + 4 * i, d->orientation, 4 * sizeof(double));
         for (int k = 0; k < vt_joint_nv(jt); k++) {
             m->dof_body[vadr + k] = i;
+            m->dof_parent[vadr + k] = k > 0 ? vadr + k - 1 : d->parent > 0 ? vt_last_rate(m, d->parent) : -1;
             double *lim = m->dof_limit + 4 * (vadr + k);
             const int own = k < 2 && jt != VT_JOINT_BASE && jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_FREE;
             lim[0] = own ? d->limit_lower[k] : -HUGE_VAL;
@@ -409,17 +427,8 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         if (jt == VT_JOINT_SPHERICAL) m->q0[qadr] = 1.0;
         if (jt == VT_JOINT_FREE) m->q0[qadr + 3] = 1.0;
 
-        /* path: the parent's path, then this joint's own rates (ascending, since every
-         * ancestor's rates come before this body's) */
-        const int j = d->parent;
-        m->body_pathadr[i] = padr;
+        /* the path's length: the reference body's, and this joint's own rates */
         m->body_pathnum[i] = depth_nv[i];
-        if (j > 0) {
-            memcpy(m->path_dof + padr, m->path_dof + m->body_pathadr[j],
-                   (size_t)m->body_pathnum[j] * sizeof(int));
-            padr += m->body_pathnum[j];
-        }
-        for (int k = 0; k < vt_joint_nv(jt); k++) m->path_dof[padr++] = vadr + k;
         if (depth_nv[i] > m->maxpath) m->maxpath = depth_nv[i];
 
         qadr += vt_joint_nq(jt);

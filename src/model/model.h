@@ -22,6 +22,28 @@ static inline void vt_subtree_sum(const vt_model *m, double *W, int stride)
     }
 }
 
+/* The last rate of body i's joint: where its path, walked down by dof_parent, starts (−1 for
+ * the ground: an empty path) */
+static inline int vt_last_rate(const vt_model *m, int i)
+{
+    return m->body_vadr[i] + m->body_nv[i] - 1;
+}
+
+/* The path of body i, the rates of the joints between the ground and i (the columns of S that are
+ * non-zero in its rows), ascending, into path (body_pathnum[i] ≤ maxpath ints); returns their
+ * number. The model holds no path lists (n(n+1)/2 entries for a chain of n): dof_parent gives
+ * them leaf first, so they are laid from the end. A loop that sums along a path takes it in this
+ * order (the sum's bits); one in which every rate gets a term of its own walks dof_parent itself. */
+static inline int vt_body_path(const vt_model *m, int i, int *path)
+{
+    int k = m->body_pathnum[i];
+    for (int a = vt_last_rate(m, i); a >= 0; a = m->dof_parent[a]) path[--k] = a;
+    return m->body_pathnum[i];
+}
+
+/* The bytes of the model's one block (vt_builder_build's sizing pass, from the model's counts) */
+size_t vt_model_bytes(const vt_model *m);
+
 /* Rotational (0) or translational (1) kind of each joint rate, and which of the joint's
  * axes it uses; base rates are reported separately. */
 enum { VT_DOF_ROT, VT_DOF_TRANS, VT_DOF_BASE_R, VT_DOF_BASE_P };

@@ -115,13 +115,14 @@ size_t vt_maximal_scratch(const vt_model *m)
 static void assemble(const vt_model *m, const vt_data *d, sink *s, double *b)
 {
     const int n = m->nbody, nv = m->nv, nc = m->nc, iw = 6 * n, iq = 12 * n, il = 12 * n + nv;
+    int path[VT_MAXIMAL_MAX]; /* a body's (nv < N ≤ VT_MAXIMAL_MAX), root first: the residual's sums' order */
     for (int i = 1; i <= n; i++) {
         const int o = vt_xoff(i), ka = 6 * (i - 1), kw = iw + 6 * (i - 1);
         const double *p = d->x + o + 3, *Ai = d->A + 9 * i, *w = d->omega + 3 * i, *xf = d->xfrc + 6 * i;
-        const int *path = m->path_dof + m->body_pathadr[i];
+        const int np = vt_body_path(m, i, path);
         /* kinematics: α_i − J_ω q̈ = α⁰, a_i − J_v q̈ = a⁰ */
         for (int k = 0; k < 6; k++) put(s, ka + k, ka + k, 1.0);
-        for (int c = 0; c < m->body_pathnum[i]; c++) {
+        for (int c = 0; c < np; c++) {
             const double *Sc = d->S + (size_t)path[c] * (size_t)m->nx + (size_t)o;
             double jw[3];
             vt_mulEp(jw, p, Sc + 3);

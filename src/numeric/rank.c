@@ -54,13 +54,17 @@ void vt_scaling(const vt_model *m, const vt_data *d, double *s, int rows)
  * 1 while the rates move P along e as well as across it, 0 where no rate moves P along e (an
  * arm stretched along e: a row that has lost its grip, with nothing else to show it when it is
  * the only row). Independent of the units, of the scene's frame and position, and of the
- * inertias. vt_rows_grip returns the smallest grip² over the point drives' rows (1 without). */
-double vt_rows_grip(const vt_model *m, const vt_data *d)
+ * inertias. vt_rows_grip gives the smallest grip² over the point drives' rows (1 without); the
+ * sums run along the driven body's path, root first (vt_body_path). */
+int vt_rows_grip(const vt_model *m, vt_data *d, double *grip)
 {
     double worst = 1.0, rho = 0.0; /* ℓ */
+    const size_t mark = vt_scratch_mark(d);
+    int *path = NULL;
     for (int r = 0; r < m->nc; r++) {
         if (m->con_kind[r] != VT_ROW_POINT || vt_row_owner_kind(m, r) != VT_OWNER_DRIVE) continue;
         if (rho == 0.0) rho = vt_rows_length(m, d, NULL);
+        if (!path && !(path = VT_SCRATCH(d, int, m->maxpath, "a body's path"))) return vt_scratch_fail(d, mark);
         const vt_drive_def *dr = m->drive + m->con_owner[r];
         const int b = dr->body;
         const double *A = d->A + 9 * b, *c = d->xrel + 6 * b; /* from o, as the twists */
@@ -68,8 +72,8 @@ double vt_rows_grip(const vt_model *m, const vt_data *d)
         vt_mulmat3(P, A, dr->point);
         for (int k = 0; k < 3; k++) P[k] += c[k];
         double num = 0.0, den = 0.0;
-        const int *path = m->path_dof + m->body_pathadr[b];
-        for (int k = 0; k < m->body_pathnum[b]; k++) {
+        const int np = vt_body_path(m, b, path);
+        for (int k = 0; k < np; k++) {
             const int a = path[k], i = m->dof_body[a];
             const double *tw = d->twist + 6 * a;
             int ax = 0;
@@ -85,7 +89,9 @@ double vt_rows_grip(const vt_model *m, const vt_data *d)
         const double g2 = den > 0.0 ? num / den : 0.0;
         worst = g2 < worst ? g2 : worst;
     }
-    return worst;
+    vt_scratch_release(d, mark);
+    *grip = worst;
+    return 0;
 }
 
 /* Dependent rows: what is truly dependent, decided on Φ_q alone (kinematics: the masses do not
@@ -167,20 +173,21 @@ double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag)
             for (int k = 0; k < 3; k++) P[s][k] += d->xrel[6 * b + k];
         }
         for (int k = 0; k < 3; k++) dP[k] = P[1][k] - P[0][k];
-        /* the rates that move both bodies: their paths' common prefix (root first) */
-        int shared = 0;
+        /* the rates that move both bodies: those of the joints from their nearest common ancestor
+         * (0: none) to the ground; an ancestor's id is below its descendants', so lowering the
+         * larger of the two ids meets it */
+        int common = 0;
         if (ba > 0 && bb > 0) {
-            const int *pa = m->path_dof + m->body_pathadr[ba], *pb = m->path_dof + m->body_pathadr[bb];
-            const int na = m->body_pathnum[ba], nb = m->body_pathnum[bb];
-            while (shared < na && shared < nb && pa[shared] == pb[shared]) shared++;
+            common = ba;
+            for (int y = bb; common != y;)
+                if (common > y) common = m->body_parent[common];
+                else y = m->body_parent[y];
         }
+        /* each side's path, walked down by dof_parent (the largest |W| in any order) */
         for (int s = 0; s < 2; s++) {
-            const int b = s ? bb : ba;
-            const int *path = m->path_dof + m->body_pathadr[b];
-            for (int k = 0; k < m->body_pathnum[b]; k++) {
-                const int a = path[k];
+            for (int a = vt_last_rate(m, s ? bb : ba); a >= 0; a = m->dof_parent[a]) {
                 if (!turning_rate(m, a)) continue;
-                const int both = k < shared;
+                const int both = m->dof_body[a] <= common;
                 if (both && (s == 0 || kind == VT_ROW_LINE)) continue; /* once, from side b; a line's: 0 */
                 const double *w = d->twist + 6 * a;
                 double W[3];
@@ -238,9 +245,7 @@ static double row_size(const vt_model *m, const vt_data *d, int r, const double 
             vt_mulmat3(P, d->A + 9 * b, m->con_point + 6 * r + 3 * side);
             for (int k = 0; k < 3; k++) P[k] += d->xrel[6 * b + k];
             const double pn = sqrt(vt_dot3(P, P));
-            const int *path = m->path_dof + m->body_pathadr[b];
-            for (int k = 0; k < m->body_pathnum[b]; k++) {
-                const int a = path[k];
+            for (int a = vt_last_rate(m, b); a >= 0; a = m->dof_parent[a]) { /* the path: one term a rate */
                 const double *w = d->twist + 6 * a, wn = sqrt(vt_dot3(w, w));
                 B[a] += pt ? sqrt(vt_dot3(w + 3, w + 3)) + wn * pn : wn;
             }
@@ -344,7 +349,8 @@ int vt_dgelsd_iwork(int m, int n)
 
 /* The scratch rank.c takes at once: vt_rows_decide's SVD, held by its caller (U, V^T, σ, the
  * row scaling, the mass metric, the rate scaling, the round-off rows), and while it runs a row's
- * terms, or the scaled Φ_q and dgesvd's workspace (by its own query) */
+ * terms, or the scaled Φ_q and dgesvd's workspace (by its own query); or vt_rows_grip's path
+ * (maxpath ≤ nv ints: within a row's terms) */
 size_t vt_rank_scratch(const vt_model *m)
 {
     int nv = m->nv, nc = m->nc, k = nc < nv ? nc : nv;

@@ -22,9 +22,10 @@ static inline void vt_scaling_diag(const vt_model *m, const double *mdiag, int s
 /* D into s[0..nv) and, with rows, each constraint row by its own norm in that metric into
  * s[nv..nv+nc) (the augmented route's scaling of (5)) */
 void vt_scaling(const vt_model *m, const vt_data *d, double *s, int rows);
-/* the smallest grip² of the point drives' rows (1 without any): how much of what the rates can
- * move the driven point by lies along the driven direction */
-double vt_rows_grip(const vt_model *m, const vt_data *d);
+/* the smallest grip² of the point drives' rows (1 without any), into *grip: how much of what the
+ * rates can move the driven point by lies along the driven direction. Returns 0, or a negative
+ * vt_status (its scratch, a body's path). */
+int vt_rows_grip(const vt_model *m, vt_data *d, double *grip);
 /* ℓ, the rows' own lever arm (a length of their geometry; flag (nc or NULL): rows left out) */
 double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag);
 /* 1 when row r measures a length (a translation), 0 when an angle */

@@ -123,9 +123,7 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, c
         double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
         if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
         const double rc = Lo[b]; /* |r_b − o|, as the twists, with its round-off's size (vt_lengths_from_o) */
-        const int *path = m->path_dof + m->body_pathadr[b];
-        for (int k = 0; k < m->body_pathnum[b]; k++) {
-            const int a = path[k];
+        for (int a = vt_last_rate(m, b); a >= 0; a = m->dof_parent[a]) { /* the path: one term a rate */
             const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
             int ax = 0;
             const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;

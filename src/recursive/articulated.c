@@ -413,7 +413,10 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
     double rcond = 0.0;
     const int st = vt_solve_spd(d, S, nc, lam, &rcond);
     if (st) return st;
-    rcond *= pmin / pmax * (nc > 0 ? vt_rows_grip(m, d) : 1.0);
+    double grip = 1.0;
+    const int sg = nc > 0 ? vt_rows_grip(m, d, &grip) : 0;
+    if (sg) return sg;
+    rcond *= pmin / pmax * grip;
     *rcond_out = rcond;
     if (!(rcond >= m->rcond_min)) return d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION, 1;
     /* M*_aa = s · Ī s about P_i is known to τ ε tw² only: the pivots, which subtract such terms,

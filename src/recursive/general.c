@@ -99,10 +99,7 @@ static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
         const double *w = d->twist + 6 * a;
         double F[6];
         inertia_mul(F, Ic + 13 * i, w, w + 3); /* Ī s_a */
-        const int *path = m->path_dof + m->body_pathadr[i];
-        for (int k = 0; k < m->body_pathnum[i]; k++) {
-            const int b = path[k];
-            if (b > a) break; /* ascending: the rest are later rates of i's own joint */
+        for (int b = a; b >= 0; b = m->dof_parent[b]) { /* b ≤ a on i's path, down from a (each entry set once) */
             const double *wb = d->twist + 6 * b;
             const double v2 = pair(wb, wb + 3, F);
             d->Mstar[a + (size_t)b * (size_t)nv] = v2;

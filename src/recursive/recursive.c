@@ -55,21 +55,21 @@ typedef enum { FORMED_NONE, FORMED_INWARD } formed_by;
 /* M*'s diagonal without the composite inertias: M*_aa = s_a · (Ī_i s_a) is twice the kinetic
  * energy of the bodies k below rate a moving with its twist s_a = (w, v) alone,
  *   M*_aa = Σ_k  m_k |v + w × c_k|² + u^T J'_k u,   u = A_k^T w,
- * summed body by body over each body's path (no base bodies: their ṗ rates are not twists). */
+ * summed body by body over each body's path, walked down by dof_parent (each rate takes one term
+ * a body, in the order of k whatever the walk's) (no base bodies: their ṗ rates are not twists). */
 static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
 {
     memset(diag, 0, (size_t)m->nv * sizeof(double));
     for (int k = 1; k <= m->nbody; k++) {
         const double *c = d->xrel + 6 * k, *A = d->A + 9 * k, *J = m->body_inertia + 9 * k, mass = m->body_mass[k];
-        const int *path = m->path_dof + m->body_pathadr[k];
-        for (int p = 0; p < m->body_pathnum[k]; p++) {
-            const double *w = d->twist + 6 * path[p], *v = w + 3;
+        for (int a = vt_last_rate(m, k); a >= 0; a = m->dof_parent[a]) {
+            const double *w = d->twist + 6 * a, *v = w + 3;
             double t[3], u[3], Ju[3];
             vt_copy3(t, v);
             vt_addcross3(t, w, c);
             vt_mulmat3t(u, A, w);
             vt_mulmat3(Ju, J, u);
-            diag[path[p]] += mass * vt_dot3(t, t) + vt_dot3(u, Ju);
+            diag[a] += mass * vt_dot3(t, t) + vt_dot3(u, Ju);
         }
     }
 }
