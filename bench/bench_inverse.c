@@ -4,13 +4,22 @@
  * every joint driven (n = 2 .. 200); the paper's double link with its lock; the four-bar (RSUR);
  * the same four-bar built RUSR (universal joint on the coupler, spherical cut joint), which is
  * literally MuJoCo's model of it; the chain with a point-position drive at its tip (n = 10, 20, 50,
- * 100); the
- * five-link arm. Methods:
+ * 100); the five-link arm; and three machines driven at their motors, each at an instant of its
+ * motion (vt_kinematic_solve at t = 0.1 s: q, q̇ consistent with the loops and the drives): the
+ * Delta robot (vt_scene_delta_ik, period 1 s: 21 rates, 18 cut rows, 3 motor drives), the
+ * Stewart–Gough platform (vt_scene_stewart, period 2 s: 24 rates, 18 cut rows, 6 leg drives)
+ * and the knee four-bar (vt_scene_knee, planar cut: 4 rates, 2 cut rows, hip and motor drives).
+ * n is the number of rates. Methods:
  * vtdyn_dense (vt_inverse_dynamics: dense S, the reference) and vtdyn_recursive
  * (vt_inverse_dynamics_recursive), and the peers when they are built in (bench/peers/):
  * Pinocchio and MuJoCo, on the same chain and the same q, q̇, q̈, their torques checked against
- * ours before they are timed (MuJoCo also on the double link, both four-bars and the tip-driven
- * chain, there both handed our q̈ and solving q̈ itself from the tip's acceleration).
+ * ours before they are timed (MuJoCo also on the double link, both four-bars, the three machines
+ * and the tip-driven chain, there both handed our q̈ and solving q̈ itself from the tip's
+ * acceleration). On the loops MuJoCo's model is the same mechanism with its loops closed by
+ * equality constraints, handed our q, q̇, q̈; mj_inverse, then the loop forces that leave only the
+ * motors acting (bench/peers/mujoco_peer.c, mujoco_inverse_loop). Every peer's torques must
+ * equal ours to 1e-8 of the largest before it is timed (a machine: every rate's, the motors'
+ * torques or forces and zero on the others), else it is reported and not timed.
  *
  * Robots (the rows "ur5", "panda" with their bases welded, "solo12", "talos" floating; n = the
  * number of rates): URDF files of example-robot-data, read from the robots directory given as
@@ -219,6 +228,16 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
             ours[k] = 0.0; /* only the crank is actuated */
         }
         ours[0] = dr->drive_effort[0];
+    } else if (strcmp(scene, "delta") == 0 || strcmp(scene, "stewart") == 0 || strcmp(scene, "knee") == 0) {
+        /* vtdyn's own layout: the peer maps it to MuJoCo's; every rate compared */
+        pscene = scene[0] == 'd' ? VT_PEER_DELTA : scene[0] == 's' ? VT_PEER_STEWART : VT_PEER_KNEE;
+        np = m->nv;
+        for (int k = 0; k < m->nq; k++) q[k] = dr->q[k];
+        for (int k = 0; k < m->nv; k++) {
+            qd[k] = dr->qd[k];
+            qdd[k] = dr->qdd[k];
+            ours[k] = dr->qfrc_drive[k]; /* the motors' efforts on their rates, zero elsewhere */
+        }
     } else if (strcmp(scene, "chain_tip") == 0) {
         pscene = VT_PEER_CHAIN_TIP;
         for (int k = 0; k < n; k++) {
@@ -249,10 +268,10 @@ static void bench_row(const char *scene, int n, vt_model *m, vt_data *dd, vt_dat
                     err = fmax(err, fabs(tau[j] - ours[j]));
                     scale = fmax(scale, fabs(ours[j]));
                 }
-                /* exact constraints agree to round-off; MuJoCo's soft equality constraints to
-                 * their softness */
-                const double tol = pscene == VT_PEER_CHAIN || pscene == VT_PEER_CHAIN_TIP ? 1e-8 : 1e-3;
-                if (err > tol * scale && strstr(vt_peer_method(peers[p], k), "crba") == NULL) {
+                /* the same dynamics: round-off apart (MuJoCo's soft constraints do not enter: the
+                 * state satisfies them, and the loop forces are solved exactly) */
+                const double tol = 1e-8;
+                if (!(err <= tol * scale) && strstr(vt_peer_method(peers[p], k), "crba") == NULL) {
                     printf("  %s disagrees with vtdyn: max torque difference %.3g (scale %.3g): not timed\n",
                            vt_peer_method(peers[p], k), err, scale);
                     continue;
@@ -319,6 +338,18 @@ static vt_status make_fourbar_rusr(vt_model **m, int n)
     return vt_scene_fourbar_rusr(m, vt_function_sine(0.3, 1.0, 2.0, 0.0));
 }
 static vt_status make_five_link(vt_model **m, int n) { (void)n; return vt_scene_five_link(m); }
+/* the machines' drive data outlive their models */
+static vt_delta_ik delta_ik;
+static vt_stewart stewart = {3.14159265358979323846, 0.0, {{0}}}; /* period 2 s, as examples/stewart.c */
+static vt_status make_delta(vt_model **m, int n) { (void)n; return vt_scene_delta_ik(m, &delta_ik, 1.0); }
+static vt_status make_stewart(vt_model **m, int n) { (void)n; return vt_scene_stewart(m, &stewart); }
+static vt_status make_knee(vt_model **m, int n) /* examples/knee.c's gait: two strides a second */
+{
+    (void)n;
+    const double pi = 3.14159265358979323846;
+    return vt_scene_knee(m, vt_function_sine(-0.25 * pi, 0.35, 4.0 * pi, 0.0),
+                         vt_function_sine(0.5 * pi, 0.4, 4.0 * pi, 0.8), 1);
+}
 
 static void state_chain(const vt_model *m, vt_data *d)
 {
@@ -343,6 +374,36 @@ static void state_five_link(const vt_model *m, vt_data *d)
     vt_scene_five_link_guess(m, d, 0.1);
     d->time = 0.1;
     vt_kinematic_solve(m, d, 1e-13, 30);
+}
+/* the machines at t = 0.1 s: the closed-form assembly, then vtdyn's kinematic solve (q, q̇) */
+#define MACHINE_T 0.1
+static void machine_solve(const vt_model *m, vt_data *d, const char *scene, int bad)
+{
+    d->time = MACHINE_T;
+    const vt_status st = bad ? VT_ERR_NEWTON : vt_kinematic_solve(m, d, 1e-13, 30);
+    if (st) {
+        fprintf(stderr, "bench_inverse: %s at t = %g: %s: %s\n", scene, MACHINE_T, vt_status_string(st),
+                bad ? "no assembly" : d->message);
+        exit(1);
+    }
+}
+static void state_delta(const vt_model *m, vt_data *d)
+{
+    double p[3];
+    vt_scene_delta_path(MACHINE_T, delta_ik.period, p, NULL, NULL);
+    machine_solve(m, d, "delta", vt_scene_delta_assemble(m, d, p));
+}
+static void state_stewart(const vt_model *m, vt_data *d)
+{
+    vt_scene_stewart_assemble(m, d, &stewart, MACHINE_T);
+    machine_solve(m, d, "stewart", 0);
+}
+static void state_knee(const vt_model *m, vt_data *d)
+{
+    double hip[3], mot[3];
+    vt_function_eval(hip, &m->drive[0].f, MACHINE_T);
+    vt_function_eval(mot, &m->drive[1].f, MACHINE_T);
+    machine_solve(m, d, "knee", vt_scene_knee_assemble(m, d, hip[0], hip[1], mot[0], mot[1], NULL));
 }
 
 /* ---- URDF robots ---- */
@@ -556,6 +617,9 @@ int main(int argc, char **argv)
     for (size_t k = 0; k < sizeof ntip / sizeof ntip[0]; k++)
         scene_row("chain_tip", ntip[k], make_chain_tip, state_chain, rounds);
     scene_row("five_link", 5, make_five_link, state_five_link, rounds);
+    scene_row("delta", 21, make_delta, state_delta, rounds);
+    scene_row("stewart", 24, make_stewart, state_stewart, rounds);
+    scene_row("knee", 4, make_knee, state_knee, rounds);
     const char *robots = argc > 3 ? argv[3] : getenv("VT_BENCH_ROBOTS");
 #if VT_HAVE_URDF
     if (robots && robots[0]) {

@@ -104,7 +104,8 @@ int main(int argc, char **argv)
 
     static const struct { const char *scene; int n; } scenes[] = {
         {"chain", 2}, {"chain", 10}, {"chain", 50}, {"chain", 200}, {"double_link", 2}, {"fourbar", 3},
-        {"fourbar_rusr", 4}, {"chain_tip", 10}, {"chain_tip", 20}, {"five_link", 5},
+        {"fourbar_rusr", 4}, {"chain_tip", 10}, {"chain_tip", 20}, {"five_link", 5}, {"delta", 21},
+        {"stewart", 24}, {"knee", 4},
     };
     static double ta[MAXROUNDS], tb[MAXROUNDS], ratio[MAXROUNDS], oa[MAXOUT], ob[MAXOUT];
     for (size_t s = 0; s < sizeof scenes / sizeof scenes[0]; s++) {

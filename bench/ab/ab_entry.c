@@ -14,6 +14,15 @@
 
 static vt_model *m;
 static vt_data *d;
+#if defined(AB_HAVE_vt_scene_delta_ik) || defined(AB_HAVE_vt_scene_stewart) || defined(AB_HAVE_vt_scene_knee)
+#define AB_MACHINE_T 0.1 /* bench_inverse.c's instant of the machines */
+#endif
+#ifdef AB_HAVE_vt_scene_delta_ik
+static vt_delta_ik delta_ik;
+#endif
+#ifdef AB_HAVE_vt_scene_stewart
+static vt_stewart stewart = {3.14159265358979323846, 0.0, {{0}}};
+#endif
 
 static void release(void)
 {
@@ -64,6 +73,45 @@ AB_EXPORT int ab_setup(const char *scene, int n)
         st = vt_scene_fourbar_rusr(&m, vt_function_sine(0.3, 1.0, 2.0, 0.0));
         if (!st) st = vt_data_create(&d, m);
         if (!st && vt_scene_fourbar_rusr_assemble(m, d, 0.3, 1.0, NULL, NULL)) st = VT_ERR_NULL;
+#endif
+    } else if (strcmp(scene, "delta") == 0) {
+#ifdef AB_HAVE_vt_scene_delta_ik
+        known = 1;
+        st = vt_scene_delta_ik(&m, &delta_ik, 1.0);
+        if (!st) st = vt_data_create(&d, m);
+        if (!st) {
+            double p[3];
+            vt_scene_delta_path(AB_MACHINE_T, 1.0, p, NULL, NULL);
+            if (vt_scene_delta_assemble(m, d, p)) st = VT_ERR_NEWTON;
+            d->time = AB_MACHINE_T;
+            if (!st) st = vt_kinematic_solve(m, d, 1e-13, 30);
+        }
+#endif
+    } else if (strcmp(scene, "stewart") == 0) {
+#ifdef AB_HAVE_vt_scene_stewart
+        known = 1;
+        st = vt_scene_stewart(&m, &stewart);
+        if (!st) st = vt_data_create(&d, m);
+        if (!st) {
+            vt_scene_stewart_assemble(m, d, &stewart, AB_MACHINE_T);
+            st = vt_kinematic_solve(m, d, 1e-13, 30);
+        }
+#endif
+    } else if (strcmp(scene, "knee") == 0) {
+#ifdef AB_HAVE_vt_scene_knee
+        known = 1;
+        const double pi = 3.14159265358979323846;
+        st = vt_scene_knee(&m, vt_function_sine(-0.25 * pi, 0.35, 4.0 * pi, 0.0),
+                           vt_function_sine(0.5 * pi, 0.4, 4.0 * pi, 0.8), 1);
+        if (!st) st = vt_data_create(&d, m);
+        if (!st) {
+            double hip[3], mot[3];
+            vt_function_eval(hip, &m->drive[0].f, AB_MACHINE_T);
+            vt_function_eval(mot, &m->drive[1].f, AB_MACHINE_T);
+            if (vt_scene_knee_assemble(m, d, hip[0], hip[1], mot[0], mot[1], NULL)) st = VT_ERR_NEWTON;
+            d->time = AB_MACHINE_T;
+            if (!st) st = vt_kinematic_solve(m, d, 1e-13, 30);
+        }
 #endif
     } else if (strcmp(scene, "five_link") == 0) {
 #ifdef AB_HAVE_vt_scene_five_link

@@ -24,7 +24,8 @@ ninja -C "$tmp/b" libvtdyn.a >"$tmp/ninja.log" 2>&1 || { tail -40 "$tmp/ninja.lo
 
 # the scene builders this tree's scenes.h declares (a declaration at the start of a line)
 have=""
-for f in vt_scene_chain vt_scene_double_link vt_scene_fourbar vt_scene_fourbar_rusr vt_scene_five_link; do
+for f in vt_scene_chain vt_scene_double_link vt_scene_fourbar vt_scene_fourbar_rusr vt_scene_five_link \
+         vt_scene_delta_ik vt_scene_stewart vt_scene_knee; do
     if grep -Eq "^[A-Za-z_][A-Za-z0-9_ ]*[ *]$f\(" "$tree/examples/scenes.h"; then have="$have -DAB_HAVE_$f"; fi
 done
 

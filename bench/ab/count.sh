@@ -21,7 +21,7 @@ ir() { # instructions of `calls` instants of object $1 on scene $2, n $3
 }
 printf "%-13s %4s %12s %12s %10s %10s %7s\n" scene n "A Ir/call" "B Ir/call" "A Ir/body" "B Ir/body" "B/A"
 for s in "chain 2" "chain 5" "chain 10" "chain 50" "chain 200" "double_link 2" "fourbar 3" "fourbar_rusr 4" \
-         "chain_tip 10" "chain_tip 20" "five_link 5"; do
+         "chain_tip 10" "chain_tip 20" "five_link 5" "delta 21" "stewart 24" "knee 4"; do
     set -- $s
     a=$(ir "$tmp/A.so" "$1" "$2"); b=$(ir "$tmp/B.so" "$1" "$2")
     if [ -z "$a" ] || [ -z "$b" ]; then echo "$1 $2: skipped (scene missing or failed)"; continue; fi

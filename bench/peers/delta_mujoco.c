@@ -5,8 +5,9 @@
  * turn), and at every row the motor torques and reactions of the machine driven by its motors
  * (VT_DELTA_MOTORS, vt_inverse_dynamics_motion), as examples/delta.c computes them.
  *
- * MuJoCo then builds the same geometry in MJCF: the arms on hinges, each rod on two hinges (the
- * arm's y, then the rod's x: vtdyn's universal joint, MuJoCo applying a body's joints in order),
+ * MuJoCo then builds the same geometry in MJCF (mujoco_scenes.c, shared with the benchmark
+ * peer): the arms on hinges, each rod on two hinges (the arm's y, then the rod's x: vtdyn's
+ * universal joint, MuJoCo applying a body's joints in order),
  * the platform on a free joint, and the six ball joints as equality `connect` constraints between
  * a site at each rod's lower end (site1) and its point on the platform (site2): sites, since the
  * loops are open at qpos0. At every row: qpos and qvel set from vtdyn's state (the free joint's
@@ -41,149 +42,40 @@
  * Build: meson with -Dmujoco_dir (bench/peers/install.sh prints it): build/bench/delta_mujoco.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <mujoco/mujoco.h>
 
+#include "mujoco_scenes.h"
 #include "scenes.h"
 
 #define PERIOD 1.0
 #define NOUT 200
-#define PI 3.14159265358979323846
-
-static int xcat(char *buf, size_t cap, size_t *len, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    const int w = vsnprintf(buf + *len, cap - *len, fmt, ap);
-    va_end(ap);
-    if (w < 0 || (size_t)w >= cap - *len) return -1;
-    *len += (size_t)w;
-    return 0;
-}
-
-/* the MJCF of vt_scene_delta's geometry, masses and inertias; tight: the stiff constraints */
-static int delta_xml(char *buf, size_t cap, int tight)
-{
-    size_t n = 0;
-    int e = 0;
-    const double Ia = VT_DELTA_MA * VT_DELTA_LA * VT_DELTA_LA / 12.0, Ir = VT_DELTA_MR * VT_DELTA_LF * VT_DELTA_LF / 12.0;
-    e |= xcat(buf, cap, &n, "<mujoco model=\"vt_delta\">\n"
-                            "  <compiler angle=\"radian\" inertiafromgeom=\"false\" autolimits=\"true\"/>\n");
-    e |= xcat(buf, cap, &n,
-              "  <option gravity=\"0 0 -9.81\" timestep=\"%s\" integrator=\"Euler\" jacobian=\"dense\""
-              " solver=\"Newton\" iterations=\"100\" tolerance=\"1e-14\">\n"
-              "    <flag contact=\"disable\" limit=\"disable\" frictionloss=\"disable\" spring=\"disable\""
-              " damper=\"disable\" sensor=\"disable\"/>\n  </option>\n",
-              tight ? "1e-4" : "0.002");
-    e |= xcat(buf, cap, &n, "  <default>\n    <joint type=\"hinge\" damping=\"0\" armature=\"0\" frictionloss=\"0\""
-                            " stiffness=\"0\" limited=\"false\"/>\n");
-    if (tight) e |= xcat(buf, cap, &n, "    <equality solref=\"2e-4 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>\n");
-    e |= xcat(buf, cap, &n, "  </default>\n  <worldbody>\n");
-    for (int i = 0; i < 3; i++) {
-        const double phi = 2.0 * PI * i / 3.0;
-        e |= xcat(buf, cap, &n, "    <body name=\"arm%d\" pos=\"%.17g %.17g 0\" quat=\"%.17g 0 0 %.17g\">\n", i,
-                  VT_DELTA_RB * cos(phi), VT_DELTA_RB * sin(phi), cos(0.5 * phi), sin(0.5 * phi));
-        e |= xcat(buf, cap, &n, "      <joint name=\"m%d\" axis=\"0 1 0\"/>\n", i);
-        e |= xcat(buf, cap, &n, "      <inertial pos=\"%.17g 0 0\" mass=\"%.17g\" diaginertia=\"1e-4 %.17g %.17g\"/>\n",
-                  0.5 * VT_DELTA_LA, VT_DELTA_MA, Ia, Ia);
-        for (int k = 0; k < 2; k++) {
-            e |= xcat(buf, cap, &n, "      <body name=\"rod%d%d\" pos=\"%.17g %.17g 0\">\n", i, k, VT_DELTA_LA,
-                      k ? VT_DELTA_H : -VT_DELTA_H);
-            e |= xcat(buf, cap, &n, "        <joint name=\"u%d%da\" axis=\"0 1 0\"/>\n", i, k);
-            e |= xcat(buf, cap, &n, "        <joint name=\"u%d%db\" axis=\"1 0 0\"/>\n", i, k);
-            e |= xcat(buf, cap, &n,
-                      "        <inertial pos=\"0 0 %.17g\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n",
-                      -0.5 * VT_DELTA_LF, VT_DELTA_MR, Ir, Ir, 0.5 * VT_DELTA_MR * 0.008 * 0.008);
-            e |= xcat(buf, cap, &n, "        <site name=\"r%d%d\" pos=\"0 0 %.17g\"/>\n      </body>\n", i, k,
-                      -VT_DELTA_LF);
-        }
-        e |= xcat(buf, cap, &n, "    </body>\n");
-    }
-    e |= xcat(buf, cap, &n, "    <body name=\"platform\" pos=\"0 0 0\">\n      <freejoint name=\"free\"/>\n");
-    e |= xcat(buf, cap, &n, "      <inertial pos=\"0 0 0\" mass=\"%.17g\" diaginertia=\"1e-3 1e-3 %.17g\"/>\n",
-              VT_DELTA_MP, 0.5 * VT_DELTA_MP * VT_DELTA_RP * VT_DELTA_RP);
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < 2; k++) {
-            const double phi = 2.0 * PI * i / 3.0, c = cos(phi), s = sin(phi), h = k ? VT_DELTA_H : -VT_DELTA_H;
-            e |= xcat(buf, cap, &n, "      <site name=\"p%d%d\" pos=\"%.17g %.17g 0\"/>\n", i, k,
-                      VT_DELTA_RP * c - h * s, VT_DELTA_RP * s + h * c);
-        }
-    e |= xcat(buf, cap, &n, "    </body>\n  </worldbody>\n  <equality>\n");
-    for (int i = 0; i < 3; i++)
-        for (int k = 0; k < 2; k++)
-            e |= xcat(buf, cap, &n, "    <connect site1=\"r%d%d\" site2=\"p%d%d\"/>\n", i, k, i, k);
-    e |= xcat(buf, cap, &n, "  </equality>\n</mujoco>\n");
-    return e;
-}
 
 typedef struct {
     mjModel *m;
     mjData *d;
-    int qadr[21], vadr[21]; /* MuJoCo's qpos and qvel address of vtdyn's coordinate / rate */
-    int arm[3];             /* the arms' body ids */
+    vt_mj_map map; /* vtdyn's coordinates, rates and bodies in MuJoCo's model */
 } mj_delta;
 
 static int mj_delta_open(mj_delta *s, int tight)
 {
-    static char xml[16384];
-    char err[1024] = "";
-    if (delta_xml(xml, sizeof xml, tight)) return -1;
-    mjSpec *spec = mj_parseXMLString(xml, NULL, err, (int)sizeof err);
-    if (!spec) {
-        fprintf(stderr, "delta_mujoco: %s\n", err);
-        return -1;
-    }
-    s->m = mj_compile(spec, NULL);
-    if (!s->m) fprintf(stderr, "delta_mujoco: %s\n", mjs_getError(spec));
-    mj_deleteSpec(spec);
+    s->m = vt_mj_scene_model(VT_MJ_DELTA, tight ? 0 : VT_MJ_DEFAULT_SOFT);
     if (!s->m) return -1;
     s->d = mj_makeData(s->m);
-    if (!s->d) return -1;
-    /* vtdyn's rates: motors 0..2, rods (i, k) 3 + 2(2i + k) .. + 1, platform 15..20 */
-    char name[16];
-    for (int i = 0; i < 3; i++) {
-        snprintf(name, sizeof name, "m%d", i);
-        const int j = mj_name2id(s->m, mjOBJ_JOINT, name);
-        s->arm[i] = s->m->jnt_bodyid[j];
-        s->vadr[i] = s->m->jnt_dofadr[j];
-        s->qadr[i] = s->m->jnt_qposadr[j];
-        for (int k = 0; k < 2; k++)
-            for (int a = 0; a < 2; a++) {
-                snprintf(name, sizeof name, "u%d%d%c", i, k, "ab"[a]);
-                const int ju = mj_name2id(s->m, mjOBJ_JOINT, name), v = 3 + 2 * (2 * i + k) + a;
-                s->vadr[v] = s->m->jnt_dofadr[ju];
-                s->qadr[v] = s->m->jnt_qposadr[ju];
-            }
-    }
-    const int jf = mj_name2id(s->m, mjOBJ_JOINT, "free");
-    for (int c = 0; c < 6; c++) s->vadr[15 + c] = s->m->jnt_dofadr[jf] + c;
-    s->qadr[15] = s->m->jnt_qposadr[jf]; /* 7 coordinates: position, then w x y z */
+    if (!s->d || vt_mj_scene_map(VT_MJ_DELTA, s->m, &s->map)) return -1;
     return 0;
 }
 
 /* vtdyn's state in, vtdyn's motor torques applied; MuJoCo's forward dynamics and reactions */
-static void mj_delta_forward(mj_delta *s, const vt_model *vm, const double *q, const double *qd, const double *tau)
+static void mj_delta_forward(mj_delta *s, const double *q, const double *qd, const double *tau)
 {
     mjData *d = s->d;
-    const int pq = vm->body_qadr[10], pv = vm->body_vadr[10];
-    for (int v = 0; v < 15; v++) {
-        d->qpos[s->qadr[v]] = q[v];
-        d->qvel[s->vadr[v]] = qd[v];
-    }
-    for (int c = 0; c < 7; c++) d->qpos[s->qadr[15] + c] = q[pq + c];
-    /* the free joint: linear velocity in world axes, angular velocity in the body's axes */
-    double A[9];
-    vt_euler_A(A, q + pq + 3);
-    for (int c = 0; c < 3; c++) {
-        d->qvel[s->vadr[15 + c]] = qd[pv + c];
-        d->qvel[s->vadr[18 + c]] = A[3 * c] * qd[pv + 3] + A[3 * c + 1] * qd[pv + 4] + A[3 * c + 2] * qd[pv + 5];
-    }
+    vt_mj_scene_state(s->m, &s->map, d, q, qd, NULL);
     for (int v = 0; v < s->m->nv; v++) d->qfrc_applied[v] = 0.0;
-    for (int i = 0; i < 3; i++) d->qfrc_applied[s->vadr[i]] = tau[i];
+    for (int i = 0; i < 3; i++) d->qfrc_applied[s->map.vadr[i]] = tau[i];
     mj_forward(s->m, d);
     mj_rnePostConstraint(s->m, d);
 }
@@ -254,7 +146,7 @@ int main(int argc, char **argv)
                 dm->drive_effort[2], norm3(dm->cut_force), norm3(dm->jnt_force + 3));
         for (int p = 0; p < 2; p++) {
             mj_delta *s = &peer[p];
-            mj_delta_forward(s, mm, q, qd, dm->drive_effort);
+            mj_delta_forward(s, q, qd, dm->drive_effort);
             const mjData *md = s->d;
             if (md->nefc != 18) { /* the six connects' rows, nothing else */
                 fprintf(stderr, "delta_mujoco: %d constraint rows at t = %g (18 expected)\n", (int)md->nefc, tr->t[k]);
@@ -268,15 +160,15 @@ int main(int argc, char **argv)
                 eb = fmax(eb, norm3(df));
             }
             for (int i = 0; i < 3; i++) {
-                const mjtNum *w = md->cfrc_int + 6 * s->arm[i];
+                const mjtNum *w = md->cfrc_int + 6 * s->map.body[1 + i];
                 const double df[3] = {w[3] - dm->jnt_force[3 * (1 + i)], w[4] - dm->jnt_force[3 * (1 + i) + 1],
                                       w[5] - dm->jnt_force[3 * (1 + i) + 2]};
                 em = fmax(em, norm3(df));
             }
-            for (int v = 0; v < 15; v++) ea = fmax(ea, fabs(md->qacc[s->vadr[v]] - dm->qdd[v]));
+            for (int v = 0; v < 15; v++) ea = fmax(ea, fabs(md->qacc[s->map.vadr[v]] - dm->qdd[v]));
             for (int c = 0; c < 3; c++) /* the platform's linear acceleration (its rotation stays 0) */
-                ea = fmax(ea, fabs(md->qacc[s->vadr[15 + c]] - dm->qdd[mm->body_vadr[10] + c]));
-            const mjtNum *w1 = md->cfrc_int + 6 * s->arm[0];
+                ea = fmax(ea, fabs(md->qacc[s->map.vadr[15 + c]] - dm->qdd[mm->body_vadr[10] + c]));
+            const mjtNum *w1 = md->cfrc_int + 6 * s->map.body[1];
             fprintf(f, ",%.15g,%.15g,%.6e,%.6e,%.6e", norm3(md->efc_force), norm3(w1 + 3), eb, em, ea);
             worst[p][0] = fmax(worst[p][0], eb);
             worst[p][1] = fmax(worst[p][1], em);

@@ -1,12 +1,13 @@
 /* The knee four-bar of examples/scenes.c (vt_scene_knee, docs/knee.md) in MuJoCo, following
- * vtdyn's motion: the same bodies, masses, inertias and joints in MJCF (hinges about z at the hip
- * for the thigh and the crank, at the crank's tip for the coupler and at the knee for the
- * shank), the loop closed by a connect equality (the coupler's far end = the shank's lever
- * point: 3 rows, which with the planar tree's 4 hinges are dependent, as MuJoCo's soft
- * constraints allow; vtdyn closes it with its planar revolute cut joint's 2 rows), the hip and the motor held on
- * their prescribed angles by joint equalities whose constant terms are set before every step
- * with the feed-forward of stewart_mujoco.c (c = f + (f'' + b f')/k, so that MuJoCo's reference
- * acceleration on the exact motion is the drive's; --no-feed-forward: c = f). The equality
+ * vtdyn's motion: the same bodies, masses, inertias and joints in MJCF (mujoco_scenes.c, shared
+ * with the benchmark peer: hinges about z at the hip for the thigh and the crank, at the crank's
+ * tip for the coupler and at the knee for the shank), the loop closed by a connect equality (the
+ * coupler's far end = the shank's lever point: 3 rows, which with the planar tree's 4 hinges are
+ * dependent, as MuJoCo's soft constraints allow; vtdyn closes it with its planar revolute cut
+ * joint's 2 rows), the hip and the motor held on their prescribed angles by joint equalities
+ * whose constant terms are set before every step with the feed-forward of stewart_mujoco.c
+ * (c = f + (f'' + b f')/k, so that MuJoCo's reference acceleration on the exact motion is the
+ * drive's; --no-feed-forward: c = f). The equality
  * settings are the benchmark peer's (solref "2e-4 1", solimp "0.9999 0.9999 0.001 0.5 2");
  * semi-implicit Euler, 1e-4 s, from vtdyn's consistent state at t = 0.
  *
@@ -28,52 +29,10 @@
 
 #include <mujoco/mujoco.h>
 
+#include "mujoco_scenes.h"
 #include "scenes.h"
 
 #define PI 3.14159265358979323846
-
-static void rod_diag(double J[3], double mass, double length, double radius)
-{
-    J[0] = 0.5 * mass * radius * radius;
-    J[1] = J[2] = mass * (3.0 * radius * radius + length * length) / 12.0;
-}
-
-static int xml(char *s, size_t cap)
-{
-    size_t n = 0;
-#define X(...) do { int w_ = snprintf(s + n, cap - n, __VA_ARGS__); if (w_ < 0 || (size_t)w_ >= cap - n) return -1; n += (size_t)w_; } while (0)
-    const double ls = VT_KN_C + VT_KN_L, cs = 0.5 * ls - VT_KN_C;
-    double Jt[3], Jc[3], Jp[3], Js[3];
-    rod_diag(Jt, 1.5, VT_KN_D, 0.01);
-    rod_diag(Jc, 0.1, VT_KN_A, 0.01);
-    rod_diag(Jp, 0.08, VT_KN_B, 0.01);
-    rod_diag(Js, 0.5, ls, 0.01);
-    X("<mujoco model=\"vt_knee\">\n");
-    X("  <compiler angle=\"radian\" inertiafromgeom=\"false\" autolimits=\"true\"/>\n");
-    X("  <option gravity=\"0 -9.81 0\" timestep=\"1e-4\" integrator=\"Euler\" jacobian=\"dense\">\n");
-    X("    <flag contact=\"disable\" limit=\"disable\" frictionloss=\"disable\" spring=\"disable\""
-      " damper=\"disable\" actuation=\"disable\" sensor=\"disable\"/>\n  </option>\n");
-    X("  <default>\n    <joint type=\"hinge\" damping=\"0\" armature=\"0\" frictionloss=\"0\" stiffness=\"0\" limited=\"false\"/>\n");
-    X("    <equality solref=\"2e-4 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>\n  </default>\n");
-    X("  <worldbody>\n");
-    X("    <body name=\"thigh\" pos=\"0 0 0\">\n      <joint name=\"hip\" axis=\"0 0 1\"/>\n");
-    X("      <inertial pos=\"%.17g 0 0\" mass=\"1.5\" diaginertia=\"%.17g %.17g %.17g\"/>\n", 0.5 * VT_KN_D, Jt[0], Jt[1], Jt[2]);
-    X("      <body name=\"crank\" pos=\"0 0 0\">\n        <joint name=\"motor\" axis=\"0 0 1\"/>\n");
-    X("        <inertial pos=\"%.17g 0 0\" mass=\"0.1\" diaginertia=\"%.17g %.17g %.17g\"/>\n", 0.5 * VT_KN_A, Jc[0], Jc[1], Jc[2]);
-    X("        <body name=\"coupler\" pos=\"%.17g 0 0\">\n", VT_KN_A);
-    X("          <joint name=\"cz\" axis=\"0 0 1\"/>\n");
-    X("          <inertial pos=\"%.17g 0 0\" mass=\"0.08\" diaginertia=\"%.17g %.17g %.17g\"/>\n", 0.5 * VT_KN_B, Jp[0], Jp[1], Jp[2]);
-    X("          <site name=\"cend\" pos=\"%.17g 0 0\"/>\n        </body>\n      </body>\n", VT_KN_B);
-    X("      <body name=\"shank\" pos=\"%.17g 0 0\">\n        <joint name=\"knee\" axis=\"0 0 1\"/>\n", VT_KN_D);
-    X("        <inertial pos=\"%.17g 0 0\" mass=\"0.5\" diaginertia=\"%.17g %.17g %.17g\"/>\n", cs, Js[0], Js[1], Js[2]);
-    X("        <site name=\"lever\" pos=\"%.17g 0 0\"/>\n      </body>\n    </body>\n", -VT_KN_C);
-    X("  </worldbody>\n  <equality>\n");
-    X("    <connect site1=\"cend\" site2=\"lever\"/>\n");
-    X("    <joint joint1=\"hip\" polycoef=\"0 0 0 0 0\"/>\n    <joint joint1=\"motor\" polycoef=\"0 0 0 0 0\"/>\n");
-    X("  </equality>\n</mujoco>\n");
-#undef X
-    return 0;
-}
 
 /* the joint equalities' constant terms (equalities 1 and 2): see stewart_mujoco.c */
 static void set_targets(mjModel *m, const vt_model *vm, double t, int ff)
@@ -90,14 +49,8 @@ int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "knee_mujoco.csv";
     const int ff = !(argc > 2 && strcmp(argv[2], "--no-feed-forward") == 0);
-    static char text[1 << 14];
-    if (xml(text, sizeof text)) return fprintf(stderr, "knee_mujoco: MJCF buffer too small\n"), 1;
-    char err[1024] = "";
-    mjSpec *spec = mj_parseXMLString(text, NULL, err, (int)sizeof err);
-    if (!spec) return fprintf(stderr, "knee_mujoco: %s\n", err), 1;
-    mjModel *m = mj_compile(spec, NULL);
-    if (!m) return fprintf(stderr, "knee_mujoco: %s\n", mjs_getError(spec)), 1;
-    mj_deleteSpec(spec);
+    mjModel *m = vt_mj_scene_model(VT_MJ_KNEE, VT_MJ_DRIVE_EQUALITIES);
+    if (!m) return 1;
     mjData *d = mj_makeData(m);
 
     const double om = 4.0 * PI;

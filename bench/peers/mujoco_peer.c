@@ -1,7 +1,8 @@
 /* MuJoCo peer (C API). Scenes: chain, double link (joint 2 locked by a joint equality),
  * four-bar (loop closed by a connect equality), the spatial RUSR four-bar (two hinges on the
- * coupler, loop closed by a connect equality) and chain tip (the chain model, driven only by a
- * force at the tip).
+ * coupler, loop closed by a connect equality), chain tip (the chain model, driven only by a
+ * force at the tip), and the Delta robot, the Stewart platform and the knee four-bar
+ * (mujoco_scenes.c: each loop a connect equality, the motors' dofs free).
  *
  * Methods
  *   chain
@@ -23,9 +24,19 @@
  *   RUSR four-bar
  *     0 mujoco_inverse_loop  mj_inverse, then the connect force lambda (all 3 rows) that makes the
  *                            torques of dofs 1, 2, 3 (coupler about z, coupler tilt, rocker) zero,
- *                            from the 3x3 system J[:, 1:4]^T lambda = (M qacc + bias)[1:4] (Cramer's
- *                            rule); the rest as for the four-bar: tau = M qacc + bias - J^T lambda,
+ *                            from the 3x3 system J[:, 1:4]^T lambda = (M qacc + bias)[1:4]; the
+ *                            rest as for the four-bar: tau = M qacc + bias - J^T lambda,
  *                            efc_force = lambda, then mj_rnePostConstraint
+ *   Delta, Stewart, knee
+ *     0 mujoco_inverse_loop  as for the four-bars: mj_inverse, then the connects' force lambda
+ *                            that leaves only the motors' dofs actuated (Delta: the 3 arm hinges;
+ *                            Stewart: the 6 slides; knee: the hip and the motor hinges), from
+ *                            J[rows, F]^T lambda = (M qacc + bias)[F], F the other dofs (Delta 18,
+ *                            Stewart 18, knee 2), rows every connect row (Delta, Stewart: 18) or
+ *                            the knee's x and y (its z row is zero); then tau, efc_force and
+ *                            mj_rnePostConstraint as above. The loop forces of every four-bar and
+ *                            machine come from one k x k solve (Gaussian elimination, partial
+ *                            pivoting; k = 2, 3, 18, 18, 2)
  *   chain tip
  *     0 mujoco_inverse_tip   mj_inverse (qfrc_inverse = M qacc + bias, no constraint), then the
  *                            tip force F along global y that produces all of it: least squares
@@ -74,13 +85,18 @@
 
 #include <mujoco/mujoco.h>
 
+#include "mujoco_scenes.h"
 #include "peer_impl.h"
+
+/* the loop-force solve: at most this many unknowns (the Delta's and the Stewart platform's 18) */
+enum { LOOP_MAX = 18 };
 
 typedef struct {
     mjModel *m;
     mjData *d;
-    int scene, n;            /* n = nv = number of hinges = links (the RUSR four-bar: 4 hinges, 3 links) */
-    mjtNum *q, *qd, *qdd;    /* the state, copied into mjData by every run */
+    int scene, n;            /* n = nv = number of hinges = links (the RUSR four-bar: 4 hinges, 3 links;
+                              * Delta, Stewart, knee: vtdyn's rates) */
+    mjtNum *q, *qd, *qdd;    /* the state in MuJoCo's qpos, qvel, qacc, copied into mjData by every run */
     mjtNum *tau;             /* torques of the last run (chain tip: n + 1, the tip force last) */
     mjtNum *jac;             /* chain tip: mj_jac's translation rows (3 x n) */
     mjtNum *jacd;            /* chain tip: mj_jacDot's translation rows (3 x n) */
@@ -88,12 +104,17 @@ typedef struct {
     mjtNum ades;             /* chain tip: the tip's y acceleration that the drive prescribes */
     const int *body;         /* body of link k (k = 1..n) is body[k - 1]; joint of link k is k - 1 */
     int bodyids[3];
+    /* the loop scenes: the dofs whose force the loop force cancels (nloop of them) and the efc
+     * rows that carry it, in the same number */
+    int nloop, loopdof[LOOP_MAX], looprow[LOOP_MAX];
+    vt_mj_map map;           /* Delta, Stewart, knee: vtdyn's layout in MuJoCo's model */
 } mj_peer;
 
 static const char *const chain_methods[] = {"mujoco_inverse", "mujoco_rne_post", "mujoco_post_project"};
 static const char *const dl_methods[] = {"mujoco_inverse"};
 static const char *const fb_methods[] = {"mujoco_inverse", "mujoco_inverse_loop"};
 static const char *const rusr_methods[] = {"mujoco_inverse_loop"};
+static const char *const machine_methods[] = {"mujoco_inverse_loop"};
 static const char *const tip_methods[] = {"mujoco_inverse_tip", "mujoco_solve_tip"};
 
 /* ---- XML text ---- */
@@ -224,10 +245,10 @@ static void xml_fourbar(xbuf *b, int rusr)
 /* ---- evaluation ---- */
 static void set_state(mj_peer *s)
 {
-    const size_t bytes = (size_t)s->n * sizeof(mjtNum);
-    memcpy(s->d->qpos, s->q, bytes);
-    memcpy(s->d->qvel, s->qd, bytes);
-    memcpy(s->d->qacc, s->qdd, bytes);
+    const size_t nv = (size_t)s->m->nv * sizeof(mjtNum);
+    memcpy(s->d->qpos, s->q, (size_t)s->m->nq * sizeof(mjtNum));
+    memcpy(s->d->qvel, s->qd, nv);
+    memcpy(s->d->qacc, s->qdd, nv);
 }
 
 static void run_inverse(mj_peer *s)
@@ -263,25 +284,49 @@ static void run_post_project(mj_peer *s)
     }
 }
 
-/* determinant of the leading k x k block (k = 2 or 3) of A, by its first row (A not const: C11
- * does not convert mjtNum (*)[3] to const mjtNum (*)[3]) */
-static mjtNum det_k(int k, mjtNum A[3][3])
+/* Solves A x = b in place (b becomes x) for the k x k matrix A, by Gaussian elimination with
+ * partial pivoting; a zero pivot leaves the x it meets infinite or NaN (the check against
+ * vtdyn's torques then refuses the row). */
+static void solve_small(int k, mjtNum A[][LOOP_MAX], mjtNum *b)
 {
-    if (k == 2) return A[0][0] * A[1][1] - A[0][1] * A[1][0];
-    return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-           A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    for (int c = 0; c < k; c++) {
+        int p = c;
+        for (int r = c + 1; r < k; r++)
+            if (fabs(A[r][c]) > fabs(A[p][c])) p = r;
+        if (p != c) {
+            for (int j = c; j < k; j++) {
+                const mjtNum t = A[c][j];
+                A[c][j] = A[p][j];
+                A[p][j] = t;
+            }
+            const mjtNum t = b[c];
+            b[c] = b[p];
+            b[p] = t;
+        }
+        for (int r = c + 1; r < k; r++) {
+            const mjtNum f = A[r][c] / A[c][c];
+            for (int j = c + 1; j < k; j++) A[r][j] -= f * A[c][j];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int c = k - 1; c >= 0; c--) {
+        mjtNum x = b[c];
+        for (int j = c + 1; j < k; j++) x -= A[c][j] * b[j];
+        b[c] = x / A[c][c];
+    }
 }
 
-/* Four-bars, crank-only actuation. After mj_inverse (efc_force = 0 for a consistent state),
- * M qacc + bias = qfrc_inverse + qfrc_constraint; the connect force lambda on its first k rows
- * (the planar loop: x, y, k = 2; the RUSR: x, y, z, k = 3) leaves dofs 1..k unactuated:
- * (M qacc + bias − J^T lambda)[dof] = 0, the k x k system A lambda = r, A[i][j] = J[j][i + 1],
- * solved by Cramer's rule. */
-static void run_inverse_loop(mj_peer *s, int k)
+/* The loops with only the motors acting. After mj_inverse (efc_force = 0 for a consistent
+ * state), M qacc + bias = qfrc_inverse + qfrc_constraint; the connects' force lambda on the
+ * efc rows looprow[] leaves the dofs loopdof[] unactuated: (M qacc + bias − J^T lambda)[dof] = 0,
+ * the k x k system A lambda = r, A[i][j] = J[looprow[j]][loopdof[i]], r_i = (M qacc +
+ * bias)[loopdof[i]]. lambda goes into efc_force (the other rows 0), J^T lambda into
+ * qfrc_constraint, the rest into qfrc_inverse and tau; then the reactions. */
+static void run_inverse_loop(mj_peer *s)
 {
     const mjModel *m = s->m;
     mjData *d = s->d;
-    const int nv = m->nv;
+    const int nv = m->nv, k = s->nloop;
     set_state(s);
     mj_inverse(m, d);
     if (d->nefc < k) { /* the connect rows are missing: leave the plain mj_inverse result */
@@ -289,22 +334,19 @@ static void run_inverse_loop(mj_peer *s, int k)
         memcpy(s->tau, d->qfrc_inverse, (size_t)nv * sizeof(mjtNum));
         return;
     }
-    const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv, rows 0..2 = connect x, y, z */
-    mjtNum A[3][3] = {{0}}, r[3], l[3] = {0, 0, 0};
+    const mjtNum *J = d->efc_J; /* dense (option jacobian="dense"): nefc x nv */
+    mjtNum A[LOOP_MAX][LOOP_MAX], l[LOOP_MAX];
     for (int i = 0; i < k; i++) {
-        for (int j = 0; j < k; j++) A[i][j] = J[j * nv + i + 1];
-        r[i] = d->qfrc_inverse[i + 1] + d->qfrc_constraint[i + 1];
+        const int dof = s->loopdof[i];
+        for (int j = 0; j < k; j++) A[i][j] = J[s->looprow[j] * nv + dof];
+        l[i] = d->qfrc_inverse[dof] + d->qfrc_constraint[dof];
     }
-    const mjtNum det = det_k(k, A); /* λ_j = det(A with column j replaced by r) / det A */
-    for (int j = 0; j < k; j++) {
-        mjtNum Aj[3][3];
-        memcpy(Aj, A, sizeof Aj);
-        for (int i = 0; i < k; i++) Aj[i][j] = r[i];
-        l[j] = det_k(k, Aj) / det;
-    }
-    for (int e = 0; e < d->nefc; e++) d->efc_force[e] = e < k ? l[e] : 0.0;
+    solve_small(k, A, l);
+    for (int e = 0; e < d->nefc; e++) d->efc_force[e] = 0.0;
+    for (int j = 0; j < k; j++) d->efc_force[s->looprow[j]] = l[j];
     for (int i = 0; i < nv; i++) {
-        const mjtNum qc = J[0 * nv + i] * l[0] + J[1 * nv + i] * l[1] + (k == 3 ? J[2 * nv + i] * l[2] : 0.0);
+        mjtNum qc = 0.0;
+        for (int j = 0; j < k; j++) qc += J[s->looprow[j] * nv + i] * l[j];
         s->tau[i] = d->qfrc_inverse[i] + d->qfrc_constraint[i] - qc;
         d->qfrc_constraint[i] = qc;
         d->qfrc_inverse[i] = s->tau[i];
@@ -417,10 +459,8 @@ static void mjp_run(void *p, int method)
         if (method == 0) run_inverse(s);
         else if (method == 1) run_rne_post(s);
         else run_post_project(s);
-    } else if (s->scene == VT_PEER_FOURBAR && method == 1) {
-        run_inverse_loop(s, 2);
-    } else if (s->scene == VT_PEER_FOURBAR_RUSR) {
-        run_inverse_loop(s, 3);
+    } else if ((s->scene == VT_PEER_FOURBAR && method == 1) || s->scene == VT_PEER_FOURBAR_RUSR || s->map.nv > 0) {
+        run_inverse_loop(s);
     } else if (s->scene == VT_PEER_CHAIN_TIP) {
         if (method == 0) run_inverse_tip(s);
         else run_solve_tip(s);
@@ -437,6 +477,17 @@ static void mjp_torques(const void *p, double *tau)
         mj_mulM(s->m, s->d, tau, s->d->qacc);
         for (int i = 0; i < nv; i++) tau[i] += s->d->qfrc_bias[i] - s->jac[nv + i] * s->tau[nv];
         tau[nv] = s->tau[nv];
+        return;
+    }
+    if (s->map.nv > 0) { /* vtdyn's rates; a free joint's moment from the body's axes to the world's */
+        const vt_mj_map *mp = &s->map;
+        for (int k = 0; k < mp->nv; k++) tau[k] = s->tau[mp->vadr[k]];
+        for (int b = 1; b <= mp->nbody; b++) {
+            if (!mp->free[b]) continue;
+            const mjtNum *R = s->d->xmat + 9 * mp->body[b], *t = s->tau + mp->vadr[mp->bvadr[b] + 3];
+            for (int c = 0; c < 3; c++)
+                tau[mp->bvadr[b] + 3 + c] = R[3 * c] * t[0] + R[3 * c + 1] * t[1] + R[3 * c + 2] * t[2];
+        }
         return;
     }
     for (int i = 0; i < s->n; i++) tau[i] = s->tau[i];
@@ -474,6 +525,7 @@ static const vt_peer_vtable dl_vtable = {1, dl_methods, mjp_run, mjp_torques, mj
 static const vt_peer_vtable fb_vtable = {2, fb_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable rusr_vtable = {1, rusr_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 static const vt_peer_vtable tip_vtable = {2, tip_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
+static const vt_peer_vtable machine_vtable = {1, machine_methods, mjp_run, mjp_torques, mjp_reaction, mjp_destroy};
 
 /* the model of xml; chain > 0: that many chain links added to its worldbody first */
 static mjModel *compile_xml(const char *xml, int chain)
@@ -507,9 +559,64 @@ static mjModel *scene_model(int scene, int n)
     return m;
 }
 
+/* the Delta, the Stewart platform and the knee (mujoco_scenes.c): the state in vtdyn's layout */
+static vt_peer *machine_peer(int scene, const double *q, const double *qd, const double *qdd)
+{
+    const int machine = scene == VT_PEER_DELTA ? VT_MJ_DELTA : scene == VT_PEER_STEWART ? VT_MJ_STEWART : VT_MJ_KNEE;
+    mjModel *m = vt_mj_scene_model(machine, 0);
+    if (!m) return NULL;
+    vt_peer *p = malloc(sizeof *p);
+    mj_peer *s = calloc(1, sizeof *s);
+    if (s) {
+        s->m = m;
+        s->q = malloc(((size_t)m->nq + 3 * (size_t)m->nv) * sizeof(mjtNum));
+        s->d = mj_makeData(m);
+    }
+    if (!p || !s || !s->q || !s->d || vt_mj_scene_map(machine, m, &s->map)) {
+        if (s) mjp_destroy(s);
+        else mj_deleteModel(m);
+        free(p);
+        return NULL;
+    }
+    const int nv = m->nv;
+    s->scene = scene;
+    s->n = nv;
+    s->qd = s->q + m->nq;
+    s->qdd = s->qd + nv;
+    s->tau = s->qdd + nv;
+    /* the state once in MuJoCo's coordinates, which every run copies */
+    vt_mj_scene_state(m, &s->map, s->d, q, qd, qdd);
+    memcpy(s->q, s->d->qpos, (size_t)m->nq * sizeof(mjtNum));
+    memcpy(s->qd, s->d->qvel, (size_t)nv * sizeof(mjtNum));
+    memcpy(s->qdd, s->d->qacc, (size_t)nv * sizeof(mjtNum));
+    /* the motors' dofs (vtdyn's bodies: the Delta's arms 1..3, the Stewart's pistons 3 + 2i, the
+     * knee's thigh and crank); every other dof is the loop force's */
+    int motor[VT_MJ_MAXQ] = {0};
+    for (int i = 0; i < 6; i++) {
+        const int b = scene == VT_PEER_STEWART ? 3 + 2 * i : i < (scene == VT_PEER_DELTA ? 3 : 2) ? 1 + i : 0;
+        if (b > 0) motor[s->map.vadr[s->map.bvadr[b]]] = 1;
+    }
+    for (int i = 0; i < nv; i++)
+        if (!motor[i] && s->nloop < LOOP_MAX) s->loopdof[s->nloop++] = i;
+    for (int j = 0; j < s->nloop; j++) s->looprow[j] = j; /* the connects' rows in order (the knee: x, y) */
+    if (s->nloop != (scene == VT_PEER_KNEE ? 2 : 18) || m->neq != (scene == VT_PEER_KNEE ? 1 : 6)) {
+        mjp_destroy(s);
+        free(p);
+        return NULL;
+    }
+    s->body = s->map.body + 1; /* vtdyn's body k is link k */
+    p->impl = s;
+    p->n = s->map.nbody;
+    p->vt = &machine_vtable;
+    mjp_run(s, 0);
+    return p;
+}
+
 vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, const double *qdd)
 {
     if (!q || !qd || !qdd) return NULL;
+    if (scene == VT_PEER_DELTA || scene == VT_PEER_STEWART || scene == VT_PEER_KNEE)
+        return machine_peer(scene, q, qd, qdd);
     if (scene == VT_PEER_DOUBLE_LINK) n = 2;
     else if (scene == VT_PEER_FOURBAR) n = 3;
     else if (scene == VT_PEER_FOURBAR_RUSR) n = 4;
@@ -531,6 +638,13 @@ vt_peer *vt_peer_mujoco(int scene, int n, const double *q, const double *qd, con
     s->m = m;
     s->scene = scene;
     s->n = n;
+    if (scene == VT_PEER_FOURBAR || scene == VT_PEER_FOURBAR_RUSR) { /* the crank alone acts */
+        s->nloop = scene == VT_PEER_FOURBAR ? 2 : 3;
+        for (int j = 0; j < s->nloop; j++) {
+            s->loopdof[j] = 1 + j;
+            s->looprow[j] = j;
+        }
+    }
     s->qd = s->q + n;
     s->qdd = s->qd + n;
     s->tau = s->qdd + n;

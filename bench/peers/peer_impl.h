@@ -22,7 +22,8 @@ struct vt_peer {
     const vt_peer_vtable *vt;
     void *impl;  /* the peer's own state */
     int n;       /* number of links reported by reaction(), and of joint coordinates reported by torques()
-                  * (not so for the chain tip, n + 1 values, and the RUSR four-bar, 4 values on 3 links) */
+                  * (not so for the chain tip, n + 1 values, the RUSR four-bar, 4 values on 3 links, and
+                  * the machines, nv values on nbody links) */
 };
 
 #ifdef __cplusplus

@@ -25,7 +25,19 @@
  *                drive is a force along global y at the tip of link n (0.5 m along its x from its
  *                joint); pass q̈ solved by vtdyn; torques: n + 1 values, the n joint torques left
  *                once the tip force is applied (none is actuated: zero up to round-off), then the
- *                tip force F (N, the force on the tip along +y); the reactions include F */
+ *                tip force F (N, the force on the tip along +y); the reactions include F
+ *   Delta, Stewart platform, knee
+ *                MuJoCo only; the machines of examples/scenes.h (vt_scene_delta, vt_scene_stewart,
+ *                vt_scene_knee with planar = 1), MuJoCo's models in mujoco_scenes.c (n ignored);
+ *                the state in vtdyn's layout of that scene: q its nq coordinates (a free joint's
+ *                position, then its Euler parameters w x y z), qd and qdd its nv rates (a free
+ *                joint's linear, then its angular velocity in world axes) satisfying the loops;
+ *                torques: nv values in vtdyn's rates, the motors' torques or forces (the Delta's
+ *                arms, the Stewart's legs, the knee's hip and motor) and on every other rate what
+ *                is left once the loop forces are solved (none is actuated: zero up to round-off;
+ *                a free joint's moment in world axes); links k = 1..nbody are vtdyn's bodies (a
+ *                Stewart piston's moment is about MuJoCo's slide anchor, the piston's top, not
+ *                vtdyn's joint point: the forces agree, the moments differ by the lever arm) */
 #ifndef VT_BENCH_PEERS_H
 #define VT_BENCH_PEERS_H
 
@@ -35,9 +47,10 @@ extern "C" {
 
 typedef struct vt_peer vt_peer;   /* opaque */
 /* scene: VT_PEER_CHAIN and VT_PEER_CHAIN_TIP (n links), VT_PEER_DOUBLE_LINK, VT_PEER_FOURBAR,
- * VT_PEER_FOURBAR_RUSR (n ignored for these three) */
+ * VT_PEER_FOURBAR_RUSR, VT_PEER_DELTA, VT_PEER_STEWART, VT_PEER_KNEE (n ignored for these) */
 enum {
-    VT_PEER_CHAIN = 0, VT_PEER_DOUBLE_LINK = 1, VT_PEER_FOURBAR = 2, VT_PEER_CHAIN_TIP = 3, VT_PEER_FOURBAR_RUSR = 4
+    VT_PEER_CHAIN = 0, VT_PEER_DOUBLE_LINK = 1, VT_PEER_FOURBAR = 2, VT_PEER_CHAIN_TIP = 3, VT_PEER_FOURBAR_RUSR = 4,
+    VT_PEER_DELTA = 5, VT_PEER_STEWART = 6, VT_PEER_KNEE = 7
 };
 /* NULL if the scene is not supported by that peer */
 vt_peer *vt_peer_pinocchio(int scene, int n, const double *q, const double *qd, const double *qdd);
@@ -61,7 +74,7 @@ vt_peer *vt_peer_mujoco_robot(const char *urdf, int floating, int nj, const char
 int vt_peer_nmethods(const vt_peer *p);
 const char *vt_peer_method(const vt_peer *p, int method);   /* e.g. "pinocchio_rnea", "pinocchio_rnea_world", "pinocchio_crba_cholesky", "mujoco_inverse", "mujoco_rne_post", "mujoco_inverse_tip" */
 void vt_peer_run(vt_peer *p, int method);                    /* one full evaluation; no allocation */
-void vt_peer_torques(const vt_peer *p, double *tau);         /* joint torques of the last run (n; chain tip n + 1; RUSR four-bar 4) */
+void vt_peer_torques(const vt_peer *p, double *tau);         /* joint torques of the last run (n; chain tip n + 1; RUSR four-bar 4; the machines nv) */
 /* reaction of the parent on link k (1-based) at that link's joint point, world axes: force f, moment n about the joint point; includes whatever the peer includes (say in a comment whether the actuator torque is inside n)
  * Both peers: n is the whole moment transmitted through the joint, so the actuator (joint) torque
  * IS inside n: its component along the joint axis equals the joint torque of link k's joint.
@@ -76,8 +89,8 @@ void vt_peer_free(vt_peer *p);
  * q and qd ((nout + 1) x n, MuJoCo's qpos and qvel) and f ((nout + 1) x 3n: for links 1..n the
  * reaction force of vt_peer_reaction); any of the three may be NULL. Returns the number of steps
  * (mj_step equivalents; RK4 evaluates the dynamics 4 times a step, Euler once), or -1 when p is not
- * a MuJoCo peer, is a chain-tip one (its drive is not modelled forward) or an RUSR four-bar one
- * (not supported) or an argument is bad. The model's timestep and integrator are restored afterwards;
+ * a MuJoCo peer, is a chain-tip one (its drive is not modelled forward), an RUSR four-bar or a
+ * machine one (not supported) or an argument is bad. The model's timestep and integrator are restored afterwards;
  * the peer's last-run results (torques, reactions) are overwritten. */
 enum { VT_PEER_EULER = 0, VT_PEER_RK4 = 1 };
 long vt_peer_mujoco_simulate(vt_peer *p, double dt, int integrator, double t1, int nout, double *q, double *qd,

@@ -1,5 +1,6 @@
 /* The Stewart–Gough platform of examples/scenes.c (vt_scene_stewart, docs/stewart.md) in MuJoCo,
- * following vtdyn's motion: the same bodies, masses, inertias and joints in MJCF (the platform
+ * following vtdyn's motion: the same bodies, masses, inertias and joints in MJCF
+ * (mujoco_scenes.c, shared with the benchmark peer; the platform
  * on a free joint; each leg two hinges at its base point, x then the cylinder's y, as vtdyn's
  * universal joint, and a slide along the cylinder's z whose coordinate is the leg length), each
  * leg closed on the platform by a connect equality (site on the platform = site at the piston's
@@ -32,61 +33,10 @@
 
 #include <mujoco/mujoco.h>
 
+#include "mujoco_scenes.h"
 #include "scenes.h"
 
 #define NLEG 6
-
-static void cylinder_diag(double J[3], double mass, double length, double radius)
-{
-    J[0] = J[1] = mass * (3.0 * radius * radius + length * length) / 12.0;
-    J[2] = 0.5 * mass * radius * radius;
-}
-
-static int xml(char *s, size_t cap)
-{
-    size_t n = 0;
-#define X(...) do { int w_ = snprintf(s + n, cap - n, __VA_ARGS__); if (w_ < 0 || (size_t)w_ >= cap - n) return -1; n += (size_t)w_; } while (0)
-    double Jp[3], Jc[3], Js[3];
-    cylinder_diag(Jp, VT_SG_M_PLAT, 0.03, VT_SG_PLAT_R);
-    cylinder_diag(Jc, VT_SG_M_CYL, 0.5, 0.04);
-    cylinder_diag(Js, VT_SG_M_PIST, 0.5, 0.02);
-    X("<mujoco model=\"vt_stewart\">\n");
-    X("  <compiler angle=\"radian\" inertiafromgeom=\"false\" autolimits=\"true\"/>\n");
-    X("  <option gravity=\"0 0 -9.81\" timestep=\"1e-4\" integrator=\"Euler\" jacobian=\"dense\">\n");
-    X("    <flag contact=\"disable\" limit=\"disable\" frictionloss=\"disable\" spring=\"disable\""
-      " damper=\"disable\" actuation=\"disable\" sensor=\"disable\"/>\n  </option>\n");
-    X("  <default>\n    <joint damping=\"0\" armature=\"0\" frictionloss=\"0\" stiffness=\"0\" limited=\"false\"/>\n");
-    X("    <equality solref=\"2e-4 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>\n  </default>\n");
-    X("  <worldbody>\n");
-    X("    <body name=\"platform\" pos=\"0 0 %.17g\">\n      <freejoint name=\"free\"/>\n", VT_SG_HEIGHT);
-    X("      <inertial pos=\"0 0 0\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n", VT_SG_M_PLAT, Jp[0], Jp[1], Jp[2]);
-    for (int i = 0; i < NLEG; i++) {
-        double a[3], b[3];
-        vt_scene_stewart_points(i, a, b);
-        X("      <site name=\"b%d\" pos=\"%.17g %.17g %.17g\"/>\n", i, b[0], b[1], b[2]);
-    }
-    X("    </body>\n");
-    for (int i = 0; i < NLEG; i++) {
-        double a[3], b[3];
-        vt_scene_stewart_points(i, a, b);
-        X("    <body name=\"cyl%d\" pos=\"%.17g %.17g %.17g\">\n", i, a[0], a[1], a[2]);
-        X("      <joint name=\"ua%d\" type=\"hinge\" axis=\"1 0 0\"/>\n", i);
-        X("      <joint name=\"ub%d\" type=\"hinge\" axis=\"0 1 0\"/>\n", i);
-        X("      <inertial pos=\"0 0 %.17g\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n", VT_SG_HALF,
-          VT_SG_M_CYL, Jc[0], Jc[1], Jc[2]);
-        X("      <body name=\"pis%d\" pos=\"0 0 0\">\n", i);
-        X("        <joint name=\"p%d\" type=\"slide\" axis=\"0 0 1\"/>\n", i);
-        X("        <inertial pos=\"0 0 %.17g\" mass=\"%.17g\" diaginertia=\"%.17g %.17g %.17g\"/>\n", -VT_SG_HALF,
-          VT_SG_M_PIST, Js[0], Js[1], Js[2]);
-        X("        <site name=\"top%d\" pos=\"0 0 0\"/>\n      </body>\n    </body>\n", i);
-    }
-    X("  </worldbody>\n  <equality>\n");
-    for (int i = 0; i < NLEG; i++) X("    <connect site1=\"b%d\" site2=\"top%d\"/>\n", i, i);
-    for (int i = 0; i < NLEG; i++) X("    <joint joint1=\"p%d\" polycoef=\"1 0 0 0 0\"/>\n", i);
-    X("  </equality>\n</mujoco>\n");
-#undef X
-    return 0;
-}
 
 /* MuJoCo's reference acceleration of a row is aref = −b v − k r (v = J q̇, r the residual), with
  * b = 2/(dmax τ), k = d/(dmax² τ² ζ²) for solref (τ, ζ) = (2e-4, 1) and solimp's d = dmax =
@@ -108,15 +58,11 @@ int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "stewart_mujoco.csv";
     const int ff = !(argc > 2 && strcmp(argv[2], "--no-feed-forward") == 0);
-    static char text[1 << 15];
-    if (xml(text, sizeof text)) return fprintf(stderr, "stewart_mujoco: MJCF buffer too small\n"), 1;
-    char err[1024] = "";
-    mjSpec *spec = mj_parseXMLString(text, NULL, err, (int)sizeof err);
-    if (!spec) return fprintf(stderr, "stewart_mujoco: %s\n", err), 1;
-    mjModel *m = mj_compile(spec, NULL);
-    if (!m) return fprintf(stderr, "stewart_mujoco: %s\n", mjs_getError(spec)), 1;
-    mj_deleteSpec(spec);
+    mjModel *m = vt_mj_scene_model(VT_MJ_STEWART, VT_MJ_DRIVE_EQUALITIES);
+    if (!m) return 1;
     mjData *d = mj_makeData(m);
+    vt_mj_map map;
+    if (!d || vt_mj_scene_map(VT_MJ_STEWART, m, &map)) return fprintf(stderr, "stewart_mujoco: no map\n"), 1;
 
     vt_stewart sg = {3.14159265358979323846, 0.0, {{0}}};
     vt_model *vm = NULL;
@@ -130,10 +76,7 @@ int main(int argc, char **argv)
      * velocity, which MuJoCo keeps in the platform's axes */
     vt_scene_stewart_assemble(vm, vd, &sg, 0.0);
     if ((st = vt_kinematics(vm, vd)) != VT_OK) return fprintf(stderr, "stewart_mujoco: %s\n", vt_status_string(st)), 1;
-    for (int k = 0; k < m->nq; k++) d->qpos[k] = vd->q[k];
-    for (int k = 0; k < m->nv; k++) d->qvel[k] = vd->qd[k];
-    const double *A = vd->A + 9;
-    for (int k = 0; k < 3; k++) d->qvel[3 + k] = A[3 * k] * vd->qd[3] + A[3 * k + 1] * vd->qd[4] + A[3 * k + 2] * vd->qd[5];
+    vt_mj_scene_state(m, &map, d, vd->q, vd->qd, NULL);
 
     FILE *f = fopen(path, "w");
     if (!f) return perror(path), 1;
