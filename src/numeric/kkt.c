@@ -148,7 +148,8 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
  * factorized at all. The motion is the rows' alone, and so is the question of its
  * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
  * the condition of Φ̂ = G Φ_q C (exact up to 16 rates, from the inverse of the solves' R Φ_q D
- * below, rescaled: one LU for both; dgecon on Φ̂'s own LU above), a scaling that makes Φ̂
+ * below, rescaled: one LU for both; above, LAPACK's estimator dlacn2, as dgecon runs it, with
+ * solves on that LU), a scaling that makes Φ̂
  * dimensionless and its condition independent of units and of the scene's frame, and in which
  * no mass takes part: rows that measure angles by ℓ and
  * those that measure lengths by 1 (G; vt_rows_decide scales each row by its own terms instead), rates that turn (rotations, Euler
@@ -205,7 +206,7 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     if (info > 0) return vt_scratch_release(d, mark), *rcond_out = 0.0, VT_BELOW_MIN; /* an exactly zero pivot */
     /* the condition of Φ̂ = G R^-1 (R Φ_q D) D^-1 C: up to 16 rates exactly, from the inverse of
      * R Φ_q D (one solve with the identity on the factors at hand), Φ̂^-1 = C^-1 D (R Φ_q D)^-1 R G^-1
-     * entry by entry; above, LAPACK's dgecon on Φ̂'s own LU */
+     * entry by entry; above, LAPACK's estimator of ‖Φ̂^-1‖_1 on the same factors */
     double rcond = 0.0;
     double *X = vt_small_inverse(d, n, 0);
     if (X) {
@@ -217,16 +218,25 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
         }
         rcond = vt_rcond_from_inverse(X, n, anorm);
     } else {
-        double *K = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "G Φ_q C");
-        double *work = VT_SCRATCH(d, double, 4 * (size_t)n, "dgecon workspace");
-        int *ip = VT_SCRATCH(d, int, n, "pivots of G Φ_q C"), *iwork = VT_SCRATCH(d, int, n, "dgecon integer workspace");
-        if (!iwork) return vt_scratch_fail(d, mark);
-        for (int c = 0; c < n; c++)
-            for (int r = 0; r < n; r++) K[r + (size_t)c * (size_t)n] = gk[r] * d->Phiq[r + (size_t)c * (size_t)n] * ck[c];
-        dgetf2_(&n, &n, K, &n, ip, &info);
-        if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
-        if (info == 0) dgecon_("1", &n, K, &n, &anorm, &rcond, work, iwork, &info, 1);
-        if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgecon info %d", info);
+        /* ‖Φ̂^-1‖_1 by Hager and Higham's estimator (LAPACK's dlacn2, as dgecon uses it) on the
+         * factors at hand: Φ̂^-1 x = C^-1 D (R Φ_q D)^-1 R G^-1 x and its transpose, each product
+         * one solve with the LU above (a second LU of Φ̂ itself would cost as much again) */
+        double *v = VT_SCRATCH(d, double, 2 * (size_t)n, "dlacn2's vectors");
+        int *isgn = VT_SCRATCH(d, int, n, "dlacn2's signs");
+        if (!isgn) return vt_scratch_fail(d, mark);
+        double *x = v + n, est = 0.0;
+        int kase = 0, isave[3] = {0, 0, 0};
+        const int one = 1;
+        do {
+            dlacn2_(&n, v, x, isgn, &est, &kase, isave);
+            if (kase == 0) break;
+            const char *trans = kase == 1 ? "N" : "T";
+            for (int r = 0; r < n; r++) x[r] *= kase == 1 ? g[r] / gk[r] : s[r] / ck[r];
+            dgetrs_(trans, &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
+            if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+            for (int r = 0; r < n; r++) x[r] *= kase == 1 ? s[r] / ck[r] : g[r] / gk[r];
+        } while (1);
+        rcond = anorm > 0.0 && est > 0.0 && isfinite(est) ? 1.0 / (anorm * est) : 0.0;
     }
     vt_scratch_release(d, mark);
     *rcond_out = rcond * rcond;
@@ -297,8 +307,8 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 }
 
 /* The scratch kkt.c takes at once: the square route's state (the LU of R Φ_q D, its scalings,
- * q̈ and M* q̈ − Q, its pivots), held by its caller, with G and C and the condition's inverse or
- * G Φ_q C's LU and dgecon's workspace; or vt_solve_spd's unit diagonal and its Cholesky's
+ * q̈ and M* q̈ − Q, its pivots), held by its caller, with G and C and the condition's inverse
+ * (n ≤ 16) or dlacn2's vectors; or vt_solve_spd's unit diagonal and its Cholesky's
  * inverse or dlansy's and dpocon's workspaces (n ≤ nc: the rows' Schur complement): the larger,
  * since different routes take them and neither calls the other */
 size_t vt_kkt_scratch(const vt_model *m)
@@ -307,7 +317,7 @@ size_t vt_kkt_scratch(const vt_model *m)
     /* the square route's LU: only with as many rows as rates (nv² is then the rows' own size) */
     const size_t square = m->nc != m->nv ? 0
                           : VT_SCRATCH_BYTES(snv * snv, D) + 3 * VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I) +
-                                VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + 2 * VT_SCRATCH_BYTES(snv, I);
+                                VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I);
     const size_t exact = VT_SCRATCH_BYTES((size_t)VT_EXACT_RCOND_N * (VT_EXACT_RCOND_N + VT_EXACT_EXTRA), D);
     const size_t pocon = VT_SCRATCH_BYTES(3 * snc, D) + VT_SCRATCH_BYTES(snc, I);
     size_t spd = exact > pocon ? exact : pocon;
