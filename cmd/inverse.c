@@ -16,6 +16,7 @@
 #include "inverse.h"
 
 #include <locale.h>
+#include <pthread.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -65,8 +66,8 @@ typedef enum {
 typedef struct {
     int failed;             /* the block's first failing row, or -1 */
     char msg[ROW_MESSAGE];  /* its message */
-    char *text;             /* CSV output: the block's rows formatted */
-    size_t len, cap;
+    char *text[2];          /* CSV output: the block's rows formatted, in either output set */
+    size_t len[2], cap[2];
     double *v;              /* one row's output values */
 } block_state;
 
@@ -93,16 +94,19 @@ typedef struct {
     char **names;              /* their names (nout) */
     size_t npy_len;            /* a .npy header written before the row count was known: its length */
     long long written;         /* rows written */
+    int header_done;           /* the output's header written */
     /* a chunk: K rows at most, row-major arrays */
     int K, T;                  /* rows, threads */
-    chunk ch;                  /* the rows read, before they are parsed */
+    chunk ch[2];               /* rows read, before they are parsed: the chunk solved and the next */
+    chunk *chp;                /* the chunk being solved */
+    int oset;                  /* the output set being formatted (the other may be being written) */
     double *cells;             /* the inputs' numbers (K x ncol) */
     const double *incells;     /* the chunk's input rows for the output's t: cells, or the table's */
     double *q, *qd, *qdd;      /* the states (K x nq, K x nv, K x nv) */
     double *effort;            /* every rate's effort (K x nv) */
     double *reac, *reac_body;  /* the joints' reactions, world and body axes (K x 6 nbody), or NULL */
     int *status;               /* the rows' statuses (K) */
-    double *vals;              /* .npy output: the rows' values, little-endian (K x nout) */
+    double *vals[2];           /* .npy output: the rows' values, little-endian (K x nout), two sets */
     block_state *blk;          /* T */
     /* the time spent, s */
     double t_read, t_solve, t_write;
@@ -131,14 +135,17 @@ static void run_free(run *x)
     free(x->reac);
     free(x->reac_body);
     free(x->status);
-    free(x->vals);
+    free(x->vals[0]);
+    free(x->vals[1]);
     if (x->blk)
         for (int k = 0; k < x->T; k++) {
-            free(x->blk[k].text);
+            free(x->blk[k].text[0]);
+            free(x->blk[k].text[1]);
             free(x->blk[k].v);
         }
     free(x->blk);
-    chunk_free(&x->ch);
+    chunk_free(&x->ch[0]);
+    chunk_free(&x->ch[1]);
     vt_batch_free(x->batch);
     vt_data_free(x->d);
     vt_model_free(x->m);
@@ -444,10 +451,10 @@ static int chunk_arrays(run *x)
     if (world) x->reac = calloc(K * nb6, sizeof *x->reac);
     if (link) x->reac_body = calloc(K * nb6, sizeof *x->reac_body);
     x->status = calloc(K, sizeof *x->status);
-    if (x->ofmt == FMT_NPY) x->vals = malloc(K * nout * sizeof *x->vals);
+    for (int k = 0; k < 2 && x->ofmt == FMT_NPY; k++) x->vals[k] = malloc(K * nout * sizeof *x->vals[k]);
     x->blk = calloc((size_t)x->T, sizeof *x->blk);
     if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_body) ||
-        !x->status || (x->ofmt == FMT_NPY && !x->vals) || !x->blk)
+        !x->status || (x->ofmt == FMT_NPY && (!x->vals[0] || !x->vals[1])) || !x->blk)
         return cmd_fail("out of memory");
     for (int k = 0; k < x->T; k++)
         if (!(x->blk[k].v = malloc(nout * sizeof *x->blk[k].v))) return cmd_fail("out of memory");
@@ -482,7 +489,7 @@ static int fill_state(const run *x, int r, const double *row, char *msg)
             snprintf(msg, ROW_MESSAGE,
                      "%s: columns '%.100s_qw' ... '%.100s_qz': a quaternion of norm %.17g, not 1 (within %g: "
                      "--normalize-quaternions TOL)",
-                     input_where(&x->in, x->ch.loc[r], where), j->name, j->name, nq, x->o->quat_tol);
+                     input_where(&x->in, x->chp->loc[r], where), j->name, j->name, nq, x->o->quat_tol);
             return 1;
         }
         for (int c = 0; c < 3; c++) q[j->qadr + c] = row[fc[c]];
@@ -503,7 +510,7 @@ static void fill_block(void *ctx, int first, int end, int k)
     const size_t ncol = (size_t)x->in.t.ncol;
     for (int r = first; r < end; r++) {
         double *row = x->cells + (size_t)r * ncol;
-        if (input_parse(&x->in, &x->ch, r, row, b->msg) || fill_state(x, r, row, b->msg)) {
+        if (input_parse(&x->in, x->chp, r, row, b->msg) || fill_state(x, r, row, b->msg)) {
             b->failed = r;
             return;
         }
@@ -560,18 +567,19 @@ static void format_block(void *ctx, int first, int end, int k)
     run *x = ctx;
     block_state *b = &x->blk[k];
     const size_t need = (size_t)(end - first) * (26 * (size_t)x->nout + 2) + 1;
-    b->len = 0;
-    if (need > b->cap) {
-        char *t = realloc(b->text, need);
+    const int o = x->oset;
+    b->len[o] = 0;
+    if (need > b->cap[o]) {
+        char *t = realloc(b->text[o], need);
         if (!t) {
             b->failed = first;
             snprintf(b->msg, ROW_MESSAGE, "out of memory");
             return;
         }
-        b->text = t;
-        b->cap = need;
+        b->text[o] = t;
+        b->cap[o] = need;
     }
-    char *p = b->text;
+    char *p = b->text[o];
     const int prec = x->o->precision;
     for (int r = first; r < end; r++) {
         gather(x, r, b->v);
@@ -580,7 +588,7 @@ static void format_block(void *ctx, int first, int end, int k)
             *p++ = c + 1 < x->nout ? ',' : '\n';
         }
     }
-    b->len = (size_t)(p - b->text);
+    b->len[o] = (size_t)(p - b->text[o]);
 }
 
 /* a block of rows' values as little-endian float64 into the chunk's .npy rows */
@@ -589,7 +597,7 @@ static void encode_block(void *ctx, int first, int end, int k)
     (void)k;
     run *x = ctx;
     for (int r = first; r < end; r++) {
-        double *v = x->vals + (size_t)r * (size_t)x->nout;
+        double *v = x->vals[x->oset] + (size_t)r * (size_t)x->nout;
         gather(x, r, v);
 #if !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
         for (int c = 0; c < x->nout; c++) {
@@ -626,23 +634,31 @@ static int write_header(run *x, long long nrow)
     return 0;
 }
 
-/* the chunk's n rows formatted on the threads and written in order */
-static int write_rows(run *x, int n)
+/* the chunk's n rows formatted on the threads into the output set x->oset; 0 or 1 */
+static int format_rows(run *x, int n)
 {
     const double t0 = now();
     if (x->ofmt == FMT_NPY) {
         parallel_blocks(x->T, n, encode_block, x);
-        fwrite(x->vals, 8 * (size_t)x->nout, (size_t)n, x->out.f);
     } else {
         for (int k = 0; k < x->T; k++) x->blk[k].failed = -1;
         parallel_blocks(x->T, n, format_block, x);
         for (int k = 0; k < x->T; k++)
             if (x->blk[k].failed >= 0) return cmd_fail("%s", x->blk[k].msg);
-        for (int k = 0; k < x->T && k < n; k++) fwrite(x->blk[k].text, 1, x->blk[k].len, x->out.f);
     }
-    x->written += n;
     x->t_write += now() - t0;
     return 0;
+}
+
+/* output set `set`, n rows formatted, written in order (its blocks' buffers, or its values) */
+static void put_rows(run *x, int set, int n)
+{
+    if (x->ofmt == FMT_NPY) {
+        fwrite(x->vals[set], 8 * (size_t)x->nout, (size_t)n, x->out.f);
+    } else {
+        for (int k = 0; k < x->T && k < n; k++) fwrite(x->blk[k].text[set], 1, x->blk[k].len[set], x->out.f);
+    }
+    x->written += n;
 }
 
 /* a .npy header written before the row count was known: rewritten with it, in place; 0 or 1 */
@@ -691,53 +707,110 @@ static int state_failure(run *x, int r)
     memcpy(d->qd, x->qd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qd);
     memcpy(d->qdd, x->qdd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qdd);
     const vt_status st = vt_inverse_dynamics_motion(m, d);
-    input_where(&x->in, x->ch.loc[r], where);
+    input_where(&x->in, x->chp->loc[r], where);
     if (st) return cmd_fail("%s: %s (%s)", where, d->message, vt_status_string(st));
     return cmd_fail("%s: %s (%s)", where, vt_batch_message(x->batch), vt_status_string(x->status[r]));
 }
 
-/* states: chunk after chunk read, parsed, solved by the batch and written; 0, or 1 at the chunk's
- * first failing row */
+/* chunk x->chp's n rows parsed and laid out as states (on the threads), solved by the batch
+ * and formatted into output set `set`; 0, or 1 at its first failing row (a cell or a
+ * quaternion, or the solve: the lowest) */
+static int solve_chunk(run *x, int n, int set)
+{
+    const double t0 = now();
+    for (int k = 0; k < x->T; k++) x->blk[k].failed = -1;
+    parallel_blocks(x->T, n, fill_block, x);
+    int f = n, fk = -1; /* the first row whose numbers or quaternion fail */
+    for (int k = 0; k < x->T && fk < 0; k++)
+        if (x->blk[k].failed >= 0) f = x->blk[fk = k].failed;
+    const double t1 = now();
+    x->t_read += t1 - t0;
+    vt_batch_io io = {0};
+    io.nrow = f;
+    io.q = x->q;
+    io.qd = x->qd;
+    io.qdd = x->qdd;
+    io.effort = x->effort;
+    io.reaction = x->reac;
+    io.reaction_body = x->reac_body;
+    io.status = x->status;
+    const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
+    x->t_solve += now() - t1;
+    if (st) {
+        const int s = vt_batch_failed_row(x->batch);
+        if (s < 0) return cmd_fail("%s: %s (%s)", x->states, vt_batch_message(x->batch), vt_status_string(st));
+        return state_failure(x, s);
+    }
+    if (fk >= 0) return cmd_fail("%s", x->blk[fk].msg);
+    if (!x->header_done) {
+        if (write_header(x, x->in.nrow)) return 1;
+        x->header_done = 1;
+    }
+    x->oset = set;
+    return format_rows(x, n);
+}
+
+/* the file's work between two chunks: the previous chunk's rows written (set wset, wn rows; wn
+ * 0: none), then the next chunk read (into ch[rbuf]; rbuf -1: none), its message kept (a row
+ * before it may fail first) */
+typedef struct {
+    run *x;
+    int wset, wn, rbuf;
+    int status;              /* the read's: 0 or 1 */
+    char msg[ROW_MESSAGE];   /* its message */
+    double t_read, t_write;  /* the time spent */
+} file_job;
+
+static void *file_work(void *arg)
+{
+    file_job *j = arg;
+    run *x = j->x;
+    cmd_message_sink(j->msg, sizeof j->msg);
+    const double t0 = now();
+    if (j->wn > 0) put_rows(x, j->wset, j->wn);
+    const double t1 = now();
+    j->status = j->rbuf >= 0 ? input_read(&x->in, &x->ch[j->rbuf], x->K, CHUNK_BYTES / 4) : 0;
+    j->t_write = t1 - t0;
+    j->t_read = now() - t1;
+    cmd_message_sink(NULL, 0);
+    return NULL;
+}
+
+/* states: chunk after chunk parsed and laid out (on the threads), solved by the batch, formatted
+ * (on the threads) and written in order. With more than one thread the file's work — the chunk
+ * before written, the chunk after read — runs on a thread of its own beside them (two chunks
+ * read, two output sets); with one, in turn on the caller's thread. 0, or 1 at the chunk's first
+ * failing row (the chunks before it written) */
 static int run_states(run *x)
 {
     double start = 0.0, last = 0.0;
     x->incells = x->cells;
-    for (;;) {
-        const double t0 = now();
-        if (input_read(&x->in, &x->ch, x->K, CHUNK_BYTES / 4)) return 1;
-        const int n = x->ch.n;
-        if (n == 0) break;
-        for (int k = 0; k < x->T; k++) x->blk[k].failed = -1;
-        parallel_blocks(x->T, n, fill_block, x);
-        int f = n, fk = -1; /* the first row whose numbers or quaternion fail */
-        for (int k = 0; k < x->T && fk < 0; k++)
-            if (x->blk[k].failed >= 0) f = x->blk[fk = k].failed;
-        const double t1 = now();
-        x->t_read += t1 - t0;
-        vt_batch_io io = {0};
-        io.nrow = f;
-        io.q = x->q;
-        io.qd = x->qd;
-        io.qdd = x->qdd;
-        io.effort = x->effort;
-        io.reaction = x->reac;
-        io.reaction_body = x->reac_body;
-        io.status = x->status;
-        const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
-        x->t_solve += now() - t1;
-        if (st) {
-            const int s = vt_batch_failed_row(x->batch);
-            if (s < 0) return cmd_fail("%s: %s (%s)", x->states, vt_batch_message(x->batch), vt_status_string(st));
-            return state_failure(x, s);
+    int pending = 0; /* the rows of the output set before, to write */
+    file_job job = {.x = x, .rbuf = 0, .wn = 0};
+    file_work(&job); /* the first chunk */
+    x->t_read += job.t_read;
+    for (int cur = 0;; cur ^= 1) {
+        if (job.status) return cmd_fail("%s", job.msg);
+        x->chp = &x->ch[cur];
+        const int n = x->chp->n;
+        /* this round's file work: the set before written, the next chunk read */
+        job = (file_job){.x = x, .wset = cur ^ 1, .wn = pending, .rbuf = n > 0 ? cur ^ 1 : -1};
+        pthread_t tid;
+        const int threaded = x->T > 1 && n > 0 && pthread_create(&tid, NULL, file_work, &job) == 0;
+        if (!threaded) file_work(&job);
+        const int status = n > 0 ? solve_chunk(x, n, cur) : 0;
+        if (threaded) pthread_join(tid, NULL);
+        x->t_read += job.t_read;
+        x->t_write += job.t_write;
+        if (status) return 1;
+        if (n == 0) {
+            if (x->written == 0) return no_rows(x);
+            progress(x, 1, &start, &last);
+            return 0;
         }
-        if (fk >= 0) return cmd_fail("%s", x->blk[fk].msg);
-        if (x->written == 0 && write_header(x, x->in.nrow)) return 1;
-        if (write_rows(x, n)) return 1;
+        pending = n;
         progress(x, 0, &start, &last);
     }
-    if (x->written == 0) return no_rows(x);
-    progress(x, 1, &start, &last);
-    return 0;
 }
 
 /* samples: each row solved in turn (Newton on the spline drives at its t), gathered a chunk at a
@@ -779,7 +852,11 @@ static int run_samples(run *x)
         }
         x->t_solve += now() - t0;
         x->incells = table_row(t, r0);
-        if (write_rows(x, n)) return 1;
+        x->oset = 0;
+        if (format_rows(x, n)) return 1;
+        const double t1 = now();
+        put_rows(x, 0, n);
+        x->t_write += now() - t1;
         progress(x, 0, &start, &last);
     }
     progress(x, 1, &start, &last);
