@@ -89,10 +89,14 @@ static int next_text(input *in, char **s, size_t *n)
 {
     for (;;) {
         const int got = next_line(in, s, n);
-        if (got == -1)
-            return cmd_fail("%s:%d: a line longer than %d bytes (a CSV line's limit)", in->path, in->line, CSV_MAX_LINE),
-                   -1;
-        if (got == -2) return cmd_fail("%s: %s", in->path, strerror(errno)), -1;
+        if (got == -1) {
+            cmd_fail("%s:%d: a line longer than %d bytes (a CSV line's limit)", in->path, in->line, CSV_MAX_LINE);
+            return -1;
+        }
+        if (got == -2) {
+            cmd_fail("%s: %s", in->path, strerror(errno));
+            return -1;
+        }
         if (got == 0) return 0;
         *s = trim_span(*s, n);
         if (in->line == 1 && *n >= 3 && (unsigned char)(*s)[0] == 0xEF && (unsigned char)(*s)[1] == 0xBB &&
@@ -240,8 +244,8 @@ int input_parse(const input *in, chunk *c, int r, double *out, char *msg)
         out[k] = le_double(p + 8 * (size_t)k);
         if (!isfinite(out[k])) {
             char where[ROW_WHERE];
-            snprintf(msg, ROW_MESSAGE, "%s: column '%.100s': %g is not a finite number", input_where(in, c->loc[r], where),
-                     in->t.name[k], out[k]);
+            snprintf(msg, ROW_MESSAGE, "%s: column '%.100s': %g is not a finite number",
+                     input_where(in, c->loc[r], where), in->t.name[k], out[k]);
             return 1;
         }
     }
@@ -267,7 +271,8 @@ int input_read_all(input *in)
             }
         }
         for (int r = 0; r < c.n && !status; r++) {
-            if (input_parse(in, &c, r, t->cell + (size_t)(t->nrow + r) * (size_t)t->ncol, msg)) status = cmd_fail("%s", msg);
+            if (input_parse(in, &c, r, t->cell + (size_t)(t->nrow + r) * (size_t)t->ncol, msg))
+                status = cmd_fail("%s", msg);
             t->loc[t->nrow + r] = c.loc[r];
         }
         if (!status) t->nrow += c.n;

@@ -405,7 +405,8 @@ static int output_columns(run *x)
     const unsigned g = x->o->groups;
     int n = x->ct >= 0;
     for (int k = 0; k < x->nj; k++)
-        n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0) : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_WORLD ? 6 : 0) + (g & COLS_LINK ? 6 : 0);
+        n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0)
+                           : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_WORLD ? 6 : 0) + (g & COLS_LINK ? 6 : 0);
     if (n == 0)
         return cmd_fail("--columns: none of the selected groups has a column for %s (a floating root has efforts "
                         "alone)",
@@ -624,11 +625,12 @@ static int write_header(run *x, long long nrow)
     }
     char *h;
     size_t len, min = 0;
+    const char *const *names = (const char *const *)x->names;
     if (nrow < 0) {
-        if (!(min = x->npy_len = npy_max_header_len((const char *const *)x->names, x->nout))) return cmd_fail("out of memory");
+        if (!(min = x->npy_len = npy_max_header_len(names, x->nout))) return cmd_fail("out of memory");
         nrow = 0;
     }
-    if (npy_header(&h, &len, (const char *const *)x->names, x->nout, nrow, min)) return cmd_fail("out of memory");
+    if (npy_header(&h, &len, names, x->nout, nrow, min)) return cmd_fail("out of memory");
     fwrite(h, 1, len, f);
     free(h);
     return 0;
@@ -667,8 +669,10 @@ static int finish_output(run *x)
     if (x->ofmt != FMT_NPY || !x->npy_len) return 0;
     char *h;
     size_t len;
-    if (npy_header(&h, &len, (const char *const *)x->names, x->nout, x->written, x->npy_len)) return cmd_fail("out of memory");
-    int bad = len != x->npy_len || fflush(x->out.f) || fseek(x->out.f, 0, SEEK_SET) || fwrite(h, 1, len, x->out.f) != len;
+    if (npy_header(&h, &len, (const char *const *)x->names, x->nout, x->written, x->npy_len))
+        return cmd_fail("out of memory");
+    const int bad =
+        len != x->npy_len || fflush(x->out.f) || fseek(x->out.f, 0, SEEK_SET) || fwrite(h, 1, len, x->out.f) != len;
     free(h);
     if (bad) return cmd_fail("%s: the .npy header could not be rewritten", x->out.tmp ? x->out.tmp : "stdout");
     return 0;
@@ -691,7 +695,8 @@ static void progress(const run *x, int done, double *start, double *last)
     double frac = rows > 0 ? (double)row / (double)rows : in->size > 0 ? (double)in->pos / (double)in->size : 0.0;
     if (rows >= 0) fprintf(stderr, "\rvtdyn: row %lld of %lld", row, rows);
     else fprintf(stderr, "\rvtdyn: row %lld, %.0f%% of the file", row, 100.0 * frac);
-    if (rate > 0.0 && frac > 0.0) fprintf(stderr, ", %.0f rows/s, %.0f s left ", rate, (t - *start) * (1.0 - frac) / frac);
+    if (rate > 0.0 && frac > 0.0)
+        fprintf(stderr, ", %.0f rows/s, %.0f s left ", rate, (t - *start) * (1.0 - frac) / frac);
     if (done) fputc('\n', stderr);
 }
 
@@ -736,8 +741,10 @@ static int solve_chunk(run *x, int n, int set)
     io.status = x->status;
     const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
     x->t_solve += now() - t1;
-    if (st) {
-        const int s = vt_batch_failed_row(x->batch);
+    if (st) { /* the first row whose status is a failure */
+        int s = -1;
+        for (int r = 0; r < f && s < 0; r++)
+            if (x->status[r] != VT_OK) s = r;
         if (s < 0) return cmd_fail("%s: %s (%s)", x->states, vt_batch_message(x->batch), vt_status_string(st));
         return state_failure(x, s);
     }
@@ -907,7 +914,8 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, const
             if (o->times && ok) {
                 const double all = now() - t0;
                 fprintf(stderr,
-                        "vtdyn: %lld rows in %.3f s (%.0f rows/s, %d threads): read %.3f s, solve %.3f s, write %.3f s\n",
+                        "vtdyn: %lld rows in %.3f s (%.0f rows/s, %d threads): read %.3f s, solve %.3f s, "
+                        "write %.3f s\n",
                         x.written, all, all > 0 ? (double)x.written / all : 0.0, x.T, x.t_read, x.t_solve, x.t_write);
             }
         }
@@ -926,8 +934,8 @@ int cmd_states_header(const vt_model *p, FILE *out)
         const int jt = p->body_joint[i];
         if ((jt == VT_JOINT_FREE && p->body_parent[i] != 0) ||
             (jt != VT_JOINT_FREE && (jt == VT_JOINT_BASE || jt == VT_JOINT_SPHERICAL || p->body_nv[i] != 1))) {
-            fprintf(out, "states columns: none: `inverse` does not take joint '%s' (%s)\n", p->joint_name + VT_NAME_MAX * i,
-                    cmd_joint_kind(jt));
+            fprintf(out, "states columns: none: `inverse` does not take joint '%s' (%s)\n",
+                    p->joint_name + VT_NAME_MAX * i, cmd_joint_kind(jt));
             return 1;
         }
     }

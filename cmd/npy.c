@@ -98,7 +98,10 @@ static int hex(const char *s, int n, unsigned long *v)
     *v = 0;
     for (int k = 0; k < n; k++) {
         const char c = s[k];
-        const int d = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+        const int d = c >= '0' && c <= '9'   ? c - '0'
+                      : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                      : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                             : -1;
         if (d < 0) return -1;
         *v = 16 * *v + (unsigned long)d;
     }
@@ -364,7 +367,8 @@ static const char *shape_text(char buf[256], const hdr *h)
 {
     int n = snprintf(buf, 256, "(");
     for (int k = 0; k < h->ndim && n < 200; k++)
-        n += snprintf(buf + n, 256 - (size_t)n, "%lld%s", h->shape[k], h->ndim == 1 ? "," : k + 1 < h->ndim ? ", " : "");
+        n += snprintf(buf + n, 256 - (size_t)n, "%lld%s", h->shape[k],
+                      h->ndim == 1 ? "," : k + 1 < h->ndim ? ", " : "");
     snprintf(buf + n, 256 - (size_t)n, ")");
     return buf;
 }
@@ -394,7 +398,8 @@ static int check_header(const hdr *h, const char *path)
     if (h->fortran)
         return cmd_fail("%s: fortran_order True: save the array in C order (numpy.ascontiguousarray)", path);
     if (h->ndim != 1)
-        return cmd_fail("%s: shape %s: one record a row is needed, shape (N,) (arr.reshape(-1))", path, shape_text(sh, h));
+        return cmd_fail("%s: shape %s: one record a row is needed, shape (N,) (arr.reshape(-1))", path,
+                        shape_text(sh, h));
     return 0;
 }
 
@@ -437,8 +442,13 @@ int npy_read_header(FILE *f, const char *path, char ***names, int *ncol, long lo
     }
     int status = 0;
     if (st == -2) status = cmd_fail("out of memory");
-    else if (st == -3) status = cmd_fail("%s: the .npy header has a key '%s': only 'descr', 'fortran_order' and 'shape' (each once)", path, key);
-    else if (st) status = cmd_fail("%s: the .npy header is not a dict of 'descr', 'fortran_order' and 'shape' (unreadable at its byte %ld)", path, (long)(h.p - h.start));
+    else if (st == -3)
+        status = cmd_fail("%s: the .npy header has a key '%s': only 'descr', 'fortran_order' and 'shape' (each once)",
+                          path, key);
+    else if (st)
+        status = cmd_fail("%s: the .npy header is not a dict of 'descr', 'fortran_order' and 'shape' (unreadable at "
+                          "its byte %ld)",
+                          path, (long)(h.p - h.start));
     else status = check_header(&h, path);
     free(key);
     free(text);
@@ -448,8 +458,8 @@ int npy_read_header(FILE *f, const char *path, char ***names, int *ncol, long lo
         if (n > (LLONG_MAX - off) / row) {
             status = cmd_fail("%s: shape (%lld,): more rows than a file can hold", path, n);
         } else if (fstat(fileno(f), &s) == 0 && S_ISREG(s.st_mode) && (long long)s.st_size != off + n * row) {
-            status = cmd_fail("%s: %lld bytes, but its header says %lld rows of %d float64 fields: %lld bytes (%s)", path,
-                              (long long)s.st_size, n, h.nnames, off + n * row,
+            status = cmd_fail("%s: %lld bytes, but its header says %lld rows of %d float64 fields: %lld bytes (%s)",
+                              path, (long long)s.st_size, n, h.nnames, off + n * row,
                               (long long)s.st_size < off + n * row ? "truncated" : "bytes after the data");
         }
     }

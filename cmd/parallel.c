@@ -58,7 +58,8 @@ void parallel_blocks(int T, int n, block_fn fn, void *ctx)
         }
         return;
     }
-    for (int k = 0; k < T; k++) b[k] = (block){fn, ctx, (int)((long long)k * n / T), (int)((long long)(k + 1) * n / T), k};
+    for (int k = 0; k < T; k++)
+        b[k] = (block){fn, ctx, (int)((long long)k * n / T), (int)((long long)(k + 1) * n / T), k};
     for (int k = 1; k < T; k++) started[k] = pthread_create(&tid[k], NULL, run_block, &b[k]) == 0;
     run_block(&b[0]);
     for (int k = 1; k < T; k++) {

@@ -296,7 +296,8 @@ int main(int argc, char **argv)
         print_usage(stdout);
         return 0;
     }
-    const int is_info = argc >= 2 && strcmp(argv[1], "info") == 0, is_inverse = argc >= 2 && strcmp(argv[1], "inverse") == 0;
+    const int is_info = argc >= 2 && strcmp(argv[1], "info") == 0;
+    const int is_inverse = argc >= 2 && strcmp(argv[1], "inverse") == 0;
     inverse_options o = {.floating = 0, .threads = 0, .groups = COLS_EFFORT | COLS_WORLD | COLS_LINK, .precision = 17,
                          .quat_tol = 1e-6, .format = -1};
     const char *pos[3] = {NULL, NULL, NULL}, *outpath = NULL;
