@@ -1,11 +1,10 @@
-/* The command's files: a CSV table of numbers read whole under its header, and the output
+/* The command's tables: the columns' names indexed, a CSV header and rows parsed, and the output
  * written beside its name and renamed when complete, so a failed run leaves no partial file
  * under that name. */
 #define _POSIX_C_SOURCE 200809L
 #include "csv.h"
 
 #include <errno.h>
-#include <locale.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +19,7 @@ void table_free(table *t)
     free(t->order);
     free(t->used);
     free(t->cell);
+    free(t->loc);
     memset(t, 0, sizeof *t);
 }
 
@@ -67,11 +67,28 @@ static int by_name(const void *a, const void *b)
     return strcmp(((const table_key *)a)->name, ((const table_key *)b)->name);
 }
 
-/* the header row s (line `line` of path) as the table's names: each named, none twice, indexed
- * by name (sorted: a lookup in log ncol, the whole header in ncol log ncol); 0 or 1 */
-static int read_header(table *t, char *s, const char *path, int line)
+/* sorted by name: a lookup in log ncol, the whole header in ncol log ncol */
+int table_index(table *t, const char *path, int line)
+{
+    t->order = malloc((size_t)t->ncol * sizeof *t->order);
+    t->used = calloc((size_t)t->ncol, 1);
+    if (!t->order || !t->used) return cmd_fail("out of memory");
+    for (int c = 0; c < t->ncol; c++) t->order[c] = (table_key){t->name[c], c};
+    qsort(t->order, (size_t)t->ncol, sizeof *t->order, by_name);
+    for (int k = 1; k < t->ncol; k++) {
+        const table_key *a = &t->order[k - 1], *b = &t->order[k];
+        if (strcmp(a->name, b->name) != 0) continue;
+        const int lo = (a->col < b->col ? a->col : b->col) + 1, hi = (a->col < b->col ? b->col : a->col) + 1;
+        if (!line) return cmd_fail("%s: field '%s' twice (fields %d and %d)", path, b->name, lo, hi);
+        return cmd_fail("%s:%d: column '%s' twice (columns %d and %d)", path, line, b->name, lo, hi);
+    }
+    return 0;
+}
+
+int csv_read_header(table *t, char *s, const char *path, int line)
 {
     int cap = 0;
+    t->header_line = line;
     for (char *p = s; p;) {
         char *nm = next_name(&p);
         if (!nm) return cmd_fail("%s:%d: column %d: a quote not closed", path, line, t->ncol + 1);
@@ -85,36 +102,19 @@ static int read_header(table *t, char *s, const char *path, int line)
         if (!(t->name[t->ncol] = strdup(nm))) return cmd_fail("out of memory");
         t->ncol++;
     }
-    t->order = malloc((size_t)t->ncol * sizeof *t->order);
-    t->used = calloc((size_t)t->ncol, 1);
-    if (!t->order || !t->used) return cmd_fail("out of memory");
-    for (int c = 0; c < t->ncol; c++) t->order[c] = (table_key){t->name[c], c};
-    qsort(t->order, (size_t)t->ncol, sizeof *t->order, by_name);
-    for (int k = 1; k < t->ncol; k++) {
-        const table_key *a = &t->order[k - 1], *b = &t->order[k];
-        if (strcmp(a->name, b->name) == 0)
-            return cmd_fail("%s:%d: column '%s' twice (columns %d and %d)", path, line, b->name,
-                            (a->col < b->col ? a->col : b->col) + 1, (a->col < b->col ? b->col : a->col) + 1);
-    }
-    return 0;
+    return table_index(t, path, line);
 }
 
-/* the data row s (line `line` of path) appended to the table: one finite number per column,
- * the cells grown by doubling (*cap_rows rows allocated); 0 or 1 */
-static int read_row(table *t, char *s, const char *path, int line, int *cap_rows)
+int csv_parse_row(const table *t, char *s, double *out, const char *path, long long line, char *msg)
 {
-    if (t->nrow == *cap_rows) {
-        *cap_rows = *cap_rows ? 2 * *cap_rows : 256;
-        double *nc = realloc(t->cell, (size_t)*cap_rows * (size_t)t->ncol * sizeof *nc);
-        if (!nc) return cmd_fail("out of memory");
-        t->cell = nc;
-    }
-    double *out = t->cell + (size_t)t->nrow * (size_t)t->ncol;
     int c = 0;
     for (char *p = s;; c++) {
         char *comma = strchr(p, ',');
         if (comma) *comma = '\0';
-        if (c >= t->ncol) return cmd_fail("%s:%d: more cells than the %d columns of the header", path, line, t->ncol);
+        if (c >= t->ncol) {
+            snprintf(msg, ROW_MESSAGE, "%s:%lld: more cells than the %d columns of the header", path, line, t->ncol);
+            return 1;
+        }
         char *cell = trim(p), *end = NULL;
         const size_t len = strlen(cell);
         if (len >= 2 && cell[0] == '"' && cell[len - 1] == '"') { /* a quoted number */
@@ -123,89 +123,19 @@ static int read_row(table *t, char *s, const char *path, int line, int *cap_rows
         }
         errno = 0;
         out[c] = strtod(cell, &end);
-        if (!*cell || *end || (errno == ERANGE && fabs(out[c]) == HUGE_VAL) || !isfinite(out[c]))
-            return cmd_fail("%s:%d: column '%s': '%s' is not a finite number", path, line, t->name[c], cell);
+        if (!*cell || *end || (errno == ERANGE && fabs(out[c]) == HUGE_VAL) || !isfinite(out[c])) {
+            snprintf(msg, ROW_MESSAGE, "%s:%lld: column '%.100s': '%.60s%s' is not a finite number", path, line,
+                     t->name[c], cell, strlen(cell) > 60 ? "..." : "");
+            return 1;
+        }
         if (!comma) break;
         p = comma + 1;
     }
-    if (c + 1 != t->ncol) return cmd_fail("%s:%d: %d cells for the %d columns of the header", path, line, c + 1, t->ncol);
-    t->nrow++;
+    if (c + 1 != t->ncol) {
+        snprintf(msg, ROW_MESSAGE, "%s:%lld: %d cells for the %d columns of the header", path, line, c + 1, t->ncol);
+        return 1;
+    }
     return 0;
-}
-
-/* the next line of f into *text (grown as needed, *cap bytes), its line end kept: 1, 0 at the
- * end of the file, -1 when it is longer than CSV_MAX_LINE (read no further than
- * CSV_MAX_LINE + 2 bytes), -2 out of memory */
-static int next_line(FILE *f, char **text, size_t *cap)
-{
-    size_t n = 0;
-    for (int c = 0; c != '\n';) {
-        if (n + 2 > *cap) {
-            const size_t nc = *cap ? 2 * *cap : 4096;
-            char *p = realloc(*text, nc);
-            if (!p) return -2;
-            *text = p;
-            *cap = nc;
-        }
-        if ((c = getc(f)) == EOF) break;
-        (*text)[n++] = (char)c;
-        if (n > (size_t)CSV_MAX_LINE + 1 && c != '\n') return -1; /* more than the bound and "\r" */
-    }
-    (*text)[n] = '\0';
-    const size_t body = n - (n > 0 && (*text)[n - 1] == '\n') - (n > 1 && (*text)[n - 1] == '\n' && (*text)[n - 2] == '\r');
-    if (body > (size_t)CSV_MAX_LINE) return -1;
-    return n > 0;
-}
-
-/* the lines of f: the first non-blank one the header, the others data rows; 0 or 1 */
-static int read_lines(table *t, FILE *f, const char *path)
-{
-    char *text = NULL;
-    size_t cap = 0;
-    int line = 0, cap_rows = 0, status = 0, got;
-    while (!status && (got = next_line(f, &text, &cap)) != 0) {
-        line++;
-        if (got == -2) {
-            status = cmd_fail("out of memory");
-            break;
-        }
-        if (got == -1) {
-            status = cmd_fail("%s:%d: a line longer than %d bytes (a CSV line's limit)", path, line, CSV_MAX_LINE);
-            break;
-        }
-        char *s = trim(text);
-        if (line == 1 && (unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF)
-            s = trim(s + 3); /* a UTF-8 byte-order mark */
-        if (!*s) continue;   /* blank lines */
-        if (!t->ncol) t->header_line = line;
-        status = t->ncol ? read_row(t, s, path, line, &cap_rows) : read_header(t, s, path, line);
-    }
-    free(text);
-    if (status) return status;
-    if (!t->ncol) return cmd_fail("%s: no header row", path);
-    if (!t->nrow) return cmd_fail("%s: no data rows under the header", path);
-    return 0;
-}
-
-int table_read(table *t, const char *path)
-{
-    memset(t, 0, sizeof *t);
-    /* numbers with a '.' whatever LC_NUMERIC: this thread in the C locale while reading */
-    locale_t cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    if (!cloc) return cmd_fail("out of memory (the C locale)");
-    const locale_t oldloc = uselocale(cloc);
-    int status;
-    FILE *f = fopen(path, "r");
-    if (f) {
-        status = read_lines(t, f, path);
-        fclose(f);
-    } else {
-        status = cmd_fail("%s: %s", path, strerror(errno));
-    }
-    uselocale(oldloc);
-    freelocale(cloc);
-    if (status) table_free(t);
-    return status;
 }
 
 int table_column(const table *t, const char *name)

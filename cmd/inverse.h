@@ -1,11 +1,37 @@
-/* The command's `inverse` (cmd/inverse.c): efforts and joint reactions from a CSV file of states
- * or of samples of a trajectory. */
+/* The command's `inverse` (cmd/inverse.c): efforts and joint reactions from a CSV or .npy file of
+ * states or of samples of a trajectory. */
 #ifndef VTDYN_CMD_INVERSE_H
 #define VTDYN_CMD_INVERSE_H
 
-/* `vtdyn inverse [--floating] URDF STATES [-o OUTPATH]`: one output row per input row, to
- * OUTPATH (written beside it and renamed when complete) or standard output when NULL; 0, or 1
- * with the message printed */
-int cmd_inverse(const char *urdf, const char *states, const char *outpath, int floating);
+#include <stdio.h>
+
+#include "vtdyn.h"
+
+/* the output's groups of columns (--columns) */
+#define COLS_EFFORT 1u /* each joint's effort (a floating root's six, world and link axes) */
+#define COLS_WORLD 2u  /* each joint's reaction in world axes */
+#define COLS_LINK 4u   /* each joint's reaction in its child link's axes */
+
+/* the options of `inverse` */
+typedef struct {
+    int floating;       /* --floating: the root link floats */
+    int threads;        /* -j: threads, 0 every CPU the process may use */
+    unsigned groups;    /* --columns: COLS_* */
+    int precision;      /* --precision: a CSV number's significant digits, 1 to 17 */
+    int precision_given;
+    double quat_tol;    /* --normalize-quaternions: a floating root's |norm − 1| normalised */
+    int format;         /* --format: FMT_CSV or FMT_NPY (cmd/input.h), -1 by -o's name */
+    int times;          /* --times: the rows and the time spent on standard error */
+} inverse_options;
+
+/* `vtdyn inverse [options] URDF STATES [-o OUTPATH]`: one output row per input row, to OUTPATH
+ * (written beside it and renamed when complete) or standard output when NULL; 0, or 1 with the
+ * message printed */
+int cmd_inverse(const char *urdf, const char *states, const char *outpath, const inverse_options *o);
+
+/* `vtdyn info`'s line of the input columns of a states file for the robot p (loaded as `inverse`
+ * loads it), comma separated, after a line saying what it is; 0, or 1 when `inverse` does not
+ * take the robot (the line says why) */
+int cmd_states_header(const vt_model *p, FILE *out);
 
 #endif

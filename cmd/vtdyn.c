@@ -1,10 +1,13 @@
-/* vtdyn — the library's command: a URDF robot's inverse dynamics from a CSV file.
+/* vtdyn — the library's command: a URDF robot's inverse dynamics from a CSV or NumPy file.
  *
  *   vtdyn info [--floating] MODEL.urdf
- *   vtdyn inverse [--floating] MODEL.urdf STATES.csv [-o OUT.csv]
+ *   vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]
+ *                 [--normalize-quaternions TOL] [--format csv|npy] [--times]
+ *                 MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]
  *   vtdyn --version
  *
- * `inverse` reads one row per instant. With the columns J, J_vel and J_acc for every moving
+ * `inverse` reads one row per instant (a CSV row, or a record of a .npy structured array whose
+ * fields are named as the CSV columns). With the columns J, J_vel and J_acc for every moving
  * joint J (and `t` optionally) each row is a state: vt_inverse_dynamics_motion() gives every
  * joint's effort, M* q̈ − Q, and every reaction. With `t` and the positions J alone the rows are
  * samples of a trajectory: each joint follows the cubic spline through its samples
@@ -24,14 +27,20 @@
  * column, and exit 1; an output file is written beside its name and renamed when complete, so a
  * failed run leaves no partial file under that name.
  *
- * This file: the usage, `info` and main. `inverse` is cmd/inverse.c; the CSV table read and the
- * output written beside its name, cmd/csv.c; the URDF loaded, cmd/robot.c; the messages,
- * cmd/message.c.
+ * States are read and solved in chunks on threads (the library's batch), so that the memory is
+ * flat in the number of rows and the output's bytes the same for any -j.
+ *
+ * This file: the usage, the options, `info` and main. `inverse` is cmd/inverse.c; the input read
+ * in chunks, cmd/input.c; the CSV header and rows parsed and the output written beside its name,
+ * cmd/csv.c; the .npy header, cmd/npy.c; the threads, cmd/parallel.c; the URDF loaded,
+ * cmd/robot.c; the messages, cmd/message.c.
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "input.h"
 #include "inverse.h"
 #include "message.h"
 #include "robot.h"
@@ -39,13 +48,17 @@
 
 static const char usage[] =
     "usage: vtdyn info [--floating] MODEL.urdf\n"
-    "       vtdyn inverse [--floating] MODEL.urdf STATES.csv [-o OUT.csv]\n"
+    "       vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]\n"
+    "                     [--normalize-quaternions TOL] [--format csv|npy] [--times]\n"
+    "                     MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
     "       vtdyn --version | --help\n"
     "\n"
     "--floating  the robot's root link (one no joint attaches to the world) floats: a free joint\n"
     "            from the world, with the columns below; without it the root is fixed to the world.\n"
     "            A URDF floating joint from the world floats either way.\n"
-    "info     the bodies (URDF links), their joints (name, kind, rates), masses and frames.\n"
+    "info     the bodies (URDF links), their joints (name, kind, rates), masses and frames; then\n"
+    "         the input columns of a states file for this robot on one line (a header to paste)\n"
+    "         and the frames' names on one line.\n"
     "inverse  efforts and joint reactions, one output row per input row (stdout by default).\n"
     "         STATES.csv: a header row, then one row per instant, comma separated. For each\n"
     "         moving joint J of the robot (a revolute, continuous or prismatic URDF joint):\n"
@@ -55,6 +68,9 @@ static const char usage[] =
     "         and optionally t (s). Given t and the positions alone, the rows are samples of a\n"
     "         trajectory (t increasing): velocities and accelerations come from the cubic spline\n"
     "         through each joint's samples (not-a-knot ends).\n"
+    "         STATES.npy: the same columns as the fields of a NumPy structured array of shape\n"
+    "         (N,), each '<f8' (little-endian float64), C order: numpy.save of\n"
+    "         numpy.rec.fromarrays([...], names='t,joint1,...') or of a structured zeros array.\n"
     "         OUT.csv: t (when given), then per moving joint J\n"
     "           J_effort                 the joint's torque or force, N m or N\n"
     "           J_fx J_fy J_fz           the reaction force of the parent link on the child link, N,\n"
@@ -62,11 +78,15 @@ static const char usage[] =
     "                                    in the URDF's world axes; the joint's actuation (the\n"
     "                                    effort) is not part of the reaction\n"
     "           J_fx_link ... J_nz_link  the same in the child link's URDF axes\n"
+    "         OUT.npy: the same columns as the fields of a structured array (as STATES.npy):\n"
+    "         numpy.load(OUT.npy)['J_effort'].\n";
+static const char usage_root[] =
     "         A floating root R (the floating joint's name; with --floating and no such joint, the\n"
     "         root link's name) has, in place of R, R_vel and R_acc, these input columns:\n"
     "           R_x R_y R_z                 its link frame's origin, world axes, m\n"
     "           R_qw R_qx R_qy R_qz         its link frame's orientation (unit quaternion, scalar\n"
-    "                                       first; norm within 1e-6 of 1), link axes to world axes\n"
+    "                                       first; norm within 1e-6 of 1, normalised), link axes\n"
+    "                                       to world axes\n"
     "           R_vx R_vy R_vz              the origin's velocity, world axes, m/s\n"
     "           R_wx R_wy R_wz              the link's angular velocity, world axes, rad/s\n"
     "           R_ax R_ay R_az              the origin's acceleration, world axes, m/s^2\n"
@@ -82,6 +102,33 @@ static const char usage[] =
     "         is refused by this command.\n"
     "         Gravity is -9.81 m/s^2 along z (URDF robots are z up). Numbers are read with a '.'\n"
     "         decimal point whatever the locale.\n";
+/* (three strings: C's bound on one literal's length) */
+static const char usage_options[] =
+    "\n"
+    "options of inverse:\n"
+    "  -j N             threads: 0 (default) every CPU the process may use, 1 the calling thread\n"
+    "                   alone; the output's bytes are the same for any N (states; samples are\n"
+    "                   solved on one thread)\n"
+    "  --columns LIST   the output's groups, comma separated (each joint's in this order whatever\n"
+    "                   LIST's): effort (J_effort; a floating root's R_effort_*, both axes),\n"
+    "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link); default all three\n"
+    "  --precision P    a CSV number's significant digits, 1 to 17; default 17, which reads back\n"
+    "                   as the double written (a .npy output holds the doubles themselves)\n"
+    "  --normalize-quaternions TOL\n"
+    "                   a floating root's quaternion whose norm is within TOL of 1 is normalised,\n"
+    "                   further off the row is refused; 0 <= TOL < 1, default 1e-6\n"
+    "  --format csv|npy the output's format; default by -o's name (.npy: NumPy, else CSV), CSV on\n"
+    "                   standard output (npy there needs the row count ahead: a .npy or samples\n"
+    "                   input)\n"
+    "  --times          the rows, and the seconds spent reading, solving and writing, on stderr\n";
+
+/* the usage, whole, on f */
+static void print_usage(FILE *f)
+{
+    fputs(usage, f);
+    fputs(usage_root, f);
+    fputs(usage_options, f);
+}
 
 /* `vtdyn info`: the bodies, joints, limits, frames and couplings of the URDF at path */
 static int info(const char *path, int floating)
@@ -123,7 +170,114 @@ static int info(const char *path, int floating)
         printf("coupling %s: %s = %g %s + %g\n", m->coupling_name + VT_NAME_MAX * k,
                m->joint_name + VT_NAME_MAX * m->coupling[k].body_a, m->coupling[k].ratio,
                m->joint_name + VT_NAME_MAX * m->coupling[k].body_b, m->coupling[k].offset);
+    cmd_states_header(m, stdout);
+    printf("frames (their names):\n");
+    for (int k = 0; k < m->nframe; k++) printf("%s%s", m->frame_name + VT_NAME_MAX * k, k + 1 < m->nframe ? "," : "\n");
     vt_model_free(m);
+    return 0;
+}
+
+/* an option's value: the next argument, or the text after '=' in --opt=VALUE; NULL when missing */
+static const char *option_value(int argc, char **argv, int *k, const char *eq)
+{
+    if (eq) return eq + 1;
+    if (*k + 1 < argc) return argv[++*k];
+    return NULL;
+}
+
+/* --columns LIST into *groups; 0 or 1 */
+static int parse_columns(const char *list, unsigned *groups)
+{
+    *groups = 0;
+    const char *p = list;
+    for (;;) {
+        const char *comma = strchr(p, ',');
+        const size_t n = comma ? (size_t)(comma - p) : strlen(p);
+        unsigned g = 0;
+        if (n == 6 && strncmp(p, "effort", 6) == 0) g = COLS_EFFORT;
+        else if (n == 5 && strncmp(p, "world", 5) == 0) g = COLS_WORLD;
+        else if (n == 4 && strncmp(p, "link", 4) == 0) g = COLS_LINK;
+        if (!g) return cmd_fail("--columns '%s': '%.*s' is none of effort, world, link", list, (int)n, p);
+        if (*groups & g) return cmd_fail("--columns '%s': '%.*s' twice", list, (int)n, p);
+        *groups |= g;
+        if (!comma) return 0;
+        p = comma + 1;
+    }
+}
+
+/* the options of `inverse` (and `info`'s --floating) and the positional arguments (the first 3,
+ * all counted in *npos), -o OUT; 0, or 1 with the message printed */
+static int parse_args(int argc, char **argv, inverse_options *o, const char **pos, int *npos, const char **outpath,
+                      int info_only)
+{
+    int seen[8] = {0};
+    for (int k = 2; k < argc; k++) {
+        const char *a = argv[k];
+        const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+        const size_t len = eq ? (size_t)(eq - a) : strlen(a);
+        static const char *const named[] = {"--floating", "-o", "-j", "--columns", "--precision",
+                                            "--normalize-quaternions", "--format", "--times"};
+        int which = -1;
+        for (int w = 0; w < 8; w++)
+            if (strlen(named[w]) == len && strncmp(a, named[w], len) == 0) which = w;
+        if (which < 0 && strncmp(a, "-j", 2) == 0 && a[2] >= '0' && a[2] <= '9') { /* -j4 */
+            which = 2;
+            eq = a + 1;
+        }
+        if (which < 0) {
+            if (a[0] == '-' && a[1] != '\0') {
+                cmd_fail("unknown option '%s'", a);
+                print_usage(stderr);
+                return 1;
+            }
+            if (*npos < 3) pos[*npos] = a;
+            (*npos)++;
+            continue;
+        }
+        if (seen[which]++) return cmd_fail("option %s given twice", named[which]);
+        if (info_only && which != 0) return cmd_fail("info takes --floating alone, not %s", named[which]);
+        if ((which == 0 || which == 7) && eq) return cmd_fail("%s takes no value", named[which]);
+        const char *v = which == 0 || which == 7 ? NULL : option_value(argc, argv, &k, eq);
+        if (which != 0 && which != 7 && !v) return cmd_fail("%s needs a value", named[which]);
+        char *end = NULL;
+        switch (which) {
+        case 0: o->floating = 1; break;
+        case 1: *outpath = v; break;
+        case 2: {
+            const long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 0 || n > 1024)
+                return cmd_fail("-j '%s': a number of threads, 0 (every CPU the process may use) to 1024", v);
+            o->threads = (int)n;
+            break;
+        }
+        case 3:
+            if (parse_columns(v, &o->groups)) return 1;
+            break;
+        case 4: {
+            const long n = strtol(v, &end, 10);
+            if (end == v || *end || n < 1 || n > 17)
+                return cmd_fail("--precision '%s': significant digits, 1 to 17 (17 reads back as the double "
+                                "written)",
+                                v);
+            o->precision = (int)n;
+            o->precision_given = 1;
+            break;
+        }
+        case 5: {
+            const double t = strtod(v, &end);
+            if (end == v || *end || !(t >= 0.0 && t < 1.0))
+                return cmd_fail("--normalize-quaternions '%s': a tolerance on the norm, 0 <= TOL < 1", v);
+            o->quat_tol = t;
+            break;
+        }
+        case 6:
+            if (strcmp(v, "csv") == 0) o->format = FMT_CSV;
+            else if (strcmp(v, "npy") == 0) o->format = FMT_NPY;
+            else return cmd_fail("--format '%s': csv or npy", v);
+            break;
+        case 7: o->times = 1; break;
+        }
+    }
     return 0;
 }
 
@@ -134,31 +288,25 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-        fputs(usage, stdout);
+        print_usage(stdout);
         return 0;
     }
-    if (argc >= 3 && strcmp(argv[1], "inverse") == 0 && (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {
-        fputs(usage, stdout);
+    if (argc >= 3 && (strcmp(argv[1], "inverse") == 0 || strcmp(argv[1], "info") == 0) &&
+        (strcmp(argv[2], "--help") == 0 || strcmp(argv[2], "-h") == 0)) {
+        print_usage(stdout);
         return 0;
     }
-    /* --floating anywhere after the command; the rest positional, with -o OUT */
+    const int is_info = argc >= 2 && strcmp(argv[1], "info") == 0;
+    const int is_inverse = argc >= 2 && strcmp(argv[1], "inverse") == 0;
+    inverse_options o = {.floating = 0, .threads = 0, .groups = COLS_EFFORT | COLS_WORLD | COLS_LINK, .precision = 17,
+                         .quat_tol = 1e-6, .format = -1};
     const char *pos[3] = {NULL, NULL, NULL}, *outpath = NULL;
-    int npos = 0, floating = 0;
-    for (int k = 2; k < argc; k++) {
-        if (strcmp(argv[k], "--floating") == 0) {
-            floating = 1;
-        } else if (strcmp(argv[k], "-o") == 0 && k + 1 < argc && !outpath) {
-            outpath = argv[++k];
-        } else if (argv[k][0] == '-' && argv[k][1] != '\0') {
-            return cmd_fail("unknown option '%s'\n%s", argv[k], usage);
-        } else if (npos < 3) {
-            pos[npos++] = argv[k];
-        } else {
-            npos++;
-        }
+    int npos = 0;
+    if (is_info || is_inverse) {
+        if (parse_args(argc, argv, &o, pos, &npos, &outpath, is_info)) return 1;
     }
-    if (argc >= 2 && strcmp(argv[1], "info") == 0 && npos == 1 && !outpath) return info(pos[0], floating);
-    if (argc >= 2 && strcmp(argv[1], "inverse") == 0 && npos == 2) return cmd_inverse(pos[0], pos[1], outpath, floating);
-    fputs(usage, stderr);
+    if (is_info && npos == 1) return info(pos[0], o.floating);
+    if (is_inverse && npos == 2) return cmd_inverse(pos[0], pos[1], outpath, &o);
+    print_usage(stderr);
     return 2;
 }

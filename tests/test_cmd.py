@@ -18,9 +18,12 @@ flight; samples and a non-unit quaternion refused.
 
     test_cmd.py VTDYN URDF_DIR WORKDIR
 """
+import ast
 import csv
 import math
 import os
+import random
+import struct
 import subprocess
 import sys
 
@@ -300,6 +303,432 @@ def strict(vtdyn, urdf, states, work, check):
           "a one-link robot loaded fixed says how to float it: %r" % r.stderr)
 
 
+# ---- .npy files: the test's own reader and writer (struct and ast, not the command's code) ------
+NPY_MAGIC = b"\x93NUMPY"
+
+
+def npy_bytes(names, rows, version=(1, 0), descr=None, fortran=False, shape=None, extra="", typestr="<f8",
+              endian="<", encoding=None):
+    """a .npy file of the structured array (names, '<f8') of rows, as numpy writes it; the
+    arguments other than names and rows make the layouts the command refuses"""
+    if descr is None:
+        descr = "[%s]" % ", ".join("(%r, %r)" % (n, typestr) for n in names)
+    if shape is None:
+        shape = "(%d,)" % len(rows)
+    d = "{'descr': %s, 'fortran_order': %s, 'shape': %s, %s}" % (descr, fortran, shape, extra)
+    enc = encoding or ("utf-8" if version[0] >= 3 else "latin-1")
+    body = d.encode(enc)
+    field = 2 if version[0] == 1 else 4
+    total = (6 + 2 + field + len(body) + 1 + 63) // 64 * 64
+    hlen = total - 6 - 2 - field
+    head = NPY_MAGIC + bytes(version) + struct.pack("<H" if field == 2 else "<I", hlen)
+    head += body + b" " * (hlen - len(body) - 1) + b"\n"
+    fmt = struct.Struct(endian + "%dd" % len(names)) if names else None
+    return head + b"".join(fmt.pack(*r) for r in rows)
+
+
+def npy_write(path, names, rows, **kw):
+    with open(path, "wb") as f:
+        f.write(npy_bytes(names, rows, **kw))
+
+
+def npy_read(path):
+    """(names, rows, version, header length) of a .npy file of '<f8' fields, shape (N,), C order,
+    the layout checked as NEP 1 says (magic, version, a header padded with spaces to a multiple of
+    64 bytes and ended by a newline, the size)"""
+    data = open(path, "rb").read()
+    assert data[:6] == NPY_MAGIC, "magic"
+    version = (data[6], data[7])
+    assert version in ((1, 0), (2, 0), (3, 0)), "version %r" % (version,)
+    field = 2 if version[0] == 1 else 4
+    hlen = struct.unpack("<H" if field == 2 else "<I", data[8:8 + field])[0]
+    start = 8 + field + hlen
+    assert start % 64 == 0, "the data at %d, not a multiple of 64" % start
+    text = data[8 + field:start].decode("utf-8" if version[0] >= 3 else "latin-1")
+    assert text.endswith("\n"), "the header ends with a newline"
+    d = ast.literal_eval(text)
+    assert set(d) == {"descr", "fortran_order", "shape"}, "keys %r" % sorted(d)
+    assert d["fortran_order"] is False and len(d["shape"]) == 1, "C order, shape (N,)"
+    names = [n for n, t in d["descr"]]
+    assert all(t == "<f8" for n, t in d["descr"]), "every field '<f8'"
+    n = d["shape"][0]
+    assert len(data) == start + 8 * len(names) * n, "size %d for %d rows" % (len(data), n)
+    fmt = struct.Struct("<%dd" % len(names))
+    rows = [fmt.unpack_from(data, start + k * fmt.size) for k in range(n)]
+    return names, rows, version, hlen
+
+
+def csv_table(text):
+    """(names, rows of the cells' strings) of a CSV text"""
+    lines = text.splitlines()
+    return lines[0].split(","), [ln.split(",") for ln in lines[1:]]
+
+
+def same_as_csv(npy_path, csv_text):
+    """a .npy output holds exactly the doubles the CSV output's %.17g cells read back as"""
+    names, rows, _, _ = npy_read(npy_path)
+    cnames, crows = csv_table(csv_text)
+    return names == cnames and len(rows) == len(crows) and all(
+        struct.pack("<d", v) == struct.pack("<d", float(c)) for r, cr in zip(rows, crows) for v, c in zip(r, cr))
+
+
+RSS_HELPER = """import os, sys
+pid = os.fork()
+if pid == 0:
+    os.execv(sys.argv[1], sys.argv[1:])
+_, status, usage = os.wait4(pid, 0)
+print(os.waitstatus_to_exitcode(status), usage.ru_maxrss)
+"""
+
+
+def run_rss(vtdyn, *args):
+    """the command's exit status and peak resident memory (kB), forked from a fresh interpreter
+    (a child's peak counts the memory of the process it was forked from: not this script's)"""
+    r = subprocess.run([sys.executable, "-c", RSS_HELPER, vtdyn, *args], capture_output=True, text=True)
+    code, kb = r.stdout.split()
+    return int(code), int(kb)
+
+
+def double_link_rows(n, seed):
+    rnd = random.Random(seed)
+    return [[0.01 * k] + [rnd.uniform(-3, 3) for _ in range(6)] for k in range(n)]
+
+
+DL_COLS = "t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc".split(",")
+
+
+def write_csv(path, names, rows):
+    with open(path, "w") as f:
+        f.write(",".join(names) + "\n")
+        for r in rows:
+            f.write(",".join(repr(x) for x in r) + "\n")
+
+
+def chunks_threads(vtdyn, urdf, work, check):
+    """States read and solved in chunks on threads: the output's bytes the same for -j 1 and -j 3
+    on 9,000 rows (three chunks) and on a floating root's rows, and the same as each row's alone;
+    the first failing row of a chunk named (a cell, a solve), for any -j, with no output left;
+    the resident memory flat in the number of rows"""
+    big = os.path.join(work, "many.csv")
+    rows = double_link_rows(9000, 11)
+    write_csv(big, DL_COLS, rows)
+    outs = {}
+    for j in ("1", "3"):
+        out = os.path.join(work, "many_j%s.csv" % j)
+        r = run(vtdyn, "inverse", "-j", j, urdf, big, "-o", out)
+        check(r.returncode == 0, "9,000 rows with -j %s: %s" % (j, r.stderr))
+        outs[j] = open(out, "rb").read() if r.returncode == 0 else b""
+    check(outs["1"] == outs["3"] and outs["1"].count(b"\n") == 9001, "-j 1 and -j 3 write the same bytes")
+    few = os.path.join(work, "few.csv")
+    write_csv(few, DL_COLS, rows[4090:4100])  # across the first chunk's end
+    r = run(vtdyn, "inverse", urdf, few)
+    check(r.returncode == 0 and r.stdout.encode().splitlines()[1:] == outs["1"].splitlines()[4091:4101],
+          "rows across a chunk's end as alone")
+    for j in ("1", "3"):
+        r1 = run(vtdyn, "inverse", "-j", j, urdf, big, "--format", "csv")
+        check(r1.returncode == 0 and r1.stdout.encode() == outs["1"], "-j %s on standard output" % j)
+    # a floating root: its quaternions normalised and its link axes, -j 1 and -j 3
+    urdf_f = os.path.join(work, "floater1.urdf")
+    floater_urdf(urdf_f, 1)
+    rnd = random.Random(5)
+    fcols = ["float_" + s for s in FREE_COLS]
+    frows = []
+    for _ in range(5000):
+        qv = [rnd.uniform(-1, 1) for _ in range(4)]
+        nq = math.sqrt(sum(x * x for x in qv))
+        frows.append([rnd.uniform(-2, 2) for _ in range(3)] + [x / nq for x in qv] + [rnd.uniform(-5, 5) for _ in range(12)])
+    fstates = os.path.join(work, "floater_many.csv")
+    write_csv(fstates, fcols, frows)
+    got = [run(vtdyn, "inverse", "-j", j, urdf_f, fstates) for j in ("1", "3")]
+    check(all(g.returncode == 0 for g in got) and got[0].stdout == got[1].stdout and len(got[0].stdout.splitlines()) == 5001,
+          "a floating root's rows: -j 1 and -j 3 the same")
+    # the first failing row of a chunk: a cell (row 8200, the third chunk), a state that fails its
+    # solve (row 5000, joint velocities of 1e200) before a bad cell in the same chunk (row 5003),
+    # and a bad cell (4999) before a failing state (5000)
+    def broken(changes):
+        lines = [",".join(repr(x) for x in r) for r in rows]
+        for k, col, text in changes:
+            cells = lines[k].split(",")
+            cells[col] = text
+            lines[k] = ",".join(cells)
+        with open(os.path.join(work, "broken.csv"), "w") as f:
+            f.write(",".join(DL_COLS) + "\n" + "\n".join(lines) + "\n")
+        return os.path.join(work, "broken.csv")
+
+    never = os.path.join(work, "never_many.csv")
+    for changes, line, what in (([(8200, 2, "x1")], 8202, "'joint1_vel': 'x1'"),
+                                ([(5000, 2, "1e200"), (5000, 5, "1e200"), (5003, 3, "oops")], 5002, "overflow"),
+                                ([(4999, 3, "oops"), (5000, 2, "1e200"), (5000, 5, "1e200")], 5001, "'oops'")):
+        path = broken(changes)
+        for j in ("1", "3"):
+            r = run(vtdyn, "inverse", "-j", j, urdf, path, "-o", never)
+            check(r.returncode == 1 and ("broken.csv:%d:" % line) in r.stderr and what in r.stderr
+                  and not os.path.exists(never) and not os.path.exists(never + ".part"),
+                  "the first failing row named (line %d, -j %s), no output left: %r" % (line, j, r.stderr))
+    # the resident memory: flat in the rows (chunks of at most 4096 rows), CSV and .npy in
+    if "ASAN_OPTIONS" in os.environ or "VALGRIND" in os.environ:
+        print("resident memory: not measured under a sanitizer")
+        return
+    rss = {}
+    for n in (4000, 60000):
+        src = os.path.join(work, "rss_%d.npy" % n)
+        npy_write(src, DL_COLS, double_link_rows(n, 3))
+        code, rss[("npy", n)] = run_rss(vtdyn, "inverse", urdf, src, "-o", os.path.join(work, "rss_out.npy"))
+        check(code == 0, "%d rows from .npy" % n)
+        src_csv = os.path.join(work, "rss_%d.csv" % n)
+        write_csv(src_csv, DL_COLS, double_link_rows(n, 3))
+        code, rss[("csv", n)] = run_rss(vtdyn, "inverse", urdf, src_csv, "-o", os.path.join(work, "rss_out.npy"))
+        check(code == 0, "%d rows from CSV" % n)
+    for kind in ("npy", "csv"):
+        grow = rss[(kind, 60000)] - rss[(kind, 4000)]
+        check(grow < 4096, "resident memory flat in the rows (%s): %d kB more for 15 times the rows" % (kind, grow))
+        print("resident memory (%s in, .npy out): %d kB for 4,000 rows, %d kB for 60,000" % (kind, rss[(kind, 4000)],
+                                                                                            rss[(kind, 60000)]))
+    os.remove(os.path.join(work, "rss_out.npy"))
+
+
+FREE_COLS = "x y z qw qx qy qz vx vy vz wx wy wz ax ay az alx aly alz".split()
+
+
+def npy_files(vtdyn, urdf, states, work, check):
+    """NumPy files in and out: npy->npy, csv->npy, npy->csv against csv->csv (the .npy doubles
+    bitwise those the CSV's %.17g reads back as), samples from .npy, the header (format 1.0, 2.0
+    for a wide one, 3.0 for a name that is not ASCII; padded to 64 bytes; the row count rewritten
+    after a CSV input), numpy.load when numpy is there, and every other layout refused, named"""
+    ref = run(vtdyn, "inverse", urdf, states)
+    check(ref.returncode == 0, "csv -> csv reference: %s" % ref.stderr)
+    names, crows = csv_table(open(states).read())
+    rows = [[float(c) for c in r] for r in crows]
+    snpy = os.path.join(work, "states.npy")
+    npy_write(snpy, names, rows)
+    for src, what in ((snpy, "npy -> npy"), (states, "csv -> npy")):
+        out = os.path.join(work, "out_%s.npy" % ("n" if src == snpy else "c"))
+        r = run(vtdyn, "inverse", urdf, src, "-o", out)
+        check(r.returncode == 0 and same_as_csv(out, ref.stdout), "%s: the CSV output's values, bitwise: %s"
+              % (what, r.stderr))
+        if r.returncode == 0:
+            _, got, version, hlen = npy_read(out)
+            check(version == (1, 0) and len(got) == len(rows), "%s: format 1.0, %d rows" % (what, len(got)))
+    r = run(vtdyn, "inverse", urdf, snpy)
+    check(r.returncode == 0 and r.stdout == ref.stdout, "npy -> csv: the bytes of csv -> csv")
+    r = subprocess.run([vtdyn, "inverse", urdf, snpy, "--format", "npy"], capture_output=True)
+    check(r.returncode == 0 and open(os.path.join(work, "out_n.npy"), "rb").read() == r.stdout,
+          "npy on standard output (a .npy input: the rows known ahead) as the file")
+    # numpy itself, when it is there
+    try:
+        import numpy
+    except ImportError:
+        numpy = None
+        print("numpy.load: skipped (numpy is not installed for %s)" % sys.executable)
+    if numpy is not None:
+        arr = numpy.load(os.path.join(work, "out_c.npy"))
+        _, want, _, _ = npy_read(os.path.join(work, "out_c.npy"))
+        check(arr.shape == (len(rows),) and arr.dtype.names[1] == "joint1_effort"
+              and all(float(arr["joint1_effort"][k]) == want[k][1] for k in range(len(rows))),
+              "numpy.load reads the output: arr['joint1_effort']")
+        numpy.save(os.path.join(work, "by_numpy.npy"), numpy.rec.fromarrays([numpy.array(c) for c in zip(*rows)],
+                                                                              names=",".join(names)))
+        r = run(vtdyn, "inverse", urdf, os.path.join(work, "by_numpy.npy"))
+        check(r.returncode == 0 and r.stdout == ref.stdout, "a file numpy.save wrote is read: %s" % r.stderr)
+        print("numpy.load: the output read by numpy %s" % numpy.__version__)
+    # samples from .npy as from CSV
+    samples = os.path.join(work, "samples.csv")
+    sn, srows = csv_table(open(samples).read())
+    npy_write(os.path.join(work, "samples.npy"), sn, [[float(c) for c in r] for r in srows])
+    a, b = run(vtdyn, "inverse", urdf, samples), run(vtdyn, "inverse", urdf, os.path.join(work, "samples.npy"))
+    check(a.returncode == 0 and a.stdout == b.stdout, "samples from .npy as from CSV: %s" % b.stderr)
+    r = subprocess.run([vtdyn, "inverse", urdf, samples, "--format", "npy"], capture_output=True)
+    check(r.returncode == 0 and r.stdout.startswith(NPY_MAGIC),
+          "samples to npy on standard output (the rows known): %s" % r.stderr)
+    # format 2.0 in and out (a header past 65,535 bytes: a chain of 420 links, 5,461 output columns)
+    chain = os.path.join(work, "chain.urdf")
+    with open(chain, "w") as f:
+        f.write('<robot name="chain"><link name="world"/>')
+        for k in range(420):
+            f.write('<link name="l%d"><inertial><origin xyz="0.05 0 0"/><mass value="1"/><inertia ixx="0.001" '
+                    'ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial></link>' % k)
+            f.write('<joint name="j%d" type="revolute"><parent link="%s"/><child link="l%d"/><origin xyz="0.1 0 0"/>'
+                    '<axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
+                    % (k, "world" if k == 0 else "l%d" % (k - 1), k))
+        f.write("</robot>\n")
+    cnames = sum(([j, j + "_vel", j + "_acc"] for j in ("j%d" % k for k in range(420))), [])
+    crow = [0.001 * (k % 7) for k in range(len(cnames))]
+    cin = os.path.join(work, "chain_in.npy")
+    npy_write(cin, cnames, [crow, crow], version=(2, 0))
+    cout = os.path.join(work, "chain_out.npy")
+    r = run(vtdyn, "inverse", chain, cin, "-o", cout)
+    ok = r.returncode == 0
+    if ok:
+        on, orows, version, hlen = npy_read(cout)
+        ok = version == (2, 0) and hlen > 65535 and len(on) == 420 * 13 and len(orows) == 2
+    check(ok, "format 2.0 read, and written for a header past 65,535 bytes: %s" % r.stderr[:300])
+    # format 3.0: a joint named in UTF-8, read from 3.0 and from 1.0 (latin-1), written as 3.0
+    uurdf = os.path.join(work, "double_link_utf8.urdf")
+    with open(uurdf, "w", encoding="utf-8") as f:
+        f.write(open(urdf).read().replace('"joint2"', '"jöint2"'))
+    un = [n.replace("joint2", "jöint2") for n in names]
+    for version in ((3, 0), (1, 0)):
+        uin = os.path.join(work, "utf8_in.npy")
+        npy_write(uin, un, rows, version=version)
+        uout = os.path.join(work, "utf8_out.npy")
+        r = run(vtdyn, "inverse", uurdf, uin, "-o", uout)
+        ok = r.returncode == 0
+        if ok:
+            on, orows, v, _ = npy_read(uout)
+            ok = v == (3, 0) and "jöint2_effort" in on and len(orows) == len(rows)
+        check(ok, "a name in UTF-8 read from format %d.0, written as 3.0: %s" % (version[0], r.stderr))
+    # a link frame turned from the body's axes (link 2's inertial frame turned about the rod):
+    # the link axes' columns as the plain double link's
+    turned = os.path.join(work, "double_link_turned.urdf")
+    text = open(urdf).read()
+    k = text.index('<link name="link2">')
+    with open(turned, "w") as f:
+        f.write(text[:k] + text[k:].replace('rpy="0 0 0"', 'rpy="0.7 0 0"', 1))
+    r = run(vtdyn, "inverse", turned, states)
+    ok = r.returncode == 0
+    if ok:
+        a_n, a_rows = csv_table(ref.stdout)
+        b_n, b_rows = csv_table(r.stdout)
+        worst = max(abs(float(x) - float(y)) / (1 + abs(float(x))) for ra, rb in zip(a_rows, b_rows)
+                    for x, y in zip(ra, rb))
+        ok = a_n == b_n and worst < 1e-12
+    check(ok, "a link's axes turned from its body's: the same link-axes reactions: %s" % r.stderr)
+    # the layouts refused, each named with what was found
+    bad = os.path.join(work, "bad.npy")
+    n = len(names)
+    plain = npy_bytes(names, rows, descr="'<f8'", shape="(%d, %d)" % (len(rows), n))
+    cases = [
+        (plain, "a plain array of '<f8' of shape (12, 7)", "unstructured_to_structured"),
+        (npy_bytes(names, rows, typestr=">f8", endian=">"), "field 't' is '>f8'", "little-endian"),
+        (npy_bytes(names, rows, typestr="<f4"), "field 't' is '<f4'", "'<f8'"),
+        (npy_bytes(names, rows, fortran=True), "fortran_order True", "C order"),
+        (npy_bytes(names, rows[:6], shape="(3, 2)"), "shape (3, 2)", "(N,)"),
+        (npy_bytes(names, rows)[:-8], "truncated", "12 rows of 7 float64 fields"),
+        (npy_bytes(names, rows) + b"\0" * 8, "bytes after the data", "12 rows"),
+        (b"PK\x03\x04" + b"\0" * 60, "not a .npy file", "x93NUMPY"),
+        (NPY_MAGIC + b"\x04\x00" + b"\0" * 60, "format version 4.0", "1.0, 2.0 and 3.0"),
+        (NPY_MAGIC + b"\x02\x00" + struct.pack("<I", 1 << 30), "1073741824 bytes", "bound"),
+        (npy_bytes(names, rows, extra="'x': 1, "), "a key 'x'", "descr"),
+        (npy_bytes(["t", "t"], [r[:2] for r in rows]), "field 't' twice", "fields 1 and 2"),
+        (npy_bytes(names, rows, descr="[('t', '<f8'), ('j', [('a', '<f8')])]"), "field 'j' is a nested", "'<f8'"),
+        (npy_bytes(names, rows, descr="[('t', '<f8', (2,))]"), "field 't' is a subarray", "'<f8'"),
+        (npy_bytes(names, rows, descr="[('t', '<f8'), ('', '|V8')]"), "field '' has no name", "'<f8'"),
+        (npy_bytes(names, rows, descr="[]"), "no fields", "structured"),
+        (NPY_MAGIC + b"\x01\x00" + struct.pack("<H", 54) + b"{'descr': [('t', '<f8'" + b" " * 31 + b"\n",
+         "not a dict", "unreadable"),
+    ]
+    for data, what, hint in cases:
+        with open(bad, "wb") as f:
+            f.write(data)
+        r = run(vtdyn, "inverse", urdf, bad, "-o", os.path.join(work, "never.npy"))
+        check(r.returncode == 1 and "bad.npy" in r.stderr and what in r.stderr and hint in r.stderr
+              and not os.path.exists(os.path.join(work, "never.npy")),
+              "a .npy layout refused, named (%s): %r" % (what, r.stderr))
+    rows_nan = [list(r) for r in rows]
+    rows_nan[3][5] = float("nan")
+    npy_write(bad, names, rows_nan)
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "bad.npy[3]: column 'joint2_vel': nan is not a finite number" in r.stderr,
+          "a NaN in a .npy file: its row (index) and column: %r" % r.stderr)
+    npy_write(bad, names + ["joint3_vel"], [r + [0.0] for r in rows])
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "bad.npy: column 8 'joint3_vel' is none of the robot's" in r.stderr,
+          "an unknown field stops the run, named: %r" % r.stderr)
+    npy_write(bad, names, [])
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "no data rows" in r.stderr, "a .npy file of no rows: %r" % r.stderr)
+    # npy on standard output needs the rows ahead; -o and --format agree; --precision is for CSV
+    for args, what in ((["--format", "npy"], "-o OUT.npy"), (["-o", os.path.join(work, "x.csv"), "--format", "npy"],
+                                                            "disagree"),
+                       (["-o", os.path.join(work, "x.npy"), "--precision", "5"], "--precision")):
+        r = run(vtdyn, "inverse", urdf, states, *args)
+        check(r.returncode == 1 and what in r.stderr and r.stdout == "", "%s refused: %r" % (" ".join(args), r.stderr))
+
+
+def options(vtdyn, urdf, states, work, check):
+    """--columns, --precision, --normalize-quaternions, -j, --times, and info's lines"""
+    full = run(vtdyn, "inverse", urdf, states)
+    fn, frows = csv_table(full.stdout)
+    for groups, want in (("effort", ["t", "joint1_effort", "joint2_effort"]),
+                         ("link,world", ["t"] + sum(([j + s for s in ("_fx", "_fy", "_fz", "_nx", "_ny", "_nz")]
+                                                     + [j + s + "_link" for s in ("_fx", "_fy", "_fz", "_nx", "_ny", "_nz")]
+                                                     for j in ("joint1", "joint2")), []))):
+        r = run(vtdyn, "inverse", "--columns", groups, urdf, states)
+        n, rows = csv_table(r.stdout) if r.returncode == 0 else ([], [])
+        check(n == want and all(row == [fr[fn.index(c)] for c in n] for row, fr in zip(rows, frows)) and len(rows) == len(frows),
+              "--columns %s: the columns %s, the same cells: %s" % (groups, want[:4], r.stderr))
+    for groups, what in (("effort,force", "'force' is none of effort, world, link"), ("effort,effort", "twice"),
+                         ("", "none of")):
+        r = run(vtdyn, "inverse", "--columns", groups, urdf, states)
+        check(r.returncode == 1 and what in r.stderr, "--columns %r refused: %r" % (groups, r.stderr))
+    r = run(vtdyn, "inverse", "--precision", "6", urdf, states)
+    n, rows = csv_table(r.stdout) if r.returncode == 0 else ([], [])
+    check(r.returncode == 0 and all(c == "%.6g" % float(fc) for row, fr in zip(rows, frows) for c, fc in zip(row, fr))
+          and len(rows) == len(frows), "--precision 6: every number in 6 significant digits: %s" % r.stderr)
+    for p in ("0", "18", "x"):
+        r = run(vtdyn, "inverse", "--precision", p, urdf, states)
+        check(r.returncode == 1 and "--precision" in r.stderr and "1 to 17" in r.stderr, "--precision %s refused" % p)
+    for j in ("-1", "x", "2000"):
+        r = run(vtdyn, "inverse", "-j", j, urdf, states)
+        check(r.returncode == 1 and "-j" in r.stderr and "threads" in r.stderr, "-j %s refused: %r" % (j, r.stderr))
+    r = run(vtdyn, "inverse", "-j2", "--times", urdf, states)
+    check(r.returncode == 0 and r.stdout == full.stdout and "rows in" in r.stderr and "solve" in r.stderr,
+          "-j2 and --times: %r" % r.stderr)
+    r = run(vtdyn, "inverse", "-j", "2", "-j", "1", urdf, states)
+    check(r.returncode == 1 and "given twice" in r.stderr, "an option twice refused")
+    # --normalize-quaternions: a quaternion of norm 1 + 1e-4 refused by default (the option named),
+    # taken with TOL 1e-3 as the unit one
+    urdf_f = os.path.join(work, "floater1.urdf")
+    floater_urdf(urdf_f, 1)
+    unit = [0.1, 0.2, 0.3, 0.5, 0.5, -0.5, 0.5, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 1.0, 2.0, 3.0, 0.3, 0.2, 0.1]
+    off = unit[:3] + [x * (1 + 1e-4) for x in unit[3:7]] + unit[7:]
+    cols = ["float_" + s for s in FREE_COLS]
+    for name, row in (("unit.csv", unit), ("off.csv", off)):
+        write_csv(os.path.join(work, name), cols, [row])
+    r = run(vtdyn, "inverse", urdf_f, os.path.join(work, "off.csv"))
+    check(r.returncode == 1 and "off.csv:2" in r.stderr and "--normalize-quaternions" in r.stderr,
+          "a quaternion off by 1e-4 refused, the option named: %r" % r.stderr)
+    a = run(vtdyn, "inverse", "--normalize-quaternions", "1e-3", urdf_f, os.path.join(work, "off.csv"))
+    b = run(vtdyn, "inverse", urdf_f, os.path.join(work, "unit.csv"))
+    ok = a.returncode == 0 and b.returncode == 0
+    if ok:
+        (an, ar), (bn, br) = csv_table(a.stdout), csv_table(b.stdout)
+        ok = an == bn and all(abs(float(x) - float(y)) <= 1e-14 * (1 + abs(float(y))) for x, y in zip(ar[0], br[0]))
+    check(ok, "--normalize-quaternions 1e-3 takes it as the unit quaternion: %s" % a.stderr)
+    for tol in ("1", "-1e-3", "x"):
+        r = run(vtdyn, "inverse", "--normalize-quaternions", tol, urdf_f, os.path.join(work, "unit.csv"))
+        check(r.returncode == 1 and "--normalize-quaternions" in r.stderr, "--normalize-quaternions %s refused" % tol)
+    r = run(vtdyn, "inverse", "--columns", "world", urdf_f, os.path.join(work, "unit.csv"))
+    check(r.returncode == 1 and "--columns" in r.stderr, "--columns with no column for the robot: %r" % r.stderr)
+    # info: the states columns on one line (a header to paste) and the frames' names
+    r = run(vtdyn, "info", urdf)
+    lines = r.stdout.splitlines()
+    k = next((i for i, ln in enumerate(lines) if ln.startswith("states columns")), -1)
+    check(k >= 0 and lines[k + 1] == "joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc"
+          and lines[k + 3] == "world,link1,link2", "info: the states header and the frames: %r" % lines[-4:])
+    if k >= 0:
+        pasted = os.path.join(work, "pasted.csv")
+        with open(pasted, "w") as f:
+            f.write(lines[k + 1] + "\n" + ",".join(["0.5"] * 6) + "\n")
+        r = run(vtdyn, "inverse", urdf, pasted)
+        check(r.returncode == 0, "info's header line, pasted, is read: %s" % r.stderr)
+    r = run(vtdyn, "info", "--floating", os.path.join(work, "floater0.urdf"))
+    check(r.returncode == 0 and ",".join("body_" + s for s in FREE_COLS) in r.stdout, "info --floating: the root's columns")
+    r = run(vtdyn, "info", "-j", "2", urdf)
+    check(r.returncode == 1 and "--floating alone" in r.stderr, "info refuses inverse's options")
+
+
+def help_is_documented(vtdyn, urdf_dir, check):
+    """docs/command.md holds `vtdyn --help`'s text exactly"""
+    doc = os.path.join(urdf_dir, "..", "..", "docs", "command.md")
+    text = open(doc, encoding="utf-8").read()
+    k = text.find("The full text of `vtdyn --help`")
+    start = text.find("```text\n", k) + len("```text\n")
+    block = text[start:text.find("```", start)]
+    r = run(vtdyn, "--help")
+    check(k >= 0 and r.stdout == block, "docs/command.md holds vtdyn --help's text exactly")
+
+
 def main():
     vtdyn, urdf_dir, work = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(work, exist_ok=True)
@@ -436,6 +865,10 @@ def main():
     r = run(vtdyn, "info", urdf)
     check(r.returncode == 0 and "joint2" in r.stdout and "link2" in r.stdout, "info lists the joints")
     floating(vtdyn, work, check)
+    chunks_threads(vtdyn, urdf, work, check)
+    npy_files(vtdyn, urdf, states, work, check)
+    options(vtdyn, urdf, states, work, check)
+    help_is_documented(vtdyn, urdf_dir, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0
 

@@ -3,7 +3,9 @@
 #   run.sh pkgconfig  SRC BUILD VERSION  installs BUILD into a temporary DESTDIR, compiles
 #       tests/consume/consumer.c with `$CC $(pkg-config --cflags --libs vtdyn)` against it and
 #       runs it (LD_LIBRARY_PATH to the installed libdir, checked with ldd), then links it
-#       statically (pkg-config --static, libvtdyn.a) and runs it again
+#       statically (pkg-config --static, libvtdyn.a) and runs it again; the installed command
+#       vtdyn (when built) runs without LD_LIBRARY_PATH and loads the installed library (its
+#       rpath $ORIGIN/../libdir)
 #   run.sh subproject SRC BUILD VERSION  a meson project (tests/consume/subproject) with SRC
 #       linked as subprojects/vtdyn: dependency('vtdyn') through meson.override_dependency
 #   run.sh nosundials SRC BUILD VERSION  configures SRC with -Dsundials=disabled, builds the
@@ -63,6 +65,20 @@ pkgconfig)
         echo "the static consumer still needs libvtdyn.so"; exit 1
     fi
     "$tmp/consumer_static" "$version"
+
+    # the installed command finds the installed library by its rpath, relative to itself
+    cmd=$(find "$tmp/dest" -path '*/bin/vtdyn' -print -quit)
+    if [ -n "$cmd" ]; then
+        deps=$(env -u LD_LIBRARY_PATH ldd "$cmd")
+        loaded=$(sed -n 's/.*libvtdyn\.so[^ ]* => \([^ ]*\) .*/\1/p' <<< "$deps")
+        [ -n "$loaded" ] && [ "$(dirname "$(realpath "$loaded")")" = "$(realpath "$libdir")" ] ||
+            { echo "the installed vtdyn does not load the installed libvtdyn.so by itself:"; echo "$deps"; exit 1; }
+        got=$(env -u LD_LIBRARY_PATH "$cmd" --version)
+        [ "$got" = "vtdyn $version" ] || { echo "the installed vtdyn says '$got', expected 'vtdyn $version'"; exit 1; }
+        echo "installed vtdyn: $got, libvtdyn.so through its rpath $(readelf -d "$cmd" | sed -n 's/.*R[UN]*PATH.*\[\(.*\)\]/\1/p')"
+    else
+        echo "no vtdyn installed (a build without URDF loading)"
+    fi
     ;;
 subproject)
     mkdir -p "$tmp/parent/subprojects"

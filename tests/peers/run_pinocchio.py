@@ -16,7 +16,8 @@ venv's python, which has pin and example-robot-data).
    samples of a smooth motion q_j(t) = a_j sin(w_j t + phi_j) as a samples file: vtdyn's torques
    from the splines against Pinocchio's rnea with the exact derivatives, to 1e-4 of the largest
    torque at the interior samples. And `vtdyn inverse --floating` on Solo-12: the free-flyer
-   reference's states, the base's six efforts (link axes) and the joints' torques to 1e-12.
+   reference's states, the base's six efforts (link axes) and the joints' torques to 1e-12, from
+   a CSV file and from a NumPy .npy file to a .npy file (numpy.load, -j 2).
 3. Every URDF the package ships through `vtdyn info`: accepted, or refused with its reason
    (a count, and the reasons; a crash fails the test).
 4. Solo-12, Talos and ANYmal in flight (robots_in_flight): a free root, every joint driven, 20
@@ -180,6 +181,30 @@ def main():
               % (len(got), worst))
         if len(got) != len(ref) or worst > 1e-12:
             failures.append("vtdyn inverse --floating (Solo-12 states): %.3g" % worst)
+    # the same states as a NumPy structured array (.npy in, -j 2) and the efforts as one (.npy
+    # out, numpy.load): the same to 1e-12
+    with open(states) as f:
+        rows = list(csv.reader(f))
+    arr = np.rec.fromarrays([np.array([float(r[k]) for r in rows[1:]]) for k in range(len(rows[0]))],
+                            names=",".join(rows[0]))
+    np.save(work / "solo_floating_states.npy", arr)
+    out = work / "solo_floating_out.npy"
+    r = run(vtdyn, "inverse", "--floating", "-j", "2", urdf, work / "solo_floating_states.npy", "-o", out)
+    if r.returncode:
+        failures.append("vtdyn inverse --floating (Solo-12 states, .npy): %s" % r.stderr.strip())
+    else:
+        got = np.load(out)
+        names = ["base_link_effort_%s_link" % c for c in ("fx", "fy", "fz", "nx", "ny", "nz")]
+        worst = 0.0
+        for k, row in enumerate(ref):
+            tau = [float(row["tau:root_joint:%d" % i]) for i in range(6)] + [float(row["tau:%s:0" % j]) for j in joints]
+            mine = [float(got[n][k]) for n in names] + [float(got[j + "_effort"][k]) for j in joints]
+            scale = max(1.0, max(abs(t) for t in tau))
+            worst = max(worst, max(abs(a - b) / scale for a, b in zip(mine, tau)))
+        print("vtdyn inverse --floating, Solo-12 states .npy -> .npy: %d rows, largest relative torque difference %.2g"
+              % (got.shape[0], worst))
+        if got.shape != (len(ref),) or worst > 1e-12:
+            failures.append("vtdyn inverse --floating (Solo-12 states, .npy): %.3g" % worst)
 
     # 3. every URDF of the package
     accepted, refused = 0, {}

@@ -1,0 +1,126 @@
+/* The library's own time per row on the states `vtdyn inverse` reads (bench/bench_command.sh):
+ * the URDF loaded as the command loads it (recursive layout, mimic joints independent, the root
+ * fixed), the rows of a .npy file of states written by bench/command_states.py laid out as q, q̇,
+ * q̈ arrays, and vt_batch_inverse_dynamics_motion on all of them with the outputs the command
+ * writes by default (every rate's effort, the reactions in world and body axes), on THREADS
+ * threads. Prints the median over ROUNDS calls of the time per row, µs.
+ *
+ *   command_lib URDF STATES.npy THREADS [ROUNDS]
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vtdyn.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static int fail(const char *what)
+{
+    fprintf(stderr, "command_lib: %s\n", what);
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 4) {
+        fprintf(stderr, "usage: command_lib URDF STATES.npy THREADS [ROUNDS]\n");
+        return 2;
+    }
+    const int threads = atoi(argv[3]), rounds = argc > 4 && atoi(argv[4]) > 0 ? atoi(argv[4]) : 5;
+    /* the .npy file of command_states.py: format 1.0, the fields' names and the shape in its header */
+    FILE *f = fopen(argv[2], "rb");
+    unsigned char pre[10];
+    if (!f || fread(pre, 1, 10, f) != 10 || memcmp(pre, "\x93NUMPY\x01", 7) != 0) return fail("not a .npy file of format 1.0");
+    const size_t hlen = (size_t)pre[8] | (size_t)pre[9] << 8;
+    char *h = malloc(hlen + 1);
+    if (!h || fread(h, 1, hlen, f) != hlen) return fail("a short header");
+    h[hlen] = '\0';
+    char *names[4096];
+    int ncol = 0;
+    const char *shape = strstr(h, "'shape': (");
+    if (!shape) return fail("no shape");
+    const long nrow = strtol(shape + 10, NULL, 10);
+    for (char *p = h; (p = strstr(p, "('")) && ncol < 4096;) {
+        char *e = strchr(p + 2, '\'');
+        if (!e) break;
+        *e = '\0';
+        names[ncol++] = p + 2;
+        p = e + 1;
+    }
+    double *cells = malloc((size_t)nrow * (size_t)ncol * sizeof *cells);
+    if (!cells || fread(cells, sizeof *cells, (size_t)nrow * (size_t)ncol, f) != (size_t)nrow * (size_t)ncol)
+        return fail("short data");
+    fclose(f);
+    /* the robot as the command loads it */
+    vt_builder *b;
+    vt_model *m;
+    char msg[VT_MESSAGE_SIZE];
+    vt_urdf_options opt = vt_default_urdf_options();
+    opt.mimic = 0;
+    opt.model.layout = VT_LAYOUT_RECURSIVE;
+    if (vt_urdf_builder(&b, argv[1], &opt, msg) || vt_builder_build(&m, b)) return fail("the URDF");
+    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody;
+    double *q = calloc((size_t)nrow * nq, sizeof *q), *qd = calloc((size_t)nrow * nv, sizeof *qd),
+           *qdd = calloc((size_t)nrow * nv, sizeof *qdd), *effort = malloc((size_t)nrow * nv * sizeof *effort),
+           *reac = malloc((size_t)nrow * nb6 * sizeof *reac), *reacb = malloc((size_t)nrow * nb6 * sizeof *reacb);
+    int *status = malloc((size_t)nrow * sizeof *status);
+    if (!q || !qd || !qdd || !effort || !reac || !reacb || !status) return fail("out of memory");
+    for (int i = 1; i <= m->nbody; i++) { /* one-rate joints: J, J_vel, J_acc */
+        const char *jn = m->joint_name + VT_NAME_MAX * i;
+        char vel[VT_NAME_MAX + 8], acc[VT_NAME_MAX + 8];
+        snprintf(vel, sizeof vel, "%s_vel", jn);
+        snprintf(acc, sizeof acc, "%s_acc", jn);
+        int c[3] = {-1, -1, -1};
+        for (int k = 0; k < ncol; k++) {
+            if (strcmp(names[k], jn) == 0) c[0] = k;
+            if (strcmp(names[k], vel) == 0) c[1] = k;
+            if (strcmp(names[k], acc) == 0) c[2] = k;
+        }
+        if (m->body_nv[i] != 1 || c[0] < 0 || c[1] < 0 || c[2] < 0) return fail("a joint's columns (a fixed-base robot's states)");
+        for (long r = 0; r < nrow; r++) {
+            q[(size_t)r * nq + (size_t)m->body_qadr[i]] = cells[(size_t)r * (size_t)ncol + (size_t)c[0]];
+            qd[(size_t)r * nv + (size_t)m->body_vadr[i]] = cells[(size_t)r * (size_t)ncol + (size_t)c[1]];
+            qdd[(size_t)r * nv + (size_t)m->body_vadr[i]] = cells[(size_t)r * (size_t)ncol + (size_t)c[2]];
+        }
+    }
+    vt_batch *batch;
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = threads;
+    if (vt_batch_create(&batch, m, &def)) return fail("the batch");
+    vt_batch_io io = {0};
+    io.nrow = (int)nrow;
+    io.q = q;
+    io.qd = qd;
+    io.qdd = qdd;
+    io.effort = effort;
+    io.reaction = reac;
+    io.reaction_body = reacb;
+    io.status = status;
+    double t[201];
+    const int n = rounds < 201 ? rounds : 201;
+    for (int k = 0; k < n; k++) {
+        const double t0 = now();
+        if (vt_batch_inverse_dynamics_motion(batch, &io)) return fail(vt_batch_message(batch));
+        t[k] = now() - t0;
+    }
+    qsort(t, (size_t)n, sizeof *t, by_value);
+    printf("%.4f\n", 1e6 * t[n / 2] / (double)nrow);
+    vt_batch_free(batch);
+    vt_model_free(m);
+    vt_builder_free(b);
+    return 0;
+}
