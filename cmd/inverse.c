@@ -371,13 +371,12 @@ static int build_model(run *x)
         j->link_axes = !(p[0] == 1.0 && p[1] == 0.0 && p[2] == 0.0 && p[3] == 0.0);
         vt_euler_A(j->Af, p);
     }
-    x->T = x->o->threads > 0 ? x->o->threads : cmd_cpus();
-    if (x->form != FORM_SAMPLES) { /* states (or a floating root alone) */
-        vt_batch_def def = vt_default_batch_def();
-        def.threads = x->T;
-        const vt_status st = vt_batch_create(&x->batch, x->m, &def);
-        if (st) return cmd_fail("%s: %d threads: %s", x->urdf, x->T, vt_status_string(st));
-    }
+    /* the batch (the states' solver) counts the CPUs for -j 0; the samples' threads are as many */
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = x->o->threads;
+    const vt_status st = vt_batch_create(&x->batch, x->m, &def);
+    if (st) return cmd_fail("%s: %d threads: %s", x->urdf, x->o->threads, vt_status_string(st));
+    x->T = vt_batch_threads(x->batch);
     return 0;
 }
 

@@ -1,24 +1,11 @@
 /* The command's threads: contiguous blocks of rows on threads made for the call (as the
  * library's batches share their rows), each in the C locale. */
-#define _GNU_SOURCE /* sched_getaffinity */
+#define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 #include "parallel.h"
 
 #include <locale.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stdlib.h>
-#include <unistd.h>
-
-int cmd_cpus(void)
-{
-    cpu_set_t set;
-    if (sched_getaffinity(0, sizeof set, &set) == 0) {
-        const int n = CPU_COUNT(&set);
-        if (n > 0) return n;
-    }
-    const long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n > 0 && n < 4096 ? (int)n : 1;
-}
 
 typedef struct {
     block_fn fn;

@@ -4,9 +4,6 @@
 #ifndef VTDYN_CMD_PARALLEL_H
 #define VTDYN_CMD_PARALLEL_H
 
-/* the CPUs this process may run on (its affinity), at least 1 */
-int cmd_cpus(void);
-
 /* one block's work: rows [first, end) of the call's range, block number k */
 typedef void (*block_fn)(void *ctx, int first, int end, int k);
 

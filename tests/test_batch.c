@@ -106,26 +106,49 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
     vt_data_free(d);
 }
 
+/* NROW random states of m: q in rows of qs ≥ nq doubles (NaN beside each row: never read), q̇,
+ * and q̈ uniform in [−3, 3] */
+typedef struct {
+    double *q, *qd, *qdd;
+    size_t qs;
+} states;
+
+static states random_states(const vt_model *m, uint64_t seed, size_t qs)
+{
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    const int nq = m->nq, nv = m->nv;
+    states st = {malloc(qs * NROW * sizeof(double)), malloc((size_t)nv * NROW * sizeof(double)),
+                 malloc((size_t)nv * NROW * sizeof(double)), qs};
+    assert_non_null(st.qdd);
+    for (int r = 0; r < NROW; r++) {
+        vt_scene_random_state(m, d, &seed);
+        memcpy(st.q + r * qs, d->q, (size_t)nq * sizeof(double));
+        for (size_t c = (size_t)nq; c < qs; c++) st.q[r * qs + c] = NAN;
+        memcpy(st.qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
+        for (int k = 0; k < nv; k++) st.qdd[(size_t)r * nv + k] = vt_rand_uniform(&seed, -3.0, 3.0);
+    }
+    vt_data_free(d);
+    return st;
+}
+
+static void states_free(states *st)
+{
+    free(st->q);
+    free(st->qd);
+    free(st->qdd);
+}
+
 /* a random tree with free joints: NROW random states, q in a table 3 columns wider than nq */
 static void test_tree_bitwise(void **state)
 {
     (void)state;
     vt_model *m = NULL;
-    vt_data *d = NULL;
     assert_ok(vt_scene_random_tree(&m, 11, 9, VT_SCENE_WITH_FREE));
-    assert_ok(vt_data_create(&d, m));
-    const int nq = m->nq, nv = m->nv;
-    const size_t qs = (size_t)nq + 3;
-    double *q = malloc(qs * NROW * sizeof(double)), *qd = malloc((size_t)nv * NROW * sizeof(double)),
-           *qdd = malloc((size_t)nv * NROW * sizeof(double));
-    uint64_t seed = 3;
-    for (int r = 0; r < NROW; r++) {
-        vt_scene_random_state(m, d, &seed);
-        memcpy(q + r * qs, d->q, (size_t)nq * sizeof(double));
-        for (int c = 0; c < 3; c++) q[r * qs + (size_t)nq + c] = NAN; /* beside the row: never read */
-        memcpy(qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
-        for (int k = 0; k < nv; k++) qdd[(size_t)r * nv + k] = vt_rand_uniform(&seed, -3.0, 3.0);
-    }
+    const int nv = m->nv;
+    const size_t qs = (size_t)m->nq + 3;
+    states st = random_states(m, 3, qs);
+    double *q = st.q, *qd = st.qd, *qdd = st.qdd;
     const int threads[3] = {1, 2, 8};
     for (int t = 0; t < 3; t++) {
         vt_batch_def def = vt_default_batch_def();
@@ -143,10 +166,7 @@ static void test_tree_bitwise(void **state)
         outputs_free(&o);
         vt_batch_free(b);
     }
-    free(q);
-    free(qd);
-    free(qdd);
-    vt_data_free(d);
+    states_free(&st);
     vt_model_free(m);
 }
 
@@ -193,19 +213,10 @@ static void test_failing_rows(void **state)
 {
     (void)state;
     vt_model *m = NULL;
-    vt_data *d = NULL;
     assert_ok(vt_scene_random_tree(&m, 5, 6, VT_SCENE_NO_BASE));
-    assert_ok(vt_data_create(&d, m));
     const int nq = m->nq, nv = m->nv;
-    double *q = malloc((size_t)nq * NROW * sizeof(double)), *qd = malloc((size_t)nv * NROW * sizeof(double)),
-           *qdd = malloc((size_t)nv * NROW * sizeof(double));
-    uint64_t seed = 9;
-    for (int r = 0; r < NROW; r++) {
-        vt_scene_random_state(m, d, &seed);
-        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
-        memcpy(qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
-        for (int k = 0; k < nv; k++) qdd[(size_t)r * nv + k] = vt_rand_uniform(&seed, -3.0, 3.0);
-    }
+    states st = random_states(m, 9, (size_t)nq);
+    double *q = st.q, *qd = st.qd, *qdd = st.qdd;
     q[37 * (size_t)nq] = NAN;
     qdd[101 * (size_t)nv + 1] = INFINITY;
     for (int threads = 1; threads <= 8; threads *= 2) {
@@ -262,10 +273,7 @@ static void test_failing_rows(void **state)
     assert_int_equal(o.status[failed], VT_ERR_NONFINITE);
     vt_batch_free(b);
     outputs_free(&o);
-    free(q);
-    free(qd);
-    free(qdd);
-    vt_data_free(d);
+    states_free(&st);
     vt_model_free(m);
 }
 
