@@ -32,7 +32,7 @@ sed -e "s/@VT_VERSION_MAJOR@/$major/" -e "s/@VT_VERSION_MINOR@/$minor/" -e "s/@V
     -e "s/@VT_VERSION_STRING@/$version/" -e "s/@VT_HAVE_SUNDIALS@/1/" -e "s/@VT_HAVE_URDF@/1/" \
     include/vtdyn/version.h.in > "$out/include/vtdyn/version.h"
 flags="-g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Iinclude -Isrc -I$out/include"
-libs="-lsundials_ida -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense -llapack -lblas -lm"
+libs="-lsundials_ida -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense -llapack -lblas -lm -pthread"
 # fuzz_model: every source but the URDF loader (its input is XML, not this harness's bytes)
 clang $flags $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') fuzz/fuzz_model.c -o "$out/fuzz_model" $libs
 [ "$urdf_seconds" -gt 0 ] && clang $flags -I/usr/include/libxml2 src/*/*.c fuzz/fuzz_urdf.c -o "$out/fuzz_urdf" $libs -lxml2
