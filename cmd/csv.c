@@ -67,6 +67,23 @@ static int by_name(const void *a, const void *b)
     return strcmp(((const table_key *)a)->name, ((const table_key *)b)->name);
 }
 
+void keys_sort(table_key *keys, int n)
+{
+    qsort(keys, (size_t)n, sizeof *keys, by_name);
+}
+
+int keys_find(const table_key *keys, int n, const char *name)
+{
+    int lo = 0, hi = n - 1;
+    while (lo <= hi) {
+        const int mid = lo + (hi - lo) / 2, cmp = strcmp(name, keys[mid].name);
+        if (cmp == 0) return mid;
+        if (cmp < 0) hi = mid - 1;
+        else lo = mid + 1;
+    }
+    return -1;
+}
+
 /* sorted by name: a lookup in log ncol, the whole header in ncol log ncol */
 int table_index(table *t, const char *path, int line)
 {
@@ -74,7 +91,7 @@ int table_index(table *t, const char *path, int line)
     t->used = calloc((size_t)t->ncol, 1);
     if (!t->order || !t->used) return cmd_fail("out of memory");
     for (int c = 0; c < t->ncol; c++) t->order[c] = (table_key){t->name[c], c};
-    qsort(t->order, (size_t)t->ncol, sizeof *t->order, by_name);
+    keys_sort(t->order, t->ncol);
     for (int k = 1; k < t->ncol; k++) {
         const table_key *a = &t->order[k - 1], *b = &t->order[k];
         if (strcmp(a->name, b->name) != 0) continue;
@@ -140,17 +157,10 @@ int csv_parse_row(const table *t, char *s, double *out, const char *path, long l
 
 int table_column(const table *t, const char *name)
 {
-    int lo = 0, hi = t->ncol - 1;
-    while (lo <= hi) {
-        const int mid = lo + (hi - lo) / 2, c = t->order[mid].col, cmp = strcmp(name, t->order[mid].name);
-        if (cmp == 0) {
-            t->used[c] = 1;
-            return c;
-        }
-        if (cmp < 0) hi = mid - 1;
-        else lo = mid + 1;
-    }
-    return -1;
+    const int k = keys_find(t->order, t->ncol, name);
+    if (k < 0) return -1;
+    t->used[t->order[k].col] = 1;
+    return t->order[k].col;
 }
 
 int output_open(output *o, const char *path, const char *const *inputs, int ninputs)

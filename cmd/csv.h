@@ -12,6 +12,10 @@ typedef struct {
     int col;
 } table_key;
 
+/* sorts n keys by name (strcmp); the entry of name in sorted keys, or -1 (log n) */
+void keys_sort(table_key *keys, int n);
+int keys_find(const table_key *keys, int n, const char *name);
+
 /* a table of numbers under named columns: the names always, the cells when read whole */
 typedef struct {
     int ncol, nrow;

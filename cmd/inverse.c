@@ -108,6 +108,7 @@ typedef struct {
     int *status;               /* the rows' statuses (K) */
     double *vals[2];           /* .npy output: the rows' values, little-endian (K x nout), two sets */
     block_state *blk;          /* T */
+    table_key *frames;         /* the probe's frames sorted by name (nframe): a link's frame in log n */
     /* the time spent, s */
     double t_read, t_solve, t_write;
 } run;
@@ -122,6 +123,7 @@ static double now(void)
 /* frees what the run holds (any part not yet made is NULL) */
 static void run_free(run *x)
 {
+    free(x->frames);
     free(x->ts);
     free(x->jc);
     if (x->names)
@@ -160,9 +162,20 @@ static int load_robot(run *x, int floating)
     if (cmd_load_urdf(&x->b, x->urdf, floating)) return 1;
     const vt_status st = vt_builder_build(&x->probe, x->b);
     if (st) return cmd_fail("%s: %s%s", x->urdf, vt_builder_message(x->b), cmd_empty_hint(st, floating));
-    x->jc = calloc((size_t)x->probe->nbody, sizeof *x->jc);
-    if (!x->jc) return cmd_fail("out of memory");
+    const vt_model *p = x->probe;
+    x->jc = calloc((size_t)p->nbody, sizeof *x->jc);
+    x->frames = malloc((size_t)(p->nframe > 0 ? p->nframe : 1) * sizeof *x->frames);
+    if (!x->jc || !x->frames) return cmd_fail("out of memory");
+    for (int k = 0; k < p->nframe; k++) x->frames[k] = (table_key){p->frame_name + (size_t)VT_NAME_MAX * k, k};
+    keys_sort(x->frames, p->nframe);
     return 0;
+}
+
+/* the frame of that name (a link's), or -1: vt_find_frame in log nframe */
+static int find_frame(const run *x, const char *name)
+{
+    const int k = keys_find(x->frames, x->probe->nframe, name);
+    return k < 0 ? -1 : x->frames[k].col;
 }
 
 /* the input has no rows: refused, as a table without rows */
@@ -195,7 +208,7 @@ static int map_joints(run *x)
         j->col_vel = table_column(&x->in.t, key);
         snprintf(key, sizeof key, "%s_acc", name);
         j->col_acc = table_column(&x->in.t, key);
-        j->frame = vt_find_frame(p, p->body_name + VT_NAME_MAX * i);
+        j->frame = find_frame(x, p->body_name + VT_NAME_MAX * i);
         if (j->col < 0) return cmd_fail("%s: no column '%s' (the position of joint %s)", x->states, name, name);
         const int full = j->col_vel >= 0 && j->col_acc >= 0, none = j->col_vel < 0 && j->col_acc < 0;
         const form f = full ? FORM_STATES : none ? FORM_SAMPLES : FORM_UNKNOWN;
@@ -236,7 +249,7 @@ static int map_floating_roots(run *x)
         j->rate = p->body_vadr[i];
         j->name = name;
         j->free = 1;
-        j->frame = vt_find_frame(p, p->body_name + VT_NAME_MAX * i);
+        j->frame = find_frame(x, p->body_name + VT_NAME_MAX * i);
         for (int k = 0; k < NFREE; k++) {
             char key[VT_NAME_MAX + 8];
             snprintf(key, sizeof key, "%s_%s", name, free_suffix[k]);
@@ -282,7 +295,7 @@ static int check_columns(const run *x, int floating)
             if (len < sizeof root) {
                 memcpy(root, name, len);
                 root[len] = '\0';
-                const int f = vt_find_frame(p, root);
+                const int f = find_frame(x, root);
                 if (f >= 0 && p->frame_body[f] == 0)
                     return cmd_fail("%s: column %d '%s': a floating root's column, but %s is loaded with its root "
                                     "link '%s' fixed to the world: run with --floating",
