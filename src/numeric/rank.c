@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <float.h>
+#include <string.h>
 
 #include "numeric/rank.h"
 #include "base/arena.h"
@@ -161,11 +162,18 @@ static int turning_rate(const vt_model *m, int a)
 double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag)
 {
     const int nv = m->nv, nc = m->nc;
-    double arm = 0.0, inv = 0.0;
+    double arm2 = 0.0, inv = 0.0; /* the largest |W|², √ at the end (√ is monotonic: the same ℓ) */
+    int prev = -1;                /* the last row measured: its bodies and points */
     for (int r = 0; r < nc; r++) {
         const int kind = m->con_kind[r];
         if ((flag && flag[r]) || (kind != VT_ROW_POINT && kind != VT_ROW_LINE)) continue;
         const int ba = m->con_body[2 * r], bb = m->con_body[2 * r + 1];
+        /* a cut joint's rows on the same two points (a spherical joint's three) give the same W:
+         * once */
+        if (prev >= 0 && m->con_kind[prev] == kind && m->con_body[2 * prev] == ba && m->con_body[2 * prev + 1] == bb &&
+            memcmp(m->con_point + 6 * prev, m->con_point + 6 * r, 6 * sizeof(double)) == 0)
+            continue;
+        prev = r;
         double P[2][3], dP[3];
         for (int s = 0; s < 2; s++) {
             const int b = s ? bb : ba;
@@ -173,6 +181,7 @@ double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag)
             for (int k = 0; k < 3; k++) P[s][k] += d->xrel[6 * b + k];
         }
         for (int k = 0; k < 3; k++) dP[k] = P[1][k] - P[0][k];
+        const double pn = sqrt(vt_dot3(P[0], P[0])) + sqrt(vt_dot3(P[1], P[1]));
         /* the rates that move both bodies: those of the joints from their nearest common ancestor
          * (0: none) to the ground; an ancestor's id is below its descendants', so lowering the
          * larger of the two ids meets it */
@@ -198,13 +207,14 @@ double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag)
                 }
                 /* round-off of the terms W is formed from is no lever arm (a point on the rate's
                  * axis: W 1e-15, whose 1/ℓ would scale that rate's round-off entries to O(1)) */
-                const double terms = sqrt(vt_dot3(w + 3, w + 3)) +
-                                     sqrt(vt_dot3(w, w)) * (sqrt(vt_dot3(P[0], P[0])) + sqrt(vt_dot3(P[1], P[1])));
-                const double wn = sqrt(vt_dot3(W, W));
-                if (wn > VT_ROUND_TAU * DBL_EPSILON * terms) arm = fmax(arm, wn);
+                const double w2 = vt_dot3(W, W);
+                if (w2 <= arm2) continue; /* no larger than one already counted */
+                const double terms = sqrt(vt_dot3(w + 3, w + 3)) + sqrt(vt_dot3(w, w)) * pn;
+                if (sqrt(w2) > VT_ROUND_TAU * DBL_EPSILON * terms) arm2 = w2;
             }
         }
     }
+    const double arm = sqrt(arm2);
     if (arm == 0.0)
         for (int a = 0; a < nv; a++) {
             if (turning_rate(m, a)) continue;
