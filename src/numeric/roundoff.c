@@ -112,7 +112,21 @@ int vt_rate_bounds(const vt_model *m, vt_data *d, vt_form form, double *beta)
 }
 
 /* B_r (as above) into B (nv) for row r; returns ‖B_r‖ */
-static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, const double *Lo)
+/* each rate's |ω_a|, |v_a| and whether it is a base body's ṗ rate (1, else 0), into T (3 nv):
+ * what row_terms reads of every rate, once an instant */
+static void rate_terms(const vt_model *m, const vt_data *d, double *T)
+{
+    for (int a = 0; a < m->nv; a++) {
+        const double *tw = d->twist + 6 * a;
+        const int b = m->dof_body[a];
+        int ax = 0;
+        T[3 * a] = sqrt(vt_dot3(tw, tw));
+        T[3 * a + 1] = sqrt(vt_dot3(tw + 3, tw + 3));
+        T[3 * a + 2] = vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
+    }
+}
+
+static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, const double *Lo, const double *T)
 {
     for (int a = 0; a < m->nv; a++) B[a] = 0.0;
     for (int side = 0; side < 2; side++) {
@@ -124,9 +138,8 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, c
         if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
         const double rc = Lo[b]; /* |r_b − o|, as the twists, with its round-off's size (vt_lengths_from_o) */
         for (int a = vt_last_rate(m, b); a >= 0; a = m->dof_parent[a]) { /* the path: one term a rate */
-            const double *tw = d->twist + 6 * a, wn = sqrt(vt_dot3(tw, tw)), vn = sqrt(vt_dot3(tw + 3, tw + 3));
-            int ax = 0;
-            const int own_p = m->dof_body[a] == b && vt_dof_kind(m->body_joint[b], a - m->body_vadr[b], &ax) == VT_DOF_BASE_P;
+            const double wn = T[3 * a], vn = T[3 * a + 1];
+            const int own_p = m->dof_body[a] == b && T[3 * a + 2] != 0.0;
             B[a] += fr * (vn + wn * rc) + fp * (own_p ? 1.0 : 0.5 * wn);
         }
     }
@@ -154,11 +167,13 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, vt_fo
     double *B = VT_SCRATCH(d, double, (size_t)nv * ((size_t)nc + 1), "terms of Φ_q's rows");
     double *beta = VT_SCRATCH(d, double, (size_t)nv, "round-off of M*'s diagonal");
     double *Lo = VT_SCRATCH(d, double, (size_t)m->nbody + 1, "lengths from o");
+    double *T = VT_SCRATCH(d, double, 3 * (size_t)nv, "the rates' terms");
     int *fl = VT_SCRATCH(d, int, nc + 1, "round-off rows");
     if (!fl) return vt_scratch_fail(d, mark);
     const double te = VT_ROUND_TAU * DBL_EPSILON;
     int zero_rows = 0;
     vt_lengths_from_o(m, d, Lo, 1);
+    rate_terms(m, d, T);
     for (int r = 0; r < nc; r++) {
         double *Br = B + (size_t)r * (size_t)nv;
         fl[r] = 0;
@@ -166,7 +181,7 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, vt_fo
             for (int a = 0; a < nv; a++) Br[a] = 0.0; /* exact entries: any non-zero one counts */
             continue;
         }
-        const double bn = row_terms(m, d, r, Br, Lo), rn = row_norm(m, d, r);
+        const double bn = row_terms(m, d, r, Br, Lo, T), rn = row_norm(m, d, r);
         if (!(rn > te * bn)) fl[r] = 1, zero_rows++;
     }
     if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
@@ -224,13 +239,15 @@ int vt_zero_rows_free(const vt_model *m, vt_data *d, const int *known)
     const size_t mark = vt_scratch_mark(d);
     double *B = VT_SCRATCH(d, double, (size_t)nv, "terms of Φ_q's row");
     double *Lo = VT_SCRATCH(d, double, (size_t)m->nbody + 1, "lengths from o");
-    if (!Lo) return vt_scratch_fail(d, mark);
+    double *T = VT_SCRATCH(d, double, 3 * (size_t)nv, "the rates' terms");
+    if (!T) return vt_scratch_fail(d, mark);
     const double te = VT_ROUND_TAU * DBL_EPSILON;
     int zero = 0;
     vt_lengths_from_o(m, d, Lo, 1);
+    rate_terms(m, d, T);
     for (int r = 0; r < nc; r++) {
         if (!vt_judged_row(m, r)) continue;
-        row_terms(m, d, r, B, Lo);
+        row_terms(m, d, r, B, Lo, T);
         double rn = 0.0, bn = 0.0;
         for (int a = 0; a < nv; a++) {
             if (known[a] >= 0) continue;
@@ -244,12 +261,12 @@ int vt_zero_rows_free(const vt_model *m, vt_data *d, const int *known)
 }
 
 /* The scratch roundoff.c takes at once: vt_roundoff_check's terms of Φ_q's rows (and a row for
- * the free rates), M*'s bounds, the lengths from o and its flags, and inside it vt_rate_bounds'
+ * the free rates), M*'s bounds, the lengths from o, the rates' terms and its flags, and inside it vt_rate_bounds'
  * terms of M*'s diagonal and subtree sums */
 size_t vt_roundoff_scratch(const vt_model *m)
 {
     const size_t snv = (size_t)m->nv, snc = (size_t)m->nc, nb1 = (size_t)m->nbody + 1;
     const size_t D = sizeof(double), I = sizeof(int);
     return VT_SCRATCH_BYTES(snv * (snc + 1), D) + VT_SCRATCH_BYTES(snv, D) + VT_SCRATCH_BYTES(nb1, D) +
-           VT_SCRATCH_BYTES(snc + 1, I) + VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(4 * nb1, D);
+           VT_SCRATCH_BYTES(3 * snv, D) + VT_SCRATCH_BYTES(snc + 1, I) + VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(4 * nb1, D);
 }
