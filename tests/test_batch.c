@@ -106,6 +106,17 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
     vt_data_free(d);
 }
 
+/* a batch of m on that many threads, stopping at a failure or not */
+static vt_batch *batch_of(const vt_model *m, int threads, int stop_on_error)
+{
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = threads;
+    def.stop_on_error = stop_on_error;
+    vt_batch *b = NULL;
+    assert_ok(vt_batch_create(&b, m, &def));
+    return b;
+}
+
 /* NROW random states of m: q in rows of qs ≥ nq doubles (NaN beside each row: never read), q̇,
  * and q̈ uniform in [−3, 3] */
 typedef struct {
@@ -151,10 +162,7 @@ static void test_tree_bitwise(void **state)
     double *q = st.q, *qd = st.qd, *qdd = st.qdd;
     const int threads[3] = {1, 2, 8};
     for (int t = 0; t < 3; t++) {
-        vt_batch_def def = vt_default_batch_def();
-        def.threads = threads[t];
-        vt_batch *b = NULL;
-        assert_ok(vt_batch_create(&b, m, &def));
+        vt_batch *b = batch_of(m, threads[t], 0);
         assert_int_equal(vt_batch_threads(b), threads[t]);
         outputs o;
         outputs_alloc(&o, m, NROW);
@@ -188,10 +196,7 @@ static void test_loop_bitwise(void **state)
         qdd[(size_t)r * nv + m->body_vadr[1]] = 0.3 * sin(0.2 * r); /* the crank's: the others solved */
     }
     for (int threads = 1; threads <= 8; threads *= 2) {
-        vt_batch_def def = vt_default_batch_def();
-        def.threads = threads;
-        vt_batch *b = NULL;
-        assert_ok(vt_batch_create(&b, m, &def));
+        vt_batch *b = batch_of(m, threads, 0);
         outputs o;
         outputs_alloc(&o, m, n);
         vt_batch_io io = io_of(&o, n, q, 0, qd, qdd);
@@ -220,10 +225,7 @@ static void test_failing_rows(void **state)
     q[37 * (size_t)nq] = NAN;
     qdd[101 * (size_t)nv + 1] = INFINITY;
     for (int threads = 1; threads <= 8; threads *= 2) {
-        vt_batch_def def = vt_default_batch_def();
-        def.threads = threads;
-        vt_batch *b = NULL;
-        assert_ok(vt_batch_create(&b, m, &def));
+        vt_batch *b = batch_of(m, threads, 0);
         outputs o;
         outputs_alloc(&o, m, NROW);
         outputs_fill(&o, m, NROW, 42.0);
@@ -244,11 +246,7 @@ static void test_failing_rows(void **state)
         vt_batch_free(b);
     }
     /* stop_on_error, one thread: rows before 37 solved, 37 failed, the rest skipped */
-    vt_batch_def def = vt_default_batch_def();
-    def.threads = 1;
-    def.stop_on_error = 1;
-    vt_batch *b = NULL;
-    assert_ok(vt_batch_create(&b, m, &def));
+    vt_batch *b = batch_of(m, 1, 1);
     outputs o;
     outputs_alloc(&o, m, NROW);
     vt_batch_io io = io_of(&o, NROW, q, 0, qd, qdd);
@@ -259,8 +257,7 @@ static void test_failing_rows(void **state)
     /* two threads (rows 0-100 and 101-202): each block stops at a failure, its own or the other's,
      * whichever comes first; the failing row reported is the lowest of those reached, and every
      * row reported solved is right */
-    def.threads = 2;
-    assert_ok(vt_batch_create(&b, m, &def));
+    b = batch_of(m, 2, 1);
     assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
     const int failed = vt_batch_failed_row(b);
     assert_true(failed == 37 || failed == 101);

@@ -41,10 +41,7 @@ typedef struct {
 
 vt_batch_def vt_default_batch_def(void)
 {
-    vt_batch_def def = {0};
-    def.threads = 0;
-    def.stop_on_error = 0;
-    return def;
+    return (vt_batch_def){.threads = 0, .stop_on_error = 0};
 }
 
 /* the CPUs this process may run on (its affinity), at least 1 */
