@@ -1147,7 +1147,8 @@ static void rod_x_inertia(double J[9], double mass, double length, double radius
     J[4] = J[8] = mass * (3.0 * radius * radius + length * length) / 12.0;
 }
 
-vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar)
+vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function motor, int planar, const double mass[4],
+                             int drives)
 {
     vt_model_def md = vt_default_model_def();
     md.allow_redundant = !planar;
@@ -1156,31 +1157,31 @@ vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, in
     if (st) return st;
     const double ls = VT_KN_C + VT_KN_L, cs = 0.5 * ls - VT_KN_C; /* shank rod; its centre from the knee */
     vt_body_def thigh = vt_default_body_def();
-    thigh.mass = 1.5;
-    rod_x_inertia(thigh.inertia, 1.5, VT_KN_D, 0.01);
+    thigh.mass = mass[0];
+    rod_x_inertia(thigh.inertia, mass[0], VT_KN_D, 0.01);
     thigh.joint_child[0] = -0.5 * VT_KN_D;
     thigh.name = "thigh";
     int id = vt_builder_add_body(b, &thigh);
     vt_body_def crank = vt_default_body_def();
     crank.parent = 1;
-    crank.mass = 0.1;
-    rod_x_inertia(crank.inertia, 0.1, VT_KN_A, 0.01);
+    crank.mass = mass[1];
+    rod_x_inertia(crank.inertia, mass[1], VT_KN_A, 0.01);
     crank.joint_parent[0] = -0.5 * VT_KN_D; /* the hip, on the thigh */
     crank.joint_child[0] = -0.5 * VT_KN_A;
     crank.name = "crank";
     if (id > 0) id = vt_builder_add_body(b, &crank);
     vt_body_def coupler = vt_default_body_def(); /* revolute about z at the crank's tip */
     coupler.parent = 2;
-    coupler.mass = 0.08;
-    rod_x_inertia(coupler.inertia, 0.08, VT_KN_B, 0.01);
+    coupler.mass = mass[2];
+    rod_x_inertia(coupler.inertia, mass[2], VT_KN_B, 0.01);
     coupler.joint_parent[0] = 0.5 * VT_KN_A;
     coupler.joint_child[0] = -0.5 * VT_KN_B;
     coupler.name = "coupler";
     if (id > 0) id = vt_builder_add_body(b, &coupler);
     vt_body_def shank = vt_default_body_def();
     shank.parent = 1;
-    shank.mass = 0.5;
-    rod_x_inertia(shank.inertia, 0.5, ls, 0.01);
+    shank.mass = mass[3];
+    rod_x_inertia(shank.inertia, mass[3], ls, 0.01);
     shank.joint_parent[0] = 0.5 * VT_KN_D; /* the knee, on the thigh */
     shank.joint_child[0] = -cs;
     shank.name = "shank";
@@ -1198,6 +1199,7 @@ vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, in
         id = vt_builder_add_cut_joint(b, &cut);
     }
     for (int k = 0; k < 2 && id >= 0; k++) {
+        if (!(drives & (1 << k))) continue;
         vt_drive_def dr = vt_default_drive_def();
         dr.body = 1 + k;
         dr.f = k ? motor : hip;
@@ -1205,6 +1207,12 @@ vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, in
         id = vt_builder_add_drive(b, &dr);
     }
     return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar)
+{
+    static const double mass[4] = {1.5, 0.1, 0.08, 0.5};
+    return vt_scene_knee_with(model, hip, motor, planar, mass, 3);
 }
 
 int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1, double thm, double wm, double knee[2])

@@ -20,7 +20,7 @@
 !         call vt_body_array(jf, d%jnt_force, 3, m%nbody)    ! jf(1:3, 0:nbody), column i = body i
 !     These are views of the C memory: writing q(1) sets the C data's q[0].
 !     The data's arena (the stages' scratch, an opaque vt_arena) is a type(c_ptr) to leave
-!     alone, and the model's internal fields (con_kind ... bound_mass, last in vt_model)
+!     alone, and the model's internal fields (con_kind ... mass_spread, last in vt_model)
 !     are mirrored only to keep the layout: their meaning may change in any release.
 !   - Definition structs are plain values: start from the defaults and set what you need,
 !         type(vt_body_def) :: link;   link = vt_default_body_def();   link%mass = 100
@@ -254,6 +254,7 @@ module vtdyn
     integer(c_int)         :: has_quaternions
     real(c_double)         :: bound_length
     real(c_double)         :: bound_mass
+    real(c_double)         :: mass_spread
   end type vt_model
 
   type, bind(C) :: vt_data

@@ -491,6 +491,7 @@ typedef struct vt_model {
     int has_quaternions;     ///< internal: 1 if some joint's q holds Euler parameters (spherical, free, base)
     double bound_length;     ///< internal: m, Σ of the joints' offsets |s^{ij}| + |s^{ji}| over the bodies
     double bound_mass;       ///< internal: the largest m + 3 max |J_kl| of a body
+    double mass_spread;      ///< internal: the largest body mass over the smallest positive one
 } vt_model;
 
 /// Scratch space of the stages, inside the data (opaque; its size is fixed by the model).

@@ -41,6 +41,7 @@
 #include "base/status.h"
 #include "model/model.h"
 #include "numeric/maximal.h"
+#include "numeric/skeel.h"
 #include "numeric/rank.h"
 #include "numeric/roundoff.h"
 #include "numeric/route.h"
@@ -193,6 +194,21 @@ static int maximal_alternative(const vt_model *m, vt_data *d, double *rcond, dou
     return r < 0 ? r : take;
 }
 
+/* Over a spread of masses (vt_answer_size: VT_SPREAD_ESTIMATE between the heaviest and the
+ * lightest body), an answer with free rates takes the smaller of its route's estimate and the
+ * reciprocal of its componentwise condition on (5) (skeel.c): M* and Q hold their entries to ε
+ * of their size, and what the answer loses by that the routes' estimates, in the mass metric,
+ * do not see. Sets *spread where it is the smaller. sol: [q̈; λ], or [q̈; −λ] (neg). */
+static int spread_estimate(const vt_model *m, vt_data *d, const double *sol, int neg, double *rcond, int *spread)
+{
+    if (!vt_answer_size(m)) return 0;
+    double rc = 1.0;
+    const int st = vt_answer_condition(m, d, sol, neg, &rc);
+    if (st < 0) return st;
+    if (rc < *rcond) *rcond = rc, *spread = 1;
+    return 0;
+}
+
 /* The routes, cheapest first (the model's rows decide; vt_data.route records the one taken):
  *   FREE_RATES  every row a joint drive on a rate of its own (vt_free_rates_solve)
  *   REDUNDANT   allow_redundant, and vt_rows_decide drops a direction: dependent to round-off, or
@@ -240,13 +256,15 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form
         if ((st = vt_free_rates_solve(m, d, &rcond, &r))) return st;
         d->rank = nc; /* one unit row on a rate of its own each: independent */
         vt_route route = VT_ROUTE_FREE_RATES;
-        if (form == VT_FORM_DENSE && r == VT_SOLVED && vt_maximal_wanted(m, rcond)) {
+        int spread = 0;
+        if (r == VT_SOLVED && (vt_answer_size(m) || (form == VT_FORM_DENSE && vt_maximal_wanted(m, rcond)))) {
             const size_t mark = vt_scratch_mark(d);
             double *sol = VT_SCRATCH(d, double, (size_t)nv + (size_t)nc, "solution");
             if (!sol) return vt_scratch_fail(d, mark);
             memcpy(sol, d->qdd, (size_t)nv * sizeof(double));
             memcpy(sol + nv, d->lambda, (size_t)nc * sizeof(double));
-            const int t = maximal_wanted(m, d, r, rcond, sol, 0) ? maximal_alternative(m, d, &rcond, sol) : 0;
+            int t = spread_estimate(m, d, sol, 0, &rcond, &spread);
+            if (t == 0 && form == VT_FORM_DENSE && maximal_wanted(m, d, r, rcond, sol, 0)) t = maximal_alternative(m, d, &rcond, sol);
             if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
             if (t == 1) {
                 memcpy(d->qdd, sol, (size_t)nv * sizeof(double));
@@ -254,8 +272,10 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form
                 route = VT_ROUTE_MAXIMAL;
             }
             vt_scratch_release(d, mark);
+            if (route == VT_ROUTE_FREE_RATES && spread && rcond < m->rcond_min) r = VT_BELOW_MIN;
         }
-        if (r == VT_BELOW_MIN) return d->rcond = rcond, singular(m, d, "free rates' scaled M*", rcond, NULL);
+        if (r == VT_BELOW_MIN)
+            return d->rcond = rcond, singular(m, d, spread ? "system (5) at its answer, componentwise," : "free rates' scaled M*", rcond, NULL);
         vt_solved(m, d, route, rcond);
         return VT_OK;
     }
@@ -335,15 +355,22 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form
         break;
     }
     /* r is VT_SOLVED or VT_BELOW_MIN here */
+    int spread = 0;
+    if (r == VT_SOLVED && route != VT_ROUTE_SQUARE) {
+        const int t = spread_estimate(m, d, sol, route == VT_ROUTE_AUGMENTED, &rcond, &spread);
+        if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
+    }
     if (form == VT_FORM_DENSE && !zero_rows && route != VT_ROUTE_SQUARE && maximal_wanted(m, d, r, rcond, sol, route == VT_ROUTE_AUGMENTED)) {
         const int t = maximal_alternative(m, d, &rcond, sol);
         if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
         if (t == 1) route = VT_ROUTE_MAXIMAL, r = VT_SOLVED;
     }
+    if (route != VT_ROUTE_MAXIMAL && spread && rcond < m->rcond_min) r = VT_BELOW_MIN;
     if (r == VT_BELOW_MIN) {
         /* below rcond_min: dependent rows, or a singular or ill-conditioned matrix */
         d->rcond = rcond;
-        const char *what = route == VT_ROUTE_SQUARE ? "scaled Φ_q (squared)"
+        const char *what = route != VT_ROUTE_MAXIMAL && spread ? "system (5) at its answer, componentwise,"
+                         : route == VT_ROUTE_SQUARE ? "scaled Φ_q (squared)"
                          : route == VT_ROUTE_SCHUR  ? "Schur complement of the scaled (5)"
                                                     : "scaled augmented matrix of (5)";
         if (nc == 0) st = singular(m, d, what, rcond, NULL);
@@ -400,5 +427,6 @@ vt_status vt_solve_run(const vt_model *m, vt_data *d, double band)
 size_t vt_solve_scratch(const vt_model *m)
 {
     const size_t sN = (size_t)m->nv + (size_t)m->nc, D = sizeof(double);
-    return 3 * VT_SCRATCH_BYTES(sN, D) + VT_SCRATCH_BYTES((size_t)m->nbody + 1, D) + 8 * VT_DATA_ALIGN;
+    return 3 * VT_SCRATCH_BYTES(sN, D) + VT_SCRATCH_BYTES((size_t)m->nbody + 1, D) + vt_answer_scratch(m) +
+           8 * VT_DATA_ALIGN;
 }

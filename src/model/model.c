@@ -187,8 +187,9 @@ static void build_rows(vt_model *m)
     /* the sizes behind the fused passes' overflow bound (recursive.c, fused_bounded): every lever
      * arm of the tree at any pose is shorter than the sum of its offsets (Inf if that overflows:
      * no bound, the outputs are scanned) */
-    double len = 0.0, mass = 0.0;
+    double len = 0.0, mass = 0.0, mmin = HUGE_VAL, mmax = 0.0;
     for (int i = 1; i <= m->nbody; i++) {
+        if (m->body_mass[i] > 0.0) mmin = fmin(mmin, m->body_mass[i]), mmax = fmax(mmax, m->body_mass[i]);
         double a[3], b[3];
         vt_copy3(a, m->body_jpar + 3 * i);
         vt_copy3(b, m->body_jchild + 3 * i);
@@ -198,6 +199,7 @@ static void build_rows(vt_model *m)
         mass = fmax(mass, m->body_mass[i] + 3.0 * jmax);
     }
     m->bound_length = len;
+    m->mass_spread = mmax > 0.0 ? mmax / mmin : 1.0;
     m->bound_mass = mass;
 }
 

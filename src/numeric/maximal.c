@@ -45,7 +45,7 @@
  *
  * (Â = R A C, x̂ = C^{-1} x, b̂ = R b): the relative change of q̈ and λ that relative changes of ε
  * in every entry of the matrix and the right side can cause, measured by LAPACK's dlacn2
- * (Higham's estimator, as dgerfs measures its error bound) with two solves per step. It does
+ * (Higham's estimator, as dgerfs measures its error bound; numeric/skeel.c). It does
  * not see inertia spread that leaves the answer well determined. Relative to the answer itself
  * it does not see rows that lose their independence either (their multipliers grow with it):
  * solve.c bounds it by the rows' own condition and the grip, and takes this route only after a
@@ -57,6 +57,7 @@
 #include <string.h>
 
 #include "numeric/maximal.h"
+#include "numeric/skeel.h"
 #include "base/arena.h"
 #include "base/euler.h"
 #include "base/lapack.h"
@@ -221,36 +222,6 @@ void vt_maximal_system(const vt_model *m, const vt_data *d, double *A, double *b
     assemble(m, d, &s, b);
 }
 
-/* Â^{-1} v (trans 'N') or Â^{-T} v ('T') by the LU */
-static int lu_solve(const char *trans, const double *LU, const int *ipiv, int N, double *v)
-{
-    const int one = 1;
-    int info = 0;
-    dgetrs_(trans, &N, &one, LU, &N, ipiv, v, &N, &info, 1);
-    return info;
-}
-
-/* ‖P |Â^{-1}| w‖_∞ = ‖W Â^{-T} P‖_1 by dlacn2, P the unknowns lo..hi−1 (−1 where a solve fails) */
-static double skeel(const double *A, const int *ipiv, int N, const double *w, int lo, int hi, double *v, double *z,
-                    int *isgn)
-{
-    double est = 0.0;
-    int kase = 0, isave[3] = {0, 0, 0};
-    for (;;) {
-        dlacn2_(&N, v, z, isgn, &est, &kase, isave);
-        if (kase == 0) return est;
-        if (kase == 1) { /* z ← W Â^{-T} P z */
-            for (int r = 0; r < N; r++) z[r] = r >= lo && r < hi ? z[r] : 0.0;
-            if (lu_solve("T", A, ipiv, N, z)) return -1.0;
-            for (int r = 0; r < N; r++) z[r] *= w[r];
-        } else { /* z ← P Â^{-1} W z */
-            for (int r = 0; r < N; r++) z[r] *= w[r];
-            if (lu_solve("N", A, ipiv, N, z)) return -1.0;
-            for (int r = 0; r < N; r++) z[r] = r >= lo && r < hi ? z[r] : 0.0;
-        }
-    }
-}
-
 int vt_maximal_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_out)
 {
     *rcond_out = 0.0;
@@ -276,7 +247,7 @@ int vt_maximal_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_o
     dgetrf_(&N, &N, A, &N, ipiv, &info);
     if (info != 0) return vt_scratch_release(d, mark), 1; /* an exactly zero pivot */
     for (int r = 0; r < N; r++) x[r] = R[r] * b[r];
-    if (lu_solve("N", A, ipiv, N, x)) return vt_scratch_release(d, mark), 1;
+    if (vt_lu_solve("N", A, ipiv, N, x)) return vt_scratch_release(d, mark), 1;
     for (int c = 0; c < N; c++) x[c] *= C[c]; /* x = C x̂ */
     if (!vt_all_finite(x, N)) return vt_scratch_release(d, mark), 1;
     /* one step of refinement with the residual in working precision: a componentwise small
@@ -285,7 +256,7 @@ int vt_maximal_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_o
     sink t = {NULL, x, w, N, 0};
     assemble(m, d, &t, NULL);
     for (int r = 0; r < N; r++) z[r] = R[r] * (b[r] - w[r]);
-    if (lu_solve("N", A, ipiv, N, z)) return vt_scratch_release(d, mark), 1;
+    if (vt_lu_solve("N", A, ipiv, N, z)) return vt_scratch_release(d, mark), 1;
     for (int c = 0; c < N; c++) x[c] += C[c] * z[c];
     if (!vt_all_finite(x, N)) return vt_scratch_release(d, mark), 1;
     /* w = R (|A| |x| + |b|) = |Â| |x̂| + |b̂| */
@@ -301,7 +272,7 @@ int vt_maximal_solve(const vt_model *m, vt_data *d, double *sol, double *rcond_o
         double xmax = 0.0;
         for (int r = lo; r < hi; r++) xmax = fmax(xmax, fabs(x[r] / C[r]));
         if (lo == hi) continue;
-        const double est = skeel(A, ipiv, N, w, lo, hi, v, z, isgn);
+        const double est = vt_skeel_norm(A, ipiv, N, w, NULL, lo, hi, v, z, isgn);
         if (est < 0.0) return vt_scratch_release(d, mark), 1;
         const double k = xmax > 0.0 ? est / xmax : est > 0.0 ? HUGE_VAL : 1.0;
         kappa = fmax(kappa, k);

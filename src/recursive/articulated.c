@@ -485,7 +485,7 @@ vt_status vt_articulated_instant(const vt_model *m, vt_data *d, vt_handoff *to)
     aba_work w;
     if (aba_take(m, d, nr, &w)) return vt_scratch_fail(d, mark);
     const int r = articulated_solve(m, d, &w, &rcond);
-    if (r || vt_maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) {
+    if (r || vt_maximal_instead(m, d, VT_ROUTE_ARTICULATED, rcond)) {
         vt_scratch_release(d, mark);
         if (r < 0) return (vt_status)r;
         if (r) return vt_factorized_instant(m, d, to);

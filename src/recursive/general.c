@@ -39,6 +39,7 @@
 #include "kinematics/body.h"
 #include "kinematics/kinematics.h"
 #include "numeric/maximal.h"
+#include "numeric/skeel.h"
 #include "dense/reactions.h"
 #include "dense/solve.h"
 #include "numeric/roundoff.h"
@@ -240,10 +241,13 @@ static vt_status composite_precision(const vt_model *m, vt_data *d, vt_handoff *
  * estimate on M*, the drives' cancellation; maximal.c, solve.c). The two paths' estimates
  * measure the same system but not always alike: a point mass 1e6 m from its joint gave 7.6e-6
  * here and below rcond_warn on M*, where the articulated answer had lost 1.45e-6 and the
- * maximal route's kept 5e-12 (fuzz/findings.md) */
-int vt_maximal_instead(const vt_model *m, vt_route route, double rcond)
+ * maximal route's kept 5e-12 (fuzz/findings.md). Over a spread of masses (vt_answer_size), the
+ * articulated route, which forms no M*, gives way to the dense stages for their componentwise
+ * estimate on (5) (skeel.c), where the data holds M* (VT_LAYOUT_FULL) */
+int vt_maximal_instead(const vt_model *m, const vt_data *d, vt_route route, double rcond)
 {
-    return route != VT_ROUTE_SQUARE && route != VT_ROUTE_REDUNDANT && vt_maximal_wanted(m, rcond);
+    if (route == VT_ROUTE_SQUARE || route == VT_ROUTE_REDUNDANT) return 0;
+    return vt_maximal_wanted(m, rcond) || (route == VT_ROUTE_ARTICULATED && d->Mstar && vt_answer_size(m));
 }
 
 /* (5) solved by vt_solve on the composite M*: its answer judged by composite_precision against
@@ -261,7 +265,7 @@ vt_status vt_composite_solve(const vt_model *m, vt_data *d, vt_handoff *to)
     }
     if (st || *to) return st;
     const vt_status sp = composite_precision(m, d, to);
-    if (!sp && !*to && vt_maximal_instead(m, d->route, d->rcond)) *to = VT_HANDOFF_MAXIMAL;
+    if (!sp && !*to && vt_maximal_instead(m, d, d->route, d->rcond)) *to = VT_HANDOFF_MAXIMAL;
     return sp;
 }
 

@@ -222,7 +222,7 @@ static inline vt_status recursive_instant(const vt_model *m, vt_data *d, formed_
         int r = 1;
         if (m->joint_mix >= 0) r = vt_articulated_free_rates(m, d, &rcond); /* by articulated bodies */
         if (r < 0) return (vt_status)r;
-        if (r == 0 && vt_maximal_instead(m, VT_ROUTE_ARTICULATED, rcond)) {
+        if (r == 0 && vt_maximal_instead(m, d, VT_ROUTE_ARTICULATED, rcond)) {
             d->fallback |= VT_FALLBACK_ARTICULATED_CONDITION;
             *to = VT_HANDOFF_MAXIMAL;
             return VT_OK;
