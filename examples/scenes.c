@@ -1148,7 +1148,7 @@ static void rod_x_inertia(double J[9], double mass, double length, double radius
 }
 
 vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function motor, int planar, const double mass[4],
-                             int drives)
+                             int drives, const double effects[][3])
 {
     vt_model_def md = vt_default_model_def();
     md.allow_redundant = !planar;
@@ -1161,6 +1161,7 @@ vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function moto
     rod_x_inertia(thigh.inertia, mass[0], VT_KN_D, 0.01);
     thigh.joint_child[0] = -0.5 * VT_KN_D;
     thigh.name = "thigh";
+    if (effects) thigh.armature[0] = effects[0][0], thigh.damping[0] = effects[0][1], thigh.friction[0] = effects[0][2];
     int id = vt_builder_add_body(b, &thigh);
     vt_body_def crank = vt_default_body_def();
     crank.parent = 1;
@@ -1169,6 +1170,7 @@ vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function moto
     crank.joint_parent[0] = -0.5 * VT_KN_D; /* the hip, on the thigh */
     crank.joint_child[0] = -0.5 * VT_KN_A;
     crank.name = "crank";
+    if (effects) crank.armature[0] = effects[1][0], crank.damping[0] = effects[1][1], crank.friction[0] = effects[1][2];
     if (id > 0) id = vt_builder_add_body(b, &crank);
     vt_body_def coupler = vt_default_body_def(); /* revolute about z at the crank's tip */
     coupler.parent = 2;
@@ -1177,6 +1179,7 @@ vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function moto
     coupler.joint_parent[0] = 0.5 * VT_KN_A;
     coupler.joint_child[0] = -0.5 * VT_KN_B;
     coupler.name = "coupler";
+    if (effects) coupler.armature[0] = effects[2][0], coupler.damping[0] = effects[2][1], coupler.friction[0] = effects[2][2];
     if (id > 0) id = vt_builder_add_body(b, &coupler);
     vt_body_def shank = vt_default_body_def();
     shank.parent = 1;
@@ -1185,6 +1188,7 @@ vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function moto
     shank.joint_parent[0] = 0.5 * VT_KN_D; /* the knee, on the thigh */
     shank.joint_child[0] = -cs;
     shank.name = "shank";
+    if (effects) shank.armature[0] = effects[3][0], shank.damping[0] = effects[3][1], shank.friction[0] = effects[3][2];
     if (id > 0) id = vt_builder_add_body(b, &shank);
     if (id > 0) {
         /* a revolute about z (the shank's z): planar, its 2 in-plane rows, which with the 2
@@ -1212,7 +1216,7 @@ vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function moto
 vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar)
 {
     static const double mass[4] = {1.5, 0.1, 0.08, 0.5};
-    return vt_scene_knee_with(model, hip, motor, planar, mass, 3);
+    return vt_scene_knee_with(model, hip, motor, planar, mass, 3, NULL);
 }
 
 int vt_scene_knee_assemble(const vt_model *m, vt_data *d, double th1, double w1, double thm, double wm, double knee[2])

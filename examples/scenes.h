@@ -342,10 +342,11 @@ void vt_scene_stewart_assemble(const vt_model *model, vt_data *data, const vt_st
 #define VT_KN_L 0.30   /* shank, knee to foot */
 vt_status vt_scene_knee(vt_model **model, vt_function hip, vt_function motor, int planar);
 /* the same loop with the links' masses mass[4] (thigh, crank, coupler, shank, kg; each link's
- * inertia its rod's at that mass) and the drives a mask: 1 the hip, 2 the knee motor (3: both, as
- * vt_scene_knee) */
+ * inertia its rod's at that mass), the drives a mask: 1 the hip, 2 the knee motor (3: both, as
+ * vt_scene_knee), and each link's joint's armature, damping and friction (effects[4][3]; NULL:
+ * none) */
 vt_status vt_scene_knee_with(vt_model **model, vt_function hip, vt_function motor, int planar, const double mass[4],
-                             int drives);
+                             int drives, const double effects[][3]);
 /* q and q̇ of the knee at hip angle th1 (rad, rate w1) and motor angle thm (rad, rate wm): the
  * loop closed on the branch where the lever follows the crank (ψ near thm). Writes the knee
  * angle and rate into knee[2] if not NULL. Returns 0, or -1 where the loop cannot close. */

@@ -20,7 +20,7 @@
 !         call vt_body_array(jf, d%jnt_force, 3, m%nbody)    ! jf(1:3, 0:nbody), column i = body i
 !     These are views of the C memory: writing q(1) sets the C data's q[0].
 !     The data's arena (the stages' scratch, an opaque vt_arena) is a type(c_ptr) to leave
-!     alone, and the model's internal fields (con_kind ... mass_spread, last in vt_model)
+!     alone, and the model's internal fields (con_kind ... has_effects, last in vt_model)
 !     are mirrored only to keep the layout: their meaning may change in any release.
 !   - Definition structs are plain values: start from the defaults and set what you need,
 !         type(vt_body_def) :: link;   link = vt_default_body_def();   link%mass = 100
@@ -183,6 +183,11 @@ module vtdyn
     real(c_double)         :: limit_upper(2)
     real(c_double)         :: limit_velocity(2)
     real(c_double)         :: limit_effort(2)
+    real(c_double)         :: armature(2)
+    real(c_double)         :: damping(2)
+    real(c_double)         :: friction(2)
+    real(c_double)         :: friction_velocity(2)
+    real(c_double)         :: gear_ratio(2)
   end type vt_body_def
 
   type, bind(C) :: vt_frame_def
@@ -216,6 +221,7 @@ module vtdyn
     type(c_ptr)            :: dof_parent
     type(c_ptr)            :: q0
     type(c_ptr)            :: dof_limit
+    type(c_ptr)            :: dof_effects
     type(c_ptr)            :: body_name
     type(c_ptr)            :: joint_name
     type(c_ptr)            :: drive_name
@@ -255,6 +261,7 @@ module vtdyn
     real(c_double)         :: bound_length
     real(c_double)         :: bound_mass
     real(c_double)         :: mass_spread
+    integer(c_int)         :: has_effects
   end type vt_model
 
   type, bind(C) :: vt_data
@@ -302,6 +309,9 @@ module vtdyn
     type(c_ptr)            :: xdd
     type(c_ptr)            :: alpha
     type(c_ptr)            :: qfrc_drive
+    type(c_ptr)            :: effort_armature
+    type(c_ptr)            :: effort_damping
+    type(c_ptr)            :: effort_friction
     type(c_ptr)            :: drive_effort
     type(c_ptr)            :: drive_force
     type(c_ptr)            :: drive_moment

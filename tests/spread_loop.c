@@ -34,7 +34,7 @@ int main(void)
                 const double ph = 0.9 * pose;
                 vt_function hip = vt_function_sine(-0.25 * PI, 0.35, om, ph), motor = vt_function_sine(0.5 * PI, 0.4, om, 0.8 + ph);
                 vt_model *m;
-                if (vt_scene_knee_with(&m, hip, motor, 1, dist[di], drives)) return 1;
+                if (vt_scene_knee_with(&m, hip, motor, 1, dist[di], drives, NULL)) return 1;
                 for (int path = 0; path < 2; path++) {
                     vt_data *d;
                     if (vt_data_create(&d, m)) return 1;

@@ -54,7 +54,9 @@ program test_fortran_layout
          a(c_loc(x_body_def%inertia)), a(c_loc(x_body_def%joint_parent)), a(c_loc(x_body_def%joint_child)), &
          a(c_loc(x_body_def%axis1)), a(c_loc(x_body_def%axis2)), a(c_loc(x_body_def%orientation)), &
          a(c_loc(x_body_def%name)), a(c_loc(x_body_def%joint_name)), a(c_loc(x_body_def%limit_lower)), &
-         a(c_loc(x_body_def%limit_upper)), a(c_loc(x_body_def%limit_velocity)), a(c_loc(x_body_def%limit_effort))])
+         a(c_loc(x_body_def%limit_upper)), a(c_loc(x_body_def%limit_velocity)), a(c_loc(x_body_def%limit_effort)), &
+         a(c_loc(x_body_def%armature)), a(c_loc(x_body_def%damping)), a(c_loc(x_body_def%friction)), &
+         a(c_loc(x_body_def%friction_velocity)), a(c_loc(x_body_def%gear_ratio))])
     call check(5_c_int, 'vt_model', c_sizeof(x_model), a(c_loc(x_model)), [ &
          a(c_loc(x_model%nbody)), a(c_loc(x_model%nq)), a(c_loc(x_model%nv)), a(c_loc(x_model%nx)), &
          a(c_loc(x_model%gravity)), a(c_loc(x_model%body_parent)), a(c_loc(x_model%body_joint)), &
@@ -63,6 +65,7 @@ program test_fortran_layout
          a(c_loc(x_model%body_jpar)), a(c_loc(x_model%body_jchild)), a(c_loc(x_model%body_axis)), &
          a(c_loc(x_model%body_quat0)), a(c_loc(x_model%body_pathnum)), a(c_loc(x_model%maxpath)), &
          a(c_loc(x_model%dof_body)), a(c_loc(x_model%dof_parent)), a(c_loc(x_model%q0)), a(c_loc(x_model%dof_limit)), &
+         a(c_loc(x_model%dof_effects)), &
          a(c_loc(x_model%body_name)), a(c_loc(x_model%joint_name)), a(c_loc(x_model%drive_name)), &
          a(c_loc(x_model%cut_name)), a(c_loc(x_model%coupling_name)), a(c_loc(x_model%nframe)), &
          a(c_loc(x_model%frame_name)), &
@@ -77,7 +80,8 @@ program test_fortran_layout
          a(c_loc(x_model%con_dof)), a(c_loc(x_model%con_vec)), a(c_loc(x_model%con_point)), &
          a(c_loc(x_model%joint_driven)), a(c_loc(x_model%joint_rows_only)), &
          a(c_loc(x_model%joint_mix)), a(c_loc(x_model%has_quaternions)), &
-         a(c_loc(x_model%bound_length)), a(c_loc(x_model%bound_mass)), a(c_loc(x_model%mass_spread))])
+         a(c_loc(x_model%bound_length)), a(c_loc(x_model%bound_mass)), a(c_loc(x_model%mass_spread)), &
+         a(c_loc(x_model%has_effects))])
     call check(6_c_int, 'vt_data', c_sizeof(x_data), a(c_loc(x_data)), [ &
          a(c_loc(x_data%model)), a(c_loc(x_data%block)), a(c_loc(x_data%time)), a(c_loc(x_data%q)), &
          a(c_loc(x_data%qd)), a(c_loc(x_data%xfrc)), a(c_loc(x_data%qfrc)), a(c_loc(x_data%x)), &
@@ -90,7 +94,9 @@ program test_fortran_layout
          a(c_loc(x_data%qdd)), a(c_loc(x_data%lambda)), a(c_loc(x_data%route)), a(c_loc(x_data%fallback)), &
          a(c_loc(x_data%rcond)), a(c_loc(x_data%warning)), a(c_loc(x_data%rank)), a(c_loc(x_data%residual)), &
          a(c_loc(x_data%lambda_unique)), a(c_loc(x_data%lambda_null)), a(c_loc(x_data%xdd)), &
-         a(c_loc(x_data%alpha)), a(c_loc(x_data%qfrc_drive)), a(c_loc(x_data%drive_effort)), a(c_loc(x_data%drive_force)), &
+         a(c_loc(x_data%alpha)), a(c_loc(x_data%qfrc_drive)), a(c_loc(x_data%effort_armature)), &
+         a(c_loc(x_data%effort_damping)), a(c_loc(x_data%effort_friction)), a(c_loc(x_data%drive_effort)), &
+         a(c_loc(x_data%drive_force)), &
          a(c_loc(x_data%drive_moment)), a(c_loc(x_data%jnt_force)), a(c_loc(x_data%jnt_moment)), &
          a(c_loc(x_data%jnt_force_body)), a(c_loc(x_data%jnt_moment_body)), &
          a(c_loc(x_data%jnt_force_total)), a(c_loc(x_data%jnt_moment_total)), &

@@ -81,7 +81,7 @@ static vt_status spread_knee(vt_model **m, int drives)
 {
     static const double mass[4] = {1e-6, 3e5, 1.0, 1e-3}; /* thigh, crank, coupler, shank */
     return vt_scene_knee_with(m, vt_function_sine(-0.785, 0.35, 2.0, 0.0), vt_function_sine(1.57, 0.4, 2.0, 0.8), 1,
-                              mass, drives);
+                              mass, drives, NULL);
 }
 
 static void test_answer_size(void **state)

@@ -395,6 +395,18 @@ typedef struct vt_body_def {
     double limit_upper[2];      ///< highest coordinate (≥ limit_lower); default +∞
     double limit_velocity[2];   ///< largest |rate|, rad/s or m/s (≥ 0); default +∞
     double limit_effort[2];     ///< largest |effort|, N·m or N (≥ 0); default +∞
+    /* The joint's own effects on its first two rates (as the limits), which the efforts include
+     * (docs/guide.md, "Real joints"): a rate's effort is its rigid-body part plus
+     * armature q̈ + damping q̇ + friction s(q̇), and a rate no drive fixes feels them as passive
+     * forces. Spherical, free and base joints have none. */
+    double armature[2];         ///< reflected rotor inertia, kg·m² (turning) or kg (sliding), ≥ 0; default 0
+    double damping[2];          ///< viscous damping, N·m·s/rad or N·s/m, ≥ 0; default 0
+    double friction[2];         ///< Coulomb friction, N·m or N, ≥ 0: s(q̇) = sign(q̇), 0 at q̇ = 0; default 0
+    double friction_velocity[2];///< rad/s or m/s, ≥ 0: where > 0 the smooth law s(q̇) = tanh(q̇ / v) (for a
+                                ///< forward run: no jump at rest); default 0 (the sign)
+    double gear_ratio[2];       ///< N ≠ 0: armature, damping and friction are stated on the motor's side of
+                                ///< a gear of ratio N (motor turns per joint turn) and taken as N² J, N² b
+                                ///< and |N| f on the joint's; default 1
 } vt_body_def;
 
 /// A frame: a named point and orientation moving with a body (a tool point, a sensor, a file's
@@ -446,6 +458,8 @@ typedef struct vt_model {
                              ///< Euler parameters (nq)
     double *dof_limit;       ///< per rate: lowest and highest coordinate, largest |rate| and |effort|
                              ///< from the body definitions, ±∞ where none (4 x nv)
+    double *dof_effects;     ///< per rate: armature, damping, friction and friction velocity on the
+                             ///< joint's side (gear ratio applied), 0 where none (4 x nv)
 
     /* names (VT_NAME_MAX bytes each, "" where unnamed) and frames */
     char *body_name;         ///< body i's name at body_name + VT_NAME_MAX i; the ground's is "" (nbody+1)
@@ -492,6 +506,7 @@ typedef struct vt_model {
     double bound_length;     ///< internal: m, Σ of the joints' offsets |s^{ij}| + |s^{ji}| over the bodies
     double bound_mass;       ///< internal: the largest m + 3 max |J_kl| of a body
     double mass_spread;      ///< internal: the largest body mass over the smallest positive one
+    int has_effects;         ///< internal: some rate has armature, damping or friction
 } vt_model;
 
 /// Scratch space of the stages, inside the data (opaque; its size is fixed by the model).
@@ -589,6 +604,11 @@ typedef struct vt_data {
                              ///< given (vt_inverse_dynamics_motion), every rate's: M* q̈ − Q (a free
                              ///< joint's six: the force and the moment about its joint point, in the
                              ///< reference body's axes, N and N·m)
+    double *effort_armature; ///< the part of each rate's effort (qfrc_drive) its joint's armature takes,
+                             ///< armature q̈ (nv); 0 without joint effects (vt_body_def.armature)
+    double *effort_damping;  ///< the part damping takes, damping q̇ (nv)
+    double *effort_friction; ///< the part friction takes, friction s(q̇) (nv). On a rate no drive
+                             ///< fixes they are passive forces, −(the three), in its dynamics
     double *drive_effort;    ///< joint drive: generalized force along its coordinate Φ_q^T λ (N·m or N);
                              ///< point drive: force along its component (N); orientation drives: 0 (ndrive)
     double *drive_force;     ///< force the drive exerts on its body (3 x ndrive), N

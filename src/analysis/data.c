@@ -109,6 +109,9 @@ static size_t layout(const vt_model *m, vt_data *d, char *base, int full)
     d->xdd = vt_block_take(&blk, nx, sizeof(double));
     d->alpha = vt_block_take(&blk, 3 * nb, sizeof(double));
     d->qfrc_drive = vt_block_take(&blk, nv, sizeof(double));
+    d->effort_armature = vt_block_take(&blk, nv, sizeof(double));
+    d->effort_damping = vt_block_take(&blk, nv, sizeof(double));
+    d->effort_friction = vt_block_take(&blk, nv, sizeof(double));
     d->drive_effort = vt_block_take(&blk, nd, sizeof(double));
     d->drive_force = vt_block_take(&blk, 3 * nd, sizeof(double));
     d->drive_moment = vt_block_take(&blk, 3 * nd, sizeof(double));

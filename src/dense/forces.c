@@ -21,6 +21,7 @@
 #include "model/model.h"
 #include "kinematics/kinematics.h"
 #include "dense/mass.h"
+#include "kinematics/joint_effects.h"
 
 vt_status vt_cartesian_force(double F[7], const double p[4], const double s[3], const double f[3],
                              const double n[3])
@@ -122,7 +123,7 @@ vt_status vt_forces(const vt_model *m, vt_data *d)
     st = apply_St(d->Q, m, d, g);
     vt_scratch_release(d, mark);
     if (st) return st;
-    for (int c = 0; c < m->nv; c++) d->Q[c] += d->qfrc[c];
+    for (int c = 0; c < m->nv; c++) d->Q[c] += vt_rate_force(m, d, c); /* qfrc less the joints' damping, friction */
     /* finite loads can still overflow (their sum in Q, a large ṗ squared in h): scanned, O(n) */
     if (vt_all_finite(d->F, m->nx) && vt_all_finite(d->h, m->nx) && vt_all_finite(d->Q, m->nv)) return VT_OK;
     for (int i = 1; i <= m->nbody; i++)

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dense/instant.h"
+#include "kinematics/joint_effects.h"
 #include "base/status.h"
 #include "base/arena.h"
 #include "base/scan.h"
@@ -31,7 +32,7 @@
  * (no route claims outputs that are not finite) */
 static vt_status accelerations_scanned(const vt_model *m, vt_data *d, const char *who)
 {
-    if (vt_all_finite(d->xdd, m->nx)) return VT_OK;
+    if (vt_all_finite(d->xdd, m->nx)) return vt_joint_effects_store(m, d), VT_OK;
     d->route = VT_ROUTE_NONE;
     int i = 1;
     while (i < m->nbody && vt_all_finite(d->xdd + vt_xoff(i), 7)) i++;

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "dense/mass.h"
+#include "kinematics/joint_effects.h"
 #include "base/lapack.h"
 #include "base/arena.h"
 #include "base/scan.h"
@@ -55,6 +56,8 @@ vt_status vt_mass_matrix(const vt_model *m, vt_data *d)
             for (int a = 0; a < k; a++) d->Mstar[path[a] + (size_t)path[b] * (size_t)nv] += C[a + k * b];
     }
     vt_scratch_release(d, mark);
+    if (m->has_effects) /* the joints' armature: inertia on their own rates (kinematics/joint_effects.c) */
+        for (int c = 0; c < nv; c++) d->Mstar[c + (size_t)c * (size_t)nv] += m->dof_effects[4 * c];
     /* a state or inertia near overflow can make a product Inf: refused, naming the entry */
     const size_t nm = (size_t)nv * (size_t)nv; /* past an int from nv = 46,341 */
     if (!vt_all_finite(d->Mstar, nm))

@@ -32,6 +32,7 @@
 #include "base/vec3.h"
 #include "model/model.h"
 #include "kinematics/inverse_transform.h"
+#include "kinematics/joint_effects.h"
 #include "kinematics/body.h"
 #include "kinematics/kinematics.h"
 #include "numeric/roundoff.h"
@@ -182,8 +183,10 @@ static void rate_load(const vt_model *m, const vt_data *d, int c, double g, doub
 
 static void qfrc_loads(const vt_model *m, vt_data *d, double *fe)
 {
-    for (int c = 0; c < m->nv; c++)
-        if (d->qfrc[c] != 0.0) rate_load(m, d, c, d->qfrc[c], fe);
+    for (int c = 0; c < m->nv; c++) {
+        const double g = vt_rate_load(m, d, c); /* qfrc less the joint's own effects */
+        if (g != 0.0) rate_load(m, d, c, g, fe);
+    }
 }
 
 /* the couplings' generalized forces for the multipliers lam (nc), λ on rate a and −ratio λ on
@@ -418,7 +421,7 @@ vt_status vt_reactions_subtree(const vt_model *m, vt_data *d, const double *Wbar
     vt_status st = row_efforts(m, d, rw);
     if (st) return vt_scratch_release(d, mark), st;
     int loads = !rows_in_wbar && m->nc > 0; /* any load for G */
-    for (int c = 0; c < m->nv && !loads; c++) loads = d->qfrc[c] != 0.0;
+    for (int c = 0; c < m->nv && !loads; c++) loads = vt_rate_load(m, d, c) != 0.0;
     if (loads) {
         memset(G, 0, 6 * ((size_t)n + 1) * sizeof(double));
         qfrc_loads(m, d, G);
@@ -462,7 +465,7 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
     const size_t mark = vt_scratch_mark(d);
     double *g = VT_SCRATCH(d, double, nv > 0 ? (size_t)nv : 1, "actuation per rate");
     if (!g) return vt_scratch_fail(d, mark);
-    memcpy(g, d->qfrc, (size_t)nv * sizeof(double));
+    for (int c = 0; c < nv; c++) g[c] = vt_rate_load(m, d, c);
     if (given) {
         for (int c = 0; c < nv; c++) g[c] += d->qfrc_drive[c];
     } else {

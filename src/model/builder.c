@@ -90,6 +90,7 @@ vt_body_def vt_default_body_def(void)
     for (int k = 0; k < 2; k++) {
         d.limit_lower[k] = -HUGE_VAL;
         d.limit_upper[k] = d.limit_velocity[k] = d.limit_effort[k] = HUGE_VAL;
+        d.gear_ratio[k] = 1.0;
     }
     d.parent = 0;
     d.joint = VT_JOINT_REVOLUTE;
@@ -300,6 +301,20 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
             return vt_fail(msg, VT_ERR_BAD_OPTION,
                            "body %d: limits of rate %d: lower %g > upper %g, or a negative velocity %g or effort %g", id,
                            k, d->limit_lower[k], d->limit_upper[k], d->limit_velocity[k], d->limit_effort[k]);
+        /* the joint's own effects: finite and not negative (a negative damping or friction feeds
+         * energy in, a negative armature takes inertia away), a gear ratio finite and not 0, and
+         * the products taken on the joint's side finite */
+        const double e[4] = {d->armature[k], d->damping[k], d->friction[k], d->friction_velocity[k]};
+        const double g = d->gear_ratio[k];
+        for (int a = 0; a < 4; a++)
+            if (!(isfinite(e[a]) && e[a] >= 0.0))
+                return vt_fail(msg, VT_ERR_BAD_OPTION,
+                               "body %d: rate %d's armature %g, damping %g, friction %g and friction_velocity %g must "
+                               "be finite and not negative", id, k, e[0], e[1], e[2], e[3]);
+        if (!(isfinite(g) && g != 0.0 && isfinite(g * g * fmax(e[0], e[1]))))
+            return vt_fail(msg, VT_ERR_BAD_OPTION,
+                           "body %d: rate %d's gear_ratio %g must be finite and not 0 (and its square times the "
+                           "armature and damping finite)", id, k, g);
     }
     return VT_OK;
 }

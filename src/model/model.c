@@ -246,6 +246,7 @@ static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int nd
     m->dof_parent = vt_block_take(b, (size_t)nv, sizeof(int));
     m->q0 = vt_block_take(b, (size_t)nq, sizeof(double));
     m->dof_limit = vt_block_take(b, 4 * (size_t)nv, sizeof(double));
+    m->dof_effects = vt_block_take(b, 4 * (size_t)nv, sizeof(double));
     const size_t nf = (size_t)(nframe ? nframe : 1);
     m->body_name = vt_block_take(b, nb, VT_NAME_MAX);
     m->joint_name = vt_block_take(b, nb, VT_NAME_MAX);
@@ -422,6 +423,13 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
             lim[1] = own ? d->limit_upper[k] : HUGE_VAL;
             lim[2] = own ? d->limit_velocity[k] : HUGE_VAL;
             lim[3] = own ? d->limit_effort[k] : HUGE_VAL;
+            double *ef = m->dof_effects + 4 * (vadr + k);
+            const double g = own ? d->gear_ratio[k] : 0.0;
+            ef[0] = own ? g * g * d->armature[k] : 0.0;
+            ef[1] = own ? g * g * d->damping[k] : 0.0;
+            ef[2] = own ? fabs(g) * d->friction[k] : 0.0;
+            ef[3] = own ? d->friction_velocity[k] : 0.0;
+            if (ef[0] != 0.0 || ef[1] != 0.0 || ef[2] != 0.0) m->has_effects = 1;
         }
 
         /* reference configuration: zero angles and translations, unit Euler parameters */
@@ -473,6 +481,11 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
             d.limit_upper[k] = lim[1];
             d.limit_velocity[k] = lim[2];
             d.limit_effort[k] = lim[3];
+            const double *ef = m->dof_effects + 4 * (m->body_vadr[i] + k); /* the joint's side: ratio 1 */
+            d.armature[k] = ef[0];
+            d.damping[k] = ef[1];
+            d.friction[k] = ef[2];
+            d.friction_velocity[k] = ef[3];
         }
         const int id = vt_builder_add_body(b, &d);
         if (id < 0) st = (vt_status)id;

@@ -22,7 +22,7 @@
  *                  m_i a_i − f_i + Σ_c f_c − Σ_r λ_r jv_r,i = m_i g + f_e,i
  *                  (c the bodies whose reference body is i; J_i = A_i J'_i A_i^T; r over the
  *                  Cartesian rows on body i, whose force is Φ_x^T λ (7): jv = Φ_r, jw = ½ E Φ_p)
- *   joints         J_k,a^T [n_k; f_k] − Σ_r Φ_q,ra λ_r = qfrc_a     for each rate a of body k's
+ *   joints         J_k,a^T [n_k; f_k] + a_a q̈_a − Σ_r Φ_q,ra λ_r = qfrc_a − b_a q̇_a − f_a s(q̇_a)  for each rate a of body k's
  *                  joint (r over the joint drives and couplings: rows on rates, generalized)
  *   rows           Φ_q q̈ = γ                                                          (5)
  *
@@ -58,6 +58,7 @@
 
 #include "numeric/maximal.h"
 #include "numeric/skeel.h"
+#include "kinematics/joint_effects.h"
 #include "base/arena.h"
 #include "base/euler.h"
 #include "base/lapack.h"
@@ -187,7 +188,10 @@ static void assemble(const vt_model *m, const vt_data *d, sink *s, double *b)
                 put(s, iq + a, kw + k, 2.0 * jw[k]);
                 put(s, iq + a, kw + 3 + k, Sc[k]);
             }
-            if (b) b[iq + a] = d->qfrc[a];
+            /* the joint's armature on its own q̈ (kinematics/joint_effects.c), its damping and
+             * friction with the applied qfrc */
+            if (m->has_effects && m->dof_effects[4 * a] != 0.0) put(s, iq + a, iq + a, m->dof_effects[4 * a]);
+            if (b) b[iq + a] = vt_rate_force(m, d, a);
         }
     }
     for (int r = 0; r < nc; r++) {

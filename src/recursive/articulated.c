@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "recursive/articulated.h"
+#include "kinematics/joint_effects.h"
 #include "recursive/general.h"
 #include "base/arena.h"
 #include "base/euler.h"
@@ -310,16 +311,18 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             /* M*_aa = s · Ī s = e · J̄ e or m̄ e · e; D_a is a difference of terms as large as
              * |e|² tr J̄ or |e|² m̄ (tw²): below VT_ROUND_TAU ε of them it is round-off of an exact
              * zero, not inertia */
-            const double Da = vt_dot3(e, Ua + off), ee = vt_dot3(e, e);
+            /* the joint's armature is inertia of the rate's own, exact (kinematics/joint_effects.c) */
+            const double arm = m->has_effects ? m->dof_effects[4 * a] : 0.0;
+            const double Da = vt_dot3(e, Ua + off) + arm, ee = vt_dot3(e, e);
             double maa, tw2;
             if (off == 0) {
                 double Je[3];
                 vt_mulmat3(Je, Ii + 4, e);
-                maa = vt_dot3(e, Je);
+                maa = vt_dot3(e, Je) + arm;
                 tw2 = ee * (Ii[4] + Ii[8] + Ii[12]);
             } else {
-                maa = Ii[0] * ee;
-                tw2 = maa;
+                maa = Ii[0] * ee + arm;
+                tw2 = Ii[0] * ee;
             }
             const double piv = Da / maa, tol = VT_ROUND_TAU * DBL_EPSILON * tw2;
             /* M* is semi-definite: a pivot below PIVOT_MIN of its diagonal or within its round-off,
@@ -334,7 +337,7 @@ static inline int articulated_solve_nr(const vt_model *m, vt_data *d, const aba_
             const double inv = 1.0 / Da;
             Dinv[a] = inv;
             double *restrict ua = u + (size_t)nr * (size_t)a;
-            ua[0] = d->qfrc[a] - vt_dot3(e, p + off);
+            ua[0] = vt_rate_force(m, d, a) - vt_dot3(e, p + off); /* qfrc less the joint's damping, friction */
             for (int k = 1; k < nr; k++) ua[k] = -vt_dot3(e, p + 6 * k + off); /* b_a = 0: the row's wrench is in p */
             rank1_cols8(G, Ua, inv);
             memcpy(U + 8 * a, Ua, sizeof Ua);
@@ -512,14 +515,15 @@ vt_status vt_articulated_instant(const vt_model *m, vt_data *d, vt_handoff *to)
             for (int k = 0; k < 6; k++) Wi[k] += l * p[6 * c + k], Ti[k] += l * Ai[6 * c + k];
         }
         for (int a = m->body_vadr[i]; a < m->body_vadr[i] + m->body_nv[i] && nr <= m->nc; a++) {
-            /* a known joint drive's multiplier: (M* q̈ − Q − Φ_q,o^T λ_o)_a = s_a · W̄_i − qfrc_a,
+            /* a known joint drive's multiplier: (M* q̈ − Q − Φ_q,o^T λ_o)_a = s_a · W̄_i − qfrc_a
+             * (qfrc less the joint's own effects: vt_rate_load),
              * W̄_i about P_i here, without the other rows' loads; s_a about P_i (e at off) */
             const int k = m->dof_drive[a];
             if (k < 0) continue;
             double e[3];
             int off;
             twist_at_joint(e, &off, m, d, i, a);
-            d->lambda[m->drive_row[k]] = vt_dot3(e, Wi + off) - d->qfrc[a];
+            d->lambda[m->drive_row[k]] = vt_dot3(e, Wi + off) - vt_rate_load(m, d, a);
         }
         /* ẍ = S q̈ + Ṡq̇ (vt_accelerations_add's, from T about P_i): the centre of mass, c_i from
          * P_i, a = a⁰ + T_v + T_ω × c_i; p̈ = p̈⁰ + ½ E^T T_ω (no base body on this route) */

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "recursive/fused.h"
+#include "kinematics/joint_effects.h"
 #include "recursive/general.h"
 #include "base/arena.h"
 #include "base/euler.h"
@@ -109,7 +110,7 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
-        const double qf = d->qfrc[c];
+        const double qf = vt_rate_load(m, d, c); /* qfrc less the joint's own effects: τ takes them */
         double tau = 0.0;
         if (motion == MOTION_GIVEN || dr >= 0) {
             const double *w = d->twist + 6 * c;
@@ -506,7 +507,8 @@ static inline fused_outputs fused_bounded(const vt_model *m, double qmax, double
     const double U = 1.0 + m->bound_length + m->nq * qmax, R = 1.0 + m->nv * vmax;
     const double A = 1.0 + m->nv * amax + 4.0 * R * R + g;
     const double B = 64.0 * (m->nbody + 1) * U * U * ((1.0 + m->bound_mass) * A + 1.0 + fmax_);
-    return B < 1e300 ? OUTPUTS_BOUNDED : OUTPUTS_SCANNED;
+    /* the joints' own effects (armature q̈, damping q̇, friction) are loads the bound leaves out */
+    return B < 1e300 && !m->has_effects ? OUTPUTS_BOUNDED : OUTPUTS_SCANNED;
 }
 
 /* The joint-driven instant of a tree without base bodies (joint_mix ≥ 0), every rate driven by a
@@ -529,8 +531,10 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
     vt_solved(m, d, VT_ROUTE_JOINT_DRIVEN, 1.0); /* nothing factorized: one unit row per rate */
     const fused_outputs outputs = fused_bounded(m, smax, smax, vt_array_max(d->qdd, m->nv), smax);
     const fused_angles angles = angles_small(m, d, smax);
-    return mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles)
-               : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
+    st = mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles)
+             : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
+    if (!st) vt_joint_effects_store(m, d);
+    return st;
 }
 
 /* the given motion's fused passes: not inlined, and the tree a variable, so that one compact copy
@@ -591,5 +595,6 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     const fused_angles angles = angles_small(m, d, smax);
     st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles); /* α and the totals formed in it */
     if (st) d->route = VT_ROUTE_NONE; /* as vt_solve_reset left it */
+    else vt_joint_effects_store(m, d);
     return st;
 }

@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "recursive/general.h"
+#include "kinematics/joint_effects.h"
 #include "base/status.h"
 #include "base/arena.h"
 #include "base/euler.h"
@@ -107,6 +108,8 @@ static void crba(const vt_model *m, vt_data *d, double *Ic /* 13 x (nbody+1) */)
             d->Mstar[b + (size_t)a * (size_t)nv] = v2;
         }
     }
+    if (m->has_effects) /* the joints' armature (kinematics/joint_effects.c) */
+        for (int a = 0; a < nv; a++) d->Mstar[a + (size_t)a * (size_t)nv] += m->dof_effects[4 * a];
 }
 
 /* body i's needed wrench at q̈ = 0 (the accelerations Ṡq̇, α = 2 E p̈) */
@@ -119,14 +122,14 @@ static void bias_wrench(double W[6], const vt_model *m, const vt_data *d, int i)
     vt_body_wrench_global(W, m, d, i, d->Sdqd + o, al, d->xrel + 6 * i);
 }
 
-/* Q = qfrc − S^T (needed wrenches at q̈ = 0) */
+/* Q = qfrc (less the joints' damping and friction) − S^T (needed wrenches at q̈ = 0) */
 static void bias(const vt_model *m, vt_data *d, double *W /* 6 x (nbody+1) */)
 {
     for (int i = 1; i <= m->nbody; i++) bias_wrench(W + 6 * i, m, d, i);
     vt_subtree_sum(m, W, 6);
     for (int a = 0; a < m->nv; a++) {
         const double *w = d->twist + 6 * a;
-        d->Q[a] = d->qfrc[a] - pair(w, w + 3, W + 6 * m->dof_body[a]);
+        d->Q[a] = vt_rate_force(m, d, a) - pair(w, w + 3, W + 6 * m->dof_body[a]);
     }
     /* a base body's own ṗ rates: (4) in p also has h's normal part, p^T h_p = 2 ω^T J ω (the
      * Newton–Euler form above is its tangential part); p^T p = 1's multiplier takes it up, but
@@ -225,7 +228,7 @@ static vt_status composite_precision(const vt_model *m, vt_data *d, vt_handoff *
     int lost = 0;
     for (int a = 0; a < nv && !lost; a++) {
         const double *tw = d->twist + 6 * a, *t = tq + 2 * m->dof_body[a];
-        const double u = te * (sqrt(vt_dot3(tw, tw)) * t[0] + sqrt(vt_dot3(tw + 3, tw + 3)) * t[1] + fabs(d->qfrc[a]));
+        const double u = te * (sqrt(vt_dot3(tw, tw)) * t[0] + sqrt(vt_dot3(tw + 3, tw + 3)) * t[1] + fabs(vt_rate_force(m, d, a)));
         double g = fabs(d->Q[a]);
         for (int b = 0; b < nv; b++) g += fabs(d->Mstar[a + (size_t)b * (size_t)nv] * d->qdd[b]);
         for (int r = 0; r < nc; r++) g += fabs(d->Phiq[r + (size_t)a * (size_t)nc] * d->lambda[r]);

@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include "recursive/recursive.h"
+#include "kinematics/joint_effects.h"
 #include "recursive/articulated.h"
 #include "recursive/fused.h"
 #include "recursive/general.h"
@@ -105,7 +106,8 @@ static vt_status square_solved(const vt_model *m, vt_data *d, vt_square *sq, dou
     vt_subtree_wrenches_at_joints(m, d, alpha, W);
     for (int a = 0; a < nv; a++) { /* M* q̈ − Q = s_a · W̄_i − qfrc_a, s_a about P_i: (e, 0) or (0, e) */
         const double *s = d->twist + 6 * a, *Wi = W + 6 * m->dof_body[a];
-        sq->h[a] = (vt_dof_turns(m, a) ? vt_dot3(s, Wi) : vt_dot3(s + 3, Wi + 3)) - d->qfrc[a];
+        sq->h[a] = (vt_dof_turns(m, a) ? vt_dot3(s, Wi) : vt_dot3(s + 3, Wi + 3)) - vt_rate_force(m, d, a);
+        if (m->has_effects) sq->h[a] += m->dof_effects[4 * a] * sq->x[a]; /* the joint's armature q̈ */
     }
     st = vt_solve_square_end(m, d, sq, rcond);
     if (!st) st = vt_reactions_subtree(m, d, W, G, 0);
@@ -198,6 +200,7 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, vt
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
     }
     if (formed == FORMED_NONE && totals && (st = vt_reactions_total(m, d, 0))) d->route = VT_ROUTE_NONE; /* α and the total wrenches, as the dense path */
+    if (!st) vt_joint_effects_store(m, d);
     return st;
 }
 
