@@ -85,6 +85,18 @@ VT_API vt_frame_def vt_default_frame_def(void);
 VT_API int vt_builder_add_frame(vt_builder *builder, const vt_frame_def *def);
 /// The id of the body added so far under this name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
 VT_API int vt_builder_find_body(const vt_builder *builder, const char *name);
+/// The id of the body added so far whose joint has this name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
+VT_API int vt_builder_find_joint(const vt_builder *builder, const char *name);
+/// Defaults: no armature, damping or friction, the sign law (friction_velocity 0), gear ratio 1.
+VT_API vt_joint_effects_def vt_default_joint_effects_def(void);
+/// Sets a body's joint's own effects (its vt_body_def's armature … gear_ratio: docs/guide.md,
+/// "Real joints") in a builder, a URDF robot's for instance, before vt_builder_build(); they
+/// replace what the body had (a URDF's <dynamics>). VT_ERR_BAD_INDEX, VT_ERR_BAD_OPTION
+/// (negative or non-finite values, a zero gear ratio); a refusal leaves the builder as it was.
+VT_API vt_status vt_builder_set_joint_effects(vt_builder *builder, int body, const vt_joint_effects_def *def);
+/// A body's joint's own effects as the builder holds them, into *out (to change one and set them
+/// back): VT_ERR_BAD_INDEX, VT_ERR_NULL.
+VT_API vt_status vt_builder_joint_effects(const vt_builder *builder, int body, vt_joint_effects_def *out);
 
 /// Lookups by name in a model: the id or index, or VT_ERR_NOT_FOUND (VT_ERR_NULL for NULL
 /// arguments). vt_find_joint gives the id of the body whose joint has that name.
@@ -118,8 +130,11 @@ typedef struct vt_urdf_options {
     int mimic;            ///< 1 (default): a mimic joint's coordinate is coupled to the joint it mimics
                           ///< (vt_coupling_def, named after the mimic joint); 0: the tag is ignored and
                           ///< the joint moves on its own (as Pinocchio's default loads it)
+    int dynamics;         ///< 1 (default): a joint's <dynamics damping friction> become its rate's
+                          ///< damping and Coulomb friction (vt_body_def.damping, friction; URDF has no
+                          ///< armature); 0: the tag is ignored (ideal joints)
 } vt_urdf_options;
-/// Defaults: vt_default_model_def() with gravity (0, 0, −9.81) m/s², floating 0, mimic 1.
+/// Defaults: vt_default_model_def() with gravity (0, 0, −9.81) m/s², floating 0, mimic 1, dynamics 1.
 VT_API vt_urdf_options vt_default_urdf_options(void);
 /// Reads a URDF file into a new builder (drives, cut joints and frames may be added after, then
 /// vt_builder_build()). Links become bodies named after the link and their joints are named after

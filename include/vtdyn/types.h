@@ -409,6 +409,17 @@ typedef struct vt_body_def {
                                 ///< and |N| f on the joint's; default 1
 } vt_body_def;
 
+/// A joint's own effects on its first two rates, as vt_body_def's fields of the same names, to set
+/// on a body already in a builder (vt_builder_set_joint_effects()). Fill from
+/// vt_default_joint_effects_def().
+typedef struct vt_joint_effects_def {
+    double armature[2];          ///< kg·m² or kg, ≥ 0; default 0
+    double damping[2];           ///< N·m·s/rad or N·s/m, ≥ 0; default 0
+    double friction[2];          ///< N·m or N, ≥ 0; default 0
+    double friction_velocity[2]; ///< rad/s or m/s, ≥ 0 (0: the sign); default 0
+    double gear_ratio[2];        ///< ≠ 0: the values above on the motor's side; default 1
+} vt_joint_effects_def;
+
 /// A frame: a named point and orientation moving with a body (a tool point, a sensor, a file's
 /// link frame). Fill from vt_default_frame_def().
 typedef struct vt_frame_def {

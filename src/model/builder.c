@@ -248,6 +248,27 @@ static int grow(void **arr, int *cap, int n, size_t size)
     return 1;
 }
 
+/* a joint's own effects on its two rates: finite and not negative (a negative damping or friction
+ * feeds energy in, a negative armature takes inertia away), a gear ratio finite and not 0, and the
+ * products taken on the joint's side finite */
+static vt_status validate_effects(char *msg, int id, const double *arm, const double *damp, const double *fric,
+                                  const double *vel, const double *gear)
+{
+    for (int k = 0; k < 2; k++) {
+        const double e[4] = {arm[k], damp[k], fric[k], vel[k]}, g = gear[k];
+        for (int a = 0; a < 4; a++)
+            if (!(isfinite(e[a]) && e[a] >= 0.0))
+                return vt_fail(msg, VT_ERR_BAD_OPTION,
+                               "body %d: rate %d's armature %g, damping %g, friction %g and friction_velocity %g must "
+                               "be finite and not negative", id, k, e[0], e[1], e[2], e[3]);
+        if (!(isfinite(g) && g != 0.0 && isfinite(g * g * fmax(e[0], e[1])) && isfinite(fabs(g) * e[2])))
+            return vt_fail(msg, VT_ERR_BAD_OPTION,
+                           "body %d: rate %d's gear_ratio %g must be finite and not 0 (and the armature, damping and "
+                           "friction it carries to the joint's side finite)", id, k, g);
+    }
+    return VT_OK;
+}
+
 static vt_status validate_body(char *msg, int id, vt_body_def *d)
 {
     if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
@@ -301,22 +322,8 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d)
             return vt_fail(msg, VT_ERR_BAD_OPTION,
                            "body %d: limits of rate %d: lower %g > upper %g, or a negative velocity %g or effort %g", id,
                            k, d->limit_lower[k], d->limit_upper[k], d->limit_velocity[k], d->limit_effort[k]);
-        /* the joint's own effects: finite and not negative (a negative damping or friction feeds
-         * energy in, a negative armature takes inertia away), a gear ratio finite and not 0, and
-         * the products taken on the joint's side finite */
-        const double e[4] = {d->armature[k], d->damping[k], d->friction[k], d->friction_velocity[k]};
-        const double g = d->gear_ratio[k];
-        for (int a = 0; a < 4; a++)
-            if (!(isfinite(e[a]) && e[a] >= 0.0))
-                return vt_fail(msg, VT_ERR_BAD_OPTION,
-                               "body %d: rate %d's armature %g, damping %g, friction %g and friction_velocity %g must "
-                               "be finite and not negative", id, k, e[0], e[1], e[2], e[3]);
-        if (!(isfinite(g) && g != 0.0 && isfinite(g * g * fmax(e[0], e[1]))))
-            return vt_fail(msg, VT_ERR_BAD_OPTION,
-                           "body %d: rate %d's gear_ratio %g must be finite and not 0 (and its square times the "
-                           "armature and damping finite)", id, k, g);
     }
-    return VT_OK;
+    return validate_effects(msg, id, d->armature, d->damping, d->friction, d->friction_velocity, d->gear_ratio);
 }
 
 int vt_builder_add_body(vt_builder *b, const vt_body_def *def)
@@ -360,6 +367,53 @@ int vt_builder_find_body(const vt_builder *b, const char *name)
     if (!b || !name) return VT_ERR_NULL;
     const int k = name[0] ? vt_names_find(&b->body_index, b->body_names, vt_name_in_array, name) : -1;
     return k < 0 ? VT_ERR_NOT_FOUND : k + 1;
+}
+
+int vt_builder_find_joint(const vt_builder *b, const char *name)
+{
+    if (!b || !name) return VT_ERR_NULL;
+    const int k = name[0] ? vt_names_find(&b->joint_index, b->joint_names, vt_name_in_array, name) : -1;
+    return k < 0 ? VT_ERR_NOT_FOUND : k + 1;
+}
+
+vt_joint_effects_def vt_default_joint_effects_def(void)
+{
+    vt_joint_effects_def e;
+    memset(&e, 0, sizeof e);
+    e.gear_ratio[0] = e.gear_ratio[1] = 1.0;
+    return e;
+}
+
+vt_status vt_builder_joint_effects(const vt_builder *b, int body, vt_joint_effects_def *out)
+{
+    if (!b || !out) return VT_ERR_NULL;
+    if (body < 1 || body > b->n) return VT_ERR_BAD_INDEX;
+    const vt_body_def *d = &b->bodies[body - 1];
+    memcpy(out->armature, d->armature, sizeof out->armature);
+    memcpy(out->damping, d->damping, sizeof out->damping);
+    memcpy(out->friction, d->friction, sizeof out->friction);
+    memcpy(out->friction_velocity, d->friction_velocity, sizeof out->friction_velocity);
+    memcpy(out->gear_ratio, d->gear_ratio, sizeof out->gear_ratio);
+    return VT_OK;
+}
+
+vt_status vt_builder_set_joint_effects(vt_builder *b, int body, const vt_joint_effects_def *def)
+{
+    if (!b) return VT_ERR_NULL;
+    if (!def) return vt_fail(b->message, VT_ERR_NULL, "vt_builder_set_joint_effects: definition is NULL");
+    if (body < 1 || body > b->n)
+        return vt_fail(b->message, VT_ERR_BAD_INDEX, "vt_builder_set_joint_effects: no body %d (%d added)", body, b->n);
+    vt_status st = validate_effects(b->message, body, def->armature, def->damping, def->friction,
+                                    def->friction_velocity, def->gear_ratio);
+    if (st) return st;
+    vt_body_def *d = &b->bodies[body - 1];
+    memcpy(d->armature, def->armature, sizeof d->armature);
+    memcpy(d->damping, def->damping, sizeof d->damping);
+    memcpy(d->friction, def->friction, sizeof d->friction);
+    memcpy(d->friction_velocity, def->friction_velocity, sizeof d->friction_velocity);
+    memcpy(d->gear_ratio, def->gear_ratio, sizeof d->gear_ratio);
+    b->message[0] = '\0';
+    return VT_OK;
 }
 
 /* the frame of that name added so far into *body and point, or a status with the message */

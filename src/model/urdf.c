@@ -121,6 +121,7 @@ typedef struct {
     double axis[3];     /* in J */
     int has_limit;
     double lower, upper, effort, velocity;
+    double damping, friction;  /* <dynamics>: 0 without */
     xmlNodePtr mimic;          /* <mimic joint multiplier offset>, or NULL */
     double multiplier, offset; /* q = multiplier q_other + offset */
 } urdf_joint;
@@ -136,6 +137,7 @@ typedef struct {
 typedef struct {
     char *msg;          /* VT_MESSAGE_SIZE bytes or NULL */
     int mimic;          /* vt_urdf_options.mimic */
+    int dynamics;       /* vt_urdf_options.dynamics */
     urdf_link *link;
     urdf_joint *joint;
     urdf_body *body;
@@ -365,6 +367,12 @@ static vt_status read_joint(urdf *u, int k)
             (st = numbers(u, "joint", j->name, lim, "velocity", 1, &j->velocity)))
             return st;
     }
+    xmlNodePtr dyn = child(j->node, "dynamics");
+    if (dyn && u->dynamics) { /* URDF: both optional, 0 by default; the builder refuses negative ones */
+        if ((st = numbers(u, "joint", j->name, dyn, "damping", 1, &j->damping)) ||
+            (st = numbers(u, "joint", j->name, dyn, "friction", 1, &j->friction)))
+            return st;
+    }
     return VT_OK;
 }
 
@@ -571,6 +579,7 @@ static vt_status add_to_builder(const urdf *u, vt_builder *bld)
                 def.limit_effort[0] = j->effort;
                 def.limit_velocity[0] = j->velocity;
             }
+            if (j->type != J_FLOATING) def.damping[0] = j->damping, def.friction[0] = j->friction;
         }
         if (j) def.joint_name = (const char *)j->name;
         const int id = vt_builder_add_body(bld, &def);
@@ -629,6 +638,7 @@ static vt_status from_doc(vt_builder **builder, xmlDocPtr doc, const vt_urdf_opt
     memset(&u, 0, sizeof u);
     u.msg = msg;
     u.mimic = options->mimic != 0;
+    u.dynamics = options->dynamics != 0;
     xmlNodePtr robot = xmlDocGetRootElement(doc);
     if (!robot || xmlStrcmp(robot->name, (const xmlChar *)"robot") != 0)
         return robot ? fail_at(&u, VT_ERR_XML, "robot", NULL, robot, "not a URDF file: the root element is not <robot>")
@@ -696,6 +706,7 @@ vt_urdf_options vt_default_urdf_options(void)
     o.model.gravity[2] = -9.81;
     o.floating = 0;
     o.mimic = 1;
+    o.dynamics = 1;
     return o;
 }
 

@@ -17,7 +17,10 @@
  * root frame); its six efforts (world force, moment about the root origin in world axes) are
  * turned into the root frame, R^T f and R^T n, Pinocchio's tau of the free flyer. Its reaction
  * (zero in vtdyn) against Pinocchio's f − S τ (S = I). Prints the largest relative differences;
- * exit 0 when within the tolerance, 1 otherwise. */
+ * exit 0 when within the tolerance, 1 otherwise. With --effects the reference's torques include
+ * Pinocchio's model.armature (its armature:JOINT columns, set here on vtdyn's builder) and
+ * model.damping v + model.friction sign(v) (Pinocchio's own reading of <dynamics>, which vtdyn's
+ * loader reads too: they must agree exactly). */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
@@ -77,21 +80,39 @@ static int col(const table *t, const char *quantity, const char *joint, const ch
 
 int main(int argc, char **argv)
 {
-    const int floating = argc > 1 && strcmp(argv[1], "--floating") == 0;
-    if (floating) argv++, argc--;
-    if (argc < 3) return fprintf(stderr, "usage: compare_pinocchio [--floating] ROBOT.urdf REFERENCE.csv [tolerance]\n"), 2;
+    int floating = 0, effects = 0;
+    for (; argc > 1 && strncmp(argv[1], "--", 2) == 0; argv++, argc--) {
+        if (strcmp(argv[1], "--floating") == 0) floating = 1;
+        else if (strcmp(argv[1], "--effects") == 0) effects = 1;
+        else return fprintf(stderr, "compare_pinocchio: unknown option %s\n", argv[1]), 2;
+    }
+    if (argc < 3)
+        return fprintf(stderr, "usage: compare_pinocchio [--floating] [--effects] ROBOT.urdf REFERENCE.csv [tolerance]\n"), 2;
     const double tol = argc > 3 ? atof(argv[3]) : 1e-12;
     table t;
     if (read_csv(&t, argv[2])) return 1;
     vt_urdf_options opt = vt_default_urdf_options();
     opt.mimic = 0; /* as Pinocchio's default: a mimic joint is a joint of its own */
     opt.floating = floating;
+    opt.dynamics = effects; /* Pinocchio's rnea leaves <dynamics> out: the reference adds them with --effects */
     char msg[256] = "";
     vt_builder *b;
     vt_model *m;
     vt_data *d;
     vt_status st = vt_urdf_builder(&b, argv[1], &opt, msg);
     if (st) return fprintf(stderr, "%s: %s\n", argv[1], msg), 1;
+    /* --effects: each joint's armature from the reference (Pinocchio's model.armature), set on the
+     * loaded builder; damping and friction stay vtdyn's own reading of <dynamics>, held against
+     * Pinocchio's model.damping and model.friction below */
+    for (int c = 0; effects && c < t.ncol; c++) {
+        if (strncmp(t.name[c], "armature:", 9) != 0) continue;
+        const int body = vt_builder_find_joint(b, t.name[c] + 9);
+        vt_joint_effects_def e;
+        if (body < 0 || vt_builder_joint_effects(b, body, &e))
+            return fprintf(stderr, "%s: no joint %s\n", argv[1], t.name[c] + 9), 1;
+        e.armature[0] = t.cell[c];
+        if ((st = vt_builder_set_joint_effects(b, body, &e))) return fprintf(stderr, "%s\n", vt_builder_message(b)), 1;
+    }
     if ((st = vt_builder_build(&m, b)) || (st = vt_data_create(&d, m)))
         return fprintf(stderr, "%s: %s\n", argv[1], vt_builder_message(b)), 1;
     vt_builder_free(b);
@@ -107,10 +128,20 @@ int main(int argc, char **argv)
         if (m->body_joint[i] == VT_JOINT_BASE) return fprintf(stderr, "%s: a base body: not expected\n", argv[1]), 1;
     }
     if (floating != (root > 0)) return fprintf(stderr, "%s: --floating and the model's root disagree\n", argv[1]), 1;
+    int bad = 0;
+    for (int i = 1; effects && i <= m->nbody; i++) { /* <dynamics> as Pinocchio read them */
+        const int cd = col(&t, "damping", jname[i], NULL), cf = col(&t, "friction", jname[i], NULL);
+        if (cd < 0 || cf < 0) continue;
+        const double *e = m->dof_effects + 4 * m->body_vadr[i];
+        if (e[1] != t.cell[cd] || e[2] != t.cell[cf]) {
+            printf("joint %s: damping %.17g friction %.17g, Pinocchio's %.17g %.17g\n", jname[i], e[1], e[2], t.cell[cd],
+                   t.cell[cf]);
+            bad++;
+        }
+    }
     static const char *xyz[3] = {"x", "y", "z"};
     static const char *fc[6] = {"fx", "fy", "fz", "mx", "my", "mz"};
     double worst_tau = 0.0, worst_w = 0.0, worst_l = 0.0;
-    int bad = 0;
     for (int r = 0; r < t.nrow; r++) {
         const double *row = t.cell + (size_t)r * (size_t)t.ncol;
         double scale = 0.0;

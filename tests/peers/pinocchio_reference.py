@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Reference inverse dynamics and joint reactions of a URDF robot, computed by Pinocchio.
 
-    python pinocchio_reference.py URDF {fixed|free-flyer} N SEED OUT.csv [--static K]
+    python pinocchio_reference.py URDF {fixed|free-flyer} N SEED OUT.csv [--static K] [--effects]
 
 loads URDF with ``pin.buildModelFromUrdf`` (with ``pin.JointModelFreeFlyer()`` as root joint
 for ``free-flyer``; mimic joints are not enabled, so a URDF mimic joint is an independent
@@ -39,7 +39,11 @@ Conventions (Pinocchio's)
     * Continuous joint: q = (cos theta, sin theta), one velocity theta_dot.
     * tau = pin.rnea(model, data, q, v, a): the generalized forces, in v's order, under
       model.gravity (URDF gives none: Pinocchio's default (0, 0, -9.81) m/s^2, world z up).
-      The model's armature (zero from a URDF) would be added to tau, not to f.
+      The model's armature (zero from a URDF) is added to tau, not to f. With --effects every
+      one-velocity joint gets armature 0.02 (1 + j mod 4) (j its Pinocchio index), and tau also
+      takes model.damping * v + model.friction * sign(v), Pinocchio's reading of the URDF's
+      <dynamics damping friction>; the columns armature:JOINT, damping:JOINT, friction:JOINT
+      (one-velocity joints) give the three.
     * f[j] = data.f[j] after rnea: the spatial force that the parent body exerts ON body j
       THROUGH joint j (the net inertial-minus-gravity wrench of the whole subtree rooted at
       j), expressed in joint j's frame, the moment about joint j's origin. rnea's backward
@@ -146,7 +150,7 @@ def random_q(model, rng):
     return q
 
 
-def columns_and_checks(model):
+def columns_and_checks(model, effects=False):
     """The header, in the order described in the docstring."""
     names = list(model.names)
     cols = ["state", "seed", "gravity_x", "gravity_y", "gravity_z", "total_mass"]
@@ -167,6 +171,10 @@ def columns_and_checks(model):
         cols += [f"R:{n}:{r}{c}" for r in range(3) for c in range(3)]
         for qty in ("f", "fr", "fw", "frw"):
             cols += [f"{qty}:{n}:{c}" for c in FORCE_COMPONENTS]
+    if effects:
+        for j in range(1, model.njoints):
+            if model.joints[j].nv == 1:
+                cols += [f"{qty}:{names[j]}" for qty in ("armature", "damping", "friction")]
     if len(set(cols)) != len(cols):
         raise ValueError("joint names make duplicate column names")
     return cols, free
@@ -178,8 +186,20 @@ def fmt(x):
     return repr(float(x))
 
 
-def one_state(model, data, kin, q, v, a, free, state, seed):
-    tau = pin.rnea(model, data, q, v, a).copy()
+def set_armature(model):
+    """--effects: every one-velocity joint's armature 0.02 (1 + j mod 4) kg m^2 (or kg)"""
+    arm = np.zeros(model.nv)
+    for j in range(1, model.njoints):
+        jm = model.joints[j]
+        if jm.nv == 1:
+            arm[jm.idx_v] = 0.02 * (1 + j % 4)
+    model.armature = arm
+
+
+def one_state(model, data, kin, q, v, a, free, state, seed, effects=False):
+    tau = pin.rnea(model, data, q, v, a).copy()  # with model.armature a
+    if effects:  # <dynamics>, as Pinocchio reads them: its rnea leaves them out
+        tau += model.damping * v + model.friction * np.sign(v)
     pin.forwardKinematics(model, kin, q)  # rnea sets liMi, not oMi: a second data for these
     row = [state, seed] + list(model.gravity.linear)
     row.append(sum(model.inertias[i].mass for i in range(model.njoints)))
@@ -197,7 +217,7 @@ def one_state(model, data, kin, q, v, a, free, state, seed):
         if not np.allclose(S.T @ S, np.eye(jm.nv), atol=1e-12, rtol=0):
             raise ValueError(f"joint {model.names[j]}: S^T S is not I, f - S tau is no reaction")
         f = data.f[j].vector.copy()
-        fr = f - S @ tau[jm.idx_v:jm.idx_v + jm.nv]
+        fr = f - S @ (S.T @ f)  # S^T f: the torque without the joint's armature, damping, friction
         row += [int(model.parents[j]), model.inertias[j].mass]
         row += list(M.act(model.inertias[j].lever))
         if jm.nv == 1:
@@ -205,6 +225,12 @@ def one_state(model, data, kin, q, v, a, free, state, seed):
         row += list(M.translation) + list(R.reshape(9))
         row += list(f) + list(fr)
         row += list(R @ f[:3]) + list(R @ f[3:]) + list(R @ fr[:3]) + list(R @ fr[3:])
+    if effects:
+        for j in range(1, model.njoints):
+            jm = model.joints[j]
+            if jm.nv == 1:
+                k = jm.idx_v
+                row += [model.armature[k], model.damping[k], model.friction[k]]
     return row
 
 
@@ -217,12 +243,16 @@ def main(argv=None):
     ap.add_argument("out", help="the CSV to write, - for stdout")
     ap.add_argument("--static", type=int, default=0, metavar="K",
                     help="the last K states have v = a = 0")
+    ap.add_argument("--effects", action="store_true",
+                    help="armature on every one-velocity joint, and tau with the URDF's <dynamics>")
     args = ap.parse_args(argv)
     if args.states < 1 or not 0 <= args.static <= args.states:
         ap.error("need N >= 1 and 0 <= K <= N")
     try:
         model = load_model(args.urdf, args.root)
-        cols, free = columns_and_checks(model)
+        if args.effects:
+            set_armature(model)
+        cols, free = columns_and_checks(model, args.effects)
         data, kin = model.createData(), model.createData()
         rng = np.random.default_rng(args.seed)
         rows = []
@@ -233,7 +263,7 @@ def main(argv=None):
             if s >= args.states - args.static:
                 v[:] = 0.0
                 a[:] = 0.0
-            rows.append(one_state(model, data, kin, q, v, a, free, s, args.seed))
+            rows.append(one_state(model, data, kin, q, v, a, free, s, args.seed, args.effects))
     except (ValueError, RuntimeError) as e:
         print(f"pinocchio_reference.py: {args.urdf}: {e}", file=sys.stderr)
         return 1

@@ -12,6 +12,12 @@ venv's python, which has pin and example-robot-data).
    Talos and ANYmal as free flyers (Pinocchio's JointModelFreeFlyer root; vtdyn's loader with
    floating = 1, a free joint at the root link's origin): the same at 20 random states, the base's
    six torques included (vtdyn's world wrench turned into the root frame) and its reaction (zero).
+1b. The joints' own effects: UR5 and Panda welded, Solo-12 and Talos as free flyers, each
+   one-velocity joint with an armature (Pinocchio's model.armature, in its rnea; the same values
+   set on vtdyn's builder by vt_builder_set_joint_effects) and the URDF's <dynamics> as each
+   reads them (Panda and Talos declare them; Pinocchio's model.damping v + model.friction
+   sign(v) added to its torques): the torques and reactions to 1e-12, and the damping and
+   friction vtdyn read equal to Pinocchio's.
 2. The command vtdyn on UR5: the reference's states as a states file (the torques to 1e-12), and
    samples of a smooth motion q_j(t) = a_j sin(w_j t + phi_j) as a samples file: vtdyn's torques
    from the splines against Pinocchio's rnea with the exact derivatives, to 1e-4 of the largest
@@ -88,6 +94,24 @@ def main():
         print("%s (free flyer): %s" % (name, (r.stdout + r.stderr).strip()))
         if r.returncode:
             failures.append("%s (free flyer): vtdyn and Pinocchio differ" % name)
+
+    # 1b. the joints' own effects: Pinocchio's rnea with model.armature set, plus its reading of
+    # <dynamics> (damping v + friction sign(v)), against vtdyn with the same armature and its
+    # own reading (Panda and Talos declare <dynamics>; UR5 and Solo-12 do not)
+    for name, root_kind, seed in (("UR5", "fixed", 21), ("Panda", "fixed", 22), ("Solo-12", "free-flyer", 23),
+                                  ("Talos", "free-flyer", 24)):
+        urdf = root / dict((n, r) for n, r, _ in ROBOTS)[name]
+        ref = work / ("%s_effects_%s.csv" % (name, root_kind))
+        r = run(sys.executable, HERE / "pinocchio_reference.py", urdf, root_kind, 20, seed, ref, "--static", 4,
+                "--effects")
+        if r.returncode:
+            failures.append("%s (effects): pinocchio_reference.py: %s" % (name, r.stderr.strip()))
+            continue
+        flags = ["--floating"] if root_kind == "free-flyer" else []
+        r = run(compare, *flags, "--effects", urdf, ref, "1e-12")
+        print("%s (%s, armature, damping, friction): %s" % (name, root_kind, (r.stdout + r.stderr).strip()))
+        if r.returncode:
+            failures.append("%s (effects): vtdyn and Pinocchio differ" % name)
 
     # 2. the command on UR5
     urdf = root / ROBOTS[0][1]
