@@ -103,6 +103,7 @@ module vtdyn
     real(c_double)         :: rcond_warn
     integer(c_int)         :: allow_redundant
     integer(c_int)         :: layout
+    real(c_double)         :: inertia_tol
   end type vt_model_def
 
   ! include/vtdyn.h (VT_HAVE_URDF): the options of vt_urdf_builder; mirrored in every build
@@ -190,6 +191,7 @@ module vtdyn
     integer(c_int)         :: body
     real(c_double)         :: point(3)
     real(c_double)         :: orientation(4)
+    type(c_ptr)            :: reference
   end type vt_frame_def
 
   type, bind(C) :: vt_model

@@ -10,7 +10,7 @@
 
 static const size_t vt_model_def_layout[] = {sizeof(vt_model_def),
     offsetof(vt_model_def, gravity), offsetof(vt_model_def, rcond_min), offsetof(vt_model_def, rcond_warn),
-    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), VT_END};
+    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), offsetof(vt_model_def, inertia_tol), VT_END};
 static const size_t vt_function_layout[] = {sizeof(vt_function),
     offsetof(vt_function, type), offsetof(vt_function, ncoef), offsetof(vt_function, c),
     offsetof(vt_function, callback), offsetof(vt_function, user), offsetof(vt_function, nsample),
@@ -41,7 +41,7 @@ static const size_t vt_coupling_def_layout[] = {sizeof(vt_coupling_def),
     offsetof(vt_coupling_def, name), VT_END};
 static const size_t vt_frame_def_layout[] = {sizeof(vt_frame_def),
     offsetof(vt_frame_def, name), offsetof(vt_frame_def, body), offsetof(vt_frame_def, point),
-    offsetof(vt_frame_def, orientation), VT_END};
+    offsetof(vt_frame_def, orientation), offsetof(vt_frame_def, reference), VT_END};
 static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, nbody), offsetof(vt_model, nq), offsetof(vt_model, nv), offsetof(vt_model, nx),
     offsetof(vt_model, gravity), offsetof(vt_model, body_parent), offsetof(vt_model, body_joint),
