@@ -385,7 +385,10 @@ VT_API vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *d
 /// instead of f''(t), every other row is as in vt_inverse_dynamics() — the rest follows, and
 /// the outputs, the route and the statuses are vt_inverse_dynamics()'s (the drives' efforts,
 /// q̈ of every rate in d->qdd; q and q̇ must satisfy the constraints). Such a model without a
-/// joint drive is refused (VT_ERR_BAD_OPTION).
+/// joint drive is refused (VT_ERR_BAD_OPTION), the message saying what is missing: with
+/// couplings, a joint drive on each coupling's leader (body_b's rate, named) and each free rate;
+/// a URDF robot's mimic joints are couplings unless loaded with vt_urdf_options.mimic = 0 (each
+/// joint then moves on its own, as Pinocchio loads it).
 /// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_OPTION, VT_ERR_NONFINITE (q, q̇, q̈,
 /// xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION, and with loops those of the stages.
 VT_API vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);
