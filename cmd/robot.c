@@ -46,7 +46,8 @@ int cmd_add_payload(vt_builder *b, const char *spec, const char *path)
     if (count != 4 && count != 10)
         return cmd_fail("--payload '%s': %d numbers after the link; 4 (mass, x, y, z) or 10 (and Ixx, Iyy, Izz, Ixy, "
                         "Ixz, Iyz)", spec, count);
-    if (vt_builder_find_frame(b, link) < 0) return cmd_fail("--payload '%s': '%s' is not a link of %s", spec, link, path);
+    if (vt_builder_find_frame(b, link) < 0)
+        return cmd_fail("--payload '%s': '%s' is not a link of %s", spec, link, path);
     vt_payload_def p = vt_default_payload_def();
     p.frame = link;
     p.mass = v[0];

@@ -10,7 +10,8 @@
 
 static const size_t vt_model_def_layout[] = {sizeof(vt_model_def),
     offsetof(vt_model_def, gravity), offsetof(vt_model_def, rcond_min), offsetof(vt_model_def, rcond_warn),
-    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), offsetof(vt_model_def, inertia_tol), VT_END};
+    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), offsetof(vt_model_def, inertia_tol),
+    VT_END};
 static const size_t vt_function_layout[] = {sizeof(vt_function),
     offsetof(vt_function, type), offsetof(vt_function, ncoef), offsetof(vt_function, c),
     offsetof(vt_function, callback), offsetof(vt_function, user), offsetof(vt_function, nsample),

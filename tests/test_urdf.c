@@ -17,22 +17,12 @@
 #error "VT_TEST_URDF_DIR: the directory of the test's URDF files (tests/meson.build)"
 #endif
 
-/* largest |a − b| over n entries relative to the largest |b| (1 when all are 0) */
-static double rel_diff(const double *a, const double *b, int n)
-{
-    double d = 0.0, s = 0.0;
-    for (int k = 0; k < n; k++) {
-        d = fmax(d, fabs(a[k] - b[k]));
-        s = fmax(s, fabs(b[k]));
-    }
-    return d / (s > 0.0 ? s : 1.0);
-}
 
 static double worst = 0.0; /* the largest relative difference against the C scenes (printed) */
 
 #define EXPECT_SAME(a, b, n, what)                                                                 \
     do {                                                                                           \
-        const double r_ = rel_diff((a), (b), (n));                                                 \
+        const double r_ = vt_test_rel_diff((a), (b), (n));                                         \
         worst = fmax(worst, r_);                                                                   \
         if (!(r_ <= 1e-12)) fail_msg("%s: relative difference %.3g > 1e-12", (what), r_);          \
     } while (0)
@@ -401,8 +391,9 @@ static void test_merged_and_rotated(void **state)
         }
         assert_ok(vt_inverse_dynamics_motion(mu, du));
         assert_ok(vt_inverse_dynamics_motion(mh, dh));
-        const double e = rel_diff(du->qfrc_drive, dh->qfrc_drive, 2);
-        const double f = rel_diff(du->jnt_force, dh->jnt_force, 9), n = rel_diff(du->jnt_moment, dh->jnt_moment, 9);
+        const double e = vt_test_rel_diff(du->qfrc_drive, dh->qfrc_drive, 2);
+        const double f = vt_test_rel_diff(du->jnt_force, dh->jnt_force, 9);
+        const double n = vt_test_rel_diff(du->jnt_moment, dh->jnt_moment, 9);
         if (!(e <= 1e-12 && f <= 1e-12 && n <= 1e-12))
             fail_msg("state %d: efforts %.3g, forces %.3g, moments %.3g relative", s, e, f, n);
         for (int k = 0; k < 2; k++) { /* the centres of mass coincide */
@@ -1039,11 +1030,7 @@ static void test_payload_as_edited_file(void **state)
             }
             assert_ok(vt_inverse_dynamics_motion(ma, da));
             assert_ok(vt_inverse_dynamics_motion(me, de));
-            const double r[5] = {rel_diff(da->qfrc_drive, de->qfrc_drive, 2), rel_diff(da->jnt_force, de->jnt_force, 9),
-                                 rel_diff(da->jnt_moment, de->jnt_moment, 9),
-                                 rel_diff(da->jnt_force_body, de->jnt_force_body, 9),
-                                 rel_diff(da->jnt_moment_body, de->jnt_moment_body, 9)};
-            for (int e = 0; e < 5; e++) worst_payload = fmax(worst_payload, r[e]);
+            worst_payload = fmax(worst_payload, vt_test_motion_diff(ma, da, de));
             static const char *const frames[5] = {"world", "arm", "forearm", "tool", "tcp"};
             for (int k = 0; k < 5; k++) {
                 double pa[3], Ra[9], pe[3], Re[9];

@@ -413,7 +413,8 @@ static int shift_points(vt_builder *b, int i, const double c[3], int write)
     for (int k = 0; k < b->nframe; k++)
         if (b->frames[k].body == i) ok = ok && shifted(b->frames[k].point, c, write);
     for (int k = 0; k < b->ndrive; k++)
-        if (b->drives[k].type == VT_DRIVE_POINT && b->drives[k].body == i) ok = ok && shifted(b->drives[k].point, c, write);
+        if (b->drives[k].type == VT_DRIVE_POINT && b->drives[k].body == i)
+            ok = ok && shifted(b->drives[k].point, c, write);
     for (int k = 0; k < b->ncut; k++) {
         if (b->cuts[k].body_a == i) ok = ok && shifted(b->cuts[k].point_a, c, write);
         if (b->cuts[k].body_b == i) ok = ok && shifted(b->cuts[k].point_b, c, write);
@@ -440,8 +441,8 @@ static int mass_change(vt_builder *b, const vt_payload_def *def, int merge)
         if (f < 0) return vt_fail(b->message, VT_ERR_NOT_FOUND, "%s: no frame \"%.64s\" added so far", what, def->frame);
         const vt_frame_def *fr = &b->frames[f];
         if (fr->body == 0)
-            return vt_fail(b->message, VT_ERR_BAD_INDEX, "%s: frame \"%.64s\" is on the ground, which has no mass to change",
-                           what, def->frame);
+            return vt_fail(b->message, VT_ERR_BAD_INDEX,
+                           "%s: frame \"%.64s\" is on the ground, which has no mass to change", what, def->frame);
         i = fr->body;
         vt_euler_A(Q, fr->orientation);
         vt_mulmat3(p, Q, def->point);
@@ -473,8 +474,8 @@ static int mass_change(vt_builder *b, const vt_payload_def *def, int merge)
     snprintf(who, sizeof who, "body %d with the %s", i, what);
     if ((st = vt_check_inertia(b->message, who, J, b->def.inertia_tol))) return st;
     if (!shift_points(b, i, c, 0))
-        return vt_fail(b->message, VT_ERR_NONFINITE, "%s on body %d: a point on the body overflows as its centre of mass moves",
-                       what, i);
+        return vt_fail(b->message, VT_ERR_NONFINITE,
+                       "%s on body %d: a point on the body overflows as its centre of mass moves", what, i);
     shift_points(b, i, c, 1);
     symmetric_part(J);
     body->mass = mass;
@@ -525,8 +526,8 @@ int vt_builder_add_frame(vt_builder *b, const vt_frame_def *def)
     if (f.reference) { /* the pose composed onto the reference frame's: its body's axes from its centre of mass */
         const int r = vt_names_find(&b->frame_index, b->frame_names, vt_name_in_array, f.reference);
         if (r < 0)
-            return vt_fail(b->message, VT_ERR_NOT_FOUND, "frame %d (%s): no reference frame \"%.64s\" added so far", k, name,
-                           f.reference);
+            return vt_fail(b->message, VT_ERR_NOT_FOUND, "frame %d (%s): no reference frame \"%.64s\" added so far",
+                           k, name, f.reference);
         const vt_frame_def *ref = &b->frames[r];
         double A[9], p[3];
         vt_euler_A(A, ref->orientation);
