@@ -26,6 +26,7 @@ program test_fortran_layout
   type(vt_run_options), target :: x_run_options
   type(vt_trajectory), target :: x_trajectory
   type(vt_urdf_options), target :: x_urdf_options
+  type(vt_payload_def), target :: x_payload_def
   integer :: nfail
 
   nfail = 0
@@ -136,6 +137,9 @@ program test_fortran_layout
     call check(9_c_int, 'vt_frame_def', c_sizeof(x_frame_def), a(c_loc(x_frame_def)), [ &
          a(c_loc(x_frame_def%name)), a(c_loc(x_frame_def%body)), a(c_loc(x_frame_def%point)), &
          a(c_loc(x_frame_def%orientation)), a(c_loc(x_frame_def%reference))])
+    call check(12_c_int, 'vt_payload_def', c_sizeof(x_payload_def), a(c_loc(x_payload_def)), [ &
+         a(c_loc(x_payload_def%body)), a(c_loc(x_payload_def%frame)), a(c_loc(x_payload_def%mass)), &
+         a(c_loc(x_payload_def%point)), a(c_loc(x_payload_def%inertia))])
 #if VT_HAVE_URDF
     call check(11_c_int, 'vt_urdf_options', c_sizeof(x_urdf_options), a(c_loc(x_urdf_options)), [ &
          a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating)), &
@@ -179,6 +183,10 @@ program test_fortran_layout
   x_frame_def = vt_default_frame_def()
   call expect(x_frame_def%body == 1 .and. same(x_frame_def%orientation, [1, 0, 0, 0]) &
       .and. .not. c_associated(x_frame_def%name) .and. .not. c_associated(x_frame_def%reference), 'vt_default_frame_def')
+  x_payload_def = vt_default_payload_def()
+  call expect(x_payload_def%body == 1 .and. .not. c_associated(x_payload_def%frame) &
+      .and. same([x_payload_def%mass], [0]) .and. same(x_payload_def%inertia, [0, 0, 0, 0, 0, 0, 0, 0, 0]), &
+      'vt_default_payload_def')
   x_coupling_def = vt_default_coupling_def()
   call expect(x_coupling_def%body_a == 2 .and. x_coupling_def%body_b == 1 .and. same([x_coupling_def%ratio], [1]), &
       'vt_default_coupling_def')
