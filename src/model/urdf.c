@@ -15,7 +15,8 @@
  *     M = Σ m_l,   c = Σ m_l c_l / M   (c_l = T_{P,l} T_{l,I_l} 0; c = P's inertial origin if M = 0)
  *     T_{P,B} = (R_I, c),   T_{B,l} = T_{P,B}^-1 T_{P,l}
  *     J_B = Σ Q_l I_l Q_l^T + m_l (|d_l|² 1 − d_l d_l^T)   (parallel axes, in B's axes)
- * with (Q_l, d_l) = T_{B,l} T_{l,I_l} (Q_P = 1 exactly: P's inertia needs no rotation). The
+ * with (Q_l, d_l) = T_{B,l} T_{l,I_l} (Q_P = 1 exactly: P's inertia needs no rotation), each term
+ * by vt_inertia_add (model/builder.c), which merges a payload into a body the same way. The
  * ground is the root "world" (or every root when not floating) with what is fixed to it; its
  * frame is the global one, the roots' frames coincide with it.
  *
