@@ -157,9 +157,12 @@ static void run_free(run *x)
 }
 
 /* loads the URDF and builds it once as it is (the probe, whose joints name the columns); 0 or 1 */
-static int load_robot(run *x, int floating)
+static int load_robot(run *x, const inverse_options *o)
 {
+    const int floating = o->floating;
     if (cmd_load_urdf(&x->b, x->urdf, floating)) return 1;
+    for (int k = 0; k < o->npayload; k++)
+        if (cmd_add_payload(x->b, o->payload[k], x->urdf)) return 1;
     const vt_status st = vt_builder_build(&x->probe, x->b);
     if (st) return cmd_fail("%s: %s%s", x->urdf, vt_builder_message(x->b), cmd_empty_hint(st, floating));
     const vt_model *p = x->probe;
@@ -911,7 +914,7 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, const
     locale_t cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
     if (!cloc) return cmd_fail("out of memory (the C locale)");
     const locale_t oldloc = uselocale(cloc);
-    int status = input_open(&x.in, states) || load_robot(&x, o->floating) || map_joints(&x) ||
+    int status = input_open(&x.in, states) || load_robot(&x, o) || map_joints(&x) ||
                  map_floating_roots(&x) || check_columns(&x, o->floating) || build_model(&x) ||
                  output_columns(&x) || output_format(&x, outpath) || chunk_arrays(&x);
     if (!status) {

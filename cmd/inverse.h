@@ -12,6 +12,9 @@
 #define COLS_WORLD 2u  /* each joint's reaction in world axes */
 #define COLS_LINK 4u   /* each joint's reaction in its child link's axes */
 
+/* the most --payload options of one run */
+#define CMD_PAYLOAD_MAX 64
+
 /* the options of `inverse` */
 typedef struct {
     int floating;       /* --floating: the root link floats */
@@ -22,6 +25,8 @@ typedef struct {
     double quat_tol;    /* --normalize-quaternions: a floating root's |norm − 1| normalised */
     int format;         /* --format: FMT_CSV or FMT_NPY (cmd/input.h), -1 by -o's name */
     int times;          /* --times: the rows and the time spent on standard error */
+    const char *payload[CMD_PAYLOAD_MAX]; /* --payload: each LINK,mass,x,y,z[,inertia] as given */
+    int npayload;
 } inverse_options;
 
 /* `vtdyn inverse [options] URDF STATES [-o OUTPATH]`: one output row per input row, to OUTPATH

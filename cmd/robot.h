@@ -8,6 +8,11 @@
  * mimic joint is its own joint); 0, or 1 with the message printed */
 int cmd_load_urdf(vt_builder **b, const char *path, int floating);
 
+/* --payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]: a rigid body fixed to the link LINK of the
+ * robot at path (its centre of mass at x, y, z and its inertia about it in LINK's URDF frame),
+ * merged into LINK's body as the loader merges a fixed link; 0, or 1 with the message printed */
+int cmd_add_payload(vt_builder *b, const char *spec, const char *path);
+
 /* a joint type's name as `info` prints it ("revolute", "floating", ...; "?" out of range) */
 const char *cmd_joint_kind(int jt);
 

@@ -3,6 +3,7 @@
  *   vtdyn info [--floating] MODEL.urdf
  *   vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]
  *                 [--normalize-quaternions TOL] [--format csv|npy] [--times]
+ *                 [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...
  *                 MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]
  *   vtdyn --version
  *
@@ -50,6 +51,7 @@ static const char usage[] =
     "usage: vtdyn info [--floating] MODEL.urdf\n"
     "       vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]\n"
     "                     [--normalize-quaternions TOL] [--format csv|npy] [--times]\n"
+    "                     [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...\n"
     "                     MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
     "       vtdyn --version | --help\n"
     "\n"
@@ -120,7 +122,12 @@ static const char usage_options[] =
     "  --format csv|npy the output's format; default by -o's name (.npy: NumPy, else CSV), CSV on\n"
     "                   standard output (npy there needs the row count ahead: a .npy or samples\n"
     "                   input)\n"
-    "  --times          the rows, and the seconds spent reading, solving and writing, on stderr\n";
+    "  --times          the rows, and the seconds spent reading, solving and writing, on stderr\n"
+    "  --payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]\n"
+    "                   a rigid body fixed to the link LINK: its mass (kg), its centre of mass\n"
+    "                   (m) and its inertia about it (kg m^2, default 0: a point mass), both in\n"
+    "                   LINK's URDF frame; merged into LINK as a link fixed to it in the file\n"
+    "                   would be. Repeatable (at most 64)\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)
@@ -210,15 +217,15 @@ static int parse_columns(const char *list, unsigned *groups)
 static int parse_args(int argc, char **argv, inverse_options *o, const char **pos, int *npos, const char **outpath,
                       int info_only)
 {
-    int seen[8] = {0};
+    int seen[9] = {0};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
         const size_t len = eq ? (size_t)(eq - a) : strlen(a);
         static const char *const named[] = {"--floating", "-o", "-j", "--columns", "--precision",
-                                            "--normalize-quaternions", "--format", "--times"};
+                                            "--normalize-quaternions", "--format", "--times", "--payload"};
         int which = -1;
-        for (int w = 0; w < 8; w++)
+        for (int w = 0; w < 9; w++)
             if (strlen(named[w]) == len && strncmp(a, named[w], len) == 0) which = w;
         if (which < 0 && strncmp(a, "-j", 2) == 0 && a[2] >= '0' && a[2] <= '9') { /* -j4 */
             which = 2;
@@ -234,7 +241,7 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
             (*npos)++;
             continue;
         }
-        if (seen[which]++) return cmd_fail("option %s given twice", named[which]);
+        if (seen[which]++ && which != 8) return cmd_fail("option %s given twice", named[which]);
         if (info_only && which != 0) return cmd_fail("info takes --floating alone, not %s", named[which]);
         if ((which == 0 || which == 7) && eq) return cmd_fail("%s takes no value", named[which]);
         const char *v = which == 0 || which == 7 ? NULL : option_value(argc, argv, &k, eq);
@@ -276,6 +283,10 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
             else return cmd_fail("--format '%s': csv or npy", v);
             break;
         case 7: o->times = 1; break;
+        case 8:
+            if (o->npayload == CMD_PAYLOAD_MAX) return cmd_fail("--payload: at most %d of them", CMD_PAYLOAD_MAX);
+            o->payload[o->npayload++] = v;
+            break;
         }
     }
     return 0;

@@ -103,6 +103,7 @@ module vtdyn
     real(c_double)         :: rcond_warn
     integer(c_int)         :: allow_redundant
     integer(c_int)         :: layout
+    real(c_double)         :: inertia_tol
   end type vt_model_def
 
   ! include/vtdyn.h (VT_HAVE_URDF): the options of vt_urdf_builder; mirrored in every build
@@ -110,6 +111,7 @@ module vtdyn
     type(vt_model_def)     :: model
     integer(c_int)         :: floating
     integer(c_int)         :: mimic
+    integer(c_int)         :: dynamics
   end type vt_urdf_options
 
   type, bind(C) :: vt_function
@@ -195,7 +197,16 @@ module vtdyn
     integer(c_int)         :: body
     real(c_double)         :: point(3)
     real(c_double)         :: orientation(4)
+    type(c_ptr)            :: reference
   end type vt_frame_def
+
+  type, bind(C) :: vt_payload_def
+    integer(c_int)         :: body
+    type(c_ptr)            :: frame
+    real(c_double)         :: mass
+    real(c_double)         :: point(3)
+    real(c_double)         :: inertia(9)
+  end type vt_payload_def
 
   type, bind(C) :: vt_model
     integer(c_int)         :: nbody
@@ -625,6 +636,30 @@ module vtdyn
       type(c_ptr), value :: builder
       character(kind=c_char), intent(in) :: name(*)
       integer(c_int) :: vt_builder_find_body
+    end function
+    function vt_builder_find_frame(builder, name) bind(C, name='vt_builder_find_frame')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: builder
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_builder_find_frame
+    end function
+
+    ! payloads and mass properties
+    function vt_default_payload_def() bind(C, name='vt_default_payload_def')
+      import :: vt_payload_def
+      type(vt_payload_def) :: vt_default_payload_def
+    end function
+    function vt_builder_add_payload(builder, def) bind(C, name='vt_builder_add_payload')
+      import :: c_int, c_ptr, vt_payload_def
+      type(c_ptr), value :: builder
+      type(vt_payload_def), intent(in) :: def
+      integer(c_int) :: vt_builder_add_payload
+    end function
+    function vt_builder_set_mass(builder, def) bind(C, name='vt_builder_set_mass')
+      import :: c_int, c_ptr, vt_payload_def
+      type(c_ptr), value :: builder
+      type(vt_payload_def), intent(in) :: def
+      integer(c_int) :: vt_builder_set_mass
     end function
     function vt_find_body(model, name) bind(C, name='vt_find_body')
       import :: c_int, c_ptr, c_char

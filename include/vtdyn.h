@@ -44,7 +44,8 @@ VT_API const char *vt_version(void);
 
 /* ---- model building -------------------------------------------------------------------------- */
 
-/// Defaults: gravity (0, -9.81, 0), rcond_min 1e-12, rcond_warn 1e-6, allow_redundant 0.
+/// Defaults: gravity (0, -9.81, 0), rcond_min 1e-12, rcond_warn 1e-6, allow_redundant 0, layout
+/// VT_LAYOUT_FULL, inertia_tol VT_INERTIA_TOL.
 VT_API vt_model_def vt_default_model_def(void);
 /// Defaults: revolute joint about z (axis1; axis2 x) to the ground, both joint points (0, 0, 0),
 /// orientation identity, 1 kg point mass (inertia 0).
@@ -52,7 +53,8 @@ VT_API vt_body_def vt_default_body_def(void);
 
 /// Starts a builder. def may be NULL for the defaults.
 /// Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY, VT_ERR_NONFINITE (gravity, thresholds),
-/// VT_ERR_BAD_OPTION (rcond_min outside (0, 1] or rcond_warn below it, layout not a vt_layout).
+/// VT_ERR_BAD_OPTION (rcond_min outside (0, 1] or rcond_warn below it, layout not a vt_layout,
+/// inertia_tol outside [0, 1)).
 VT_API vt_status vt_builder_create(vt_builder **builder, const vt_model_def *def);
 /// Validates and adds a body. Returns its id (1, 2, ...) or a negative vt_status, with the
 /// reason in vt_builder_message(). Non-unit axes and orientations are normalized; zero ones
@@ -77,11 +79,13 @@ VT_API void vt_model_free(vt_model *model);
 /// Free it with vt_model_free(). Statuses: VT_ERR_NULL, VT_ERR_NO_MEMORY.
 VT_API vt_status vt_model_without_drives(vt_model **out, const vt_model *model);
 
-/// Defaults: body 1, at its centre of mass, its axes; no name (a frame needs one).
+/// Defaults: body 1, at its centre of mass, its axes; no name (a frame needs one), no reference.
 VT_API vt_frame_def vt_default_frame_def(void);
-/// Validates and adds a frame on a body already added (or the ground). Returns its index (0, 1,
-/// ...) or a negative vt_status: VT_ERR_BAD_NAME (missing, too long, or taken), VT_ERR_BAD_INDEX,
-/// VT_ERR_NONFINITE, VT_ERR_QUATERNION. A refused frame leaves the builder as it was.
+/// Validates and adds a frame on a body already added (or the ground), or at a pose on a frame
+/// added so far (vt_frame_def.reference: a tool frame on a URDF link's frame). Returns its index
+/// (0, 1, ...) or a negative vt_status: VT_ERR_BAD_NAME (missing, too long, or taken),
+/// VT_ERR_BAD_INDEX, VT_ERR_NOT_FOUND (no such reference frame), VT_ERR_NONFINITE,
+/// VT_ERR_QUATERNION. A refused frame leaves the builder as it was.
 VT_API int vt_builder_add_frame(vt_builder *builder, const vt_frame_def *def);
 /// The id of the body added so far under this name, or VT_ERR_NOT_FOUND (VT_ERR_NULL).
 VT_API int vt_builder_find_body(const vt_builder *builder, const char *name);
@@ -97,6 +101,31 @@ VT_API vt_status vt_builder_set_joint_effects(vt_builder *builder, int body, con
 /// A body's joint's own effects as the builder holds them, into *out (to change one and set them
 /// back): VT_ERR_BAD_INDEX, VT_ERR_NULL.
 VT_API vt_status vt_builder_joint_effects(const vt_builder *builder, int body, vt_joint_effects_def *out);
+/// The index of the frame added so far under this name (a URDF robot's link frames are named
+/// after the links), or VT_ERR_NOT_FOUND (VT_ERR_NULL).
+VT_API int vt_builder_find_frame(const vt_builder *builder, const char *name);
+
+/// Defaults: body 1, no frame, mass 0, at the body's centre of mass, inertia 0.
+VT_API vt_payload_def vt_default_payload_def(void);
+/// Fixes a rigid body (a payload, a tool) to a body added so far, merged into it as the URDF
+/// loader merges a link fixed to its parent: the masses added, the centre of mass their
+/// weighted mean, the inertias carried to it by the parallel axes and summed, in the body's
+/// axes, which keep their orientation. A body's points are stored from its centre of mass,
+/// which moves: every point on the body added so far (its joint point, its children's joint
+/// points, its frames, its point drives', its cut joints') is moved with it, so that each stays
+/// where it is on the body; a base body's (VT_JOINT_BASE) coordinates are its centre of mass's
+/// position, the new one's after the call. Returns the body's id or a negative vt_status:
+/// VT_ERR_NULL, VT_ERR_NONFINITE (NaN or Inf, or a result that overflows), VT_ERR_MASS,
+/// VT_ERR_BAD_INDEX (no such body, or a frame on the ground), VT_ERR_NOT_FOUND (no such frame),
+/// the inertia checks' statuses (the payload's inertia, and the body's result). A refused
+/// payload leaves the builder as it was.
+VT_API int vt_builder_add_payload(vt_builder *builder, const vt_payload_def *def);
+/// Replaces a body's mass, centre of mass and inertia by the def's (point: the new centre of
+/// mass, in the body's axes from its present one, or in the frame's axes from its origin;
+/// inertia about it), moving the body's points as vt_builder_add_payload() does. Returns the
+/// body's id or a negative vt_status, as vt_builder_add_payload(); a refusal leaves the builder
+/// as it was.
+VT_API int vt_builder_set_mass(vt_builder *builder, const vt_payload_def *def);
 
 /// Lookups by name in a model: the id or index, or VT_ERR_NOT_FOUND (VT_ERR_NULL for NULL
 /// arguments). vt_find_joint gives the id of the body whose joint has that name.
@@ -371,7 +400,10 @@ VT_API vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *d
 /// instead of f''(t), every other row is as in vt_inverse_dynamics() — the rest follows, and
 /// the outputs, the route and the statuses are vt_inverse_dynamics()'s (the drives' efforts,
 /// q̈ of every rate in d->qdd; q and q̇ must satisfy the constraints). Such a model without a
-/// joint drive is refused (VT_ERR_BAD_OPTION).
+/// joint drive is refused (VT_ERR_BAD_OPTION), the message saying what is missing: with
+/// couplings, a joint drive on each coupling's leader (body_b's rate, named) and each free rate;
+/// a URDF robot's mimic joints are couplings unless loaded with vt_urdf_options.mimic = 0 (each
+/// joint then moves on its own, as Pinocchio loads it).
 /// Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH, VT_ERR_BAD_OPTION, VT_ERR_NONFINITE (q, q̇, q̈,
 /// xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION, and with loops those of the stages.
 VT_API vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);

@@ -10,7 +10,8 @@
 
 static const size_t vt_model_def_layout[] = {sizeof(vt_model_def),
     offsetof(vt_model_def, gravity), offsetof(vt_model_def, rcond_min), offsetof(vt_model_def, rcond_warn),
-    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), VT_END};
+    offsetof(vt_model_def, allow_redundant), offsetof(vt_model_def, layout), offsetof(vt_model_def, inertia_tol),
+    VT_END};
 static const size_t vt_function_layout[] = {sizeof(vt_function),
     offsetof(vt_function, type), offsetof(vt_function, ncoef), offsetof(vt_function, c),
     offsetof(vt_function, callback), offsetof(vt_function, user), offsetof(vt_function, nsample),
@@ -42,7 +43,10 @@ static const size_t vt_coupling_def_layout[] = {sizeof(vt_coupling_def),
     offsetof(vt_coupling_def, name), VT_END};
 static const size_t vt_frame_def_layout[] = {sizeof(vt_frame_def),
     offsetof(vt_frame_def, name), offsetof(vt_frame_def, body), offsetof(vt_frame_def, point),
-    offsetof(vt_frame_def, orientation), VT_END};
+    offsetof(vt_frame_def, orientation), offsetof(vt_frame_def, reference), VT_END};
+static const size_t vt_payload_def_layout[] = {sizeof(vt_payload_def),
+    offsetof(vt_payload_def, body), offsetof(vt_payload_def, frame), offsetof(vt_payload_def, mass),
+    offsetof(vt_payload_def, point), offsetof(vt_payload_def, inertia), VT_END};
 static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, nbody), offsetof(vt_model, nq), offsetof(vt_model, nv), offsetof(vt_model, nx),
     offsetof(vt_model, gravity), offsetof(vt_model, body_parent), offsetof(vt_model, body_joint),
@@ -121,12 +125,13 @@ static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
 
 #if VT_HAVE_URDF /* only declared in a build with libxml2: without, struct 11 has no entries */
 static const size_t vt_urdf_options_layout[] = {sizeof(vt_urdf_options),
-    offsetof(vt_urdf_options, model), offsetof(vt_urdf_options, floating), offsetof(vt_urdf_options, mimic), VT_END};
+    offsetof(vt_urdf_options, model), offsetof(vt_urdf_options, floating), offsetof(vt_urdf_options, mimic),
+    offsetof(vt_urdf_options, dynamics), VT_END};
 #else
 static const size_t vt_urdf_options_layout[] = {VT_END};
 #endif
 
-/* entry k of struct `which` (0..11, in the order of table[]): 0 its size, then the fields'
+/* entry k of struct `which` (0..12, in the order of table[]): 0 its size, then the fields'
  * offsets; (size_t)-1 past the end */
 size_t vt_test_layout(int which, int k);
 size_t vt_test_layout(int which, int k)
@@ -134,7 +139,8 @@ size_t vt_test_layout(int which, int k)
     static const size_t *const table[] = {vt_model_def_layout, vt_function_layout, vt_drive_def_layout,
                                           vt_cut_joint_def_layout, vt_body_def_layout, vt_model_layout,
                                           vt_data_layout, vt_run_options_layout, vt_trajectory_layout,
-                                          vt_frame_def_layout, vt_coupling_def_layout, vt_urdf_options_layout};
+                                          vt_frame_def_layout, vt_coupling_def_layout, vt_urdf_options_layout,
+                                          vt_payload_def_layout};
     if (which < 0 || which >= (int)(sizeof table / sizeof table[0]) || k < 0) return VT_END;
     for (int i = 0; i <= k; i++)
         if (table[which][i] == VT_END) return VT_END;

@@ -14,7 +14,8 @@ interior samples), the link axes' reaction, and the errors: a missing column, a 
 (file, row and column named, exit 1, no output file left), samples whose t does not increase (the
 row and 't' named), --help. A floating body (a URDF floating joint from the world, and a root
 link with --floating): its six efforts against Newton-Euler written here (1e-12), zero in free
-flight; samples and a non-unit quaternion refused.
+flight; samples and a non-unit quaternion refused. --payload against the payload written into
+the file as a fixed link (1e-15).
 
     test_cmd.py VTDYN URDF_DIR WORKDIR
 """
@@ -718,6 +719,45 @@ def options(vtdyn, urdf, states, work, check):
     check(r.returncode == 1 and "--floating alone" in r.stderr, "info refuses inverse's options")
 
 
+def payloads(vtdyn, urdf, states, work, check):
+    """--payload against the same payloads written into the file as links fixed to theirs (the
+    loader's merge): every output cell to 1e-15 of the table's largest; repeated; bad ones refused"""
+    text = open(urdf).read()
+    cut = text.rindex("</robot>")
+    edited = os.path.join(work, "payload.urdf")
+    with open(edited, "w") as f:
+        f.write(text[:cut])
+        f.write('  <link name="payload"><inertial><origin xyz="0.3 -0.1 0.2"/><mass value="5"/>'
+                '<inertia ixx="0.1" iyy="0.2" izz="0.15" ixy="0.01" ixz="-0.02" iyz="0.03"/></inertial></link>\n'
+                '  <joint name="grip" type="fixed"><parent link="link2"/><child link="payload"/></joint>\n'
+                '  <link name="pebble"><inertial><origin xyz="-0.4 0.05 0"/><mass value="0.5"/>'
+                '<inertia ixx="0" iyy="0" izz="0" ixy="0" ixz="0" iyz="0"/></inertial></link>\n'
+                '  <joint name="pebble_joint" type="fixed"><parent link="link1"/><child link="pebble"/></joint>\n')
+        f.write(text[cut:])
+    want = run(vtdyn, "inverse", edited, states)
+    got = run(vtdyn, "inverse", "--payload", "link2,5,0.3,-0.1,0.2,0.1,0.2,0.15,0.01,-0.02,0.03",
+              "--payload=link1,0.5,-0.4,0.05,0", urdf, states)
+    ok = want.returncode == 0 and got.returncode == 0
+    worst = 1.0
+    if ok:
+        (wn, wr), (gn, gr) = csv_table(want.stdout), csv_table(got.stdout)
+        big = max(abs(float(x)) for row in wr for x in row)
+        worst = max(abs(float(x) - float(y)) for a, b in zip(gr, wr) for x, y in zip(a, b)) / big
+        ok = wn == gn and len(wr) == len(gr) and worst <= 1e-15
+    check(ok, "--payload equals the payloads written into the file: relative %.3g (%s%s)"
+          % (worst, want.stderr, got.stderr))
+    print("--payload against the edited file: largest relative difference %.3g" % worst)
+    plain = run(vtdyn, "inverse", urdf, states)
+    check(plain.returncode == 0 and plain.stdout != got.stdout, "a payload changes the efforts")
+    for spec, what in (("link9,1,0,0,0", "'link9' is not a link"), ("link2,1,0,0", "3 numbers after the link"),
+                       ("link2,1,0,0,0,1,1", "4 (mass, x, y, z) or 10"), ("link2,-1,0,0,0", "negative"),
+                       ("link2,1,0,0,x", "finite numbers"), ("link2,1,0,0,0,1,1,5,0,0,0", "inertia_tol"),
+                       ("nolink", "LINK,mass")):
+        r = run(vtdyn, "inverse", "--payload", spec, urdf, states)
+        check(r.returncode == 1 and what in r.stderr and spec in r.stderr,
+              "--payload %s refused: %r" % (spec, r.stderr))
+
+
 def help_is_documented(vtdyn, urdf_dir, check):
     """docs/command.md holds `vtdyn --help`'s text exactly"""
     doc = os.path.join(urdf_dir, "..", "..", "docs", "command.md")
@@ -868,6 +908,7 @@ def main():
     chunks_threads(vtdyn, urdf, work, check)
     npy_files(vtdyn, urdf, states, work, check)
     options(vtdyn, urdf, states, work, check)
+    payloads(vtdyn, urdf, states, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0

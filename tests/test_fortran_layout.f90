@@ -26,12 +26,13 @@ program test_fortran_layout
   type(vt_run_options), target :: x_run_options
   type(vt_trajectory), target :: x_trajectory
   type(vt_urdf_options), target :: x_urdf_options
+  type(vt_payload_def), target :: x_payload_def
   integer :: nfail
 
   nfail = 0
     call check(0_c_int, 'vt_model_def', c_sizeof(x_model_def), a(c_loc(x_model_def)), [ &
          a(c_loc(x_model_def%gravity)), a(c_loc(x_model_def%rcond_min)), a(c_loc(x_model_def%rcond_warn)), &
-         a(c_loc(x_model_def%allow_redundant)), a(c_loc(x_model_def%layout))])
+         a(c_loc(x_model_def%allow_redundant)), a(c_loc(x_model_def%layout)), a(c_loc(x_model_def%inertia_tol))])
     call check(1_c_int, 'vt_function', c_sizeof(x_function), a(c_loc(x_function)), [ &
          a(c_loc(x_function%type)), a(c_loc(x_function%ncoef)), a(c_loc(x_function%c)), &
          a(c_loc(x_function%callback)), a(c_loc(x_function%user)), a(c_loc(x_function%nsample)), &
@@ -141,11 +142,14 @@ program test_fortran_layout
          a(c_loc(x_coupling_def%name))])
     call check(9_c_int, 'vt_frame_def', c_sizeof(x_frame_def), a(c_loc(x_frame_def)), [ &
          a(c_loc(x_frame_def%name)), a(c_loc(x_frame_def%body)), a(c_loc(x_frame_def%point)), &
-         a(c_loc(x_frame_def%orientation))])
+         a(c_loc(x_frame_def%orientation)), a(c_loc(x_frame_def%reference))])
+    call check(12_c_int, 'vt_payload_def', c_sizeof(x_payload_def), a(c_loc(x_payload_def)), [ &
+         a(c_loc(x_payload_def%body)), a(c_loc(x_payload_def%frame)), a(c_loc(x_payload_def%mass)), &
+         a(c_loc(x_payload_def%point)), a(c_loc(x_payload_def%inertia))])
 #if VT_HAVE_URDF
     call check(11_c_int, 'vt_urdf_options', c_sizeof(x_urdf_options), a(c_loc(x_urdf_options)), [ &
          a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating)), &
-         a(c_loc(x_urdf_options%mimic))])
+         a(c_loc(x_urdf_options%mimic)), a(c_loc(x_urdf_options%dynamics))])
 #else
     print '(a, i0, a)', 'vt_urdf_options: not in this build (', c_sizeof(x_urdf_options), ' bytes in Fortran)'
 #endif
@@ -164,7 +168,8 @@ program test_fortran_layout
       .and. same(x_body_def%inertia, [0, 0, 0, 0, 0, 0, 0, 0, 0]), 'vt_default_body_def')
   x_model_def = vt_default_model_def()
   call expect(same(x_model_def%gravity, [0.0_c_double, -9.81_c_double, 0.0_c_double]) &
-      .and. same([x_model_def%rcond_min], [1e-12_c_double]) .and. x_model_def%allow_redundant == 0, &
+      .and. same([x_model_def%rcond_min], [1e-12_c_double]) .and. x_model_def%allow_redundant == 0 &
+      .and. same([x_model_def%inertia_tol], [1e-6_c_double]), &
       'vt_default_model_def')
   x_drive_def = vt_default_drive_def()
   call expect(x_drive_def%type == VT_DRIVE_JOINT .and. x_drive_def%body == 1 .and. x_drive_def%index == 0 &
@@ -183,7 +188,11 @@ program test_fortran_layout
       .and. x_cut_joint_def%body_b == 1 .and. same(x_cut_joint_def%axis2, [1, 0, 0]), 'vt_default_cut_joint_def')
   x_frame_def = vt_default_frame_def()
   call expect(x_frame_def%body == 1 .and. same(x_frame_def%orientation, [1, 0, 0, 0]) &
-      .and. .not. c_associated(x_frame_def%name), 'vt_default_frame_def')
+      .and. .not. c_associated(x_frame_def%name) .and. .not. c_associated(x_frame_def%reference), 'vt_default_frame_def')
+  x_payload_def = vt_default_payload_def()
+  call expect(x_payload_def%body == 1 .and. .not. c_associated(x_payload_def%frame) &
+      .and. same([x_payload_def%mass], [0]) .and. same(x_payload_def%inertia, [0, 0, 0, 0, 0, 0, 0, 0, 0]), &
+      'vt_default_payload_def')
   x_coupling_def = vt_default_coupling_def()
   call expect(x_coupling_def%body_a == 2 .and. x_coupling_def%body_b == 1 .and. same([x_coupling_def%ratio], [1]), &
       'vt_default_coupling_def')

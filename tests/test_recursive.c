@@ -728,6 +728,31 @@ static void test_motion_refused(void **state)
     assert_int_equal(d->route, VT_ROUTE_NONE);
     vt_data_free(d);
     vt_model_free(m);
+    { /* a coupling (a URDF mimic joint's) and no drive: the message says what is missing (a drive
+       * on the coupling's leader, named) and the way to load the file as Pinocchio does */
+        vt_builder *b;
+        assert_ok(vt_builder_create(&b, NULL));
+        vt_body_def bd = vt_default_body_def();
+        bd.name = "a";
+        bd.joint_name = "shoulder";
+        assert_int_equal(vt_builder_add_body(b, &bd), 1);
+        bd.parent = 1;
+        bd.joint_parent[0] = 1.0;
+        bd.name = "b";
+        bd.joint_name = "finger";
+        assert_int_equal(vt_builder_add_body(b, &bd), 2);
+        vt_coupling_def c = vt_default_coupling_def();
+        assert_int_equal(vt_builder_add_coupling(b, &c), 0);
+        m = vt_test_build(b);
+        assert_ok(vt_data_create(&d, m));
+        assert_int_equal(vt_inverse_dynamics_motion(m, d), VT_ERR_BAD_OPTION);
+        static const char *const words[] = {"no joint drive", "leader", "\"finger\" follows \"shoulder\"",
+                                            "vt_urdf_options.mimic = 0", "Pinocchio"};
+        for (int k = 0; k < 5; k++)
+            if (!strstr(d->message, words[k])) fail_msg("\"%s\" not in the message \"%s\"", words[k], d->message);
+        vt_data_free(d);
+        vt_model_free(m);
+    }
     uint64_t seed = 1;
     for (;; seed++) { /* a random tree with a base body */
         assert_ok(vt_scene_random_tree(&m, seed, 6, VT_SCENE_ALL_JOINTS));

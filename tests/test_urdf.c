@@ -17,22 +17,12 @@
 #error "VT_TEST_URDF_DIR: the directory of the test's URDF files (tests/meson.build)"
 #endif
 
-/* largest |a − b| over n entries relative to the largest |b| (1 when all are 0) */
-static double rel_diff(const double *a, const double *b, int n)
-{
-    double d = 0.0, s = 0.0;
-    for (int k = 0; k < n; k++) {
-        d = fmax(d, fabs(a[k] - b[k]));
-        s = fmax(s, fabs(b[k]));
-    }
-    return d / (s > 0.0 ? s : 1.0);
-}
 
 static double worst = 0.0; /* the largest relative difference against the C scenes (printed) */
 
 #define EXPECT_SAME(a, b, n, what)                                                                 \
     do {                                                                                           \
-        const double r_ = rel_diff((a), (b), (n));                                                 \
+        const double r_ = vt_test_rel_diff((a), (b), (n));                                         \
         worst = fmax(worst, r_);                                                                   \
         if (!(r_ <= 1e-12)) fail_msg("%s: relative difference %.3g > 1e-12", (what), r_);          \
     } while (0)
@@ -401,8 +391,9 @@ static void test_merged_and_rotated(void **state)
         }
         assert_ok(vt_inverse_dynamics_motion(mu, du));
         assert_ok(vt_inverse_dynamics_motion(mh, dh));
-        const double e = rel_diff(du->qfrc_drive, dh->qfrc_drive, 2);
-        const double f = rel_diff(du->jnt_force, dh->jnt_force, 9), n = rel_diff(du->jnt_moment, dh->jnt_moment, 9);
+        const double e = vt_test_rel_diff(du->qfrc_drive, dh->qfrc_drive, 2);
+        const double f = vt_test_rel_diff(du->jnt_force, dh->jnt_force, 9);
+        const double n = vt_test_rel_diff(du->jnt_moment, dh->jnt_moment, 9);
         if (!(e <= 1e-12 && f <= 1e-12 && n <= 1e-12))
             fail_msg("state %d: efforts %.3g, forces %.3g, moments %.3g relative", s, e, f, n);
         for (int k = 0; k < 2; k++) { /* the centres of mass coincide */
@@ -977,6 +968,99 @@ static void test_mimic_and_placeholders(void **state)
     vt_model_free(hand);
 }
 
+/* A payload fixed to a link through the API (vt_builder_add_payload on the link's frame, after a
+ * tool frame placed on the tool's frame) equals the same payload and tool frame written into the
+ * file as links fixed to it (the loader's own merge): the efforts and every reaction of
+ * vt_inverse_dynamics_motion to 1e-15 at random states, and every link frame's pose, on each of
+ * the robot's links: a moving one (arm, forearm) and one merged by a fixed joint (tool). With
+ * inertia_tol (the URDF options' model), an inertia 0.18 % off the triangle inequality loads. */
+static void test_payload_as_edited_file(void **state)
+{
+    (void)state;
+    static const char *const links[3] = {"arm", "forearm", "tool"};
+    const double pm = 5.0, pc[3] = {0.12, -0.07, 0.21};
+    const double pI[9] = {0.03, 0.004, -0.002, 0.004, 0.05, 0.001, -0.002, 0.001, 0.04};
+    const double tcp_xyz[3] = {0.01, 0.02, 0.15}, tcp_rpy[3] = {0.3, -0.2, 1.1};
+    char xml[8192], edited[12288], msg[256];
+    tool_urdf(xml, sizeof xml);
+    double worst_payload = 0.0;
+    for (int l = 0; l < 3; l++) {
+        const size_t n = strlen(xml) - strlen("</robot>\n");
+        memcpy(edited, xml, n);
+        snprintf(edited + n, sizeof edited - n,
+                 "  <link name=\"payload\"><inertial><origin xyz=\"%.17g %.17g %.17g\"/><mass value=\"%.17g\"/>"
+                 "<inertia ixx=\"%.17g\" ixy=\"%.17g\" ixz=\"%.17g\" iyy=\"%.17g\" iyz=\"%.17g\" izz=\"%.17g\"/>"
+                 "</inertial></link>\n"
+                 "  <joint name=\"grip\" type=\"fixed\"><parent link=\"%s\"/><child link=\"payload\"/></joint>\n"
+                 "  <link name=\"tcp\"/>\n"
+                 "  <joint name=\"tcp_joint\" type=\"fixed\"><parent link=\"tool\"/><child link=\"tcp\"/>"
+                 "<origin xyz=\"%.17g %.17g %.17g\" rpy=\"%.17g %.17g %.17g\"/></joint>\n</robot>\n",
+                 pc[0], pc[1], pc[2], pm, pI[0], pI[3], pI[6], pI[4], pI[7], pI[8], links[l], tcp_xyz[0], tcp_xyz[1],
+                 tcp_xyz[2], tcp_rpy[0], tcp_rpy[1], tcp_rpy[2]);
+        vt_builder *be, *ba;
+        if (vt_urdf_builder_string(&be, edited, NULL, msg) != VT_OK) fail_msg("%s", msg);
+        if (vt_urdf_builder_string(&ba, xml, NULL, msg) != VT_OK) fail_msg("%s", msg);
+        vt_frame_def f = vt_default_frame_def();
+        f.name = "tcp";
+        f.reference = "tool";
+        memcpy(f.point, tcp_xyz, sizeof tcp_xyz);
+        rpy_quat(f.orientation, tcp_rpy[0], tcp_rpy[1], tcp_rpy[2]);
+        assert_true(vt_builder_add_frame(ba, &f) >= 0);
+        vt_payload_def p = vt_default_payload_def();
+        p.frame = links[l];
+        p.mass = pm;
+        memcpy(p.point, pc, sizeof pc);
+        memcpy(p.inertia, pI, sizeof pI);
+        assert_int_equal(vt_builder_add_payload(ba, &p), l == 0 ? 1 : 2);
+        vt_model *me, *ma;
+        assert_ok(vt_builder_build(&me, be));
+        assert_ok(vt_builder_build(&ma, ba));
+        vt_builder_free(be);
+        vt_builder_free(ba);
+        assert_int_equal(ma->nbody, me->nbody);
+        vt_data *de, *da;
+        assert_ok(vt_data_create(&de, me));
+        assert_ok(vt_data_create(&da, ma));
+        uint64_t seed = 5 + (uint64_t)l;
+        for (int s = 0; s < 5; s++) {
+            for (int k = 0; k < 2; k++) {
+                da->q[k] = de->q[k] = vt_rand_uniform(&seed, -3.0, 3.0);
+                da->qd[k] = de->qd[k] = vt_rand_uniform(&seed, -2.0, 2.0);
+                da->qdd[k] = de->qdd[k] = vt_rand_uniform(&seed, -5.0, 5.0);
+            }
+            assert_ok(vt_inverse_dynamics_motion(ma, da));
+            assert_ok(vt_inverse_dynamics_motion(me, de));
+            worst_payload = fmax(worst_payload, vt_test_motion_diff(ma, da, de));
+            static const char *const frames[5] = {"world", "arm", "forearm", "tool", "tcp"};
+            for (int k = 0; k < 5; k++) {
+                double pa[3], Ra[9], pe[3], Re[9];
+                assert_ok(vt_frame_pose(ma, da, vt_find_frame(ma, frames[k]), pa, Ra));
+                assert_ok(vt_frame_pose(me, de, vt_find_frame(me, frames[k]), pe, Re));
+                for (int e = 0; e < 3; e++) assert_near(pa[e], pe[e], 1e-15);
+                for (int e = 0; e < 9; e++) assert_near(Ra[e], Re[e], 1e-15);
+            }
+        }
+        vt_data_free(de);
+        vt_data_free(da);
+        vt_model_free(me);
+        vt_model_free(ma);
+    }
+    print_message("payload through the API against the edited file: largest relative difference %.3g\n", worst_payload);
+    if (!(worst_payload <= 1e-15)) fail_msg("relative difference %.3g > 1e-15", worst_payload);
+
+    /* inertia_tol in the URDF options: romeo_small's 0.18 % off the triangle inequality */
+    const char *romeo = "<robot name=\"r\"><link name=\"world\"/><link name=\"a\"><inertial><mass value=\"1\"/>"
+                        "<inertia ixx=\"1\" iyy=\"1\" izz=\"2.0036\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>"
+                        "<joint name=\"j\" type=\"continuous\"><parent link=\"world\"/><child link=\"a\"/></joint></robot>";
+    vt_urdf_options opt = vt_default_urdf_options();
+    vt_builder *b;
+    assert_int_equal(vt_urdf_builder_string(&b, romeo, &opt, msg), VT_ERR_INERTIA_TRIANGLE);
+    assert_non_null(strstr(msg, "inertia_tol"));
+    opt.model.inertia_tol = 2e-3;
+    assert_int_equal(vt_urdf_builder_string(&b, romeo, &opt, msg), VT_OK);
+    vt_builder_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -992,6 +1076,7 @@ int main(void)
         cmocka_unit_test(test_size_bound),
         cmocka_unit_test(test_long_chain),
         cmocka_unit_test(test_lines_past_65535),
+        cmocka_unit_test(test_payload_as_edited_file),
     };
     return cmocka_run_group_tests(tests, NULL, report);
 }

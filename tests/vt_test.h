@@ -274,6 +274,29 @@ static inline double vt_test_maxabs(const double *a, int n)
     return s;
 }
 
+/* largest |a − b| over n entries relative to the largest |b| (1 when all are 0) */
+static inline double vt_test_rel_diff(const double *a, const double *b, int n)
+{
+    double d = 0.0, s = 0.0;
+    for (int k = 0; k < n; k++) {
+        d = fmax(d, fabs(a[k] - b[k]));
+        s = fmax(s, fabs(b[k]));
+    }
+    return d / (s > 0.0 ? s : 1.0);
+}
+
+/* the largest of vt_test_rel_diff over the efforts (qfrc_drive) and the joint reactions in both
+ * frames of two data of models of the same layout */
+static inline double vt_test_motion_diff(const vt_model *m, const vt_data *a, const vt_data *b)
+{
+    const int n3 = 3 * (m->nbody + 1);
+    const double r[5] = {vt_test_rel_diff(a->qfrc_drive, b->qfrc_drive, m->nv),
+                         vt_test_rel_diff(a->jnt_force, b->jnt_force, n3), vt_test_rel_diff(a->jnt_moment, b->jnt_moment, n3),
+                         vt_test_rel_diff(a->jnt_force_body, b->jnt_force_body, n3),
+                         vt_test_rel_diff(a->jnt_moment_body, b->jnt_moment_body, n3)};
+    return fmax(fmax(fmax(r[0], r[1]), fmax(r[2], r[3])), r[4]);
+}
+
 /* Adds to an empty builder n uniform rods of length L along their body x, masses mass[k] (kg),
  * in a chain on revolute joints about z: body 1 at the origin, body k + 1 at body k's far end. */
 static inline void vt_test_add_rods(vt_builder *b, int n, double L, const double *mass)

@@ -34,9 +34,9 @@ typedef enum vt_status {
     VT_ERR_NO_MEMORY = -2,             ///< an allocation failed
     VT_ERR_NONFINITE = -3,             ///< NaN or Inf in a definition or state
     VT_ERR_MASS = -4,                  ///< mass negative
-    VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric (to VT_INERTIA_TOL)
-    VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment (to VT_INERTIA_TOL)
-    VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3 (to VT_INERTIA_TOL)
+    VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric (to vt_model_def.inertia_tol)
+    VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment (to vt_model_def.inertia_tol)
+    VT_ERR_INERTIA_TRIANGLE = -7,      ///< principal moments violate I1 + I2 >= I3 (to vt_model_def.inertia_tol)
     VT_ERR_AXIS_ZERO = -8,             ///< a joint or drive axis is the zero vector
     VT_ERR_AXES_NOT_PERPENDICULAR = -9,///< universal joint axes not perpendicular
     VT_ERR_PARENT = -10,               ///< reference body is not an earlier body (base: not ground)
@@ -86,9 +86,9 @@ typedef enum vt_status {
 /// Bytes of a message buffer (a data's or builder's message, vt_urdf_builder's): part of the ABI, stays 256.
 #define VT_MESSAGE_SIZE 256
 
-/// Relative tolerance of a body's inertia checks: symmetric, positive semi-definite and within
-/// the triangle inequality to VT_INERTIA_TOL times its largest entry (what files that print
-/// inertias to a few digits are off by); the model keeps the symmetric part.
+/// Default relative tolerance of a body's inertia checks (vt_model_def.inertia_tol): symmetric,
+/// positive semi-definite and within the triangle inequality to it times its largest entry (what
+/// files that print inertias to a few digits are off by); the model keeps the symmetric part.
 #define VT_INERTIA_TOL 1e-6
 /// Absolute floor of those tolerances, kg·m²: a point mass written with moments of −5e-20.
 #define VT_INERTIA_ABS_TOL 1e-15
@@ -171,6 +171,11 @@ typedef struct vt_model_def {
                         ///< (vt_run_options.redundant_band); default 0
     vt_layout layout;   ///< which arrays the model's data holds, and so its size (vt_data_size());
                         ///< default VT_LAYOUT_FULL
+    double inertia_tol; ///< relative tolerance of the inertia checks (symmetric, positive semi-definite,
+                        ///< triangle inequality), a fraction of the inertia's largest entry, ≥ 0 and
+                        ///< < 1: a file whose inertias are off by more than round-off (romeo_small's
+                        ///< by 0.18 %: 2e-3) is accepted with a larger one, the symmetric part kept;
+                        ///< default VT_INERTIA_TOL
 } vt_model_def;
 
 /// Warning flags a successful call may leave in vt_data.warning.
@@ -429,7 +434,25 @@ typedef struct vt_frame_def {
                                 ///< ground); default 0
     double orientation[4];      ///< its axes relative to the body's (Euler parameters); normalized;
                                 ///< default identity
+    const char *reference;      ///< the name of a frame added so far (a tool frame on a URDF link's):
+                                ///< point and orientation are then in that frame's axes from its
+                                ///< origin, and body is its body (in a model: NULL); NULL (default):
+                                ///< as given
 } vt_frame_def;
+
+/// A rigid body fixed to a body of the builder (a payload, a tool), or that body's own mass
+/// properties (vt_builder_add_payload(), vt_builder_set_mass()). Fill from vt_default_payload_def().
+typedef struct vt_payload_def {
+    int body;                   ///< the body it is fixed to, 1..n (vt_builder_find_body() finds it by
+                                ///< name); default 1; unused with `frame`
+    const char *frame;          ///< the name of a frame added so far (a URDF link's): its body is the
+                                ///< body, and point and inertia are in the frame's axes from its
+                                ///< origin; NULL (default): in the body's axes from its centre of mass
+    double mass;                ///< kg, ≥ 0; default 0
+    double point[3];            ///< m, its centre of mass; default 0
+    double inertia[9];          ///< kg·m², about its centre of mass, 3x3 column-major, checked as a
+                                ///< body's (vt_model_def.inertia_tol); default 0 (a point mass)
+} vt_payload_def;
 
 /// The immutable model. Built by vt_builder_build(); read-only afterwards.
 typedef struct vt_model {

@@ -174,15 +174,16 @@ static int model_names(ModelObject *self)
 static PyObject *load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
 {
     (void)mod;
-    static char *kwlist[] = {"path", "floating", "mimic", NULL};
+    static char *kwlist[] = {"path", "floating", "mimic", "dynamics", NULL};
     PyObject *pathb = NULL;
-    int floating = 0, mimic = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O&|pp:load_urdf", kwlist, PyUnicode_FSConverter, &pathb, &floating,
-                                     &mimic))
+    int floating = 0, mimic = 0, dynamics = 1;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O&|ppp:load_urdf", kwlist, PyUnicode_FSConverter, &pathb, &floating,
+                                     &mimic, &dynamics))
         return NULL;
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
     opt.mimic = mimic;
+    opt.dynamics = dynamics;
     /* the given-motion instant needs O(n) data only; a coupling (mimic) needs the full layout */
     opt.model.layout = mimic ? VT_LAYOUT_FULL : VT_LAYOUT_RECURSIVE;
     char msg[VT_MESSAGE_SIZE] = "";
@@ -541,7 +542,8 @@ static PyObject *version(PyObject *mod, PyObject *unused)
 
 static PyMethodDef module_methods[] = {
     {"load_urdf", (PyCFunction)(void (*)(void))load_urdf, METH_VARARGS | METH_KEYWORDS,
-     "load_urdf(path, floating=False, mimic=False) -> Model: a URDF robot (vt_urdf_builder)"},
+     "load_urdf(path, floating=False, mimic=False, dynamics=True) -> Model: a URDF robot (vt_urdf_builder);\n"
+     "dynamics: the joints' <dynamics damping friction> in every effort (False: ideal joints)"},
     {"version", version, METH_NOARGS, "the C library's version (vt_version)"},
     {NULL, NULL, 0, NULL},
 };

@@ -15,7 +15,8 @@
  *     M = Σ m_l,   c = Σ m_l c_l / M   (c_l = T_{P,l} T_{l,I_l} 0; c = P's inertial origin if M = 0)
  *     T_{P,B} = (R_I, c),   T_{B,l} = T_{P,B}^-1 T_{P,l}
  *     J_B = Σ Q_l I_l Q_l^T + m_l (|d_l|² 1 − d_l d_l^T)   (parallel axes, in B's axes)
- * with (Q_l, d_l) = T_{B,l} T_{l,I_l} (Q_P = 1 exactly: P's inertia needs no rotation). The
+ * with (Q_l, d_l) = T_{B,l} T_{l,I_l} (Q_P = 1 exactly: P's inertia needs no rotation), each term
+ * by vt_inertia_add (model/builder.c), which merges a payload into a body the same way. The
  * ground is the root "world" (or every root when not floating) with what is fixed to it; its
  * frame is the global one, the roots' frames coincide with it.
  *
@@ -53,6 +54,7 @@
 #include <libxml/xmlerror.h>
 
 #include "model/urdf.h"
+#include "model/builder.h"
 #include "model/names.h"
 #include "model/xml.h"
 #include "base/status.h"
@@ -525,20 +527,8 @@ static void mass_properties(urdf *u)
         pose I;
         double Q[9];
         pose_mul(&I, &l->in_body, &l->inertial); /* (Q_l, d_l) */
-        if (k == b->primary) {
-            memset(Q, 0, sizeof Q);
-            Q[0] = Q[4] = Q[8] = 1.0;
-        } else {
-            vt_euler_A(Q, I.p);
-        }
-        const double *d = I.t, dd = vt_dot3(d, d);
-        for (int r = 0; r < 3; r++)
-            for (int c = 0; c < 3; c++) {
-                double s = 0.0;
-                for (int a = 0; a < 3; a++)
-                    for (int e = 0; e < 3; e++) s += Q[r + 3 * a] * l->inertia[a + 3 * e] * Q[c + 3 * e];
-                b->inertia[r + 3 * c] += s + l->mass * ((r == c ? dd : 0.0) - d[r] * d[c]);
-            }
+        if (k != b->primary) vt_euler_A(Q, I.p);
+        vt_inertia_add(b->inertia, l->mass, l->inertia, k == b->primary ? NULL : Q, I.t);
     }
 }
 

@@ -570,10 +570,17 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     if (m->ncut > 0 || m->ncoupling > 0) { /* loops or couplings: the joint-driven rates are the given ones */
         int given = 0;
         for (int r = 0; r < m->nc; r++) given += m->con_kind[r] == VT_ROW_JOINT;
-        if (!given)
+        if (!given && m->ncoupling == 0)
             return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                           "vt_inverse_dynamics_motion: the model has %d cut joints and %d couplings and no joint drive: "
-                           "drive the rates whose motion is given", m->ncut, m->ncoupling);
+                           "vt_inverse_dynamics_motion: the model has %d cut joints and no joint drive: "
+                           "drive the rates whose motion is given", m->ncut);
+        if (!given) /* what a URDF robot with mimic joints meets first: the leader's drive, or no couplings */
+            return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                           "vt_inverse_dynamics_motion: %d couplings, no joint drive: put a joint drive on each "
+                           "coupling's leader (\"%.24s\" follows \"%.24s\") and free rate, or load the URDF with "
+                           "vt_urdf_options.mimic = 0 (as Pinocchio does)", m->ncoupling,
+                           m->joint_name + (size_t)VT_NAME_MAX * m->coupling[0].body_a,
+                           m->joint_name + (size_t)VT_NAME_MAX * m->coupling[0].body_b);
         return vt_motion_rows(m, d);
     }
     for (int i = 1; m->joint_mix < 0 && i <= m->nbody; i++)

@@ -114,7 +114,7 @@ def compare_with_pinocchio(name, floating):
                 ap[iv:iv + 6] = np.r_[R.T @ a[s, va:va + 3] - np.cross(wl, vl), R.T @ a[s, va + 3:va + 6]]
             else:
                 qp[iq], vp[iv], ap[iv] = q[s, qa], v[s, va], a[s, va]
-        tau = pin.rnea(pm, pd, qp, vp, ap)
+        tau = pin.rnea(pm, pd, qp, vp, ap) + pm.damping * vp + pm.friction * np.sign(vp)  # <dynamics>, as vtdyn
         pin.forwardKinematics(pm, kin, qp)
         mine_tau = np.empty(pm.nv)
         for b, j, qa, nq, va, nv, iq, iv in joints:
@@ -126,7 +126,7 @@ def compare_with_pinocchio(name, floating):
         ref_w, mine_w = [], []
         for b, j, qa, nq, va, nv, iq, iv in joints:
             S = np.asarray(pd.joints[j].S).reshape(6, nv)
-            fr = pd.f[j].vector - S @ tau[iv:iv + nv]
+            fr = pd.f[j].vector - S @ (S.T @ pd.f[j].vector)  # less the actuation (the joint's S^T f)
             Rj = kin.oMi[j].rotation
             ref_w.append(np.r_[Rj @ fr[:3], Rj @ fr[3:]])
             mine_w.append(r.reaction[s, b])
