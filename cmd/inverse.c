@@ -105,6 +105,7 @@ typedef struct {
     double *q, *qd, *qdd;      /* the states (K x nq, K x nv, K x nv) */
     double *effort;            /* every rate's effort (K x nv) */
     double *reac, *reac_body;  /* the joints' reactions, world and body axes (K x 6 nbody), or NULL */
+    double *parts;             /* the efforts' armature, damping and friction parts (K x 3 nv), or NULL */
     int *status;               /* the rows' statuses (K) */
     double *vals[2];           /* .npy output: the rows' values, little-endian (K x nout), two sets */
     block_state *blk;          /* T */
@@ -136,6 +137,7 @@ static void run_free(run *x)
     free(x->effort);
     free(x->reac);
     free(x->reac_body);
+    free(x->parts);
     free(x->status);
     free(x->vals[0]);
     free(x->vals[1]);
@@ -160,9 +162,10 @@ static void run_free(run *x)
 static int load_robot(run *x, const inverse_options *o)
 {
     const int floating = o->floating;
-    if (cmd_load_urdf(&x->b, x->urdf, floating)) return 1;
+    if (cmd_load_urdf(&x->b, x->urdf, floating, !o->ideal)) return 1;
     for (int k = 0; k < o->npayload; k++)
         if (cmd_add_payload(x->b, o->payload[k], x->urdf)) return 1;
+    if (o->joint_params && cmd_joint_params(x->b, o->joint_params, x->urdf)) return 1;
     const vt_status st = vt_builder_build(&x->probe, x->b);
     if (st) return cmd_fail("%s: %s%s", x->urdf, vt_builder_message(x->b), cmd_empty_hint(st, floating));
     const vt_model *p = x->probe;
@@ -417,11 +420,13 @@ static int output_columns(run *x)
                                             "_effort_nx_link", "_effort_ny_link", "_effort_nz_link"};
     static const char *const world[6] = {"_fx", "_fy", "_fz", "_nx", "_ny", "_nz"};
     static const char *const link[6] = {"_fx_link", "_fy_link", "_fz_link", "_nx_link", "_ny_link", "_nz_link"};
+    static const char *const parts[3] = {"_effort_armature", "_effort_damping", "_effort_friction"};
     const unsigned g = x->o->groups;
     int n = x->ct >= 0;
     for (int k = 0; k < x->nj; k++)
         n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0)
-                           : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_WORLD ? 6 : 0) + (g & COLS_LINK ? 6 : 0);
+                           : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_PARTS ? 3 : 0) + (g & COLS_WORLD ? 6 : 0) +
+                                 (g & COLS_LINK ? 6 : 0);
     if (n == 0)
         return cmd_fail("--columns: none of the selected groups has a column for %s (a floating root has efforts "
                         "alone)",
@@ -438,6 +443,7 @@ static int output_columns(run *x)
             continue;
         }
         if (g & COLS_EFFORT) bad |= add_name(x, &k, j->name, "_effort");
+        for (int c = 0; c < 3 && (g & COLS_PARTS); c++) bad |= add_name(x, &k, j->name, parts[c]);
         for (int c = 0; c < 6 && (g & COLS_WORLD); c++) bad |= add_name(x, &k, j->name, world[c]);
         for (int c = 0; c < 6 && (g & COLS_LINK); c++) bad |= add_name(x, &k, j->name, link[c]);
     }
@@ -454,7 +460,9 @@ static int chunk_arrays(run *x)
                  nout = (size_t)x->nout, text = 26 * nout + 2;
     const unsigned g = x->o->groups;
     const int world = (g & COLS_WORLD) != 0, link = (g & COLS_LINK) != 0;
-    const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + nout) + 4 + 16 + text + 24 * ncol;
+    const int parts = (g & COLS_PARTS) != 0;
+    const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + (size_t)(3 * parts) * nv + nout) +
+                       4 + 16 + text + 24 * ncol;
     size_t K = CHUNK_BYTES / row;
     if (K > CHUNK_ROWS) K = CHUNK_ROWS;
     if (K < 1) K = 1;
@@ -466,10 +474,12 @@ static int chunk_arrays(run *x)
     x->effort = calloc(K * nv, sizeof *x->effort);
     if (world) x->reac = calloc(K * nb6, sizeof *x->reac);
     if (link) x->reac_body = calloc(K * nb6, sizeof *x->reac_body);
+    if (parts) x->parts = calloc(K * 3 * nv, sizeof *x->parts);
     x->status = calloc(K, sizeof *x->status);
     for (int k = 0; k < 2 && x->ofmt == FMT_NPY; k++) x->vals[k] = malloc(K * nout * sizeof *x->vals[k]);
     x->blk = calloc((size_t)x->T, sizeof *x->blk);
     if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_body) ||
+        (parts && !x->parts) ||
         !x->status || (x->ofmt == FMT_NPY && (!x->vals[0] || !x->vals[1])) || !x->blk)
         return cmd_fail("out of memory");
     for (int k = 0; k < x->T; k++)
@@ -565,6 +575,10 @@ static void gather(const run *x, int r, double *v)
             continue;
         }
         if (g & COLS_EFFORT) v[o++] = e[j->rate];
+        if (g & COLS_PARTS) {
+            const double *pr = x->parts + r * 3 * nv;
+            for (int c = 0; c < 3; c++) v[o++] = pr[c * nv + (size_t)j->rate];
+        }
         if (g & COLS_WORLD) {
             memcpy(v + o, rw + b6, 6 * sizeof *v);
             o += 6;
@@ -753,6 +767,7 @@ static int solve_chunk(run *x, int n, int set)
     io.effort = x->effort;
     io.reaction = x->reac;
     io.reaction_body = x->reac_body;
+    io.effort_parts = x->parts;
     io.status = x->status;
     const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
     x->t_solve += now() - t1;
@@ -860,6 +875,12 @@ static int run_samples(run *x)
             }
             double *e = x->effort + r * nv;
             for (int k = 0; k < x->nj; k++) e[x->jc[k].rate] = d->drive_effort[k];
+            if (x->parts) {
+                double *pr = x->parts + r * 3 * nv;
+                memcpy(pr, d->effort_armature, nv * sizeof(double));
+                memcpy(pr + nv, d->effort_damping, nv * sizeof(double));
+                memcpy(pr + 2 * nv, d->effort_friction, nv * sizeof(double));
+            }
             memcpy(x->q + r * nq, d->q, nq * sizeof *d->q);
             for (size_t i = 1; i <= nb; i++) {
                 if (x->reac) {

@@ -11,6 +11,7 @@
 #define COLS_EFFORT 1u /* each joint's effort (a floating root's six, world and link axes) */
 #define COLS_WORLD 2u  /* each joint's reaction in world axes */
 #define COLS_LINK 4u   /* each joint's reaction in its child link's axes */
+#define COLS_PARTS 256u /* each joint's effort's parts: armature, damping, friction */
 
 /* the most --payload options of one run */
 #define CMD_PAYLOAD_MAX 64
@@ -27,6 +28,8 @@ typedef struct {
     int times;          /* --times: the rows and the time spent on standard error */
     const char *payload[CMD_PAYLOAD_MAX]; /* --payload: each LINK,mass,x,y,z[,inertia] as given */
     int npayload;
+    const char *joint_params; /* --joint-params: a CSV file of joint,armature,damping,friction */
+    int ideal;          /* --ideal-joints: the URDF's <dynamics> ignored */
 } inverse_options;
 
 /* `vtdyn inverse [options] URDF STATES [-o OUTPATH]`: one output row per input row, to OUTPATH

@@ -1,17 +1,20 @@
 /* The command's robot: the URDF loaded with the command's options, and the joint types' names. */
 #include "robot.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "message.h"
 
-int cmd_load_urdf(vt_builder **b, const char *path, int floating)
+int cmd_load_urdf(vt_builder **b, const char *path, int floating, int dynamics)
 {
     char msg[VT_MESSAGE_SIZE] = "";
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
+    opt.dynamics = dynamics; /* the joints' <dynamics damping friction>, unless --ideal-joints */
     opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */
     opt.model.layout = VT_LAYOUT_RECURSIVE; /* the rows' given motion and kinematic solve: O(n) data */
     const vt_status st = vt_urdf_builder(b, path, &opt, msg);
@@ -71,4 +74,92 @@ const char *cmd_empty_hint(vt_status st, int floating)
     return st == VT_ERR_EMPTY_MODEL && !floating
                ? " (every link is fixed to the world; with --floating the root link floats)"
                : "";
+}
+
+/* a joint-params file's cells of one line, split at its commas (spaces around a cell trimmed;
+ * no quotes: joint names and numbers); the count, or -1 past max */
+static int split_cells(char *line, char **cell, int max)
+{
+    int n = 0;
+    for (char *p = line; p;) {
+        if (n == max) return -1;
+        char *comma = strchr(p, ',');
+        if (comma) *comma = '\0';
+        while (*p == ' ' || *p == '\t') p++;
+        char *e = p + strlen(p);
+        while (e > p && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
+        cell[n++] = p;
+        p = comma ? comma + 1 : NULL;
+    }
+    return n;
+}
+
+int cmd_joint_params(vt_builder *b, const char *file, const char *path)
+{
+    FILE *f = fopen(file, "r");
+    if (!f) return cmd_fail("--joint-params %s: %s", file, strerror(errno));
+    static const char *const names[4] = {"joint", "armature", "damping", "friction"};
+    enum { LINE = 4096 };
+    char line[LINE], *cell[8];
+    int col[4] = {-1, -1, -1, -1}, lineno = 0, rows = 0, bad = 0;
+    int *seen = NULL; /* the bodies set so far, to refuse a joint twice */
+    while (!bad && fgets(line, sizeof line, f)) {
+        lineno++;
+        if (!strchr(line, '\n') && !feof(f)) {
+            bad = cmd_fail("--joint-params %s: line %d is longer than %d bytes", file, lineno, LINE - 2);
+            break;
+        }
+        const int n = split_cells(line, cell, 8);
+        if (n == 1 && !cell[0][0]) continue; /* a blank line */
+        if (col[0] < 0) { /* the header: the four names, in any order, nothing else */
+            for (int k = 0; k < n; k++)
+                for (int c = 0; c < 4; c++)
+                    if (strcmp(cell[k], names[c]) == 0 && col[c] < 0) col[c] = k;
+            if (n != 4 || col[0] < 0 || col[1] < 0 || col[2] < 0 || col[3] < 0)
+                bad = cmd_fail("--joint-params %s: line %d: the header is joint,armature,damping,friction (in any "
+                               "order)", file, lineno);
+            continue;
+        }
+        if (n != 4) {
+            bad = cmd_fail("--joint-params %s: line %d: %d cells, not 4", file, lineno, n < 0 ? 8 : n);
+            break;
+        }
+        const int body = vt_builder_find_joint(b, cell[col[0]]);
+        if (body < 0) {
+            bad = cmd_fail("--joint-params %s: line %d: '%s' is not a moving joint of %s", file, lineno, cell[col[0]],
+                           path);
+            break;
+        }
+        int twice = 0;
+        for (int k = 0; k < rows; k++) twice |= seen[k] == body;
+        if (twice) {
+            bad = cmd_fail("--joint-params %s: line %d: joint '%s' twice", file, lineno, cell[col[0]]);
+            break;
+        }
+        int *grown = realloc(seen, (size_t)(rows + 1) * sizeof *seen);
+        if (!grown) {
+            bad = cmd_fail("out of memory");
+            break;
+        }
+        seen = grown;
+        seen[rows] = body;
+        vt_joint_effects_def e = vt_default_joint_effects_def();
+        double *v[3] = {&e.armature[0], &e.damping[0], &e.friction[0]};
+        for (int c = 1; c <= 3 && !bad; c++) {
+            char *end;
+            errno = 0;
+            *v[c - 1] = strtod(cell[col[c]], &end);
+            if (end == cell[col[c]] || *end || errno == ERANGE || !isfinite(*v[c - 1]) || *v[c - 1] < 0.0)
+                bad = cmd_fail("--joint-params %s: line %d: %s '%s' is not a finite number >= 0", file, lineno,
+                               names[c], cell[col[c]]);
+        }
+        if (!bad && vt_builder_set_joint_effects(b, body, &e))
+            bad = cmd_fail("--joint-params %s: line %d: %s", file, lineno, vt_builder_message(b));
+        rows++;
+    }
+    if (!bad && ferror(f)) bad = cmd_fail("--joint-params %s: %s", file, strerror(errno));
+    if (!bad && col[0] < 0) bad = cmd_fail("--joint-params %s: no header joint,armature,damping,friction", file);
+    free(seen);
+    fclose(f);
+    return bad;
 }

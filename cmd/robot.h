@@ -5,8 +5,14 @@
 #include "vtdyn.h"
 
 /* loads the URDF at path into a new builder *b (a root link floats when floating is nonzero; a
- * mimic joint is its own joint); 0, or 1 with the message printed */
-int cmd_load_urdf(vt_builder **b, const char *path, int floating);
+ * mimic joint is its own joint; the joints' <dynamics> read when dynamics is nonzero); 0, or 1
+ * with the message printed */
+int cmd_load_urdf(vt_builder **b, const char *path, int floating, int dynamics);
+
+/* --joint-params FILE: a CSV file with the header joint,armature,damping,friction (any order) and
+ * a row per joint named: its armature, damping and Coulomb friction, all three from the file
+ * (replacing the URDF's <dynamics>); 0, or 1 with the message printed */
+int cmd_joint_params(vt_builder *b, const char *file, const char *path);
 
 /* --payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]: a rigid body fixed to the link LINK of the
  * robot at path (its centre of mass at x, y, z and its inertia about it in LINK's URDF frame),

@@ -52,6 +52,7 @@ static const char usage[] =
     "       vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]\n"
     "                     [--normalize-quaternions TOL] [--format csv|npy] [--times]\n"
     "                     [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...\n"
+    "                     [--joint-params FILE] [--ideal-joints]\n"
     "                     MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
     "       vtdyn --version | --help\n"
     "\n"
@@ -74,7 +75,8 @@ static const char usage[] =
     "         (N,), each '<f8' (little-endian float64), C order: numpy.save of\n"
     "         numpy.rec.fromarrays([...], names='t,joint1,...') or of a structured zeros array.\n"
     "         OUT.csv: t (when given), then per moving joint J\n"
-    "           J_effort                 the joint's torque or force, N m or N\n"
+    "           J_effort                 the joint's torque or force, N m or N (with its joint's\n"
+    "                                    armature, damping and friction: --joint-params)\n"
     "           J_fx J_fy J_fz           the reaction force of the parent link on the child link, N,\n"
     "           J_nx J_ny J_nz           and its moment about the child link frame's origin, N m,\n"
     "                                    in the URDF's world axes; the joint's actuation (the\n"
@@ -113,7 +115,9 @@ static const char usage_options[] =
     "                   solved on one thread)\n"
     "  --columns LIST   the output's groups, comma separated (each joint's in this order whatever\n"
     "                   LIST's): effort (J_effort; a floating root's R_effort_*, both axes),\n"
-    "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link); default all three\n"
+    "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link); default these\n"
+    "                   three; parts (J_effort_armature, J_effort_damping, J_effort_friction: the\n"
+    "                   parts of J_effort its joint's own effects take)\n"
     "  --precision P    a CSV number's significant digits, 1 to 17; default 17, which reads back\n"
     "                   as the double written (a .npy output holds the doubles themselves)\n"
     "  --normalize-quaternions TOL\n"
@@ -127,7 +131,14 @@ static const char usage_options[] =
     "                   a rigid body fixed to the link LINK: its mass (kg), its centre of mass\n"
     "                   (m) and its inertia about it (kg m^2, default 0: a point mass), both in\n"
     "                   LINK's URDF frame; merged into LINK as a link fixed to it in the file\n"
-    "                   would be. Repeatable (at most 64)\n";
+    "                   would be. Repeatable (at most 64)\n"
+    "  --joint-params FILE\n"
+    "                   the joints' armature (kg m^2 or kg), viscous damping (N m s/rad or N s/m)\n"
+    "                   and Coulomb friction (N m or N), joint side: a CSV file with the header\n"
+    "                   joint,armature,damping,friction and a row per joint named, which takes\n"
+    "                   all three from it (in place of its URDF <dynamics>); each J_effort then\n"
+    "                   adds armature J_acc + damping J_vel + friction sign(J_vel) (0 at rest)\n"
+    "  --ideal-joints   the URDF's <dynamics damping friction> ignored (read by default)\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)
@@ -142,7 +153,7 @@ static int info(const char *path, int floating)
 {
     vt_builder *b;
     vt_model *m;
-    if (cmd_load_urdf(&b, path, floating)) return 1;
+    if (cmd_load_urdf(&b, path, floating, 1)) return 1;
     const vt_status st = vt_builder_build(&m, b);
     if (st) {
         cmd_fail("%s: %s%s", path, vt_builder_message(b), cmd_empty_hint(st, floating));
@@ -204,7 +215,8 @@ static int parse_columns(const char *list, unsigned *groups)
         if (n == 6 && strncmp(p, "effort", 6) == 0) g = COLS_EFFORT;
         else if (n == 5 && strncmp(p, "world", 5) == 0) g = COLS_WORLD;
         else if (n == 4 && strncmp(p, "link", 4) == 0) g = COLS_LINK;
-        if (!g) return cmd_fail("--columns '%s': '%.*s' is none of effort, world, link", list, (int)n, p);
+        else if (n == 5 && strncmp(p, "parts", 5) == 0) g = COLS_PARTS;
+        if (!g) return cmd_fail("--columns '%s': '%.*s' is none of effort, world, link, parts", list, (int)n, p);
         if (*groups & g) return cmd_fail("--columns '%s': '%.*s' twice", list, (int)n, p);
         *groups |= g;
         if (!comma) return 0;
@@ -217,15 +229,17 @@ static int parse_columns(const char *list, unsigned *groups)
 static int parse_args(int argc, char **argv, inverse_options *o, const char **pos, int *npos, const char **outpath,
                       int info_only)
 {
-    int seen[9] = {0};
+    int seen[11] = {0};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
         const size_t len = eq ? (size_t)(eq - a) : strlen(a);
         static const char *const named[] = {"--floating", "-o", "-j", "--columns", "--precision",
-                                            "--normalize-quaternions", "--format", "--times", "--payload"};
+                                            "--normalize-quaternions", "--format", "--times", "--payload",
+                                            "--joint-params", "--ideal-joints"};
+        const int flag = 1 << 0 | 1 << 7 | 1 << 10; /* no value: --floating, --times, --ideal-joints */
         int which = -1;
-        for (int w = 0; w < 9; w++)
+        for (int w = 0; w < 11; w++)
             if (strlen(named[w]) == len && strncmp(a, named[w], len) == 0) which = w;
         if (which < 0 && strncmp(a, "-j", 2) == 0 && a[2] >= '0' && a[2] <= '9') { /* -j4 */
             which = 2;
@@ -243,9 +257,10 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
         }
         if (seen[which]++ && which != 8) return cmd_fail("option %s given twice", named[which]);
         if (info_only && which != 0) return cmd_fail("info takes --floating alone, not %s", named[which]);
-        if ((which == 0 || which == 7) && eq) return cmd_fail("%s takes no value", named[which]);
-        const char *v = which == 0 || which == 7 ? NULL : option_value(argc, argv, &k, eq);
-        if (which != 0 && which != 7 && !v) return cmd_fail("%s needs a value", named[which]);
+        const int bare = flag >> which & 1;
+        if (bare && eq) return cmd_fail("%s takes no value", named[which]);
+        const char *v = bare ? NULL : option_value(argc, argv, &k, eq);
+        if (!bare && !v) return cmd_fail("%s needs a value", named[which]);
         char *end = NULL;
         switch (which) {
         case 0: o->floating = 1; break;
@@ -287,6 +302,8 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
             if (o->npayload == CMD_PAYLOAD_MAX) return cmd_fail("--payload: at most %d of them", CMD_PAYLOAD_MAX);
             o->payload[o->npayload++] = v;
             break;
+        case 9: o->joint_params = v; break;
+        case 10: o->ideal = 1; break;
         }
     }
     return 0;

@@ -11,7 +11,7 @@
 
 /* the batch's outputs of one call */
 typedef struct {
-    double *effort, *drive_effort, *qdd, *reaction, *reaction_body, *total, *total_body;
+    double *effort, *drive_effort, *qdd, *reaction, *reaction_body, *total, *total_body, *parts;
     int *status;
 } outputs;
 
@@ -25,6 +25,7 @@ static void outputs_alloc(outputs *o, const vt_model *m, int nrow)
     o->reaction_body = calloc(nb6 * (size_t)nrow, sizeof(double));
     o->total = calloc(nb6 * (size_t)nrow, sizeof(double));
     o->total_body = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->parts = calloc(3 * nv * (size_t)nrow, sizeof(double));
     o->status = calloc((size_t)nrow, sizeof(int));
     assert_non_null(o->status);
 }
@@ -38,6 +39,7 @@ static void outputs_free(outputs *o)
     free(o->reaction_body);
     free(o->total);
     free(o->total_body);
+    free(o->parts);
     free(o->status);
 }
 
@@ -65,6 +67,7 @@ static vt_batch_io io_of(const outputs *o, int nrow, const double *q, size_t q_s
     io.reaction_body = o->reaction_body;
     io.total = o->total;
     io.total_body = o->total_body;
+    io.effort_parts = o->parts;
     io.status = o->status;
     return io;
 }
@@ -89,6 +92,9 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
     for (int k = 0; k < nv; k++) {
         assert_true(same(o->effort[(size_t)r * nv + k], d->qfrc_drive[k]));
         assert_true(same(o->qdd[(size_t)r * nv + k], d->qdd[k]));
+        const double *p = o->parts + (size_t)r * 3 * nv;
+        assert_true(same(p[k], d->effort_armature[k]) && same(p[nv + k], d->effort_damping[k]) &&
+                    same(p[2 * nv + k], d->effort_friction[k]));
     }
     for (int k = 0; k < m->ndrive; k++) assert_true(same(o->drive_effort[(size_t)r * m->ndrive + k], d->drive_effort[k]));
     for (int i = 1; i <= nb; i++)
@@ -205,6 +211,45 @@ static void test_loop_bitwise(void **state)
         outputs_free(&o);
         vt_batch_free(b);
     }
+    free(q);
+    free(qd);
+    free(qdd);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* the knee four-bar with armature, damping and friction on its joints, both drives given: the
+ * efforts' parts as the single call's, and not all zero */
+static void test_effects_bitwise(void **state)
+{
+    (void)state;
+    static const double mass[4] = {1.5, 0.1, 0.08, 0.5}, effects[4][3] = {{0.2, 1.0, 0.5}, {0.1, 0.4, 0.2}, {0, 0, 0}, {0, 0.3, 0.1}};
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    assert_ok(vt_scene_knee_with(&m, vt_function_constant(-0.8), vt_function_constant(1.4), 1, mass, 3, effects));
+    assert_ok(vt_data_create(&d, m));
+    const int nq = m->nq, nv = m->nv, n = 40;
+    double *q = malloc((size_t)nq * n * sizeof(double)), *qd = malloc((size_t)nv * n * sizeof(double)),
+           *qdd = calloc((size_t)nv * n, sizeof(double));
+    for (int r = 0; r < n; r++) {
+        assert_int_equal(vt_scene_knee_assemble(m, d, -0.8 + 0.01 * r, 0.5 - 0.03 * r, 1.4 - 0.005 * r, 0.7, NULL), 0);
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        memcpy(qd + (size_t)r * nv, d->qd, (size_t)nv * sizeof(double));
+        qdd[(size_t)r * nv] = 0.3 * sin(0.2 * r), qdd[(size_t)r * nv + 1] = -0.2 * r; /* the driven rates' */
+    }
+    vt_batch *b = batch_of(m, 2, 0);
+    outputs o;
+    outputs_alloc(&o, m, n);
+    vt_batch_io io = io_of(&o, n, q, 0, qd, qdd);
+    assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+    double most = 0.0;
+    for (int r = 0; r < n; r++) {
+        check_row(m, &o, r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv);
+        for (int k = 0; k < 3 * nv; k++) most = fmax(most, fabs(o.parts[(size_t)r * 3 * nv + k]));
+    }
+    assert_true(most > 0.1);
+    outputs_free(&o);
+    vt_batch_free(b);
     free(q);
     free(qd);
     free(qdd);
@@ -330,6 +375,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tree_bitwise),
         cmocka_unit_test(test_loop_bitwise),
+        cmocka_unit_test(test_effects_bitwise),
         cmocka_unit_test(test_failing_rows),
         cmocka_unit_test(test_arguments),
     };

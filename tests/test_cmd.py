@@ -758,6 +758,69 @@ def payloads(vtdyn, urdf, states, work, check):
               "--payload %s refused: %r" % (spec, r.stderr))
 
 
+def joint_effects(vtdyn, urdf, states, work, check):
+    """--joint-params, and the URDF's <dynamics> read by default: each effort is the ideal joints'
+    (--ideal-joints) plus armature a + damping v + friction sign(v), to 1e-12 of the largest; the
+    parts columns those three; a <dynamics> tag equals the same values in --joint-params; bad
+    files refused"""
+    def effort_table(*args):
+        r = run(vtdyn, "inverse", "--columns", "effort,parts", *args, urdf, states)
+        check(r.returncode == 0, "inverse %s: %s" % (" ".join(args), r.stderr))
+        return csv_table(r.stdout) if r.returncode == 0 else ([], [])
+    params = os.path.join(work, "joint_params.csv")
+    p = {"joint1": (0.4, 2.5, 3.0), "joint2": (0.15, 0.7, 1.25)}
+    with open(params, "w") as f:
+        f.write("damping, joint ,friction,armature\n")  # any order, spaces around the names
+        for j, (a, b, c) in p.items():
+            f.write("%r,%s,%r,%r\n" % (b, j, c, a))
+    ideal_n, ideal = effort_table("--ideal-joints")
+    names, got = effort_table("--joint-params", params)
+    inp = list(csv.DictReader(open(states)))
+    ok = len(got) == len(ideal) == len(inp) > 0
+    worst = 1.0
+    if ok:
+        big = max(abs(float(x)) for row in ideal for x in row)
+        worst = 0.0
+        for row, base, st in zip(got, ideal, inp):
+            cell, ref = dict(zip(names, map(float, row))), dict(zip(ideal_n, map(float, base)))
+            for j, (a, b, c) in p.items():
+                v, acc = float(st[j + "_vel"]), float(st[j + "_acc"])
+                parts = (a * acc, b * v, c * (1.0 if v > 0 else -1.0 if v < 0 else 0.0))
+                worst = max(worst, abs(cell[j + "_effort"] - ref[j + "_effort"] - sum(parts)) / big,
+                            abs(cell[j + "_effort_armature"] - parts[0]) / big,
+                            abs(cell[j + "_effort_damping"] - parts[1]) / big,
+                            abs(cell[j + "_effort_friction"] - parts[2]) / big)
+                worst = max(worst, abs(ref[j + "_effort_armature"]) + abs(ref[j + "_effort_friction"]))
+    check(ok and worst <= 1e-12, "--joint-params: the ideal efforts plus the three parts: %.3g" % worst)
+    print("--joint-params against the ideal joints plus armature, damping, friction: %.3g" % worst)
+    # <dynamics damping friction> in the file: read by default, as --joint-params without armature
+    text = open(urdf).read()
+    dyn = os.path.join(work, "double_link_dynamics.urdf")
+    with open(dyn, "w") as f:
+        f.write(text.replace('<joint name="joint1" type="continuous">',
+                             '<joint name="joint1" type="continuous"><dynamics damping="2.5" friction="3.0"/>'))
+    only = os.path.join(work, "joint1_params.csv")
+    with open(only, "w") as f:
+        f.write("joint,armature,damping,friction\njoint1,0,2.5,3.0\n")
+    r1 = run(vtdyn, "inverse", dyn, states)
+    r2 = run(vtdyn, "inverse", "--joint-params", only, urdf, states)
+    r3 = run(vtdyn, "inverse", "--ideal-joints", dyn, states)
+    r4 = run(vtdyn, "inverse", urdf, states)
+    check(r1.returncode == 0 and r1.stdout == r2.stdout and r1.stdout != r4.stdout,
+          "<dynamics> read as --joint-params gives them")
+    check(r3.returncode == 0 and r3.stdout == r4.stdout, "--ideal-joints ignores <dynamics>")
+    for body, what in (("joint,armature,damping\njoint1,0,1\n", "header"),
+                       ("joint,armature,damping,friction\njoint9,0,1,1\n", "'joint9' is not a moving joint"),
+                       ("joint,armature,damping,friction\njoint1,0,-1,1\n", "not a finite number >= 0"),
+                       ("joint,armature,damping,friction\njoint1,0,1,1\njoint1,0,1,1\n", "twice"),
+                       ("joint,armature,damping,friction\njoint1,0,1\n", "cells, not 4")):
+        bad = os.path.join(work, "bad_params.csv")
+        with open(bad, "w") as f:
+            f.write(body)
+        r = run(vtdyn, "inverse", "--joint-params", bad, urdf, states)
+        check(r.returncode == 1 and what in r.stderr and not r.stdout, "--joint-params %r refused: %r" % (body, r.stderr))
+
+
 def help_is_documented(vtdyn, urdf_dir, check):
     """docs/command.md holds `vtdyn --help`'s text exactly"""
     doc = os.path.join(urdf_dir, "..", "..", "docs", "command.md")
@@ -909,6 +972,7 @@ def main():
     npy_files(vtdyn, urdf, states, work, check)
     options(vtdyn, urdf, states, work, check)
     payloads(vtdyn, urdf, states, work, check)
+    joint_effects(vtdyn, urdf, states, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0

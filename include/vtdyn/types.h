@@ -792,6 +792,10 @@ typedef struct vt_batch_io {
     double *total; size_t total_stride;     ///< 6 nbody a row: each joint's total wrench, reaction plus
                                             ///< actuation, global (jnt_force_total, jnt_moment_total)
     double *total_body; size_t total_body_stride;       ///< the same in the body's axes
+    double *effort_parts; size_t effort_parts_stride;   ///< 3 nv a row: the parts of each rate's effort
+                                            ///< its joint's armature, damping and friction take
+                                            ///< (vt_data.effort_armature, effort_damping,
+                                            ///< effort_friction: nv each, in that order)
     int *status;                            ///< nrow: each row's vt_status (VT_OK, the row's failure, or
                                             ///< VT_ERR_SKIPPED)
 } vt_batch_io;

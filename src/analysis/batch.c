@@ -153,6 +153,12 @@ static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io,
     if (io->total_body)
         wrenches(out_row(io->total_body, io->total_body_stride, 6 * nb, r), d->jnt_force_total_body,
                  d->jnt_moment_total_body, m->nbody);
+    if (io->effort_parts) {
+        double *p = out_row(io->effort_parts, io->effort_parts_stride, 3 * nv, r);
+        memcpy(p, d->effort_armature, nv * sizeof(double));
+        memcpy(p + nv, d->effort_damping, nv * sizeof(double));
+        memcpy(p + 2 * nv, d->effort_friction, nv * sizeof(double));
+    }
     return VT_OK;
 }
 
@@ -197,7 +203,8 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
              {"reaction", io->reaction != NULL, io->reaction_stride, nb6},
              {"reaction_body", io->reaction_body != NULL, io->reaction_body_stride, nb6},
              {"total", io->total != NULL, io->total_stride, nb6},
-             {"total_body", io->total_body != NULL, io->total_body_stride, nb6}};
+             {"total_body", io->total_body != NULL, io->total_body_stride, nb6},
+             {"effort_parts", io->effort_parts != NULL, io->effort_parts_stride, 3 * nv}};
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         if (a[k].given && a[k].stride != 0 && a[k].stride < a[k].len)
             return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: %s_stride %zu below its row's %zu values",
