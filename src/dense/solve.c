@@ -264,7 +264,8 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form
             memcpy(sol, d->qdd, (size_t)nv * sizeof(double));
             memcpy(sol + nv, d->lambda, (size_t)nc * sizeof(double));
             int t = spread_estimate(m, d, sol, 0, &rcond, &spread);
-            if (t == 0 && form == VT_FORM_DENSE && maximal_wanted(m, d, r, rcond, sol, 0)) t = maximal_alternative(m, d, &rcond, sol);
+            if (t == 0 && form == VT_FORM_DENSE && maximal_wanted(m, d, r, rcond, sol, 0))
+                t = maximal_alternative(m, d, &rcond, sol);
             if (t < 0) return vt_scratch_release(d, mark), (vt_status)t;
             if (t == 1) {
                 memcpy(d->qdd, sol, (size_t)nv * sizeof(double));
@@ -275,7 +276,8 @@ vt_status vt_solve_band(const vt_model *m, vt_data *d, double band, vt_form form
             if (route == VT_ROUTE_FREE_RATES && spread && rcond < m->rcond_min) r = VT_BELOW_MIN;
         }
         if (r == VT_BELOW_MIN)
-            return d->rcond = rcond, singular(m, d, spread ? "system (5) at its answer, componentwise," : "free rates' scaled M*", rcond, NULL);
+            return d->rcond = rcond, singular(m, d, spread ? "system (5) at its answer, componentwise," : "free rates' scaled M*",
+                                              rcond, NULL);
         vt_solved(m, d, route, rcond);
         return VT_OK;
     }

@@ -91,7 +91,8 @@ vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
 __attribute__((always_inline))
 #endif
 static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, double Wo[6], int i, const int jt,
-                                 const int nv, const fused_motion motion, const fused_totals totals)
+                                 const int nv, const fused_motion motion, const fused_totals totals,
+                                 const fused_outputs outputs)
 {
     const double *e = d->jaxis + 9 * i, *A = d->A + 9 * i;
     /* rates that all turn leave the force, rates that all slide the moment: its axes once */
@@ -110,7 +111,8 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
-        const double qf = vt_rate_load(m, d, c); /* qfrc less the joint's own effects: τ takes them */
+        /* qfrc less the joint's own effects (τ takes them); a model with effects is never bounded */
+        const double qf = outputs == OUTPUTS_BOUNDED ? d->qfrc[c] : vt_rate_load(m, d, c);
         double tau = 0.0;
         if (motion == MOTION_GIVEN || dr >= 0) {
             const double *w = d->twist + 6 * c;
@@ -154,8 +156,10 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
     for (int i = 1; i <= n; i++) {
         double Wo[6];
         const int jt = m->body_joint[i], nv = m->body_nv[i];
-        if (totals == TOTALS_FORMED ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED)
-                                    : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT))
+        const int over = totals == TOTALS_FORMED
+                             ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED, OUTPUTS_SCANNED)
+                             : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT, OUTPUTS_SCANNED);
+        if (over)
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     }
@@ -410,7 +414,7 @@ static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, 
 {
     double Wo[6];
     const int j = m->body_parent[i];
-    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED);
+    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED, OUTPUTS_SCANNED);
     if (j > 0) shift_to_parent(m, d, W, i, j);
 }
 
@@ -443,11 +447,11 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         double Wo[6];
         if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
             /* checked with the rest: fused_check */
-            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED);
+            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED, outputs);
             if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
-        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED);
+        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED, outputs);
         if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
             double r[3];
             if (tree == TREE_MIXED) {
