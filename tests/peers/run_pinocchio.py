@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""vtdyn against Pinocchio on the robots of example-robot-data (run by run_pinocchio.sh with the
+"""vtdyn against Pinocchio on the robots of example-robot-data (run by run_peer.sh with the
 venv's python, which has pin and example-robot-data).
 
     run_pinocchio.py COMPARE VTDYN WORKDIR IN_FLIGHT

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Creates (if missing) the virtual environment of the Pinocchio reference scripts in
-# tests/peers/ and installs pinned versions of Pinocchio (PyPI package `pin`) and
-# example-robot-data (the robots' URDFs and meshes) into it.
+# tests/peers/ and installs pinned versions of Pinocchio (PyPI package `pin`),
+# example-robot-data (the robots' URDFs and meshes) and MuJoCo (`mujoco`) into it.
 #
 #   tests/peers/setup_venv.sh            # prints the venv's python path on success
 #
@@ -17,21 +17,23 @@ set -u
 
 PIN_VERSION=4.1.0
 ERD_VERSION=6.0.0
+MUJOCO_VERSION=4.0.1
 VENV=${VT_PEERS_TEST_VENV:-$HOME/.cache/vtdyn-peers/venv-test}
 BASE_PYTHON=${VT_PEERS_PYTHON:-python3}
 PY="$VENV/bin/python"
 
 skip() { echo "setup_venv.sh: skipped: $*" >&2; exit 77; }
 
-# The check: both distributions at the pinned versions and pinocchio importable.
+# The check: the distributions at the pinned versions, pinocchio and mujoco importable.
 have_pinned() {
     [ -x "$PY" ] || return 1
-    "$PY" - "$PIN_VERSION" "$ERD_VERSION" <<'PYEOF' >/dev/null 2>&1
+    "$PY" - "$PIN_VERSION" "$ERD_VERSION" "$MUJOCO_VERSION" <<'PYEOF' >/dev/null 2>&1
 import sys
 from importlib.metadata import version
-if version("pin") != sys.argv[1] or version("example-robot-data") != sys.argv[2]:
+if (version("pin") != sys.argv[1] or version("example-robot-data") != sys.argv[2]
+        or version("mujoco") != sys.argv[3]):
     sys.exit(1)
-import pinocchio, numpy  # noqa: F401
+import pinocchio, mujoco, numpy  # noqa: F401
 PYEOF
 }
 
@@ -49,15 +51,15 @@ fi
 
 log=$("$PY" -m pip install --disable-pip-version-check --no-input --quiet \
         --retries 1 --timeout 30 \
-        "pin==$PIN_VERSION" "example-robot-data==$ERD_VERSION" 2>&1)
+        "pin==$PIN_VERSION" "example-robot-data==$ERD_VERSION" "mujoco==$MUJOCO_VERSION" 2>&1)
 status=$?
 if [ $status -ne 0 ]; then
     last=$(printf '%s\n' "$log" | grep -v '^\s*$' | tail -n 1)
     if printf '%s' "$log" | grep -qiE 'connection|network|resolve|timed out|proxy|ssl|No matching distribution'; then
-        skip "pip cannot reach the package index or find pin==$PIN_VERSION: $last"
+        skip "pip cannot reach the package index or find pin==$PIN_VERSION, mujoco==$MUJOCO_VERSION: $last"
     fi
-    skip "pip install of pin==$PIN_VERSION example-robot-data==$ERD_VERSION failed: $last"
+    skip "pip install of pin==$PIN_VERSION example-robot-data==$ERD_VERSION mujoco==$MUJOCO_VERSION failed: $last"
 fi
 
-have_pinned || skip "installed, but pin==$PIN_VERSION / example-robot-data==$ERD_VERSION do not import in $VENV"
+have_pinned || skip "installed, but pin==$PIN_VERSION / example-robot-data==$ERD_VERSION / mujoco==$MUJOCO_VERSION do not import in $VENV"
 echo "$PY"
