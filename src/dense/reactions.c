@@ -240,6 +240,33 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe, double *rw
     return row_efforts(m, d, rw);
 }
 
+/* Limits (vt_model.dof_limit: lower, upper, |q̇| max, |effort| max per rate), compared strictly:
+ *   e_q = q − upper if q > upper, q − lower if q < lower, else 0 (scalar coordinates only),
+ *   e_v = q̇ − v if q̇ > v, q̇ + v if q̇ < −v, else 0, the same for the effort with its limit;
+ * the difference of two doubles that differ is never 0 (gradual underflow), so a value one ulp
+ * beyond is flagged and one at the limit is not. Infinite limits are never passed by finite values. */
+static double excess(double x, double lo, double hi)
+{
+    return x > hi ? x - hi : x < lo ? x - lo : 0.0;
+}
+
+void vt_limits_flag(const vt_model *m, vt_data *d)
+{
+    int n = 0;
+    for (int c = 0; c < m->nv; c++) {
+        const double *lim = m->dof_limit + 4 * c;
+        const int i = m->dof_body[c];
+        double *e = d->limit_excess + 3 * c;
+        /* a spherical, free or base joint's rates are not its coordinates (and have no limits) */
+        e[0] = m->body_nq[i] == m->body_nv[i] ? excess(d->q[m->body_qadr[i] + c - m->body_vadr[i]], lim[0], lim[1]) : 0.0;
+        e[1] = excess(d->qd[c], -lim[2], lim[2]);
+        e[2] = excess(d->qfrc_drive[c], -lim[3], lim[3]);
+        n += (e[0] != 0.0) + (e[1] != 0.0) + (e[2] != 0.0);
+    }
+    d->nlimit = n;
+    d->warning = (d->warning & ~VT_WARN_LIMIT) | (n ? VT_WARN_LIMIT : 0);
+}
+
 /* every joint's reaction (f, moment mo about P_i, global) also in body axes, and checked from
  * the tree's ends inward (an overflow shows first where it arises) */
 static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
@@ -257,6 +284,7 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
         vt_mulmat3t(mb, Ai, mo);
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
+        vt_joint_frame_store(m, d, i, fb, mb);
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE,
                            "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",

@@ -30,10 +30,15 @@ void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const doub
 /* jnt_unique and cut_unique, every one set, then those that a null direction of Φ_q^T (rank < nc:
  * the redundant solve's, in d->lambda_null) changes cleared (reactions.c) */
 vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d);
+/* The rates beyond their limits (vt_data.limit_excess, nlimit, VT_WARN_LIMIT) from q, q̇ and the
+ * efforts qfrc_drive (reactions.c) */
+void vt_limits_flag(const vt_model *m, vt_data *d);
 /* Which reactions are unique: every one when the rows are independent (rank nc), otherwise
- * vt_reactions_nonunique's; inline, as vt_mark_unique: every instant ends with it */
+ * vt_reactions_nonunique's; and the limits flagged (the efforts are known by then). Inline, as
+ * vt_mark_unique: every instant ends with it */
 static inline vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
 {
+    vt_limits_flag(m, d);
     const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut;
     int *ju = d->jnt_unique, *cu = d->cut_unique;
     for (int i = 0; i < nj; i++) ju[i] = 1;
@@ -48,6 +53,38 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
 vt_status vt_drive_efforts(const vt_model *m, vt_data *d);
 void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
                           int as_loads);
+
+/* |r − (a · r) a| for a unit a (or 0: |r|), with no overflow of the squares of a length near
+ * DBL_MAX nor underflow of a tiny one (the scaled sum of vt_normalize where the plain one is out
+ * of range) */
+static inline double vt_perp_norm(const double r[3], const double a[3], double along)
+{
+    double u[3];
+    for (int k = 0; k < 3; k++) u[k] = r[k] - along * a[k];
+    const double ss = vt_dot3(u, u);
+    if (ss < 0x1p1000 && ss > 0x1p-1000) return sqrt(ss);
+    return vt_normalize(u, 3);
+}
+
+/* joint i's reaction, force fb and moment mb in body i's axes, into the joint's frame
+ * (vt_model.jnt_frame, C: frame → body axes): f_J = C^T f_b, n_J = C^T n_b, and its bearing split
+ * along the frame's unit axis a: a · f_J, |f_J − (a · f_J) a|, a · n_J, |n_J − (a · n_J) a|. The one
+ * kernel of every pass that forms the reactions in body axes */
+static inline void vt_joint_frame_store(const vt_model *m, vt_data *d, int i, const double fb[3], const double mb[3])
+{
+    const double *C = m->jnt_frame_A + 9 * i, *a = m->jnt_frame_axis + 3 * i;
+    double fj[3], mj[3];
+    vt_mulmat3t(fj, C, fb);
+    vt_mulmat3t(mj, C, mb);
+    const double fa = vt_dot3(a, fj), ma = vt_dot3(a, mj);
+    double *b = d->jnt_bearing + 4 * i;
+    b[0] = fa;
+    b[1] = vt_perp_norm(fj, a, fa);
+    b[2] = ma;
+    b[3] = vt_perp_norm(mj, a, ma);
+    vt_copy3(d->jnt_force_joint + 3 * i, fj);
+    vt_copy3(d->jnt_moment_joint + 3 * i, mj);
+}
 
 /* joint i's total wrench (reaction plus actuation, about P_i) into the data: force f and moment mo
  * in global axes, fb and mb the same in body i's */

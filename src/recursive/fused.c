@@ -135,6 +135,7 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
     vt_copy3(d->jnt_moment + 3 * i, mo);
     vt_copy3(d->jnt_force_body + 3 * i, fb);
     vt_copy3(d->jnt_moment_body + 3 * i, mb);
+    vt_joint_frame_store(m, d, i, fb, mb);
     return !vt_all_finite(f, 3) || !vt_all_finite(mo, 3);
 }
 
