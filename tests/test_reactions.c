@@ -1931,6 +1931,91 @@ static void test_joint_frame_given(void **state)
     vt_model_free(m);
 }
 
+/* ---- limits flagged, strictly ------------------------------------------------------------ */
+
+/* jf_model with limits on every rate from the values x (q, q̇ and the efforts e of the instant):
+ * mode 1 exactly at them (upper = q on even rates, lower = q on odd ones, |q̇|, |e|), mode 2 one
+ * ulp inside them, so that the instant's values are one ulp beyond */
+static vt_model *limits_model(int drives, int mode, const double *q, const double *qd, const double *e)
+{
+    vt_body_def d[4];
+    jf_defs(d);
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = 0.5, md.gravity[1] = -9.81, md.gravity[2] = 1.2;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    for (int c = 0, k = 1; k <= 3; k++) {
+        for (int a = 0; a < (k == 2 ? 2 : 1); a++, c++) {
+            const int in = mode == 2;
+            if (c % 2 == 0) d[k].limit_upper[a] = in ? nextafter(q[c], -HUGE_VAL) : q[c];
+            else d[k].limit_lower[a] = in ? nextafter(q[c], HUGE_VAL) : q[c];
+            d[k].limit_velocity[a] = in ? nextafter(fabs(qd[c]), 0.0) : fabs(qd[c]);
+            d[k].limit_effort[a] = in ? nextafter(fabs(e[c]), 0.0) : fabs(e[c]);
+        }
+        assert_int_equal(vt_builder_add_body(b, &d[k]), k);
+    }
+    for (int c = 0, k = 1; drives && k <= 3; k++)
+        for (int a = 0; a < (k == 2 ? 2 : 1); a++, c++) {
+            const double coef[3] = {jf_q[c], jf_qd[c], 0.5 * jf_qdd[c]};
+            vt_test_add_joint_drive(b, k, a, vt_function_polynomial(3, coef));
+        }
+    return vt_test_build(b);
+}
+
+/* path 0: the given motion; 1: the dense stages, driven; 2: the recursive passes, driven */
+static void limits_solve(const vt_model *m, vt_data *d, int path)
+{
+    memcpy(d->q, jf_q, sizeof jf_q);
+    memcpy(d->qd, jf_qd, sizeof jf_qd);
+    memcpy(d->qdd, jf_qdd, sizeof jf_qdd);
+    d->time = 0.0;
+    assert_ok(path == 0 ? vt_inverse_dynamics_motion(m, d)
+                        : path == 1 ? vt_inverse_dynamics(m, d) : vt_inverse_dynamics_recursive(m, d));
+}
+
+static void test_limits_strict(void **state)
+{
+    (void)state;
+    for (int path = 0; path < 3; path++) {
+        const int drives = path > 0;
+        double e[4];
+        vt_model *m0 = jf_model(drives, VT_LAYOUT_FULL);
+        vt_data *d;
+        assert_ok(vt_data_create(&d, m0));
+        limits_solve(m0, d, path);
+        memcpy(e, d->qfrc_drive, sizeof e);
+        assert_int_equal(d->nlimit, 0); /* no limits: nothing beyond */
+        assert_int_equal(d->warning & VT_WARN_LIMIT, 0);
+        for (int k = 0; k < 12; k++) assert_true(d->limit_excess[k] == 0.0);
+        vt_data_free(d);
+        vt_model_free(m0);
+        for (int mode = 1; mode <= 2; mode++) {
+            vt_model *m = limits_model(drives, mode, jf_q, jf_qd, e);
+            assert_ok(vt_data_create(&d, m));
+            limits_solve(m, d, path);
+            for (int c = 0; c < 4; c++) assert_true(d->qfrc_drive[c] == e[c]); /* the limits change no effort */
+            if (mode == 1) { /* exactly at every limit: none passed */
+                assert_int_equal(d->nlimit, 0);
+                assert_int_equal(d->warning & VT_WARN_LIMIT, 0);
+                for (int k = 0; k < 12; k++) assert_true(d->limit_excess[k] == 0.0);
+            } else { /* one ulp beyond every one: each flagged, by the value less the limit */
+                assert_int_equal(d->nlimit, 12);
+                assert_int_equal(d->warning & VT_WARN_LIMIT, VT_WARN_LIMIT);
+                for (int c = 0; c < 4; c++) {
+                    const double *lim = m->dof_limit + 4 * c, *x = d->limit_excess + 3 * c;
+                    assert_true(x[0] == jf_q[c] - (c % 2 == 0 ? lim[1] : lim[0]));
+                    assert_true(x[0] != 0.0 && (x[0] > 0.0) == (c % 2 == 0));
+                    assert_true(x[1] == (jf_qd[c] > 0.0 ? jf_qd[c] - lim[2] : jf_qd[c] + lim[2]));
+                    assert_true(x[2] == (e[c] > 0.0 ? e[c] - lim[3] : e[c] + lim[3]));
+                    assert_true(x[1] != 0.0 && x[2] != 0.0);
+                }
+            }
+            vt_data_free(d);
+            vt_model_free(m);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1954,6 +2039,7 @@ int main(void)
         cmocka_unit_test(test_long_link_roundoff_inertia),
         cmocka_unit_test(test_joint_frame_hand_built),
         cmocka_unit_test(test_joint_frame_given),
+        cmocka_unit_test(test_limits_strict),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
