@@ -20,7 +20,7 @@
 !         call vt_body_array(jf, d%jnt_force, 3, m%nbody)    ! jf(1:3, 0:nbody), column i = body i
 !     These are views of the C memory: writing q(1) sets the C data's q[0].
 !     The data's arena (the stages' scratch, an opaque vt_arena) is a type(c_ptr) to leave
-!     alone, and the model's internal fields (con_kind ... jnt_frame_A, last in vt_model)
+!     alone, and the model's internal fields (con_kind ... any_limit, last in vt_model)
 !     are mirrored only to keep the layout: their meaning may change in any release.
 !   - Definition structs are plain values: start from the defaults and set what you need,
 !         type(vt_body_def) :: link;   link = vt_default_body_def();   link%mass = 100
@@ -259,6 +259,7 @@ module vtdyn
     real(c_double)         :: bound_mass
     real(c_double)         :: mass_spread
     type(c_ptr)            :: jnt_frame_A
+    integer(c_int)         :: any_limit
   end type vt_model
 
   type, bind(C) :: vt_data

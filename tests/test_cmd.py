@@ -729,19 +729,12 @@ def help_is_documented(vtdyn, urdf_dir, check):
     check(k >= 0 and r.stdout == block, "docs/command.md holds vtdyn --help's text exactly")
 
 
-def bearing_and_limits(vtdyn, urdf, work, check):
+def bearing_and_limits(vtdyn, urdf, states, times, work, check):
     """--columns bearing against the closed forms (joint 1's axial force is the weight 2 m g, its
     radial force the planar momentum rate |f_xy|; a hinge's axial reaction moment is zero, its
     tilting moment the magnitude of the link-axes moment); --columns limits on a copy of the
     URDF with <limit> on joint 1: each excess is the input (or the effort column) less the limit
-    it passes, 0 within or exactly at it"""
-    states = os.path.join(work, "states_bl.csv")
-    times = [0.1 * k for k in range(12)]
-    with open(states, "w") as f:
-        f.write("t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc\n")
-        for t in times:
-            q1, q2, v1, v2, a1, a2 = motion(t)
-            f.write(",".join(repr(x) for x in (t, q1, v1, a1, q2, v2, a2)) + "\n")
+    it passes, 0 within or exactly at it (states: the rows of motion at the times)"""
     r = run(vtdyn, "inverse", "--columns", "link,bearing", urdf, states)
     names, rows = csv_table(r.stdout) if r.returncode == 0 else ([], [])
     want = ["t"] + sum(([j + s + "_link" for s in ("_fx", "_fy", "_fz", "_nx", "_ny", "_nz")] +
@@ -943,7 +936,7 @@ def main():
     chunks_threads(vtdyn, urdf, work, check)
     npy_files(vtdyn, urdf, states, work, check)
     options(vtdyn, urdf, states, work, check)
-    bearing_and_limits(vtdyn, urdf, work, check)
+    bearing_and_limits(vtdyn, urdf, states, times, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0

@@ -1913,7 +1913,7 @@ static void test_joint_frame_given(void **state)
     (void)state;
     vt_body_def d[4];
     jf_defs(d);
-    const double p[4] = {0.5, 0.5, -0.5, 0.5}; /* x_J = −z_b... any unit quaternion */
+    const double p[4] = {0.5, 0.5, -0.5, 0.5}; /* a turn of 120° about (1, −1, 1) */
     for (int c = 0; c < 4; c++) d[1].joint_frame[c] = 2.0 * p[c]; /* normalized by the builder */
     vt_builder *b;
     assert_ok(vt_builder_create(&b, NULL));

@@ -516,6 +516,8 @@ typedef struct vt_model {
     double mass_spread;      ///< internal: the largest body mass over the smallest positive one
     double *jnt_frame_A;     ///< internal: jnt_frame as a rotation, joint frame → body axes, 3x3
                              ///< col-major (9 x (nbody+1))
+    int any_limit;           ///< internal: 1 if some entry of dof_limit is finite (else no instant
+                             ///< compares with them: vt_data.limit_excess stays 0)
 } vt_model;
 
 /// Scratch space of the stages, inside the data (opaque; its size is fixed by the model).

@@ -19,6 +19,13 @@
  * reads: reaction = W̄_i − G_i, with W̄_i the subtree's needed wrench about o = d->origin (inertia
  * less gravity and applied loads) and G_i its rows' and generalized forces' wrenches, the
  * moment then moved to P_i; the recursive paths have W̄ already (vt_reactions_subtree).
+ *
+ * In each joint's frame (vt_model.jnt_frame, rotation C from the frame to the body's axes) and
+ * split along its unit bearing axis a (in that frame; 0 for a joint without one), for every
+ * path once its body-axes reactions are formed (vt_joint_frames):
+ *   f_J = C^T f',  n_J = C^T n',  [a · f_J, |f_J − (a · f_J) a|, a · n_J, |n_J − (a · n_J) a|].
+ * Limits (vt_model.dof_limit) against each rate's q, q̇ and effort Φ_q^T λ (vt_limits_flag):
+ *   excess = x − hi where x > hi, x − lo where x < lo, else 0.
  */
 #include <math.h>
 #include <stddef.h>
@@ -250,8 +257,33 @@ static double excess(double x, double lo, double hi)
     return x > hi ? x - hi : x < lo ? x - lo : 0.0;
 }
 
+void vt_joint_frames(const vt_model *m, vt_data *d)
+{
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *C = m->jnt_frame_A + 9 * i, *a = m->jnt_frame_axis + 3 * i;
+        double fj[3], mj[3];
+        vt_mulmat3t(fj, C, d->jnt_force_body + 3 * i);
+        vt_mulmat3t(mj, C, d->jnt_moment_body + 3 * i);
+        const double fa = vt_dot3(a, fj), ma = vt_dot3(a, mj);
+        double *b = d->jnt_bearing + 4 * i;
+        b[0] = fa;
+        b[1] = vt_perp_norm(fj, a, fa);
+        b[2] = ma;
+        b[3] = vt_perp_norm(mj, a, ma);
+        vt_copy3(d->jnt_force_joint + 3 * i, fj);
+        vt_copy3(d->jnt_moment_joint + 3 * i, mj);
+    }
+}
+
+/* vt_perp_norm's lengths out of the plain sum's range (and 0): out of line, seldom taken */
+double vt_perp_norm_scaled(double u[3])
+{
+    return vt_normalize(u, 3);
+}
+
 void vt_limits_flag(const vt_model *m, vt_data *d)
 {
+    if (!m->any_limit) return; /* limit_excess and nlimit stay the zeros they were laid out with */
     int n = 0;
     for (int c = 0; c < m->nv; c++) {
         const double *lim = m->dof_limit + 4 * c;
@@ -284,12 +316,12 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
         vt_mulmat3t(mb, Ai, mo);
         vt_copy3(d->jnt_force_body + 3 * i, fb);
         vt_copy3(d->jnt_moment_body + 3 * i, mb);
-        vt_joint_frame_store(m, d, i, fb, mb);
         if (!vt_all_finite(f, 3) || !vt_all_finite(mo, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE,
                            "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",
                            i, fabs(d->xdd[vt_xoff(i)]));
     }
+    vt_joint_frames(m, d);
     return VT_OK;
 }
 

@@ -57,34 +57,24 @@ void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, co
 /* |r − (a · r) a| for a unit a (or 0: |r|), with no overflow of the squares of a length near
  * DBL_MAX nor underflow of a tiny one (the scaled sum of vt_normalize where the plain one is out
  * of range) */
+double vt_perp_norm_scaled(double u[3]);
 static inline double vt_perp_norm(const double r[3], const double a[3], double along)
 {
     double u[3];
     for (int k = 0; k < 3; k++) u[k] = r[k] - along * a[k];
     const double ss = vt_dot3(u, u);
     if (ss < 0x1p1000 && ss > 0x1p-1000) return sqrt(ss);
-    return vt_normalize(u, 3);
+    return vt_perp_norm_scaled(u);
 }
 
-/* joint i's reaction, force fb and moment mb in body i's axes, into the joint's frame
- * (vt_model.jnt_frame, C: frame → body axes): f_J = C^T f_b, n_J = C^T n_b, and its bearing split
- * along the frame's unit axis a: a · f_J, |f_J − (a · f_J) a|, a · n_J, |n_J − (a · n_J) a|. The one
- * kernel of every pass that forms the reactions in body axes */
-static inline void vt_joint_frame_store(const vt_model *m, vt_data *d, int i, const double fb[3], const double mb[3])
-{
-    const double *C = m->jnt_frame_A + 9 * i, *a = m->jnt_frame_axis + 3 * i;
-    double fj[3], mj[3];
-    vt_mulmat3t(fj, C, fb);
-    vt_mulmat3t(mj, C, mb);
-    const double fa = vt_dot3(a, fj), ma = vt_dot3(a, mj);
-    double *b = d->jnt_bearing + 4 * i;
-    b[0] = fa;
-    b[1] = vt_perp_norm(fj, a, fa);
-    b[2] = ma;
-    b[3] = vt_perp_norm(mj, a, ma);
-    vt_copy3(d->jnt_force_joint + 3 * i, fj);
-    vt_copy3(d->jnt_moment_joint + 3 * i, mj);
-}
+/* Every joint's reaction, force f_b and moment n_b in its body's axes (jnt_force_body,
+ * jnt_moment_body), into the joint's frame (vt_model.jnt_frame, C: frame → body axes):
+ *   f_J = C^T f_b,  n_J = C^T n_b,
+ * and its bearing split along the frame's unit axis a (0: none):
+ *   a · f_J,  |f_J − (a · f_J) a|,  a · n_J,  |n_J − (a · n_J) a|.
+ * The one kernel of every pass that forms the reactions in body axes, run once they are all
+ * formed (reactions.c) */
+void vt_joint_frames(const vt_model *m, vt_data *d);
 
 /* joint i's total wrench (reaction plus actuation, about P_i) into the data: force f and moment mo
  * in global axes, fb and mb the same in body i's */

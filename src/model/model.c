@@ -489,6 +489,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
             lim[1] = own ? d->limit_upper[k] : HUGE_VAL;
             lim[2] = own ? d->limit_velocity[k] : HUGE_VAL;
             lim[3] = own ? d->limit_effort[k] : HUGE_VAL;
+            for (int l = 0; l < 4; l++) m->any_limit |= isfinite(lim[l]);
         }
 
         /* reference configuration: zero angles and translations, unit Euler parameters */
