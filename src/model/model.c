@@ -203,8 +203,8 @@ static void build_rows(vt_model *m)
     m->bound_mass = mass;
 }
 
-/* The rotation of Euler parameters C into its quaternion (Shepperd: from the largest of the four
- * squares, so that no division is by a small number) */
+/* The unit Euler parameters p of the rotation C, p0 ≥ 0 (Shepperd: from the largest of the four
+ * squares 4 p_k², so that no division is by a small number) */
 static void quat_of_rotation(double p[4], const double C[9])
 {
     const double t = C[0] + C[4] + C[8];
@@ -212,8 +212,9 @@ static void quat_of_rotation(double p[4], const double C[9])
     int k = 0;
     for (int j = 1; j < 4; j++) k = sq[j] > sq[k] ? j : k;
     const double r = 0.5 * sqrt(sq[k]), f = 0.25 / r;
-    /* C[r + 3c]: C_rc. 4 p0 pk = C_kj − C_jk (cyclic), 4 pj pk = C_jk + C_kj */
-    const double a = (C[5] - C[7]) * f, b = (C[6] - C[2]) * f, c = (C[1] - C[3]) * f; /* p0 p1, p0 p2, p0 p3 ·4/4r */
+    /* C[r + 3c] = C_rc: C_21 − C_12 = 4 p0 p1 (and cyclic), C_10 + C_01 = 4 p1 p2 (and the others);
+     * each divided by 4 |p_k| */
+    const double a = (C[5] - C[7]) * f, b = (C[6] - C[2]) * f, c = (C[1] - C[3]) * f; /* p0 p1, p0 p2, p0 p3 */
     const double x = (C[1] + C[3]) * f, y = (C[2] + C[6]) * f, z = (C[5] + C[7]) * f; /* p1 p2, p1 p3, p2 p3 */
     switch (k) {
     case 0: p[0] = r, p[1] = a, p[2] = b, p[3] = c; break;
