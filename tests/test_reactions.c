@@ -1931,6 +1931,31 @@ static void test_joint_frame_given(void **state)
     vt_model_free(m);
 }
 
+/* the bearing split of reactions near 1e200 N, whose squares overflow: the magnitudes across the
+ * axis against hypot of the joint-frame components (libm's, scaled) */
+static void test_bearing_split_huge(void **state)
+{
+    (void)state;
+    vt_model *m = jf_model(0, VT_LAYOUT_FULL);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    memcpy(d->q, jf_q, sizeof jf_q);
+    d->xfrc[6 * 3 + 0] = 3e200, d->xfrc[6 * 3 + 1] = -4e200, d->xfrc[6 * 3 + 2] = 1e200; /* on body 3 */
+    assert_ok(vt_inverse_dynamics_motion(m, d));
+    for (int k = 1; k <= 3; k++) {
+        const double *fj = d->jnt_force_joint + 3 * k, *mj = d->jnt_moment_joint + 3 * k, *a = m->jnt_frame_axis + 3 * k;
+        const double *b = d->jnt_bearing + 4 * k;
+        const double fa = a[0] * fj[0] + a[1] * fj[1] + a[2] * fj[2], ma = a[0] * mj[0] + a[1] * mj[1] + a[2] * mj[2];
+        const double fr = hypot(hypot(fj[0] - fa * a[0], fj[1] - fa * a[1]), fj[2] - fa * a[2]);
+        const double mr = hypot(hypot(mj[0] - ma * a[0], mj[1] - ma * a[1]), mj[2] - ma * a[2]);
+        assert_true(fr > 1e199 && isfinite(b[1]) && isfinite(b[3]));
+        assert_near(b[1], fr, 1e-14 * fr);
+        assert_near(b[3], mr, 1e-14 * mr);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* ---- limits flagged, strictly ------------------------------------------------------------ */
 
 /* jf_model with limits on every rate from the values x (q, q̇ and the efforts e of the instant):
@@ -2039,6 +2064,7 @@ int main(void)
         cmocka_unit_test(test_long_link_roundoff_inertia),
         cmocka_unit_test(test_joint_frame_hand_built),
         cmocka_unit_test(test_joint_frame_given),
+        cmocka_unit_test(test_bearing_split_huge),
         cmocka_unit_test(test_limits_strict),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
