@@ -49,9 +49,6 @@ typedef struct {
     int col, col_vel, col_acc;
     int free;             /* a floating root: its columns in fcol */
     int fcol[NFREE];
-    int frame;            /* the child link's frame (its URDF axes), or -1 */
-    int link_axes;        /* 1 when the link's axes are not the body's: Af turns the body's into them */
-    double Af[9];         /* the link frame's axes in the body's (column-major) */
     const char *name;
 } joint_cols;
 
@@ -104,7 +101,10 @@ typedef struct {
     const double *incells;     /* the chunk's input rows for the output's t: cells, or the table's */
     double *q, *qd, *qdd;      /* the states (K x nq, K x nv, K x nv) */
     double *effort;            /* every rate's effort (K x nv) */
-    double *reac, *reac_body;  /* the joints' reactions, world and body axes (K x 6 nbody), or NULL */
+    double *reac, *reac_link;  /* the joints' reactions, world axes and the joint's frame, the child
+                                * link's URDF axes (vt_model.jnt_frame) (K x 6 nbody), or NULL */
+    double *bearing;           /* their bearing split (K x 4 nbody), or NULL */
+    double *excess;            /* the rates' limit excess (K x 3 nv), or NULL */
     double *parts;             /* the efforts' armature, damping and friction parts (K x 3 nv), or NULL */
     int *status;               /* the rows' statuses (K) */
     double *vals[2];           /* .npy output: the rows' values, little-endian (K x nout), two sets */
@@ -136,7 +136,9 @@ static void run_free(run *x)
     free(x->qdd);
     free(x->effort);
     free(x->reac);
-    free(x->reac_body);
+    free(x->reac_link);
+    free(x->bearing);
+    free(x->excess);
     free(x->parts);
     free(x->status);
     free(x->vals[0]);
@@ -214,7 +216,6 @@ static int map_joints(run *x)
         j->col_vel = table_column(&x->in.t, key);
         snprintf(key, sizeof key, "%s_acc", name);
         j->col_acc = table_column(&x->in.t, key);
-        j->frame = find_frame(x, p->body_name + VT_NAME_MAX * i);
         if (j->col < 0) return cmd_fail("%s: no column '%s' (the position of joint %s)", x->states, name, name);
         const int full = j->col_vel >= 0 && j->col_acc >= 0, none = j->col_vel < 0 && j->col_acc < 0;
         const form f = full ? FORM_STATES : none ? FORM_SAMPLES : FORM_UNKNOWN;
@@ -255,7 +256,6 @@ static int map_floating_roots(run *x)
         j->rate = p->body_vadr[i];
         j->name = name;
         j->free = 1;
-        j->frame = find_frame(x, p->body_name + VT_NAME_MAX * i);
         for (int k = 0; k < NFREE; k++) {
             char key[VT_NAME_MAX + 8];
             snprintf(key, sizeof key, "%s_%s", name, free_suffix[k]);
@@ -374,22 +374,14 @@ static int add_spline_drives(run *x)
     return 0;
 }
 
-/* the model solved (the robot, with the spline drives for samples), its data and the joints'
- * link axes; for states the batch on the run's threads; 0 or 1 */
+/* the model solved (the robot, with the spline drives for samples) and its data; for states the
+ * batch on the run's threads; 0 or 1 */
 static int build_model(run *x)
 {
     if (x->form == FORM_SAMPLES && add_spline_drives(x)) return 1;
     if (vt_builder_build(&x->m, x->b) || vt_data_create(&x->d, x->m))
         return cmd_fail("%s: %s", x->urdf, vt_builder_message(x->b));
-    const vt_model *m = x->m;
-    for (int k = 0; k < x->nj; k++) {
-        joint_cols *j = &x->jc[k];
-        j->qadr = m->body_qadr[j->body];
-        if (j->free || j->frame < 0) continue; /* a root's link axes from its quaternion; no frame: the body's */
-        const double *p = m->frame_quat + 4 * j->frame;
-        j->link_axes = !(p[0] == 1.0 && p[1] == 0.0 && p[2] == 0.0 && p[3] == 0.0);
-        vt_euler_A(j->Af, p);
-    }
+    for (int k = 0; k < x->nj; k++) x->jc[k].qadr = x->m->body_qadr[x->jc[k].body];
     /* the batch (the states' solver) counts the CPUs for -j 0; the samples' threads are as many */
     vt_batch_def def = vt_default_batch_def();
     def.threads = x->o->threads;
@@ -412,7 +404,8 @@ static int add_name(run *x, int *k, const char *joint, const char *suffix)
 }
 
 /* the output's columns: t when given, then per joint the selected groups in their order (effort,
- * world, link; a floating root's efforts in world then link axes in `effort`); 0 or 1 */
+ * world, link, bearing, limits; a floating root's efforts in world then link axes in `effort`,
+ * nothing else); 0 or 1 */
 static int output_columns(run *x)
 {
     static const char *const effort6[12] = {"_effort_fx", "_effort_fy", "_effort_fz", "_effort_nx", "_effort_ny",
@@ -421,12 +414,14 @@ static int output_columns(run *x)
     static const char *const world[6] = {"_fx", "_fy", "_fz", "_nx", "_ny", "_nz"};
     static const char *const link[6] = {"_fx_link", "_fy_link", "_fz_link", "_nx_link", "_ny_link", "_nz_link"};
     static const char *const parts[3] = {"_effort_armature", "_effort_damping", "_effort_friction"};
+    static const char *const bearing[4] = {"_axial_force", "_radial_force", "_axial_moment", "_tilt_moment"};
+    static const char *const limits[3] = {"_position_excess", "_vel_excess", "_effort_excess"};
     const unsigned g = x->o->groups;
     int n = x->ct >= 0;
     for (int k = 0; k < x->nj; k++)
         n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0)
                            : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_PARTS ? 3 : 0) + (g & COLS_WORLD ? 6 : 0) +
-                                 (g & COLS_LINK ? 6 : 0);
+                                 (g & COLS_LINK ? 6 : 0) + (g & COLS_BEARING ? 4 : 0) + (g & COLS_LIMITS ? 3 : 0);
     if (n == 0)
         return cmd_fail("--columns: none of the selected groups has a column for %s (a floating root has efforts "
                         "alone)",
@@ -446,6 +441,8 @@ static int output_columns(run *x)
         for (int c = 0; c < 3 && (g & COLS_PARTS); c++) bad |= add_name(x, &k, j->name, parts[c]);
         for (int c = 0; c < 6 && (g & COLS_WORLD); c++) bad |= add_name(x, &k, j->name, world[c]);
         for (int c = 0; c < 6 && (g & COLS_LINK); c++) bad |= add_name(x, &k, j->name, link[c]);
+        for (int c = 0; c < 4 && (g & COLS_BEARING); c++) bad |= add_name(x, &k, j->name, bearing[c]);
+        for (int c = 0; c < 3 && (g & COLS_LIMITS); c++) bad |= add_name(x, &k, j->name, limits[c]);
     }
     return bad ? cmd_fail("out of memory") : 0;
 }
@@ -459,10 +456,11 @@ static int chunk_arrays(run *x)
     const size_t ncol = (size_t)x->in.t.ncol, nq = (size_t)m->nq, nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody,
                  nout = (size_t)x->nout, text = 26 * nout + 2;
     const unsigned g = x->o->groups;
-    const int world = (g & COLS_WORLD) != 0, link = (g & COLS_LINK) != 0;
-    const int parts = (g & COLS_PARTS) != 0;
-    const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + (size_t)(3 * parts) * nv + nout) +
-                       4 + 16 + text + 24 * ncol;
+    const int world = (g & COLS_WORLD) != 0, link = (g & COLS_LINK) != 0, bear = (g & COLS_BEARING) != 0,
+              lim = (g & COLS_LIMITS) != 0, parts = (g & COLS_PARTS) != 0;
+    const size_t nb4 = 4 * (size_t)m->nbody;
+    const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + bear * nb4 + (lim + parts) * 3 * nv +
+                            nout) + 4 + 16 + text + 24 * ncol;
     size_t K = CHUNK_BYTES / row;
     if (K > CHUNK_ROWS) K = CHUNK_ROWS;
     if (K < 1) K = 1;
@@ -473,13 +471,15 @@ static int chunk_arrays(run *x)
     x->qdd = calloc(K * nv, sizeof *x->qdd);
     x->effort = calloc(K * nv, sizeof *x->effort);
     if (world) x->reac = calloc(K * nb6, sizeof *x->reac);
-    if (link) x->reac_body = calloc(K * nb6, sizeof *x->reac_body);
+    if (link) x->reac_link = calloc(K * nb6, sizeof *x->reac_link);
+    if (bear) x->bearing = calloc(K * nb4, sizeof *x->bearing);
+    if (lim) x->excess = calloc(K * 3 * nv, sizeof *x->excess);
     if (parts) x->parts = calloc(K * 3 * nv, sizeof *x->parts);
     x->status = calloc(K, sizeof *x->status);
     for (int k = 0; k < 2 && x->ofmt == FMT_NPY; k++) x->vals[k] = malloc(K * nout * sizeof *x->vals[k]);
     x->blk = calloc((size_t)x->T, sizeof *x->blk);
-    if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_body) ||
-        (parts && !x->parts) ||
+    if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_link) ||
+        (bear && !x->bearing) || (lim && !x->excess) || (parts && !x->parts) ||
         !x->status || (x->ofmt == FMT_NPY && (!x->vals[0] || !x->vals[1])) || !x->blk)
         return cmd_fail("out of memory");
     for (int k = 0; k < x->T; k++)
@@ -559,7 +559,9 @@ static void gather(const run *x, int r, double *v)
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody;
     const unsigned g = x->o->groups;
     const double *q = x->q + r * nq, *e = x->effort + r * nv;
-    const double *rw = x->reac ? x->reac + r * nb6 : NULL, *rb = x->reac_body ? x->reac_body + r * nb6 : NULL;
+    const double *rw = x->reac ? x->reac + r * nb6 : NULL, *rl = x->reac_link ? x->reac_link + r * nb6 : NULL;
+    const double *be = x->bearing ? x->bearing + r * 4 * (size_t)m->nbody : NULL;
+    const double *ex = x->excess ? x->excess + r * 3 * nv : NULL;
     int o = 0;
     if (x->ct >= 0) v[o++] = x->incells[(size_t)r * (size_t)x->in.t.ncol + (size_t)x->ct];
     for (int k = 0; k < x->nj; k++) {
@@ -584,9 +586,16 @@ static void gather(const run *x, int r, double *v)
             o += 6;
         }
         if (g & COLS_LINK) {
-            if (j->link_axes) turn_back(v + o, j->Af, rb + b6);
-            else memcpy(v + o, rb + b6, 6 * sizeof *v);
+            memcpy(v + o, rl + b6, 6 * sizeof *v);
             o += 6;
+        }
+        if (g & COLS_BEARING) {
+            memcpy(v + o, be + 4 * (size_t)(j->body - 1), 4 * sizeof *v);
+            o += 4;
+        }
+        if (g & COLS_LIMITS) {
+            memcpy(v + o, ex + 3 * (size_t)j->rate, 3 * sizeof *v);
+            o += 3;
         }
     }
 }
@@ -766,7 +775,9 @@ static int solve_chunk(run *x, int n, int set)
     io.qdd = x->qdd;
     io.effort = x->effort;
     io.reaction = x->reac;
-    io.reaction_body = x->reac_body;
+    io.reaction_joint = x->reac_link;
+    io.bearing = x->bearing;
+    io.limit_excess = x->excess;
     io.effort_parts = x->parts;
     io.status = x->status;
     const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
@@ -887,11 +898,13 @@ static int run_samples(run *x)
                     memcpy(x->reac + r * 6 * nb + 6 * (i - 1), d->jnt_force + 3 * i, 3 * sizeof(double));
                     memcpy(x->reac + r * 6 * nb + 6 * (i - 1) + 3, d->jnt_moment + 3 * i, 3 * sizeof(double));
                 }
-                if (x->reac_body) {
-                    memcpy(x->reac_body + r * 6 * nb + 6 * (i - 1), d->jnt_force_body + 3 * i, 3 * sizeof(double));
-                    memcpy(x->reac_body + r * 6 * nb + 6 * (i - 1) + 3, d->jnt_moment_body + 3 * i, 3 * sizeof(double));
+                if (x->reac_link) {
+                    memcpy(x->reac_link + r * 6 * nb + 6 * (i - 1), d->jnt_force_joint + 3 * i, 3 * sizeof(double));
+                    memcpy(x->reac_link + r * 6 * nb + 6 * (i - 1) + 3, d->jnt_moment_joint + 3 * i, 3 * sizeof(double));
                 }
             }
+            if (x->bearing) memcpy(x->bearing + r * 4 * nb, d->jnt_bearing + 4, 4 * nb * sizeof(double));
+            if (x->excess) memcpy(x->excess + r * 3 * nv, d->limit_excess, 3 * nv * sizeof(double));
         }
         x->t_solve += now() - t0;
         x->incells = table_row(t, r0);

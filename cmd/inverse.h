@@ -10,7 +10,9 @@
 /* the output's groups of columns (--columns) */
 #define COLS_EFFORT 1u /* each joint's effort (a floating root's six, world and link axes) */
 #define COLS_WORLD 2u  /* each joint's reaction in world axes */
-#define COLS_LINK 4u   /* each joint's reaction in its child link's axes */
+#define COLS_LINK 4u   /* each joint's reaction in its child link's axes (the URDF joint's frame) */
+#define COLS_BEARING 8u /* each joint's bearing split: axial and radial force, axial and tilting moment */
+#define COLS_LIMITS 16u /* each joint's excess beyond its position, velocity and effort limits */
 #define COLS_PARTS 256u /* each joint's effort's parts: armature, damping, friction */
 
 /* the most --payload options of one run */

@@ -81,7 +81,16 @@ static const char usage[] =
     "           J_nx J_ny J_nz           and its moment about the child link frame's origin, N m,\n"
     "                                    in the URDF's world axes; the joint's actuation (the\n"
     "                                    effort) is not part of the reaction\n"
-    "           J_fx_link ... J_nz_link  the same in the child link's URDF axes\n"
+    "           J_fx_link ... J_nz_link  the same in the child link's URDF axes (the joint's frame)\n"
+    "         and on request (--columns):\n"
+    "           J_axial_force J_radial_force    the reaction force along the joint's URDF axis (N,\n"
+    "                                    signed) and its magnitude across it (N)\n"
+    "           J_axial_moment J_tilt_moment     the reaction moment about the axis (N m, signed;\n"
+    "                                    zero for a revolute joint: its torque is the effort) and\n"
+    "                                    its magnitude across it (N m)\n"
+    "           J_position_excess J_vel_excess J_effort_excess  how far beyond the URDF <limit> the\n"
+    "                                    position, velocity and effort are (value minus the limit\n"
+    "                                    passed, signed), 0 within or exactly at it; nothing clipped\n"
     "         OUT.npy: the same columns as the fields of a structured array (as STATES.npy):\n"
     "         numpy.load(OUT.npy)['J_effort'].\n";
 static const char usage_root[] =
@@ -115,9 +124,11 @@ static const char usage_options[] =
     "                   solved on one thread)\n"
     "  --columns LIST   the output's groups, comma separated (each joint's in this order whatever\n"
     "                   LIST's): effort (J_effort; a floating root's R_effort_*, both axes),\n"
-    "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link); default these\n"
-    "                   three; parts (J_effort_armature, J_effort_damping, J_effort_friction: the\n"
-    "                   parts of J_effort its joint's own effects take)\n"
+    "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link), bearing\n"
+    "                   (J_axial_force ... J_tilt_moment), limits (J_position_excess ...\n"
+    "                   J_effort_excess), parts (J_effort_armature, J_effort_damping,\n"
+    "                   J_effort_friction: the parts of J_effort its joint's own effects take);\n"
+    "                   default effort,world,link\n"
     "  --precision P    a CSV number's significant digits, 1 to 17; default 17, which reads back\n"
     "                   as the double written (a .npy output holds the doubles themselves)\n"
     "  --normalize-quaternions TOL\n"
@@ -215,8 +226,12 @@ static int parse_columns(const char *list, unsigned *groups)
         if (n == 6 && strncmp(p, "effort", 6) == 0) g = COLS_EFFORT;
         else if (n == 5 && strncmp(p, "world", 5) == 0) g = COLS_WORLD;
         else if (n == 4 && strncmp(p, "link", 4) == 0) g = COLS_LINK;
+        else if (n == 7 && strncmp(p, "bearing", 7) == 0) g = COLS_BEARING;
+        else if (n == 6 && strncmp(p, "limits", 6) == 0) g = COLS_LIMITS;
         else if (n == 5 && strncmp(p, "parts", 5) == 0) g = COLS_PARTS;
-        if (!g) return cmd_fail("--columns '%s': '%.*s' is none of effort, world, link, parts", list, (int)n, p);
+        if (!g)
+            return cmd_fail("--columns '%s': '%.*s' is none of effort, world, link, bearing, limits, parts", list,
+                            (int)n, p);
         if (*groups & g) return cmd_fail("--columns '%s': '%.*s' twice", list, (int)n, p);
         *groups |= g;
         if (!comma) return 0;

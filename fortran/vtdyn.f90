@@ -20,7 +20,7 @@
 !         call vt_body_array(jf, d%jnt_force, 3, m%nbody)    ! jf(1:3, 0:nbody), column i = body i
 !     These are views of the C memory: writing q(1) sets the C data's q[0].
 !     The data's arena (the stages' scratch, an opaque vt_arena) is a type(c_ptr) to leave
-!     alone, and the model's internal fields (con_kind ... has_effects, last in vt_model)
+!     alone, and the model's internal fields (con_kind ... any_limit, last in vt_model)
 !     are mirrored only to keep the layout: their meaning may change in any release.
 !   - Definition structs are plain values: start from the defaults and set what you need,
 !         type(vt_body_def) :: link;   link = vt_default_body_def();   link%mass = 100
@@ -190,6 +190,7 @@ module vtdyn
     real(c_double)         :: friction(2)
     real(c_double)         :: friction_velocity(2)
     real(c_double)         :: gear_ratio(2)
+    real(c_double)         :: joint_frame(4)
   end type vt_body_def
 
   type, bind(C) :: vt_frame_def
@@ -260,6 +261,8 @@ module vtdyn
     type(c_ptr)            :: con_body
     type(c_ptr)            :: con_owner
     type(c_ptr)            :: dof_drive
+    type(c_ptr)            :: jnt_frame
+    type(c_ptr)            :: jnt_frame_axis
     ! internal (types.h): read by the C library only, mirrored for the layout
     type(c_ptr)            :: con_kind
     type(c_ptr)            :: con_dof
@@ -273,6 +276,8 @@ module vtdyn
     real(c_double)         :: bound_mass
     real(c_double)         :: mass_spread
     integer(c_int)         :: has_effects
+    type(c_ptr)            :: jnt_frame_A
+    integer(c_int)         :: any_limit
   end type vt_model
 
   type, bind(C) :: vt_data
@@ -341,6 +346,11 @@ module vtdyn
     type(c_ptr)            :: coupling_effort
     type(c_ptr)            :: jnt_unique
     type(c_ptr)            :: cut_unique
+    type(c_ptr)            :: jnt_force_joint
+    type(c_ptr)            :: jnt_moment_joint
+    type(c_ptr)            :: jnt_bearing
+    type(c_ptr)            :: limit_excess
+    integer(c_int)         :: nlimit
     type(c_ptr)            :: arena
     integer(c_int)         :: ida_flag
     character(kind=c_char) :: message(VT_MESSAGE_SIZE)

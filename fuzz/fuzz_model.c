@@ -12,8 +12,9 @@
  *   definitions with allow_redundant = 1 at a clearly regular pose. Where both succeed, q̈, the
  *   efforts and every reaction agree within tol (below), and dense and recursive α and the
  *   joints' totals too; their statuses are consistent (below). The bytes also choose the later
- *   pieces: planar revolute cut joints, relative orientation drives' references and three-angle
- *   sequences (valid and refused ones), from bits the older inputs left unused;
+ *   pieces: planar revolute cut joints, relative orientation drives' references, three-angle
+ *   sequences (valid and refused ones) and the joints' armature, damping and friction, from bits
+ *   the older inputs left unused;
  * - with VT_OK every output array of the call is finite (the instants', and each single stage's:
  *   vt_kinematics, vt_mass_matrix, vt_forces, vt_constraints, vt_inverse_transform,
  *   vt_add_point_load, vt_generalized_force, vt_equivalent_force, vt_drive_cartesian_force,
@@ -927,7 +928,16 @@ static void read_definitions(bytes *b, definitions *defs)
         d.parent = (int)(byte(b) % (unsigned)(i + 1)) - (byte(b) % 16 == 0);
         d.joint = (vt_joint_type)(byte(b) % 7); /* 6: the free joint (an unknown kind before it) */
         d.mass = byte(b) % 8 ? fabs(num(b)) + 0.1 : num(b);
-        const unsigned shape = byte(b) % 4;
+        const unsigned sb = byte(b), shape = sb % 4, effects = sb >> 2 & 3;
+        /* the joint's own effects from the shape byte's high bits (older inputs read the same
+         * bytes): armature, damping and friction of the body's size, the sign or the tanh law */
+        const double size = isfinite(d.mass) ? fabs(d.mass) : 1.0;
+        for (int k = 0; k < 2 && effects; k++) {
+            d.armature[k] = effects & 1 ? 0.5 * size : 0.0;
+            d.damping[k] = effects & 2 ? 0.3 * size : 0.0;
+            d.friction[k] = effects & 2 ? 0.2 * size : 0.0;
+            d.friction_velocity[k] = effects == 3 ? 0.05 : 0.0;
+        }
         if (shape == 0)
             for (int k = 0; k < 9; k++) d.inertia[k] = num(b);
         else if (shape == 1)

@@ -11,7 +11,8 @@
 
 /* the batch's outputs of one call */
 typedef struct {
-    double *effort, *drive_effort, *qdd, *reaction, *reaction_body, *total, *total_body, *parts;
+    double *effort, *drive_effort, *qdd, *reaction, *reaction_body, *total, *total_body, *reaction_joint, *bearing,
+        *excess, *parts;
     int *status;
 } outputs;
 
@@ -25,6 +26,9 @@ static void outputs_alloc(outputs *o, const vt_model *m, int nrow)
     o->reaction_body = calloc(nb6 * (size_t)nrow, sizeof(double));
     o->total = calloc(nb6 * (size_t)nrow, sizeof(double));
     o->total_body = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->reaction_joint = calloc(nb6 * (size_t)nrow, sizeof(double));
+    o->bearing = calloc(4 * (size_t)m->nbody * (size_t)nrow, sizeof(double));
+    o->excess = calloc(3 * nv * (size_t)nrow, sizeof(double));
     o->parts = calloc(3 * nv * (size_t)nrow, sizeof(double));
     o->status = calloc((size_t)nrow, sizeof(int));
     assert_non_null(o->status);
@@ -39,6 +43,9 @@ static void outputs_free(outputs *o)
     free(o->reaction_body);
     free(o->total);
     free(o->total_body);
+    free(o->reaction_joint);
+    free(o->bearing);
+    free(o->excess);
     free(o->parts);
     free(o->status);
 }
@@ -47,8 +54,10 @@ static void outputs_fill(outputs *o, const vt_model *m, int nrow, double v)
 {
     const size_t nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody, nd = m->ndrive > 0 ? (size_t)m->ndrive : 1;
     for (size_t k = 0; k < nv * (size_t)nrow; k++) o->effort[k] = o->qdd[k] = v;
+    for (size_t k = 0; k < 3 * nv * (size_t)nrow; k++) o->excess[k] = v;
+    for (size_t k = 0; k < 4 * (size_t)m->nbody * (size_t)nrow; k++) o->bearing[k] = v;
     for (size_t k = 0; k < nd * (size_t)nrow; k++) o->drive_effort[k] = v;
-    for (size_t k = 0; k < nb6 * (size_t)nrow; k++) o->reaction[k] = o->reaction_body[k] = o->total[k] = o->total_body[k] = v;
+    for (size_t k = 0; k < nb6 * (size_t)nrow; k++) o->reaction[k] = o->reaction_body[k] = o->total[k] = o->total_body[k] = o->reaction_joint[k] = v;
 }
 
 static vt_batch_io io_of(const outputs *o, int nrow, const double *q, size_t q_stride, const double *qd,
@@ -67,6 +76,9 @@ static vt_batch_io io_of(const outputs *o, int nrow, const double *q, size_t q_s
     io.reaction_body = o->reaction_body;
     io.total = o->total;
     io.total_body = o->total_body;
+    io.reaction_joint = o->reaction_joint;
+    io.bearing = o->bearing;
+    io.limit_excess = o->excess;
     io.effort_parts = o->parts;
     io.status = o->status;
     return io;
@@ -108,7 +120,11 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
             assert_true(same(o->total[at + 3], d->jnt_moment_total[3 * i + c]));
             assert_true(same(o->total_body[at], d->jnt_force_total_body[3 * i + c]));
             assert_true(same(o->total_body[at + 3], d->jnt_moment_total_body[3 * i + c]));
+            assert_true(same(o->reaction_joint[at], d->jnt_force_joint[3 * i + c]));
+            assert_true(same(o->reaction_joint[at + 3], d->jnt_moment_joint[3 * i + c]));
         }
+    for (int k = 0; k < 4 * nb; k++) assert_true(same(o->bearing[(size_t)r * 4 * nb + k], d->jnt_bearing[4 + k]));
+    for (int k = 0; k < 3 * nv; k++) assert_true(same(o->excess[(size_t)r * 3 * nv + k], d->limit_excess[k]));
     vt_data_free(d);
 }
 
@@ -285,6 +301,8 @@ static void test_failing_rows(void **state)
             assert_true(same(o.effort[101 * (size_t)nv + k], 42.0));
         }
         for (int k = 0; k < 6 * m->nbody; k++) assert_true(same(o.reaction[101 * 6 * (size_t)m->nbody + k], 42.0));
+        for (int k = 0; k < 4 * m->nbody; k++) assert_true(same(o.bearing[101 * 4 * (size_t)m->nbody + k], 42.0));
+        for (int k = 0; k < 3 * nv; k++) assert_true(same(o.excess[101 * 3 * (size_t)nv + k], 42.0));
         for (int r = 0; r < NROW; r++)
             if (r != 37 && r != 101) check_row(m, &o, r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv);
         outputs_free(&o);

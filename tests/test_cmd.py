@@ -832,6 +832,74 @@ def help_is_documented(vtdyn, urdf_dir, check):
     check(k >= 0 and r.stdout == block, "docs/command.md holds vtdyn --help's text exactly")
 
 
+def bearing_and_limits(vtdyn, urdf, states, times, work, check):
+    """--columns bearing against the closed forms (joint 1's axial force is the weight 2 m g, its
+    radial force the planar momentum rate |f_xy|; a hinge's axial reaction moment is zero, its
+    tilting moment the magnitude of the link-axes moment); --columns limits on a copy of the
+    URDF with <limit> on joint 1: each excess is the input (or the effort column) less the limit
+    it passes, 0 within or exactly at it (states: the rows of motion at the times)"""
+    r = run(vtdyn, "inverse", "--columns", "link,bearing", urdf, states)
+    names, rows = csv_table(r.stdout) if r.returncode == 0 else ([], [])
+    want = ["t"] + sum(([j + s + "_link" for s in ("_fx", "_fy", "_fz", "_nx", "_ny", "_nz")] +
+                        [j + s for s in ("_axial_force", "_radial_force", "_axial_moment", "_tilt_moment")]
+                        for j in ("joint1", "joint2")), [])
+    check(r.returncode == 0 and names == want, "--columns link,bearing: the columns: %s %s" % (names[:6], r.stderr))
+    worst = 0.0
+    for cells, t in zip(rows, times):
+        row = {n: float(c) for n, c in zip(names, cells)}
+        _, _, f = exact(*motion(t))
+        fs = 1 + max(abs(x) for x in f)
+        worst = max(worst, abs(row["joint1_axial_force"] - f[2]) / fs,
+                    abs(row["joint1_radial_force"] - math.hypot(f[0], f[1])) / fs)
+        for j in ("joint1", "joint2"):
+            ms = 1 + abs(row[j + "_nx_link"]) + abs(row[j + "_ny_link"]) + abs(row[j + "_nz_link"])
+            worst = max(worst, abs(row[j + "_axial_moment"]) / ms,
+                        abs(row[j + "_tilt_moment"] - math.hypot(row[j + "_nx_link"], row[j + "_ny_link"])) / ms,
+                        abs(row[j + "_axial_force"] - row[j + "_fz_link"]) / fs)
+    check(len(rows) == len(times) and worst < 1e-9, "bearing: largest relative difference %.3g (1e-9)" % worst)
+    # limits on joint 1: the position's upper bound at row 3's q1 exactly (not passed there), the
+    # velocity's and the effort's at halves of the largest, so that some rows pass them
+    q1s = [motion(t)[0] for t in times]
+    v1s = [motion(t)[2] for t in times]
+    full = run(vtdyn, "inverse", "--columns", "effort", urdf, states)
+    fn, frows = csv_table(full.stdout) if full.returncode == 0 else ([], [])
+    e1s = [float(fr[fn.index("joint1_effort")]) for fr in frows]
+    lower, upper = -0.3, q1s[3]
+    vmax, emax = 0.5 * max(abs(v) for v in v1s), 0.5 * max(abs(e) for e in e1s)
+    with open(urdf) as f:
+        text = f.read()
+    k = text.index('<axis xyz="0 0 1"/>') + len('<axis xyz="0 0 1"/>')
+    limited = os.path.join(work, "double_link_limits.urdf")
+    with open(limited, "w") as f:
+        f.write(text[:k] + '<limit lower="%r" upper="%r" velocity="%r" effort="%r"/>' % (lower, upper, vmax, emax)
+                + text[k:])
+    with open(limited) as f:
+        text = f.read()
+    with open(limited, "w") as f:  # position limits hold for a revolute joint, not a continuous one
+        f.write(text.replace('<joint name="joint1" type="continuous">', '<joint name="joint1" type="revolute">'))
+    r = run(vtdyn, "inverse", "--columns", "effort,limits", limited, states)
+    names, rows = csv_table(r.stdout) if r.returncode == 0 else ([], [])
+    check(r.returncode == 0 and names[:6] == ["t", "joint1_effort", "joint1_position_excess", "joint1_vel_excess",
+                                              "joint1_effort_excess", "joint2_effort"],
+          "--columns effort,limits: the columns: %s %s" % (names[:6], r.stderr))
+
+    def beyond(x, lo, hi):
+        return x - hi if x > hi else x - lo if x < lo else 0.0
+
+    bad, flagged = [], 0
+    for cells, q1, v1 in zip(rows, q1s, v1s):
+        row = {n: float(c) for n, c in zip(names, cells)}
+        e1 = row["joint1_effort"]
+        want = (beyond(q1, lower, upper), beyond(v1, -vmax, vmax), beyond(e1, -emax, emax))
+        got = (row["joint1_position_excess"], row["joint1_vel_excess"], row["joint1_effort_excess"])
+        flagged += sum(1 for w in want if w != 0.0)
+        if got != want or row["joint2_position_excess"] or row["joint2_vel_excess"] or row["joint2_effort_excess"]:
+            bad.append((got, want))
+    check(len(rows) == len(times) and not bad and flagged > 0 and rows and
+          float(rows[3][names.index("joint1_position_excess")]) == 0.0,
+          "limits: each excess the value less the limit passed (%d flagged), 0 at the limit: %s" % (flagged, bad[:2]))
+
+
 def main():
     vtdyn, urdf_dir, work = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(work, exist_ok=True)
@@ -973,6 +1041,7 @@ def main():
     options(vtdyn, urdf, states, work, check)
     payloads(vtdyn, urdf, states, work, check)
     joint_effects(vtdyn, urdf, states, work, check)
+    bearing_and_limits(vtdyn, urdf, states, times, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0

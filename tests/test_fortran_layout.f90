@@ -57,7 +57,8 @@ program test_fortran_layout
          a(c_loc(x_body_def%name)), a(c_loc(x_body_def%joint_name)), a(c_loc(x_body_def%limit_lower)), &
          a(c_loc(x_body_def%limit_upper)), a(c_loc(x_body_def%limit_velocity)), a(c_loc(x_body_def%limit_effort)), &
          a(c_loc(x_body_def%armature)), a(c_loc(x_body_def%damping)), a(c_loc(x_body_def%friction)), &
-         a(c_loc(x_body_def%friction_velocity)), a(c_loc(x_body_def%gear_ratio))])
+         a(c_loc(x_body_def%friction_velocity)), a(c_loc(x_body_def%gear_ratio)), &
+         a(c_loc(x_body_def%joint_frame))])
     call check(5_c_int, 'vt_model', c_sizeof(x_model), a(c_loc(x_model)), [ &
          a(c_loc(x_model%nbody)), a(c_loc(x_model%nq)), a(c_loc(x_model%nv)), a(c_loc(x_model%nx)), &
          a(c_loc(x_model%gravity)), a(c_loc(x_model%body_parent)), a(c_loc(x_model%body_joint)), &
@@ -77,12 +78,13 @@ program test_fortran_layout
          a(c_loc(x_model%ncut)), a(c_loc(x_model%nc)), a(c_loc(x_model%drive)), a(c_loc(x_model%drive_row)), &
          a(c_loc(x_model%cut)), a(c_loc(x_model%cut_row)), a(c_loc(x_model%ncoupling)), &
          a(c_loc(x_model%coupling)), a(c_loc(x_model%coupling_row)), a(c_loc(x_model%con_body)), &
-         a(c_loc(x_model%con_owner)), a(c_loc(x_model%dof_drive)), a(c_loc(x_model%con_kind)), &
+         a(c_loc(x_model%con_owner)), a(c_loc(x_model%dof_drive)), a(c_loc(x_model%jnt_frame)), &
+         a(c_loc(x_model%jnt_frame_axis)), a(c_loc(x_model%con_kind)), &
          a(c_loc(x_model%con_dof)), a(c_loc(x_model%con_vec)), a(c_loc(x_model%con_point)), &
          a(c_loc(x_model%joint_driven)), a(c_loc(x_model%joint_rows_only)), &
          a(c_loc(x_model%joint_mix)), a(c_loc(x_model%has_quaternions)), &
          a(c_loc(x_model%bound_length)), a(c_loc(x_model%bound_mass)), a(c_loc(x_model%mass_spread)), &
-         a(c_loc(x_model%has_effects))])
+         a(c_loc(x_model%has_effects)), a(c_loc(x_model%jnt_frame_A)), a(c_loc(x_model%any_limit))])
     call check(6_c_int, 'vt_data', c_sizeof(x_data), a(c_loc(x_data)), [ &
          a(c_loc(x_data%model)), a(c_loc(x_data%block)), a(c_loc(x_data%time)), a(c_loc(x_data%q)), &
          a(c_loc(x_data%qd)), a(c_loc(x_data%xfrc)), a(c_loc(x_data%qfrc)), a(c_loc(x_data%x)), &
@@ -104,7 +106,9 @@ program test_fortran_layout
          a(c_loc(x_data%jnt_force_total_body)), a(c_loc(x_data%jnt_moment_total_body)), a(c_loc(x_data%cut_force)), &
          a(c_loc(x_data%cut_moment)), a(c_loc(x_data%cut_force_body)), a(c_loc(x_data%cut_moment_body)), &
          a(c_loc(x_data%coupling_effort)), &
-         a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), a(c_loc(x_data%arena)), &
+         a(c_loc(x_data%jnt_unique)), a(c_loc(x_data%cut_unique)), &
+         a(c_loc(x_data%jnt_force_joint)), a(c_loc(x_data%jnt_moment_joint)), a(c_loc(x_data%jnt_bearing)), &
+         a(c_loc(x_data%limit_excess)), a(c_loc(x_data%nlimit)), a(c_loc(x_data%arena)), &
          a(c_loc(x_data%ida_flag)), a(c_loc(x_data%message))])
     call check(7_c_int, 'vt_run_options', c_sizeof(x_run_options), a(c_loc(x_run_options)), [ &
          a(c_loc(x_run_options%t0)), a(c_loc(x_run_options%t1)), a(c_loc(x_run_options%nout)), &

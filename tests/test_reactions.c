@@ -1740,6 +1740,307 @@ static void test_long_link_roundoff_inertia(void **state)
     }
 }
 
+/* ---- reactions in the joint's frame and the bearing split ------------------------------ */
+
+/* A revolute, a universal and a translational joint, axes and orientations off the body axes */
+static const double jf_q[4] = {0.3, -0.7, 0.4, 0.25}, jf_qd[4] = {1.1, -0.6, 0.9, -0.4},
+                    jf_qdd[4] = {0.5, 1.3, -0.8, 0.7};
+
+static void jf_defs(vt_body_def d[4])
+{
+    static const double J[3][9] = {{0.30, 0.02, -0.01, 0.02, 0.25, 0.03, -0.01, 0.03, 0.20},
+                                   {0.12, -0.01, 0.02, -0.01, 0.10, 0.01, 0.02, 0.01, 0.08},
+                                   {0.05, 0.01, 0.0, 0.01, 0.04, -0.005, 0.0, -0.005, 0.06}};
+    static const double q0[3][4] = {{0.9, 0.1, -0.3, 0.2}, {0.8, -0.2, 0.3, 0.1}, {0.7, 0.3, 0.1, -0.4}};
+    static const double jp[3][3] = {{0.1, -0.2, 0.3}, {0.4, 0.1, -0.1}, {0.2, 0.3, -0.1}};
+    static const double jc[3][3] = {{-0.3, 0.1, 0.05}, {0.05, -0.25, 0.1}, {0.1, 0.0, -0.2}};
+    static const double a1[3][3] = {{1.0 / 3, 2.0 / 3, 2.0 / 3}, {0.0, 0.6, 0.8}, {0.48, 0.6, 0.64}};
+    static const vt_joint_type kind[3] = {VT_JOINT_REVOLUTE, VT_JOINT_UNIVERSAL, VT_JOINT_TRANSLATIONAL};
+    static const double mass[3] = {2.0, 1.5, 0.8};
+    for (int k = 1; k <= 3; k++) {
+        d[k] = vt_default_body_def();
+        d[k].parent = k - 1;
+        d[k].joint = kind[k - 1];
+        d[k].mass = mass[k - 1];
+        memcpy(d[k].inertia, J[k - 1], sizeof d[k].inertia);
+        memcpy(d[k].joint_parent, jp[k - 1], sizeof d[k].joint_parent);
+        memcpy(d[k].joint_child, jc[k - 1], sizeof d[k].joint_child);
+        memcpy(d[k].axis1, a1[k - 1], sizeof d[k].axis1);
+        const double nq = sqrt(q0[k - 1][0] * q0[k - 1][0] + q0[k - 1][1] * q0[k - 1][1] + q0[k - 1][2] * q0[k - 1][2] +
+                               q0[k - 1][3] * q0[k - 1][3]);
+        for (int c = 0; c < 4; c++) d[k].orientation[c] = q0[k - 1][c] / nq;
+    }
+    d[2].axis2[0] = 1.0, d[2].axis2[1] = d[2].axis2[2] = 0.0; /* ⟂ (0, 0.6, 0.8) */
+}
+
+/* drives: 1 adds a joint drive on every rate with q, q̇, q̈ of jf_* at t = 0 */
+static vt_model *jf_model(int drives, vt_layout layout)
+{
+    vt_body_def d[4];
+    jf_defs(d);
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = 0.5, md.gravity[1] = -9.81, md.gravity[2] = 1.2;
+    md.layout = layout;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    for (int k = 1; k <= 3; k++) assert_int_equal(vt_builder_add_body(b, &d[k]), k);
+    for (int c = 0, k = 1; drives && k <= 3; k++)
+        for (int a = 0; a < (k == 2 ? 2 : 1); a++, c++) {
+            const double coef[3] = {jf_q[c], jf_qd[c], 0.5 * jf_qdd[c]};
+            vt_test_add_joint_drive(b, k, a, vt_function_polynomial(3, coef));
+        }
+    return vt_test_build(b);
+}
+
+/* the documented frame of a hand-built joint, from the definition alone: z along the joint's axis
+ * in body axes (A0^T axis1), x the body axis least aligned with it made ⟂, y = z × x; a universal's
+ * x along A0^T axis2. Columns: the frame's axes in body axes; bear: the bearing axis in the frame */
+static void jf_documented(const vt_body_def *d, double C[9], double bear[3])
+{
+    double A0[9], z[3], x[3] = {0, 0, 0}, y[3];
+    vt_ne_quat(A0, d->orientation);
+    vt_ne_mtv(z, A0, d->axis1);
+    if (d->joint == VT_JOINT_UNIVERSAL) {
+        vt_ne_mtv(x, A0, d->axis2);
+    } else {
+        int k = 0;
+        for (int j = 1; j < 3; j++)
+            if (fabs(z[j]) < fabs(z[k])) k = j;
+        x[k] = 1.0;
+        for (int c = 0; c < 3; c++) x[c] -= z[k] * z[c];
+        const double nx = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        for (int c = 0; c < 3; c++) x[c] /= nx;
+    }
+    vt_ne_cross(y, z, x);
+    for (int c = 0; c < 3; c++) C[c] = x[c], C[3 + c] = y[c], C[6 + c] = z[c];
+    bear[0] = d->joint == VT_JOINT_UNIVERSAL, bear[1] = 0.0, bear[2] = d->joint != VT_JOINT_UNIVERSAL;
+}
+
+/* every joint's reaction in its frame, and its bearing split, against the chain's Newton–Euler */
+static void jf_check(const vt_model *m, const vt_data *d, const double *C, const double *bear, const double *Rbody,
+                     const double *Fr, const double *Mr, double scale)
+{
+    for (int k = 1; k <= m->nbody; k++) {
+        double Rj[9], fj[3], mj[3];
+        vt_ne_mul(Rj, Rbody + 9 * k, C + 9 * k); /* the joint frame, global */
+        vt_ne_mtv(fj, Rj, Fr + 3 * k);
+        vt_ne_mtv(mj, Rj, Mr + 3 * k);
+        for (int c = 0; c < 3; c++) {
+            assert_near(d->jnt_force_joint[3 * k + c], fj[c], 1e-12 * scale);
+            assert_near(d->jnt_moment_joint[3 * k + c], mj[c], 1e-12 * scale);
+        }
+        const double *a = bear + 3 * k, fa = a[0] * fj[0] + a[1] * fj[1] + a[2] * fj[2],
+                     ma = a[0] * mj[0] + a[1] * mj[1] + a[2] * mj[2];
+        double fr = 0.0, mr = 0.0;
+        for (int c = 0; c < 3; c++) fr += (fj[c] - fa * a[c]) * (fj[c] - fa * a[c]), mr += (mj[c] - ma * a[c]) * (mj[c] - ma * a[c]);
+        const double *b = d->jnt_bearing + 4 * k;
+        assert_near(b[0], fa, 1e-12 * scale);
+        assert_near(b[1], sqrt(fr), 1e-12 * scale);
+        assert_near(b[2], ma, 1e-12 * scale);
+        assert_near(b[3], sqrt(mr), 1e-12 * scale);
+    }
+}
+
+static void test_joint_frame_hand_built(void **state)
+{
+    (void)state;
+    vt_body_def def[4];
+    jf_defs(def);
+    vt_ne_body nb[4];
+    memset(nb, 0, sizeof nb);
+    double C[9 * 4] = {0}, bear[3 * 4] = {0};
+    for (int k = 1; k <= 3; k++) {
+        vt_ne_body *B = &nb[k];
+        B->parent = k - 1;
+        B->kind = def[k].joint == VT_JOINT_REVOLUTE ? 0 : def[k].joint == VT_JOINT_UNIVERSAL ? 1 : 2;
+        memcpy(B->s_par, def[k].joint_parent, sizeof B->s_par);
+        B->pre[0] = B->pre[4] = B->pre[8] = 1.0;
+        memcpy(B->u1, def[k].axis1, sizeof B->u1);
+        memcpy(B->u2, def[k].axis2, sizeof B->u2);
+        vt_ne_quat(B->post, def[k].orientation);
+        memcpy(B->s_child, def[k].joint_child, sizeof B->s_child);
+        B->mass = def[k].mass;
+        memcpy(B->J, def[k].inertia, sizeof B->J);
+        jf_documented(&def[k], C + 9 * k, bear + 3 * k);
+    }
+    vt_model *m = jf_model(0, VT_LAYOUT_FULL);
+    double F[12], M[12], Fr[12], Mr[12], R[36];
+    vt_ne_chain(nb, 3, jf_q, jf_qd, jf_qdd, m->gravity, F, M, Fr, Mr, R);
+    double scale = 0.0;
+    for (int k = 3; k < 12; k++) scale = fmax(scale, fmax(fabs(F[k]), fabs(M[k])));
+    /* the model's frames and axes are the documented ones */
+    for (int k = 1; k <= 3; k++) {
+        double A[9];
+        vt_euler_A(A, m->jnt_frame + 4 * k);
+        for (int c = 0; c < 9; c++) assert_near(A[c], C[9 * k + c], 1e-15);
+        for (int c = 0; c < 3; c++) assert_near(m->jnt_frame_axis[3 * k + c], bear[3 * k + c], 1e-15);
+    }
+    /* the given motion (fused passes), on both layouts */
+    for (int lay = 0; lay < 2; lay++) {
+        vt_model *ml = lay ? jf_model(0, VT_LAYOUT_RECURSIVE) : m;
+        vt_data *d;
+        assert_ok(vt_data_create(&d, ml));
+        memcpy(d->q, jf_q, sizeof jf_q);
+        memcpy(d->qd, jf_qd, sizeof jf_qd);
+        memcpy(d->qdd, jf_qdd, sizeof jf_qdd);
+        assert_ok(vt_inverse_dynamics_motion(ml, d));
+        for (int k = 1; k <= 3; k++) /* the library's global reaction is the same Newton–Euler */
+            for (int c = 0; c < 3; c++) assert_near(d->jnt_force[3 * k + c], Fr[3 * k + c], 1e-12 * scale);
+        jf_check(ml, d, C, bear, R, Fr, Mr, scale);
+        vt_data_free(d);
+        if (lay) vt_model_free(ml);
+    }
+    /* the same motion driven: the dense stages and the recursive joint-driven passes */
+    vt_model *md = jf_model(1, VT_LAYOUT_FULL);
+    for (int path = 0; path < 2; path++) {
+        vt_data *d;
+        assert_ok(vt_data_create(&d, md));
+        memcpy(d->q, jf_q, sizeof jf_q);
+        memcpy(d->qd, jf_qd, sizeof jf_qd);
+        d->time = 0.0;
+        assert_ok(path ? vt_inverse_dynamics_recursive(md, d) : vt_inverse_dynamics(md, d));
+        jf_check(md, d, C, bear, R, Fr, Mr, scale);
+        vt_data_free(d);
+    }
+    vt_model_free(md);
+    vt_model_free(m);
+}
+
+/* a joint frame given in the definition is the model's, and the bearing axis is the joint's axis
+ * in it; a frame of zero norm is the documented one, NaN refused */
+static void test_joint_frame_given(void **state)
+{
+    (void)state;
+    vt_body_def d[4];
+    jf_defs(d);
+    const double p[4] = {0.5, 0.5, -0.5, 0.5}; /* a turn of 120° about (1, −1, 1) */
+    for (int c = 0; c < 4; c++) d[1].joint_frame[c] = 2.0 * p[c]; /* normalized by the builder */
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, NULL));
+    assert_int_equal(vt_builder_add_body(b, &d[1]), 1);
+    d[2].joint_frame[0] = NAN;
+    assert_int_equal(vt_builder_add_body(b, &d[2]), VT_ERR_NONFINITE);
+    vt_model *m = vt_test_build(b);
+    for (int c = 0; c < 4; c++) assert_near(m->jnt_frame[4 + c], p[c], 1e-16);
+    double A0[9], a[3], C[9], ab[3];
+    vt_ne_quat(A0, d[1].orientation);
+    vt_ne_mtv(a, A0, d[1].axis1); /* body axes */
+    vt_ne_quat(C, p);
+    vt_ne_mtv(ab, C, a);
+    for (int c = 0; c < 3; c++) assert_near(m->jnt_frame_axis[3 + c], ab[c], 1e-15);
+    vt_model_free(m);
+}
+
+/* the bearing split of reactions near 1e200 N, whose squares overflow: the magnitudes across the
+ * axis against hypot of the joint-frame components (libm's, scaled) */
+static void test_bearing_split_huge(void **state)
+{
+    (void)state;
+    vt_model *m = jf_model(0, VT_LAYOUT_FULL);
+    vt_data *d;
+    assert_ok(vt_data_create(&d, m));
+    memcpy(d->q, jf_q, sizeof jf_q);
+    d->xfrc[6 * 3 + 0] = 3e200, d->xfrc[6 * 3 + 1] = -4e200, d->xfrc[6 * 3 + 2] = 1e200; /* on body 3 */
+    assert_ok(vt_inverse_dynamics_motion(m, d));
+    for (int k = 1; k <= 3; k++) {
+        const double *fj = d->jnt_force_joint + 3 * k, *mj = d->jnt_moment_joint + 3 * k, *a = m->jnt_frame_axis + 3 * k;
+        const double *b = d->jnt_bearing + 4 * k;
+        const double fa = a[0] * fj[0] + a[1] * fj[1] + a[2] * fj[2], ma = a[0] * mj[0] + a[1] * mj[1] + a[2] * mj[2];
+        const double fr = hypot(hypot(fj[0] - fa * a[0], fj[1] - fa * a[1]), fj[2] - fa * a[2]);
+        const double mr = hypot(hypot(mj[0] - ma * a[0], mj[1] - ma * a[1]), mj[2] - ma * a[2]);
+        assert_true(fr > 1e199 && isfinite(b[1]) && isfinite(b[3]));
+        assert_near(b[1], fr, 1e-14 * fr);
+        assert_near(b[3], mr, 1e-14 * mr);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+/* ---- limits flagged, strictly ------------------------------------------------------------ */
+
+/* jf_model with limits on every rate from the values x (q, q̇ and the efforts e of the instant):
+ * mode 1 exactly at them (upper = q on even rates, lower = q on odd ones, |q̇|, |e|), mode 2 one
+ * ulp inside them, so that the instant's values are one ulp beyond */
+static vt_model *limits_model(int drives, int mode, const double *q, const double *qd, const double *e)
+{
+    vt_body_def d[4];
+    jf_defs(d);
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = 0.5, md.gravity[1] = -9.81, md.gravity[2] = 1.2;
+    vt_builder *b;
+    assert_ok(vt_builder_create(&b, &md));
+    for (int c = 0, k = 1; k <= 3; k++) {
+        for (int a = 0; a < (k == 2 ? 2 : 1); a++, c++) {
+            const int in = mode == 2;
+            if (c % 2 == 0) d[k].limit_upper[a] = in ? nextafter(q[c], -HUGE_VAL) : q[c];
+            else d[k].limit_lower[a] = in ? nextafter(q[c], HUGE_VAL) : q[c];
+            d[k].limit_velocity[a] = in ? nextafter(fabs(qd[c]), 0.0) : fabs(qd[c]);
+            d[k].limit_effort[a] = in ? nextafter(fabs(e[c]), 0.0) : fabs(e[c]);
+        }
+        assert_int_equal(vt_builder_add_body(b, &d[k]), k);
+    }
+    for (int c = 0, k = 1; drives && k <= 3; k++)
+        for (int a = 0; a < (k == 2 ? 2 : 1); a++, c++) {
+            const double coef[3] = {jf_q[c], jf_qd[c], 0.5 * jf_qdd[c]};
+            vt_test_add_joint_drive(b, k, a, vt_function_polynomial(3, coef));
+        }
+    return vt_test_build(b);
+}
+
+/* path 0: the given motion; 1: the dense stages, driven; 2: the recursive passes, driven */
+static void limits_solve(const vt_model *m, vt_data *d, int path)
+{
+    memcpy(d->q, jf_q, sizeof jf_q);
+    memcpy(d->qd, jf_qd, sizeof jf_qd);
+    memcpy(d->qdd, jf_qdd, sizeof jf_qdd);
+    d->time = 0.0;
+    assert_ok(path == 0 ? vt_inverse_dynamics_motion(m, d)
+                        : path == 1 ? vt_inverse_dynamics(m, d) : vt_inverse_dynamics_recursive(m, d));
+}
+
+static void test_limits_strict(void **state)
+{
+    (void)state;
+    for (int path = 0; path < 3; path++) {
+        const int drives = path > 0;
+        double e[4];
+        vt_model *m0 = jf_model(drives, VT_LAYOUT_FULL);
+        vt_data *d;
+        assert_ok(vt_data_create(&d, m0));
+        limits_solve(m0, d, path);
+        memcpy(e, d->qfrc_drive, sizeof e);
+        assert_int_equal(d->nlimit, 0); /* no limits: nothing beyond */
+        assert_int_equal(d->warning & VT_WARN_LIMIT, 0);
+        for (int k = 0; k < 12; k++) assert_true(d->limit_excess[k] == 0.0);
+        vt_data_free(d);
+        vt_model_free(m0);
+        for (int mode = 1; mode <= 2; mode++) {
+            vt_model *m = limits_model(drives, mode, jf_q, jf_qd, e);
+            assert_ok(vt_data_create(&d, m));
+            limits_solve(m, d, path);
+            for (int c = 0; c < 4; c++) assert_true(d->qfrc_drive[c] == e[c]); /* the limits change no effort */
+            if (mode == 1) { /* exactly at every limit: none passed */
+                assert_int_equal(d->nlimit, 0);
+                assert_int_equal(d->warning & VT_WARN_LIMIT, 0);
+                for (int k = 0; k < 12; k++) assert_true(d->limit_excess[k] == 0.0);
+            } else { /* one ulp beyond every one: each flagged, by the value less the limit */
+                assert_int_equal(d->nlimit, 12);
+                assert_int_equal(d->warning & VT_WARN_LIMIT, VT_WARN_LIMIT);
+                for (int c = 0; c < 4; c++) {
+                    const double *lim = m->dof_limit + 4 * c, *x = d->limit_excess + 3 * c;
+                    assert_true(x[0] == jf_q[c] - (c % 2 == 0 ? lim[1] : lim[0]));
+                    assert_true(x[0] != 0.0 && (x[0] > 0.0) == (c % 2 == 0));
+                    assert_true(x[1] == (jf_qd[c] > 0.0 ? jf_qd[c] - lim[2] : jf_qd[c] + lim[2]));
+                    assert_true(x[2] == (e[c] > 0.0 ? e[c] - lim[3] : e[c] + lim[3]));
+                    assert_true(x[1] != 0.0 && x[2] != 0.0);
+                }
+            }
+            vt_data_free(d);
+            vt_model_free(m);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1761,6 +2062,10 @@ int main(void)
         cmocka_unit_test(test_spherical_joint_drive),
         cmocka_unit_test(test_relative_drive_for_joint_drive),
         cmocka_unit_test(test_long_link_roundoff_inertia),
+        cmocka_unit_test(test_joint_frame_hand_built),
+        cmocka_unit_test(test_joint_frame_given),
+        cmocka_unit_test(test_bearing_split_huge),
+        cmocka_unit_test(test_limits_strict),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

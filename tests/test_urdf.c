@@ -1061,6 +1061,113 @@ static void test_payload_as_edited_file(void **state)
     vt_builder_free(b);
 }
 
+/* ---- reactions in the URDF joint frame ------------------------------------------------ */
+
+/* Two revolute joints and a prismatic one, every origin and inertial frame turned (rpy), axes off
+ * the frames' axes */
+static const char jf_urdf[] =
+    "<robot name='jf'><link name='base'/>"
+    "<link name='a'><inertial><origin xyz='0.1 -0.05 0.2' rpy='0.3 -0.2 0.5'/><mass value='2'/>"
+    "<inertia ixx='0.3' iyy='0.25' izz='0.2' ixy='0.01' ixz='-0.02' iyz='0.015'/></inertial></link>"
+    "<link name='b'><inertial><origin xyz='0.25 0.05 -0.1' rpy='-0.4 0.1 0.7'/><mass value='1.5'/>"
+    "<inertia ixx='0.12' iyy='0.1' izz='0.08' ixy='0' ixz='0.01' iyz='0'/></inertial></link>"
+    "<link name='c'><inertial><origin xyz='0.0 0.1 0.15' rpy='0.2 0.6 -0.3'/><mass value='0.8'/>"
+    "<inertia ixx='0.05' iyy='0.04' izz='0.06' ixy='0.005' ixz='0' iyz='-0.004'/></inertial></link>"
+    "<joint name='j1' type='revolute'><parent link='base'/><child link='a'/>"
+    "<origin xyz='0.1 0.2 0.3' rpy='0.4 -0.3 0.9'/><axis xyz='0 0.6 0.8'/>"
+    "<limit lower='-2' upper='2' effort='100' velocity='3'/></joint>"
+    "<joint name='j2' type='continuous'><parent link='a'/><child link='b'/>"
+    "<origin xyz='0.5 -0.1 0.05' rpy='-1.1 0.2 0.35'/><axis xyz='1 0 0'/></joint>"
+    "<joint name='j3' type='prismatic'><parent link='b'/><child link='c'/>"
+    "<origin xyz='0.3 0.1 -0.2' rpy='0.5 0.7 -0.6'/><axis xyz='0.6 0 0.8'/>"
+    "<limit lower='-1' upper='1' effort='50' velocity='2'/></joint></robot>";
+
+static void test_joint_frame_reactions(void **state)
+{
+    (void)state;
+    static const double q[3] = {0.3, -0.7, 0.25}, qd[3] = {1.1, -0.6, -0.4}, qdd[3] = {0.5, 1.3, 0.7};
+    /* the chain in URDF's terms: link frames, joint origins, inertial frames */
+    static const double xyz[3][3] = {{0.1, 0.2, 0.3}, {0.5, -0.1, 0.05}, {0.3, 0.1, -0.2}};
+    static const double rpy[3][3] = {{0.4, -0.3, 0.9}, {-1.1, 0.2, 0.35}, {0.5, 0.7, -0.6}};
+    static const double axis[3][3] = {{0, 0.6, 0.8}, {1, 0, 0}, {0.6, 0, 0.8}};
+    static const double cxyz[3][3] = {{0.1, -0.05, 0.2}, {0.25, 0.05, -0.1}, {0.0, 0.1, 0.15}};
+    static const double crpy[3][3] = {{0.3, -0.2, 0.5}, {-0.4, 0.1, 0.7}, {0.2, 0.6, -0.3}};
+    static const double mass[3] = {2.0, 1.5, 0.8};
+    static const double in[3][6] = {{0.3, 0.25, 0.2, 0.01, -0.02, 0.015}, {0.12, 0.1, 0.08, 0, 0.01, 0},
+                                    {0.05, 0.04, 0.06, 0.005, 0, -0.004}}; /* xx yy zz xy xz yz */
+    vt_ne_body nb[4];
+    memset(nb, 0, sizeof nb);
+    for (int k = 1; k <= 3; k++) {
+        vt_ne_body *B = &nb[k];
+        B->parent = k - 1;
+        B->kind = k == 3 ? 2 : 0;
+        memcpy(B->s_par, xyz[k - 1], sizeof B->s_par);
+        vt_ne_rpy(B->pre, rpy[k - 1][0], rpy[k - 1][1], rpy[k - 1][2]);
+        memcpy(B->u1, axis[k - 1], sizeof B->u1);
+        B->post[0] = B->post[4] = B->post[8] = 1.0;
+        B->mass = mass[k - 1];
+        memcpy(B->c, cxyz[k - 1], sizeof B->c);
+        const double *I = in[k - 1];
+        const double Ji[9] = {I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2]};
+        double Ri[9], T[9], RiT[9];
+        vt_ne_rpy(Ri, crpy[k - 1][0], crpy[k - 1][1], crpy[k - 1][2]);
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++) RiT[r + 3 * c] = Ri[c + 3 * r];
+        vt_ne_mul(T, Ri, Ji);
+        vt_ne_mul(B->J, T, RiT); /* in the link frame */
+    }
+    const double g[3] = {0, 0, -9.81};
+    double F[12], M[12], Fr[12], Mr[12], R[36];
+    vt_ne_chain(nb, 3, q, qd, qdd, g, F, M, Fr, Mr, R);
+    double scale = 0.0;
+    for (int k = 3; k < 12; k++) scale = fmax(scale, fmax(fabs(F[k]), fabs(M[k])));
+    char msg[256];
+    for (int drives = 0; drives < 2; drives++) {
+        vt_builder *b;
+        if (vt_urdf_builder_string(&b, jf_urdf, NULL, msg) != VT_OK) fail_msg("%s", msg);
+        for (int k = 1; drives && k <= 3; k++) {
+            const double coef[3] = {q[k - 1], qd[k - 1], 0.5 * qdd[k - 1]};
+            vt_test_add_joint_drive(b, k, 0, vt_function_polynomial(3, coef));
+        }
+        vt_model *m = vt_test_build(b);
+        assert_int_equal(vt_find_joint(m, "j3"), 3);
+        for (int path = 0; path < (drives ? 2 : 1); path++) {
+            vt_data *d;
+            assert_ok(vt_data_create(&d, m));
+            memcpy(d->q, q, sizeof q);
+            memcpy(d->qd, qd, sizeof qd);
+            memcpy(d->qdd, qdd, sizeof qdd);
+            assert_ok(!drives ? vt_inverse_dynamics_motion(m, d)
+                              : path ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d));
+            for (int k = 1; k <= 3; k++) {
+                /* the URDF joint frame is the child's link frame R_k; the bearing axis the URDF axis */
+                double fj[3], mj[3];
+                vt_ne_mtv(fj, R + 9 * k, Fr + 3 * k);
+                vt_ne_mtv(mj, R + 9 * k, Mr + 3 * k);
+                for (int c = 0; c < 3; c++) {
+                    assert_near(d->jnt_force_joint[3 * k + c], fj[c], 1e-12 * scale);
+                    assert_near(d->jnt_moment_joint[3 * k + c], mj[c], 1e-12 * scale);
+                    assert_near(m->jnt_frame_axis[3 * k + c], axis[k - 1][c], 1e-15);
+                }
+                const double *a = axis[k - 1], fa = a[0] * fj[0] + a[1] * fj[1] + a[2] * fj[2],
+                             ma = a[0] * mj[0] + a[1] * mj[1] + a[2] * mj[2];
+                double fr[3], mr[3];
+                for (int c = 0; c < 3; c++) fr[c] = fj[c] - fa * a[c], mr[c] = mj[c] - ma * a[c];
+                const double *bb = d->jnt_bearing + 4 * k;
+                assert_near(bb[0], fa, 1e-12 * scale);
+                assert_near(bb[1], sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]), 1e-12 * scale);
+                assert_near(bb[2], ma, 1e-12 * scale);
+                assert_near(bb[3], sqrt(mr[0] * mr[0] + mr[1] * mr[1] + mr[2] * mr[2]), 1e-12 * scale);
+                /* the joint's own effort is what is not reaction: a turning joint's axial moment and
+                 * a sliding one's axial force are zero */
+                assert_near(bb[k == 3 ? 0 : 2], 0.0, 1e-12 * scale);
+            }
+            vt_data_free(d);
+        }
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1077,6 +1184,7 @@ int main(void)
         cmocka_unit_test(test_long_chain),
         cmocka_unit_test(test_lines_past_65535),
         cmocka_unit_test(test_payload_as_edited_file),
+        cmocka_unit_test(test_joint_frame_reactions),
     };
     return cmocka_run_group_tests(tests, NULL, report);
 }

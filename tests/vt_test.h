@@ -628,6 +628,8 @@ static inline void vt_test_both(const vt_model *m, vt_data *dr, vt_data *dd)
         {"jnt_force", dr->jnt_force, dd->jnt_force, nb3, 0}, {"jnt_moment", dr->jnt_moment, dd->jnt_moment, nb3, 1},
         {"jnt_force_body", dr->jnt_force_body, dd->jnt_force_body, nb3, 0},
         {"jnt_moment_body", dr->jnt_moment_body, dd->jnt_moment_body, nb3, 1},
+        {"jnt_force_joint", dr->jnt_force_joint, dd->jnt_force_joint, nb3, 0},
+        {"jnt_moment_joint", dr->jnt_moment_joint, dd->jnt_moment_joint, nb3, 1},
         {"cut_force", dr->cut_force, dd->cut_force, 3 * m->ncut, 0},
         {"cut_moment", dr->cut_moment, dd->cut_moment, 3 * m->ncut, 0}, {"alpha", dr->alpha, dd->alpha, nb3, 0},
         {"jnt_force_total", dr->jnt_force_total, dd->jnt_force_total, nb3, 0},
@@ -662,6 +664,188 @@ static inline void vt_test_both(const vt_model *m, vt_data *dr, vt_data *dd)
     }
 }
 #endif
+
+/* ---- Newton–Euler of a chain, written apart from the library (test_reactions, test_urdf) ----
+ * Each body k (1..n, parent p < k, 0 the ground at rest) has a frame (origin o_k, axes R_k); its
+ * joint: the point s_par on the parent (parent frame), a fixed rotation pre (parent frame → the
+ * joint's frame at q = 0), the joint's motion in that frame (a turn about u1; a universal's turn
+ * about u1 then about u2 as carried by it; a slide along u1), a fixed rotation post, and the point
+ * s_child on the body (body frame): R_k = R_p pre M(q) post, P_k = o_p + R_p s_par (+ q R_p pre u1),
+ * o_k = P_k − R_k s_child. Mass m, centre of mass c and inertia J about it, both in the body's frame.
+ * Out: every joint's total wrench (force, moment about P_k) of the parent on the subtree, its
+ * reaction (the total less τ u along each rate's axis u, τ = u · the total), global, and R_k. */
+typedef struct {
+    int parent, kind; /* kind: 0 revolute, 1 universal, 2 translational */
+    double s_par[3], pre[9], u1[3], u2[3], post[9], s_child[3];
+    double mass, c[3], J[9];
+} vt_ne_body;
+
+static inline void vt_ne_rot(double R[9], const double u[3], double q) /* Rodrigues, u unit */
+{
+    const double c = cos(q), s = sin(q), v = 1.0 - c;
+    const double x = u[0], y = u[1], z = u[2];
+    const double r[9] = {c + x * x * v, y * x * v + z * s, z * x * v - y * s, x * y * v - z * s, c + y * y * v,
+                         z * y * v + x * s, x * z * v + y * s, y * z * v - x * s, c + z * z * v};
+    memcpy(R, r, sizeof r);
+}
+static inline void vt_ne_mul(double C[9], const double A[9], const double B[9])
+{
+    double T[9];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) T[r + 3 * c] = A[r] * B[3 * c] + A[r + 3] * B[3 * c + 1] + A[r + 6] * B[3 * c + 2];
+    memcpy(C, T, sizeof T);
+}
+static inline void vt_ne_mv(double y[3], const double A[9], const double x[3])
+{
+    double t[3];
+    for (int r = 0; r < 3; r++) t[r] = A[r] * x[0] + A[r + 3] * x[1] + A[r + 6] * x[2];
+    memcpy(y, t, sizeof t);
+}
+static inline void vt_ne_mtv(double y[3], const double A[9], const double x[3])
+{
+    double t[3];
+    for (int r = 0; r < 3; r++) t[r] = A[3 * r] * x[0] + A[3 * r + 1] * x[1] + A[3 * r + 2] * x[2];
+    memcpy(y, t, sizeof t);
+}
+static inline void vt_ne_cross(double r[3], const double a[3], const double b[3])
+{
+    const double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    memcpy(r, t, sizeof t);
+}
+/* the rotation of unit Euler parameters (scalar first) */
+static inline void vt_ne_quat(double R[9], const double p[4])
+{
+    const double w = p[0], x = p[1], y = p[2], z = p[3];
+    const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y),
+                         2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x),
+                         2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
+    memcpy(R, r, sizeof r);
+}
+/* URDF's rpy: R = Rz(y) Ry(p) Rx(r) */
+static inline void vt_ne_rpy(double R[9], double r, double p, double y)
+{
+    static const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0}, ez[3] = {0, 0, 1};
+    double X[9], Y[9], Z[9];
+    vt_ne_rot(X, ex, r);
+    vt_ne_rot(Y, ey, p);
+    vt_ne_rot(Z, ez, y);
+    vt_ne_mul(R, Z, Y);
+    vt_ne_mul(R, R, X);
+}
+
+/* q, qd, qdd: one entry per rate, bodies in order (a universal two); g gravity; out per body k
+ * (arrays of 3 (n+1), entry k): total force F, moment M (about P_k), reaction Fr, Mr; R (9 (n+1)) */
+static inline void vt_ne_chain(const vt_ne_body *b, int n, const double *q, const double *qd, const double *qdd,
+                               const double g[3], double *F, double *M, double *Fr, double *Mr, double *R)
+{
+    double o[3 * 33] = {0}, w[3 * 33] = {0}, al[3 * 33] = {0}, ao[3 * 33] = {0}, P[3 * 33], f[3 * 33], nn[3 * 33],
+           ax[6 * 33] = {0};
+    int nrate[33];
+    assert_true(n < 33);
+    static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    memcpy(R, I3, sizeof I3);
+    for (int k = 1, c = 0; k <= n; k++) {
+        const vt_ne_body *B = &b[k];
+        const int p = B->parent;
+        double Rp0[9], M1[9], u1[3], u2[3], r[3], t[3];
+        nrate[k] = B->kind == 1 ? 2 : 1;
+        vt_ne_mul(Rp0, R + 9 * p, B->pre); /* the joint's frame at q = 0, global */
+        vt_ne_mv(u1, Rp0, B->u1);
+        vt_ne_mv(r, R + 9 * p, B->s_par); /* P0 − o_p */
+        double aP[3];
+        vt_ne_cross(t, w + 3 * p, r);
+        vt_ne_cross(t, w + 3 * p, t);
+        vt_ne_cross(aP, al + 3 * p, r);
+        for (int i = 0; i < 3; i++) aP[i] += ao[3 * p + i] + t[i], P[3 * k + i] = o[3 * p + i] + r[i];
+        double wk[3], ak[3];
+        memcpy(wk, w + 3 * p, sizeof wk);
+        memcpy(ak, al + 3 * p, sizeof ak);
+        memcpy(M1, I3, sizeof I3);
+        if (B->kind == 2) { /* slide q u1, u1 fixed on the parent */
+            double qu[3], a1[3], a2[3];
+            for (int i = 0; i < 3; i++) qu[i] = q[c] * u1[i];
+            vt_ne_cross(a1, al + 3 * p, qu);
+            vt_ne_cross(t, w + 3 * p, qu);
+            vt_ne_cross(t, w + 3 * p, t);
+            vt_ne_cross(a2, w + 3 * p, u1);
+            for (int i = 0; i < 3; i++) {
+                P[3 * k + i] += qu[i];
+                aP[i] += a1[i] + t[i] + 2.0 * qd[c] * a2[i] + qdd[c] * u1[i];
+            }
+        } else {
+            vt_ne_rot(M1, B->u1, q[c]);
+            vt_ne_cross(t, wk, u1);
+            for (int i = 0; i < 3; i++) ak[i] += qdd[c] * u1[i] + qd[c] * t[i], wk[i] += qd[c] * u1[i];
+            if (B->kind == 1) {
+                double M2[9], Rk1[9];
+                vt_ne_mul(Rk1, Rp0, M1);
+                vt_ne_mv(u2, Rk1, B->u2); /* u2 as carried by the first turn */
+                vt_ne_rot(M2, B->u2, q[c + 1]);
+                vt_ne_mul(M1, M1, M2);
+                vt_ne_cross(t, wk, u2);
+                for (int i = 0; i < 3; i++) ak[i] += qdd[c + 1] * u2[i] + qd[c + 1] * t[i], wk[i] += qd[c + 1] * u2[i];
+            }
+        }
+        memcpy(ax + 6 * k, u1, sizeof u1);
+        if (B->kind == 1) memcpy(ax + 6 * k + 3, u2, sizeof u2);
+        vt_ne_mul(R + 9 * k, Rp0, M1);
+        vt_ne_mul(R + 9 * k, R + 9 * k, B->post);
+        memcpy(w + 3 * k, wk, sizeof wk);
+        memcpy(al + 3 * k, ak, sizeof ak);
+        double sc[3];
+        vt_ne_mv(sc, R + 9 * k, B->s_child);
+        for (int i = 0; i < 3; i++) r[i] = -sc[i]; /* o_k − P_k */
+        vt_ne_cross(t, wk, r);
+        vt_ne_cross(t, wk, t);
+        double a1[3];
+        vt_ne_cross(a1, ak, r);
+        for (int i = 0; i < 3; i++) o[3 * k + i] = P[3 * k + i] + r[i], ao[3 * k + i] = aP[i] + a1[i] + t[i];
+        c += nrate[k];
+    }
+    for (int k = 1; k <= n; k++) { /* each body's needed wrench, about its centre of mass */
+        const vt_ne_body *B = &b[k];
+        double rc[3], t[3], a1[3], Jw[9], Iw[3], Ia[3];
+        vt_ne_mv(rc, R + 9 * k, B->c);
+        vt_ne_cross(t, w + 3 * k, rc);
+        vt_ne_cross(t, w + 3 * k, t);
+        vt_ne_cross(a1, al + 3 * k, rc);
+        for (int i = 0; i < 3; i++) f[3 * k + i] = B->mass * (ao[3 * k + i] + a1[i] + t[i] - g[i]);
+        double RT[9];
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++) RT[r + 3 * c] = R[9 * k + c + 3 * r];
+        vt_ne_mul(Jw, R + 9 * k, B->J);
+        vt_ne_mul(Jw, Jw, RT);
+        vt_ne_mv(Iw, Jw, w + 3 * k);
+        vt_ne_mv(Ia, Jw, al + 3 * k);
+        vt_ne_cross(t, w + 3 * k, Iw);
+        for (int i = 0; i < 3; i++) nn[3 * k + i] = Ia[i] + t[i];
+        /* about P_k: + (c − P_k) × f */
+        double cp[3];
+        for (int i = 0; i < 3; i++) cp[i] = o[3 * k + i] + rc[i] - P[3 * k + i];
+        vt_ne_cross(t, cp, f + 3 * k);
+        for (int i = 0; i < 3; i++) F[3 * k + i] = f[3 * k + i], M[3 * k + i] = nn[3 * k + i] + t[i];
+    }
+    for (int k = n; k >= 1; k--) { /* subtree sums, leaf first */
+        const int p = b[k].parent;
+        if (p > 0) {
+            double d[3], t[3];
+            for (int i = 0; i < 3; i++) d[i] = P[3 * k + i] - P[3 * p + i];
+            vt_ne_cross(t, d, F + 3 * k);
+            for (int i = 0; i < 3; i++) F[3 * p + i] += F[3 * k + i], M[3 * p + i] += M[3 * k + i] + t[i];
+        }
+    }
+    for (int k = 1; k <= n; k++) {
+        memcpy(Fr + 3 * k, F + 3 * k, 3 * sizeof(double));
+        memcpy(Mr + 3 * k, M + 3 * k, 3 * sizeof(double));
+        for (int a = 0; a < nrate[k]; a++) {
+            const double *u = ax + 6 * k + 3 * a;
+            double *x = b[k].kind == 2 ? Fr + 3 * k : Mr + 3 * k;
+            const double *X = b[k].kind == 2 ? F + 3 * k : M + 3 * k;
+            const double tau = u[0] * X[0] + u[1] * X[1] + u[2] * X[2];
+            for (int i = 0; i < 3; i++) x[i] -= tau * u[i];
+        }
+    }
+}
 
 /* valgrind's memcheck runs the tests in CI (its LD_PRELOAD names its vgpreload): what takes
  * hundreds of megabytes is left to the other runs there */

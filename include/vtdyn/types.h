@@ -183,9 +183,11 @@ enum {
     VT_WARN_ILL_CONDITIONED = 1, ///< the condition estimate of (5) is below rcond_warn
     VT_WARN_REDUNDANT = 2,       ///< dependent rows (to round-off) were solved on their independent
                                  ///< directions (allow_redundant; vt_data.rank < nc)
-    VT_WARN_BAND = 4             ///< a time analysis's band (vt_run_options.redundant_band) dropped a
+    VT_WARN_BAND = 4,            ///< a time analysis's band (vt_run_options.redundant_band) dropped a
                                  ///< direction that is not dependent to round-off: its constraint held
                                  ///< in the least-squares sense (vt_data.residual says how well)
+    VT_WARN_LIMIT = 8            ///< some rate's coordinate, rate or effort is beyond its limit
+                                 ///< (vt_data.limit_excess says which and by how much; nothing clipped)
 };
 
 /// The route by which the last solve found q̈ and λ (vt_data.route). Which route a model and an
@@ -412,6 +414,12 @@ typedef struct vt_body_def {
     double gear_ratio[2];       ///< N ≠ 0: armature, damping and friction are stated on the motor's side of
                                 ///< a gear of ratio N (motor turns per joint turn) and taken as N² J, N² b
                                 ///< and |N| f on the joint's; default 1
+    double joint_frame[4];      ///< the joint's frame: its axes relative to this body's axes (Euler
+                                ///< parameters), its origin the joint point; it moves with the body and
+                                ///< is where vt_data.jnt_force_joint and the bearing split are read (a
+                                ///< URDF joint: the child link's frame, the URDF joint frame at q = 0).
+                                ///< Normalized; all zero (default): the frame that vt_model.jnt_frame
+                                ///< documents for the joint's kind
 } vt_body_def;
 
 /// A joint's own effects on its first two rates, as vt_body_def's fields of the same names, to set
@@ -526,6 +534,20 @@ typedef struct vt_model {
     int *con_body;           ///< the two bodies of each row: a (0 = ground) then b (2 x nc)
     int *con_owner;          ///< the drive, cut joint or base body a row belongs to (nc)
     int *dof_drive;          ///< the joint drive of each rate, −1 if none (nv)
+    double *jnt_frame;       ///< each joint's frame (vt_body_def.joint_frame): its axes relative to the
+                             ///< body's axes, Euler parameters (4 x (nbody+1)); origin the joint point,
+                             ///< fixed on the body. Where the definition gave none (all zero), with a
+                             ///< the joint's axis in body axes (axis1 carried by the orientation at
+                             ///< q = 0; fixed on the body): revolute, translational and cylindrical
+                             ///< joints: z along a, x the body axis least aligned with a (the first of
+                             ///< x, y, z on a tie) less its part along a, y = z × x (the body's axes
+                             ///< when a is its z); universal: z along axis1 and x along axis2 as at
+                             ///< q = 0, y = z × x; spherical, free and base: the body's axes. The
+                             ///< ground's: identity
+    double *jnt_frame_axis;  ///< the joint's bearing axis, unit, in its frame (3 x (nbody+1)): revolute,
+                             ///< translational, cylindrical: axis1; universal: axis2, the axis fixed on
+                             ///< the body (its own pin of the cross); spherical, free, base and the
+                             ///< ground: 0 (no axis: vt_data.jnt_bearing then holds the magnitudes)
 
     /* internal: the implementation's row tables and route selectors, read by src/ only; not
      * part of the API (their meaning may change in any release) */
@@ -541,6 +563,10 @@ typedef struct vt_model {
     double bound_mass;       ///< internal: the largest m + 3 max |J_kl| of a body
     double mass_spread;      ///< internal: the largest body mass over the smallest positive one
     int has_effects;         ///< internal: some rate has armature, damping or friction
+    double *jnt_frame_A;     ///< internal: jnt_frame as a rotation, joint frame → body axes, 3x3
+                             ///< col-major (9 x (nbody+1))
+    int any_limit;           ///< internal: 1 if some entry of dof_limit is finite (else no instant
+                             ///< compares with them: vt_data.limit_excess stays 0)
 } vt_model;
 
 /// Scratch space of the stages, inside the data (opaque; its size is fixed by the model).
@@ -679,6 +705,22 @@ typedef struct vt_data {
     int *jnt_unique;         ///< per reaction component (fx fy fz nx ny nz, global): 0 where a tree
                              ///< joint's reaction is not unique (redundant rows), else 1 (6 x (nbody+1))
     int *cut_unique;         ///< the same for the cut joints (6 x ncut)
+    double *jnt_force_joint; ///< jnt_force in the joint's frame (vt_model.jnt_frame) (3 x (nbody+1)), N;
+                             ///< filled wherever jnt_force_body is
+    double *jnt_moment_joint;///< jnt_moment (about the joint point) in the joint's frame (3 x (nbody+1)), N·m
+    double *jnt_bearing;     ///< each joint's reaction split along its bearing axis a (vt_model.jnt_frame_axis),
+                             ///< 4 x (nbody+1): axial force a · f (N, signed), radial force |f − (a · f) a|
+                             ///< (N, ≥ 0), axial moment a · n (N·m, signed), tilting moment
+                             ///< |n − (a · n) a| (N·m, ≥ 0), f and n the reaction (jnt_force,
+                             ///< jnt_moment). Without an axis (spherical, free, base): 0, |f|, 0, |n|
+    double *limit_excess;    ///< per rate, how far beyond its limits (vt_model.dof_limit) the instant is
+                             ///< (3 x nv): the coordinate (q − upper above it, q − lower below it; a
+                             ///< spherical, free or base joint's rates have none), the rate (q̇ − max
+                             ///< above max, q̇ + max below −max) and the effort qfrc_drive (the same
+                             ///< with the effort limit); 0 within, a value exactly at a limit
+                             ///< included. Filled by every call that fills qfrc_drive; nothing is
+                             ///< clipped
+    int nlimit;              ///< number of non-zero entries of limit_excess (VT_WARN_LIMIT set when > 0)
 
     vt_arena *arena;         ///< scratch of the stages: internal, sized when the data is laid out
     int ida_flag;            ///< return code of the last failing IDA call (0 if none)
@@ -798,6 +840,11 @@ typedef struct vt_batch_io {
                                             ///< effort_friction: nv each, in that order)
     int *status;                            ///< nrow: each row's vt_status (VT_OK, the row's failure, or
                                             ///< VT_ERR_SKIPPED)
+    double *reaction_joint; size_t reaction_joint_stride; ///< 6 nbody a row: the reaction in each joint's
+                                            ///< frame (vt_data.jnt_force_joint, jnt_moment_joint)
+    double *bearing; size_t bearing_stride; ///< 4 nbody a row: body i's bearing split at 4 (i − 1)
+                                            ///< (vt_data.jnt_bearing)
+    double *limit_excess; size_t limit_excess_stride; ///< 3 nv a row: vt_data.limit_excess
 } vt_batch_io;
 
 /// A batch: one data per thread for many states of one model (vt_batch_create).

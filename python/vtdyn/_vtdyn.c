@@ -21,6 +21,7 @@
 #include "vtdyn.h"
 
 #define NCACHE 8 /* batches kept per Model (distinct thread counts); the oldest is replaced */
+#define NRESULT 8 /* Result's arrays (result_fields) */
 
 static PyObject *VtError;             /* vtdyn.Error */
 static PyTypeObject ResultType;       /* vtdyn.Result, a struct sequence */
@@ -385,7 +386,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     const vt_model *m = self->m;
     PyArrayObject *q = as_rows(oq, "q", m->nq), *v = q ? as_rows(ov, "v", m->nv) : NULL;
     PyArrayObject *a = v ? as_rows(oa, "a", m->nv) : NULL;
-    PyObject *res = NULL, *out[5] = {NULL, NULL, NULL, NULL, NULL};
+    PyObject *res = NULL, *out[NRESULT] = {NULL};
     if (!a) goto done;
     const int nd = PyArray_NDIM(q);
     if (PyArray_NDIM(v) != nd || PyArray_NDIM(a) != nd) {
@@ -404,10 +405,12 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         PyErr_Format(PyExc_ValueError, "q: %zd states, at most %d a call", (Py_ssize_t)N, INT_MAX);
         goto done;
     }
-    npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6};
-    for (int k = 0; k < 5; k++) {
-        out[k] = k == 0 ? (nd == 2 ? new_array(2, de) : new_array(1, de + 1))
-                        : (nd == 2 ? new_array(3, dr) : new_array(2, dr + 1));
+    /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate) */
+    npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
+    for (int k = 0; k < NRESULT; k++) {
+        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : dr;
+        const int rank = k == 0 ? 2 : 3;
+        out[k] = nd == 2 ? new_array(rank, dims) : new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
     }
     vt_batch_io io;
@@ -421,6 +424,9 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.reaction_body = PyArray_DATA((PyArrayObject *)out[2]);
     io.total = PyArray_DATA((PyArrayObject *)out[3]);
     io.total_body = PyArray_DATA((PyArrayObject *)out[4]);
+    io.reaction_joint = PyArray_DATA((PyArrayObject *)out[5]);
+    io.bearing = PyArray_DATA((PyArrayObject *)out[6]);
+    io.limit_excess = PyArray_DATA((PyArrayObject *)out[7]);
     vt_status st = VT_OK;
     int failed = -1, nomem = 0;
     char msg[VT_MESSAGE_SIZE + 32] = "";
@@ -461,12 +467,12 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     }
     res = PyStructSequence_New(&ResultType);
     if (!res) goto done;
-    for (int k = 0; k < 5; k++) {
+    for (int k = 0; k < NRESULT; k++) {
         PyStructSequence_SET_ITEM(res, k, out[k]);
         out[k] = NULL;
     }
 done:
-    for (int k = 0; k < 5; k++) Py_XDECREF(out[k]);
+    for (int k = 0; k < NRESULT; k++) Py_XDECREF(out[k]);
     Py_XDECREF(q);
     Py_XDECREF(v);
     Py_XDECREF(a);
@@ -524,11 +530,14 @@ static PyStructSequence_Field result_fields[] = {
     {"reaction_body", "the same in the body's axes (the link's inertial axes)"},
     {"total", "each joint's total wrench, reaction plus actuation, world axes"},
     {"total_body", "the same in the body's axes"},
+    {"reaction_joint", "each body's joint reaction in the joint's frame (the child link's URDF axes, N x nbody x 6)"},
+    {"bearing", "each joint's bearing split (N x nbody x 4): axial and radial force, axial and tilting moment"},
+    {"limit_excess", "each rate's excess beyond its position, velocity and effort limits (N x nv x 3), 0 within"},
     {NULL, NULL},
 };
 
 static PyStructSequence_Desc result_desc = {
-    "vtdyn.Result", "The results of Model.inverse (NumPy float64 arrays).", result_fields, 5,
+    "vtdyn.Result", "The results of Model.inverse (NumPy float64 arrays).", result_fields, NRESULT,
 };
 
 /* ---- the module --------------------------------------------------------------------------------- */

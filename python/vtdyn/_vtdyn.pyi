@@ -15,7 +15,7 @@ class Error(RuntimeError):
     code: int
     row: Optional[int]
 
-class Result(Tuple[_F64, _F64, _F64, _F64, _F64]):
+class Result(Tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]):
     """Model.inverse's arrays; N states give a leading N axis, one state none."""
     @property
     def effort(self) -> _F64:
@@ -34,6 +34,17 @@ class Result(Tuple[_F64, _F64, _F64, _F64, _F64]):
     @property
     def total_body(self) -> _F64:
         """the same in the body's axes"""
+    @property
+    def reaction_joint(self) -> _F64:
+        """each body's joint reaction in the joint's frame, the child link's URDF axes (N x nbody x 6)"""
+    @property
+    def bearing(self) -> _F64:
+        """each joint's bearing split (N x nbody x 4): the reaction force along the joint's URDF
+        axis (signed) and its magnitude across it, N; the moment about it (signed) and across it, N m"""
+    @property
+    def limit_excess(self) -> _F64:
+        """each rate's excess beyond its position, velocity and effort limits (N x nv x 3): the value
+        less the limit it passes, 0 within or exactly at it"""
 
 class Model:
     """A robot loaded by load_urdf (no public constructor)."""

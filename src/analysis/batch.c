@@ -159,6 +159,13 @@ static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io,
         memcpy(p + nv, d->effort_damping, nv * sizeof(double));
         memcpy(p + 2 * nv, d->effort_friction, nv * sizeof(double));
     }
+    if (io->reaction_joint)
+        wrenches(out_row(io->reaction_joint, io->reaction_joint_stride, 6 * nb, r), d->jnt_force_joint,
+                 d->jnt_moment_joint, m->nbody);
+    if (io->bearing)
+        memcpy(out_row(io->bearing, io->bearing_stride, 4 * nb, r), d->jnt_bearing + 4, 4 * nb * sizeof(double));
+    if (io->limit_excess)
+        memcpy(out_row(io->limit_excess, io->limit_excess_stride, 3 * nv, r), d->limit_excess, 3 * nv * sizeof(double));
     return VT_OK;
 }
 
@@ -204,7 +211,10 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
              {"reaction_body", io->reaction_body != NULL, io->reaction_body_stride, nb6},
              {"total", io->total != NULL, io->total_stride, nb6},
              {"total_body", io->total_body != NULL, io->total_body_stride, nb6},
-             {"effort_parts", io->effort_parts != NULL, io->effort_parts_stride, 3 * nv}};
+             {"effort_parts", io->effort_parts != NULL, io->effort_parts_stride, 3 * nv},
+             {"reaction_joint", io->reaction_joint != NULL, io->reaction_joint_stride, nb6},
+             {"bearing", io->bearing != NULL, io->bearing_stride, 4 * (size_t)m->nbody},
+             {"limit_excess", io->limit_excess != NULL, io->limit_excess_stride, 3 * nv}};
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         if (a[k].given && a[k].stride != 0 && a[k].stride < a[k].len)
             return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: %s_stride %zu below its row's %zu values",

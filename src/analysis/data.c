@@ -132,6 +132,10 @@ static size_t layout(const vt_model *m, vt_data *d, char *base, int full)
     d->lambda_null = full ? vt_block_take(&blk, nc ? nc * nc : 1, sizeof(double)) : NULL; /* redundant rows: dense */
     d->jnt_unique = vt_block_take(&blk, 6 * nb, sizeof(int));
     d->cut_unique = vt_block_take(&blk, 6 * (nk ? nk : 1), sizeof(int));
+    d->jnt_force_joint = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_moment_joint = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->jnt_bearing = vt_block_take(&blk, 4 * nb, sizeof(double));
+    d->limit_excess = vt_block_take(&blk, 3 * (nv ? nv : 1), sizeof(double));
     return blk.used;
 }
 

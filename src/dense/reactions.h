@@ -30,10 +30,15 @@ void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const doub
 /* jnt_unique and cut_unique, every one set, then those that a null direction of Φ_q^T (rank < nc:
  * the redundant solve's, in d->lambda_null) changes cleared (reactions.c) */
 vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d);
+/* The rates beyond their limits (vt_data.limit_excess, nlimit, VT_WARN_LIMIT) from q, q̇ and the
+ * efforts qfrc_drive (reactions.c) */
+void vt_limits_flag(const vt_model *m, vt_data *d);
 /* Which reactions are unique: every one when the rows are independent (rank nc), otherwise
- * vt_reactions_nonunique's; inline, as vt_mark_unique: every instant ends with it */
+ * vt_reactions_nonunique's; and the limits flagged (the efforts are known by then). Inline, as
+ * vt_mark_unique: every instant ends with it */
 static inline vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
 {
+    vt_limits_flag(m, d);
     const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut;
     int *ju = d->jnt_unique, *cu = d->cut_unique;
     for (int i = 0; i < nj; i++) ju[i] = 1;
@@ -48,6 +53,28 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given);
 vt_status vt_drive_efforts(const vt_model *m, vt_data *d);
 void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, const vt_data *d, const double *xfrc0,
                           int as_loads);
+
+/* |r − (a · r) a| for a unit a (or 0: |r|), with no overflow of the squares of a length near
+ * DBL_MAX nor underflow of a tiny one (the scaled sum of vt_normalize where the plain one is out
+ * of range) */
+double vt_perp_norm_scaled(double u[3]);
+static inline double vt_perp_norm(const double r[3], const double a[3], double along)
+{
+    double u[3];
+    for (int k = 0; k < 3; k++) u[k] = r[k] - along * a[k];
+    const double ss = vt_dot3(u, u);
+    if (ss < 0x1p1000 && ss > 0x1p-1000) return sqrt(ss);
+    return vt_perp_norm_scaled(u);
+}
+
+/* Every joint's reaction, force f_b and moment n_b in its body's axes (jnt_force_body,
+ * jnt_moment_body), into the joint's frame (vt_model.jnt_frame, C: frame → body axes):
+ *   f_J = C^T f_b,  n_J = C^T n_b,
+ * and its bearing split along the frame's unit axis a (0: none):
+ *   a · f_J,  |f_J − (a · f_J) a|,  a · n_J,  |n_J − (a · n_J) a|.
+ * The one kernel of every pass that forms the reactions in body axes, run once they are all
+ * formed (reactions.c) */
+void vt_joint_frames(const vt_model *m, vt_data *d);
 
 /* joint i's total wrench (reaction plus actuation, about P_i) into the data: force f and moment mo
  * in global axes, fb and mb the same in body i's */

@@ -311,7 +311,7 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d, double inertia
                        id, d->parent);
     if (!isfinite(d->mass) || !vt_all_finite(d->inertia, 9) || !vt_all_finite(d->joint_parent, 3) ||
         !vt_all_finite(d->joint_child, 3) || !vt_all_finite(d->axis1, 3) ||
-        !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4))
+        !vt_all_finite(d->axis2, 3) || !vt_all_finite(d->orientation, 4) || !vt_all_finite(d->joint_frame, 4))
         return vt_fail(msg, VT_ERR_NONFINITE, "body %d: NaN or Inf in its definition", id);
     if (!(d->mass >= 0.0)) /* zero: a massless link (a frame, a gimbal), refused only by a solve it leaves singular */
         return vt_fail(msg, VT_ERR_MASS, "body %d: mass %g kg is negative", id, d->mass);
@@ -343,6 +343,8 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d, double inertia
     } else if (!normalize(d->orientation, 4)) {
         return vt_fail(msg, VT_ERR_QUATERNION, "body %d: orientation has zero norm", id);
     }
+    /* all zero: the kind's documented frame (model.c, joint_frame); else any non-zero length is a direction */
+    if (!vt_normalize(d->joint_frame, 4)) memset(d->joint_frame, 0, sizeof d->joint_frame);
     for (int k = 0; k < 2; k++) { /* limits: ±∞ allowed, NaN not */
         if (isnan(d->limit_lower[k]) || isnan(d->limit_upper[k]) || isnan(d->limit_velocity[k]) ||
             isnan(d->limit_effort[k]))

@@ -203,6 +203,69 @@ static void build_rows(vt_model *m)
     m->bound_mass = mass;
 }
 
+/* The unit Euler parameters p of the rotation C, p0 ≥ 0 (Shepperd: from the largest of the four
+ * squares 4 p_k², so that no division is by a small number) */
+static void quat_of_rotation(double p[4], const double C[9])
+{
+    const double t = C[0] + C[4] + C[8];
+    const double sq[4] = {1.0 + t, 1.0 + 2.0 * C[0] - t, 1.0 + 2.0 * C[4] - t, 1.0 + 2.0 * C[8] - t};
+    int k = 0;
+    for (int j = 1; j < 4; j++) k = sq[j] > sq[k] ? j : k;
+    const double r = 0.5 * sqrt(sq[k]), f = 0.25 / r;
+    /* C[r + 3c] = C_rc: C_21 − C_12 = 4 p0 p1 (and cyclic), C_10 + C_01 = 4 p1 p2 (and the others);
+     * each divided by 4 |p_k| */
+    const double a = (C[5] - C[7]) * f, b = (C[6] - C[2]) * f, c = (C[1] - C[3]) * f; /* p0 p1, p0 p2, p0 p3 */
+    const double x = (C[1] + C[3]) * f, y = (C[2] + C[6]) * f, z = (C[5] + C[7]) * f; /* p1 p2, p1 p3, p2 p3 */
+    switch (k) {
+    case 0: p[0] = r, p[1] = a, p[2] = b, p[3] = c; break;
+    case 1: p[0] = a, p[1] = r, p[2] = x, p[3] = y; break;
+    case 2: p[0] = b, p[1] = x, p[2] = r, p[3] = z; break;
+    default: p[0] = c, p[1] = y, p[2] = z, p[3] = r; break;
+    }
+    if (p[0] < 0.0) for (int j = 0; j < 4; j++) p[j] = -p[j];
+}
+
+/* Body i's joint frame (vt_model.jnt_frame): the definition's, or the kind's documented one from
+ * the joint's axes in body axes, A0^T axis (A0 the orientation at q = 0: axis1 is fixed on the
+ * body for the joints that turn or slide about it, axis2 for a universal's body); its bearing
+ * axis in that frame, C^T A0^T axis */
+static void joint_frame(vt_model *m, int i, const vt_body_def *d)
+{
+    const int jt = d->joint;
+    double A0[9], a1[3], a2[3], bear[3] = {0, 0, 0};
+    vt_euler_A(A0, d->orientation);
+    vt_mulmat3t(a1, A0, d->axis1);
+    vt_mulmat3t(a2, A0, d->axis2);
+    const int axial = jt == VT_JOINT_REVOLUTE || jt == VT_JOINT_TRANSLATIONAL || jt == VT_JOINT_CYLINDRICAL;
+    if (axial) vt_copy3(bear, a1);
+    if (jt == VT_JOINT_UNIVERSAL) vt_copy3(bear, a2);
+    double *C = m->jnt_frame_A + 9 * i, *p = m->jnt_frame + 4 * i;
+    if (d->joint_frame[0] != 0.0 || d->joint_frame[1] != 0.0 || d->joint_frame[2] != 0.0 || d->joint_frame[3] != 0.0) {
+        memcpy(p, d->joint_frame, 4 * sizeof(double));
+        vt_euler_A(C, p);
+    } else {
+        double x[3] = {1, 0, 0}, y[3], z[3] = {0, 0, 1};
+        if (axial || jt == VT_JOINT_UNIVERSAL) vt_copy3(z, a1);
+        if (jt == VT_JOINT_UNIVERSAL) vt_copy3(x, a2);
+        else if (axial) { /* the body axis least aligned with z, less its part along z */
+            int k = 0;
+            for (int j = 1; j < 3; j++) k = fabs(z[j]) < fabs(z[k]) ? j : k;
+            x[0] = x[1] = x[2] = 0.0;
+            x[k] = 1.0;
+            vt_axpy3(x, -z[k], z);
+            vt_normalize(x, 3);
+        }
+        vt_cross3(y, z, x);
+        vt_copy3(C, x);
+        vt_copy3(C + 3, y);
+        vt_copy3(C + 6, z);
+        quat_of_rotation(p, C);
+        vt_euler_A(C, p); /* the rotation of the stored parameters, to round-off */
+    }
+    vt_mulmat3t(m->jnt_frame_axis + 3 * i, C, bear);
+    if (axial || jt == VT_JOINT_UNIVERSAL) vt_normalize(m->jnt_frame_axis + 3 * i, 3);
+}
+
 void vt_model_free(vt_model *m)
 {
     free(m); /* one block */
@@ -241,6 +304,9 @@ static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int nd
     m->body_jchild = vt_block_take(b, 3 * nb, sizeof(double));
     m->body_axis = vt_block_take(b, 6 * nb, sizeof(double));
     m->body_quat0 = vt_block_take(b, 4 * nb, sizeof(double));
+    m->jnt_frame = vt_block_take(b, 4 * nb, sizeof(double));
+    m->jnt_frame_axis = vt_block_take(b, 3 * nb, sizeof(double));
+    m->jnt_frame_A = vt_block_take(b, 9 * nb, sizeof(double));
     m->body_pathnum = vt_block_take(b, nb, sizeof(int));
     m->dof_body = vt_block_take(b, (size_t)nv, sizeof(int));
     m->dof_parent = vt_block_take(b, (size_t)nv, sizeof(int));
@@ -396,6 +462,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
     m->body_parent[0] = -1;
     m->body_joint[0] = -1;
     m->body_quat0[0] = 1.0;
+    m->jnt_frame[0] = m->jnt_frame_A[0] = m->jnt_frame_A[4] = m->jnt_frame_A[8] = 1.0;
     int qadr = 0, vadr = 0;
     m->maxpath = 0;
     for (int i = 1; i <= n; i++) {
@@ -414,6 +481,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
         memcpy(m->body_axis + 6 * i, d->axis1, 3 * sizeof(double));
         memcpy(m->body_axis + 6 * i + 3, d->axis2, 3 * sizeof(double));
         memcpy(m->body_quat0 + 4 * i, d->orientation, 4 * sizeof(double));
+        joint_frame(m, i, d);
         for (int k = 0; k < vt_joint_nv(jt); k++) {
             m->dof_body[vadr + k] = i;
             m->dof_parent[vadr + k] = k > 0 ? vadr + k - 1 : d->parent > 0 ? vt_last_rate(m, d->parent) : -1;
@@ -430,6 +498,7 @@ vt_status vt_builder_build(vt_model **model, vt_builder *b)
             ef[2] = own ? fabs(g) * d->friction[k] : 0.0;
             ef[3] = own ? d->friction_velocity[k] : 0.0;
             if (ef[0] != 0.0 || ef[1] != 0.0 || ef[2] != 0.0) m->has_effects = 1;
+            for (int l = 0; l < 4; l++) m->any_limit |= isfinite(lim[l]);
         }
 
         /* reference configuration: zero angles and translations, unit Euler parameters */
@@ -473,6 +542,7 @@ vt_status vt_model_without_drives(vt_model **out, const vt_model *m)
         memcpy(d.axis1, m->body_axis + 6 * i, sizeof d.axis1);
         memcpy(d.axis2, m->body_axis + 6 * i + 3, sizeof d.axis2);
         memcpy(d.orientation, m->body_quat0 + 4 * i, sizeof d.orientation);
+        memcpy(d.joint_frame, m->jnt_frame + 4 * i, sizeof d.joint_frame);
         d.name = m->body_name + (size_t)VT_NAME_MAX * (size_t)i;
         d.joint_name = m->joint_name + (size_t)VT_NAME_MAX * (size_t)i;
         for (int k = 0; k < 2 && k < m->body_nv[i]; k++) {

@@ -31,6 +31,9 @@
  * and orientation: its q is the translation of P's origin from J's in j's axes and A_J(p); for a
  * root, P's origin's global position and P's frame's global orientation. Every link is a frame
  * named after it: body its body, point and orientation T_{B,l}.
+ * The joint's frame (vt_body_def.joint_frame, where its reactions are read) is P's link frame,
+ * the rotation of T_{B,P}: J itself at q = 0, moving with the child; the URDF axis a is its
+ * bearing axis, in it.
  *
  * Bad input gives a status and a message naming the element and its line (vt_xml_line). The
  * XML is read by model/xml.c: this library's libxml2 settings only, no entity, nothing printed,
@@ -542,6 +545,8 @@ static vt_status add_to_builder(const urdf *u, vt_builder *bld)
         def.mass = b->mass;
         memcpy(def.inertia, b->inertia, sizeof def.inertia);
         def.name = (const char *)P->name;
+        /* the joint frame: P's link frame, J at q = 0, moving with the child */
+        memcpy(def.joint_frame, P->in_body.p, sizeof def.joint_frame);
         const urdf_joint *j = b->joint >= 0 ? &u->joint[b->joint] : NULL;
         if (!j) { /* a floating root: a free joint from the ground at the link frame's origin */
             def.joint = VT_JOINT_FREE;

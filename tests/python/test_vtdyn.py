@@ -6,7 +6,9 @@ and example-robot-data, after `pip install .` of this tree into it.
 * UR5, Panda, Solo-12 (root welded and floating) and Talos at 1,000 random states each:
   Model.inverse's efforts against pin.rnea and its world-axes joint reactions against
   Pinocchio's data.f less the actuation (f - S tau, turned into world axes), to 1e-12 of the
-  largest torque or wrench component of the state. A floating root's state is turned into
+  largest torque or wrench component of the state; the reactions in the joint's frame
+  (reaction_joint) against Pinocchio's local data.f less the actuation itself, and the bearing
+  split along the joint's axis from it. A floating root's state is turned into
   Pinocchio's free flyer here: vtdyn's q = (x, y, z, w, qx, qy, qz) and world-axes rates
   (v = the root origin's velocity then the angular velocity; a = the origin's classical
   acceleration then the angular acceleration); Pinocchio's q = (x, y, z, qx, qy, qz, w) and
@@ -130,6 +132,16 @@ def compare_with_pinocchio(name, floating):
             Rj = kin.oMi[j].rotation
             ref_w.append(np.r_[Rj @ fr[:3], Rj @ fr[3:]])
             mine_w.append(r.reaction[s, b])
+            # in the joint's frame: Pinocchio's own (the URDF joint frame); the bearing split
+            # along its axis (S's angular part for a revolute joint, linear for a prismatic one)
+            ref_w.append(fr)
+            mine_w.append(r.reaction_joint[s, b])
+            if nv == 1:
+                u = S[3:, 0] if np.linalg.norm(S[3:, 0]) > 0 else S[:3, 0]
+                u = u / np.linalg.norm(u)
+                fa, na = u @ fr[:3], u @ fr[3:]
+                ref_w.append(np.r_[fa, np.linalg.norm(fr[:3] - fa * u), na, np.linalg.norm(fr[3:] - na * u), 0, 0])
+                mine_w.append(np.r_[r.bearing[s, b], 0, 0])
         ref_w, mine_w = np.array(ref_w), np.array(mine_w)
         scale = max(1.0, np.abs(tau).max(), np.abs(ref_w).max())
         worst = max(worst, np.abs(mine_tau - tau).max() / scale, np.abs(mine_w - ref_w).max() / scale)
