@@ -893,6 +893,7 @@ static int run_samples(run *x)
                 memcpy(pr + 2 * nv, d->effort_friction, nv * sizeof(double));
             }
             memcpy(x->q + r * nq, d->q, nq * sizeof *d->q);
+            if ((x->reac_link || x->bearing) && vt_reactions_joint_frame(m, d)) return cmd_fail("%s", d->message);
             for (size_t i = 1; i <= nb; i++) {
                 if (x->reac) {
                     memcpy(x->reac + r * 6 * nb + 6 * (i - 1), d->jnt_force + 3 * i, 3 * sizeof(double));

@@ -374,6 +374,12 @@ VT_API vt_status vt_solve(const vt_model *model, vt_data *data);
 /// cut joints from their multipliers. Needs vt_solve(). Statuses: VT_ERR_NONFINITE (an effort
 /// or reaction overflowed: an ill-posed instant).
 VT_API vt_status vt_reactions(const vt_model *model, vt_data *data);
+/// Every joint's reaction in its own frame (vt_model.jnt_frame: a URDF joint's frame) and its
+/// bearing split, from the reactions of the instant just computed (any entry point): fills
+/// vt_data.jnt_force_joint, jnt_moment_joint and jnt_bearing, O(n). On demand, so that the
+/// instants do not carry its cost; the batch calls it where its io asks for reaction_joint or
+/// bearing. VT_ERR_NULL, VT_ERR_MODEL_MISMATCH.
+VT_API vt_status vt_reactions_joint_frame(const vt_model *model, vt_data *data);
 
 /// The whole instant: vt_kinematics, vt_mass_matrix, vt_forces, vt_constraints, vt_solve,
 /// vt_reactions (R is left to vt_inverse_transform, which only (14) needs). Statuses: those of

@@ -100,6 +100,7 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
     memcpy(d->qd, qd, (size_t)nv * sizeof(double));
     memcpy(d->qdd, qdd, (size_t)nv * sizeof(double));
     assert_ok(vt_inverse_dynamics_motion(m, d));
+    assert_ok(vt_reactions_joint_frame(m, d));
     assert_int_equal(o->status[r], VT_OK);
     for (int k = 0; k < nv; k++) {
         assert_true(same(o->effort[(size_t)r * nv + k], d->qfrc_drive[k]));

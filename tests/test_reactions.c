@@ -1886,6 +1886,7 @@ static void test_joint_frame_hand_built(void **state)
         assert_ok(vt_inverse_dynamics_motion(ml, d));
         for (int k = 1; k <= 3; k++) /* the library's global reaction is the same Newton–Euler */
             for (int c = 0; c < 3; c++) assert_near(d->jnt_force[3 * k + c], Fr[3 * k + c], 1e-12 * scale);
+        assert_ok(vt_reactions_joint_frame(ml, d));
         jf_check(ml, d, C, bear, R, Fr, Mr, scale);
         vt_data_free(d);
         if (lay) vt_model_free(ml);
@@ -1899,6 +1900,7 @@ static void test_joint_frame_hand_built(void **state)
         memcpy(d->qd, jf_qd, sizeof jf_qd);
         d->time = 0.0;
         assert_ok(path ? vt_inverse_dynamics_recursive(md, d) : vt_inverse_dynamics(md, d));
+        assert_ok(vt_reactions_joint_frame(md, d));
         jf_check(md, d, C, bear, R, Fr, Mr, scale);
         vt_data_free(d);
     }
@@ -1942,6 +1944,7 @@ static void test_bearing_split_huge(void **state)
     memcpy(d->q, jf_q, sizeof jf_q);
     d->xfrc[6 * 3 + 0] = 3e200, d->xfrc[6 * 3 + 1] = -4e200, d->xfrc[6 * 3 + 2] = 1e200; /* on body 3 */
     assert_ok(vt_inverse_dynamics_motion(m, d));
+    assert_ok(vt_reactions_joint_frame(m, d));
     for (int k = 1; k <= 3; k++) {
         const double *fj = d->jnt_force_joint + 3 * k, *mj = d->jnt_moment_joint + 3 * k, *a = m->jnt_frame_axis + 3 * k;
         const double *b = d->jnt_bearing + 4 * k;

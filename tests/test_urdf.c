@@ -1139,6 +1139,7 @@ static void test_joint_frame_reactions(void **state)
             memcpy(d->qdd, qdd, sizeof qdd);
             assert_ok(!drives ? vt_inverse_dynamics_motion(m, d)
                               : path ? vt_inverse_dynamics_recursive(m, d) : vt_inverse_dynamics(m, d));
+            assert_ok(vt_reactions_joint_frame(m, d));
             for (int k = 1; k <= 3; k++) {
                 /* the URDF joint frame is the child's link frame R_k; the bearing axis the URDF axis */
                 double fj[3], mj[3];

@@ -706,7 +706,7 @@ typedef struct vt_data {
                              ///< joint's reaction is not unique (redundant rows), else 1 (6 x (nbody+1))
     int *cut_unique;         ///< the same for the cut joints (6 x ncut)
     double *jnt_force_joint; ///< jnt_force in the joint's frame (vt_model.jnt_frame) (3 x (nbody+1)), N;
-                             ///< filled wherever jnt_force_body is
+                             ///< filled by vt_reactions_joint_frame() after an instant (on demand)
     double *jnt_moment_joint;///< jnt_moment (about the joint point) in the joint's frame (3 x (nbody+1)), N·m
     double *jnt_bearing;     ///< each joint's reaction split along its bearing axis a (vt_model.jnt_frame_axis),
                              ///< 4 x (nbody+1): axial force a · f (N, signed), radial force |f − (a · f) a|

@@ -9,6 +9,7 @@
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"
+#include "dense/reactions.h"
 
 #include <pthread.h>
 #include <sched.h>
@@ -159,6 +160,7 @@ static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io,
         memcpy(p + nv, d->effort_damping, nv * sizeof(double));
         memcpy(p + 2 * nv, d->effort_friction, nv * sizeof(double));
     }
+    if (io->reaction_joint || io->bearing) vt_joint_frames(m, d); /* on demand: the instants leave them */
     if (io->reaction_joint)
         wrenches(out_row(io->reaction_joint, io->reaction_joint_stride, 6 * nb, r), d->jnt_force_joint,
                  d->jnt_moment_joint, m->nbody);

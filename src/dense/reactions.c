@@ -324,7 +324,6 @@ static vt_status joint_reactions_done(const vt_model *m, vt_data *d)
                            "vt_reactions: joint %d's reaction overflowed (accelerations of order %.3g: an ill-posed instant?)",
                            i, fabs(d->xdd[vt_xoff(i)]));
     }
-    vt_joint_frames(m, d);
     return VT_OK;
 }
 
@@ -724,5 +723,13 @@ vt_status vt_drive_cartesian_force(double *F, const vt_model *m, vt_data *d, int
                            body[j]);
     memset(F, 0, (size_t)m->nx * sizeof(double));
     for (int j = 0; j < nb; j++) memcpy(F + vt_xoff(body[j]), f[j], sizeof f[j]);
+    return VT_OK;
+}
+
+vt_status vt_reactions_joint_frame(const vt_model *m, vt_data *d)
+{
+    vt_status st = vt_check_pair(m, d, "vt_reactions_joint_frame");
+    if (st) return st;
+    vt_joint_frames(m, d);
     return VT_OK;
 }

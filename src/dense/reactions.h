@@ -72,8 +72,8 @@ static inline double vt_perp_norm(const double r[3], const double a[3], double a
  *   f_J = C^T f_b,  n_J = C^T n_b,
  * and its bearing split along the frame's unit axis a (0: none):
  *   a · f_J,  |f_J − (a · f_J) a|,  a · n_J,  |n_J − (a · n_J) a|.
- * The one kernel of every pass that forms the reactions in body axes, run once they are all
- * formed (reactions.c) */
+ * on demand, after an instant (vt_reactions_joint_frame, the batch where its io asks for them):
+ * the instants' passes carry none of its cost */
 void vt_joint_frames(const vt_model *m, vt_data *d);
 
 /* joint i's total wrench (reaction plus actuation, about P_i) into the data: force f and moment mo

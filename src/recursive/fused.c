@@ -16,8 +16,6 @@
  *   rate, the same two loops, every rate's effort;
  * - vt_inward: the inward pass alone, after the kinematics and q̈ (a base body's tree, or the
  *   free rates solved by articulated bodies).
- * Both end with every reaction in its joint's frame and its bearing split (vt_joint_frames, from
- * the body-axes reactions: a loop of its own, so that the inward loop carries none of it).
  * A free joint's six rates are twists like any other: (0, e_k) and (e_k, P × e_k); no row, no
  * normal part.
  */
@@ -166,7 +164,6 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
     }
     vt_scratch_release(d, mark);
-    vt_joint_frames(m, d);
     if (totals == TOTALS_FORMED) { /* the ground's rows */
         memset(d->jnt_force_total, 0, 3 * sizeof(double));
         memset(d->jnt_moment_total, 0, 3 * sizeof(double));
@@ -470,7 +467,6 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         }
     }
     vt_scratch_release(d, mark);
-    vt_joint_frames(m, d);
     memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
     memset(d->jnt_moment_total, 0, 3 * sizeof(double));
     memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
