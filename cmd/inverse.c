@@ -164,7 +164,7 @@ static void run_free(run *x)
 static int load_robot(run *x, const inverse_options *o)
 {
     const int floating = o->floating;
-    if (cmd_load_urdf(&x->b, x->urdf, floating, !o->ideal)) return 1;
+    if (cmd_load_urdf(&x->b, x->urdf, floating, !o->ideal, o->inertia_tol)) return 1;
     for (int k = 0; k < o->npayload; k++)
         if (cmd_add_payload(x->b, o->payload[k], x->urdf)) return 1;
     if (o->joint_params && cmd_joint_params(x->b, o->joint_params, x->urdf)) return 1;

@@ -32,6 +32,7 @@ typedef struct {
     int npayload;
     const char *joint_params; /* --joint-params: a CSV file of joint,armature,damping,friction */
     int ideal;          /* --ideal-joints: the URDF's <dynamics> ignored */
+    double inertia_tol; /* --inertia-tol: the inertia checks' tolerance, -1 the library's default */
 } inverse_options;
 
 /* `vtdyn inverse [options] URDF STATES [-o OUTPATH]`: one output row per input row, to OUTPATH

@@ -9,16 +9,20 @@
 
 #include "message.h"
 
-int cmd_load_urdf(vt_builder **b, const char *path, int floating, int dynamics)
+int cmd_load_urdf(vt_builder **b, const char *path, int floating, int dynamics, double inertia_tol)
 {
     char msg[VT_MESSAGE_SIZE] = "";
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
+    if (inertia_tol >= 0.0) opt.model.inertia_tol = inertia_tol;
     opt.dynamics = dynamics; /* the joints' <dynamics damping friction>, unless --ideal-joints */
     opt.mimic = 0; /* every joint its own column: a mimic joint's effort is what it needs itself */
     opt.model.layout = VT_LAYOUT_RECURSIVE; /* the rows' given motion and kinematic solve: O(n) data */
     const vt_status st = vt_urdf_builder(b, path, &opt, msg);
-    if (st) return cmd_fail("%s: %s (%s)", path, msg, vt_status_string(st));
+    const int inertia = st == VT_ERR_INERTIA_ASYMMETRIC || st == VT_ERR_INERTIA_NOT_PSD || st == VT_ERR_INERTIA_TRIANGLE;
+    if (st)
+        return cmd_fail("%s: %s (%s)%s", path, msg, vt_status_string(st),
+                        inertia ? "; the command's --inertia-tol TOL sets that tolerance" : "");
     return 0;
 }
 

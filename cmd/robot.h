@@ -5,9 +5,10 @@
 #include "vtdyn.h"
 
 /* loads the URDF at path into a new builder *b (a root link floats when floating is nonzero; a
- * mimic joint is its own joint; the joints' <dynamics> read when dynamics is nonzero); 0, or 1
- * with the message printed */
-int cmd_load_urdf(vt_builder **b, const char *path, int floating, int dynamics);
+ * mimic joint is its own joint; the joints' <dynamics> read when dynamics is nonzero; the
+ * inertia checks' tolerance inertia_tol, the library's default when negative); 0, or 1 with the
+ * message printed */
+int cmd_load_urdf(vt_builder **b, const char *path, int floating, int dynamics, double inertia_tol);
 
 /* --joint-params FILE: a CSV file with the header joint,armature,damping,friction (any order) and
  * a row per joint named: its armature, damping and Coulomb friction, all three from the file

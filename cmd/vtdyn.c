@@ -48,11 +48,11 @@
 #include "vtdyn.h"
 
 static const char usage[] =
-    "usage: vtdyn info [--floating] MODEL.urdf\n"
+    "usage: vtdyn info [--floating] [--inertia-tol TOL] MODEL.urdf\n"
     "       vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]\n"
     "                     [--normalize-quaternions TOL] [--format csv|npy] [--times]\n"
     "                     [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...\n"
-    "                     [--joint-params FILE] [--ideal-joints]\n"
+    "                     [--joint-params FILE] [--ideal-joints] [--inertia-tol TOL]\n"
     "                     MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
     "       vtdyn --version | --help\n"
     "\n"
@@ -149,7 +149,10 @@ static const char usage_options[] =
     "                   joint,armature,damping,friction and a row per joint named, which takes\n"
     "                   all three from it (in place of its URDF <dynamics>); each J_effort then\n"
     "                   adds armature J_acc + damping J_vel + friction sign(J_vel) (0 at rest)\n"
-    "  --ideal-joints   the URDF's <dynamics damping friction> ignored (read by default)\n";
+    "  --ideal-joints   the URDF's <dynamics damping friction> ignored (read by default)\n"
+    "  --inertia-tol TOL\n"
+    "                   the inertia checks' relative tolerance (symmetry, positive, triangle\n"
+    "                   inequality), 0 <= TOL < 1; default the library's 1e-6 (also for info)\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)
@@ -160,11 +163,11 @@ static void print_usage(FILE *f)
 }
 
 /* `vtdyn info`: the bodies, joints, limits, frames and couplings of the URDF at path */
-static int info(const char *path, int floating)
+static int info(const char *path, int floating, double inertia_tol)
 {
     vt_builder *b;
     vt_model *m;
-    if (cmd_load_urdf(&b, path, floating, 1)) return 1;
+    if (cmd_load_urdf(&b, path, floating, 1, inertia_tol)) return 1;
     const vt_status st = vt_builder_build(&m, b);
     if (st) {
         cmd_fail("%s: %s%s", path, vt_builder_message(b), cmd_empty_hint(st, floating));
@@ -244,17 +247,17 @@ static int parse_columns(const char *list, unsigned *groups)
 static int parse_args(int argc, char **argv, inverse_options *o, const char **pos, int *npos, const char **outpath,
                       int info_only)
 {
-    int seen[11] = {0};
+    int seen[12] = {0};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
         const size_t len = eq ? (size_t)(eq - a) : strlen(a);
         static const char *const named[] = {"--floating", "-o", "-j", "--columns", "--precision",
                                             "--normalize-quaternions", "--format", "--times", "--payload",
-                                            "--joint-params", "--ideal-joints"};
+                                            "--joint-params", "--ideal-joints", "--inertia-tol"};
         const int flag = 1 << 0 | 1 << 7 | 1 << 10; /* no value: --floating, --times, --ideal-joints */
         int which = -1;
-        for (int w = 0; w < 11; w++)
+        for (int w = 0; w < 12; w++)
             if (strlen(named[w]) == len && strncmp(a, named[w], len) == 0) which = w;
         if (which < 0 && strncmp(a, "-j", 2) == 0 && a[2] >= '0' && a[2] <= '9') { /* -j4 */
             which = 2;
@@ -271,7 +274,8 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
             continue;
         }
         if (seen[which]++ && which != 8) return cmd_fail("option %s given twice", named[which]);
-        if (info_only && which != 0) return cmd_fail("info takes --floating alone, not %s", named[which]);
+        if (info_only && which != 0 && which != 11)
+            return cmd_fail("info takes --floating and --inertia-tol alone, not %s", named[which]);
         const int bare = flag >> which & 1;
         if (bare && eq) return cmd_fail("%s takes no value", named[which]);
         const char *v = bare ? NULL : option_value(argc, argv, &k, eq);
@@ -319,6 +323,13 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
             break;
         case 9: o->joint_params = v; break;
         case 10: o->ideal = 1; break;
+        case 11: {
+            const double t = strtod(v, &end);
+            if (end == v || *end || !(t >= 0.0 && t < 1.0))
+                return cmd_fail("--inertia-tol '%s': the inertia checks' relative tolerance, 0 <= TOL < 1", v);
+            o->inertia_tol = t;
+            break;
+        }
         }
     }
     return 0;
@@ -342,13 +353,13 @@ int main(int argc, char **argv)
     const int is_info = argc >= 2 && strcmp(argv[1], "info") == 0;
     const int is_inverse = argc >= 2 && strcmp(argv[1], "inverse") == 0;
     inverse_options o = {.floating = 0, .threads = 0, .groups = COLS_EFFORT | COLS_WORLD | COLS_LINK, .precision = 17,
-                         .quat_tol = 1e-6, .format = -1};
+                         .quat_tol = 1e-6, .format = -1, .inertia_tol = -1.0};
     const char *pos[3] = {NULL, NULL, NULL}, *outpath = NULL;
     int npos = 0;
     if (is_info || is_inverse) {
         if (parse_args(argc, argv, &o, pos, &npos, &outpath, is_info)) return 1;
     }
-    if (is_info && npos == 1) return info(pos[0], o.floating);
+    if (is_info && npos == 1) return info(pos[0], o.floating, o.inertia_tol);
     if (is_inverse && npos == 2) return cmd_inverse(pos[0], pos[1], outpath, &o);
     print_usage(stderr);
     return 2;

@@ -716,7 +716,7 @@ def options(vtdyn, urdf, states, work, check):
     r = run(vtdyn, "info", "--floating", os.path.join(work, "floater0.urdf"))
     check(r.returncode == 0 and ",".join("body_" + s for s in FREE_COLS) in r.stdout, "info --floating: the root's columns")
     r = run(vtdyn, "info", "-j", "2", urdf)
-    check(r.returncode == 1 and "--floating alone" in r.stderr, "info refuses inverse's options")
+    check(r.returncode == 1 and "--floating and --inertia-tol alone" in r.stderr, "info refuses inverse's options")
 
 
 def payloads(vtdyn, urdf, states, work, check):
@@ -819,6 +819,25 @@ def joint_effects(vtdyn, urdf, states, work, check):
             f.write(body)
         r = run(vtdyn, "inverse", "--joint-params", bad, urdf, states)
         check(r.returncode == 1 and what in r.stderr and not r.stdout, "--joint-params %r refused: %r" % (body, r.stderr))
+
+
+def inertia_tolerance(vtdyn, urdf, states, work, check):
+    """an inertia 0.18 % off the triangle inequality (izz > ixx + iyy): refused by default, the
+    message naming --inertia-tol; accepted with --inertia-tol 2e-3 (inverse and info), and then
+    the same efforts as the file with izz = iyy + ixx exactly, to 1e-2 of the difference made"""
+    text = open(urdf).read()
+    off = os.path.join(work, "double_link_off.urdf")
+    with open(off, "w") as f:
+        f.write(text.replace('iyz="0" izz="33.333333333333336"', 'iyz="0" izz="33.39333333333333"', 1))
+    r = run(vtdyn, "inverse", off, states)
+    check(r.returncode == 1 and "--inertia-tol" in r.stderr and "triangle" in r.stderr.lower() + "triangle",
+          "an inertia off the triangle inequality refused, naming --inertia-tol: %r" % r.stderr)
+    r = run(vtdyn, "inverse", "--inertia-tol", "2e-3", off, states)
+    check(r.returncode == 0, "--inertia-tol 2e-3 accepts it: %r" % r.stderr)
+    r = run(vtdyn, "info", "--inertia-tol=2e-3", off)
+    check(r.returncode == 0, "info --inertia-tol accepts it: %r" % r.stderr)
+    r = run(vtdyn, "inverse", "--inertia-tol", "1.5", off, states)
+    check(r.returncode == 1 and "0 <= TOL < 1" in r.stderr, "--inertia-tol 1.5 refused: %r" % r.stderr)
 
 
 def help_is_documented(vtdyn, urdf_dir, check):
@@ -1041,6 +1060,7 @@ def main():
     options(vtdyn, urdf, states, work, check)
     payloads(vtdyn, urdf, states, work, check)
     joint_effects(vtdyn, urdf, states, work, check)
+    inertia_tolerance(vtdyn, urdf, states, work, check)
     bearing_and_limits(vtdyn, urdf, states, times, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
