@@ -338,6 +338,7 @@ static void test_forward_check(void **state_)
         vt_model_free(m);
     }
 }
+
 /* a dynamic analysis of the double link left free (no drive), with armature, damping and smooth
  * friction: the energy T + V (T with the rotors' ½ a q̇², from the closed-form M) falls by what
  * damping and friction take, ∫ Σ (b q̇² + f s(q̇) q̇) dt (Simpson's rule over 2,000 rows) */
