@@ -413,14 +413,14 @@ static int output_columns(run *x)
                                             "_effort_nx_link", "_effort_ny_link", "_effort_nz_link"};
     static const char *const world[6] = {"_fx", "_fy", "_fz", "_nx", "_ny", "_nz"};
     static const char *const link[6] = {"_fx_link", "_fy_link", "_fz_link", "_nx_link", "_ny_link", "_nz_link"};
-    static const char *const parts[3] = {"_effort_armature", "_effort_damping", "_effort_friction"};
+    static const char *const parts[4] = {"_effort_rigid", "_effort_armature", "_effort_damping", "_effort_friction"};
     static const char *const bearing[4] = {"_axial_force", "_radial_force", "_axial_moment", "_tilt_moment"};
     static const char *const limits[3] = {"_position_excess", "_vel_excess", "_effort_excess"};
     const unsigned g = x->o->groups;
     int n = x->ct >= 0;
     for (int k = 0; k < x->nj; k++)
         n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0)
-                           : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_PARTS ? 3 : 0) + (g & COLS_WORLD ? 6 : 0) +
+                           : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_PARTS ? 4 : 0) + (g & COLS_WORLD ? 6 : 0) +
                                  (g & COLS_LINK ? 6 : 0) + (g & COLS_BEARING ? 4 : 0) + (g & COLS_LIMITS ? 3 : 0);
     if (n == 0)
         return cmd_fail("--columns: none of the selected groups has a column for %s (a floating root has efforts "
@@ -438,7 +438,7 @@ static int output_columns(run *x)
             continue;
         }
         if (g & COLS_EFFORT) bad |= add_name(x, &k, j->name, "_effort");
-        for (int c = 0; c < 3 && (g & COLS_PARTS); c++) bad |= add_name(x, &k, j->name, parts[c]);
+        for (int c = 0; c < 4 && (g & COLS_PARTS); c++) bad |= add_name(x, &k, j->name, parts[c]);
         for (int c = 0; c < 6 && (g & COLS_WORLD); c++) bad |= add_name(x, &k, j->name, world[c]);
         for (int c = 0; c < 6 && (g & COLS_LINK); c++) bad |= add_name(x, &k, j->name, link[c]);
         for (int c = 0; c < 4 && (g & COLS_BEARING); c++) bad |= add_name(x, &k, j->name, bearing[c]);
@@ -578,8 +578,9 @@ static void gather(const run *x, int r, double *v)
         }
         if (g & COLS_EFFORT) v[o++] = e[j->rate];
         if (g & COLS_PARTS) {
-            const double *pr = x->parts + r * 3 * nv;
-            for (int c = 0; c < 3; c++) v[o++] = pr[c * nv + (size_t)j->rate];
+            const double *pr = x->parts + r * 3 * nv, a = pr[j->rate], b = pr[nv + j->rate], f = pr[2 * nv + j->rate];
+            v[o++] = e[j->rate] - (a + b + f); /* the rigid-body part: the effort less the joint's own */
+            v[o++] = a, v[o++] = b, v[o++] = f;
         }
         if (g & COLS_WORLD) {
             memcpy(v + o, rw + b6, 6 * sizeof *v);

@@ -13,7 +13,7 @@
 #define COLS_LINK 4u   /* each joint's reaction in its child link's axes (the URDF joint's frame) */
 #define COLS_BEARING 8u /* each joint's bearing split: axial and radial force, axial and tilting moment */
 #define COLS_LIMITS 16u /* each joint's excess beyond its position, velocity and effort limits */
-#define COLS_PARTS 256u /* each joint's effort's parts: armature, damping, friction */
+#define COLS_PARTS 256u /* each joint's effort's parts: rigid-body, armature, damping, friction */
 
 /* the most --payload options of one run */
 #define CMD_PAYLOAD_MAX 64

@@ -787,6 +787,7 @@ def joint_effects(vtdyn, urdf, states, work, check):
                 v, acc = float(st[j + "_vel"]), float(st[j + "_acc"])
                 parts = (a * acc, b * v, c * (1.0 if v > 0 else -1.0 if v < 0 else 0.0))
                 worst = max(worst, abs(cell[j + "_effort"] - ref[j + "_effort"] - sum(parts)) / big,
+                            abs(cell[j + "_effort_rigid"] - ref[j + "_effort"]) / big,
                             abs(cell[j + "_effort_armature"] - parts[0]) / big,
                             abs(cell[j + "_effort_damping"] - parts[1]) / big,
                             abs(cell[j + "_effort_friction"] - parts[2]) / big)
