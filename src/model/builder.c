@@ -344,7 +344,7 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d, double inertia
         return vt_fail(msg, VT_ERR_QUATERNION, "body %d: orientation has zero norm", id);
     }
     /* all zero: the kind's documented frame (model.c, joint_frame); else any non-zero length is a direction */
-    if (!vt_normalize(d->joint_frame, 4)) memset(d->joint_frame, 0, sizeof d->joint_frame);
+    if (!(vt_normalize(d->joint_frame, 4) > 0.0)) memset(d->joint_frame, 0, sizeof d->joint_frame);
     for (int k = 0; k < 2; k++) { /* limits: ±∞ allowed, NaN not */
         if (isnan(d->limit_lower[k]) || isnan(d->limit_upper[k]) || isnan(d->limit_velocity[k]) ||
             isnan(d->limit_effort[k]))
