@@ -21,7 +21,7 @@
 #include "vtdyn.h"
 
 #define NCACHE 8 /* batches kept per Model (distinct thread counts); the oldest is replaced */
-#define NRESULT 8 /* Result's arrays (result_fields) */
+#define NRESULT 9 /* Result's arrays (result_fields) */
 
 static PyObject *VtError;             /* vtdyn.Error */
 static PyTypeObject ResultType;       /* vtdyn.Result, a struct sequence */
@@ -172,14 +172,128 @@ static int model_names(ModelObject *self)
     return 0;
 }
 
+/* load_urdf's joint_params and payloads, read from their Python objects (with the GIL) before the
+ * loader runs (without it) */
+typedef struct {
+    char name[VT_NAME_MAX];
+    double v[3]; /* armature, damping, friction */
+} joint_param;
+
+typedef struct {
+    char link[VT_NAME_MAX];
+    double mass, com[3], inertia[9];
+} payload_spec;
+
+/* n doubles of a Python sequence into out; -1 with ValueError naming what */
+static int doubles(PyObject *o, int n, double *out, const char *what)
+{
+    PyObject *f = PySequence_Fast(o, what);
+    if (!f) return -1;
+    if (PySequence_Fast_GET_SIZE(f) != n) {
+        PyErr_Format(PyExc_ValueError, "%s: %zd numbers, expected %d", what, PySequence_Fast_GET_SIZE(f), n);
+        Py_DECREF(f);
+        return -1;
+    }
+    for (int k = 0; k < n; k++) {
+        out[k] = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(f, k));
+        if (out[k] == -1.0 && PyErr_Occurred()) {
+            Py_DECREF(f);
+            return -1;
+        }
+    }
+    Py_DECREF(f);
+    return 0;
+}
+
+/* a str into a name of at most VT_NAME_MAX − 1 bytes; -1 with ValueError */
+static int name_of(PyObject *o, char *out, const char *what)
+{
+    const char *u = PyUnicode_Check(o) ? PyUnicode_AsUTF8(o) : NULL;
+    if (!u) {
+        if (!PyErr_Occurred()) PyErr_Format(PyExc_ValueError, "%s: a str, not %s", what, Py_TYPE(o)->tp_name);
+        return -1;
+    }
+    if (strlen(u) >= VT_NAME_MAX) {
+        PyErr_Format(PyExc_ValueError, "%s '%.40s...': longer than %d bytes", what, u, VT_NAME_MAX - 1);
+        return -1;
+    }
+    snprintf(out, VT_NAME_MAX, "%s", u);
+    return 0;
+}
+
+/* joint_params {name: (armature, damping, friction)} into *jp (PyMem, *n entries); -1 on error */
+static int read_joint_params(PyObject *o, joint_param **jp, Py_ssize_t *n)
+{
+    *jp = NULL, *n = 0;
+    if (!o || o == Py_None) return 0;
+    if (!PyDict_Check(o)) return PyErr_SetString(PyExc_ValueError, "joint_params: a dict {joint: (armature, damping, friction)}"), -1;
+    *jp = PyMem_Calloc((size_t)PyDict_Size(o) + 1, sizeof **jp);
+    if (!*jp) return PyErr_NoMemory(), -1;
+    PyObject *key, *val;
+    Py_ssize_t pos = 0;
+    while (PyDict_Next(o, &pos, &key, &val)) {
+        joint_param *e = &(*jp)[*n];
+        if (name_of(key, e->name, "joint_params: a joint's name") || doubles(val, 3, e->v, "joint_params: a joint's (armature, damping, friction)"))
+            return -1;
+        (*n)++;
+    }
+    return 0;
+}
+
+/* payloads [(link, mass, com, inertia=None)] into *ps (PyMem, *n entries); -1 on error */
+static int read_payloads(PyObject *o, payload_spec **ps, Py_ssize_t *n)
+{
+    *ps = NULL, *n = 0;
+    if (!o || o == Py_None) return 0;
+    PyObject *f = PySequence_Fast(o, "payloads: a sequence of (link, mass, com, inertia)");
+    if (!f) return -1;
+    const Py_ssize_t len = PySequence_Fast_GET_SIZE(f);
+    *ps = PyMem_Calloc((size_t)len + 1, sizeof **ps);
+    if (!*ps) return Py_DECREF(f), PyErr_NoMemory(), -1;
+    for (Py_ssize_t k = 0; k < len; k++) {
+        PyObject *t = PySequence_Fast(PySequence_Fast_GET_ITEM(f, k), "payloads: each (link, mass, com, inertia)");
+        if (!t) return Py_DECREF(f), -1;
+        const Py_ssize_t m = PySequence_Fast_GET_SIZE(t);
+        payload_spec *p = &(*ps)[k];
+        int bad = m < 3 || m > 4;
+        if (bad) PyErr_Format(PyExc_ValueError, "payloads[%zd]: (link, mass, com[, inertia]), not %zd items", k, m);
+        if (!bad) bad = name_of(PySequence_Fast_GET_ITEM(t, 0), p->link, "payloads: a link's name");
+        if (!bad) {
+            p->mass = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(t, 1));
+            bad = p->mass == -1.0 && PyErr_Occurred();
+        }
+        if (!bad) bad = doubles(PySequence_Fast_GET_ITEM(t, 2), 3, p->com, "payloads: com (x, y, z)");
+        if (!bad && m == 4 && PySequence_Fast_GET_ITEM(t, 3) != Py_None) {
+            PyObject *row = PySequence_Fast(PySequence_Fast_GET_ITEM(t, 3), "payloads: inertia (3 x 3)");
+            bad = !row;
+            for (int r = 0; !bad && r < 3; r++) {
+                if (PySequence_Fast_GET_SIZE(row) != 3) {
+                    PyErr_SetString(PyExc_ValueError, "payloads: inertia: 3 rows of 3");
+                    bad = 1;
+                    break;
+                }
+                double v[3];
+                bad = doubles(PySequence_Fast_GET_ITEM(row, r), 3, v, "payloads: an inertia row");
+                for (int c = 0; !bad && c < 3; c++) p->inertia[r + 3 * c] = v[c];
+            }
+            Py_XDECREF(row);
+        }
+        Py_DECREF(t);
+        if (bad) return Py_DECREF(f), -1;
+        (*n)++;
+    }
+    Py_DECREF(f);
+    return 0;
+}
+
 static PyObject *load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
 {
     (void)mod;
-    static char *kwlist[] = {"path", "floating", "mimic", "dynamics", NULL};
-    PyObject *pathb = NULL;
+    static char *kwlist[] = {"path", "floating", "mimic", "dynamics", "joint_params", "payloads", "inertia_tol", NULL};
+    PyObject *pathb = NULL, *ojp = NULL, *opl = NULL, *otol = NULL;
     int floating = 0, mimic = 0, dynamics = 1;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "O&|ppp:load_urdf", kwlist, PyUnicode_FSConverter, &pathb, &floating,
-                                     &mimic, &dynamics))
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "O&|pppOOO:load_urdf", kwlist, PyUnicode_FSConverter, &pathb, &floating,
+                                     &mimic, &dynamics, &ojp, &opl, &otol))
         return NULL;
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
@@ -187,18 +301,50 @@ static PyObject *load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
     opt.dynamics = dynamics;
     /* the given-motion instant needs O(n) data only; a coupling (mimic) needs the full layout */
     opt.model.layout = mimic ? VT_LAYOUT_FULL : VT_LAYOUT_RECURSIVE;
+    joint_param *jp = NULL;
+    payload_spec *ps = NULL;
+    Py_ssize_t njp = 0, nps = 0;
+    if (otol && otol != Py_None) {
+        opt.model.inertia_tol = PyFloat_AsDouble(otol);
+        if (opt.model.inertia_tol == -1.0 && PyErr_Occurred()) return Py_DECREF(pathb), NULL;
+    }
+    if (read_joint_params(ojp, &jp, &njp) || read_payloads(opl, &ps, &nps)) {
+        PyMem_Free(jp);
+        PyMem_Free(ps);
+        Py_DECREF(pathb);
+        return NULL;
+    }
     char msg[VT_MESSAGE_SIZE] = "";
     vt_builder *b = NULL;
     vt_model *m = NULL;
     vt_status st;
     Py_BEGIN_ALLOW_THREADS
     st = vt_urdf_builder(&b, PyBytes_AS_STRING(pathb), &opt, msg);
+    for (Py_ssize_t k = 0; !st && k < nps; k++) { /* each payload in its link's URDF frame */
+        vt_payload_def pd = vt_default_payload_def();
+        pd.frame = ps[k].link;
+        pd.mass = ps[k].mass;
+        memcpy(pd.point, ps[k].com, sizeof pd.point);
+        memcpy(pd.inertia, ps[k].inertia, sizeof pd.inertia);
+        const int r = vt_builder_add_payload(b, &pd);
+        if (r < 0) st = (vt_status)r, snprintf(msg, sizeof msg, "payloads[%zd]: %s", k, vt_builder_message(b));
+    }
+    for (Py_ssize_t k = 0; !st && k < njp; k++) { /* each named joint takes all three */
+        const int body = vt_builder_find_joint(b, jp[k].name);
+        vt_joint_effects_def e = vt_default_joint_effects_def();
+        e.armature[0] = jp[k].v[0], e.damping[0] = jp[k].v[1], e.friction[0] = jp[k].v[2];
+        if (body < 0) st = (vt_status)body, snprintf(msg, sizeof msg, "joint_params: no moving joint '%s'", jp[k].name);
+        else if ((st = vt_builder_set_joint_effects(b, body, &e)))
+            snprintf(msg, sizeof msg, "joint_params['%s']: %s", jp[k].name, vt_builder_message(b));
+    }
     if (!st) {
         st = vt_builder_build(&m, b);
         if (st) snprintf(msg, sizeof msg, "%s", vt_builder_message(b));
     }
     vt_builder_free(b);
     Py_END_ALLOW_THREADS
+    PyMem_Free(jp);
+    PyMem_Free(ps);
     Py_DECREF(pathb);
     if (st) return raise_vt(st, msg, -1);
     ModelObject *self = PyObject_New(ModelObject, &ModelType);
@@ -407,8 +553,9 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     }
     /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate) */
     npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
+    npy_intp dp[3] = {N, 3, m->nv};
     for (int k = 0; k < NRESULT; k++) {
-        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : dr;
+        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : dr;
         const int rank = k == 0 ? 2 : 3;
         out[k] = nd == 2 ? new_array(rank, dims) : new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
@@ -427,6 +574,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.reaction_joint = PyArray_DATA((PyArrayObject *)out[5]);
     io.bearing = PyArray_DATA((PyArrayObject *)out[6]);
     io.limit_excess = PyArray_DATA((PyArrayObject *)out[7]);
+    io.effort_parts = PyArray_DATA((PyArrayObject *)out[8]);
     vt_status st = VT_OK;
     int failed = -1, nomem = 0;
     char msg[VT_MESSAGE_SIZE + 32] = "";
@@ -533,6 +681,7 @@ static PyStructSequence_Field result_fields[] = {
     {"reaction_joint", "each body's joint reaction in the joint's frame (the child link's URDF axes, N x nbody x 6)"},
     {"bearing", "each joint's bearing split (N x nbody x 4): axial and radial force, axial and tilting moment"},
     {"limit_excess", "each rate's excess beyond its position, velocity and effort limits (N x nv x 3), 0 within"},
+    {"effort_parts", "the parts of each rate's effort its joint's armature, damping and friction take (N x 3 x nv)"},
     {NULL, NULL},
 };
 
@@ -551,8 +700,11 @@ static PyObject *version(PyObject *mod, PyObject *unused)
 
 static PyMethodDef module_methods[] = {
     {"load_urdf", (PyCFunction)(void (*)(void))load_urdf, METH_VARARGS | METH_KEYWORDS,
-     "load_urdf(path, floating=False, mimic=False, dynamics=True) -> Model: a URDF robot (vt_urdf_builder);\n"
-     "dynamics: the joints' <dynamics damping friction> in every effort (False: ideal joints)"},
+     "load_urdf(path, floating=False, mimic=False, dynamics=True, joint_params=None, payloads=None,\n"
+     "          inertia_tol=None) -> Model: a URDF robot (vt_urdf_builder); dynamics: the joints'\n"
+     "<dynamics damping friction> in every effort (False: ideal joints); joint_params: {joint: (armature,\n"
+     "damping, friction)}, all three taken; payloads: [(link, mass, com, inertia=None)], com and the 3 x 3\n"
+     "inertia about it in the link's URDF frame; inertia_tol: the inertia checks' relative tolerance"},
     {"version", version, METH_NOARGS, "the C library's version (vt_version)"},
     {NULL, NULL, 0, NULL},
 };

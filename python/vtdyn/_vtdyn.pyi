@@ -1,6 +1,6 @@
 # Typed stubs of the extension module vtdyn._vtdyn (python/vtdyn/_vtdyn.c).
 import os
-from typing import Optional, Tuple, Union
+from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -15,7 +15,7 @@ class Error(RuntimeError):
     code: int
     row: Optional[int]
 
-class Result(Tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]):
+class Result(Tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]):
     """Model.inverse's arrays; N states give a leading N axis, one state none."""
     @property
     def effort(self) -> _F64:
@@ -45,6 +45,11 @@ class Result(Tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]):
     def limit_excess(self) -> _F64:
         """each rate's excess beyond its position, velocity and effort limits (N x nv x 3): the value
         less the limit it passes, 0 within or exactly at it"""
+    @property
+    def effort_parts(self) -> _F64:
+        """the parts of each rate's effort its joint's armature, damping and friction take
+        (N x 3 x nv: armature q'', damping q', friction sign(q')); effort less their sum is the
+        rigid-body part"""
 
 class Model:
     """A robot loaded by load_urdf (no public constructor)."""
@@ -77,6 +82,12 @@ class Model:
     def inverse(self, q: npt.ArrayLike, v: npt.ArrayLike, a: npt.ArrayLike, threads: int = 0) -> Result: ...
 
 def load_urdf(
-    path: Union[str, bytes, os.PathLike[str]], floating: bool = False, mimic: bool = False, dynamics: bool = True
+    path: Union[str, bytes, os.PathLike[str]],
+    floating: bool = False,
+    mimic: bool = False,
+    dynamics: bool = True,
+    joint_params: Optional[Mapping[str, Sequence[float]]] = None,
+    payloads: Optional[Sequence[Sequence[Any]]] = None,
+    inertia_tol: Optional[float] = None,
 ) -> Model: ...
 def version() -> str: ...

@@ -286,3 +286,70 @@ def test_library_errors(ur5):
     with pytest.raises(vtdyn.Error) as e:
         solo.inverse(q, np.zeros(18), np.zeros(18))
     assert e.value.status == "VT_ERR_QUATERNION"
+
+
+def test_joint_params_and_parts():
+    """joint_params on Panda (whose file declares <dynamics>): each effort is the ideal joints'
+    (dynamics=False) plus armature a + damping v + friction sign(v) of the values given, to 1e-12
+    of the largest; effort_parts those three; the file's own <dynamics> by default, likewise"""
+    path = urdf("Panda")
+    ideal = vtdyn.load_urdf(path, dynamics=False)
+    names = ideal.joint_names
+    params = {n: (0.1 + 0.05 * k, 0.5 + 0.1 * k, 0.2 * k) for k, n in enumerate(names)}
+    robot = vtdyn.load_urdf(path, joint_params=params)
+    q, v, a = random_states(robot, 200, seed=21)
+    r0, r = ideal.inverse(q, v, a), robot.inverse(q, v, a)
+    arm = np.array([params[n][0] for n in names])
+    damp = np.array([params[n][1] for n in names])
+    fric = np.array([params[n][2] for n in names])
+    parts = np.stack([arm * a, damp * v, fric * np.sign(v)], axis=1)
+    scale = np.abs(r.effort).max()
+    assert np.abs(r.effort - r0.effort - parts.sum(axis=1)).max() <= 1e-12 * scale
+    assert np.abs(r.effort_parts - parts).max() <= 1e-12 * scale
+    assert np.abs(r.reaction - r0.reaction).max() <= 1e-12 * np.abs(r0.reaction).max()  # reactions unchanged
+    # the file's <dynamics>: friction and damping only, as Pinocchio reads them
+    own = vtdyn.load_urdf(path).inverse(q, v, a)
+    pm = pin.buildModelFromUrdf(path)
+    assert np.abs(own.effort_parts[:, 0]).max() == 0.0
+    d = own.effort - r0.effort
+    assert np.abs(d).max() > 0.0
+    assert np.abs(own.effort_parts.sum(axis=1) - d).max() <= 1e-12 * scale
+    with pytest.raises(vtdyn.Error) as e:
+        vtdyn.load_urdf(path, joint_params={"no_such_joint": (0, 0, 0)})
+    assert e.value.status == "VT_ERR_NOT_FOUND" and "no_such_joint" in str(e.value)
+    with pytest.raises(vtdyn.Error) as e:
+        vtdyn.load_urdf(path, joint_params={names[0]: (0, -1, 0)})
+    assert e.value.status == "VT_ERR_BAD_OPTION"
+    with pytest.raises(ValueError):
+        vtdyn.load_urdf(path, joint_params={names[0]: (0, 1)})
+    assert pm.nv == robot.nv
+
+
+def test_payload_as_edited_file(tmp_path):
+    """a payload given to load_urdf equals the file with the payload written in as a link fixed to
+    its link (the loader's own merge), to 1e-15 of the largest output"""
+    path = urdf("UR5")
+    text = open(path).read()
+    link = vtdyn.load_urdf(path).body_names[-1]
+    com, inertia = (0.02, -0.05, 0.11), ((0.03, 0.001, -0.002), (0.001, 0.02, 0.003), (-0.002, 0.003, 0.025))
+    cut = text.rindex("</robot>")
+    edited = tmp_path / "ur5_payload.urdf"
+    edited.write_text(text[:cut] + (
+        '<link name="payload"><inertial><origin xyz="%r %r %r"/><mass value="2.5"/>'
+        '<inertia ixx="%r" ixy="%r" ixz="%r" iyy="%r" iyz="%r" izz="%r"/></inertial></link>'
+        '<joint name="grip" type="fixed"><parent link="%s"/><child link="payload"/></joint>'
+        % (com + (inertia[0][0], inertia[0][1], inertia[0][2], inertia[1][1], inertia[1][2], inertia[2][2], link)))
+        + text[cut:])
+    a_model = vtdyn.load_urdf(path, payloads=[(link, 2.5, com, inertia)])
+    b_model = vtdyn.load_urdf(str(edited))
+    q, v, a = random_states(a_model, 50, seed=22)
+    ra, rb = a_model.inverse(q, v, a), b_model.inverse(q, v, a)
+    for x, y in ((ra.effort, rb.effort), (ra.reaction, rb.reaction), (ra.reaction_joint, rb.reaction_joint)):
+        assert np.abs(x - y).max() <= 1e-15 * np.abs(y).max()
+    plain = vtdyn.load_urdf(path).inverse(q, v, a)
+    assert np.abs(plain.effort - ra.effort).max() > 1e-3
+    with pytest.raises(ValueError):
+        vtdyn.load_urdf(path, payloads=[(link, 2.5)])
+    with pytest.raises(vtdyn.Error) as e:
+        vtdyn.load_urdf(path, payloads=[("no_link", 1.0, (0, 0, 0))])
+    assert e.value.status == "VT_ERR_NOT_FOUND"
