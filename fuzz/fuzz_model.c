@@ -393,8 +393,10 @@ static void model_check(const vt_model *m)
  * of the mass-scaled system, κ = 1/rcond (the reported one; the smaller of the two routes').
  * So every tolerance is e = C × (nv + nc + 1) × ε × κ times a scale of the largest terms, from
  * both results:
- * - forces Fs: the largest body term m (|a| + |g|), |xfrc|, |qfrc|, reaction or drive force;
- * - moments Ns: Fs × L (L the largest position or joint offset: the routes take moments about
+ * - forces Fs: the largest body term m (|a| + |g|), |xfrc|, |qfrc| and the joints' own effects,
+ *   reaction or drive force;
+ * - moments Ns: |qfrc| and the joints' own effects, Fs × L (L the largest position or joint
+ *   offset: the routes take moments about
  *   different points), the largest inertia term |J| (|ω|² + |α|), moment, and m |c|² (|q̈| +
  *   |q̇|²) (the recursive route's spatial inertias about the origin hold m |c|²: far from the
  *   origin its round-off grows with the distance squared);
@@ -450,6 +452,16 @@ static void data_scales(const vt_model *m, const vt_data *d, scales *s)
     }
     s->Ns = fmax(s->Ns, fmax(maxabs(d->jnt_moment, 3 * n1), maxabs(d->drive_moment, 3 * m->ndrive)));
     s->Ns = fmax(s->Ns, maxabs(d->cut_moment, 3 * m->ncut));
+    /* a rate's generalized forces, the applied qfrc and its joint's own effects (armature q̈,
+     * damping q̇, friction), are a force or a moment along it: both scales (armature 0.05 kg·m²
+     * at q̈ = −2e201 against qfrc −1e200 leaves a moment's round-off of the 1e200's, not of the
+     * 5 N·m the loads alone would say) */
+    for (int c = 0; c < m->nv; c++) {
+        const double *e = m->dof_effects + 4 * c;
+        const double gq = fabs(d->qfrc[c]) + e[0] * fabs(d->qdd[c]) + e[1] * fabs(d->qd[c]) + e[2];
+        s->Fs = fmax(s->Fs, gq);
+        s->Ns = fmax(s->Ns, gq);
+    }
     s->Gs = fmax(s->Gs, fmax(maxabs(d->qfrc_drive, m->nv), maxabs(d->drive_effort, m->ndrive)));
     s->Gs = fmax(s->Gs, maxabs(d->coupling_effort, m->ncoupling));
 }
