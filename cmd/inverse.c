@@ -1,7 +1,8 @@
 /* The command's `inverse`: a URDF robot's efforts and joint reactions, one output row per row of
  * a CSV or .npy file of states (positions, velocities, accelerations: the library's batch on
  * threads) or of samples of a trajectory (positions and t: a spline drive on each joint,
- * vt_kinematic_solve row by row).
+ * vt_kinematic_solve row by row; with a floating root, splines through its position and its
+ * quaternion's components give each row's state, solved by the batch as the states are).
  *
  * The jobs in order: the input's header read and its columns mapped to the joints, the model
  * built (with the spline drives for samples, which read every row first), the output opened
@@ -47,8 +48,10 @@ static const char *const free_suffix[NFREE] = {"x",  "y",  "z",  "qw", "qx", "qy
 typedef struct {
     int body, rate, qadr; /* the joint's body, its (first) rate and coordinate */
     int col, col_vel, col_acc;
-    int free;             /* a floating root: its columns in fcol */
+    int free;             /* a floating root: its columns in fcol (samples: the first 7, the rest -1) */
     int fcol[NFREE];
+    int spl;              /* samples with a floating root: its first spline, a drive of run.splines
+                           * (a joint 1, a floating root 7: x, y, z, qw, qx, qy, qz) */
     const char *name;
 } joint_cols;
 
@@ -75,7 +78,10 @@ typedef struct {
     input in;                  /* the input: its columns, and its cells for samples */
     vt_builder *b;
     vt_model *probe;           /* the robot as loaded; the joints' names point into it */
-    vt_model *m;               /* the robot solved: with a spline drive per joint for samples */
+    vt_model *m;               /* the robot solved: with a spline drive per joint for samples
+                                * without a floating root */
+    vt_model *splines;         /* samples with a floating root: the splines, as drives (below) */
+    int nfree;                 /* the floating roots */
     vt_data *d;                /* one row's data: samples, and a failing state's message */
     vt_batch *batch;           /* the states' solver */
     joint_cols *jc;            /* the moving joints, in the model's order, floating roots last */
@@ -155,6 +161,7 @@ static void run_free(run *x)
     vt_batch_free(x->batch);
     vt_data_free(x->d);
     vt_model_free(x->m);
+    vt_model_free(x->splines);
     vt_model_free(x->probe);
     vt_builder_free(x->b);
     input_close(&x->in);
@@ -228,8 +235,9 @@ static int map_joints(run *x)
     return 0;
 }
 
-/* the floating roots' columns R_x ... R_alz (states only: no spline through orientations), after
- * the one-rate joints; then a column t for samples; 0 or 1 */
+/* the floating roots' columns, after the one-rate joints: R_x ... R_alz for states, R_x ... R_qz
+ * for samples (the form the joints gave, or with no joint the root's own: any rate column makes
+ * it states); then a column t for samples; 0 or 1 */
 static int map_floating_roots(run *x)
 {
     const vt_model *p = x->probe;
@@ -241,30 +249,39 @@ static int map_floating_roots(run *x)
             return cmd_fail("%s: floating joint '%s' from link '%s': only a floating root (from the world) is "
                             "supported here",
                             x->urdf, name, p->body_name + VT_NAME_MAX * p->body_parent[i]);
-        char kx[VT_NAME_MAX + 8], kv[VT_NAME_MAX + 8], ka[VT_NAME_MAX + 8];
-        snprintf(kx, sizeof kx, "%s_x", name);
-        snprintf(kv, sizeof kv, "%s_vx", name);
-        snprintf(ka, sizeof ka, "%s_ax", name);
-        if (x->form == FORM_SAMPLES ||
-            (table_column(&x->in.t, kx) >= 0 && table_column(&x->in.t, kv) < 0 && table_column(&x->in.t, ka) < 0))
-            return cmd_fail("%s: positions alone (samples of a trajectory) with a floating root '%s': not supported "
-                            "(no spline through orientations); give the states: %s_x ... %s_alz and every joint's "
-                            "_vel and _acc",
-                            x->states, name, name, name);
         joint_cols *j = &x->jc[x->nj++];
         j->body = i;
         j->rate = p->body_vadr[i];
         j->name = name;
         j->free = 1;
+        x->nfree++;
+        int rate = -1; /* its first rate column given */
         for (int k = 0; k < NFREE; k++) {
             char key[VT_NAME_MAX + 8];
             snprintf(key, sizeof key, "%s_%s", name, free_suffix[k]);
-            if ((j->fcol[k] = table_column(&x->in.t, key)) < 0)
-                return cmd_fail("%s: no column '%s' (floating root %s: %s_x ... %s_alz, see --help%s)", x->states,
-                                key, name, name, name,
-                                p->body_joint[i] == VT_JOINT_FREE && p->joint_name[VT_NAME_MAX * i] == '\0'
-                                    ? "; without --floating the root link is fixed to the world"
-                                    : "");
+            j->fcol[k] = table_column(&x->in.t, key);
+            if (k >= 7 && j->fcol[k] >= 0 && rate < 0) rate = k;
+        }
+        /* without R_x: the joints' form (states when there is none), the missing R_x named below */
+        form f = rate >= 0 ? FORM_STATES : FORM_SAMPLES;
+        if (rate < 0 && j->fcol[0] < 0) f = x->form == FORM_SAMPLES ? FORM_SAMPLES : FORM_STATES;
+        if (x->form == FORM_SAMPLES && f == FORM_STATES)
+            return cmd_fail("%s: column '%s_%s': a floating root's rate, but the joints have their positions alone "
+                            "(samples): give every joint's _vel and _acc and %s_x ... %s_alz (states), or t, the "
+                            "positions and %s_x ... %s_qz alone (samples)",
+                            x->states, name, free_suffix[rate], name, name, name, name);
+        if (x->form == FORM_STATES && f == FORM_SAMPLES)
+            return cmd_fail("%s: no column '%s_vx' (floating root %s): the joints have their rates (states), so "
+                            "give %s_x ... %s_alz; or t, the positions and %s_x ... %s_qz alone (samples)",
+                            x->states, name, name, name, name, name, name);
+        x->form = f;
+        const int need = f == FORM_STATES ? NFREE : 7;
+        for (int k = 0; k < need; k++) {
+            if (j->fcol[k] >= 0) continue;
+            const int implicit = p->joint_name[VT_NAME_MAX * i] == '\0';
+            return cmd_fail("%s: no column '%s_%s' (floating root %s: %s_x ... %s_%s, see --help%s)", x->states,
+                            name, free_suffix[k], name, name, name, f == FORM_STATES ? "alz" : "qz as samples",
+                            implicit ? "; without --floating the root link is fixed to the world" : "");
         }
     }
     if (x->form == FORM_SAMPLES && x->ct < 0)
@@ -349,14 +366,20 @@ static int sample_times(run *x)
     return 0;
 }
 
+/* for samples, every row read and the times checked; 0 or 1 */
+static int read_samples(run *x)
+{
+    if (input_read_all(&x->in)) return 1;
+    if (x->in.t.nrow == 0) return no_rows(x);
+    return sample_times(x);
+}
+
 /* for samples, a joint drive on every joint, following the cubic spline through its column's
  * samples over t (the drives in the joints' order, drive k on joint k): every row read first;
  * 0 or 1 */
 static int add_spline_drives(run *x)
 {
-    if (input_read_all(&x->in)) return 1;
-    if (x->in.t.nrow == 0) return no_rows(x);
-    if (sample_times(x)) return 1;
+    if (read_samples(x)) return 1;
     double *ys = malloc((size_t)x->in.t.nrow * sizeof *ys);
     if (!ys) return cmd_fail("out of memory");
     for (int k = 0; k < x->nj; k++) { /* (no floating root here) */
@@ -374,11 +397,91 @@ static int add_spline_drives(run *x)
     return 0;
 }
 
+/* one spline through ys over the samples' times, as the drive of a body of its own in hb (column
+ * `col` named in a refusal); 0 or 1 */
+static int add_spline(run *x, vt_builder *hb, const double *ys, const char *col)
+{
+    vt_body_def bd = vt_default_body_def();
+    const int body = vt_builder_add_body(hb, &bd);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = body;
+    dr.f = vt_function_spline(x->in.t.nrow, x->ts, ys);
+    if (body < 0 || vt_builder_add_drive(hb, &dr) < 0)
+        return cmd_fail("%s: column '%s' as samples: %s", x->states, col, vt_builder_message(hb));
+    return 0;
+}
+
+/* for samples with a floating root, the splines through the samples: each joint's position,
+ * each root's x, y, z and its quaternion's four components — every quaternion sample unit within
+ * --normalize-quaternions (refused, its row named), normalised, and its sign turned where it
+ * points away from the sample before (q and −q are one orientation; the spline must not pass
+ * through 0 between them). The model solved has no drives (the given motion ignores them): the
+ * splines are the drives of a model of their own, x->splines, one body each, because a model's
+ * drive is the library's only spline evaluated in O(log n) at any n (vt_function_eval solves a
+ * spline outside a model afresh at each call, and only up to VT_SPLINE_EVAL_MAX samples); that
+ * model is never solved. 0 or 1 */
+static int spline_model(run *x)
+{
+    if (read_samples(x)) return 1;
+    const table *t = &x->in.t;
+    const int n = t->nrow;
+    vt_builder *hb = NULL;
+    double *ys = malloc(4 * (size_t)n * sizeof *ys);
+    int status = !ys || vt_builder_create(&hb, NULL) ? cmd_fail("out of memory") : 0;
+    int nspl = 0;
+    char col[VT_NAME_MAX + 8];
+    for (int k = 0; k < x->nj && !status; k++) {
+        joint_cols *j = &x->jc[k];
+        j->spl = nspl;
+        if (!j->free) {
+            for (int r = 0; r < n; r++) ys[r] = table_row(t, r)[j->col];
+            status = add_spline(x, hb, ys, j->name);
+            nspl++;
+            continue;
+        }
+        for (int c = 0; c < 3 && !status; c++) {
+            for (int r = 0; r < n; r++) ys[r] = table_row(t, r)[j->fcol[c]];
+            snprintf(col, sizeof col, "%s_%s", j->name, free_suffix[c]);
+            status = add_spline(x, hb, ys, col);
+            nspl++;
+        }
+        /* the quaternions, component c of row r at ys[c n + r] */
+        for (int r = 0; r < n && !status; r++) {
+            const double *row = table_row(t, r);
+            double v[4], nq = 0.0, dot = 0.0;
+            for (int c = 0; c < 4; c++) {
+                v[c] = row[j->fcol[3 + c]];
+                nq += v[c] * v[c];
+            }
+            nq = sqrt(nq);
+            if (!(fabs(nq - 1.0) <= x->o->quat_tol)) {
+                char where[ROW_WHERE];
+                status = cmd_fail("%s: columns '%s_qw' ... '%s_qz': a quaternion of norm %.17g, not 1 (within %g: "
+                                  "--normalize-quaternions TOL)",
+                                  input_where(&x->in, t->loc[r], where), j->name, j->name, nq, x->o->quat_tol);
+                break;
+            }
+            for (int c = 0; c < 4 && r > 0; c++) dot += v[c] * ys[(size_t)c * (size_t)n + (size_t)r - 1];
+            const double sign = dot < 0.0 ? -1.0 : 1.0;
+            for (int c = 0; c < 4; c++) ys[(size_t)c * (size_t)n + (size_t)r] = sign * v[c] / nq;
+        }
+        for (int c = 0; c < 4 && !status; c++) {
+            snprintf(col, sizeof col, "%s_%s", j->name, free_suffix[3 + c]);
+            status = add_spline(x, hb, ys + (size_t)c * (size_t)n, col);
+            nspl++;
+        }
+    }
+    if (!status && vt_builder_build(&x->splines, hb)) status = cmd_fail("%s", vt_builder_message(hb));
+    vt_builder_free(hb);
+    free(ys);
+    return status;
+}
+
 /* the model solved (the robot, with the spline drives for samples) and its data; for states the
  * batch on the run's threads; 0 or 1 */
 static int build_model(run *x)
 {
-    if (x->form == FORM_SAMPLES && add_spline_drives(x)) return 1;
+    if (x->form == FORM_SAMPLES && (x->nfree ? spline_model(x) : add_spline_drives(x))) return 1;
     if (vt_builder_build(&x->m, x->b) || vt_data_create(&x->d, x->m))
         return cmd_fail("%s: %s", x->urdf, vt_builder_message(x->b));
     for (int k = 0; k < x->nj; k++) x->jc[k].qadr = x->m->body_qadr[x->jc[k].body];
@@ -741,8 +844,9 @@ static void progress(const run *x, int done, double *start, double *last)
 
 /* ---- the two forms ----------------------------------------------------------------------- */
 
-/* chunk row r's failing state (by the batch) solved alone on the run's data for its message */
-static int state_failure(run *x, int r)
+/* chunk row r's failing state (by the batch), at loc in the input, solved alone on the run's
+ * data for its message */
+static int state_failure(run *x, int r, long long loc)
 {
     const vt_model *m = x->m;
     vt_data *d = x->d;
@@ -751,7 +855,7 @@ static int state_failure(run *x, int r)
     memcpy(d->qd, x->qd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qd);
     memcpy(d->qdd, x->qdd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qdd);
     const vt_status st = vt_inverse_dynamics_motion(m, d);
-    input_where(&x->in, x->chp->loc[r], where);
+    input_where(&x->in, loc, where);
     if (st) return cmd_fail("%s: %s (%s)", where, d->message, vt_status_string(st));
     return cmd_fail("%s: %s (%s)", where, vt_batch_message(x->batch), vt_status_string(x->status[r]));
 }
@@ -788,7 +892,7 @@ static int solve_chunk(run *x, int n, int set)
         for (int r = 0; r < f && s < 0; r++)
             if (x->status[r] != VT_OK) s = r;
         if (s < 0) return cmd_fail("%s: %s (%s)", x->states, vt_batch_message(x->batch), vt_status_string(st));
-        return state_failure(x, s);
+        return state_failure(x, s, x->chp->loc[s]);
     }
     if (fk >= 0) return cmd_fail("%s", x->blk[fk].msg);
     if (!x->header_done) {
@@ -921,6 +1025,116 @@ static int run_samples(run *x)
     return 0;
 }
 
+/* spline k of x->splines at time t: out = [f, f', f'']; 0 or 1 */
+static int spline_at(const run *x, int k, double t, double out[3])
+{
+    const vt_status st = vt_function_eval(out, &x->splines->drive[k].f, t);
+    return st ? cmd_fail("%s: spline %d at t = %.17g: %s", x->states, k, t, vt_status_string(st)) : 0;
+}
+
+/* chunk row r's state from the splines at time t: each joint's position, velocity and
+ * acceleration; a floating root's x, y, z and their derivatives (its origin's velocity and
+ * acceleration, world axes), and from the quaternion components' splines s(t): n = |s|, the
+ * orientation p = s/n, its rates ṗ = (ṡ − p (p·ṡ))/n and p̈ = (s̈ − 2 ṗ (p·ṡ) − p (ṗ·ṡ + p·s̈))/n
+ * (the derivatives of s/|s|, with ṅ = p·ṡ and n̈ = ṗ·ṡ + p·s̈), the angular velocity ω = 2 E(p) ṗ
+ * and acceleration α = 2 E(p) p̈ in world axes (α = d/dt 2 E(p) ṗ, whose other term 2 E(ṗ) ṗ is 0:
+ * E(a) a = 0 for any a). At a sample's time s is the unit sample itself, so n = 1 to round-off.
+ * 0 or 1 */
+static int fill_sample(const run *x, int r, double t)
+{
+    const vt_model *m = x->m;
+    double *q = x->q + (size_t)r * (size_t)m->nq, *qd = x->qd + (size_t)r * (size_t)m->nv,
+           *qdd = x->qdd + (size_t)r * (size_t)m->nv;
+    for (int k = 0; k < x->nj; k++) {
+        const joint_cols *j = &x->jc[k];
+        double v[3];
+        if (!j->free) {
+            if (spline_at(x, j->spl, t, v)) return 1;
+            q[j->qadr] = v[0], qd[j->rate] = v[1], qdd[j->rate] = v[2];
+            continue;
+        }
+        for (int c = 0; c < 3; c++) {
+            if (spline_at(x, j->spl + c, t, v)) return 1;
+            q[j->qadr + c] = v[0], qd[j->rate + c] = v[1], qdd[j->rate + c] = v[2];
+        }
+        double s[4], sd[4], sdd[4], nn = 0.0;
+        for (int c = 0; c < 4; c++) {
+            if (spline_at(x, j->spl + 3 + c, t, v)) return 1;
+            s[c] = v[0], sd[c] = v[1], sdd[c] = v[2];
+            nn += s[c] * s[c];
+        }
+        nn = sqrt(nn);
+        double p[4], pd[4], pdd[4], psd = 0.0, pdsd = 0.0, psdd = 0.0;
+        for (int c = 0; c < 4; c++) {
+            p[c] = s[c] / nn;
+            psd += p[c] * sd[c];
+            psdd += p[c] * sdd[c];
+        }
+        for (int c = 0; c < 4; c++) {
+            pd[c] = (sd[c] - p[c] * psd) / nn;
+            pdsd += pd[c] * sd[c];
+        }
+        for (int c = 0; c < 4; c++) pdd[c] = (sdd[c] - 2.0 * pd[c] * psd - p[c] * (pdsd + psdd)) / nn;
+        double E[12];
+        vt_euler_E(E, p);
+        for (int c = 0; c < 4; c++) q[j->qadr + 3 + c] = p[c];
+        for (int a = 0; a < 3; a++) {
+            double w = 0.0, al = 0.0;
+            for (int c = 0; c < 4; c++) {
+                w += E[a + 3 * c] * pd[c];
+                al += E[a + 3 * c] * pdd[c];
+            }
+            qd[j->rate + 3 + a] = 2.0 * w;
+            qdd[j->rate + 3 + a] = 2.0 * al;
+        }
+    }
+    return 0;
+}
+
+/* samples with a floating root: a chunk of rows at a time, each row's state from the splines at
+ * its t, solved by the batch as states are, formatted and written; 0, or 1 at the first row that
+ * fails */
+static int run_samples_motion(run *x)
+{
+    double start = 0.0, last = 0.0;
+    const table *t = &x->in.t;
+    if (write_header(x, t->nrow)) return 1;
+    for (int r0 = 0; r0 < t->nrow; r0 += x->K) {
+        const int n = t->nrow - r0 < x->K ? t->nrow - r0 : x->K;
+        const double t0 = now();
+        for (int r = 0; r < n; r++)
+            if (fill_sample(x, r, x->ts[r0 + r])) return 1;
+        vt_batch_io io = {0};
+        io.nrow = n;
+        io.q = x->q;
+        io.qd = x->qd;
+        io.qdd = x->qdd;
+        io.effort = x->effort;
+        io.reaction = x->reac;
+        io.reaction_joint = x->reac_link;
+        io.bearing = x->bearing;
+        io.limit_excess = x->excess;
+        io.effort_parts = x->parts;
+        io.status = x->status;
+        const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
+        x->t_solve += now() - t0;
+        if (st) {
+            for (int r = 0; r < n; r++)
+                if (x->status[r] != VT_OK) return state_failure(x, r, t->loc[r0 + r]);
+            return cmd_fail("%s: %s (%s)", x->states, vt_batch_message(x->batch), vt_status_string(st));
+        }
+        x->incells = table_row(t, r0);
+        x->oset = 0;
+        if (format_rows(x, n)) return 1;
+        const double t1 = now();
+        put_rows(x, 0, n);
+        x->t_write += now() - t1;
+        progress(x, 0, &start, &last);
+    }
+    progress(x, 1, &start, &last);
+    return 0;
+}
+
 /* the output's format: --format, else -o's name (.npy), else CSV; npy on standard output only
  * with the row count known ahead; 0 or 1 */
 static int output_format(run *x, const char *outpath)
@@ -960,7 +1174,9 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, const
             static char obuf[1 << 20];
             setvbuf(x.out.f, obuf, _IOFBF, sizeof obuf);
             const double t0 = now();
-            const int ok = !(x.form == FORM_SAMPLES ? run_samples(&x) : run_states(&x)) && !finish_output(&x);
+            const int ok = !(x.form == FORM_SAMPLES ? (x.nfree ? run_samples_motion(&x) : run_samples(&x))
+                                                    : run_states(&x)) &&
+                           !finish_output(&x);
             status = output_close(&x.out, ok);
             if (o->times && ok) {
                 const double all = now() - t0;

@@ -13,7 +13,9 @@
  * joint's effort, M* q̈ − Q, and every reaction. With `t` and the positions J alone the rows are
  * samples of a trajectory: each joint follows the cubic spline through its samples
  * (vt_function_spline, exact f' and f''), as a joint drive, and vt_kinematic_solve() at each
- * sample time gives q̇ and q̈ from the splines and the drives' efforts. Out, per row: `t` when
+ * sample time gives q̇ and q̈ from the splines and the drives' efforts (with a floating root,
+ * the splines through its position and its quaternion's components, normalised, give each row's
+ * state, solved as a state is). Out, per row: `t` when
  * given, then per moving joint J the effort `J_effort` (N·m or N), the reaction of the parent
  * link on the child link `J_fx J_fy J_fz J_nx J_ny J_nz` (N, N·m; global axes, the moment about
  * the child link frame's origin, the joint's actuation not included) and the same in the child
@@ -110,9 +112,11 @@ static const char usage_root[] =
     "                                       to apply to the root link for the given motion (zero\n"
     "                                       when it is a free flight), world axes\n"
     "           R_effort_fx_link ... R_effort_nz_link  the same in the root link's URDF axes\n"
-    "         A floating root needs the states form: samples (positions alone) are refused, as\n"
-    "         there is no spline through orientations here. A floating joint between two links\n"
-    "         is refused by this command.\n"
+    "         As samples (t and the positions alone) a floating root has R_x ... R_qz alone (each\n"
+    "         quaternion's norm within TOL of 1, --normalize-quaternions; q and -q alike): its\n"
+    "         velocities and accelerations come from the cubic splines through R_x, R_y, R_z and\n"
+    "         through the quaternion's components (signs made continuous, then normalised), and\n"
+    "         each row is solved as a state. A floating joint between two links is refused.\n"
     "         Gravity is -9.81 m/s^2 along z (URDF robots are z up). Numbers are read with a '.'\n"
     "         decimal point whatever the locale.\n";
 /* (three strings: C's bound on one literal's length) */
@@ -120,8 +124,8 @@ static const char usage_options[] =
     "\n"
     "options of inverse:\n"
     "  -j N             threads: 0 (default) every CPU the process may use, 1 the calling thread\n"
-    "                   alone; the output's bytes are the same for any N (states; samples are\n"
-    "                   solved on one thread)\n"
+    "                   alone; the output's bytes are the same for any N (samples without a\n"
+    "                   floating root are solved on one thread)\n"
     "  --columns LIST   the output's groups, comma separated (each joint's in this order whatever\n"
     "                   LIST's): effort (J_effort; a floating root's R_effort_*, both axes),\n"
     "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link), bearing\n"

@@ -14,8 +14,11 @@ interior samples), the link axes' reaction, and the errors: a missing column, a 
 (file, row and column named, exit 1, no output file left), samples whose t does not increase (the
 row and 't' named), --help. A floating body (a URDF floating joint from the world, and a root
 link with --floating): its six efforts against Newton-Euler written here (1e-12), zero in free
-flight; samples and a non-unit quaternion refused. --payload against the payload written into
-the file as a fixed link (1e-15).
+flight; a non-unit quaternion refused. The floating body as samples (t and its position and
+quaternion alone) against Newton-Euler at the exact motion (1e-5 of the largest effort, second
+order in the spacing), a floating arm's samples against its states, a sign-flipped quaternion
+sequence, and the samples' refusals. --payload against the payload written into the file as a
+fixed link (1e-15).
 
     test_cmd.py VTDYN URDF_DIR WORKDIR
 """
@@ -203,15 +206,8 @@ def floating(vtdyn, work, check):
         check(worst < 1e-12, "floating root (explicit %d): largest relative difference %.3g" % (explicit, worst))
         print("floating root (%s): %d rows, largest relative difference from Newton-Euler %.3g"
               % ("URDF floating joint" if explicit else "--floating", len(out), worst))
-    # samples with a floating root: refused, named
-    urdf = os.path.join(work, "floater1.urdf")
-    samples = os.path.join(work, "floater_samples.csv")
-    with open(samples, "w") as fh:
-        fh.write("t,float_x,float_y,float_z,float_qw,float_qx,float_qy,float_qz\n0,0,0,0,1,0,0,0\n1,0,0,0,1,0,0,0\n")
-    r = run(vtdyn, "inverse", urdf, samples)
-    check(r.returncode == 1 and "floating root 'float'" in r.stderr and "samples" in r.stderr,
-          "samples with a floating root refused: %r" % r.stderr)
     # a quaternion off the unit sphere: the row and the columns named
+    urdf = os.path.join(work, "floater1.urdf")
     states = os.path.join(work, "floater_states1.csv")
     lines = open(states).read().splitlines()
     cells = lines[2].split(",")
@@ -228,6 +224,200 @@ def floating(vtdyn, work, check):
     r = run(vtdyn, "inverse", "--help")
     check(r.returncode == 0 and "R_effort_fx" in r.stdout and "--floating" in r.stdout,
           "--help documents the floating root's columns")
+
+
+# ---- a floating root given as samples ---------------------------------------------------------
+def quat_mul(a, b):
+    return [a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+            a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+            a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+            a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]]
+
+
+Q0 = [0.8, 0.2, -0.4, 0.4]  # a fixed initial orientation (normalised below)
+Q0 = [c / math.sqrt(sum(x * x for x in Q0)) for c in Q0]
+
+
+def root_motion(t):
+    """the link frame's pose and its exact rates at t: the origin r(t) = (0.3 sin 1.1t,
+    0.2 cos 0.7t, 0.1 t^2 + 0.5), the orientation Rz(th1) Rx(th2) R0 with th1 = 1.2 sin 1.5t,
+    th2 = 0.8 sin(2.3t + 0.4): w = th1' z + th2' Rz(th1) x, alpha = th1'' z + th2'' Rz(th1) x +
+    th1' th2' (z x Rz(th1) x) (world axes); returns (q, v, a) as floater_wrench takes them"""
+    th1, d1, dd1 = 1.2 * math.sin(1.5 * t), 1.8 * math.cos(1.5 * t), -2.7 * math.sin(1.5 * t)
+    th2, d2, dd2 = (0.8 * math.sin(2.3 * t + 0.4), 1.84 * math.cos(2.3 * t + 0.4),
+                    -4.232 * math.sin(2.3 * t + 0.4))
+    qz = [math.cos(th1 / 2), 0.0, 0.0, math.sin(th1 / 2)]
+    qx = [math.cos(th2 / 2), math.sin(th2 / 2), 0.0, 0.0]
+    quat = quat_mul(qz, quat_mul(qx, Q0))
+    r = [0.3 * math.sin(1.1 * t), 0.2 * math.cos(0.7 * t), 0.1 * t * t + 0.5]
+    rv = [0.33 * math.cos(1.1 * t), -0.14 * math.sin(0.7 * t), 0.2 * t]
+    ra = [-0.363 * math.sin(1.1 * t), -0.098 * math.cos(0.7 * t), 0.2]
+    z, ex = [0.0, 0.0, 1.0], [math.cos(th1), math.sin(th1), 0.0]  # Rz(th1) x
+    w = [d1 * z[k] + d2 * ex[k] for k in range(3)]
+    zx = cross(z, ex)
+    al = [dd1 * z[k] + dd2 * ex[k] + d1 * d2 * zx[k] for k in range(3)]
+    return r + quat, rv + w, ra + al
+
+
+def joint_motion(t):
+    """two hinges' angles, rates and accelerations at t"""
+    return ((0.7 * math.sin(1.7 * t), 1.19 * math.cos(1.7 * t), -2.023 * math.sin(1.7 * t)),
+            (0.5 + 0.6 * math.cos(1.2 * t), -0.72 * math.sin(1.2 * t), -0.864 * math.cos(1.2 * t)))
+
+
+def floater_samples_file(path, ts, flip=False, joints=False):
+    cols = ["t"] + (["j1", "j2"] if joints else []) + ["float_%s" % s for s in FREE_COLS[:7]]
+    with open(path, "w") as fh:
+        fh.write(",".join(cols) + "\n")
+        for k, t in enumerate(ts):
+            q, _, _ = root_motion(t)
+            if flip and k % 2:  # -q: the same orientation
+                q = q[:3] + [-c for c in q[3:]]
+            js = [m[0] for m in joint_motion(t)] if joints else []
+            fh.write(",".join(repr(x) for x in [t] + js + q) + "\n")
+
+
+def floater_sample_errors(vtdyn, urdf, work, n):
+    """n samples over [0, 2] s: the largest difference of the efforts (world and link axes) from
+    Newton-Euler at the exact motion, at the samples 10 or more from an end, and the largest
+    effort"""
+    ts = [2.0 * k / (n - 1) for k in range(n)]
+    path = os.path.join(work, "floater_samples%d.csv" % n)
+    floater_samples_file(path, ts)
+    r = run(vtdyn, "inverse", urdf, path)
+    if r.returncode != 0:
+        return None, r.stderr
+    out = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(r.stdout.splitlines())]
+    if len(out) != n:
+        return None, "%d rows for %d samples" % (len(out), n)
+    worst, big = 0.0, 0.0
+    for k, (row, t) in enumerate(zip(out, ts)):
+        f, m, R, _, _ = floater_wrench(*root_motion(t))
+        fl, ml = mv(tr(R), f), mv(tr(R), m)
+        want = f + m + fl + ml
+        got = [row["float_effort_%s%s" % (a, c)] for a in "fn" for c in "xyz"]
+        got += [row["float_effort_%s%s_link" % (a, c)] for a in "fn" for c in "xyz"]
+        big = max(big, max(abs(x) for x in want))
+        if 10 <= k < n - 10:
+            worst = max(worst, max(abs(x - y) for x, y in zip(got, want)))
+    return (worst, big), ""
+
+
+FLOATING_ARM = """<robot name="floating_arm"><link name="world"/>
+<joint name="float" type="floating"><parent link="world"/><child link="body"/></joint>
+<link name="body"><inertial><origin xyz="0.1 -0.05 0.2" rpy="0.3 0.2 -0.1"/><mass value="2"/>
+<inertia ixx="0.3" ixy="0.01" ixz="-0.02" iyy="0.4" iyz="0.03" izz="0.5"/></inertial></link>
+<joint name="j1" type="revolute"><parent link="body"/><child link="l1"/><origin xyz="0.2 0.1 0.3" rpy="0.1 0 0.2"/>
+<axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="100" velocity="10"/></joint>
+<link name="l1"><inertial><origin xyz="0.25 0 0"/><mass value="1.5"/>
+<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.05" iyz="0" izz="0.05"/></inertial></link>
+<joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0.5 0 0"/>
+<axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="100" velocity="10"/></joint>
+<link name="l2"><inertial><origin xyz="0.2 0 0.05"/><mass value="1"/>
+<inertia ixx="0.01" ixy="0.001" ixz="0" iyy="0.03" iyz="0" izz="0.03"/></inertial></link>
+</robot>
+"""
+
+
+def floating_samples(vtdyn, work, check):
+    """A floating root given as samples (t, the positions, R_x ... R_qz): its velocities and
+    accelerations from the splines through x, y, z and through the quaternion's components
+    (normalised). The floater's efforts against Newton-Euler at the exact motion (a general
+    rotation, its axis turning), and their second-order convergence (the spline's second
+    derivative: O(h^2)); a floating arm's samples against the same rows given as states with the
+    exact rates; a sign-flipped quaternion sequence as the plain one; refusals"""
+    urdf = os.path.join(work, "floater1.urdf")
+    floater_urdf(urdf, 1)
+    # At an interior knot of evenly spaced samples the not-a-knot cubic's second derivative is
+    # off by about h^2/12 times the fourth derivative (its first derivative by O(h^4)): with
+    # h = 1e-3 s and a fourth derivative up to some 20 (th2 = 0.8 sin 2.3t: 0.8 x 2.3^4 = 22;
+    # the quaternion's components, of half the angles, less) the accelerations are off by about
+    # 2e-6 rad/s^2 and m/s^2, and the efforts (2 kg, inertia up to 0.5 kg m^2) by some 1e-6 N of
+    # the largest 22: about 1e-7 of it. 1e-5 of the largest leaves a factor of 100 for the
+    # constants and still catches a first-order error (h times the third derivative, ~1e-2).
+    # The ten samples at each end are left out: the end pieces' error is larger. The order: the
+    # largest error at 251 and 501 samples (h = 8e-3 and 4e-3, far above the round-off's
+    # 1e-16 / h^2) falls by 4 (O(h^2)): between 3.5 and 4.6.
+    res = {}
+    for n in (251, 501, 2001):
+        res[n], err = floater_sample_errors(vtdyn, urdf, work, n)
+        check(res[n] is not None, "floating root as %d samples: %s" % (n, err))
+        if res[n] is None:
+            return
+    worst, big = res[2001]
+    check(worst < 1e-5 * big, "floating root as samples: largest difference %.3g of %.3g (tolerance 1e-5 of it)"
+          % (worst, big))
+    ratio = res[251][0] / res[501][0]
+    check(3.5 < ratio < 4.6, "floating root as samples: error ratio %.3g for half the spacing (O(h^2): 4)" % ratio)
+    print("floating root as samples: largest effort difference %.3g of %.3g at 2001 samples; %.3g at 251, %.3g at "
+          "501 (ratio %.2f: second order)" % (worst, big, res[251][0], res[501][0], ratio))
+    # a sign-flipped sequence (every other sample's quaternion negated): the same output
+    ts = [2.0 * k / 500 for k in range(501)]
+    plain, flipped = os.path.join(work, "floater_plain.csv"), os.path.join(work, "floater_flip.csv")
+    floater_samples_file(plain, ts)
+    floater_samples_file(flipped, ts, flip=True)
+    a, b = run(vtdyn, "inverse", urdf, plain), run(vtdyn, "inverse", urdf, flipped)
+    check(a.returncode == 0 and b.returncode == 0 and a.stdout == b.stdout,
+          "a sign-flipped quaternion sequence gives the plain one's output: %s" % b.stderr)
+    # a floating arm: samples against the same rows as states with the exact rates
+    arm = os.path.join(work, "floating_arm.urdf")
+    with open(arm, "w") as fh:
+        fh.write(FLOATING_ARM)
+    ts = [2.0 * k / 2000 for k in range(2001)]
+    samples, states = os.path.join(work, "arm_samples.csv"), os.path.join(work, "arm_states.csv")
+    floater_samples_file(samples, ts, joints=True)
+    with open(states, "w") as fh:
+        fh.write(",".join(["t", "j1", "j1_vel", "j1_acc", "j2", "j2_vel", "j2_acc"]
+                          + ["float_%s" % s for s in FREE_COLS]) + "\n")
+        for t in ts:
+            q, v, acc = root_motion(t)
+            js = [x for m in joint_motion(t) for x in m]
+            fh.write(",".join(repr(x) for x in [t] + js + q + v + acc) + "\n")
+    a, b = run(vtdyn, "inverse", arm, states), run(vtdyn, "inverse", arm, samples)
+    check(a.returncode == 0 and b.returncode == 0, "a floating arm as states and as samples: %s %s"
+          % (a.stderr, b.stderr))
+    if a.returncode == 0 and b.returncode == 0:
+        ra, rb = list(csv.reader(a.stdout.splitlines())), list(csv.reader(b.stdout.splitlines()))
+        check(ra[0] == rb[0] and len(ra) == len(rb) == len(ts) + 1, "the same columns and rows")
+        big = max(abs(float(c)) for row in ra[1:] for c in row[1:])
+        worst = max(abs(float(x) - float(y)) for k in range(11, len(ts) - 9) for x, y in zip(ra[k], rb[k]))
+        check(worst < 1e-5 * big, "a floating arm's samples against its states: largest difference %.3g of %.3g "
+              "(tolerance 1e-5 of it)" % (worst, big))
+        print("floating arm: %d samples against the states, %d columns: largest difference %.3g of %.3g"
+              % (len(ts), len(ra[0]), worst, big))
+    # refusals: a quaternion off the unit norm (its line named), a missing column, rates mixed in
+    lines = open(plain).read().splitlines()
+    cells = lines[5].split(",")
+    cells[4] = repr(float(cells[4]) * 1.01)
+    bad = os.path.join(work, "floater_bad_samples.csv")
+    with open(bad, "w") as fh:
+        fh.write("\n".join(lines[:5] + [",".join(cells)] + lines[6:]) + "\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "floater_bad_samples.csv:6" in r.stderr and "float_qw" in r.stderr
+          and "--normalize-quaternions" in r.stderr, "a non-unit quaternion sample named: %r" % r.stderr)
+    r = run(vtdyn, "inverse", "--normalize-quaternions", "0.02", urdf, bad)
+    check(r.returncode == 0, "a quaternion sample within --normalize-quaternions taken: %r" % r.stderr)
+    with open(bad, "w") as fh:
+        fh.write("\n".join(",".join(line.split(",")[:7]) for line in lines) + "\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "'float_qz'" in r.stderr, "a missing float_qz named: %r" % r.stderr)
+    with open(bad, "w") as fh:
+        fh.write(lines[0] + ",float_vx\n" + "\n".join(line + ",0" for line in lines[1:]) + "\n")
+    r = run(vtdyn, "inverse", urdf, bad)
+    check(r.returncode == 1 and "'float_vy'" in r.stderr, "a floating root's rates in part refused: %r" % r.stderr)
+    alines = open(samples).read().splitlines()
+    with open(bad, "w") as fh:
+        fh.write(alines[0] + ",float_vx\n" + "\n".join(line + ",0" for line in alines[1:]) + "\n")
+    r = run(vtdyn, "inverse", arm, bad)
+    check(r.returncode == 1 and "'float_vx'" in r.stderr and "samples" in r.stderr,
+          "the root's rates with the joints' positions alone refused: %r" % r.stderr)
+    slines = open(states).read().splitlines()
+    keep = [k for k, c in enumerate(slines[0].split(",")) if not (c.startswith("float_") and c[6:] in FREE_COLS[7:])]
+    with open(bad, "w") as fh:
+        fh.write("\n".join(",".join(line.split(",")[k] for k in keep) for line in slines) + "\n")
+    r = run(vtdyn, "inverse", arm, bad)
+    check(r.returncode == 1 and "'float_vx'" in r.stderr and "samples" in r.stderr,
+          "the joints' rates with the root's positions alone refused: %r" % r.stderr)
 
 
 def strict(vtdyn, urdf, states, work, check):
@@ -1056,6 +1246,7 @@ def main():
     r = run(vtdyn, "info", urdf)
     check(r.returncode == 0 and "joint2" in r.stdout and "link2" in r.stdout, "info lists the joints")
     floating(vtdyn, work, check)
+    floating_samples(vtdyn, work, check)
     chunks_threads(vtdyn, urdf, work, check)
     npy_files(vtdyn, urdf, states, work, check)
     options(vtdyn, urdf, states, work, check)
