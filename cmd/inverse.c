@@ -525,7 +525,7 @@ static int output_columns(run *x)
         n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0)
                            : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_PARTS ? 4 : 0) + (g & COLS_WORLD ? 6 : 0) +
                                  (g & COLS_LINK ? 6 : 0) + (g & COLS_BEARING ? 4 : 0) + (g & COLS_LIMITS ? 3 : 0);
-    if (n == 0)
+    if (n == (x->ct >= 0)) /* t alone is no output */
         return cmd_fail("--columns: none of the selected groups has a column for %s (a floating root has efforts "
                         "alone)",
                         x->urdf);

@@ -891,6 +891,13 @@ def options(vtdyn, urdf, states, work, check):
         check(r.returncode == 1 and "--normalize-quaternions" in r.stderr, "--normalize-quaternions %s refused" % tol)
     r = run(vtdyn, "inverse", "--columns", "world", urdf_f, os.path.join(work, "unit.csv"))
     check(r.returncode == 1 and "--columns" in r.stderr, "--columns with no column for the robot: %r" % r.stderr)
+    with open(os.path.join(work, "unit.csv")) as f:
+        unit = f.read().splitlines()
+    with open(os.path.join(work, "unit_t.csv"), "w") as f:  # with t: t alone is no output either
+        f.write("t," + unit[0] + "\n" + "".join("%d,%s\n" % (k, row) for k, row in enumerate(unit[1:]) if row))
+    r = run(vtdyn, "inverse", "--columns", "world", urdf_f, os.path.join(work, "unit_t.csv"))
+    check(r.returncode == 1 and "--columns" in r.stderr and not r.stdout,
+          "--columns with no column for the robot, t given: %r" % r.stderr)
     # info: the states columns on one line (a header to paste) and the frames' names
     r = run(vtdyn, "info", urdf)
     lines = r.stdout.splitlines()
