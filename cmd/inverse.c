@@ -844,6 +844,24 @@ static void progress(const run *x, int done, double *start, double *last)
 
 /* ---- the two forms ----------------------------------------------------------------------- */
 
+/* the batch's inputs and outputs for the chunk's first n rows: the run's arrays */
+static vt_batch_io chunk_io(const run *x, int n)
+{
+    vt_batch_io io = {0};
+    io.nrow = n;
+    io.q = x->q;
+    io.qd = x->qd;
+    io.qdd = x->qdd;
+    io.effort = x->effort;
+    io.reaction = x->reac;
+    io.reaction_joint = x->reac_link;
+    io.bearing = x->bearing;
+    io.limit_excess = x->excess;
+    io.effort_parts = x->parts;
+    io.status = x->status;
+    return io;
+}
+
 /* chunk row r's failing state (by the batch), at loc in the input, solved alone on the run's
  * data for its message */
 static int state_failure(run *x, int r, long long loc)
@@ -873,18 +891,7 @@ static int solve_chunk(run *x, int n, int set)
         if (x->blk[k].failed >= 0) f = x->blk[fk = k].failed;
     const double t1 = now();
     x->t_read += t1 - t0;
-    vt_batch_io io = {0};
-    io.nrow = f;
-    io.q = x->q;
-    io.qd = x->qd;
-    io.qdd = x->qdd;
-    io.effort = x->effort;
-    io.reaction = x->reac;
-    io.reaction_joint = x->reac_link;
-    io.bearing = x->bearing;
-    io.limit_excess = x->excess;
-    io.effort_parts = x->parts;
-    io.status = x->status;
+    vt_batch_io io = chunk_io(x, f);
     const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
     x->t_solve += now() - t1;
     if (st) { /* the first row whose status is a failure */
@@ -1104,18 +1111,7 @@ static int run_samples_motion(run *x)
         const double t0 = now();
         for (int r = 0; r < n; r++)
             if (fill_sample(x, r, x->ts[r0 + r])) return 1;
-        vt_batch_io io = {0};
-        io.nrow = n;
-        io.q = x->q;
-        io.qd = x->qd;
-        io.qdd = x->qdd;
-        io.effort = x->effort;
-        io.reaction = x->reac;
-        io.reaction_joint = x->reac_link;
-        io.bearing = x->bearing;
-        io.limit_excess = x->excess;
-        io.effort_parts = x->parts;
-        io.status = x->status;
+        vt_batch_io io = chunk_io(x, n);
         const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
         x->t_solve += now() - t0;
         if (st) {
