@@ -1,7 +1,8 @@
 /* The builder: the model's definitions as the caller adds them (vt_builder_add_body, _drive,
  * _cut_joint, _frame, _coupling), each validated and normalized when added (a refusal leaves the
  * builder as it was, with a message naming the element), with the vt_default_*_def values, the
- * builder's names and finds, and the inertia check. vt_builder_build (model/model.c) lays the
+ * builder's names and finds. The inertia check is model/inertia.c, payloads model/payload.c.
+ * vt_builder_build (model/model.c) lays the
  * definitions out as a model; nothing here calls model.c.
  *
  * A drive's spline time functions (model/functions.c: f, and f2, f3 of an orientation drive's
@@ -15,8 +16,8 @@
 #include <string.h>
 
 #include "model/builder.h"
+#include "model/inertia.h"
 #include "base/checked.h"
-#include "base/lapack.h"
 #include "base/scan.h"
 #include "base/status.h"
 #include "base/vec3.h"
@@ -199,48 +200,6 @@ static int normalize(double *a, int n)
     return vt_normalize(a, n) > 0.0;
 }
 
-/* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two, to the relative
- * tolerance reltol (vt_model_def.inertia_tol, by default VT_INERTIA_TOL) of its largest entry
- * (files such as URDF print inertias to a few digits: moments off the triangle inequality, or an
- * entry of −5e-20, by round-off; a genuinely bad inertia is off by far more, and a file off by
- * more than round-off is the caller's to accept with a larger reltol, which the messages name).
- * Zero is a point mass and allowed. Principal moments from LAPACK's dsyev, on J divided by its
- * largest entry: no overflow near DBL_MAX. */
-/* the tail of a refusal: the tolerance, and the option that relaxes it */
-#define TOL_HINT "the tolerance %g (vt_model_def.inertia_tol relaxes it)"
-
-vt_status vt_check_inertia(char *msg, const char *who, const double J[9], double reltol)
-{
-    double scale = 0.0;
-    for (int k = 0; k < 9; k++) scale = fabs(J[k]) > scale ? fabs(J[k]) : scale;
-    /* the rotational mass 4 GᵀJ'G has entries up to 12 times the largest (G's rows orthonormal
-     * for unit p): VT_INERTIA_MAX = 1e307 < DBL_MAX/16 keeps it finite; beyond, it cannot be used */
-    if (scale > VT_INERTIA_MAX)
-        return vt_fail(msg, VT_ERR_NONFINITE, "%s: inertia entry of magnitude %g beyond %g: its mass matrix would overflow",
-                       who, scale, VT_INERTIA_MAX);
-    if (scale == 0.0) return VT_OK;
-    /* checked on J/scale (entries in [−1, 1]): no difference, tolerance or moment overflows */
-    double a[9], w[3], work[16];
-    for (int k = 0; k < 9; k++) a[k] = J[k] / scale;
-    const double tol = reltol + VT_INERTIA_ABS_TOL / scale; /* the floor: a point mass written −5e-20 */
-    if (!(fabs(a[1] - a[3]) <= tol) || !(fabs(a[2] - a[6]) <= tol) || !(fabs(a[5] - a[7]) <= tol))
-        return vt_fail(msg, VT_ERR_INERTIA_ASYMMETRIC,
-                       "%s: inertia not symmetric (J12 %g J21 %g, J13 %g J31 %g, J23 %g J32 %g) beyond " TOL_HINT,
-                       who, J[3], J[1], J[6], J[2], J[7], J[5], reltol);
-    const int n = 3, lwork = 16;
-    int info = 0;
-    dsyev_("N", "L", &n, a, &n, w, work, &lwork, &info, 1, 1);
-    if (info != 0)
-        return vt_fail(msg, VT_ERR_LAPACK, "%s: dsyev info %d on the inertia matrix", who, info);
-    if (w[0] < -tol)
-        return vt_fail(msg, VT_ERR_INERTIA_NOT_PSD, "%s: principal moment %g < 0 by %.2g of the largest entry, beyond "
-                       TOL_HINT, who, w[0] * scale, -w[0], reltol);
-    if (w[0] + w[1] < w[2] - tol)
-        return vt_fail(msg, VT_ERR_INERTIA_TRIANGLE, "%s: principal moments %g + %g < %g by %.2g of the largest entry, "
-                       "beyond " TOL_HINT, who, w[0] * scale, w[1] * scale, w[2] * scale, w[2] - w[0] - w[1], reltol);
-    return VT_OK;
-}
-
 /* Grows a builder array to hold entry n (its capacity doubled, at most VT_COUNT_MAX entries; the
  * bytes checked); 0 on failure, the array as it was. */
 static int grow(void **arr, int *cap, int n, size_t size)
@@ -277,28 +236,6 @@ static vt_status validate_effects(char *msg, int id, const double *arm, const do
     return VT_OK;
 }
 
-/* an inertia the check accepted made symmetric: off-symmetric by its tolerance at most */
-static void symmetric_part(double J[9])
-{
-    for (int r = 0; r < 3; r++)
-        for (int c = r + 1; c < 3; c++) J[r + 3 * c] = J[c + 3 * r] = 0.5 * (J[r + 3 * c] + J[c + 3 * r]);
-}
-
-void vt_inertia_add(double J[9], double m, const double Jp[9], const double Q[9], const double d[3])
-{
-    const double dd = vt_dot3(d, d);
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) {
-            double s = 0.0;
-            if (!Q)
-                s = Jp[r + 3 * c];
-            else
-                for (int a = 0; a < 3; a++)
-                    for (int e = 0; e < 3; e++) s += Q[r + 3 * a] * Jp[a + 3 * e] * Q[c + 3 * e];
-            J[r + 3 * c] += s + m * ((r == c ? dd : 0.0) - d[r] * d[c]);
-        }
-}
-
 static vt_status validate_body(char *msg, int id, vt_body_def *d, double inertia_tol)
 {
     if ((int)d->joint < 0 || d->joint >= VT_JOINT_TYPE_COUNT)
@@ -319,7 +256,7 @@ static vt_status validate_body(char *msg, int id, vt_body_def *d, double inertia
     snprintf(who, sizeof who, "body %d", id);
     vt_status st = vt_check_inertia(msg, who, d->inertia, inertia_tol);
     if (st) return st;
-    symmetric_part(d->inertia);
+    vt_inertia_symmetric(d->inertia);
     const int uses_axis1 = d->joint != VT_JOINT_BASE && d->joint != VT_JOINT_SPHERICAL && d->joint != VT_JOINT_FREE;
     if (uses_axis1 && !normalize(d->axis1, 3))
         return vt_fail(msg, VT_ERR_AXIS_ZERO, "body %d: axis1 has zero length", id);
@@ -452,117 +389,6 @@ int vt_builder_find_frame(const vt_builder *b, const char *name)
     if (!b || !name) return VT_ERR_NULL;
     const int k = name[0] ? vt_names_find(&b->frame_index, b->frame_names, vt_name_in_array, name) : -1;
     return k < 0 ? VT_ERR_NOT_FOUND : k;
-}
-
-vt_payload_def vt_default_payload_def(void)
-{
-    vt_payload_def d;
-    memset(&d, 0, sizeof d);
-    d.body = 1;
-    return d;
-}
-
-/* p − c into p when write, else only whether it is finite; 0 when it is not */
-static int shifted(double p[3], const double c[3], int write)
-{
-    double s[3];
-    for (int e = 0; e < 3; e++) s[e] = p[e] - c[e];
-    if (!vt_all_finite(s, 3)) return 0;
-    if (write) vt_copy3(p, s);
-    return 1;
-}
-
-/* Body i's centre of mass moved by c (its axes): a body's points are stored from its centre of
- * mass, so every point on it — its joint point, its children's, its frames', its point drives'
- * and its cut joints' — becomes p − c and stays where it is on the body. write 0: only whether
- * every shifted point is finite (nothing written), so that a refusal changes nothing. */
-static int shift_points(vt_builder *b, int i, const double c[3], int write)
-{
-    int ok = shifted(b->bodies[i - 1].joint_child, c, write);
-    for (int k = i; k < b->n; k++) /* children come after their parent */
-        if (b->bodies[k].parent == i) ok = ok && shifted(b->bodies[k].joint_parent, c, write);
-    for (int k = 0; k < b->nframe; k++)
-        if (b->frames[k].body == i) ok = ok && shifted(b->frames[k].point, c, write);
-    for (int k = 0; k < b->ndrive; k++)
-        if (b->drives[k].type == VT_DRIVE_POINT && b->drives[k].body == i)
-            ok = ok && shifted(b->drives[k].point, c, write);
-    for (int k = 0; k < b->ncut; k++) {
-        if (b->cuts[k].body_a == i) ok = ok && shifted(b->cuts[k].point_a, c, write);
-        if (b->cuts[k].body_b == i) ok = ok && shifted(b->cuts[k].point_b, c, write);
-    }
-    return ok;
-}
-
-/* vt_builder_add_payload (merge 1: the body's and the payload's mass properties combined, as the
- * URDF loader merges a fixed link) and vt_builder_set_mass (merge 0: the def's replace the body's). */
-static int mass_change(vt_builder *b, const vt_payload_def *def, int merge)
-{
-    const char *what = merge ? "payload" : "mass properties";
-    if (!b) return VT_ERR_NULL;
-    if (!def) return vt_fail(b->message, VT_ERR_NULL, "%s: definition is NULL", what);
-    if (!isfinite(def->mass) || !vt_all_finite(def->point, 3) || !vt_all_finite(def->inertia, 9))
-        return vt_fail(b->message, VT_ERR_NONFINITE, "%s: NaN or Inf in its definition", what);
-    if (!(def->mass >= 0.0)) return vt_fail(b->message, VT_ERR_MASS, "%s: mass %g kg is negative", what, def->mass);
-    int i = def->body;
-    double p[3], Q[9];
-    const double *axes = NULL; /* the def's axes onto the body's: NULL, the same */
-    vt_copy3(p, def->point);
-    if (def->frame) {
-        const int f = vt_builder_find_frame(b, def->frame);
-        if (f < 0) return vt_fail(b->message, VT_ERR_NOT_FOUND, "%s: no frame \"%.64s\" added so far", what, def->frame);
-        const vt_frame_def *fr = &b->frames[f];
-        if (fr->body == 0)
-            return vt_fail(b->message, VT_ERR_BAD_INDEX,
-                           "%s: frame \"%.64s\" is on the ground, which has no mass to change", what, def->frame);
-        i = fr->body;
-        vt_euler_A(Q, fr->orientation);
-        vt_mulmat3(p, Q, def->point);
-        for (int e = 0; e < 3; e++) p[e] += fr->point[e];
-        axes = Q;
-    } else if (i < 1 || i > b->n) {
-        return vt_fail(b->message, VT_ERR_BAD_INDEX, "%s: body %d is not a body added so far (1..%d)", what, i, b->n);
-    }
-    char who[64];
-    snprintf(who, sizeof who, "%s on body %d", what, i);
-    vt_status st = vt_check_inertia(b->message, who, def->inertia, b->def.inertia_tol);
-    if (st) return st;
-    vt_body_def *body = &b->bodies[i - 1];
-    const double mass = merge ? body->mass + def->mass : def->mass;
-    double c[3], J[9] = {0.0}, d[3];
-    if (merge) { /* the new centre of mass c from the old one (0), then both parts about it */
-        for (int e = 0; e < 3; e++) c[e] = mass > 0.0 ? def->mass * p[e] / mass : 0.0;
-        for (int e = 0; e < 3; e++) d[e] = -c[e];
-        vt_inertia_add(J, body->mass, body->inertia, NULL, d);
-        for (int e = 0; e < 3; e++) d[e] = p[e] - c[e];
-        vt_inertia_add(J, def->mass, def->inertia, axes, d);
-    } else {
-        vt_copy3(c, p);
-        d[0] = d[1] = d[2] = 0.0;
-        vt_inertia_add(J, 0.0, def->inertia, axes, d);
-    }
-    if (!isfinite(mass) || !vt_all_finite(J, 9) || !vt_all_finite(c, 3))
-        return vt_fail(b->message, VT_ERR_NONFINITE, "%s on body %d: the body's mass or inertia overflows", what, i);
-    snprintf(who, sizeof who, "body %d with the %s", i, what);
-    if ((st = vt_check_inertia(b->message, who, J, b->def.inertia_tol))) return st;
-    if (!shift_points(b, i, c, 0))
-        return vt_fail(b->message, VT_ERR_NONFINITE,
-                       "%s on body %d: a point on the body overflows as its centre of mass moves", what, i);
-    shift_points(b, i, c, 1);
-    symmetric_part(J);
-    body->mass = mass;
-    memcpy(body->inertia, J, sizeof J);
-    b->message[0] = '\0';
-    return i;
-}
-
-int vt_builder_add_payload(vt_builder *b, const vt_payload_def *def)
-{
-    return mass_change(b, def, 1);
-}
-
-int vt_builder_set_mass(vt_builder *b, const vt_payload_def *def)
-{
-    return mass_change(b, def, 0);
 }
 
 /* the frame of that name added so far into *body and point, or a status with the message */

@@ -49,18 +49,6 @@ static inline int vt_joint_nv(int joint)
     return nv[joint];
 }
 
-/* A body's inertia J (3x3 column-major) as the builder accepts it: symmetric, positive
- * semi-definite and within the triangle inequality to reltol (vt_model_def.inertia_tol) of its
- * largest entry (builder.c); the message starts with who ("body 3", a URDF link) and names the
- * option. */
-vt_status vt_check_inertia(char *msg, const char *who, const double J[9], double reltol);
-
-/* J += Q Jp Qᵀ + m (|d|² 1 − d dᵀ): a rigid part of mass m and inertia Jp (about its centre of
- * mass, in axes that Q maps to J's; Q NULL: J's axes) whose centre of mass is at d from the point
- * J is about, in J's axes (the parallel axes): how a body's parts are merged, the URDF loader's
- * fixed links (model/urdf.c) and a payload (vt_builder_add_payload). */
-void vt_inertia_add(double J[9], double m, const double Jp[9], const double Q[9], const double d[3]);
-
 /* Index of name among the n names of VT_NAME_MAX bytes each at names, or VT_ERR_NOT_FOUND (also
  * for NULL or ""). */
 int vt_find_name(const char *names, int n, const char *name);

@@ -57,6 +57,7 @@
 #include <libxml/xmlerror.h>
 
 #include "model/urdf.h"
+#include "model/inertia.h"
 #include "model/builder.h"
 #include "model/names.h"
 #include "model/xml.h"
