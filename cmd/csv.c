@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "message.h"
+#include "number_text.h"
 
 void table_free(table *t)
 {
@@ -127,23 +128,29 @@ int csv_parse_row(const table *t, char *s, double *out, const char *path, long l
     int c = 0;
     for (char *p = s;; c++) {
         char *comma = strchr(p, ',');
-        if (comma) *comma = '\0';
         if (c >= t->ncol) {
             snprintf(msg, ROW_MESSAGE, "%s:%lld: more cells than the %d columns of the header", path, line, t->ncol);
             return 1;
         }
-        char *cell = trim(p), *end = NULL;
-        const size_t len = strlen(cell);
-        if (len >= 2 && cell[0] == '"' && cell[len - 1] == '"') { /* a quoted number */
-            cell[len - 1] = '\0';
+        char *cell = p, *e = comma ? comma : p + strlen(p); /* the cell without the blanks around it */
+        while (*cell == ' ' || *cell == '\t') cell++;
+        while (e > cell && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) e--;
+        if (e - cell >= 2 && cell[0] == '"' && e[-1] == '"') { /* a quoted number */
             cell++;
+            e--;
         }
-        errno = 0;
-        out[c] = strtod(cell, &end);
-        if (!*cell || *end || (errno == ERANGE && fabs(out[c]) == HUGE_VAL) || !isfinite(out[c])) {
-            snprintf(msg, ROW_MESSAGE, "%s:%lld: column '%.100s': '%.60s%s' is not a finite number", path, line,
-                     t->name[c], cell, strlen(cell) > 60 ? "..." : "");
-            return 1;
+        if (!number_parse(cell, (size_t)(e - cell), &out[c]) || !isfinite(out[c])) {
+            /* what <charconv> does not read (a '+', a hexadecimal number) strtod may; its
+             * verdict stands, and a cell neither reads, or that overflows, is refused */
+            *e = '\0';
+            char *end = NULL;
+            errno = 0;
+            out[c] = strtod(cell, &end);
+            if (!*cell || *end || (errno == ERANGE && fabs(out[c]) == HUGE_VAL) || !isfinite(out[c])) {
+                snprintf(msg, ROW_MESSAGE, "%s:%lld: column '%.100s': '%.60s%s' is not a finite number", path,
+                         line, t->name[c], cell, strlen(cell) > 60 ? "..." : "");
+                return 1;
+            }
         }
         if (!comma) break;
         p = comma + 1;

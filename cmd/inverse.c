@@ -30,6 +30,7 @@
 #include "input.h"
 #include "message.h"
 #include "npy.h"
+#include "number_text.h"
 #include "parallel.h"
 #include "robot.h"
 #include "vtdyn.h"
@@ -332,13 +333,10 @@ static int check_columns(const run *x, int floating)
     return 0;
 }
 
-/* v in the fewest significant digits that read back as v (at most 17), into buf */
+/* v in the fewest significant digits that read back as v, into buf */
 static const char *shortest(char buf[32], double v)
 {
-    for (int digits = 1; digits <= 17; digits++) {
-        snprintf(buf, 32, "%.*g", digits, v);
-        if (strtod(buf, NULL) == v) break;
-    }
+    buf[number_print(buf, v, 0)] = '\0';
     return buf;
 }
 
@@ -709,7 +707,7 @@ static void format_block(void *ctx, int first, int end, int k)
 {
     run *x = ctx;
     block_state *b = &x->blk[k];
-    const size_t need = (size_t)(end - first) * (26 * (size_t)x->nout + 2) + 1;
+    const size_t need = (size_t)(end - first) * ((NUMBER_TEXT_MAX + 1) * (size_t)x->nout + 1);
     const int o = x->oset;
     b->len[o] = 0;
     if (need > b->cap[o]) {
@@ -727,7 +725,7 @@ static void format_block(void *ctx, int first, int end, int k)
     for (int r = first; r < end; r++) {
         gather(x, r, b->v);
         for (int c = 0; c < x->nout; c++) {
-            p += snprintf(p, 26, "%.*g", prec, b->v[c]);
+            p += number_print(p, b->v[c], prec);
             *p++ = c + 1 < x->nout ? ',' : '\n';
         }
     }

@@ -23,7 +23,7 @@ typedef struct {
     int floating;       /* --floating: the root link floats */
     int threads;        /* -j: threads, 0 every CPU the process may use */
     unsigned groups;    /* --columns: COLS_* */
-    int precision;      /* --precision: a CSV number's significant digits, 1 to 17 */
+    int precision;      /* --precision: a CSV number's significant digits, 1 to 17; 0: the fewest that read back */
     int precision_given;
     double quat_tol;    /* --normalize-quaternions: a floating root's |norm − 1| normalised */
     int format;         /* --format: FMT_CSV or FMT_NPY (cmd/input.h), -1 by -o's name */

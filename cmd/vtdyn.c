@@ -134,8 +134,9 @@ static const char usage_options[] =
     "                   J_effort_damping, J_effort_friction: J_effort's rigid-body part and the\n"
     "                   parts its joint's own effects take);\n"
     "                   default effort,world,link\n"
-    "  --precision P    a CSV number's significant digits, 1 to 17; default 17, which reads back\n"
-    "                   as the double written (a .npy output holds the doubles themselves)\n"
+    "  --precision P    a CSV number's significant digits, 1 to 17 (printf's %.Pg); default the\n"
+    "                   fewest that read back as the double written (a .npy output holds the\n"
+    "                   doubles themselves)\n"
     "  --normalize-quaternions TOL\n"
     "                   a floating root's quaternion whose norm is within TOL of 1 is normalised,\n"
     "                   further off the row is refused; 0 <= TOL < 1, default 1e-6\n"
@@ -302,8 +303,8 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
         case 4: {
             const long n = strtol(v, &end, 10);
             if (end == v || *end || n < 1 || n > 17)
-                return cmd_fail("--precision '%s': significant digits, 1 to 17 (17 reads back as the double "
-                                "written)",
+                return cmd_fail("--precision '%s': significant digits, 1 to 17 (without it, the fewest "
+                                "that read back as the double written)",
                                 v);
             o->precision = (int)n;
             o->precision_given = 1;
@@ -357,7 +358,7 @@ int main(int argc, char **argv)
     }
     const int is_info = argc >= 2 && strcmp(argv[1], "info") == 0;
     const int is_inverse = argc >= 2 && strcmp(argv[1], "inverse") == 0;
-    inverse_options o = {.floating = 0, .threads = 0, .groups = COLS_EFFORT | COLS_WORLD | COLS_LINK, .precision = 17,
+    inverse_options o = {.floating = 0, .threads = 0, .groups = COLS_EFFORT | COLS_WORLD | COLS_LINK, .precision = 0,
                          .quat_tol = 1e-6, .format = -1, .inertia_tol = -1.0};
     const char *pos[3] = {NULL, NULL, NULL}, *outpath = NULL;
     int npos = 0;

@@ -556,7 +556,7 @@ def csv_table(text):
 
 
 def same_as_csv(npy_path, csv_text):
-    """a .npy output holds exactly the doubles the CSV output's %.17g cells read back as"""
+    """a .npy output holds exactly the doubles the CSV output's cells read back as"""
     names, rows, _, _ = npy_read(npy_path)
     cnames, crows = csv_table(csv_text)
     return names == cnames and len(rows) == len(crows) and all(
@@ -683,7 +683,7 @@ FREE_COLS = "x y z qw qx qy qz vx vy vz wx wy wz ax ay az alx aly alz".split()
 
 def npy_files(vtdyn, urdf, states, work, check):
     """NumPy files in and out: npy->npy, csv->npy, npy->csv against csv->csv (the .npy doubles
-    bitwise those the CSV's %.17g reads back as), samples from .npy, the header (format 1.0, 2.0
+    bitwise those the CSV's cells read back as), samples from .npy, the header (format 1.0, 2.0
     for a wide one, 3.0 for a name that is not ASCII; padded to 64 bytes; the row count rewritten
     after a CSV input), numpy.load when numpy is there, and every other layout refused, named"""
     ref = run(vtdyn, "inverse", urdf, states)
@@ -834,6 +834,51 @@ def npy_files(vtdyn, urdf, states, work, check):
                        (["-o", os.path.join(work, "x.npy"), "--precision", "5"], "--precision")):
         r = run(vtdyn, "inverse", urdf, states, *args)
         check(r.returncode == 1 and what in r.stderr and r.stdout == "", "%s refused: %r" % (" ".join(args), r.stderr))
+
+
+def significant(cell):
+    """the significant digits of a number's text ('-1.250e+03' -> '125')"""
+    m = cell.lstrip("+-").lower().split("e")[0].replace(".", "")
+    return m.lstrip("0").rstrip("0") or "0"
+
+
+def number_text(vtdyn, urdf, states, work, check):
+    """cells as C's strtod reads them, the output's cells the shortest that read back (against
+    Python's repr, David Gay's shortest), --precision P as printf's %.Pg (Python's %-format)"""
+    lines = open(states).read().splitlines()
+    plain = run(vtdyn, "inverse", urdf, states)
+    names, rows = csv_table(plain.stdout)
+    cells = [c for row in rows for c in row]
+    check(plain.returncode == 0 and all(significant(c) == significant(repr(float(c))) for c in cells),
+          "every output cell has the fewest digits that read back: %s" % next(
+              (c for c in cells if significant(c) != significant(repr(float(c)))), plain.stderr))
+    for p in (1, 6, 12, 17):
+        r = run(vtdyn, "inverse", "--precision", str(p), urdf, states)
+        n, prows = csv_table(r.stdout) if r.returncode == 0 else ([], [])
+        check(r.returncode == 0 and n == names and len(prows) == len(rows)
+              and all(c == "%.*g" % (p, float(fc)) for row, fr in zip(prows, rows) for c, fc in zip(row, fr)),
+              "--precision %d: every number as %%.%dg: %s" % (p, p, r.stderr))
+    # the same doubles in other spellings strtod reads: '+', blanks, a hexadecimal float, an
+    # exponent, a point without digits after it
+    values = [[float(c) for c in ln.split(",")] for ln in lines[1:4]]
+    spell = (lambda v: repr(v) if repr(v)[0] == "-" else "+" + repr(v), lambda v: " %r\t" % v, lambda v: v.hex(),
+             lambda v: "%.17e" % v, lambda v: "%.0f." % v if v == int(v) else repr(v))
+    other = os.path.join(work, "spelled.csv")
+    with open(other, "w") as fh:
+        fh.write(lines[0] + "\n")
+        for k, row in enumerate(values):
+            fh.write(",".join(spell[(k + c) % len(spell)](v) for c, v in enumerate(row)) + "\n")
+    r = run(vtdyn, "inverse", urdf, other)
+    check(r.returncode == 0 and r.stdout.splitlines() == plain.stdout.splitlines()[:4],
+          "'+', blanks, hexadecimal and exponents read as the same doubles: %r" % r.stderr)
+    for cell in ("1e400", "-1e400", "1e", "--1", "0x", "nan", "inf", "1.5.2", "1x", "+", "."):
+        with open(other, "w") as fh:
+            row = [repr(v) for v in values[0]]
+            row[2] = cell
+            fh.write(lines[0] + "\n" + ",".join(row) + "\n")
+        r = run(vtdyn, "inverse", urdf, other)
+        check(r.returncode == 1 and "spelled.csv:2: column '%s'" % lines[0].split(",")[2] in r.stderr
+              and "is not a finite number" in r.stderr, "the cell %r refused, named: %r" % (cell, r.stderr))
 
 
 def options(vtdyn, urdf, states, work, check):
@@ -1257,6 +1302,7 @@ def main():
     chunks_threads(vtdyn, urdf, work, check)
     npy_files(vtdyn, urdf, states, work, check)
     options(vtdyn, urdf, states, work, check)
+    number_text(vtdyn, urdf, states, work, check)
     payloads(vtdyn, urdf, states, work, check)
     joint_effects(vtdyn, urdf, states, work, check)
     inertia_tolerance(vtdyn, urdf, states, work, check)
