@@ -2,8 +2,8 @@
  * the URDF loaded as the command loads it (recursive layout, mimic joints independent, the root
  * fixed), the rows of a .npy file of states written by bench/command_states.py laid out as q, q̇,
  * q̈ arrays, and vt_batch_inverse_dynamics_motion on all of them with the outputs the command
- * writes by default (every rate's effort, the reactions in world and body axes), on THREADS
- * threads. Prints the median over ROUNDS calls of the time per row, µs.
+ * writes by default (every rate's effort, the reactions in world axes and in the joints' frames),
+ * on THREADS threads. Prints the median over ROUNDS calls of the time per row, µs.
  *
  *   command_lib URDF STATES.npy THREADS [ROUNDS]
  */
@@ -108,7 +108,7 @@ int main(int argc, char **argv)
     io.qdd = qdd;
     io.effort = effort;
     io.reaction = reac;
-    io.reaction_body = reacb;
+    io.reaction_joint = reacb;
     io.status = status;
     double t[201];
     const int n = rounds < 201 ? rounds : 201;

@@ -511,8 +511,8 @@ VT_API void vt_batch_free(vt_batch *batch);
 /// The threads a call uses (the def's, or the CPUs counted when it asked for 0).
 VT_API int vt_batch_threads(const vt_batch *batch);
 /// vt_inverse_dynamics_motion() on every row of io (vt_batch_io: the layout), the rows shared among
-/// the batch's threads in contiguous blocks (threads created for the call and joined before it
-/// returns; no allocation per row). Each row is solved from its own inputs alone (the data's applied
+/// the batch's threads in blocks of 16 taken in turn, so that a thread the machine slows takes
+/// fewer (threads created for the call and joined before it returns; no allocation). Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
 /// whatever the number of threads. A failing row's outputs are not written; its status goes to
 /// io->status, and the other rows are solved (unless stop_on_error). Returns VT_OK when every row

@@ -1,11 +1,13 @@
 /* Batches: vt_inverse_dynamics_motion() on many states, the rows shared among threads.
  *
- * Each thread owns one data, made once with the batch; a call creates its threads, gives each a
- * contiguous block of rows (thread k: rows ⌊k n/T⌋ … ⌊(k+1) n/T⌋ − 1, the caller's thread the
- * first block) and joins them. A row is solved from its own inputs alone — q, q̇, q̈ and qfrc
- * copied into the thread's data, xfrc zero — so its results do not depend on the rows solved
- * before it on that data, nor on the number of threads: bitwise those of the single call. Each
- * thread keeps its first failure; the call reports the lowest row among them.
+ * Each thread owns one data, made once with the batch; a call creates its threads (the caller's
+ * one of them) and joins them. The threads take the rows in blocks of BATCH_BLOCK, the next block
+ * from a shared counter, so that a thread slowed by the machine's other work takes fewer rows. A
+ * row is solved from its own inputs alone — q, q̇, q̈ and qfrc copied into the thread's data, xfrc
+ * zero — so its results do not depend on the rows solved before it on that data, nor on which
+ * thread solved it or how many there are: bitwise those of the single call. A thread takes its
+ * blocks in increasing order, so its first failure is its lowest; the call reports the lowest row
+ * among the threads'.
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"
@@ -14,31 +16,40 @@
 #include <pthread.h>
 #include <sched.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "base/status.h"
 
+/* the rows a thread takes at a time: enough that the shared counter is touched seldom (a row
+ * takes 0.1 µs and more), few enough that the threads end together */
+#define BATCH_BLOCK 16
+
+/* one thread's share of a call */
+typedef struct share {
+    struct vt_batch *batch;
+    const vt_batch_io *io;
+    vt_data *d;
+    atomic_llong *next;  /* the next block's first row, shared (64 bits: it passes nrow) */
+    atomic_int *stop;    /* set by a failing row when the batch stops on errors */
+    int failed;          /* the thread's first failing row, or −1 */
+    vt_status status;    /* its status */
+    char message[VT_MESSAGE_SIZE]; /* its message (the data's is overwritten by the rows after) */
+} share;
+
 struct vt_batch {
     const vt_model *model;
     int threads;
     int stop_on_error;
     vt_data **data;      /* one per thread */
+    struct share *shares; /* the threads' shares of a call, their ids and whether each started */
+    pthread_t *tid;
+    int *started;
     int failed_row;      /* the last call's failing row of lowest index, or −1 */
     char message[VT_MESSAGE_SIZE];
 };
-
-/* one thread's share of a call */
-typedef struct {
-    vt_batch *batch;
-    const vt_batch_io *io;
-    vt_data *d;
-    int first, end;      /* rows [first, end) */
-    atomic_int *stop;    /* set by a failing row when the batch stops on errors */
-    int failed;          /* the block's first failing row, or −1 */
-    vt_status status;    /* its status */
-} share;
 
 vt_batch_def vt_default_batch_def(void)
 {
@@ -63,6 +74,9 @@ void vt_batch_free(vt_batch *batch)
     if (batch->data)
         for (int k = 0; k < batch->threads; k++) vt_data_free(batch->data[k]);
     free(batch->data);
+    free(batch->shares);
+    free(batch->tid);
+    free(batch->started);
     free(batch);
 }
 
@@ -79,8 +93,11 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     b->stop_on_error = dd.stop_on_error;
     b->failed_row = -1;
     b->data = calloc((size_t)b->threads, sizeof *b->data);
-    if (!b->data) {
-        free(b);
+    b->shares = malloc((size_t)b->threads * sizeof *b->shares);
+    b->tid = malloc((size_t)b->threads * sizeof *b->tid);
+    b->started = malloc((size_t)b->threads * sizeof *b->started);
+    if (!b->data || !b->shares || !b->tid || !b->started) {
+        vt_batch_free(b);
         return VT_ERR_NO_MEMORY;
     }
     for (int k = 0; k < b->threads; k++) {
@@ -160,7 +177,8 @@ static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io,
         memcpy(p + nv, d->effort_damping, nv * sizeof(double));
         memcpy(p + 2 * nv, d->effort_friction, nv * sizeof(double));
     }
-    if (io->reaction_joint || io->bearing) vt_joint_frames(m, d); /* on demand: the instants leave them */
+    if (io->reaction_joint || io->bearing) /* on demand: the instants leave them */
+        vt_joint_frames(m, d, io->bearing != NULL);
     if (io->reaction_joint)
         wrenches(out_row(io->reaction_joint, io->reaction_joint_stride, 6 * nb, r), d->jnt_force_joint,
                  d->jnt_moment_joint, m->nbody);
@@ -171,21 +189,28 @@ static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io,
     return VT_OK;
 }
 
-/* a thread's block of rows */
+/* a thread's rows: block after block from the shared counter until none is left */
 static void *run_share(void *arg)
 {
     share *s = arg;
     const vt_batch *b = s->batch;
-    for (int r = s->first; r < s->end; r++) {
-        vt_status st = VT_ERR_SKIPPED;
-        if (!b->stop_on_error || !atomic_load_explicit(s->stop, memory_order_relaxed))
-            st = solve_row(b->model, s->d, s->io, r);
-        if (st && st != VT_ERR_SKIPPED && s->failed < 0) {
-            s->failed = r;
-            s->status = st;
-            if (b->stop_on_error) atomic_store_explicit(s->stop, 1, memory_order_relaxed);
+    const long long n = s->io->nrow;
+    for (;;) {
+        const long long first = atomic_fetch_add_explicit(s->next, BATCH_BLOCK, memory_order_relaxed);
+        if (first >= n) break;
+        const int end = (int)(n - first < BATCH_BLOCK ? n : first + BATCH_BLOCK);
+        for (int r = (int)first; r < end; r++) {
+            vt_status st = VT_ERR_SKIPPED;
+            if (!b->stop_on_error || !atomic_load_explicit(s->stop, memory_order_relaxed))
+                st = solve_row(b->model, s->d, s->io, r);
+            if (st && st != VT_ERR_SKIPPED && s->failed < 0) {
+                s->failed = r;
+                s->status = st;
+                snprintf(s->message, sizeof s->message, "%s", s->d->message);
+                if (b->stop_on_error) atomic_store_explicit(s->stop, 1, memory_order_relaxed);
+            }
+            if (s->io->status) s->io->status[r] = st;
         }
-        if (s->io->status) s->io->status[r] = st;
     }
     return NULL;
 }
@@ -233,28 +258,28 @@ vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *i
     vt_status st = check_io(batch, io);
     if (st) return st;
     const int n = io->nrow, T = batch->threads < n ? batch->threads : (n > 0 ? n : 1);
-    share shares[T > 0 ? T : 1];
-    pthread_t tid[T > 0 ? T : 1];
-    int started[T > 0 ? T : 1];
+    share *shares = batch->shares;
+    pthread_t *tid = batch->tid;
+    int *started = batch->started;
     atomic_int stop;
+    atomic_llong next;
     atomic_init(&stop, 0);
+    atomic_init(&next, 0);
     for (int k = 0; k < T; k++) {
-        shares[k] = (share){.batch = batch, .io = io, .d = batch->data[k], .stop = &stop, .failed = -1,
-                            .first = (int)((long long)k * n / T), .end = (int)((long long)(k + 1) * n / T)};
+        shares[k] = (share){.batch = batch, .io = io, .d = batch->data[k], .next = &next, .stop = &stop,
+                            .failed = -1};
         started[k] = 0;
     }
-    /* the other blocks on threads of their own; a thread that cannot be created leaves its block
-     * to the caller's thread */
+    /* the other threads; one that cannot be created leaves the rows to those that run (the
+     * caller's at least) */
     for (int k = 1; k < T; k++) started[k] = pthread_create(&tid[k], NULL, run_share, &shares[k]) == 0;
     run_share(&shares[0]);
-    for (int k = 1; k < T; k++) {
+    for (int k = 1; k < T; k++)
         if (started[k]) pthread_join(tid[k], NULL);
-        else run_share(&shares[k]);
-    }
-    for (int k = 0; k < T; k++) { /* the blocks are in row order: the first failure is the lowest */
-        if (shares[k].failed < 0) continue;
-        batch->failed_row = shares[k].failed;
-        return vt_fail(batch->message, shares[k].status, "row %d: %s", shares[k].failed, shares[k].d->message);
-    }
-    return VT_OK;
+    int low = -1; /* the thread whose first failure is the lowest row */
+    for (int k = 0; k < T; k++)
+        if (shares[k].failed >= 0 && (low < 0 || shares[k].failed < shares[low].failed)) low = k;
+    if (low < 0) return VT_OK;
+    batch->failed_row = shares[low].failed;
+    return vt_fail(batch->message, shares[low].status, "row %d: %s", shares[low].failed, shares[low].message);
 }

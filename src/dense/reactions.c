@@ -260,21 +260,25 @@ static double excess(double x, double lo, double hi)
     return x > hi ? x - hi : x < lo ? x - lo : 0.0;
 }
 
-void vt_joint_frames(const vt_model *m, vt_data *d)
+void vt_joint_frames(const vt_model *m, vt_data *d, int bearing)
 {
     for (int i = 1; i <= m->nbody; i++) {
-        const double *C = m->jnt_frame_A + 9 * i, *a = m->jnt_frame_axis + 3 * i;
+        const double *C = m->jnt_frame_A + 9 * i;
         double fj[3], mj[3];
         vt_mulmat3t(fj, C, d->jnt_force_body + 3 * i);
         vt_mulmat3t(mj, C, d->jnt_moment_body + 3 * i);
+        vt_copy3(d->jnt_force_joint + 3 * i, fj);
+        vt_copy3(d->jnt_moment_joint + 3 * i, mj);
+    }
+    if (!bearing) return;
+    for (int i = 1; i <= m->nbody; i++) {
+        const double *a = m->jnt_frame_axis + 3 * i, *fj = d->jnt_force_joint + 3 * i, *mj = d->jnt_moment_joint + 3 * i;
         const double fa = vt_dot3(a, fj), ma = vt_dot3(a, mj);
         double *b = d->jnt_bearing + 4 * i;
         b[0] = fa;
         b[1] = vt_perp_norm(fj, a, fa);
         b[2] = ma;
         b[3] = vt_perp_norm(mj, a, ma);
-        vt_copy3(d->jnt_force_joint + 3 * i, fj);
-        vt_copy3(d->jnt_moment_joint + 3 * i, mj);
     }
 }
 
@@ -730,6 +734,6 @@ vt_status vt_reactions_joint_frame(const vt_model *m, vt_data *d)
 {
     vt_status st = vt_check_pair(m, d, "vt_reactions_joint_frame");
     if (st) return st;
-    vt_joint_frames(m, d);
+    vt_joint_frames(m, d, 1);
     return VT_OK;
 }

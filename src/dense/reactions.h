@@ -72,9 +72,10 @@ static inline double vt_perp_norm(const double r[3], const double a[3], double a
  *   f_J = C^T f_b,  n_J = C^T n_b,
  * and its bearing split along the frame's unit axis a (0: none):
  *   a · f_J,  |f_J − (a · f_J) a|,  a · n_J,  |n_J − (a · n_J) a|.
- * on demand, after an instant (vt_reactions_joint_frame, the batch where its io asks for them):
- * the instants' passes carry none of its cost */
-void vt_joint_frames(const vt_model *m, vt_data *d);
+ * (bearing 0: the frames' reactions alone, jnt_bearing left as it was); on demand, after an instant
+ * (vt_reactions_joint_frame, the batch where its io asks for them): the instants' passes carry
+ * none of its cost */
+void vt_joint_frames(const vt_model *m, vt_data *d, int bearing);
 
 /* joint i's total wrench (reaction plus actuation, about P_i) into the data: force f and moment mo
  * in global axes, fb and mb the same in body i's */
