@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The command's speed against the library's (not a timed test): ROWS random UR5 states
-# (bench/command_states.py: the same numbers as CSV and as .npy), `vtdyn inverse` timed on
+# The command's speed against the library's (not a timed test): ROWS random states of UR5 (its
+# base fixed) and of Solo-12 (a quadruped, floating: --floating) (bench/command_states.py: the same numbers as CSV and as .npy), `vtdyn inverse` timed on
 # csv->csv, npy->npy, npy to /dev/null (the command without the file system's writing), csv->npy
 # and npy->csv with -j 1 and -j 2 (the median of ROUNDS runs, the process's wall time, the
 # output's bytes checked equal for both), beside the library's own time per row on the same
@@ -11,8 +11,8 @@
 #
 #   bench/bench_command.sh [BUILD_DIR] [ROWS] [ROUNDS]     (build, 100000, 5)
 #
-# UR5's URDF: VT_BENCH_UR5, else example-robot-data in the virtual environment of the suite
-# 'peers' (tests/peers/setup_venv.sh installs it; exit 77 when it cannot).
+# The URDF files: VT_BENCH_UR5 and VT_BENCH_SOLO12, else example-robot-data's in the virtual
+# environment of the suite 'peers' (tests/peers/setup_venv.sh installs it; exit 77 when it cannot).
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$src/build}" && pwd)
@@ -21,64 +21,78 @@ rounds=${3:-5}
 vtdyn=$build/cmd/vtdyn
 [ -x "$vtdyn" ] || { echo "bench_command.sh: no $vtdyn (build with URDF loading first)"; exit 1; }
 
-urdf=${VT_BENCH_UR5:-}
-if [ -z "$urdf" ]; then
-    py=$(bash "$src/tests/peers/setup_venv.sh") || { echo "bench_command.sh: no example-robot-data (set VT_BENCH_UR5)"; exit 77; }
-    urdf=$("$py" - <<'PYEOF'
+ur5=${VT_BENCH_UR5:-}
+solo=${VT_BENCH_SOLO12:-}
+if [ -z "$ur5" ] || [ -z "$solo" ]; then
+    py=$(bash "$src/tests/peers/setup_venv.sh") || { echo "bench_command.sh: no example-robot-data (set VT_BENCH_UR5 and VT_BENCH_SOLO12)"; exit 77; }
+    robot() {
+        "$py" - "$1" <<'PYEOF'
+import sys
 from importlib.metadata import distribution
 d = distribution("example-robot-data")
-print(next(str(d.locate_file(f)) for f in d.files if str(f).endswith("ur_description/urdf/ur5_robot.urdf")))
+print(next(str(d.locate_file(f)) for f in d.files if str(f).endswith(sys.argv[1])))
 PYEOF
-)
+    }
+    [ -n "$ur5" ] || ur5=$(robot ur_description/urdf/ur5_robot.urdf)
+    [ -n "$solo" ] || solo=$(robot solo_description/robots/solo12.urdf)
 fi
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/vtdyn-bench-command.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-python3 "$src/bench/command_states.py" "$vtdyn" "$urdf" "$rows" "$tmp/states.csv" "$tmp/states.npy"
-${CC:-cc} -O2 -std=c11 -I"$src/include" -I"$build/include" "$src/bench/command_lib.c" -L"$build" -lvtdyn \
+${CC:-cc} -O2 -std=c11 -I"$src/include" -I"$build/include" "$src/bench/command_lib.c" -L"$build" -lvtdyn -lm \
     -Wl,-rpath,"$build" -o "$tmp/command_lib"
 
 echo "date: $(date -u +%Y-%m-%d)"
 echo "cpu: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) CPUs the process may use"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "commit: $(git -C "$src" rev-parse --short HEAD 2>/dev/null || echo '?')"
-echo "command: bench/bench_command.sh $build $rows $rounds (UR5, $(du -h "$tmp/states.csv" | cut -f1) CSV, $(du -h "$tmp/states.npy" | cut -f1) .npy)"
+echo "command: bench/bench_command.sh $build $rows $rounds"
 
 median() { sort -g | awk '{ a[NR] = $1 } END { print a[int((NR + 1) / 2)] }'; }
 
-declare -A lib
-for j in 1 2; do
-    lib[$j]=$(for r in $(seq "$rounds"); do "$tmp/command_lib" "$urdf" "$tmp/states.npy" "$j" 3; done | median)
-    printf "library, -j %d: %.3f us/row (vt_batch_inverse_dynamics_motion, effort and reactions)\n" "$j" "${lib[$j]}"
-done
-
-printf "\n%-14s %3s %10s %9s %s\n" "case" "-j" "us/row" "x library" "split of the median run (--times)"
-TIMEFORMAT=%3R
-for case in csv:csv npy:npy npy:null csv:npy npy:csv; do
-    in=${case%:*} out=${case#*:}
-    declare -A per=()
+# one robot: bench <name> <urdf> [--floating]
+bench() {
+    local name=$1 urdf=$2 flag=${3:-}
+    python3 "$src/bench/command_states.py" "$vtdyn" "$urdf" "$rows" "$tmp/states.csv" "$tmp/states.npy" $flag
+    echo
+    echo "== $name${flag:+ ($flag)}: $rows states, $(du -h "$tmp/states.csv" | cut -f1) CSV, $(du -h "$tmp/states.npy" | cut -f1) .npy"
+    declare -A lib
     for j in 1 2; do
-        : > "$tmp/runs"
-        for r in $(seq "$rounds"); do
-            rm -f "$tmp/out_$j.$out"
-            if [ "$out" = null ]; then # the command alone: npy on standard output, to /dev/null
-                t=$({ time "$vtdyn" inverse -j "$j" --times --format npy "$urdf" "$tmp/states.$in" > /dev/null 2> "$tmp/times"; } 2>&1)
-            else
-                t=$({ time "$vtdyn" inverse -j "$j" --times "$urdf" "$tmp/states.$in" -o "$tmp/out_$j.$out" 2> "$tmp/times"; } 2>&1)
-            fi
-            echo "$t $(sed -n 's/.*: read/read/p' "$tmp/times")" >> "$tmp/runs"
-        done
-        mid=$(sort -n "$tmp/runs" | awk -v n="$rounds" 'NR == int((n + 1) / 2)')
-        us=$(awk -v t="${mid%% *}" -v n="$rows" 'BEGIN { printf "%.3f", 1e6 * t / n }')
-        per[$j]=$us
-        label="$in->$out"
-        [ "$out" = null ] && label="npy->/dev/null"
-        printf "%-14s %3d %10s %9.2f %s\n" "$label" "$j" "$us" "$(awk -v a="$us" -v b="${lib[$j]}" 'BEGIN { print a / b }')" \
-            "${mid#* }"
+        lib[$j]=$(for r in $(seq "$rounds"); do "$tmp/command_lib" "$urdf" "$tmp/states.npy" "$j" 3 $flag; done | median)
+        printf "library, -j %d: %.3f us/row (vt_batch_inverse_dynamics_motion, effort and reactions)\n" "$j" "${lib[$j]}"
     done
-    if [ "$out" != null ]; then
-        cmp -s "$tmp/out_1.$out" "$tmp/out_2.$out" || { echo "bench_command.sh: -j 1 and -j 2 wrote different bytes ($case)"; exit 1; }
-    fi
-    printf "%-14s     -j 2 is %.2f times as fast as -j 1\n" "$label" "$(awk -v a="${per[1]}" -v b="${per[2]}" 'BEGIN { print a / b }')"
-done
+
+    printf "\n%-14s %3s %10s %9s %s\n" "case" "-j" "us/row" "x library" "split of the median run (--times)"
+    TIMEFORMAT=%3R
+    for case in csv:csv npy:npy npy:null csv:npy npy:csv; do
+        in=${case%:*} out=${case#*:}
+        declare -A per=()
+        for j in 1 2; do
+            : > "$tmp/runs"
+            for r in $(seq "$rounds"); do
+                rm -f "$tmp/out_$j.$out"
+                if [ "$out" = null ]; then # the command alone: npy on standard output, to /dev/null
+                    t=$({ time "$vtdyn" inverse $flag -j "$j" --times --format npy "$urdf" "$tmp/states.$in" > /dev/null 2> "$tmp/times"; } 2>&1)
+                else
+                    t=$({ time "$vtdyn" inverse $flag -j "$j" --times "$urdf" "$tmp/states.$in" -o "$tmp/out_$j.$out" 2> "$tmp/times"; } 2>&1)
+                fi
+                echo "$t $(sed -n 's/.*: read/read/p' "$tmp/times")" >> "$tmp/runs"
+            done
+            mid=$(sort -n "$tmp/runs" | awk -v n="$rounds" 'NR == int((n + 1) / 2)')
+            us=$(awk -v t="${mid%% *}" -v n="$rows" 'BEGIN { printf "%.3f", 1e6 * t / n }')
+            per[$j]=$us
+            label="$in->$out"
+            [ "$out" = null ] && label="npy->/dev/null"
+            printf "%-14s %3d %10s %9.2f %s\n" "$label" "$j" "$us" "$(awk -v a="$us" -v b="${lib[$j]}" 'BEGIN { print a / b }')" \
+                "${mid#* }"
+        done
+        if [ "$out" != null ]; then
+            cmp -s "$tmp/out_1.$out" "$tmp/out_2.$out" || { echo "bench_command.sh: -j 1 and -j 2 wrote different bytes ($case)"; exit 1; }
+        fi
+        printf "%-14s     -j 2 is %.2f times as fast as -j 1\n" "$label" "$(awk -v a="${per[1]}" -v b="${per[2]}" 'BEGIN { print a / b }')"
+    done
+}
+
+bench UR5 "$ur5"
+bench Solo-12 "$solo" --floating
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -1,13 +1,15 @@
 /* The library's own time per row on the states `vtdyn inverse` reads (bench/bench_command.sh):
  * the URDF loaded as the command loads it (recursive layout, mimic joints independent, the root
- * fixed), the rows of a .npy file of states written by bench/command_states.py laid out as q, q̇,
+ * fixed, or floating with --floating: a free joint whose 19 columns R_x ... R_alz are read as the
+ * command reads them, the quaternion divided by its norm), the rows of a .npy file of states written by bench/command_states.py laid out as q, q̇,
  * q̈ arrays, and vt_batch_inverse_dynamics_motion on all of them with the outputs the command
  * writes by default (every rate's effort, the reactions in world axes and in the joints' frames),
  * on THREADS threads. Prints the median over ROUNDS calls of the time per row, µs.
  *
- *   command_lib URDF STATES.npy THREADS [ROUNDS]
+ *   command_lib URDF STATES.npy THREADS [ROUNDS] [--floating]
  */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,7 +39,7 @@ static int fail(const char *what)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: command_lib URDF STATES.npy THREADS [ROUNDS]\n");
+        fprintf(stderr, "usage: command_lib URDF STATES.npy THREADS [ROUNDS] [--floating]\n");
         return 2;
     }
     const int threads = atoi(argv[3]), rounds = argc > 4 && atoi(argv[4]) > 0 ? atoi(argv[4]) : 5;
@@ -71,6 +73,7 @@ int main(int argc, char **argv)
     char msg[VT_MESSAGE_SIZE];
     vt_urdf_options opt = vt_default_urdf_options();
     opt.mimic = 0;
+    opt.floating = argc > 5 && strcmp(argv[5], "--floating") == 0;
     opt.model.layout = VT_LAYOUT_RECURSIVE;
     if (vt_urdf_builder(&b, argv[1], &opt, msg) || vt_builder_build(&m, b)) return fail("the URDF");
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody;
@@ -79,8 +82,36 @@ int main(int argc, char **argv)
            *reac = malloc((size_t)nrow * nb6 * sizeof *reac), *reacb = malloc((size_t)nrow * nb6 * sizeof *reacb);
     int *status = malloc((size_t)nrow * sizeof *status);
     if (!q || !qd || !qdd || !effort || !reac || !reacb || !status) return fail("out of memory");
-    for (int i = 1; i <= m->nbody; i++) { /* one-rate joints: J, J_vel, J_acc */
+    static const char *const free_suffix[19] = {"x",  "y",  "z",  "qw", "qx", "qy", "qz", "vx",  "vy",  "vz",
+                                                "wx", "wy", "wz", "ax", "ay", "az", "alx", "aly", "alz"};
+    for (int i = 1; i <= m->nbody; i++) {
         const char *jn = m->joint_name + VT_NAME_MAX * i;
+        if (!jn[0]) jn = m->body_name + VT_NAME_MAX * i; /* an implicit root joint: the link's name */
+        const size_t qa = (size_t)m->body_qadr[i], va = (size_t)m->body_vadr[i];
+        if (m->body_joint[i] == VT_JOINT_FREE) { /* R_x ... R_qz, R_vx ... R_wz, R_ax ... R_alz */
+            int c[19];
+            for (int k = 0; k < 19; k++) {
+                char key[VT_NAME_MAX + 8];
+                snprintf(key, sizeof key, "%s_%s", jn, free_suffix[k]);
+                c[k] = -1;
+                for (int h = 0; h < ncol; h++)
+                    if (strcmp(names[h], key) == 0) c[k] = h;
+                if (c[k] < 0) return fail("a floating root's columns (run with --floating)");
+            }
+            for (long r = 0; r < nrow; r++) {
+                const double *cell = cells + (size_t)r * (size_t)ncol;
+                double *qr = q + (size_t)r * nq + qa, nrm = 0.0;
+                for (int k = 3; k < 7; k++) nrm += cell[c[k]] * cell[c[k]];
+                nrm = sqrt(nrm);
+                for (int k = 0; k < 7; k++) qr[k] = k < 3 ? cell[c[k]] : cell[c[k]] / nrm;
+                for (int k = 0; k < 6; k++) {
+                    qd[(size_t)r * nv + va + (size_t)k] = cell[c[7 + k]];
+                    qdd[(size_t)r * nv + va + (size_t)k] = cell[c[13 + k]];
+                }
+            }
+            continue;
+        }
+        /* one-rate joints: J, J_vel, J_acc */
         char vel[VT_NAME_MAX + 8], acc[VT_NAME_MAX + 8];
         snprintf(vel, sizeof vel, "%s_vel", jn);
         snprintf(acc, sizeof acc, "%s_acc", jn);
@@ -90,11 +121,11 @@ int main(int argc, char **argv)
             if (strcmp(names[k], vel) == 0) c[1] = k;
             if (strcmp(names[k], acc) == 0) c[2] = k;
         }
-        if (m->body_nv[i] != 1 || c[0] < 0 || c[1] < 0 || c[2] < 0) return fail("a joint's columns (a fixed-base robot's states)");
+        if (m->body_nv[i] != 1 || c[0] < 0 || c[1] < 0 || c[2] < 0) return fail("a joint's columns");
         for (long r = 0; r < nrow; r++) {
-            q[(size_t)r * nq + (size_t)m->body_qadr[i]] = cells[(size_t)r * (size_t)ncol + (size_t)c[0]];
-            qd[(size_t)r * nv + (size_t)m->body_vadr[i]] = cells[(size_t)r * (size_t)ncol + (size_t)c[1]];
-            qdd[(size_t)r * nv + (size_t)m->body_vadr[i]] = cells[(size_t)r * (size_t)ncol + (size_t)c[2]];
+            q[(size_t)r * nq + qa] = cells[(size_t)r * (size_t)ncol + (size_t)c[0]];
+            qd[(size_t)r * nv + va] = cells[(size_t)r * (size_t)ncol + (size_t)c[1]];
+            qdd[(size_t)r * nv + va] = cells[(size_t)r * (size_t)ncol + (size_t)c[2]];
         }
     }
     vt_batch *batch;
