@@ -158,7 +158,8 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
  * cond(Φ̂) each, so the reported reciprocal condition is squared, the scale of the augmented
  * matrix's (whose inverse holds Φ_q^(-T) M* Φ_q^(-1)); the recursive square route computes the
  * same number. Returns VT_SOLVED, VT_BELOW_MIN (nothing solved) or a negative vt_status. */
-static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
+static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, const double *b,
+                         double *rcond_out)
 {
     const int n = m->nv;
     sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of R Φ_q D");
@@ -168,11 +169,14 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
     sq->g = sq->s + n;
-    double *A = sq->A, *s = sq->s, *g = sq->g;
+    sq->solved = 0;
+    double *restrict A = sq->A, *restrict s = sq->s, *restrict g = sq->g;
+    const double *restrict Phiq = d->Phiq;
     const size_t mark = vt_scratch_mark(d);
-    double *gk = VT_SCRATCH(d, double, 2 * (size_t)n, "G and C");
+    double *gk = VT_SCRATCH(d, double, 4 * (size_t)n, "G and C, and their ratios to R and D");
     if (!gk) return vt_scratch_fail(d, mark);
-    double *ck = gk + n;
+    /* rg = R G^-1 and dc = D C^-1, the factors between the solves' matrix and Φ̂ (below) */
+    double *restrict ck = gk + n, *restrict rg = gk + 2 * n, *restrict dc = gk + 3 * n;
     /* Φ̂ = G Φ_q C's scalings and its 1-norm, the largest column sum */
     const double rho = vt_rows_length(m, d, NULL);
     for (int a = 0; a < n; a++) {
@@ -185,56 +189,82 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     double anorm = 0.0;
     for (int c = 0; c < n; c++) {
         double cs = 0.0;
-        for (int r = 0; r < n; r++) cs += fabs(gk[r] * d->Phiq[r + (size_t)c * (size_t)n] * ck[c]);
+        for (int r = 0; r < n; r++) cs += fabs(gk[r] * Phiq[r + (size_t)c * (size_t)n] * ck[c]);
         anorm = cs > anorm ? cs : anorm;
     }
     /* the solves' matrix R Φ_q D, D the mass metric and R each row to unit norm in it. Its LU's
      * pivots then take the rows that act on heavy rates for those rates, and the substitutions
      * keep apart what the structure keeps apart: a light link's drive force is not made of a
-     * heavy one's round-off (the inverse, a dense product, would mix them) */
+     * heavy one's round-off (the inverse, a dense product, would mix them). The rows' norms
+     * column by column: each row's sum in the same order, all rows at once */
     vt_scaling_diag(m, mdiag, stride, s);
-    for (int r = 0; r < n; r++) {
-        double rn = 0.0;
-        for (int c = 0; c < n; c++) rn += d->Phiq[r + (size_t)c * (size_t)n] * s[c] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
-        g[r] = rn > 0.0 ? 1.0 / sqrt(rn) : 1.0;
+    for (int r = 0; r < n; r++) g[r] = 0.0;
+    for (int c = 0; c < n; c++) {
+        const double *restrict col = Phiq + (size_t)c * (size_t)n;
+        const double sc = s[c];
+        for (int r = 0; r < n; r++) g[r] += col[r] * sc * col[r] * sc;
     }
+    for (int r = 0; r < n; r++) g[r] = g[r] > 0.0 ? 1.0 / sqrt(g[r]) : 1.0;
     for (int c = 0; c < n; c++)
-        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = g[r] * d->Phiq[r + (size_t)c * (size_t)n] * s[c];
+        for (int r = 0; r < n; r++) A[r + (size_t)c * (size_t)n] = g[r] * Phiq[r + (size_t)c * (size_t)n] * s[c];
+    for (int a = 0; a < n; a++) rg[a] = g[a] / gk[a], dc[a] = s[a] / ck[a];
     int info = 0;
     dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
     if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     if (info > 0) return vt_scratch_release(d, mark), *rcond_out = 0.0, VT_BELOW_MIN; /* an exactly zero pivot */
     /* the condition of Φ̂ = G R^-1 (R Φ_q D) D^-1 C: up to 16 rates exactly, from the inverse of
      * R Φ_q D (one solve with the identity on the factors at hand), Φ̂^-1 = C^-1 D (R Φ_q D)^-1 R G^-1
-     * entry by entry; above, LAPACK's estimator of ‖Φ̂^-1‖_1 on the same factors */
+     * entry by entry; above, LAPACK's estimator of ‖Φ̂^-1‖_1 on the same factors. A right side b
+     * at hand takes a column of the solve the condition makes first (the same substitutions as a
+     * solve of its own, without a call of its own) */
     double rcond = 0.0;
-    double *X = vt_small_inverse(d, n, 0);
+    double *X = vt_small_inverse(d, n, b ? 1 : 0);
     if (X) {
-        dgetrs_("N", &n, &n, A, &n, sq->ipiv, X, &n, &info, 1);
+        const int ncol = b ? n + 1 : n;
+        double *xb = X + (size_t)n * (size_t)n;
+        if (b)
+            for (int r = 0; r < n; r++) xb[r] = g[r] * b[r];
+        dgetrs_("N", &n, &ncol, A, &n, sq->ipiv, X, &n, &info, 1);
         if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+        double xn = 0.0; /* ‖Φ̂^-1‖_1 */
         for (int c = 0; c < n; c++) {
-            const double fc = g[c] / gk[c];
-            for (int r = 0; r < n; r++) X[r + (size_t)c * (size_t)n] *= s[r] / ck[r] * fc;
+            const double fc = rg[c];
+            double cs = 0.0;
+            for (int r = 0; r < n; r++) cs += fabs(X[r + (size_t)c * (size_t)n] * (dc[r] * fc));
+            xn = cs > xn ? cs : xn; /* fmax without the call (a NaN is skipped by both) */
         }
-        rcond = vt_rcond_from_inverse(X, n, anorm);
+        rcond = anorm > 0.0 && xn > 0.0 ? 1.0 / (anorm * xn) : 0.0;
+        if (b) {
+            for (int a = 0; a < n; a++) sq->x[a] = xb[a] * s[a];
+            sq->solved = 1;
+        }
     } else {
         /* ‖Φ̂^-1‖_1 by Hager and Higham's estimator (LAPACK's dlacn2, as dgecon uses it) on the
          * factors at hand: Φ̂^-1 x = C^-1 D (R Φ_q D)^-1 R G^-1 x and its transpose, each product
          * one solve with the LU above (a second LU of Φ̂ itself would cost as much again) */
-        double *v = VT_SCRATCH(d, double, 2 * (size_t)n, "dlacn2's vectors");
+        double *v = VT_SCRATCH(d, double, 3 * (size_t)n, "dlacn2's vectors and the right side");
         int *isgn = VT_SCRATCH(d, int, n, "dlacn2's signs");
         if (!isgn) return vt_scratch_fail(d, mark);
-        double *x = v + n, est = 0.0;
+        double *x = v + n, *xb = x + n, est = 0.0;
         int kase = 0, isave[3] = {0, 0, 0};
         const int one = 1;
         do {
             dlacn2_(&n, v, x, isgn, &est, &kase, isave);
             if (kase == 0) break;
             const char *trans = kase == 1 ? "N" : "T";
-            for (int r = 0; r < n; r++) x[r] *= kase == 1 ? g[r] / gk[r] : s[r] / ck[r];
-            dgetrs_(trans, &n, &one, A, &n, sq->ipiv, x, &n, &info, 1);
+            const double *in = kase == 1 ? rg : dc, *out = kase == 1 ? dc : rg;
+            for (int r = 0; r < n; r++) x[r] *= in[r];
+            /* its first product is a solve with Φ_q (kase 1): b beside it, in x's next column */
+            const int both = b && !sq->solved && kase == 1;
+            if (both)
+                for (int r = 0; r < n; r++) xb[r] = g[r] * b[r];
+            dgetrs_(trans, &n, both ? &(const int){2} : &one, A, &n, sq->ipiv, x, &n, &info, 1);
             if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-            for (int r = 0; r < n; r++) x[r] *= kase == 1 ? s[r] / ck[r] : g[r] / gk[r];
+            for (int r = 0; r < n; r++) x[r] *= out[r];
+            if (both) {
+                for (int a = 0; a < n; a++) sq->x[a] = xb[a] * s[a];
+                sq->solved = 1;
+            }
         } while (1);
         rcond = anorm > 0.0 && est > 0.0 && isfinite(est) ? 1.0 / (anorm * est) : 0.0;
     }
@@ -256,8 +286,7 @@ int vt_square_apply(const vt_model *m, vt_data *d, const vt_square *sq, const do
 
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond_out)
 {
-    const int r = square_factor(m, d, sq, mdiag, stride, rcond_out);
-    return r ? r : vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x); /* q̈ = Φ_q^-1 γ */
+    return square_factor(m, d, sq, mdiag, stride, d->gamma, rcond_out); /* with q̈ = Φ_q^-1 γ */
 }
 
 int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
@@ -277,23 +306,31 @@ int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
  * with M* q̈ − Q computed between the last two by a Newton–Euler pass instead of from M* and Q
  * (neither is formed). vt_solve_square_factor, from the positions alone: mdiag (nv) holds M*'s
  * diagonal, which scales the solves; the route's state (the LU of R Φ_q D) goes to *sq on the
- * arena (the caller releases it), the condition to *rcond. Returns VT_SOLVED, VT_BELOW_MIN (a zero row or
+ * arena (the caller releases it), the condition to *rcond; vt_solve_square_factor_with also solves
+ * b (nv, or NULL), γ when it is known already, with the condition's first solve. Returns VT_SOLVED, VT_BELOW_MIN (a zero row or
  * ill-conditioned: the caller falls back to vt_solve, which diagnoses it) or a negative
  * vt_status. Its LU also solves other right sides (vt_square_apply: the kinematic analysis's
- * velocities). vt_solve_square_accelerations: q̈ = Φ_q^-1 γ to sq->x. vt_solve_square_end: with
+ * velocities). vt_solve_square_accelerations: q̈ = Φ_q^-1 γ to sq->x (solved already when γ was
+ * b). vt_solve_square_end: with
  * h = M* q̈ − Q in sq->h, λ, and everything vt_solve sets on success. */
-int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
+int vt_solve_square_factor_with(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, const double *b,
+                                double *rcond)
 {
     const int zero_rows = vt_roundoff_check(m, d, NULL, 0, VT_FORM_TWISTS); /* a zero row: the general route diagnoses it */
     if (zero_rows) return zero_rows < 0 ? zero_rows : VT_BELOW_MIN;
-    return square_factor(m, d, sq, mdiag, 1, rcond);
+    return square_factor(m, d, sq, mdiag, 1, b, rcond);
+}
+
+int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond)
+{
+    return vt_solve_square_factor_with(m, d, sq, mdiag, NULL, rcond);
 }
 
 int vt_solve_square_accelerations(const vt_model *m, vt_data *d, vt_square *sq)
 {
     if (!vt_all_finite(d->gamma, m->nc))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_solve: NaN or Inf in Q or γ");
-    return vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x);
+    return sq->solved ? 0 : vt_square_apply(m, d, sq, d->gamma, 1.0, sq->x);
 }
 
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond)
@@ -307,8 +344,8 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 }
 
 /* The scratch kkt.c takes at once: the square route's state (the LU of R Φ_q D, its scalings,
- * q̈ and M* q̈ − Q, its pivots), held by its caller, with G and C and the condition's inverse
- * (n ≤ 16) or dlacn2's vectors; or vt_solve_spd's unit diagonal and its Cholesky's
+ * q̈ and M* q̈ − Q, its pivots), held by its caller, with G, C and their ratios to R and D and
+ * the condition's inverse with a right side (n ≤ 16) or dlacn2's vectors and a right side; or vt_solve_spd's unit diagonal and its Cholesky's
  * inverse or dlansy's and dpocon's workspaces (n ≤ nc: the rows' Schur complement): the larger,
  * since different routes take them and neither calls the other */
 size_t vt_kkt_scratch(const vt_model *m)
@@ -316,8 +353,9 @@ size_t vt_kkt_scratch(const vt_model *m)
     const size_t snv = (size_t)m->nv, snc = (size_t)m->nc, D = sizeof(double), I = sizeof(int);
     /* the square route's LU: only with as many rows as rates (nv² is then the rows' own size) */
     const size_t square = m->nc != m->nv ? 0
-                          : VT_SCRATCH_BYTES(snv * snv, D) + 3 * VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I) +
-                                VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I);
+                          : VT_SCRATCH_BYTES(snv * snv, D) + 2 * VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) +
+                                VT_SCRATCH_BYTES(snv, I) + VT_SCRATCH_BYTES(snv * (snv + 1), D) +
+                                VT_SCRATCH_BYTES(3 * snv, D) + VT_SCRATCH_BYTES(snv, I);
     const size_t exact = VT_SCRATCH_BYTES((size_t)VT_EXACT_RCOND_N * (VT_EXACT_RCOND_N + VT_EXACT_EXTRA), D);
     const size_t pocon = VT_SCRATCH_BYTES(3 * snc, D) + VT_SCRATCH_BYTES(snc, I);
     size_t spd = exact > pocon ? exact : pocon;
