@@ -36,7 +36,9 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
  * or a negative vt_status. */
 typedef struct {
     double *A, *s, *g, *x, *h;
+    double *w;  /* 2 nv: a solve's vectors in the LU's column order */
     int *ipiv;
+    int *perm;  /* nv: the LU's column k is rate perm[k] (a fill-reducing order), or NULL: rate k */
     int solved; /* x holds Φ_q^-1 b already (the factorization's b) */
 } vt_square;
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);
