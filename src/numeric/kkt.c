@@ -147,7 +147,7 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond)
  * row between bodies a and b touches the rates of both paths, so rate k of body i counts the
  * rows with a body in i's subtree, the subtree sums of +1 at a and at b and −1 at their nearest
  * common ancestor (a row with both bodies below i counted once); a joint drive's row touches
- * its rate, a coupling's its non-zero entries. key: nv + nbody + 3 ints of scratch. Returns 1
+ * its rate, a coupling's its non-zero entries. key: 2 nv + nbody + 3 ints of scratch. Returns 1
  * when the order is not the identity. Only from VT_ORDER_N rates: below, the order costs more
  * than the work it saves (the four-bars, the knee). */
 #define VT_ORDER_N 17
