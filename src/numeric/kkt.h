@@ -36,15 +36,21 @@ int vt_solve_spd(vt_data *d, double *S, int n, double *b, double *rcond);
  * or a negative vt_status. */
 typedef struct {
     double *A, *s, *g, *x, *h;
+    double *w;  /* 2 nv: a solve's vectors in the LU's column order */
     int *ipiv;
+    int *perm;  /* nv: the LU's column k is rate perm[k] (a fill-reducing order), or NULL: rate k */
+    int solved; /* x holds Φ_q^-1 b already (the factorization's b) */
 } vt_square;
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);
 int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq);
 /* x = sign Φ_q^-1 b (nv) by the factors of sq: D (R Φ_q D)^-1 R b */
 int vt_square_apply(const vt_model *m, vt_data *d, const vt_square *sq, const double *b, double sign, double *x);
 /* the same for the recursive evaluation: the factors from M*'s diagonal mdiag (nv) and the
- * positions (VT_BELOW_MIN also for a zero row), q̈, and the outcome */
+ * positions (VT_BELOW_MIN also for a zero row; _with: and Φ_q^-1 b, b (nv) γ when it is known or
+ * NULL, solved with the condition's first solve), q̈, and the outcome */
 int vt_solve_square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, double *rcond);
+int vt_solve_square_factor_with(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, const double *b,
+                                double *rcond);
 int vt_solve_square_accelerations(const vt_model *m, vt_data *d, vt_square *sq);
 vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, double rcond);
 

@@ -81,15 +81,15 @@ static void mass_diagonal(const vt_model *m, const vt_data *d, double *diag)
  * the needed wrenches W at the full accelerations, one inward pass as for joint drives: neither
  * M* nor Q is formed. Where Φ_q is ill-conditioned, the general path diagnoses it.
  * square_factor: the LU of the scaled Φ_q and its condition, from the positions alone (0, 1
- * ill-conditioned, or a negative vt_status), on the arena from its mark; square_solved: the rest,
- * from γ. */
-static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, double *rcond)
+ * ill-conditioned, or a negative vt_status), on the arena from its mark, with q̈ where γ is
+ * known (b); square_solved: the rest, from γ. */
+static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const double *b, double *rcond)
 {
     const size_t mark = vt_scratch_mark(d);
     double *mdiag = VT_SCRATCH(d, double, m->nv, "M*'s diagonal");
     if (!mdiag) return vt_scratch_fail(d, mark);
     mass_diagonal(m, d, mdiag);
-    return vt_solve_square_factor(m, d, sq, mdiag, rcond);
+    return vt_solve_square_factor_with(m, d, sq, mdiag, b, rcond);
 }
 
 static vt_status square_solved(const vt_model *m, vt_data *d, vt_square *sq, double rcond)
@@ -121,7 +121,7 @@ static vt_status square_instant(const vt_model *m, vt_data *d, vt_handoff *to)
     const size_t mark = vt_scratch_mark(d);
     double rcond = 0.0;
     vt_square sq;
-    const int r = square_factor(m, d, &sq, &rcond);
+    const int r = square_factor(m, d, &sq, d->gamma, &rcond);
     if (r < 0) return vt_scratch_release(d, mark), (vt_status)r;
     if (r == 1) {
         vt_scratch_release(d, mark);
@@ -295,7 +295,7 @@ vt_status vt_inverse_dynamics_recursive_positioned(const vt_model *m, vt_data *d
     const size_t mark = vt_scratch_mark(d);
     double rcond = 0.0;
     vt_square sq;
-    const int r = square_factor(m, d, &sq, &rcond);
+    const int r = square_factor(m, d, &sq, NULL, &rcond);
     if (r) { /* an error, or Φ_q ill-conditioned: the caller solves q̇ and asks again */
         vt_scratch_release(d, mark);
         if (r < 0) return (vt_status)r;
