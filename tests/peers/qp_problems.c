@@ -13,6 +13,7 @@
  *   ill-conditioned  G = BᵀB + 1e-4 I and c large (the unconstrained minimum far beyond the
  *                answer);
  *   duplicated   random problems with every inequality given twice;
+ *   either       random problems with b_in at random (not made feasible): some feasible, some not;
  *   infeasible   contact problems whose balance asks more tangential force than μ Σ f_z allows.
  * Matrices are written row by row (G[i][j], A[i][j] with A = [A_eq; A_in]). */
 #include <float.h>
@@ -235,6 +236,13 @@ int main(int argc, char **argv)
         emit(f, &first, "duplicated", id, &d);
         prob_free(&p);
         prob_free(&d);
+    }
+    for (int id = 0; id < 60; id++) { /* b at random, not made feasible: feasible or not */
+        const int n = 2 + id % 9, meq = id % 3 < n ? id % 3 : 0, min = 2 * n + id % 5;
+        problem p = random_problem(&s, n, meq, min, 1.0);
+        for (int i = meq; i < meq + min; i++) p.b[i] = 1.5 * urand(&s) + 0.6;
+        emit(f, &first, "either", id, &p);
+        prob_free(&p);
     }
     for (int id = 0; id < 20; id++) {
         problem p = contact_problem(&s, 3 + id % 4, id % 2 ? 8 : 4, 0.5, 0, 1.0);
