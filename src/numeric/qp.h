@@ -34,7 +34,7 @@ typedef enum vt_qp_result {
 } vt_qp_result;
 
 /* The bytes of work vt_qp_solve needs (any alignment: it aligns inside); 0 for invalid sizes.
- * About 3n² + 5n + 2(meq + min) doubles. */
+ * 3n² + 5n + meq + min doubles and n + meq + min ints. */
 size_t vt_qp_scratch_bytes(int n, int meq, int min);
 
 /* The bound on the steps (each adds or drops one constraint): 10 (n + meq + min) + 100. */
