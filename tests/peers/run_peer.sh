@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # The suite 'peers': a script of tests/peers (run_pinocchio.py: vtdyn against Pinocchio;
-# mujoco_effects.py: against MuJoCo) in the virtual environment of setup_venv.sh, which
-# pip-installs pin, example-robot-data and mujoco; skipped (exit 77, with the reason) when that
+# mujoco_effects.py: against MuJoCo; check_qp.py: the distribution QP against quadprog) in the
+# virtual environment of setup_venv.sh, which pip-installs pin, example-robot-data and mujoco
+# (or, with VT_PEERS_SET=qp, quadprog alone); skipped (exit 77, with the reason) when that
 # cannot be done here.
-#   run_peer.sh SCRIPT.py ARGS...
+#   [VT_PEERS_SET=qp] run_peer.sh SCRIPT.py ARGS...
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
-py=$(bash "$here/setup_venv.sh") || exit 77
+py=$(bash "$here/setup_venv.sh" "${VT_PEERS_SET:-robots}") || exit 77
 script=$1
 shift
 exec "$py" "$here/$script" "$@"

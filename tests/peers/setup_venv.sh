@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Creates (if missing) the virtual environment of the Pinocchio reference scripts in
 # tests/peers/ and installs pinned versions of Pinocchio (PyPI package `pin`),
-# example-robot-data (the robots' URDFs and meshes) and MuJoCo (`mujoco`) into it.
+# example-robot-data (the robots' URDFs and meshes) and MuJoCo (`mujoco`) into it; with the
+# argument qp, only quadprog (`quadprog`, the distribution QP's peer, check_qp.py) into the
+# same venv, so that either set is fetched, checked or skipped without the other.
 #
 #   tests/peers/setup_venv.sh            # prints the venv's python path on success
+#   tests/peers/setup_venv.sh qp         # the same for quadprog
 #
 # Environment:
 #   VT_PEERS_TEST_VENV   the venv's directory (default $HOME/.cache/vtdyn-peers/venv-test)
@@ -18,6 +21,8 @@ set -u
 PIN_VERSION=4.1.0
 ERD_VERSION=6.0.0
 MUJOCO_VERSION=4.0.1
+QUADPROG_VERSION=0.1.14  # wheels for CPython >= 3.11
+SET=${1:-robots}
 VENV=${VT_PEERS_TEST_VENV:-$HOME/.cache/vtdyn-peers/venv-test}
 BASE_PYTHON=${VT_PEERS_PYTHON:-python3}
 PY="$VENV/bin/python"
@@ -37,9 +42,33 @@ import pinocchio, mujoco, numpy  # noqa: F401
 PYEOF
 }
 
-if have_pinned; then
-    echo "$PY"
-    exit 0
+# quadprog alone (numpy comes with it, or is kept as the venv has it)
+have_quadprog() {
+    [ -x "$PY" ] || return 1
+    "$PY" - "$QUADPROG_VERSION" <<'PYEOF' >/dev/null 2>&1
+import sys
+from importlib.metadata import version
+if version("quadprog") != sys.argv[1]:
+    sys.exit(1)
+import quadprog, numpy  # noqa: F401
+PYEOF
+}
+
+case "$SET" in
+    robots) have_pinned && { echo "$PY"; exit 0; } ;;
+    qp) have_quadprog && { echo "$PY"; exit 0; } ;;
+    *) echo "setup_venv.sh: unknown set '$SET' (robots or qp)" >&2; exit 2 ;;
+esac
+
+# The peers' tests run at once (meson's processes) and may both install into the one venv:
+# one at a time from here, the check repeated once the lock is held (flock, where there is one)
+mkdir -p "$(dirname "$VENV")" 2>/dev/null || skip "cannot create $(dirname "$VENV")"
+if command -v flock >/dev/null 2>&1 && exec 9>"$(dirname "$VENV")/.setup_venv.lock"; then
+    flock 9
+    case "$SET" in
+        robots) have_pinned && { echo "$PY"; exit 0; } ;;
+        qp) have_quadprog && { echo "$PY"; exit 0; } ;;
+    esac
 fi
 
 if [ ! -x "$PY" ]; then
@@ -47,6 +76,21 @@ if [ ! -x "$PY" ]; then
     mkdir -p "$(dirname "$VENV")" 2>/dev/null || skip "cannot create $(dirname "$VENV")"
     log=$("$BASE_PYTHON" -m venv "$VENV" 2>&1) \
         || skip "cannot create the venv $VENV: $(printf '%s' "$log" | tail -n 1)"
+fi
+
+if [ "$SET" = qp ]; then
+    log=$("$PY" -m pip install --disable-pip-version-check --no-input --quiet \
+            --retries 1 --timeout 30 "quadprog==$QUADPROG_VERSION" 2>&1)
+    if [ $? -ne 0 ]; then
+        last=$(printf '%s\n' "$log" | grep -v '^\s*$' | tail -n 1)
+        if printf '%s' "$log" | grep -qiE 'connection|network|resolve|timed out|proxy|ssl|No matching distribution'; then
+            skip "pip cannot reach the package index or find quadprog==$QUADPROG_VERSION: $last"
+        fi
+        skip "pip install of quadprog==$QUADPROG_VERSION failed: $last"
+    fi
+    have_quadprog || skip "installed, but quadprog==$QUADPROG_VERSION does not import in $VENV"
+    echo "$PY"
+    exit 0
 fi
 
 log=$("$PY" -m pip install --disable-pip-version-check --no-input --quiet \
