@@ -1,5 +1,6 @@
 /* Scene builders shared by tests, examples and benchmarks (see scenes.h). */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "scenes.h"
@@ -686,6 +687,81 @@ int vt_scene_delta_assemble(const vt_model *m, vt_data *d, const double p[3])
     qp[4] = qp[5] = qp[6] = 0.0;
     for (int k = 0; k < m->nv; k++) d->qd[k] = 0.0;
     return 0;
+}
+
+vt_status vt_scene_quadruped(vt_model **model)
+{
+    vt_builder *b;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81; /* z up, as URDF robots */
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    vt_body_def torso = vt_default_body_def();
+    torso.joint = VT_JOINT_FREE;
+    torso.parent = 0;
+    torso.mass = 10.0;
+    const double lx = 0.6, ly = 0.3, lz = 0.1; /* a uniform box */
+    torso.inertia[0] = torso.mass * (ly * ly + lz * lz) / 12.0;
+    torso.inertia[4] = torso.mass * (lx * lx + lz * lz) / 12.0;
+    torso.inertia[8] = torso.mass * (lx * lx + ly * ly) / 12.0;
+    torso.name = "torso";
+    torso.joint_name = "root";
+    int id = vt_builder_add_body(b, &torso);
+    static const char *const leg[4] = {"FL", "FR", "HL", "HR"};
+    for (int k = 0; k < 4 && id > 0; k++) {
+        char name[3][16], joint[3][16], foot[16];
+        snprintf(name[0], 16, "%s_hip", leg[k]), snprintf(joint[0], 16, "%s_HAA", leg[k]);
+        snprintf(name[1], 16, "%s_thigh", leg[k]), snprintf(joint[1], 16, "%s_HFE", leg[k]);
+        snprintf(name[2], 16, "%s_shank", leg[k]), snprintf(joint[2], 16, "%s_KFE", leg[k]);
+        snprintf(foot, 16, "%s_foot", leg[k]);
+        vt_body_def hip = vt_default_body_def();
+        hip.parent = 1;
+        hip.mass = 0.3;
+        hip.inertia[0] = hip.inertia[4] = hip.inertia[8] = 2e-4;
+        hip.joint_parent[0] = k < 2 ? 0.3 : -0.3;
+        hip.joint_parent[1] = k % 2 == 0 ? 0.15 : -0.15;
+        hip.axis1[0] = 1.0, hip.axis1[1] = 0.0, hip.axis1[2] = 0.0;
+        hip.name = name[0];
+        hip.joint_name = joint[0];
+        const int h = id = vt_builder_add_body(b, &hip);
+        vt_body_def rod = vt_default_body_def();
+        rod.axis1[0] = 0.0, rod.axis1[1] = 1.0, rod.axis1[2] = 0.0;
+        rod.joint_child[2] = 0.1; /* the joint point 0.1 m above the centre of mass */
+        for (int s = 1; s < 3 && id > 0; s++) {
+            rod.parent = s == 1 ? h : id;
+            rod.mass = s == 1 ? 1.0 : 0.5;
+            memset(rod.inertia, 0, sizeof rod.inertia);
+            rod.inertia[0] = rod.inertia[4] = rod.mass * 0.04 / 12.0;
+            rod.inertia[8] = 1e-5;
+            rod.joint_parent[2] = s == 1 ? 0.0 : -0.1;
+            rod.name = name[s];
+            rod.joint_name = joint[s];
+            id = vt_builder_add_body(b, &rod);
+        }
+        if (id > 0) {
+            vt_frame_def f = vt_default_frame_def();
+            f.name = foot;
+            f.body = id;
+            f.point[2] = -0.1;
+            const int fr = vt_builder_add_frame(b, &f);
+            if (fr < 0) id = fr;
+        }
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
+void vt_scene_quadruped_stand(const vt_model *m, vt_data *d, double theta)
+{
+    memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+    memset(d->qdd, 0, (size_t)m->nv * sizeof(double));
+    double *q = d->q;
+    q[0] = q[1] = 0.0, q[2] = 0.4 * cos(theta); /* the root: position, then Euler parameters */
+    q[3] = 1.0, q[4] = q[5] = q[6] = 0.0;
+    for (int i = 2; i <= m->nbody; i++) {
+        const int k = (i - 2) % 3;                      /* hip, thigh, shank */
+        const double th = (i - 2) / 6 == 0 ? theta : -theta; /* the hind legs mirror the front ones */
+        q[m->body_qadr[i]] = k == 0 ? 0.0 : k == 1 ? th : -2.0 * th;
+    }
 }
 
 vt_status vt_scene_pendulum(vt_model **model)

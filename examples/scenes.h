@@ -215,6 +215,19 @@ void vt_scene_delta_path(double t, double period, double p[3], double pd[3], dou
  * platform parallel to the base): sets d->q; q̇ = 0. Returns 0, or −1 where p is out of reach. */
 int vt_scene_delta_assemble(const vt_model *model, vt_data *data, const double p[3]);
 
+/* A quadruped (contacts, docs/contact.md): a 10 kg box torso 0.6 x 0.3 x 0.1 m on a free joint
+ * ("root", its point the torso's centre of mass) and four legs FL, FR, HL, HR (front/hind,
+ * left/right) with hips at (±0.3, ±0.15, 0) in torso axes: a 0.3 kg hip body on an abduction
+ * joint about x (L_HAA), a 1 kg thigh on a flexion joint about y (L_HFE) and a 0.5 kg shank on a
+ * knee about y (L_KFE), thigh and shank uniform 0.2 m rods along −z at q = 0; a frame L_foot at
+ * each shank's end. Symmetric front to hind and left to right; 17.2 kg in all; gravity −9.81 z.
+ * vt_scene_quadruped_stand: the standing pose with hip flexion θ and knee −2θ on the front legs,
+ * −θ and 2θ on the hind ones (each foot under its hip, the robot symmetric front to hind too),
+ * the torso at rest at height 0.4 cos θ: q into d->q, q̇ and q̈ zero. */
+#define VT_QUADRUPED_MASS 17.2
+vt_status vt_scene_quadruped(vt_model **model);
+void vt_scene_quadruped_stand(const vt_model *model, vt_data *data, double theta);
+
 /* The IFToMM multibody benchmark's simple pendulum (problem A01): a 1 kg point mass on a
  * massless 1 m link, revolute about z at the origin, gravity (0, −9.81, 0); at q = 0 the link
  * lies along +x (horizontal): released from rest there. In joint coordinates it has no

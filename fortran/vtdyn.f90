@@ -53,8 +53,10 @@ module vtdyn
       VT_ERR_NOT_FULLY_DRIVEN = -24, VT_ERR_IDA = -25, VT_ERR_ABORTED = -26, &
       VT_ERR_BAD_OPTION = -27, VT_ERR_BAD_SIZE = -28, VT_ERR_BAD_NAME = -29, VT_ERR_NOT_FOUND = -30, &
       VT_ERR_FILE = -31, VT_ERR_XML = -32, VT_ERR_LAYOUT = -33, &
-      VT_ERR_SKIPPED = -34
+      VT_ERR_SKIPPED = -34, VT_ERR_CONTACT = -35
   integer(c_int), parameter :: VT_LAYOUT_FULL = 0, VT_LAYOUT_RECURSIVE = 1
+  integer(c_int), parameter :: VT_CONTACT_UNILATERAL = 0, VT_CONTACT_BILATERAL = 1
+  real(c_double), parameter :: VT_CONTACT_WEIGHT = 1d-4
   integer(c_int), parameter :: VT_NAME_MAX = 64
   integer(c_int), parameter :: VT_MESSAGE_SIZE = 256
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
@@ -208,6 +210,18 @@ module vtdyn
     real(c_double)         :: point(3)
     real(c_double)         :: inertia(9)
   end type vt_payload_def
+
+  type, bind(C) :: vt_contact_def
+    type(c_ptr)            :: name
+    integer(c_int)         :: body
+    real(c_double)         :: point(3)
+    type(c_ptr)            :: frame
+    real(c_double)         :: normal(3)
+    integer(c_int)         :: kind
+    real(c_double)         :: mu
+    integer(c_int)         :: faces
+    real(c_double)         :: weight
+  end type vt_contact_def
 
   type, bind(C) :: vt_model
     integer(c_int)         :: nbody
@@ -670,6 +684,44 @@ module vtdyn
       type(c_ptr), value :: builder
       type(vt_payload_def), intent(in) :: def
       integer(c_int) :: vt_builder_set_mass
+    end function
+    ! contacts (a C object: hold it as type(c_ptr))
+    function vt_default_contact_def() bind(C, name='vt_default_contact_def')
+      import :: vt_contact_def
+      type(vt_contact_def) :: vt_default_contact_def
+    end function
+    function vt_contacts_create(contacts, model, defs, n, effort_weight, message) bind(C, name='vt_contacts_create')
+      import :: c_int, c_ptr, c_double, c_char, vt_contact_def
+      type(c_ptr), intent(out) :: contacts
+      type(c_ptr), value :: model
+      type(vt_contact_def), intent(in) :: defs(*)
+      integer(c_int), value :: n
+      real(c_double), intent(in), optional :: effort_weight(*)
+      character(kind=c_char), intent(out), optional :: message(*)
+      integer(c_int) :: vt_contacts_create
+    end function
+    subroutine vt_contacts_free(contacts) bind(C, name='vt_contacts_free')
+      import :: c_ptr
+      type(c_ptr), value :: contacts
+    end subroutine
+    function vt_contacts_count(contacts) bind(C, name='vt_contacts_count')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: contacts
+      integer(c_int) :: vt_contacts_count
+    end function
+    function vt_find_contact(contacts, name) bind(C, name='vt_find_contact')
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: contacts
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_int) :: vt_find_contact
+    end function
+    function vt_inverse_dynamics_contacts(model, data, contacts, active, force) &
+        bind(C, name='vt_inverse_dynamics_contacts')
+      import :: c_int, c_ptr, c_double
+      type(c_ptr), value :: model, data, contacts
+      integer(c_int), intent(in), optional :: active(*)
+      real(c_double), intent(out), optional :: force(*)
+      integer(c_int) :: vt_inverse_dynamics_contacts
     end function
     function vt_find_body(model, name) bind(C, name='vt_find_body')
       import :: c_int, c_ptr, c_char

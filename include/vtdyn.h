@@ -526,6 +526,47 @@ VT_API int vt_batch_failed_row(const vt_batch *batch);
 /// refused before any row; "" after a success (never NULL).
 VT_API const char *vt_batch_message(const vt_batch *batch);
 
+/* ---- contacts ------------------------------------------------------------------------ */
+
+/// The defaults of a contact: body 1, point 0, no frame, normal 0 (opposite to gravity),
+/// VT_CONTACT_UNILATERAL, mu 1, 4 faces, weight VT_CONTACT_WEIGHT.
+VT_API vt_contact_def vt_default_contact_def(void);
+/// Validates n contact definitions on a model (a frame's name resolved to its body and point, the
+/// normal made a unit vector, the friction pyramid's faces laid out) and makes their solver's
+/// workspace, once. effort_weight: w_a > 0 of each rate's effort in the rule (nv; NULL: 1 each,
+/// in the effort's own unit, N·m or N). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (a body out of
+/// range, n < 1), VT_ERR_NOT_FOUND (a frame), VT_ERR_BAD_NAME (a name twice or too long),
+/// VT_ERR_BAD_OPTION (mu < 0, faces out of 3..64, a weight not > 0, a zero normal without gravity
+/// to take it from), VT_ERR_NONFINITE, VT_ERR_NO_MEMORY; the message in message (may be NULL).
+/// On failure *contacts is NULL.
+VT_API vt_status vt_contacts_create(vt_contacts **contacts, const vt_model *model, const vt_contact_def *defs,
+                                    int n, const double *effort_weight, char *message);
+/// Frees the contacts (NULL is allowed).
+VT_API void vt_contacts_free(vt_contacts *contacts);
+/// The number of contacts (0 for NULL).
+VT_API int vt_contacts_count(const vt_contacts *contacts);
+/// Index of the contact of that name, or VT_ERR_NOT_FOUND.
+VT_API int vt_find_contact(const vt_contacts *contacts, const char *name);
+/// The given motion of a robot standing on its contacts (docs/contact.md): the instant of
+/// vt_inverse_dynamics_motion() (q, q̇, q̈, the data's xfrc and qfrc), where the rates of free
+/// joints (VT_JOINT_FREE: a floating root) are not actuated and the ground's forces f_c at the
+/// active contacts (active[c] != 0; NULL: all) carry what they cannot. The forces are the
+/// solution of the convex problem
+///     minimize ½ Σ_a w_a τ_a² + ½ Σ_c w_c |f_c|²  over the active f_c,
+///     subject to τ_u = 0 on the unactuated rates, and, for a unilateral contact,
+///     n·f_c ≥ 0 and d_j·f_c ≤ μ cos(π/k) n·f_c on each of its pyramid's k faces,
+/// where τ = M*(q) q̈ − Q − Σ_c J_cᵀ f_c are the efforts; then the instant is solved again with
+/// the forces applied, so that every effort (qfrc_drive, zero to round-off on the unactuated
+/// rates) and every joint reaction in the data include them. force: 3 per contact (in the order
+/// of the definitions), the ground's force on the body, global, 0 at an inactive contact.
+/// Statuses: those of vt_inverse_dynamics_motion(); VT_ERR_CONTACT where no forces within the
+/// contacts' limits give the motion (the message names the contact that would have to pull or
+/// slip, or says that the active contacts cannot give the unactuated rates' forces); then force
+/// is untouched and the data's efforts are not the answer. VT_ERR_MODEL_MISMATCH: contacts made for
+/// another model. The data's xfrc is as the caller left it on return.
+VT_API vt_status vt_inverse_dynamics_contacts(const vt_model *model, vt_data *data, vt_contacts *contacts,
+                                              const int *active, double *force);
+
 /* ---- force transforms ---------------------------------------------------------------- */
 
 /// Eq (7): the Cartesian force on a body with Euler parameters p of a force f and moment n

@@ -48,6 +48,10 @@ static const size_t vt_frame_def_layout[] = {sizeof(vt_frame_def),
 static const size_t vt_payload_def_layout[] = {sizeof(vt_payload_def),
     offsetof(vt_payload_def, body), offsetof(vt_payload_def, frame), offsetof(vt_payload_def, mass),
     offsetof(vt_payload_def, point), offsetof(vt_payload_def, inertia), VT_END};
+static const size_t vt_contact_def_layout[] = {sizeof(vt_contact_def),
+    offsetof(vt_contact_def, name), offsetof(vt_contact_def, body), offsetof(vt_contact_def, point),
+    offsetof(vt_contact_def, frame), offsetof(vt_contact_def, normal), offsetof(vt_contact_def, kind),
+    offsetof(vt_contact_def, mu), offsetof(vt_contact_def, faces), offsetof(vt_contact_def, weight), VT_END};
 static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, nbody), offsetof(vt_model, nq), offsetof(vt_model, nv), offsetof(vt_model, nx),
     offsetof(vt_model, gravity), offsetof(vt_model, body_parent), offsetof(vt_model, body_joint),
@@ -135,7 +139,7 @@ static const size_t vt_urdf_options_layout[] = {sizeof(vt_urdf_options),
 static const size_t vt_urdf_options_layout[] = {VT_END};
 #endif
 
-/* entry k of struct `which` (0..12, in the order of table[]): 0 its size, then the fields'
+/* entry k of struct `which` (0..13, in the order of table[]): 0 its size, then the fields'
  * offsets; (size_t)-1 past the end */
 size_t vt_test_layout(int which, int k);
 size_t vt_test_layout(int which, int k)
@@ -144,7 +148,7 @@ size_t vt_test_layout(int which, int k)
                                           vt_cut_joint_def_layout, vt_body_def_layout, vt_model_layout,
                                           vt_data_layout, vt_run_options_layout, vt_trajectory_layout,
                                           vt_frame_def_layout, vt_coupling_def_layout, vt_urdf_options_layout,
-                                          vt_payload_def_layout};
+                                          vt_payload_def_layout, vt_contact_def_layout};
     if (which < 0 || which >= (int)(sizeof table / sizeof table[0]) || k < 0) return VT_END;
     for (int i = 0; i <= k; i++)
         if (table[which][i] == VT_END) return VT_END;

@@ -27,6 +27,7 @@ program test_fortran_layout
   type(vt_trajectory), target :: x_trajectory
   type(vt_urdf_options), target :: x_urdf_options
   type(vt_payload_def), target :: x_payload_def
+  type(vt_contact_def), target :: x_contact_def
   integer :: nfail
 
   nfail = 0
@@ -150,6 +151,10 @@ program test_fortran_layout
     call check(12_c_int, 'vt_payload_def', c_sizeof(x_payload_def), a(c_loc(x_payload_def)), [ &
          a(c_loc(x_payload_def%body)), a(c_loc(x_payload_def%frame)), a(c_loc(x_payload_def%mass)), &
          a(c_loc(x_payload_def%point)), a(c_loc(x_payload_def%inertia))])
+    call check(13_c_int, 'vt_contact_def', c_sizeof(x_contact_def), a(c_loc(x_contact_def)), [ &
+         a(c_loc(x_contact_def%name)), a(c_loc(x_contact_def%body)), a(c_loc(x_contact_def%point)), &
+         a(c_loc(x_contact_def%frame)), a(c_loc(x_contact_def%normal)), a(c_loc(x_contact_def%kind)), &
+         a(c_loc(x_contact_def%mu)), a(c_loc(x_contact_def%faces)), a(c_loc(x_contact_def%weight))])
 #if VT_HAVE_URDF
     call check(11_c_int, 'vt_urdf_options', c_sizeof(x_urdf_options), a(c_loc(x_urdf_options)), [ &
          a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating)), &
@@ -197,6 +202,11 @@ program test_fortran_layout
   call expect(x_payload_def%body == 1 .and. .not. c_associated(x_payload_def%frame) &
       .and. same([x_payload_def%mass], [0]) .and. same(x_payload_def%inertia, [0, 0, 0, 0, 0, 0, 0, 0, 0]), &
       'vt_default_payload_def')
+  x_contact_def = vt_default_contact_def()
+  call expect(x_contact_def%body == 1 .and. x_contact_def%kind == VT_CONTACT_UNILATERAL .and. x_contact_def%faces == 4 &
+      .and. same([x_contact_def%mu], [1]) .and. same([x_contact_def%weight], [VT_CONTACT_WEIGHT]) &
+      .and. same(x_contact_def%normal, [0, 0, 0]) .and. .not. c_associated(x_contact_def%frame), &
+      'vt_default_contact_def')
   x_coupling_def = vt_default_coupling_def()
   call expect(x_coupling_def%body_a == 2 .and. x_coupling_def%body_b == 1 .and. same([x_coupling_def%ratio], [1]), &
       'vt_default_coupling_def')

@@ -75,8 +75,12 @@ typedef enum vt_status {
     VT_ERR_LAYOUT = -33,               ///< the data does not hold what the call needs: a dense stage, or an
                                        ///< instant that needs M*, on data laid out VT_LAYOUT_RECURSIVE
                                        ///< (the message says what needed it; vt_model_def.layout)
-    VT_ERR_SKIPPED = -34               ///< a batch row not solved: the batch stopped at a failing row
+    VT_ERR_SKIPPED = -34,              ///< a batch row not solved: the batch stopped at a failing row
                                        ///< (vt_batch_def.stop_on_error)
+    VT_ERR_CONTACT = -35               ///< the contacts cannot carry the motion: a unilateral contact
+                                       ///< would have to pull or slip, or the active contacts cannot
+                                       ///< give the unactuated rates' forces (the message names the
+                                       ///< contact and the instant's need)
 } vt_status;
 
 /// Names of bodies, joints, drives, cut joints and frames: at most VT_NAME_MAX − 1 bytes, unique
@@ -906,6 +910,37 @@ typedef struct vt_trajectory {
 
 /// Incremental model builder (opaque).
 typedef struct vt_builder vt_builder;
+
+/// How a contact holds (vt_contact_def.kind).
+typedef enum {
+    VT_CONTACT_UNILATERAL = 0, ///< pushes only, along its normal, with Coulomb friction mu (a foot on
+                               ///< the ground)
+    VT_CONTACT_BILATERAL = 1   ///< any force (a point welded to the ground: pulls and holds sideways)
+} vt_contact_kind;
+
+/// A contact: a point of a body on the ground. The ground's force on the body at the point is
+/// an unknown of the instant (vt_inverse_dynamics_contacts()). Fill from vt_default_contact_def().
+typedef struct vt_contact_def {
+    const char *name;       ///< unique among the contacts (copied); NULL or "" (default): unnamed
+    int body;               ///< the body touching, 1..n; default 1; unused with `frame`
+    double point[3];        ///< m, the point: body axes from the centre of mass; default 0
+    const char *frame;      ///< the name of a frame of the model (a URDF link's): the point is its
+                            ///< origin, on its body; NULL (default): body and point
+    double normal[3];       ///< the ground's normal at the point, global, pointing into the body (the
+                            ///< direction the ground pushes); normalized; default 0: opposite to
+                            ///< the model's gravity (+z without gravity)
+    vt_contact_kind kind;   ///< default VT_CONTACT_UNILATERAL
+    double mu;              ///< Coulomb friction coefficient, ≥ 0 (unilateral); default 1
+    int faces;              ///< the friction cone as a pyramid of this many faces inscribed in it
+                            ///< (unilateral), 3..64; default 4
+    double weight;          ///< w_c > 0 of the rule's ½ w_c |f_c|² (N⁻²); default VT_CONTACT_WEIGHT
+} vt_contact_def;
+
+/// The default weight of a contact force in the distribution rule (N⁻², beside the efforts' 1).
+#define VT_CONTACT_WEIGHT 1e-4
+
+/// A model's contacts and their solver's workspace (opaque; vt_contacts_create()).
+typedef struct vt_contacts vt_contacts;
 
 #ifdef __cplusplus
 }

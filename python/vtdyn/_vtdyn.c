@@ -66,6 +66,7 @@ static const char *status_name(int s)
     case VT_ERR_XML: return "VT_ERR_XML";
     case VT_ERR_LAYOUT: return "VT_ERR_LAYOUT";
     case VT_ERR_SKIPPED: return "VT_ERR_SKIPPED";
+    case VT_ERR_CONTACT: return "VT_ERR_CONTACT";
     default: return "VT_ERR_UNKNOWN";
     }
 }

@@ -44,6 +44,7 @@ const char *vt_status_string(vt_status status)
     case VT_ERR_XML: return "malformed XML or not the expected document";
     case VT_ERR_LAYOUT: return "the data does not hold what the call needs (layout)";
     case VT_ERR_SKIPPED: return "not solved: the batch stopped at a failing row";
+    case VT_ERR_CONTACT: return "the contacts cannot carry the motion";
     }
     return "unknown status";
 }

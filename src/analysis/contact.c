@@ -1,0 +1,417 @@
+/* Contacts: the given motion of a robot standing on points of its bodies (docs/contact.md).
+ *
+ * The instant's efforts without contact forces are τ⁰ = M*(q) q̈ − Q(q, q̇) (vt_inverse_dynamics_motion:
+ * the given motion, eq (5) with q̈ known). A force f_c of the ground at a point p_c of body b adds
+ * the generalized force J_cᵀ f_c, J_c's column a the velocity of p_c under rate a alone,
+ *   J_c e_a = v_a + ω_a × (p_c − o)          (rate a's twist s_a = (ω_a, v_a) about o, eq (15)),
+ * for the rates on b's path and 0 for the others. So the efforts with the contacts are
+ *   τ = τ⁰ − Σ_c J_cᵀ f_c,
+ * and a free joint's six rates (a floating root) are not actuated: τ_u = 0 on them, six linear
+ * equations in the forces. Where more forces than equations remain (a quadruped on four feet),
+ * the rule decides: the forces minimize
+ *   ½ Σ_a∈A w_a τ_a² + ½ Σ_c w_c |f_c|²      (A: the actuated rates)
+ *   = ½ fᵀ (J_Aᵀ W J_A + W_f) f − (J_Aᵀ W τ⁰_A)ᵀ f + const,
+ * a strictly convex quadratic (W_f > 0), subject to
+ *   J_uᵀ f = τ⁰_u                              (the unactuated rates),
+ *   n_c · f_c ≥ 0,  μ_c cos(π/k) n_c · f_c − d_j · f_c ≥ 0, j = 0 … k−1   (a unilateral contact:
+ *   it pushes, and its force stays in the pyramid of k faces inscribed in the friction cone, d_j
+ *   = cos(2πj/k) t₁ + sin(2πj/k) t₂ the faces' outward directions in the tangent plane),
+ * solved exactly by the dual active-set method (numeric/qp.h). The forces are then applied as
+ * loads (xfrc: f_c at the centre of mass, (p_c − r_b) × f_c about it) and the instant solved again,
+ * so that the efforts and every joint reaction of the data hold them (the unactuated rates' efforts
+ * zero to round-off). No feasible forces: VT_ERR_CONTACT, the message naming the constraint the
+ * solver could not meet — a contact that would have to pull, or slip, or unactuated rates the
+ * active contacts cannot move.
+ */
+#include "analysis/contact.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/block.h"
+#include "base/scan.h"
+#include "base/status.h"
+#include "base/vec3.h"
+#include "numeric/qp.h"
+
+/* π, which ISO C's math.h does not name */
+#define VT_CONTACT_PI 3.14159265358979323846
+
+/* the most contacts of one set: the distribution is a dense problem of 3 per contact */
+#define VT_CONTACTS_MAX 4096
+
+struct vt_contacts {
+    const vt_model *model;
+    int n;
+    int *body;            /* n */
+    double *point;        /* body axes from the centre of mass (3n) */
+    double *normal;       /* global, unit (3n) */
+    double *tangent;      /* t₁, t₂: global, unit, normal to it and to each other (6n) */
+    vt_contact_kind *kind;
+    double *mu, *weight;  /* n */
+    int *faces;           /* n */
+    double *cone;         /* each unilateral contact's rows, a 3-vector each: n, then μ cos(π/k) n − d_j
+                           * for its k faces (3 (1 + k) from cone_at[c]) */
+    int *cone_at;         /* n */
+    char *name;           /* VT_NAME_MAX each (n) */
+    double *effort_weight; /* nv */
+    int nu, *unact;       /* the unactuated rates (a free joint's) */
+    int nact, *act;       /* the others */
+    /* the instant's workspace, sized for every contact active */
+    int *on;              /* the active contacts' indices */
+    double *J;            /* J_cᵀ columns: nv x 3n, column 3k+e the contact on[k]'s component e */
+    double *G, *c, *Aeq, *beq, *Ain, *bin, *f, *tau0, *xfrc;
+    int *row_contact;     /* the contact of each inequality row */
+    int *row_face;        /* −1 for its normal row, else its face */
+    void *qp;
+    size_t qp_bytes;
+};
+
+vt_contact_def vt_default_contact_def(void)
+{
+    vt_contact_def d;
+    memset(&d, 0, sizeof d);
+    d.body = 1;
+    d.kind = VT_CONTACT_UNILATERAL;
+    d.mu = 1.0;
+    d.faces = 4;
+    d.weight = VT_CONTACT_WEIGHT;
+    return d;
+}
+
+void vt_contacts_free(vt_contacts *c)
+{
+    free(c); /* one block */
+}
+
+int vt_contacts_count(const vt_contacts *c)
+{
+    return c ? c->n : 0;
+}
+
+int vt_find_contact(const vt_contacts *c, const char *name)
+{
+    if (!c || !name || !name[0]) return VT_ERR_NOT_FOUND;
+    for (int k = 0; k < c->n; k++)
+        if (strcmp(c->name + (size_t)VT_NAME_MAX * (size_t)k, name) == 0) return k;
+    return VT_ERR_NOT_FOUND;
+}
+
+/* the inequality rows of the n definitions: a unilateral contact's normal and faces */
+static int inequality_rows(const vt_contact_def *defs, int n)
+{
+    int r = 0;
+    for (int k = 0; k < n; k++)
+        if (defs[k].kind == VT_CONTACT_UNILATERAL) r += 1 + defs[k].faces;
+    return r;
+}
+
+/* the set's arrays in one block (b->base NULL: the sizing pass) */
+static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int nin)
+{
+    const size_t N = (size_t)n, nv = (size_t)m->nv, nx = 3 * N, nr = (size_t)(nin ? nin : 1);
+    c->body = vt_block_take(b, N, sizeof(int));
+    c->point = vt_block_take(b, 3 * N, sizeof(double));
+    c->normal = vt_block_take(b, 3 * N, sizeof(double));
+    c->tangent = vt_block_take(b, 6 * N, sizeof(double));
+    c->kind = vt_block_take(b, N, sizeof(vt_contact_kind));
+    c->mu = vt_block_take(b, N, sizeof(double));
+    c->weight = vt_block_take(b, N, sizeof(double));
+    c->faces = vt_block_take(b, N, sizeof(int));
+    c->cone = vt_block_take(b, 3 * nr, sizeof(double));
+    c->cone_at = vt_block_take(b, N, sizeof(int));
+    c->name = vt_block_take(b, N, VT_NAME_MAX);
+    c->effort_weight = vt_block_take(b, nv ? nv : 1, sizeof(double));
+    c->unact = vt_block_take(b, nv ? nv : 1, sizeof(int));
+    c->act = vt_block_take(b, nv ? nv : 1, sizeof(int));
+    c->on = vt_block_take(b, N, sizeof(int));
+    c->J = vt_block_take(b, nv * nx, sizeof(double));
+    c->G = vt_block_take(b, nx * nx, sizeof(double));
+    c->c = vt_block_take(b, nx, sizeof(double));
+    c->Aeq = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
+    c->beq = vt_block_take(b, nv ? nv : 1, sizeof(double));
+    c->Ain = vt_block_take(b, nr * nx, sizeof(double));
+    c->bin = vt_block_take(b, nr, sizeof(double));
+    c->f = vt_block_take(b, nx, sizeof(double));
+    c->tau0 = vt_block_take(b, nv ? nv : 1, sizeof(double));
+    c->xfrc = vt_block_take(b, 6 * ((size_t)m->nbody + 1), sizeof(double));
+    c->row_contact = vt_block_take(b, nr, sizeof(int));
+    c->row_face = vt_block_take(b, nr, sizeof(int));
+    c->qp = vt_block_take(b, c->qp_bytes, 1);
+}
+
+/* definition k checked and normalized into the set: its body and point (a frame's resolved), its
+ * unit normal and tangents; 0 or a status with the message */
+static vt_status take_def(vt_contacts *c, const vt_model *m, const vt_contact_def *def, int k, char *msg)
+{
+    const char *name = def->name ? def->name : "";
+    if (strlen(name) >= VT_NAME_MAX)
+        return vt_fail(msg, VT_ERR_BAD_NAME, "contact %d: a name of %zu bytes (at most %d)", k, strlen(name),
+                       VT_NAME_MAX - 1);
+    for (int h = 0; name[0] && h < k; h++)
+        if (strcmp(c->name + (size_t)VT_NAME_MAX * (size_t)h, name) == 0)
+            return vt_fail(msg, VT_ERR_BAD_NAME, "contact %d: the name \"%s\" is contact %d's", k, name, h);
+    memcpy(c->name + (size_t)VT_NAME_MAX * (size_t)k, name, strlen(name) + 1);
+    int body = def->body;
+    double point[3];
+    vt_copy3(point, def->point);
+    if (def->frame) {
+        const int f = vt_find_frame(m, def->frame);
+        if (f < 0) return vt_fail(msg, VT_ERR_NOT_FOUND, "contact %d (%s): no frame \"%.64s\"", k, name, def->frame);
+        body = m->frame_body[f];
+        vt_copy3(point, m->frame_point + 3 * f);
+    }
+    if (body < 1 || body > m->nbody)
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "contact %d (%s): body %d is not a moving body (1..%d)", k, name, body,
+                       m->nbody);
+    if (!vt_all_finite(point, 3) || !vt_all_finite(def->normal, 3) || !isfinite(def->mu) || !isfinite(def->weight))
+        return vt_fail(msg, VT_ERR_NONFINITE, "contact %d (%s): NaN or Inf in its definition", k, name);
+    if (def->kind != VT_CONTACT_UNILATERAL && def->kind != VT_CONTACT_BILATERAL)
+        return vt_fail(msg, VT_ERR_BAD_OPTION, "contact %d (%s): kind %d is neither unilateral nor bilateral", k, name,
+                       (int)def->kind);
+    if (def->kind == VT_CONTACT_UNILATERAL && (!(def->mu >= 0.0) || def->faces < 3 || def->faces > 64))
+        return vt_fail(msg, VT_ERR_BAD_OPTION, "contact %d (%s): mu %g (>= 0) and faces %d (3 to 64)", k, name,
+                       def->mu, def->faces);
+    if (!(def->weight > 0.0))
+        return vt_fail(msg, VT_ERR_BAD_OPTION, "contact %d (%s): weight %g is not > 0", k, name, def->weight);
+    double *nrm = c->normal + 3 * k;
+    vt_copy3(nrm, def->normal);
+    if (!(vt_normalize(nrm, 3) > 0.0)) { /* opposite to gravity */
+        for (int e = 0; e < 3; e++) nrm[e] = -m->gravity[e];
+        if (!(vt_normalize(nrm, 3) > 0.0))
+            return vt_fail(msg, VT_ERR_BAD_OPTION, "contact %d (%s): no normal given and no gravity to take it from",
+                           k, name);
+    }
+    /* t₁: the global axis least along the normal, less its part along it; t₂ = n × t₁ */
+    double *t1 = c->tangent + 6 * k, *t2 = t1 + 3;
+    int least = 0;
+    for (int e = 1; e < 3; e++)
+        if (fabs(nrm[e]) < fabs(nrm[least])) least = e;
+    for (int e = 0; e < 3; e++) t1[e] = (e == least) - nrm[least] * nrm[e];
+    vt_normalize(t1, 3);
+    vt_cross3(t2, nrm, t1);
+    c->body[k] = body;
+    vt_copy3(c->point + 3 * k, point);
+    c->kind[k] = def->kind;
+    c->mu[k] = def->kind == VT_CONTACT_UNILATERAL ? def->mu : 0.0;
+    c->faces[k] = def->kind == VT_CONTACT_UNILATERAL ? def->faces : 0;
+    c->weight[k] = def->weight;
+    return VT_OK;
+}
+
+vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_contact_def *defs, int n,
+                             const double *effort_weight, char *message)
+{
+    char sink[VT_MESSAGE_SIZE];
+    char *msg = message ? message : sink;
+    msg[0] = '\0';
+    if (out) *out = NULL;
+    if (!out || !m || !defs) return vt_fail(msg, VT_ERR_NULL, "vt_contacts_create: contacts, model or defs is NULL");
+    if (n < 1 || n > VT_CONTACTS_MAX)
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "vt_contacts_create: %d contacts (1 to %d)", n, VT_CONTACTS_MAX);
+    for (int k = 0; k < n; k++)
+        if (defs[k].kind == VT_CONTACT_UNILATERAL && (defs[k].faces < 3 || defs[k].faces > 64))
+            return vt_fail(msg, VT_ERR_BAD_OPTION, "contact %d: faces %d (3 to 64)", k, defs[k].faces);
+    for (int a = 0; effort_weight && a < m->nv; a++)
+        if (!(effort_weight[a] > 0.0) || !isfinite(effort_weight[a]))
+            return vt_fail(msg, VT_ERR_BAD_OPTION, "vt_contacts_create: effort_weight[%d] = %g is not a finite number > 0",
+                           a, effort_weight[a]);
+    const int nin = inequality_rows(defs, n);
+    vt_contacts probe = {.qp_bytes = vt_qp_scratch_bytes(3 * n, m->nv, nin)};
+    vt_block blk = {.base = NULL, .used = sizeof(vt_contacts), .align = 64};
+    layout(&blk, &probe, m, n, nin);
+    if (blk.overflow) return vt_fail(msg, VT_ERR_NO_MEMORY, "vt_contacts_create: its size does not fit in memory");
+    char *mem = calloc(1, blk.used);
+    if (!mem) return vt_fail(msg, VT_ERR_NO_MEMORY, "vt_contacts_create: out of memory (%zu bytes)", blk.used);
+    vt_contacts *c = (vt_contacts *)mem;
+    c->qp_bytes = probe.qp_bytes;
+    blk = (vt_block){.base = mem, .used = sizeof(vt_contacts), .align = 64};
+    layout(&blk, c, m, n, nin);
+    c->model = m;
+    c->n = n;
+    for (int k = 0; k < n; k++) {
+        const vt_status st = take_def(c, m, &defs[k], k, msg);
+        if (st) {
+            free(mem);
+            return st;
+        }
+    }
+    for (int k = 0, r = 0; k < n; k++) { /* the pyramids' rows, once */
+        c->cone_at[k] = r;
+        const double *nrm = c->normal + 3 * k, *t1 = c->tangent + 6 * k, *t2 = t1 + 3;
+        const int K = c->faces[k];
+        const double mc = c->mu[k] * cos(VT_CONTACT_PI / K);
+        for (int j = -1; K && j < K; j++, r++) {
+            const double th = 2.0 * VT_CONTACT_PI * j / K, cs = cos(th), sn = sin(th);
+            for (int e = 0; e < 3; e++) c->cone[3 * r + e] = j < 0 ? nrm[e] : mc * nrm[e] - (cs * t1[e] + sn * t2[e]);
+        }
+    }
+    for (int a = 0; a < m->nv; a++) {
+        c->effort_weight[a] = effort_weight ? effort_weight[a] : 1.0;
+        if (m->body_joint[m->dof_body[a]] == VT_JOINT_FREE) c->unact[c->nu++] = a;
+        else c->act[c->nact++] = a;
+    }
+    *out = c;
+    return VT_OK;
+}
+
+/* J_cᵀ of the active contacts into c->J (nv x 3 na): column 3k + e is component e of the velocity
+ * of contact on[k]'s point under each rate of its body's path (0 off it) */
+static void contact_jacobian(const vt_model *m, const vt_data *d, vt_contacts *c, int na)
+{
+    const size_t nv = (size_t)m->nv;
+    memset(c->J, 0, nv * 3 * (size_t)na * sizeof(double));
+    for (int k = 0; k < na; k++) {
+        const int h = c->on[k], b = c->body[h];
+        double r[3], po[3];
+        vt_mulmat3(r, d->A + 9 * b, c->point + 3 * h);
+        for (int e = 0; e < 3; e++) po[e] = d->xrel[6 * b + e] + r[e]; /* p − o */
+        double *col = c->J + 3 * (size_t)k * nv;
+        for (int a = m->body_vadr[b] + m->body_nv[b] - 1; a >= 0; a = m->dof_parent[a]) {
+            const double *tw = d->twist + 6 * a;
+            double v[3];
+            vt_cross3(v, tw, po);
+            for (int e = 0; e < 3; e++) col[(size_t)e * nv + (size_t)a] = tw[3 + e] + v[e];
+        }
+    }
+}
+
+/* the QP of the header: G, c, the equalities and the inequalities of the na active contacts;
+ * returns the inequality rows */
+static int distribution(const vt_model *m, vt_contacts *c, int na)
+{
+    const int n = 3 * na;
+    const size_t nv = (size_t)m->nv;
+    /* G = J_Aᵀ W J_A + W_f, c = −J_Aᵀ W τ⁰_A: J's rows are the rates, its columns the forces' */
+    for (int i = 0; i < n; i++) {
+        const double *Ji = c->J + (size_t)i * nv;
+        double ci = 0.0;
+        for (int h = 0; h < c->nact; h++) ci -= Ji[c->act[h]] * c->effort_weight[c->act[h]] * c->tau0[c->act[h]];
+        c->c[i] = ci;
+        for (int j = 0; j <= i; j++) {
+            const double *Jj = c->J + (size_t)j * nv;
+            double g = 0.0;
+            for (int h = 0; h < c->nact; h++) {
+                const int a = c->act[h];
+                g += Ji[a] * c->effort_weight[a] * Jj[a];
+            }
+            c->G[(size_t)i + (size_t)j * (size_t)n] = c->G[(size_t)j + (size_t)i * (size_t)n] = g;
+        }
+        c->G[(size_t)i * (size_t)(n + 1)] += c->weight[c->on[i / 3]];
+    }
+    /* J_uᵀ f = τ⁰_u: row u of Aeq (nu x n) */
+    for (int h = 0; h < c->nu; h++) {
+        const int a = c->unact[h];
+        for (int i = 0; i < n; i++) c->Aeq[(size_t)h + (size_t)i * (size_t)c->nu] = c->J[(size_t)i * nv + (size_t)a];
+        c->beq[h] = c->tau0[a];
+    }
+    /* the unilateral contacts' rows: n·f ≥ 0, then μ cos(π/k) n·f − d_j·f ≥ 0 */
+    int rows = 0;
+    for (int k = 0; k < na; k++) {
+        const int h = c->on[k];
+        if (c->kind[h] == VT_CONTACT_UNILATERAL) rows += 1 + c->faces[h];
+    }
+    memset(c->Ain, 0, (size_t)(rows ? rows : 1) * (size_t)n * sizeof(double));
+    int r = 0;
+    for (int k = 0; k < na; k++) {
+        const int h = c->on[k];
+        if (c->kind[h] != VT_CONTACT_UNILATERAL) continue;
+        const double *cone = c->cone + 3 * c->cone_at[h];
+        for (int j = -1; j < c->faces[h]; j++, r++, cone += 3) {
+            for (int e = 0; e < 3; e++) c->Ain[(size_t)r + (size_t)(3 * k + e) * (size_t)rows] = cone[e];
+            c->bin[r] = 0.0;
+            c->row_contact[r] = h;
+            c->row_face[r] = j;
+        }
+    }
+    return rows;
+}
+
+/* body b's load of the ground's force f at contact h's point: f at the centre of mass and
+ * (p − r_b) × f about it, added into xfrc */
+static void add_load(const vt_data *d, const vt_contacts *c, int h, const double f[3], double *xfrc)
+{
+    const int b = c->body[h];
+    double r[3], n[3];
+    vt_mulmat3(r, d->A + 9 * b, c->point + 3 * h);
+    vt_cross3(n, r, f);
+    for (int e = 0; e < 3; e++) {
+        xfrc[6 * b + e] += f[e];
+        xfrc[6 * b + 3 + e] += n[e];
+    }
+}
+
+/* the message of an infeasible distribution: what the culprit constraint asks */
+static vt_status infeasible(const vt_model *m, vt_data *d, const vt_contacts *c, int culprit)
+{
+    if (culprit < c->nu) {
+        const int a = c->unact[culprit < 0 ? 0 : culprit], b = m->dof_body[a];
+        return vt_fail(d->message, VT_ERR_CONTACT,
+                       "vt_inverse_dynamics_contacts: the active contacts cannot give the unactuated rate %d's "
+                       "force %g (joint \"%.64s\" of body %d): no forces on the ground carry the motion",
+                       a, c->tau0[a], m->joint_name + (size_t)VT_NAME_MAX * (size_t)b, b);
+    }
+    const int r = culprit - c->nu, h = c->row_contact[r];
+    const char *name = c->name + (size_t)VT_NAME_MAX * (size_t)h;
+    if (c->row_face[r] < 0)
+        return vt_fail(d->message, VT_ERR_CONTACT,
+                       "vt_inverse_dynamics_contacts: contact %d \"%.64s\" (body %d) would have to pull on the ground",
+                       h, name, c->body[h]);
+    return vt_fail(d->message, VT_ERR_CONTACT,
+                   "vt_inverse_dynamics_contacts: contact %d \"%.64s\" (body %d) would have to slip: its force "
+                   "leaves the friction pyramid (mu %g, %d faces)",
+                   h, name, c->body[h], c->mu[h], c->faces[h]);
+}
+
+vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force)
+{
+    vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_contacts");
+    if (st) return st;
+    if (!c) return vt_fail(d->message, VT_ERR_NULL, "vt_inverse_dynamics_contacts: contacts is NULL");
+    if (c->model != m)
+        return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "vt_inverse_dynamics_contacts: contacts made for another model");
+    if ((st = vt_inverse_dynamics_motion(m, d))) return st;
+    const size_t nv = (size_t)m->nv, nxf = 6 * ((size_t)m->nbody + 1);
+    memcpy(c->tau0, d->qfrc_drive, nv * sizeof(double));
+    int na = 0;
+    for (int k = 0; k < c->n; k++)
+        if (!active || active[k]) c->on[na++] = k;
+    if (na == 0) { /* no contact on the ground: in free flight the unactuated rates need nothing */
+        double big = 0.0, scale = 0.0;
+        int worst = 0;
+        for (int h = 0; h < c->nu; h++)
+            if (fabs(c->tau0[c->unact[h]]) > big) {
+                big = fabs(c->tau0[c->unact[h]]);
+                worst = h;
+            }
+        for (int a = 0; a < m->nv; a++) scale = fmax(scale, fabs(c->tau0[a]));
+        if (big > 64.0 * DBL_EPSILON * (1.0 + scale)) return infeasible(m, d, c, worst);
+        if (force) memset(force, 0, 3 * (size_t)c->n * sizeof(double));
+        return VT_OK;
+    }
+    const int n = 3 * na;
+    contact_jacobian(m, d, c, na);
+    const int rows = distribution(m, c, na);
+    int culprit = -1;
+    const vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, c->nu, c->Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
+                                        rows ? rows : 1, c->bin, c->f, NULL, NULL, &culprit, c->qp, c->qp_bytes, NULL);
+    if (qs == VT_QP_INFEASIBLE) return infeasible(m, d, c, culprit);
+    if (qs != VT_QP_OPTIMAL)
+        return vt_fail(d->message, qs == VT_QP_NONFINITE ? VT_ERR_NONFINITE : VT_ERR_SINGULAR,
+                       "vt_inverse_dynamics_contacts: the distribution's problem could not be solved (%s)",
+                       vt_qp_result_string(qs));
+    /* the forces applied as loads, the instant solved again with them; the caller's xfrc back */
+    memcpy(c->xfrc, d->xfrc, nxf * sizeof(double));
+    for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, d->xfrc);
+    st = vt_inverse_dynamics_motion(m, d);
+    memcpy(d->xfrc, c->xfrc, nxf * sizeof(double));
+    if (st) return st;
+    if (force) {
+        memset(force, 0, 3 * (size_t)c->n * sizeof(double));
+        for (int k = 0; k < na; k++) vt_copy3(force + 3 * c->on[k], c->f + 3 * k);
+    }
+    return VT_OK;
+}

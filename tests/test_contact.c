@@ -1,0 +1,362 @@
+/* Contacts (analysis/contact.c) against closed forms, a second method and identities:
+ * - a box on four corner contacts, no actuated rate: the rule's answer is the minimum-norm
+ *   solution of the six balance equations (Σ f = m (a − g), Σ r × f = 0), solved here by the
+ *   test's own elimination, wherever that solution lies inside the friction pyramids; at rest
+ *   and symmetric each corner carries m g / 4; accelerated sideways beyond μ cos(π/4) g it must
+ *   slip, and downward faster than g it must pull: both refused, the contact named, the forces
+ *   and xfrc untouched;
+ * - the quadruped (examples/scenes.c) standing: each foot carries M g / 4 by symmetry, the free
+ *   root's efforts vanish, and every joint's effort is τ⁰ − Σ J_cᵀ f with τ⁰ the instant without
+ *   contacts and J_c the feet's Jacobians by central differences of vt_frame_pose; the same forces
+ *   applied as frame loads (vt_add_frame_load) give the same efforts; with a front foot lifted
+ *   the diagonal pair under the centre of mass carries it all, half each;
+ * - the definitions refused, named.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "vt_test.h"
+#include "scenes.h"
+
+#define G0 9.81
+#define PI 3.14159265358979323846
+
+/* |a − b| within rel times the problem's scale */
+#define assert_near_rel(a, b, rel, scale) assert_near(a, b, (rel) * (scale))
+
+/* a free box (mass m, 0.6 x 0.4 x 0.2 m; gravity −9.81 z) with corners at (x_k, ±0.2, −0.1) from its centre of
+ * mass, x_k = xf front and xh hind */
+static vt_model *box_model(double mass)
+{
+    vt_builder *b = NULL;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -G0; /* z up */
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_FREE;
+    body.parent = 0;
+    body.mass = mass;
+    body.inertia[0] = mass * (0.16 + 0.04) / 12.0;
+    body.inertia[4] = mass * (0.36 + 0.04) / 12.0;
+    body.inertia[8] = mass * (0.36 + 0.16) / 12.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static void corners(vt_contact_def def[4], double xf, double xh, double mu)
+{
+    static const char *const names[4] = {"FL", "FR", "HL", "HR"};
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].name = names[k];
+        def[k].body = 1;
+        def[k].point[0] = k < 2 ? xf : xh;
+        def[k].point[1] = k % 2 == 0 ? 0.2 : -0.2;
+        def[k].point[2] = -0.1;
+        def[k].mu = mu;
+    }
+}
+
+/* x (n) solving the n x n system A x = b (A column-major, overwritten) by Gauss elimination with
+ * partial pivoting */
+static void gauss(int n, double *A, double *b)
+{
+    for (int k = 0; k < n; k++) {
+        int p = k;
+        for (int i = k + 1; i < n; i++)
+            if (fabs(A[i + n * k]) > fabs(A[p + n * k])) p = i;
+        for (int j = 0; j < n; j++) {
+            const double t = A[k + n * j];
+            A[k + n * j] = A[p + n * j];
+            A[p + n * j] = t;
+        }
+        const double t = b[k];
+        b[k] = b[p];
+        b[p] = t;
+        for (int i = k + 1; i < n; i++) {
+            const double l = A[i + n * k] / A[k + n * k];
+            for (int j = k; j < n; j++) A[i + n * j] -= l * A[k + n * j];
+            b[i] -= l * b[k];
+        }
+    }
+    for (int k = n - 1; k >= 0; k--) {
+        for (int j = k + 1; j < n; j++) b[k] -= A[k + n * j] * b[j];
+        b[k] /= A[k + n * k];
+    }
+}
+
+/* the minimum-norm corner forces f (12) of the box at rest in orientation identity with its
+ * centre of mass accelerated by acc: E f = w, E's rows Σ f and Σ r × f, f = Eᵀ (E Eᵀ)⁻¹ w */
+static void min_norm_forces(const vt_contact_def def[4], double mass, const double acc[3], double f[12])
+{
+    double E[6 * 12] = {0}, w[6] = {mass * acc[0], mass * acc[1], mass * (acc[2] + G0), 0, 0, 0};
+    for (int k = 0; k < 4; k++) {
+        const double *r = def[k].point;
+        for (int e = 0; e < 3; e++) E[e + 6 * (3 * k + e)] = 1.0;
+        /* (r × f)_x = r_y f_z − r_z f_y, ... */
+        E[3 + 6 * (3 * k + 2)] = r[1], E[3 + 6 * (3 * k + 1)] = -r[2];
+        E[4 + 6 * (3 * k + 0)] = r[2], E[4 + 6 * (3 * k + 2)] = -r[0];
+        E[5 + 6 * (3 * k + 1)] = r[0], E[5 + 6 * (3 * k + 0)] = -r[1];
+    }
+    double EEt[36];
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) {
+            double s = 0.0;
+            for (int k = 0; k < 12; k++) s += E[i + 6 * k] * E[j + 6 * k];
+            EEt[i + 6 * j] = s;
+        }
+    gauss(6, EEt, w);
+    for (int k = 0; k < 12; k++) {
+        double s = 0.0;
+        for (int i = 0; i < 6; i++) s += E[i + 6 * k] * w[i];
+        f[k] = s;
+    }
+}
+
+/* the box's state: at height 0.1, orientation identity, at rest, its centre accelerated by acc */
+static void box_state(const vt_model *m, vt_data *d, const double acc[3])
+{
+    memcpy(d->q, m->q0, (size_t)m->nq * sizeof(double));
+    d->q[2] = 0.1;
+    memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+    memset(d->qdd, 0, (size_t)m->nv * sizeof(double));
+    /* the free joint's rates are twists about o (its point, here the centre of mass), the three
+     * translations first: at rest their accelerations are the centre's */
+    for (int e = 0; e < 3; e++) d->qdd[e] = acc[e];
+}
+
+static void test_box(void **state)
+{
+    (void)state;
+    const double mass = 8.0;
+    vt_model *m = box_model(mass);
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    struct {
+        double xf, xh, acc[3], mu;
+    } cases[] = {{0.3, -0.3, {0, 0, 0}, 1.0},      /* symmetric: m g / 4 each */
+                 {0.35, -0.15, {0, 0, 0}, 1.0},    /* the centre of mass off the middle */
+                 {0.3, -0.3, {0.3 * G0, 0, 0}, 0.5}, /* sideways within the pyramid (0.3 < 0.5 cos 45°) */
+                 {0.3, -0.25, {0.1, -0.4, 1.0}, 0.8}};
+    for (size_t t = 0; t < sizeof cases / sizeof cases[0]; t++) {
+        vt_contact_def def[4];
+        corners(def, cases[t].xf, cases[t].xh, cases[t].mu);
+        vt_contacts *c = NULL;
+        char msg[VT_MESSAGE_SIZE];
+        assert_ok(vt_contacts_create(&c, m, def, 4, NULL, msg));
+        assert_int_equal(vt_contacts_count(c), 4);
+        box_state(m, d, cases[t].acc);
+        double f[12], want[12];
+        min_norm_forces(def, mass, cases[t].acc, want);
+        for (int k = 0; k < 4; k++) { /* the closed form inside the pyramids: it is the rule's answer */
+            const double *w = want + 3 * k;
+            assert_true(w[2] > 0.0);
+            assert_true(fabs(w[0]) <= cases[t].mu * cos(PI / 4) * w[2] && fabs(w[1]) <= cases[t].mu * cos(PI / 4) * w[2]);
+        }
+        assert_ok(vt_inverse_dynamics_contacts(m, d, c, NULL, f));
+        for (int k = 0; k < 12; k++) assert_near_rel(f[k], want[k], 1e-10, mass * G0);
+        if (t == 0)
+            for (int k = 0; k < 4; k++) assert_near_rel(f[3 * k + 2], mass * G0 / 4.0, 1e-12, mass * G0);
+        for (int a = 0; a < 6; a++) assert_near_rel(d->qfrc_drive[a], 0.0, 1e-12, mass * G0); /* nothing actuated */
+        for (int k = 0; k < 6 * (m->nbody + 1); k++) assert_true(d->xfrc[k] == 0.0); /* xfrc as it was */
+        vt_contacts_free(c);
+    }
+    /* slip: 0.5 g sideways on mu 0.5 (at most 0.354 g); pull: down at 1.5 g */
+    const double slip[3] = {0.5 * G0, 0, 0}, pull[3] = {0, 0, -1.5 * G0};
+    for (int t = 0; t < 2; t++) {
+        vt_contact_def def[4];
+        corners(def, 0.3, -0.3, 0.5);
+        vt_contacts *c = NULL;
+        assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
+        box_state(m, d, t == 0 ? slip : pull);
+        double f[12];
+        for (int k = 0; k < 12; k++) f[k] = 42.0;
+        assert_int_equal(vt_inverse_dynamics_contacts(m, d, c, NULL, f), VT_ERR_CONTACT);
+        assert_non_null(strstr(d->message, t == 0 ? "slip" : "pull"));
+        assert_non_null(strstr(d->message, "contact "));
+        for (int k = 0; k < 12; k++) assert_true(f[k] == 42.0);
+        for (int k = 0; k < 6 * (m->nbody + 1); k++) assert_true(d->xfrc[k] == 0.0);
+        vt_contacts_free(c);
+    }
+    /* bilateral corners hold the pull: the minimum-norm forces, negative */
+    {
+        vt_contact_def def[4];
+        corners(def, 0.3, -0.3, 0.5);
+        for (int k = 0; k < 4; k++) def[k].kind = VT_CONTACT_BILATERAL;
+        vt_contacts *c = NULL;
+        assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
+        box_state(m, d, pull);
+        double f[12], want[12];
+        min_norm_forces(def, mass, pull, want);
+        assert_ok(vt_inverse_dynamics_contacts(m, d, c, NULL, f));
+        for (int k = 0; k < 12; k++) assert_near_rel(f[k], want[k], 1e-10, mass * G0);
+        assert_true(f[2] < 0.0);
+        vt_contacts_free(c);
+    }
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
+static void test_quadruped(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_quadruped(&m));
+    vt_data *d = NULL, *d0 = NULL;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&d0, m));
+    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    vt_contact_def def[4];
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = foot[k];
+        def[k].name = foot[k];
+        def[k].mu = 0.8;
+    }
+    vt_contacts *c = NULL;
+    assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
+    assert_int_equal(vt_find_contact(c, "HL_foot"), 2);
+    assert_int_equal(vt_find_contact(c, "knee"), VT_ERR_NOT_FOUND);
+    const double W = VT_QUADRUPED_MASS * G0, theta = 0.6;
+    vt_scene_quadruped_stand(m, d, theta);
+    /* a motion too: the joints moving, the torso swaying */
+    for (int a = 6; a < m->nv; a++) {
+        d->qd[a] = 0.3 * sin(1.7 * a);
+        d->qdd[a] = 0.5 * cos(0.9 * a);
+    }
+    for (int pass = 0; pass < 2; pass++) { /* at rest (symmetric), then moving */
+        vt_data *s = pass == 0 ? d0 : d;
+        if (pass == 0) vt_scene_quadruped_stand(m, s, theta);
+        double f[12];
+        assert_ok(vt_inverse_dynamics_contacts(m, s, c, NULL, f));
+        double sum[3] = {0, 0, 0};
+        for (int k = 0; k < 4; k++) {
+            for (int e = 0; e < 3; e++) sum[e] += f[3 * k + e];
+            assert_true(f[3 * k + 2] >= 0.0); /* pushes, within the pyramid */
+            assert_true(fabs(f[3 * k]) <= 0.8 * cos(PI / 4) * f[3 * k + 2] + 1e-12 * W);
+            assert_true(fabs(f[3 * k + 1]) <= 0.8 * cos(PI / 4) * f[3 * k + 2] + 1e-12 * W);
+            if (pass == 0) assert_near_rel(f[3 * k + 2], W / 4.0, 1e-10, W);
+        }
+        if (pass == 0) {
+            assert_near_rel(sum[0], 0.0, 1e-12, W);
+            assert_near_rel(sum[1], 0.0, 1e-12, W);
+        }
+        for (int a = 0; a < 6; a++) assert_near_rel(s->qfrc_drive[a], 0.0, 1e-10, W); /* the free root */
+        /* τ = τ⁰ − Σ J_cᵀ f: τ⁰ the instant alone, J_c by central differences on each joint */
+        vt_data *z = NULL;
+        assert_ok(vt_data_create(&z, m));
+        memcpy(z->q, s->q, (size_t)m->nq * sizeof(double));
+        memcpy(z->qd, s->qd, (size_t)m->nv * sizeof(double));
+        memcpy(z->qdd, s->qdd, (size_t)m->nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_motion(m, z));
+        for (int a = 6; a < m->nv; a++) {
+            const int qa = m->body_qadr[m->dof_body[a]];
+            double tau = z->qfrc_drive[a];
+            for (int k = 0; k < 4; k++) {
+                const int fr = vt_find_frame(m, foot[k]);
+                double pp[3], pm[3], R[9];
+                const double h = 1e-6, q0 = z->q[qa];
+                z->q[qa] = q0 + h;
+                assert_ok(vt_kinematics(m, z));
+                assert_ok(vt_frame_pose(m, z, fr, pp, R));
+                z->q[qa] = q0 - h;
+                assert_ok(vt_kinematics(m, z));
+                assert_ok(vt_frame_pose(m, z, fr, pm, R));
+                z->q[qa] = q0;
+                for (int e = 0; e < 3; e++) tau -= (pp[e] - pm[e]) / (2 * h) * f[3 * k + e];
+            }
+            assert_near_rel(s->qfrc_drive[a], tau, 1e-8, W);
+        }
+        /* the same forces as frame loads: the same efforts */
+        memcpy(z->q, s->q, (size_t)m->nq * sizeof(double));
+        assert_ok(vt_kinematics(m, z));
+        for (int k = 0; k < 4; k++) assert_ok(vt_add_frame_load(m, z, vt_find_frame(m, foot[k]), f + 3 * k, NULL));
+        assert_ok(vt_inverse_dynamics_motion(m, z));
+        for (int a = 0; a < m->nv; a++) assert_near_rel(s->qfrc_drive[a], z->qfrc_drive[a], 1e-12, W);
+        vt_data_free(z);
+    }
+    /* symmetric legs carry mirrored torques at rest: FL and FR, HL and HR alike in flexion */
+    assert_near_rel(d0->qfrc_drive[m->body_vadr[vt_find_body(m, "FL_thigh")]],
+                    d0->qfrc_drive[m->body_vadr[vt_find_body(m, "FR_thigh")]], 1e-10, W);
+    /* the front left foot lifted: the centre of mass (over the middle) lies on the line from FR
+     * to HL, so those two feet carry half the weight each and HR nothing (its moment about that
+     * line has nothing to balance); FL's force is zero */
+    vt_scene_quadruped_stand(m, d, theta);
+    const int active[4] = {0, 1, 1, 1};
+    double f[12];
+    for (int k = 0; k < 12; k++) f[k] = 42.0;
+    assert_ok(vt_inverse_dynamics_contacts(m, d, c, active, f));
+    assert_true(f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0);
+    assert_near_rel(f[5], W / 2.0, 1e-9, W);
+    assert_near_rel(f[8], W / 2.0, 1e-9, W);
+    assert_near_rel(f[11], 0.0, 1e-9, W);
+    for (int a = 0; a < 6; a++) assert_near_rel(d->qfrc_drive[a], 0.0, 1e-10, W);
+    vt_contacts_free(c);
+    vt_data_free(d);
+    vt_data_free(d0);
+    vt_model_free(m);
+}
+
+static void test_refused(void **state)
+{
+    (void)state;
+    vt_model *m = box_model(1.0), *other = box_model(2.0);
+    vt_contact_def def[4];
+    corners(def, 0.3, -0.3, 1.0);
+    vt_contacts *c = (vt_contacts *)def; /* set to NULL by every failure */
+    char msg[VT_MESSAGE_SIZE];
+    def[1].name = "FL";
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_BAD_NAME);
+    assert_null(c);
+    assert_non_null(strstr(msg, "FL"));
+    corners(def, 0.3, -0.3, 1.0);
+    def[1].body = 2;
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_BAD_INDEX);
+    corners(def, 0.3, -0.3, 1.0);
+    def[0].frame = "nowhere";
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_NOT_FOUND);
+    assert_non_null(strstr(msg, "nowhere"));
+    corners(def, 0.3, -0.3, 1.0);
+    def[0].mu = -0.1;
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_BAD_OPTION);
+    corners(def, 0.3, -0.3, 1.0);
+    def[0].faces = 2;
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_BAD_OPTION);
+    corners(def, 0.3, -0.3, 1.0);
+    def[1].weight = 0.0;
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_BAD_OPTION);
+    corners(def, 0.3, -0.3, 1.0);
+    def[1].point[1] = NAN;
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, NULL, msg), VT_ERR_NONFINITE);
+    corners(def, 0.3, -0.3, 1.0);
+    const double w[6] = {1, 1, 1, 0, 1, 1};
+    assert_int_equal(vt_contacts_create(&c, m, def, 2, w, msg), VT_ERR_BAD_OPTION);
+    assert_int_equal(vt_contacts_create(&c, m, def, 0, NULL, msg), VT_ERR_BAD_INDEX);
+    assert_int_equal(vt_contacts_create(&c, NULL, def, 2, NULL, msg), VT_ERR_NULL);
+    /* made for one model, handed another's data */
+    assert_ok(vt_contacts_create(&c, m, def, 2, NULL, msg));
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, other));
+    assert_int_equal(vt_inverse_dynamics_contacts(other, d, c, NULL, NULL), VT_ERR_MODEL_MISMATCH);
+    assert_int_equal(vt_inverse_dynamics_contacts(other, d, NULL, NULL, NULL), VT_ERR_NULL);
+    vt_data_free(d);
+    vt_contacts_free(c);
+    vt_contacts_free(NULL);
+    assert_int_equal(vt_contacts_count(NULL), 0);
+    vt_model_free(other);
+    vt_model_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_box),
+        cmocka_unit_test(test_quadruped),
+        cmocka_unit_test(test_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
