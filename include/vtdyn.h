@@ -499,18 +499,22 @@ VT_API vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const
 
 /* ---- batches: many states on threads -------------------------------------------------------- */
 
-/// Defaults: threads 0 (every CPU the process may run on), stop_on_error 0.
+/// Defaults: threads 0 (every CPU the process may run on), stop_on_error 0, no contacts.
 VT_API vt_batch_def vt_default_batch_def(void);
 /// A batch of the model (which must outlive it) with the def's threads (NULL: the defaults): one
-/// data per thread, made here once, so that a call allocates nothing per row. Statuses: VT_ERR_NULL,
-/// VT_ERR_BAD_OPTION (threads < 0, stop_on_error not 0 or 1), VT_ERR_NO_MEMORY, and those of
-/// vt_data_create(). On failure *batch is NULL.
+/// data per thread (and with contacts one vt_contacts per thread), made here once, so that a call
+/// allocates nothing per row. Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (threads < 0, stop_on_error
+/// not 0 or 1, ncontact < 0 or contacts NULL with some), VT_ERR_NO_MEMORY, and those of
+/// vt_data_create() and vt_contacts_create() (which gives a refused contact's message). On failure
+/// *batch is NULL.
 VT_API vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batch_def *def);
 /// Frees the batch and its data (NULL is allowed).
 VT_API void vt_batch_free(vt_batch *batch);
 /// The threads a call uses (the def's, or the CPUs counted when it asked for 0).
 VT_API int vt_batch_threads(const vt_batch *batch);
-/// vt_inverse_dynamics_motion() on every row of io (vt_batch_io: the layout), the rows shared among
+/// vt_inverse_dynamics_motion() on every row of io (vt_batch_io: the layout; with the def's contacts
+/// vt_inverse_dynamics_contacts(), each row's active contacts from io->contact_active and their
+/// forces into io->contact_force), the rows shared among
 /// the batch's threads in blocks of 16 taken in turn, so that a thread the machine slows takes
 /// fewer (threads created for the call and joined before it returns; no allocation). Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,

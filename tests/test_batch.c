@@ -2,7 +2,8 @@
  * each state alone (on a data of its own), on 1, 2 and 8 threads: a random tree with free joints
  * (q in a wider table: strides), the RUSR four-bar (a loop: the drive's effort and the solved
  * q̈), failing rows in the middle (reported by index, status and message, their outputs
- * untouched, the others solved; or the call stopped), and the arguments refused before any row. */
+ * untouched, the others solved; or the call stopped), a quadruped on its contacts (against
+ * vt_inverse_dynamics_contacts() alone), and the arguments refused before any row. */
 #include <math.h>
 #include <stdio.h>
 
@@ -356,6 +357,106 @@ static void test_failing_rows(void **state)
     vt_model_free(m);
 }
 
+/* contacts: the quadruped near its stand, each row its own active feet (all, one lifted, a
+ * diagonal pair, none: free fall refused) and motion (some it cannot carry): each
+ * row's status, efforts, reactions and forces bitwise those of vt_inverse_dynamics_contacts()
+ * alone, on 1, 2 and 8 threads; a refused row's forces untouched */
+static void test_contacts_bitwise(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_quadruped(&m));
+    const int nq = m->nq, nv = m->nv, nb6 = 6 * m->nbody;
+    vt_contact_def def[4];
+    static const char *const feet[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = feet[k];
+        def[k].mu = 0.6;
+    }
+    double *q = malloc((size_t)NROW * (size_t)nq * sizeof(double)), *qd = calloc((size_t)NROW * (size_t)nv, sizeof(double)),
+           *qdd = calloc((size_t)NROW * (size_t)nv, sizeof(double));
+    int *active = malloc((size_t)NROW * 4 * sizeof(int));
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    uint64_t seed = 17;
+    for (int r = 0; r < NROW; r++) {
+        vt_scene_quadruped_stand(m, d, 0.5 + 0.2 * vt_rand_uniform(&seed, 0, 1));
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        for (int a = 0; a < nv; a++) {
+            qd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -0.5, 0.5);
+            qdd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -1.0, 1.0) * (a < 3 ? 1.5 : 0.5);
+        }
+        /* all four feet, one front foot lifted (either), a trot's diagonal pair, none */
+        static const int pattern[5][4] = {{1, 1, 1, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0, 1, 1, 0}, {0, 0, 0, 0}};
+        for (int k = 0; k < 4; k++) active[4 * r + k] = pattern[r % 5][k];
+    }
+    /* the rows one by one */
+    vt_contacts *c = NULL;
+    assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
+    int *st1 = malloc(NROW * sizeof(int));
+    double *e1 = malloc((size_t)NROW * (size_t)nv * sizeof(double)), *r1 = malloc((size_t)NROW * (size_t)nb6 * sizeof(double)),
+           *f1 = malloc((size_t)NROW * 12 * sizeof(double));
+    int ok = 0, refused = 0;
+    for (int r = 0; r < NROW; r++) {
+        memcpy(d->q, q + (size_t)r * nq, (size_t)nq * sizeof(double));
+        memcpy(d->qd, qd + (size_t)r * nv, (size_t)nv * sizeof(double));
+        memcpy(d->qdd, qdd + (size_t)r * nv, (size_t)nv * sizeof(double));
+        for (int k = 0; k < 12; k++) f1[12 * r + k] = -7.0;
+        st1[r] = vt_inverse_dynamics_contacts(m, d, c, active + 4 * r, f1 + 12 * r);
+        if (st1[r] == VT_OK) {
+            ok++;
+            memcpy(e1 + (size_t)r * nv, d->qfrc_drive, (size_t)nv * sizeof(double));
+            for (int i = 1; i <= m->nbody; i++) {
+                memcpy(r1 + (size_t)r * nb6 + 6 * (i - 1), d->jnt_force + 3 * i, 3 * sizeof(double));
+                memcpy(r1 + (size_t)r * nb6 + 6 * (i - 1) + 3, d->jnt_moment + 3 * i, 3 * sizeof(double));
+            }
+        } else {
+            assert_int_equal(st1[r], VT_ERR_CONTACT);
+            refused++;
+        }
+    }
+    assert_true(ok > NROW / 4 && refused > 0); /* both kinds of row */
+    for (int threads = 1; threads <= 8; threads *= 2) {
+        vt_batch_def def_b = vt_default_batch_def();
+        def_b.threads = threads;
+        def_b.contacts = def;
+        def_b.ncontact = 4;
+        vt_batch *b = NULL;
+        assert_ok(vt_batch_create(&b, m, &def_b));
+        double *e = malloc((size_t)NROW * (size_t)nv * sizeof(double)), *re = malloc((size_t)NROW * (size_t)nb6 * sizeof(double)),
+               *f = malloc((size_t)NROW * 12 * sizeof(double));
+        int *st = malloc(NROW * sizeof(int));
+        for (int k = 0; k < NROW * 12; k++) f[k] = -7.0;
+        vt_batch_io io = {.nrow = NROW, .q = q, .qd = qd, .qdd = qdd, .effort = e, .reaction = re, .status = st,
+                          .contact_active = active, .contact_force = f};
+        assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_CONTACT);
+        for (int r = 0; r < NROW; r++) {
+            assert_int_equal(st[r], st1[r]);
+            for (int k = 0; k < 12; k++) assert_true(same(f[12 * r + k], f1[12 * r + k]));
+            if (st1[r] != VT_OK) continue;
+            for (int a = 0; a < nv; a++) assert_true(same(e[(size_t)r * nv + a], e1[(size_t)r * nv + a]));
+            for (int k = 0; k < nb6; k++) assert_true(same(re[(size_t)r * nb6 + k], r1[(size_t)r * nb6 + k]));
+        }
+        free(e), free(re), free(f), free(st);
+        vt_batch_free(b);
+    }
+    /* refused definitions: no batch */
+    vt_batch_def bad = vt_default_batch_def();
+    bad.ncontact = 4;
+    vt_batch *b = (vt_batch *)def;
+    assert_int_equal(vt_batch_create(&b, m, &bad), VT_ERR_BAD_OPTION);
+    assert_null(b);
+    def[2].frame = "no_such_foot";
+    bad.contacts = def;
+    assert_int_equal(vt_batch_create(&b, m, &bad), VT_ERR_NOT_FOUND);
+    assert_null(b);
+    vt_contacts_free(c);
+    free(st1), free(e1), free(r1), free(f1), free(active), free(q), free(qd), free(qdd);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* refusals before any row: nothing written */
 static void test_arguments(void **state)
 {
@@ -414,6 +515,7 @@ int main(void)
         cmocka_unit_test(test_loop_bitwise),
         cmocka_unit_test(test_effects_bitwise),
         cmocka_unit_test(test_failing_rows),
+        cmocka_unit_test(test_contacts_bitwise),
         cmocka_unit_test(test_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

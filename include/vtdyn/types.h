@@ -814,6 +814,10 @@ typedef struct vt_batch_def {
     int stop_on_error; ///< 0 (default): a failing row is reported and every other row solved; 1: the call
                        ///< stops at a failure, the rows it did not solve reported VT_ERR_SKIPPED (with
                        ///< more than one thread, which ones depends on the threads' timing)
+    const struct vt_contact_def *contacts; ///< ncontact contacts (read at vt_batch_create, not kept):
+                       ///< every row is then vt_inverse_dynamics_contacts() on them; NULL (default): none
+    int ncontact;      ///< default 0
+    const double *effort_weight; ///< the rule's nv effort weights for the contacts (NULL: 1 each)
 } vt_batch_def;
 
 /// Many states in and their results out (vt_batch_inverse_dynamics_motion). Row r of an array X
@@ -849,6 +853,11 @@ typedef struct vt_batch_io {
     double *bearing; size_t bearing_stride; ///< 4 nbody a row: body i's bearing split at 4 (i − 1)
                                             ///< (vt_data.jnt_bearing)
     double *limit_excess; size_t limit_excess_stride; ///< 3 nv a row: vt_data.limit_excess
+    const int *contact_active; size_t contact_active_stride; ///< with contacts: ncontact a row, nonzero
+                                            ///< where the contact is on the ground (NULL: all, every row);
+                                            ///< the stride in ints
+    double *contact_force; size_t contact_force_stride; ///< with contacts: 3 ncontact a row, the ground's
+                                            ///< force on each contact (global; 0 where inactive)
 } vt_batch_io;
 
 /// A batch: one data per thread for many states of one model (vt_batch_create).

@@ -1,6 +1,7 @@
-/* Batches: vt_inverse_dynamics_motion() on many states, the rows shared among threads.
+/* Batches: vt_inverse_dynamics_motion() on many states (with contacts
+ * vt_inverse_dynamics_contacts()), the rows shared among threads.
  *
- * Each thread owns one data, made once with the batch; a call creates its threads (the caller's
+ * Each thread owns one data (and one contact set, its workspace), made once with the batch; a call creates its threads (the caller's
  * one of them) and joins them. The threads take the rows in blocks of BATCH_BLOCK, the next block
  * from a shared counter, so that a thread slowed by the machine's other work takes fewer rows. A
  * row is solved from its own inputs alone — q, q̇, q̈ and qfrc copied into the thread's data, xfrc
@@ -11,6 +12,7 @@
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"
+#include "analysis/contact.h"
 #include "dense/reactions.h"
 
 #include <pthread.h>
@@ -32,6 +34,7 @@ typedef struct share {
     struct vt_batch *batch;
     const vt_batch_io *io;
     vt_data *d;
+    vt_contacts *contacts; /* the thread's, or NULL */
     atomic_llong *next;  /* the next block's first row, shared (64 bits: it passes nrow) */
     atomic_int *stop;    /* set by a failing row when the batch stops on errors */
     int failed;          /* the thread's first failing row, or −1 */
@@ -44,6 +47,8 @@ struct vt_batch {
     int threads;
     int stop_on_error;
     vt_data **data;      /* one per thread */
+    vt_contacts **contacts; /* with contacts: one set per thread (its workspace), else NULL */
+    int ncontact;        /* 0 without */
     struct share *shares; /* the threads' shares of a call, their ids and whether each started */
     pthread_t *tid;
     int *started;
@@ -53,7 +58,7 @@ struct vt_batch {
 
 vt_batch_def vt_default_batch_def(void)
 {
-    return (vt_batch_def){.threads = 0, .stop_on_error = 0};
+    return (vt_batch_def){.threads = 0, .stop_on_error = 0, .contacts = NULL, .ncontact = 0, .effort_weight = NULL};
 }
 
 /* the CPUs this process may run on (its affinity), at least 1 */
@@ -73,7 +78,10 @@ void vt_batch_free(vt_batch *batch)
     if (!batch) return;
     if (batch->data)
         for (int k = 0; k < batch->threads; k++) vt_data_free(batch->data[k]);
+    if (batch->contacts)
+        for (int k = 0; k < batch->threads; k++) vt_contacts_free(batch->contacts[k]);
     free(batch->data);
+    free(batch->contacts);
     free(batch->shares);
     free(batch->tid);
     free(batch->started);
@@ -85,7 +93,9 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     if (batch) *batch = NULL;
     if (!batch || !model) return VT_ERR_NULL;
     const vt_batch_def dd = def ? *def : vt_default_batch_def();
-    if (dd.threads < 0 || (dd.stop_on_error != 0 && dd.stop_on_error != 1)) return VT_ERR_BAD_OPTION;
+    if (dd.threads < 0 || (dd.stop_on_error != 0 && dd.stop_on_error != 1) || dd.ncontact < 0 ||
+        (dd.ncontact > 0 && !dd.contacts))
+        return VT_ERR_BAD_OPTION;
     vt_batch *b = calloc(1, sizeof *b);
     if (!b) return VT_ERR_NO_MEMORY;
     b->model = model;
@@ -100,8 +110,15 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
         vt_batch_free(b);
         return VT_ERR_NO_MEMORY;
     }
+    if (dd.ncontact > 0 && !(b->contacts = calloc((size_t)b->threads, sizeof *b->contacts))) {
+        vt_batch_free(b);
+        return VT_ERR_NO_MEMORY;
+    }
+    b->ncontact = dd.ncontact;
     for (int k = 0; k < b->threads; k++) {
-        const vt_status st = vt_data_create(&b->data[k], model);
+        vt_status st = vt_data_create(&b->data[k], model);
+        if (!st && dd.ncontact > 0)
+            st = vt_contacts_create(&b->contacts[k], model, dd.contacts, dd.ncontact, dd.effort_weight, NULL);
         if (st) {
             vt_batch_free(b);
             return st;
@@ -145,8 +162,8 @@ static void wrenches(double *out, const double *f, const double *n, int nbody)
     }
 }
 
-/* row r solved on d and its results written; its status */
-static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io, int r)
+/* row r solved on d (with the contacts c, or NULL) and its results written; its status */
+static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, const vt_batch_io *io, int r)
 {
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb = (size_t)m->nbody;
     memcpy(d->q, in_row(io->q, io->q_stride, nq, r), nq * sizeof(double));
@@ -154,7 +171,16 @@ static vt_status solve_row(const vt_model *m, vt_data *d, const vt_batch_io *io,
     memcpy(d->qdd, in_row(io->qdd, io->qdd_stride, nv, r), nv * sizeof(double));
     if (io->qfrc) memcpy(d->qfrc, in_row(io->qfrc, io->qfrc_stride, nv, r), nv * sizeof(double));
     else memset(d->qfrc, 0, nv * sizeof(double));
-    const vt_status st = vt_inverse_dynamics_motion(m, d);
+    vt_status st;
+    if (c) {
+        const size_t nc = (size_t)vt_contacts_count(c);
+        const size_t as = io->contact_active_stride ? io->contact_active_stride : nc;
+        const int *active = io->contact_active ? io->contact_active + (size_t)r * as : NULL;
+        double *force = io->contact_force ? out_row(io->contact_force, io->contact_force_stride, 3 * nc, r) : NULL;
+        st = vt_inverse_dynamics_contacts(m, d, c, active, force);
+    } else {
+        st = vt_inverse_dynamics_motion(m, d);
+    }
     if (st) return st;
     if (io->effort) memcpy(out_row(io->effort, io->effort_stride, nv, r), d->qfrc_drive, nv * sizeof(double));
     if (io->drive_effort && m->ndrive > 0)
@@ -202,7 +228,7 @@ static void *run_share(void *arg)
         for (int r = (int)first; r < end; r++) {
             vt_status st = VT_ERR_SKIPPED;
             if (!b->stop_on_error || !atomic_load_explicit(s->stop, memory_order_relaxed))
-                st = solve_row(b->model, s->d, s->io, r);
+                st = solve_row(b->model, s->d, s->contacts, s->io, r);
             if (st && st != VT_ERR_SKIPPED && s->failed < 0) {
                 s->failed = r;
                 s->status = st;
@@ -241,7 +267,9 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
              {"effort_parts", io->effort_parts != NULL, io->effort_parts_stride, 3 * nv},
              {"reaction_joint", io->reaction_joint != NULL, io->reaction_joint_stride, nb6},
              {"bearing", io->bearing != NULL, io->bearing_stride, 4 * (size_t)m->nbody},
-             {"limit_excess", io->limit_excess != NULL, io->limit_excess_stride, 3 * nv}};
+             {"limit_excess", io->limit_excess != NULL, io->limit_excess_stride, 3 * nv},
+             {"contact_active", io->contact_active != NULL, io->contact_active_stride, (size_t)b->ncontact},
+             {"contact_force", io->contact_force != NULL, io->contact_force_stride, 3 * (size_t)b->ncontact}};
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         if (a[k].given && a[k].stride != 0 && a[k].stride < a[k].len)
             return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: %s_stride %zu below its row's %zu values",
@@ -267,7 +295,7 @@ vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *i
     atomic_init(&next, 0);
     for (int k = 0; k < T; k++) {
         shares[k] = (share){.batch = batch, .io = io, .d = batch->data[k], .next = &next, .stop = &stop,
-                            .failed = -1};
+                            .failed = -1, .contacts = batch->contacts ? batch->contacts[k] : NULL};
         started[k] = 0;
     }
     /* the other threads; one that cannot be created leaves the rows to those that run (the
