@@ -63,6 +63,12 @@ static void run_free(run *x)
     chunk_free(&x->ch[0]);
     chunk_free(&x->ch[1]);
     vt_batch_free(x->batch);
+    vt_contacts_free(x->contacts);
+    free(x->cdef);
+    free(x->cname);
+    free(x->ccol);
+    free(x->active);
+    free(x->cforce);
     vt_data_free(x->d);
     vt_model_free(x->m);
     vt_model_free(x->splines);
@@ -223,8 +229,27 @@ static int check_columns(const run *x, int floating)
             }
         }
         return cmd_fail("%s: column %d '%s' is none of the robot's (%s): every column must be t, a moving joint J's "
-                        "J, J_vel or J_acc, or a floating root R's R_x ... R_alz (vtdyn info lists the joints)",
+                        "J, J_vel or J_acc, a floating root R's R_x ... R_alz (vtdyn info lists the joints), or with "
+                        "--contacts a contact C's C_active",
                         head, c + 1, name, x->urdf);
+    }
+    return 0;
+}
+
+/* --contacts: the file's contacts on the probe's frames, and each one's column C_active (or none:
+ * always on the ground); states only; 0 or 1 */
+static int map_contacts(run *x)
+{
+    if (!x->o->contacts) return 0;
+    if (x->form == FORM_SAMPLES)
+        return cmd_fail("--contacts: %s holds samples (t and positions): contacts take states, J, J_vel and J_acc "
+                        "for every joint and a floating root's R_x ... R_alz", x->states);
+    if (cmd_contacts(x->probe, x->o->contacts, &x->cdef, &x->cname, &x->ncontact)) return 1;
+    if (!(x->ccol = malloc((size_t)x->ncontact * sizeof *x->ccol))) return cmd_fail("out of memory");
+    for (int k = 0; k < x->ncontact; k++) {
+        char key[VT_NAME_MAX + 8];
+        snprintf(key, sizeof key, "%s_active", x->cname[k]);
+        x->ccol[k] = table_column(&x->in.t, key);
     }
     return 0;
 }
@@ -240,6 +265,13 @@ static int build_model(run *x)
     /* the batch (the states' solver) counts the CPUs for -j 0; the samples' threads are as many */
     vt_batch_def def = vt_default_batch_def();
     def.threads = x->o->threads;
+    if (x->ncontact) {
+        char msg[VT_MESSAGE_SIZE];
+        if (vt_contacts_create(&x->contacts, x->m, x->cdef, x->ncontact, NULL, msg))
+            return cmd_fail("--contacts %s: %s", x->o->contacts, msg);
+        def.contacts = x->cdef;
+        def.ncontact = x->ncontact;
+    }
     const vt_status st = vt_batch_create(&x->batch, x->m, &def);
     if (st) return cmd_fail("%s: %d threads: %s", x->urdf, x->o->threads, vt_status_string(st));
     x->T = vt_batch_threads(x->batch);
@@ -256,7 +288,7 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, const
     if (!cloc) return cmd_fail("out of memory (the C locale)");
     const locale_t oldloc = uselocale(cloc);
     int status = input_open(&x.in, states) || load_robot(&x, o) || map_joints(&x) ||
-                 map_floating_roots(&x) || check_columns(&x, o->floating) || build_model(&x) ||
+                 map_floating_roots(&x) || map_contacts(&x) || check_columns(&x, o->floating) || build_model(&x) ||
                  output_columns(&x) || output_format(&x, outpath) || chunk_arrays(&x);
     if (!status) {
         const char *inputs[2] = {urdf, states};

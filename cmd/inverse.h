@@ -33,6 +33,7 @@ typedef struct {
     const char *joint_params; /* --joint-params: a CSV file of joint,armature,damping,friction */
     int ideal;          /* --ideal-joints: the URDF's <dynamics> ignored */
     double inertia_tol; /* --inertia-tol: the inertia checks' tolerance, -1 the library's default */
+    const char *contacts; /* --contacts: a CSV file of frame,mu (the feet on the ground) */
 } inverse_options;
 
 /* `vtdyn inverse [options] URDF STATES [-o OUTPATH]`: one output row per input row, to OUTPATH

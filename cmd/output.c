@@ -47,6 +47,7 @@ int output_columns(run *x)
         n += x->jc[k].free ? (g & COLS_EFFORT ? 12 : 0)
                            : (g & COLS_EFFORT ? 1 : 0) + (g & COLS_PARTS ? 4 : 0) + (g & COLS_WORLD ? 6 : 0) +
                                  (g & COLS_LINK ? 6 : 0) + (g & COLS_BEARING ? 4 : 0) + (g & COLS_LIMITS ? 3 : 0);
+    n += 3 * x->ncontact;
     if (n == (x->ct >= 0)) /* t alone is no output */
         return cmd_fail("--columns: none of the selected groups has a column for %s (a floating root has efforts "
                         "alone)",
@@ -69,6 +70,9 @@ int output_columns(run *x)
         for (int c = 0; c < 4 && (g & COLS_BEARING); c++) bad |= add_name(x, &k, j->name, bearing[c]);
         for (int c = 0; c < 3 && (g & COLS_LIMITS); c++) bad |= add_name(x, &k, j->name, limits[c]);
     }
+    static const char *const force[3] = {"_fx", "_fy", "_fz"};
+    for (int i = 0; i < x->ncontact; i++) /* the contacts' forces last */
+        for (int c = 0; c < 3; c++) bad |= add_name(x, &k, x->cname[i], force[c]);
     return bad ? cmd_fail("out of memory") : 0;
 }
 
@@ -79,7 +83,8 @@ static void turn_back(double out[6], const double R[9], const double w[6])
         for (int c = 0; c < 3; c++) out[h + c] = R[3 * c] * w[h] + R[3 * c + 1] * w[h + 1] + R[3 * c + 2] * w[h + 2];
 }
 
-/* chunk row r's output values into v: t when given, then per joint its selected groups */
+/* chunk row r's output values into v: t when given, then per joint its selected groups, then
+ * the contacts' forces */
 static void gather(const run *x, int r, double *v)
 {
     const vt_model *m = x->m;
@@ -126,6 +131,7 @@ static void gather(const run *x, int r, double *v)
             o += 3;
         }
     }
+    if (x->ncontact) memcpy(v + o, x->cforce + r * 3 * (size_t)x->ncontact, 3 * (size_t)x->ncontact * sizeof *v);
 }
 
 /* a block of rows formatted as CSV (the run's precision) into its buffer */

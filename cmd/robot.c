@@ -167,3 +167,77 @@ int cmd_joint_params(vt_builder *b, const char *file, const char *path)
     fclose(f);
     return bad;
 }
+
+int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, char (**names)[VT_NAME_MAX], int *n)
+{
+    *defs = NULL;
+    *names = NULL;
+    *n = 0;
+    FILE *f = fopen(file, "r");
+    if (!f) return cmd_fail("--contacts %s: %s", file, strerror(errno));
+    enum { LINE = 4096 };
+    char line[LINE], *cell[4];
+    int col[2] = {-1, -1}, lineno = 0, bad = 0;
+    while (!bad && fgets(line, sizeof line, f)) {
+        lineno++;
+        if (!strchr(line, '\n') && !feof(f)) {
+            bad = cmd_fail("--contacts %s: line %d is longer than %d bytes", file, lineno, LINE - 2);
+            break;
+        }
+        const int nc = split_cells(line, cell, 4);
+        if (nc == 1 && !cell[0][0]) continue; /* a blank line */
+        if (col[0] < 0) { /* the header: frame and mu, in either order, nothing else */
+            for (int k = 0; k < nc; k++) {
+                if (strcmp(cell[k], "frame") == 0 && col[0] < 0) col[0] = k;
+                if (strcmp(cell[k], "mu") == 0 && col[1] < 0) col[1] = k;
+            }
+            if (nc != 2 || col[0] < 0 || col[1] < 0)
+                bad = cmd_fail("--contacts %s: line %d: the header is frame,mu (in either order)", file, lineno);
+            continue;
+        }
+        if (nc != 2) {
+            bad = cmd_fail("--contacts %s: line %d: %d cells, not 2", file, lineno, nc < 0 ? 4 : nc);
+            break;
+        }
+        const char *frame = cell[col[0]], *mu = cell[col[1]];
+        if (vt_find_frame(m, frame) < 0) {
+            bad = cmd_fail("--contacts %s: line %d: '%s' is not a link of the robot (vtdyn info lists its frames)",
+                           file, lineno, frame);
+            break;
+        }
+        for (int k = 0; k < *n && !bad; k++)
+            if (strcmp((*names)[k], frame) == 0)
+                bad = cmd_fail("--contacts %s: line %d: '%s' twice", file, lineno, frame);
+        if (bad) break;
+        vt_contact_def d = vt_default_contact_def();
+        if (mu[0]) {
+            char *end;
+            errno = 0;
+            d.mu = strtod(mu, &end);
+            if (end == mu || *end || errno == ERANGE || !isfinite(d.mu) || d.mu < 0.0) {
+                bad = cmd_fail("--contacts %s: line %d: mu '%s' is not a finite number >= 0 (empty: bilateral)", file,
+                               lineno, mu);
+                break;
+            }
+        } else {
+            d.kind = VT_CONTACT_BILATERAL;
+        }
+        vt_contact_def *gd = realloc(*defs, (size_t)(*n + 1) * sizeof **defs);
+        if (gd) *defs = gd;
+        char(*gn)[VT_NAME_MAX] = gd ? realloc(*names, (size_t)(*n + 1) * sizeof **names) : NULL;
+        if (!gd || !gn) {
+            bad = cmd_fail("out of memory");
+            break;
+        }
+        *names = gn;
+        snprintf((*names)[*n], VT_NAME_MAX, "%s", frame);
+        (*defs)[(*n)++] = d;
+    }
+    if (!bad && ferror(f)) bad = cmd_fail("--contacts %s: %s", file, strerror(errno));
+    if (!bad && col[0] < 0) bad = cmd_fail("--contacts %s: no header frame,mu", file);
+    if (!bad && *n == 0) bad = cmd_fail("--contacts %s: no contact", file);
+    fclose(f);
+    for (int k = 0; !bad && k < *n; k++) /* the names, now that they no longer move */
+        (*defs)[k].name = (*defs)[k].frame = (*names)[k];
+    return bad;
+}

@@ -92,6 +92,14 @@ typedef struct {
     double *vals[2];           /* .npy output: the rows' values, little-endian (K x nout), two sets */
     block_state *blk;          /* T */
     table_key *frames;         /* the probe's frames sorted by name (nframe): a link's frame in log n */
+    /* --contacts: the feet on the ground */
+    int ncontact;
+    vt_contact_def *cdef;      /* their definitions (ncontact), names in cname */
+    char (*cname)[VT_NAME_MAX];
+    int *ccol;                 /* each contact's input column C_active, or -1: always on (ncontact) */
+    int *active;               /* the rows' active contacts (K x ncontact) */
+    double *cforce;            /* the rows' ground forces (K x 3 ncontact) */
+    vt_contacts *contacts;     /* a failing row's message: solved alone on d with these */
     /* the time spent, s */
     double t_read, t_solve, t_write;
 } run;

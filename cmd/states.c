@@ -35,8 +35,9 @@ int chunk_arrays(run *x)
     const int world = (g & COLS_WORLD) != 0, link = (g & COLS_LINK) != 0, bear = (g & COLS_BEARING) != 0,
               lim = (g & COLS_LIMITS) != 0, parts = (g & COLS_PARTS) != 0;
     const size_t nb4 = 4 * (size_t)m->nbody;
+    const size_t nk = (size_t)x->ncontact;
     const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + bear * nb4 + (lim + parts) * 3 * nv +
-                            nout) + 4 + 16 + text + 24 * ncol;
+                            nout + 3 * nk) + 4 * nk + 4 + 16 + text + 24 * ncol;
     size_t K = CHUNK_BYTES / row;
     if (K > CHUNK_ROWS) K = CHUNK_ROWS;
     if (K < 1) K = 1;
@@ -52,6 +53,11 @@ int chunk_arrays(run *x)
     if (lim) x->excess = calloc(K * 3 * nv, sizeof *x->excess);
     if (parts) x->parts = calloc(K * 3 * nv, sizeof *x->parts);
     x->status = calloc(K, sizeof *x->status);
+    if (nk) {
+        x->active = calloc(K * nk, sizeof *x->active);
+        x->cforce = calloc(K * 3 * nk, sizeof *x->cforce);
+        if (!x->active || !x->cforce) return cmd_fail("out of memory");
+    }
     for (int k = 0; k < 2 && x->ofmt == FMT_NPY; k++) x->vals[k] = malloc(K * nout * sizeof *x->vals[k]);
     x->blk = calloc((size_t)x->T, sizeof *x->blk);
     if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_link) ||
@@ -72,6 +78,17 @@ static int fill_state(const run *x, int r, const double *row, char *msg)
     const vt_model *m = x->m;
     double *q = x->q + (size_t)r * (size_t)m->nq, *qd = x->qd + (size_t)r * (size_t)m->nv,
            *qdd = x->qdd + (size_t)r * (size_t)m->nv;
+    for (int k = 0; k < x->ncontact; k++) { /* C_active: 0 or 1, else the row refused */
+        const int c = x->ccol[k];
+        const double a = c >= 0 ? row[c] : 1.0;
+        if (a != 0.0 && a != 1.0) {
+            char where[ROW_WHERE];
+            snprintf(msg, ROW_MESSAGE, "%s: column '%.100s_active': %g is neither 0 nor 1",
+                     input_where(&x->in, x->chp->loc[r], where), x->cname[k], a);
+            return 1;
+        }
+        x->active[(size_t)r * (size_t)x->ncontact + (size_t)k] = a != 0.0;
+    }
     for (int k = 0; k < x->nj; k++) {
         const joint_cols *j = &x->jc[k];
         if (!j->free) {
@@ -131,6 +148,8 @@ vt_batch_io chunk_io(const run *x, int n)
     io.limit_excess = x->excess;
     io.effort_parts = x->parts;
     io.status = x->status;
+    io.contact_active = x->active;
+    io.contact_force = x->cforce;
     return io;
 }
 
@@ -142,7 +161,9 @@ int state_failure(run *x, int r, long long loc)
     memcpy(d->q, x->q + (size_t)r * (size_t)m->nq, (size_t)m->nq * sizeof *d->q);
     memcpy(d->qd, x->qd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qd);
     memcpy(d->qdd, x->qdd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qdd);
-    const vt_status st = vt_inverse_dynamics_motion(m, d);
+    const int *active = x->contacts ? x->active + (size_t)r * (size_t)x->ncontact : NULL;
+    const vt_status st =
+        x->contacts ? vt_inverse_dynamics_contacts(m, d, x->contacts, active, NULL) : vt_inverse_dynamics_motion(m, d);
     input_where(&x->in, loc, where);
     if (st) return cmd_fail("%s: %s (%s)", where, d->message, vt_status_string(st));
     return cmd_fail("%s: %s (%s)", where, vt_batch_message(x->batch), vt_status_string(x->status[r]));

@@ -3,7 +3,7 @@
  *   vtdyn info [--floating] MODEL.urdf
  *   vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]
  *                 [--normalize-quaternions TOL] [--format csv|npy] [--times]
- *                 [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...
+ *                 [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]... [--contacts FILE]
  *                 MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]
  *   vtdyn --version
  *
@@ -55,7 +55,7 @@ static const char usage[] =
     "                     [--normalize-quaternions TOL] [--format csv|npy] [--times]\n"
     "                     [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...\n"
     "                     [--joint-params FILE] [--ideal-joints] [--inertia-tol TOL]\n"
-    "                     MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
+    "                     [--contacts FILE] MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
     "       vtdyn --version | --help\n"
     "\n"
     "--floating  the robot's root link (one no joint attaches to the world) floats: a free joint\n"
@@ -158,7 +158,15 @@ static const char usage_options[] =
     "  --ideal-joints   the URDF's <dynamics damping friction> ignored (read by default)\n"
     "  --inertia-tol TOL\n"
     "                   the inertia checks' relative tolerance (symmetry, positive, triangle\n"
-    "                   inequality), 0 <= TOL < 1; default the library's 1e-6 (also for info)\n";
+    "                   inequality), 0 <= TOL < 1; default the library's 1e-6 (also for info)\n"
+    "  --contacts FILE  the robot on the ground (docs/contact.md): a CSV file with the header\n"
+    "                   frame,mu and a row per contact, a link whose frame's origin touches the\n"
+    "                   ground (normal +z, against gravity) and its Coulomb friction (a 4-face\n"
+    "                   pyramid; empty: bilateral). A floating root is then not actuated: the\n"
+    "                   ground's forces carry it, shared by the least squared motor efforts.\n"
+    "                   A states column C_active (0 or 1) per contact C says when it is on the\n"
+    "                   ground (without it, always); the output adds C_fx C_fy C_fz, the\n"
+    "                   ground's force on the link (N, world axes). States only.\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)
@@ -253,17 +261,17 @@ static int parse_columns(const char *list, unsigned *groups)
 static int parse_args(int argc, char **argv, inverse_options *o, const char **pos, int *npos, const char **outpath,
                       int info_only)
 {
-    int seen[12] = {0};
+    int seen[13] = {0};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
         const size_t len = eq ? (size_t)(eq - a) : strlen(a);
         static const char *const named[] = {"--floating", "-o", "-j", "--columns", "--precision",
                                             "--normalize-quaternions", "--format", "--times", "--payload",
-                                            "--joint-params", "--ideal-joints", "--inertia-tol"};
+                                            "--joint-params", "--ideal-joints", "--inertia-tol", "--contacts"};
         const int flag = 1 << 0 | 1 << 7 | 1 << 10; /* no value: --floating, --times, --ideal-joints */
         int which = -1;
-        for (int w = 0; w < 12; w++)
+        for (int w = 0; w < 13; w++)
             if (strlen(named[w]) == len && strncmp(a, named[w], len) == 0) which = w;
         if (which < 0 && strncmp(a, "-j", 2) == 0 && a[2] >= '0' && a[2] <= '9') { /* -j4 */
             which = 2;
@@ -329,6 +337,7 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
             break;
         case 9: o->joint_params = v; break;
         case 10: o->ideal = 1; break;
+        case 12: o->contacts = v; break;
         case 11: {
             const double t = strtod(v, &end);
             if (end == v || *end || !(t >= 0.0 && t < 1.0))

@@ -1162,6 +1162,125 @@ def bearing_and_limits(vtdyn, urdf, states, times, work, check):
           "limits: each excess the value less the limit passed (%d flagged), 0 at the limit: %s" % (flagged, bad[:2]))
 
 
+QUAD_MASS = 17.2  # tests/urdf/quadruped.urdf: a 10 kg torso, four legs of 0.3 + 1 + 0.5 kg
+QUAD_FEET = ("FL", "FR", "HL", "HR")
+
+
+def quad_row(theta, root_acc=(0.0, 0.0, 0.0), rates=0.0, active=None):
+    """a state of tests/urdf/quadruped.urdf in its stand (front legs flexed theta, knees -2 theta;
+    hind legs mirrored: each foot under its hip, on the ground z = 0), the torso at rest with its
+    centre accelerated by root_acc, the joints moving at rates (velocity and acceleration)"""
+    row = {}
+    for k, leg in enumerate(QUAD_FEET):
+        th = theta if k < 2 else -theta
+        for j, q in (("HAA", 0.0), ("HFE", th), ("KFE", -2 * th)):
+            row["%s_%s" % (leg, j)] = q
+            row["%s_%s_vel" % (leg, j)] = rates * math.sin(1.3 * k + len(j))
+            row["%s_%s_acc" % (leg, j)] = rates * math.cos(0.7 * k + len(j))
+    for c, v in zip(("x", "y", "z", "qw", "qx", "qy", "qz"), (0, 0, 0.4 * math.cos(theta), 1, 0, 0, 0)):
+        row["torso_" + c] = float(v)
+    for c in ("vx", "vy", "vz", "wx", "wy", "wz", "alx", "aly", "alz"):
+        row["torso_" + c] = 0.0
+    for c, v in zip(("ax", "ay", "az"), root_acc):
+        row["torso_" + c] = v
+    for leg, a in zip(QUAD_FEET, active or ()):
+        row[leg + "_foot_active"] = float(a)
+    return row
+
+
+def contacts(vtdyn, urdf_dir, work, check):
+    """--contacts on the quadruped of tests/urdf: the symmetric stand (M g / 4 a foot), the forces'
+    balance against the root's wrench without contacts (the feet's places known in the stand), a
+    lifted foot (the diagonal pair under the centre carries it all), slipping refused and named,
+    bad contact files, C_active neither 0 nor 1"""
+    urdf = os.path.join(urdf_dir, "quadruped.urdf")
+    cfile = os.path.join(work, "feet.csv")
+    with open(cfile, "w") as f:
+        f.write("frame,mu\n" + "".join("%s_foot,0.5\n" % leg for leg in QUAD_FEET))
+    W = QUAD_MASS * 9.81
+
+    def run_rows(rows, *extra):
+        path = os.path.join(work, "quad.csv")
+        names = list(rows[0])
+        with open(path, "w") as f:
+            f.write(",".join(names) + "\n")
+            for r in rows:
+                f.write(",".join(repr(r[n]) for n in names) + "\n")
+        r = run(vtdyn, "inverse", "--floating", *extra, urdf, path)
+        out = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(r.stdout.splitlines())] \
+            if r.returncode == 0 else []
+        return r, out
+
+    theta = 0.6
+    rows = [quad_row(theta), quad_row(theta, (0.8, -0.5, 1.2), 0.7)]
+    r, out = run_rows(rows, "--contacts", cfile)
+    check(r.returncode == 0 and len(out) == 2, "--contacts on the quadruped: %s" % r.stderr)
+    r0, free = run_rows(rows)
+    check(r0.returncode == 0 and len(free) == 2, "the quadruped without contacts: %s" % r0.stderr)
+    if len(out) == 2 and len(free) == 2:
+        stand = out[0]
+        check(all(abs(stand[leg + "_foot_fz"] - W / 4) <= 1e-9 * W for leg in QUAD_FEET),
+              "the symmetric stand: M g / 4 on each foot: %s" % [stand[leg + "_foot_fz"] for leg in QUAD_FEET])
+        for k, row in enumerate(out):
+            root = max(abs(row["torso_effort_" + c]) for c in ("fx", "fy", "fz", "nx", "ny", "nz"))
+            check(root <= 1e-9 * W, "row %d: the floating root carries nothing (%.3g)" % (k, root))
+            # the feet's forces are the root's wrench without them: force, and moment about the
+            # root's point P = (0, 0, h), the feet at (±0.3, ±0.15, 0)
+            h = 0.4 * math.cos(theta)
+            force = [sum(row["%s_foot_f%s" % (leg, c)] for leg in QUAD_FEET) for c in "xyz"]
+            moment = [0.0, 0.0, 0.0]
+            for leg, (px, py) in zip(QUAD_FEET, ((0.3, 0.15), (0.3, -0.15), (-0.3, 0.15), (-0.3, -0.15))):
+                f = [row["%s_foot_f%s" % (leg, c)] for c in "xyz"]
+                d = (px, py, -h)
+                for c, v in enumerate((d[1] * f[2] - d[2] * f[1], d[2] * f[0] - d[0] * f[2], d[0] * f[1] - d[1] * f[0])):
+                    moment[c] += v
+            want_f = [free[k]["torso_effort_f" + c] for c in "xyz"]
+            want_n = [free[k]["torso_effort_n" + c] for c in "xyz"]
+            worst = max(max(abs(a - b) for a, b in zip(force, want_f)), max(abs(a - b) for a, b in zip(moment, want_n)))
+            check(worst <= 1e-9 * W, "row %d: the feet's forces give the root's wrench (%.3g)" % (k, worst))
+            check(all(row["%s_foot_fz" % leg] >= 0 and abs(row["%s_foot_fx" % leg]) <= 0.5 * math.sqrt(0.5) * row["%s_foot_fz" % leg] + 1e-9 * W
+                      for leg in QUAD_FEET), "row %d: the feet push, within friction" % k)
+    # the front left foot lifted: FR and HL carry half each, HR nothing
+    r, out = run_rows([quad_row(theta, active=(0, 1, 1, 1))], "--contacts", cfile)
+    check(r.returncode == 0 and out and out[0]["FL_foot_fz"] == 0.0 and abs(out[0]["FR_foot_fz"] - W / 2) <= 1e-9 * W
+          and abs(out[0]["HL_foot_fz"] - W / 2) <= 1e-9 * W and abs(out[0]["HR_foot_fz"]) <= 1e-9 * W,
+          "FL lifted: FR and HL carry half the weight each: %s" % r.stderr)
+    # 6 m/s² sideways on mu 0.5: slips; the row and the contact named, no output file
+    path_out = os.path.join(work, "quad_out.csv")
+    rows = [quad_row(theta), quad_row(theta, (6.0, 0.0, 0.0))]
+    names = list(rows[0])
+    with open(os.path.join(work, "quad.csv"), "w") as f:
+        f.write(",".join(names) + "\n" + "".join(",".join(repr(r_[n]) for n in names) + "\n" for r_ in rows))
+    r = run(vtdyn, "inverse", "--floating", "--contacts", cfile, urdf, os.path.join(work, "quad.csv"), "-o", path_out)
+    check(r.returncode == 1 and "quad.csv:3" in r.stderr and "slip" in r.stderr and "_foot" in r.stderr
+          and not os.path.exists(path_out), "a slipping row refused, named: %r" % r.stderr)
+    # C_active neither 0 nor 1
+    r, out = run_rows([quad_row(theta, active=(1, 2, 1, 1))], "--contacts", cfile)
+    check(r.returncode == 1 and "FR_foot_active" in r.stderr and "neither 0 nor 1" in r.stderr,
+          "C_active 2 refused, named: %r" % r.stderr)
+    # C_active without --contacts: an unknown column
+    r, out = run_rows([quad_row(theta, active=(1, 1, 1, 1))])
+    check(r.returncode == 1 and "FL_foot_active" in r.stderr and "--contacts" in r.stderr,
+          "C_active without --contacts refused: %r" % r.stderr)
+    # bilateral feet (mu empty) hold a pull: the torso accelerated down at 1.5 g
+    with open(cfile, "w") as f:
+        f.write("mu,frame\n" + "".join(",%s_foot\n" % leg for leg in QUAD_FEET))
+    r, out = run_rows([quad_row(theta, (0, 0, -1.5 * 9.81))], "--contacts", cfile)
+    check(r.returncode == 0 and out and all(out[0][leg + "_foot_fz"] < 0 for leg in QUAD_FEET),
+          "bilateral feet pull: %s" % r.stderr)
+    for text, says in (("frame,friction\nFL_foot,1\n", "the header is frame,mu"),
+                       ("frame,mu\nnose,1\n", "'nose' is not a link"),
+                       ("frame,mu\nFL_foot,-1\n", "not a finite number >= 0"),
+                       ("frame,mu\nFL_foot,1\nFL_foot,1\n", "'FL_foot' twice"),
+                       ("frame,mu\n", "no contact")):
+        with open(cfile, "w") as f:
+            f.write(text)
+        r, out = run_rows([quad_row(theta)], "--contacts", cfile)
+        check(r.returncode == 1 and says in r.stderr, "contacts file %r refused: %r" % (text, r.stderr))
+    check(run(vtdyn, "inverse", "--contacts", os.path.join(work, "none.csv"), urdf,
+              os.path.join(work, "quad.csv")).returncode == 1, "a missing contacts file refused")
+
+
 def main():
     vtdyn, urdf_dir, work = sys.argv[1], sys.argv[2], sys.argv[3]
     os.makedirs(work, exist_ok=True)
@@ -1308,6 +1427,7 @@ def main():
     inertia_tolerance(vtdyn, urdf, states, work, check)
     bearing_and_limits(vtdyn, urdf, states, times, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
+    contacts(vtdyn, urdf_dir, work, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0
 

@@ -1,14 +1,14 @@
 /* Batches: vt_inverse_dynamics_motion() on many states (with contacts
  * vt_inverse_dynamics_contacts()), the rows shared among threads.
  *
- * Each thread owns one data (and one contact set, its workspace), made once with the batch; a call creates its threads (the caller's
- * one of them) and joins them. The threads take the rows in blocks of BATCH_BLOCK, the next block
- * from a shared counter, so that a thread slowed by the machine's other work takes fewer rows. A
- * row is solved from its own inputs alone — q, q̇, q̈ and qfrc copied into the thread's data, xfrc
- * zero — so its results do not depend on the rows solved before it on that data, nor on which
- * thread solved it or how many there are: bitwise those of the single call. A thread takes its
- * blocks in increasing order, so its first failure is its lowest; the call reports the lowest row
- * among the threads'.
+ * Each thread owns one data (and one contact set, its workspace), made once with the batch; a
+ * call creates its threads (the caller's one of them) and joins them. The threads take the rows
+ * in blocks of BATCH_BLOCK, the next block from a shared counter, so that a thread slowed by the
+ * machine's other work takes fewer rows. A row is solved from its own inputs alone — q, q̇, q̈ and
+ * qfrc copied into the thread's data, xfrc zero — so its results do not depend on the rows
+ * solved before it on that data, nor on which thread solved it or how many there are: bitwise
+ * those of the single call. A thread takes its blocks in increasing order, so its first failure
+ * is its lowest; the call reports the lowest row among the threads'.
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"

@@ -217,8 +217,8 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
             return vt_fail(msg, VT_ERR_BAD_OPTION, "contact %d: faces %d (3 to 64)", k, defs[k].faces);
     for (int a = 0; effort_weight && a < m->nv; a++)
         if (!(effort_weight[a] > 0.0) || !isfinite(effort_weight[a]))
-            return vt_fail(msg, VT_ERR_BAD_OPTION, "vt_contacts_create: effort_weight[%d] = %g is not a finite number > 0",
-                           a, effort_weight[a]);
+            return vt_fail(msg, VT_ERR_BAD_OPTION,
+                           "vt_contacts_create: effort_weight[%d] = %g is not a finite number > 0", a, effort_weight[a]);
     const int nin = inequality_rows(defs, n);
     vt_contacts probe = {.qp_bytes = vt_qp_scratch_bytes(3 * n, m->nv, nin)};
     vt_block blk = {.base = NULL, .used = sizeof(vt_contacts), .align = 64};
@@ -372,7 +372,8 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     if (st) return st;
     if (!c) return vt_fail(d->message, VT_ERR_NULL, "vt_inverse_dynamics_contacts: contacts is NULL");
     if (c->model != m)
-        return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "vt_inverse_dynamics_contacts: contacts made for another model");
+        return vt_fail(d->message, VT_ERR_MODEL_MISMATCH,
+                       "vt_inverse_dynamics_contacts: contacts made for another model");
     if ((st = vt_inverse_dynamics_motion(m, d))) return st;
     const size_t nv = (size_t)m->nv, nxf = 6 * ((size_t)m->nbody + 1);
     memcpy(c->tau0, d->qfrc_drive, nv * sizeof(double));
