@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "base/block.h"
+#include "base/lapack.h"
 #include "base/scan.h"
 #include "base/status.h"
 #include "base/vec3.h"
@@ -62,8 +63,11 @@ struct vt_contacts {
     int nact, *act;       /* the others */
     /* the instant's workspace, sized for every contact active */
     int *on;              /* the active contacts' indices */
-    double *J;            /* J_cᵀ columns: nv x 3n, column 3k+e the contact on[k]'s component e */
-    double *G, *c, *Aeq, *beq, *Ain, *bin, *f, *tau0, *xfrc;
+    int *row_of;          /* each rate's row: ≥ 0 in B (actuated), −1 − its row in Aeq (not) (nv) */
+    double *sw;           /* √w_a of the actuated rates (nact) */
+    double *B;            /* √W J_A: nact x 3 na, column 3k + e the velocity of contact on[k]'s point
+                           * along e under each actuated rate, weighted */
+    double *G, *c, *Aeq, *beq, *Ain, *bin, *f, *tau0, *wtau, *xfrc;
     int *row_contact;     /* the contact of each inequality row */
     int *row_face;        /* −1 for its normal row, else its face */
     void *qp;
@@ -128,7 +132,10 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
     c->unact = vt_block_take(b, nv ? nv : 1, sizeof(int));
     c->act = vt_block_take(b, nv ? nv : 1, sizeof(int));
     c->on = vt_block_take(b, N, sizeof(int));
-    c->J = vt_block_take(b, nv * nx, sizeof(double));
+    c->row_of = vt_block_take(b, nv ? nv : 1, sizeof(int));
+    c->sw = vt_block_take(b, nv ? nv : 1, sizeof(double));
+    c->B = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
+    c->wtau = vt_block_take(b, nv ? nv : 1, sizeof(double));
     c->G = vt_block_take(b, nx * nx, sizeof(double));
     c->c = vt_block_take(b, nx, sizeof(double));
     c->Aeq = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
@@ -251,63 +258,65 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
     }
     for (int a = 0; a < m->nv; a++) {
         c->effort_weight[a] = effort_weight ? effort_weight[a] : 1.0;
-        if (m->body_joint[m->dof_body[a]] == VT_JOINT_FREE) c->unact[c->nu++] = a;
-        else c->act[c->nact++] = a;
+        if (m->body_joint[m->dof_body[a]] == VT_JOINT_FREE) {
+            c->row_of[a] = -1 - c->nu;
+            c->unact[c->nu++] = a;
+        } else {
+            c->row_of[a] = c->nact;
+            c->sw[c->nact] = sqrt(c->effort_weight[a]);
+            c->act[c->nact++] = a;
+        }
     }
     *out = c;
     return VT_OK;
 }
 
-/* J_cᵀ of the active contacts into c->J (nv x 3 na): column 3k + e is component e of the velocity
- * of contact on[k]'s point under each rate of its body's path (0 off it) */
+/* The active contacts' J_c, split by rows: the actuated rates' weighted, √W J_A into B (nact x
+ * 3 na), the others' into Aeq (nu x 3 na): column 3k + e is component e of the velocity of
+ * contact on[k]'s point under each rate of its body's path (0 off it) */
 static void contact_jacobian(const vt_model *m, const vt_data *d, vt_contacts *c, int na)
 {
-    const size_t nv = (size_t)m->nv;
-    memset(c->J, 0, nv * 3 * (size_t)na * sizeof(double));
+    const size_t n = 3 * (size_t)na, nact = (size_t)c->nact, nu = (size_t)c->nu;
+    memset(c->B, 0, (nact ? nact : 1) * n * sizeof(double));
+    memset(c->Aeq, 0, (nu ? nu : 1) * n * sizeof(double));
     for (int k = 0; k < na; k++) {
         const int h = c->on[k], b = c->body[h];
         double r[3], po[3];
         vt_mulmat3(r, d->A + 9 * b, c->point + 3 * h);
         for (int e = 0; e < 3; e++) po[e] = d->xrel[6 * b + e] + r[e]; /* p − o */
-        double *col = c->J + 3 * (size_t)k * nv;
         for (int a = m->body_vadr[b] + m->body_nv[b] - 1; a >= 0; a = m->dof_parent[a]) {
             const double *tw = d->twist + 6 * a;
             double v[3];
             vt_cross3(v, tw, po);
-            for (int e = 0; e < 3; e++) col[(size_t)e * nv + (size_t)a] = tw[3 + e] + v[e];
+            const int row = c->row_of[a];
+            for (int e = 0; e < 3; e++) {
+                const size_t col = 3 * (size_t)k + (size_t)e;
+                if (row >= 0) c->B[(size_t)row + col * nact] = c->sw[row] * (tw[3 + e] + v[e]);
+                else c->Aeq[(size_t)(-1 - row) + col * nu] = tw[3 + e] + v[e];
+            }
         }
     }
 }
 
-/* the QP of the header: G, c, the equalities and the inequalities of the na active contacts;
- * returns the inequality rows */
+/* the QP of the header: G (its lower triangle), c, the equalities and the inequalities of the na
+ * active contacts; returns the inequality rows */
 static int distribution(const vt_model *m, vt_contacts *c, int na)
 {
-    const int n = 3 * na;
-    const size_t nv = (size_t)m->nv;
-    /* G = J_Aᵀ W J_A + W_f, c = −J_Aᵀ W τ⁰_A: J's rows are the rates, its columns the forces' */
-    for (int i = 0; i < n; i++) {
-        const double *Ji = c->J + (size_t)i * nv;
-        double ci = 0.0;
-        for (int h = 0; h < c->nact; h++) ci -= Ji[c->act[h]] * c->effort_weight[c->act[h]] * c->tau0[c->act[h]];
-        c->c[i] = ci;
-        for (int j = 0; j <= i; j++) {
-            const double *Jj = c->J + (size_t)j * nv;
-            double g = 0.0;
-            for (int h = 0; h < c->nact; h++) {
-                const int a = c->act[h];
-                g += Ji[a] * c->effort_weight[a] * Jj[a];
-            }
-            c->G[(size_t)i + (size_t)j * (size_t)n] = c->G[(size_t)j + (size_t)i * (size_t)n] = g;
-        }
-        c->G[(size_t)i * (size_t)(n + 1)] += c->weight[c->on[i / 3]];
+    (void)m;
+    const int n = 3 * na, nact = c->nact;
+    /* G = (√W J_A)ᵀ (√W J_A) + W_f, c = −(√W J_A)ᵀ √W τ⁰_A */
+    for (int h = 0; h < nact; h++) c->wtau[h] = c->sw[h] * c->tau0[c->act[h]];
+    if (nact > 0) {
+        vt_dsyrk('L', 'T', n, nact, 1.0, c->B, nact, 0.0, c->G, n);
+        vt_dgemv('T', nact, n, -1.0, c->B, nact, c->wtau, 1, 0.0, c->c, 1);
+    } else {
+        for (int j = 0; j < n; j++)
+            for (int i = j; i < n; i++) c->G[(size_t)i + (size_t)j * (size_t)n] = 0.0;
+        memset(c->c, 0, (size_t)n * sizeof(double));
     }
-    /* J_uᵀ f = τ⁰_u: row u of Aeq (nu x n) */
-    for (int h = 0; h < c->nu; h++) {
-        const int a = c->unact[h];
-        for (int i = 0; i < n; i++) c->Aeq[(size_t)h + (size_t)i * (size_t)c->nu] = c->J[(size_t)i * nv + (size_t)a];
-        c->beq[h] = c->tau0[a];
-    }
+    for (int i = 0; i < n; i++) c->G[(size_t)i * (size_t)(n + 1)] += c->weight[c->on[i / 3]];
+    /* J_uᵀ f = τ⁰_u (Aeq filled with B) */
+    for (int h = 0; h < c->nu; h++) c->beq[h] = c->tau0[c->unact[h]];
     /* the unilateral contacts' rows: n·f ≥ 0, then μ cos(π/k) n·f − d_j·f ≥ 0 */
     int rows = 0;
     for (int k = 0; k < na; k++) {
