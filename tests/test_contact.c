@@ -1,7 +1,7 @@
 /* Contacts (analysis/contact.c) against closed forms, a second method and identities:
  * - a box on four corner contacts, no actuated rate: the rule's answer is the minimum-norm
  *   solution of the six balance equations (Σ f = m (a − g), Σ r × f = 0), solved here by the
- *   test's own elimination, wherever that solution lies inside the friction pyramids; at rest
+ *   test with LAPACK's dgesv, wherever that solution lies inside the friction pyramids; at rest
  *   and symmetric each corner carries m g / 4; accelerated sideways beyond μ cos(π/4) g it must
  *   slip, and downward faster than g it must pull: both refused, the contact named, the forces
  *   and xfrc untouched;
@@ -61,34 +61,6 @@ static void corners(vt_contact_def def[4], double xf, double xh, double mu)
     }
 }
 
-/* x (n) solving the n x n system A x = b (A column-major, overwritten) by Gauss elimination with
- * partial pivoting */
-static void gauss(int n, double *A, double *b)
-{
-    for (int k = 0; k < n; k++) {
-        int p = k;
-        for (int i = k + 1; i < n; i++)
-            if (fabs(A[i + n * k]) > fabs(A[p + n * k])) p = i;
-        for (int j = 0; j < n; j++) {
-            const double t = A[k + n * j];
-            A[k + n * j] = A[p + n * j];
-            A[p + n * j] = t;
-        }
-        const double t = b[k];
-        b[k] = b[p];
-        b[p] = t;
-        for (int i = k + 1; i < n; i++) {
-            const double l = A[i + n * k] / A[k + n * k];
-            for (int j = k; j < n; j++) A[i + n * j] -= l * A[k + n * j];
-            b[i] -= l * b[k];
-        }
-    }
-    for (int k = n - 1; k >= 0; k--) {
-        for (int j = k + 1; j < n; j++) b[k] -= A[k + n * j] * b[j];
-        b[k] /= A[k + n * k];
-    }
-}
-
 /* the minimum-norm corner forces f (12) of the box at rest in orientation identity with its
  * centre of mass accelerated by acc: E f = w, E's rows Σ f and Σ r × f, f = Eᵀ (E Eᵀ)⁻¹ w */
 static void min_norm_forces(const vt_contact_def def[4], double mass, const double acc[3], double f[12])
@@ -109,7 +81,9 @@ static void min_norm_forces(const vt_contact_def def[4], double mass, const doub
             for (int k = 0; k < 12; k++) s += E[i + 6 * k] * E[j + 6 * k];
             EEt[i + 6 * j] = s;
         }
-    gauss(6, EEt, w);
+    int n6 = 6, one = 1, ipiv[6], info = 0;
+    dgesv_(&n6, &one, EEt, &n6, ipiv, w, &n6, &info); /* LAPACK, not the library's QP */
+    assert_int_equal(info, 0);
     for (int k = 0; k < 12; k++) {
         double s = 0.0;
         for (int i = 0; i < 6; i++) s += E[i + 6 * k] * w[i];
