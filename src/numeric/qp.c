@@ -8,7 +8,7 @@
  *   minimize ½ xᵀGx + cᵀx   subject to   a_iᵀx = b_i (i < meq),   a_iᵀx ≥ b_i (the others),
  *
  * G symmetric positive definite. No QP solver is packaged in Debian; the contact forces'
- * distribution rule (issue #42) needs the exact minimizer, not a tolerance-stopped iterate.
+ * distribution rule needs the exact minimizer, not a tolerance-stopped iterate.
  *
  * The method. It keeps a pair (x, A): x the minimizer subject to the active set A held as
  * equalities, with multipliers u_A (≥ 0 for A's inequalities), so that G x + c = N u_A (N: A's

@@ -1,5 +1,5 @@
 /* vtdyn — A small dense strictly convex quadratic program by the Goldfarb–Idnani dual method
- * (numeric/qp.c): the contact forces' distribution rule (issue #42).
+ * (numeric/qp.c): the contact forces' distribution rule.
  *
  *   minimize ½ xᵀ G x + cᵀ x   subject to   A_eq x = b_eq   (meq rows)
  *                                            A_in x ≥ b_in   (min rows)
