@@ -358,10 +358,11 @@ static vt_status infeasible(const vt_model *m, vt_data *d, const vt_contacts *c,
 {
     if (culprit < c->nu) {
         const int a = c->unact[culprit < 0 ? 0 : culprit], b = m->dof_body[a];
+        const char *joint = m->joint_name + (size_t)VT_NAME_MAX * (size_t)b;
         return vt_fail(d->message, VT_ERR_CONTACT,
                        "vt_inverse_dynamics_contacts: the active contacts cannot give the unactuated rate %d's "
-                       "force %g (joint \"%.64s\" of body %d): no forces on the ground carry the motion",
-                       a, c->tau0[a], m->joint_name + (size_t)VT_NAME_MAX * (size_t)b, b);
+                       "force %g (the free joint of body %d \"%.64s\"): no forces on the ground carry the motion",
+                       a, c->tau0[a], b, joint[0] ? joint : m->body_name + (size_t)VT_NAME_MAX * (size_t)b);
     }
     const int r = culprit - c->nu, h = c->row_contact[r];
     const char *name = c->name + (size_t)VT_NAME_MAX * (size_t)h;
