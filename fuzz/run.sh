@@ -3,14 +3,16 @@
 # over the library too) into build-fuzz/ and runs fuzz_model on fuzz/corpus with fuzz/model.dict
 # for the given seconds (default 60), then fuzz_urdf (the URDF loader, with libxml2) on
 # fuzz/corpus_urdf with fuzz/urdf.dict for the second argument's seconds (default half the
-# first; 0 skips it). The third argument is the number of worker processes (default 1: one
+# first; 0 skips it), then fuzz_contact (the contacts on the quadruped scene) on
+# fuzz/corpus_contact for as long as fuzz_urdf (FUZZ_CONTACT_SECONDS another time). The third argument is the number of worker processes (default 1: one
 # process; more run libFuzzer's -fork mode, which with FUZZ_KEEP_GOING=1 also goes on after a
 # finding and collects every one). Needs clang, libclang-rt-14-dev and libxml2-dev
 # (VT_SETUP_EXTRA="clang libclang-rt-14-dev" tools/setup installs them). Findings are saved in
 # build-fuzz/crashes/, the harness's reason in the log build-fuzz/fuzz_model.log. Exits non-zero
 # on a crash, a sanitizer report or a failed comparison.
 # FUZZ_RUNS=N (and FUZZ_URDF_RUNS=N) run a fixed number of inputs from seed FUZZ_SEED (default
-# 1) instead of a time: a deterministic run, the same inputs on every machine (CI's). FUZZ_OUT
+# 1) instead of a time: a deterministic run, the same inputs on every machine (CI's); fuzz_contact
+# then runs FUZZ_CONTACT_RUNS inputs (default FUZZ_RUNS). FUZZ_OUT
 # names another output folder than build-fuzz (a second run beside a long one).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +20,7 @@ seconds=${1:-60}
 urdf_seconds=${2:-$((seconds / 2))}
 workers=${3:-1}
 out=${FUZZ_OUT:-build-fuzz}
-mkdir -p "$out/corpus" "$out/corpus_urdf" "$out/crashes"
+mkdir -p "$out/corpus" "$out/corpus_urdf" "$out/corpus_contact" "$out/crashes"
 parallel=()
 if [ "$workers" -gt 1 ] || [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then parallel=(-fork="$workers"); fi
 if [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then parallel+=(-ignore_crashes=1); fi
@@ -36,9 +38,13 @@ libs="-lsundials_ida -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_
 # fuzz_model: every source but the URDF loader (its input is XML, not this harness's bytes)
 clang $flags $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') fuzz/fuzz_model.c -o "$out/fuzz_model" $libs
 [ "$urdf_seconds" -gt 0 ] && clang $flags -I/usr/include/libxml2 src/*/*.c fuzz/fuzz_urdf.c -o "$out/fuzz_urdf" $libs -lxml2
+# fuzz_contact: the library as fuzz_model's, and the scenes (the quadruped)
+clang $flags -Iexamples $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') examples/scenes.c fuzz/fuzz_contact.c \
+    -o "$out/fuzz_contact" $libs
 # a fresh copy of the seed corpus: new inputs go to build-fuzz/corpus, the repository stays clean
 cp fuzz/corpus/* "$out/corpus/" 2>/dev/null || true
 cp fuzz/corpus_urdf/* "$out/corpus_urdf/" 2>/dev/null || true
+cp fuzz/corpus_contact/* "$out/corpus_contact/" 2>/dev/null || true
 # the harness prints its reason ("fuzz_model: ...") before it aborts: shown above the tail
 status=0
 model_len=(-max_total_time="$seconds")
@@ -51,6 +57,17 @@ urdf_len=(-max_total_time="$urdf_seconds")
 grep -a '^fuzz_model: ' "$out/fuzz_model.log" | sort | uniq -c | head -40 || true
 tail -25 "$out/fuzz_model.log"
 [ "$status" -eq 0 ] || exit "$status"
-[ "$urdf_seconds" -gt 0 ] || exit 0
-"$out/fuzz_urdf" "${urdf_len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -dict=fuzz/urdf.dict \
-    -max_len=8192 -artifact_prefix="$out/crashes/" "$out/corpus_urdf" 2>&1 | tail -25
+if [ "$urdf_seconds" -gt 0 ]; then
+    "$out/fuzz_urdf" "${urdf_len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -dict=fuzz/urdf.dict \
+        -max_len=8192 -artifact_prefix="$out/crashes/" "$out/corpus_urdf" 2>&1 | tail -25
+    status=${PIPESTATUS[0]}
+    [ "$status" -eq 0 ] || exit "$status"
+fi
+contact_len=(-max_total_time="${FUZZ_CONTACT_SECONDS:-$urdf_seconds}")
+[ -n "${FUZZ_RUNS:-}" ] && contact_len=(-runs="${FUZZ_CONTACT_RUNS:-$FUZZ_RUNS}" -seed="${FUZZ_SEED:-1}")
+[ -z "${FUZZ_RUNS:-}" ] && [ "${FUZZ_CONTACT_SECONDS:-$urdf_seconds}" -le 0 ] && exit 0
+"$out/fuzz_contact" "${contact_len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -timeout=60 -max_len=512 \
+    -artifact_prefix="$out/crashes/" "${parallel[@]}" "$out/corpus_contact" > "$out/fuzz_contact.log" 2>&1 || status=$?
+grep -a '^fuzz_contact: ' "$out/fuzz_contact.log" | sort | uniq -c | head -20 || true
+tail -12 "$out/fuzz_contact.log"
+exit "$status"

@@ -9,7 +9,8 @@
  *   root's efforts vanish, and every joint's effort is τ⁰ − Σ J_cᵀ f with τ⁰ the instant without
  *   contacts and J_c the feet's Jacobians by central differences of vt_frame_pose; the same forces
  *   applied as frame loads (vt_add_frame_load) give the same efforts; with a front foot lifted
- *   the diagonal pair under the centre of mass carries it all, half each;
+ *   the diagonal pair under the centre of mass carries it all, half each; two points of one body
+ *   cannot hold the torso (no moment about their line): refused;
  * - the definitions refused, named.
  */
 #include <math.h>
@@ -269,6 +270,25 @@ static void test_quadruped(void **state)
     assert_near_rel(f[8], W / 2.0, 1e-9, W);
     assert_near_rel(f[11], 0.0, 1e-9, W);
     for (int a = 0; a < 6; a++) assert_near_rel(d->qfrc_drive[a], 0.0, 1e-10, W);
+    /* two points of one body (a bilateral one on the FL shank, the FL foot): their forces make no
+     * moment about the line through them, which the torso needs; the root's equations are
+     * dependent there and their rest unreachable: refused, not answered with huge forces that
+     * cancel each other */
+    {
+        vt_contact_def two[2] = {vt_default_contact_def(), vt_default_contact_def()};
+        two[0].kind = VT_CONTACT_BILATERAL;
+        two[0].body = vt_find_body(m, "FL_shank");
+        two[0].point[0] = 0.05;
+        two[1].frame = "FL_foot";
+        vt_contacts *c2 = NULL;
+        assert_ok(vt_contacts_create(&c2, m, two, 2, NULL, NULL));
+        vt_scene_quadruped_stand(m, d, theta);
+        double f2[6] = {42, 42, 42, 42, 42, 42};
+        assert_int_equal(vt_inverse_dynamics_contacts(m, d, c2, NULL, f2), VT_ERR_CONTACT);
+        assert_non_null(strstr(d->message, "cannot give"));
+        for (int k = 0; k < 6; k++) assert_true(f2[k] == 42.0);
+        vt_contacts_free(c2);
+    }
     vt_contacts_free(c);
     vt_data_free(d);
     vt_data_free(d0);

@@ -68,6 +68,10 @@ struct vt_contacts {
     double *B;            /* √W J_A: nact x 3 na, column 3k + e the velocity of contact on[k]'s point
                            * along e under each actuated rate, weighted */
     double *G, *c, *Aeq, *beq, *Ain, *bin, *f, *tau0, *wtau, *xfrc;
+    double *lambda, *res;             /* the QP's multipliers (nu + rows), a residual (3n) */
+    double *U, *sig, *Ar, *svd_work; /* the root's equations by their SVD: U (nu x nu), σ, the
+                                      * independent rows Uᵣᵀ A_eq (nu x 3n), LAPACK's workspace */
+    int svd_lwork;
     int *row_contact;     /* the contact of each inequality row */
     int *row_face;        /* −1 for its normal row, else its face */
     void *qp;
@@ -144,6 +148,12 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
     c->bin = vt_block_take(b, nr, sizeof(double));
     c->f = vt_block_take(b, nx, sizeof(double));
     c->tau0 = vt_block_take(b, nv ? nv : 1, sizeof(double));
+    c->lambda = vt_block_take(b, (nv ? nv : 1) + nr, sizeof(double));
+    c->res = vt_block_take(b, nx, sizeof(double));
+    c->U = vt_block_take(b, (nv ? nv : 1) * (nv ? nv : 1), sizeof(double));
+    c->sig = vt_block_take(b, nv ? nv : 1, sizeof(double));
+    c->Ar = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
+    c->svd_work = vt_block_take(b, (size_t)c->svd_lwork, sizeof(double));
     c->xfrc = vt_block_take(b, 6 * ((size_t)m->nbody + 1), sizeof(double));
     c->row_contact = vt_block_take(b, nr, sizeof(int));
     c->row_face = vt_block_take(b, nr, sizeof(int));
@@ -227,7 +237,9 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
             return vt_fail(msg, VT_ERR_BAD_OPTION,
                            "vt_contacts_create: effort_weight[%d] = %g is not a finite number > 0", a, effort_weight[a]);
     const int nin = inequality_rows(defs, n);
-    vt_contacts probe = {.qp_bytes = vt_qp_scratch_bytes(3 * n, m->nv, nin)};
+    /* dgesvd's least workspace for the root's equations (nu ≤ nv rows, ≤ 3n columns): 5 (nv + 3n) */
+    const int svd_lwork = 5 * (m->nv + 3 * n) + 64;
+    vt_contacts probe = {.qp_bytes = vt_qp_scratch_bytes(3 * n, m->nv, nin), .svd_lwork = svd_lwork};
     vt_block blk = {.base = NULL, .used = sizeof(vt_contacts), .align = 64};
     layout(&blk, &probe, m, n, nin);
     if (blk.overflow) return vt_fail(msg, VT_ERR_NO_MEMORY, "vt_contacts_create: its size does not fit in memory");
@@ -235,6 +247,7 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
     if (!mem) return vt_fail(msg, VT_ERR_NO_MEMORY, "vt_contacts_create: out of memory (%zu bytes)", blk.used);
     vt_contacts *c = (vt_contacts *)mem;
     c->qp_bytes = probe.qp_bytes;
+    c->svd_lwork = svd_lwork;
     blk = (vt_block){.base = mem, .used = sizeof(vt_contacts), .align = 64};
     layout(&blk, c, m, n, nin);
     c->model = m;
@@ -339,6 +352,54 @@ static int distribution(const vt_model *m, vt_contacts *c, int na)
     return rows;
 }
 
+/* The QP's answer checked against its own optimality conditions (a certificate, whatever the
+ * solver did): the equalities and inequalities hold, the inequalities' multipliers are ≥ 0, and
+ * G f + c − A_eqᵀ λ_eq − A_inᵀ λ_in = 0, each to 1e-8 of the terms it is made of. A round-off
+ * failure of the QP is then refused, never returned as forces. */
+static int optimal(vt_contacts *c, int n, int meq, int rows)
+{
+    const int ldeq = c->nu ? c->nu : 1, ldin = rows ? rows : 1;
+    double xmax = 0.0, gmax = 0.0;
+    for (int i = 0; i < n; i++) xmax = fmax(xmax, fabs(c->f[i]));
+    for (int i = 0; i < n * n; i++) gmax = fmax(gmax, fabs(c->G[i]));
+    const double tol = 1e-8;
+    for (int r = 0; r < meq + rows; r++) { /* each constraint: its slack against its row's size */
+        const double *a = r < meq ? c->Ar + r : c->Ain + (r - meq);
+        const int ld = r < meq ? ldeq : ldin;
+        double ax = 0.0, amax = 0.0;
+        for (int i = 0; i < n; i++) {
+            ax += a[(size_t)i * (size_t)ld] * c->f[i];
+            amax = fmax(amax, fabs(a[(size_t)i * (size_t)ld]));
+        }
+        const double bv = r < meq ? c->beq[r] : c->bin[r - meq], s = ax - bv;
+        const double size = tol * ((double)n * amax * xmax + fabs(bv)) + DBL_MIN;
+        if (r < meq ? !(fabs(s) <= size) : !(s >= -size)) return 0;
+        if (r >= meq && !(c->lambda[r] >= -tol * fabs(c->lambda[r]) - DBL_MIN)) return 0;
+    }
+    /* G f + c − Aᵀ λ (G's lower triangle) */
+    vt_dsymv('L', n, 1.0, c->G, n, c->f, 1, 0.0, c->res, 1);
+    double lmax = 0.0, amax = 0.0;
+    for (int r = 0; r < meq + rows; r++) lmax = fmax(lmax, fabs(c->lambda[r]));
+    for (int i = 0; i < n; i++) {
+        double s = c->res[i] + c->c[i];
+        for (int r = 0; r < meq; r++) {
+            s -= c->Ar[(size_t)r + (size_t)i * (size_t)ldeq] * c->lambda[r];
+            amax = fmax(amax, fabs(c->Ar[(size_t)r + (size_t)i * (size_t)ldeq]));
+        }
+        for (int r = 0; r < rows; r++) {
+            s -= c->Ain[(size_t)r + (size_t)i * (size_t)ldin] * c->lambda[meq + r];
+            amax = fmax(amax, fabs(c->Ain[(size_t)r + (size_t)i * (size_t)ldin]));
+        }
+        c->res[i] = s;
+    }
+    double cmax = 0.0;
+    for (int i = 0; i < n; i++) cmax = fmax(cmax, fabs(c->c[i]));
+    const double scale = (double)n * gmax * xmax + cmax + (double)(meq + rows) * amax * lmax;
+    for (int i = 0; i < n; i++)
+        if (!(fabs(c->res[i]) <= tol * scale + DBL_MIN)) return 0;
+    return 1;
+}
+
 /* body b's load of the ground's force f at contact h's point: f at the centre of mass and
  * (p − r_b) × f about it, added into xfrc */
 static void add_load(const vt_data *d, const vt_contacts *c, int h, const double f[3], double *xfrc)
@@ -351,6 +412,56 @@ static void add_load(const vt_data *d, const vt_contacts *c, int h, const double
         xfrc[6 * b + e] += f[e];
         xfrc[6 * b + 3 + e] += n[e];
     }
+}
+
+/* The root's equations J_uᵀ f = τ⁰_u (A_eq f = b) hold for some f only if b lies in A_eq's range,
+ * and their dependent combinations (two feet: the moment about the line through them) must not
+ * reach the QP as equations, whose round-off it would take for a direction. By the SVD
+ * A_eq = U Σ Vᵀ: the rows with σ_k > 64 (nu + n) ε σ₁ are independent, and Uᵣᵀ A_eq f = Uᵣᵀ b
+ * (into c->Ar, c->beq: *meq rows) says what they say; the rest of b, U₀ᵀ b, is what no force gives:
+ * beyond 1e-9 of |b| and of σ₁ |f| ~ |b| the motion cannot be carried (*culprit the rate most
+ * in it, else −1). Returns a status only when LAPACK fails. */
+static vt_status independent_rows(vt_data *d, vt_contacts *c, int n, int *meq, int *culprit)
+{
+    const int nu = c->nu;
+    *meq = 0;
+    *culprit = -1;
+    if (nu == 0) return VT_OK;
+    double *A = c->Ar; /* dgesvd overwrites its matrix: A_eq copied, then the reduced rows */
+    memcpy(A, c->Aeq, (size_t)nu * (size_t)n * sizeof(double));
+    const int k = nu < n ? nu : n;
+    int info = 0, one = 1;
+    double dummy = 0.0;
+    dgesvd_("A", "N", &nu, &n, A, &nu, c->sig, c->U, &nu, &dummy, &one, c->svd_work, &c->svd_lwork, &info, 1, 1);
+    if (info) return vt_fail(d->message, VT_ERR_LAPACK, "vt_inverse_dynamics_contacts: dgesvd info %d", info);
+    const double tol = 64.0 * (double)(nu + n) * DBL_EPSILON * c->sig[0];
+    int r = 0;
+    while (r < k && c->sig[r] > tol) r++;
+    double bb = 0.0, out = 0.0, worst = 0.0;
+    for (int h = 0; h < nu; h++) bb += c->beq[h] * c->beq[h];
+    for (int j = r; j < nu; j++) { /* b's part along the directions no force reaches */
+        double u = 0.0;
+        for (int h = 0; h < nu; h++) u += c->U[(size_t)h + (size_t)j * (size_t)nu] * c->beq[h];
+        out += u * u;
+        for (int h = 0; h < nu; h++)
+            if (fabs(c->U[(size_t)h + (size_t)j * (size_t)nu] * u) > worst) {
+                worst = fabs(c->U[(size_t)h + (size_t)j * (size_t)nu] * u);
+                *culprit = h;
+            }
+    }
+    if (!(sqrt(out) <= 1e-9 * sqrt(bb) + DBL_MIN)) return VT_OK; /* *culprit set: refused */
+    *culprit = -1;
+    /* the independent rows Uᵣᵀ A_eq (r x n, leading dimension nu) and right sides Uᵣᵀ b */
+    double *ub = c->wtau; /* distribution's, done with */
+    for (int j = 0; j < r; j++) {
+        double u = 0.0;
+        for (int h = 0; h < nu; h++) u += c->U[(size_t)h + (size_t)j * (size_t)nu] * c->beq[h];
+        ub[j] = u;
+    }
+    vt_dgemm('T', 'N', r, n, nu, 1.0, c->U, nu, c->Aeq, nu, 0.0, A, nu);
+    memcpy(c->beq, ub, (size_t)r * sizeof(double));
+    *meq = r;
+    return VT_OK;
 }
 
 /* the message of an infeasible distribution: what the culprit constraint asks */
@@ -406,9 +517,19 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     const int n = 3 * na;
     contact_jacobian(m, d, c, na);
     const int rows = distribution(m, c, na);
-    int culprit = -1;
-    const vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, c->nu, c->Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
-                                        rows ? rows : 1, c->bin, c->f, NULL, NULL, &culprit, c->qp, c->qp_bytes, NULL);
+    int culprit = -1, meq = 0;
+    if ((st = independent_rows(d, c, n, &meq, &culprit))) return st;
+    if (culprit >= 0) return infeasible(m, d, c, culprit);
+    const vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, meq, c->Ar, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
+                                        rows ? rows : 1, c->bin, c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes,
+                                        NULL);
+    if (qs == VT_QP_OPTIMAL && !optimal(c, n, meq, rows))
+        return vt_fail(d->message, VT_ERR_SINGULAR,
+                       "vt_inverse_dynamics_contacts: the distribution's answer does not meet its optimality "
+                       "conditions to round-off (an ill-conditioned problem: contacts whose forces cancel, "
+                       "weights far apart); no forces returned");
+    if (qs == VT_QP_INFEASIBLE && culprit < meq) culprit = 0; /* an equality: the root's wrench */
+    else if (qs == VT_QP_INFEASIBLE) culprit += c->nu - meq;   /* an inequality, as infeasible() counts */
     if (qs == VT_QP_INFEASIBLE) return infeasible(m, d, c, culprit);
     if (qs != VT_QP_OPTIMAL)
         return vt_fail(d->message, qs == VT_QP_NONFINITE ? VT_ERR_NONFINITE : VT_ERR_SINGULAR,

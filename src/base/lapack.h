@@ -20,6 +20,8 @@ void dtrsv_(const char *uplo, const char *trans, const char *diag, const int *n,
             double *x, const int *incx, size_t l1, size_t l2, size_t l3);
 void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k, const double *alpha, const double *a,
             const int *lda, const double *beta, double *c, const int *ldc, size_t l1, size_t l2);
+void dsymv_(const char *uplo, const int *n, const double *alpha, const double *a, const int *lda, const double *x,
+            const int *incx, const double *beta, double *y, const int *incy, size_t l);
 
 /* the BLAS calls by value, column-major, the options as LAPACK's letters ('N', 'T', 'L', ...) */
 static inline void vt_dgemv(char trans, int m, int n, double alpha, const double *a, int lda, const double *x, int incx,
@@ -40,6 +42,11 @@ static inline void vt_dtrsm(char side, char uplo, char ta, char diag, int m, int
 static inline void vt_dtrsv(char uplo, char trans, char diag, int n, const double *a, int lda, double *x, int incx)
 {
     dtrsv_(&uplo, &trans, &diag, &n, a, &lda, x, &incx, 1, 1, 1);
+}
+static inline void vt_dsymv(char uplo, int n, double alpha, const double *a, int lda, const double *x, int incx,
+                            double beta, double *y, int incy)
+{
+    dsymv_(&uplo, &n, &alpha, a, &lda, x, &incx, &beta, y, &incy, 1);
 }
 static inline void vt_dsyrk(char uplo, char trans, int n, int k, double alpha, const double *a, int lda, double beta,
                             double *c, int ldc)
