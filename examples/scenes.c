@@ -764,6 +764,105 @@ void vt_scene_quadruped_stand(const vt_model *m, vt_data *d, double theta)
     }
 }
 
+void vt_scene_leg_ik(double L, const double d[3], const double dd[3], const double ddd[3], double knee, double q[3],
+                     double qd[3], double qdd[3])
+{
+    /* the abduction φ = atan2(a, b), a = d_y, b = −d_z, and the distance ρ in the leg's plane */
+    const double a = d[1], b = -d[2], ad = dd[1], bd = -dd[2], add = ddd[1], bdd = -ddd[2];
+    const double r2 = a * a + b * b, rho = sqrt(r2), g = a * ad + b * bd, cr = ad * b - a * bd;
+    q[0] = atan2(a, b);
+    qd[0] = cr / r2;
+    qdd[0] = ((add * b - a * bdd) * r2 - cr * 2.0 * g) / (r2 * r2);
+    const double rd = g / rho, rdd = (ad * ad + a * add + bd * bd + b * bdd) / rho - g * g / (rho * r2);
+    /* the planar two-link leg, a link at angle α along (−sin α, −cos α), reaching p = (d_x, −ρ) */
+    const double p[2] = {d[0], -rho}, pv[2] = {dd[0], -rd}, pa[2] = {ddd[0], -rdd};
+    double c = (p[0] * p[0] + p[1] * p[1] - 2.0 * L * L) / (2.0 * L * L);
+    c = c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c;
+    q[2] = knee * acos(c);
+    q[1] = atan2(-p[0], -p[1]) - 0.5 * q[2];
+    const double a1 = q[1], a2 = q[1] + q[2];
+    const double u1[2] = {-sin(a1), -cos(a1)}, u2[2] = {-sin(a2), -cos(a2)};
+    const double J[4] = {L * (-cos(a1) - cos(a2)), L * (sin(a1) + sin(a2)), -L * cos(a2), L * sin(a2)}; /* columns */
+    const double det = J[0] * J[3] - J[2] * J[1];
+    qd[1] = (J[3] * pv[0] - J[2] * pv[1]) / det;
+    qd[2] = (-J[1] * pv[0] + J[0] * pv[1]) / det;
+    const double w1 = qd[1], w2 = qd[1] + qd[2];
+    double r[2]; /* p̈ − J̇ q̇, J̇ q̇ = −L (u1 w1² + u2 w2²) */
+    for (int e = 0; e < 2; e++) r[e] = pa[e] + L * (u1[e] * w1 * w1 + u2[e] * w2 * w2);
+    qdd[1] = (J[3] * r[0] - J[2] * r[1]) / det;
+    qdd[2] = (-J[1] * r[0] + J[0] * r[1]) / det;
+}
+
+vt_status vt_scene_humanoid(vt_model **model)
+{
+    vt_builder *b;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81;
+    vt_status st = vt_builder_create(&b, &md);
+    if (st) return st;
+    vt_body_def trunk = vt_default_body_def();
+    trunk.joint = VT_JOINT_FREE;
+    trunk.parent = 0;
+    trunk.mass = 20.0;
+    trunk.inertia[0] = trunk.inertia[4] = trunk.mass * (0.09 + 0.25) / 12.0;
+    trunk.inertia[8] = trunk.mass * (0.09 + 0.09) / 12.0;
+    trunk.name = "trunk";
+    trunk.joint_name = "root";
+    int id = vt_builder_add_body(b, &trunk);
+    static const char *const side[2] = {"L", "R"};
+    for (int k = 0; k < 2 && id > 0; k++) {
+        const double y = k == 0 ? 0.1 : -0.1, out = k == 0 ? 0.05 : -0.05;
+        char name[5][24], joint[5][24];
+        static const char *const part[5] = {"hip", "thigh", "shank", "ankle", "foot"};
+        static const char *const kind[5] = {"hip_roll", "hip_pitch", "knee", "ankle_pitch", "ankle_roll"};
+        for (int j = 0; j < 5; j++) {
+            snprintf(name[j], 24, "%s_%s", side[k], part[j]);
+            snprintf(joint[j], 24, "%s_%s", side[k], kind[j]);
+        }
+        static const double mass[5] = {0.5, 3.0, 2.0, 0.2, 1.0};
+        int parent = 1;
+        for (int j = 0; j < 5 && id > 0; j++) {
+            vt_body_def d = vt_default_body_def();
+            d.parent = parent;
+            d.mass = mass[j];
+            d.name = name[j];
+            d.joint_name = joint[j];
+            const int roll = j == 0 || j == 4;
+            d.axis1[0] = roll ? 1.0 : 0.0, d.axis1[1] = roll ? 0.0 : 1.0, d.axis1[2] = 0.0;
+            if (j == 0) d.joint_parent[1] = y, d.joint_parent[2] = -0.2;
+            if (j == 1 || j == 2) { /* rods: the joint point 0.2 m above the centre of mass */
+                d.joint_child[2] = 0.2;
+                d.inertia[0] = d.inertia[4] = d.mass * 0.16 / 12.0;
+                d.inertia[8] = 1e-4;
+            } else if (j == 4) { /* the foot: its centre 0.025 m below the ankle */
+                d.joint_child[2] = 0.025;
+                d.inertia[0] = d.mass * (0.01 + 0.0025) / 12.0;
+                d.inertia[4] = d.mass * (0.04 + 0.0025) / 12.0;
+                d.inertia[8] = d.mass * (0.04 + 0.01) / 12.0;
+            } else {
+                d.inertia[0] = d.inertia[4] = d.inertia[8] = 2e-4;
+            }
+            if (j == 2) d.joint_parent[2] = -0.2; /* the knee at the thigh's end */
+            if (j == 3) d.joint_parent[2] = -0.2; /* the ankle at the shank's end */
+            parent = id = vt_builder_add_body(b, &d);
+        }
+        static const char *const corner[4] = {"toe_in", "toe_out", "heel_in", "heel_out"};
+        for (int c = 0; c < 4 && id > 0; c++) {
+            char fname[24];
+            snprintf(fname, sizeof fname, "%s_%s", side[k], corner[c]);
+            vt_frame_def f = vt_default_frame_def();
+            f.name = fname;
+            f.body = id;
+            f.point[0] = c < 2 ? 0.1 : -0.1;
+            f.point[1] = c % 2 ? out : -out;
+            f.point[2] = -0.025; /* the sole */
+            const int fr = vt_builder_add_frame(b, &f);
+            if (fr < 0) id = fr;
+        }
+    }
+    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+}
+
 vt_status vt_scene_pendulum(vt_model **model)
 {
     vt_builder *b;

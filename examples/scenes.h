@@ -228,6 +228,30 @@ int vt_scene_delta_assemble(const vt_model *model, vt_data *data, const double p
 vt_status vt_scene_quadruped(vt_model **model);
 void vt_scene_quadruped_stand(const vt_model *model, vt_data *data, double theta);
 
+/* A humanoid's lower body (contacts, docs/contact.md): a 20 kg pelvis and trunk (a box
+ * 0.3 x 0.3 x 0.5 m, its centre of mass 0.2 m above the hips) on a free joint ("root", its point
+ * the centre of mass), and two legs L and R with hips at (0, ±0.1, −0.2) from it: a 0.5 kg hip
+ * body on a roll joint about x (S_hip_roll), a 3 kg thigh on a pitch joint about y (S_hip_pitch),
+ * a 2 kg shank on a knee about y (S_knee), thigh and shank uniform 0.4 m rods along −z at q = 0,
+ * a 0.2 kg ankle body on a pitch joint about y (S_ankle_pitch) and a 1 kg foot, a box 0.2 x 0.1
+ * x 0.05 m, on a roll joint about x (S_ankle_roll) at the shank's end, its sole 0.05 m below the
+ * ankle with a frame at each corner: S_toe_in, S_toe_out, S_heel_in, S_heel_out (toes at
+ * x = 0.1, heels at −0.1, in and out at y = ∓0.05 for L, ±0.05 for R). 33.4 kg in all; gravity
+ * −9.81 z. */
+#define VT_HUMANOID_MASS 33.4
+
+/* A leg of a roll joint about x and two pitch joints about y (hip roll, hip pitch, knee), two links
+ * of length L, reaching the point d from the hip (x forward, z up; the roll turns the leg's plane
+ * onto it, the two links reach its distance ρ = √(d_y² + d_z²) in that plane; knee −1 puts the
+ * knee behind the line from hip to foot, +1 in front of it, a human's; a link at angle α points
+ * along (−sin α, −cos α)):
+ * the three angles into q, their rates and accelerations from d's velocity dd and acceleration
+ * ddd (exact: the chain rule for the roll and ρ, q̇ = J⁻¹ ṗ, q̈ = J⁻¹ (p̈ − J̇ q̇) in the plane).
+ * Used by examples/walk.c and examples/balance.c. */
+void vt_scene_leg_ik(double L, const double d[3], const double dd[3], const double ddd[3], double knee, double q[3],
+                     double qd[3], double qdd[3]);
+vt_status vt_scene_humanoid(vt_model **model);
+
 /* The IFToMM multibody benchmark's simple pendulum (problem A01): a 1 kg point mass on a
  * massless 1 m link, revolute about z at the origin, gravity (0, −9.81, 0); at q = 0 the link
  * lies along +x (horizontal): released from rest there. In joint coordinates it has no

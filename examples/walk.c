@@ -117,37 +117,6 @@ static void torso(double t, double p[2], double v[2], double a[2])
     v[0] += V;
 }
 
-/* a leg's angles (abduction, hip flexion, knee) for the foot at d from its hip (its velocity dd
- * and acceleration ddd), their rates and accelerations; knee −1 (front) or +1 (hind) */
-static void leg(const double d[3], const double dd[3], const double ddd[3], double knee, double q[3], double qd[3],
-                double qdd[3])
-{
-    /* the abduction φ = atan2(a, b), a = d_y, b = −d_z, and the distance ρ in the leg's plane */
-    const double a = d[1], b = -d[2], ad = dd[1], bd = -dd[2], add = ddd[1], bdd = -ddd[2];
-    const double r2 = a * a + b * b, rho = sqrt(r2), g = a * ad + b * bd, cr = ad * b - a * bd;
-    q[0] = atan2(a, b);
-    qd[0] = cr / r2;
-    qdd[0] = ((add * b - a * bdd) * r2 - cr * 2.0 * g) / (r2 * r2);
-    const double rd = g / rho, rdd = (ad * ad + a * add + bd * bd + b * bdd) / rho - g * g / (rho * r2);
-    /* the planar two-link leg, a link at angle α along (−sin α, −cos α), reaching p = (d_x, −ρ) */
-    const double p[2] = {d[0], -rho}, pv[2] = {dd[0], -rd}, pa[2] = {ddd[0], -rdd};
-    double c = (p[0] * p[0] + p[1] * p[1] - 2.0 * L * L) / (2.0 * L * L);
-    c = c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c;
-    q[2] = knee * acos(c);
-    q[1] = atan2(-p[0], -p[1]) - 0.5 * q[2];
-    const double a1 = q[1], a2 = q[1] + q[2];
-    const double u1[2] = {-sin(a1), -cos(a1)}, u2[2] = {-sin(a2), -cos(a2)};
-    const double J[4] = {L * (-cos(a1) - cos(a2)), L * (sin(a1) + sin(a2)), -L * cos(a2), L * sin(a2)}; /* columns */
-    const double det = J[0] * J[3] - J[2] * J[1];
-    qd[1] = (J[3] * pv[0] - J[2] * pv[1]) / det;
-    qd[2] = (-J[1] * pv[0] + J[0] * pv[1]) / det;
-    const double w1 = qd[1], w2 = qd[1] + qd[2];
-    double r[2]; /* p̈ − J̇ q̇, J̇ q̇ = −L (u1 w1² + u2 w2²) */
-    for (int e = 0; e < 2; e++) r[e] = pa[e] + L * (u1[e] * w1 * w1 + u2[e] * w2 * w2);
-    qdd[1] = (J[3] * r[0] - J[2] * r[1]) / det;
-    qdd[2] = (-J[1] * r[0] + J[0] * r[1]) / det;
-}
-
 int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "walk.csv";
@@ -198,7 +167,7 @@ int main(int argc, char **argv)
             /* the foot from its hip (the torso level: its offsets turn with nothing) */
             const double hp[3] = {tp[0] + hip[k][0], tp[1] + hip[k][1], H}, hv[3] = {tv[0], tv[1], 0}, ha[3] = {ta[0], ta[1], 0};
             for (int e = 0; e < 3; e++) r[e] = fp[e] - hp[e], rv[e] = fv[e] - hv[e], ra[e] = fa[e] - ha[e];
-            leg(r, rv, ra, k < 2 ? -1.0 : 1.0, q, qd, qdd);
+            vt_scene_leg_ik(L, r, rv, ra, k < 2 ? -1.0 : 1.0, q, qd, qdd);
             for (int j = 0; j < 3; j++) {
                 const int body = 2 + 3 * k + j, a = m->body_vadr[body];
                 d->q[m->body_qadr[body]] = q[j];
