@@ -356,7 +356,7 @@ static int distribution(const vt_model *m, vt_contacts *c, int na)
  * solver did): the equalities and inequalities hold, the inequalities' multipliers are ≥ 0, and
  * G f + c − A_eqᵀ λ_eq − A_inᵀ λ_in = 0, each to 1e-8 of the terms it is made of. A round-off
  * failure of the QP is then refused, never returned as forces. */
-static int optimal(vt_contacts *c, int n, int meq, int rows)
+static int optimal(vt_contacts *c, const double *Aeq, int n, int meq, int rows)
 {
     const int ldeq = c->nu ? c->nu : 1, ldin = rows ? rows : 1;
     double xmax = 0.0, gmax = 0.0;
@@ -364,7 +364,7 @@ static int optimal(vt_contacts *c, int n, int meq, int rows)
     for (int i = 0; i < n * n; i++) gmax = fmax(gmax, fabs(c->G[i]));
     const double tol = 1e-8;
     for (int r = 0; r < meq + rows; r++) { /* each constraint: its slack against its row's size */
-        const double *a = r < meq ? c->Ar + r : c->Ain + (r - meq);
+        const double *a = r < meq ? Aeq + r : c->Ain + (r - meq);
         const int ld = r < meq ? ldeq : ldin;
         double ax = 0.0, amax = 0.0;
         for (int i = 0; i < n; i++) {
@@ -383,8 +383,8 @@ static int optimal(vt_contacts *c, int n, int meq, int rows)
     for (int i = 0; i < n; i++) {
         double s = c->res[i] + c->c[i];
         for (int r = 0; r < meq; r++) {
-            s -= c->Ar[(size_t)r + (size_t)i * (size_t)ldeq] * c->lambda[r];
-            amax = fmax(amax, fabs(c->Ar[(size_t)r + (size_t)i * (size_t)ldeq]));
+            s -= Aeq[(size_t)r + (size_t)i * (size_t)ldeq] * c->lambda[r];
+            amax = fmax(amax, fabs(Aeq[(size_t)r + (size_t)i * (size_t)ldeq]));
         }
         for (int r = 0; r < rows; r++) {
             s -= c->Ain[(size_t)r + (size_t)i * (size_t)ldin] * c->lambda[meq + r];
@@ -517,17 +517,24 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     const int n = 3 * na;
     contact_jacobian(m, d, c, na);
     const int rows = distribution(m, c, na);
-    int culprit = -1, meq = 0;
-    if ((st = independent_rows(d, c, n, &meq, &culprit))) return st;
-    if (culprit >= 0) return infeasible(m, d, c, culprit);
-    const vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, meq, c->Ar, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
-                                        rows ? rows : 1, c->bin, c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes,
-                                        NULL);
-    if (qs == VT_QP_OPTIMAL && !optimal(c, n, meq, rows))
-        return vt_fail(d->message, VT_ERR_SINGULAR,
-                       "vt_inverse_dynamics_contacts: the distribution's answer does not meet its optimality "
-                       "conditions to round-off (an ill-conditioned problem: contacts whose forces cancel, "
-                       "weights far apart); no forces returned");
+    /* the root's equations as they are; where the QP finds them inconsistent or its answer fails
+     * the optimality conditions, again by their independent rows (independent_rows) */
+    int culprit = -1, meq = c->nu;
+    const double *Aeq = c->Aeq;
+    vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, meq, Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
+                                  rows ? rows : 1, c->bin, c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes, NULL);
+    if ((qs == VT_QP_INFEASIBLE && culprit < c->nu) || (qs == VT_QP_OPTIMAL && !optimal(c, Aeq, n, meq, rows))) {
+        if ((st = independent_rows(d, c, n, &meq, &culprit))) return st;
+        if (culprit >= 0) return infeasible(m, d, c, culprit);
+        Aeq = c->Ar;
+        qs = vt_qp_solve(n, c->G, n, c->c, meq, Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain, rows ? rows : 1, c->bin,
+                         c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes, NULL);
+        if (qs == VT_QP_OPTIMAL && !optimal(c, Aeq, n, meq, rows))
+            return vt_fail(d->message, VT_ERR_SINGULAR,
+                           "vt_inverse_dynamics_contacts: the distribution's answer does not meet its optimality "
+                           "conditions to round-off (an ill-conditioned problem: contacts whose forces cancel, "
+                           "weights far apart); no forces returned");
+    }
     if (qs == VT_QP_INFEASIBLE && culprit < meq) culprit = 0; /* an equality: the root's wrench */
     else if (qs == VT_QP_INFEASIBLE) culprit += c->nu - meq;   /* an inequality, as infeasible() counts */
     if (qs == VT_QP_INFEASIBLE) return infeasible(m, d, c, culprit);
