@@ -240,7 +240,7 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
     /* dgesvd's least workspace for the root's equations (nu ≤ nv rows, ≤ 3n columns): 5 (nv + 3n) */
     const int svd_lwork = 5 * (m->nv + 3 * n) + 64;
     vt_contacts probe = {.qp_bytes = vt_qp_scratch_bytes(3 * n, m->nv, nin), .svd_lwork = svd_lwork};
-    vt_block blk = {.base = NULL, .used = sizeof(vt_contacts), .align = 64};
+    vt_block blk = {.base = NULL, .used = sizeof(vt_contacts), .align = 16}; /* calloc's alignment */
     layout(&blk, &probe, m, n, nin);
     if (blk.overflow) return vt_fail(msg, VT_ERR_NO_MEMORY, "vt_contacts_create: its size does not fit in memory");
     char *mem = calloc(1, blk.used);
@@ -248,7 +248,7 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
     vt_contacts *c = (vt_contacts *)mem;
     c->qp_bytes = probe.qp_bytes;
     c->svd_lwork = svd_lwork;
-    blk = (vt_block){.base = mem, .used = sizeof(vt_contacts), .align = 64};
+    blk = (vt_block){.base = mem, .used = sizeof(vt_contacts), .align = 16};
     layout(&blk, c, m, n, nin);
     c->model = m;
     c->n = n;
