@@ -281,3 +281,14 @@ int output_format(run *x, const char *outpath)
         return cmd_fail("--precision: a .npy output holds every value's float64 exactly (it is for CSV)");
     return 0;
 }
+
+int write_chunk(run *x, int n, double *start, double *last)
+{
+    x->oset = 0;
+    if (format_rows(x, n)) return 1;
+    const double t1 = run_clock();
+    put_rows(x, 0, n);
+    x->t_write += run_clock() - t1;
+    progress(x, 0, start, last);
+    return 0;
+}

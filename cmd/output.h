@@ -22,6 +22,10 @@ int format_rows(run *x, int n);
 /* output set `set`, n rows formatted, written in order (its blocks' buffers, or its values) */
 void put_rows(run *x, int set, int n);
 
+/* the samples forms' chunk of n rows, solved in output set 0: formatted, written in order and
+ * the progress shown (*start, *last as progress takes them); 0 or 1 */
+int write_chunk(run *x, int n, double *start, double *last);
+
 /* a .npy header written before the row count was known: rewritten with it, in place; 0 or 1 */
 int finish_output(run *x);
 

@@ -192,12 +192,7 @@ int run_samples(run *x)
         }
         x->t_solve += run_clock() - t0;
         x->incells = table_row(t, r0);
-        x->oset = 0;
-        if (format_rows(x, n)) return 1;
-        const double t1 = run_clock();
-        put_rows(x, 0, n);
-        x->t_write += run_clock() - t1;
-        progress(x, 0, &start, &last);
+        if (write_chunk(x, n, &start, &last)) return 1;
     }
     progress(x, 1, &start, &last);
     return 0;
@@ -288,12 +283,7 @@ int run_samples_motion(run *x)
             return cmd_fail("%s: %s (%s)", x->states, vt_batch_message(x->batch), vt_status_string(st));
         }
         x->incells = table_row(t, r0);
-        x->oset = 0;
-        if (format_rows(x, n)) return 1;
-        const double t1 = run_clock();
-        put_rows(x, 0, n);
-        x->t_write += run_clock() - t1;
-        progress(x, 0, &start, &last);
+        if (write_chunk(x, n, &start, &last)) return 1;
     }
     progress(x, 1, &start, &last);
     return 0;

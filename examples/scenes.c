@@ -689,12 +689,18 @@ int vt_scene_delta_assemble(const vt_model *m, vt_data *d, const double p[3])
     return 0;
 }
 
+/* a builder whose model has gravity −9.81 z (z up, as URDF robots) */
+static vt_status z_up_builder(vt_builder **b)
+{
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81;
+    return vt_builder_create(b, &md);
+}
+
 vt_status vt_scene_quadruped(vt_model **model)
 {
     vt_builder *b;
-    vt_model_def md = vt_default_model_def();
-    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81; /* z up, as URDF robots */
-    vt_status st = vt_builder_create(&b, &md);
+    vt_status st = z_up_builder(&b);
     if (st) return st;
     vt_body_def torso = vt_default_body_def();
     torso.joint = VT_JOINT_FREE;
@@ -796,9 +802,7 @@ void vt_scene_leg_ik(double L, const double d[3], const double dd[3], const doub
 vt_status vt_scene_humanoid(vt_model **model)
 {
     vt_builder *b;
-    vt_model_def md = vt_default_model_def();
-    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81;
-    vt_status st = vt_builder_create(&b, &md);
+    vt_status st = z_up_builder(&b);
     if (st) return st;
     vt_body_def trunk = vt_default_body_def();
     trunk.joint = VT_JOINT_FREE;

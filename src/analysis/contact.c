@@ -313,9 +313,8 @@ static void contact_jacobian(const vt_model *m, const vt_data *d, vt_contacts *c
 
 /* the QP of the header: G (its lower triangle), c, the equalities and the inequalities of the na
  * active contacts; returns the inequality rows */
-static int distribution(const vt_model *m, vt_contacts *c, int na)
+static int distribution(vt_contacts *c, int na)
 {
-    (void)m;
     const int n = 3 * na, nact = c->nact;
     /* G = (√W J_A)ᵀ (√W J_A) + W_f, c = −(√W J_A)ᵀ √W τ⁰_A */
     for (int h = 0; h < nact; h++) c->wtau[h] = c->sw[h] * c->tau0[c->act[h]];
@@ -516,7 +515,7 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     }
     const int n = 3 * na;
     contact_jacobian(m, d, c, na);
-    const int rows = distribution(m, c, na);
+    const int rows = distribution(c, na);
     /* the root's equations as they are; where the QP finds them inconsistent or its answer fails
      * the optimality conditions, again by their independent rows (independent_rows) */
     int culprit = -1, meq = c->nu;
