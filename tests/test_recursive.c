@@ -9,7 +9,8 @@
 #include <float.h>
 
 #include "base/scan.h"   /* vt_finite_scan, vt_max_scan: tested here */
-#include "model/model.h" /* the rows' kinds (VT_ROW_JOINT, and vt_test.h's vt_test_known_rcond) */
+#include "model/model.h"
+#include "recursive/fused.h" /* vt_motion_add_loads: tested here */ /* the rows' kinds (VT_ROW_JOINT, and vt_test.h's vt_test_known_rcond) */
 
 #include "vt_test.h"
 
@@ -633,6 +634,66 @@ static void test_motion(void **state)
     }
 }
 
+/* vt_motion_add_loads against the instant itself: the given motion with loads L in xfrc (and
+ * random qfrc) equals the instant without L plus L added afterwards, on random trees of every
+ * joint kind but the base body's (free joints among them) and on the quadruped; the limits'
+ * excess follows the efforts; refused where no tree instant came before or the model has loops */
+static void test_motion_add_loads(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 13; seed++) {
+        vt_model *m;
+        vt_data *d, *e;
+        if (seed == 13) assert_ok(vt_scene_quadruped(&m));
+        else assert_ok(vt_scene_random_tree(&m, seed, 5 + (int)seed, seed > 6 ? VT_SCENE_WITH_FREE : VT_SCENE_NO_BASE));
+        assert_ok(vt_data_create(&d, m));
+        assert_ok(vt_data_create(&e, m));
+        uint64_t s = seed * 7;
+        vt_scene_random_state(m, d, &s);
+        for (int c = 0; c < m->nv; c++) {
+            d->qdd[c] = vt_rand_uniform(&s, -3, 3);
+            d->qfrc[c] = vt_rand_uniform(&s, -1, 1);
+        }
+        const size_t nx = 6 * ((size_t)m->nbody + 1);
+        double *L = calloc(nx, sizeof(double));
+        for (int i = 1; i <= m->nbody; i++)
+            for (int k = 0; k < 6; k++) L[6 * i + k] = vt_rand_uniform(&s, -5, 5);
+        vt_test_copy_inputs(m, e, d);
+        memcpy(e->qdd, d->qdd, (size_t)m->nv * sizeof(double));
+        for (size_t k = 0; k < nx; k++) e->xfrc[k] = d->xfrc[k] + L[k];
+        assert_ok(vt_inverse_dynamics_motion(m, e)); /* the reference: the loads in the instant */
+        assert_int_equal(vt_motion_add_loads(m, d, L), VT_ERR_BAD_OPTION); /* no instant yet */
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        assert_ok(vt_motion_add_loads(m, d, L));
+        const int nb3 = 3 * (m->nbody + 1);
+        vt_test_compare(d->qfrc_drive, e->qfrc_drive, m->nv, 1e-12, "efforts");
+        vt_test_compare(d->jnt_force, e->jnt_force, nb3, 1e-12, "jnt_force");
+        vt_test_compare(d->jnt_moment, e->jnt_moment, nb3, 1e-12, "jnt_moment");
+        vt_test_compare(d->jnt_force_body, e->jnt_force_body, nb3, 1e-12, "jnt_force_body");
+        vt_test_compare(d->jnt_moment_body, e->jnt_moment_body, nb3, 1e-12, "jnt_moment_body");
+        vt_test_compare(d->jnt_force_total, e->jnt_force_total, nb3, 1e-12, "jnt_force_total");
+        vt_test_compare(d->jnt_moment_total, e->jnt_moment_total, nb3, 1e-12, "jnt_moment_total");
+        vt_test_compare(d->jnt_force_total_body, e->jnt_force_total_body, nb3, 1e-12, "jnt_force_total_body");
+        vt_test_compare(d->jnt_moment_total_body, e->jnt_moment_total_body, nb3, 1e-12, "jnt_moment_total_body");
+        vt_test_compare(d->limit_excess, e->limit_excess, 3 * m->nv, 1e-12, "limit_excess");
+        assert_int_equal(d->nlimit, e->nlimit);
+        free(L);
+        vt_data_free(d);
+        vt_data_free(e);
+        vt_model_free(m);
+    }
+    vt_model *m; /* a loop: its multipliers change with the loads too */
+    vt_data *d;
+    assert_ok(vt_scene_fourbar(&m, vt_function_constant(0.0)));
+    assert_ok(vt_data_create(&d, m));
+    double *L = calloc(6 * ((size_t)m->nbody + 1), sizeof(double));
+    assert_int_equal(vt_motion_add_loads(m, d, L), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(d->message, "vt_motion_add_loads"));
+    free(L);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 /* A loop's or a coupling's motion given through the data: the joint-driven rates' q̈ from
  * d->qdd. The reference is vt_inverse_dynamics at the time t whose drive function gives the
  * same q, q̇ and q̈ (f''(t) = the given q̈); the given motion is evaluated at another time, where
@@ -1188,6 +1249,7 @@ int main(void)
         cmocka_unit_test(test_dependent),
         cmocka_unit_test(test_row_on_known_rates),
         cmocka_unit_test(test_motion),
+        cmocka_unit_test(test_motion_add_loads),
         cmocka_unit_test(test_motion_loops),
         cmocka_unit_test(test_motion_refused),
         cmocka_unit_test(test_motion_euler_rates_overflow),

@@ -17,8 +17,9 @@
  *   it pushes, and its force stays in the pyramid of k faces inscribed in the friction cone, d_j
  *   = cos(2πj/k) t₁ + sin(2πj/k) t₂ the faces' outward directions in the tangent plane),
  * solved exactly by the dual active-set method (numeric/qp.h). The forces are then applied as
- * loads (xfrc: f_c at the centre of mass, (p_c − r_b) × f_c about it) and the instant solved again,
- * so that the efforts and every joint reaction of the data hold them (the unactuated rates' efforts
+ * loads (f_c at the centre of mass, (p_c − r_b) × f_c about it) by the instant's inward pass alone
+ * (vt_motion_add_loads; loops and couplings: the instant solved again with them in xfrc), so that
+ * the efforts and every joint reaction of the data hold them (the unactuated rates' efforts
  * zero to round-off). No feasible forces: VT_ERR_CONTACT, the message naming the constraint the
  * solver could not meet — a contact that would have to pull, or slip, or unactuated rates the
  * active contacts cannot move.
@@ -37,6 +38,7 @@
 #include "base/status.h"
 #include "base/vec3.h"
 #include "numeric/qp.h"
+#include "recursive/fused.h"
 
 /* π, which ISO C's math.h does not name */
 #define VT_CONTACT_PI 3.14159265358979323846
@@ -541,11 +543,19 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
         return vt_fail(d->message, qs == VT_QP_NONFINITE ? VT_ERR_NONFINITE : VT_ERR_SINGULAR,
                        "vt_inverse_dynamics_contacts: the distribution's problem could not be solved (%s)",
                        vt_qp_result_string(qs));
-    /* the forces applied as loads, the instant solved again with them; the caller's xfrc back */
-    memcpy(c->xfrc, d->xfrc, nxf * sizeof(double));
-    for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, d->xfrc);
-    st = vt_inverse_dynamics_motion(m, d);
-    memcpy(d->xfrc, c->xfrc, nxf * sizeof(double));
+    /* the forces applied as loads: a tree's instant takes them by its inward pass alone (it is
+     * linear in the loads); loops and couplings by the instant solved again with them, the
+     * caller's xfrc back after it */
+    if (m->ncut == 0 && m->ncoupling == 0) {
+        memset(c->xfrc, 0, nxf * sizeof(double));
+        for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, c->xfrc);
+        st = vt_motion_add_loads(m, d, c->xfrc);
+    } else {
+        memcpy(c->xfrc, d->xfrc, nxf * sizeof(double));
+        for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, d->xfrc);
+        st = vt_inverse_dynamics_motion(m, d);
+        memcpy(d->xfrc, c->xfrc, nxf * sizeof(double));
+    }
     if (st) return st;
     if (force) {
         memset(force, 0, 3 * (size_t)c->n * sizeof(double));

@@ -87,6 +87,15 @@ static inline void vt_total_store(vt_data *d, int i, const double f[3], const do
     vt_copy3(d->jnt_force_total_body + 3 * i, fb);
     vt_copy3(d->jnt_moment_total_body + 3 * i, mb);
 }
+/* the same added to what the data holds (a change of loads alone: vt_motion_add_loads) */
+static inline void vt_total_add(vt_data *d, int i, const double f[3], const double mo[3], const double fb[3],
+                                const double mb[3])
+{
+    vt_axpy3(d->jnt_force_total + 3 * i, 1.0, f);
+    vt_axpy3(d->jnt_moment_total + 3 * i, 1.0, mo);
+    vt_axpy3(d->jnt_force_total_body + 3 * i, 1.0, fb);
+    vt_axpy3(d->jnt_moment_total_body + 3 * i, 1.0, mb);
+}
 /* 1 when joint i's total wrench, as vt_total_store left it, is finite */
 static inline int vt_total_finite(const vt_data *d, int i)
 {

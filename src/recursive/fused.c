@@ -50,6 +50,7 @@ typedef enum { TREE_REVOLUTE, TREE_MIXED } fused_tree;
 typedef enum { OUTPUTS_SCANNED, OUTPUTS_BOUNDED } fused_outputs;
 typedef enum { ANGLES_ANY, ANGLES_SMALL } fused_angles;
 typedef enum { TOTALS_LEFT, TOTALS_FORMED } fused_totals;
+typedef enum { STORE_SET, STORE_ADD } fused_store;
 
 /* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
 vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
@@ -86,13 +87,15 @@ vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
  * (reaction plus actuation), W̄_i itself. jt and nv: the joint's kind and rates, constants where
  * the caller knows them (one rate of a revolute or translational joint), else m's. W̄_i is copied
  * into Wo (locals for the caller's shift to the parent: the outputs might alias W as far as the
- * compiler knows); 1 if the reaction overflowed. */
+ * compiler knows); 1 if the reaction overflowed. STORE_ADD (vt_motion_add_loads): W̄_i is a
+ * change of loads alone, and its efforts (no qfrc in them), reaction and total are added to the
+ * data's. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, double Wo[6], int i, const int jt,
                                  const int nv, const fused_motion motion, const fused_totals totals,
-                                 const fused_outputs outputs)
+                                 const fused_outputs outputs, const fused_store store)
 {
     const double *e = d->jaxis + 9 * i, *A = d->A + 9 * i;
     /* rates that all turn leave the force, rates that all slide the moment: its axes once */
@@ -105,14 +108,15 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
     if (totals == TOTALS_FORMED) { /* fb and mb serve the reaction below too */
         vt_mulmat3t(fb, A, f);
         vt_mulmat3t(mb, A, mo);
-        vt_total_store(d, i, f, mo, fb, mb);
+        if (store == STORE_SET) vt_total_store(d, i, f, mo, fb, mb);
+        else vt_total_add(d, i, f, mo, fb, mb);
     }
     for (int k = 0; k < nv; k++) {
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
         /* qfrc less the joint's own effects (τ takes them); a model with effects is never bounded */
-        const double qf = outputs == OUTPUTS_BOUNDED ? d->qfrc[c] : vt_rate_load(m, d, c);
+        const double qf = store == STORE_ADD ? 0.0 : outputs == OUTPUTS_BOUNDED ? d->qfrc[c] : vt_rate_load(m, d, c);
         double tau = 0.0;
         if (motion == MOTION_GIVEN || dr >= 0) {
             const double *w = d->twist + 6 * c;
@@ -128,12 +132,21 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
                 dm[r] = rot ? tau * e[3 * ax + r] : 0.0;
             }
         }
-        d->qfrc_drive[c] = tau;
+        if (store == STORE_SET) d->qfrc_drive[c] = tau;
+        else d->qfrc_drive[c] += tau;
         vt_axpy3(rot ? mo : f, -(tau + qf), e + 3 * ax);
     }
     if (jt == VT_JOINT_FREE) f[0] = f[1] = f[2] = mo[0] = mo[1] = mo[2] = 0.0;
     if (!(turns && totals == TOTALS_FORMED)) vt_mulmat3t(fb, A, f);
     if (!(slides && totals == TOTALS_FORMED)) vt_mulmat3t(mb, A, mo);
+    if (store == STORE_ADD) { /* the data's reaction plus the loads' */
+        for (int k = 0; k < 3; k++) {
+            f[k] += d->jnt_force[3 * i + k];
+            mo[k] += d->jnt_moment[3 * i + k];
+            fb[k] += d->jnt_force_body[3 * i + k];
+            mb[k] += d->jnt_moment_body[3 * i + k];
+        }
+    }
     vt_copy3(d->jnt_force + 3 * i, f);
     vt_copy3(d->jnt_moment + 3 * i, mo);
     vt_copy3(d->jnt_force_body + 3 * i, fb);
@@ -157,8 +170,8 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
         double Wo[6];
         const int jt = m->body_joint[i], nv = m->body_nv[i];
         const int over = totals == TOTALS_FORMED
-                             ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED, OUTPUTS_SCANNED)
-                             : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT, OUTPUTS_SCANNED);
+                             ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED, OUTPUTS_SCANNED, STORE_SET)
+                             : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT, OUTPUTS_SCANNED, STORE_SET);
         if (over)
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
@@ -414,7 +427,7 @@ static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, 
 {
     double Wo[6];
     const int j = m->body_parent[i];
-    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED, OUTPUTS_SCANNED);
+    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED, OUTPUTS_SCANNED, STORE_SET);
     if (j > 0) shift_to_parent(m, d, W, i, j);
 }
 
@@ -447,11 +460,11 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         double Wo[6];
         if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
             /* checked with the rest: fused_check */
-            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED, outputs);
+            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED, outputs, STORE_SET);
             if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
-        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED, outputs);
+        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED, outputs, STORE_SET);
         if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
             double r[3];
             if (tree == TREE_MIXED) {
@@ -480,6 +493,48 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
 vt_status vt_inward(const vt_model *m, vt_data *d, int totals)
 {
     return inward_pass(m, d, totals ? TOTALS_FORMED : TOTALS_LEFT);
+}
+
+/* Loads added after the given motion's instant. The instant is linear in the loads and its
+ * kinematics do not depend on them, so loads δ (as xfrc: a force at each centre of mass, a
+ * moment about it) change each body's needed wrench about P_i by
+ *   δW_i = −(δn_i + (r^i − P_i) × δf_i, δf_i)          (r^i − P_i = −s^{ji}_i)
+ * and the rest follows by the inward pass alone on δW: δτ_a = s_a · δW̄_i, the reactions and the
+ * totals changed by δW̄_i less the actuation δτ along the joint's axes, all added to what the
+ * instant left. A tree's given motion only (the fused passes' route): loops and couplings carry
+ * multipliers that the loads change too. */
+vt_status vt_motion_add_loads(const vt_model *m, vt_data *d, const double *xf)
+{
+    if (m->ncut > 0 || m->ncoupling > 0 || d->route != VT_ROUTE_MOTION)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_motion_add_loads: needs vt_inverse_dynamics_motion's instant of a tree just before");
+    const int n = m->nbody;
+    const size_t mark = vt_scratch_mark(d);
+    double *W = VT_SCRATCH(d, double, 6 * ((size_t)n + 1), "the loads' subtree wrenches");
+    if (!W) return vt_scratch_fail(d, mark);
+    for (int i = 1; i <= n; i++) {
+        double c[3];
+        const double *fe = xf + 6 * i;
+        vt_joint_child(c, m, d, i); /* P_i − r^i */
+        double *w = W + 6 * i;
+        for (int k = 0; k < 3; k++) {
+            w[k] = -fe[3 + k];
+            w[3 + k] = -fe[k];
+        }
+        vt_addcross3(w, w + 3, c); /* (r^i − P_i) × (−δf) = (−δf) × (P_i − r^i) */
+    }
+    int over = 0;
+    for (int i = n; i >= 1; i--) {
+        double Wo[6];
+        const int j = m->body_parent[i];
+        over |= joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], MOTION_GIVEN, TOTALS_FORMED,
+                               OUTPUTS_SCANNED, STORE_ADD);
+        if (j > 0) shift_to_parent(m, d, W, i, j);
+    }
+    vt_scratch_release(d, mark);
+    if (over || !vt_all_finite(d->qfrc_drive, m->nv))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_motion_add_loads: the efforts or reactions with the loads overflowed");
+    return vt_reactions_unique(m, d); /* the limits flagged again: the efforts changed */
 }
 
 /* 1 when every half angle is within vt_sincos_small's 2^14 (fused_outward, not _any): from the

@@ -57,5 +57,9 @@ vt_status vt_inward(const vt_model *m, vt_data *d, int totals);
  * (joint_driven, joint_mix ≥ 0): the fused passes, α and the total wrenches formed, the inputs and
  * outputs checked */
 vt_status vt_fused_driven(const vt_model *m, vt_data *d);
+/* after vt_inverse_dynamics_motion's instant of a tree (no cut joint, no coupling), its efforts,
+ * reactions and totals with the loads xf (6 (nbody+1), as vt_data.xfrc) added, by the inward
+ * pass alone (the instant is linear in the loads); the limits flagged again */
+vt_status vt_motion_add_loads(const vt_model *m, vt_data *d, const double *xf);
 
 #endif
