@@ -67,13 +67,14 @@ struct vt_contacts {
     int *on;              /* the active contacts' indices */
     int *row_of;          /* each rate's row: ≥ 0 in B (actuated), −1 − its row in Aeq (not) (nv) */
     double *sw;           /* √w_a of the actuated rates (nact) */
-    double *B;            /* √W J_A: nact x 3 na, column 3k + e the velocity of contact on[k]'s point
-                           * along e under each actuated rate, weighted */
+    double *B;            /* (√W J_A)ᵀ: 3 na x nact, row 3k + e the velocity of contact on[k]'s point
+                           * along e under each actuated rate (a column), weighted */
     double *G, *c, *Aeq, *beq, *Ain, *bin, *f, *tau0, *wtau, *xfrc;
-    double *lambda, *res;             /* the QP's multipliers (nu + rows), a residual (3n) */
+    double *lambda, *res, *slack;     /* the QP's multipliers (nu + rows), residuals (3n), slacks (nu + rows) */
     double *U, *sig, *Ar, *svd_work; /* the root's equations by their SVD: U (nu x nu), σ, the
                                       * independent rows Uᵣᵀ A_eq (nu x 3n), LAPACK's workspace */
     int svd_lwork;
+    double *L;            /* the equality minimum's G = L Lᵀ (3n x 3n) */
     int *row_contact;     /* the contact of each inequality row */
     int *row_face;        /* −1 for its normal row, else its face */
     void *qp;
@@ -152,11 +153,13 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
     c->tau0 = vt_block_take(b, nv ? nv : 1, sizeof(double));
     c->lambda = vt_block_take(b, (nv ? nv : 1) + nr, sizeof(double));
     c->res = vt_block_take(b, nx, sizeof(double));
+    c->slack = vt_block_take(b, (nv ? nv : 1) + nr, sizeof(double));
     c->U = vt_block_take(b, (nv ? nv : 1) * (nv ? nv : 1), sizeof(double));
     c->sig = vt_block_take(b, nv ? nv : 1, sizeof(double));
     c->Ar = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
     c->svd_work = vt_block_take(b, (size_t)c->svd_lwork, sizeof(double));
     c->xfrc = vt_block_take(b, 6 * ((size_t)m->nbody + 1), sizeof(double));
+    c->L = vt_block_take(b, nx * nx, sizeof(double));
     c->row_contact = vt_block_take(b, nr, sizeof(int));
     c->row_face = vt_block_take(b, nr, sizeof(int));
     c->qp = vt_block_take(b, c->qp_bytes, 1);
@@ -306,7 +309,7 @@ static void contact_jacobian(const vt_model *m, const vt_data *d, vt_contacts *c
             const int row = c->row_of[a];
             for (int e = 0; e < 3; e++) {
                 const size_t col = 3 * (size_t)k + (size_t)e;
-                if (row >= 0) c->B[(size_t)row + col * nact] = c->sw[row] * (tw[3 + e] + v[e]);
+                if (row >= 0) c->B[col + (size_t)row * n] = c->sw[row] * (tw[3 + e] + v[e]);
                 else c->Aeq[(size_t)(-1 - row) + col * nu] = tw[3 + e] + v[e];
             }
         }
@@ -321,8 +324,8 @@ static int distribution(vt_contacts *c, int na)
     /* G = (√W J_A)ᵀ (√W J_A) + W_f, c = −(√W J_A)ᵀ √W τ⁰_A */
     for (int h = 0; h < nact; h++) c->wtau[h] = c->sw[h] * c->tau0[c->act[h]];
     if (nact > 0) {
-        vt_dsyrk('L', 'T', n, nact, 1.0, c->B, nact, 0.0, c->G, n);
-        vt_dgemv('T', nact, n, -1.0, c->B, nact, c->wtau, 1, 0.0, c->c, 1);
+        vt_dsyrk('L', 'N', n, nact, 1.0, c->B, n, 0.0, c->G, n);
+        vt_dgemv('N', n, nact, -1.0, c->B, n, c->wtau, 1, 0.0, c->c, 1);
     } else {
         for (int j = 0; j < n; j++)
             for (int i = j; i < n; i++) c->G[(size_t)i + (size_t)j * (size_t)n] = 0.0;
@@ -353,6 +356,17 @@ static int distribution(vt_contacts *c, int na)
     return rows;
 }
 
+/* the largest |a_k| (a NaN passed over: the checks below fail on it themselves) */
+static double max_abs(const double *a, int n, int inc)
+{
+    double m = 0.0;
+    for (int k = 0; k < n; k++) {
+        const double v = fabs(a[(size_t)k * (size_t)inc]);
+        m = v > m ? v : m;
+    }
+    return m;
+}
+
 /* The QP's answer checked against its own optimality conditions (a certificate, whatever the
  * solver did): the equalities and inequalities hold, the inequalities' multipliers are ≥ 0, and
  * G f + c − A_eqᵀ λ_eq − A_inᵀ λ_in = 0, each to 1e-8 of the terms it is made of. A round-off
@@ -360,45 +374,85 @@ static int distribution(vt_contacts *c, int na)
 static int optimal(vt_contacts *c, const double *Aeq, int n, int meq, int rows)
 {
     const int ldeq = c->nu ? c->nu : 1, ldin = rows ? rows : 1;
-    double xmax = 0.0, gmax = 0.0;
-    for (int i = 0; i < n; i++) xmax = fmax(xmax, fabs(c->f[i]));
-    for (int i = 0; i < n * n; i++) gmax = fmax(gmax, fabs(c->G[i]));
-    const double tol = 1e-8;
+    const double tol = 1e-8, xmax = max_abs(c->f, n, 1);
+    double *s = c->slack; /* A f − b: the equalities' rows, then the inequalities' */
+    memcpy(s, c->beq, (size_t)meq * sizeof(double));
+    memcpy(s + meq, c->bin, (size_t)rows * sizeof(double));
+    if (meq > 0) vt_dgemv('N', meq, n, 1.0, Aeq, ldeq, c->f, 1, -1.0, s, 1);
+    if (rows > 0) vt_dgemv('N', rows, n, 1.0, c->Ain, ldin, c->f, 1, -1.0, s + meq, 1);
+    double amax = 0.0;
     for (int r = 0; r < meq + rows; r++) { /* each constraint: its slack against its row's size */
-        const double *a = r < meq ? Aeq + r : c->Ain + (r - meq);
-        const int ld = r < meq ? ldeq : ldin;
-        double ax = 0.0, amax = 0.0;
-        for (int i = 0; i < n; i++) {
-            ax += a[(size_t)i * (size_t)ld] * c->f[i];
-            amax = fmax(amax, fabs(a[(size_t)i * (size_t)ld]));
-        }
-        const double bv = r < meq ? c->beq[r] : c->bin[r - meq], s = ax - bv;
-        const double size = tol * ((double)n * amax * xmax + fabs(bv)) + DBL_MIN;
-        if (r < meq ? !(fabs(s) <= size) : !(s >= -size)) return 0;
+        const double arow = r < meq ? max_abs(Aeq + r, n, ldeq) : max_abs(c->Ain + (r - meq), n, ldin);
+        const double bv = r < meq ? c->beq[r] : c->bin[r - meq];
+        const double size = tol * ((double)n * arow * xmax + fabs(bv)) + DBL_MIN;
+        amax = arow > amax ? arow : amax;
+        if (r < meq ? !(fabs(s[r]) <= size) : !(s[r] >= -size)) return 0;
         if (r >= meq && !(c->lambda[r] >= -tol * fabs(c->lambda[r]) - DBL_MIN)) return 0;
     }
     /* G f + c − Aᵀ λ (G's lower triangle) */
     vt_dsymv('L', n, 1.0, c->G, n, c->f, 1, 0.0, c->res, 1);
-    double lmax = 0.0, amax = 0.0;
-    for (int r = 0; r < meq + rows; r++) lmax = fmax(lmax, fabs(c->lambda[r]));
-    for (int i = 0; i < n; i++) {
-        double s = c->res[i] + c->c[i];
-        for (int r = 0; r < meq; r++) {
-            s -= Aeq[(size_t)r + (size_t)i * (size_t)ldeq] * c->lambda[r];
-            amax = fmax(amax, fabs(Aeq[(size_t)r + (size_t)i * (size_t)ldeq]));
-        }
-        for (int r = 0; r < rows; r++) {
-            s -= c->Ain[(size_t)r + (size_t)i * (size_t)ldin] * c->lambda[meq + r];
-            amax = fmax(amax, fabs(c->Ain[(size_t)r + (size_t)i * (size_t)ldin]));
-        }
-        c->res[i] = s;
+    for (int i = 0; i < n; i++) c->res[i] += c->c[i];
+    if (meq > 0) vt_dgemv('T', meq, n, -1.0, Aeq, ldeq, c->lambda, 1, 1.0, c->res, 1);
+    if (rows > 0) vt_dgemv('T', rows, n, -1.0, c->Ain, ldin, c->lambda + meq, 1, 1.0, c->res, 1);
+    double gmax = 0.0;
+    for (int j = 0; j < n; j++) {
+        const double g = max_abs(c->G + (size_t)j * (size_t)(n + 1), n - j, 1);
+        gmax = g > gmax ? g : gmax;
     }
-    double cmax = 0.0;
-    for (int i = 0; i < n; i++) cmax = fmax(cmax, fabs(c->c[i]));
+    const double lmax = max_abs(c->lambda, meq + rows, 1), cmax = max_abs(c->c, n, 1);
     const double scale = (double)n * gmax * xmax + cmax + (double)(meq + rows) * amax * lmax;
     for (int i = 0; i < n; i++)
         if (!(fabs(c->res[i]) <= tol * scale + DBL_MIN)) return 0;
     return 1;
+}
+
+/* The common case, no face of a pyramid binding (feet well inside their cones, or bilateral
+ * contacts): the minimum subject to the equalities alone, by the range-space solution of its KKT
+ * system G f + c = A_eqᵀ λ, A_eq f = b with G = L Lᵀ (dpotrf),
+ *   Z = A_eq L⁻ᵀ,   (Z Zᵀ) λ = b + Z L⁻¹ c   (Z Zᵀ = A_eq G⁻¹ A_eqᵀ = K Kᵀ, dpotrf),
+ *   f = L⁻ᵀ (Zᵀ λ − L⁻¹ c),
+ * is the QP's answer when it meets every inequality: with λ_in = 0 it meets the KKT conditions
+ * of the whole problem, and a strictly convex problem has one minimizer. Returns 1 with c->f and
+ * c->lambda set; 0 where the QP must decide: dependent equalities (two feet: Z Zᵀ singular, which
+ * shows as a pivot of K below 1e-4 of the largest, an unpivoted Cholesky factor's pivots bounding
+ * its eigenvalues), or an answer failing the certificate (optimal: an inequality violated, or
+ * round-off). Nothing is iterated: the solution is exact but for round-off, as the QP's. */
+static int equality_minimum(vt_contacts *c, int n, int rows)
+{
+    const int nu = c->nu;
+    double *L = c->L, *Z = c->Ar, *K = c->U, *y = c->res, *lam = c->lambda;
+    int info = 0;
+    for (int j = 0; j < n; j++)
+        memcpy(L + (size_t)j * (size_t)(n + 1), c->G + (size_t)j * (size_t)(n + 1), (size_t)(n - j) * sizeof(double));
+    dpotf2_("L", &n, L, &n, &info, 1);
+    if (info) return 0;
+    memcpy(y, c->c, (size_t)n * sizeof(double));
+    vt_dtrsv('L', 'N', 'N', n, L, n, y, 1); /* L⁻¹ c */
+    memset(lam, 0, ((size_t)nu + (size_t)rows) * sizeof(double));
+    if (nu > 0) {
+        memcpy(Z, c->Aeq, (size_t)nu * (size_t)n * sizeof(double));
+        vt_dtrsm('R', 'L', 'T', 'N', nu, n, 1.0, L, n, Z, nu);
+        vt_dsyrk('L', 'N', nu, n, 1.0, Z, nu, 0.0, K, nu);
+        dpotf2_("L", &nu, K, &nu, &info, 1);
+        if (info) return 0;
+        double kmin = HUGE_VAL, kmax = 0.0;
+        for (int h = 0; h < nu; h++) {
+            const double k = K[(size_t)h * (size_t)(nu + 1)];
+            kmin = k < kmin ? k : kmin;
+            kmax = k > kmax ? k : kmax;
+        }
+        if (!(kmin > 1e-4 * kmax)) return 0;
+        memcpy(lam, c->beq, (size_t)nu * sizeof(double));
+        vt_dgemv('N', nu, n, 1.0, Z, nu, y, 1, 1.0, lam, 1);
+        vt_dtrsv('L', 'N', 'N', nu, K, nu, lam, 1);
+        vt_dtrsv('L', 'T', 'N', nu, K, nu, lam, 1);
+        memcpy(c->f, y, (size_t)n * sizeof(double));
+        vt_dgemv('T', nu, n, 1.0, Z, nu, lam, 1, -1.0, c->f, 1); /* Zᵀ λ − L⁻¹ c */
+    } else {
+        for (int i = 0; i < n; i++) c->f[i] = -y[i];
+    }
+    vt_dtrsv('L', 'T', 'N', n, L, n, c->f, 1);
+    return optimal(c, c->Aeq, n, nu, rows);
 }
 
 /* body b's load of the ground's force f at contact h's point: f at the centre of mass and
@@ -488,6 +542,38 @@ static vt_status infeasible(const vt_model *m, vt_data *d, const vt_contacts *c,
                    h, name, c->body[h], c->mu[h], c->faces[h]);
 }
 
+/* The forces by the QP (where equality_minimum could not decide): the root's equations as they
+ * are; where the QP finds them inconsistent or its answer fails the optimality conditions, again
+ * by their independent rows (independent_rows). VT_OK with c->f, else the status and message. */
+static vt_status by_qp(const vt_model *m, vt_data *d, vt_contacts *c, int n, int rows)
+{
+    vt_status st;
+    int culprit = -1, meq = c->nu;
+    const double *Aeq = c->Aeq;
+    vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, meq, Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
+                                  rows ? rows : 1, c->bin, c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes, NULL);
+    if ((qs == VT_QP_INFEASIBLE && culprit < c->nu) || (qs == VT_QP_OPTIMAL && !optimal(c, Aeq, n, meq, rows))) {
+        if ((st = independent_rows(d, c, n, &meq, &culprit))) return st;
+        if (culprit >= 0) return infeasible(m, d, c, culprit);
+        Aeq = c->Ar;
+        qs = vt_qp_solve(n, c->G, n, c->c, meq, Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain, rows ? rows : 1, c->bin,
+                         c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes, NULL);
+        if (qs == VT_QP_OPTIMAL && !optimal(c, Aeq, n, meq, rows))
+            return vt_fail(d->message, VT_ERR_SINGULAR,
+                           "vt_inverse_dynamics_contacts: the distribution's answer does not meet its optimality "
+                           "conditions to round-off (an ill-conditioned problem: contacts whose forces cancel, "
+                           "weights far apart); no forces returned");
+    }
+    if (qs == VT_QP_INFEASIBLE && culprit < meq) culprit = 0; /* an equality: the root's wrench */
+    else if (qs == VT_QP_INFEASIBLE) culprit += c->nu - meq;   /* an inequality, as infeasible() counts */
+    if (qs == VT_QP_INFEASIBLE) return infeasible(m, d, c, culprit);
+    if (qs != VT_QP_OPTIMAL)
+        return vt_fail(d->message, qs == VT_QP_NONFINITE ? VT_ERR_NONFINITE : VT_ERR_SINGULAR,
+                       "vt_inverse_dynamics_contacts: the distribution's problem could not be solved (%s)",
+                       vt_qp_result_string(qs));
+    return VT_OK;
+}
+
 vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_contacts");
@@ -518,31 +604,8 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     const int n = 3 * na;
     contact_jacobian(m, d, c, na);
     const int rows = distribution(c, na);
-    /* the root's equations as they are; where the QP finds them inconsistent or its answer fails
-     * the optimality conditions, again by their independent rows (independent_rows) */
-    int culprit = -1, meq = c->nu;
-    const double *Aeq = c->Aeq;
-    vt_qp_result qs = vt_qp_solve(n, c->G, n, c->c, meq, Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain,
-                                  rows ? rows : 1, c->bin, c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes, NULL);
-    if ((qs == VT_QP_INFEASIBLE && culprit < c->nu) || (qs == VT_QP_OPTIMAL && !optimal(c, Aeq, n, meq, rows))) {
-        if ((st = independent_rows(d, c, n, &meq, &culprit))) return st;
-        if (culprit >= 0) return infeasible(m, d, c, culprit);
-        Aeq = c->Ar;
-        qs = vt_qp_solve(n, c->G, n, c->c, meq, Aeq, c->nu ? c->nu : 1, c->beq, rows, c->Ain, rows ? rows : 1, c->bin,
-                         c->f, c->lambda, NULL, &culprit, c->qp, c->qp_bytes, NULL);
-        if (qs == VT_QP_OPTIMAL && !optimal(c, Aeq, n, meq, rows))
-            return vt_fail(d->message, VT_ERR_SINGULAR,
-                           "vt_inverse_dynamics_contacts: the distribution's answer does not meet its optimality "
-                           "conditions to round-off (an ill-conditioned problem: contacts whose forces cancel, "
-                           "weights far apart); no forces returned");
-    }
-    if (qs == VT_QP_INFEASIBLE && culprit < meq) culprit = 0; /* an equality: the root's wrench */
-    else if (qs == VT_QP_INFEASIBLE) culprit += c->nu - meq;   /* an inequality, as infeasible() counts */
-    if (qs == VT_QP_INFEASIBLE) return infeasible(m, d, c, culprit);
-    if (qs != VT_QP_OPTIMAL)
-        return vt_fail(d->message, qs == VT_QP_NONFINITE ? VT_ERR_NONFINITE : VT_ERR_SINGULAR,
-                       "vt_inverse_dynamics_contacts: the distribution's problem could not be solved (%s)",
-                       vt_qp_result_string(qs));
+    /* the equality-constrained minimum where no face binds, else the QP */
+    if (!equality_minimum(c, n, rows) && (st = by_qp(m, d, c, n, rows))) return st;
     /* the forces applied as loads: a tree's instant takes them by its inward pass alone (it is
      * linear in the loads); loops and couplings by the instant solved again with them, the
      * caller's xfrc back after it */
