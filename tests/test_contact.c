@@ -11,6 +11,11 @@
  *   applied as frame loads (vt_add_frame_load) give the same efforts; with a front foot lifted
  *   the diagonal pair under the centre of mass carries it all, half each; two points of one body
  *   cannot hold the torso (no moment about their line): refused;
+ * - the rule itself on the quadruped moving, every foot inside its pyramid: the forces minimize
+ *   ½ Σ w_a τ_a² + ½ Σ w_c |f_c|² subject to the free root's six equations, so with the feet's
+ *   Jacobians (the root's columns e_k and e_k × (p − o), the joints' by central differences of
+ *   vt_frame_pose) the test forms G, c and the equalities itself and solves the KKT system by
+ *   LAPACK's dgesv; efforts weighted unevenly, one foot's weight apart;
  * - the definitions refused, named.
  */
 #include <math.h>
@@ -295,6 +300,105 @@ static void test_quadruped(void **state)
     vt_model_free(m);
 }
 
+/* the rule against its KKT system solved here: [G −A_uᵀ; A_u 0] [f; λ] = [−c; τ⁰_u] with
+ * G = J_Aᵀ W J_A + W_f, c = −J_Aᵀ W τ⁰_A, J the feet's 3 x nv Jacobians in world axes */
+static void test_rule(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_quadruped(&m));
+    const int nv = m->nv, nf = 12;
+    assert_int_equal(nv, 18);
+    vt_data *d = NULL, *z = NULL;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&z, m));
+    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    vt_contact_def def[4];
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = foot[k];
+        def[k].mu = 0.9;
+    }
+    def[2].weight = 4e-4;
+    double w[18];
+    for (int a = 0; a < nv; a++) w[a] = 1.0 + 0.1 * a;
+    vt_contacts *c = NULL;
+    assert_ok(vt_contacts_create(&c, m, def, 4, w, NULL));
+    for (int seed = 0; seed < 5; seed++) {
+        vt_scene_quadruped_stand(m, d, 0.55 + 0.03 * seed);
+        for (int a = 0; a < nv; a++) {
+            d->qd[a] = 0.2 * sin(1.3 * a + seed);
+            d->qdd[a] = (a < 6 ? 0.3 : 0.8) * cos(0.7 * a + 2.0 * seed);
+        }
+        double f[12];
+        assert_ok(vt_inverse_dynamics_contacts(m, d, c, NULL, f));
+        const double W = VT_QUADRUPED_MASS * G0;
+        for (int k = 0; k < 4; k++) { /* inside the pyramid: no face binds, the equalities decide */
+            assert_true(f[3 * k + 2] > 0.05 * W);
+            assert_true(fabs(f[3 * k]) < 0.8 * 0.9 * cos(PI / 4) * f[3 * k + 2]);
+            assert_true(fabs(f[3 * k + 1]) < 0.8 * 0.9 * cos(PI / 4) * f[3 * k + 2]);
+        }
+        /* τ⁰ and the Jacobians from the state alone */
+        memcpy(z->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(z->qd, d->qd, (size_t)nv * sizeof(double));
+        memcpy(z->qdd, d->qdd, (size_t)nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_motion(m, z));
+        double tau0[18], J[12 * 18] = {0}; /* J: row 3k + e, column a (column-major, ld 12) */
+        memcpy(tau0, z->qfrc_drive, sizeof tau0);
+        const double *o = z->jpoint + 3; /* the free joint's point, body 1 */
+        for (int k = 0; k < 4; k++) {
+            const int fr = vt_find_frame(m, foot[k]);
+            double p[3], R[9];
+            assert_ok(vt_frame_pose(m, z, fr, p, R));
+            const double r[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+            for (int e = 0; e < 3; e++) J[3 * k + e + 12 * e] = 1.0;
+            /* e_x × r = (0, −r_z, r_y), e_y × r = (r_z, 0, −r_x), e_z × r = (−r_y, r_x, 0) */
+            J[3 * k + 1 + 12 * 3] = -r[2], J[3 * k + 2 + 12 * 3] = r[1];
+            J[3 * k + 0 + 12 * 4] = r[2], J[3 * k + 2 + 12 * 4] = -r[0];
+            J[3 * k + 0 + 12 * 5] = -r[1], J[3 * k + 1 + 12 * 5] = r[0];
+            for (int a = 6; a < nv; a++) {
+                const int qa = m->body_qadr[m->dof_body[a]];
+                double pp[3], pm[3];
+                const double h = 1e-6, q0 = z->q[qa];
+                z->q[qa] = q0 + h;
+                assert_ok(vt_kinematics(m, z));
+                assert_ok(vt_frame_pose(m, z, fr, pp, R));
+                z->q[qa] = q0 - h;
+                assert_ok(vt_kinematics(m, z));
+                assert_ok(vt_frame_pose(m, z, fr, pm, R));
+                z->q[qa] = q0;
+                for (int e = 0; e < 3; e++) J[3 * k + e + 12 * a] = (pp[e] - pm[e]) / (2 * h);
+            }
+            assert_ok(vt_kinematics(m, z));
+        }
+        /* the KKT matrix (18 x 18: 12 forces, 6 multipliers) and its right side */
+        double K[18 * 18] = {0}, b[18] = {0};
+        for (int i = 0; i < nf; i++) {
+            for (int j = 0; j < nf; j++) {
+                double g = 0.0;
+                for (int a = 6; a < nv; a++) g += J[i + 12 * a] * w[a] * J[j + 12 * a];
+                K[i + 18 * j] = g + (i == j ? def[i / 3].weight : 0.0);
+            }
+            double cc = 0.0;
+            for (int a = 6; a < nv; a++) cc -= J[i + 12 * a] * w[a] * tau0[a];
+            b[i] = -cc;
+            for (int h = 0; h < 6; h++) {
+                K[i + 18 * (nf + h)] = -J[i + 12 * h];
+                K[nf + h + 18 * i] = J[i + 12 * h];
+            }
+        }
+        for (int h = 0; h < 6; h++) b[nf + h] = tau0[h];
+        int n18 = 18, one = 1, ipiv[18], info = 0;
+        dgesv_(&n18, &one, K, &n18, ipiv, b, &n18, &info); /* LAPACK, not the library's solve */
+        assert_int_equal(info, 0);
+        for (int i = 0; i < nf; i++) assert_near_rel(f[i], b[i], 1e-7, W);
+    }
+    vt_contacts_free(c);
+    vt_data_free(d);
+    vt_data_free(z);
+    vt_model_free(m);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -350,6 +454,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_box),
         cmocka_unit_test(test_quadruped),
+        cmocka_unit_test(test_rule),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
