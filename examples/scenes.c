@@ -690,18 +690,17 @@ int vt_scene_delta_assemble(const vt_model *m, vt_data *d, const double p[3])
 }
 
 /* a builder whose model has gravity −9.81 z (z up, as URDF robots) */
-static vt_status z_up_builder(vt_builder **b)
+static vt_status z_up_builder(vt_builder **b, int allow_redundant)
 {
     vt_model_def md = vt_default_model_def();
     md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81;
+    md.allow_redundant = allow_redundant;
     return vt_builder_create(b, &md);
 }
 
-vt_status vt_scene_quadruped(vt_model **model)
+/* the quadruped's bodies and frames into b: VT_OK or the failing status */
+static vt_status quadruped_bodies(vt_builder *b)
 {
-    vt_builder *b;
-    vt_status st = z_up_builder(&b);
-    if (st) return st;
     vt_body_def torso = vt_default_body_def();
     torso.joint = VT_JOINT_FREE;
     torso.parent = 0;
@@ -753,7 +752,43 @@ vt_status vt_scene_quadruped(vt_model **model)
             if (fr < 0) id = fr;
         }
     }
-    return finish(model, b, id < 0 ? (vt_status)id : VT_OK);
+    return id < 0 ? (vt_status)id : VT_OK;
+}
+
+vt_status vt_scene_quadruped(vt_model **model)
+{
+    vt_builder *b;
+    vt_status st = z_up_builder(&b, 0);
+    if (st) return st;
+    return finish(model, b, quadruped_bodies(b));
+}
+
+vt_status vt_scene_quadruped_feet(vt_model **model, unsigned feet)
+{
+    vt_builder *b;
+    vt_status st = z_up_builder(&b, 1);
+    if (st) return st;
+    st = quadruped_bodies(b);
+    for (int i = 2; i <= 13 && !st; i++) { /* every leg joint driven */
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = i;
+        const int id = vt_builder_add_drive(b, &dr);
+        if (id < 0) st = (vt_status)id;
+    }
+    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    for (int k = 0; k < 4 && !st; k++) {
+        if (!(feet >> k & 1u)) continue;
+        vt_cut_joint_def cj = vt_default_cut_joint_def();
+        cj.joint = VT_JOINT_SPHERICAL;
+        cj.body_a = 0;
+        cj.point_a[0] = k < 2 ? 0.3 : -0.3; /* under the hip */
+        cj.point_a[1] = k % 2 == 0 ? 0.15 : -0.15;
+        cj.frame_b = foot[k];
+        cj.name = foot[k];
+        const int id = vt_builder_add_cut_joint(b, &cj);
+        if (id < 0) st = (vt_status)id;
+    }
+    return finish(model, b, st);
 }
 
 void vt_scene_quadruped_stand(const vt_model *m, vt_data *d, double theta)
@@ -802,7 +837,7 @@ void vt_scene_leg_ik(double L, const double d[3], const double dd[3], const doub
 vt_status vt_scene_humanoid(vt_model **model)
 {
     vt_builder *b;
-    vt_status st = z_up_builder(&b);
+    vt_status st = z_up_builder(&b, 0);
     if (st) return st;
     vt_body_def trunk = vt_default_body_def();
     trunk.joint = VT_JOINT_FREE;

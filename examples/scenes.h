@@ -227,6 +227,11 @@ int vt_scene_delta_assemble(const vt_model *model, vt_data *data, const double p
 #define VT_QUADRUPED_MASS 17.2
 vt_status vt_scene_quadruped(vt_model **model);
 void vt_scene_quadruped_stand(const vt_model *model, vt_data *data, double theta);
+/* The same quadruped with the feet of the mask (bit k: FL, FR, HL, HR) held to the ground by
+ * spherical cut joints at the points under their hips ((±0.3, ±0.15, 0): the stand's feet),
+ * every leg joint driven (joint drives, the motion given through the data), allow_redundant:
+ * the feet as bilateral contacts, solved as redundant loops (test_contact's second method). */
+vt_status vt_scene_quadruped_feet(vt_model **model, unsigned feet);
 
 /* A humanoid's lower body (contacts, docs/contact.md): a 20 kg pelvis and trunk (a box
  * 0.3 x 0.3 x 0.5 m, its centre of mass 0.2 m above the hips) on a free joint ("root", its point

@@ -723,6 +723,14 @@ module vtdyn
       real(c_double), intent(out), optional :: force(*)
       integer(c_int) :: vt_inverse_dynamics_contacts
     end function
+    function vt_contacts_unique(model, data, contacts, active, effort_unique, force_unique) &
+        bind(C, name='vt_contacts_unique')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model, data, contacts
+      integer(c_int), intent(in), optional :: active(*)
+      integer(c_int), intent(out), optional :: effort_unique(*), force_unique(*)
+      integer(c_int) :: vt_contacts_unique
+    end function
     function vt_find_body(model, name) bind(C, name='vt_find_body')
       import :: c_int, c_ptr, c_char
       type(c_ptr), value :: model

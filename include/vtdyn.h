@@ -559,9 +559,10 @@ VT_API int vt_find_contact(const vt_contacts *contacts, const char *name);
 ///     minimize ½ Σ_a w_a τ_a² + ½ Σ_c w_c |f_c|²  over the active f_c,
 ///     subject to τ_u = 0 on the unactuated rates, and, for a unilateral contact,
 ///     n·f_c ≥ 0 and d_j·f_c ≤ μ cos(π/k) n·f_c on each of its pyramid's k faces,
-/// where τ = M*(q) q̈ − Q − Σ_c J_cᵀ f_c are the efforts; then the instant is solved again with
-/// the forces applied, so that every effort (qfrc_drive, zero to round-off on the unactuated
-/// rates) and every joint reaction in the data include them. force: 3 per contact (in the order
+/// where τ = M*(q) q̈ − Q − Σ_c J_cᵀ f_c are the efforts; then the forces are applied to the
+/// instant (a tree's by its inward pass alone, the instant being linear in the loads; loops and
+/// couplings by the instant solved again), so that every effort (qfrc_drive, zero to round-off
+/// on the unactuated rates) and every joint reaction in the data include them. force: 3 per contact (in the order
 /// of the definitions), the ground's force on the body, global, 0 at an inactive contact.
 /// Statuses: those of vt_inverse_dynamics_motion(); VT_ERR_CONTACT where no forces within the
 /// contacts' limits give the motion (the message names the contact that would have to pull or
@@ -570,6 +571,22 @@ VT_API int vt_find_contact(const vt_contacts *contacts, const char *name);
 /// another model. The data's xfrc is as the caller left it on return.
 VT_API vt_status vt_inverse_dynamics_contacts(const vt_model *model, vt_data *data, vt_contacts *contacts,
                                               const int *active, double *force);
+
+/// Which results of the last successful vt_inverse_dynamics_contacts() on this data (the same
+/// state and active contacts) the motion and the contacts fix, and which the distribution rule
+/// decides (docs/contact.md#uniqueness): a result is fixed (1) when every set of forces that
+/// the unactuated rates' equations allow gives it the same value, the rule only choosing among
+/// those (0). effort_unique: nv (NULL: not wanted); force_unique: 3 per contact, world axes
+/// (NULL: not wanted; an inactive contact's 1: its force is zero); and the data's jnt_unique,
+/// per reaction component as vt_data documents it. The pushing and friction limits do not
+/// count: the flags are those of the same contacts made bilateral (what spherical cut joints at
+/// the contacts with vt_model_def.allow_redundant flag). The data's efforts, reactions and
+/// limits are as the instant left them. Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH,
+/// VT_ERR_BAD_OPTION (a model with cut joints or couplings, or no contacts' instant before),
+/// VT_ERR_LAPACK. Not for the per-instant path: a singular value decomposition and an inward
+/// pass per direction the rule chooses along.
+VT_API vt_status vt_contacts_unique(const vt_model *model, vt_data *data, vt_contacts *contacts, const int *active,
+                                    int *effort_unique, int *force_unique);
 
 /* ---- force transforms ---------------------------------------------------------------- */
 

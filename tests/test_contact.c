@@ -16,6 +16,12 @@
  *   Jacobians (the root's columns e_k and e_k × (p − o), the joints' by central differences of
  *   vt_frame_pose) the test forms G, c and the equalities itself and solves the KKT system by
  *   LAPACK's dgesv; efforts weighted unevenly, one foot's weight apart;
+ * - which results the rule decides (vt_contacts_unique) against a second method: the same feet
+ *   as spherical cut joints solved as redundant loops (vt_scene_quadruped_feet, allow_redundant),
+ *   whose flags of drive efforts, cut forces and reactions come from the null space of Φ_qᵀ: the
+ *   flags equal, and every result both call unique has the same value (1e-12), with the torso
+ *   moving and the feet held still by the legs' inverse kinematics, on four feet and on three
+ *   (the fourth leg swinging: its torques and reactions fixed by its motion alone);
  * - the definitions refused, named.
  */
 #include <math.h>
@@ -399,6 +405,111 @@ static void test_rule(void **state)
     vt_model_free(m);
 }
 
+/* the quadruped's torso moving level (position, velocity, acceleration), the legs by inverse
+ * kinematics: the feet of the mask still under their hips, the others moving, into d */
+static void moving_state(const vt_model *m, vt_data *d, unsigned mask)
+{
+    vt_scene_quadruped_stand(m, d, 0.6);
+    const double tp[3] = {0.02, -0.01, 0.4 * cos(0.6) + 0.01}, tv[3] = {0.1, 0.05, -0.02}, ta[3] = {0.3, -0.2, 0.1};
+    for (int e = 0; e < 3; e++) d->q[e] = tp[e], d->qd[e] = tv[e], d->qdd[e] = ta[e];
+    for (int k = 0; k < 4; k++) {
+        const double hx = k < 2 ? 0.3 : -0.3, hy = k % 2 == 0 ? 0.15 : -0.15;
+        const int still = mask >> k & 1u;
+        const double fp[3] = {hx + (still ? 0.0 : 0.03), hy, still ? 0.0 : 0.05};
+        const double fv[3] = {still ? 0.0 : 0.2, 0.0, still ? 0.0 : 0.1}, fa[3] = {still ? 0.0 : 1.0, 0.0, still ? 0.0 : -1.0};
+        double r[3], rv[3], ra[3], q[3], qd[3], qdd[3];
+        for (int e = 0; e < 3; e++) {
+            r[e] = fp[e] - (e == 0 ? tp[0] + hx : e == 1 ? tp[1] + hy : tp[2]);
+            rv[e] = fv[e] - tv[e];
+            ra[e] = fa[e] - ta[e];
+        }
+        vt_scene_leg_ik(0.2, r, rv, ra, k < 2 ? -1.0 : 1.0, q, qd, qdd);
+        for (int j = 0; j < 3; j++) {
+            const int body = 2 + 3 * k + j, a = m->body_vadr[body];
+            d->q[m->body_qadr[body]] = q[j];
+            d->qd[a] = qd[j];
+            d->qdd[a] = qdd[j];
+        }
+    }
+}
+
+static void test_unique(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_quadruped(&m));
+    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    vt_contact_def def[4];
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = foot[k];
+        def[k].kind = VT_CONTACT_BILATERAL;
+    }
+    vt_contacts *c = NULL;
+    assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    const double W = VT_QUADRUPED_MASS * G0;
+    for (int pass = 0; pass < 2; pass++) {
+        const unsigned mask = pass ? 0xEu : 0xFu; /* all four feet; FL swinging */
+        vt_model *mc = NULL;
+        vt_data *dc = NULL;
+        assert_ok(vt_scene_quadruped_feet(&mc, mask));
+        assert_ok(vt_data_create(&dc, mc));
+        moving_state(m, d, mask);
+        moving_state(mc, dc, mask);
+        int active[4], eu[18], fu[12];
+        for (int k = 0; k < 4; k++) active[k] = mask >> k & 1u;
+        double f[12];
+        assert_ok(vt_inverse_dynamics_contacts(m, d, c, active, f));
+        double tau[18];
+        memcpy(tau, d->qfrc_drive, sizeof tau);
+        assert_ok(vt_contacts_unique(m, d, c, active, eu, fu));
+        for (int a = 0; a < 18; a++) assert_true(d->qfrc_drive[a] == tau[a]); /* the data as it was */
+        assert_ok(vt_inverse_dynamics_motion(mc, dc)); /* the loops: q̈ of the driven rates given */
+        assert_true(dc->rank < mc->nc);                /* redundant */
+        int n_rule = 0;
+        for (int a = 6; a < 18; a++) { /* a leg joint: its drive's row */
+            const int dr = mc->dof_drive[a], row = mc->drive_row[dr];
+            assert_int_equal(eu[a], dc->lambda_unique[row]);
+            if (eu[a]) assert_near_rel(d->qfrc_drive[a], dc->drive_effort[dr], 1e-12, W);
+            n_rule += !eu[a];
+            if (pass == 1 && a < 9) assert_int_equal(eu[a], 1); /* the swinging leg's */
+        }
+        assert_true(n_rule > 0);
+        for (int k = 0, cut = 0; k < 4; k++) {
+            if (!active[k]) { /* no contact, no cut joint: zero, fixed */
+                for (int e = 0; e < 3; e++) assert_true(f[3 * k + e] == 0.0 && fu[3 * k + e] == 1);
+                continue;
+            }
+            for (int e = 0; e < 3; e++) {
+                assert_int_equal(fu[3 * k + e], dc->cut_unique[6 * cut + e]);
+                /* the cut joint's force on the foot, b, is the ground's */
+                if (fu[3 * k + e]) assert_near_rel(f[3 * k + e], dc->cut_force[3 * cut + e], 1e-12, W);
+            }
+            cut++;
+        }
+        for (int i = 1; i <= m->nbody; i++)
+            for (int e = 0; e < 6; e++) {
+                assert_int_equal(d->jnt_unique[6 * i + e], dc->jnt_unique[6 * i + e]);
+                const double x = e < 3 ? d->jnt_force[3 * i + e] : d->jnt_moment[3 * i + e - 3];
+                const double y = e < 3 ? dc->jnt_force[3 * i + e] : dc->jnt_moment[3 * i + e - 3];
+                if (d->jnt_unique[6 * i + e]) assert_near_rel(x, y, 1e-12, W);
+            }
+        vt_data_free(dc);
+        vt_model_free(mc);
+    }
+    /* refused: no contacts' instant before, another model's contacts */
+    vt_data *e = NULL;
+    assert_ok(vt_data_create(&e, m));
+    assert_int_equal(vt_contacts_unique(m, e, c, NULL, NULL, NULL), VT_ERR_BAD_OPTION);
+    assert_int_equal(vt_contacts_unique(m, e, NULL, NULL, NULL, NULL), VT_ERR_NULL);
+    vt_data_free(e);
+    vt_contacts_free(c);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -455,6 +566,7 @@ int main(void)
         cmocka_unit_test(test_box),
         cmocka_unit_test(test_quadruped),
         cmocka_unit_test(test_rule),
+        cmocka_unit_test(test_unique),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -37,6 +37,7 @@
 #include "base/scan.h"
 #include "base/status.h"
 #include "base/vec3.h"
+#include "dense/reactions.h"
 #include "numeric/qp.h"
 #include "recursive/fused.h"
 
@@ -74,7 +75,10 @@ struct vt_contacts {
     double *U, *sig, *Ar, *svd_work; /* the root's equations by their SVD: U (nu x nu), σ, the
                                       * independent rows Uᵣᵀ A_eq (nu x 3n), LAPACK's workspace */
     int svd_lwork;
-    double *L;            /* the equality minimum's G = L Lᵀ (3n x 3n) */
+    double *L;            /* the equality minimum's G = L Lᵀ (3n x 3n); vt_contacts_unique's U */
+    double *saved;        /* vt_contacts_unique: the data's outputs while it probes (saved_len) */
+    size_t saved_len;
+    int *eu, *ju;         /* vt_contacts_unique's flags as they are found (nv, 6 (nbody + 1)) */
     int *row_contact;     /* the contact of each inequality row */
     int *row_face;        /* −1 for its normal row, else its face */
     void *qp;
@@ -160,6 +164,10 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
     c->svd_work = vt_block_take(b, (size_t)c->svd_lwork, sizeof(double));
     c->xfrc = vt_block_take(b, 6 * ((size_t)m->nbody + 1), sizeof(double));
     c->L = vt_block_take(b, nx * nx, sizeof(double));
+    c->saved_len = 4 * nv + 24 * ((size_t)m->nbody + 1);
+    c->saved = vt_block_take(b, c->saved_len, sizeof(double));
+    c->eu = vt_block_take(b, nv ? nv : 1, sizeof(int));
+    c->ju = vt_block_take(b, 6 * ((size_t)m->nbody + 1), sizeof(int));
     c->row_contact = vt_block_take(b, nr, sizeof(int));
     c->row_face = vt_block_take(b, nr, sizeof(int));
     c->qp = vt_block_take(b, c->qp_bytes, 1);
@@ -624,5 +632,103 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
         memset(force, 0, 3 * (size_t)c->n * sizeof(double));
         for (int k = 0; k < na; k++) vt_copy3(force + 3 * c->on[k], c->f + 3 * k);
     }
+    return VT_OK;
+}
+
+/* The data's outputs that vt_motion_add_loads changes: qfrc_drive, limit_excess, and each joint's
+ * reaction and total in both axes; into (save 1) or back from (0) c->saved, or zeroed (−1) */
+static void outputs(const vt_model *m, vt_data *d, vt_contacts *c, int save)
+{
+    const size_t nv = (size_t)m->nv, nb = 3 * ((size_t)m->nbody + 1);
+    double *const a[10] = {d->qfrc_drive, d->limit_excess, d->jnt_force, d->jnt_moment, d->jnt_force_body,
+                           d->jnt_moment_body, d->jnt_force_total, d->jnt_moment_total, d->jnt_force_total_body,
+                           d->jnt_moment_total_body};
+    double *s = c->saved;
+    for (int k = 0; k < 10; k++) {
+        const size_t len = k == 0 ? nv : k == 1 ? 3 * nv : nb;
+        if (save > 0) memcpy(s, a[k], len * sizeof(double));
+        else if (save == 0) memcpy(a[k], s, len * sizeof(double));
+        else memset(a[k], 0, len * sizeof(double));
+        s += len;
+    }
+}
+
+/* The forces the root's equations allow are f + N z, N a basis of A_eq's null space (the
+ * columns of U past the rank r of A_eqᵀ = U Σ Vᵀ, dgesvd; every direction when nothing is
+ * unactuated). A result is fixed by the motion and the contacts when no direction changes it:
+ * a force component when N's row is 0, the efforts and reactions when the loads of N's column
+ * leave them, each by the inward pass of the loads alone (vt_motion_add_loads on zeroed outputs:
+ * the change itself), beyond 1e-9 of the largest change a unit direction makes. */
+vt_status vt_contacts_unique(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, int *effort_unique,
+                             int *force_unique)
+{
+    vt_status st = vt_check_pair(m, d, "vt_contacts_unique");
+    if (st) return st;
+    if (!c) return vt_fail(d->message, VT_ERR_NULL, "vt_contacts_unique: contacts is NULL");
+    if (c->model != m)
+        return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "vt_contacts_unique: contacts made for another model");
+    if (m->ncut > 0 || m->ncoupling > 0 || d->route != VT_ROUTE_MOTION)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_contacts_unique: needs vt_inverse_dynamics_contacts's instant of a tree (no cut joint "
+                       "nor coupling) on this data just before");
+    int na = 0;
+    for (int k = 0; k < c->n; k++)
+        if (!active || active[k]) c->on[na++] = k;
+    const int n = 3 * na, nu = c->nu, nj = 6 * (m->nbody + 1);
+    for (int a = 0; a < m->nv; a++) c->eu[a] = 1;
+    for (int k = 0; k < nj; k++) c->ju[k] = 1;
+    if (force_unique)
+        for (int k = 0; k < 3 * c->n; k++) force_unique[k] = 1;
+    int r = 0;
+    double *U = c->L;
+    if (n > 0) {
+        contact_jacobian(m, d, c, na);
+        if (nu > 0) { /* A_eqᵀ (n x nu) into Ar, its left singular vectors into U */
+            for (int h = 0; h < nu; h++)
+                for (int i = 0; i < n; i++) c->Ar[(size_t)i + (size_t)h * (size_t)n] = c->Aeq[(size_t)h + (size_t)i * (size_t)nu];
+            int info = 0, one = 1, nn = n, mu = nu;
+            double dummy = 0.0;
+            dgesvd_("A", "N", &nn, &mu, c->Ar, &nn, c->sig, U, &nn, &dummy, &one, c->svd_work, &c->svd_lwork, &info, 1, 1);
+            if (info) return vt_fail(d->message, VT_ERR_LAPACK, "vt_contacts_unique: dgesvd info %d", info);
+            const int k = nu < n ? nu : n;
+            const double tol = 64.0 * (double)(nu + n) * DBL_EPSILON * c->sig[0];
+            while (r < k && c->sig[r] > tol) r++;
+        } else {
+            memset(U, 0, (size_t)n * (size_t)n * sizeof(double));
+            for (int i = 0; i < n; i++) U[(size_t)i * (size_t)(n + 1)] = 1.0;
+        }
+    }
+    const size_t nxf = 6 * ((size_t)m->nbody + 1);
+    if (r < n) outputs(m, d, c, 1);
+    for (int j = r; j < n; j++) { /* each direction the rule chooses along */
+        const double *z = U + (size_t)j * (size_t)n;
+        memset(c->xfrc, 0, nxf * sizeof(double));
+        for (int k = 0; k < na; k++) {
+            add_load(d, c, c->on[k], z + 3 * k, c->xfrc);
+            for (int e = 0; force_unique && e < 3; e++)
+                if (fabs(z[3 * k + e]) > 1e-9) force_unique[3 * c->on[k] + e] = 0;
+        }
+        outputs(m, d, c, -1);
+        if ((st = vt_motion_add_loads(m, d, c->xfrc))) break;
+        const double *f = d->jnt_force, *mo = d->jnt_moment;
+        const int nb = m->nbody + 1;
+        double big = max_abs(d->qfrc_drive, m->nv, 1);
+        big = fmax(big, fmax(max_abs(f, 3 * nb, 1), max_abs(mo, 3 * nb, 1)));
+        const double tol = 1e-9 * big + DBL_MIN;
+        for (int a = 0; a < m->nv; a++)
+            if (fabs(d->qfrc_drive[a]) > tol) c->eu[a] = 0;
+        for (int i = 0; i < nb; i++)
+            for (int e = 0; e < 3; e++) {
+                if (fabs(f[3 * i + e]) > tol) c->ju[6 * i + e] = 0;
+                if (fabs(mo[3 * i + e]) > tol) c->ju[6 * i + 3 + e] = 0;
+            }
+    }
+    if (r < n) {
+        outputs(m, d, c, 0);
+        (void)vt_reactions_unique(m, d); /* the limits and warning as the instant left them (a tree: no rows) */
+    }
+    if (st) return st;
+    memcpy(d->jnt_unique, c->ju, (size_t)nj * sizeof(int));
+    if (effort_unique) memcpy(effort_unique, c->eu, (size_t)m->nv * sizeof(int));
     return VT_OK;
 }
