@@ -18,10 +18,10 @@
  * Writes one row per 10 ms over one period (T = 4 (SHIFT + SWING)): t, each foot's force (N, world
  * axes), each joint's torque (N·m); prints the largest root effort (round-off: the feet carry the
  * torso), the lowest normal force of a foot on the ground, the friction used and the peak torques;
- * exits 1 if the feet had to pull or slip. Plot with examples/walk.gp. A trot (diagonal pairs) is
- * not this example: on two feet the ground's forces pass through the line between them, so the
- * torso's roll about it is not free to choose but follows from the dynamics, and a trot given
- * level and straight is refused (VT_ERR_CONTACT, the root's moment named). */
+ * exits 1 if the feet had to pull or slip. Plot with examples/walk.gp. Here the torso's motion is
+ * given whole, which three feet or more allow; on two (a trot's diagonal pair) the ground's forces
+ * pass through the line between them, so the torso's turn about it follows from the dynamics:
+ * examples/trot.c solves it. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -22,6 +22,11 @@
  *   flags equal, and every result both call unique has the same value (1e-12), with the torso
  *   moving and the feet held still by the legs' inverse kinematics, on four feet and on three
  *   (the fourth leg swinging: its torques and reactions fixed by its motion alone);
+ * - the quadruped on a diagonal pair (a trot's instant, examples/trot.c): the motion given whole is
+ *   refused; the root's moment about the pair's line is affine in the torso's angular acceleration
+ *   along it (checked at a third value), and with that component solved here from two instants of
+ *   vt_inverse_dynamics_motion the instant is carried: the root's efforts zero, the swing feet's
+ *   forces exactly zero, τ⁰ − Σ J_cᵀ f by central differences as above;
  * - the definitions refused, named.
  */
 #include <math.h>
@@ -510,6 +515,105 @@ static void test_unique(void **state)
     vt_model_free(m);
 }
 
+/* u · (M_o + (o − p1) × F) of the root's efforts (F, M_o): their moment about the line through p1
+ * along u, o the root's point (the torso's centre of mass, q[0..2]) */
+static double line_moment(const vt_data *d, const double u[3], const double p1[3])
+{
+    const double r[3] = {d->q[0] - p1[0], d->q[1] - p1[1], d->q[2] - p1[2]}, *F = d->qfrc_drive;
+    const double c[3] = {r[1] * F[2] - r[2] * F[1], r[2] * F[0] - r[0] * F[2], r[0] * F[1] - r[1] * F[0]};
+    return u[0] * (F[3] + c[0]) + u[1] * (F[4] + c[1]) + u[2] * (F[5] + c[2]);
+}
+
+static void test_diagonal_pair(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_quadruped(&m));
+    vt_data *d = NULL, *z = NULL;
+    assert_ok(vt_data_create(&d, m));
+    assert_ok(vt_data_create(&z, m));
+    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    vt_contact_def def[4];
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = def[k].name = foot[k];
+        def[k].mu = 0.8;
+    }
+    vt_contacts *c = NULL;
+    assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
+    const double W = VT_QUADRUPED_MASS * G0;
+    const int active[4] = {1, 0, 0, 1}; /* FL and HR: a trot's pair */
+    vt_scene_quadruped_stand(m, d, 0.6);
+    d->q[3] = cos(0.02), d->q[4] = sin(0.02) * 0.6, d->q[5] = sin(0.02) * 0.8; /* tilted a little */
+    for (int a = 0; a < m->nv; a++) {
+        d->qd[a] = 0.2 * sin(1.3 * a + 0.4);
+        d->qdd[a] = 0.3 * cos(0.7 * a + 0.1);
+    }
+    assert_ok(vt_kinematics(m, d));
+    double p1[3], p2[3], R[9], u[3];
+    assert_ok(vt_frame_pose(m, d, vt_find_frame(m, foot[0]), p1, R));
+    assert_ok(vt_frame_pose(m, d, vt_find_frame(m, foot[3]), p2, R));
+    const double len = sqrt((p2[0] - p1[0]) * (p2[0] - p1[0]) + (p2[1] - p1[1]) * (p2[1] - p1[1]) +
+                            (p2[2] - p1[2]) * (p2[2] - p1[2]));
+    for (int e = 0; e < 3; e++) u[e] = (p2[e] - p1[e]) / len;
+    double f[12];
+    for (int k = 0; k < 12; k++) f[k] = 42.0;
+    assert_int_equal(vt_inverse_dynamics_contacts(m, d, c, active, f), VT_ERR_CONTACT); /* given whole */
+    assert_non_null(strstr(d->message, "cannot give"));
+    for (int k = 0; k < 12; k++) assert_true(f[k] == 42.0);
+    /* the moment about the line at three values of α·u: affine (the instant is linear in q̈) */
+    const double along = d->qdd[3] * u[0] + d->qdd[4] * u[1] + d->qdd[5] * u[2];
+    double r[3];
+    for (int j = 0; j < 3; j++) {
+        memcpy(z->q, d->q, (size_t)m->nq * sizeof(double));
+        memcpy(z->qd, d->qd, (size_t)m->nv * sizeof(double));
+        memcpy(z->qdd, d->qdd, (size_t)m->nv * sizeof(double));
+        for (int e = 0; e < 3; e++) z->qdd[3 + e] += (j - along) * u[e];
+        assert_ok(vt_inverse_dynamics_motion(m, z));
+        r[j] = line_moment(z, u, p1);
+    }
+    assert_near_rel(r[2], 2.0 * r[1] - r[0], 1e-12, W);
+    assert_true(fabs(r[0]) > 1e-3 * W); /* 2 N m here: the motion given whole is far from carried */
+    const double s = -r[0] / (r[1] - r[0]);
+    for (int e = 0; e < 3; e++) d->qdd[3 + e] += (s - along) * u[e];
+    assert_ok(vt_inverse_dynamics_contacts(m, d, c, active, f));
+    for (int k = 3; k < 9; k++) assert_true(f[k] == 0.0); /* FR and HL swing */
+    for (int k = 0; k < 4; k += 3) {
+        assert_true(f[3 * k + 2] > 0.0);
+        assert_true(fabs(f[3 * k]) <= 0.8 * cos(PI / 4) * f[3 * k + 2] + 1e-12 * W);
+        assert_true(fabs(f[3 * k + 1]) <= 0.8 * cos(PI / 4) * f[3 * k + 2] + 1e-12 * W);
+    }
+    for (int a = 0; a < 6; a++) assert_near_rel(d->qfrc_drive[a], 0.0, 1e-10, W);
+    /* τ = τ⁰ − Σ J_cᵀ f on the joints, J_c by central differences */
+    memcpy(z->q, d->q, (size_t)m->nq * sizeof(double));
+    memcpy(z->qdd, d->qdd, (size_t)m->nv * sizeof(double));
+    assert_ok(vt_inverse_dynamics_motion(m, z));
+    for (int a = 6; a < m->nv; a++) {
+        const int qa = m->body_qadr[m->dof_body[a]];
+        double tau = z->qfrc_drive[a];
+        for (int k = 0; k < 4; k += 3) {
+            double pp[3], pm[3];
+            const double h = 1e-6, q0 = z->q[qa];
+            z->q[qa] = q0 + h;
+            assert_ok(vt_kinematics(m, z));
+            assert_ok(vt_frame_pose(m, z, vt_find_frame(m, foot[k]), pp, R));
+            z->q[qa] = q0 - h;
+            assert_ok(vt_kinematics(m, z));
+            assert_ok(vt_frame_pose(m, z, vt_find_frame(m, foot[k]), pm, R));
+            z->q[qa] = q0;
+            for (int e = 0; e < 3; e++) tau -= (pp[e] - pm[e]) / (2 * h) * f[3 * k + e];
+        }
+        assert_near_rel(d->qfrc_drive[a], tau, 1e-8, W);
+    }
+    /* off the solved value the instant is refused again */
+    for (int e = 0; e < 3; e++) d->qdd[3 + e] += 0.5 * u[e];
+    assert_int_equal(vt_inverse_dynamics_contacts(m, d, c, active, f), VT_ERR_CONTACT);
+    vt_contacts_free(c);
+    vt_data_free(z);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -567,6 +671,7 @@ int main(void)
         cmocka_unit_test(test_quadruped),
         cmocka_unit_test(test_rule),
         cmocka_unit_test(test_unique),
+        cmocka_unit_test(test_diagonal_pair),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

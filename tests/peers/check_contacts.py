@@ -12,7 +12,13 @@ LOCAL axes) and written as vtdyn's columns (world axes, docs/command.md):
       feet (Pinocchio's frames) on z = 0, at rest, four feet on the ground;
   (b) random states near it (joints, velocities, accelerations, a small base motion), four feet;
   (c) three feet on the ground (C_active 0 on the fourth, the base accelerated toward the
-      lifted foot so that the load can stay inside the three), and trot rows on a diagonal pair;
+      lifted foot so that the load can stay inside the three), and rows on a diagonal pair with
+      the motion given whole (refused: the pair's forces make no moment about their line);
+  (t) trotting: a diagonal pair on the ground (FL + HR or FR + HL), the rest as (c)'s, but the
+      base's angular acceleration along the pair's line chosen here with Pinocchio alone so that
+      the base's wrench has no moment about that line: n . rnea(q, v, a)[:6] = 0, n the base
+      twist that leaves both feet still (the null vector of the feet's base Jacobian rows, by
+      SVD: a turn about their line), rnea affine in a, so two calls give the value;
   (d) a row falling faster than gravity and one thrown sideways beyond friction, four feet.
 vtdyn stops a run at the first row its contacts cannot carry: the row it names is removed and the
 file run again, until it runs through. Each refusal must name its row and say why (a contact that
@@ -29,6 +35,7 @@ For every accepted row, with Pinocchio's free-flyer model of the same file:
     weight (the free root carries nothing) and the twelve joints' equal to vtdyn's J_effort to
     1e-9 of the larger of the row's largest effort and the weight; vtdyn's own root efforts zero
     to the same;
+  * every trotting row accepted;
   * the forces: an active foot's fz >= 0 and |fx|, |fy| <= mu cos(pi/4) fz (the 4-face pyramid,
     x and y its tangents), an inactive foot's exactly 0;
   * the forces are the rule's (docs/contact.md: least squared joint efforts, then 1e-4 N^-2 the
@@ -225,7 +232,8 @@ def small_rotation(rng, amp):
 
 
 def make_states(robot, rng):
-    """(kind, q, v, a, active) rows: standing; near it on four feet; three feet; two (trot)"""
+    """(kind, q, v, a, active) rows: standing; near it on four feet; three feet; two given whole;
+    trotting; and two that no forces carry"""
     m = robot.model
     q0 = robot.standing_q()
     rows = [("standing", q0, np.zeros(m.nv), np.zeros(m.nv), (1, 1, 1, 1))]
@@ -261,10 +269,15 @@ def make_states(robot, rng):
         q, v, a = near(0.05, 0.5, 1.0, np.append(1.5 * d, rng.uniform(-0.3, 0.3)))
         a[3:6] *= 0.3
         rows.append(("three feet", q, v, a, act))
-    for k in range(3):  # trot: one diagonal pair on the ground
+    for k in range(3):  # one diagonal pair on the ground, the motion given whole: refused
         act = (1, 0, 0, 1) if k % 2 == 0 else (0, 1, 1, 0)
         q, v, a = near(0.05, 0.5, 1.0, rng.uniform(-0.3, 0.3, 3))
         rows.append(("two feet", q, v, a, act))
+    for k in range(8):  # (t) trotting: the same, the base's turn about the pair's line solved
+        act = (1, 0, 0, 1) if k % 2 == 0 else (0, 1, 1, 0)
+        q, v, a = near(0.05, 0.5, 1.0, rng.uniform(-0.3, 0.3, 3))
+        a[3:6] *= 0.3
+        rows.append(("trot", q, v, trot_acceleration(robot, q, v, a, act), act))
     # rows no forces can carry: the torso falling faster than gravity (the feet would pull) and
     # thrown sideways beyond what friction gives (9 m/s^2 against mu cos(pi/4) g <= 5.5 m/s^2)
     q, v, a = near(0.05, 0.5, 1.0, np.array([0.0, 0.0, -14.0]))
@@ -272,6 +285,28 @@ def make_states(robot, rng):
     q, v, a = near(0.05, 0.5, 1.0, np.array([9.0, 0.0, 0.0]))
     rows.append(("slip", q, v, a, (1, 1, 1, 1)))
     return rows
+
+
+def trot_acceleration(robot, q, v, a, act):
+    """a with the base's angular acceleration along the stance pair's line set so that the base
+    wrench rnea(q, v, a)[:6] has no moment about the line: n . tau_base = 0 with n the base twist
+    (Pinocchio's local v) that moves neither foot, the null vector of their base Jacobian rows"""
+    _, J = robot.tau0_and_jacobians(q, v, a)
+    Jb = np.vstack([J[c][:, :6] for c in range(len(FEET)) if act[c]])
+    sv, n = np.linalg.svd(Jb)[1:]
+    if sv[4] < 1e-3 * sv[0] or sv[5] > 1e-12 * sv[0]:
+        raise ValueError("the pair's base Jacobian is not of rank 5: %s" % sv)
+    n = n[5]
+    w = n[3:6] / np.linalg.norm(n[3:6])  # the line's direction, base axes (n turns about it)
+    def moment(s):
+        b = a.copy()
+        b[3:6] += (s - b[3:6] @ w) * w
+        return n @ pin.rnea(robot.model, robot.data, q, v, b)[:6], b
+    r0, r1 = moment(0.0)[0], moment(1.0)[0]
+    r, b = moment(-r0 / (r1 - r0))
+    if abs(r) > 1e-9 * robot.weight:
+        raise ValueError("rnea is not affine in the base's angular acceleration: %g" % r)
+    return b
 
 
 def read_out_csv(path):
@@ -329,6 +364,8 @@ def main():
         proof = refusal_is_infeasible(states[i][1], *refs[i], act)
         if proof is False:
             failures.append("row %d (%s): refused (%s), but quadprog finds the QP feasible" % (i, kind, msg))
+        if kind == "trot":
+            failures.append("row %d (trot): refused: %s" % (i, msg))
         if kind == "two feet" and why != "cannot give":
             failures.append("row %d (two feet): not refused for the root's moment: %s" % (i, msg))
         if kind in ("pull", "slip") and why not in ("pull", "slip"):
@@ -343,7 +380,7 @@ def main():
     for k in ("two feet", "pull", "slip"):
         ex = [x[5] for x in refused if x[1] == k]
         print("  e.g. " + (ex[0].splitlines()[-1] if ex else "(no %s row refused)" % k))
-    kinds = ("standing", "four feet", "three feet", "two feet", "pull", "slip")
+    kinds = ("standing", "four feet", "three feet", "two feet", "trot", "pull", "slip")
     print("rows accepted / refused: " + ", ".join(
         "%s %d/%d" % (k, sum(1 for i in keep if states[i][0] == k), sum(1 for x in refused if x[1] == k))
         for k in kinds))
@@ -353,7 +390,8 @@ def main():
     if 0 not in keep:
         failures.append("the standing row was refused")
     if sum(1 for i in keep if states[i][0] == "four feet") < 12 or sum(
-            1 for i in keep if states[i][0] == "three feet") < 4:
+            1 for i in keep if states[i][0] == "three feet") < 4 or sum(
+            1 for i in keep if states[i][0] == "trot") < 8:
         failures.append("too few rows accepted to say much")
 
     if keep:
@@ -361,6 +399,7 @@ def main():
         W = robot.weight
         worst = {"joint": 0.0, "base": 0.0, "vtdyn root": 0.0, "pyramid": 0.0, "rule": 0.0}
         faces = 0
+        trot = {"joint": 0.0, "base": 0.0, "fz": np.inf, "friction": 0.0}
         for k, i in enumerate(keep):
             kind, q, v, a, act = states[i]
             tau0, J = refs[i]
@@ -372,6 +411,13 @@ def main():
             worst["joint"] = max(worst["joint"], np.abs(effort - mine).max() / scale)
             worst["base"] = max(worst["base"], np.abs(tau[:6]).max() / W)
             worst["vtdyn root"] = max(worst["vtdyn root"], max(abs(got[c][k]) for c in ROOT_EFFORT) / W)
+            if kind == "trot":
+                trot["joint"] = max(trot["joint"], np.abs(effort - mine).max() / scale)
+                trot["base"] = max(trot["base"], np.abs(tau[:6]).max() / W)
+                for c, f in enumerate(FEET):
+                    if act[c]:
+                        trot["fz"] = min(trot["fz"], force[c][2])
+                        trot["friction"] = max(trot["friction"], np.abs(force[c][:2]).max() / (MU[f] * COS * force[c][2]))
             for c, f in enumerate(FEET):
                 if not act[c]:
                     if np.any(force[c] != 0.0):
@@ -393,6 +439,8 @@ def main():
               % (worst["joint"], worst["base"], worst["vtdyn root"]))
         print("  pyramid excess: %.2g; forces vs the rule's KKT solution: %.2g (%d faces on the boundary)"
               % (worst["pyramid"], worst["rule"], faces))
+        print("  trotting rows: joint efforts %.2g, Pinocchio's base tau %.2g; lowest stance fz %.3g N, "
+              "friction used at most %.0f %%" % (trot["joint"], trot["base"], trot["fz"], 100 * trot["friction"]))
         for key, val in worst.items():
             if val > TOL:
                 failures.append("%s: %.3g > %g" % (key, val, TOL))
