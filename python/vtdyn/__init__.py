@@ -1,4 +1,5 @@
-"""vtdyn: inverse dynamics of URDF robots, NumPy arrays in and out (docs/python.md).
+"""vtdyn: inverse dynamics of URDF robots and of models built by hand, NumPy arrays in and out
+(docs/python.md).
 
     import numpy as np, vtdyn
     robot = vtdyn.load_urdf("ur5_robot.urdf")
@@ -7,10 +8,34 @@
 
 The work is the C library's vt_batch_inverse_dynamics_motion, on threads, with the GIL released.
 """
-from ._vtdyn import Error, Model, Result, load_urdf
+from typing import NamedTuple, Optional, Sequence
+
+from ._vtdyn import VT_CONTACT_WEIGHT, ContactSet, Error, Model, Result, load_urdf
 from ._vtdyn import version as _c_version
 
 __version__: str = _c_version()
 """The C library's version (the package is built from the same source)."""
 
-__all__ = ["Error", "Model", "Result", "load_urdf", "__version__"]
+
+class Contact(NamedTuple):
+    """A point of the robot on the ground (vt_contact_def; docs/contact.md), for Model.contacts.
+
+    frame: a frame of the model (a URDF link's name: the point is its origin), or None to give
+    body (1..nbody) and point (m, the body's axes from its centre of mass). normal: the ground's
+    normal, world axes, into the body ((0, 0, 0): opposite to gravity). kind: "unilateral" (pushes
+    only, Coulomb friction mu on a pyramid of `faces` faces, 3..64) or "bilateral" (any force).
+    weight: w_c of the rule's 1/2 w_c |f_c|^2, N^-2. name: unique among the contacts (None: none).
+    """
+
+    frame: Optional[str] = None
+    body: int = 1
+    point: Sequence[float] = (0.0, 0.0, 0.0)
+    normal: Sequence[float] = (0.0, 0.0, 0.0)
+    kind: str = "unilateral"
+    mu: float = 1.0
+    faces: int = 4
+    weight: float = VT_CONTACT_WEIGHT
+    name: Optional[str] = None
+
+
+__all__ = ["Contact", "ContactSet", "Error", "Model", "Result", "load_urdf", "__version__"]

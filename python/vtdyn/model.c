@@ -314,19 +314,30 @@ static PyObject *get_floating(ModelObject *s, void *c)
     Py_RETURN_FALSE;
 }
 
-/* the cached batch of this thread count, made at its first use (under the lock, GIL released) */
-static vt_status model_batch(ModelObject *self, int threads, vt_batch **out)
+/* the cached batch of this thread count and contact set (NULL: none), made at its first use
+ * (under the lock, GIL released); the message of a refusal in msg */
+static vt_status model_batch(ModelObject *self, int threads, const ContactSetObject *cs, vt_batch **out, char *msg,
+                             size_t size)
 {
+    const long key = cs ? cs->serial : 0;
     for (int k = 0; k < self->nbatch; k++)
-        if (self->batch_threads[k] == threads) {
+        if (self->batch_threads[k] == threads && self->batch_contacts[k] == key) {
             *out = self->batch[k];
             return VT_OK;
         }
     vt_batch_def def = vt_default_batch_def();
     def.threads = threads;
+    if (cs) {
+        def.contacts = cs->defs;
+        def.ncontact = cs->n;
+        def.effort_weight = cs->effort_weight;
+    }
     vt_batch *b = NULL;
     const vt_status st = vt_batch_create(&b, self->m, &def);
-    if (st) return st;
+    if (st) {
+        snprintf(msg, size, "vt_batch_create (threads %d): %s", threads, vt_status_string(st));
+        return st;
+    }
     int slot;
     if (self->nbatch < NCACHE) {
         slot = self->nbatch++;
@@ -337,20 +348,79 @@ static vt_status model_batch(ModelObject *self, int threads, vt_batch **out)
     }
     self->batch[slot] = b;
     self->batch_threads[slot] = threads;
+    self->batch_contacts[slot] = key;
     *out = b;
     return VT_OK;
 }
 
+/* active: None, or 0/1 per contact (one state: ncontact; N states: N x ncontact), as a
+ * C-contiguous int array the batch reads (a new reference in *out; NULL for None) */
+static int read_active(PyObject *o, int nd, npy_intp N, int nc, PyArrayObject **out)
+{
+    *out = NULL;
+    if (!o || o == Py_None) return 0;
+    /* integers or booleans only (a float would be truncated by the cast) */
+    PyArrayObject *raw = (PyArrayObject *)PyArray_FROM_O(o), *a = NULL;
+    const char kind = raw ? PyArray_DESCR(raw)->kind : 0;
+    if (raw && (kind == 'b' || kind == 'i' || kind == 'u' || PyArray_SIZE(raw) == 0))
+        a = (PyArrayObject *)PyArray_FromAny((PyObject *)raw, PyArray_DescrFromType(NPY_INT), 0, 0,
+                                             NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_NOTSWAPPED | NPY_ARRAY_FORCECAST,
+                                             NULL);
+    Py_XDECREF(raw);
+    if (!a) {
+        PyObject *type = NULL, *value = NULL, *tb = NULL;
+        if (PyErr_Occurred()) PyErr_Fetch(&type, &value, &tb);
+        if (value) PyErr_Format(PyExc_ValueError, "active: not an array of 0 and 1 (%S)", value);
+        else PyErr_SetString(PyExc_ValueError, "active: not an array of 0 and 1 (integers or booleans)");
+        Py_XDECREF(type);
+        Py_XDECREF(value);
+        Py_XDECREF(tb);
+        return -1;
+    }
+    const npy_intp *d = PyArray_DIMS(a);
+    if (PyArray_NDIM(a) != nd)
+        PyErr_Format(PyExc_ValueError, "active: %d dimensions, expected %d as q (one 0 or 1 a contact%s)", PyArray_NDIM(a), nd,
+                     nd == 2 ? ", a row a state" : "");
+    else if (d[nd - 1] != nc)
+        PyErr_Format(PyExc_ValueError, "active: %zd entries a state, expected %d (one 0 or 1 a contact)", (Py_ssize_t)d[nd - 1], nc);
+    else if (nd == 2 && d[0] != N)
+        PyErr_Format(PyExc_ValueError, "active: %zd states, q has %zd", (Py_ssize_t)d[0], (Py_ssize_t)N);
+    if (PyErr_Occurred()) {
+        Py_DECREF(a);
+        return -1;
+    }
+    const int *p = PyArray_DATA(a);
+    for (npy_intp k = 0; k < PyArray_SIZE(a); k++)
+        if (p[k] != 0 && p[k] != 1) {
+            PyErr_Format(PyExc_ValueError, "active: entry %zd is %d, expected 0 or 1", (Py_ssize_t)k, p[k]);
+            Py_DECREF(a);
+            return -1;
+        }
+    *out = a;
+    return 0;
+}
+
 static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
 {
-    static char *kwlist[] = {"q", "v", "a", "threads", NULL};
-    PyObject *oq, *ov, *oa;
+    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", NULL};
+    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL;
     int threads = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|i:inverse", kwlist, &oq, &ov, &oa, &threads)) return NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact))
+        return NULL;
     if (threads < 0) return PyErr_Format(PyExc_ValueError, "threads: %d, expected 0 (every CPU) or more", threads);
+    const ContactSetObject *cs = NULL;
+    if (ocs && ocs != Py_None) {
+        if (!PyObject_TypeCheck(ocs, &vtpy_contacts_type))
+            return PyErr_Format(PyExc_ValueError, "contacts: a vtdyn.ContactSet (Model.contacts), not %s", Py_TYPE(ocs)->tp_name);
+        cs = (const ContactSetObject *)ocs;
+        if (cs->model != self) return PyErr_Format(PyExc_ValueError, "contacts: made for another Model");
+    } else if (oact && oact != Py_None) {
+        return PyErr_Format(PyExc_ValueError, "active: given without contacts");
+    }
+    const int ncontact = cs ? cs->n : 0;
     const vt_model *m = self->m;
     PyArrayObject *q = vtpy_as_rows(oq, "q", m->nq), *v = q ? vtpy_as_rows(ov, "v", m->nv) : NULL;
-    PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL;
+    PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL, *act = NULL;
     PyObject *res = NULL, *out[NRESULT] = {NULL};
     if (!a) goto done;
     const int nd = PyArray_NDIM(q);
@@ -370,11 +440,13 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         PyErr_Format(PyExc_ValueError, "q: %zd states, at most %d a call", (Py_ssize_t)N, INT_MAX);
         goto done;
     }
-    /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate) */
+    if (cs && read_active(oact, nd, N, ncontact, &act)) goto done;
+    /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate),
+     * the effort's parts (3 x nv), the contact forces (3 a contact) */
     npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
-    npy_intp dp[3] = {N, 3, m->nv};
+    npy_intp dp[3] = {N, 3, m->nv}, dc[3] = {N, ncontact, 3};
     for (int k = 0; k < NRESULT; k++) {
-        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : dr;
+        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : k == 9 ? dc : dr;
         const int rank = k == 0 ? 2 : 3;
         out[k] = nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
@@ -394,6 +466,10 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.bearing = PyArray_DATA((PyArrayObject *)out[6]);
     io.limit_excess = PyArray_DATA((PyArrayObject *)out[7]);
     io.effort_parts = PyArray_DATA((PyArrayObject *)out[8]);
+    if (cs) {
+        io.contact_force = PyArray_DATA((PyArrayObject *)out[9]);
+        io.contact_active = act ? PyArray_DATA(act) : NULL; /* packed rows (stride 0) */
+    }
     vt_status st = VT_OK;
     int failed = -1, nomem = 0;
     char msg[VT_MESSAGE_SIZE + 32] = "";
@@ -409,7 +485,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
             nomem = 1;
         }
     }
-    if (!nomem) st = model_batch(self, threads, &b);
+    if (!nomem) st = model_batch(self, threads, cs, &b, msg, sizeof msg);
     if (!nomem && !st) {
         io.status = self->status;
         st = vt_batch_inverse_dynamics_motion(b, &io);
@@ -417,8 +493,6 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
             failed = vt_batch_failed_row(b);
             snprintf(msg, sizeof msg, "%s", vt_batch_message(b));
         }
-    } else if (!nomem) {
-        snprintf(msg, sizeof msg, "vt_batch_create (threads %d): %s", threads, vt_status_string(st));
     }
     PyThread_release_lock(self->lock);
     Py_END_ALLOW_THREADS
@@ -443,6 +517,7 @@ done:
     Py_XDECREF(q);
     Py_XDECREF(v);
     Py_XDECREF(a);
+    Py_XDECREF(act);
     return res;
 }
 
@@ -472,8 +547,13 @@ static PyGetSetDef model_getset[] = {
 
 static PyMethodDef model_methods[] = {
     {"inverse", (PyCFunction)(void (*)(void))model_inverse, METH_VARARGS | METH_KEYWORDS,
-     "inverse(q, v, a, threads=0) -> Result: the given motion's efforts and joint reactions "
-     "(vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n)"},
+     "inverse(q, v, a, threads=0, contacts=None, active=None) -> Result: the given motion's efforts and\n"
+     "joint reactions (vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n); with\n"
+     "contacts (Model.contacts) the ground's forces at them carry the free root (vt_inverse_dynamics_contacts),\n"
+     "active: None (all) or 0/1 per contact (ncontact, or N x ncontact)"},
+    {"contacts", (PyCFunction)(void (*)(void))vtpy_model_contacts, METH_VARARGS | METH_KEYWORDS,
+     "contacts(contacts, effort_weight=None) -> ContactSet: the robot's contacts with the ground\n"
+     "(vt_contacts_create), each a vtdyn.Contact; effort_weight: each rate's weight w_a in the rule (nv; None: 1)"},
     {NULL, NULL, 0, NULL},
 };
 

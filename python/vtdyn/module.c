@@ -176,6 +176,7 @@ static PyStructSequence_Field result_fields[] = {
     {"bearing", "each joint's bearing split (N x nbody x 4): axial and radial force, axial and tilting moment"},
     {"limit_excess", "each rate's excess beyond its position, velocity and effort limits (N x nv x 3), 0 within"},
     {"effort_parts", "the parts of each rate's effort its joint's armature, damping and friction take (N x 3 x nv)"},
+    {"contact_force", "with contacts: the ground's force at each contact (N x ncontact x 3), world axes, 0 where inactive"},
     {NULL, NULL},
 };
 
@@ -211,7 +212,7 @@ static struct PyModuleDef module_def = {
 PyMODINIT_FUNC PyInit__vtdyn(void)
 {
     import_array();
-    if (PyType_Ready(&vtpy_model_type) < 0) return NULL;
+    if (PyType_Ready(&vtpy_model_type) < 0 || PyType_Ready(&vtpy_contacts_type) < 0) return NULL;
     if (!result_type_ready) {
         if (PyStructSequence_InitType2(&vtpy_result_type, &result_desc) < 0) return NULL;
         result_type_ready = 1;
@@ -236,6 +237,11 @@ PyMODINIT_FUNC PyInit__vtdyn(void)
         Py_DECREF(&vtpy_model_type);
         goto fail;
     }
+    if (PyModule_AddObjectRef(mod, "ContactSet", (PyObject *)&vtpy_contacts_type) < 0) goto fail;
+    PyObject *w = PyFloat_FromDouble(VT_CONTACT_WEIGHT);
+    const int bad = !w || PyModule_AddObjectRef(mod, "VT_CONTACT_WEIGHT", w) < 0;
+    Py_XDECREF(w);
+    if (bad) goto fail;
     Py_INCREF(&vtpy_result_type);
     if (PyModule_AddObject(mod, "Result", (PyObject *)&vtpy_result_type) < 0) {
         Py_DECREF(&vtpy_result_type);

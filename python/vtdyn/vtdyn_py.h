@@ -25,7 +25,7 @@
 #include "vtdyn.h"
 
 #define NCACHE 8   /* batches kept per Model (distinct thread counts and contact sets) */
-#define NRESULT 9  /* Result's arrays (vtpy_result_fields) */
+#define NRESULT 10 /* Result's arrays (vtpy_result_fields) */
 
 typedef struct {
     PyObject_HEAD
