@@ -8,9 +8,9 @@
 
 The work is the C library's vt_batch_inverse_dynamics_motion, on threads, with the GIL released.
 """
-from typing import NamedTuple, Optional, Sequence
+from typing import Any, NamedTuple, Optional, Sequence
 
-from ._vtdyn import VT_CONTACT_WEIGHT, ContactSet, Error, Model, Result, load_urdf
+from ._vtdyn import VT_CONTACT_WEIGHT, VT_HAVE_SUNDIALS, Builder, ContactSet, Error, Model, Result, Trajectory, load_urdf
 from ._vtdyn import version as _c_version
 
 __version__: str = _c_version()
@@ -38,4 +38,39 @@ class Contact(NamedTuple):
     name: Optional[str] = None
 
 
-__all__ = ["Contact", "ContactSet", "Error", "Model", "Result", "load_urdf", "__version__"]
+class Function(NamedTuple):
+    """A drive's function of time (vt_function), for Builder.add_drive's f, f2 and f3 (a plain
+    number is a constant). Make it with the constructors, which mirror vt_function_*:
+
+    Function.constant(c)                 f = c
+    Function.polynomial(c0, c1, ...)     f = c0 + c1 t + ... (1 to 8 coefficients)
+    Function.sine(a, b, omega, phase=0)  f = a + b sin(omega t + phase)
+    Function.spline(t, y)                the C2 cubic spline through the samples (t strictly
+                                         increasing, 2 or more; not-a-knot ends from 4 samples)
+
+    f, f' and f'' are exact for each kind. A Python callable is not offered: the library would
+    call it without the GIL, from IDA's inner loop.
+    """
+
+    kind: str
+    params: Any
+
+    @classmethod
+    def constant(cls, c: float) -> "Function":
+        return cls("constant", (float(c),))
+
+    @classmethod
+    def polynomial(cls, *c: float) -> "Function":
+        return cls("polynomial", tuple(float(x) for x in c))
+
+    @classmethod
+    def sine(cls, a: float, b: float, omega: float, phase: float = 0.0) -> "Function":
+        return cls("sine", (float(a), float(b), float(omega), float(phase)))
+
+    @classmethod
+    def spline(cls, t: Sequence[float], y: Sequence[float]) -> "Function":
+        return cls("spline", (t, y))
+
+
+__all__ = ["Builder", "Contact", "ContactSet", "Error", "Function", "Model", "Result", "Trajectory", "load_urdf",
+           "VT_HAVE_SUNDIALS", "__version__"]

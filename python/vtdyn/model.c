@@ -551,6 +551,15 @@ static PyMethodDef model_methods[] = {
      "joint reactions (vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n); with\n"
      "contacts (Model.contacts) the ground's forces at them carry the free root (vt_inverse_dynamics_contacts),\n"
      "active: None (all) or 0/1 per contact (ncontact, or N x ncontact)"},
+    {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
+     "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"
+     "forward_check=True (False without SUNDIALS), ...) -> Trajectory: a fully driven model's motion, efforts and\n"
+     "reactions at each output time (vt_kinematic_analysis; the other keywords: vt_run_options's fields)"},
+    {"dynamic_analysis", (PyCFunction)(void (*)(void))vtpy_dynamic_analysis, METH_VARARGS | METH_KEYWORDS,
+     "dynamic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, rtol=1e-8, atol=1e-10, max_step=0.0,\n"
+     "max_steps=100000, formulation='ggl', forward_check=True, forward_independent=True, ...) -> Trajectory: the\n"
+     "motion the drives leave free, integrated by SUNDIALS IDA (vt_dynamic_analysis), from q, qd at t0\n"
+     "(None: the reference configuration, at rest)"},
     {"contacts", (PyCFunction)(void (*)(void))vtpy_model_contacts, METH_VARARGS | METH_KEYWORDS,
      "contacts(contacts, effort_weight=None) -> ContactSet: the robot's contacts with the ground\n"
      "(vt_contacts_create), each a vtdyn.Contact; effort_weight: each rate's weight w_a in the rule (nv; None: 1)"},
@@ -564,7 +573,7 @@ PyTypeObject vtpy_model_type = {
     .tp_dealloc = (destructor)model_dealloc,
     .tp_repr = (reprfunc)model_repr,
     .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "A robot loaded by vtdyn.load_urdf (no public constructor).",
+    .tp_doc = "A model: a robot loaded by vtdyn.load_urdf, or built by vtdyn.Builder.build (no public constructor).",
     .tp_methods = model_methods,
     .tp_getset = model_getset,
 };

@@ -212,9 +212,11 @@ static struct PyModuleDef module_def = {
 PyMODINIT_FUNC PyInit__vtdyn(void)
 {
     import_array();
-    if (PyType_Ready(&vtpy_model_type) < 0 || PyType_Ready(&vtpy_contacts_type) < 0) return NULL;
+    if (PyType_Ready(&vtpy_model_type) < 0 || PyType_Ready(&vtpy_contacts_type) < 0 || PyType_Ready(&vtpy_builder_type) < 0)
+        return NULL;
     if (!result_type_ready) {
         if (PyStructSequence_InitType2(&vtpy_result_type, &result_desc) < 0) return NULL;
+        if (PyStructSequence_InitType2(&vtpy_trajectory_type, &vtpy_trajectory_desc) < 0) return NULL;
         result_type_ready = 1;
     }
     PyObject *mod = PyModule_Create(&module_def);
@@ -237,7 +239,10 @@ PyMODINIT_FUNC PyInit__vtdyn(void)
         Py_DECREF(&vtpy_model_type);
         goto fail;
     }
-    if (PyModule_AddObjectRef(mod, "ContactSet", (PyObject *)&vtpy_contacts_type) < 0) goto fail;
+    if (PyModule_AddObjectRef(mod, "ContactSet", (PyObject *)&vtpy_contacts_type) < 0 ||
+        PyModule_AddObjectRef(mod, "Builder", (PyObject *)&vtpy_builder_type) < 0 ||
+        PyModule_AddObjectRef(mod, "Trajectory", (PyObject *)&vtpy_trajectory_type) < 0)
+        goto fail;
     PyObject *w = PyFloat_FromDouble(VT_CONTACT_WEIGHT);
     const int bad = !w || PyModule_AddObjectRef(mod, "VT_CONTACT_WEIGHT", w) < 0;
     Py_XDECREF(w);
