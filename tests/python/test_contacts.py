@@ -25,7 +25,7 @@ import pinocchio as pin
 import pytest
 
 import vtdyn
-from test_vtdyn import quat_to_rot, urdf
+from test_vtdyn import urdf
 
 FEET = ("FL_FOOT", "FR_FOOT", "HL_FOOT", "HR_FOOT")
 MU = {"FL_FOOT": 0.8, "FR_FOOT": 0.8, "HL_FOOT": 0.6, "HR_FOOT": 0.6}
