@@ -1,109 +1,13 @@
-/* vtdyn._vtdyn — the Python extension module: a URDF robot loaded (vt_urdf_builder) and its
- * given-motion inverse dynamics on one state or on N states (vt_batch_inverse_dynamics_motion),
- * NumPy arrays in and out. Written with the CPython and NumPy C APIs only (docs/python.md says
- * why). The library is linked statically into this module.
+/* The Model type: a vt_model and the batches of its inverse dynamics. load_urdf makes one from
+ * a URDF file (vt_urdf_builder), Builder.build from a builder (vtpy_model_new); Model.inverse
+ * solves the given motion on one state or N states (vt_batch_inverse_dynamics_motion).
  *
  * A Model owns its vt_model and, per thread count asked for, one vt_batch made at the first call
  * and reused (the batch holds one vt_data per thread: no allocation per row). A lock per Model
  * serialises calls on it, since a batch's data are reused by every call; the GIL is released
  * while the lock is waited for and while the rows are solved, so other Python threads run (and
  * other Models' calls proceed in parallel). */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
-#include <structmember.h>
-
-#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
-#include <numpy/arrayobject.h>
-
-#include <stdint.h>
-#include <string.h>
-
-#include "vtdyn.h"
-
-#define NCACHE 8 /* batches kept per Model (distinct thread counts); the oldest is replaced */
-#define NRESULT 9 /* Result's arrays (result_fields) */
-
-static PyObject *VtError;             /* vtdyn.Error */
-static PyTypeObject ResultType;       /* vtdyn.Result, a struct sequence */
-static int result_type_ready = 0;
-
-/* the enum's name of a status ("VT_ERR_NONFINITE"), as in vtdyn/types.h */
-static const char *status_name(int s)
-{
-    switch (s) {
-    case VT_OK: return "VT_OK";
-    case VT_ERR_NULL: return "VT_ERR_NULL";
-    case VT_ERR_NO_MEMORY: return "VT_ERR_NO_MEMORY";
-    case VT_ERR_NONFINITE: return "VT_ERR_NONFINITE";
-    case VT_ERR_MASS: return "VT_ERR_MASS";
-    case VT_ERR_INERTIA_ASYMMETRIC: return "VT_ERR_INERTIA_ASYMMETRIC";
-    case VT_ERR_INERTIA_NOT_PSD: return "VT_ERR_INERTIA_NOT_PSD";
-    case VT_ERR_INERTIA_TRIANGLE: return "VT_ERR_INERTIA_TRIANGLE";
-    case VT_ERR_AXIS_ZERO: return "VT_ERR_AXIS_ZERO";
-    case VT_ERR_AXES_NOT_PERPENDICULAR: return "VT_ERR_AXES_NOT_PERPENDICULAR";
-    case VT_ERR_PARENT: return "VT_ERR_PARENT";
-    case VT_ERR_JOINT_TYPE: return "VT_ERR_JOINT_TYPE";
-    case VT_ERR_TOO_MANY_BODIES: return "VT_ERR_TOO_MANY_BODIES";
-    case VT_ERR_QUATERNION: return "VT_ERR_QUATERNION";
-    case VT_ERR_EMPTY_MODEL: return "VT_ERR_EMPTY_MODEL";
-    case VT_ERR_BAD_INDEX: return "VT_ERR_BAD_INDEX";
-    case VT_ERR_MODEL_MISMATCH: return "VT_ERR_MODEL_MISMATCH";
-    case VT_ERR_LAPACK: return "VT_ERR_LAPACK";
-    case VT_ERR_BAD_DRIVE: return "VT_ERR_BAD_DRIVE";
-    case VT_ERR_BAD_CUT_JOINT: return "VT_ERR_BAD_CUT_JOINT";
-    case VT_ERR_CALLBACK: return "VT_ERR_CALLBACK";
-    case VT_ERR_SINGULAR: return "VT_ERR_SINGULAR";
-    case VT_ERR_DEPENDENT_CONSTRAINTS: return "VT_ERR_DEPENDENT_CONSTRAINTS";
-    case VT_ERR_NEWTON: return "VT_ERR_NEWTON";
-    case VT_ERR_NOT_FULLY_DRIVEN: return "VT_ERR_NOT_FULLY_DRIVEN";
-    case VT_ERR_IDA: return "VT_ERR_IDA";
-    case VT_ERR_ABORTED: return "VT_ERR_ABORTED";
-    case VT_ERR_BAD_OPTION: return "VT_ERR_BAD_OPTION";
-    case VT_ERR_BAD_SIZE: return "VT_ERR_BAD_SIZE";
-    case VT_ERR_BAD_NAME: return "VT_ERR_BAD_NAME";
-    case VT_ERR_NOT_FOUND: return "VT_ERR_NOT_FOUND";
-    case VT_ERR_FILE: return "VT_ERR_FILE";
-    case VT_ERR_XML: return "VT_ERR_XML";
-    case VT_ERR_LAYOUT: return "VT_ERR_LAYOUT";
-    case VT_ERR_SKIPPED: return "VT_ERR_SKIPPED";
-    case VT_ERR_CONTACT: return "VT_ERR_CONTACT";
-    default: return "VT_ERR_UNKNOWN";
-    }
-}
-
-/* raises vtdyn.Error(message) with .status (the name), .code and .row (None when < 0); NULL */
-static PyObject *raise_vt(int status, const char *message, long row)
-{
-    PyObject *exc = PyObject_CallFunction(VtError, "s", message && message[0] ? message : vt_status_string(status));
-    if (!exc) return NULL;
-    PyObject *code = PyLong_FromLong(status), *name = PyUnicode_FromString(status_name(status));
-    PyObject *r = row >= 0 ? PyLong_FromLong(row) : (Py_INCREF(Py_None), Py_None);
-    if (code && name && r && !PyObject_SetAttrString(exc, "code", code) && !PyObject_SetAttrString(exc, "status", name) &&
-        !PyObject_SetAttrString(exc, "row", r))
-        PyErr_SetObject(VtError, exc);
-    Py_XDECREF(code);
-    Py_XDECREF(name);
-    Py_XDECREF(r);
-    Py_DECREF(exc);
-    return NULL;
-}
-
-/* ---- Model ------------------------------------------------------------------------------------ */
-
-typedef struct {
-    PyObject_HEAD
-    vt_model *m;
-    PyThread_type_lock lock;
-    int nbatch;
-    int batch_threads[NCACHE];
-    vt_batch *batch[NCACHE];
-    int next;             /* the cache slot replaced next once full */
-    int *status;          /* per-row statuses, grown as needed (under the lock) */
-    size_t status_cap;
-    PyObject *body_names, *joint_names, *frame_names, *body_joint_names; /* tuples, made at load */
-} ModelObject;
-
-static PyTypeObject ModelType;
+#include "vtdyn_py.h"
 
 static void model_dealloc(ModelObject *self)
 {
@@ -173,6 +77,33 @@ static int model_names(ModelObject *self)
     return 0;
 }
 
+/* a new Model owning m (freed here on failure) */
+PyObject *vtpy_model_new(vt_model *m)
+{
+    ModelObject *self = PyObject_New(ModelObject, &vtpy_model_type);
+    if (!self) {
+        vt_model_free(m);
+        return NULL;
+    }
+    self->m = m;
+    self->lock = NULL;
+    self->nbatch = self->next = 0;
+    self->contact_serial = 0;
+    self->status = NULL;
+    self->status_cap = 0;
+    self->body_names = self->joint_names = self->frame_names = self->body_joint_names = NULL;
+    self->lock = PyThread_allocate_lock();
+    if (!self->lock) {
+        Py_DECREF(self);
+        return PyErr_NoMemory();
+    }
+    if (model_names(self)) {
+        Py_DECREF(self);
+        return NULL;
+    }
+    return (PyObject *)self;
+}
+
 /* load_urdf's joint_params and payloads, read from their Python objects (with the GIL) before the
  * loader runs (without it) */
 typedef struct {
@@ -184,43 +115,6 @@ typedef struct {
     char link[VT_NAME_MAX];
     double mass, com[3], inertia[9];
 } payload_spec;
-
-/* n doubles of a Python sequence into out; -1 with ValueError naming what */
-static int doubles(PyObject *o, int n, double *out, const char *what)
-{
-    PyObject *f = PySequence_Fast(o, what);
-    if (!f) return -1;
-    if (PySequence_Fast_GET_SIZE(f) != n) {
-        PyErr_Format(PyExc_ValueError, "%s: %zd numbers, expected %d", what, PySequence_Fast_GET_SIZE(f), n);
-        Py_DECREF(f);
-        return -1;
-    }
-    for (int k = 0; k < n; k++) {
-        out[k] = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(f, k));
-        if (out[k] == -1.0 && PyErr_Occurred()) {
-            Py_DECREF(f);
-            return -1;
-        }
-    }
-    Py_DECREF(f);
-    return 0;
-}
-
-/* a str into a name of at most VT_NAME_MAX − 1 bytes; -1 with ValueError */
-static int name_of(PyObject *o, char *out, const char *what)
-{
-    const char *u = PyUnicode_Check(o) ? PyUnicode_AsUTF8(o) : NULL;
-    if (!u) {
-        if (!PyErr_Occurred()) PyErr_Format(PyExc_ValueError, "%s: a str, not %s", what, Py_TYPE(o)->tp_name);
-        return -1;
-    }
-    if (strlen(u) >= VT_NAME_MAX) {
-        PyErr_Format(PyExc_ValueError, "%s '%.40s...': longer than %d bytes", what, u, VT_NAME_MAX - 1);
-        return -1;
-    }
-    snprintf(out, VT_NAME_MAX, "%s", u);
-    return 0;
-}
 
 /* joint_params {name: (armature, damping, friction)} into *jp (PyMem, *n entries); -1 on error */
 static int read_joint_params(PyObject *o, joint_param **jp, Py_ssize_t *n)
@@ -234,7 +128,7 @@ static int read_joint_params(PyObject *o, joint_param **jp, Py_ssize_t *n)
     Py_ssize_t pos = 0;
     while (PyDict_Next(o, &pos, &key, &val)) {
         joint_param *e = &(*jp)[*n];
-        if (name_of(key, e->name, "joint_params: a joint's name") || doubles(val, 3, e->v, "joint_params: a joint's (armature, damping, friction)"))
+        if (vtpy_name(key, e->name, "joint_params: a joint's name") || vtpy_doubles(val, 3, e->v, "joint_params: a joint's (armature, damping, friction)"))
             return -1;
         (*n)++;
     }
@@ -258,12 +152,12 @@ static int read_payloads(PyObject *o, payload_spec **ps, Py_ssize_t *n)
         payload_spec *p = &(*ps)[k];
         int bad = m < 3 || m > 4;
         if (bad) PyErr_Format(PyExc_ValueError, "payloads[%zd]: (link, mass, com[, inertia]), not %zd items", k, m);
-        if (!bad) bad = name_of(PySequence_Fast_GET_ITEM(t, 0), p->link, "payloads: a link's name");
+        if (!bad) bad = vtpy_name(PySequence_Fast_GET_ITEM(t, 0), p->link, "payloads: a link's name");
         if (!bad) {
             p->mass = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(t, 1));
             bad = p->mass == -1.0 && PyErr_Occurred();
         }
-        if (!bad) bad = doubles(PySequence_Fast_GET_ITEM(t, 2), 3, p->com, "payloads: com (x, y, z)");
+        if (!bad) bad = vtpy_doubles(PySequence_Fast_GET_ITEM(t, 2), 3, p->com, "payloads: com (x, y, z)");
         if (!bad && m == 4 && PySequence_Fast_GET_ITEM(t, 3) != Py_None) {
             PyObject *row = PySequence_Fast(PySequence_Fast_GET_ITEM(t, 3), "payloads: inertia (3 x 3)");
             bad = !row;
@@ -274,7 +168,7 @@ static int read_payloads(PyObject *o, payload_spec **ps, Py_ssize_t *n)
                     break;
                 }
                 double v[3];
-                bad = doubles(PySequence_Fast_GET_ITEM(row, r), 3, v, "payloads: an inertia row");
+                bad = vtpy_doubles(PySequence_Fast_GET_ITEM(row, r), 3, v, "payloads: an inertia row");
                 for (int c = 0; !bad && c < 3; c++) p->inertia[r + 3 * c] = v[c];
             }
             Py_XDECREF(row);
@@ -287,7 +181,7 @@ static int read_payloads(PyObject *o, payload_spec **ps, Py_ssize_t *n)
     return 0;
 }
 
-static PyObject *load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
+PyObject *vtpy_load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
 {
     (void)mod;
     static char *kwlist[] = {"path", "floating", "mimic", "dynamics", "joint_params", "payloads", "inertia_tol", NULL};
@@ -347,28 +241,8 @@ static PyObject *load_urdf(PyObject *mod, PyObject *args, PyObject *kw)
     PyMem_Free(jp);
     PyMem_Free(ps);
     Py_DECREF(pathb);
-    if (st) return raise_vt(st, msg, -1);
-    ModelObject *self = PyObject_New(ModelObject, &ModelType);
-    if (!self) {
-        vt_model_free(m);
-        return NULL;
-    }
-    self->m = m;
-    self->lock = NULL;
-    self->nbatch = self->next = 0;
-    self->status = NULL;
-    self->status_cap = 0;
-    self->body_names = self->joint_names = self->frame_names = self->body_joint_names = NULL;
-    self->lock = PyThread_allocate_lock();
-    if (!self->lock) {
-        Py_DECREF(self);
-        return PyErr_NoMemory();
-    }
-    if (model_names(self)) {
-        Py_DECREF(self);
-        return NULL;
-    }
-    return (PyObject *)self;
+    if (st) return vtpy_raise(st, msg, -1);
+    return vtpy_model_new(m);
 }
 
 static PyObject *get_nq(ModelObject *s, void *c) { (void)c; return PyLong_FromLong(s->m->nq); }
@@ -379,17 +253,11 @@ static PyObject *get_joint_names(ModelObject *s, void *c) { (void)c; return Py_N
 static PyObject *get_frame_names(ModelObject *s, void *c) { (void)c; return Py_NewRef(s->frame_names); }
 static PyObject *get_body_joint_names(ModelObject *s, void *c) { (void)c; return Py_NewRef(s->body_joint_names); }
 
-/* a new float64 array of the given shape */
-static PyObject *new_array(int nd, npy_intp *dims)
-{
-    return PyArray_SimpleNew(nd, dims, NPY_DOUBLE);
-}
-
 static PyObject *get_masses(ModelObject *s, void *c)
 {
     (void)c;
     npy_intp n = s->m->nbody;
-    PyObject *a = new_array(1, &n);
+    PyObject *a = vtpy_new_array(1, &n);
     if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->body_mass + 1, (size_t)n * sizeof(double));
     return a;
 }
@@ -398,7 +266,7 @@ static PyObject *get_gravity(ModelObject *s, void *c)
 {
     (void)c;
     npy_intp n = 3;
-    PyObject *a = new_array(1, &n);
+    PyObject *a = vtpy_new_array(1, &n);
     if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->gravity, 3 * sizeof(double));
     return a;
 }
@@ -407,7 +275,7 @@ static PyObject *get_q0(ModelObject *s, void *c)
 {
     (void)c;
     npy_intp n = s->m->nq;
-    PyObject *a = new_array(1, &n);
+    PyObject *a = vtpy_new_array(1, &n);
     if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->q0, (size_t)n * sizeof(double));
     return a;
 }
@@ -416,7 +284,7 @@ static PyObject *get_limits(ModelObject *s, void *c)
 {
     (void)c;
     npy_intp d[2] = {s->m->nv, 4}; /* dof_limit is 4 x nv column-major: row-major nv x 4 */
-    PyObject *a = new_array(2, d);
+    PyObject *a = vtpy_new_array(2, d);
     if (a) memcpy(PyArray_DATA((PyArrayObject *)a), s->m->dof_limit, (size_t)d[0] * 4 * sizeof(double));
     return a;
 }
@@ -446,69 +314,30 @@ static PyObject *get_floating(ModelObject *s, void *c)
     Py_RETURN_FALSE;
 }
 
-/* one input as a float64 array whose rows the C call can take: ndim 1 (n) or 2 (N x n), entries
- * of a row contiguous, the row stride a non-negative multiple of 8 bytes at least the row's
- * length (else a C-contiguous copy); a new reference, or NULL with ValueError naming it */
-static PyArrayObject *as_rows(PyObject *obj, const char *name, int n)
+/* the cached batch of this thread count and contact set (NULL: none), made at its first use
+ * (under the lock, GIL released); the message of a refusal in msg */
+static vt_status model_batch(ModelObject *self, int threads, const ContactSetObject *cs, vt_batch **out, char *msg,
+                             size_t size)
 {
-    PyArray_Descr *dt = PyArray_DescrFromType(NPY_DOUBLE);
-    PyArrayObject *a = (PyArrayObject *)PyArray_FromAny(obj, dt, 0, 0, NPY_ARRAY_ALIGNED | NPY_ARRAY_NOTSWAPPED, NULL);
-    if (!a) {
-        PyObject *type, *value, *tb;
-        PyErr_Fetch(&type, &value, &tb);
-        PyObject *text = value ? PyObject_Str(value) : NULL;
-        PyErr_Format(PyExc_ValueError, "%s: not convertible to a float64 array (%S)", name,
-                     text ? text : Py_None);
-        Py_XDECREF(text);
-        Py_XDECREF(type);
-        Py_XDECREF(value);
-        Py_XDECREF(tb);
-        return NULL;
-    }
-    const int nd = PyArray_NDIM(a);
-    if (nd != 1 && nd != 2) {
-        PyErr_Format(PyExc_ValueError, "%s: %d dimensions, expected 1 (one state of %d) or 2 (N states x %d)", name,
-                     nd, n, n);
-        Py_DECREF(a);
-        return NULL;
-    }
-    const npy_intp *dims = PyArray_DIMS(a), *st = PyArray_STRIDES(a);
-    if (dims[nd - 1] != n) {
-        PyErr_Format(PyExc_ValueError, "%s: %zd entries a state, expected %d", name, (Py_ssize_t)dims[nd - 1], n);
-        Py_DECREF(a);
-        return NULL;
-    }
-    int ok = n <= 1 || st[nd - 1] == (npy_intp)sizeof(double);
-    if (nd == 2 && dims[0] > 1)
-        ok = ok && st[0] > 0 && st[0] % (npy_intp)sizeof(double) == 0 && st[0] >= (npy_intp)n * (npy_intp)sizeof(double);
-    if (!ok) {
-        PyArrayObject *c = (PyArrayObject *)PyArray_NewCopy(a, NPY_CORDER);
-        Py_DECREF(a);
-        a = c;
-    }
-    return a;
-}
-
-/* the row stride, in doubles, to pass for a: 0 (packed) for one row */
-static size_t row_stride(PyArrayObject *a)
-{
-    if (PyArray_NDIM(a) != 2 || PyArray_DIMS(a)[0] <= 1) return 0;
-    return (size_t)(PyArray_STRIDES(a)[0] / (npy_intp)sizeof(double));
-}
-
-/* the cached batch of this thread count, made at its first use (under the lock, GIL released) */
-static vt_status model_batch(ModelObject *self, int threads, vt_batch **out)
-{
+    const long key = cs ? cs->serial : 0;
     for (int k = 0; k < self->nbatch; k++)
-        if (self->batch_threads[k] == threads) {
+        if (self->batch_threads[k] == threads && self->batch_contacts[k] == key) {
             *out = self->batch[k];
             return VT_OK;
         }
     vt_batch_def def = vt_default_batch_def();
     def.threads = threads;
+    if (cs) {
+        def.contacts = cs->defs;
+        def.ncontact = cs->n;
+        def.effort_weight = cs->effort_weight;
+    }
     vt_batch *b = NULL;
     const vt_status st = vt_batch_create(&b, self->m, &def);
-    if (st) return st;
+    if (st) {
+        snprintf(msg, size, "vt_batch_create (threads %d): %s", threads, vt_status_string(st));
+        return st;
+    }
     int slot;
     if (self->nbatch < NCACHE) {
         slot = self->nbatch++;
@@ -519,20 +348,79 @@ static vt_status model_batch(ModelObject *self, int threads, vt_batch **out)
     }
     self->batch[slot] = b;
     self->batch_threads[slot] = threads;
+    self->batch_contacts[slot] = key;
     *out = b;
     return VT_OK;
 }
 
+/* active: None, or 0/1 per contact (one state: ncontact; N states: N x ncontact), as a
+ * C-contiguous int array the batch reads (a new reference in *out; NULL for None) */
+static int read_active(PyObject *o, int nd, npy_intp N, int nc, PyArrayObject **out)
+{
+    *out = NULL;
+    if (!o || o == Py_None) return 0;
+    /* integers or booleans only (a float would be truncated by the cast) */
+    PyArrayObject *raw = (PyArrayObject *)PyArray_FROM_O(o), *a = NULL;
+    const char kind = raw ? PyArray_DESCR(raw)->kind : 0;
+    if (raw && (kind == 'b' || kind == 'i' || kind == 'u' || PyArray_SIZE(raw) == 0))
+        a = (PyArrayObject *)PyArray_FromAny((PyObject *)raw, PyArray_DescrFromType(NPY_INT), 0, 0,
+                                             NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_NOTSWAPPED | NPY_ARRAY_FORCECAST,
+                                             NULL);
+    Py_XDECREF(raw);
+    if (!a) {
+        PyObject *type = NULL, *value = NULL, *tb = NULL;
+        if (PyErr_Occurred()) PyErr_Fetch(&type, &value, &tb);
+        if (value) PyErr_Format(PyExc_ValueError, "active: not an array of 0 and 1 (%S)", value);
+        else PyErr_SetString(PyExc_ValueError, "active: not an array of 0 and 1 (integers or booleans)");
+        Py_XDECREF(type);
+        Py_XDECREF(value);
+        Py_XDECREF(tb);
+        return -1;
+    }
+    const npy_intp *d = PyArray_DIMS(a);
+    if (PyArray_NDIM(a) != nd)
+        PyErr_Format(PyExc_ValueError, "active: %d dimensions, expected %d as q (one 0 or 1 a contact%s)", PyArray_NDIM(a), nd,
+                     nd == 2 ? ", a row a state" : "");
+    else if (d[nd - 1] != nc)
+        PyErr_Format(PyExc_ValueError, "active: %zd entries a state, expected %d (one 0 or 1 a contact)", (Py_ssize_t)d[nd - 1], nc);
+    else if (nd == 2 && d[0] != N)
+        PyErr_Format(PyExc_ValueError, "active: %zd states, q has %zd", (Py_ssize_t)d[0], (Py_ssize_t)N);
+    if (PyErr_Occurred()) {
+        Py_DECREF(a);
+        return -1;
+    }
+    const int *p = PyArray_DATA(a);
+    for (npy_intp k = 0; k < PyArray_SIZE(a); k++)
+        if (p[k] != 0 && p[k] != 1) {
+            PyErr_Format(PyExc_ValueError, "active: entry %zd is %d, expected 0 or 1", (Py_ssize_t)k, p[k]);
+            Py_DECREF(a);
+            return -1;
+        }
+    *out = a;
+    return 0;
+}
+
 static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
 {
-    static char *kwlist[] = {"q", "v", "a", "threads", NULL};
-    PyObject *oq, *ov, *oa;
+    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", NULL};
+    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL;
     int threads = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|i:inverse", kwlist, &oq, &ov, &oa, &threads)) return NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact))
+        return NULL;
     if (threads < 0) return PyErr_Format(PyExc_ValueError, "threads: %d, expected 0 (every CPU) or more", threads);
+    const ContactSetObject *cs = NULL;
+    if (ocs && ocs != Py_None) {
+        if (!PyObject_TypeCheck(ocs, &vtpy_contacts_type))
+            return PyErr_Format(PyExc_ValueError, "contacts: a vtdyn.ContactSet (Model.contacts), not %s", Py_TYPE(ocs)->tp_name);
+        cs = (const ContactSetObject *)ocs;
+        if (cs->model != self) return PyErr_Format(PyExc_ValueError, "contacts: made for another Model");
+    } else if (oact && oact != Py_None) {
+        return PyErr_Format(PyExc_ValueError, "active: given without contacts");
+    }
+    const int ncontact = cs ? cs->n : 0;
     const vt_model *m = self->m;
-    PyArrayObject *q = as_rows(oq, "q", m->nq), *v = q ? as_rows(ov, "v", m->nv) : NULL;
-    PyArrayObject *a = v ? as_rows(oa, "a", m->nv) : NULL;
+    PyArrayObject *q = vtpy_as_rows(oq, "q", m->nq), *v = q ? vtpy_as_rows(ov, "v", m->nv) : NULL;
+    PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL, *act = NULL;
     PyObject *res = NULL, *out[NRESULT] = {NULL};
     if (!a) goto done;
     const int nd = PyArray_NDIM(q);
@@ -552,21 +440,23 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         PyErr_Format(PyExc_ValueError, "q: %zd states, at most %d a call", (Py_ssize_t)N, INT_MAX);
         goto done;
     }
-    /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate) */
+    if (cs && read_active(oact, nd, N, ncontact, &act)) goto done;
+    /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate),
+     * the effort's parts (3 x nv), the contact forces (3 a contact) */
     npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
-    npy_intp dp[3] = {N, 3, m->nv};
+    npy_intp dp[3] = {N, 3, m->nv}, dc[3] = {N, ncontact, 3};
     for (int k = 0; k < NRESULT; k++) {
-        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : dr;
+        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : k == 9 ? dc : dr;
         const int rank = k == 0 ? 2 : 3;
-        out[k] = nd == 2 ? new_array(rank, dims) : new_array(rank - 1, dims + 1);
+        out[k] = nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
     }
     vt_batch_io io;
     memset(&io, 0, sizeof io);
     io.nrow = (int)N;
-    io.q = PyArray_DATA(q), io.q_stride = row_stride(q);
-    io.qd = PyArray_DATA(v), io.qd_stride = row_stride(v);
-    io.qdd = PyArray_DATA(a), io.qdd_stride = row_stride(a);
+    io.q = PyArray_DATA(q), io.q_stride = vtpy_row_stride(q);
+    io.qd = PyArray_DATA(v), io.qd_stride = vtpy_row_stride(v);
+    io.qdd = PyArray_DATA(a), io.qdd_stride = vtpy_row_stride(a);
     io.effort = PyArray_DATA((PyArrayObject *)out[0]);
     io.reaction = PyArray_DATA((PyArrayObject *)out[1]);
     io.reaction_body = PyArray_DATA((PyArrayObject *)out[2]);
@@ -576,6 +466,10 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.bearing = PyArray_DATA((PyArrayObject *)out[6]);
     io.limit_excess = PyArray_DATA((PyArrayObject *)out[7]);
     io.effort_parts = PyArray_DATA((PyArrayObject *)out[8]);
+    if (cs) {
+        io.contact_force = PyArray_DATA((PyArrayObject *)out[9]);
+        io.contact_active = act ? PyArray_DATA(act) : NULL; /* packed rows (stride 0) */
+    }
     vt_status st = VT_OK;
     int failed = -1, nomem = 0;
     char msg[VT_MESSAGE_SIZE + 32] = "";
@@ -591,7 +485,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
             nomem = 1;
         }
     }
-    if (!nomem) st = model_batch(self, threads, &b);
+    if (!nomem) st = model_batch(self, threads, cs, &b, msg, sizeof msg);
     if (!nomem && !st) {
         io.status = self->status;
         st = vt_batch_inverse_dynamics_motion(b, &io);
@@ -599,8 +493,6 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
             failed = vt_batch_failed_row(b);
             snprintf(msg, sizeof msg, "%s", vt_batch_message(b));
         }
-    } else if (!nomem) {
-        snprintf(msg, sizeof msg, "vt_batch_create (threads %d): %s", threads, vt_status_string(st));
     }
     PyThread_release_lock(self->lock);
     Py_END_ALLOW_THREADS
@@ -611,10 +503,10 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     if (st) {
         const char *text = msg;
         if (nd == 1 && strncmp(text, "row 0: ", 7) == 0) text += 7; /* one state: no row to name */
-        raise_vt(st, text, nd == 2 ? failed : -1);
+        vtpy_raise(st, text, nd == 2 ? failed : -1);
         goto done;
     }
-    res = PyStructSequence_New(&ResultType);
+    res = PyStructSequence_New(&vtpy_result_type);
     if (!res) goto done;
     for (int k = 0; k < NRESULT; k++) {
         PyStructSequence_SET_ITEM(res, k, out[k]);
@@ -625,6 +517,7 @@ done:
     Py_XDECREF(q);
     Py_XDECREF(v);
     Py_XDECREF(a);
+    Py_XDECREF(act);
     return res;
 }
 
@@ -654,103 +547,34 @@ static PyGetSetDef model_getset[] = {
 
 static PyMethodDef model_methods[] = {
     {"inverse", (PyCFunction)(void (*)(void))model_inverse, METH_VARARGS | METH_KEYWORDS,
-     "inverse(q, v, a, threads=0) -> Result: the given motion's efforts and joint reactions "
-     "(vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n)"},
+     "inverse(q, v, a, threads=0, contacts=None, active=None) -> Result: the given motion's efforts and\n"
+     "joint reactions (vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n); with\n"
+     "contacts (Model.contacts) the ground's forces at them carry the free root (vt_inverse_dynamics_contacts),\n"
+     "active: None (all) or 0/1 per contact (ncontact, or N x ncontact)"},
+    {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
+     "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"
+     "forward_check=True (False without SUNDIALS), ...) -> Trajectory: a fully driven model's motion, efforts and\n"
+     "reactions at each output time (vt_kinematic_analysis; the other keywords: vt_run_options's fields)"},
+    {"dynamic_analysis", (PyCFunction)(void (*)(void))vtpy_dynamic_analysis, METH_VARARGS | METH_KEYWORDS,
+     "dynamic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, rtol=1e-8, atol=1e-10, max_step=0.0,\n"
+     "max_steps=100000, formulation='ggl', forward_check=True, forward_independent=True, ...) -> Trajectory: the\n"
+     "motion the drives leave free, integrated by SUNDIALS IDA (vt_dynamic_analysis), from q, qd at t0\n"
+     "(None: the reference configuration, at rest)"},
+    {"contacts", (PyCFunction)(void (*)(void))vtpy_model_contacts, METH_VARARGS | METH_KEYWORDS,
+     "contacts(contacts, effort_weight=None) -> ContactSet: the robot's contacts with the ground\n"
+     "(vt_contacts_create), each a vtdyn.Contact; effort_weight: each rate's weight w_a in the rule (nv; None: 1)"},
     {NULL, NULL, 0, NULL},
 };
 
-static PyTypeObject ModelType = {
+PyTypeObject vtpy_model_type = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "vtdyn.Model",
     .tp_basicsize = sizeof(ModelObject),
     .tp_dealloc = (destructor)model_dealloc,
     .tp_repr = (reprfunc)model_repr,
     .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "A robot loaded by vtdyn.load_urdf (no public constructor).",
+    .tp_doc = "A model: a robot loaded by vtdyn.load_urdf, or built by vtdyn.Builder.build (no public constructor).",
     .tp_methods = model_methods,
     .tp_getset = model_getset,
 };
 
-/* ---- Result ------------------------------------------------------------------------------------ */
-
-static PyStructSequence_Field result_fields[] = {
-    {"effort", "every rate's generalized force (N x nv, or nv): N m or N; a floating root's six in world axes"},
-    {"reaction", "each body's joint reaction (N x nbody x 6): force, then moment about the joint point, world axes"},
-    {"reaction_body", "the same in the body's axes (the link's inertial axes)"},
-    {"total", "each joint's total wrench, reaction plus actuation, world axes"},
-    {"total_body", "the same in the body's axes"},
-    {"reaction_joint", "each body's joint reaction in the joint's frame (the child link's URDF axes, N x nbody x 6)"},
-    {"bearing", "each joint's bearing split (N x nbody x 4): axial and radial force, axial and tilting moment"},
-    {"limit_excess", "each rate's excess beyond its position, velocity and effort limits (N x nv x 3), 0 within"},
-    {"effort_parts", "the parts of each rate's effort its joint's armature, damping and friction take (N x 3 x nv)"},
-    {NULL, NULL},
-};
-
-static PyStructSequence_Desc result_desc = {
-    "vtdyn.Result", "The results of Model.inverse (NumPy float64 arrays).", result_fields, NRESULT,
-};
-
-/* ---- the module --------------------------------------------------------------------------------- */
-
-static PyObject *version(PyObject *mod, PyObject *unused)
-{
-    (void)mod;
-    (void)unused;
-    return PyUnicode_FromString(vt_version());
-}
-
-static PyMethodDef module_methods[] = {
-    {"load_urdf", (PyCFunction)(void (*)(void))load_urdf, METH_VARARGS | METH_KEYWORDS,
-     "load_urdf(path, floating=False, mimic=False, dynamics=True, joint_params=None, payloads=None,\n"
-     "          inertia_tol=None) -> Model: a URDF robot (vt_urdf_builder); dynamics: the joints'\n"
-     "<dynamics damping friction> in every effort (False: ideal joints); joint_params: {joint: (armature,\n"
-     "damping, friction)}, all three taken; payloads: [(link, mass, com, inertia=None)], com and the 3 x 3\n"
-     "inertia about it in the link's URDF frame; inertia_tol: the inertia checks' relative tolerance"},
-    {"version", version, METH_NOARGS, "the C library's version (vt_version)"},
-    {NULL, NULL, 0, NULL},
-};
-
-static struct PyModuleDef module_def = {
-    PyModuleDef_HEAD_INIT, "vtdyn._vtdyn", "vtdyn's C extension (see the package vtdyn).", -1, module_methods,
-    NULL, NULL, NULL, NULL,
-};
-
-PyMODINIT_FUNC PyInit__vtdyn(void)
-{
-    import_array();
-    if (PyType_Ready(&ModelType) < 0) return NULL;
-    if (!result_type_ready) {
-        if (PyStructSequence_InitType2(&ResultType, &result_desc) < 0) return NULL;
-        result_type_ready = 1;
-    }
-    PyObject *mod = PyModule_Create(&module_def);
-    if (!mod) return NULL;
-    if (!VtError) {
-        VtError = PyErr_NewExceptionWithDoc(
-            "vtdyn.Error",
-            "A status the library returned: .status its name (\"VT_ERR_NONFINITE\"), .code the int, "
-            ".row the failing row of N states (None otherwise); the message is the library's.",
-            PyExc_RuntimeError, NULL);
-        if (!VtError) goto fail;
-    }
-    Py_INCREF(VtError);
-    if (PyModule_AddObject(mod, "Error", VtError) < 0) {
-        Py_DECREF(VtError);
-        goto fail;
-    }
-    Py_INCREF(&ModelType);
-    if (PyModule_AddObject(mod, "Model", (PyObject *)&ModelType) < 0) {
-        Py_DECREF(&ModelType);
-        goto fail;
-    }
-    Py_INCREF(&ResultType);
-    if (PyModule_AddObject(mod, "Result", (PyObject *)&ResultType) < 0) {
-        Py_DECREF(&ResultType);
-        goto fail;
-    }
-    if (PyModule_AddIntConstant(mod, "VT_HAVE_SUNDIALS", VT_HAVE_SUNDIALS) < 0) goto fail;
-    return mod;
-fail:
-    Py_DECREF(mod);
-    return NULL;
-}

@@ -1,0 +1,145 @@
+"""Model.kinematic_analysis and Model.dynamic_analysis (python/vtdyn/analysis.c) on models built
+with vtdyn.Builder, against closed forms written out here.
+
+* The paper's double link falling from rest with joint 2 locked (a dynamic analysis, SUNDIALS
+  IDA): the 4 m rod about its end, theta'' = (3 g / 2 l) cos theta and theta'^2 = (3 g / l)
+  sin theta (l = 4 m; the paper's 3.67875 and 7.3575), and, at each row's theta, the ground's
+  force on link 1 (eq. 29 of the paper: f = [-2207.25 sin 2 theta, 4905 sin^2 theta + 490.5
+  cos^2 theta] N, derived here from the rod's centre's acceleration), link 1's force on link 2
+  and the locking torque (link 2's angular momentum balance about its joint), each against the
+  run to 1e-7 of the weight; the forward check's deviation below 1e-6.
+* The double link fully driven (q1 a sine, q2 a polynomial, then q1 a spline through samples of
+  a cubic): the kinematic analysis's q, q', q'' against the functions' exact values and its
+  drive efforts against the Lagrange equations (test_builder.lagrange) to 1e-10 of the largest;
+  the spline drive equals the cubic's polynomial drive (a not-a-knot spline reproduces cubics).
+* A parallelogram four-bar closed by a planar pin (add_cut_joint planar=True), its crank driven:
+  the crank torque against energy balance, tau = I_eff phi'' + 2 m g a cos phi with
+  I_eff = 2 m a^2 / 3 + m a^2 (the coupler translates); the pin's reaction in its plane only.
+* Errors: a model not fully driven, bad options and shapes.
+"""
+import numpy as np
+import pytest
+
+import vtdyn
+from test_builder import G, J, L, M, double_link, lagrange
+
+sundials = pytest.mark.skipif(not vtdyn.VT_HAVE_SUNDIALS, reason="built without SUNDIALS")
+
+
+@sundials
+def test_double_link_falls_as_a_rod():
+    m = double_link([dict(body=2, f=0.0, name="lock")])
+    tr = m.dynamic_analysis(1.5, nout=30, rtol=1e-10, atol=1e-12, max_step=0.005)
+    assert isinstance(tr, vtdyn.Trajectory) and tr.time.shape == (31,) and tr.q.shape == (31, 2)
+    assert tr.reaction.shape == (31, 2, 6) and tr.drive_effort.shape == (31, 1) and tr.steps > 0
+    assert np.allclose(tr.time, np.linspace(0, 1.5, 31), rtol=0, atol=1e-15)
+    weight = 2 * M * G
+    lr = 2 * L  # the locked pair: one rod of 4 m, 200 kg, about its end
+    theta = -tr.q[:, 0]  # the angle fallen below x
+    assert np.abs(tr.q[:, 1]).max() <= 1e-9  # locked
+    thdd = 3 * G / (2 * lr) * np.cos(theta)
+    thd2 = 3 * G / lr * np.sin(theta)  # theta'^2, the first integral
+    assert abs(3 * G / (2 * lr) - 3.67875) < 1e-12 and abs(3 * G / lr - 7.3575) < 1e-12  # the paper's
+    assert np.abs(tr.qd[:, 0] ** 2 - thd2).max() <= 1e-7
+    assert np.abs(-tr.qdd[:, 0] - thdd).max() <= 1e-7
+    e = np.stack([np.cos(theta), -np.sin(theta)], axis=1)  # along the rod
+    de = np.stack([-np.sin(theta), -np.cos(theta)], axis=1)  # d e / d theta
+    acc = lambda r: r * (thdd[:, None] * de - thd2[:, None] * e)  # a point at r along the rod
+    g = np.array([0.0, -G])
+    f1 = 2 * M * (acc(lr / 2) - g)  # the ground on link 1: the whole rod's Newton
+    f29 = np.stack([-2207.25 * np.sin(2 * theta), 4905.0 * np.sin(theta) ** 2 + 490.5 * np.cos(theta) ** 2], axis=1)
+    assert np.abs(f1 - f29).max() <= 1e-9 * weight  # (29) as the paper prints it
+    f2 = M * (acc(1.5 * L) - g)  # link 1 on link 2
+    arm = 0.5 * L * e  # link 2's centre from joint 2
+    tau2 = J * (-thdd) + (arm[:, 0] * f2[:, 1] - arm[:, 1] * f2[:, 0])  # about z: I alpha + r x m (a - g)
+    assert np.abs(tr.reaction[:, 0, :2] - f1).max() <= 1e-7 * weight
+    assert np.abs(tr.reaction[:, 1, :2] - f2).max() <= 1e-7 * weight
+    assert np.abs(tr.reaction[:, :, 2]).max() <= 1e-9 * weight  # in the plane
+    assert np.abs(tr.drive_effort[:, 0] - tau2).max() <= 1e-7 * weight * L
+    assert np.abs(tr.qfrc_drive[:, 1] - tau2).max() <= 1e-7 * weight * L and np.all(tr.qfrc_drive[:, 0] == 0)
+    assert np.abs(np.abs(tau2) - 245.25 * np.abs(np.cos(theta))).max() <= 1e-9 * weight * L
+    # the forward check: the torque applied, the drive removed, the same motion
+    assert tr.q_fwd.shape == (31, 2) and tr.fwd_err_q <= 1e-6 and tr.fwd_err_force <= 1e-6 * weight
+    assert np.abs(tr.q_fwd - tr.q).max() <= tr.fwd_err_q and tr.steps_fwd > 0
+    assert tr.fwd_window_row.tolist() == [0] and tr.fwd_window_err_q[0] == tr.fwd_err_q
+    # from another start: q and qd given, rows at the times given
+    tr2 = m.dynamic_analysis(1.0, q=[-0.3, 0.0], qd=[0.0, 0.0], tout=[0.25, 0.5, 1.0], forward_check=False)
+    assert tr2.time.tolist() == [0.0, 0.25, 0.5, 1.0] and tr2.q_fwd is None and tr2.q[0, 0] == -0.3
+    th, thd = -tr2.q[:, 0], -tr2.qd[:, 0]
+    assert np.abs(thd ** 2 - 3 * G / lr * (np.sin(th) - np.sin(0.3))).max() <= 1e-6
+
+
+C = (0.2, -0.4, 0.3, 0.5)  # q2's polynomial; q1 = 0.5 + 0.8 sin(2 t + 0.1)
+CUBIC = (0.1, 0.7, -0.9, 0.35)
+
+
+def test_double_link_driven():
+    sine = vtdyn.Function.sine(0.5, 0.8, 2.0, 0.1)
+    m = double_link([dict(body=1, f=sine), dict(body=2, f=vtdyn.Function.polynomial(*C))])
+    fwd = bool(vtdyn.VT_HAVE_SUNDIALS)
+    tr = m.kinematic_analysis(2.0, nout=40, forward_check=fwd)
+    t = tr.time
+    q1 = 0.5 + 0.8 * np.sin(2 * t + 0.1)
+    q1d, q1dd = 1.6 * np.cos(2 * t + 0.1), -3.2 * np.sin(2 * t + 0.1)
+    q2 = C[0] + C[1] * t + C[2] * t ** 2 + C[3] * t ** 3
+    q2d, q2dd = C[1] + 2 * C[2] * t + 3 * C[3] * t ** 2, 2 * C[2] + 6 * C[3] * t
+    exact = [np.stack(x, axis=1) for x in ((q1, q2), (q1d, q2d), (q1dd, q2dd))]
+    for got, ref in zip((tr.q, tr.qd, tr.qdd), exact):
+        assert np.abs(got - ref).max() <= 1e-10 * max(1.0, np.abs(ref).max())
+    tau = lagrange(*exact)
+    assert np.abs(tr.qfrc_drive - tau).max() <= 1e-10 * np.abs(tau).max()
+    assert np.abs(tr.drive_effort - tau).max() <= 1e-10 * np.abs(tau).max()
+    assert tr.lambda_.shape == (41, 2) and tr.drive_force.shape == (41, 2, 3) and tr.steps == 0
+    if fwd:
+        assert tr.fwd_err_q <= 1e-6
+    # a spline through samples of a cubic is the cubic: the same run as the polynomial drive
+    ts = np.linspace(-0.5, 2.5, 9)
+    ys = CUBIC[0] + CUBIC[1] * ts + CUBIC[2] * ts ** 2 + CUBIC[3] * ts ** 3
+    a = double_link([dict(body=1, f=vtdyn.Function.spline(ts, ys)), dict(body=2, f=0.25)])
+    b = double_link([dict(body=1, f=vtdyn.Function.polynomial(*CUBIC)), dict(body=2, f=vtdyn.Function.constant(0.25))])
+    ra, rb = a.kinematic_analysis(2.0, nout=20, forward_check=False), b.kinematic_analysis(2.0, nout=20, forward_check=False)
+    assert np.abs(ra.q - rb.q).max() <= 1e-12 and np.abs(ra.drive_effort - rb.drive_effort).max() <= 1e-9 * np.abs(rb.drive_effort).max()
+
+
+def test_four_bar_planar_pin():
+    a, bl, m = 0.5, 1.2, 2.0  # crank and rocker a, coupler and ground bl, each link m
+    ja = m * a * a / 12
+    b = vtdyn.Builder()
+    b.add_body(mass=m, inertia=(0, ja, ja), joint_child=(-a / 2, 0, 0), name="crank")
+    b.add_body(parent=1, mass=m, inertia=(0, m * bl * bl / 12, m * bl * bl / 12), joint_parent=(a / 2, 0, 0),
+               joint_child=(-bl / 2, 0, 0), name="coupler")
+    b.add_body(parent=2, mass=m, inertia=(0, ja, ja), joint_parent=(bl / 2, 0, 0), joint_child=(-a / 2, 0, 0), name="rocker")
+    assert b.add_cut_joint(body_a=0, body_b=3, point_a=(bl, 0, 0), point_b=(a / 2, 0, 0), planar=True, name="pin") == 0
+    b.add_drive(body=1, f=vtdyn.Function.sine(1.0, 0.3, 2.0))
+    four = b.build()
+    phi0 = 1.0
+    tr = four.kinematic_analysis(3.0, nout=60, q=[phi0, -phi0, phi0 + np.pi], forward_check=False)
+    t = tr.time
+    phi, phidd = 1.0 + 0.3 * np.sin(2 * t), -1.2 * np.sin(2 * t)
+    assert np.abs(tr.q[:, 0] - phi).max() <= 1e-10 and np.abs(tr.q[:, 1] + phi).max() <= 1e-9
+    tau = (2 * m * a * a / 3 + m * a * a) * phidd + 2 * m * G * a * np.cos(phi)
+    assert np.abs(tr.drive_effort[:, 0] - tau).max() <= 1e-9 * np.abs(tau).max()
+    assert tr.cut_reaction.shape == (61, 1, 6)
+    assert np.abs(tr.cut_reaction[:, 0, 2:]).max() <= 1e-12 * np.abs(tr.cut_reaction).max()  # in-plane force only
+
+
+def test_analysis_errors():
+    m = double_link([dict(body=2, f=0.0)])
+    with pytest.raises(vtdyn.Error) as e:
+        m.kinematic_analysis(1.0, forward_check=False)
+    assert e.value.status == "VT_ERR_NOT_FULLY_DRIVEN" and str(e.value).startswith("kinematic_analysis: ")
+    with pytest.raises(ValueError, match="^formulation: "):
+        m.dynamic_analysis(1.0, formulation="implicit")
+    with pytest.raises(ValueError, match="^q: "):
+        m.dynamic_analysis(1.0, q=[0, 0, 0])
+    with pytest.raises(ValueError, match="^qd: "):
+        m.dynamic_analysis(1.0, qd=np.zeros((2, 2)))
+    with pytest.raises(vtdyn.Error) as e:
+        m.dynamic_analysis(1.0, tout=[0.5, 0.2])
+    assert e.value.status == "VT_ERR_BAD_OPTION"
+    with pytest.raises(vtdyn.Error) as e:
+        m.dynamic_analysis(1.0, rtol=-1.0)
+    assert e.value.status == "VT_ERR_BAD_OPTION"
+    with pytest.raises(vtdyn.Error) as e:
+        m.dynamic_analysis(1.0, nout=0)
+    assert e.value.status == "VT_ERR_BAD_OPTION"
