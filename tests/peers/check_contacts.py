@@ -220,6 +220,36 @@ def refusal_is_infeasible(q, tau0, J, act):
     return False
 
 
+def rule_quadprog(tau0, J, act):
+    """The same QP solved by quadprog (PyPI, Goldfarb-Idnani in Fortran): the base's equations
+    reduced to their independent rows by numpy's SVD first (a diagonal pair gives rank 5), which
+    quadprog needs; the forces (4 x 3), or None when quadprog is not importable."""
+    try:
+        import quadprog
+    except ImportError:
+        return None
+    idx = [c for c in range(len(FEET)) if act[c]]
+    Jall = np.vstack([J[c] for c in idx])
+    Jb, Jj = Jall[:, :6], Jall[:, 6:]
+    n3 = Jall.shape[0]
+    U, sv, _ = np.linalg.svd(Jb.T)
+    r = int((sv > 64 * (6 + n3) * np.finfo(float).eps * sv[0]).sum())
+    Aeq, beq = U[:, :r].T @ Jb.T, U[:, :r].T @ tau0[:6]
+    G = np.zeros((0, n3))
+    for k, c in enumerate(idx):
+        P = np.zeros((5, n3))
+        P[:, 3 * k:3 * k + 3] = pyramid(MU[FEET[c]])
+        G = np.vstack([G, P])
+    H = Jj @ Jj.T + W_CONTACT * np.eye(n3)
+    C = np.hstack([Aeq.T, G.T])
+    b = np.concatenate([beq, np.zeros(G.shape[0])])
+    F = quadprog.solve_qp(H, Jj @ tau0[6:], C, b, r)[0]
+    full = np.zeros((len(FEET), 3))
+    for k, c in enumerate(idx):
+        full[c] = F[3 * k:3 * k + 3]
+    return full
+
+
 def write_csv(path, cols, rows):
     with open(path, "w") as f:
         f.write(",".join(cols) + "\n")
@@ -428,6 +458,9 @@ def main():
                 worst["pyramid"] = max(worst["pyramid"], over)
             F, mult, viol, na, res = rule_kkt(tau0, J, act, force, W)
             faces += na
+            Fq = rule_quadprog(tau0, J, act)
+            if Fq is not None:
+                worst["quadprog"] = max(worst.get("quadprog", 0.0), np.abs(Fq - force).max() / W)
             diff = np.abs(F - force).max() / W
             worst["rule"] = max(worst["rule"], diff)
             if mult < -TOL or viol > TOL * W or res > 1e-9 * W:
@@ -439,6 +472,8 @@ def main():
               % (worst["joint"], worst["base"], worst["vtdyn root"]))
         print("  pyramid excess: %.2g; forces vs the rule's KKT solution: %.2g (%d faces on the boundary)"
               % (worst["pyramid"], worst["rule"], faces))
+        print("  forces vs quadprog on the same QP: %s" % ("%.2g" % worst["quadprog"] if "quadprog" in worst
+                                                          else "skipped (quadprog not importable)"))
         print("  trotting rows: joint efforts %.2g, Pinocchio's base tau %.2g; lowest stance fz %.3g N, "
               "friction used at most %.0f %%" % (trot["joint"], trot["base"], trot["fz"], 100 * trot["friction"]))
         for key, val in worst.items():
