@@ -72,6 +72,7 @@ struct vt_contacts {
                            * along e under each actuated rate (a column), weighted */
     double *G, *c, *Aeq, *beq, *Ain, *bin, *f, *tau0, *wtau, *xfrc;
     double *lambda, *res, *slack;     /* the QP's multipliers (nu + rows), residuals (3n), slacks (nu + rows) */
+    double *rownorm;                  /* the equalities' and inequalities' rows' 1-norms (nu + rows) */
     double *U, *sig, *Ar, *svd_work; /* the root's equations by their SVD: U (nu x nu), σ, the
                                       * independent rows Uᵣᵀ A_eq (nu x 3n), LAPACK's workspace */
     int svd_lwork;
@@ -158,6 +159,7 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
     c->lambda = vt_block_take(b, (nv ? nv : 1) + nr, sizeof(double));
     c->res = vt_block_take(b, nx, sizeof(double));
     c->slack = vt_block_take(b, (nv ? nv : 1) + nr, sizeof(double));
+    c->rownorm = vt_block_take(b, (nv ? nv : 1) + nr, sizeof(double));
     c->U = vt_block_take(b, (nv ? nv : 1) * (nv ? nv : 1), sizeof(double));
     c->sig = vt_block_take(b, nv ? nv : 1, sizeof(double));
     c->Ar = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
@@ -356,6 +358,7 @@ static int distribution(vt_contacts *c, int na)
         const double *cone = c->cone + 3 * c->cone_at[h];
         for (int j = -1; j < c->faces[h]; j++, r++, cone += 3) {
             for (int e = 0; e < 3; e++) c->Ain[(size_t)r + (size_t)(3 * k + e) * (size_t)rows] = cone[e];
+            c->rownorm[c->nu + r] = fabs(cone[0]) + fabs(cone[1]) + fabs(cone[2]);
             c->bin[r] = 0.0;
             c->row_contact[r] = h;
             c->row_face[r] = j;
@@ -460,6 +463,23 @@ static int equality_minimum(vt_contacts *c, int n, int rows)
         for (int i = 0; i < n; i++) c->f[i] = -y[i];
     }
     vt_dtrsv('L', 'T', 'N', n, L, n, c->f, 1);
+    /* as strict as the QP's own answer: every inequality to its round-off (32 n ε of its terms, a
+     * face the minimum leaves by more is the QP's to bind) and every equality to 1e-10 of its
+     * terms (a poorly conditioned Z Zᵀ costs digits the QP's factors keep); then the certificate */
+    const double tau = 32.0 * (double)n * DBL_EPSILON, fm = max_abs(c->f, n, 1);
+    double *sl = c->slack;
+    memcpy(sl, c->beq, (size_t)nu * sizeof(double));
+    memcpy(sl + nu, c->bin, (size_t)rows * sizeof(double));
+    if (nu > 0) vt_dgemv('N', nu, n, 1.0, c->Aeq, nu, c->f, 1, -1.0, sl, 1);
+    if (rows > 0) vt_dgemv('N', rows, n, 1.0, c->Ain, rows, c->f, 1, -1.0, sl + nu, 1);
+    double *a1 = c->rownorm; /* the equalities' rows' 1-norms, column by column (distribution: the faces') */
+    memset(a1, 0, (size_t)nu * sizeof(double));
+    for (int i = 0; i < n; i++)
+        for (int h = 0; h < nu; h++) a1[h] += fabs(c->Aeq[(size_t)h + (size_t)i * (size_t)nu]);
+    for (int r = 0; r < nu + rows; r++) {
+        const double terms = a1[r] * fm + fabs(r < nu ? c->beq[r] : c->bin[r - nu]);
+        if (r < nu ? !(fabs(sl[r]) <= 1e-10 * terms) : !(sl[r] >= -tau * terms - DBL_MIN)) return 0;
+    }
     return optimal(c, c->Aeq, n, nu, rows);
 }
 
