@@ -378,6 +378,28 @@ static double max_abs(const double *a, int n, int inc)
     return m;
 }
 
+/* G f + c − A_eqᵀ λ_eq − A_inᵀ λ_in = 0 (G's lower triangle; rows 0: λ_in zero) to 1e-8 of its
+ * terms, amax the constraints' largest entry */
+static int stationary(vt_contacts *c, const double *Aeq, int n, int meq, int rows, double amax)
+{
+    const int ldeq = c->nu ? c->nu : 1, ldin = rows ? rows : 1;
+    const double tol = 1e-8, xmax = max_abs(c->f, n, 1);
+    vt_dsymv('L', n, 1.0, c->G, n, c->f, 1, 0.0, c->res, 1);
+    for (int i = 0; i < n; i++) c->res[i] += c->c[i];
+    if (meq > 0) vt_dgemv('T', meq, n, -1.0, Aeq, ldeq, c->lambda, 1, 1.0, c->res, 1);
+    if (rows > 0) vt_dgemv('T', rows, n, -1.0, c->Ain, ldin, c->lambda + meq, 1, 1.0, c->res, 1);
+    double gmax = 0.0;
+    for (int j = 0; j < n; j++) {
+        const double g = max_abs(c->G + (size_t)j * (size_t)(n + 1), n - j, 1);
+        gmax = g > gmax ? g : gmax;
+    }
+    const double lmax = max_abs(c->lambda, meq + rows, 1), cmax = max_abs(c->c, n, 1);
+    const double scale = (double)n * gmax * xmax + cmax + (double)(meq + rows) * amax * lmax;
+    for (int i = 0; i < n; i++)
+        if (!(fabs(c->res[i]) <= tol * scale + DBL_MIN)) return 0;
+    return 1;
+}
+
 /* The QP's answer checked against its own optimality conditions (a certificate, whatever the
  * solver did): the equalities and inequalities hold, the inequalities' multipliers are ≥ 0, and
  * G f + c − A_eqᵀ λ_eq − A_inᵀ λ_in = 0, each to 1e-8 of the terms it is made of. A round-off
@@ -400,34 +422,21 @@ static int optimal(vt_contacts *c, const double *Aeq, int n, int meq, int rows)
         if (r < meq ? !(fabs(s[r]) <= size) : !(s[r] >= -size)) return 0;
         if (r >= meq && !(c->lambda[r] >= -tol * fabs(c->lambda[r]) - DBL_MIN)) return 0;
     }
-    /* G f + c − Aᵀ λ (G's lower triangle) */
-    vt_dsymv('L', n, 1.0, c->G, n, c->f, 1, 0.0, c->res, 1);
-    for (int i = 0; i < n; i++) c->res[i] += c->c[i];
-    if (meq > 0) vt_dgemv('T', meq, n, -1.0, Aeq, ldeq, c->lambda, 1, 1.0, c->res, 1);
-    if (rows > 0) vt_dgemv('T', rows, n, -1.0, c->Ain, ldin, c->lambda + meq, 1, 1.0, c->res, 1);
-    double gmax = 0.0;
-    for (int j = 0; j < n; j++) {
-        const double g = max_abs(c->G + (size_t)j * (size_t)(n + 1), n - j, 1);
-        gmax = g > gmax ? g : gmax;
-    }
-    const double lmax = max_abs(c->lambda, meq + rows, 1), cmax = max_abs(c->c, n, 1);
-    const double scale = (double)n * gmax * xmax + cmax + (double)(meq + rows) * amax * lmax;
-    for (int i = 0; i < n; i++)
-        if (!(fabs(c->res[i]) <= tol * scale + DBL_MIN)) return 0;
-    return 1;
+    return stationary(c, Aeq, n, meq, rows, amax);
 }
 
 /* The common case, no face of a pyramid binding (feet well inside their cones, or bilateral
  * contacts): the minimum subject to the equalities alone, by the range-space solution of its KKT
- * system G f + c = A_eqᵀ λ, A_eq f = b with G = L Lᵀ (dpotrf),
- *   Z = A_eq L⁻ᵀ,   (Z Zᵀ) λ = b + Z L⁻¹ c   (Z Zᵀ = A_eq G⁻¹ A_eqᵀ = K Kᵀ, dpotrf),
+ * system G f + c = A_eqᵀ λ, A_eq f = b with G = L Lᵀ (dpotf2),
+ *   Z = A_eq L⁻ᵀ,   (Z Zᵀ) λ = b + Z L⁻¹ c   (Z Zᵀ = A_eq G⁻¹ A_eqᵀ = K Kᵀ, dpotf2),
  *   f = L⁻ᵀ (Zᵀ λ − L⁻¹ c),
  * is the QP's answer when it meets every inequality: with λ_in = 0 it meets the KKT conditions
  * of the whole problem, and a strictly convex problem has one minimizer. Returns 1 with c->f and
  * c->lambda set; 0 where the QP must decide: dependent equalities (two feet: Z Zᵀ singular, which
  * shows as a pivot of K below 1e-4 of the largest, an unpivoted Cholesky factor's pivots bounding
- * its eigenvalues), or an answer failing the certificate (optimal: an inequality violated, or
- * round-off). Nothing is iterated: the solution is exact but for round-off, as the QP's. */
+ * its eigenvalues), an inequality violated beyond its round-off (32 n ε of its terms, as the QP
+ * judges), an equality missed by more than 1e-10 of its terms, or stationarity failing the
+ * certificate's 1e-8. Nothing is iterated: the solution is exact but for round-off, as the QP's. */
 static int equality_minimum(vt_contacts *c, int n, int rows)
 {
     const int nu = c->nu;
@@ -480,7 +489,9 @@ static int equality_minimum(vt_contacts *c, int n, int rows)
         const double terms = a1[r] * fm + fabs(r < nu ? c->beq[r] : c->bin[r - nu]);
         if (r < nu ? !(fabs(sl[r]) <= 1e-10 * terms) : !(sl[r] >= -tau * terms - DBL_MIN)) return 0;
     }
-    return optimal(c, c->Aeq, n, nu, rows);
+    /* the equalities and inequalities hold, the inequalities' multipliers are zero: what is left
+     * of the certificate (optimal) is stationarity */
+    return stationary(c, c->Aeq, n, nu, 0, max_abs(c->Aeq, nu * n, 1));
 }
 
 /* body b's load of the ground's force f at contact h's point: f at the centre of mass and
