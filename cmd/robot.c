@@ -168,6 +168,18 @@ int cmd_joint_params(vt_builder *b, const char *file, const char *path)
     return bad;
 }
 
+/* a cell of the contacts file: a finite number (*x), or empty (keeps *x); 1 if neither */
+static int contact_number(const char *cell, double *x)
+{
+    if (!cell[0]) return 0;
+    char *end;
+    errno = 0;
+    const double v = strtod(cell, &end);
+    if (end == cell || *end || errno == ERANGE || !isfinite(v)) return 1;
+    *x = v;
+    return 0;
+}
+
 int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, char (**names)[VT_NAME_MAX], int *n)
 {
     *defs = NULL;
@@ -175,28 +187,40 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
     *n = 0;
     FILE *f = fopen(file, "r");
     if (!f) return cmd_fail("--contacts %s: %s", file, strerror(errno));
-    enum { LINE = 4096 };
-    char line[LINE], *cell[4];
-    int col[2] = {-1, -1}, lineno = 0, bad = 0;
+    enum { LINE = 4096, NCOL = 7 };
+    /* the columns: frame and mu required, the rest optional (empty cells: the defaults) */
+    static const char *const colname[NCOL] = {"frame", "mu", "faces", "nx", "ny", "nz", "weight"};
+    char line[LINE], *cell[NCOL + 1];
+    int col[NCOL], ncol = 0, lineno = 0, bad = 0;
+    for (int k = 0; k < NCOL; k++) col[k] = -1;
     while (!bad && fgets(line, sizeof line, f)) {
         lineno++;
         if (!strchr(line, '\n') && !feof(f)) {
             bad = cmd_fail("--contacts %s: line %d is longer than %d bytes", file, lineno, LINE - 2);
             break;
         }
-        const int nc = split_cells(line, cell, 4);
+        const int nc = split_cells(line, cell, NCOL + 1);
         if (nc == 1 && !cell[0][0]) continue; /* a blank line */
-        if (col[0] < 0) { /* the header: frame and mu, in either order, nothing else */
-            for (int k = 0; k < nc; k++) {
-                if (strcmp(cell[k], "frame") == 0 && col[0] < 0) col[0] = k;
-                if (strcmp(cell[k], "mu") == 0 && col[1] < 0) col[1] = k;
+        if (ncol == 0) { /* the header: each a known column, once */
+            for (int k = 0; k < nc && !bad; k++) {
+                int j = 0;
+                while (j < NCOL && strcmp(cell[k], colname[j]) != 0) j++;
+                if (j == NCOL || col[j] >= 0)
+                    bad = cmd_fail("--contacts %s: line %d: column '%s' %s (the header is frame,mu and optionally "
+                                   "faces, nx,ny,nz, weight)", file, lineno, cell[k], j == NCOL ? "unknown" : "twice");
+                else col[j] = k;
             }
-            if (nc != 2 || col[0] < 0 || col[1] < 0)
-                bad = cmd_fail("--contacts %s: line %d: the header is frame,mu (in either order)", file, lineno);
+            if (!bad && nc < 0) bad = cmd_fail("--contacts %s: line %d: more than %d columns", file, lineno, NCOL);
+            if (!bad && (col[0] < 0 || col[1] < 0))
+                bad = cmd_fail("--contacts %s: line %d: the header is frame,mu (in any order, with optional faces, "
+                               "nx,ny,nz, weight)", file, lineno);
+            if (!bad && ((col[3] >= 0) != (col[4] >= 0) || (col[3] >= 0) != (col[5] >= 0)))
+                bad = cmd_fail("--contacts %s: line %d: the normal needs all of nx, ny, nz", file, lineno);
+            ncol = nc;
             continue;
         }
-        if (nc != 2) {
-            bad = cmd_fail("--contacts %s: line %d: %d cells, not 2", file, lineno, nc < 0 ? 4 : nc);
+        if (nc != ncol) {
+            bad = cmd_fail("--contacts %s: line %d: %d cells, not %d", file, lineno, nc < 0 ? NCOL + 1 : nc, ncol);
             break;
         }
         const char *frame = cell[col[0]], *mu = cell[col[1]];
@@ -211,16 +235,39 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
         if (bad) break;
         vt_contact_def d = vt_default_contact_def();
         if (mu[0]) {
-            char *end;
-            errno = 0;
-            d.mu = strtod(mu, &end);
-            if (end == mu || *end || errno == ERANGE || !isfinite(d.mu) || d.mu < 0.0) {
+            if (contact_number(mu, &d.mu) || d.mu < 0.0) {
                 bad = cmd_fail("--contacts %s: line %d: mu '%s' is not a finite number >= 0 (empty: bilateral)", file,
                                lineno, mu);
                 break;
             }
         } else {
             d.kind = VT_CONTACT_BILATERAL;
+        }
+        if (col[2] >= 0 && cell[col[2]][0]) {
+            double k = 0.0;
+            if (contact_number(cell[col[2]], &k) || k != floor(k) || k < 3 || k > 64) {
+                bad = cmd_fail("--contacts %s: line %d: faces '%s' is not a whole number from 3 to 64 (empty: 4)", file,
+                               lineno, cell[col[2]]);
+                break;
+            }
+            d.faces = (int)k;
+        }
+        if (col[3] >= 0 && (cell[col[3]][0] || cell[col[4]][0] || cell[col[5]][0])) {
+            double nv[3] = {0.0, 0.0, 0.0};
+            for (int e = 0; e < 3 && !bad; e++)
+                if (contact_number(cell[col[3 + e]], &nv[e]))
+                    bad = cmd_fail("--contacts %s: line %d: %s '%s' is not a finite number", file, lineno,
+                                   colname[3 + e], cell[col[3 + e]]);
+            if (!bad && nv[0] == 0.0 && nv[1] == 0.0 && nv[2] == 0.0)
+                bad = cmd_fail("--contacts %s: line %d: the normal (nx, ny, nz) is zero (all empty: the world's up)",
+                               file, lineno);
+            if (bad) break;
+            memcpy(d.normal, nv, sizeof nv);
+        }
+        if (col[6] >= 0 && cell[col[6]][0] && (contact_number(cell[col[6]], &d.weight) || !(d.weight > 0.0))) {
+            bad = cmd_fail("--contacts %s: line %d: weight '%s' is not a finite number > 0 (empty: %g)", file, lineno,
+                           cell[col[6]], VT_CONTACT_WEIGHT);
+            break;
         }
         vt_contact_def *gd = realloc(*defs, (size_t)(*n + 1) * sizeof **defs);
         if (gd) *defs = gd;
@@ -234,7 +281,7 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
         (*defs)[(*n)++] = d;
     }
     if (!bad && ferror(f)) bad = cmd_fail("--contacts %s: %s", file, strerror(errno));
-    if (!bad && col[0] < 0) bad = cmd_fail("--contacts %s: no header frame,mu", file);
+    if (!bad && ncol == 0) bad = cmd_fail("--contacts %s: no header frame,mu", file);
     if (!bad && *n == 0) bad = cmd_fail("--contacts %s: no contact", file);
     fclose(f);
     for (int k = 0; !bad && k < *n; k++) /* the names, now that they no longer move */

@@ -1268,7 +1268,69 @@ def contacts(vtdyn, urdf_dir, work, check):
     r, out = run_rows([quad_row(theta, (0, 0, -1.5 * 9.81))], "--contacts", cfile)
     check(r.returncode == 0 and out and all(out[0][leg + "_foot_fz"] < 0 for leg in QUAD_FEET),
           "bilateral feet pull: %s" % r.stderr)
-    for text, says in (("frame,friction\nFL_foot,1\n", "the header is frame,mu"),
+    # the optional columns: the defaults written out give the same bytes
+    with open(cfile, "w") as f:
+        f.write("frame,mu\n" + "".join("%s_foot,0.5\n" % leg for leg in QUAD_FEET))
+    rows = [quad_row(theta), quad_row(theta, (0.8, -0.5, 1.2), 0.7)]
+    r_plain, _ = run_rows(rows, "--contacts", cfile)
+    with open(cfile, "w") as f:
+        f.write("weight,frame,nz,mu,nx,faces,ny\n" + "".join("1e-4,%s_foot,1,0.5,0,4,0\n" % leg for leg in QUAD_FEET))
+    r_full, _ = run_rows(rows, "--contacts", cfile)
+    with open(cfile, "w") as f:
+        f.write("frame,mu,faces,nx,ny,nz,weight\n" + "".join("%s_foot,0.5,,,,,\n" % leg for leg in QUAD_FEET))
+    r_empty, _ = run_rows(rows, "--contacts", cfile)
+    check(r_plain.returncode == 0 and r_full.stdout == r_plain.stdout and r_empty.stdout == r_plain.stdout,
+          "faces, normal and weight at their defaults, written or empty: the same bytes (%r %r)"
+          % (r_full.stderr, r_empty.stderr))
+    # faces: 4 m/s² sideways on mu 0.5 needs |f_t| / f_n = 0.41 on the whole robot: beyond a 4-face
+    # pyramid's mu cos(pi/4) = 0.35 along a face's direction (y), within an 8-face one's
+    # mu cos(pi/8) = 0.46
+    for faces, ok in ((4, False), (8, True)):
+        with open(cfile, "w") as f:
+            f.write("frame,mu,faces\n" + "".join("%s_foot,0.5,%d\n" % (leg, faces) for leg in QUAD_FEET))
+        r, out = run_rows([quad_row(theta, (0.0, 4.0, 0.0))], "--contacts", cfile)
+        check((r.returncode == 0) == ok and (ok or "slip" in r.stderr),
+              "%d faces, 4 m/s^2 sideways on mu 0.5: %s (%r)" % (faces, "carried" if ok else "slips", r.stderr))
+        if ok and out:
+            fy = sum(out[0][leg + "_foot_fy"] for leg in QUAD_FEET)
+            check(abs(fy - QUAD_MASS * 4.0) <= 1e-9 * W, "the feet's sideways forces accelerate the robot: %.12g" % fy)
+    # the normal: the ground tilted by beta about y; at rest the forces hold the weight up, which
+    # needs friction tan(beta) of the normal force: 0.2 within mu 0.5 cos(pi/4), 0.6 beyond mu
+    for tan_b, ok in ((0.2, True), (0.6, False)):
+        b = math.atan(tan_b)
+        with open(cfile, "w") as f:
+            f.write("frame,mu,nx,ny,nz\n" + "".join("%s_foot,0.5,%.17g,0,%.17g\n" % (leg, math.sin(b), math.cos(b))
+                                                   for leg in QUAD_FEET))
+        r, out = run_rows([quad_row(theta)], "--contacts", cfile)
+        check((r.returncode == 0) == ok and (ok or "slip" in r.stderr),
+              "the ground tilted, tan %.1f on mu 0.5: %s (%r)" % (tan_b, "stands" if ok else "slips", r.stderr))
+        if ok and out:
+            fz = sum(out[0][leg + "_foot_fz"] for leg in QUAD_FEET)
+            fx = sum(out[0][leg + "_foot_fx"] for leg in QUAD_FEET)
+            check(abs(fz - W) <= 1e-9 * W and abs(fx) <= 1e-9 * W, "on the tilted ground the weight held up")
+            n = (math.sin(b), 0.0, math.cos(b))
+            for leg in QUAD_FEET:
+                f = [out[0]["%s_foot_f%s" % (leg, c)] for c in "xyz"]
+                fn = sum(a * c for a, c in zip(f, n))
+                ft = math.sqrt(sum((a - fn * c) ** 2 for a, c in zip(f, n)))
+                check(fn > 0 and ft <= 0.5 * fn + 1e-9 * W, "%s pushes along the tilted normal within mu" % leg)
+    # weight: FL's force costs 100 times the others': it carries less than FR
+    with open(cfile, "w") as f:
+        f.write("frame,mu,weight\n" + "".join("%s_foot,0.5,%s\n" % (leg, "1e-2" if leg == "FL" else "")
+                                              for leg in QUAD_FEET))
+    r, out = run_rows([quad_row(theta)], "--contacts", cfile)
+    check(r.returncode == 0 and out and out[0]["FL_foot_fz"] < out[0]["FR_foot_fz"] - 1e-6 * W,
+          "a heavier weight on FL: it carries less (%r)" % r.stderr)
+    for text, says in (("frame,friction\nFL_foot,1\n", "'friction' unknown"),
+                       ("frame,mu,mu\nFL_foot,1,1\n", "'mu' twice"),
+                       ("frame,mu,nx\nFL_foot,1,0\n", "all of nx, ny, nz"),
+                       ("frame,mu,faces\nFL_foot,1,2\n", "faces '2'"),
+                       ("frame,mu,faces\nFL_foot,1,4.5\n", "faces '4.5'"),
+                       ("frame,mu,nx,ny,nz\nFL_foot,1,0,0,0\n", "the normal (nx, ny, nz) is zero"),
+                       ("frame,mu,nx,ny,nz\nFL_foot,1,0,up,1\n", "ny 'up'"),
+                       ("frame,mu,weight\nFL_foot,1,0\n", "weight '0'"),
+                       ("frame,mu,weight\nFL_foot,1\n", "2 cells, not 3"),
+                       ("mu\nFL_foot\n", "the header is frame,mu"),
                        ("frame,mu\nnose,1\n", "'nose' is not a link"),
                        ("frame,mu\nFL_foot,-1\n", "not a finite number >= 0"),
                        ("frame,mu\nFL_foot,1\nFL_foot,1\n", "'FL_foot' twice"),
