@@ -192,6 +192,36 @@ static void test_box(void **state)
     vt_model_free(m);
 }
 
+/* the four feet of the quadruped as contacts of friction mu and the given kind, named by their
+ * frames */
+static const char *const FOOT[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+static void feet(vt_contact_def def[4], double mu, vt_contact_kind kind)
+{
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = def[k].name = FOOT[k];
+        def[k].mu = mu;
+        def[k].kind = kind;
+    }
+}
+
+/* ∂p/∂q_a of frame fr's origin by central differences of vt_frame_pose (z's q restored, its
+ * kinematics left at a perturbed q: the caller runs vt_kinematics again where it needs them) */
+static void frame_column(const vt_model *m, vt_data *z, int fr, int a, double col[3])
+{
+    const int qa = m->body_qadr[m->dof_body[a]];
+    double pp[3], pm[3], R[9];
+    const double h = 1e-6, q0 = z->q[qa];
+    z->q[qa] = q0 + h;
+    assert_ok(vt_kinematics(m, z));
+    assert_ok(vt_frame_pose(m, z, fr, pp, R));
+    z->q[qa] = q0 - h;
+    assert_ok(vt_kinematics(m, z));
+    assert_ok(vt_frame_pose(m, z, fr, pm, R));
+    z->q[qa] = q0;
+    for (int e = 0; e < 3; e++) col[e] = (pp[e] - pm[e]) / (2 * h);
+}
+
 static void test_quadruped(void **state)
 {
     (void)state;
@@ -200,14 +230,9 @@ static void test_quadruped(void **state)
     vt_data *d = NULL, *d0 = NULL;
     assert_ok(vt_data_create(&d, m));
     assert_ok(vt_data_create(&d0, m));
-    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    const char *const *foot = FOOT;
     vt_contact_def def[4];
-    for (int k = 0; k < 4; k++) {
-        def[k] = vt_default_contact_def();
-        def[k].frame = foot[k];
-        def[k].name = foot[k];
-        def[k].mu = 0.8;
-    }
+    feet(def, 0.8, VT_CONTACT_UNILATERAL);
     vt_contacts *c = NULL;
     assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
     assert_int_equal(vt_find_contact(c, "HL_foot"), 2);
@@ -245,20 +270,11 @@ static void test_quadruped(void **state)
         memcpy(z->qdd, s->qdd, (size_t)m->nv * sizeof(double));
         assert_ok(vt_inverse_dynamics_motion(m, z));
         for (int a = 6; a < m->nv; a++) {
-            const int qa = m->body_qadr[m->dof_body[a]];
             double tau = z->qfrc_drive[a];
             for (int k = 0; k < 4; k++) {
-                const int fr = vt_find_frame(m, foot[k]);
-                double pp[3], pm[3], R[9];
-                const double h = 1e-6, q0 = z->q[qa];
-                z->q[qa] = q0 + h;
-                assert_ok(vt_kinematics(m, z));
-                assert_ok(vt_frame_pose(m, z, fr, pp, R));
-                z->q[qa] = q0 - h;
-                assert_ok(vt_kinematics(m, z));
-                assert_ok(vt_frame_pose(m, z, fr, pm, R));
-                z->q[qa] = q0;
-                for (int e = 0; e < 3; e++) tau -= (pp[e] - pm[e]) / (2 * h) * f[3 * k + e];
+                double col[3];
+                frame_column(m, z, vt_find_frame(m, foot[k]), a, col);
+                for (int e = 0; e < 3; e++) tau -= col[e] * f[3 * k + e];
             }
             assert_near_rel(s->qfrc_drive[a], tau, 1e-8, W);
         }
@@ -323,13 +339,9 @@ static void test_rule(void **state)
     vt_data *d = NULL, *z = NULL;
     assert_ok(vt_data_create(&d, m));
     assert_ok(vt_data_create(&z, m));
-    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    const char *const *foot = FOOT;
     vt_contact_def def[4];
-    for (int k = 0; k < 4; k++) {
-        def[k] = vt_default_contact_def();
-        def[k].frame = foot[k];
-        def[k].mu = 0.9;
-    }
+    feet(def, 0.9, VT_CONTACT_UNILATERAL);
     def[2].weight = 4e-4;
     double w[18];
     for (int a = 0; a < nv; a++) w[a] = 1.0 + 0.1 * a;
@@ -368,17 +380,9 @@ static void test_rule(void **state)
             J[3 * k + 0 + 12 * 4] = r[2], J[3 * k + 2 + 12 * 4] = -r[0];
             J[3 * k + 0 + 12 * 5] = -r[1], J[3 * k + 1 + 12 * 5] = r[0];
             for (int a = 6; a < nv; a++) {
-                const int qa = m->body_qadr[m->dof_body[a]];
-                double pp[3], pm[3];
-                const double h = 1e-6, q0 = z->q[qa];
-                z->q[qa] = q0 + h;
-                assert_ok(vt_kinematics(m, z));
-                assert_ok(vt_frame_pose(m, z, fr, pp, R));
-                z->q[qa] = q0 - h;
-                assert_ok(vt_kinematics(m, z));
-                assert_ok(vt_frame_pose(m, z, fr, pm, R));
-                z->q[qa] = q0;
-                for (int e = 0; e < 3; e++) J[3 * k + e + 12 * a] = (pp[e] - pm[e]) / (2 * h);
+                double col[3];
+                frame_column(m, z, fr, a, col);
+                for (int e = 0; e < 3; e++) J[3 * k + e + 12 * a] = col[e];
             }
             assert_ok(vt_kinematics(m, z));
         }
@@ -443,13 +447,8 @@ static void test_unique(void **state)
     (void)state;
     vt_model *m = NULL;
     assert_ok(vt_scene_quadruped(&m));
-    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
     vt_contact_def def[4];
-    for (int k = 0; k < 4; k++) {
-        def[k] = vt_default_contact_def();
-        def[k].frame = foot[k];
-        def[k].kind = VT_CONTACT_BILATERAL;
-    }
+    feet(def, 1.0, VT_CONTACT_BILATERAL);
     vt_contacts *c = NULL;
     assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
     vt_data *d = NULL;
@@ -532,13 +531,9 @@ static void test_diagonal_pair(void **state)
     vt_data *d = NULL, *z = NULL;
     assert_ok(vt_data_create(&d, m));
     assert_ok(vt_data_create(&z, m));
-    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    const char *const *foot = FOOT;
     vt_contact_def def[4];
-    for (int k = 0; k < 4; k++) {
-        def[k] = vt_default_contact_def();
-        def[k].frame = def[k].name = foot[k];
-        def[k].mu = 0.8;
-    }
+    feet(def, 0.8, VT_CONTACT_UNILATERAL);
     vt_contacts *c = NULL;
     assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
     const double W = VT_QUADRUPED_MASS * G0;
@@ -589,19 +584,11 @@ static void test_diagonal_pair(void **state)
     memcpy(z->qdd, d->qdd, (size_t)m->nv * sizeof(double));
     assert_ok(vt_inverse_dynamics_motion(m, z));
     for (int a = 6; a < m->nv; a++) {
-        const int qa = m->body_qadr[m->dof_body[a]];
         double tau = z->qfrc_drive[a];
         for (int k = 0; k < 4; k += 3) {
-            double pp[3], pm[3];
-            const double h = 1e-6, q0 = z->q[qa];
-            z->q[qa] = q0 + h;
-            assert_ok(vt_kinematics(m, z));
-            assert_ok(vt_frame_pose(m, z, vt_find_frame(m, foot[k]), pp, R));
-            z->q[qa] = q0 - h;
-            assert_ok(vt_kinematics(m, z));
-            assert_ok(vt_frame_pose(m, z, vt_find_frame(m, foot[k]), pm, R));
-            z->q[qa] = q0;
-            for (int e = 0; e < 3; e++) tau -= (pp[e] - pm[e]) / (2 * h) * f[3 * k + e];
+            double col[3];
+            frame_column(m, z, vt_find_frame(m, foot[k]), a, col);
+            for (int e = 0; e < 3; e++) tau -= col[e] * f[3 * k + e];
         }
         assert_near_rel(d->qfrc_drive[a], tau, 1e-8, W);
     }

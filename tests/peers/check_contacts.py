@@ -139,6 +139,14 @@ def pyramid(mu):
     return np.array([[0, 0, 1], [-1, 0, m], [1, 0, m], [0, -1, m], [0, 1, m]], dtype=float)
 
 
+def pyramid_rows(idx, n3):
+    """the active feet's pyramid rows (5 a foot) over the stacked forces (n3 = 3 a foot)"""
+    G = np.zeros((5 * len(idx), n3))
+    for k, c in enumerate(idx):
+        G[5 * k:5 * k + 5, 3 * k:3 * k + 3] = pyramid(MU[FEET[c]])
+    return G
+
+
 def rule_kkt(tau0, J, act, force, weight):
     """The rule's optimum, certified: minimize 1/2 |tau_j|^2 + 1/2 w |F|^2, tau = tau0 - Jall^T F,
     subject to tau_base = 0 and the pyramids. The faces vtdyn's forces lie on (within 1e-9 of the
@@ -151,11 +159,7 @@ def rule_kkt(tau0, J, act, force, weight):
     n3 = Jall.shape[0]
     H = Jj @ Jj.T + W_CONTACT * np.eye(n3)
     g = Jj @ tau0[6:]
-    G = np.zeros((0, n3))
-    for k, c in enumerate(idx):
-        P = np.zeros((5, n3))
-        P[:, 3 * k:3 * k + 3] = pyramid(MU[FEET[c]])
-        G = np.vstack([G, P])
+    G = pyramid_rows(idx, n3)
     Fv = np.concatenate([force[c] for c in idx])
     on = np.abs(G @ Fv) <= TOL * weight
     GA = G[on]
@@ -205,11 +209,7 @@ def refusal_is_infeasible(q, tau0, J, act):
     except ImportError:
         return None
     n3 = Jall.shape[0]
-    G = np.zeros((0, n3))
-    for k, c in enumerate(idx):
-        P = np.zeros((5, n3))
-        P[:, 3 * k:3 * k + 3] = pyramid(MU[FEET[c]])
-        G = np.vstack([G, P])
+    G = pyramid_rows(idx, n3)
     H = Jj @ Jj.T + W_CONTACT * np.eye(n3)
     C = np.hstack([Jb, G.T])
     b = np.concatenate([tau0[:6], np.zeros(G.shape[0])])
@@ -235,11 +235,7 @@ def rule_quadprog(tau0, J, act):
     U, sv, _ = np.linalg.svd(Jb.T)
     r = int((sv > 64 * (6 + n3) * np.finfo(float).eps * sv[0]).sum())
     Aeq, beq = U[:, :r].T @ Jb.T, U[:, :r].T @ tau0[:6]
-    G = np.zeros((0, n3))
-    for k, c in enumerate(idx):
-        P = np.zeros((5, n3))
-        P[:, 3 * k:3 * k + 3] = pyramid(MU[FEET[c]])
-        G = np.vstack([G, P])
+    G = pyramid_rows(idx, n3)
     H = Jj @ Jj.T + W_CONTACT * np.eye(n3)
     C = np.hstack([Aeq.T, G.T])
     b = np.concatenate([beq, np.zeros(G.shape[0])])
