@@ -8,8 +8,12 @@ Run it with a Python that has vtdyn installed (`pip install .`), numpy, and for 
 and example-robot-data (tests/peers/setup_venv.sh makes such a venv: install vtdyn into it).
 Times, each the median of --runs runs, per row:
 
-* vtdyn batch: Model.inverse(q, v, a, threads=1) on --rows random states (N x 6 arrays): efforts,
-  reactions and total wrenches in world and body axes; and threads=0 (every CPU);
+* vtdyn batch: Model.inverse(q, v, a, threads=1) on --rows random states (N x 6 arrays): every
+  field of Result (efforts, reactions and totals in world, body and joint axes, the bearing
+  split, the limits' excess, the effort's parts); again with outputs= the fields the C instant
+  holds in its data (efforts, reactions and totals in world and body axes), the like-for-like
+  row, into fresh arrays and into out= the arrays of an earlier call (fresh arrays cost the
+  kernel's clearing of their pages); and threads=0 (every CPU);
 * vtdyn one state: Model.inverse on one state's 1-D arrays, in a Python loop (the call's overhead);
 * the C library: bench_inverse's vtdyn_motion row for UR5 (vt_inverse_dynamics_motion on one
   state, the same outputs), when its executable is given or found in build/bench (its own median
@@ -35,6 +39,8 @@ import numpy as np
 import vtdyn
 
 HERE = Path(__file__).resolve().parent
+# what vt_inverse_dynamics_motion leaves in its data: efforts, reactions and totals in both axes
+SAME_AS_C = ("effort", "reaction", "reaction_body", "total", "total_body")
 
 
 def robots_dir():
@@ -80,10 +86,10 @@ def main():
                                                        np.__version__))
     print("UR5, medians of %d runs, per row:" % args.runs)
 
-    def batch(threads):
+    def batch(threads, outputs=None):
         def run():
             t = time.perf_counter()
-            m.inverse(q, v, a, threads=threads)
+            m.inverse(q, v, a, threads=threads, outputs=outputs)
             return (time.perf_counter() - t) / args.rows
         return run
 
@@ -91,6 +97,17 @@ def main():
     m.inverse(q[:10], v[:10], a[:10], threads=0)
     t1 = median_of(args.runs, batch(1))
     print("  vtdyn Model.inverse, %d states, threads=1: %8.0f ns" % (args.rows, 1e9 * t1))
+    ts = median_of(args.runs, batch(1, SAME_AS_C))
+    print("  vtdyn Model.inverse, %d states, threads=1, outputs= what the C instant holds: %8.0f ns"
+          % (args.rows, 1e9 * ts))
+    reuse = m.inverse(q, v, a, threads=1, outputs=SAME_AS_C)
+
+    def again():
+        t = time.perf_counter()
+        m.inverse(q, v, a, threads=1, outputs=SAME_AS_C, out=reuse)
+        return (time.perf_counter() - t) / args.rows
+    tr = median_of(args.runs, again)
+    print("  the same into out= an earlier Result (no new pages for the kernel to clear): %8.0f ns" % (1e9 * tr))
     t0 = median_of(args.runs, batch(0))
     print("  vtdyn Model.inverse, %d states, threads=0 (%d CPUs): %8.0f ns" % (args.rows, os.cpu_count() or 0, 1e9 * t0))
     n1 = min(args.rows, 20000)
@@ -115,8 +132,8 @@ def main():
                     rows = [x for x in csv.DictReader(f) if x["scene"] == "ur5" and x["method"] == "vtdyn_motion"]
                 return 1e-6 * float(rows[0]["median_us"])
         tc = median_of(args.runs, c_run)
-        print("  C vt_inverse_dynamics_motion (bench_inverse, one state): %8.0f ns   (Python batch / C: %.2f)"
-              % (1e9 * tc, t1 / tc))
+        print("  C vt_inverse_dynamics_motion (bench_inverse, one state): %8.0f ns   (Python batch / C: %.2f; "
+              "with the C instant's outputs: %.2f; into out=: %.2f)" % (1e9 * tc, t1 / tc, ts / tc, tr / tc))
     else:
         print("  C row skipped: no build/bench/bench_inverse (give --bench-inverse)")
 

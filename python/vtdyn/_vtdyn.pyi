@@ -6,6 +6,7 @@ import numpy as np
 import numpy.typing as npt
 
 _F64 = npt.NDArray[np.float64]
+_OF64 = Optional[_F64]
 VT_HAVE_SUNDIALS: int
 VT_CONTACT_WEIGHT: float
 
@@ -16,43 +17,44 @@ class Error(RuntimeError):
     code: int
     row: Optional[int]
 
-class Result(Tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]):
-    """Model.inverse's arrays; N states give a leading N axis, one state none."""
+class Result(Tuple[_OF64, _OF64, _OF64, _OF64, _OF64, _OF64, _OF64, _OF64, _OF64, _OF64]):
+    """Model.inverse's arrays; N states give a leading N axis, one state none; a field that
+    Model.inverse(outputs=...) left out is None."""
     @property
-    def effort(self) -> _F64:
+    def effort(self) -> _OF64:
         """every rate's generalized force (N x nv), N m or N; a floating root's six: world force
         then moment about the root link frame's origin, world axes"""
     @property
-    def reaction(self) -> _F64:
+    def reaction(self) -> _OF64:
         """each body's joint reaction (N x nbody x 6): force (N) then moment (N m) about the joint
         point (the child link frame's origin), world axes; actuation not included"""
     @property
-    def reaction_body(self) -> _F64:
+    def reaction_body(self) -> _OF64:
         """the same in the body's axes (the link's inertial axes)"""
     @property
-    def total(self) -> _F64:
+    def total(self) -> _OF64:
         """each joint's total wrench, reaction plus actuation, world axes"""
     @property
-    def total_body(self) -> _F64:
+    def total_body(self) -> _OF64:
         """the same in the body's axes"""
     @property
-    def reaction_joint(self) -> _F64:
+    def reaction_joint(self) -> _OF64:
         """each body's joint reaction in the joint's frame, the child link's URDF axes (N x nbody x 6)"""
     @property
-    def bearing(self) -> _F64:
+    def bearing(self) -> _OF64:
         """each joint's bearing split (N x nbody x 4): the reaction force along the joint's URDF
         axis (signed) and its magnitude across it, N; the moment about it (signed) and across it, N m"""
     @property
-    def limit_excess(self) -> _F64:
+    def limit_excess(self) -> _OF64:
         """each rate's excess beyond its position, velocity and effort limits (N x nv x 3): the value
         less the limit it passes, 0 within or exactly at it"""
     @property
-    def effort_parts(self) -> _F64:
+    def effort_parts(self) -> _OF64:
         """the parts of each rate's effort its joint's armature, damping and friction take
         (N x 3 x nv: armature q'', damping q', friction sign(q')); effort less their sum is the
         rigid-body part"""
     @property
-    def contact_force(self) -> _F64:
+    def contact_force(self) -> _OF64:
         """with contacts: the ground's force on the body at each contact (N x ncontact x 3), N, world
         axes, 0 at an inactive contact; without: N x 0 x 3"""
 
@@ -208,10 +210,12 @@ class Model:
         threads: int = 0,
         contacts: Optional[ContactSet] = None,
         active: Optional[npt.ArrayLike] = None,
+        outputs: Optional[Sequence[str]] = None,
     ) -> Result:
         """the given motion's efforts and joint reactions on one state (1-D) or N states (N x n);
         with contacts the ground's forces at them carry the free root; active: None (all) or 0/1
-        per contact (ncontact, or N x ncontact)"""
+        per contact (ncontact, or N x ncontact); outputs: None (every field) or the names of the
+        Result fields wanted, the others None and neither computed nor written"""
     def contacts(self, contacts: Sequence[Any], effort_weight: Optional[npt.ArrayLike] = None) -> ContactSet:
         """the robot's contacts with the ground (each a vtdyn.Contact), validated once;
         effort_weight: each rate's weight in the rule (nv; None: 1 each)"""

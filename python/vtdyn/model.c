@@ -400,13 +400,94 @@ static int read_active(PyObject *o, int nd, npy_intp N, int nc, PyArrayObject **
     return 0;
 }
 
+/* outputs: None (every field of Result) or an iterable of Result's field names; want[k] 1 for
+ * each field asked for (contact_force needs contacts); 0, or −1 with ValueError naming it */
+static int read_outputs(PyObject *o, int want[NRESULT])
+{
+    for (int k = 0; k < NRESULT; k++) want[k] = o == NULL || o == Py_None;
+    if (o == NULL || o == Py_None) return 0;
+    if (PyUnicode_Check(o)) {
+        PyErr_SetString(PyExc_ValueError, "outputs: a sequence of Result's field names, not one string");
+        return -1;
+    }
+    PyObject *it = PyObject_GetIter(o);
+    if (!it) {
+        PyErr_Format(PyExc_ValueError, "outputs: a sequence of Result's field names, not %s", Py_TYPE(o)->tp_name);
+        return -1;
+    }
+    PyObject *x;
+    int bad = 0;
+    while (!bad && (x = PyIter_Next(it))) {
+        const char *name = PyUnicode_Check(x) ? PyUnicode_AsUTF8(x) : NULL;
+        int k = 0;
+        while (name && k < NRESULT && strcmp(name, vtpy_result_fields[k].name) != 0) k++;
+        if (!name || k == NRESULT) {
+            PyErr_Format(PyExc_ValueError, "outputs: %R is not a field of vtdyn.Result", x);
+            bad = 1;
+        } else {
+            want[k] = 1;
+        }
+        Py_DECREF(x);
+    }
+    Py_DECREF(it);
+    return bad || PyErr_Occurred() ? -1 : 0;
+}
+
+/* the bytes from an array's first element to past its last (non-negative strides, as the inputs
+ * vtpy_as_rows gives and the C-contiguous outputs have) */
+static void extent(PyArrayObject *x, const char **lo, const char **hi)
+{
+    *lo = *hi = PyArray_BYTES(x);
+    if (PyArray_SIZE(x) == 0) return;
+    npy_intp last = PyArray_ITEMSIZE(x);
+    for (int d = 0; d < PyArray_NDIM(x); d++) last += (PyArray_DIMS(x)[d] - 1) * PyArray_STRIDES(x)[d];
+    *hi = *lo + last;
+}
+
+/* 1 when the extents of a and b overlap */
+static int overlap(PyArrayObject *a, PyArrayObject *b)
+{
+    const char *a0, *a1, *b0, *b1;
+    extent(a, &a0, &a1);
+    extent(b, &b0, &b1);
+    return a0 < a1 && b0 < b1 && a0 < b1 && b0 < a1;
+}
+
+/* out= field k: the array of an earlier Result, to be written again: float64, C-contiguous,
+ * writeable, of the shape this call gives, apart from the inputs; a new reference, or NULL with
+ * ValueError naming it */
+static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[3])
+{
+    const char *name = vtpy_result_fields[k].name;
+    PyObject *o = PyStructSequence_GetItem(reuse, k);
+    if (!o || !PyArray_Check(o))
+        return PyErr_Format(PyExc_ValueError, "out.%s: an array is needed (the earlier call left it out)", name);
+    PyArrayObject *x = (PyArrayObject *)o;
+    int same = PyArray_NDIM(x) == rank && PyArray_TYPE(x) == NPY_DOUBLE && PyArray_IS_C_CONTIGUOUS(x) &&
+               PyArray_ISWRITEABLE(x) && PyArray_ISNOTSWAPPED(x);
+    for (int d = 0; same && d < rank; d++) same = PyArray_DIMS(x)[d] == dims[d];
+    if (!same)
+        return PyErr_Format(PyExc_ValueError, "out.%s: not a writeable C-contiguous float64 array of this call's shape",
+                            name);
+    for (int i = 0; i < 3; i++)
+        if (overlap((PyArrayObject *)in[i], x))
+            return PyErr_Format(PyExc_ValueError, "out.%s: shares memory with %s", name, i == 0 ? "q" : i == 1 ? "v" : "a");
+    Py_INCREF(o);
+    return o;
+}
+
 static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
 {
-    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", NULL};
-    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL;
-    int threads = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact))
+    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", "outputs", "out", NULL};
+    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL;
+    int threads = 0, want[NRESULT];
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
+                                     &oout, &reuse))
         return NULL;
+    if (reuse == Py_None) reuse = NULL;
+    if (reuse && !PyObject_TypeCheck(reuse, &vtpy_result_type))
+        return PyErr_Format(PyExc_ValueError, "out: a vtdyn.Result of an earlier call, not %s", Py_TYPE(reuse)->tp_name);
+    if (read_outputs(oout, want)) return NULL;
     if (threads < 0) return PyErr_Format(PyExc_ValueError, "threads: %d, expected 0 (every CPU) or more", threads);
     const ContactSetObject *cs = NULL;
     if (ocs && ocs != Py_None) {
@@ -445,10 +526,17 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
      * the effort's parts (3 x nv), the contact forces (3 a contact) */
     npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
     npy_intp dp[3] = {N, 3, m->nv}, dc[3] = {N, ncontact, 3};
-    for (int k = 0; k < NRESULT; k++) {
+    for (int k = 0; k < NRESULT; k++) { /* a field not asked for: None, and nothing computed for it */
         npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : k == 9 ? dc : dr;
         const int rank = k == 0 ? 2 : 3;
-        out[k] = nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
+        if (!want[k]) {
+            Py_INCREF(Py_None);
+            out[k] = Py_None;
+            continue;
+        }
+        out[k] = reuse ? reused_array(reuse, k, nd == 2 ? rank : rank - 1, nd == 2 ? dims : dims + 1, (PyObject *[]){
+                                              (PyObject *)q, (PyObject *)v, (PyObject *)a})
+                       : nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
     }
     vt_batch_io io;
@@ -457,17 +545,19 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.q = PyArray_DATA(q), io.q_stride = vtpy_row_stride(q);
     io.qd = PyArray_DATA(v), io.qd_stride = vtpy_row_stride(v);
     io.qdd = PyArray_DATA(a), io.qdd_stride = vtpy_row_stride(a);
-    io.effort = PyArray_DATA((PyArrayObject *)out[0]);
-    io.reaction = PyArray_DATA((PyArrayObject *)out[1]);
-    io.reaction_body = PyArray_DATA((PyArrayObject *)out[2]);
-    io.total = PyArray_DATA((PyArrayObject *)out[3]);
-    io.total_body = PyArray_DATA((PyArrayObject *)out[4]);
-    io.reaction_joint = PyArray_DATA((PyArrayObject *)out[5]);
-    io.bearing = PyArray_DATA((PyArrayObject *)out[6]);
-    io.limit_excess = PyArray_DATA((PyArrayObject *)out[7]);
-    io.effort_parts = PyArray_DATA((PyArrayObject *)out[8]);
+#define OUT(k) (want[k] ? PyArray_DATA((PyArrayObject *)out[k]) : NULL)
+    io.effort = OUT(0);
+    io.reaction = OUT(1);
+    io.reaction_body = OUT(2);
+    io.total = OUT(3);
+    io.total_body = OUT(4);
+    io.reaction_joint = OUT(5);
+    io.bearing = OUT(6);
+    io.limit_excess = OUT(7);
+    io.effort_parts = OUT(8);
     if (cs) {
-        io.contact_force = PyArray_DATA((PyArrayObject *)out[9]);
+        io.contact_force = OUT(9);
+#undef OUT
         io.contact_active = act ? PyArray_DATA(act) : NULL; /* packed rows (stride 0) */
     }
     vt_status st = VT_OK;
@@ -547,10 +637,13 @@ static PyGetSetDef model_getset[] = {
 
 static PyMethodDef model_methods[] = {
     {"inverse", (PyCFunction)(void (*)(void))model_inverse, METH_VARARGS | METH_KEYWORDS,
-     "inverse(q, v, a, threads=0, contacts=None, active=None) -> Result: the given motion's efforts and\n"
-     "joint reactions (vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n); with\n"
-     "contacts (Model.contacts) the ground's forces at them carry the free root (vt_inverse_dynamics_contacts),\n"
-     "active: None (all) or 0/1 per contact (ncontact, or N x ncontact)"},
+     "inverse(q, v, a, threads=0, contacts=None, active=None, outputs=None) -> Result: the given motion's\n"
+     "efforts and joint reactions (vt_batch_inverse_dynamics_motion) on one state (1-D) or N states (N x n);\n"
+     "with contacts (Model.contacts) the ground's forces at them carry the free root\n"
+     "(vt_inverse_dynamics_contacts), active: None (all) or 0/1 per contact (ncontact, or N x ncontact);\n"
+     "outputs: None (every field) or the Result fields wanted, e.g. ('effort', 'reaction'): the others are\n"
+     "None and neither computed nor written; out: an earlier Result of the same shapes whose arrays are\n"
+     "written again (no new memory: a log solved chunk by chunk)"},
     {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
      "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"
      "forward_check=True (False without SUNDIALS), ...) -> Trajectory: a fully driven model's motion, efforts and\n"

@@ -166,7 +166,7 @@ size_t vtpy_row_stride(PyArrayObject *a)
 
 /* ---- Result ------------------------------------------------------------------------------------ */
 
-static PyStructSequence_Field result_fields[] = {
+PyStructSequence_Field vtpy_result_fields[] = {
     {"effort", "every rate's generalized force (N x nv, or nv): N m or N; a floating root's six in world axes"},
     {"reaction", "each body's joint reaction (N x nbody x 6): force, then moment about the joint point, world axes"},
     {"reaction_body", "the same in the body's axes (the link's inertial axes)"},
@@ -181,7 +181,8 @@ static PyStructSequence_Field result_fields[] = {
 };
 
 static PyStructSequence_Desc result_desc = {
-    "vtdyn.Result", "The results of Model.inverse (NumPy float64 arrays).", result_fields, NRESULT,
+    "vtdyn.Result", "The results of Model.inverse (NumPy float64 arrays; None for a field outputs= left out).",
+    vtpy_result_fields, NRESULT,
 };
 
 /* ---- the module --------------------------------------------------------------------------------- */

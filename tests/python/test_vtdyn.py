@@ -190,6 +190,57 @@ def test_one_state_is_its_row_bitwise(ur5):
             assert np.array_equal(one[k], r[k][s])
 
 
+def test_outputs_selected(ur5):
+    """outputs= gives the fields asked for bitwise as the full call, None for the others; names
+    that are not Result's fields are refused, naming the argument"""
+    q, v, a = random_states(ur5, 64, seed=11)
+    full = ur5.inverse(q, v, a, threads=1)
+    some = ur5.inverse(q, v, a, threads=1, outputs=("effort", "reaction", "bearing"))
+    for name in ("effort", "reaction", "reaction_body", "total", "total_body", "reaction_joint", "bearing",
+                 "limit_excess", "effort_parts", "contact_force"):
+        if name in ("effort", "reaction", "bearing"):
+            assert np.array_equal(getattr(some, name), getattr(full, name)), name
+        else:
+            assert getattr(some, name) is None, name
+    one = ur5.inverse(q[3], v[3], a[3], outputs=["effort"])
+    assert np.array_equal(one.effort, full.effort[3]) and one.reaction is None
+    assert ur5.inverse(q, v, a, outputs=()).effort is None
+    for bad, says in ((("effort", "torque"), "'torque' is not a field"), ("effort", "not one string"),
+                      (3, "not int"), ((1,), "1 is not a field")):
+        with pytest.raises(ValueError, match="outputs: .*" + says):
+            ur5.inverse(q, v, a, outputs=bad)
+
+
+def test_out_reused(ur5):
+    """out= writes an earlier Result's arrays again: the same objects, bitwise the fresh call's
+    values; a Result of other shapes, a field left out, read-only arrays and arrays sharing the
+    inputs' memory are refused, naming the field"""
+    q, v, a = random_states(ur5, 32, seed=12)
+    q2, v2, a2 = random_states(ur5, 32, seed=13)
+    outs = ("effort", "reaction", "total")
+    r = ur5.inverse(q, v, a, threads=1, outputs=outs)
+    keep = r.effort
+    r2 = ur5.inverse(q2, v2, a2, threads=1, outputs=outs, out=r)
+    fresh = ur5.inverse(q2, v2, a2, threads=1, outputs=outs)
+    assert r2.effort is keep and r.effort is keep
+    for name in outs:
+        assert np.array_equal(getattr(r2, name), getattr(fresh, name)), name
+    with pytest.raises(ValueError, match="out.effort: not a writeable C-contiguous"):
+        ur5.inverse(q[:5], v[:5], a[:5], outputs=outs, out=r)
+    with pytest.raises(ValueError, match="out.reaction_body: an array is needed"):
+        ur5.inverse(q, v, a, outputs=outs + ("reaction_body",), out=r)
+    with pytest.raises(ValueError, match="out: a vtdyn.Result"):
+        ur5.inverse(q, v, a, out=(1, 2))
+    keep.flags.writeable = False
+    with pytest.raises(ValueError, match="out.effort: not a writeable"):
+        ur5.inverse(q, v, a, outputs=outs, out=r)
+    keep.flags.writeable = True
+    buf = np.zeros((32, 6))
+    alias = ur5.inverse(buf, v, a, outputs=("effort",))
+    with pytest.raises(ValueError, match="out.effort: shares memory with q"):
+        ur5.inverse(alias.effort, v, a, outputs=("effort",), out=alias)
+
+
 @pytest.mark.parametrize("name,floating", [("UR5", False), ("Talos", False), ("Solo-12", True)])
 def test_threads_bitwise(name, floating):
     m = vtdyn.load_urdf(urdf(name), floating=floating)
