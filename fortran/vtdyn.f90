@@ -221,6 +221,7 @@ module vtdyn
     real(c_double)         :: mu
     integer(c_int)         :: faces
     real(c_double)         :: weight
+    integer(c_int)         :: other
   end type vt_contact_def
 
   type, bind(C) :: vt_model

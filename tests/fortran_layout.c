@@ -51,7 +51,8 @@ static const size_t vt_payload_def_layout[] = {sizeof(vt_payload_def),
 static const size_t vt_contact_def_layout[] = {sizeof(vt_contact_def),
     offsetof(vt_contact_def, name), offsetof(vt_contact_def, body), offsetof(vt_contact_def, point),
     offsetof(vt_contact_def, frame), offsetof(vt_contact_def, normal), offsetof(vt_contact_def, kind),
-    offsetof(vt_contact_def, mu), offsetof(vt_contact_def, faces), offsetof(vt_contact_def, weight), VT_END};
+    offsetof(vt_contact_def, mu), offsetof(vt_contact_def, faces), offsetof(vt_contact_def, weight),
+    offsetof(vt_contact_def, other), VT_END};
 static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, nbody), offsetof(vt_model, nq), offsetof(vt_model, nv), offsetof(vt_model, nx),
     offsetof(vt_model, gravity), offsetof(vt_model, body_parent), offsetof(vt_model, body_joint),

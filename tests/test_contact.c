@@ -27,6 +27,12 @@
  *   along it (checked at a third value), and with that component solved here from two instants of
  *   vt_inverse_dynamics_motion the instant is carried: the root's efforts zero, the swing feet's
  *   forces exactly zero, τ⁰ − Σ J_cᵀ f by central differences as above;
+ * - a box on a tilting plate carried by a lift (contacts touching another body): the forces sum
+ *   to the box's m (a − g) and make no moment about its centre; the lift's force is the three
+ *   bodies' weight and acceleration, (m_l + m_p + m_b)(a + g), the plate's torque the box's load
+ *   about its axis, ((r_b − P) × m_b (a + g) z)_x, both closed forms; the pyramids turn with the
+ *   plate: tilted by tan β = 0.2 the box stands within μ cos(π/4) = 0.35 of the plate's normal,
+ *   by 0.45 it must slip (it would stand on a pyramid that stayed level);
  * - the definitions refused, named.
  */
 #include <math.h>
@@ -601,6 +607,120 @@ static void test_diagonal_pair(void **state)
     vt_model_free(m);
 }
 
+/* a lift (3 kg, translational along z from the ground), a plate on it (5 kg, its centre at the
+ * lift's, tilting about x) and a free box (2 kg, 0.4 x 0.3 x 0.2 m) standing on the plate on four
+ * bottom corners, μ 0.5; the box at rest on the plate tilted by beta, the lift accelerating up
+ * by acc: the state into d */
+static vt_model *lift_model(vt_contacts **c, const vt_model **out)
+{
+    vt_builder *b = NULL;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -G0;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def lift = vt_default_body_def(), plate = vt_default_body_def(), box = vt_default_body_def();
+    lift.joint = VT_JOINT_TRANSLATIONAL;
+    lift.mass = 3.0;
+    lift.inertia[0] = lift.inertia[4] = lift.inertia[8] = 0.1;
+    assert_int_equal(vt_builder_add_body(b, &lift), 1);
+    plate.parent = 1;
+    plate.axis1[0] = 1.0, plate.axis1[1] = 0.0, plate.axis1[2] = 0.0;
+    plate.mass = 5.0;
+    plate.inertia[0] = plate.inertia[4] = plate.inertia[8] = 0.2;
+    assert_int_equal(vt_builder_add_body(b, &plate), 2);
+    box.joint = VT_JOINT_FREE;
+    box.mass = 2.0;
+    box.inertia[0] = 2.0 * (0.09 + 0.04) / 12.0;
+    box.inertia[4] = 2.0 * (0.16 + 0.04) / 12.0;
+    box.inertia[8] = 2.0 * (0.16 + 0.09) / 12.0;
+    assert_int_equal(vt_builder_add_body(b, &box), 3);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    vt_contact_def def[4];
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].body = 3;
+        def[k].other = 2;
+        def[k].mu = 0.5;
+        def[k].point[0] = k < 2 ? 0.2 : -0.2;
+        def[k].point[1] = k % 2 ? -0.15 : 0.15;
+        def[k].point[2] = -0.1;
+    }
+    assert_ok(vt_contacts_create(c, m, def, 4, NULL, NULL));
+    *out = m;
+    return m;
+}
+
+static void lift_state(const vt_model *m, vt_data *d, double beta, double acc)
+{
+    memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+    memset(d->qdd, 0, (size_t)m->nv * sizeof(double));
+    d->q[0] = 0.3, d->qdd[0] = acc; /* the lift */
+    d->q[1] = beta;                 /* the plate */
+    double *p = d->q + m->body_qadr[3];
+    p[0] = 0.0, p[1] = -0.1 * sin(beta), p[2] = 0.3 + 0.1 * cos(beta); /* the box's centre, 0.1 above the plate */
+    p[3] = cos(beta / 2), p[4] = sin(beta / 2), p[5] = p[6] = 0.0;  /* turned with the plate */
+    d->qdd[m->body_vadr[3] + 2] = acc;                              /* and lifted with it */
+}
+
+static void test_other_body(void **state)
+{
+    (void)state;
+    vt_contacts *c = NULL;
+    const vt_model *m = NULL;
+    vt_model *mm = lift_model(&c, &m);
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    const double mb = 2.0, acc = 1.5, W = (3.0 + 5.0 + 2.0) * (G0 + acc);
+    const double beta = atan(0.2);
+    lift_state(m, d, beta, acc);
+    double f[12];
+    assert_ok(vt_inverse_dynamics_contacts(m, d, c, NULL, f));
+    double sum[3] = {0, 0, 0}, mom[3] = {0, 0, 0};
+    const double n[3] = {0.0, -sin(beta), cos(beta)}, t2[3] = {0.0, cos(beta), sin(beta)};
+    for (int k = 0; k < 4; k++) {
+        const double *fk = f + 3 * k;
+        double rp[3], R[9], mk[3]; /* the corner from the box's centre, global */
+        vt_ne_quat(R, d->q + m->body_qadr[3] + 3);
+        const double pt[3] = {k < 2 ? 0.2 : -0.2, k % 2 ? -0.15 : 0.15, -0.1};
+        for (int e = 0; e < 3; e++) rp[e] = R[e] * pt[0] + R[e + 3] * pt[1] + R[e + 6] * pt[2];
+        mk[0] = rp[1] * fk[2] - rp[2] * fk[1], mk[1] = rp[2] * fk[0] - rp[0] * fk[2], mk[2] = rp[0] * fk[1] - rp[1] * fk[0];
+        for (int e = 0; e < 3; e++) sum[e] += fk[e], mom[e] += mk[e];
+        const double fn = n[0] * fk[0] + n[1] * fk[1] + n[2] * fk[2];
+        const double ft1 = fk[0], ft2 = t2[0] * fk[0] + t2[1] * fk[1] + t2[2] * fk[2];
+        assert_true(fn > 0.0);
+        assert_true(fabs(ft1) <= 0.5 * cos(PI / 4) * fn + 1e-12 * W && fabs(ft2) <= 0.5 * cos(PI / 4) * fn + 1e-12 * W);
+    }
+    assert_near_rel(sum[0], 0.0, 1e-12, W);
+    assert_near_rel(sum[1], 0.0, 1e-12, W);
+    assert_near_rel(sum[2], mb * (G0 + acc), 1e-12, W);
+    for (int e = 0; e < 3; e++) assert_near_rel(mom[e], 0.0, 1e-12, W);
+    for (int a = 0; a < 6; a++) assert_near_rel(d->qfrc_drive[m->body_vadr[3] + a], 0.0, 1e-12, W); /* the box's root */
+    assert_near_rel(d->qfrc_drive[0], W, 1e-12, W);                                          /* the lift */
+    assert_near_rel(d->qfrc_drive[1], -0.1 * sin(beta) * mb * (G0 + acc), 1e-12, W);          /* the plate */
+    /* tilted by tan 0.45: beyond the turned pyramid's 0.35, the box slips */
+    lift_state(m, d, atan(0.45), acc);
+    for (int k = 0; k < 12; k++) f[k] = 42.0;
+    assert_int_equal(vt_inverse_dynamics_contacts(m, d, c, NULL, f), VT_ERR_CONTACT);
+    assert_non_null(strstr(d->message, "slip"));
+    assert_true(f[0] == 42.0);
+    /* the touched body: not the contact's own, a moving body or the ground */
+    vt_contact_def bad = vt_default_contact_def();
+    bad.body = 3;
+    vt_contacts *c2 = NULL;
+    char msg[VT_MESSAGE_SIZE];
+    for (int other = 3; other <= 4; other += 1) {
+        bad.other = other;
+        assert_int_equal(vt_contacts_create(&c2, m, &bad, 1, NULL, msg), VT_ERR_BAD_INDEX);
+        assert_non_null(strstr(msg, "other"));
+    }
+    bad.other = -1;
+    assert_int_equal(vt_contacts_create(&c2, m, &bad, 1, NULL, msg), VT_ERR_BAD_INDEX);
+    vt_contacts_free(c);
+    vt_data_free(d);
+    vt_model_free(mm);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -659,6 +779,7 @@ int main(void)
         cmocka_unit_test(test_rule),
         cmocka_unit_test(test_unique),
         cmocka_unit_test(test_diagonal_pair),
+        cmocka_unit_test(test_other_body),
         cmocka_unit_test(test_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

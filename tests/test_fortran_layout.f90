@@ -154,7 +154,8 @@ program test_fortran_layout
     call check(13_c_int, 'vt_contact_def', c_sizeof(x_contact_def), a(c_loc(x_contact_def)), [ &
          a(c_loc(x_contact_def%name)), a(c_loc(x_contact_def%body)), a(c_loc(x_contact_def%point)), &
          a(c_loc(x_contact_def%frame)), a(c_loc(x_contact_def%normal)), a(c_loc(x_contact_def%kind)), &
-         a(c_loc(x_contact_def%mu)), a(c_loc(x_contact_def%faces)), a(c_loc(x_contact_def%weight))])
+         a(c_loc(x_contact_def%mu)), a(c_loc(x_contact_def%faces)), a(c_loc(x_contact_def%weight)), &
+         a(c_loc(x_contact_def%other))])
 #if VT_HAVE_URDF
     call check(11_c_int, 'vt_urdf_options', c_sizeof(x_urdf_options), a(c_loc(x_urdf_options)), [ &
          a(c_loc(x_urdf_options%model)), a(c_loc(x_urdf_options%floating)), &

@@ -937,12 +937,18 @@ typedef struct vt_contact_def {
                             ///< origin, on its body; NULL (default): body and point
     double normal[3];       ///< the ground's normal at the point, global, pointing into the body (the
                             ///< direction the ground pushes); normalized; default 0: opposite to
-                            ///< the model's gravity (+z without gravity)
+                            ///< the model's gravity (+z without gravity). With `other`, in the
+                            ///< other body's axes, turning with it (default 0: −gravity's direction
+                            ///< in those axes)
     vt_contact_kind kind;   ///< default VT_CONTACT_UNILATERAL
     double mu;              ///< Coulomb friction coefficient, ≥ 0 (unilateral); default 1
     int faces;              ///< the friction cone as a pyramid of this many faces inscribed in it
                             ///< (unilateral), 3..64; default 4
     double weight;          ///< w_c > 0 of the rule's ½ w_c |f_c|² (N⁻²); default VT_CONTACT_WEIGHT
+    int other;              ///< what the point touches: 0 (default) the ground; a moving body 1..n
+                            ///< (≠ body: a platform, a box held): the force acts on it too,
+                            ///< opposite, at the same point, the normal and pyramid turn with it, and
+                            ///< the point's velocity relative to it is what the force works on
 } vt_contact_def;
 
 /// The default weight of a contact force in the distribution rule (N⁻², beside the efforts' 1).

@@ -25,6 +25,8 @@ class Contact(NamedTuple):
     normal, world axes, into the body ((0, 0, 0): opposite to gravity). kind: "unilateral" (pushes
     only, Coulomb friction mu on a pyramid of `faces` faces, 3..64) or "bilateral" (any force).
     weight: w_c of the rule's 1/2 w_c |f_c|^2, N^-2. name: unique among the contacts (None: none).
+    other: what the point touches, 0 the ground, or a moving body (1..nbody, not `body`): the force
+    acts on it too, opposite, and the normal is in its axes, turning with it.
     """
 
     frame: Optional[str] = None
@@ -36,6 +38,7 @@ class Contact(NamedTuple):
     faces: int = 4
     weight: float = VT_CONTACT_WEIGHT
     name: Optional[str] = None
+    other: int = 0
 
 
 class Function(NamedTuple):

@@ -51,6 +51,13 @@ static int read_contact(ContactSetObject *cs, PyObject *o, int k)
         bad = vtpy_doubles(v, 3, d->point, what);
         Py_DECREF(v);
     }
+    if (FIELD("other")) {
+        const long b = PyLong_AsLong(v);
+        bad = b == -1 && PyErr_Occurred();
+        if (!bad && (b < INT_MIN || b > INT_MAX)) bad = (PyErr_Format(PyExc_ValueError, "%s: %ld out of range", what, b), 1);
+        d->other = (int)b;
+        Py_DECREF(v);
+    }
     if (FIELD("normal")) {
         bad = vtpy_doubles(v, 3, d->normal, what);
         Py_DECREF(v);

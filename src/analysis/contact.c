@@ -4,7 +4,11 @@
  * the given motion, eq (5) with q̈ known). A force f_c of the ground at a point p_c of body b adds
  * the generalized force J_cᵀ f_c, J_c's column a the velocity of p_c under rate a alone,
  *   J_c e_a = v_a + ω_a × (p_c − o)          (rate a's twist s_a = (ω_a, v_a) about o, eq (15)),
- * for the rates on b's path and 0 for the others. So the efforts with the contacts are
+ * for the rates on b's path and 0 for the others; a point touching another moving body k (a
+ * platform) rather than the ground takes J_c e_a less the same term on k's path (the velocity
+ * relative to k: rates common to both paths cancel), −f_c acts on k at the same point, and the
+ * normal and pyramid, given in k's axes, turn with it: n = A_k n', the rows A_k g'. So the
+ * efforts with the contacts are
  *   τ = τ⁰ − Σ_c J_cᵀ f_c,
  * and a free joint's six rates (a floating root) are not actuated: τ_u = 0 on them, six linear
  * equations in the forces. Where more forces than equations remain (a quadruped on four feet),
@@ -51,9 +55,10 @@ struct vt_contacts {
     const vt_model *model;
     int n;
     int *body;            /* n */
+    int *other;           /* n: 0 the ground, else the body touched (its normal and rows in its axes) */
     double *point;        /* body axes from the centre of mass (3n) */
-    double *normal;       /* global, unit (3n) */
-    double *tangent;      /* t₁, t₂: global, unit, normal to it and to each other (6n) */
+    double *normal;       /* global (the other body's axes where it touches one), unit (3n) */
+    double *tangent;      /* t₁, t₂: the same axes, unit, normal to it and to each other (6n) */
     vt_contact_kind *kind;
     double *mu, *weight;  /* n */
     int *faces;           /* n */
@@ -130,6 +135,7 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
 {
     const size_t N = (size_t)n, nv = (size_t)m->nv, nx = 3 * N, nr = (size_t)(nin ? nin : 1);
     c->body = vt_block_take(b, N, sizeof(int));
+    c->other = vt_block_take(b, N, sizeof(int));
     c->point = vt_block_take(b, 3 * N, sizeof(double));
     c->normal = vt_block_take(b, 3 * N, sizeof(double));
     c->tangent = vt_block_take(b, 6 * N, sizeof(double));
@@ -199,6 +205,9 @@ static vt_status take_def(vt_contacts *c, const vt_model *m, const vt_contact_de
     if (body < 1 || body > m->nbody)
         return vt_fail(msg, VT_ERR_BAD_INDEX, "contact %d (%s): body %d is not a moving body (1..%d)", k, name, body,
                        m->nbody);
+    if (def->other < 0 || def->other > m->nbody || def->other == body)
+        return vt_fail(msg, VT_ERR_BAD_INDEX, "contact %d (%s): other %d is neither the ground (0) nor another moving "
+                       "body (1..%d, not the contact's own %d)", k, name, def->other, m->nbody, body);
     if (!vt_all_finite(point, 3) || !vt_all_finite(def->normal, 3) || !isfinite(def->mu) || !isfinite(def->weight))
         return vt_fail(msg, VT_ERR_NONFINITE, "contact %d (%s): NaN or Inf in its definition", k, name);
     if (def->kind != VT_CONTACT_UNILATERAL && def->kind != VT_CONTACT_BILATERAL)
@@ -226,6 +235,7 @@ static vt_status take_def(vt_contacts *c, const vt_model *m, const vt_contact_de
     vt_normalize(t1, 3);
     vt_cross3(t2, nrm, t1);
     c->body[k] = body;
+    c->other[k] = def->other;
     vt_copy3(c->point + 3 * k, point);
     c->kind[k] = def->kind;
     c->mu[k] = def->kind == VT_CONTACT_UNILATERAL ? def->mu : 0.0;
@@ -312,15 +322,19 @@ static void contact_jacobian(const vt_model *m, const vt_data *d, vt_contacts *c
         double r[3], po[3];
         vt_mulmat3(r, d->A + 9 * b, c->point + 3 * h);
         for (int e = 0; e < 3; e++) po[e] = d->xrel[6 * b + e] + r[e]; /* p − o */
-        for (int a = m->body_vadr[b] + m->body_nv[b] - 1; a >= 0; a = m->dof_parent[a]) {
-            const double *tw = d->twist + 6 * a;
-            double v[3];
-            vt_cross3(v, tw, po);
-            const int row = c->row_of[a];
-            for (int e = 0; e < 3; e++) {
-                const size_t col = 3 * (size_t)k + (size_t)e;
-                if (row >= 0) c->B[col + (size_t)row * n] = c->sw[row] * (tw[3 + e] + v[e]);
-                else c->Aeq[(size_t)(-1 - row) + col * nu] = tw[3 + e] + v[e];
+        /* +1 on b's path; −1 on the touched body's (the velocity relative to it) */
+        for (int side = 0, bb = b; side < 2 && bb > 0; side++, bb = c->other[h]) {
+            const double sg = side ? -1.0 : 1.0;
+            for (int a = m->body_vadr[bb] + m->body_nv[bb] - 1; a >= 0; a = m->dof_parent[a]) {
+                const double *tw = d->twist + 6 * a;
+                double v[3];
+                vt_cross3(v, tw, po);
+                const int row = c->row_of[a];
+                for (int e = 0; e < 3; e++) {
+                    const size_t col = 3 * (size_t)k + (size_t)e;
+                    if (row >= 0) c->B[col + (size_t)row * n] += sg * c->sw[row] * (tw[3 + e] + v[e]);
+                    else c->Aeq[(size_t)(-1 - row) + col * nu] += sg * (tw[3 + e] + v[e]);
+                }
             }
         }
     }
@@ -328,7 +342,7 @@ static void contact_jacobian(const vt_model *m, const vt_data *d, vt_contacts *c
 
 /* the QP of the header: G (its lower triangle), c, the equalities and the inequalities of the na
  * active contacts; returns the inequality rows */
-static int distribution(vt_contacts *c, int na)
+static int distribution(const vt_data *d, vt_contacts *c, int na)
 {
     const int n = 3 * na, nact = c->nact;
     /* G = (√W J_A)ᵀ (√W J_A) + W_f, c = −(√W J_A)ᵀ √W τ⁰_A */
@@ -355,10 +369,13 @@ static int distribution(vt_contacts *c, int na)
     for (int k = 0; k < na; k++) {
         const int h = c->on[k];
         if (c->kind[h] != VT_CONTACT_UNILATERAL) continue;
-        const double *cone = c->cone + 3 * c->cone_at[h];
+        const double *cone = c->cone + 3 * c->cone_at[h], *Ak = c->other[h] ? d->A + 9 * c->other[h] : NULL;
         for (int j = -1; j < c->faces[h]; j++, r++, cone += 3) {
-            for (int e = 0; e < 3; e++) c->Ain[(size_t)r + (size_t)(3 * k + e) * (size_t)rows] = cone[e];
-            c->rownorm[c->nu + r] = fabs(cone[0]) + fabs(cone[1]) + fabs(cone[2]);
+            double g[3]; /* the row in global axes: turned with the touched body */
+            if (Ak) vt_mulmat3(g, Ak, cone);
+            else vt_copy3(g, cone);
+            for (int e = 0; e < 3; e++) c->Ain[(size_t)r + (size_t)(3 * k + e) * (size_t)rows] = g[e];
+            c->rownorm[c->nu + r] = fabs(g[0]) + fabs(g[1]) + fabs(g[2]);
             c->bin[r] = 0.0;
             c->row_contact[r] = h;
             c->row_face[r] = j;
@@ -495,16 +512,24 @@ static int equality_minimum(vt_contacts *c, int n, int rows)
 }
 
 /* body b's load of the ground's force f at contact h's point: f at the centre of mass and
- * (p − r_b) × f about it, added into xfrc */
+ * (p − r_b) × f about it, added into xfrc; where the point touches another body k, −f on k at
+ * the same point, (p − r_k) × (−f) about k's centre, p − r_k = (p − o) − (r_k − o) */
 static void add_load(const vt_data *d, const vt_contacts *c, int h, const double f[3], double *xfrc)
 {
-    const int b = c->body[h];
+    const int b = c->body[h], k = c->other[h];
     double r[3], n[3];
     vt_mulmat3(r, d->A + 9 * b, c->point + 3 * h);
     vt_cross3(n, r, f);
     for (int e = 0; e < 3; e++) {
         xfrc[6 * b + e] += f[e];
         xfrc[6 * b + 3 + e] += n[e];
+    }
+    if (k == 0) return;
+    for (int e = 0; e < 3; e++) r[e] += d->xrel[6 * b + e] - d->xrel[6 * k + e];
+    vt_cross3(n, r, f);
+    for (int e = 0; e < 3; e++) {
+        xfrc[6 * k + e] -= f[e];
+        xfrc[6 * k + 3 + e] -= n[e];
     }
 }
 
@@ -642,7 +667,7 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     }
     const int n = 3 * na;
     contact_jacobian(m, d, c, na);
-    const int rows = distribution(c, na);
+    const int rows = distribution(d, c, na);
     /* the equality-constrained minimum where no face binds, else the QP */
     if (!equality_minimum(c, n, rows) && (st = by_qp(m, d, c, n, rows))) return st;
     /* the forces applied as loads: a tree's instant takes them by its inward pass alone (it is

@@ -234,3 +234,30 @@ def test_contact_errors(box, solo):
         m.contacts([])
     with pytest.raises(ValueError, match="^effort_weight: "):
         m.contacts([vtdyn.Contact(frame="c0")], effort_weight=[1.0, 2.0])
+
+
+def test_contact_on_another_body():
+    """a box standing on a plate carried up by a lift (Contact.other): the lift's force is the three
+    bodies' weight and acceleration, (m_l + m_p + m_b)(a + g), and the box's corner forces sum to
+    m_b (a + g) up, closed forms; other = the box itself is refused"""
+    b = vtdyn.Builder(gravity=(0.0, 0.0, -9.81))
+    lift = b.add_body(joint="translational", mass=3.0, inertia=np.eye(3) * 0.1)
+    plate = b.add_body(parent=lift, mass=5.0, inertia=np.eye(3) * 0.2, axis1=(1.0, 0.0, 0.0))
+    box = b.add_body(joint="free", mass=2.0, inertia=np.diag([0.13, 0.2, 0.25]) * 2.0 / 12.0)
+    m = b.build()
+    corners = [(x, y, -0.1) for x in (0.2, -0.2) for y in (0.15, -0.15)]
+    cs = m.contacts([vtdyn.Contact(body=box, point=p, other=plate, mu=0.5) for p in corners])
+    acc = 1.5
+    q, v, a = np.zeros(m.nq), np.zeros(m.nv), np.zeros(m.nv)
+    q[0] = 0.3
+    qb = m.body_index[box - 1][0]
+    q[qb:qb + 7] = (0.0, 0.0, 0.4, 1.0, 0.0, 0.0, 0.0)
+    a[0] = acc
+    a[m.body_index[box - 1][2] + 2] = acc
+    r = m.inverse(q, v, a, contacts=cs)
+    W = 10.0 * (9.81 + acc)
+    assert abs(r.effort[0] - W) <= 1e-12 * W
+    assert np.allclose(r.contact_force.sum(axis=0), (0.0, 0.0, 2.0 * (9.81 + acc)), rtol=0, atol=1e-12 * W)
+    assert np.allclose(r.contact_force[:, 2], 2.0 * (9.81 + acc) / 4, rtol=0, atol=1e-9 * W)
+    with pytest.raises(vtdyn.Error, match="other"):
+        m.contacts([vtdyn.Contact(body=box, other=box)])
