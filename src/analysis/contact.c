@@ -20,7 +20,8 @@
  *   n_c · f_c ≥ 0,  μ_c cos(π/k) n_c · f_c − d_j · f_c ≥ 0, j = 0 … k−1   (a unilateral contact:
  *   it pushes, and its force stays in the pyramid of k faces inscribed in the friction cone, d_j
  *   = cos(2πj/k) t₁ + sin(2πj/k) t₂ the faces' outward directions in the tangent plane),
- * solved exactly by the dual active-set method (numeric/qp.h). The forces are then applied as
+ * solved exactly: where no face binds, directly as the minimum under the equalities alone
+ * (equality_minimum), else by the dual active-set method (numeric/qp.h). The forces are then applied as
  * loads (f_c at the centre of mass, (p_c − r_b) × f_c about it) by the instant's inward pass alone
  * (vt_motion_add_loads; loops and couplings: the instant solved again with them in xfrc), so that
  * the efforts and every joint reaction of the data hold them (the unactuated rates' efforts
