@@ -237,13 +237,15 @@ static int check_columns(const run *x, int floating)
 }
 
 /* --contacts: the file's contacts on the probe's frames, and each one's column C_active (or none:
- * always on the ground); states only; 0 or 1 */
+ * always on the ground); states, or samples of a floating robot (each row solved as a state); 0
+ * or 1 */
 static int map_contacts(run *x)
 {
     if (!x->o->contacts) return 0;
-    if (x->form == FORM_SAMPLES)
-        return cmd_fail("--contacts: %s holds samples (t and positions): contacts take states, J, J_vel and J_acc "
-                        "for every joint and a floating root's R_x ... R_alz", x->states);
+    if (x->form == FORM_SAMPLES && !x->nfree)
+        return cmd_fail("--contacts: %s holds samples (t and positions) of a robot fixed to the world: contacts take "
+                        "states (J, J_vel and J_acc for every joint), or samples of a floating robot (--floating)",
+                        x->states);
     if (cmd_contacts(x->probe, x->o->contacts, &x->cdef, &x->cname, &x->ncontact)) return 1;
     if (!(x->ccol = malloc((size_t)x->ncontact * sizeof *x->ccol))) return cmd_fail("out of memory");
     for (int k = 0; k < x->ncontact; k++) {

@@ -272,8 +272,18 @@ int run_samples_motion(run *x)
     for (int r0 = 0; r0 < t->nrow; r0 += x->K) {
         const int n = t->nrow - r0 < x->K ? t->nrow - r0 : x->K;
         const double t0 = run_clock();
-        for (int r = 0; r < n; r++)
+        for (int r = 0; r < n; r++) {
             if (fill_sample(x, r, x->ts[r0 + r])) return 1;
+            for (int k = 0; k < x->ncontact; k++) { /* C_active: the sample's own 0 or 1, not splined */
+                const double a = x->ccol[k] >= 0 ? table_row(t, r0 + r)[x->ccol[k]] : 1.0;
+                if (a != 0.0 && a != 1.0) {
+                    char where[ROW_WHERE];
+                    return cmd_fail("%s: column '%s_active': %g is neither 0 nor 1",
+                                    input_where(&x->in, t->loc[r0 + r], where), x->cname[k], a);
+                }
+                x->active[(size_t)r * (size_t)x->ncontact + (size_t)k] = a != 0.0;
+            }
+        }
         vt_batch_io io = chunk_io(x, n);
         const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
         x->t_solve += run_clock() - t0;

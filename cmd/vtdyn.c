@@ -169,7 +169,8 @@ static const char usage_options[] =
     "                   shared by the least squared motor efforts.\n"
     "                   A states column C_active (0 or 1) per contact C says when it is on the\n"
     "                   ground (without it, always); the output adds C_fx C_fy C_fz, the\n"
-    "                   ground's force on the link (N, world axes). States only.\n";
+    "                   ground's force on the link (N, world axes). States, or samples of a\n"
+    "                   floating robot (each row solved as a state; C_active not splined).\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)

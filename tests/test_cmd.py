@@ -1321,6 +1321,35 @@ def contacts(vtdyn, urdf_dir, work, check):
     r, out = run_rows([quad_row(theta)], "--contacts", cfile)
     check(r.returncode == 0 and out and out[0]["FL_foot_fz"] < out[0]["FR_foot_fz"] - 1e-6 * W,
           "a heavier weight on FL: it carries less (%r)" % r.stderr)
+    # samples of the floating robot (t and positions): each row solved as a state; the torso
+    # rises as z = h + c t^2 / 2, which the not-a-knot spline through its samples reproduces, so
+    # the feet carry M (g + c) / 4 each, and with FL inactive FR and HL half of it each
+    with open(cfile, "w") as f:
+        f.write("frame,mu\n" + "".join("%s_foot,0.5\n" % leg for leg in QUAD_FEET))
+    acc = 0.8
+    names = ["t"] + [k for k in quad_row(theta) if not k.endswith(("_vel", "_acc")) and
+                     not any(k == "torso_" + c for c in ("vx", "vy", "vz", "wx", "wy", "wz", "ax", "ay", "az",
+                                                          "alx", "aly", "alz"))] + ["FL_foot_active"]
+    spath = os.path.join(work, "quad_samples.csv")
+    with open(spath, "w") as f:
+        f.write(",".join(names) + "\n")
+        for i in range(6):
+            t = 0.1 * i
+            row = quad_row(theta)
+            row["t"] = t
+            row["torso_z"] += 0.5 * acc * t * t
+            row["FL_foot_active"] = 0.0 if i == 3 else 1.0
+            f.write(",".join(repr(float(row[n])) for n in names) + "\n")
+    r = run(vtdyn, "inverse", "--floating", "--contacts", cfile, urdf, spath)
+    out = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(r.stdout.splitlines())] \
+        if r.returncode == 0 else []
+    Wc = QUAD_MASS * (9.81 + acc)
+    check(r.returncode == 0 and len(out) == 6, "samples with --contacts: %r" % r.stderr)
+    if len(out) == 6:
+        for i, row in enumerate(out):
+            want = {leg: Wc / 4 for leg in QUAD_FEET} if i != 3 else {"FL": 0.0, "FR": Wc / 2, "HL": Wc / 2, "HR": 0.0}
+            worst = max(abs(row[leg + "_foot_fz"] - want[leg]) for leg in QUAD_FEET)
+            check(worst <= 1e-8 * Wc, "sample %d: the feet carry M (g + c) as the rule shares it (%.3g)" % (i, worst))
     for text, says in (("frame,friction\nFL_foot,1\n", "'friction' unknown"),
                        ("frame,mu,mu\nFL_foot,1,1\n", "'mu' twice"),
                        ("frame,mu,nx\nFL_foot,1,0\n", "all of nx, ny, nz"),
