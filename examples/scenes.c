@@ -805,6 +805,31 @@ void vt_scene_quadruped_stand(const vt_model *m, vt_data *d, double theta)
     }
 }
 
+void vt_scene_quintic(double u, double *s, double *sd, double *sdd)
+{
+    *s = u * u * u * (10 - 15 * u + 6 * u * u);
+    *sd = 30 * u * u * (1 - u) * (1 - u);
+    *sdd = 60 * u * (1 - u) * (1 - 2 * u);
+}
+
+void vt_scene_foot_step(double base, double n, double tau, double swing, double stride, double lift, int air,
+                        double p[3], double v[3], double a[3])
+{
+    double s = 1.0, sd = 0.0, sdd = 0.0;
+    if (air) vt_scene_quintic(tau / swing, &s, &sd, &sdd);
+    p[0] = base + stride * (n + s);
+    v[0] = stride * sd / swing;
+    a[0] = stride * sdd / (swing * swing);
+    v[1] = a[1] = 0.0;
+    p[2] = v[2] = a[2] = 0.0;
+    if (air) { /* lift sin²(π u) */
+        const double w = 3.14159265358979323846 / swing, x = w * tau;
+        p[2] = lift * sin(x) * sin(x);
+        v[2] = lift * w * sin(2 * x);
+        a[2] = 2 * lift * w * w * cos(2 * x);
+    }
+}
+
 void vt_scene_leg_ik(double L, const double d[3], const double dd[3], const double ddd[3], double knee, double q[3],
                      double qd[3], double qdd[3])
 {

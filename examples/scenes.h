@@ -245,6 +245,15 @@ vt_status vt_scene_quadruped_feet(vt_model **model, unsigned feet);
  * −9.81 z. */
 #define VT_HUMANOID_MASS 33.4
 
+/* s = 10u³ − 15u⁴ + 6u⁵ (0 to 1 on u in [0, 1], at rest at both ends) and its first two
+ * derivatives in u */
+void vt_scene_quintic(double u, double *s, double *sd, double *sdd);
+/* A foot's step along x (examples/walk.c, examples/trot.c): n strides done from base, then, while
+ * in the air (air), τ s into a swing of `swing` s, one more stride by the quintic 10u³ − 15u⁴ + 6u⁵
+ * (u = τ / swing: at rest at lift-off and touchdown) and a lift of `lift` m as lift sin²(π u): p[0],
+ * p[2] and their rates and accelerations (v[1], a[1] zero; p[1] left to the caller) */
+void vt_scene_foot_step(double base, double n, double tau, double swing, double stride, double lift, int air,
+                        double p[3], double v[3], double a[3]);
 /* A leg of a roll joint about x and two pitch joints about y (hip roll, hip pitch, knee), two links
  * of length L, reaching the point d from the hip (x forward, z up; the roll turns the leg's plane
  * onto it, the two links reach its distance ρ = √(d_y² + d_z²) in that plane; knee −1 puts the

@@ -101,13 +101,6 @@ static void sway(double t, double tp, double *y, double *yd, double *ydd)
 }
 
 /* s(u) = 10u³ − 15u⁴ + 6u⁵ and its derivatives: 0 to 1 with zero rate and acceleration at both ends */
-static void smooth(double u, double *s, double *sd, double *sdd)
-{
-    *s = u * u * u * (10 - 15 * u + 6 * u * u);
-    *sd = 30 * u * u * (1 - u) * (1 - u);
-    *sdd = 60 * u * (1 - u) * (1 - 2 * u);
-}
-
 /* foot k's place (world), velocity and acceleration at t; *air: 1 while it swings (from its lift-off,
  * inclusive, to its touchdown). Whether it swings, and which swing, is that of the time tp: a step of the
  * integration keeps its pieces (tp its middle), the motion's formulas extended to its ends */
@@ -116,21 +109,9 @@ static void foot(int k, double t, double tp, double p[3], double v[3], double a[
     tp += PIECE; /* an instant where the pieces meet belongs to the one it starts */
     const double lift = lift_of[k], base = hip[k][0] + STRIDE * ((lift + 0.5 * S) / T - 0.5);
     const double n = floor((tp - lift) / T), tau = t - lift - n * T; /* since its last lift-off */
-    memset(v, 0, 3 * sizeof(double));
-    memset(a, 0, 3 * sizeof(double));
-    p[1] = hip[k][1], p[2] = 0.0;
     *air = tp - lift - n * T < S;
-    double s = 1.0, sd = 0.0, sdd = 0.0;
-    if (*air) smooth(tau / S, &s, &sd, &sdd);
-    p[0] = base + STRIDE * (n + s);
-    v[0] = STRIDE * sd / S;
-    a[0] = STRIDE * sdd / (S * S);
-    if (*air) { /* LIFT sin²(π u) */
-        const double w = PI / S, x = w * tau;
-        p[2] = LIFT * sin(x) * sin(x);
-        v[2] = LIFT * w * sin(2 * x);
-        a[2] = 2 * LIFT * w * w * cos(2 * x);
-    }
+    p[1] = hip[k][1];
+    vt_scene_foot_step(base, n, tau, S, STRIDE, LIFT, *air, p, v, a);
 }
 
 static void cross(const double a[3], const double b[3], double c[3])

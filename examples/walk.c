@@ -46,34 +46,15 @@ static const double hip[4][2] = {{0.3, 0.15}, {0.3, -0.15}, {-0.3, 0.15}, {-0.3,
 static const int slot_of[4] = {0, 2, 3, 1}; /* FL first, then HR, FR, HL */
 
 /* s(u) = 10u³ − 15u⁴ + 6u⁵ and its derivatives: 0 to 1 with zero rate and acceleration at both ends */
-static void smooth(double u, double *s, double *sd, double *sdd)
-{
-    *s = u * u * u * (10 - 15 * u + 6 * u * u);
-    *sd = 30 * u * u * (1 - u) * (1 - u);
-    *sdd = 60 * u * (1 - u) * (1 - 2 * u);
-}
-
 /* foot k's place (world), velocity and acceleration at t; *air: 1 while it swings */
 static void foot(int k, double t, double p[3], double v[3], double a[3], int *air)
 {
     const double slot = SHIFT + SWING, lift = slot_of[k] * slot + SHIFT; /* its lift-off in a period */
     const double base = hip[k][0] + S * ((lift + 0.5 * SWING) / T - 0.5); /* under its hip mid-swing */
     const double n = floor((t - lift) / T), tau = t - lift - n * T; /* since its last lift-off */
-    memset(v, 0, 3 * sizeof(double));
-    memset(a, 0, 3 * sizeof(double));
-    p[1] = hip[k][1], p[2] = 0.0;
     *air = tau < SWING;
-    double s = 1.0, sd = 0.0, sdd = 0.0;
-    if (*air) smooth(tau / SWING, &s, &sd, &sdd);
-    p[0] = base + S * (n + s);
-    v[0] = S * sd / SWING;
-    a[0] = S * sdd / (SWING * SWING);
-    if (*air) { /* LIFT sin²(π u) */
-        const double w = PI / SWING, x = w * tau;
-        p[2] = LIFT * sin(x) * sin(x);
-        v[2] = LIFT * w * sin(2 * x);
-        a[2] = 2 * LIFT * w * w * cos(2 * x);
-    }
+    p[1] = hip[k][1];
+    vt_scene_foot_step(base, n, tau, SWING, S, LIFT, *air, p, v, a);
 }
 
 /* the torso's sway target while foot k swings (from the centre's forward march V t): SWAY of the
@@ -106,7 +87,7 @@ static void torso(double t, double p[2], double v[2], double a[2])
     sway_target(prev, from);
     sway_target(k, to);
     const double u = (tau - j * slot) / SHIFT;
-    if (u < 1.0) smooth(u, &s, &sd, &sdd);
+    if (u < 1.0) vt_scene_quintic(u, &s, &sd, &sdd);
     else s = 1.0, sd = sdd = 0.0;
     for (int e = 0; e < 2; e++) {
         p[e] = from[e] + (to[e] - from[e]) * s;
