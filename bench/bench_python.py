@@ -3,6 +3,7 @@
 
     python bench/bench_python.py [--rows 100000] [--pin-rows 2000] [--runs 3]
                                  [--bench-inverse build/bench/bench_inverse]
+                                 [--command-lib build/bench/command_lib]
 
 Run it with a Python that has vtdyn installed (`pip install .`), numpy, and for the peer rows pin
 and example-robot-data (tests/peers/setup_venv.sh makes such a venv: install vtdyn into it).
@@ -14,6 +15,9 @@ Times, each the median of --runs runs, per row:
   holds in its data (efforts, reactions and totals in world and body axes), the like-for-like
   row, into fresh arrays and into out= the arrays of an earlier call (fresh arrays cost the
   kernel's clearing of their pages); and threads=0 (every CPU);
+* every field again into out= an earlier Result, against the C batch writing the same fields into
+  arrays it reuses (bench/command_lib.c --all, on the same states saved as a .npy): what the
+  Python layer adds to the C call it makes;
 * vtdyn one state: Model.inverse on one state's 1-D arrays, in a Python loop (the call's overhead);
 * the C library: bench_inverse's vtdyn_motion row for UR5 (vt_inverse_dynamics_motion on one
   state, the same outputs), when its executable is given or found in build/bench (its own median
@@ -76,7 +80,8 @@ def main():
     ap.add_argument("--rows", type=int, default=100000)
     ap.add_argument("--pin-rows", type=int, default=2000)
     ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--bench-inverse", default=None, help="build/bench/bench_inverse (the C row)")
+    ap.add_argument("--bench-inverse", default=None, help="build/bench/bench_inverse (the C instant's row)")
+    ap.add_argument("--command-lib", default=None, help="build/bench/command_lib (the C batch's row)")
     args = ap.parse_args()
     root = robots_dir()
     urdf = root / "ur_description/urdf/ur5_robot.urdf"
@@ -108,6 +113,34 @@ def main():
         return (time.perf_counter() - t) / args.rows
     tr = median_of(args.runs, again)
     print("  the same into out= an earlier Result (no new pages for the kernel to clear): %8.0f ns" % (1e9 * tr))
+    every = m.inverse(q, v, a, threads=1)
+
+    def again_all():
+        t = time.perf_counter()
+        m.inverse(q, v, a, threads=1, out=every)
+        return (time.perf_counter() - t) / args.rows
+    ta = median_of(args.runs, again_all)
+    print("  vtdyn Model.inverse, every field, into out=: %8.0f ns" % (1e9 * ta))
+    lib = args.command_lib or next((str(p) for p in (HERE.parent / "build/bench/command_lib",) if p.exists()), None)
+    if lib:  # the C batch writing the same every field, its arrays reused as out= reuses them
+        with tempfile.TemporaryDirectory() as d:
+            cols = [(n + sfx, "<f8") for n in m.joint_names for sfx in ("", "_vel", "_acc")]
+            st = np.zeros(args.rows, dtype=cols)
+            for k, n in enumerate(m.joint_names):
+                st[n], st[n + "_vel"], st[n + "_acc"] = q[:, k], v[:, k], a[:, k]
+            np.save(Path(d) / "states.npy", st)
+
+            def c_batch():
+                r = subprocess.run([lib, str(urdf), str(Path(d) / "states.npy"), "1", "11", "--all"],
+                                   capture_output=True, text=True)
+                if r.returncode:
+                    raise RuntimeError("%s: %s" % (lib, r.stderr.strip()))
+                return 1e-6 * float(r.stdout.strip())
+            tb = median_of(args.runs, c_batch)
+        print("  C vt_batch_inverse_dynamics_motion, every field, arrays reused (command_lib --all): %8.0f ns   "
+              "(Python into out= / C batch: %.2f)" % (1e9 * tb, ta / tb))
+    else:
+        print("  C batch row skipped: no build/bench/command_lib (give --command-lib)")
     t0 = median_of(args.runs, batch(0))
     print("  vtdyn Model.inverse, %d states, threads=0 (%d CPUs): %8.0f ns" % (args.rows, os.cpu_count() or 0, 1e9 * t0))
     n1 = min(args.rows, 20000)

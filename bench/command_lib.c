@@ -4,9 +4,13 @@
  * command reads them, the quaternion divided by its norm), the rows of a .npy file of states written by bench/command_states.py laid out as q, q̇,
  * q̈ arrays, and vt_batch_inverse_dynamics_motion on all of them with the outputs the command
  * writes by default (every rate's effort, the reactions in world axes and in the joints' frames),
- * on THREADS threads. Prints the median over ROUNDS calls of the time per row, µs.
+ * on THREADS threads. Prints the median over ROUNDS calls of the time per row, µs. With --all,
+ * every output Python's Model.inverse writes by default instead (efforts; reactions and totals in
+ * world and body axes; the joint frames' reactions, the bearing split, the limits' excess, the
+ * effort's parts: bench/bench_python.py's C row for the same work). The output arrays are the
+ * same every call (the first call's page faults are not in the median).
  *
- *   command_lib URDF STATES.npy THREADS [ROUNDS] [--floating]
+ *   command_lib URDF STATES.npy THREADS [ROUNDS] [--floating] [--all]
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -39,7 +43,7 @@ static int fail(const char *what)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: command_lib URDF STATES.npy THREADS [ROUNDS] [--floating]\n");
+        fprintf(stderr, "usage: command_lib URDF STATES.npy THREADS [ROUNDS] [--floating] [--all]\n");
         return 2;
     }
     const int threads = atoi(argv[3]), rounds = argc > 4 && atoi(argv[4]) > 0 ? atoi(argv[4]) : 5;
@@ -73,7 +77,12 @@ int main(int argc, char **argv)
     char msg[VT_MESSAGE_SIZE];
     vt_urdf_options opt = vt_default_urdf_options();
     opt.mimic = 0;
-    opt.floating = argc > 5 && strcmp(argv[5], "--floating") == 0;
+    int all = 0;
+    for (int k = 5; k < argc; k++) {
+        if (strcmp(argv[k], "--floating") == 0) opt.floating = 1;
+        else if (strcmp(argv[k], "--all") == 0) all = 1;
+        else return fail("an unknown option (--floating, --all)");
+    }
     opt.model.layout = VT_LAYOUT_RECURSIVE;
     if (vt_urdf_builder(&b, argv[1], &opt, msg) || vt_builder_build(&m, b)) return fail("the URDF");
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody;
@@ -141,6 +150,19 @@ int main(int argc, char **argv)
     io.reaction = reac;
     io.reaction_joint = reacb;
     io.status = status;
+    if (all) { /* Model.inverse's default: every output */
+        const size_t rows = (size_t)nrow;
+        double *more[6];
+        const size_t len[6] = {nb6, nb6, nb6, 4 * (size_t)m->nbody, 3 * nv, 3 * nv};
+        for (int k = 0; k < 6; k++)
+            if (!(more[k] = malloc(rows * len[k] * sizeof(double)))) return fail("out of memory");
+        io.reaction_body = more[0];
+        io.total = more[1];
+        io.total_body = more[2];
+        io.bearing = more[3];
+        io.limit_excess = more[4];
+        io.effort_parts = more[5];
+    }
     double t[201];
     const int n = rounds < 201 ? rounds : 201;
     for (int k = 0; k < n; k++) {
