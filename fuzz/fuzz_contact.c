@@ -1,8 +1,9 @@
 /* libFuzzer harness of the contacts: bytes become a state of the quadruped of examples/scenes.c
  * (joint angles, the free root's place and orientation, every rate and acceleration, with
  * magnitudes from 1e-3 to 1e6), up to six contact definitions (a foot's frame or any body and
- * point, unilateral or bilateral, μ, faces, the ground's normal, the weight; bad values among
- * them), the effort weights and each contact's activity. Whatever the bytes:
+ * point, unilateral or bilateral, μ, faces, the ground's normal, the weight, the ground or
+ * another body touched; bad values among them), the effort weights and each contact's activity.
+ * Whatever the bytes:
  *
  * - vt_contacts_create either refuses, with a message and no contacts, or accepts definitions
  *   whose values are in range;
@@ -117,6 +118,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int active[6];
     const unsigned act = byte(&b);
     for (int k = 0; k < n; k++) active[k] = act == 0 || (act >> k & 1);
+    /* last, so that inputs without these bytes mean what they meant: what each point touches,
+     * the ground (0, most often) or another body of the robot (now and then itself or past the
+     * last body: refused) */
+    for (int k = 0; k < n; k++) {
+        const unsigned o = byte(&b);
+        def[k].other = o < 192 ? 0 : o == 255 ? def[k].body : o == 254 ? m->nbody + 1 : 1 + (int)(o % (unsigned)m->nbody);
+    }
     char msg[VT_MESSAGE_SIZE];
     vt_contacts *c = (vt_contacts *)def;
     const vt_status cs = vt_contacts_create(&c, m, def, n, weights, msg);
@@ -158,9 +166,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 continue;
             }
             if (def[k].kind != VT_CONTACT_UNILATERAL) continue;
-            double nrm[3] = {def[k].normal[0], def[k].normal[1], def[k].normal[2]};
-            double nn = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-            if (!(nn > 0.0)) nrm[0] = nrm[1] = 0.0, nrm[2] = nn = 1.0; /* opposite to the scene's gravity */
+            double nl[3] = {def[k].normal[0], def[k].normal[1], def[k].normal[2]}, nrm[3];
+            if (!(nl[0] * nl[0] + nl[1] * nl[1] + nl[2] * nl[2] > 0.0)) nl[2] = 1.0; /* opposite to gravity */
+            if (def[k].other > 0) { /* in the touched body's axes: turned with it */
+                const double *A = d->A + 9 * def[k].other;
+                for (int e = 0; e < 3; e++) nrm[e] = A[e] * nl[0] + A[e + 3] * nl[1] + A[e + 6] * nl[2];
+            } else {
+                for (int e = 0; e < 3; e++) nrm[e] = nl[e];
+            }
+            const double nn = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
             const double fn = (f[0] * nrm[0] + f[1] * nrm[1] + f[2] * nrm[2]) / nn;
             const double ft2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - fn * fn;
             if (fn < -tol) fail("%s: a unilateral contact pulls: %g (scale %g)", "contacts", fn, scale);
