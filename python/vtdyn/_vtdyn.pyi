@@ -211,11 +211,21 @@ class Model:
         contacts: Optional[ContactSet] = None,
         active: Optional[npt.ArrayLike] = None,
         outputs: Optional[Sequence[str]] = None,
+        out: Optional[Result] = None,
+        qfrc: Optional[npt.ArrayLike] = None,
     ) -> Result:
         """the given motion's efforts and joint reactions on one state (1-D) or N states (N x n);
         with contacts the ground's forces at them carry the free root; active: None (all) or 0/1
         per contact (ncontact, or N x ncontact); outputs: None (every field) or the names of the
-        Result fields wanted, the others None and neither computed nor written"""
+        Result fields wanted, the others None and neither computed nor written; out: an earlier
+        Result of the same shapes whose arrays are written again; qfrc: applied generalized forces
+        (v's shape), which the efforts then need not give"""
+    def frame_poses(
+        self, q: npt.ArrayLike, frames: Union[None, str, Sequence[str]] = None
+    ) -> Tuple[_F64, _F64]:
+        """the frames' origins (m, world axes; N x F x 3) and axes (rotation R, frame to world,
+        R @ v; N x F x 3 x 3) at one configuration (nq) or N (N x nq), for every frame (None) or
+        the named ones"""
     def contacts(self, contacts: Sequence[Any], effort_weight: Optional[npt.ArrayLike] = None) -> ContactSet:
         """the robot's contacts with the ground (each a vtdyn.Contact), validated once;
         effort_weight: each rate's weight in the rule (nv; None: 1 each)"""

@@ -454,9 +454,9 @@ static int overlap(PyArrayObject *a, PyArrayObject *b)
 }
 
 /* out= field k: the array of an earlier Result, to be written again: float64, C-contiguous,
- * writeable, of the shape this call gives, apart from the inputs; a new reference, or NULL with
- * ValueError naming it */
-static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[3])
+ * writeable, of the shape this call gives, apart from the inputs (q, v, a, qfrc or NULL); a new
+ * reference, or NULL with ValueError naming it */
+static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[4])
 {
     const char *name = vtpy_result_fields[k].name;
     PyObject *o = PyStructSequence_GetItem(reuse, k);
@@ -469,21 +469,23 @@ static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *
     if (!same)
         return PyErr_Format(PyExc_ValueError, "out.%s: not a writeable C-contiguous float64 array of this call's shape",
                             name);
-    for (int i = 0; i < 3; i++)
-        if (overlap((PyArrayObject *)in[i], x))
-            return PyErr_Format(PyExc_ValueError, "out.%s: shares memory with %s", name, i == 0 ? "q" : i == 1 ? "v" : "a");
+    static const char *const input[4] = {"q", "v", "a", "qfrc"};
+    for (int i = 0; i < 4; i++)
+        if (in[i] && overlap((PyArrayObject *)in[i], x))
+            return PyErr_Format(PyExc_ValueError, "out.%s: shares memory with %s", name, input[i]);
     Py_INCREF(o);
     return o;
 }
 
 static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
 {
-    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", "outputs", "out", NULL};
-    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL;
+    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", "outputs", "out", "qfrc", NULL};
+    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL, *oqf = NULL;
     int threads = 0, want[NRESULT];
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
-                                     &oout, &reuse))
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
+                                     &oout, &reuse, &oqf))
         return NULL;
+    if (oqf == Py_None) oqf = NULL;
     if (reuse == Py_None) reuse = NULL;
     if (reuse && !PyObject_TypeCheck(reuse, &vtpy_result_type))
         return PyErr_Format(PyExc_ValueError, "out: a vtdyn.Result of an earlier call, not %s", Py_TYPE(reuse)->tp_name);
@@ -502,9 +504,15 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     const vt_model *m = self->m;
     PyArrayObject *q = vtpy_as_rows(oq, "q", m->nq), *v = q ? vtpy_as_rows(ov, "v", m->nv) : NULL;
     PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL, *act = NULL;
+    PyArrayObject *qf = a && oqf ? vtpy_as_rows(oqf, "qfrc", m->nv) : NULL;
     PyObject *res = NULL, *out[NRESULT] = {NULL};
-    if (!a) goto done;
+    if (!a || (oqf && !qf)) goto done;
     const int nd = PyArray_NDIM(q);
+    if (qf && (PyArray_NDIM(qf) != nd || (nd == 2 && PyArray_DIMS(qf)[0] != PyArray_DIMS(q)[0]))) {
+        PyErr_Format(PyExc_ValueError, "qfrc: %d dimensions%s, expected q's shape of states (N x nv, or nv)",
+                     PyArray_NDIM(qf), PyArray_NDIM(qf) == nd ? " and another row count" : "");
+        goto done;
+    }
     if (PyArray_NDIM(v) != nd || PyArray_NDIM(a) != nd) {
         PyErr_Format(PyExc_ValueError, "%s: %d dimensions, q has %d (one state: all 1-D; N states: all N x n)",
                      PyArray_NDIM(v) != nd ? "v" : "a", PyArray_NDIM(v) != nd ? PyArray_NDIM(v) : PyArray_NDIM(a), nd);
@@ -535,7 +543,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
             continue;
         }
         out[k] = reuse ? reused_array(reuse, k, nd == 2 ? rank : rank - 1, nd == 2 ? dims : dims + 1, (PyObject *[]){
-                                              (PyObject *)q, (PyObject *)v, (PyObject *)a})
+                                              (PyObject *)q, (PyObject *)v, (PyObject *)a, (PyObject *)qf})
                        : nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
     }
@@ -545,6 +553,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.q = PyArray_DATA(q), io.q_stride = vtpy_row_stride(q);
     io.qd = PyArray_DATA(v), io.qd_stride = vtpy_row_stride(v);
     io.qdd = PyArray_DATA(a), io.qdd_stride = vtpy_row_stride(a);
+    if (qf) io.qfrc = PyArray_DATA(qf), io.qfrc_stride = vtpy_row_stride(qf);
 #define OUT(k) (want[k] ? PyArray_DATA((PyArrayObject *)out[k]) : NULL)
     io.effort = OUT(0);
     io.reaction = OUT(1);
@@ -607,6 +616,7 @@ done:
     Py_XDECREF(q);
     Py_XDECREF(v);
     Py_XDECREF(a);
+    Py_XDECREF(qf);
     Py_XDECREF(act);
     return res;
 }
@@ -643,7 +653,8 @@ static PyMethodDef model_methods[] = {
      "(vt_inverse_dynamics_contacts), active: None (all) or 0/1 per contact (ncontact, or N x ncontact);\n"
      "outputs: None (every field) or the Result fields wanted, e.g. ('effort', 'reaction'): the others are\n"
      "None and neither computed nor written; out: an earlier Result of the same shapes whose arrays are\n"
-     "written again (no new memory: a log solved chunk by chunk)"},
+     "written again (no new memory: a log solved chunk by chunk); qfrc: applied generalized forces (as v's\n"
+     "shape), which the efforts then need not give"},
     {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
      "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"
      "forward_check=True (False without SUNDIALS), ...) -> Trajectory: a fully driven model's motion, efforts and\n"
@@ -653,6 +664,10 @@ static PyMethodDef model_methods[] = {
      "max_steps=100000, formulation='ggl', forward_check=True, forward_independent=True, ...) -> Trajectory: the\n"
      "motion the drives leave free, integrated by SUNDIALS IDA (vt_dynamic_analysis), from q, qd at t0\n"
      "(None: the reference configuration, at rest)"},
+    {"frame_poses", (PyCFunction)(void (*)(void))vtpy_frame_poses, METH_VARARGS | METH_KEYWORDS,
+     "frame_poses(q, frames=None) -> (position, rotation): the frames' origins (m, world axes) and axes\n"
+     "(rotation R, frame to world: R @ v) at one configuration (nq) or N (N x nq), for every frame (None) or\n"
+     "the named ones: position (N x F x 3), rotation (N x F x 3 x 3) (vt_kinematics, vt_frame_pose)"},
     {"contacts", (PyCFunction)(void (*)(void))vtpy_model_contacts, METH_VARARGS | METH_KEYWORDS,
      "contacts(contacts, effort_weight=None) -> ContactSet: the robot's contacts with the ground\n"
      "(vt_contacts_create), each a vtdyn.Contact; effort_weight: each rate's weight w_a in the rule (nv; None: 1)"},

@@ -79,6 +79,9 @@ PyObject *vtpy_load_urdf(PyObject *mod, PyObject *args, PyObject *kw);
 /* contacts.c */
 PyObject *vtpy_model_contacts(ModelObject *self, PyObject *args, PyObject *kw);
 
+/* frames.c */
+PyObject *vtpy_frame_poses(ModelObject *self, PyObject *args, PyObject *kw);
+
 /* analysis.c */
 PyObject *vtpy_kinematic_analysis(ModelObject *self, PyObject *args, PyObject *kw);
 PyObject *vtpy_dynamic_analysis(ModelObject *self, PyObject *args, PyObject *kw);

@@ -404,3 +404,58 @@ def test_payload_as_edited_file(tmp_path):
     with pytest.raises(vtdyn.Error) as e:
         vtdyn.load_urdf(path, payloads=[("no_link", 1.0, (0, 0, 0))])
     assert e.value.status == "VT_ERR_NOT_FOUND"
+
+
+@pytest.mark.parametrize("name,floating", [("UR5", False), ("Solo-12", True)])
+def test_frame_poses_against_pinocchio(name, floating):
+    """Model.frame_poses against Pinocchio's framesForwardKinematics (oMf) for every link frame
+    at 100 random configurations (1e-12)"""
+    m = vtdyn.load_urdf(urdf(name), floating=floating)
+    pm = (pin.buildModelFromUrdf(urdf(name), pin.JointModelFreeFlyer()) if floating
+          else pin.buildModelFromUrdf(urdf(name)))
+    pd = pm.createData()
+    q, _, _ = random_states(m, 100, seed=21)
+    frames = [f for f in m.frame_names if pm.existFrame(f, pin.FrameType.BODY)]
+    pos, rot = m.frame_poses(q, frames)
+    assert pos.shape == (100, len(frames), 3) and rot.shape == (100, len(frames), 3, 3)
+    ids = [pm.getFrameId(f, pin.FrameType.BODY) for f in frames]
+    jq = {n: pm.joints[pm.getJointId(n)].idx_q for n in m.joint_names if pm.existJointName(n)}
+    worst = 0.0
+    for s in range(100):
+        qp = pin.neutral(pm)
+        if floating:  # vtdyn: x y z, w x y z; Pinocchio: x y z, x y z w
+            qp[:3], qp[3:6], qp[6] = q[s, :3], q[s, 4:7], q[s, 3]
+        for k, n in enumerate(m.joint_names):
+            if n in jq:
+                qp[jq[n]] = q[s, m.body_index[k][0]]
+        pin.framesForwardKinematics(pm, pd, qp)
+        for k, f in enumerate(ids):
+            worst = max(worst, np.abs(pos[s, k] - pd.oMf[f].translation).max(),
+                        np.abs(rot[s, k] - pd.oMf[f].rotation).max())
+    assert worst <= 1e-12, worst
+    one = m.frame_poses(q[7], frames[0])
+    assert np.array_equal(one[0][0], pos[7, 0]) and np.array_equal(one[1][0], rot[7, 0])
+    with pytest.raises(ValueError, match="frames: 'nose' is not a frame"):
+        m.frame_poses(q, ["nose"])
+    with pytest.raises(ValueError, match="q: "):
+        m.frame_poses(q[:, :3])
+
+
+def test_qfrc_applied(ur5):
+    """qfrc: the efforts less the applied generalized forces (the instant is linear in them);
+    the reactions unchanged on joints whose rates only carry it (every UR5 joint: one rate each,
+    the applied force acting along it), shapes refused naming the argument"""
+    q, v, a = random_states(ur5, 40, seed=14)
+    rng = np.random.default_rng(15)
+    qf = rng.uniform(-5, 5, (40, 6))
+    r0 = ur5.inverse(q, v, a, threads=1)
+    r1 = ur5.inverse(q, v, a, threads=1, qfrc=qf)
+    scale = np.abs(r0.effort).max() + 5
+    assert np.abs(r1.effort - (r0.effort - qf)).max() <= 1e-12 * scale
+    assert np.abs(r1.reaction - r0.reaction).max() <= 1e-12 * np.abs(r0.reaction).max()
+    one = ur5.inverse(q[3], v[3], a[3], qfrc=qf[3])
+    assert np.array_equal(one.effort, r1.effort[3])
+    with pytest.raises(ValueError, match="qfrc: "):
+        ur5.inverse(q, v, a, qfrc=qf[:5])
+    with pytest.raises(ValueError, match="qfrc: "):
+        ur5.inverse(q, v, a, qfrc=qf[:, :4])
