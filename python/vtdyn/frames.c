@@ -51,6 +51,9 @@ PyObject *vtpy_frame_poses(ModelObject *self, PyObject *args, PyObject *kw)
     PyObject *oq, *of = NULL;
     if (!PyArg_ParseTupleAndKeywords(args, kw, "O|O:frame_poses", kwlist, &oq, &of)) return NULL;
     const vt_model *m = self->m;
+    if (m->layout != VT_LAYOUT_FULL && (m->ncut > 0 || m->ncoupling > 0))
+        return PyErr_Format(PyExc_ValueError, "frame_poses: a model with cut joints or couplings needs the full "
+                            "layout (Builder(layout='full'); load_urdf with mimic=True has it)");
     int nf = 0;
     int *idx = frame_indices(m, of, &nf);
     if (!idx) return NULL;
