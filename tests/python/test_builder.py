@@ -10,6 +10,8 @@ Model.inverse and Model.contacts, and every error path.
 * Errors: an unknown joint, drive or function kind and malformed arrays raise ValueError naming
   the argument; what the builder refuses raises vtdyn.Error with its status and message.
 """
+import math
+
 import numpy as np
 import pytest
 
@@ -145,3 +147,23 @@ def test_builder_errors():
     assert e.value.status == "VT_ERR_MASS"
     with pytest.raises(TypeError):
         b.add_body(1)  # keyword-only
+
+
+def test_frame_poses_of_a_loop():
+    """a loop's frames: placed on the full layout (a link's end at its closed-form place), refused
+    on the recursive one, naming the layout"""
+    for layout in ("full", "recursive"):
+        b = vtdyn.Builder(layout=layout)
+        l1 = b.add_body(mass=1.0, joint_child=(-0.5, 0.0, 0.0))
+        l2 = b.add_body(parent=l1, mass=1.0, joint_parent=(0.5, 0.0, 0.0), joint_child=(-0.5, 0.0, 0.0))
+        b.add_cut_joint(body_a=0, body_b=l2, point_a=(1.0, 1.0, 0.0), point_b=(0.5, 0.0, 0.0), planar=True)
+        b.add_frame("tip", body=l2, point=(0.5, 0.0, 0.0))
+        m = b.build()
+        if layout == "recursive":
+            with pytest.raises(ValueError, match="needs the full layout"):
+                m.frame_poses(m.q0)
+            continue
+        q = np.array([math.pi / 2, -math.pi / 2])  # up along y, then along x: the tip at (1, 1, 0)
+        pos, rot = m.frame_poses(q, "tip")
+        assert np.allclose(pos[0], (1.0, 1.0, 0.0), atol=1e-15)
+        assert np.allclose(rot[0], np.eye(3), atol=1e-15)
