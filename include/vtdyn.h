@@ -541,7 +541,9 @@ VT_API vt_contact_def vt_default_contact_def(void);
 /// in the effort's own unit, N·m or N). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (a body out of
 /// range, n < 1), VT_ERR_NOT_FOUND (a frame), VT_ERR_BAD_NAME (a name twice or too long),
 /// VT_ERR_BAD_OPTION (mu < 0, faces out of 3..64, a weight not > 0, a zero normal without gravity
-/// to take it from), VT_ERR_NONFINITE, VT_ERR_NO_MEMORY; the message in message (may be NULL).
+/// to take it from; a model with cut joints or couplings, whose given motion fixes the drives'
+/// rates only: contacts take a tree's), VT_ERR_NONFINITE, VT_ERR_NO_MEMORY; the message in
+/// message (may be NULL).
 /// On failure *contacts is NULL.
 VT_API vt_status vt_contacts_create(vt_contacts **contacts, const vt_model *model, const vt_contact_def *defs,
                                     int n, const double *effort_weight, char *message);
@@ -560,9 +562,9 @@ VT_API int vt_find_contact(const vt_contacts *contacts, const char *name);
 ///     subject to τ_u = 0 on the unactuated rates, and, for a unilateral contact,
 ///     n·f_c ≥ 0 and d_j·f_c ≤ μ cos(π/k) n·f_c on each of its pyramid's k faces,
 /// where τ = M*(q) q̈ − Q − Σ_c J_cᵀ f_c are the efforts; then the forces are applied to the
-/// instant (a tree's by its inward pass alone, the instant being linear in the loads; loops and
-/// couplings by the instant solved again), so that every effort (qfrc_drive, zero to round-off
-/// on the unactuated rates) and every joint reaction in the data include them. force: 3 per contact (in the order
+/// instant by its inward pass alone (the instant is linear in the loads), so that every effort
+/// (qfrc_drive, zero to round-off on the unactuated rates) and every joint reaction in the data
+/// include them. force: 3 per contact (in the order
 /// of the definitions), the ground's force on the body, global, 0 at an inactive contact.
 /// Statuses: those of vt_inverse_dynamics_motion(); VT_ERR_CONTACT where no forces within the
 /// contacts' limits give the motion (the message names the contact that would have to pull or

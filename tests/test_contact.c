@@ -33,7 +33,7 @@
  *   about its axis, ((r_b − P) × m_b (a + g) z)_x, both closed forms; the pyramids turn with the
  *   plate: tilted by tan β = 0.2 the box stands within μ cos(π/4) = 0.35 of the plate's normal,
  *   by 0.45 it must slip (it would stand on a pyramid that stayed level);
- * - the definitions refused, named.
+ * - the definitions refused, named, and a model with a loop (contacts take a tree's given motion).
  */
 #include <math.h>
 #include <stdio.h>
@@ -762,6 +762,16 @@ static void test_refused(void **state)
     vt_data *d = NULL;
     assert_ok(vt_data_create(&d, other));
     assert_int_equal(vt_inverse_dynamics_contacts(other, d, c, NULL, NULL), VT_ERR_MODEL_MISMATCH);
+    { /* a loop: refused, named (its given motion fixes the drives' rates only) */
+        vt_model *loop = NULL;
+        vt_contacts *cl = NULL;
+        assert_ok(vt_scene_fourbar(&loop, vt_function_constant(0.0)));
+        vt_contact_def one = vt_default_contact_def();
+        assert_int_equal(vt_contacts_create(&cl, loop, &one, 1, NULL, msg), VT_ERR_BAD_OPTION);
+        assert_null(cl);
+        assert_non_null(strstr(msg, "cut joints"));
+        vt_model_free(loop);
+    }
     assert_int_equal(vt_inverse_dynamics_contacts(other, d, NULL, NULL, NULL), VT_ERR_NULL);
     vt_data_free(d);
     vt_contacts_free(c);

@@ -23,7 +23,8 @@
  * solved exactly: where no face binds, directly as the minimum under the equalities alone
  * (equality_minimum), else by the dual active-set method (numeric/qp.h). The forces are then applied as
  * loads (f_c at the centre of mass, (p_c − r_b) × f_c about it) by the instant's inward pass alone
- * (vt_motion_add_loads; loops and couplings: the instant solved again with them in xfrc), so that
+ * (vt_motion_add_loads: a tree's; a model with cut joints or couplings is refused, its given
+ * motion fixing the drives' rates only), so that
  * the efforts and every joint reaction of the data hold them (the unactuated rates' efforts
  * zero to round-off). No feasible forces: VT_ERR_CONTACT, the message naming the constraint the
  * solver could not meet — a contact that would have to pull, or slip, or unactuated rates the
@@ -262,6 +263,10 @@ vt_status vt_contacts_create(vt_contacts **out, const vt_model *m, const vt_cont
         if (!(effort_weight[a] > 0.0) || !isfinite(effort_weight[a]))
             return vt_fail(msg, VT_ERR_BAD_OPTION,
                            "vt_contacts_create: effort_weight[%d] = %g is not a finite number > 0", a, effort_weight[a]);
+    if (m->ncut > 0 || m->ncoupling > 0) /* their given motion gives the drives' rates, not every rate's */
+        return vt_fail(msg, VT_ERR_BAD_OPTION,
+                       "vt_contacts_create: the model has %d cut joints and %d couplings: contacts take a tree's given "
+                       "motion (every rate's q̈; a URDF robot loaded with mimic = 0)", m->ncut, m->ncoupling);
     const int nin = inequality_rows(defs, n);
     /* dgesvd's least workspace for the root's equations (nu ≤ nv rows, ≤ 3n columns): 5 (nv + 3n) */
     const int svd_lwork = 5 * (m->nv + 3 * n) + 64;
@@ -671,20 +676,10 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     const int rows = distribution(d, c, na);
     /* the equality-constrained minimum where no face binds, else the QP */
     if (!equality_minimum(c, n, rows) && (st = by_qp(m, d, c, n, rows))) return st;
-    /* the forces applied as loads: a tree's instant takes them by its inward pass alone (it is
-     * linear in the loads); loops and couplings by the instant solved again with them, the
-     * caller's xfrc back after it */
-    if (m->ncut == 0 && m->ncoupling == 0) {
-        memset(c->xfrc, 0, nxf * sizeof(double));
-        for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, c->xfrc);
-        st = vt_motion_add_loads(m, d, c->xfrc);
-    } else {
-        memcpy(c->xfrc, d->xfrc, nxf * sizeof(double));
-        for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, d->xfrc);
-        st = vt_inverse_dynamics_motion(m, d);
-        memcpy(d->xfrc, c->xfrc, nxf * sizeof(double));
-    }
-    if (st) return st;
+    /* the forces applied as loads by the instant's inward pass alone (it is linear in the loads) */
+    memset(c->xfrc, 0, nxf * sizeof(double));
+    for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, c->xfrc);
+    if ((st = vt_motion_add_loads(m, d, c->xfrc))) return st;
     if (force) {
         memset(force, 0, 3 * (size_t)c->n * sizeof(double));
         for (int k = 0; k < na; k++) vt_copy3(force + 3 * c->on[k], c->f + 3 * k);
