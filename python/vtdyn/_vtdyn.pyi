@@ -68,6 +68,13 @@ class ContactSet:
     def model(self) -> "Model":
         """the Model the set was made for"""
     def __len__(self) -> int: ...
+    def unique(
+        self, q: npt.ArrayLike, v: npt.ArrayLike, a: npt.ArrayLike, active: Optional[Sequence[int]] = None
+    ) -> Tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+        """at one state on these contacts, which results the motion and the contacts fix (True)
+        and which the distribution rule decides (False): each rate's effort (nv), each contact's
+        force component (ncontact x 3, world axes), each body's joint reaction component
+        (nbody x 6)"""
 
 class Trajectory(Tuple[Any, ...]):
     """An analysis over time (vt_trajectory): one row an output time, n rows in all."""

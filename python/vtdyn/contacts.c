@@ -179,6 +179,111 @@ PyObject *vtpy_model_contacts(ModelObject *self, PyObject *args, PyObject *kw)
     return (PyObject *)cs;
 }
 
+/* a bool array of n ints (1: True) */
+static PyObject *bools(int nd, npy_intp *dims, const int *src, size_t stride, size_t len, size_t rows)
+{
+    PyObject *o = PyArray_SimpleNew(nd, dims, NPY_BOOL);
+    if (!o) return NULL;
+    npy_bool *b = PyArray_DATA((PyArrayObject *)o);
+    for (size_t r = 0; r < rows; r++)
+        for (size_t k = 0; k < len; k++) b[r * len + k] = src[r * stride + k] != 0;
+    return o;
+}
+
+/* ContactSet.unique(q, v, a, active=None): the instant on its contacts, then which results the
+ * motion and the contacts fix (vt_contacts_unique), on a data and a set of the call's own */
+static PyObject *contacts_unique(ContactSetObject *self, PyObject *args, PyObject *kw)
+{
+    static char *kwlist[] = {"q", "v", "a", "active", NULL};
+    PyObject *oq, *ov, *oa, *oact = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|O:unique", kwlist, &oq, &ov, &oa, &oact)) return NULL;
+    const vt_model *m = self->model->m;
+    PyArrayObject *q = vtpy_as_rows(oq, "q", m->nq), *v = q ? vtpy_as_rows(ov, "v", m->nv) : NULL;
+    PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL;
+    PyObject *res = NULL, *e = NULL, *f = NULL, *r = NULL;
+    int *active = NULL, *eu = NULL, *fu = NULL;
+    vt_data *d = NULL;
+    vt_contacts *c = NULL;
+    if (!a) goto done;
+    if (PyArray_NDIM(q) != 1 || PyArray_NDIM(v) != 1 || PyArray_NDIM(a) != 1) {
+        PyErr_SetString(PyExc_ValueError, "q: one state (1-D q, v and a)");
+        goto done;
+    }
+    active = PyMem_Malloc((size_t)self->n * sizeof(int));
+    eu = PyMem_Malloc((size_t)(m->nv > 0 ? m->nv : 1) * sizeof(int));
+    fu = PyMem_Malloc(3 * (size_t)self->n * sizeof(int));
+    if (!active || !eu || !fu) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    for (int k = 0; k < self->n; k++) active[k] = 1;
+    if (oact && oact != Py_None) {
+        PyObject *seq = PySequence_Fast(oact, "active: 0 or 1 per contact");
+        if (!seq) goto done;
+        const int bad = PySequence_Fast_GET_SIZE(seq) != self->n;
+        for (int k = 0; !bad && k < self->n; k++) {
+            const long x = PyLong_AsLong(PySequence_Fast_GET_ITEM(seq, k));
+            if ((x != 0 && x != 1) || PyErr_Occurred()) {
+                PyErr_Clear();
+                Py_DECREF(seq);
+                PyErr_Format(PyExc_ValueError, "active: entry %d is not 0 or 1", k);
+                goto done;
+            }
+            active[k] = (int)x;
+        }
+        Py_DECREF(seq);
+        if (bad) {
+            PyErr_Format(PyExc_ValueError, "active: %d entries expected (one a contact)", self->n);
+            goto done;
+        }
+    }
+    char msg[VT_MESSAGE_SIZE] = "";
+    vt_status st = vt_contacts_create(&c, m, self->defs, self->n, self->effort_weight, msg);
+    if (!st && vt_data_create(&d, m)) st = VT_ERR_NO_MEMORY, snprintf(msg, sizeof msg, "vt_data_create: out of memory");
+    if (!st) {
+        memcpy(d->q, PyArray_DATA(q), (size_t)m->nq * sizeof(double));
+        memcpy(d->qd, PyArray_DATA(v), (size_t)m->nv * sizeof(double));
+        memcpy(d->qdd, PyArray_DATA(a), (size_t)m->nv * sizeof(double));
+        Py_BEGIN_ALLOW_THREADS
+        st = vt_inverse_dynamics_contacts(m, d, c, active, NULL);
+        if (!st) st = vt_contacts_unique(m, d, c, active, eu, fu);
+        Py_END_ALLOW_THREADS
+        if (st) snprintf(msg, sizeof msg, "%s", d->message);
+    }
+    if (st) {
+        vtpy_raise(st, msg, -1);
+        goto done;
+    }
+    npy_intp de[1] = {m->nv}, df[2] = {self->n, 3}, dr[2] = {m->nbody, 6};
+    e = bools(1, de, eu, 0, (size_t)m->nv, 1);
+    f = e ? bools(2, df, fu, 3, 3, (size_t)self->n) : NULL;
+    r = f ? bools(2, dr, d->jnt_unique + 6, 6, 6, (size_t)m->nbody) : NULL;
+    if (r) res = PyTuple_Pack(3, e, f, r);
+done:
+    Py_XDECREF(e);
+    Py_XDECREF(f);
+    Py_XDECREF(r);
+    vt_contacts_free(c);
+    vt_data_free(d);
+    PyMem_Free(active);
+    PyMem_Free(eu);
+    PyMem_Free(fu);
+    Py_XDECREF(q);
+    Py_XDECREF(v);
+    Py_XDECREF(a);
+    return res;
+}
+
+static PyMethodDef contacts_methods[] = {
+    {"unique", (PyCFunction)(void (*)(void))contacts_unique, METH_VARARGS | METH_KEYWORDS,
+     "unique(q, v, a, active=None) -> (effort, force, reaction): at one state on these contacts, which\n"
+     "results the motion and the contacts fix (True) and which the distribution rule decides (False):\n"
+     "each rate's effort (nv), each contact's force component (ncontact x 3, world axes; an inactive\n"
+     "contact's True), each body's joint reaction component (nbody x 6: force, moment, world axes)\n"
+     "(vt_inverse_dynamics_contacts, then vt_contacts_unique)"},
+    {NULL, NULL, 0, NULL},
+};
+
 static Py_ssize_t contacts_len(ContactSetObject *self) { return self->n; }
 static PyObject *get_names(ContactSetObject *s, void *c) { (void)c; return Py_NewRef(s->contact_names); }
 static PyObject *get_model(ContactSetObject *s, void *c) { (void)c; return Py_NewRef((PyObject *)s->model); }
@@ -207,4 +312,5 @@ PyTypeObject vtpy_contacts_type = {
     .tp_doc = "A Model's contacts with the ground, validated once (Model.contacts; no public constructor): "
               "pass it to Model.inverse(..., contacts=set). len() is the number of contacts.",
     .tp_getset = contacts_getset,
+    .tp_methods = contacts_methods,
 };

@@ -261,3 +261,41 @@ def test_contact_on_another_body():
     assert np.allclose(r.contact_force[:, 2], 2.0 * (9.81 + acc) / 4, rtol=0, atol=1e-9 * W)
     with pytest.raises(vtdyn.Error, match="other"):
         m.contacts([vtdyn.Contact(body=box, other=box)])
+
+
+def test_unique_against_another_rule(solo):
+    """ContactSet.unique: what it calls fixed is the same under another rule (other effort and
+    force weights: another distribution among the forces the base's equations allow; bilateral
+    feet), to 1e-9;
+    what it calls the rule's differs for some; on three feet the lifted leg's torques are fixed,
+    its foot's force too (zero)"""
+    m, pm, _ = solo
+    # bilateral feet: the flags are those of bilateral contacts, and on three feet near the stand
+    # the centre of mass is close to the line of two of them, where a unilateral foot might pull
+    cs = m.contacts([vtdyn.Contact(frame=f, kind="bilateral") for f in FEET])
+    other = m.contacts([vtdyn.Contact(frame=f, kind="bilateral", weight=3e-3 * (k + 1)) for k, f in enumerate(FEET)],
+                       effort_weight=np.linspace(0.5, 3.0, m.nv))
+    _, (q, v, a) = solo_states(m, pm, 4, seed=7)
+    weight = sum(pm.inertias[i].mass for i in range(pm.njoints)) * G
+    lifted_leg = [va for b, (qa, nq, va, nv) in enumerate(m.body_index)
+                  if nq == 1 and m.body_joint_names[b].startswith("FL_")]
+    for s in range(4):
+        for active in ((1, 1, 1, 1), (0, 1, 1, 1)):
+            eu, fu, ru = cs.unique(q[s], v[s], a[s], active=active)
+            assert eu.shape == (m.nv,) and fu.shape == (4, 3) and ru.shape == (m.nbody, 6)
+            act = np.array([active])
+            r1 = m.inverse(q[s:s + 1], v[s:s + 1], a[s:s + 1], contacts=cs, active=act, threads=1)
+            r2 = m.inverse(q[s:s + 1], v[s:s + 1], a[s:s + 1], contacts=other, active=act, threads=1)
+            de = np.abs(r1.effort[0] - r2.effort[0])
+            df = np.abs(r1.contact_force[0] - r2.contact_force[0])
+            dr = np.abs(r1.reaction[0] - r2.reaction[0])
+            assert de[eu].max(initial=0) <= 1e-9 * weight and df[fu].max(initial=0) <= 1e-9 * weight
+            assert dr[ru].max(initial=0) <= 1e-9 * weight
+            assert de[~eu].max() > 1e-6 * weight  # the rule's choice shows
+            assert eu[:6].all()  # the base: zero whatever the rule
+            if active[0] == 0:
+                assert eu[lifted_leg].all() and fu[0].all()
+    with pytest.raises(ValueError, match="active: 4 entries"):
+        cs.unique(q[0], v[0], a[0], active=(1, 1))
+    with pytest.raises(ValueError, match="one state"):
+        cs.unique(q, v, a)
