@@ -36,8 +36,7 @@
 
 #include "numeric/qp.h" /* internal */
 #include "vt_test.h"
-
-#define QP_PI 3.14159265358979323846
+#include "qp_problem.h"
 
 /* ---- the test's own linear algebra ---- */
 
@@ -105,26 +104,13 @@ static int eq_qp(int n, const double *G, const double *c, const double *A, int m
 
 /* ---- a problem, its solve, its checks ---- */
 
-typedef struct {
-    int n, meq, min;
-    double *G, *c, *A, *b; /* A: the (meq + min) x n stack [A_eq; A_in], ld meq + min; b likewise */
-} problem;
-
-static problem prob_new(int n, int meq, int min)
+/* problem, prob_new, prob_free, arow: tests/qp_problem.h; prob: prob_new, its memory checked */
+static problem prob(int n, int meq, int min)
 {
-    problem p = {n, meq, min, calloc((size_t)(n * n), sizeof(double)), calloc((size_t)n, sizeof(double)),
-                 calloc((size_t)((meq + min) * n) + 1, sizeof(double)), calloc((size_t)(meq + min) + 1, sizeof(double))};
-    assert_true(p.G && p.c && p.A && p.b);
+    problem p = prob_new(n, meq, min);
+    assert_true(prob_ok(&p));
     return p;
 }
-static void prob_free(problem *p)
-{
-    free(p->G);
-    free(p->c);
-    free(p->A);
-    free(p->b);
-}
-static double *arow(problem *p, int i, int j) { return &p->A[i + j * (p->meq + p->min)]; }
 
 /* vt_qp_solve on p with work of exactly the scratch bound; the equalities and inequalities are
  * passed as the stack's two blocks (ld meq + min for both) */
@@ -224,54 +210,7 @@ static int brute_force(const problem *p, double *x)
     return found;
 }
 
-/* ---- a fixed-seed generator ---- */
-static uint64_t rng_next(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static double urand(uint64_t *s) { return (double)(rng_next(s) >> 11) * 0x1.0p-53 * 2.0 - 1.0; } /* [−1, 1) */
-
-/* G = BᵀB + δI with B n x n of uniform entries */
-static void random_spd(uint64_t *s, int n, double delta, double *G)
-{
-    double *B = malloc(sizeof(double) * (size_t)(n * n));
-    assert_non_null(B);
-    for (int i = 0; i < n * n; i++) B[i] = urand(s);
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) {
-            double v = i == j ? delta : 0.0;
-            for (int k = 0; k < n; k++) v += B[k + i * n] * B[k + j * n];
-            G[i + j * n] = v;
-        }
-    free(B);
-}
-
-/* a random feasible problem: x0 random, b_eq = A_eq x0, b_in = A_in x0 − slack with a third of
- * the slacks 0 (constraints through x0) and the rest in [0, 1); c pulls x away from x0 */
-static problem random_problem(uint64_t *s, int n, int meq, int min, double delta)
-{
-    problem p = prob_new(n, meq, min);
-    const int m = meq + min;
-    random_spd(s, n, delta, p.G);
-    double *x0 = malloc(sizeof(double) * (size_t)n);
-    assert_non_null(x0);
-    for (int j = 0; j < n; j++) x0[j] = urand(s);
-    for (int j = 0; j < n; j++) p.c[j] = 3.0 * urand(s);
-    for (int i = 0; i < m; i++) {
-        double v = 0.0;
-        for (int j = 0; j < n; j++) {
-            *arow(&p, i, j) = urand(s);
-            v += *arow(&p, i, j) * x0[j];
-        }
-        const double slack = i < meq || (rng_next(s) % 3 == 0) ? 0.0 : 0.5 * (urand(s) + 1.0);
-        p.b[i] = v - slack;
-    }
-    free(x0);
-    return p;
-}
+/* the generator, random_spd and random_problem: tests/qp_problem.h */
 
 /* ---- hand-derived problems ---- */
 
@@ -280,7 +219,7 @@ static void test_box(void **state)
     (void)state;
     enum { N = 5 };
     const double pt[N] = {2.0, -3.0, 0.25, 1.0, -0.5}, lo[N] = {-1, -1, -1, -1, 0}, hi[N] = {1, 1, 1, 1, 1};
-    problem p = prob_new(N, 0, 2 * N);
+    problem p = prob(N, 0, 2 * N);
     for (int j = 0; j < N; j++) {
         p.G[j + j * N] = 1.0;
         p.c[j] = -pt[j];
@@ -312,7 +251,7 @@ static void test_halfspace(void **state)
     enum { N = 4 };
     const double a[N] = {1.0, -2.0, 0.5, 3.0}, pt[N] = {0.3, 0.7, -1.2, -0.4}, b = 2.0;
     for (int flip = 0; flip < 2; flip++) { /* violated at pt, then satisfied at pt (inactive) */
-        problem p = prob_new(N, 0, 1);
+        problem p = prob(N, 0, 1);
         double an2 = 0.0, ap = 0.0;
         for (int j = 0; j < N; j++) {
             p.G[j + j * N] = 1.0;
@@ -352,7 +291,7 @@ static void test_simplex(void **state)
             const double t = (cum - 1.0) / (k + 1);
             if (sorted[k] - t > 0.0) theta = t;
         }
-        problem p = prob_new(N, 1, N);
+        problem p = prob(N, 1, N);
         for (int j = 0; j < N; j++) {
             p.G[j + j * N] = 1.0;
             p.c[j] = -pt[j];
@@ -393,7 +332,7 @@ static void test_inactive(void **state)
     (void)state;
     enum { N = 4 };
     uint64_t s = 3;
-    problem p = prob_new(N, 0, 1);
+    problem p = prob(N, 0, 1);
     random_spd(&s, N, 0.3, p.G);
     for (int j = 0; j < N; j++) p.c[j] = urand(&s);
     double xr[N], M[N * N];
@@ -470,7 +409,7 @@ static void test_scaled(void **state)
     uint64_t s = 606;
     for (int rep = 0; rep < 60; rep++) {
         const int n = 2 + rep % 12, meq = rep % 3 < n ? rep % 3 : 0, min = 1 + rep % 20, m = meq + min;
-        problem p = random_problem(&s, n, meq, min, rep % 2 ? 1.0 : 0.05), q = prob_new(n, meq, min);
+        problem p = random_problem(&s, n, meq, min, rep % 2 ? 1.0 : 0.05), q = prob(n, meq, min);
         const double gs = 1e5, xs = 1e3; /* q: G' = gs G / xs², c' = gs c / xs in x = xs y */
         double rs[64];
         for (int j = 0; j < n * n; j++) q.G[j] = gs * p.G[j] / (xs * xs);
@@ -499,59 +438,10 @@ static void test_scaled(void **state)
 /* nc contacts at points r_k on the ground (z = 0), each with the normal f_z ≥ 0 and K faces
  * μ f_z − (cos φ f_x + sin φ f_y) ≥ 0; the six equalities Σ f_k = F, Σ r_k × f_k = M with
  * (F, M) the wrench of forces chosen inside the cones; G a positive diagonal weight; c = −W f_des */
-static problem contact_problem_spread(uint64_t *s, int nc, int K, double mu, int apex_first, double yspread);
 static problem contact_problem(uint64_t *s, int nc, int K, double mu, int apex_first)
 {
     return contact_problem_spread(s, nc, K, mu, apex_first, 1.0);
 }
-/* the same with the points' y scaled by yspread: nearly collinear points (yspread ≪ 1) make the
- * balance's moment rows nearly dependent, its multipliers large */
-static problem contact_problem_spread(uint64_t *s, int nc, int K, double mu, int apex_first, double yspread)
-{
-    const int n = 3 * nc, meq = 6, min = nc * (K + 1), m = meq + min;
-    problem p = prob_new(n, meq, min);
-    double f0[3 * 8], r[3 * 8];
-    for (int k = 0; k < nc; k++) {
-        r[3 * k] = urand(s);
-        r[3 * k + 1] = yspread * urand(s);
-        r[3 * k + 2] = 0.0;
-        const double fz = apex_first && k == 0 ? 0.0 : 1.0 + urand(s);
-        const double ang = QP_PI * urand(s), rad = 0.5 * mu * cos(QP_PI / K) * fz * (1.0 + urand(s)) / 2.0;
-        f0[3 * k] = rad * cos(ang);
-        f0[3 * k + 1] = rad * sin(ang);
-        f0[3 * k + 2] = fz;
-    }
-    double wrench[6] = {0};
-    for (int k = 0; k < nc; k++) {
-        const double *f = f0 + 3 * k, *rk = r + 3 * k;
-        for (int a = 0; a < 3; a++) {
-            /* Σ f: row a, Σ r × f: row 3 + a, (r × f)_a = r_b f_c − r_c f_b */
-            *arow(&p, a, 3 * k + a) = 1.0;
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            *arow(&p, 3 + a, 3 * k + c) += rk[b];
-            *arow(&p, 3 + a, 3 * k + b) -= rk[c];
-            wrench[a] += f[a];
-            wrench[3 + a] += rk[b] * f[c] - rk[c] * f[b];
-        }
-        const int base = meq + k * (K + 1);
-        *arow(&p, base, 3 * k + 2) = 1.0;
-        for (int j = 0; j < K; j++) {
-            const double phi = 2.0 * QP_PI * j / K;
-            *arow(&p, base + 1 + j, 3 * k) = -cos(phi);
-            *arow(&p, base + 1 + j, 3 * k + 1) = -sin(phi);
-            *arow(&p, base + 1 + j, 3 * k + 2) = mu;
-        }
-    }
-    for (int a = 0; a < 6; a++) p.b[a] = wrench[a];
-    for (int j = 0; j < n; j++) {
-        const double wgt = 1.0 + 0.5 * (urand(s) + 1.0);
-        p.G[j + j * n] = wgt;
-        p.c[j] = -wgt * 2.0 * urand(s); /* a desired force anywhere: many faces become active */
-    }
-    (void)m;
-    return p;
-}
-
 static void test_contact(void **state)
 {
     (void)state;
@@ -660,7 +550,7 @@ static void test_apex(void **state)
         for (int side = 0; side < 2; side++) {
             const int K = Ks[t], min = K + 1;
             const double mu = 0.6, fdes[3] = {0.3, side ? 0.45 : -0.2, -1.0};
-            problem p = prob_new(3, 0, min);
+            problem p = prob(3, 0, min);
             for (int j = 0; j < 3; j++) {
                 p.G[j + j * 3] = 1.0;
                 p.c[j] = -fdes[j];
@@ -703,7 +593,7 @@ static void test_duplicated(void **state)
     uint64_t s = 1234;
     for (int rep = 0; rep < 40; rep++) {
         const int n = 2 + rep % 6, min = 1 + rep % 7;
-        problem p = random_problem(&s, n, 0, min, 0.5), d = prob_new(n, 0, 3 * min);
+        problem p = random_problem(&s, n, 0, min, 0.5), d = prob(n, 0, 3 * min);
         memcpy(d.G, p.G, sizeof(double) * (size_t)(n * n));
         memcpy(d.c, p.c, sizeof(double) * (size_t)n);
         for (int i = 0; i < 3 * min; i++) {
@@ -738,7 +628,7 @@ static void test_dependent_equalities(void **state)
         p.b[2] = p.b[0] + p.b[1];
         p.b[3] = -2.5 * p.b[1];
         /* the reference: the same problem with rows 2 and 3 made trivial (0 = 0) */
-        problem r = prob_new(n, 4, min);
+        problem r = prob(n, 4, min);
         memcpy(r.G, p.G, sizeof(double) * (size_t)(n * n));
         memcpy(r.c, p.c, sizeof(double) * (size_t)n);
         memcpy(r.A, p.A, sizeof(double) * (size_t)((4 + min) * n));
@@ -778,7 +668,7 @@ static void test_infeasible(void **state)
 {
     (void)state;
     /* x_0 ≥ 1 and −x_0 ≥ 0 in 3-D with a coupled G: the second one added is the culprit */
-    problem p = prob_new(3, 0, 3);
+    problem p = prob(3, 0, 3);
     uint64_t s = 17;
     random_spd(&s, 3, 0.5, p.G);
     *arow(&p, 0, 1) = 1.0; /* x_1 ≥ −10: satisfied throughout */
@@ -791,7 +681,7 @@ static void test_infeasible(void **state)
     prob_free(&p);
 
     /* a pyramid that cannot carry a required tangential force: f_x = 1, f_z = 1, μ = 0.5 */
-    p = prob_new(3, 2, 5);
+    p = prob(3, 2, 5);
     for (int j = 0; j < 3; j++) p.G[j + j * 3] = 1.0;
     *arow(&p, 0, 0) = 1.0;
     p.b[0] = 1.0;
@@ -824,7 +714,7 @@ static void test_infeasible(void **state)
     }
 
     /* dependent, inconsistent equalities: the third is the culprit */
-    p = prob_new(3, 3, 0);
+    p = prob(3, 3, 0);
     for (int j = 0; j < 3; j++) p.G[j + j * 3] = 2.0;
     *arow(&p, 0, 0) = 1.0;
     *arow(&p, 0, 1) = 1.0;
@@ -838,7 +728,7 @@ static void test_infeasible(void **state)
     prob_free(&p);
 
     /* a zero row asking 0 ≥ 1 */
-    p = prob_new(2, 0, 2);
+    p = prob(2, 0, 2);
     p.G[0] = p.G[3] = 1.0;
     *arow(&p, 0, 0) = 1.0;
     p.b[1] = 1.0;
@@ -867,7 +757,7 @@ static void test_errors(void **state)
         }
     /* finite data whose minimum overflows: G = 1e-300 I, c = 1e10 (x = −1e310) */
     {
-        problem o = prob_new(2, 0, 1);
+        problem o = prob(2, 0, 1);
         o.G[0] = o.G[3] = 1e-300;
         o.c[0] = o.c[1] = 1e10;
         *arow(&o, 0, 0) = 1.0;

@@ -24,22 +24,18 @@
 #include <string.h>
 
 #include "numeric/qp.h" /* internal */
+#include "../qp_problem.h"
 
-#define QP_PI 3.14159265358979323846
-
-typedef struct {
-    int n, meq, min;
-    double *G, *c, *A, *b; /* A: (meq + min) x n column-major, ld meq + min */
-} problem;
-
-static uint64_t rng_next(uint64_t *s)
+/* problem, its generator and families: tests/qp_problem.h (test_qp's too); out of memory here
+ * ends the program */
+static problem checked(problem p)
 {
-    uint64_t z = (*s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
+    if (!prob_ok(&p)) {
+        fprintf(stderr, "qp_problems: out of memory\n");
+        exit(2);
+    }
+    return p;
 }
-static double urand(uint64_t *s) { return (double)(rng_next(s) >> 11) * 0x1.0p-53 * 2.0 - 1.0; }
 
 static void *xcalloc(size_t n, size_t size)
 {
@@ -51,83 +47,11 @@ static void *xcalloc(size_t n, size_t size)
     return p;
 }
 
-static problem prob_new(int n, int meq, int min)
-{
-    problem p = {n, meq, min, xcalloc((size_t)(n * n), sizeof(double)), xcalloc((size_t)n, sizeof(double)),
-                 xcalloc((size_t)((meq + min) * n), sizeof(double)), xcalloc((size_t)(meq + min), sizeof(double))};
-    return p;
-}
-static void prob_free(problem *p)
-{
-    free(p->G);
-    free(p->c);
-    free(p->A);
-    free(p->b);
-}
-static double *arow(problem *p, int i, int j) { return &p->A[i + j * (p->meq + p->min)]; }
-
-static problem random_problem(uint64_t *s, int n, int meq, int min, double delta)
-{
-    problem p = prob_new(n, meq, min);
-    double *B = xcalloc((size_t)(n * n), sizeof(double)), *x0 = xcalloc((size_t)n, sizeof(double));
-    for (int i = 0; i < n * n; i++) B[i] = urand(s);
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) {
-            double v = i == j ? delta : 0.0;
-            for (int k = 0; k < n; k++) v += B[k + i * n] * B[k + j * n];
-            p.G[i + j * n] = v;
-        }
-    for (int j = 0; j < n; j++) x0[j] = urand(s);
-    for (int j = 0; j < n; j++) p.c[j] = 3.0 * urand(s);
-    for (int i = 0; i < meq + min; i++) {
-        double v = 0.0;
-        for (int j = 0; j < n; j++) {
-            *arow(&p, i, j) = urand(s);
-            v += *arow(&p, i, j) * x0[j];
-        }
-        p.b[i] = v - (i < meq || rng_next(s) % 3 == 0 ? 0.0 : 0.5 * (urand(s) + 1.0));
-    }
-    free(B);
-    free(x0);
-    return p;
-}
-
-/* nc ground contacts (z = 0), each f_z ≥ 0 and K faces μ f_z − (cos φ f_x + sin φ f_y) ≥ 0,
- * under Σ f = F, Σ r × f = M from forces inside the cones (contact 0 at the apex with apex; the
- * points' y scaled by yspread) */
+/* the contact family, contact 0 pulled into the ground with apex (its force at or near the apex) */
 static problem contact_problem(uint64_t *s, int nc, int K, double mu, int apex, double yspread)
 {
-    problem p = prob_new(3 * nc, 6, nc * (K + 1));
-    double wrench[6] = {0};
-    for (int k = 0; k < nc; k++) {
-        const double rx = urand(s), r[3] = {rx, yspread * urand(s), 0.0};
-        const double fz = apex && k == 0 ? 0.0 : 1.0 + urand(s);
-        const double ang = QP_PI * urand(s), rad = 0.25 * mu * cos(QP_PI / K) * fz * (1.0 + urand(s));
-        const double f[3] = {rad * cos(ang), rad * sin(ang), fz};
-        for (int a = 0; a < 3; a++) {
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            *arow(&p, a, 3 * k + a) = 1.0;
-            *arow(&p, 3 + a, 3 * k + c) += r[b];
-            *arow(&p, 3 + a, 3 * k + b) -= r[c];
-            wrench[a] += f[a];
-            wrench[3 + a] += r[b] * f[c] - r[c] * f[b];
-        }
-        const int base = 6 + k * (K + 1);
-        *arow(&p, base, 3 * k + 2) = 1.0;
-        for (int j = 0; j < K; j++) {
-            const double phi = 2.0 * QP_PI * j / K;
-            *arow(&p, base + 1 + j, 3 * k) = -cos(phi);
-            *arow(&p, base + 1 + j, 3 * k + 1) = -sin(phi);
-            *arow(&p, base + 1 + j, 3 * k + 2) = mu;
-        }
-    }
-    for (int a = 0; a < 6; a++) p.b[a] = wrench[a];
-    for (int j = 0; j < p.n; j++) {
-        const double w = 1.0 + 0.5 * (urand(s) + 1.0);
-        p.G[j + j * p.n] = w;
-        p.c[j] = -2.0 * w * urand(s);
-    }
-    if (apex) p.c[2] = 5.0 * p.G[2 + 2 * p.n]; /* contact 0 pulled into the ground */
+    problem p = checked(contact_problem_spread(s, nc, K, mu, apex, yspread));
+    if (apex) p.c[2] = 5.0 * p.G[2 + 2 * p.n];
     return p;
 }
 
@@ -197,7 +121,7 @@ int main(int argc, char **argv)
         const int n = 2 + (int)(rng_next(&s) % 59);
         const int meq = (int)(rng_next(&s) % (uint64_t)(n < 9 ? n : 9));
         const int min = (int)(rng_next(&s) % (uint64_t)(3 * n + 1));
-        problem p = random_problem(&s, n, meq, min, id % 3 == 0 ? 1e-2 : 1.0);
+        problem p = checked(random_problem(&s, n, meq, min, id % 3 == 0 ? 1e-2 : 1.0));
         emit(f, &first, "random", id, &p);
         prob_free(&p);
     }
@@ -218,14 +142,14 @@ int main(int argc, char **argv)
     }
     for (int id = 0; id < 30; id++) {
         const int n = 8 + id % 30, meq = id % 4, min = 2 * n + id % 7;
-        problem p = random_problem(&s, n, meq, min, 1e-4);
+        problem p = checked(random_problem(&s, n, meq, min, 1e-4));
         for (int j = 0; j < n; j++) p.c[j] *= 10.0;
         emit(f, &first, "ill-conditioned", id, &p);
         prob_free(&p);
     }
     for (int id = 0; id < 30; id++) {
         const int n = 2 + id % 10, min = 1 + id % 12;
-        problem p = random_problem(&s, n, id % 3, min, 0.5), d = prob_new(n, p.meq, 2 * min);
+        problem p = checked(random_problem(&s, n, id % 3, min, 0.5)), d = checked(prob_new(n, p.meq, 2 * min));
         memcpy(d.G, p.G, sizeof(double) * (size_t)(n * n));
         memcpy(d.c, p.c, sizeof(double) * (size_t)n);
         for (int i = 0; i < d.meq + d.min; i++) {
@@ -239,7 +163,7 @@ int main(int argc, char **argv)
     }
     for (int id = 0; id < 60; id++) { /* b at random, not made feasible: feasible or not */
         const int n = 2 + id % 9, meq = id % 3 < n ? id % 3 : 0, min = 2 * n + id % 5;
-        problem p = random_problem(&s, n, meq, min, 1.0);
+        problem p = checked(random_problem(&s, n, meq, min, 1.0));
         for (int i = meq; i < meq + min; i++) p.b[i] = 1.5 * urand(&s) + 0.6;
         emit(f, &first, "either", id, &p);
         prob_free(&p);
