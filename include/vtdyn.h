@@ -584,7 +584,7 @@ VT_API vt_status vt_inverse_dynamics_contacts(const vt_model *model, vt_data *da
 /// count: the flags are those of the same contacts made bilateral (what spherical cut joints at
 /// the contacts with vt_model_def.allow_redundant flag). The data's efforts, reactions and
 /// limits are as the instant left them. Statuses: VT_ERR_NULL, VT_ERR_MODEL_MISMATCH,
-/// VT_ERR_BAD_OPTION (a model with cut joints or couplings, or no contacts' instant before),
+/// VT_ERR_BAD_OPTION (no contacts' instant on this data before),
 /// VT_ERR_LAPACK. Not for the per-instant path: a singular value decomposition and an inward
 /// pass per direction the rule chooses along.
 VT_API vt_status vt_contacts_unique(const vt_model *model, vt_data *data, vt_contacts *contacts, const int *active,

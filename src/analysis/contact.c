@@ -719,10 +719,9 @@ vt_status vt_contacts_unique(const vt_model *m, vt_data *d, vt_contacts *c, cons
     if (!c) return vt_fail(d->message, VT_ERR_NULL, "vt_contacts_unique: contacts is NULL");
     if (c->model != m)
         return vt_fail(d->message, VT_ERR_MODEL_MISMATCH, "vt_contacts_unique: contacts made for another model");
-    if (m->ncut > 0 || m->ncoupling > 0 || d->route != VT_ROUTE_MOTION)
+    if (d->route != VT_ROUTE_MOTION) /* the set's model is a tree: vt_contacts_create refuses the rest */
         return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                       "vt_contacts_unique: needs vt_inverse_dynamics_contacts's instant of a tree (no cut joint "
-                       "nor coupling) on this data just before");
+                       "vt_contacts_unique: needs vt_inverse_dynamics_contacts's instant on this data just before");
     int na = 0;
     for (int k = 0; k < c->n; k++)
         if (!active || active[k]) c->on[na++] = k;
