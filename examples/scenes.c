@@ -791,6 +791,42 @@ vt_status vt_scene_quadruped_feet(vt_model **model, unsigned feet)
     return finish(model, b, st);
 }
 
+vt_status vt_scene_quadruped_sway(vt_model **model, double period)
+{
+    vt_builder *b;
+    vt_status st = z_up_builder(&b, 0);
+    if (st) return st;
+    st = quadruped_bodies(b);
+    const double a = VT_SWAY_AMPLITUDE, w = 2.0 * 3.14159265358979323846 / period;
+    const double h = 0.4 * cos(VT_SWAY_THETA);
+    for (int k = 0; k < 4 && !st; k++) { /* the root's x, y, z, then its roll */
+        vt_drive_def dr = vt_default_drive_def();
+        dr.body = 1;
+        dr.index = k;
+        dr.f = k == 0 ? vt_function_sine(0.0, a, w, 0.0) : k == 1 ? vt_function_constant(0.0)
+               : k == 2 ? vt_function_sine(h, a, 2.0 * w, 0.0) : vt_function_sine(0.0, a, w, 0.0);
+        if (k == 3) {
+            dr.type = VT_DRIVE_ORIENTATION;
+            dr.index = 0;
+            dr.axis[0] = 1.0, dr.axis[1] = dr.axis[2] = 0.0;
+        }
+        const int id = vt_builder_add_drive(b, &dr);
+        if (id < 0) st = (vt_status)id;
+    }
+    static const char *const foot[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+    for (int k = 0; k < 12 && !st; k++) { /* each foot's x, y, z under its hip */
+        const int leg = k / 3, e = k % 3;
+        vt_drive_def dr = vt_default_drive_def();
+        dr.type = VT_DRIVE_POINT;
+        dr.frame = foot[leg];
+        dr.index = e;
+        dr.f = vt_function_constant(e == 0 ? (leg < 2 ? 0.3 : -0.3) : e == 1 ? (leg % 2 == 0 ? 0.15 : -0.15) : 0.0);
+        const int id = vt_builder_add_drive(b, &dr);
+        if (id < 0) st = (vt_status)id;
+    }
+    return finish(model, b, st);
+}
+
 void vt_scene_quadruped_stand(const vt_model *m, vt_data *d, double theta)
 {
     memset(d->qd, 0, (size_t)m->nv * sizeof(double));

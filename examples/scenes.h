@@ -232,6 +232,16 @@ void vt_scene_quadruped_stand(const vt_model *model, vt_data *data, double theta
  * every leg joint driven (joint drives, the motion given through the data), allow_redundant:
  * the feet as bilateral contacts, solved as redundant loops (test_contact's second method). */
 vt_status vt_scene_quadruped_feet(vt_model **model, unsigned feet);
+/* The same quadruped swaying on its four feet, fully driven (a kinematic analysis on contacts):
+ * the torso's centre of mass at (a sin ωt, 0, h + a sin 2ωt) by joint drives on the root's
+ * translation (a = VT_SWAY_AMPLITUDE m, h = 0.4 cos θ, θ = VT_SWAY_THETA: the stand's height),
+ * its roll about x by a sin ωt rad (an orientation drive), and each foot frame held at the point
+ * under its hip on the ground, (±0.3, ±0.15, 0), by three point drives: 18 rows for 18 rates.
+ * ω = 2π / period. vt_scene_quadruped_stand(model, data, VT_SWAY_THETA) is the pose at t = 0
+ * (q̇ not: the torso moves). */
+#define VT_SWAY_AMPLITUDE 0.03
+#define VT_SWAY_THETA 0.5
+vt_status vt_scene_quadruped_sway(vt_model **model, double period);
 
 /* A humanoid's lower body (contacts, docs/contact.md): a 20 kg pelvis and trunk (a box
  * 0.3 x 0.3 x 0.5 m, its centre of mass 0.2 m above the hips) on a free joint ("root", its point

@@ -394,6 +394,9 @@ module vtdyn
     integer(c_int)         :: ntout
     real(c_double)         :: redundant_band
     real(c_double)         :: check_window
+    type(c_ptr)            :: contacts  ! a vt_contacts (vt_contacts_create), or c_null_ptr
+    type(c_funptr)         :: contact_schedule
+    type(c_ptr)            :: contact_user
   end type vt_run_options
 
   type, bind(C) :: vt_trajectory
@@ -439,6 +442,9 @@ module vtdyn
     type(c_ptr)            :: fwd_window_err_qd
     type(c_ptr)            :: fwd_window_err_force
     type(c_ptr)            :: fwd_window_err_moment
+    integer(c_int)         :: ncontact
+    type(c_ptr)            :: contact_force
+    type(c_ptr)            :: contact_active
   end type vt_trajectory
 
 
@@ -847,6 +853,15 @@ module vtdyn
       type(c_ptr), value :: model
       integer(c_int), value :: nrow
       integer(c_int) :: vt_trajectory_create
+    end function
+    function vt_trajectory_create_contacts(trajectory, model, contacts, nrow) &
+        bind(C, name='vt_trajectory_create_contacts')
+      import :: c_int, c_ptr
+      type(c_ptr), intent(out) :: trajectory
+      type(c_ptr), value :: model
+      type(c_ptr), value :: contacts
+      integer(c_int), value :: nrow
+      integer(c_int) :: vt_trajectory_create_contacts
     end function
     subroutine vt_trajectory_free(trajectory) bind(C, name='vt_trajectory_free')
       import :: c_ptr

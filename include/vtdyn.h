@@ -432,6 +432,12 @@ VT_API vt_run_options vt_default_run_options(void);
 /// nrow ≥ ntout + 1 (row 0 is always t0). On failure *trajectory is NULL.
 /// Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (nrow < 1), VT_ERR_NO_MEMORY (also a size beyond size_t).
 VT_API vt_status vt_trajectory_create(vt_trajectory **trajectory, const vt_model *model, int nrow);
+/// vt_trajectory_create() with room for a run on the contacts (vt_run_options.contacts): its
+/// ncontact = vt_contacts_count(contacts), contact_force and contact_active.
+/// Statuses: those of vt_trajectory_create(); VT_ERR_MODEL_MISMATCH (contacts made for another
+/// model).
+VT_API vt_status vt_trajectory_create_contacts(vt_trajectory **trajectory, const vt_model *model,
+                                               const vt_contacts *contacts, int nrow);
 /// Frees a trajectory; NULL does nothing. As with free(), freeing it twice is undefined.
 VT_API void vt_trajectory_free(vt_trajectory *trajectory);
 
@@ -460,12 +466,21 @@ VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double
 /// forward errors are the deviation those efforts cause, not IDA's error in integrating the
 /// motion (docs/method.md, "Analyses over time"). In a build without SUNDIALS
 /// (VT_HAVE_SUNDIALS 0) the forward check is refused with VT_ERR_BAD_OPTION.
+/// On contacts (opt->contacts, a trajectory of vt_trajectory_create_contacts()): at each row the
+/// ground's forces of vt_inverse_dynamics_contacts() at the row's q, q̇, q̈ over the contacts
+/// opt->contact_schedule puts on the ground (tr->contact_force, contact_active), the efforts and
+/// reactions that instant's (qfrc_drive the motors', zero on a free root), the drives' λ those
+/// of the instant with the forces as loads; the forward check applies the forces as loads too
+/// (docs/contact.md, "Over time"). A row the contacts cannot carry ends the run with
+/// VT_ERR_CONTACT, the time named; d->xfrc is the caller's on return.
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).
 /// Statuses: VT_ERR_NOT_FULLY_DRIVEN (fewer rows than rates, or of lower rank),
 /// VT_ERR_DEPENDENT_CONSTRAINTS (more rows than rates, of full rank, in a model that does not
-/// allow redundant rows), VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH (trajectory of another
-/// model), VT_ERR_NEWTON, VT_ERR_IDA, VT_ERR_ABORTED, and those of the stages. The forward check
+/// allow redundant rows), VT_ERR_BAD_OPTION (also a trajectory without room for the contacts'
+/// forces), VT_ERR_MODEL_MISMATCH (trajectory or contacts of another model), VT_ERR_NEWTON,
+/// VT_ERR_IDA, VT_ERR_ABORTED, VT_ERR_CONTACT, VT_ERR_CALLBACK (also the schedule), and those of
+/// the stages. The forward check
 /// of a model with dependent cut-joint rows needs VT_FORMULATION_ODE.
 VT_API vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,
                                 vt_trajectory *trajectory);
@@ -490,7 +505,8 @@ VT_API vt_status vt_kinematic_analysis(const vt_model *model, vt_data *data, con
 /// iteration matrix (the difference quotient IDA would form) without allocation.
 /// Statuses: VT_ERR_IDA (IDA's code in d->ida_flag, its message in
 /// d->message), VT_ERR_BAD_OPTION, VT_ERR_MODEL_MISMATCH, VT_ERR_NEWTON (consistent initial
-/// values, or a projection), VT_ERR_ABORTED, VT_ERR_NO_MEMORY, and those of the stages.
+/// values, or a projection), VT_ERR_ABORTED, VT_ERR_NO_MEMORY, and those of the stages;
+/// VT_ERR_BAD_OPTION for contacts (opt->contacts: a kinematic analysis's).
 /// Only in builds with SUNDIALS (VT_HAVE_SUNDIALS, vtdyn/version.h).
 #if VT_HAVE_SUNDIALS
 VT_API vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const vt_run_options *opt,

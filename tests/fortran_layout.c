@@ -110,7 +110,8 @@ static const size_t vt_run_options_layout[] = {sizeof(vt_run_options),
     offsetof(vt_run_options, baumgarte_alpha), offsetof(vt_run_options, baumgarte_beta),
     offsetof(vt_run_options, progress), offsetof(vt_run_options, user), offsetof(vt_run_options, tout),
     offsetof(vt_run_options, ntout), offsetof(vt_run_options, redundant_band),
-    offsetof(vt_run_options, check_window), VT_END};
+    offsetof(vt_run_options, check_window), offsetof(vt_run_options, contacts),
+    offsetof(vt_run_options, contact_schedule), offsetof(vt_run_options, contact_user), VT_END};
 static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, model), offsetof(vt_trajectory, nrow), offsetof(vt_trajectory, nfilled),
     offsetof(vt_trajectory, t), offsetof(vt_trajectory, q), offsetof(vt_trajectory, qd),
@@ -130,7 +131,8 @@ static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, res_evals_fwd), offsetof(vt_trajectory, nwindow),
     offsetof(vt_trajectory, fwd_window_row), offsetof(vt_trajectory, fwd_window_err_q),
     offsetof(vt_trajectory, fwd_window_err_qd), offsetof(vt_trajectory, fwd_window_err_force),
-    offsetof(vt_trajectory, fwd_window_err_moment), VT_END};
+    offsetof(vt_trajectory, fwd_window_err_moment), offsetof(vt_trajectory, ncontact),
+    offsetof(vt_trajectory, contact_force), offsetof(vt_trajectory, contact_active), VT_END};
 
 #if VT_HAVE_URDF /* only declared in a build with libxml2: without, struct 11 has no entries */
 static const size_t vt_urdf_options_layout[] = {sizeof(vt_urdf_options),

@@ -121,7 +121,8 @@ program test_fortran_layout
          a(c_loc(x_run_options%baumgarte_alpha)), a(c_loc(x_run_options%baumgarte_beta)), &
          a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user)), a(c_loc(x_run_options%tout)), &
          a(c_loc(x_run_options%ntout)), a(c_loc(x_run_options%redundant_band)), &
-         a(c_loc(x_run_options%check_window))])
+         a(c_loc(x_run_options%check_window)), a(c_loc(x_run_options%contacts)), &
+         a(c_loc(x_run_options%contact_schedule)), a(c_loc(x_run_options%contact_user))])
     call check(8_c_int, 'vt_trajectory', c_sizeof(x_trajectory), a(c_loc(x_trajectory)), [ &
          a(c_loc(x_trajectory%model)), a(c_loc(x_trajectory%nrow)), a(c_loc(x_trajectory%nfilled)), &
          a(c_loc(x_trajectory%t)), a(c_loc(x_trajectory%q)), a(c_loc(x_trajectory%qd)), &
@@ -140,7 +141,8 @@ program test_fortran_layout
          a(c_loc(x_trajectory%res_evals_fwd)), a(c_loc(x_trajectory%nwindow)), &
          a(c_loc(x_trajectory%fwd_window_row)), a(c_loc(x_trajectory%fwd_window_err_q)), &
          a(c_loc(x_trajectory%fwd_window_err_qd)), a(c_loc(x_trajectory%fwd_window_err_force)), &
-         a(c_loc(x_trajectory%fwd_window_err_moment))])
+         a(c_loc(x_trajectory%fwd_window_err_moment)), a(c_loc(x_trajectory%ncontact)), &
+         a(c_loc(x_trajectory%contact_force)), a(c_loc(x_trajectory%contact_active))])
     call check(10_c_int, 'vt_coupling_def', c_sizeof(x_coupling_def), a(c_loc(x_coupling_def)), [ &
          a(c_loc(x_coupling_def%body_a)), a(c_loc(x_coupling_def%index_a)), a(c_loc(x_coupling_def%body_b)), &
          a(c_loc(x_coupling_def%index_b)), a(c_loc(x_coupling_def%ratio)), a(c_loc(x_coupling_def%offset)), &

@@ -5,7 +5,8 @@
  * the failure statuses (not fully driven, Newton that does not converge, abort, bad options); a
  * fully driven model with dependent rows, decided by rank; a spherical joint's relative
  * orientation drive through the forward check both ways; each row's instant, which takes
- * Newton's last positions and Φ_q, against a fresh recursive instant at the row's state. */
+ * Newton's last positions and Φ_q, against a fresh recursive instant at the row's state; the
+ * caller's loads (xfrc, qfrc) kept through the forward check. */
 #include <float.h>
 
 #include "vt_test.h"
@@ -54,6 +55,29 @@ static void test_five_link_circle_and_forward_check(void **state)
     assert_true(tr->steps_fwd > 0);
     vt_trajectory_free(tr);
     vt_data_free(dt);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+/* The caller's loads (a force on the arm, a torque on a rate) are in every row's efforts and in
+ * the forward check's, at the rows and between them: the arm stays on its circle */
+static void test_forward_check_with_loads(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_trajectory *tr;
+    assert_ok(vt_scene_five_link(&m));
+    assert_ok(vt_data_create(&d, m));
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 20;
+    assert_ok(vt_trajectory_create(&tr, m, opt.nout + 1));
+    vt_scene_five_link_guess(m, d, 0.0);
+    d->xfrc[6 * 3 + 1] = 30.0; /* 30 N along y on body 3 */
+    d->qfrc[1] = 4.0;          /* 4 N m on the second rate */
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_true(tr->fwd_err_q < 1e-10);
+    assert_true(tr->fwd_err_qd < 1e-9);
+    vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);
 }
@@ -796,6 +820,7 @@ int main(void)
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_five_link_circle_and_forward_check),
         cmocka_unit_test(test_forward_check_few_steps_any_tolerance),
+        cmocka_unit_test(test_forward_check_with_loads),
         cmocka_unit_test(test_relative_orientation_forward_check),
         cmocka_unit_test(test_free_joint_forward_check),
 #else

@@ -737,6 +737,12 @@ typedef struct vt_data {
 /// (VT_ERR_ABORTED).
 typedef int (*vt_progress_callback)(double t, double t_end, void *user);
 
+/// Which contacts are on the ground at time t (vt_run_options.contact_schedule): sets active[c]
+/// (nonzero: on the ground, its force free; 0: in the air, its force zero) for each of the run's
+/// contacts, in the order of their definitions (every entry is 1 on the call); returns 0 on
+/// success, anything else is an error that the library reports as VT_ERR_CALLBACK.
+typedef int (*vt_contact_schedule)(double t, int *active, void *user);
+
 /// How a dynamic analysis hands (5) to IDA (docs/method.md, "Analyses over time").
 typedef enum vt_formulation {
     VT_FORMULATION_INDEX1 = 0,  ///< (5) as it stands: acceleration-level constraints; Φ and Φ̇ drift
@@ -802,6 +808,16 @@ typedef struct vt_run_options {
                              ///< whatever the efforts' accuracy); vt_trajectory.fwd_window_* per window,
                              ///< fwd_err_* the worst. Windows end at output rows. Default
                              ///< VT_CHECK_WINDOW (5 s: every run of a few seconds is one window)
+    struct vt_contacts *contacts; ///< a kinematic analysis on contacts (docs/contact.md, "Over time"):
+                             ///< at every row the ground's forces of vt_inverse_dynamics_contacts() at
+                             ///< the driven state, and the drives' efforts with those forces applied
+                             ///< (qfrc_drive the motors', zero on a free root); the forward check
+                             ///< integrates under the same efforts and forces. The trajectory is
+                             ///< made by vt_trajectory_create_contacts(). NULL (default): none.
+                             ///< vt_dynamic_analysis() refuses contacts (VT_ERR_BAD_OPTION)
+    vt_contact_schedule contact_schedule; ///< the contacts on the ground at each time; NULL (default):
+                             ///< every contact, all the time
+    void *contact_user;      ///< passed to contact_schedule
 } vt_run_options;
 
 /// Default of vt_run_options.check_window, s.
@@ -915,6 +931,11 @@ typedef struct vt_trajectory {
     double *fwd_window_err_qd;    ///< its max |q̇_fwd − q̇| (nrow)
     double *fwd_window_err_force; ///< its max reaction force difference, N (nrow)
     double *fwd_window_err_moment;///< its max reaction moment difference, N·m (nrow)
+    /* a run on contacts (vt_run_options.contacts; vt_trajectory_create_contacts) */
+    int ncontact;            ///< the contacts it has room for (0: made by vt_trajectory_create())
+    double *contact_force;   ///< N, global: the ground's force on the body at each contact, 0 in the
+                             ///< air (3 ncontact x nrow; NULL without contacts)
+    int *contact_active;     ///< the schedule's flags, 1 on the ground (ncontact x nrow; NULL without)
 } vt_trajectory;
 
 /// Incremental model builder (opaque).

@@ -73,6 +73,7 @@ struct vt_contacts {
     int nact, *act;       /* the others */
     /* the instant's workspace, sized for every contact active */
     int *on;              /* the active contacts' indices */
+    int *active;          /* a run's schedule at one time (n) */
     int *row_of;          /* each rate's row: ≥ 0 in B (actuated), −1 − its row in Aeq (not) (nv) */
     double *sw;           /* √w_a of the actuated rates (nact) */
     double *B;            /* (√W J_A)ᵀ: 3 na x nact, row 3k + e the velocity of contact on[k]'s point
@@ -115,6 +116,13 @@ int vt_contacts_count(const vt_contacts *c)
     return c ? c->n : 0;
 }
 
+/* contact.h's, for the analyses over time */
+const vt_model *vt_contacts_model(const vt_contacts *c) { return c->model; }
+int *vt_contacts_active(vt_contacts *c) { return c->active; }
+const double *vt_contacts_loads(const vt_contacts *c) { return c->xfrc; }
+static void outputs(const vt_model *m, vt_data *d, vt_contacts *c, int save);
+void vt_contacts_outputs(const vt_model *m, vt_data *d, vt_contacts *c, int save) { outputs(m, d, c, save); }
+
 int vt_find_contact(const vt_contacts *c, const char *name)
 {
     if (!c || !name || !name[0]) return VT_ERR_NOT_FOUND;
@@ -152,6 +160,7 @@ static void layout(vt_block *b, vt_contacts *c, const vt_model *m, int n, int ni
     c->unact = vt_block_take(b, nv ? nv : 1, sizeof(int));
     c->act = vt_block_take(b, nv ? nv : 1, sizeof(int));
     c->on = vt_block_take(b, N, sizeof(int));
+    c->active = vt_block_take(b, N, sizeof(int));
     c->row_of = vt_block_take(b, nv ? nv : 1, sizeof(int));
     c->sw = vt_block_take(b, nv ? nv : 1, sizeof(double));
     c->B = vt_block_take(b, (nv ? nv : 1) * nx, sizeof(double));
@@ -658,6 +667,7 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     int na = 0;
     for (int k = 0; k < c->n; k++)
         if (!active || active[k]) c->on[na++] = k;
+    memset(c->xfrc, 0, nxf * sizeof(double)); /* the loads (none in the air), vt_contacts_loads's */
     if (na == 0) { /* no contact on the ground: in free flight the unactuated rates need nothing */
         double big = 0.0, scale = 0.0;
         int worst = 0;
@@ -677,7 +687,6 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
     /* the equality-constrained minimum where no face binds, else the QP */
     if (!equality_minimum(c, n, rows) && (st = by_qp(m, d, c, n, rows))) return st;
     /* the forces applied as loads by the instant's inward pass alone (it is linear in the loads) */
-    memset(c->xfrc, 0, nxf * sizeof(double));
     for (int k = 0; k < na; k++) add_load(d, c, c->on[k], c->f + 3 * k, c->xfrc);
     if ((st = vt_motion_add_loads(m, d, c->xfrc))) return st;
     if (force) {

@@ -35,7 +35,11 @@ typedef struct vt_dae {
     vt_data *df;                /* its data */
     vt_data *dk;                /* exact Q_d (fully driven), or the interpolated driven state (src) */
     vt_data *msg;               /* where IDA's messages go */
-    const double *xfrc0;        /* applied loads of the driven run, kept in the forward one */
+    const double *xfrc0;        /* applied loads of the driven run, kept in the forward one (on
+                                   contacts dk's: the caller's and the ground's forces) */
+    const vt_run_options *run;  /* a run on contacts (exact efforts): dk's efforts with the ground's
+                                   forces (analysis/contact_run.c); NULL: none */
+    const double *base;         /* with run: the caller's loads */
     int as_loads;               /* vt_run_options.forward_as_loads */
     double newton_tol;          /* vt_run_options.newton_tol: projections and exact efforts */
     int newton_maxit;           /* vt_run_options.newton_maxit */
@@ -77,8 +81,9 @@ int vt_dae_jacobian(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_
 int vt_dae_deviation_weights(N_Vector yy, N_Vector ewt, void *user);
 void vt_dae_ida_error(int code, const char *module, const char *function, char *msg, void *user);
 
-/* At an output time the drives' efforts are row k of p->s.rows, copied into p->dk */
-void vt_dae_row_efforts(const vt_dae *p, const vt_model *m, int k);
+/* At an output time the drives' efforts are row k of p->s.rows, copied into p->dk; on contacts
+ * (p->run) the row's state's efforts and loads formed again in dk (a failure: its status) */
+vt_status vt_dae_row_efforts(const vt_dae *p, const vt_model *m, int k);
 /* y_ref, y'_ref of one block (length n) at a state in d: [q; v; 0], [T(q) v; q̈; 0] */
 void vt_dae_block_reference(const vt_model *m, const vt_data *d, int n, double *yr, double *ypr);
 /* y and y' of one block at a consistent state in d: [q; v; λ (; μ = 0)], [T(q) v; q̈; 0] */

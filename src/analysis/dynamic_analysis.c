@@ -45,6 +45,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "analysis/dynamic_analysis.h"
+#include "analysis/contact_run.h"
 #include "analysis/data.h"
 #include "base/status.h"
 #include "model/model.h"
@@ -234,7 +235,8 @@ static vt_status row_state(vt_dae *p, ida_run *r, int k, double tret, const doub
     *yv = N_VGetArrayPointer(r->y);
     double *yw = N_VGetArrayPointer(r->y), *ypw = N_VGetArrayPointer(r->yp);
     if (p->s.ref) { /* the state: the row (the reference at tout) + the deviation */
-        vt_dae_row_efforts(p, p->dk->model, k);
+        const vt_status st = vt_dae_row_efforts(p, p->dk->model, k);
+        if (st) return vt_fail(md->message, st, "%s", p->dk->message);
         p->s.dk_valid = 0; /* dk holds the row, not the residual's polished reference */
         vt_dae_block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
         yw = p->s.ref + 2 * (size_t)N;
@@ -292,7 +294,7 @@ static vt_status store_rows(vt_dae *p, vt_trajectory *tr, int k, double tret, co
         if ((st = vt_inverse_dynamics(m, p->dk)))
             return vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
     } else if (p->dk && !p->s.ref) { /* exact efforts: the kinematic row already stored at this time */
-        vt_dae_row_efforts(p, m, k);
+        if ((st = vt_dae_row_efforts(p, m, k))) return vt_fail(md->message, st, "%s", p->dk->message);
         p->s.dk_valid = 1;
     }
     memcpy(p->df->q, yv + p->nd, (size_t)p->mf->nq * sizeof(double));
@@ -446,7 +448,7 @@ static vt_status restart_forward(run_state *rs, int k)
         if ((st = vt_inverse_dynamics(m, p->dk)))
             return vt_fail(md->message, st, "forward check: restart at t = %g: %s", t, p->dk->message);
     } else if (p->dk) { /* exact efforts: the row's */
-        vt_dae_row_efforts(p, m, k);
+        if ((st = vt_dae_row_efforts(p, m, k))) return vt_fail(md->message, st, "%s", p->dk->message);
         p->s.dk_valid = 0;
     } /* (else the driven block's: d holds row k's instant) */
     memcpy(df->q, tr->q + (size_t)k * (size_t)m->nq, (size_t)mf->nq * sizeof(double));
@@ -562,7 +564,8 @@ static vt_status open_run(run_state *rs, vt_dae *p, const vt_run_options *opt, v
     }
     p->nd = nd;
     if (dev) { /* e = y − y_ref at t0, the first row */
-        vt_dae_row_efforts(p, p->dk->model, 0);
+        const vt_status st = vt_dae_row_efforts(p, p->dk->model, 0);
+        if (st) return vt_fail(p->msg->message, st, "%s", p->dk->message);
         p->s.dk_valid = 0; /* (as at the output rows) */
         vt_dae_block_reference(p->dk->model, p->dk, N, p->s.ref, p->s.ref + N);
         for (int k = 0; k < N; k++) {
@@ -623,7 +626,9 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     vt_model *mf = NULL;
     vt_data *df = NULL;
     vt_status st = vt_kinematic_solve(dk->model, dk, opt->newton_tol, opt->newton_maxit);
-    if (st == VT_OK) st = forward_setup(m, dk, d->xfrc, opt->forward_as_loads, &mf, &df);
+    /* on contacts the efforts and loads with the ground's forces, which dk->xfrc then holds */
+    if (st == VT_OK && opt->contacts) st = vt_contacts_driven(m, dk, opt, d->xfrc, NULL, NULL, "forward check");
+    if (st == VT_OK) st = forward_setup(m, dk, opt->contacts ? dk->xfrc : d->xfrc, opt->forward_as_loads, &mf, &df);
     if (st) {
         vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);
     } else {
@@ -633,6 +638,11 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
         p.df = df;
         p.dk = dk;
         p.s.rows = tr;
+        if (opt->contacts) {
+            p.run = opt;
+            p.base = d->xfrc;
+            p.xfrc0 = dk->xfrc;
+        }
         st = start(&p, opt, tr);
     }
     vt_data_free(df);
@@ -644,6 +654,10 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
 {
     vt_status st = vt_check_run(m, d, opt, tr, "vt_dynamic_analysis");
     if (st) return st;
+    if (opt->contacts) /* its free rates follow from the forces, which the rule needs the motion for */
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_dynamic_analysis: contacts are for a kinematic analysis (every rate driven) or the given "
+                       "motion; a dynamic analysis would need the ground's forces to find its free rates");
     if (!d->Mstar) /* IDA's residual and iteration matrix are M*'s */
         return vt_fail(d->message, VT_ERR_LAYOUT,
                        "vt_dynamic_analysis: integrates (5) with M*, and the data holds none: its model was built with "

@@ -10,9 +10,11 @@
  * rows, which the model must allow: vt_model_def.allow_redundant).
  */
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "analysis/kinematic_analysis.h"
+#include "analysis/contact_run.h"
 #include "analysis/data.h"
 #include "base/status.h"
 #include "dense/reactions.h"
@@ -54,20 +56,10 @@ static vt_status fully_driven(const vt_model *m, vt_data *d, double t0, int solv
     return VT_OK;
 }
 
-vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr)
+/* rows 0..nrow into tr (base: the caller's loads of a run on contacts, else NULL) */
+static vt_status rows(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr, const double *base)
 {
-    vt_status st = vt_check_run(m, d, opt, tr, "vt_kinematic_analysis");
-    if (st) return st;
-#if !VT_HAVE_SUNDIALS
-    if (opt->forward_check)
-        return vt_fail(d->message, VT_ERR_BAD_OPTION,
-                       "vt_kinematic_analysis: the forward check needs SUNDIALS IDA, and this build has none");
-#endif
-    if (m->nc < m->nv)
-        return vt_fail(d->message, VT_ERR_NOT_FULLY_DRIVEN,
-                       "vt_kinematic_analysis: %d constraint rows for %d rates: not fully driven; a dynamic analysis "
-                       "handles partly driven models", m->nc, m->nv);
-    if (m->nc > m->nv && !m->allow_redundant && (st = fully_driven(m, d, opt->t0, 0))) return st;
+    vt_status st = VT_OK;
     vt_trajectory_reset(tr);
     const int nrow = vt_run_rows(opt);
     const double tend = vt_run_time(opt, nrow);
@@ -89,12 +81,47 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         }
         /* a model that solves dependent rows would also solve a rank-deficient one dynamically */
         if (k == 0 && m->allow_redundant && (st = fully_driven(m, d, opt->t0, 1))) return st;
+        if (base) { /* the ground's forces, and the drives' efforts with them */
+            const size_t r = (size_t)k * (size_t)tr->ncontact;
+            if ((st = vt_contacts_driven(m, d, opt, base, tr->contact_force + 3 * r, tr->contact_active + r,
+                                         "vt_kinematic_analysis")))
+                return st;
+        }
         vt_trajectory_store(tr, m, d, k);
         const int stop = opt->progress && opt->progress(d->time, tend, opt->user);
         /* d left with the last row's whole instant */
-        if ((stop || k == nrow) && k > 0 && (st = vt_reactions_total(m, d, 0))) return st;
+        if ((stop || k == nrow) && k > 0 && !base && (st = vt_reactions_total(m, d, 0))) return st;
         if (stop) return vt_fail(d->message, VT_ERR_ABORTED, "vt_kinematic_analysis: stopped at t = %g", d->time);
     }
+    return VT_OK;
+}
+
+vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr)
+{
+    vt_status st = vt_check_run(m, d, opt, tr, "vt_kinematic_analysis");
+    if (st) return st;
+#if !VT_HAVE_SUNDIALS
+    if (opt->forward_check)
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_kinematic_analysis: the forward check needs SUNDIALS IDA, and this build has none");
+#endif
+    if (m->nc < m->nv)
+        return vt_fail(d->message, VT_ERR_NOT_FULLY_DRIVEN,
+                       "vt_kinematic_analysis: %d constraint rows for %d rates: not fully driven; a dynamic analysis "
+                       "handles partly driven models", m->nc, m->nv);
+    if ((st = vt_contacts_run_check(m, d, opt, tr, "vt_kinematic_analysis"))) return st;
+    if (m->nc > m->nv && !m->allow_redundant && (st = fully_driven(m, d, opt->t0, 0))) return st;
+    /* on contacts: the caller's loads, which each row's instant takes the ground's forces onto */
+    const size_t nxf = 6 * ((size_t)m->nbody + 1);
+    double *base = opt->contacts ? malloc(nxf * sizeof(double)) : NULL;
+    if (opt->contacts && !base) return vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_kinematic_analysis: out of memory");
+    if (base) memcpy(base, d->xfrc, nxf * sizeof(double));
+    st = rows(m, d, opt, tr, base);
+    if (base) {
+        memcpy(d->xfrc, base, nxf * sizeof(double));
+        free(base);
+    }
+    if (st) return st;
 #if VT_HAVE_SUNDIALS
     if (!opt->forward_check) return VT_OK;
     /* the forward check starts from the first row's state */
@@ -103,6 +130,9 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
     if ((st = vt_data_create_full(&dk, m))) return vt_fail(d->message, st, "vt_kinematic_analysis: %s", vt_status_string(st));
     memcpy(dk->q, tr->q, (size_t)m->nq * sizeof(double));
     memcpy(dk->qd, tr->qd, (size_t)m->nv * sizeof(double));
+    /* its exact efforts between the rows with the caller's loads, as the rows' */
+    memcpy(dk->xfrc, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
+    memcpy(dk->qfrc, d->qfrc, (size_t)m->nv * sizeof(double));
     dk->time = opt->t0;
     st = vt_forward_exact(m, d, dk, opt, tr);
     vt_data_free(dk);

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "analysis/trajectory.h"
+#include "analysis/contact.h"
 #include "base/block.h"
 #include "base/status.h"
 
@@ -39,8 +40,9 @@ vt_run_options vt_default_run_options(void)
     return o;
 }
 
-static size_t layout(const vt_model *m, vt_trajectory *tr, char *base, int nrow)
+static size_t layout(const vt_model *m, vt_trajectory *tr, char *base, int nrow, int ncontact)
 {
+    const size_t nct = (size_t)ncontact;
     const size_t r = (size_t)nrow, nq = (size_t)m->nq, nv = (size_t)m->nv, nc = (size_t)m->nc;
     const size_t nd = (size_t)m->ndrive, nb = (size_t)m->nbody + 1, nk = (size_t)m->ncut;
     /* every array of doubles on 16 bytes (calloc's alignment) */
@@ -73,28 +75,44 @@ static size_t layout(const vt_model *m, vt_trajectory *tr, char *base, int nrow)
     tr->fwd_window_err_force = vt_block_take(&blk, r, sizeof(double));
     tr->fwd_window_err_moment = vt_block_take(&blk, r, sizeof(double));
     tr->fwd_window_row = vt_block_take(&blk, r, sizeof(int));
+    tr->contact_force = nct ? vt_block_take(&blk, 3 * nct * r, sizeof(double)) : NULL;
+    tr->contact_active = nct ? vt_block_take(&blk, nct * r, sizeof(int)) : NULL;
     return blk.used;
 }
 
-vt_status vt_trajectory_create(vt_trajectory **out, const vt_model *m, int nrow)
+static vt_status create(vt_trajectory **out, const vt_model *m, int nrow, int ncontact)
 {
-    if (!out || !m) return VT_ERR_NULL;
     *out = NULL;
     if (nrow < 1) return VT_ERR_BAD_OPTION;
     vt_trajectory probe;
     /* every array is one row's size times nrow (+ 1): countable in size_t where nrow + 1 rows'
      * bytes, counted in double, are */
-    if ((double)layout(m, &probe, NULL, 1) * ((double)nrow + 1.0) > (double)SIZE_MAX / 4.0)
+    if ((double)layout(m, &probe, NULL, 1, ncontact) * ((double)nrow + 1.0) > (double)SIZE_MAX / 4.0)
         return VT_ERR_NO_MEMORY;
-    const size_t bytes = layout(m, &probe, NULL, nrow);
+    const size_t bytes = layout(m, &probe, NULL, nrow, ncontact);
     char *block = calloc(1, bytes);
     if (!block) return VT_ERR_NO_MEMORY;
     vt_trajectory *tr = (vt_trajectory *)block;
-    layout(m, tr, block, nrow);
+    layout(m, tr, block, nrow, ncontact);
     tr->model = m;
     tr->nrow = nrow;
+    tr->ncontact = ncontact;
     *out = tr;
     return VT_OK;
+}
+
+vt_status vt_trajectory_create(vt_trajectory **out, const vt_model *m, int nrow)
+{
+    if (!out || !m) return VT_ERR_NULL;
+    return create(out, m, nrow, 0);
+}
+
+vt_status vt_trajectory_create_contacts(vt_trajectory **out, const vt_model *m, const vt_contacts *c, int nrow)
+{
+    if (!out || !m || !c) return VT_ERR_NULL;
+    *out = NULL;
+    if (vt_contacts_model(c) != m) return VT_ERR_MODEL_MISMATCH;
+    return create(out, m, nrow, vt_contacts_count(c));
 }
 
 void vt_trajectory_free(vt_trajectory *tr)

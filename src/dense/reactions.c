@@ -126,7 +126,8 @@ vt_status vt_drive_efforts(const vt_model *m, vt_data *d)
     return VT_OK;
 }
 
-/* The forward check's loads on the model without drives, on top of the applied loads xfrc0:
+/* The forward check's loads on the model without drives, on top of the applied loads xfrc0 and
+ * d's applied generalized forces qfrc:
  * as_loads = 0: the drives' generalized force Φ_q^T λ (joint torques and forces, the paper's
  * Figs. 6-8 and 10); as_loads = 1: each drive's own load — a joint drive's effort on its
  * coordinate, a body drive's force and moment at the same body point. */
@@ -134,11 +135,12 @@ void vt_apply_drive_loads(const vt_model *mf, vt_data *df, const vt_model *m, co
                           int as_loads)
 {
     memcpy(df->xfrc, xfrc0, 6 * ((size_t)mf->nbody + 1) * sizeof(double));
+    /* the applied generalized forces stay applied (d's: the caller's) */
     if (!as_loads) {
-        memcpy(df->qfrc, d->qfrc_drive, (size_t)mf->nv * sizeof(double));
+        for (int c = 0; c < mf->nv; c++) df->qfrc[c] = d->qfrc[c] + d->qfrc_drive[c];
         return;
     }
-    memset(df->qfrc, 0, (size_t)mf->nv * sizeof(double));
+    memcpy(df->qfrc, d->qfrc, (size_t)mf->nv * sizeof(double));
     for (int k = 0; k < m->ndrive; k++) {
         const vt_drive_def *dr = &m->drive[k];
         const int b = dr->body;
