@@ -180,6 +180,9 @@ class Trajectory(Tuple[Any, ...]):
     @property
     def fwd_window_err_moment(self) -> _F64:
         """each window's max reaction moment difference, N m (nwindow)"""
+    @property
+    def contact_force(self) -> _OF64:
+        """the ground's force at each contact, N, world axes (n x ncontact x 3); None without contacts"""
 
 class Model:
     """A model: a robot loaded by load_urdf, or built by Builder.build (no public constructor)."""
@@ -260,9 +263,12 @@ class Model:
         history_steps: int = 100000,
         redundant_band: float = 5e-4,
         check_window: float = 5.0,
+        contacts: Optional[ContactSet] = None,
     ) -> Trajectory:
         """a fully driven model's motion, efforts and reactions at each output time
-        (vt_kinematic_analysis); forward_check defaults to True where SUNDIALS is built in"""
+        (vt_kinematic_analysis); forward_check defaults to True where SUNDIALS is built in;
+        contacts: the robot on the ground, every contact on it all the time (the forces in
+        Trajectory.contact_force, the free root's efforts zero)"""
     def dynamic_analysis(
         self,
         t1: float,
@@ -287,6 +293,7 @@ class Model:
         history_steps: int = 100000,
         redundant_band: float = 5e-4,
         check_window: float = 5.0,
+        contacts: Optional[ContactSet] = None,
     ) -> Trajectory:
         """the motion the drives leave free, integrated by SUNDIALS IDA (vt_dynamic_analysis) from
         q, qd at t0 (None: the reference configuration, at rest); vtdyn.Error without SUNDIALS"""

@@ -2,7 +2,8 @@
  * drives (vt_kinematic_analysis: a fully driven model, Newton-Raphson at each output time;
  * vt_dynamic_analysis: SUNDIALS IDA on the index-1 form of (5), where the drives fix part of
  * the motion), each with its forward check (the drives removed, their efforts applied). The
- * options are vt_run_options's fields as keyword arguments with the C defaults; the run has its
+ * options are vt_run_options's fields as keyword arguments with the C defaults (contacts: a
+ * ContactSet, every contact on the ground all the time); the run has its
  * own vt_data and vt_trajectory, made, run and freed with the GIL released (the Model is only
  * read, so runs on one Model proceed in parallel). The trajectory's column-major arrays (one
  * column a row) are copied into row-major NumPy arrays of the rows the run filled: the Trajectory
@@ -14,7 +15,7 @@ PyTypeObject vtpy_trajectory_type;
 enum { /* the Trajectory's fields, in order */
     T_TIME, T_Q, T_QD, T_QDD, T_LAMBDA, T_QFRC, T_DEFF, T_DFORCE, T_DMOMENT, T_REACTION, T_CUT, T_PHI, T_PHID, T_RCOND,
     T_NWARN, T_TWARN, T_QFWD, T_QDFWD, T_REACTION_FWD, T_CUT_FWD, T_ERR_Q, T_ERR_QD, T_ERR_FORCE, T_ERR_MOMENT,
-    T_INTERP, T_STEPS, T_RES, T_STEPS_FWD, T_RES_FWD, T_WROW, T_WQ, T_WQD, T_WFORCE, T_WMOMENT, T_COUNT
+    T_INTERP, T_STEPS, T_RES, T_STEPS_FWD, T_RES_FWD, T_WROW, T_WQ, T_WQD, T_WFORCE, T_WMOMENT, T_CONTACT, T_COUNT
 };
 
 static PyStructSequence_Field trajectory_fields[] = {
@@ -52,6 +53,7 @@ static PyStructSequence_Field trajectory_fields[] = {
     {"fwd_window_err_qd", "each window's max |qd_fwd - qd| (nwindow)"},
     {"fwd_window_err_force", "each window's max reaction force difference, N (nwindow)"},
     {"fwd_window_err_moment", "each window's max reaction moment difference, N m (nwindow)"},
+    {"contact_force", "the ground's force at each contact, N, world axes (n x ncontact x 3); None without contacts"},
     {NULL, NULL},
 };
 
@@ -142,6 +144,14 @@ static PyObject *trajectory(const vt_model *m, const vt_trajectory *tr, int forw
     f[T_WQD] = vector(tr->fwd_window_err_qd, tr->nwindow);
     f[T_WFORCE] = vector(tr->fwd_window_err_force, tr->nwindow);
     f[T_WMOMENT] = vector(tr->fwd_window_err_moment, tr->nwindow);
+    if (tr->ncontact) {
+        npy_intp dc[3] = {n, tr->ncontact, 3};
+        PyObject *a = vtpy_new_array(3, dc);
+        if (a && n) memcpy(PyArray_DATA((PyArrayObject *)a), tr->contact_force, (size_t)n * 3 * (size_t)tr->ncontact * sizeof(double));
+        f[T_CONTACT] = a;
+    } else {
+        f[T_CONTACT] = Py_NewRef(Py_None);
+    }
     PyObject *res = NULL;
     int ok = 1;
     for (int k = 0; k < T_COUNT; k++) ok = ok && f[k];
@@ -160,17 +170,23 @@ static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynami
     static char *kwlist[] = {"t1", "nout", "t0", "tout", "q", "qd", "rtol", "atol", "max_step", "max_steps",
                              "newton_tol", "newton_maxit", "forward_check", "forward_independent", "forward_as_loads",
                              "formulation", "baumgarte_alpha", "baumgarte_beta", "history_steps", "redundant_band",
-                             "check_window", NULL};
+                             "check_window", "contacts", NULL};
     vt_run_options opt = vt_default_run_options();
-    PyObject *otout = NULL, *oq = NULL, *oqd = NULL, *oform = NULL;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, dynamic ? "d|id$OOOdddldipppOddidd:dynamic_analysis"
-                                                       : "d|id$OOOdddldipppOddidd:kinematic_analysis",
+    PyObject *otout = NULL, *oq = NULL, *oqd = NULL, *oform = NULL, *ocontacts = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, dynamic ? "d|id$OOOdddldipppOddiddO:dynamic_analysis"
+                                                       : "d|id$OOOdddldipppOddiddO:kinematic_analysis",
                                      kwlist, &opt.t1, &opt.nout, &opt.t0, &otout, &oq, &oqd, &opt.rtol, &opt.atol,
                                      &opt.max_step, &opt.max_steps, &opt.newton_tol, &opt.newton_maxit,
                                      &opt.forward_check, &opt.forward_independent, &opt.forward_as_loads, &oform,
                                      &opt.baumgarte_alpha, &opt.baumgarte_beta, &opt.history_steps,
-                                     &opt.redundant_band, &opt.check_window))
+                                     &opt.redundant_band, &opt.check_window, &ocontacts))
         return NULL;
+    ContactSetObject *cs = NULL; /* the contact set (its vt_contacts made with the run) */
+    if (ocontacts && ocontacts != Py_None) {
+        if (!PyObject_TypeCheck(ocontacts, &vtpy_contacts_type) || ((ContactSetObject *)ocontacts)->model != self)
+            return PyErr_Format(PyExc_ValueError, "contacts: a ContactSet of this Model (Model.contacts)");
+        cs = (ContactSetObject *)ocontacts;
+    }
 #if !VT_HAVE_SUNDIALS
     if (dynamic)
         return vtpy_raise(VT_ERR_BAD_OPTION, "dynamic_analysis: this build has no SUNDIALS IDA (VT_HAVE_SUNDIALS 0)", -1);
@@ -211,11 +227,14 @@ static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynami
     const int nrow = opt.tout ? opt.ntout + 1 : (opt.nout >= 1 && opt.nout < INT_MAX ? opt.nout + 1 : 1);
     vt_data *d = NULL;
     vt_trajectory *tr = NULL;
+    vt_contacts *c = NULL;
     vt_status st;
     char msg[VT_MESSAGE_SIZE] = "";
     Py_BEGIN_ALLOW_THREADS
     st = vt_data_create(&d, m);
-    if (!st) st = vt_trajectory_create(&tr, m, nrow);
+    if (!st && cs) st = vt_contacts_create(&c, m, cs->defs, cs->n, cs->effort_weight, msg);
+    if (!st) st = c ? vt_trajectory_create_contacts(&tr, m, c, nrow) : vt_trajectory_create(&tr, m, nrow);
+    opt.contacts = c;
     if (!st) {
         if (q) memcpy(d->q, PyArray_DATA(q), (size_t)m->nq * sizeof(double));
         if (qd) memcpy(d->qd, PyArray_DATA(qd), (size_t)m->nv * sizeof(double));
@@ -237,6 +256,7 @@ static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynami
         res = trajectory(m, tr, opt.forward_check);
     }
     vt_trajectory_free(tr);
+    vt_contacts_free(c);
     vt_data_free(d);
 done:
     Py_XDECREF(q);

@@ -143,3 +143,34 @@ def test_analysis_errors():
     with pytest.raises(vtdyn.Error) as e:
         m.dynamic_analysis(1.0, nout=0)
     assert e.value.status == "VT_ERR_BAD_OPTION"
+
+
+def test_kinematic_analysis_on_contacts():
+    """a box heaving on its four corners, every rate driven: each corner carries m (g + z'') / 4
+    (the rule's minimum forces, symmetric), the free root's efforts vanish, and the forward check
+    under the ground's forces gives the motion back; a dynamic analysis refuses contacts"""
+    mass, (lx, ly, lz) = 12.0, (0.4, 0.2, 0.1)
+    inertia = (mass / 12 * (ly * ly + lz * lz), mass / 12 * (lx * lx + lz * lz), mass / 12 * (lx * lx + ly * ly))
+    b = vtdyn.Builder(gravity=(0, 0, -G))
+    b.add_body(joint="free", mass=mass, inertia=inertia, name="box")
+    b.add_drive(body=1, index=0, f=0.0)
+    b.add_drive(body=1, index=1, f=0.0)
+    b.add_drive(body=1, index=2, f=vtdyn.Function.sine(0.05, 0.02, 2.0))
+    b.add_drive(body=1, kind="orientation", f=0.0)
+    m = b.build()
+    corners = [(sx * lx / 2, sy * ly / 2, -lz / 2) for sx in (1, -1) for sy in (1, -1)]
+    cs = m.contacts([vtdyn.Contact(body=1, point=p) for p in corners])
+    q0 = np.array([0, 0, 0.05, 1, 0, 0, 0], dtype=float)
+    tr = m.kinematic_analysis(2.0, nout=40, q=q0, contacts=cs, forward_check=bool(vtdyn.VT_HAVE_SUNDIALS))
+    weight = mass * G
+    zdd = -0.08 * np.sin(2 * tr.time)
+    assert tr.contact_force.shape == (41, 4, 3)
+    assert np.abs(tr.contact_force[:, :, 2] - (mass * (G + zdd) / 4)[:, None]).max() <= 1e-10 * weight
+    assert np.abs(tr.contact_force[:, :, :2]).max() <= 1e-10 * weight
+    assert np.abs(tr.qfrc_drive).max() <= 1e-10 * weight  # the box has no motor
+    if bool(vtdyn.VT_HAVE_SUNDIALS):
+        assert tr.fwd_err_q <= 1e-9
+        with pytest.raises(vtdyn.Error) as e:
+            m.dynamic_analysis(1.0, q=q0, contacts=cs)
+        assert e.value.status == "VT_ERR_BAD_OPTION" and "contacts" in str(e.value)
+    assert m.kinematic_analysis(1.0, nout=4, q=q0, forward_check=False).contact_force is None
