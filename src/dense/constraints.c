@@ -668,9 +668,12 @@ vt_status vt_constraints_parts(const vt_model *m, vt_data *d, vt_form form, int 
     /* finite inputs can still overflow (q − f(t) with both near DBL_MAX, far points): scanned */
     const int nc = m->nc;
     const size_t nphiq = (size_t)m->nc * (size_t)m->nv; /* nc x nv: may pass an int */
-    if (vt_all_finite(d->Phi, nc) && vt_all_finite(d->Phit, nc) && (!rates || vt_all_finite(d->gamma, nc)) &&
-        (!phix || vt_all_finite(d->Phix, 14 * nc)) && (!phiq || vt_all_finite(d->Phiq, nphiq)))
-        return VT_OK;
+    vt_finite_scan fs = {0}; /* as one scan: one test at the end */
+    vt_finite_add(&fs, d->Phi, nc);
+    vt_finite_add(&fs, d->Phit, nc);
+    if (rates) vt_finite_add(&fs, d->gamma, nc);
+    if (phix) vt_finite_add(&fs, d->Phix, 14 * nc);
+    if (vt_finite_ok(&fs) && (!phiq || vt_all_finite(d->Phiq, nphiq))) return VT_OK;
     static const char *const owner_kind[] = {"drive", "cut joint", "coupling", "base body"};
     for (int r = 0; r < nc; r++) {
         int bad = !isfinite(d->Phi[r]) || !isfinite(d->Phit[r]) || (rates && !isfinite(d->gamma[r])) ||

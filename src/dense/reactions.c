@@ -232,9 +232,14 @@ static vt_status row_efforts(const vt_model *m, vt_data *d, const double *rw)
     }
 
     for (int k = 0; k < m->ncoupling; k++) d->coupling_effort[k] = d->lambda[m->coupling_row[k]];
-    if (!vt_all_finite(d->coupling_effort, m->ncoupling) || !vt_all_finite(d->drive_force, 3 * m->ndrive) ||
-        !vt_all_finite(d->drive_moment, 3 * m->ndrive) || !vt_all_finite(d->qfrc_drive, m->nv) ||
-        !vt_all_finite(d->cut_force, 3 * m->ncut) || !vt_all_finite(d->cut_moment, 3 * m->ncut))
+    vt_finite_scan fs = {0}; /* as one scan: one test at the end */
+    vt_finite_add(&fs, d->coupling_effort, m->ncoupling);
+    vt_finite_add(&fs, d->drive_force, 3 * m->ndrive);
+    vt_finite_add(&fs, d->drive_moment, 3 * m->ndrive);
+    vt_finite_add(&fs, d->qfrc_drive, m->nv);
+    vt_finite_add(&fs, d->cut_force, 3 * m->ncut);
+    vt_finite_add(&fs, d->cut_moment, 3 * m->ncut);
+    if (!vt_finite_ok(&fs))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_reactions: an effort overflowed (an ill-posed instant?)");
     return VT_OK;
 }
@@ -587,9 +592,13 @@ vt_status vt_reactions_total(const vt_model *m, vt_data *d, int given)
     }
     vt_scratch_release(d, mark);
     const int nb3 = 3 * (n + 1);
-    if (vt_all_finite(d->alpha, nb3) && vt_all_finite(d->jnt_force_total, nb3) && vt_all_finite(d->jnt_moment_total, nb3) &&
-        vt_all_finite(d->jnt_force_total_body, nb3) && vt_all_finite(d->jnt_moment_total_body, nb3))
-        return VT_OK;
+    vt_finite_scan fs = {0}; /* as one scan: one test at the end */
+    vt_finite_add(&fs, d->alpha, nb3);
+    vt_finite_add(&fs, d->jnt_force_total, nb3);
+    vt_finite_add(&fs, d->jnt_moment_total, nb3);
+    vt_finite_add(&fs, d->jnt_force_total_body, nb3);
+    vt_finite_add(&fs, d->jnt_moment_total_body, nb3);
+    if (vt_finite_ok(&fs)) return VT_OK;
     for (int i = 1; i <= n; i++)
         if (!vt_all_finite(d->alpha + 3 * i, 3))
             return vt_fail(d->message, VT_ERR_NONFINITE, "body %d's angular acceleration overflows", i);

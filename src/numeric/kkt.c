@@ -193,6 +193,22 @@ static int column_order(const vt_model *m, const double *Phiq, int n, int *restr
     return 1;
 }
 
+/* One right side w (n) of the LU's factors L U (dgetf2's, in A), in its row order: L U y = w
+ * (lu_solve) or U^T L^T y = w (lu_solve_t), y over w. The callers take w from, and return y to,
+ * the rows' own order by vt_square.rows (the interchanges), so that dgetrs's row swaps of the
+ * vector are not made; dtrsv is dgetrs's dtrsm on one column */
+static void lu_solve(const double *A, int n, double *w)
+{
+    vt_dtrsv('L', 'N', 'U', n, A, n, w, 1);
+    vt_dtrsv('U', 'N', 'N', n, A, n, w, 1);
+}
+
+static void lu_solve_t(const double *A, int n, double *w)
+{
+    vt_dtrsv('U', 'T', 'N', n, A, n, w, 1);
+    vt_dtrsv('L', 'T', 'U', n, A, n, w, 1);
+}
+
 /* the rate of the LU's column k: perm[k], or k without an order */
 static inline int rate_at(const int *perm, int k)
 {
@@ -207,7 +223,7 @@ static inline int rate_at(const int *perm, int k)
  *
  one LU factorization of R Φ_q D (LAPACK dgetf2, partial pivoting, unblocked: at these sizes
  * the blocked dgetrf's recursion costs more than it saves; D = diag(M*_aa^(-1/2)), R each row to
- * unit norm in that metric) serving both solves (dgetrs, then its transpose): M* is not
+ * unit norm in that metric) serving both solves (its triangular factors, then their transposes): M* is not
  * factorized at all. The motion is the rows' alone, and so is the question of its
  * conditioning, which is kinematic (the pose), whatever the inertias: the reported estimate is
  * the condition of Φ̂ = G Φ_q C (exact up to 16 rates, from the inverse of the solves' R Φ_q D
@@ -228,12 +244,13 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     sq->A = VT_SCRATCH(d, double, (size_t)n * (size_t)n, "LU of R Φ_q D");
     sq->s = VT_SCRATCH(d, double, 4 * (size_t)n, "scalings D and R, a solve's two vectors");
     sq->x = VT_SCRATCH(d, double, 2 * (size_t)n, "q̈ and M* q̈ − Q");
-    sq->ipiv = VT_SCRATCH(d, int, 2 * (size_t)n, "pivots and the columns' order");
+    sq->ipiv = VT_SCRATCH(d, int, 3 * (size_t)n, "pivots, the columns' and the rows' order");
     if (!sq->ipiv) return VT_ERR_NO_MEMORY;
     sq->h = sq->x + n;
     sq->g = sq->s + n;
     sq->w = sq->s + 2 * n;
     sq->perm = sq->ipiv + n;
+    sq->rows = sq->ipiv + 2 * n;
     sq->solved = 0;
     double *restrict A = sq->A, *restrict s = sq->s, *restrict g = sq->g, *restrict w = sq->w;
     const double *restrict Phiq = d->Phiq;
@@ -287,6 +304,15 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     dgetf2_(&n, &n, A, &n, sq->ipiv, &info);
     if (info < 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetf2 info %d", info);
     if (info > 0) return vt_scratch_release(d, mark), *rcond_out = 0.0, VT_BELOW_MIN; /* an exactly zero pivot */
+    /* the row interchanges composed once: the solves below read and write their vectors in the
+     * LU's row order directly, the triangular factors' BLAS solves on them (what dgetrs does,
+     * without its copy of the interchanges, dlaswp, over every right side) */
+    int *restrict rows = sq->rows;
+    for (int k = 0; k < n; k++) rows[k] = k;
+    for (int k = 0; k < n; k++) {
+        const int p = sq->ipiv[k] - 1, t = rows[k];
+        rows[k] = rows[p], rows[p] = t;
+    }
     /* the condition of Φ̂ = G R^-1 (R Φ_q D) D^-1 C: up to 16 rates exactly, from the inverse of
      * R Φ_q D (one solve with the identity on the factors at hand; its rows in the columns'
      * order, which the norm does not see), Φ̂^-1 = C^-1 D (R Φ_q D)^-1 R G^-1 entry by entry;
@@ -296,12 +322,15 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     double rcond = 0.0;
     double *X = vt_small_inverse(d, n, b ? 1 : 0);
     if (X) {
+        /* the identity's rows and b's in the LU's row order: X = (R Φ_q D P)^-1 = U^-1 L^-1 Π,
+         * Π the interchanges (rows) */
         const int ncol = b ? n + 1 : n;
         double *xb = X + (size_t)n * (size_t)n;
+        for (int k = 0; k < n; k++) X[k + (size_t)k * (size_t)n] = 0.0, X[k + (size_t)rows[k] * (size_t)n] = 1.0;
         if (b)
-            for (int r = 0; r < n; r++) xb[r] = g[r] * b[r];
-        dgetrs_("N", &n, &ncol, A, &n, sq->ipiv, X, &n, &info, 1);
-        if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+            for (int k = 0; k < n; k++) xb[k] = g[rows[k]] * b[rows[k]];
+        vt_dtrsm('L', 'L', 'N', 'U', n, ncol, 1.0, A, n, X, n);
+        vt_dtrsm('L', 'U', 'N', 'N', n, ncol, 1.0, A, n, X, n);
         double xn = 0.0; /* ‖Φ̂^-1‖_1 */
         for (int c = 0; c < n; c++) {
             const double fc = rg[c];
@@ -324,18 +353,19 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
         if (!isgn) return vt_scratch_fail(d, mark);
         double *x = v + n, est = 0.0;
         int kase = 0, isave[3] = {0, 0, 0};
-        const int one = 1, two = 2;
         do {
             dlacn2_(&n, v, x, isgn, &est, &kase, isave);
             if (kase == 0) break;
             /* each solve on w (its columns' order), x in the rates' own */
             if (kase == 1) {
-                for (int r = 0; r < n; r++) w[r] = x[r] * rg[r];
+                for (int k = 0; k < n; k++) w[k] = x[rows[k]] * rg[rows[k]];
                 /* its first product is a solve with Φ_q: b beside it, in w's next column */
                 const int both = b && !sq->solved;
-                if (both)
-                    for (int r = 0; r < n; r++) w[n + r] = g[r] * b[r];
-                dgetrs_("N", &n, both ? &two : &one, A, &n, sq->ipiv, w, &n, &info, 1);
+                if (both) {
+                    for (int k = 0; k < n; k++) w[n + k] = g[rows[k]] * b[rows[k]];
+                    lu_solve(A, n, w + n);
+                }
+                lu_solve(A, n, w);
                 for (int k = 0; k < n; k++) x[rate_at(perm, k)] = w[k] * dc[k];
                 if (both) {
                     for (int k = 0; k < n; k++) sq->x[rate_at(perm, k)] = w[n + k] * s[rate_at(perm, k)];
@@ -343,10 +373,9 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
                 }
             } else {
                 for (int k = 0; k < n; k++) w[k] = x[rate_at(perm, k)] * dc[k];
-                dgetrs_("T", &n, &one, A, &n, sq->ipiv, w, &n, &info, 1);
-                for (int r = 0; r < n; r++) x[r] = w[r] * rg[r];
+                lu_solve_t(A, n, w);
+                for (int k = 0; k < n; k++) x[rows[k]] = w[k] * rg[rows[k]];
             }
-            if (info != 0) return vt_scratch_release(d, mark), vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
         } while (1);
         rcond = anorm > 0.0 && est > 0.0 && isfinite(est) ? 1.0 / (anorm * est) : 0.0;
     }
@@ -357,12 +386,12 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
 
 int vt_square_apply(const vt_model *m, vt_data *d, const vt_square *sq, const double *b, double sign, double *x)
 {
-    const int n = m->nv, one = 1;
-    int info = 0;
+    (void)d;
+    const int n = m->nv;
     double *w = sq->w;
-    for (int r = 0; r < n; r++) w[r] = sq->g[r] * b[r]; /* y = (R Φ_q D P)^-1 R b, x = ± D P y */
-    dgetrs_("N", &n, &one, sq->A, &n, sq->ipiv, w, &n, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
+    /* y = (R Φ_q D P)^-1 R b, x = ± D P y */
+    for (int k = 0; k < n; k++) w[k] = sq->g[sq->rows[k]] * b[sq->rows[k]];
+    lu_solve(sq->A, n, w);
     for (int k = 0; k < n; k++) x[rate_at(sq->perm, k)] = w[k] * (sign * sq->s[rate_at(sq->perm, k)]);
     return 0;
 }
@@ -374,13 +403,11 @@ int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *
 
 int vt_square_second(const vt_model *m, vt_data *d, vt_square *sq)
 {
-    const int n = m->nv, one = 1;
+    const int n = m->nv;
     double *g = sq->h, *w = sq->w;
-    int info = 0;
     for (int k = 0; k < n; k++) w[k] = g[rate_at(sq->perm, k)] * sq->s[rate_at(sq->perm, k)]; /* P^T D h */
-    dgetrs_("T", &n, &one, sq->A, &n, sq->ipiv, w, &n, &info, 1);
-    if (info != 0) return vt_fail(d->message, VT_ERR_LAPACK, "vt_solve: dgetrs info %d", info);
-    for (int a = 0; a < n; a++) g[a] = w[a] * sq->g[a];
+    lu_solve_t(sq->A, n, w);
+    for (int k = 0; k < n; k++) g[sq->rows[k]] = w[k] * sq->g[sq->rows[k]];
     if (!vt_all_finite(sq->x, 2 * n)) return vt_fail(d->message, VT_ERR_SINGULAR, "vt_solve: solution not finite");
     return 0;
 }
@@ -427,7 +454,7 @@ vt_status vt_solve_square_end(const vt_model *m, vt_data *d, vt_square *sq, doub
 }
 
 /* The scratch kkt.c takes at once: the square route's state (the LU of R Φ_q D, its scalings,
- * q̈ and M* q̈ − Q, a solve's vector, its pivots and column order), held by its caller, with
+ * q̈ and M* q̈ − Q, a solve's vector, its pivots, column and row orders), held by its caller, with
  * the columns' keys, G, C and their ratios to R and D and
  * the condition's inverse with a right side (n ≤ 16) or dlacn2's vectors; or vt_solve_spd's unit diagonal and its Cholesky's
  * inverse or dlansy's and dpocon's workspaces (n ≤ nc: the rows' Schur complement): the larger,
@@ -438,7 +465,7 @@ size_t vt_kkt_scratch(const vt_model *m)
     /* the square route's LU: only with as many rows as rates (nv² is then the rows' own size) */
     const size_t square = m->nc != m->nv ? 0
                           : VT_SCRATCH_BYTES(snv * snv, D) + VT_SCRATCH_BYTES(4 * snv, D) + VT_SCRATCH_BYTES(2 * snv, D) +
-                                VT_SCRATCH_BYTES(2 * snv, I) + VT_SCRATCH_BYTES(4 * snv, D) + VT_SCRATCH_BYTES(2 * snv + (size_t)m->nbody + 3, I) +
+                                VT_SCRATCH_BYTES(3 * snv, I) + VT_SCRATCH_BYTES(4 * snv, D) + VT_SCRATCH_BYTES(2 * snv + (size_t)m->nbody + 3, I) +
                                 VT_SCRATCH_BYTES(snv * (snv + 1), D) + VT_SCRATCH_BYTES(2 * snv, D) + VT_SCRATCH_BYTES(snv, I);
     const size_t exact = VT_SCRATCH_BYTES((size_t)VT_EXACT_RCOND_N * (VT_EXACT_RCOND_N + VT_EXACT_EXTRA), D);
     const size_t pocon = VT_SCRATCH_BYTES(3 * snc, D) + VT_SCRATCH_BYTES(snc, I);

@@ -39,6 +39,7 @@ typedef struct {
     double *w;  /* 2 nv: a solve's vectors in the LU's column order */
     int *ipiv;
     int *perm;  /* nv: the LU's column k is rate perm[k] (a fill-reducing order), or NULL: rate k */
+    int *rows;  /* nv: the LU's row k is row rows[k] of R Φ_q D (ipiv's interchanges, composed) */
     int solved; /* x holds Φ_q^-1 b already (the factorization's b) */
 } vt_square;
 int vt_square_first(const vt_model *m, vt_data *d, vt_square *sq, const double *mdiag, int stride, double *rcond);

@@ -137,10 +137,16 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, c
         double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
         if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
         const double rc = Lo[b]; /* |r_b − o|, as the twists, with its round-off's size (vt_lengths_from_o) */
-        for (int a = vt_last_rate(m, b); a >= 0; a = m->dof_parent[a]) { /* the path: one term a rate */
+        /* the path: one term a rate; b's own rates first (the walk meets them first), the only
+         * ones whose Euler-parameter term can be their own ṗ's */
+        int a = vt_last_rate(m, b);
+        for (int k = 0; k < m->body_nv[b] && a >= 0; k++, a = m->dof_parent[a]) {
             const double wn = T[3 * a], vn = T[3 * a + 1];
-            const int own_p = m->dof_body[a] == b && T[3 * a + 2] != 0.0;
-            B[a] += fr * (vn + wn * rc) + fp * (own_p ? 1.0 : 0.5 * wn);
+            B[a] += fr * (vn + wn * rc) + fp * (T[3 * a + 2] != 0.0 ? 1.0 : 0.5 * wn);
+        }
+        for (; a >= 0; a = m->dof_parent[a]) {
+            const double wn = T[3 * a], vn = T[3 * a + 1];
+            B[a] += fr * (vn + wn * rc) + fp * (0.5 * wn);
         }
     }
     double n2 = 0.0;

@@ -186,15 +186,31 @@ static vt_status outputs_scanned(const vt_model *m, vt_data *d, vt_status st, vt
     }
     if (st) return st;
     const int nb = 3 * (m->nbody + 1), nd = 3 * m->ndrive, nk = 3 * m->ncut;
-    if (!vt_all_finite(d->qdd, m->nv) || !vt_all_finite(d->xdd, m->nx) || !vt_all_finite(d->qfrc_drive, m->nv) ||
-        !vt_all_finite(d->drive_effort, m->ndrive) || !vt_all_finite(d->drive_force, nd) ||
-        !vt_all_finite(d->drive_moment, nd) || !vt_all_finite(d->jnt_force, nb) || !vt_all_finite(d->jnt_moment, nb) ||
-        !vt_all_finite(d->jnt_force_body, nb) || !vt_all_finite(d->jnt_moment_body, nb) ||
-        !vt_all_finite(d->cut_force, nk) || !vt_all_finite(d->cut_moment, nk) ||
-        !vt_all_finite(d->cut_force_body, nk) || !vt_all_finite(d->cut_moment_body, nk) ||
-        (formed == FORMED_INWARD && (!vt_all_finite(d->alpha, nb) || !vt_all_finite(d->jnt_force_total, nb) ||
-                    !vt_all_finite(d->jnt_moment_total, nb) || !vt_all_finite(d->jnt_force_total_body, nb) ||
-                    !vt_all_finite(d->jnt_moment_total_body, nb)))) {
+    /* the outputs as one scan (vt_finite_scan: one test at the end, not a set-up, remainder and
+     * reduction an array; only a failed instant would have stopped earlier) */
+    vt_finite_scan fs = {0};
+    vt_finite_add(&fs, d->qdd, m->nv);
+    vt_finite_add(&fs, d->xdd, m->nx);
+    vt_finite_add(&fs, d->qfrc_drive, m->nv);
+    vt_finite_add(&fs, d->drive_effort, m->ndrive);
+    vt_finite_add(&fs, d->drive_force, nd);
+    vt_finite_add(&fs, d->drive_moment, nd);
+    vt_finite_add(&fs, d->jnt_force, nb);
+    vt_finite_add(&fs, d->jnt_moment, nb);
+    vt_finite_add(&fs, d->jnt_force_body, nb);
+    vt_finite_add(&fs, d->jnt_moment_body, nb);
+    vt_finite_add(&fs, d->cut_force, nk);
+    vt_finite_add(&fs, d->cut_moment, nk);
+    vt_finite_add(&fs, d->cut_force_body, nk);
+    vt_finite_add(&fs, d->cut_moment_body, nk);
+    if (formed == FORMED_INWARD) {
+        vt_finite_add(&fs, d->alpha, nb);
+        vt_finite_add(&fs, d->jnt_force_total, nb);
+        vt_finite_add(&fs, d->jnt_moment_total, nb);
+        vt_finite_add(&fs, d->jnt_force_total_body, nb);
+        vt_finite_add(&fs, d->jnt_moment_total_body, nb);
+    }
+    if (!vt_finite_ok(&fs)) {
         d->route = VT_ROUTE_NONE;
         return vt_fail(d->message, VT_ERR_NONFINITE,
                        "vt_inverse_dynamics_recursive: the accelerations, efforts or reactions overflow (not finite)");
