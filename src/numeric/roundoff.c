@@ -154,6 +154,23 @@ static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, c
     return sqrt(n2);
 }
 
+/* row_terms's ‖B_r‖₁ bounded over every rate at once (sv, sw, sp: the sums of |v_a|, |ω_a| and
+ * of the Euler-parameter terms' largest factor) */
+static double row_bound(const vt_model *m, const vt_data *d, int r, const double *Lo, double sv, double sw, double sp)
+{
+    double u = 0.0;
+    for (int side = 0; side < 2; side++) {
+        const int b = m->con_body[2 * r + side];
+        if (b <= 0) continue;
+        const double *fx = d->Phix + 14 * (size_t)r + 7 * side;
+        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
+        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0);
+        u += fr * (sv + sw * Lo[b]) + fp * sp;
+    }
+    return u;
+}
+
 static double row_norm(const vt_model *m, const vt_data *d, int r)
 {
     double n2 = 0.0;
@@ -180,6 +197,16 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, vt_fo
     int zero_rows = 0;
     vt_lengths_from_o(m, d, Lo, 1);
     rate_terms(m, d, T);
+    /* Without M* (the square and Schur routes) each row's B_r serves its judgement alone, and a row
+     * well above the bound of every rate's terms at once, ‖B_r‖₂ ≤ ‖B_r‖₁ ≤ Σ_side f_r (Σ_a |v_a|
+     * + Σ_a |ω_a| |r_b − o|) + f_p Σ_a max(1, ½ |ω_a|), is above its own: accepted at once, twice
+     * that sum clear of its rounding, and B_r is formed only for the rest */
+    double sv = 0.0, sw = 0.0, sp = 0.0;
+    if (!withM)
+        for (int a = 0; a < nv; a++) {
+            sv += T[3 * a + 1], sw += T[3 * a];
+            sp += T[3 * a + 2] != 0.0 ? fmax(1.0, 0.5 * T[3 * a]) : 0.5 * T[3 * a];
+        }
     for (int r = 0; r < nc; r++) {
         double *Br = B + (size_t)r * (size_t)nv;
         fl[r] = 0;
@@ -187,7 +214,9 @@ int vt_roundoff_check(const vt_model *m, vt_data *d, int *flag, int withM, vt_fo
             for (int a = 0; a < nv; a++) Br[a] = 0.0; /* exact entries: any non-zero one counts */
             continue;
         }
-        const double bn = row_terms(m, d, r, Br, Lo, T), rn = row_norm(m, d, r);
+        const double rn = row_norm(m, d, r);
+        if (!withM && rn > 2.0 * te * row_bound(m, d, r, Lo, sv, sw, sp)) continue;
+        const double bn = row_terms(m, d, r, Br, Lo, T);
         if (!(rn > te * bn)) fl[r] = 1, zero_rows++;
     }
     if (flag) memcpy(flag, fl, (size_t)nc * sizeof(int));
