@@ -59,7 +59,8 @@ static void test_five_link_circle_and_forward_check(void **state)
     vt_model_free(m);
 }
 /* The caller's loads (a force on the arm, a torque on a rate) are in every row's efforts and in
- * the forward check's, at the rows and between them: the arm stays on its circle */
+ * the forward check's, at the rows and between them: the arm stays on its circle, and with the
+ * drives' own loads applied its reactions compare too */
 static void test_forward_check_with_loads(void **state)
 {
     (void)state;
@@ -77,6 +78,16 @@ static void test_forward_check_with_loads(void **state)
     assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
     assert_true(tr->fwd_err_q < 1e-10);
     assert_true(tr->fwd_err_qd < 1e-9);
+    /* the tip's point drives as joint torques: the rows' reactions count the drives' forces at
+     * the tip, the forward run's do not (vt_run_options.forward_as_loads); as the drives' own
+     * loads, the reactions compare too */
+    assert_true(tr->fwd_err_force > 1.0);
+    opt.forward_as_loads = 1;
+    vt_scene_five_link_guess(m, d, 0.0);
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_true(tr->fwd_err_q < 1e-10);
+    assert_true(tr->fwd_err_force < 1e-8);
+    assert_true(tr->fwd_err_moment < 1e-8);
     vt_trajectory_free(tr);
     vt_data_free(d);
     vt_model_free(m);

@@ -782,7 +782,12 @@ typedef struct vt_run_options {
                              ///< catches up with the driven run's last step
     int forward_as_loads;    ///< forward check: 0 applies the drives' generalized force Φ_q^T λ (joint
                              ///< torques, the paper's check; default); 1 applies each drive's own load
-                             ///< (a point drive's force at its point), so the reactions compare too
+                             ///< (a point drive's force at its point), so the reactions compare too.
+                             ///< With 0 and a body drive (point or orientation) the driven rows'
+                             ///< reactions count its force at its body and the forward run's do not:
+                             ///< fwd_err_force and fwd_err_moment then measure that difference, not
+                             ///< an error (the motion's fwd_err_q still does); a run on contacts keeps
+                             ///< the contacts' instant's reactions, which compare with 0
     int formulation;         ///< vt_formulation of the dynamic analysis; default VT_FORMULATION_GGL
     double baumgarte_alpha;  ///< 1/s, Baumgarte's damping term 2α Φ̇; default 10
     double baumgarte_beta;   ///< 1/s, Baumgarte's stiffness term β² Φ; default 10
