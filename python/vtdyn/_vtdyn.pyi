@@ -1,6 +1,6 @@
 # Typed stubs of the extension module vtdyn._vtdyn (python/vtdyn/*.c).
 import os
-from typing import Any, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -264,11 +264,13 @@ class Model:
         redundant_band: float = 5e-4,
         check_window: float = 5.0,
         contacts: Optional[ContactSet] = None,
+        active: Optional[Callable[[float], Sequence[Any]]] = None,
     ) -> Trajectory:
         """a fully driven model's motion, efforts and reactions at each output time
         (vt_kinematic_analysis); forward_check defaults to True where SUNDIALS is built in;
-        contacts: the robot on the ground, every contact on it all the time (the forces in
-        Trajectory.contact_force, the free root's efforts zero)"""
+        contacts: the robot on the ground (the forces in Trajectory.contact_force, the free
+        root's efforts zero); active(t): one flag a contact, which are on the ground at t
+        (None: all, all the time)"""
     def dynamic_analysis(
         self,
         t1: float,
@@ -294,6 +296,7 @@ class Model:
         redundant_band: float = 5e-4,
         check_window: float = 5.0,
         contacts: Optional[ContactSet] = None,
+        active: Optional[Callable[[float], Sequence[Any]]] = None,
     ) -> Trajectory:
         """the motion the drives leave free, integrated by SUNDIALS IDA (vt_dynamic_analysis) from
         q, qd at t0 (None: the reference configuration, at rest); vtdyn.Error without SUNDIALS"""

@@ -3,7 +3,7 @@
  * vt_dynamic_analysis: SUNDIALS IDA on the index-1 form of (5), where the drives fix part of
  * the motion), each with its forward check (the drives removed, their efforts applied). The
  * options are vt_run_options's fields as keyword arguments with the C defaults (contacts: a
- * ContactSet, every contact on the ground all the time); the run has its
+ * ContactSet; active: a Python function of t for the contact schedule); the run has its
  * own vt_data and vt_trajectory, made, run and freed with the GIL released (the Model is only
  * read, so runs on one Model proceed in parallel). The trajectory's column-major arrays (one
  * column a row) are copied into row-major NumPy arrays of the rows the run filled: the Trajectory
@@ -165,27 +165,69 @@ static PyObject *trajectory(const vt_model *m, const vt_trajectory *tr, int forw
 
 static const char *formulations[] = {"index1", "baumgarte", "projection", "ggl", "ode"};
 
+/* a Python callable as the run's contact schedule: active(t) -> a sequence of ncontact truth
+ * values; called with the GIL taken (the run holds none), its first exception kept to raise */
+typedef struct {
+    PyObject *fn;
+    int n;
+    PyObject *type, *value, *tb;
+} schedule;
+
+static int call_schedule(double t, int *active, void *user)
+{
+    schedule *s = user;
+    const PyGILState_STATE g = PyGILState_Ensure();
+    int bad = 1;
+    PyObject *r = PyObject_CallFunction(s->fn, "d", t);
+    PyObject *seq = r ? PySequence_Fast(r, "active: the schedule returns a sequence of one flag a contact") : NULL;
+    if (seq && PySequence_Fast_GET_SIZE(seq) != s->n)
+        PyErr_Format(PyExc_ValueError, "active(%g): %zd flags for %d contacts", t, PySequence_Fast_GET_SIZE(seq), s->n);
+    else if (seq) {
+        bad = 0;
+        for (int k = 0; k < s->n && !bad; k++) {
+            const int v = PyObject_IsTrue(PySequence_Fast_GET_ITEM(seq, k));
+            if (v < 0) bad = 1;
+            else active[k] = v;
+        }
+    }
+    Py_XDECREF(seq);
+    Py_XDECREF(r);
+    if (bad && !s->type) PyErr_Fetch(&s->type, &s->value, &s->tb);
+    PyErr_Clear();
+    PyGILState_Release(g);
+    return bad;
+}
+
 static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynamic)
 {
     static char *kwlist[] = {"t1", "nout", "t0", "tout", "q", "qd", "rtol", "atol", "max_step", "max_steps",
                              "newton_tol", "newton_maxit", "forward_check", "forward_independent", "forward_as_loads",
                              "formulation", "baumgarte_alpha", "baumgarte_beta", "history_steps", "redundant_band",
-                             "check_window", "contacts", NULL};
+                             "check_window", "contacts", "active", NULL};
     vt_run_options opt = vt_default_run_options();
-    PyObject *otout = NULL, *oq = NULL, *oqd = NULL, *oform = NULL, *ocontacts = NULL;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, dynamic ? "d|id$OOOdddldipppOddiddO:dynamic_analysis"
-                                                       : "d|id$OOOdddldipppOddiddO:kinematic_analysis",
+    PyObject *otout = NULL, *oq = NULL, *oqd = NULL, *oform = NULL, *ocontacts = NULL, *oactive = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, dynamic ? "d|id$OOOdddldipppOddiddOO:dynamic_analysis"
+                                                       : "d|id$OOOdddldipppOddiddOO:kinematic_analysis",
                                      kwlist, &opt.t1, &opt.nout, &opt.t0, &otout, &oq, &oqd, &opt.rtol, &opt.atol,
                                      &opt.max_step, &opt.max_steps, &opt.newton_tol, &opt.newton_maxit,
                                      &opt.forward_check, &opt.forward_independent, &opt.forward_as_loads, &oform,
                                      &opt.baumgarte_alpha, &opt.baumgarte_beta, &opt.history_steps,
-                                     &opt.redundant_band, &opt.check_window, &ocontacts))
+                                     &opt.redundant_band, &opt.check_window, &ocontacts, &oactive))
         return NULL;
     ContactSetObject *cs = NULL; /* the contact set (its vt_contacts made with the run) */
     if (ocontacts && ocontacts != Py_None) {
         if (!PyObject_TypeCheck(ocontacts, &vtpy_contacts_type) || ((ContactSetObject *)ocontacts)->model != self)
             return PyErr_Format(PyExc_ValueError, "contacts: a ContactSet of this Model (Model.contacts)");
         cs = (ContactSetObject *)ocontacts;
+    }
+    schedule sch = {.fn = NULL};
+    if (oactive && oactive != Py_None) {
+        if (!cs || !PyCallable_Check(oactive))
+            return PyErr_Format(PyExc_ValueError, "active: a function of t giving one flag a contact, with contacts");
+        sch.fn = oactive;
+        sch.n = cs->n;
+        opt.contact_schedule = call_schedule;
+        opt.contact_user = &sch;
     }
 #if !VT_HAVE_SUNDIALS
     if (dynamic)
@@ -247,7 +289,9 @@ static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynami
         if (st) snprintf(msg, sizeof msg, "%s", d->message);
     }
     Py_END_ALLOW_THREADS
-    if (st) {
+    if (sch.type) { /* the schedule's own exception, not the run's VT_ERR_CALLBACK */
+        PyErr_Restore(sch.type, sch.value, sch.tb);
+    } else if (st) {
         char text[VT_MESSAGE_SIZE + 64];
         snprintf(text, sizeof text, "%s: %s", dynamic ? "dynamic_analysis" : "kinematic_analysis",
                  msg[0] ? msg : vt_status_string(st));

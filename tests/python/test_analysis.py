@@ -148,7 +148,8 @@ def test_analysis_errors():
 def test_kinematic_analysis_on_contacts():
     """a box heaving on its four corners, every rate driven: each corner carries m (g + z'') / 4
     (the rule's minimum forces, symmetric), the free root's efforts vanish, and the forward check
-    under the ground's forces gives the motion back; a dynamic analysis refuses contacts"""
+    under the ground's forces gives the motion back; a dynamic analysis refuses contacts; a fifth
+    point put on the ground by the schedule takes its fifth of the load"""
     mass, (lx, ly, lz) = 12.0, (0.4, 0.2, 0.1)
     inertia = (mass / 12 * (ly * ly + lz * lz), mass / 12 * (lx * lx + lz * lz), mass / 12 * (lx * lx + ly * ly))
     b = vtdyn.Builder(gravity=(0, 0, -G))
@@ -174,3 +175,25 @@ def test_kinematic_analysis_on_contacts():
             m.dynamic_analysis(1.0, q=q0, contacts=cs)
         assert e.value.status == "VT_ERR_BAD_OPTION" and "contacts" in str(e.value)
     assert m.kinematic_analysis(1.0, nout=4, q=q0, forward_check=False).contact_force is None
+    # a fifth point, under the centre, on the ground from t = 1 s on (active(t)): the five then
+    # share the load equally (the smallest forces that hold it, the moments balanced by symmetry)
+    cs5 = m.contacts([vtdyn.Contact(body=1, point=p) for p in corners + [(0.0, 0.0, -lz / 2)]])
+    tr = m.kinematic_analysis(2.0, nout=40, q=q0, contacts=cs5, active=lambda t: [1, 1, 1, 1, t >= 1.0],
+                              forward_check=bool(vtdyn.VT_HAVE_SUNDIALS))
+    load = mass * (G - 0.08 * np.sin(2 * tr.time))
+    on = tr.time >= 1.0
+    assert 0 < on.sum() < len(on)
+    assert np.abs(tr.contact_force[~on, :4, 2] - (load[~on] / 4)[:, None]).max() <= 1e-10 * weight
+    assert np.abs(tr.contact_force[~on, 4]).max() == 0.0
+    assert np.abs(tr.contact_force[on, :, 2] - (load[on] / 5)[:, None]).max() <= 1e-10 * weight
+    if vtdyn.VT_HAVE_SUNDIALS:
+        assert tr.fwd_err_q <= 1e-9
+    # the schedule's own exception comes back as itself; a wrong length is a ValueError
+    def broken(t):
+        raise KeyError("no such gait")
+    with pytest.raises(KeyError):
+        m.kinematic_analysis(1.0, nout=4, q=q0, contacts=cs5, active=broken, forward_check=False)
+    with pytest.raises(ValueError):
+        m.kinematic_analysis(1.0, nout=4, q=q0, contacts=cs5, active=lambda t: [1, 1], forward_check=False)
+    with pytest.raises(ValueError):
+        m.kinematic_analysis(1.0, nout=4, q=q0, active=lambda t: [1], forward_check=False)
