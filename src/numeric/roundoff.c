@@ -126,16 +126,24 @@ static void rate_terms(const vt_model *m, const vt_data *d, double *T)
     }
 }
 
+/* row r's Φ_x on one side's body: the sizes of its position part (fr) and of its Euler-parameter
+ * part (fp) */
+static void side_sizes(const vt_model *m, const vt_data *d, int r, int side, double *fr, double *fp)
+{
+    const double *fx = d->Phix + 14 * (size_t)r + 7 * side;
+    *fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
+    *fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
+    if (m->con_kind[r] == VT_ROW_DOT) *fp = fmax(*fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
+}
+
 static double row_terms(const vt_model *m, const vt_data *d, int r, double *B, const double *Lo, const double *T)
 {
     for (int a = 0; a < m->nv; a++) B[a] = 0.0;
     for (int side = 0; side < 2; side++) {
         const int b = m->con_body[2 * r + side];
         if (b <= 0) continue;
-        const double *fx = d->Phix + 14 * (size_t)r + 7 * side;
-        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
-        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
-        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0); /* 2 (u × v)^T E is itself a sum: |u| |v| = 1 */
+        double fr, fp;
+        side_sizes(m, d, r, side, &fr, &fp);
         const double rc = Lo[b]; /* |r_b − o|, as the twists, with its round-off's size (vt_lengths_from_o) */
         /* the path: one term a rate; b's own rates first (the walk meets them first), the only
          * ones whose Euler-parameter term can be their own ṗ's */
@@ -162,10 +170,8 @@ static double row_bound(const vt_model *m, const vt_data *d, int r, const double
     for (int side = 0; side < 2; side++) {
         const int b = m->con_body[2 * r + side];
         if (b <= 0) continue;
-        const double *fx = d->Phix + 14 * (size_t)r + 7 * side;
-        const double fr = fabs(fx[0]) + fabs(fx[1]) + fabs(fx[2]);
-        double fp = fabs(fx[3]) + fabs(fx[4]) + fabs(fx[5]) + fabs(fx[6]);
-        if (m->con_kind[r] == VT_ROW_DOT) fp = fmax(fp, 2.0);
+        double fr, fp;
+        side_sizes(m, d, r, side, &fr, &fp);
         u += fr * (sv + sw * Lo[b]) + fp * sp;
     }
     return u;
