@@ -37,7 +37,7 @@ vt_status vt_contacts_run_check(const vt_model *m, vt_data *d, const vt_run_opti
 }
 
 vt_status vt_contacts_driven(const vt_model *m, vt_data *d, const vt_run_options *opt, const double *base,
-                             double *force, int *active, const char *who)
+                             double *force, int *active, int drives, const char *who)
 {
     vt_contacts *c = opt->contacts;
     const int n = vt_contacts_count(c);
@@ -51,13 +51,15 @@ vt_status vt_contacts_driven(const vt_model *m, vt_data *d, const vt_run_options
     for (int k = 0; k < n; k++) active[k] = active[k] != 0;
     memcpy(d->xfrc, base, nxf * sizeof(double));
     vt_status st = vt_inverse_dynamics_contacts(m, d, c, active, force);
-    if (!st) { /* the forces as loads (what the instant applied by its inward pass), the drives'
-                * efforts with them, and the instant's own efforts and reactions back */
+    if (!st) { /* the forces as loads (what the instant applied by its inward pass); with drives
+                * the drives' efforts with them, and the instant's own efforts and reactions back */
         const double *loads = vt_contacts_loads(c);
         for (size_t k = 0; k < nxf; k++) d->xfrc[k] += loads[k];
-        vt_contacts_outputs(m, d, c, 1);
-        st = vt_inverse_dynamics_recursive(m, d);
-        if (!st) vt_contacts_outputs(m, d, c, 0);
+        if (drives) {
+            vt_contacts_outputs(m, d, c, 1);
+            st = vt_inverse_dynamics_recursive(m, d);
+            if (!st) vt_contacts_outputs(m, d, c, 0);
+        }
     }
     if (!st) return VT_OK;
     memcpy(d->xfrc, base, nxf * sizeof(double));

@@ -627,7 +627,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     vt_data *df = NULL;
     vt_status st = vt_kinematic_solve(dk->model, dk, opt->newton_tol, opt->newton_maxit);
     /* on contacts the efforts and loads with the ground's forces, which dk->xfrc then holds */
-    if (st == VT_OK && opt->contacts) st = vt_contacts_driven(m, dk, opt, d->xfrc, NULL, NULL, "forward check");
+    if (st == VT_OK && opt->contacts) st = vt_contacts_driven(m, dk, opt, d->xfrc, NULL, NULL, opt->forward_as_loads, "forward check");
     if (st == VT_OK) st = forward_setup(m, dk, opt->contacts ? dk->xfrc : d->xfrc, opt->forward_as_loads, &mf, &df);
     if (st) {
         vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);

@@ -83,7 +83,7 @@ static vt_status rows(const vt_model *m, vt_data *d, const vt_run_options *opt, 
         if (k == 0 && m->allow_redundant && (st = fully_driven(m, d, opt->t0, 1))) return st;
         if (base) { /* the ground's forces, and the drives' efforts with them */
             const size_t r = (size_t)k * (size_t)tr->ncontact;
-            if ((st = vt_contacts_driven(m, d, opt, base, tr->contact_force + 3 * r, tr->contact_active + r,
+            if ((st = vt_contacts_driven(m, d, opt, base, tr->contact_force + 3 * r, tr->contact_active + r, 1,
                                          "vt_kinematic_analysis")))
                 return st;
         }
