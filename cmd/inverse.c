@@ -54,12 +54,13 @@ static void run_free(run *x)
     free(x->vals[0]);
     free(x->vals[1]);
     if (x->blk)
-        for (int k = 0; k < x->T; k++) {
+        for (int k = 0; k < x->tm.nblock; k++) {
             free(x->blk[k].text[0]);
             free(x->blk[k].text[1]);
             free(x->blk[k].v);
         }
     free(x->blk);
+    team_free(&x->tm);
     chunk_free(&x->ch[0]);
     chunk_free(&x->ch[1]);
     vt_batch_free(x->batch);
@@ -277,6 +278,7 @@ static int build_model(run *x)
     const vt_status st = vt_batch_create(&x->batch, x->m, &def);
     if (st) return cmd_fail("%s: %d threads: %s", x->urdf, x->o->threads, vt_status_string(st));
     x->T = vt_batch_threads(x->batch);
+    if (team_make(&x->tm, x->T)) return cmd_fail("out of memory (%d threads)", x->T);
     return 0;
 }
 

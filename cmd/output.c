@@ -210,11 +210,11 @@ int format_rows(run *x, int n)
 {
     const double t0 = run_clock();
     if (x->ofmt == FMT_NPY) {
-        parallel_blocks(x->T, n, encode_block, x);
+        parallel_blocks(&x->tm, n, encode_block, x);
     } else {
-        for (int k = 0; k < x->T; k++) x->blk[k].failed = -1;
-        parallel_blocks(x->T, n, format_block, x);
-        for (int k = 0; k < x->T; k++)
+        for (int k = 0; k < x->tm.nblock; k++) x->blk[k].failed = -1;
+        parallel_blocks(&x->tm, n, format_block, x);
+        for (int k = 0; k < x->tm.nblock; k++)
             if (x->blk[k].failed >= 0) return cmd_fail("%s", x->blk[k].msg);
     }
     x->t_write += run_clock() - t0;
@@ -226,7 +226,7 @@ void put_rows(run *x, int set, int n)
     if (x->ofmt == FMT_NPY) {
         fwrite(x->vals[set], 8 * (size_t)x->nout, (size_t)n, x->out.f);
     } else {
-        for (int k = 0; k < x->T && k < n; k++) fwrite(x->blk[k].text[set], 1, x->blk[k].len[set], x->out.f);
+        for (int k = 0, B = team_blocks(&x->tm, n); k < B; k++) fwrite(x->blk[k].text[set], 1, x->blk[k].len[set], x->out.f);
     }
     x->written += n;
 }

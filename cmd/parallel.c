@@ -1,59 +1,65 @@
-/* The command's threads: contiguous blocks of rows on threads made for the call (as the
- * library's batches share their rows), each in the C locale. */
+/* The command's threads: the blocks of a range taken in turn, from a shared counter, by the
+ * library's pool of threads (base/pool.c, built into the command as into the library: a worker
+ * that wakes after the last block is taken takes none, so every block is run by whoever is
+ * there). */
 #define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 #include "parallel.h"
 
-#include <locale.h>
-#include <pthread.h>
-#include <stdlib.h>
+#include <stdatomic.h>
 
+int team_make(team *t, int T)
+{
+    *t = (team){0};
+    if (T < 1) T = 1;
+    t->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+    if (!t->c) return 1;
+    if (T > 1 && !(t->pool = vt_pool_create(T))) {
+        freelocale(t->c);
+        t->c = (locale_t)0;
+        return 1;
+    }
+    t->T = vt_pool_threads(t->pool);
+    t->nblock = t->T > 1 ? 4 * t->T : 1;
+    return 0;
+}
+
+void team_free(team *t)
+{
+    vt_pool_free(t->pool);
+    if (t->c) freelocale(t->c);
+    *t = (team){0};
+}
+
+int team_blocks(const team *t, int n)
+{
+    return n < t->nblock ? n : t->nblock;
+}
+
+/* one call's blocks and the counter its runners take them from */
 typedef struct {
     block_fn fn;
     void *ctx;
-    int first, end, k;
-} block;
+    int n, B;
+    locale_t c;
+    atomic_int next;
+} blocks;
 
-/* one block under the C locale (made once a block; newlocale is cheap next to a block's rows) */
-static void *run_block(void *arg)
+/* a runner (the caller's thread, or a worker): block after block until none is left */
+static void run_blocks(void *arg, int runner)
 {
-    const block *b = arg;
-    locale_t c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    const locale_t old = c ? uselocale(c) : (locale_t)0;
-    b->fn(b->ctx, b->first, b->end, b->k);
-    if (c) {
-        uselocale(old);
-        freelocale(c);
-    }
-    return NULL;
+    (void)runner;
+    blocks *b = arg;
+    const locale_t old = uselocale(b->c);
+    for (int k; (k = atomic_fetch_add_explicit(&b->next, 1, memory_order_relaxed)) < b->B;)
+        b->fn(b->ctx, (int)((long long)k * b->n / b->B), (int)((long long)(k + 1) * b->n / b->B), k);
+    uselocale(old);
 }
 
-void parallel_blocks(int T, int n, block_fn fn, void *ctx)
+void parallel_blocks(const team *t, int n, block_fn fn, void *ctx)
 {
-    if (n <= 0) return;
-    if (T < 1) T = 1;
-    if (T > n) T = n;
-    block *b = malloc((size_t)T * sizeof *b);
-    pthread_t *tid = malloc((size_t)T * sizeof *tid);
-    int *started = calloc((size_t)T, sizeof *started);
-    if (!b || !tid || !started) { /* no room for the threads' records: every block here, in turn */
-        free(b);
-        free(tid);
-        free(started);
-        for (int k = 0; k < T; k++) {
-            const block one = {fn, ctx, (int)((long long)k * n / T), (int)((long long)(k + 1) * n / T), k};
-            run_block((void *)&one);
-        }
-        return;
-    }
-    for (int k = 0; k < T; k++)
-        b[k] = (block){fn, ctx, (int)((long long)k * n / T), (int)((long long)(k + 1) * n / T), k};
-    for (int k = 1; k < T; k++) started[k] = pthread_create(&tid[k], NULL, run_block, &b[k]) == 0;
-    run_block(&b[0]);
-    for (int k = 1; k < T; k++) {
-        if (started[k]) pthread_join(tid[k], NULL);
-        else run_block(&b[k]);
-    }
-    free(b);
-    free(tid);
-    free(started);
+    const int B = team_blocks(t, n);
+    if (B <= 0) return;
+    blocks b = {fn, ctx, n, B, t->c, 0};
+    atomic_init(&b.next, 0);
+    vt_pool_run(t->pool, B < t->T ? B : t->T, run_blocks, &b);
 }

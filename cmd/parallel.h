@@ -1,16 +1,37 @@
-/* The command's threads (cmd/parallel.c): a range of rows shared among threads in contiguous
- * blocks, for the work around the library's batch (parsing the input's numbers, formatting the
- * output's) so that the rows' bytes never depend on the number of threads. */
+/* The command's threads (cmd/parallel.c): a range of rows cut into blocks that a team of
+ * threads (the library's pool, base/pool.c, started once a run) takes in turn, for the work
+ * around the library's batch (parsing the input's numbers, formatting the output's). Each block
+ * has its own buffers, written in order, so the rows' bytes never depend on the threads. */
 #ifndef VTDYN_CMD_PARALLEL_H
 #define VTDYN_CMD_PARALLEL_H
 
-/* one block's work: rows [first, end) of the call's range, block number k */
+#include <locale.h>
+
+#include "base/pool.h"
+
+/* the run's threads */
+typedef struct {
+    vt_pool *pool; /* T − 1 workers (NULL on one thread) */
+    int T;         /* the threads */
+    int nblock;    /* the blocks a range is cut into: 4 a thread (one on one thread), so that a
+                    * thread the machine slows takes fewer */
+    locale_t c;    /* the C locale every block runs in (numbers with a '.' whatever LC_NUMERIC) */
+} team;
+
+/* the team of T threads (its pool started); 0, or 1 out of memory (t then holds nothing to free) */
+int team_make(team *t, int T);
+
+/* ends the team's threads (a zeroed team is allowed) */
+void team_free(team *t);
+
+/* the blocks a range of n rows is cut into: at most t->nblock, none empty */
+int team_blocks(const team *t, int n);
+
+/* one block's work: rows [first, end), block number k */
 typedef void (*block_fn)(void *ctx, int first, int end, int k);
 
-/* calls fn on the T blocks of [0, n) (block k: rows ⌊k n/T⌋ … ⌊(k+1) n/T⌋ − 1; empty blocks are
- * not called): block 0 on the caller's thread, the others on threads created for the call and
- * joined before it returns (a block whose thread cannot be created runs on the caller's). Every
- * block runs in the C locale (numbers with a '.' whatever LC_NUMERIC). */
-void parallel_blocks(int T, int n, block_fn fn, void *ctx);
+/* calls fn on the team_blocks(t, n) blocks of [0, n) (block k: rows ⌊k n/B⌋ … ⌊(k+1) n/B⌋ − 1),
+ * each once, on the team's threads, each block under the C locale; returns when all are done */
+void parallel_blocks(const team *t, int n, block_fn fn, void *ctx);
 
 #endif

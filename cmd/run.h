@@ -10,6 +10,7 @@
 #include "csv.h"
 #include "input.h"
 #include "inverse.h"
+#include "parallel.h"
 #include "vtdyn.h"
 
 /* a floating root's input columns, after its name and '_' */
@@ -90,7 +91,8 @@ typedef struct {
     double *parts;             /* the efforts' armature, damping and friction parts (K x 3 nv), or NULL */
     int *status;               /* the rows' statuses (K) */
     double *vals[2];           /* .npy output: the rows' values, little-endian (K x nout), two sets */
-    block_state *blk;          /* T */
+    team tm;                   /* the threads of the parsing and formatting */
+    block_state *blk;          /* tm.nblock */
     table_key *frames;         /* the probe's frames sorted by name (nframe): a link's frame in log n */
     /* --contacts: the feet on the ground */
     int ncontact;

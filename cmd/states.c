@@ -59,12 +59,12 @@ int chunk_arrays(run *x)
         if (!x->active || !x->cforce) return cmd_fail("out of memory");
     }
     for (int k = 0; k < 2 && x->ofmt == FMT_NPY; k++) x->vals[k] = malloc(K * nout * sizeof *x->vals[k]);
-    x->blk = calloc((size_t)x->T, sizeof *x->blk);
+    x->blk = calloc((size_t)x->tm.nblock, sizeof *x->blk);
     if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_link) ||
         (bear && !x->bearing) || (lim && !x->excess) || (parts && !x->parts) ||
         !x->status || (x->ofmt == FMT_NPY && (!x->vals[0] || !x->vals[1])) || !x->blk)
         return cmd_fail("out of memory");
-    for (int k = 0; k < x->T; k++)
+    for (int k = 0; k < x->tm.nblock; k++)
         if (!(x->blk[k].v = malloc(nout * sizeof *x->blk[k].v))) return cmd_fail("out of memory");
     for (size_t r = 0; r < K; r++) memcpy(x->q + r * nq, x->d->q, nq * sizeof *x->q); /* every coordinate set */
     return 0;
@@ -175,10 +175,10 @@ int state_failure(run *x, int r, long long loc)
 static int solve_chunk(run *x, int n, int set)
 {
     const double t0 = run_clock();
-    for (int k = 0; k < x->T; k++) x->blk[k].failed = -1;
-    parallel_blocks(x->T, n, fill_block, x);
+    for (int k = 0; k < x->tm.nblock; k++) x->blk[k].failed = -1;
+    parallel_blocks(&x->tm, n, fill_block, x);
     int f = n, fk = -1; /* the first row whose numbers or quaternion fail */
-    for (int k = 0; k < x->T && fk < 0; k++)
+    for (int k = 0; k < x->tm.nblock && fk < 0; k++)
         if (x->blk[k].failed >= 0) f = x->blk[fk = k].failed;
     const double t1 = run_clock();
     x->t_read += t1 - t0;

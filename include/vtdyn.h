@@ -519,20 +519,26 @@ VT_API vt_status vt_dynamic_analysis(const vt_model *model, vt_data *data, const
 VT_API vt_batch_def vt_default_batch_def(void);
 /// A batch of the model (which must outlive it) with the def's threads (NULL: the defaults): one
 /// data per thread (and with contacts one vt_contacts per thread), made here once, so that a call
-/// allocates nothing per row. Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (threads < 0, stop_on_error
+/// allocates nothing per row, and the threads beyond the caller's started here (asleep until a
+/// call; vt_batch_free() ends them). A thread the system refuses leaves the batch fewer
+/// (vt_batch_threads()). Statuses: VT_ERR_NULL, VT_ERR_BAD_OPTION (threads < 0, stop_on_error
 /// not 0 or 1, ncontact < 0 or contacts NULL with some), VT_ERR_NO_MEMORY, and those of
 /// vt_data_create() and vt_contacts_create() (which gives a refused contact's message). On failure
 /// *batch is NULL.
 VT_API vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batch_def *def);
 /// Frees the batch and its data (NULL is allowed).
 VT_API void vt_batch_free(vt_batch *batch);
-/// The threads a call uses (the def's, or the CPUs counted when it asked for 0).
+/// The threads a call uses (the def's, or the CPUs counted when it asked for 0; fewer when the
+/// system refused to start some).
 VT_API int vt_batch_threads(const vt_batch *batch);
 /// vt_inverse_dynamics_motion() on every row of io (vt_batch_io: the layout; with the def's contacts
 /// vt_inverse_dynamics_contacts(), each row's active contacts from io->contact_active and their
 /// forces into io->contact_force), the rows shared among
 /// the batch's threads in blocks of 16 taken in turn, so that a thread the machine slows takes
-/// fewer (threads created for the call and joined before it returns; no allocation). Each row is solved from its own inputs alone (the data's applied
+/// fewer (the caller's thread and the batch's workers, started with it and asleep between calls:
+/// a call creates no thread and allocates nothing; a call of one block stays on the caller's
+/// thread). One call at a time on a batch: threads that solve at once each need their own.
+/// Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
 /// whatever the number of threads. A failing row's outputs are not written; its status goes to
 /// io->status, and the other rows are solved (unless stop_on_error). Returns VT_OK when every row

@@ -3,9 +3,12 @@
  * (q in a wider table: strides), the RUSR four-bar (a loop: the drive's effort and the solved
  * q̈), failing rows in the middle (reported by index, status and message, their outputs
  * untouched, the others solved; or the call stopped), a quadruped on its contacts (against
- * vt_inverse_dynamics_contacts() alone), and the arguments refused before any row. */
+ * vt_inverse_dynamics_contacts() alone), the arguments refused before any row, and one batch
+ * called 300 times in turn (its workers asleep between some calls, spinning between others). */
+#define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <math.h>
 #include <stdio.h>
+#include <time.h>
 
 #include "vt_test.h"
 
@@ -508,6 +511,90 @@ static void test_arguments(void **state)
     vt_model_free(m);
 }
 
+/* one batch, call after call (the workers asleep between some, spinning between others): 300
+ * calls of 0 to 203 rows, each from another first row of the states (so that every call's inputs
+ * and outputs move), one row NaN: each call's efforts and reactions bitwise those of
+ * vt_inverse_dynamics_motion() on each state alone, the NaN row reported at its index within the
+ * call whenever the call holds it; then batches freed with their workers asleep, and one freed
+ * without a call */
+static void test_calls_in_turn(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_random_tree(&m, 7, 8, VT_SCENE_NO_BASE));
+    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb6 = 6 * (size_t)m->nbody;
+    states st = random_states(m, 21, nq);
+    const int bad = 150;
+    st.qd[bad * nv] = NAN;
+    /* the single call's answers, each state on its own data */
+    double *effort = malloc(NROW * nv * sizeof(double)), *reaction = malloc(NROW * nb6 * sizeof(double));
+    assert_non_null(effort);
+    assert_non_null(reaction);
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    for (int r = 0; r < NROW; r++) {
+        if (r == bad) continue;
+        memcpy(d->q, st.q + r * nq, nq * sizeof(double));
+        memcpy(d->qd, st.qd + r * nv, nv * sizeof(double));
+        memcpy(d->qdd, st.qdd + r * nv, nv * sizeof(double));
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        memcpy(effort + r * nv, d->qfrc_drive, nv * sizeof(double));
+        for (int i = 1; i <= m->nbody; i++) {
+            memcpy(reaction + r * nb6 + 6 * (size_t)(i - 1), d->jnt_force + 3 * i, 3 * sizeof(double));
+            memcpy(reaction + r * nb6 + 6 * (size_t)(i - 1) + 3, d->jnt_moment + 3 * i, 3 * sizeof(double));
+        }
+    }
+    vt_data_free(d);
+    double *e = malloc(NROW * nv * sizeof(double)), *rw = malloc(NROW * nb6 * sizeof(double));
+    int *status = malloc(NROW * sizeof(int));
+    assert_non_null(e);
+    assert_non_null(rw);
+    assert_non_null(status);
+    const int threads[2] = {2, 8}, sizes[7] = {0, 1, 16, 17, 33, 64, NROW};
+    for (int t = 0; t < 2; t++) {
+        vt_batch *b = batch_of(m, threads[t], 0);
+        uint64_t seed = 5;
+        for (int call = 0; call < 300; call++) {
+            const int n = sizes[call % 7], first = (int)vt_rand_uniform(&seed, 0.0, (double)(NROW - n) + 0.999);
+            for (size_t k = 0; k < NROW * nv; k++) e[k] = 42.0;
+            vt_batch_io io = {0};
+            io.nrow = n;
+            io.q = st.q + first * nq;
+            io.qd = st.qd + first * nv;
+            io.qdd = st.qdd + first * nv;
+            io.effort = e;
+            io.reaction = rw;
+            io.status = status;
+            const int holds = first <= bad && bad < first + n;
+            assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), holds ? VT_ERR_NONFINITE : VT_OK);
+            assert_int_equal(vt_batch_failed_row(b), holds ? bad - first : -1);
+            for (int r = n - 1; r >= 0; r--) { /* the last rows first: those a worker finishes last */
+                if (first + r == bad) {
+                    assert_int_equal(status[r], VT_ERR_NONFINITE);
+                    assert_true(same(e[(size_t)r * nv], 42.0));
+                    continue;
+                }
+                assert_int_equal(status[r], VT_OK);
+                for (size_t k = 0; k < nv; k++) assert_true(same(e[r * nv + k], effort[(first + r) * nv + k]));
+                for (size_t k = 0; k < nb6; k++) assert_true(same(rw[r * nb6 + k], reaction[(first + r) * nb6 + k]));
+            }
+            if (call % 50 == 49) { /* long enough for the workers to sleep */
+                const struct timespec pause = {0, 2000000};
+                nanosleep(&pause, NULL);
+            }
+        }
+        vt_batch_free(b);
+    }
+    vt_batch_free(batch_of(m, 8, 0)); /* its workers never called */
+    free(e);
+    free(rw);
+    free(status);
+    free(effort);
+    free(reaction);
+    states_free(&st);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -517,6 +604,7 @@ int main(void)
         cmocka_unit_test(test_failing_rows),
         cmocka_unit_test(test_contacts_bitwise),
         cmocka_unit_test(test_arguments),
+        cmocka_unit_test(test_calls_in_turn),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

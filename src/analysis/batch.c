@@ -1,10 +1,11 @@
 /* Batches: vt_inverse_dynamics_motion() on many states (with contacts
  * vt_inverse_dynamics_contacts()), the rows shared among threads.
  *
- * Each thread owns one data (and one contact set, its workspace), made once with the batch; a
- * call creates its threads (the caller's one of them) and joins them. The threads take the rows
- * in blocks of BATCH_BLOCK, the next block from a shared counter, so that a thread slowed by the
- * machine's other work takes fewer rows. A row is solved from its own inputs alone — q, q̇, q̈ and
+ * Each thread owns one data (and one contact set, its workspace), made once with the batch, as
+ * are its threads: the caller's and a pool's workers (base/pool.c), asleep between calls. The
+ * threads take the rows in blocks of BATCH_BLOCK, the next block from a shared counter, so that a
+ * thread slowed by the machine's other work takes fewer rows, and a worker that wakes after the
+ * last block is taken none. A row is solved from its own inputs alone — q, q̇, q̈ and
  * qfrc copied into the thread's data, xfrc zero — so its results do not depend on the rows
  * solved before it on that data, nor on which thread solved it or how many there are: bitwise
  * those of the single call. A thread takes its blocks in increasing order, so its first failure
@@ -15,7 +16,6 @@
 #include "analysis/contact.h"
 #include "dense/reactions.h"
 
-#include <pthread.h>
 #include <sched.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -23,6 +23,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/pool.h"
 #include "base/status.h"
 
 /* the rows a thread takes at a time: enough that the shared counter is touched seldom (a row
@@ -49,9 +50,8 @@ struct vt_batch {
     vt_data **data;      /* one per thread */
     vt_contacts **contacts; /* with contacts: one set per thread (its workspace), else NULL */
     int ncontact;        /* 0 without */
-    struct share *shares; /* the threads' shares of a call, their ids and whether each started */
-    pthread_t *tid;
-    int *started;
+    struct share *shares; /* the threads' shares of a call: the caller's 0, worker k's k */
+    vt_pool *pool;       /* the workers (NULL on one thread) */
     int failed_row;      /* the last call's failing row of lowest index, or −1 */
     char message[VT_MESSAGE_SIZE];
 };
@@ -83,8 +83,7 @@ void vt_batch_free(vt_batch *batch)
     free(batch->data);
     free(batch->contacts);
     free(batch->shares);
-    free(batch->tid);
-    free(batch->started);
+    vt_pool_free(batch->pool);
     free(batch);
 }
 
@@ -104,9 +103,7 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     b->failed_row = -1;
     b->data = calloc((size_t)b->threads, sizeof *b->data);
     b->shares = malloc((size_t)b->threads * sizeof *b->shares);
-    b->tid = malloc((size_t)b->threads * sizeof *b->tid);
-    b->started = malloc((size_t)b->threads * sizeof *b->started);
-    if (!b->data || !b->shares || !b->tid || !b->started) {
+    if (!b->data || !b->shares) {
         vt_batch_free(b);
         return VT_ERR_NO_MEMORY;
     }
@@ -123,6 +120,13 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
             vt_batch_free(b);
             return st;
         }
+    }
+    if (b->threads > 1) { /* a worker the system refuses leaves the batch fewer threads */
+        if (!(b->pool = vt_pool_create(b->threads))) {
+            vt_batch_free(b);
+            return VT_ERR_NO_MEMORY;
+        }
+        b->threads = vt_pool_threads(b->pool);
     }
     *batch = b;
     return VT_OK;
@@ -215,10 +219,11 @@ static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, const 
     return VT_OK;
 }
 
-/* a thread's rows: block after block from the shared counter until none is left */
-static void *run_share(void *arg)
+/* runner k's rows (its share of the call): block after block from the shared counter until none
+ * is left */
+static void run_share(void *arg, int k)
 {
-    share *s = arg;
+    share *s = (share *)arg + k;
     const vt_batch *b = s->batch;
     const long long n = s->io->nrow;
     for (;;) {
@@ -238,7 +243,6 @@ static void *run_share(void *arg)
             if (s->io->status) s->io->status[r] = st;
         }
     }
-    return NULL;
 }
 
 /* the arguments: every required array with rows, every stride at least its row */
@@ -285,25 +289,19 @@ vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *i
     if (!io) return vt_fail(batch->message, VT_ERR_NULL, "vt_batch: io is NULL");
     vt_status st = check_io(batch, io);
     if (st) return st;
-    const int n = io->nrow, T = batch->threads < n ? batch->threads : (n > 0 ? n : 1);
+    /* the threads that can have a block (a call of one block stays on the caller's) */
+    const int n = io->nrow;
+    const int blocks = n / BATCH_BLOCK + (n % BATCH_BLOCK != 0);
+    const int T = blocks < batch->threads ? (blocks > 0 ? blocks : 1) : batch->threads;
     share *shares = batch->shares;
-    pthread_t *tid = batch->tid;
-    int *started = batch->started;
     atomic_int stop;
     atomic_llong next;
     atomic_init(&stop, 0);
     atomic_init(&next, 0);
-    for (int k = 0; k < T; k++) {
+    for (int k = 0; k < T; k++)
         shares[k] = (share){.batch = batch, .io = io, .d = batch->data[k], .next = &next, .stop = &stop,
                             .failed = -1, .contacts = batch->contacts ? batch->contacts[k] : NULL};
-        started[k] = 0;
-    }
-    /* the other threads; one that cannot be created leaves the rows to those that run (the
-     * caller's at least) */
-    for (int k = 1; k < T; k++) started[k] = pthread_create(&tid[k], NULL, run_share, &shares[k]) == 0;
-    run_share(&shares[0]);
-    for (int k = 1; k < T; k++)
-        if (started[k]) pthread_join(tid[k], NULL);
+    vt_pool_run(batch->pool, T, run_share, shares);
     int low = -1; /* the thread whose first failure is the lowest row */
     for (int k = 0; k < T; k++)
         if (shares[k].failed >= 0 && (low < 0 || shares[k].failed < shares[low].failed)) low = k;
