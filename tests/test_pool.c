@@ -3,11 +3,15 @@
  * back to back and after pauses long enough for the workers to sleep; no worker touches a call
  * that has returned (each call's context is marked closed after it returns and a runner that
  * meets a closed one counts it); a call of one thread stays on the caller's; a NULL pool runs
- * the work on the caller's; pools freed with their workers asleep, spinning, or never called. */
+ * the work on the caller's; pools freed with their workers asleep, spinning, or never called; a
+ * forked child's calls run on its one thread. */
 #define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <pthread.h>
 #include <stdatomic.h>
+#include <string.h>
+#include <sys/wait.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "base/pool.h"
 #include "vt_test.h"
@@ -123,12 +127,44 @@ static void test_freed(void **state)
     vt_pool_free(p);
 }
 
+/* a pool used, then the process forked (Python's multiprocessing does so): the child has the
+ * pool but not its workers, and its calls run every item on the caller's thread */
+static void test_forked(void **state)
+{
+    (void)state;
+    vt_pool *p = vt_pool_create(4);
+    assert_non_null(p);
+    run_calls(p, 4, 20);
+    const pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        call_ctx *c = calloc(1, sizeof *c);
+        int ok = c != NULL;
+        for (int n = 0; n < 100 && ok; n++) {
+            memset(c, 0, sizeof *c);
+            c->nitem = 300;
+            c->threads = 4;
+            c->caller = pthread_self();
+            vt_pool_run(p, 4, work, c);
+            for (int i = 0; i < c->nitem; i++) ok &= atomic_load(&c->runs[i]) == 1;
+        }
+        _exit(ok ? 0 : 1);
+    }
+    int status = 0;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    run_calls(p, 4, 20); /* the parent's workers are still there */
+    vt_pool_free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_item_once),
         cmocka_unit_test(test_caller_alone),
         cmocka_unit_test(test_freed),
+        cmocka_unit_test(test_forked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
