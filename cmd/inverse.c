@@ -278,7 +278,7 @@ static int build_model(run *x)
     const vt_status st = vt_batch_create(&x->batch, x->m, &def);
     if (st) return cmd_fail("%s: %d threads: %s", x->urdf, x->o->threads, vt_status_string(st));
     x->T = vt_batch_threads(x->batch);
-    if (team_make(&x->tm, x->T)) return cmd_fail("out of memory (%d threads)", x->T);
+    if (team_make(&x->tm, x->batch)) return cmd_fail("out of memory (the C locale)");
     return 0;
 }
 

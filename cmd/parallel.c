@@ -1,31 +1,24 @@
 /* The command's threads: the blocks of a range taken in turn, from a shared counter, by the
- * library's pool of threads (base/pool.c, built into the command as into the library: a worker
- * that wakes after the last block is taken takes none, so every block is run by whoever is
- * there). */
+ * batch's threads (vt_batch_run: a worker that wakes after the last block is taken takes none,
+ * so every block is run by whoever is there). */
 #define _POSIX_C_SOURCE 200809L /* newlocale, uselocale */
 #include "parallel.h"
 
 #include <stdatomic.h>
 
-int team_make(team *t, int T)
+int team_make(team *t, vt_batch *batch)
 {
     *t = (team){0};
-    if (T < 1) T = 1;
     t->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
     if (!t->c) return 1;
-    if (T > 1 && !(t->pool = vt_pool_create(T))) {
-        freelocale(t->c);
-        t->c = (locale_t)0;
-        return 1;
-    }
-    t->T = vt_pool_threads(t->pool);
+    t->batch = batch;
+    t->T = vt_batch_threads(batch);
     t->nblock = t->T > 1 ? 4 * t->T : 1;
     return 0;
 }
 
 void team_free(team *t)
 {
-    vt_pool_free(t->pool);
     if (t->c) freelocale(t->c);
     *t = (team){0};
 }
@@ -61,5 +54,6 @@ void parallel_blocks(const team *t, int n, block_fn fn, void *ctx)
     if (B <= 0) return;
     blocks b = {fn, ctx, n, B, t->c, 0};
     atomic_init(&b.next, 0);
-    vt_pool_run(t->pool, B < t->T ? B : t->T, run_blocks, &b);
+    if (B == 1) run_blocks(&b, 0); /* one block: no worker woken */
+    else vt_batch_run(t->batch, run_blocks, &b);
 }

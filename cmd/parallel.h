@@ -1,27 +1,27 @@
-/* The command's threads (cmd/parallel.c): a range of rows cut into blocks that a team of
- * threads (the library's pool, base/pool.c, started once a run) takes in turn, for the work
- * around the library's batch (parsing the input's numbers, formatting the output's). Each block
- * has its own buffers, written in order, so the rows' bytes never depend on the threads. */
+/* The command's threads (cmd/parallel.c): a range of rows cut into blocks that the batch's
+ * threads (vt_batch_run: started once with the batch) take in turn, for the
+ * work around the batch's rows (parsing the input's numbers, formatting the output's). Each
+ * block has its own buffers, written in order, so the rows' bytes never depend on the threads. */
 #ifndef VTDYN_CMD_PARALLEL_H
 #define VTDYN_CMD_PARALLEL_H
 
 #include <locale.h>
 
-#include "base/pool.h"
+#include "vtdyn.h"
 
-/* the run's threads */
+/* the run's threads: the batch's */
 typedef struct {
-    vt_pool *pool; /* T − 1 workers (NULL on one thread) */
-    int T;         /* the threads */
+    vt_batch *batch;
+    int T;         /* its threads */
     int nblock;    /* the blocks a range is cut into: 4 a thread (one on one thread), so that a
                     * thread the machine slows takes fewer */
     locale_t c;    /* the C locale every block runs in (numbers with a '.' whatever LC_NUMERIC) */
 } team;
 
-/* the team of T threads (its pool started); 0, or 1 out of memory (t then holds nothing to free) */
-int team_make(team *t, int T);
+/* the team of the batch's threads; 0, or 1 out of memory (t then holds nothing to free) */
+int team_make(team *t, vt_batch *batch);
 
-/* ends the team's threads (a zeroed team is allowed) */
+/* frees what the team made (a zeroed team is allowed; the batch is the caller's) */
 void team_free(team *t);
 
 /* the blocks a range of n rows is cut into: at most t->nblock, none empty */

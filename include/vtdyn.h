@@ -551,6 +551,15 @@ VT_API int vt_batch_failed_row(const vt_batch *batch);
 /// The last call's message: "row R: ..." for its failing row of lowest index, or what the call
 /// refused before any row; "" after a success (never NULL).
 VT_API const char *vt_batch_message(const vt_batch *batch);
+/// The caller's own work around its rows (a log's numbers parsed, results formatted) on the
+/// batch's threads, as the batch shares its rows: work(ctx, 0) on the calling thread and
+/// work(ctx, k), k = 1 … vt_batch_threads() − 1, on each worker that wakes while the caller's
+/// part runs; returns once every part has returned. A worker that wakes after the caller's part
+/// is done takes no part, so each part must take the work's items itself, the next from a shared
+/// counter (an atomic_int) until none is left, and no part may wait for another. The batch's
+/// data are not touched. One call at a time on a batch, this or vt_batch_inverse_dynamics_motion.
+/// VT_ERR_NULL (batch or work NULL), else VT_OK.
+VT_API vt_status vt_batch_run(vt_batch *batch, vt_batch_work work, void *ctx);
 
 /* ---- contacts ------------------------------------------------------------------------ */
 

@@ -4,9 +4,12 @@
  * q̈), failing rows in the middle (reported by index, status and message, their outputs
  * untouched, the others solved; or the call stopped), a quadruped on its contacts (against
  * vt_inverse_dynamics_contacts() alone), the arguments refused before any row, and one batch
- * called 300 times in turn (its workers asleep between some calls, spinning between others). */
+ * called 300 times in turn (its workers asleep between some calls, spinning between others), and
+ * vt_batch_run (the caller's own work on the batch's threads: every item once). */
 #define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <time.h>
 
@@ -595,6 +598,50 @@ static void test_calls_in_turn(void **state)
     vt_model_free(m);
 }
 
+/* vt_batch_run: the caller's own work on the batch's threads, on 1, 2 and 8 threads, call after
+ * call: every item of each call run once, parts numbered below the batch's threads, part 0 on
+ * the calling thread; a NULL batch or work refused */
+typedef struct {
+    atomic_int next, runs[300], bad_part, off_caller;
+    pthread_t caller;
+    int threads;
+} items;
+
+static void take_items(void *ctx, int k)
+{
+    items *it = ctx;
+    if (k < 0 || k >= it->threads) atomic_fetch_add(&it->bad_part, 1);
+    if (k == 0 && !pthread_equal(pthread_self(), it->caller)) atomic_fetch_add(&it->off_caller, 1);
+    for (int i; (i = atomic_fetch_add(&it->next, 1)) < 300;) atomic_fetch_add(&it->runs[i], 1);
+}
+
+static void test_run(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_double_link(&m, 0));
+    const int threads[3] = {1, 2, 8};
+    items *it = malloc(sizeof *it);
+    assert_non_null(it);
+    for (int t = 0; t < 3; t++) {
+        vt_batch *b = batch_of(m, threads[t], 0);
+        for (int call = 0; call < 200; call++) {
+            memset(it, 0, sizeof *it);
+            it->caller = pthread_self();
+            it->threads = vt_batch_threads(b);
+            assert_ok(vt_batch_run(b, take_items, it));
+            for (int i = 0; i < 300; i++) assert_int_equal(atomic_load(&it->runs[i]), 1);
+            assert_int_equal(atomic_load(&it->bad_part), 0);
+            assert_int_equal(atomic_load(&it->off_caller), 0);
+        }
+        assert_int_equal(vt_batch_run(NULL, take_items, it), VT_ERR_NULL);
+        assert_int_equal(vt_batch_run(b, NULL, it), VT_ERR_NULL);
+        vt_batch_free(b);
+    }
+    free(it);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -605,6 +652,7 @@ int main(void)
         cmocka_unit_test(test_contacts_bitwise),
         cmocka_unit_test(test_arguments),
         cmocka_unit_test(test_calls_in_turn),
+        cmocka_unit_test(test_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

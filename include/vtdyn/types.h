@@ -884,6 +884,10 @@ typedef struct vt_batch_io {
 /// A batch: one data per thread for many states of one model (vt_batch_create).
 typedef struct vt_batch vt_batch;
 
+/// A caller's work run on a batch's threads (vt_batch_run): one part a thread, thread 0 the
+/// caller's.
+typedef void (*vt_batch_work)(void *ctx, int thread);
+
 /// Results of an analysis over time, one row per output time; made by vt_trajectory_create().
 /// Every array is column-major with one column per row (output time).
 typedef struct vt_trajectory {

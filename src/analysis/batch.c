@@ -245,6 +245,13 @@ static void run_share(void *arg, int k)
     }
 }
 
+vt_status vt_batch_run(vt_batch *batch, vt_batch_work work, void *ctx)
+{
+    if (!batch || !work) return VT_ERR_NULL;
+    vt_pool_run(batch->pool, batch->threads, work, ctx);
+    return VT_OK;
+}
+
 /* the arguments: every required array with rows, every stride at least its row */
 static vt_status check_io(vt_batch *b, const vt_batch_io *io)
 {

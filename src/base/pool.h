@@ -1,5 +1,5 @@
-/* vtdyn — A team of threads started once, for work shared among threads (base/pool.c): the
- * batches' rows, and the command's parsing and formatting (cmd/parallel.c builds this file in). */
+/* vtdyn — A team of threads started once, for work shared among threads (base/pool.c): a
+ * batch's rows, and the caller's own work on the batch's threads (vt_batch_run). */
 #ifndef VT_BASE_POOL_H
 #define VT_BASE_POOL_H
 
