@@ -17,23 +17,11 @@
 #include <vtdyn.h>
 
 #include "cpuinfo.h"
+#include "timing.h"
 #include "scenes.h"
 
 #define ROUNDS 41
 #define MAX_ROWS 4096
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* µs per call of `calls` calls */
 static double time_calls(vt_batch *b, const vt_batch_io *io, int calls)
@@ -97,9 +85,9 @@ int main(int argc, char **argv)
             }
             ratio[r] = us[1][r] / us[0][r];
         }
-        qsort(us[0], ROUNDS, sizeof(double), cmp_double);
-        qsort(us[1], ROUNDS, sizeof(double), cmp_double);
-        qsort(ratio, ROUNDS, sizeof(double), cmp_double);
+        qsort(us[0], ROUNDS, sizeof(double), by_value);
+        qsort(us[1], ROUNDS, sizeof(double), by_value);
+        qsort(ratio, ROUNDS, sizeof(double), by_value);
         printf("%6d %12.2f %12.2f %10.2f (%.2f-%.2f)\n", sizes[s], us[0][ROUNDS / 2], us[1][ROUNDS / 2],
                ratio[ROUNDS / 2], ratio[0], ratio[ROUNDS - 1]);
     }

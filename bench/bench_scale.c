@@ -24,22 +24,10 @@
 #include <vtdyn.h>
 
 #include "cpuinfo.h"
+#include "timing.h"
 #include "scenes.h"
 
 #define ROUNDS 41
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* The chain as URDF: link k's frame at its joint, its centre 0.25 m along its x, joint k + 1
  * 0.5 m along it; joint k about x, y, z in turn (vt_scene_chain's geometry and inertias). */
@@ -86,7 +74,7 @@ static void time_instant(instant_fn f, const vt_model *m, vt_data *d, double out
         for (long c = 0; c < calls; c++) f(m, d);
         r[k] = (now() - t0) / (double)calls / m->nbody * 1e9;
     }
-    qsort(r, ROUNDS, sizeof r[0], cmp_double);
+    qsort(r, ROUNDS, sizeof r[0], by_value);
     out[0] = r[ROUNDS / 2];
     out[1] = r[0];
     out[2] = r[ROUNDS - 1];
