@@ -5,13 +5,17 @@
  * untouched, the others solved; or the call stopped), a quadruped on its contacts (against
  * vt_inverse_dynamics_contacts() alone), the arguments refused before any row, and one batch
  * called 300 times in turn (its workers asleep between some calls, spinning between others), and
- * vt_batch_run (the caller's own work on the batch's threads: every item once). */
-#define _POSIX_C_SOURCE 200809L /* nanosleep */
+ * vt_batch_run (the caller's own work on the batch's threads: every item once), and a batch
+ * whose threads the system refuses in part (fewer threads, the same rows). */
+#define _GNU_SOURCE /* nanosleep; pthread_getattr_default_np: the threads' stack size */
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "vt_test.h"
 
@@ -642,9 +646,69 @@ static void test_run(void **state)
     vt_model_free(m);
 }
 
+/* a batch whose threads the system refuses in part (a child process whose address space cannot
+ * hold eight threads' stacks): fewer threads, every row still bitwise the single call's, and the
+ * batch freed whole (its data for every thread asked for) */
+static void test_threads_refused(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_random_tree(&m, 4, 5, VT_SCENE_NO_BASE));
+    states st = random_states(m, 13, (size_t)m->nq);
+    const pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        /* room above what is mapped now for the data and two threads' stacks and a half */
+        pthread_attr_t attr;
+        size_t stack = 0;
+        if (pthread_getattr_default_np(&attr) || pthread_attr_getstacksize(&attr, &stack)) _exit(2);
+        pthread_attr_destroy(&attr);
+        FILE *f = fopen("/proc/self/statm", "r");
+        unsigned long pages = 0;
+        const int got = f && fscanf(f, "%lu", &pages) == 1;
+        if (f) fclose(f);
+        const struct rlimit lim = {(rlim_t)pages * (rlim_t)sysconf(_SC_PAGESIZE) + (rlim_t)(5 * stack / 2) +
+                                       ((rlim_t)2 << 20),
+                                   RLIM_INFINITY};
+        if (!got || setrlimit(RLIMIT_AS, &lim)) _exit(2);
+        vt_batch_def def = vt_default_batch_def();
+        def.threads = 8;
+        vt_batch *b = NULL;
+        if (vt_batch_create(&b, m, &def)) _exit(3);
+        const int T = vt_batch_threads(b);
+        outputs o;
+        outputs_alloc(&o, m, NROW);
+        vt_batch_io io = io_of(&o, NROW, st.q, 0, st.qd, st.qdd);
+        int ok = vt_batch_inverse_dynamics_motion(b, &io) == VT_OK;
+        vt_data *d = NULL;
+        ok = ok && vt_data_create(&d, m) == VT_OK;
+        const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
+        for (int r = 0; r < NROW && ok; r++) {
+            memcpy(d->q, st.q + r * nq, nq * sizeof(double));
+            memcpy(d->qd, st.qd + r * nv, nv * sizeof(double));
+            memcpy(d->qdd, st.qdd + r * nv, nv * sizeof(double));
+            ok = vt_inverse_dynamics_motion(m, d) == VT_OK;
+            for (size_t k = 0; k < nv && ok; k++) ok = same(o.effort[r * nv + k], d->qfrc_drive[k]);
+        }
+        vt_data_free(d);
+        outputs_free(&o);
+        vt_batch_free(b);
+        _exit(!ok ? 4 : T >= 8 ? 5 : 0);
+    }
+    int status = 0;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+    states_free(&st);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        /* first, before any thread has run: the threads' stacks glibc keeps for reuse after a
+         * thread ends would need no new address space */
+        cmocka_unit_test(test_threads_refused),
         cmocka_unit_test(test_tree_bitwise),
         cmocka_unit_test(test_loop_bitwise),
         cmocka_unit_test(test_effects_bitwise),

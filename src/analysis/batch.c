@@ -47,7 +47,8 @@ struct vt_batch {
     const vt_model *model;
     int threads;
     int stop_on_error;
-    vt_data **data;      /* one per thread */
+    vt_data **data;      /* one per thread asked for (ndata; threads may be fewer) */
+    int ndata;
     vt_contacts **contacts; /* with contacts: one set per thread (its workspace), else NULL */
     int ncontact;        /* 0 without */
     struct share *shares; /* the threads' shares of a call: the caller's 0, worker k's k */
@@ -77,9 +78,9 @@ void vt_batch_free(vt_batch *batch)
 {
     if (!batch) return;
     if (batch->data)
-        for (int k = 0; k < batch->threads; k++) vt_data_free(batch->data[k]);
+        for (int k = 0; k < batch->ndata; k++) vt_data_free(batch->data[k]);
     if (batch->contacts)
-        for (int k = 0; k < batch->threads; k++) vt_contacts_free(batch->contacts[k]);
+        for (int k = 0; k < batch->ndata; k++) vt_contacts_free(batch->contacts[k]);
     free(batch->data);
     free(batch->contacts);
     free(batch->shares);
@@ -98,7 +99,7 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     vt_batch *b = calloc(1, sizeof *b);
     if (!b) return VT_ERR_NO_MEMORY;
     b->model = model;
-    b->threads = dd.threads ? dd.threads : cpus();
+    b->threads = b->ndata = dd.threads ? dd.threads : cpus();
     b->stop_on_error = dd.stop_on_error;
     b->failed_row = -1;
     b->data = calloc((size_t)b->threads, sizeof *b->data);
