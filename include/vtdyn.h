@@ -537,7 +537,9 @@ VT_API int vt_batch_threads(const vt_batch *batch);
 /// the batch's threads in blocks of 16 taken in turn, so that a thread the machine slows takes
 /// fewer (the caller's thread and the batch's workers, started with it and asleep between calls:
 /// a call creates no thread and allocates nothing; a call of one block stays on the caller's
-/// thread). One call at a time on a batch: threads that solve at once each need their own.
+/// thread). One call at a time on a batch: threads that solve at once each need their own (a
+/// call while another runs on the batch, from another thread or from vt_batch_run's work,
+/// returns VT_ERR_BAD_OPTION at once, the running call's message and failed row left as they are).
 /// Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
 /// whatever the number of threads. A failing row's outputs are not written; its status goes to
@@ -557,8 +559,9 @@ VT_API const char *vt_batch_message(const vt_batch *batch);
 /// part runs; returns once every part has returned. A worker that wakes after the caller's part
 /// is done takes no part, so each part must take the work's items itself, the next from a shared
 /// counter (an atomic_int) until none is left, and no part may wait for another. The batch's
-/// data are not touched. One call at a time on a batch, this or vt_batch_inverse_dynamics_motion.
-/// VT_ERR_NULL (batch or work NULL), else VT_OK.
+/// data are not touched. One call at a time on a batch, this or vt_batch_inverse_dynamics_motion
+/// (a call from the work itself, or from another thread while one runs, returns
+/// VT_ERR_BAD_OPTION at once). VT_ERR_NULL (batch or work NULL), else VT_OK.
 VT_API vt_status vt_batch_run(vt_batch *batch, vt_batch_work work, void *ctx);
 
 /* ---- contacts ------------------------------------------------------------------------ */

@@ -5,7 +5,8 @@
  * untouched, the others solved; or the call stopped), a quadruped on its contacts (against
  * vt_inverse_dynamics_contacts() alone), the arguments refused before any row, and one batch
  * called 300 times in turn (its workers asleep between some calls, spinning between others), and
- * vt_batch_run (the caller's own work on the batch's threads: every item once), and a batch
+ * vt_batch_run (the caller's own work on the batch's threads: every item once; a call on the
+ * batch from inside its work refused), and a batch
  * whose threads the system refuses in part (fewer threads, the same rows). */
 #define _GNU_SOURCE /* nanosleep; pthread_getattr_default_np: the threads' stack size */
 #include <math.h>
@@ -646,6 +647,59 @@ static void test_run(void **state)
     vt_model_free(m);
 }
 
+/* a call on the batch from inside vt_batch_run's work (each part tries both entry points) and
+ * the outer call unharmed: every item once, then the batch usable again */
+typedef struct {
+    vt_batch *batch;
+    vt_batch_io io;
+    atomic_int next, runs[64], refused, other;
+} nested;
+
+static void nested_part(void *ctx, int k)
+{
+    (void)k;
+    nested *n = ctx;
+    for (int i; (i = atomic_fetch_add(&n->next, 1)) < 64;) {
+        atomic_fetch_add(&n->runs[i], 1);
+        if (i % 16 == 0) {
+            const vt_status a = vt_batch_inverse_dynamics_motion(n->batch, &n->io);
+            const vt_status b = vt_batch_run(n->batch, take_items, NULL);
+            if (a == VT_ERR_BAD_OPTION && b == VT_ERR_BAD_OPTION) atomic_fetch_add(&n->refused, 1);
+            else atomic_fetch_add(&n->other, 1);
+        }
+    }
+}
+
+static void test_nested_refused(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_double_link(&m, 0));
+    double q[2] = {0.1, 0.2}, qd[2] = {0}, qdd[2] = {0}, effort[2] = {7, 7};
+    for (int threads = 1; threads <= 8; threads *= 2) {
+        vt_batch *b = batch_of(m, threads, 0);
+        nested *n = calloc(1, sizeof *n);
+        assert_non_null(n);
+        n->batch = b;
+        n->io.nrow = 1;
+        n->io.q = q;
+        n->io.qd = qd;
+        n->io.qdd = qdd;
+        n->io.effort = effort;
+        assert_ok(vt_batch_run(b, nested_part, n));
+        for (int i = 0; i < 64; i++) assert_int_equal(atomic_load(&n->runs[i]), 1);
+        assert_int_equal(atomic_load(&n->refused), 4);
+        assert_int_equal(atomic_load(&n->other), 0);
+        assert_true(same(effort[0], 7.0)); /* the refused calls wrote nothing */
+        assert_ok(vt_batch_inverse_dynamics_motion(b, &n->io)); /* the batch taken back */
+        assert_false(same(effort[0], 7.0));
+        effort[0] = effort[1] = 7.0;
+        free(n);
+        vt_batch_free(b);
+    }
+    vt_model_free(m);
+}
+
 /* a batch whose threads the system refuses in part (a child process whose address space cannot
  * hold eight threads' stacks): fewer threads, every row still bitwise the single call's, and the
  * batch freed whole (its data for every thread asked for) */
@@ -717,6 +771,7 @@ int main(void)
         cmocka_unit_test(test_arguments),
         cmocka_unit_test(test_calls_in_turn),
         cmocka_unit_test(test_run),
+        cmocka_unit_test(test_nested_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

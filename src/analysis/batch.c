@@ -53,6 +53,8 @@ struct vt_batch {
     int ncontact;        /* 0 without */
     struct share *shares; /* the threads' shares of a call: the caller's 0, worker k's k */
     vt_pool *pool;       /* the workers (NULL on one thread) */
+    atomic_int busy;     /* a call is running (a second one, from its work or another thread, is
+                          * refused: the pool runs one call at a time) */
     int failed_row;      /* the last call's failing row of lowest index, or −1 */
     char message[VT_MESSAGE_SIZE];
 };
@@ -102,6 +104,7 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     b->threads = b->ndata = dd.threads ? dd.threads : cpus();
     b->stop_on_error = dd.stop_on_error;
     b->failed_row = -1;
+    atomic_init(&b->busy, 0);
     b->data = calloc((size_t)b->threads, sizeof *b->data);
     b->shares = malloc((size_t)b->threads * sizeof *b->shares);
     if (!b->data || !b->shares) {
@@ -246,10 +249,24 @@ static void run_share(void *arg, int k)
     }
 }
 
+/* the batch taken for a call (1), or 0 when one is running already */
+static int claim(vt_batch *batch)
+{
+    int idle = 0;
+    return atomic_compare_exchange_strong_explicit(&batch->busy, &idle, 1, memory_order_acquire, memory_order_relaxed);
+}
+
+static void release(vt_batch *batch)
+{
+    atomic_store_explicit(&batch->busy, 0, memory_order_release);
+}
+
 vt_status vt_batch_run(vt_batch *batch, vt_batch_work work, void *ctx)
 {
     if (!batch || !work) return VT_ERR_NULL;
+    if (!claim(batch)) return VT_ERR_BAD_OPTION;
     vt_pool_run(batch->pool, batch->threads, work, ctx);
+    release(batch);
     return VT_OK;
 }
 
@@ -289,9 +306,20 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
     return VT_OK;
 }
 
+static vt_status batch_call(vt_batch *batch, const vt_batch_io *io);
+
 vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *io)
 {
     if (!batch) return VT_ERR_NULL;
+    if (!claim(batch)) return VT_ERR_BAD_OPTION; /* the running call's message and row stay */
+    const vt_status st = batch_call(batch, io);
+    release(batch);
+    return st;
+}
+
+/* the call, the batch taken */
+static vt_status batch_call(vt_batch *batch, const vt_batch_io *io)
+{
     batch->failed_row = -1;
     batch->message[0] = '\0';
     if (!io) return vt_fail(batch->message, VT_ERR_NULL, "vt_batch: io is NULL");
