@@ -7,7 +7,7 @@
  *     build/bench/bench_contact [rounds]
  *
  * The state: vt_scene_quadruped standing (θ = 0.6) with its joints moving (the rates and
- * accelerations of tests/test_contact.c), μ 0.8 on 4-face pyramids. */
+ * accelerations of tests/test_contact_rule.c), μ 0.8 on 4-face pyramids. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <math.h>
 #include <stdio.h>

@@ -504,6 +504,57 @@ static inline void vt_test_add_joint_drive(vt_builder *b, int body, int index, v
     assert_true(vt_builder_add_drive(b, &dr) >= 0);
 }
 
+/* Contact scenes (test_contact, test_contact_rule) */
+
+/* a free box (mass m, 0.6 x 0.4 x 0.2 m; gravity −9.81 z) with corners at (x_k, ±0.2, −0.1) from its centre of
+ * mass, x_k = xf front and xh hind */
+static inline vt_model *vt_test_contact_box(double mass)
+{
+    vt_builder *b = NULL;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -9.81; /* z up */
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_FREE;
+    body.parent = 0;
+    body.mass = mass;
+    body.inertia[0] = mass * (0.16 + 0.04) / 12.0;
+    body.inertia[4] = mass * (0.36 + 0.04) / 12.0;
+    body.inertia[8] = mass * (0.36 + 0.16) / 12.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    return m;
+}
+
+static inline void vt_test_box_corners(vt_contact_def def[4], double xf, double xh, double mu)
+{
+    static const char *const names[4] = {"FL", "FR", "HL", "HR"};
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].name = names[k];
+        def[k].body = 1;
+        def[k].point[0] = k < 2 ? xf : xh;
+        def[k].point[1] = k % 2 == 0 ? 0.2 : -0.2;
+        def[k].point[2] = -0.1;
+        def[k].mu = mu;
+    }
+}
+
+/* the four feet of the quadruped as contacts of friction mu and the given kind, named by their
+ * frames */
+static const char *const VT_TEST_FOOT[4] = {"FL_foot", "FR_foot", "HL_foot", "HR_foot"};
+static inline void vt_test_feet(vt_contact_def def[4], double mu, vt_contact_kind kind)
+{
+    for (int k = 0; k < 4; k++) {
+        def[k] = vt_default_contact_def();
+        def[k].frame = def[k].name = VT_TEST_FOOT[k];
+        def[k].mu = mu;
+        def[k].kind = kind;
+    }
+}
+
 /* The recursive evaluation against the dense path (test_recursive, test_accuracy) */
 
 /* every |a_k − b_k| within rel × scale, each failure naming the entry and both values */

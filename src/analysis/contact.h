@@ -1,8 +1,8 @@
-/* vtdyn — Contacts: the given motion of a robot on the ground, the ground's forces by the
- * distribution rule (analysis/contact.c). The entry points are public (vtdyn.h: vt_contacts_*,
- * vt_default_contact_def, vt_find_contact, vt_inverse_dynamics_contacts); the analyses over time (analysis/contact_run.c) take the
- * model they were made for, a flag per contact for the schedule, the forces' loads and the instant's
- * outputs kept. */
+/* vtdyn — Contacts: the contact set of a robot on the ground (analysis/contact.c), whose forces
+ * the distribution rule gives (analysis/contact_rule.c). The entry points are public (vtdyn.h:
+ * vt_contacts_*, vt_default_contact_def, vt_find_contact); the analyses over time
+ * (analysis/contact_run.c) take the model they were made for, a flag per contact for the
+ * schedule, the forces' loads and the instant's outputs kept. */
 #ifndef VT_ANALYSIS_CONTACT_H
 #define VT_ANALYSIS_CONTACT_H
 
