@@ -226,7 +226,8 @@ void put_rows(run *x, int set, int n)
     if (x->ofmt == FMT_NPY) {
         fwrite(x->vals[set], 8 * (size_t)x->nout, (size_t)n, x->out.f);
     } else {
-        for (int k = 0, B = team_blocks(&x->tm, n); k < B; k++) fwrite(x->blk[k].text[set], 1, x->blk[k].len[set], x->out.f);
+        for (int k = 0, B = team_blocks(&x->tm, n); k < B; k++)
+            fwrite(x->blk[k].text[set], 1, x->blk[k].len[set], x->out.f);
     }
     x->written += n;
 }
