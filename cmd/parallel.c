@@ -12,8 +12,8 @@ int team_make(team *t, vt_batch *batch)
     t->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
     if (!t->c) return 1;
     t->batch = batch;
-    t->T = vt_batch_threads(batch);
-    t->nblock = t->T > 1 ? 4 * t->T : 1;
+    const int T = vt_batch_threads(batch);
+    t->nblock = T > 1 ? 4 * T : 1;
     return 0;
 }
 

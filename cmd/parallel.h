@@ -12,7 +12,6 @@
 /* the run's threads: the batch's */
 typedef struct {
     vt_batch *batch;
-    int T;         /* its threads */
     int nblock;    /* the blocks a range is cut into: 4 a thread (one on one thread), so that a
                     * thread the machine slows takes fewer */
     locale_t c;    /* the C locale every block runs in (numbers with a '.' whatever LC_NUMERIC) */
