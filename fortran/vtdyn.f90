@@ -291,6 +291,7 @@ module vtdyn
     real(c_double)         :: bound_mass
     real(c_double)         :: mass_spread
     integer(c_int)         :: has_effects
+    real(c_double)         :: bound_effect(3)
     type(c_ptr)            :: jnt_frame_A
     integer(c_int)         :: any_limit
   end type vt_model

@@ -74,7 +74,7 @@ static const size_t vt_model_layout[] = {sizeof(vt_model),
     offsetof(vt_model, jnt_frame), offsetof(vt_model, jnt_frame_axis), offsetof(vt_model, con_kind), offsetof(vt_model, con_dof), offsetof(vt_model, con_vec),
     offsetof(vt_model, con_point), offsetof(vt_model, joint_driven), offsetof(vt_model, joint_rows_only),
     offsetof(vt_model, joint_mix), offsetof(vt_model, has_quaternions), offsetof(vt_model, bound_length), offsetof(vt_model, bound_mass),
-    offsetof(vt_model, mass_spread), offsetof(vt_model, has_effects), offsetof(vt_model, jnt_frame_A),
+    offsetof(vt_model, mass_spread), offsetof(vt_model, has_effects), offsetof(vt_model, bound_effect), offsetof(vt_model, jnt_frame_A),
     offsetof(vt_model, any_limit), VT_END};
 static const size_t vt_data_layout[] = {sizeof(vt_data),
     offsetof(vt_data, model), offsetof(vt_data, block), offsetof(vt_data, time), offsetof(vt_data, q),

@@ -85,7 +85,7 @@ program test_fortran_layout
          a(c_loc(x_model%joint_driven)), a(c_loc(x_model%joint_rows_only)), &
          a(c_loc(x_model%joint_mix)), a(c_loc(x_model%has_quaternions)), &
          a(c_loc(x_model%bound_length)), a(c_loc(x_model%bound_mass)), a(c_loc(x_model%mass_spread)), &
-         a(c_loc(x_model%has_effects)), a(c_loc(x_model%jnt_frame_A)), a(c_loc(x_model%any_limit))])
+         a(c_loc(x_model%has_effects)), a(c_loc(x_model%bound_effect)), a(c_loc(x_model%jnt_frame_A)), a(c_loc(x_model%any_limit))])
     call check(6_c_int, 'vt_data', c_sizeof(x_data), a(c_loc(x_data)), [ &
          a(c_loc(x_data%model)), a(c_loc(x_data%block)), a(c_loc(x_data%time)), a(c_loc(x_data%q)), &
          a(c_loc(x_data%qd)), a(c_loc(x_data%xfrc)), a(c_loc(x_data%qfrc)), a(c_loc(x_data%x)), &

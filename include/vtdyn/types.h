@@ -567,6 +567,7 @@ typedef struct vt_model {
     double bound_mass;       ///< internal: the largest m + 3 max |J_kl| of a body
     double mass_spread;      ///< internal: the largest body mass over the smallest positive one
     int has_effects;         ///< internal: some rate has armature, damping or friction
+    double bound_effect[3];  ///< internal: the largest armature, damping and friction of a rate
     double *jnt_frame_A;     ///< internal: jnt_frame as a rotation, joint frame → body axes, 3x3
                              ///< col-major (9 x (nbody+1))
     int any_limit;           ///< internal: 1 if some entry of dof_limit is finite (else no instant

@@ -67,7 +67,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base, int full)
     vt_block blk = {.base = base, .used = sizeof(vt_data), .align = VT_DATA_ALIGN};
     d->q = vt_block_take(&blk, (size_t)m->nq, sizeof(double));
     d->qd = vt_block_take(&blk, nv, sizeof(double));
-    d->xfrc = vt_block_take(&blk, 6 * nb, sizeof(double));
+    d->xfrc = vt_block_take(&blk, 6 * nb + 1, sizeof(double));
     d->qfrc = vt_block_take(&blk, nv, sizeof(double));
     /* the arena, beside the inputs: its header, then the sum of the files' bounds (base/arena.h) */
     d->arena = vt_block_take(&blk, 1, sizeof(vt_arena));
@@ -82,14 +82,14 @@ static size_t layout(const vt_model *m, vt_data *d, char *base, int full)
     }
     d->x = vt_block_take(&blk, nx, sizeof(double));
     d->xd = vt_block_take(&blk, nx, sizeof(double));
-    d->A = vt_block_take(&blk, 9 * nb, sizeof(double));
-    d->omega = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->A = vt_block_take(&blk, 9 * nb + 1, sizeof(double));
+    d->omega = vt_block_take(&blk, 3 * nb + 1, sizeof(double));
     d->jaxis = vt_block_take(&blk, 9 * nb, sizeof(double));
-    d->jsij = vt_block_take(&blk, 3 * nb, sizeof(double));
-    d->jd = vt_block_take(&blk, 3 * nb, sizeof(double));
-    d->jpoint = vt_block_take(&blk, 3 * nb, sizeof(double));
-    d->twist = vt_block_take(&blk, 6 * nv, sizeof(double));
-    d->xrel = vt_block_take(&blk, 6 * nb, sizeof(double));
+    d->jsij = vt_block_take(&blk, 3 * nb + 1, sizeof(double));
+    d->jd = vt_block_take(&blk, 3 * nb + 1, sizeof(double));
+    d->jpoint = vt_block_take(&blk, 3 * nb + 1, sizeof(double));
+    d->twist = vt_block_take(&blk, 6 * nv + 1, sizeof(double));
+    d->xrel = vt_block_take(&blk, 6 * nb + 1, sizeof(double));
     d->S = full ? vt_block_take(&blk, nS, sizeof(double)) : NULL;
     d->Sdqd = vt_block_take(&blk, nx, sizeof(double));
     d->R = full ? vt_block_take(&blk, nS, sizeof(double)) : NULL;
@@ -107,7 +107,7 @@ static size_t layout(const vt_model *m, vt_data *d, char *base, int full)
     d->qdd = vt_block_take(&blk, nv, sizeof(double));
     d->lambda = vt_block_take(&blk, nc, sizeof(double));
     d->xdd = vt_block_take(&blk, nx, sizeof(double));
-    d->alpha = vt_block_take(&blk, 3 * nb, sizeof(double));
+    d->alpha = vt_block_take(&blk, 3 * nb + 1, sizeof(double));
     d->qfrc_drive = vt_block_take(&blk, nv, sizeof(double));
     d->effort_armature = vt_block_take(&blk, nv, sizeof(double));
     d->effort_damping = vt_block_take(&blk, nv, sizeof(double));

@@ -199,6 +199,11 @@ static void build_rows(vt_model *m)
         mass = fmax(mass, m->body_mass[i] + 3.0 * jmax);
     }
     m->bound_length = len;
+    /* the joints' own efforts, |armature q̈ + damping q̇ + friction s(q̇)| ≤ the largest of each
+     * times max |q̈|, max |q̇| and 1 (|s| ≤ 1): loads of the same bound */
+    m->bound_effect[0] = m->bound_effect[1] = m->bound_effect[2] = 0.0;
+    for (int c = 0; c < m->nv; c++)
+        for (int k = 0; k < 3; k++) m->bound_effect[k] = fmax(m->bound_effect[k], fabs(m->dof_effects[4 * c + k]));
     m->mass_spread = mmax > 0.0 ? mmax / mmin : 1.0;
     m->bound_mass = mass;
 }
@@ -299,9 +304,9 @@ static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int nd
     m->body_vadr = vt_block_take(b, nb, sizeof(int));
     m->body_nv = vt_block_take(b, nb, sizeof(int));
     m->body_mass = vt_block_take(b, nb, sizeof(double));
-    m->body_inertia = vt_block_take(b, 9 * nb, sizeof(double));
-    m->body_jpar = vt_block_take(b, 3 * nb, sizeof(double));
-    m->body_jchild = vt_block_take(b, 3 * nb, sizeof(double));
+    m->body_inertia = vt_block_take(b, 9 * nb + 1, sizeof(double));
+    m->body_jpar = vt_block_take(b, 3 * nb + 1, sizeof(double));
+    m->body_jchild = vt_block_take(b, 3 * nb + 1, sizeof(double));
     m->body_axis = vt_block_take(b, 6 * nb, sizeof(double));
     m->body_quat0 = vt_block_take(b, 4 * nb, sizeof(double));
     m->jnt_frame = vt_block_take(b, 4 * nb, sizeof(double));

@@ -31,6 +31,7 @@
 #include "base/scan.h"
 #include "base/status.h"
 #include "base/vec3.h"
+#include "base/v4.h"
 #include "model/functions.h"
 #include "model/model.h"
 #include "kinematics/body.h"
@@ -95,7 +96,7 @@ __attribute__((always_inline))
 #endif
 static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi, double Wo[6], int i, const int jt,
                                  const int nv, const fused_motion motion, const fused_totals totals,
-                                 const fused_outputs outputs, const fused_store store)
+                                 const fused_store store)
 {
     const double *e = d->jaxis + 9 * i, *A = d->A + 9 * i;
     /* rates that all turn leave the force, rates that all slide the moment: its axes once */
@@ -115,8 +116,8 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
         const int c = m->body_vadr[i] + k, dr = m->dof_drive[c];
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
-        /* qfrc less the joint's own effects (τ takes them); a model with effects is never bounded */
-        const double qf = store == STORE_ADD ? 0.0 : outputs == OUTPUTS_BOUNDED ? d->qfrc[c] : vt_rate_load(m, d, c);
+        /* qfrc less the joint's own effects (τ takes them) */
+        const double qf = store == STORE_ADD ? 0.0 : vt_rate_load(m, d, c);
         double tau = 0.0;
         if (motion == MOTION_GIVEN || dr >= 0) {
             const double *w = d->twist + 6 * c;
@@ -170,8 +171,8 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
         double Wo[6];
         const int jt = m->body_joint[i], nv = m->body_nv[i];
         const int over = totals == TOTALS_FORMED
-                             ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED, OUTPUTS_SCANNED, STORE_SET)
-                             : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT, OUTPUTS_SCANNED, STORE_SET);
+                             ? joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_FORMED, STORE_SET)
+                             : joint_reaction(m, d, W + 6 * i, Wo, i, jt, nv, MOTION_DRIVEN, TOTALS_LEFT, STORE_SET);
         if (over)
             return vt_scratch_release(d, mark),
                    vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_recursive: joint %d's reaction overflowed", i);
@@ -291,6 +292,112 @@ static inline void fused_body(const vt_model *m, vt_data *d, double *restrict al
     }
 }
 
+
+static const double zero4[4] = {0, 0, 0, 0};
+/* prototype: the revolute body in 4-lane vectors */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void fused_rev(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
+                             const fused_angles angles, vt_v4 g)
+{
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
+    const double *Ajp = d->A + 9 * j;
+    double cs, sn;
+    if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
+    else vt_sincos(0.5 * q, &sn, &cs);
+    const vt_v4 c0 = v4_ld(Ajp), c1 = v4_ld(Ajp + 3), c2 = v4_ld(Ajp + 6);
+    const vt_v4 u = v4_ld(m->body_axis + 6 * i);
+    const vt_v4 pj = v4_ld(j ? d->x + vt_xoff(j) + 3 : unit_quat);
+    vt_v4 p;
+    { /* p = pj ⊗ (cs, sn u) */
+        const vt_v4 av = VT_PERM(pj, 1, 2, 3, 0);
+        const vt_v4 in = VT_BC(pj, 0) * u + v4_cross(av, u);
+        vt_v4 s4 = VT_PERM(in, 3, 0, 1, 2);
+        s4[0] = -v4_dot3(av, u);
+        p = v4_s(cs) * pj + v4_s(sn) * s4;
+    }
+    const double *p0 = m->body_quat0 + 4 * i;
+    if (!vt_quat_is_identity(p0)) {
+        double pa[4];
+        memcpy(pa, &p, sizeof pa);
+        vt_quat_mul_inline(pa, pa, p0);
+        p = v4_ld(pa);
+    }
+    vt_v4 A0, A1, A2, R0, R1, R2;
+    {
+        const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
+        const vt_v4 e = VT_PERM(p, 1, 2, 3, 0), e2 = e + e, P = v4_s(2.0 * p[0]) * e;
+        const vt_v4 b0 = e * VT_BC(e2, 0), b1 = e * VT_BC(e2, 1), b2 = e * VT_BC(e2, 2);
+        A0 = b0 + (vt_v4){s, P[2], -P[1], 0};
+        A1 = b1 + (vt_v4){-P[2], s, P[0], 0};
+        A2 = b2 + (vt_v4){P[1], -P[0], s, 0};
+        R0 = b0 + (vt_v4){s, -P[2], P[1], 0};
+        R1 = b1 + (vt_v4){P[2], s, -P[0], 0};
+        R2 = b2 + (vt_v4){-P[1], P[0], s, 0};
+    }
+    const vt_v4 e = v4_mat(c0, c1, c2, u);
+    const vt_v4 sij = v4_mat(c0, c1, c2, v4_ld(m->body_jpar + 3 * i));
+    const vt_v4 sji = v4_mat(A0, A1, A2, v4_ld(m->body_jchild + 3 * i));
+    if (i == 1) {
+        v4_st3(d->origin, sij);
+        v4_st(d->xrel, -sij);
+        v4_st(d->xrel + 3, -sij);
+    }
+    const vt_v4 o = {d->origin[0], d->origin[1], d->origin[2], 0};
+    const vt_v4 rj = v4_ld(d->xrel + 6 * j), wj = v4_ld(d->omega + 3 * j), alj = v4_ld(alpha + 3 * j);
+    const vt_v4 vj = v4_ld(j ? d->xd + vt_xoff(j) : zero4), aj = v4_ld(j ? d->xdd + vt_xoff(j) : zero4);
+    const vt_v4 Pr = rj + sij, di = v4_s(0.0) - sji, rr = Pr - sji;
+    {
+        double *x = d->x + vt_xoff(i), *twc = d->twist + 6 * c;
+        v4_st(x, o + rr);
+        v4_st(x + 3, p);
+        v4_st(d->jpoint + 3 * i, o + Pr);
+        v4_st(d->xrel + 6 * i, rr);
+        v4_st(d->xrel + 6 * i + 3, Pr);
+        v4_st(d->jsij + 3 * i, sij);
+        v4_st(d->jd + 3 * i, di);
+        v4_st3(d->jaxis + 9 * i, e);
+        v4_st(twc, e);
+        v4_st(twc + 3, v4_cross(Pr, e));
+        double *Ai = d->A + 9 * i;
+        v4_st(Ai, A0);
+        v4_st(Ai + 3, A1);
+        v4_st(Ai + 6, A2);
+    }
+    const vt_v4 ev = VT_PERM(p, 1, 2, 3, 0), p0v = VT_BC(p, 0);
+    const vt_v4 w = wj + v4_s(qd) * e;
+    const vt_v4 v = vj + v4_cross(wj, sij) + v4_cross(w, di);
+    vt_v4 pd = VT_PERM(v4_s(0.5) * (p0v * w + v4_cross(w, ev)), 3, 0, 1, 2);
+    pd[0] = -0.5 * v4_dot3(w, ev);
+    const vt_v4 wb = R0 * VT_BC(w, 0) + R1 * VT_BC(w, 1) + R2 * VT_BC(w, 2);
+    const vt_v4 ed = v4_cross(wj, e);
+    const vt_v4 al = alj + v4_s(qdd) * e + v4_s(qd) * ed;
+    const vt_v4 a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij)) - v4_cross(al, sji) -
+                    v4_cross(w, v4_cross(w, sji));
+    vt_v4 pdd = VT_PERM(v4_s(0.5) * (p0v * al + v4_cross(al, ev)), 3, 0, 1, 2);
+    pdd[0] = -0.5 * v4_dot3(al, ev);
+    pdd -= v4_s(0.25 * v4_dot3(w, w)) * p;
+    const vt_v4 ab = R0 * VT_BC(al, 0) + R1 * VT_BC(al, 1) + R2 * VT_BC(al, 2);
+    {
+        double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
+        v4_st(d->omega + 3 * i, w);
+        v4_st(xd, v);
+        v4_st(xd + 3, pd);
+        v4_st(alpha + 3 * i, al);
+        v4_st(xdd, a);
+        v4_st(xdd + 3, pdd);
+    }
+    const double *Jb = m->body_inertia + 9 * i, *fe = d->xfrc + 6 * i;
+    const vt_v4 J0 = v4_ld(Jb), J1 = v4_ld(Jb + 3), J2 = v4_ld(Jb + 6);
+    const vt_v4 Jw = v4_mat(J0, J1, J2, wb), Ja = v4_mat(J0, J1, J2, ab) + v4_cross(wb, Jw);
+    const vt_v4 f = v4_s(m->body_mass[i]) * (a - g) - v4_ld(fe);
+    const vt_v4 n = v4_mat(A0, A1, A2, Ja) - v4_ld(fe + 3) + v4_cross(di, f);
+    v4_st(W + 6 * i, n);
+    v4_st(W + 6 * i + 3, f);
+}
+
 /* A gripper's fingers, a linear axis: the robot stays on the fused passes' own code instead of
  * the general stages' loops over kinds and rates. Not inlined: its code in the revolute loop's
  * body would have that loop laid out anew, and slower. */
@@ -330,10 +437,11 @@ static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *res
     o[0] = o[1] = o[2] = 0.0;
     memset(d->xrel, 0, 6 * sizeof(double));
     alpha[0] = alpha[1] = alpha[2] = 0.0;
+    const vt_v4 g = {m->gravity[0], m->gravity[1], m->gravity[2], 0};
     for (int i = 1; i <= m->nbody; i++) {
         if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) fused_slide(m, d, alpha, W, i);
         else if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) fused_other(m, d, alpha, W, i);
-        else fused_body(m, d, alpha, W, i, VT_JOINT_REVOLUTE, angles);
+        else fused_rev(m, d, alpha, W, i, angles, g);
     }
 }
 
@@ -419,6 +527,55 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
     for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
 }
 
+
+/* prototype: the revolute joint's inward step in vectors */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void fused_rev_inward(const vt_model *m, vt_data *d, double *W, int i, int j, const fused_motion motion,
+                                    const fused_tree tree)
+{
+    const int c = m->body_vadr[i], dr = m->dof_drive[c];
+    const double *Ap = d->A + 9 * i;
+    vt_v4 R0, R1, R2;
+    v4_transpose(v4_ld(Ap), v4_ld(Ap + 3), v4_ld(Ap + 6), &R0, &R1, &R2);
+    const vt_v4 mo = v4_ld(W + 6 * i), f = v4_ld(W + 6 * i + 3), e = v4_ld(d->jaxis + 9 * i);
+    const vt_v4 fb = v4_mat(R0, R1, R2, f);
+    v4_st3(d->jnt_force_total + 3 * i, f);
+    v4_st3(d->jnt_moment_total + 3 * i, mo);
+    v4_st3(d->jnt_force_total_body + 3 * i, fb);
+    v4_st3(d->jnt_moment_total_body + 3 * i, v4_mat(R0, R1, R2, mo));
+    const double qf = vt_rate_load(m, d, c);
+    double tau = 0.0;
+    if (motion == MOTION_GIVEN || dr >= 0) tau = v4_dot3(e, mo) - qf;
+    if (motion == MOTION_DRIVEN && dr >= 0) {
+        d->lambda[m->drive_row[dr]] = tau;
+        d->drive_effort[dr] = tau;
+        double *df = d->drive_force + 3 * dr;
+        df[0] = df[1] = df[2] = 0.0;
+        v4_st3(d->drive_moment + 3 * dr, v4_s(tau) * e);
+    }
+    d->qfrc_drive[c] = tau;
+    const vt_v4 mr = mo - v4_s(tau + qf) * e;
+    v4_st3(d->jnt_force + 3 * i, f);
+    v4_st3(d->jnt_moment + 3 * i, mr);
+    v4_st3(d->jnt_force_body + 3 * i, fb);
+    v4_st3(d->jnt_moment_body + 3 * i, v4_mat(R0, R1, R2, mr));
+    if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
+        vt_v4 r;
+        if (tree == TREE_MIXED) {
+            double sj[3];
+            vt_joint_child(sj, m, d, j);
+            r = v4_ld(d->jsij + 3 * i) - (vt_v4){sj[0], sj[1], sj[2], 0};
+        } else { /* j revolute: −s^{ji}_j = d^j */
+            r = v4_ld(d->jsij + 3 * i) + v4_ld(d->jd + 3 * j);
+        }
+        double *Wj = W + 6 * j;
+        v4_st3(Wj, (v4_ld(Wj) + v4_cross(r, f)) + mo);
+        v4_st3(Wj + 3, v4_ld(Wj + 3) + f);
+    }
+}
+
 /* fused_pass's inward step on a translational joint. Not inlined, as fused_slide. */
 #if defined(__GNUC__)
 __attribute__((noinline))
@@ -427,7 +584,7 @@ static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, 
 {
     double Wo[6];
     const int j = m->body_parent[i];
-    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED, OUTPUTS_SCANNED, STORE_SET);
+    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED, STORE_SET);
     if (j > 0) shift_to_parent(m, d, W, i, j);
 }
 
@@ -442,7 +599,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
-    double *W = VT_SCRATCH(d, double, 6 * nb, "subtree wrenches");
+    double *W = VT_SCRATCH(d, double, 6 * nb + 1, "subtree wrenches");
     if (!W) return vt_scratch_fail(d, mark);
     if (angles == ANGLES_SMALL) fused_outward(m, d, d->alpha, W, tree);
     else fused_outward_any(m, d, d->alpha, W, tree);
@@ -460,24 +617,11 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         double Wo[6];
         if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
             /* checked with the rest: fused_check */
-            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED, outputs, STORE_SET);
+            (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED, STORE_SET);
             if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
-        (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_REVOLUTE, 1, motion, TOTALS_FORMED, outputs, STORE_SET);
-        if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
-            double r[3];
-            if (tree == TREE_MIXED) {
-                double sj[3];
-                vt_joint_child(sj, m, d, j);
-                for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] - sj[k];
-            } else { /* j revolute: −s^{ji}_j = d^j */
-                for (int k = 0; k < 3; k++) r[k] = d->jsij[3 * i + k] + d->jd[3 * j + k];
-            }
-            double *Wj = W + 6 * j;
-            vt_addcross3(Wj, r, Wo + 3);
-            for (int k = 0; k < 6; k++) Wj[k] += Wo[k];
-        }
+        fused_rev_inward(m, d, W, i, j, motion, tree);
     }
     vt_scratch_release(d, mark);
     memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
@@ -528,7 +672,7 @@ vt_status vt_motion_add_loads(const vt_model *m, vt_data *d, const double *xf)
         double Wo[6];
         const int j = m->body_parent[i];
         over |= joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], MOTION_GIVEN, TOTALS_FORMED,
-                               OUTPUTS_SCANNED, STORE_ADD);
+                               STORE_ADD);
         if (j > 0) shift_to_parent(m, d, W, i, j);
     }
     vt_scratch_release(d, mark);
@@ -565,9 +709,10 @@ static inline fused_outputs fused_bounded(const vt_model *m, double qmax, double
     const double g = fabs(m->gravity[0]) + fabs(m->gravity[1]) + fabs(m->gravity[2]);
     const double U = 1.0 + m->bound_length + m->nq * qmax, R = 1.0 + m->nv * vmax;
     const double A = 1.0 + m->nv * amax + 4.0 * R * R + g;
-    const double B = 64.0 * (m->nbody + 1) * U * U * ((1.0 + m->bound_mass) * A + 1.0 + fmax_);
-    /* the joints' own effects (armature q̈, damping q̇, friction) are loads the bound leaves out */
-    return B < 1e300 && !m->has_effects ? OUTPUTS_BOUNDED : OUTPUTS_SCANNED;
+    /* the joints' own effects (armature q̈, damping q̇, friction) are loads along the rates, as qfrc */
+    const double F = 1.0 + fmax_ + m->bound_effect[0] * amax + m->bound_effect[1] * vmax + m->bound_effect[2];
+    const double B = 64.0 * (m->nbody + 1) * U * U * ((1.0 + m->bound_mass) * A + F);
+    return B < 1e300 ? OUTPUTS_BOUNDED : OUTPUTS_SCANNED;
 }
 
 /* The joint-driven instant of a tree without base bodies (joint_mix ≥ 0), every rate driven by a
