@@ -262,9 +262,11 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe, double *rw
  *   e_v = q̇ − v if q̇ > v, q̇ + v if q̇ < −v, else 0, the same for the effort with its limit;
  * the difference of two doubles that differ is never 0 (gradual underflow), so a value one ulp
  * beyond is flagged and one at the limit is not. Infinite limits are never passed by finite values. */
-static double excess(double x, double lo, double hi)
+/* x − x clamped to [lo, hi] (x finite: the instant's inputs and outputs are checked or bounded) */
+static inline double excess(double x, double lo, double hi)
 {
-    return x > hi ? x - hi : x < lo ? x - lo : 0.0;
+    const double up = x < lo ? lo : x;
+    return x - (up > hi ? hi : up);
 }
 
 void vt_joint_frames(const vt_model *m, vt_data *d, int bearing)
@@ -298,15 +300,18 @@ double vt_perp_norm_scaled(double u[3])
 void vt_limits_flag(const vt_model *m, vt_data *d)
 {
     if (!m->any_limit) return; /* limit_excess and nlimit stay the zeros they were laid out with */
+    /* the arrays in locals: the stores below might alias them as far as the compiler knows */
+    const int nv = m->nv, *dof_body = m->dof_body, *qadr = m->body_qadr, *vadr = m->body_vadr;
+    const int *nq = m->body_nq, *nvb = m->body_nv;
+    const double *restrict lim = m->dof_limit, *restrict q = d->q, *restrict qd = d->qd, *restrict tau = d->qfrc_drive;
+    double *restrict e = d->limit_excess;
     int n = 0;
-    for (int c = 0; c < m->nv; c++) {
-        const double *lim = m->dof_limit + 4 * c;
-        const int i = m->dof_body[c];
-        double *e = d->limit_excess + 3 * c;
+    for (int c = 0; c < nv; c++, lim += 4, e += 3) {
+        const int i = dof_body[c];
         /* a spherical, free or base joint's rates are not its coordinates (and have no limits) */
-        e[0] = m->body_nq[i] == m->body_nv[i] ? excess(d->q[m->body_qadr[i] + c - m->body_vadr[i]], lim[0], lim[1]) : 0.0;
-        e[1] = excess(d->qd[c], -lim[2], lim[2]);
-        e[2] = excess(d->qfrc_drive[c], -lim[3], lim[3]);
+        e[0] = nq[i] == nvb[i] ? excess(q[qadr[i] + c - vadr[i]], lim[0], lim[1]) : 0.0;
+        e[1] = excess(qd[c], -lim[2], lim[2]);
+        e[2] = excess(tau[c], -lim[3], lim[3]);
         n += (e[0] != 0.0) + (e[1] != 0.0) + (e[2] != 0.0);
     }
     d->nlimit = n;

@@ -499,6 +499,11 @@ vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d)
     return check_state(m, d);
 }
 
+vt_status vt_kinematics_check_quaternions(const vt_model *m, vt_data *d)
+{
+    return check_quaternions(m, d);
+}
+
 vt_status vt_kinematics_check_outputs(const vt_model *m, vt_data *d)
 {
     return check_outputs(m, d, OUT_POSITIONS | OUT_VELOCITIES);

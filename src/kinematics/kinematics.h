@@ -26,6 +26,8 @@ void vt_kinematics_body(const vt_model *m, vt_data *d, int i);
 void vt_acceleration_body(const vt_model *m, vt_data *d, const double *qdd, double *out, double *alpha, int i);
 /* vt_kinematics_tree's checks of the state and of its outputs (without Ṡq̇) (kinematics.c) */
 vt_status vt_kinematics_check_state(const vt_model *m, vt_data *d);
+/* the Euler parameters' norms alone, where q and q̇ are known finite */
+vt_status vt_kinematics_check_quaternions(const vt_model *m, vt_data *d);
 vt_status vt_kinematics_check_outputs(const vt_model *m, vt_data *d);
 /* Kinematics (kinematics.c): ẍ = S q̈ + Ṡ q̇ into out (7n) (q̈ = 0 if qdd is NULL), with the
  * angular accelerations into alpha (3 x (nbody+1)). */

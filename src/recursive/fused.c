@@ -195,160 +195,104 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
  * rate (fused_body: e = A^j u; a revolute's twist (e, (P − o) × e), t = 0, τ = e · the moment
  * about P; a translational one's (0, e), t = q e, τ = e · f); any other joint takes the general
  * code's stages for the body (fused_other). */
-static const double zero3[3] = {0, 0, 0}, unit_quat[4] = {1, 0, 0, 0};
+static const double unit_quat[4] = {1, 0, 0, 0};
 
 /* fused_outward's body i on a revolute or translational joint (jt, a constant): its positions,
  * its rate's twist, velocities, accelerations and needed wrench W_i about P_i */
+static const double zero4[4] = {0, 0, 0, 0};
+/* A = A(p) as its columns A[0..2] and its rows R[0..2] (A^T's columns), written out as
+ * vt_euler_A_inline: (p0² − e·e) 1 + 2 e e^T ± 2 p0 ẽ */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void v4_rotation(vt_v4 p, vt_v4 A[3], vt_v4 R[3])
+{
+    const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
+    const vt_v4 e = VT_PERM(p, 1, 2, 3, 0), e2 = e + e, P = v4_s(2.0 * p[0]) * e;
+    const vt_v4 b0 = e * VT_BC(e2, 0), b1 = e * VT_BC(e2, 1), b2 = e * VT_BC(e2, 2);
+    A[0] = b0 + (vt_v4){s, P[2], -P[1], 0};
+    A[1] = b1 + (vt_v4){-P[2], s, P[0], 0};
+    A[2] = b2 + (vt_v4){P[1], -P[0], s, 0};
+    R[0] = b0 + (vt_v4){s, -P[2], P[1], 0};
+    R[1] = b1 + (vt_v4){P[2], s, -P[0], 0};
+    R[2] = b2 + (vt_v4){-P[1], P[0], s, 0};
+}
+/* a ⊗ b (vt_quat_mul_inline): (a0 b0 − a·b, a0 b + b0 a + a × b) */
+static inline vt_v4 v4_quat_mul(vt_v4 a, vt_v4 b)
+{
+    const vt_v4 av = VT_PERM(a, 1, 2, 3, 0), bv = VT_PERM(b, 1, 2, 3, 0);
+    vt_v4 r = VT_PERM(VT_BC(a, 0) * bv + VT_BC(b, 0) * av + v4_cross(av, bv), 3, 0, 1, 2);
+    r[0] = a[0] * b[0] - v4_dot3(av, bv);
+    return r;
+}
+/* ½ E(p)^T w = ½ [0; w] ⊗ p (vt_quat_rate) */
+static inline vt_v4 v4_quat_rate(vt_v4 p, vt_v4 w)
+{
+    const vt_v4 ev = VT_PERM(p, 1, 2, 3, 0);
+    vt_v4 r = VT_PERM(v4_s(0.5) * (VT_BC(p, 0) * w + v4_cross(w, ev)), 3, 0, 1, 2);
+    r[0] = -0.5 * v4_dot3(w, ev);
+    return r;
+}
+
+/* vt_body_wrench: W_i = (A (J' α' + ω' × J' ω') − n_e + c × f, f = m (a − g) − f_e) about the
+ * point from which the centre of mass lies at c */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void v4_body_wrench(double *W, const vt_model *m, const vt_data *d, int i, const vt_v4 A[3], vt_v4 wb,
+                                  vt_v4 ab, vt_v4 a, vt_v4 g, vt_v4 c)
+{
+    const double *Jb = m->body_inertia + 9 * i, *fe = d->xfrc + 6 * i;
+    const vt_v4 J0 = v4_ld(Jb), J1 = v4_ld(Jb + 3), J2 = v4_ld(Jb + 6);
+    const vt_v4 Jw = v4_mat(J0, J1, J2, wb), Ja = v4_mat(J0, J1, J2, ab) + v4_cross(wb, Jw);
+    const vt_v4 f = v4_s(m->body_mass[i]) * (a - g) - v4_ld(fe);
+    v4_st(W, v4_mat(A[0], A[1], A[2], Ja) - v4_ld(fe + 3) + v4_cross(c, f));
+    v4_st(W + 3, f);
+}
+
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline void fused_body(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
-                              const int jt, const fused_angles angles)
-{
-    double *o = d->origin;
-    const int j = m->body_parent[i], c = m->body_vadr[i];
-    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
-    const double *u = m->body_axis + 6 * i, *Aj = d->A + 9 * j;
-    const double *pj = j ? d->x + vt_xoff(j) + 3 : unit_quat;
-    double p[4], A[9], e[3], sij[3], sji[3], t[3];
-    if (jt == VT_JOINT_REVOLUTE) { /* no calls with the vectors live */
-        double cs, sn;
-        if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
-        else vt_sincos(0.5 * q, &sn, &cs);
-        vt_body_turn(p, pj, cs, sn, u);
-    } else {
-        memcpy(p, pj, sizeof p);
-    }
-    vt_body_orientation(p, A, m->body_quat0 + 4 * i);
-    vt_mulmat3(e, Aj, u);
-    if (jt == VT_JOINT_TRANSLATIONAL)
-        for (int k = 0; k < 3; k++) t[k] = q * e[k];
-    vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
-    vt_mulmat3(sji, A, m->body_jchild + 3 * i);
-    if (i == 1) { /* o = P_1 */
-        if (jt == VT_JOINT_TRANSLATIONAL)
-            for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
-        else vt_copy3(o, sij);
-        for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
-    }
-    /* the reference body's values in locals before the first store (the outputs might alias
-     * them as far as the compiler knows); each output stored as soon as it is known, so that
-     * fewer values stay live (spilled) to the end */
-    const double *rjp = d->xrel + 6 * j, *wjp = d->omega + 3 * j, *aljp = alpha + 3 * j;
-    const double *vjp = j ? d->xd + vt_xoff(j) : zero3, *ajp = j ? d->xdd + vt_xoff(j) : zero3;
-    double rj[3], wj[3], alj[3], vj[3], aj[3];
-    for (int k = 0; k < 3; k++) {
-        rj[k] = rjp[k];
-        wj[k] = wjp[k];
-        alj[k] = aljp[k];
-        vj[k] = vjp[k];
-        aj[k] = ajp[k];
-    }
-    double di[3], w[3], al[3], a[3], wb[3], ab[3];
-    { /* positions from o, the rate's twist */
-        double Pr[3], rr[3], tw[3];
-        vt_body_position(Pr, rr, di, rj, sij, jt == VT_JOINT_TRANSLATIONAL ? t : NULL, sji);
-        if (jt == VT_JOINT_REVOLUTE) vt_cross3(tw, Pr, e);
-        double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c;
-        for (int k = 0; k < 3; k++) {
-            x[k] = o[k] + rr[k];
-            d->jpoint[3 * i + k] = o[k] + Pr[k];
-            d->xrel[6 * i + k] = rr[k];
-            d->xrel[6 * i + 3 + k] = Pr[k];
-            d->jsij[3 * i + k] = sij[k];
-            d->jd[3 * i + k] = di[k];
-            ej[k] = e[k]; /* ej's rows 3–8 hold the zeros data_init set: one axis, on every path */
-            twc[k] = jt == VT_JOINT_REVOLUTE ? e[k] : 0.0;
-            twc[3 + k] = jt == VT_JOINT_REVOLUTE ? tw[k] : e[k];
-        }
-        memcpy(x + 3, p, sizeof p);
-        memcpy(d->A + 9 * i, A, sizeof A);
-    }
-    { /* velocities */
-        double v[3], pd[4];
-        vt_body_velocity(w, v, pd, wj, vj, sij, di, NULL, p, jt, 1, e, &qd);
-        vt_mulmat3t(wb, A, w); /* ω in body axes for the wrench */
-        double *xd = d->xd + vt_xoff(i);
-        vt_copy3(d->omega + 3 * i, w);
-        vt_copy3(xd, v);
-        memcpy(xd + 3, pd, sizeof pd);
-    }
-    { /* accelerations */
-        double pdd[4];
-        vt_body_acceleration(al, a, pdd, alj, aj, wj, w, sij, sji, p, jt, 1, e, &q, &qd, &qdd);
-        vt_mulmat3t(ab, A, al); /* α in body axes for the wrench */
-        double *xdd = d->xdd + vt_xoff(i);
-        vt_copy3(alpha + 3 * i, al);
-        vt_copy3(xdd, a);
-        memcpy(xdd + 3, pdd, sizeof pdd);
-    }
-    /* the needed wrench about P_i: r^i − P_i = −s^{ji} (= d^i without translation) */
-    if (jt == VT_JOINT_REVOLUTE) {
-        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, di);
-    } else {
-        double ci[3];
-        for (int k = 0; k < 3; k++) ci[k] = -sji[k];
-        vt_body_wrench(W + 6 * i, m, i, A, wb, ab, a, d->xfrc + 6 * i, ci);
-    }
-}
-
-
-static const double zero4[4] = {0, 0, 0, 0};
-/* prototype: the revolute body in 4-lane vectors */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline void fused_rev(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
-                             const fused_angles angles, vt_v4 g)
+                              const int jt, const fused_angles angles, vt_v4 g)
 {
     const int j = m->body_parent[i], c = m->body_vadr[i];
     const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
     const double *Ajp = d->A + 9 * j;
-    double cs, sn;
-    if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
-    else vt_sincos(0.5 * q, &sn, &cs);
+    double cs = 1.0, sn = 0.0;
+    if (jt == VT_JOINT_REVOLUTE) { /* no calls with the vectors live */
+        if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
+        else vt_sincos(0.5 * q, &sn, &cs);
+    }
     const vt_v4 c0 = v4_ld(Ajp), c1 = v4_ld(Ajp + 3), c2 = v4_ld(Ajp + 6);
     const vt_v4 u = v4_ld(m->body_axis + 6 * i);
-    const vt_v4 pj = v4_ld(j ? d->x + vt_xoff(j) + 3 : unit_quat);
-    vt_v4 p;
-    { /* p = pj ⊗ (cs, sn u) */
-        const vt_v4 av = VT_PERM(pj, 1, 2, 3, 0);
-        const vt_v4 in = VT_BC(pj, 0) * u + v4_cross(av, u);
+    vt_v4 p = v4_ld(j ? d->x + vt_xoff(j) + 3 : unit_quat);
+    if (jt == VT_JOINT_REVOLUTE) { /* p = pj ⊗ (cs, sn u) */
+        const vt_v4 av = VT_PERM(p, 1, 2, 3, 0);
+        const vt_v4 in = VT_BC(p, 0) * u + v4_cross(av, u);
         vt_v4 s4 = VT_PERM(in, 3, 0, 1, 2);
         s4[0] = -v4_dot3(av, u);
-        p = v4_s(cs) * pj + v4_s(sn) * s4;
+        p = v4_s(cs) * p + v4_s(sn) * s4;
     }
     const double *p0 = m->body_quat0 + 4 * i;
-    if (!vt_quat_is_identity(p0)) {
-        double pa[4];
-        memcpy(pa, &p, sizeof pa);
-        vt_quat_mul_inline(pa, pa, p0);
-        p = v4_ld(pa);
-    }
-    vt_v4 A0, A1, A2, R0, R1, R2;
-    {
-        const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
-        const vt_v4 e = VT_PERM(p, 1, 2, 3, 0), e2 = e + e, P = v4_s(2.0 * p[0]) * e;
-        const vt_v4 b0 = e * VT_BC(e2, 0), b1 = e * VT_BC(e2, 1), b2 = e * VT_BC(e2, 2);
-        A0 = b0 + (vt_v4){s, P[2], -P[1], 0};
-        A1 = b1 + (vt_v4){-P[2], s, P[0], 0};
-        A2 = b2 + (vt_v4){P[1], -P[0], s, 0};
-        R0 = b0 + (vt_v4){s, -P[2], P[1], 0};
-        R1 = b1 + (vt_v4){P[2], s, -P[0], 0};
-        R2 = b2 + (vt_v4){-P[1], P[0], s, 0};
-    }
+    if (!vt_quat_is_identity(p0)) p = v4_quat_mul(p, v4_ld(p0));
+    vt_v4 A[3], R[3];
+    v4_rotation(p, A, R);
     const vt_v4 e = v4_mat(c0, c1, c2, u);
+    const vt_v4 t = v4_s(q) * e; /* a translational joint's */
     const vt_v4 sij = v4_mat(c0, c1, c2, v4_ld(m->body_jpar + 3 * i));
-    const vt_v4 sji = v4_mat(A0, A1, A2, v4_ld(m->body_jchild + 3 * i));
-    if (i == 1) {
-        v4_st3(d->origin, sij);
-        v4_st(d->xrel, -sij);
-        v4_st(d->xrel + 3, -sij);
+    const vt_v4 sji = v4_mat(A[0], A[1], A[2], v4_ld(m->body_jchild + 3 * i));
+    if (i == 1) { /* o = P_1 */
+        const vt_v4 o1 = jt == VT_JOINT_TRANSLATIONAL ? sij + t : sij;
+        v4_st3(d->origin, o1);
+        v4_st(d->xrel, -o1);
+        v4_st(d->xrel + 3, -o1);
     }
     const vt_v4 o = {d->origin[0], d->origin[1], d->origin[2], 0};
     const vt_v4 rj = v4_ld(d->xrel + 6 * j), wj = v4_ld(d->omega + 3 * j), alj = v4_ld(alpha + 3 * j);
     const vt_v4 vj = v4_ld(j ? d->xd + vt_xoff(j) : zero4), aj = v4_ld(j ? d->xdd + vt_xoff(j) : zero4);
-    const vt_v4 Pr = rj + sij, di = v4_s(0.0) - sji, rr = Pr - sji;
+    const vt_v4 Pr = jt == VT_JOINT_TRANSLATIONAL ? (rj + sij) + t : rj + sij;
+    const vt_v4 di = (jt == VT_JOINT_TRANSLATIONAL ? t : v4_s(0.0)) - sji, rr = Pr - sji;
     {
         double *x = d->x + vt_xoff(i), *twc = d->twist + 6 * c;
         v4_st(x, o + rr);
@@ -359,27 +303,31 @@ static inline void fused_rev(const vt_model *m, vt_data *d, double *restrict alp
         v4_st(d->jsij + 3 * i, sij);
         v4_st(d->jd + 3 * i, di);
         v4_st3(d->jaxis + 9 * i, e);
-        v4_st(twc, e);
-        v4_st(twc + 3, v4_cross(Pr, e));
+        v4_st(twc, jt == VT_JOINT_REVOLUTE ? e : v4_s(0.0));
+        v4_st(twc + 3, jt == VT_JOINT_REVOLUTE ? v4_cross(Pr, e) : e);
         double *Ai = d->A + 9 * i;
-        v4_st(Ai, A0);
-        v4_st(Ai + 3, A1);
-        v4_st(Ai + 6, A2);
+        v4_st(Ai, A[0]);
+        v4_st(Ai + 3, A[1]);
+        v4_st(Ai + 6, A[2]);
     }
-    const vt_v4 ev = VT_PERM(p, 1, 2, 3, 0), p0v = VT_BC(p, 0);
-    const vt_v4 w = wj + v4_s(qd) * e;
-    const vt_v4 v = vj + v4_cross(wj, sij) + v4_cross(w, di);
-    vt_v4 pd = VT_PERM(v4_s(0.5) * (p0v * w + v4_cross(w, ev)), 3, 0, 1, 2);
-    pd[0] = -0.5 * v4_dot3(w, ev);
-    const vt_v4 wb = R0 * VT_BC(w, 0) + R1 * VT_BC(w, 1) + R2 * VT_BC(w, 2);
     const vt_v4 ed = v4_cross(wj, e);
-    const vt_v4 al = alj + v4_s(qdd) * e + v4_s(qd) * ed;
-    const vt_v4 a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij)) - v4_cross(al, sji) -
-                    v4_cross(w, v4_cross(w, sji));
-    vt_v4 pdd = VT_PERM(v4_s(0.5) * (p0v * al + v4_cross(al, ev)), 3, 0, 1, 2);
-    pdd[0] = -0.5 * v4_dot3(al, ev);
-    pdd -= v4_s(0.25 * v4_dot3(w, w)) * p;
-    const vt_v4 ab = R0 * VT_BC(al, 0) + R1 * VT_BC(al, 1) + R2 * VT_BC(al, 2);
+    vt_v4 w, v, al, a;
+    if (jt == VT_JOINT_REVOLUTE) {
+        w = wj + v4_s(qd) * e;
+        v = vj + v4_cross(wj, sij) + v4_cross(w, di);
+        al = alj + v4_s(qdd) * e + v4_s(qd) * ed;
+        a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij));
+    } else {
+        w = wj;
+        v = vj + v4_cross(wj, sij) + v4_s(qd) * e + v4_cross(w, di);
+        al = alj;
+        const vt_v4 edd = v4_cross(alj, e) + v4_cross(wj, ed);
+        a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij)) + v4_s(qdd) * e + v4_s(2.0 * qd) * ed +
+            v4_s(q) * edd;
+    }
+    a = a - v4_cross(al, sji) - v4_cross(w, v4_cross(w, sji));
+    const vt_v4 pd = v4_quat_rate(p, w), pdd = v4_quat_rate(p, al) - v4_s(0.25 * v4_dot3(w, w)) * p;
+    const vt_v4 wb = v4_mat(R[0], R[1], R[2], w), ab = v4_mat(R[0], R[1], R[2], al);
     {
         double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
         v4_st(d->omega + 3 * i, w);
@@ -389,13 +337,7 @@ static inline void fused_rev(const vt_model *m, vt_data *d, double *restrict alp
         v4_st(xdd, a);
         v4_st(xdd + 3, pdd);
     }
-    const double *Jb = m->body_inertia + 9 * i, *fe = d->xfrc + 6 * i;
-    const vt_v4 J0 = v4_ld(Jb), J1 = v4_ld(Jb + 3), J2 = v4_ld(Jb + 6);
-    const vt_v4 Jw = v4_mat(J0, J1, J2, wb), Ja = v4_mat(J0, J1, J2, ab) + v4_cross(wb, Jw);
-    const vt_v4 f = v4_s(m->body_mass[i]) * (a - g) - v4_ld(fe);
-    const vt_v4 n = v4_mat(A0, A1, A2, Ja) - v4_ld(fe + 3) + v4_cross(di, f);
-    v4_st(W + 6 * i, n);
-    v4_st(W + 6 * i + 3, f);
+    v4_body_wrench(W + 6 * i, m, d, i, A, wb, ab, a, g, v4_s(0.0) - sji);
 }
 
 /* A gripper's fingers, a linear axis: the robot stays on the fused passes' own code instead of
@@ -404,9 +346,89 @@ static inline void fused_rev(const vt_model *m, vt_data *d, double *restrict alp
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i)
+static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i, vt_v4 g)
 {
-    fused_body(m, d, alpha, W, i, VT_JOINT_TRANSLATIONAL, ANGLES_ANY);
+    fused_body(m, d, alpha, W, i, VT_JOINT_TRANSLATIONAL, ANGLES_ANY, g);
+}
+
+/* A free joint's body (a floating robot's root): the triad e_k of its reference body's axes,
+ * translation t = A^j q_{0..2} and turn p_J = q_{3..6} normalized (as vt_kinematics_body), its six
+ * rates' twists (0, e_k) and (e_k, (P − o) × e_k), velocities, accelerations and needed wrench
+ * about P_i, as fused_body (kinematics/body.h's equations for the joint) */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void fused_free(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i, vt_v4 g)
+{
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const double *qi = d->q + m->body_qadr[i], *qd = d->qd + c, *qdd = d->qdd + c;
+    const double *Ajp = d->A + 9 * j;
+    const vt_v4 E[3] = {v4_ld(Ajp), v4_ld(Ajp + 3), v4_ld(Ajp + 6)};
+    double pJ[4];
+    memcpy(pJ, qi + 3, sizeof pJ);
+    vt_normalize(pJ, 4); /* scaled: no overflow for a norm ≥ 1e154 */
+    vt_v4 p = v4_quat_mul(v4_ld(j ? d->x + vt_xoff(j) + 3 : unit_quat), v4_ld(pJ));
+    const double *p0 = m->body_quat0 + 4 * i;
+    if (!vt_quat_is_identity(p0)) p = v4_quat_mul(p, v4_ld(p0));
+    vt_v4 A[3], R[3];
+    v4_rotation(p, A, R);
+    const vt_v4 t = v4_mat(E[0], E[1], E[2], v4_ld(qi));
+    const vt_v4 sij = v4_mat(E[0], E[1], E[2], v4_ld(m->body_jpar + 3 * i));
+    const vt_v4 sji = v4_mat(A[0], A[1], A[2], v4_ld(m->body_jchild + 3 * i));
+    if (i == 1) { /* o = P_1 */
+        v4_st3(d->origin, sij + t);
+        v4_st(d->xrel, -(sij + t));
+        v4_st(d->xrel + 3, -(sij + t));
+    }
+    const vt_v4 o = {d->origin[0], d->origin[1], d->origin[2], 0};
+    const vt_v4 rj = v4_ld(d->xrel + 6 * j), wj = v4_ld(d->omega + 3 * j), alj = v4_ld(alpha + 3 * j);
+    const vt_v4 vj = v4_ld(j ? d->xd + vt_xoff(j) : zero4), aj = v4_ld(j ? d->xdd + vt_xoff(j) : zero4);
+    const vt_v4 Pr = (rj + sij) + t, di = t - sji, rr = Pr - sji;
+    {
+        double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c, *Ai = d->A + 9 * i;
+        v4_st(x, o + rr);
+        v4_st(x + 3, p);
+        v4_st(d->jpoint + 3 * i, o + Pr);
+        v4_st(d->xrel + 6 * i, rr);
+        v4_st(d->xrel + 6 * i + 3, Pr);
+        v4_st(d->jsij + 3 * i, sij);
+        v4_st(d->jd + 3 * i, di);
+        for (int k = 0; k < 3; k++) {
+            v4_st3(ej + 3 * k, E[k]);
+            v4_st(twc + 6 * k, v4_s(0.0));
+            v4_st(twc + 6 * k + 3, E[k]);
+        }
+        for (int k = 0; k < 3; k++) {
+            v4_st(twc + 18 + 6 * k, E[k]);
+            v4_st(twc + 21 + 6 * k, v4_cross(Pr, E[k]));
+        }
+        for (int k = 0; k < 3; k++) v4_st(Ai + 3 * k, A[k]);
+    }
+    /* (15)-(16) with ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
+    vt_v4 w = wj, v = vj + v4_cross(wj, sij);
+    for (int k = 0; k < 3; k++) v += v4_s(qd[k]) * E[k];
+    for (int k = 0; k < 3; k++) w += v4_s(qd[3 + k]) * E[k];
+    v += v4_cross(wj, di);
+    v += v4_cross(w - wj, v4_s(0.0) - sji);
+    vt_v4 al = alj, a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij));
+    for (int k = 0; k < 3; k++) {
+        const vt_v4 ed = v4_cross(wj, E[k]), edd = v4_cross(alj, E[k]) + v4_cross(wj, ed);
+        a = a + v4_s(qdd[k]) * E[k] + v4_s(2.0 * qd[k]) * ed + v4_s(qi[k]) * edd;
+    }
+    for (int k = 0; k < 3; k++) al = al + v4_s(qdd[3 + k]) * E[k] + v4_s(qd[3 + k]) * v4_cross(wj, E[k]);
+    a = a - v4_cross(al, sji) - v4_cross(w, v4_cross(w, sji));
+    const vt_v4 pd = v4_quat_rate(p, w), pdd = v4_quat_rate(p, al) - v4_s(0.25 * v4_dot3(w, w)) * p;
+    {
+        double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
+        v4_st(d->omega + 3 * i, w);
+        v4_st(xd, v);
+        v4_st(xd + 3, pd);
+        v4_st(alpha + 3 * i, al);
+        v4_st(xdd, a);
+        v4_st(xdd + 3, pdd);
+    }
+    v4_body_wrench(W + 6 * i, m, d, i, A, v4_mat(R[0], R[1], R[2], w), v4_mat(R[0], R[1], R[2], al), a, g,
+                   v4_s(0.0) - sji);
 }
 
 /* any other joint: the general code's stages for body i, its wrench about P_i (c = r^i − P_i =
@@ -439,9 +461,10 @@ static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *res
     alpha[0] = alpha[1] = alpha[2] = 0.0;
     const vt_v4 g = {m->gravity[0], m->gravity[1], m->gravity[2], 0};
     for (int i = 1; i <= m->nbody; i++) {
-        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) fused_slide(m, d, alpha, W, i);
+        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) fused_slide(m, d, alpha, W, i, g);
+        else if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_FREE) fused_free(m, d, alpha, W, i, g);
         else if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) fused_other(m, d, alpha, W, i);
-        else fused_rev(m, d, alpha, W, i, angles, g);
+        else fused_body(m, d, alpha, W, i, VT_JOINT_REVOLUTE, angles, g);
     }
 }
 
@@ -528,47 +551,49 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
 }
 
 
-/* prototype: the revolute joint's inward step in vectors */
+/* inward step: joint i (jt revolute or translational, a constant) */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void fused_rev_inward(const vt_model *m, vt_data *d, double *W, int i, int j, const fused_motion motion,
-                                    const fused_tree tree)
+static inline void fused_inward(const vt_model *m, vt_data *d, double *W, int i, int j, const int jt,
+                                const fused_motion motion, const fused_tree tree)
 {
-    const int c = m->body_vadr[i], dr = m->dof_drive[c];
+    const int c = m->body_vadr[i], dr = m->dof_drive[c], rev = jt == VT_JOINT_REVOLUTE;
     const double *Ap = d->A + 9 * i;
+    const vt_v4 A0 = v4_ld(Ap), A1 = v4_ld(Ap + 3), A2 = v4_ld(Ap + 6);
     vt_v4 R0, R1, R2;
-    v4_transpose(v4_ld(Ap), v4_ld(Ap + 3), v4_ld(Ap + 6), &R0, &R1, &R2);
+    v4_transpose(A0, A1, A2, &R0, &R1, &R2);
     const vt_v4 mo = v4_ld(W + 6 * i), f = v4_ld(W + 6 * i + 3), e = v4_ld(d->jaxis + 9 * i);
-    const vt_v4 fb = v4_mat(R0, R1, R2, f);
+    const vt_v4 fb = v4_mat(R0, R1, R2, f), mb = v4_mat(R0, R1, R2, mo);
     v4_st3(d->jnt_force_total + 3 * i, f);
     v4_st3(d->jnt_moment_total + 3 * i, mo);
     v4_st3(d->jnt_force_total_body + 3 * i, fb);
-    v4_st3(d->jnt_moment_total_body + 3 * i, v4_mat(R0, R1, R2, mo));
+    v4_st3(d->jnt_moment_total_body + 3 * i, mb);
     const double qf = vt_rate_load(m, d, c);
     double tau = 0.0;
-    if (motion == MOTION_GIVEN || dr >= 0) tau = v4_dot3(e, mo) - qf;
+    if (motion == MOTION_GIVEN || dr >= 0) tau = v4_dot3(e, rev ? mo : f) - qf;
     if (motion == MOTION_DRIVEN && dr >= 0) {
         d->lambda[m->drive_row[dr]] = tau;
         d->drive_effort[dr] = tau;
-        double *df = d->drive_force + 3 * dr;
-        df[0] = df[1] = df[2] = 0.0;
-        v4_st3(d->drive_moment + 3 * dr, v4_s(tau) * e);
+        v4_st3(d->drive_force + 3 * dr, rev ? v4_s(0.0) : v4_s(tau) * e);
+        v4_st3(d->drive_moment + 3 * dr, rev ? v4_s(tau) * e : v4_s(0.0));
     }
     d->qfrc_drive[c] = tau;
-    const vt_v4 mr = mo - v4_s(tau + qf) * e;
-    v4_st3(d->jnt_force + 3 * i, f);
+    const vt_v4 k = v4_s(tau + qf) * e;
+    const vt_v4 fr = rev ? f : f - k, mr = rev ? mo - k : mo;
+    v4_st3(d->jnt_force + 3 * i, fr);
     v4_st3(d->jnt_moment + 3 * i, mr);
-    v4_st3(d->jnt_force_body + 3 * i, fb);
-    v4_st3(d->jnt_moment_body + 3 * i, v4_mat(R0, R1, R2, mr));
-    if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i − s^{ji}_j (no translation at i) */
-        vt_v4 r;
+    v4_st3(d->jnt_force_body + 3 * i, rev ? fb : v4_mat(R0, R1, R2, fr));
+    v4_st3(d->jnt_moment_body + 3 * i, rev ? v4_mat(R0, R1, R2, mr) : mb);
+    if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
+        vt_v4 r = v4_ld(d->jsij + 3 * i);
+        if (!rev) r += v4_ld(d->jd + 3 * i) + v4_mat(A0, A1, A2, v4_ld(m->body_jchild + 3 * i)); /* t_i */
         if (tree == TREE_MIXED) {
             double sj[3];
             vt_joint_child(sj, m, d, j);
-            r = v4_ld(d->jsij + 3 * i) - (vt_v4){sj[0], sj[1], sj[2], 0};
+            r -= (vt_v4){sj[0], sj[1], sj[2], 0};
         } else { /* j revolute: −s^{ji}_j = d^j */
-            r = v4_ld(d->jsij + 3 * i) + v4_ld(d->jd + 3 * j);
+            r += v4_ld(d->jd + 3 * j);
         }
         double *Wj = W + 6 * j;
         v4_st3(Wj, (v4_ld(Wj) + v4_cross(r, f)) + mo);
@@ -582,10 +607,7 @@ __attribute__((noinline))
 #endif
 static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, const fused_motion motion)
 {
-    double Wo[6];
-    const int j = m->body_parent[i];
-    (void)joint_reaction(m, d, W + 6 * i, Wo, i, VT_JOINT_TRANSLATIONAL, 1, motion, TOTALS_FORMED, STORE_SET);
-    if (j > 0) shift_to_parent(m, d, W, i, j);
+    fused_inward(m, d, W, i, m->body_parent[i], VT_JOINT_TRANSLATIONAL, motion, TREE_MIXED);
 }
 
 /* the joint-driven (MOTION_DRIVEN) or given (MOTION_GIVEN) instant of a tree without base bodies:
@@ -621,7 +643,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
             if (j > 0) shift_to_parent(m, d, W, i, j);
             continue;
         }
-        fused_rev_inward(m, d, W, i, j, motion, tree);
+        fused_inward(m, d, W, i, j, VT_JOINT_REVOLUTE, motion, tree);
     }
     vt_scratch_release(d, mark);
     memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
@@ -726,8 +748,9 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
     const int mix = m->joint_mix;
     /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
      * number), or q or q̇ not finite */
-    if ((mix == 0 && m->has_quaternions) || !(smax < HUGE_VAL))
-        if ((st = vt_kinematics_check_state(m, d))) return st;
+    if (!(smax < HUGE_VAL)) st = vt_kinematics_check_state(m, d);
+    else if (mix == 0 && m->has_quaternions) st = vt_kinematics_check_quaternions(m, d); /* q and q̇ finite */
+    if (st) return st;
     if ((st = vt_drive_accelerations(m, d))) { /* the status the separate passes would give */
         const vt_status sk = vt_kinematics_tree(m, d, 0);
         return sk ? sk : st;
@@ -799,8 +822,9 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     const int mix = m->joint_mix;
     /* Euler parameters' norms to check (a revolute or translational joint's q is any finite
      * number), or q or q̇ not finite */
-    if ((mix == 0 && m->has_quaternions) || !(smax < HUGE_VAL))
-        if ((st = vt_kinematics_check_state(m, d))) return st;
+    if (!(smax < HUGE_VAL)) st = vt_kinematics_check_state(m, d);
+    else if (mix == 0 && m->has_quaternions) st = vt_kinematics_check_quaternions(m, d); /* q and q̇ finite */
+    if (st) return st;
     const fused_outputs outputs = fused_bounded(m, smax, smax, amax, smax);
     vt_solved(m, d, VT_ROUTE_MOTION, 1.0); /* nothing factorized */
     const fused_angles angles = angles_small(m, d, smax);
