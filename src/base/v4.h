@@ -1,42 +1,192 @@
-/* prototype */
+/* vtdyn — 3-vectors and Euler parameters in the four lanes of one value: the algebra of the
+ * body kernels (kinematics/body.h). A 3-vector holds lanes 0-2, lane 3 is whatever the
+ * operations leave there and is never read into lanes 0-2; Euler parameters p hold all four.
+ *
+ * With GCC or Clang a vt_v4 is a vector of four doubles (their vector extensions): one AVX
+ * register, or two SSE2 ones, and each operation a few instructions on the lanes at once where
+ * the scalar code of vec3.h takes three to nine. Elsewhere (VT_V4_PORTABLE, or another compiler)
+ * it is a struct of four doubles and the same operations are loops: the kernels are written once
+ * against the functions below. Each lane of a result is the scalar expression's, term by term
+ * in the same order (the compiler contracts a * b + c into an FMA where -ffp-contract allows,
+ * as it does the scalar code); tests/test_v4.c checks both forms against vec3.h.
+ *
+ * Loads and stores of four lanes: vt_v4_load reads p[0..3] and vt_v4_store writes p[0..3] (the
+ * fourth one overwritten). The arrays they touch carry a fourth element or one spare double at
+ * their end (data.c, model.c), and a pass that stores four lanes writes each array in increasing
+ * order, each element's own value after the spare lane of the one before; vt_v4_store3 writes
+ * three. */
 #ifndef VT_BASE_V4_H
 #define VT_BASE_V4_H
+
 #include <string.h>
+
+#if defined(__GNUC__) && !defined(VT_V4_PORTABLE)
+#define VT_V4_VECTOR 1
+#if !defined(__clang__)
+/* a vt_v4 returned by a function when AVX is not enabled: GCC notes the ABI of such calls; every
+ * function here is static inline, and no vt_v4 crosses a translation unit */
 #pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 typedef double vt_v4 __attribute__((vector_size(32)));
-#define VT_PERM(a, i, j, k, l) __builtin_shufflevector((a), (a), i, j, k, l)
-#define VT_BC(a, k) VT_PERM(a, k, k, k, k)
-static inline vt_v4 v4_ld(const double *p) { vt_v4 r; memcpy(&r, p, sizeof r); return r; }
-static inline void v4_st(double *p, vt_v4 a) { memcpy(p, &a, sizeof a); }
-typedef double vt_v2 __attribute__((vector_size(16)));
-static inline void v4_st3(double *p, vt_v4 a)
+typedef double vt_v4_pair __attribute__((vector_size(16)));
+#if defined(__clang__) || __GNUC__ >= 12
+#define VT_V4_SHUFFLE(a, b, i, j, k, l) __builtin_shufflevector((a), (b), i, j, k, l)
+#else
+typedef long long vt_v4_index __attribute__((vector_size(32)));
+#define VT_V4_SHUFFLE(a, b, i, j, k, l) __builtin_shuffle((a), (b), (vt_v4_index){i, j, k, l})
+#endif
+#define VT_V4_PERM(a, i, j, k, l) VT_V4_SHUFFLE(a, a, i, j, k, l)
+#else
+#define VT_V4_VECTOR 0
+typedef struct {
+    double v[4];
+} vt_v4;
+#endif
+
+#if VT_V4_VECTOR
+static inline vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){x, y, z, w}; }
+static inline vt_v4 vt_v4_splat(double s) { return (vt_v4){s, s, s, s}; }
+static inline double vt_v4_lane(vt_v4 a, int k) { return a[k]; }
+static inline vt_v4 vt_v4_add(vt_v4 a, vt_v4 b) { return a + b; }
+static inline vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b) { return a - b; }
+static inline vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b) { return a * b; }
+/* lanes turned: (a1, a2, a0, a3), (a1, a2, a3, a0), (a3, a0, a1, a2); lane k in all four */
+static inline vt_v4 vt_v4_yzx(vt_v4 a) { return VT_V4_PERM(a, 1, 2, 0, 3); }
+static inline vt_v4 vt_v4_left(vt_v4 a) { return VT_V4_PERM(a, 1, 2, 3, 0); }
+static inline vt_v4 vt_v4_right(vt_v4 a) { return VT_V4_PERM(a, 3, 0, 1, 2); }
+static inline vt_v4 vt_v4_x(vt_v4 a) { return VT_V4_PERM(a, 0, 0, 0, 0); }
+static inline vt_v4 vt_v4_y(vt_v4 a) { return VT_V4_PERM(a, 1, 1, 1, 1); }
+static inline vt_v4 vt_v4_z(vt_v4 a) { return VT_V4_PERM(a, 2, 2, 2, 2); }
+/* a with lane 0 replaced by s */
+static inline vt_v4 vt_v4_with0(vt_v4 a, double s)
 {
-    const vt_v2 lo = __builtin_shufflevector(a, a, 0, 1);
+    a[0] = s;
+    return a;
+}
+/* the rows of the 3x3 matrix whose columns are c[0..2] */
+static inline void vt_v4_transpose(const vt_v4 c[3], vt_v4 r[3])
+{
+    const vt_v4 t0 = VT_V4_SHUFFLE(c[0], c[1], 0, 4, 2, 6), t1 = VT_V4_SHUFFLE(c[0], c[1], 1, 5, 3, 7);
+    r[0] = VT_V4_SHUFFLE(t0, c[2], 0, 1, 4, 7);
+    r[1] = VT_V4_SHUFFLE(t1, c[2], 0, 1, 5, 7);
+    r[2] = VT_V4_SHUFFLE(t0, c[2], 2, 3, 6, 7);
+}
+static inline vt_v4 vt_v4_load(const double *p)
+{
+    vt_v4 r;
+    memcpy(&r, p, sizeof r);
+    return r;
+}
+static inline void vt_v4_store(double *p, vt_v4 a) { memcpy(p, &a, sizeof a); }
+static inline void vt_v4_store3(double *p, vt_v4 a)
+{
+    const vt_v4_pair lo = {a[0], a[1]};
     memcpy(p, &lo, sizeof lo);
     p[2] = a[2];
 }
-static inline vt_v4 v4_s(double s) { return (vt_v4){s, s, s, s}; }
-/* a × b in lanes 0-2: c = a (b1 b2 b0) − (a1 a2 a0) b = (r2 r0 r1) */
-static inline vt_v4 v4_cross(vt_v4 a, vt_v4 b)
+#else
+static inline vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){{x, y, z, w}}; }
+static inline vt_v4 vt_v4_splat(double s) { return (vt_v4){{s, s, s, s}}; }
+static inline double vt_v4_lane(vt_v4 a, int k) { return a.v[k]; }
+static inline vt_v4 vt_v4_add(vt_v4 a, vt_v4 b)
 {
-    const vt_v4 c = a * VT_PERM(b, 1, 2, 0, 3) - VT_PERM(a, 1, 2, 0, 3) * b;
-    return VT_PERM(c, 1, 2, 0, 3);
+    for (int k = 0; k < 4; k++) a.v[k] += b.v[k];
+    return a;
 }
-static inline vt_v4 v4_mat(vt_v4 c0, vt_v4 c1, vt_v4 c2, vt_v4 a)
+static inline vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b)
 {
-    return c0 * VT_BC(a, 0) + c1 * VT_BC(a, 1) + c2 * VT_BC(a, 2);
+    for (int k = 0; k < 4; k++) a.v[k] -= b.v[k];
+    return a;
 }
-static inline double v4_dot3(vt_v4 a, vt_v4 b)
+static inline vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b)
 {
-    const vt_v4 t = a * b;
-    return t[0] + t[1] + t[2];
+    for (int k = 0; k < 4; k++) a.v[k] *= b.v[k];
+    return a;
 }
-/* rows r0, r1, r2 of the matrix of columns c0, c1, c2 */
-static inline void v4_transpose(vt_v4 c0, vt_v4 c1, vt_v4 c2, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
+static inline vt_v4 vt_v4_yzx(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[0], a.v[3]); }
+static inline vt_v4 vt_v4_left(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[3], a.v[0]); }
+static inline vt_v4 vt_v4_right(vt_v4 a) { return vt_v4_set(a.v[3], a.v[0], a.v[1], a.v[2]); }
+static inline vt_v4 vt_v4_x(vt_v4 a) { return vt_v4_splat(a.v[0]); }
+static inline vt_v4 vt_v4_y(vt_v4 a) { return vt_v4_splat(a.v[1]); }
+static inline vt_v4 vt_v4_z(vt_v4 a) { return vt_v4_splat(a.v[2]); }
+static inline vt_v4 vt_v4_with0(vt_v4 a, double s)
 {
-    const vt_v4 t0 = __builtin_shufflevector(c0, c1, 0, 4, 2, 6), t1 = __builtin_shufflevector(c0, c1, 1, 5, 3, 7);
-    *r0 = __builtin_shufflevector(t0, c2, 0, 1, 4, 7);
-    *r1 = __builtin_shufflevector(t1, c2, 0, 1, 5, 7);
-    *r2 = __builtin_shufflevector(t0, c2, 2, 3, 6, 7);
+    a.v[0] = s;
+    return a;
 }
+static inline void vt_v4_transpose(const vt_v4 c[3], vt_v4 r[3])
+{
+    for (int i = 0; i < 3; i++) r[i] = vt_v4_set(c[0].v[i], c[1].v[i], c[2].v[i], 0.0);
+}
+static inline vt_v4 vt_v4_load(const double *p)
+{
+    vt_v4 r;
+    memcpy(r.v, p, sizeof r.v);
+    return r;
+}
+static inline void vt_v4_store(double *p, vt_v4 a) { memcpy(p, a.v, sizeof a.v); }
+static inline void vt_v4_store3(double *p, vt_v4 a) { memcpy(p, a.v, 3 * sizeof(double)); }
+#endif
+
+/* a 3-vector from an array of three (lane 3 a copy of lane 2: no zeroing instruction) */
+static inline vt_v4 vt_v4_load3(const double *p) { return vt_v4_set(p[0], p[1], p[2], p[2]); }
+/* a + s b */
+static inline vt_v4 vt_v4_madd(vt_v4 a, double s, vt_v4 b) { return vt_v4_add(a, vt_v4_mul(vt_v4_splat(s), b)); }
+static inline vt_v4 vt_v4_scale(double s, vt_v4 a) { return vt_v4_mul(vt_v4_splat(s), a); }
+/* a · b over lanes 0-2, summed in vec3.h's order */
+static inline double vt_v4_dot3(vt_v4 a, vt_v4 b)
+{
+    const vt_v4 t = vt_v4_mul(a, b);
+    return vt_v4_lane(t, 0) + vt_v4_lane(t, 1) + vt_v4_lane(t, 2);
+}
+/* a × b in lanes 0-2: c = a (b1, b2, b0) − (a1, a2, a0) b holds (r2, r0, r1) */
+static inline vt_v4 vt_v4_cross(vt_v4 a, vt_v4 b)
+{
+    return vt_v4_yzx(vt_v4_sub(vt_v4_mul(a, vt_v4_yzx(b)), vt_v4_mul(vt_v4_yzx(a), b)));
+}
+/* M a for the 3x3 matrix of columns M[0..2] (rows of M^T: M^T a for the rows) */
+static inline vt_v4 vt_v4_mat(const vt_v4 M[3], vt_v4 a)
+{
+    return vt_v4_add(vt_v4_add(vt_v4_mul(M[0], vt_v4_x(a)), vt_v4_mul(M[1], vt_v4_y(a))), vt_v4_mul(M[2], vt_v4_z(a)));
+}
+/* the columns of a column-major 3x3 array (M[9] read: a spare double after the array) */
+static inline void vt_v4_load_mat(vt_v4 M[3], const double *A)
+{
+    M[0] = vt_v4_load(A);
+    M[1] = vt_v4_load(A + 3);
+    M[2] = vt_v4_load(A + 6);
+}
+
+/* Euler parameters p = (p0, e) in the four lanes (base/euler.h's products, written out the same) */
+/* a ⊗ b = (a0 b0 − a·b, a0 b + b0 a + a × b) */
+static inline vt_v4 vt_v4_quat_mul(vt_v4 a, vt_v4 b)
+{
+    const vt_v4 av = vt_v4_left(a), bv = vt_v4_left(b);
+    const vt_v4 r = vt_v4_add(vt_v4_add(vt_v4_mul(vt_v4_x(a), bv), vt_v4_mul(vt_v4_x(b), av)), vt_v4_cross(av, bv));
+    return vt_v4_with0(vt_v4_right(r), vt_v4_lane(a, 0) * vt_v4_lane(b, 0) - vt_v4_dot3(av, bv));
+}
+/* ½ E(p)^T w = ½ [0; w] ⊗ p: the rate of p turning at w (vt_quat_rate) */
+static inline vt_v4 vt_v4_quat_rate(vt_v4 p, vt_v4 w)
+{
+    const vt_v4 e = vt_v4_left(p);
+    const vt_v4 r = vt_v4_scale(0.5, vt_v4_add(vt_v4_mul(vt_v4_x(p), w), vt_v4_cross(w, e)));
+    return vt_v4_with0(vt_v4_right(r), -0.5 * vt_v4_dot3(w, e));
+}
+/* A(p) = (p0² − e·e) 1 + 2 e e^T + 2 p0 ẽ (vt_euler_A_inline): its columns A[0..2] and its rows
+ * R[0..2] (the columns of A^T: the sign of the ẽ term turned) */
+static inline void vt_v4_rotation(vt_v4 p, vt_v4 A[3], vt_v4 R[3])
+{
+    const double p0 = vt_v4_lane(p, 0), p1 = vt_v4_lane(p, 1), p2 = vt_v4_lane(p, 2), p3 = vt_v4_lane(p, 3);
+    const double s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
+    const vt_v4 e = vt_v4_left(p), e2 = vt_v4_add(e, e), P = vt_v4_scale(2.0 * p0, e);
+    const double P0 = vt_v4_lane(P, 0), P1 = vt_v4_lane(P, 1), P2 = vt_v4_lane(P, 2);
+    const vt_v4 b0 = vt_v4_mul(e, vt_v4_x(e2)), b1 = vt_v4_mul(e, vt_v4_y(e2)), b2 = vt_v4_mul(e, vt_v4_z(e2));
+    A[0] = vt_v4_add(b0, vt_v4_set(s, P2, -P1, 0.0));
+    A[1] = vt_v4_add(b1, vt_v4_set(-P2, s, P0, 0.0));
+    A[2] = vt_v4_add(b2, vt_v4_set(P1, -P0, s, 0.0));
+    R[0] = vt_v4_add(b0, vt_v4_set(s, -P2, P1, 0.0));
+    R[1] = vt_v4_add(b1, vt_v4_set(P2, s, -P0, 0.0));
+    R[2] = vt_v4_add(b2, vt_v4_set(-P1, P0, s, 0.0));
+}
+
 #endif

@@ -435,7 +435,7 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, vt_form form)
         const double *a = d->xdd + vt_xoff(i), *al = alpha + 3 * i;
         const double *w = d->omega + 3 * i, *Ai = d->A + 9 * i;
         double *f = d->jnt_force + 3 * i, *mo = d->jnt_moment + 3 * i;
-        double wb[3], ab[3], t[3], s[3], ci[3], app[6], Wi[6];
+        double t[3], s[3], ci[3], app[6], Wi[6];
         double sji[3]; /* P_i − r^i and P_i − r^j from the joint's own vectors, not as differences
                         * of positions from o (exact far from o) */
         vt_joint_child(sji, m, d, i);
@@ -443,9 +443,11 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, vt_form form)
         /* the reaction at P_i is the needed wrench about P_i with the loads less the children's
          * reactions as the applied wrench */
         for (int c = 0; c < 6; c++) app[c] = fe[6 * i + c] - cf[6 * i + c];
-        vt_mulmat3t(wb, Ai, w);
-        vt_mulmat3t(ab, Ai, al);
-        vt_body_wrench(Wi, m, i, Ai, wb, ab, a, app, ci);
+        vt_v4 A[3], R[3];
+        vt_v4_load_mat(A, Ai);
+        vt_v4_transpose(A, R);
+        vt_body_wrench(Wi, m, i, A, vt_v4_mat(R, vt_v4_load3(w)), vt_v4_mat(R, vt_v4_load3(al)), vt_v4_load3(a),
+                       vt_v4_load3(m->gravity), vt_v4_load3(app), vt_v4_load3(app + 3), vt_v4_load3(ci));
         vt_copy3(mo, Wi);
         vt_copy3(f, Wi + 3);
         if (j) { /* into the parent: f and its moment about the parent's centre of mass */

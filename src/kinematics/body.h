@@ -32,14 +32,16 @@
  * The spatial inertia of body i about the same point, in 13 numbers (m, h = m c, J_P):
  *   J = A J' A^T,   J_P = J + m (|c|² 1 − c c^T),   I s = (J_P w + h × v, m v + w × h)
  *
- * The kernels compute into the caller's locals and read their inputs once: the caller's outputs
- * in vt_data might alias the inputs as far as the compiler knows.
+ * The kernels take and return their vectors as values (base/v4.h: a 3-vector in four lanes) and
+ * read nothing of vt_data: the caller loads the reference body's values, and stores the body's
+ * own once they are known (its outputs might alias the inputs as far as the compiler knows).
  */
 #ifndef VT_KINEMATICS_BODY_H
 #define VT_KINEMATICS_BODY_H
 
 #include "vtdyn.h"
 #include "base/euler.h"
+#include "base/v4.h"
 #include "base/vec3.h"
 #include "model/model.h"
 
@@ -49,160 +51,121 @@
 #define VT_ALWAYS_INLINE inline
 #endif
 
-/* p = p^j ⊗ (cs, sn u), the reference body's orientation turned by an angle whose half has
- * cosine cs and sine sn about the unit axis u, written out: (cs p0 − sn p·u, cs p + sn p0 u +
- * sn p × u) */
-static VT_ALWAYS_INLINE void vt_body_turn(double p[4], const double pj[4], double cs, double sn, const double u[3])
+/* p^j ⊗ (cs, sn u), the reference body's orientation turned by an angle whose half has cosine
+ * cs and sine sn about the unit axis u, written out: (cs p0 − sn p·u, cs p + sn p0 u + sn p × u) */
+static VT_ALWAYS_INLINE vt_v4 vt_body_turn(vt_v4 pj, double cs, double sn, vt_v4 u)
 {
-    const double a0 = pj[0], a1 = pj[1], a2 = pj[2], a3 = pj[3];
-    p[0] = cs * a0 - sn * (a1 * u[0] + a2 * u[1] + a3 * u[2]);
-    p[1] = cs * a1 + sn * (a0 * u[0] + a2 * u[2] - a3 * u[1]);
-    p[2] = cs * a2 + sn * (a0 * u[1] + a3 * u[0] - a1 * u[2]);
-    p[3] = cs * a3 + sn * (a0 * u[2] + a1 * u[1] - a2 * u[0]);
+    const vt_v4 a = vt_v4_left(pj);
+    const vt_v4 in = vt_v4_add(vt_v4_mul(vt_v4_x(pj), u), vt_v4_cross(a, u));
+    return vt_v4_add(vt_v4_scale(cs, pj), vt_v4_scale(sn, vt_v4_with0(vt_v4_right(in), -vt_v4_dot3(a, u))));
 }
 
-/* p (holding p^j ⊗ p_J) ⊗= p0, the body's fixed offset (skipped when it is the identity bit for
- * bit), and A = A(p) */
-static VT_ALWAYS_INLINE void vt_body_orientation(double p[4], double A[9], const double p0[4])
+/* p (holding p^j ⊗ p_J) ⊗ p0, the body's fixed offset (skipped when it is the identity bit for
+ * bit), and A = A(p): its columns A[0..2] and rows R[0..2] */
+static VT_ALWAYS_INLINE vt_v4 vt_body_orientation(vt_v4 p, const double p0[4], vt_v4 A[3], vt_v4 R[3])
 {
-    if (!vt_quat_is_identity(p0)) vt_quat_mul_inline(p, p, p0);
-    vt_euler_A_inline(A, p);
+    if (!vt_quat_is_identity(p0)) p = vt_v4_quat_mul(p, vt_v4_load(p0));
+    vt_v4_rotation(p, A, R);
+    return p;
 }
 
 /* (17): Pr = P_i − o, rr = r^i − o and d^i from rj = r^j − o, s^{ij}, the joint's translation t
  * (NULL for none: P_i − o = (r^j − o) + s^{ij}, d^i = 0 − s^{ji}) and s^{ji}; r^i − o from
  * P_i − o, not via d^i (a free root's t, its position, then cancels against o exactly) */
-static VT_ALWAYS_INLINE void vt_body_position(double Pr[3], double rr[3], double di[3], const double rj[3],
-                                              const double sij[3], const double *t, const double sji[3])
+static VT_ALWAYS_INLINE void vt_body_position(vt_v4 *Pr, vt_v4 *rr, vt_v4 *di, vt_v4 rj, vt_v4 sij, const vt_v4 *t,
+                                              vt_v4 sji)
 {
-    for (int k = 0; k < 3; k++) {
-        const double b = rj[k] + sij[k]; /* for a root: (point on the ground − o), rounded once */
-        if (t) {
-            di[k] = t[k] - sji[k];
-            Pr[k] = b + t[k];
-        } else {
-            di[k] = 0.0 - sji[k];
-            Pr[k] = b;
-        }
-        rr[k] = Pr[k] - sji[k];
-    }
+    const vt_v4 b = vt_v4_add(rj, sij); /* for a root: (point on the ground − o), rounded once */
+    *Pr = t ? vt_v4_add(b, *t) : b;
+    *di = vt_v4_sub(t ? *t : vt_v4_splat(0.0), sji);
+    *rr = vt_v4_sub(*Pr, sji);
 }
 
 /* (15)-(16): ω^i into w, v^i into v and ṗ^i into pd, for a joint of kind jt with nv rates along
- * the axes e (3 each; vt_dof_kind picks each rate's) at rates qd, from the reference body's ω^j
- * (wj) and v^j (vj), s^{ij}, d^i and p^i; sji (s^{ji}) is read for a free joint only */
-static VT_ALWAYS_INLINE void vt_body_velocity(double w[3], double v[3], double pd[4], const double wj[3],
-                                              const double vj[3], const double sij[3], const double di[3],
-                                              const double *sji, const double p[4], int jt, int nv,
-                                              const double *e, const double *qd)
+ * the axes e (vt_dof_kind picks each rate's) at rates qd, from the reference body's ω^j (wj) and
+ * v^j (vj), s^{ij}, d^i and p^i; sji (s^{ji}) is used by a free joint only */
+static VT_ALWAYS_INLINE void vt_body_velocity(vt_v4 *w, vt_v4 *v, vt_v4 *pd, vt_v4 wj, vt_v4 vj, vt_v4 sij, vt_v4 di,
+                                              vt_v4 sji, vt_v4 p, int jt, int nv, const vt_v4 *e, const double *qd)
 {
-    vt_copy3(w, wj);
-    vt_copy3(v, vj);
-    vt_addcross3(v, wj, sij);
+    vt_v4 wi = wj, vi = vt_v4_add(vj, vt_v4_cross(wj, sij));
     for (int k = 0; k < nv; k++) {
         int ax;
-        if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) vt_axpy3(w, qd[k], e + 3 * ax);
-        else vt_axpy3(v, qd[k], e + 3 * ax);
+        if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) wi = vt_v4_madd(wi, qd[k], e[ax]);
+        else vi = vt_v4_madd(vi, qd[k], e[ax]);
     }
     if (jt == VT_JOINT_FREE) { /* ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
-        double dw[3], u[3];
-        for (int k = 0; k < 3; k++) {
-            dw[k] = w[k] - wj[k];
-            u[k] = -sji[k]; /* r^i − P = −s^{ji}, not (r^i − o) − (P − o) */
-        }
-        vt_addcross3(v, wj, di);
-        vt_addcross3(v, dw, u);
+        vi = vt_v4_add(vi, vt_v4_cross(wj, di));
+        vi = vt_v4_add(vi, vt_v4_cross(vt_v4_sub(wi, wj), vt_v4_sub(vt_v4_splat(0.0), sji)));
     } else {
-        vt_addcross3(v, w, di);
+        vi = vt_v4_add(vi, vt_v4_cross(wi, di));
     }
-    vt_quat_rate(pd, p, w);
+    *w = wi;
+    *v = vi;
+    *pd = vt_v4_quat_rate(p, wi);
 }
 
 /* the accelerations: α^i into al, a^i into a and p̈^i into pdd, for a joint of kind jt with nv
  * rates along the axes e at q (the joint's coordinates), qd and qdd (NULL: q̈ = 0, Ṡq̇), from the
  * reference body's α^j (alj), a^j (aj) and ω^j (wj), ω^i (wi), s^{ij}, s^{ji} and p^i */
-static VT_ALWAYS_INLINE void vt_body_acceleration(double al[3], double a[3], double pdd[4], const double alj[3],
-                                                  const double aj[3], const double wj[3], const double wi[3],
-                                                  const double sij[3], const double sji[3], const double p[4],
-                                                  int jt, int nv, const double *e, const double *q,
-                                                  const double *qd, const double *qdd)
+static VT_ALWAYS_INLINE void vt_body_acceleration(vt_v4 *al, vt_v4 *a, vt_v4 *pdd, vt_v4 alj, vt_v4 aj, vt_v4 wj,
+                                                  vt_v4 wi, vt_v4 sij, vt_v4 sji, vt_v4 p, int jt, int nv,
+                                                  const vt_v4 *e, const double *q, const double *qd,
+                                                  const double *qdd)
 {
-    double t[3], u[3];
-    vt_copy3(al, alj);
-    vt_copy3(a, aj);
-    vt_addcross3(a, alj, sij);
-    vt_cross3(t, wj, sij);
-    vt_addcross3(a, wj, t);
+    vt_v4 ali = alj, ai = vt_v4_add(vt_v4_add(aj, vt_v4_cross(alj, sij)), vt_v4_cross(wj, vt_v4_cross(wj, sij)));
     for (int k = 0; k < nv; k++) {
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax);
-        const double *ek = e + 3 * ax, qddk = qdd ? qdd[k] : 0.0;
-        double ed[3];
+        const vt_v4 ek = e[ax];
+        const double qddk = qdd ? qdd[k] : 0.0;
         if (kind == VT_DOF_ROT) {
-            vt_cross3(ed, (jt == VT_JOINT_UNIVERSAL && k == 1) ? wi : wj, ek);
-            vt_axpy3(al, qddk, ek);
-            vt_axpy3(al, qd[k], ed);
+            const vt_v4 ed = vt_v4_cross((jt == VT_JOINT_UNIVERSAL && k == 1) ? wi : wj, ek);
+            ali = vt_v4_madd(vt_v4_madd(ali, qddk, ek), qd[k], ed);
         } else {
-            double edd[3];
             const double qk = q[jt == VT_JOINT_CYLINDRICAL ? 1 : (jt == VT_JOINT_FREE ? k : 0)];
-            vt_cross3(ed, wj, ek);
-            vt_cross3(edd, alj, ek);
-            vt_addcross3(edd, wj, ed);
-            vt_axpy3(a, qddk, ek);
-            vt_axpy3(a, 2.0 * qd[k], ed);
-            vt_axpy3(a, qk, edd);
+            const vt_v4 ed = vt_v4_cross(wj, ek), edd = vt_v4_add(vt_v4_cross(alj, ek), vt_v4_cross(wj, ed));
+            ai = vt_v4_madd(vt_v4_madd(vt_v4_madd(ai, qddk, ek), 2.0 * qd[k], ed), qk, edd);
         }
     }
-    vt_cross3(u, al, sji);
-    for (int r = 0; r < 3; r++) a[r] -= u[r];
-    vt_cross3(t, wi, sji);
-    vt_cross3(u, wi, t);
-    for (int r = 0; r < 3; r++) a[r] -= u[r];
-    vt_quat_rate(pdd, p, al);
-    const double w2 = vt_dot3(wi, wi);
-    for (int r = 0; r < 4; r++) pdd[r] -= 0.25 * w2 * p[r];
+    ai = vt_v4_sub(ai, vt_v4_cross(ali, sji));
+    ai = vt_v4_sub(ai, vt_v4_cross(wi, vt_v4_cross(wi, sji)));
+    *al = ali;
+    *a = ai;
+    *pdd = vt_v4_sub(vt_v4_quat_rate(p, ali), vt_v4_scale(0.25 * vt_v4_dot3(wi, wi), p));
 }
 
 /* W = (n − n_e + c × f, f = m (a − g) − f_e) for body i, from n = J α + ω × J ω (global axes,
- * however formed) and fe = (f_e, n_e); built in locals and written once (W might alias the inputs
- * as far as the compiler knows) */
-static VT_ALWAYS_INLINE void vt_body_wrench_n(double W[6], const vt_model *m, int i, const double n_in[3],
-                                              const double a[3], const double fe[6], const double c[3])
+ * however formed) and the applied wrench (f_e, n_e) at the centre of mass; W[0..3] and W[3..5]
+ * written (W[3] twice) */
+static VT_ALWAYS_INLINE void vt_body_wrench_n(double W[6], const vt_model *m, int i, vt_v4 n, vt_v4 a, vt_v4 g,
+                                              vt_v4 fe, vt_v4 ne, vt_v4 c)
 {
-    const double mass = m->body_mass[i];
-    double f[3], n[3];
-    for (int k = 0; k < 3; k++) {
-        f[k] = mass * (a[k] - m->gravity[k]) - fe[k];
-        n[k] = n_in[k] - fe[3 + k];
-    }
-    vt_addcross3(n, c, f);
-    vt_copy3(W, n);
-    vt_copy3(W + 3, f);
+    const vt_v4 f = vt_v4_sub(vt_v4_scale(m->body_mass[i], vt_v4_sub(a, g)), fe);
+    vt_v4_store(W, vt_v4_add(vt_v4_sub(n, ne), vt_v4_cross(c, f)));
+    vt_v4_store3(W + 3, f);
 }
 
-/* The needed wrench W of body i with orientation A, from ω and α in body axes (wb, ab): J' in
- * body axes, n = A (J' α' + ω' × J' ω'), then vt_body_wrench_n */
-static VT_ALWAYS_INLINE void vt_body_wrench(double W[6], const vt_model *m, int i, const double A[9], const double wb[3],
-                                            const double ab[3], const double a[3], const double fe[6], const double c[3])
+/* The needed wrench W of body i with orientation A (columns), from ω and α in body axes (wb,
+ * ab): J' in body axes, n = A (J' α' + ω' × J' ω'), then vt_body_wrench_n */
+static VT_ALWAYS_INLINE void vt_body_wrench(double W[6], const vt_model *m, int i, const vt_v4 A[3], vt_v4 wb,
+                                            vt_v4 ab, vt_v4 a, vt_v4 g, vt_v4 fe, vt_v4 ne, vt_v4 c)
 {
-    const double *Jb = m->body_inertia + 9 * i;
-    double Jw[3], Ja[3], n[3];
-    vt_mulmat3(Jw, Jb, wb);
-    vt_mulmat3(Ja, Jb, ab);
-    vt_addcross3(Ja, wb, Jw);
-    vt_mulmat3(n, A, Ja);
-    vt_body_wrench_n(W, m, i, n, a, fe, c);
+    vt_v4 J[3];
+    vt_v4_load_mat(J, m->body_inertia + 9 * i);
+    const vt_v4 Ja = vt_v4_add(vt_v4_mat(J, ab), vt_v4_cross(wb, vt_v4_mat(J, wb)));
+    vt_body_wrench_n(W, m, i, vt_v4_mat(A, Ja), a, g, fe, ne, c);
 }
 
-/* vt_body_wrench from d's orientation, ω and xfrc of body i and global α (al) */
+/* vt_body_wrench from d's orientation, ω and xfrc of body i and global α (al), arrays of three */
 static inline void vt_body_wrench_global(double W[6], const vt_model *m, const vt_data *d, int i, const double a[3],
                                          const double al[3], const double c[3])
 {
-    const double *Ai = d->A + 9 * i;
-    double wb[3], ab[3];
-    vt_mulmat3t(wb, Ai, d->omega + 3 * i);
-    vt_mulmat3t(ab, Ai, al);
-    vt_body_wrench(W, m, i, Ai, wb, ab, a, d->xfrc + 6 * i, c);
+    vt_v4 A[3], R[3];
+    vt_v4_load_mat(A, d->A + 9 * i);
+    vt_v4_transpose(A, R);
+    const double *fe = d->xfrc + 6 * i;
+    vt_body_wrench(W, m, i, A, vt_v4_mat(R, vt_v4_load3(d->omega + 3 * i)), vt_v4_mat(R, vt_v4_load3(al)),
+                   vt_v4_load3(a), vt_v4_load3(m->gravity), vt_v4_load3(fe), vt_v4_load3(fe + 3), vt_v4_load3(c));
 }
 
 /* body i's spatial inertia about the point from which its centre of mass lies at c, in 13 numbers:
@@ -229,7 +192,7 @@ static inline void vt_body_inertia(double I[13], double J[9], const vt_model *m,
 static inline void vt_body_inertia_bias(double I[13], double W[6], const vt_model *m, const vt_data *d, int i, const double c[3])
 {
     const int o = vt_xoff(i);
-    const double *w = d->omega + 3 * i, *a = d->Sdqd + o;
+    const double *w = d->omega + 3 * i, *a = d->Sdqd + o, *fe = d->xfrc + 6 * i;
     double J[9], al[3], Jw[3], n[3];
     vt_body_inertia(I, J, m, d, i, c);
     vt_mulEp(al, d->x + o + 3, a + 3);
@@ -237,7 +200,8 @@ static inline void vt_body_inertia_bias(double I[13], double W[6], const vt_mode
     vt_mulmat3(n, J, al);
     vt_mulmat3(Jw, J, w);
     vt_addcross3(n, w, Jw);
-    vt_body_wrench_n(W, m, i, n, a, d->xfrc + 6 * i, c);
+    vt_body_wrench_n(W, m, i, vt_v4_load3(n), vt_v4_load3(a), vt_v4_load3(m->gravity), vt_v4_load3(fe),
+                     vt_v4_load3(fe + 3), vt_v4_load3(c));
 }
 
 #endif

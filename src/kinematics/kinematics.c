@@ -138,57 +138,71 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             for (int k = 0; k < 3; k++) rr[k] = Pr[k] = qi[k] - o[k];
             return;
         }
-        double pJ[4] = {1, 0, 0, 0}, t[3] = {0, 0, 0};
+        /* the joint's turn p_J (or p itself), its axes e (zero where it has none) and translation t */
+        vt_v4 Ajv[3], ev[3], p, t = vt_v4_splat(0.0);
+        vt_v4_load_mat(Ajv, Aj);
+        const vt_v4 pjv = vt_v4_load(pj);
         switch (jt) {
         case VT_JOINT_REVOLUTE:
         case VT_JOINT_CYLINDRICAL: { /* p^i = p^j ⊗ (cos ½q, sin ½q u): vt_body_turn */
             double cs, sn;
             vt_sincos(0.5 * qi[0], &sn, &cs);
-            vt_body_turn(pi, pj, cs, sn, ax1);
-            vt_mulmat3(e, Aj, ax1);
-            if (jt == VT_JOINT_CYLINDRICAL) vt_axpy3(t, qi[1], e);
+            const vt_v4 u = vt_v4_load3(ax1);
+            p = vt_body_turn(pjv, cs, sn, u);
+            ev[0] = vt_v4_mat(Ajv, u);
+            if (jt == VT_JOINT_CYLINDRICAL) t = vt_v4_scale(qi[1], ev[0]);
             break;
         }
         case VT_JOINT_UNIVERSAL: {
-            double p1[4], p2[4], A1[9], a2[3];
+            double p1[4], p2[4], pJ[4], A1[9], a2[3];
             vt_quat_axis_angle(p1, ax1, qi[0]);
             vt_quat_axis_angle(p2, ax2, qi[1]);
             vt_quat_mul(pJ, p1, p2);
-            vt_mulmat3(e, Aj, ax1);
             vt_euler_A(A1, p1);
             vt_mulmat3(a2, A1, ax2); /* e2 rides on the body: turned by the first angle */
-            vt_mulmat3(e + 3, Aj, a2);
+            ev[0] = vt_v4_mat(Ajv, vt_v4_load3(ax1));
+            ev[1] = vt_v4_mat(Ajv, vt_v4_load3(a2));
+            p = vt_v4_quat_mul(pjv, vt_v4_load(pJ));
             break;
         }
         case VT_JOINT_SPHERICAL:
         case VT_JOINT_FREE: { /* free: the translation (reference axes), then as spherical */
-            memcpy(pJ, jt == VT_JOINT_FREE ? qi + 3 : qi, 4 * sizeof(double));
+            double pJ[4];
+            memcpy(pJ, jt == VT_JOINT_FREE ? qi + 3 : qi, sizeof pJ);
             vt_normalize(pJ, 4); /* scaled: no overflow for a norm ≥ 1e154 */
-            memcpy(e, Aj, 9 * sizeof(double)); /* triad: the reference body's axes */
-            if (jt == VT_JOINT_FREE) vt_mulmat3(t, Aj, qi);
+            for (int k = 0; k < 3; k++) ev[k] = Ajv[k]; /* triad: the reference body's axes */
+            if (jt == VT_JOINT_FREE) t = vt_v4_mat(Ajv, vt_v4_load3(qi));
+            p = vt_v4_quat_mul(pjv, vt_v4_load(pJ));
             break;
         }
         default: /* translational: p^i = p^j */
-            memcpy(pi, pj, 4 * sizeof(double));
-            vt_mulmat3(e, Aj, ax1);
-            vt_axpy3(t, qi[0], e);
+            p = pjv;
+            ev[0] = vt_v4_mat(Ajv, vt_v4_load3(ax1));
+            t = vt_v4_scale(qi[0], ev[0]);
             break;
         }
-        if (jt == VT_JOINT_UNIVERSAL || jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE) vt_quat_mul(pi, pj, pJ);
-        vt_body_orientation(pi, Ai, m->body_quat0 + 4 * i);
+        vt_v4 A[3], R[3];
+        p = vt_body_orientation(p, m->body_quat0 + 4 * i, A, R);
+        const int ne = jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE ? 3 : jt == VT_JOINT_UNIVERSAL ? 2 : 1;
+        for (int k = 0; k < ne; k++) vt_v4_store3(e + 3 * k, ev[k]);
+        vt_v4_store(pi, p);
+        for (int k = 0; k < 3; k++) vt_v4_store3(Ai + 3 * k, A[k]);
 
-        double sji[3];
-        vt_mulmat3(sij, Aj, m->body_jpar + 3 * i);
-        vt_mulmat3(sji, Ai, m->body_jchild + 3 * i);
+        const vt_v4 sv = vt_v4_mat(Ajv, vt_v4_load3(m->body_jpar + 3 * i));
+        const vt_v4 sji = vt_v4_mat(A, vt_v4_load3(m->body_jchild + 3 * i));
+        vt_v4_store3(sij, sv);
         if (i == 1) { /* o = P_1 (the ground's A is I: s^{01} is the point on the ground) */
-            for (int k = 0; k < 3; k++) o[k] = sij[k] + t[k];
+            vt_v4_store3(o, vt_v4_add(sv, t));
             for (int k = 0; k < 6; k++) d->xrel[k] = -o[k % 3];
         }
-        vt_body_position(Pr, rr, di, rj, sij, t, sji);
-        for (int k = 0; k < 3; k++) {
-            ri[k] = o[k] + rr[k];
-            P[k] = o[k] + Pr[k];
-        }
+        vt_v4 Prv, rrv, dv;
+        vt_body_position(&Prv, &rrv, &dv, vt_v4_load3(rj), sv, &t, sji);
+        const vt_v4 ov = vt_v4_load3(o);
+        vt_v4_store3(Pr, Prv);
+        vt_v4_store3(rr, rrv);
+        vt_v4_store3(di, dv);
+        vt_v4_store3(ri, vt_v4_add(ov, rrv));
+        vt_v4_store3(P, vt_v4_add(ov, Prv));
     }
 }
 
@@ -213,13 +227,16 @@ static inline void velocity(const vt_model *m, vt_data *d, int i)
             wi[0] *= 2; wi[1] *= 2; wi[2] *= 2;
             return;
         }
-        double w[3], v[3], pd[4], sji[3]; /* locals, stored once: the outputs might alias the inputs */
+        double sji[3] = {0, 0, 0};
         if (jt == VT_JOINT_FREE) vt_joint_child(sji, m, d, i);
-        vt_body_velocity(w, v, pd, wj, vj, d->jsij + 3 * i, d->jd + 3 * i, sji, pi, jt, m->body_nv[i], d->jaxis + 9 * i,
-                         qdi);
-        vt_copy3(wi, w);
-        vt_copy3(vi, v);
-        memcpy(pdi, pd, sizeof pd);
+        const double *ej = d->jaxis + 9 * i;
+        const vt_v4 e[3] = {vt_v4_load3(ej), vt_v4_load3(ej + 3), vt_v4_load3(ej + 6)};
+        vt_v4 w, v, pd; /* stored once known: the outputs might alias the inputs */
+        vt_body_velocity(&w, &v, &pd, vt_v4_load3(wj), vt_v4_load3(vj), vt_v4_load3(d->jsij + 3 * i),
+                         vt_v4_load3(d->jd + 3 * i), vt_v4_load3(sji), vt_v4_load(pi), jt, m->body_nv[i], e, qdi);
+        vt_v4_store3(wi, w);
+        vt_v4_store3(vi, v);
+        vt_v4_store(pdi, pd);
     }
 }
 
@@ -363,13 +380,17 @@ static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd
             ali[0] *= 2; ali[1] *= 2; ali[2] *= 2;
             return;
         }
-        double sji[3], al[3], a[3], pdd[4]; /* in locals, stored once: out may alias the inputs */
+        double sji[3];
         vt_joint_child(sji, m, d, i); /* not (P_i − o) − (r^i − o): exact far from o */
-        vt_body_acceleration(al, a, pdd, alj, aj, wj, wi, d->jsij + 3 * i, sji, pi, jt, m->body_nv[i], d->jaxis + 9 * i,
-                             qi, qdi, qddi);
-        memcpy(pddi, pdd, sizeof pdd);
-        vt_copy3(ali, al);
-        vt_copy3(ai, a);
+        const double *ej = d->jaxis + 9 * i;
+        const vt_v4 e[3] = {vt_v4_load3(ej), vt_v4_load3(ej + 3), vt_v4_load3(ej + 6)};
+        vt_v4 al, a, pdd; /* stored once known: out may alias the inputs */
+        vt_body_acceleration(&al, &a, &pdd, vt_v4_load3(alj), vt_v4_load3(aj), vt_v4_load3(wj), vt_v4_load3(wi),
+                             vt_v4_load3(d->jsij + 3 * i), vt_v4_load3(sji), vt_v4_load(pi), jt, m->body_nv[i], e, qi,
+                             qdi, qddi);
+        vt_v4_store(pddi, pdd);
+        vt_v4_store3(ali, al);
+        vt_v4_store3(ai, a);
     }
 }
 

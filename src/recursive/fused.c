@@ -31,7 +31,6 @@
 #include "base/scan.h"
 #include "base/status.h"
 #include "base/vec3.h"
-#include "base/v4.h"
 #include "model/functions.h"
 #include "model/model.h"
 #include "kinematics/body.h"
@@ -195,149 +194,94 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
  * rate (fused_body: e = A^j u; a revolute's twist (e, (P − o) × e), t = 0, τ = e · the moment
  * about P; a translational one's (0, e), t = q e, τ = e · f); any other joint takes the general
  * code's stages for the body (fused_other). */
-static const double unit_quat[4] = {1, 0, 0, 0};
+static const double unit_quat[4] = {1, 0, 0, 0}, zero4[4] = {0, 0, 0, 0};
 
-/* fused_outward's body i on a revolute or translational joint (jt, a constant): its positions,
- * its rate's twist, velocities, accelerations and needed wrench W_i about P_i */
-static const double zero4[4] = {0, 0, 0, 0};
-/* A = A(p) as its columns A[0..2] and its rows R[0..2] (A^T's columns), written out as
- * vt_euler_A_inline: (p0² − e·e) 1 + 2 e e^T ± 2 p0 ẽ */
+/* The outward step of body i from its reference body j (kinematics/body.h's kernels): given its
+ * orientation p and A (columns A, rows R), its joint's axes e (nv of them, kind jt) and
+ * translation t (jt's own: zero for a revolute joint), s^{ij}, s^{ji} and the reference body's
+ * values, it stores every kinematic output of body i and of its rates' twists (four lanes at a
+ * time, in the order of the arrays: base/v4.h), its velocities, accelerations and needed wrench
+ * W_i about P_i (c = r^i − P_i = −s^{ji}). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void v4_rotation(vt_v4 p, vt_v4 A[3], vt_v4 R[3])
+static inline void fused_step(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
+                              const int jt, const int nv, vt_v4 p, const vt_v4 A[3], const vt_v4 R[3],
+                              const vt_v4 *e, vt_v4 t, vt_v4 sij, vt_v4 sji, vt_v4 g)
 {
-    const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
-    const vt_v4 e = VT_PERM(p, 1, 2, 3, 0), e2 = e + e, P = v4_s(2.0 * p[0]) * e;
-    const vt_v4 b0 = e * VT_BC(e2, 0), b1 = e * VT_BC(e2, 1), b2 = e * VT_BC(e2, 2);
-    A[0] = b0 + (vt_v4){s, P[2], -P[1], 0};
-    A[1] = b1 + (vt_v4){-P[2], s, P[0], 0};
-    A[2] = b2 + (vt_v4){P[1], -P[0], s, 0};
-    R[0] = b0 + (vt_v4){s, -P[2], P[1], 0};
-    R[1] = b1 + (vt_v4){P[2], s, -P[0], 0};
-    R[2] = b2 + (vt_v4){-P[1], P[0], s, 0};
-}
-/* a ⊗ b (vt_quat_mul_inline): (a0 b0 − a·b, a0 b + b0 a + a × b) */
-static inline vt_v4 v4_quat_mul(vt_v4 a, vt_v4 b)
-{
-    const vt_v4 av = VT_PERM(a, 1, 2, 3, 0), bv = VT_PERM(b, 1, 2, 3, 0);
-    vt_v4 r = VT_PERM(VT_BC(a, 0) * bv + VT_BC(b, 0) * av + v4_cross(av, bv), 3, 0, 1, 2);
-    r[0] = a[0] * b[0] - v4_dot3(av, bv);
-    return r;
-}
-/* ½ E(p)^T w = ½ [0; w] ⊗ p (vt_quat_rate) */
-static inline vt_v4 v4_quat_rate(vt_v4 p, vt_v4 w)
-{
-    const vt_v4 ev = VT_PERM(p, 1, 2, 3, 0);
-    vt_v4 r = VT_PERM(v4_s(0.5) * (VT_BC(p, 0) * w + v4_cross(w, ev)), 3, 0, 1, 2);
-    r[0] = -0.5 * v4_dot3(w, ev);
-    return r;
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const double *q = d->q + m->body_qadr[i], *qd = d->qd + c, *qdd = d->qdd + c;
+    if (i == 1) { /* o = P_1 */
+        const vt_v4 o1 = vt_v4_add(sij, t);
+        vt_v4_store3(d->origin, o1);
+        vt_v4_store(d->xrel, vt_v4_sub(vt_v4_splat(0.0), o1));
+        vt_v4_store(d->xrel + 3, vt_v4_sub(vt_v4_splat(0.0), o1));
+    }
+    const vt_v4 o = vt_v4_load3(d->origin);
+    const vt_v4 rj = vt_v4_load(d->xrel + 6 * j), wj = vt_v4_load(d->omega + 3 * j), alj = vt_v4_load(alpha + 3 * j);
+    const vt_v4 vj = vt_v4_load(j ? d->xd + vt_xoff(j) : zero4), aj = vt_v4_load(j ? d->xdd + vt_xoff(j) : zero4);
+    vt_v4 Pr, rr, di;
+    vt_body_position(&Pr, &rr, &di, rj, sij, &t, sji);
+    {
+        double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *tw = d->twist + 6 * c, *Ai = d->A + 9 * i;
+        vt_v4_store(x, vt_v4_add(o, rr));
+        vt_v4_store(x + 3, p);
+        vt_v4_store(d->jpoint + 3 * i, vt_v4_add(o, Pr));
+        vt_v4_store(d->xrel + 6 * i, rr);
+        vt_v4_store(d->xrel + 6 * i + 3, Pr);
+        vt_v4_store(d->jsij + 3 * i, sij);
+        vt_v4_store(d->jd + 3 * i, di);
+        for (int k = 0; k < (jt == VT_JOINT_FREE ? 3 : 1); k++) vt_v4_store3(ej + 3 * k, e[k]);
+        for (int k = 0; k < nv; k++, tw += 6) { /* (e, (P − o) × e) or (0, e) */
+            int ax;
+            const int rot = vt_dof_kind(jt, k, &ax) == VT_DOF_ROT;
+            vt_v4_store(tw, rot ? e[ax] : vt_v4_splat(0.0));
+            vt_v4_store(tw + 3, rot ? vt_v4_cross(Pr, e[ax]) : e[ax]);
+        }
+        for (int k = 0; k < 3; k++) vt_v4_store(Ai + 3 * k, A[k]);
+    }
+    vt_v4 w, v, pd, al, a, pdd;
+    vt_body_velocity(&w, &v, &pd, wj, vj, sij, di, sji, p, jt, nv, e, qd);
+    vt_body_acceleration(&al, &a, &pdd, alj, aj, wj, w, sij, sji, p, jt, nv, e, q, qd, qdd);
+    {
+        double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
+        vt_v4_store(d->omega + 3 * i, w);
+        vt_v4_store(xd, v);
+        vt_v4_store(xd + 3, pd);
+        vt_v4_store(alpha + 3 * i, al);
+        vt_v4_store(xdd, a);
+        vt_v4_store(xdd + 3, pdd);
+    }
+    const double *fe = d->xfrc + 6 * i;
+    vt_body_wrench(W + 6 * i, m, i, A, vt_v4_mat(R, w), vt_v4_mat(R, al), a, g, vt_v4_load(fe), vt_v4_load(fe + 3),
+                   vt_v4_sub(vt_v4_splat(0.0), sji));
 }
 
-/* vt_body_wrench: W_i = (A (J' α' + ω' × J' ω') − n_e + c × f, f = m (a − g) − f_e) about the
- * point from which the centre of mass lies at c */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline void v4_body_wrench(double *W, const vt_model *m, const vt_data *d, int i, const vt_v4 A[3], vt_v4 wb,
-                                  vt_v4 ab, vt_v4 a, vt_v4 g, vt_v4 c)
-{
-    const double *Jb = m->body_inertia + 9 * i, *fe = d->xfrc + 6 * i;
-    const vt_v4 J0 = v4_ld(Jb), J1 = v4_ld(Jb + 3), J2 = v4_ld(Jb + 6);
-    const vt_v4 Jw = v4_mat(J0, J1, J2, wb), Ja = v4_mat(J0, J1, J2, ab) + v4_cross(wb, Jw);
-    const vt_v4 f = v4_s(m->body_mass[i]) * (a - g) - v4_ld(fe);
-    v4_st(W, v4_mat(A[0], A[1], A[2], Ja) - v4_ld(fe + 3) + v4_cross(c, f));
-    v4_st(W + 3, f);
-}
-
+/* fused_outward's body i on a revolute or translational joint (jt, a constant): e = A^j u; a
+ * revolute's turn p^j ⊗ (cos ½q, sin ½q u), a translational one's t = q e */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline void fused_body(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
                               const int jt, const fused_angles angles, vt_v4 g)
 {
-    const int j = m->body_parent[i], c = m->body_vadr[i];
-    const double q = d->q[m->body_qadr[i]], qd = d->qd[c], qdd = d->qdd[c];
-    const double *Ajp = d->A + 9 * j;
+    const int j = m->body_parent[i];
+    const double q = d->q[m->body_qadr[i]];
     double cs = 1.0, sn = 0.0;
     if (jt == VT_JOINT_REVOLUTE) { /* no calls with the vectors live */
         if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
         else vt_sincos(0.5 * q, &sn, &cs);
     }
-    const vt_v4 c0 = v4_ld(Ajp), c1 = v4_ld(Ajp + 3), c2 = v4_ld(Ajp + 6);
-    const vt_v4 u = v4_ld(m->body_axis + 6 * i);
-    vt_v4 p = v4_ld(j ? d->x + vt_xoff(j) + 3 : unit_quat);
-    if (jt == VT_JOINT_REVOLUTE) { /* p = pj ⊗ (cs, sn u) */
-        const vt_v4 av = VT_PERM(p, 1, 2, 3, 0);
-        const vt_v4 in = VT_BC(p, 0) * u + v4_cross(av, u);
-        vt_v4 s4 = VT_PERM(in, 3, 0, 1, 2);
-        s4[0] = -v4_dot3(av, u);
-        p = v4_s(cs) * p + v4_s(sn) * s4;
-    }
-    const double *p0 = m->body_quat0 + 4 * i;
-    if (!vt_quat_is_identity(p0)) p = v4_quat_mul(p, v4_ld(p0));
-    vt_v4 A[3], R[3];
-    v4_rotation(p, A, R);
-    const vt_v4 e = v4_mat(c0, c1, c2, u);
-    const vt_v4 t = v4_s(q) * e; /* a translational joint's */
-    const vt_v4 sij = v4_mat(c0, c1, c2, v4_ld(m->body_jpar + 3 * i));
-    const vt_v4 sji = v4_mat(A[0], A[1], A[2], v4_ld(m->body_jchild + 3 * i));
-    if (i == 1) { /* o = P_1 */
-        const vt_v4 o1 = jt == VT_JOINT_TRANSLATIONAL ? sij + t : sij;
-        v4_st3(d->origin, o1);
-        v4_st(d->xrel, -o1);
-        v4_st(d->xrel + 3, -o1);
-    }
-    const vt_v4 o = {d->origin[0], d->origin[1], d->origin[2], 0};
-    const vt_v4 rj = v4_ld(d->xrel + 6 * j), wj = v4_ld(d->omega + 3 * j), alj = v4_ld(alpha + 3 * j);
-    const vt_v4 vj = v4_ld(j ? d->xd + vt_xoff(j) : zero4), aj = v4_ld(j ? d->xdd + vt_xoff(j) : zero4);
-    const vt_v4 Pr = jt == VT_JOINT_TRANSLATIONAL ? (rj + sij) + t : rj + sij;
-    const vt_v4 di = (jt == VT_JOINT_TRANSLATIONAL ? t : v4_s(0.0)) - sji, rr = Pr - sji;
-    {
-        double *x = d->x + vt_xoff(i), *twc = d->twist + 6 * c;
-        v4_st(x, o + rr);
-        v4_st(x + 3, p);
-        v4_st(d->jpoint + 3 * i, o + Pr);
-        v4_st(d->xrel + 6 * i, rr);
-        v4_st(d->xrel + 6 * i + 3, Pr);
-        v4_st(d->jsij + 3 * i, sij);
-        v4_st(d->jd + 3 * i, di);
-        v4_st3(d->jaxis + 9 * i, e);
-        v4_st(twc, jt == VT_JOINT_REVOLUTE ? e : v4_s(0.0));
-        v4_st(twc + 3, jt == VT_JOINT_REVOLUTE ? v4_cross(Pr, e) : e);
-        double *Ai = d->A + 9 * i;
-        v4_st(Ai, A[0]);
-        v4_st(Ai + 3, A[1]);
-        v4_st(Ai + 6, A[2]);
-    }
-    const vt_v4 ed = v4_cross(wj, e);
-    vt_v4 w, v, al, a;
-    if (jt == VT_JOINT_REVOLUTE) {
-        w = wj + v4_s(qd) * e;
-        v = vj + v4_cross(wj, sij) + v4_cross(w, di);
-        al = alj + v4_s(qdd) * e + v4_s(qd) * ed;
-        a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij));
-    } else {
-        w = wj;
-        v = vj + v4_cross(wj, sij) + v4_s(qd) * e + v4_cross(w, di);
-        al = alj;
-        const vt_v4 edd = v4_cross(alj, e) + v4_cross(wj, ed);
-        a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij)) + v4_s(qdd) * e + v4_s(2.0 * qd) * ed +
-            v4_s(q) * edd;
-    }
-    a = a - v4_cross(al, sji) - v4_cross(w, v4_cross(w, sji));
-    const vt_v4 pd = v4_quat_rate(p, w), pdd = v4_quat_rate(p, al) - v4_s(0.25 * v4_dot3(w, w)) * p;
-    const vt_v4 wb = v4_mat(R[0], R[1], R[2], w), ab = v4_mat(R[0], R[1], R[2], al);
-    {
-        double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
-        v4_st(d->omega + 3 * i, w);
-        v4_st(xd, v);
-        v4_st(xd + 3, pd);
-        v4_st(alpha + 3 * i, al);
-        v4_st(xdd, a);
-        v4_st(xdd + 3, pdd);
-    }
-    v4_body_wrench(W + 6 * i, m, d, i, A, wb, ab, a, g, v4_s(0.0) - sji);
+    vt_v4 Aj[3], A[3], R[3];
+    vt_v4_load_mat(Aj, d->A + 9 * j);
+    const vt_v4 u = vt_v4_load(m->body_axis + 6 * i), pj = vt_v4_load(j ? d->x + vt_xoff(j) + 3 : unit_quat);
+    const vt_v4 p = vt_body_orientation(jt == VT_JOINT_REVOLUTE ? vt_body_turn(pj, cs, sn, u) : pj,
+                                        m->body_quat0 + 4 * i, A, R);
+    const vt_v4 e = vt_v4_mat(Aj, u);
+    const vt_v4 t = jt == VT_JOINT_TRANSLATIONAL ? vt_v4_scale(q, e) : vt_v4_splat(0.0);
+    const vt_v4 sij = vt_v4_mat(Aj, vt_v4_load(m->body_jpar + 3 * i));
+    const vt_v4 sji = vt_v4_mat(A, vt_v4_load(m->body_jchild + 3 * i));
+    fused_step(m, d, alpha, W, i, jt, 1, p, A, R, &e, t, sij, sji, g);
 }
 
 /* A gripper's fingers, a linear axis: the robot stays on the fused passes' own code instead of
@@ -352,83 +296,25 @@ static void fused_slide(const vt_model *m, vt_data *d, double *restrict alpha, d
 }
 
 /* A free joint's body (a floating robot's root): the triad e_k of its reference body's axes,
- * translation t = A^j q_{0..2} and turn p_J = q_{3..6} normalized (as vt_kinematics_body), its six
- * rates' twists (0, e_k) and (e_k, (P − o) × e_k), velocities, accelerations and needed wrench
- * about P_i, as fused_body (kinematics/body.h's equations for the joint) */
+ * translation t = A^j q_{0..2} and turn p_J = q_{3..6} normalized (as vt_kinematics_body). Not
+ * inlined, as fused_slide. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static void fused_free(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i, vt_v4 g)
 {
-    const int j = m->body_parent[i], c = m->body_vadr[i];
-    const double *qi = d->q + m->body_qadr[i], *qd = d->qd + c, *qdd = d->qdd + c;
-    const double *Ajp = d->A + 9 * j;
-    const vt_v4 E[3] = {v4_ld(Ajp), v4_ld(Ajp + 3), v4_ld(Ajp + 6)};
+    const int j = m->body_parent[i];
+    const double *q = d->q + m->body_qadr[i];
     double pJ[4];
-    memcpy(pJ, qi + 3, sizeof pJ);
+    memcpy(pJ, q + 3, sizeof pJ);
     vt_normalize(pJ, 4); /* scaled: no overflow for a norm ≥ 1e154 */
-    vt_v4 p = v4_quat_mul(v4_ld(j ? d->x + vt_xoff(j) + 3 : unit_quat), v4_ld(pJ));
-    const double *p0 = m->body_quat0 + 4 * i;
-    if (!vt_quat_is_identity(p0)) p = v4_quat_mul(p, v4_ld(p0));
-    vt_v4 A[3], R[3];
-    v4_rotation(p, A, R);
-    const vt_v4 t = v4_mat(E[0], E[1], E[2], v4_ld(qi));
-    const vt_v4 sij = v4_mat(E[0], E[1], E[2], v4_ld(m->body_jpar + 3 * i));
-    const vt_v4 sji = v4_mat(A[0], A[1], A[2], v4_ld(m->body_jchild + 3 * i));
-    if (i == 1) { /* o = P_1 */
-        v4_st3(d->origin, sij + t);
-        v4_st(d->xrel, -(sij + t));
-        v4_st(d->xrel + 3, -(sij + t));
-    }
-    const vt_v4 o = {d->origin[0], d->origin[1], d->origin[2], 0};
-    const vt_v4 rj = v4_ld(d->xrel + 6 * j), wj = v4_ld(d->omega + 3 * j), alj = v4_ld(alpha + 3 * j);
-    const vt_v4 vj = v4_ld(j ? d->xd + vt_xoff(j) : zero4), aj = v4_ld(j ? d->xdd + vt_xoff(j) : zero4);
-    const vt_v4 Pr = (rj + sij) + t, di = t - sji, rr = Pr - sji;
-    {
-        double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *twc = d->twist + 6 * c, *Ai = d->A + 9 * i;
-        v4_st(x, o + rr);
-        v4_st(x + 3, p);
-        v4_st(d->jpoint + 3 * i, o + Pr);
-        v4_st(d->xrel + 6 * i, rr);
-        v4_st(d->xrel + 6 * i + 3, Pr);
-        v4_st(d->jsij + 3 * i, sij);
-        v4_st(d->jd + 3 * i, di);
-        for (int k = 0; k < 3; k++) {
-            v4_st3(ej + 3 * k, E[k]);
-            v4_st(twc + 6 * k, v4_s(0.0));
-            v4_st(twc + 6 * k + 3, E[k]);
-        }
-        for (int k = 0; k < 3; k++) {
-            v4_st(twc + 18 + 6 * k, E[k]);
-            v4_st(twc + 21 + 6 * k, v4_cross(Pr, E[k]));
-        }
-        for (int k = 0; k < 3; k++) v4_st(Ai + 3 * k, A[k]);
-    }
-    /* (15)-(16) with ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
-    vt_v4 w = wj, v = vj + v4_cross(wj, sij);
-    for (int k = 0; k < 3; k++) v += v4_s(qd[k]) * E[k];
-    for (int k = 0; k < 3; k++) w += v4_s(qd[3 + k]) * E[k];
-    v += v4_cross(wj, di);
-    v += v4_cross(w - wj, v4_s(0.0) - sji);
-    vt_v4 al = alj, a = aj + v4_cross(alj, sij) + v4_cross(wj, v4_cross(wj, sij));
-    for (int k = 0; k < 3; k++) {
-        const vt_v4 ed = v4_cross(wj, E[k]), edd = v4_cross(alj, E[k]) + v4_cross(wj, ed);
-        a = a + v4_s(qdd[k]) * E[k] + v4_s(2.0 * qd[k]) * ed + v4_s(qi[k]) * edd;
-    }
-    for (int k = 0; k < 3; k++) al = al + v4_s(qdd[3 + k]) * E[k] + v4_s(qd[3 + k]) * v4_cross(wj, E[k]);
-    a = a - v4_cross(al, sji) - v4_cross(w, v4_cross(w, sji));
-    const vt_v4 pd = v4_quat_rate(p, w), pdd = v4_quat_rate(p, al) - v4_s(0.25 * v4_dot3(w, w)) * p;
-    {
-        double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
-        v4_st(d->omega + 3 * i, w);
-        v4_st(xd, v);
-        v4_st(xd + 3, pd);
-        v4_st(alpha + 3 * i, al);
-        v4_st(xdd, a);
-        v4_st(xdd + 3, pdd);
-    }
-    v4_body_wrench(W + 6 * i, m, d, i, A, v4_mat(R[0], R[1], R[2], w), v4_mat(R[0], R[1], R[2], al), a, g,
-                   v4_s(0.0) - sji);
+    vt_v4 E[3], A[3], R[3];
+    vt_v4_load_mat(E, d->A + 9 * j);
+    const vt_v4 pj = vt_v4_load(j ? d->x + vt_xoff(j) + 3 : unit_quat);
+    const vt_v4 p = vt_body_orientation(vt_v4_quat_mul(pj, vt_v4_load(pJ)), m->body_quat0 + 4 * i, A, R);
+    const vt_v4 sij = vt_v4_mat(E, vt_v4_load(m->body_jpar + 3 * i));
+    const vt_v4 sji = vt_v4_mat(A, vt_v4_load(m->body_jchild + 3 * i));
+    fused_step(m, d, alpha, W, i, VT_JOINT_FREE, 6, p, A, R, E, vt_v4_mat(E, vt_v4_load(q)), sij, sji, g);
 }
 
 /* any other joint: the general code's stages for body i, its wrench about P_i (c = r^i − P_i =
@@ -459,7 +345,7 @@ static inline void fused_outward_impl(const vt_model *m, vt_data *d, double *res
     o[0] = o[1] = o[2] = 0.0;
     memset(d->xrel, 0, 6 * sizeof(double));
     alpha[0] = alpha[1] = alpha[2] = 0.0;
-    const vt_v4 g = {m->gravity[0], m->gravity[1], m->gravity[2], 0};
+    const vt_v4 g = vt_v4_load3(m->gravity);
     for (int i = 1; i <= m->nbody; i++) {
         if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) fused_slide(m, d, alpha, W, i, g);
         else if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_FREE) fused_free(m, d, alpha, W, i, g);
@@ -560,44 +446,45 @@ static inline void fused_inward(const vt_model *m, vt_data *d, double *W, int i,
 {
     const int c = m->body_vadr[i], dr = m->dof_drive[c], rev = jt == VT_JOINT_REVOLUTE;
     const double *Ap = d->A + 9 * i;
-    const vt_v4 A0 = v4_ld(Ap), A1 = v4_ld(Ap + 3), A2 = v4_ld(Ap + 6);
-    vt_v4 R0, R1, R2;
-    v4_transpose(A0, A1, A2, &R0, &R1, &R2);
-    const vt_v4 mo = v4_ld(W + 6 * i), f = v4_ld(W + 6 * i + 3), e = v4_ld(d->jaxis + 9 * i);
-    const vt_v4 fb = v4_mat(R0, R1, R2, f), mb = v4_mat(R0, R1, R2, mo);
-    v4_st3(d->jnt_force_total + 3 * i, f);
-    v4_st3(d->jnt_moment_total + 3 * i, mo);
-    v4_st3(d->jnt_force_total_body + 3 * i, fb);
-    v4_st3(d->jnt_moment_total_body + 3 * i, mb);
+    vt_v4 A[3], R[3];
+    vt_v4_load_mat(A, Ap);
+    vt_v4_transpose(A, R);
+    const vt_v4 mo = vt_v4_load(W + 6 * i), f = vt_v4_load(W + 6 * i + 3), e = vt_v4_load(d->jaxis + 9 * i);
+    const vt_v4 fb = vt_v4_mat(R, f), mb = vt_v4_mat(R, mo);
+    vt_v4_store3(d->jnt_force_total + 3 * i, f);
+    vt_v4_store3(d->jnt_moment_total + 3 * i, mo);
+    vt_v4_store3(d->jnt_force_total_body + 3 * i, fb);
+    vt_v4_store3(d->jnt_moment_total_body + 3 * i, mb);
     const double qf = vt_rate_load(m, d, c);
     double tau = 0.0;
-    if (motion == MOTION_GIVEN || dr >= 0) tau = v4_dot3(e, rev ? mo : f) - qf;
+    if (motion == MOTION_GIVEN || dr >= 0) tau = vt_v4_dot3(e, rev ? mo : f) - qf;
     if (motion == MOTION_DRIVEN && dr >= 0) {
         d->lambda[m->drive_row[dr]] = tau;
         d->drive_effort[dr] = tau;
-        v4_st3(d->drive_force + 3 * dr, rev ? v4_s(0.0) : v4_s(tau) * e);
-        v4_st3(d->drive_moment + 3 * dr, rev ? v4_s(tau) * e : v4_s(0.0));
+        vt_v4_store3(d->drive_force + 3 * dr, rev ? vt_v4_splat(0.0) : vt_v4_scale(tau, e));
+        vt_v4_store3(d->drive_moment + 3 * dr, rev ? vt_v4_scale(tau, e) : vt_v4_splat(0.0));
     }
     d->qfrc_drive[c] = tau;
-    const vt_v4 k = v4_s(tau + qf) * e;
-    const vt_v4 fr = rev ? f : f - k, mr = rev ? mo - k : mo;
-    v4_st3(d->jnt_force + 3 * i, fr);
-    v4_st3(d->jnt_moment + 3 * i, mr);
-    v4_st3(d->jnt_force_body + 3 * i, rev ? fb : v4_mat(R0, R1, R2, fr));
-    v4_st3(d->jnt_moment_body + 3 * i, rev ? v4_mat(R0, R1, R2, mr) : mb);
+    const vt_v4 k = vt_v4_scale(tau + qf, e);
+    const vt_v4 fr = rev ? f : vt_v4_sub(f, k), mr = rev ? vt_v4_sub(mo, k) : mo;
+    vt_v4_store3(d->jnt_force + 3 * i, fr);
+    vt_v4_store3(d->jnt_moment + 3 * i, mr);
+    vt_v4_store3(d->jnt_force_body + 3 * i, rev ? fb : vt_v4_mat(R, fr));
+    vt_v4_store3(d->jnt_moment_body + 3 * i, rev ? vt_v4_mat(R, mr) : mb);
     if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
-        vt_v4 r = v4_ld(d->jsij + 3 * i);
-        if (!rev) r += v4_ld(d->jd + 3 * i) + v4_mat(A0, A1, A2, v4_ld(m->body_jchild + 3 * i)); /* t_i */
+        vt_v4 r = vt_v4_load(d->jsij + 3 * i);
+        if (!rev) /* t_i */
+            r = vt_v4_add(r, vt_v4_add(vt_v4_load(d->jd + 3 * i), vt_v4_mat(A, vt_v4_load(m->body_jchild + 3 * i))));
         if (tree == TREE_MIXED) {
             double sj[3];
             vt_joint_child(sj, m, d, j);
-            r -= (vt_v4){sj[0], sj[1], sj[2], 0};
+            r = vt_v4_sub(r, vt_v4_load3(sj));
         } else { /* j revolute: −s^{ji}_j = d^j */
-            r += v4_ld(d->jd + 3 * j);
+            r = vt_v4_add(r, vt_v4_load(d->jd + 3 * j));
         }
         double *Wj = W + 6 * j;
-        v4_st3(Wj, (v4_ld(Wj) + v4_cross(r, f)) + mo);
-        v4_st3(Wj + 3, v4_ld(Wj + 3) + f);
+        vt_v4_store3(Wj, vt_v4_add(vt_v4_add(vt_v4_load(Wj), vt_v4_cross(r, f)), mo));
+        vt_v4_store3(Wj + 3, vt_v4_add(vt_v4_load(Wj + 3), f));
     }
 }
 
