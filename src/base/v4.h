@@ -63,13 +63,13 @@ static inline vt_v4 vt_v4_with0(vt_v4 a, double s)
     a[0] = s;
     return a;
 }
-/* the rows of the 3x3 matrix whose columns are c[0..2] */
-static inline void vt_v4_transpose(const vt_v4 c[3], vt_v4 r[3])
+/* the rows of the 3x3 matrix whose columns are a, b, c (lane 3 of each whatever) */
+static inline void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
 {
-    const vt_v4 t0 = VT_V4_SHUFFLE(c[0], c[1], 0, 4, 2, 6), t1 = VT_V4_SHUFFLE(c[0], c[1], 1, 5, 3, 7);
-    r[0] = VT_V4_SHUFFLE(t0, c[2], 0, 1, 4, 7);
-    r[1] = VT_V4_SHUFFLE(t1, c[2], 0, 1, 5, 7);
-    r[2] = VT_V4_SHUFFLE(t0, c[2], 2, 3, 6, 7);
+    const vt_v4 t0 = VT_V4_SHUFFLE(a, b, 0, 4, 2, 6), t1 = VT_V4_SHUFFLE(a, b, 1, 5, 3, 7);
+    *r0 = VT_V4_SHUFFLE(t0, c, 0, 1, 4, 7);
+    *r1 = VT_V4_SHUFFLE(t1, c, 0, 1, 5, 7);
+    *r2 = VT_V4_SHUFFLE(t0, c, 2, 3, 6, 7);
 }
 static inline vt_v4 vt_v4_load(const double *p)
 {
@@ -114,9 +114,11 @@ static inline vt_v4 vt_v4_with0(vt_v4 a, double s)
     a.v[0] = s;
     return a;
 }
-static inline void vt_v4_transpose(const vt_v4 c[3], vt_v4 r[3])
+static inline void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
 {
-    for (int i = 0; i < 3; i++) r[i] = vt_v4_set(c[0].v[i], c[1].v[i], c[2].v[i], 0.0);
+    *r0 = vt_v4_set(a.v[0], b.v[0], c.v[0], 0.0);
+    *r1 = vt_v4_set(a.v[1], b.v[1], c.v[1], 0.0);
+    *r2 = vt_v4_set(a.v[2], b.v[2], c.v[2], 0.0);
 }
 static inline vt_v4 vt_v4_load(const double *p)
 {
@@ -144,17 +146,27 @@ static inline vt_v4 vt_v4_cross(vt_v4 a, vt_v4 b)
 {
     return vt_v4_yzx(vt_v4_sub(vt_v4_mul(a, vt_v4_yzx(b)), vt_v4_mul(vt_v4_yzx(a), b)));
 }
-/* M a for the 3x3 matrix of columns M[0..2] (rows of M^T: M^T a for the rows) */
-static inline vt_v4 vt_v4_mat(const vt_v4 M[3], vt_v4 a)
+/* A 3x3 matrix as its three columns (a joint's axes, a rotation, an inertia), passed by value */
+typedef struct {
+    vt_v4 c[3];
+} vt_m3;
+
+/* M a */
+static inline vt_v4 vt_m3_mul(vt_m3 M, vt_v4 a)
 {
-    return vt_v4_add(vt_v4_add(vt_v4_mul(M[0], vt_v4_x(a)), vt_v4_mul(M[1], vt_v4_y(a))), vt_v4_mul(M[2], vt_v4_z(a)));
+    return vt_v4_add(vt_v4_add(vt_v4_mul(M.c[0], vt_v4_x(a)), vt_v4_mul(M.c[1], vt_v4_y(a))), vt_v4_mul(M.c[2], vt_v4_z(a)));
 }
-/* the columns of a column-major 3x3 array (M[9] read: a spare double after the array) */
-static inline void vt_v4_load_mat(vt_v4 M[3], const double *A)
+/* the columns of a column-major 3x3 array (A[9] read: a spare double after the array) */
+static inline vt_m3 vt_m3_load(const double *A)
 {
-    M[0] = vt_v4_load(A);
-    M[1] = vt_v4_load(A + 3);
-    M[2] = vt_v4_load(A + 6);
+    return (vt_m3){{vt_v4_load(A), vt_v4_load(A + 3), vt_v4_load(A + 6)}};
+}
+/* M^T */
+static inline vt_m3 vt_m3_transpose(vt_m3 M)
+{
+    vt_m3 T;
+    vt_v4_transpose3(M.c[0], M.c[1], M.c[2], &T.c[0], &T.c[1], &T.c[2]);
+    return T;
 }
 
 /* Euler parameters p = (p0, e) in the four lanes (base/euler.h's products, written out the same) */
@@ -172,21 +184,21 @@ static inline vt_v4 vt_v4_quat_rate(vt_v4 p, vt_v4 w)
     const vt_v4 r = vt_v4_scale(0.5, vt_v4_add(vt_v4_mul(vt_v4_x(p), w), vt_v4_cross(w, e)));
     return vt_v4_with0(vt_v4_right(r), -0.5 * vt_v4_dot3(w, e));
 }
-/* A(p) = (p0² − e·e) 1 + 2 e e^T + 2 p0 ẽ (vt_euler_A_inline): its columns A[0..2] and its rows
- * R[0..2] (the columns of A^T: the sign of the ẽ term turned) */
-static inline void vt_v4_rotation(vt_v4 p, vt_v4 A[3], vt_v4 R[3])
+/* A(p) = (p0² − e·e) 1 + 2 e e^T + 2 p0 ẽ (vt_euler_A_inline), and A^T (the sign of the ẽ term
+ * turned) */
+static inline void vt_v4_rotation(vt_v4 p, vt_m3 *A, vt_m3 *R)
 {
     const double p0 = vt_v4_lane(p, 0), p1 = vt_v4_lane(p, 1), p2 = vt_v4_lane(p, 2), p3 = vt_v4_lane(p, 3);
     const double s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
     const vt_v4 e = vt_v4_left(p), e2 = vt_v4_add(e, e), P = vt_v4_scale(2.0 * p0, e);
     const double P0 = vt_v4_lane(P, 0), P1 = vt_v4_lane(P, 1), P2 = vt_v4_lane(P, 2);
     const vt_v4 b0 = vt_v4_mul(e, vt_v4_x(e2)), b1 = vt_v4_mul(e, vt_v4_y(e2)), b2 = vt_v4_mul(e, vt_v4_z(e2));
-    A[0] = vt_v4_add(b0, vt_v4_set(s, P2, -P1, 0.0));
-    A[1] = vt_v4_add(b1, vt_v4_set(-P2, s, P0, 0.0));
-    A[2] = vt_v4_add(b2, vt_v4_set(P1, -P0, s, 0.0));
-    R[0] = vt_v4_add(b0, vt_v4_set(s, -P2, P1, 0.0));
-    R[1] = vt_v4_add(b1, vt_v4_set(P2, s, -P0, 0.0));
-    R[2] = vt_v4_add(b2, vt_v4_set(-P1, P0, s, 0.0));
+    A->c[0] = vt_v4_add(b0, vt_v4_set(s, P2, -P1, 0.0));
+    A->c[1] = vt_v4_add(b1, vt_v4_set(-P2, s, P0, 0.0));
+    A->c[2] = vt_v4_add(b2, vt_v4_set(P1, -P0, s, 0.0));
+    R->c[0] = vt_v4_add(b0, vt_v4_set(s, -P2, P1, 0.0));
+    R->c[1] = vt_v4_add(b1, vt_v4_set(P2, s, -P0, 0.0));
+    R->c[2] = vt_v4_add(b2, vt_v4_set(-P1, P0, s, 0.0));
 }
 
 #endif

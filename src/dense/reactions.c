@@ -443,10 +443,8 @@ vt_status vt_reactions_impl(const vt_model *m, vt_data *d, vt_form form)
         /* the reaction at P_i is the needed wrench about P_i with the loads less the children's
          * reactions as the applied wrench */
         for (int c = 0; c < 6; c++) app[c] = fe[6 * i + c] - cf[6 * i + c];
-        vt_v4 A[3], R[3];
-        vt_v4_load_mat(A, Ai);
-        vt_v4_transpose(A, R);
-        vt_body_wrench(Wi, m, i, A, vt_v4_mat(R, vt_v4_load3(w)), vt_v4_mat(R, vt_v4_load3(al)), vt_v4_load3(a),
+        const vt_m3 A = vt_m3_load(Ai), R = vt_m3_transpose(A);
+        vt_body_wrench(Wi, m, i, A, vt_m3_mul(R, vt_v4_load3(w)), vt_m3_mul(R, vt_v4_load3(al)), vt_v4_load3(a),
                        vt_v4_load3(m->gravity), vt_v4_load3(app), vt_v4_load3(app + 3), vt_v4_load3(ci));
         vt_copy3(mo, Wi);
         vt_copy3(f, Wi + 3);

@@ -61,8 +61,8 @@ static VT_ALWAYS_INLINE vt_v4 vt_body_turn(vt_v4 pj, double cs, double sn, vt_v4
 }
 
 /* p (holding p^j ⊗ p_J) ⊗ p0, the body's fixed offset (skipped when it is the identity bit for
- * bit), and A = A(p): its columns A[0..2] and rows R[0..2] */
-static VT_ALWAYS_INLINE vt_v4 vt_body_orientation(vt_v4 p, const double p0[4], vt_v4 A[3], vt_v4 R[3])
+ * bit), and A = A(p) and R = A^T */
+static VT_ALWAYS_INLINE vt_v4 vt_body_orientation(vt_v4 p, const double p0[4], vt_m3 *A, vt_m3 *R)
 {
     if (!vt_quat_is_identity(p0)) p = vt_v4_quat_mul(p, vt_v4_load(p0));
     vt_v4_rotation(p, A, R);
@@ -85,13 +85,13 @@ static VT_ALWAYS_INLINE void vt_body_position(vt_v4 *Pr, vt_v4 *rr, vt_v4 *di, v
  * the axes e (vt_dof_kind picks each rate's) at rates qd, from the reference body's ω^j (wj) and
  * v^j (vj), s^{ij}, d^i and p^i; sji (s^{ji}) is used by a free joint only */
 static VT_ALWAYS_INLINE void vt_body_velocity(vt_v4 *w, vt_v4 *v, vt_v4 *pd, vt_v4 wj, vt_v4 vj, vt_v4 sij, vt_v4 di,
-                                              vt_v4 sji, vt_v4 p, int jt, int nv, const vt_v4 *e, const double *qd)
+                                              vt_v4 sji, vt_v4 p, int jt, int nv, vt_m3 e, const double *qd)
 {
     vt_v4 wi = wj, vi = vt_v4_add(vj, vt_v4_cross(wj, sij));
     for (int k = 0; k < nv; k++) {
         int ax;
-        if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) wi = vt_v4_madd(wi, qd[k], e[ax]);
-        else vi = vt_v4_madd(vi, qd[k], e[ax]);
+        if (vt_dof_kind(jt, k, &ax) == VT_DOF_ROT) wi = vt_v4_madd(wi, qd[k], e.c[ax]);
+        else vi = vt_v4_madd(vi, qd[k], e.c[ax]);
     }
     if (jt == VT_JOINT_FREE) { /* ω^j × t − ω^i × s^{ji} = ω^j × d^i + (ω^i − ω^j) × (r^i − P) */
         vi = vt_v4_add(vi, vt_v4_cross(wj, di));
@@ -109,14 +109,14 @@ static VT_ALWAYS_INLINE void vt_body_velocity(vt_v4 *w, vt_v4 *v, vt_v4 *pd, vt_
  * reference body's α^j (alj), a^j (aj) and ω^j (wj), ω^i (wi), s^{ij}, s^{ji} and p^i */
 static VT_ALWAYS_INLINE void vt_body_acceleration(vt_v4 *al, vt_v4 *a, vt_v4 *pdd, vt_v4 alj, vt_v4 aj, vt_v4 wj,
                                                   vt_v4 wi, vt_v4 sij, vt_v4 sji, vt_v4 p, int jt, int nv,
-                                                  const vt_v4 *e, const double *q, const double *qd,
+                                                  vt_m3 e, const double *q, const double *qd,
                                                   const double *qdd)
 {
     vt_v4 ali = alj, ai = vt_v4_add(vt_v4_add(aj, vt_v4_cross(alj, sij)), vt_v4_cross(wj, vt_v4_cross(wj, sij)));
     for (int k = 0; k < nv; k++) {
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax);
-        const vt_v4 ek = e[ax];
+        const vt_v4 ek = e.c[ax];
         const double qddk = qdd ? qdd[k] : 0.0;
         if (kind == VT_DOF_ROT) {
             const vt_v4 ed = vt_v4_cross((jt == VT_JOINT_UNIVERSAL && k == 1) ? wi : wj, ek);
@@ -147,24 +147,21 @@ static VT_ALWAYS_INLINE void vt_body_wrench_n(double W[6], const vt_model *m, in
 
 /* The needed wrench W of body i with orientation A (columns), from ω and α in body axes (wb,
  * ab): J' in body axes, n = A (J' α' + ω' × J' ω'), then vt_body_wrench_n */
-static VT_ALWAYS_INLINE void vt_body_wrench(double W[6], const vt_model *m, int i, const vt_v4 A[3], vt_v4 wb,
+static VT_ALWAYS_INLINE void vt_body_wrench(double W[6], const vt_model *m, int i, vt_m3 A, vt_v4 wb,
                                             vt_v4 ab, vt_v4 a, vt_v4 g, vt_v4 fe, vt_v4 ne, vt_v4 c)
 {
-    vt_v4 J[3];
-    vt_v4_load_mat(J, m->body_inertia + 9 * i);
-    const vt_v4 Ja = vt_v4_add(vt_v4_mat(J, ab), vt_v4_cross(wb, vt_v4_mat(J, wb)));
-    vt_body_wrench_n(W, m, i, vt_v4_mat(A, Ja), a, g, fe, ne, c);
+    const vt_m3 J = vt_m3_load(m->body_inertia + 9 * i);
+    const vt_v4 Ja = vt_v4_add(vt_m3_mul(J, ab), vt_v4_cross(wb, vt_m3_mul(J, wb)));
+    vt_body_wrench_n(W, m, i, vt_m3_mul(A, Ja), a, g, fe, ne, c);
 }
 
 /* vt_body_wrench from d's orientation, ω and xfrc of body i and global α (al), arrays of three */
 static inline void vt_body_wrench_global(double W[6], const vt_model *m, const vt_data *d, int i, const double a[3],
                                          const double al[3], const double c[3])
 {
-    vt_v4 A[3], R[3];
-    vt_v4_load_mat(A, d->A + 9 * i);
-    vt_v4_transpose(A, R);
+    const vt_m3 A = vt_m3_load(d->A + 9 * i), R = vt_m3_transpose(A);
     const double *fe = d->xfrc + 6 * i;
-    vt_body_wrench(W, m, i, A, vt_v4_mat(R, vt_v4_load3(d->omega + 3 * i)), vt_v4_mat(R, vt_v4_load3(al)),
+    vt_body_wrench(W, m, i, A, vt_m3_mul(R, vt_v4_load3(d->omega + 3 * i)), vt_m3_mul(R, vt_v4_load3(al)),
                    vt_v4_load3(a), vt_v4_load3(m->gravity), vt_v4_load3(fe), vt_v4_load3(fe + 3), vt_v4_load3(c));
 }
 

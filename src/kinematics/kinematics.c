@@ -139,8 +139,10 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             return;
         }
         /* the joint's turn p_J (or p itself), its axes e (zero where it has none) and translation t */
-        vt_v4 Ajv[3], ev[3], p, t = vt_v4_splat(0.0);
-        vt_v4_load_mat(Ajv, Aj);
+        const vt_v4 t0 = vt_v4_splat(0.0);
+        const vt_m3 Ajv = vt_m3_load(Aj);
+        vt_m3 ev = {{t0, t0, t0}};
+        vt_v4 p, t = t0;
         const vt_v4 pjv = vt_v4_load(pj);
         switch (jt) {
         case VT_JOINT_REVOLUTE:
@@ -149,8 +151,8 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             vt_sincos(0.5 * qi[0], &sn, &cs);
             const vt_v4 u = vt_v4_load3(ax1);
             p = vt_body_turn(pjv, cs, sn, u);
-            ev[0] = vt_v4_mat(Ajv, u);
-            if (jt == VT_JOINT_CYLINDRICAL) t = vt_v4_scale(qi[1], ev[0]);
+            ev.c[0] = vt_m3_mul(Ajv, u);
+            if (jt == VT_JOINT_CYLINDRICAL) t = vt_v4_scale(qi[1], ev.c[0]);
             break;
         }
         case VT_JOINT_UNIVERSAL: {
@@ -160,8 +162,8 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             vt_quat_mul(pJ, p1, p2);
             vt_euler_A(A1, p1);
             vt_mulmat3(a2, A1, ax2); /* e2 rides on the body: turned by the first angle */
-            ev[0] = vt_v4_mat(Ajv, vt_v4_load3(ax1));
-            ev[1] = vt_v4_mat(Ajv, vt_v4_load3(a2));
+            ev.c[0] = vt_m3_mul(Ajv, vt_v4_load3(ax1));
+            ev.c[1] = vt_m3_mul(Ajv, vt_v4_load3(a2));
             p = vt_v4_quat_mul(pjv, vt_v4_load(pJ));
             break;
         }
@@ -170,26 +172,26 @@ static inline void position(const vt_model *m, vt_data *d, int i)
             double pJ[4];
             memcpy(pJ, jt == VT_JOINT_FREE ? qi + 3 : qi, sizeof pJ);
             vt_normalize(pJ, 4); /* scaled: no overflow for a norm ≥ 1e154 */
-            for (int k = 0; k < 3; k++) ev[k] = Ajv[k]; /* triad: the reference body's axes */
-            if (jt == VT_JOINT_FREE) t = vt_v4_mat(Ajv, vt_v4_load3(qi));
+            ev = Ajv; /* triad: the reference body's axes */
+            if (jt == VT_JOINT_FREE) t = vt_m3_mul(Ajv, vt_v4_load3(qi));
             p = vt_v4_quat_mul(pjv, vt_v4_load(pJ));
             break;
         }
         default: /* translational: p^i = p^j */
             p = pjv;
-            ev[0] = vt_v4_mat(Ajv, vt_v4_load3(ax1));
-            t = vt_v4_scale(qi[0], ev[0]);
+            ev.c[0] = vt_m3_mul(Ajv, vt_v4_load3(ax1));
+            t = vt_v4_scale(qi[0], ev.c[0]);
             break;
         }
-        vt_v4 A[3], R[3];
-        p = vt_body_orientation(p, m->body_quat0 + 4 * i, A, R);
+        vt_m3 A, R;
+        p = vt_body_orientation(p, m->body_quat0 + 4 * i, &A, &R);
         const int ne = jt == VT_JOINT_SPHERICAL || jt == VT_JOINT_FREE ? 3 : jt == VT_JOINT_UNIVERSAL ? 2 : 1;
-        for (int k = 0; k < ne; k++) vt_v4_store3(e + 3 * k, ev[k]);
+        for (int k = 0; k < ne; k++) vt_v4_store3(e + 3 * k, ev.c[k]);
         vt_v4_store(pi, p);
-        for (int k = 0; k < 3; k++) vt_v4_store3(Ai + 3 * k, A[k]);
+        for (int k = 0; k < 3; k++) vt_v4_store3(Ai + 3 * k, A.c[k]);
 
-        const vt_v4 sv = vt_v4_mat(Ajv, vt_v4_load3(m->body_jpar + 3 * i));
-        const vt_v4 sji = vt_v4_mat(A, vt_v4_load3(m->body_jchild + 3 * i));
+        const vt_v4 sv = vt_m3_mul(Ajv, vt_v4_load3(m->body_jpar + 3 * i));
+        const vt_v4 sji = vt_m3_mul(A, vt_v4_load3(m->body_jchild + 3 * i));
         vt_v4_store3(sij, sv);
         if (i == 1) { /* o = P_1 (the ground's A is I: s^{01} is the point on the ground) */
             vt_v4_store3(o, vt_v4_add(sv, t));
@@ -230,7 +232,7 @@ static inline void velocity(const vt_model *m, vt_data *d, int i)
         double sji[3] = {0, 0, 0};
         if (jt == VT_JOINT_FREE) vt_joint_child(sji, m, d, i);
         const double *ej = d->jaxis + 9 * i;
-        const vt_v4 e[3] = {vt_v4_load3(ej), vt_v4_load3(ej + 3), vt_v4_load3(ej + 6)};
+        const vt_m3 e = {{vt_v4_load3(ej), vt_v4_load3(ej + 3), vt_v4_load3(ej + 6)}};
         vt_v4 w, v, pd; /* stored once known: the outputs might alias the inputs */
         vt_body_velocity(&w, &v, &pd, vt_v4_load3(wj), vt_v4_load3(vj), vt_v4_load3(d->jsij + 3 * i),
                          vt_v4_load3(d->jd + 3 * i), vt_v4_load3(sji), vt_v4_load(pi), jt, m->body_nv[i], e, qdi);
@@ -383,7 +385,7 @@ static inline void acceleration(const vt_model *m, vt_data *d, const double *qdd
         double sji[3];
         vt_joint_child(sji, m, d, i); /* not (P_i − o) − (r^i − o): exact far from o */
         const double *ej = d->jaxis + 9 * i;
-        const vt_v4 e[3] = {vt_v4_load3(ej), vt_v4_load3(ej + 3), vt_v4_load3(ej + 6)};
+        const vt_m3 e = {{vt_v4_load3(ej), vt_v4_load3(ej + 3), vt_v4_load3(ej + 6)}};
         vt_v4 al, a, pdd; /* stored once known: out may alias the inputs */
         vt_body_acceleration(&al, &a, &pdd, vt_v4_load3(alj), vt_v4_load3(aj), vt_v4_load3(wj), vt_v4_load3(wi),
                              vt_v4_load3(d->jsij + 3 * i), vt_v4_load3(sji), vt_v4_load(pi), jt, m->body_nv[i], e, qi,

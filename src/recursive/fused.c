@@ -206,13 +206,13 @@ static const double unit_quat[4] = {1, 0, 0, 0}, zero4[4] = {0, 0, 0, 0};
 __attribute__((always_inline))
 #endif
 static inline void fused_step(const vt_model *m, vt_data *d, double *restrict alpha, double *restrict W, int i,
-                              const int jt, const int nv, vt_v4 p, const vt_v4 A[3], const vt_v4 R[3],
-                              const vt_v4 *e, vt_v4 t, vt_v4 sij, vt_v4 sji, vt_v4 g)
+                              const int jt, const int nv, vt_v4 p, vt_m3 A, vt_m3 R, vt_m3 e, vt_v4 t, vt_v4 sij,
+                              vt_v4 sji, vt_v4 g)
 {
     const int j = m->body_parent[i], c = m->body_vadr[i];
     const double *q = d->q + m->body_qadr[i], *qd = d->qd + c, *qdd = d->qdd + c;
     if (i == 1) { /* o = P_1 */
-        const vt_v4 o1 = vt_v4_add(sij, t);
+        const vt_v4 o1 = jt == VT_JOINT_REVOLUTE ? sij : vt_v4_add(sij, t);
         vt_v4_store3(d->origin, o1);
         vt_v4_store(d->xrel, vt_v4_sub(vt_v4_splat(0.0), o1));
         vt_v4_store(d->xrel + 3, vt_v4_sub(vt_v4_splat(0.0), o1));
@@ -221,7 +221,7 @@ static inline void fused_step(const vt_model *m, vt_data *d, double *restrict al
     const vt_v4 rj = vt_v4_load(d->xrel + 6 * j), wj = vt_v4_load(d->omega + 3 * j), alj = vt_v4_load(alpha + 3 * j);
     const vt_v4 vj = vt_v4_load(j ? d->xd + vt_xoff(j) : zero4), aj = vt_v4_load(j ? d->xdd + vt_xoff(j) : zero4);
     vt_v4 Pr, rr, di;
-    vt_body_position(&Pr, &rr, &di, rj, sij, &t, sji);
+    vt_body_position(&Pr, &rr, &di, rj, sij, jt == VT_JOINT_REVOLUTE ? NULL : &t, sji);
     {
         double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *tw = d->twist + 6 * c, *Ai = d->A + 9 * i;
         vt_v4_store(x, vt_v4_add(o, rr));
@@ -231,14 +231,14 @@ static inline void fused_step(const vt_model *m, vt_data *d, double *restrict al
         vt_v4_store(d->xrel + 6 * i + 3, Pr);
         vt_v4_store(d->jsij + 3 * i, sij);
         vt_v4_store(d->jd + 3 * i, di);
-        for (int k = 0; k < (jt == VT_JOINT_FREE ? 3 : 1); k++) vt_v4_store3(ej + 3 * k, e[k]);
+        for (int k = 0; k < (jt == VT_JOINT_FREE ? 3 : 1); k++) vt_v4_store3(ej + 3 * k, e.c[k]);
         for (int k = 0; k < nv; k++, tw += 6) { /* (e, (P − o) × e) or (0, e) */
             int ax;
             const int rot = vt_dof_kind(jt, k, &ax) == VT_DOF_ROT;
-            vt_v4_store(tw, rot ? e[ax] : vt_v4_splat(0.0));
-            vt_v4_store(tw + 3, rot ? vt_v4_cross(Pr, e[ax]) : e[ax]);
+            vt_v4_store(tw, rot ? e.c[ax] : vt_v4_splat(0.0));
+            vt_v4_store(tw + 3, rot ? vt_v4_cross(Pr, e.c[ax]) : e.c[ax]);
         }
-        for (int k = 0; k < 3; k++) vt_v4_store(Ai + 3 * k, A[k]);
+        for (int k = 0; k < 3; k++) vt_v4_store(Ai + 3 * k, A.c[k]);
     }
     vt_v4 w, v, pd, al, a, pdd;
     vt_body_velocity(&w, &v, &pd, wj, vj, sij, di, sji, p, jt, nv, e, qd);
@@ -253,7 +253,7 @@ static inline void fused_step(const vt_model *m, vt_data *d, double *restrict al
         vt_v4_store(xdd + 3, pdd);
     }
     const double *fe = d->xfrc + 6 * i;
-    vt_body_wrench(W + 6 * i, m, i, A, vt_v4_mat(R, w), vt_v4_mat(R, al), a, g, vt_v4_load(fe), vt_v4_load(fe + 3),
+    vt_body_wrench(W + 6 * i, m, i, A, vt_m3_mul(R, w), vt_m3_mul(R, al), a, g, vt_v4_load(fe), vt_v4_load(fe + 3),
                    vt_v4_sub(vt_v4_splat(0.0), sji));
 }
 
@@ -272,16 +272,16 @@ static inline void fused_body(const vt_model *m, vt_data *d, double *restrict al
         if (angles == ANGLES_SMALL) vt_sincos_small(0.5 * q, &sn, &cs);
         else vt_sincos(0.5 * q, &sn, &cs);
     }
-    vt_v4 Aj[3], A[3], R[3];
-    vt_v4_load_mat(Aj, d->A + 9 * j);
+    const vt_m3 Aj = vt_m3_load(d->A + 9 * j);
+    vt_m3 A, R;
     const vt_v4 u = vt_v4_load(m->body_axis + 6 * i), pj = vt_v4_load(j ? d->x + vt_xoff(j) + 3 : unit_quat);
     const vt_v4 p = vt_body_orientation(jt == VT_JOINT_REVOLUTE ? vt_body_turn(pj, cs, sn, u) : pj,
-                                        m->body_quat0 + 4 * i, A, R);
-    const vt_v4 e = vt_v4_mat(Aj, u);
+                                        m->body_quat0 + 4 * i, &A, &R);
+    const vt_v4 e = vt_m3_mul(Aj, u);
     const vt_v4 t = jt == VT_JOINT_TRANSLATIONAL ? vt_v4_scale(q, e) : vt_v4_splat(0.0);
-    const vt_v4 sij = vt_v4_mat(Aj, vt_v4_load(m->body_jpar + 3 * i));
-    const vt_v4 sji = vt_v4_mat(A, vt_v4_load(m->body_jchild + 3 * i));
-    fused_step(m, d, alpha, W, i, jt, 1, p, A, R, &e, t, sij, sji, g);
+    const vt_v4 sij = vt_m3_mul(Aj, vt_v4_load(m->body_jpar + 3 * i));
+    const vt_v4 sji = vt_m3_mul(A, vt_v4_load(m->body_jchild + 3 * i));
+    fused_step(m, d, alpha, W, i, jt, 1, p, A, R, (vt_m3){{e, e, e}}, t, sij, sji, g);
 }
 
 /* A gripper's fingers, a linear axis: the robot stays on the fused passes' own code instead of
@@ -308,13 +308,13 @@ static void fused_free(const vt_model *m, vt_data *d, double *restrict alpha, do
     double pJ[4];
     memcpy(pJ, q + 3, sizeof pJ);
     vt_normalize(pJ, 4); /* scaled: no overflow for a norm ≥ 1e154 */
-    vt_v4 E[3], A[3], R[3];
-    vt_v4_load_mat(E, d->A + 9 * j);
+    const vt_m3 E = vt_m3_load(d->A + 9 * j);
+    vt_m3 A, R;
     const vt_v4 pj = vt_v4_load(j ? d->x + vt_xoff(j) + 3 : unit_quat);
-    const vt_v4 p = vt_body_orientation(vt_v4_quat_mul(pj, vt_v4_load(pJ)), m->body_quat0 + 4 * i, A, R);
-    const vt_v4 sij = vt_v4_mat(E, vt_v4_load(m->body_jpar + 3 * i));
-    const vt_v4 sji = vt_v4_mat(A, vt_v4_load(m->body_jchild + 3 * i));
-    fused_step(m, d, alpha, W, i, VT_JOINT_FREE, 6, p, A, R, E, vt_v4_mat(E, vt_v4_load(q)), sij, sji, g);
+    const vt_v4 p = vt_body_orientation(vt_v4_quat_mul(pj, vt_v4_load(pJ)), m->body_quat0 + 4 * i, &A, &R);
+    const vt_v4 sij = vt_m3_mul(E, vt_v4_load(m->body_jpar + 3 * i));
+    const vt_v4 sji = vt_m3_mul(A, vt_v4_load(m->body_jchild + 3 * i));
+    fused_step(m, d, alpha, W, i, VT_JOINT_FREE, 6, p, A, R, E, vt_m3_mul(E, vt_v4_load(q)), sij, sji, g);
 }
 
 /* any other joint: the general code's stages for body i, its wrench about P_i (c = r^i − P_i =
@@ -446,11 +446,9 @@ static inline void fused_inward(const vt_model *m, vt_data *d, double *W, int i,
 {
     const int c = m->body_vadr[i], dr = m->dof_drive[c], rev = jt == VT_JOINT_REVOLUTE;
     const double *Ap = d->A + 9 * i;
-    vt_v4 A[3], R[3];
-    vt_v4_load_mat(A, Ap);
-    vt_v4_transpose(A, R);
+    const vt_m3 A = vt_m3_load(Ap), R = vt_m3_transpose(A);
     const vt_v4 mo = vt_v4_load(W + 6 * i), f = vt_v4_load(W + 6 * i + 3), e = vt_v4_load(d->jaxis + 9 * i);
-    const vt_v4 fb = vt_v4_mat(R, f), mb = vt_v4_mat(R, mo);
+    const vt_v4 fb = vt_m3_mul(R, f), mb = vt_m3_mul(R, mo);
     vt_v4_store3(d->jnt_force_total + 3 * i, f);
     vt_v4_store3(d->jnt_moment_total + 3 * i, mo);
     vt_v4_store3(d->jnt_force_total_body + 3 * i, fb);
@@ -469,12 +467,12 @@ static inline void fused_inward(const vt_model *m, vt_data *d, double *W, int i,
     const vt_v4 fr = rev ? f : vt_v4_sub(f, k), mr = rev ? vt_v4_sub(mo, k) : mo;
     vt_v4_store3(d->jnt_force + 3 * i, fr);
     vt_v4_store3(d->jnt_moment + 3 * i, mr);
-    vt_v4_store3(d->jnt_force_body + 3 * i, rev ? fb : vt_v4_mat(R, fr));
-    vt_v4_store3(d->jnt_moment_body + 3 * i, rev ? vt_v4_mat(R, mr) : mb);
+    vt_v4_store3(d->jnt_force_body + 3 * i, rev ? fb : vt_m3_mul(R, fr));
+    vt_v4_store3(d->jnt_moment_body + 3 * i, rev ? vt_m3_mul(R, mr) : mb);
     if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
         vt_v4 r = vt_v4_load(d->jsij + 3 * i);
         if (!rev) /* t_i */
-            r = vt_v4_add(r, vt_v4_add(vt_v4_load(d->jd + 3 * i), vt_v4_mat(A, vt_v4_load(m->body_jchild + 3 * i))));
+            r = vt_v4_add(r, vt_v4_add(vt_v4_load(d->jd + 3 * i), vt_m3_mul(A, vt_v4_load(m->body_jchild + 3 * i))));
         if (tree == TREE_MIXED) {
             double sj[3];
             vt_joint_child(sj, m, d, j);
