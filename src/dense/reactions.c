@@ -24,7 +24,8 @@
  * split along its unit bearing axis a (in that frame; 0 for a joint without one), for every
  * path once its body-axes reactions are formed (vt_joint_frames):
  *   f_J = C^T f',  n_J = C^T n',  [a · f_J, |f_J − (a · f_J) a|, a · n_J, |n_J − (a · n_J) a|].
- * Limits (vt_model.dof_limit) against each rate's q, q̇ and effort Φ_q^T λ (vt_limits_flag):
+ * Limits (vt_model.dof_limit) against each rate's q, q̇ and effort Φ_q^T λ (vt_limits_flag,
+ * vt_rate_limits in reactions.h):
  *   excess = x − hi where x > hi, x − lo where x < lo, else 0.
  */
 #include <math.h>
@@ -262,12 +263,6 @@ static vt_status row_loads(const vt_model *m, vt_data *d, double *fe, double *rw
  *   e_v = q̇ − v if q̇ > v, q̇ + v if q̇ < −v, else 0, the same for the effort with its limit;
  * the difference of two doubles that differ is never 0 (gradual underflow), so a value one ulp
  * beyond is flagged and one at the limit is not. Infinite limits are never passed by finite values. */
-/* x − x clamped to [lo, hi] (x finite: the instant's inputs and outputs are checked or bounded) */
-static inline double excess(double x, double lo, double hi)
-{
-    const double up = x < lo ? lo : x;
-    return x - (up > hi ? hi : up);
-}
 
 void vt_joint_frames(const vt_model *m, vt_data *d, int bearing)
 {
@@ -303,19 +298,14 @@ void vt_limits_flag(const vt_model *m, vt_data *d)
     /* the arrays in locals: the stores below might alias them as far as the compiler knows */
     const int nv = m->nv, *dof_body = m->dof_body, *qadr = m->body_qadr, *vadr = m->body_vadr;
     const int *nq = m->body_nq, *nvb = m->body_nv;
-    const double *restrict lim = m->dof_limit, *restrict q = d->q, *restrict qd = d->qd, *restrict tau = d->qfrc_drive;
-    double *restrict e = d->limit_excess;
+    const double *q = d->q, *qd = d->qd, *tau = d->qfrc_drive;
     int n = 0;
-    for (int c = 0; c < nv; c++, lim += 4, e += 3) {
-        const int i = dof_body[c];
-        /* a spherical, free or base joint's rates are not its coordinates (and have no limits) */
-        e[0] = nq[i] == nvb[i] ? excess(q[qadr[i] + c - vadr[i]], lim[0], lim[1]) : 0.0;
-        e[1] = excess(qd[c], -lim[2], lim[2]);
-        e[2] = excess(tau[c], -lim[3], lim[3]);
-        n += (e[0] != 0.0) + (e[1] != 0.0) + (e[2] != 0.0);
+    for (int c = 0; c < nv; c++) {
+        const int i = dof_body[c], has_q = nq[i] == nvb[i];
+        n += vt_rate_limits(d->limit_excess + 3 * c, m->dof_limit + 4 * c, has_q, has_q ? q[qadr[i] + c - vadr[i]] : 0.0,
+                            qd[c], tau[c]);
     }
-    d->nlimit = n;
-    d->warning = (d->warning & ~VT_WARN_LIMIT) | (n ? VT_WARN_LIMIT : 0);
+    vt_limits_found(d, n);
 }
 
 /* every joint's reaction (f, moment mo about P_i, global) also in body axes, and checked from

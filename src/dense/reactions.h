@@ -30,20 +30,49 @@ void vt_row_wrenches(double *rw, const vt_model *m, const vt_data *d, const doub
 /* jnt_unique and cut_unique, every one set, then those that a null direction of Φ_q^T (rank < nc:
  * the redundant solve's, in d->lambda_null) changes cleared (reactions.c) */
 vt_status vt_reactions_nonunique(const vt_model *m, vt_data *d);
+/* How far x lies beyond [lo, hi]: x − x clamped (x finite: the instant's inputs and outputs are
+ * checked or bounded by then) */
+static inline double vt_excess(double x, double lo, double hi)
+{
+    const double up = x < lo ? lo : x;
+    return x - (up > hi ? hi : up);
+}
+/* Rate c's excesses over its limits lim (vt_model.dof_limit: its coordinate's lower and upper
+ * bound, |q̇|'s and |effort|'s) into e (3): of its coordinate q (has_q 0 for a rate that is not
+ * one: a spherical, free or base joint's, which has no limits), of q̇ and of its effort tau;
+ * returns how many are not 0 */
+static inline int vt_rate_limits(double e[3], const double lim[4], int has_q, double q, double qd, double tau)
+{
+    e[0] = has_q ? vt_excess(q, lim[0], lim[1]) : 0.0;
+    e[1] = vt_excess(qd, -lim[2], lim[2]);
+    e[2] = vt_excess(tau, -lim[3], lim[3]);
+    return (e[0] != 0.0) + (e[1] != 0.0) + (e[2] != 0.0);
+}
+/* n rates' excesses found (vt_data.nlimit, VT_WARN_LIMIT) */
+static inline void vt_limits_found(vt_data *d, int n)
+{
+    d->nlimit = n;
+    d->warning = (d->warning & ~VT_WARN_LIMIT) | (n ? VT_WARN_LIMIT : 0);
+}
 /* The rates beyond their limits (vt_data.limit_excess, nlimit, VT_WARN_LIMIT) from q, q̇ and the
  * efforts qfrc_drive (reactions.c) */
 void vt_limits_flag(const vt_model *m, vt_data *d);
 /* Which reactions are unique: every one when the rows are independent (rank nc), otherwise
- * vt_reactions_nonunique's; and the limits flagged (the efforts are known by then). Inline, as
- * vt_mark_unique: every instant ends with it */
-static inline vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
+ * vt_reactions_nonunique's */
+static inline vt_status vt_reactions_unique_rows(const vt_model *m, vt_data *d)
 {
-    vt_limits_flag(m, d);
     const int nj = 6 * (m->nbody + 1), ncut = 6 * m->ncut;
     int *ju = d->jnt_unique, *cu = d->cut_unique;
     for (int i = 0; i < nj; i++) ju[i] = 1;
     for (int k = 0; k < ncut; k++) cu[k] = 1;
     return m->nc - d->rank > 0 ? vt_reactions_nonunique(m, d) : VT_OK;
+}
+/* vt_reactions_unique_rows, and the limits flagged (the efforts are known by then). Inline, as
+ * vt_mark_unique: every instant ends with it */
+static inline vt_status vt_reactions_unique(const vt_model *m, vt_data *d)
+{
+    vt_limits_flag(m, d);
+    return vt_reactions_unique_rows(m, d);
 }
 /* what every instant path ends with: α of every body (from ẍ) and each joint's total wrench,
  * reaction plus actuation (given: the motion given, every rate's qfrc_drive its effort) */

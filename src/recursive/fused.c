@@ -441,8 +441,8 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void fused_inward(const vt_model *m, vt_data *d, double *W, int i, int j, const int jt,
-                                const fused_motion motion, const fused_tree tree)
+static inline int fused_inward(const vt_model *m, vt_data *d, double *W, int i, int j, const int jt,
+                               const fused_motion motion, const fused_tree tree)
 {
     const int c = m->body_vadr[i], dr = m->dof_drive[c], rev = jt == VT_JOINT_REVOLUTE;
     const double *Ap = d->A + 9 * i;
@@ -484,15 +484,29 @@ static inline void fused_inward(const vt_model *m, vt_data *d, double *W, int i,
         vt_v4_store3(Wj, vt_v4_add(vt_v4_add(vt_v4_load(Wj), vt_v4_cross(r, f)), mo));
         vt_v4_store3(Wj + 3, vt_v4_add(vt_v4_load(Wj + 3), f));
     }
+    return m->any_limit ? vt_rate_limits(d->limit_excess + 3 * c, m->dof_limit + 4 * c, 1, d->q[m->body_qadr[i]], d->qd[c], tau)
+                        : 0;
+}
+
+/* the rates of joint i beyond their limits, their efforts known (vt_rate_limits) */
+static int joint_limits(const vt_model *m, vt_data *d, int i)
+{
+    const int c0 = m->body_vadr[i], nv = m->body_nv[i], has_q = m->body_nq[i] == nv;
+    const double *q = d->q + m->body_qadr[i];
+    int n = 0;
+    for (int k = 0; k < nv; k++)
+        n += vt_rate_limits(d->limit_excess + 3 * (c0 + k), m->dof_limit + 4 * (c0 + k), has_q, has_q ? q[k] : 0.0,
+                            d->qd[c0 + k], d->qfrc_drive[c0 + k]);
+    return n;
 }
 
 /* fused_pass's inward step on a translational joint. Not inlined, as fused_slide. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, const fused_motion motion)
+static int fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, const fused_motion motion)
 {
-    fused_inward(m, d, W, i, m->body_parent[i], VT_JOINT_TRANSLATIONAL, motion, TREE_MIXED);
+    return fused_inward(m, d, W, i, m->body_parent[i], VT_JOINT_TRANSLATIONAL, motion, TREE_MIXED);
 }
 
 /* the joint-driven (MOTION_DRIVEN) or given (MOTION_GIVEN) instant of a tree without base bodies:
@@ -515,20 +529,22 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         d->route = VT_ROUTE_NONE;
         return vt_scratch_release(d, mark), st;
     }
+    int nlimit = 0; /* the rates beyond their limits, flagged as each joint's efforts are known */
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int j = m->body_parent[i];
         if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
-            fused_slide_inward(m, d, W, i, motion);
+            nlimit += fused_slide_inward(m, d, W, i, motion);
             continue;
         }
-        double Wo[6];
         if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
+            double Wo[6];
             /* checked with the rest: fused_check */
             (void)joint_reaction(m, d, W + 6 * i, Wo, i, m->body_joint[i], m->body_nv[i], motion, TOTALS_FORMED, STORE_SET);
             if (j > 0) shift_to_parent(m, d, W, i, j);
+            if (m->any_limit) nlimit += joint_limits(m, d, i);
             continue;
         }
-        fused_inward(m, d, W, i, j, VT_JOINT_REVOLUTE, motion, tree);
+        nlimit += fused_inward(m, d, W, i, j, VT_JOINT_REVOLUTE, motion, tree);
     }
     vt_scratch_release(d, mark);
     memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
@@ -536,7 +552,8 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
     memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
     memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
     if (outputs == OUTPUTS_SCANNED && (st = fused_check(m, d, motion, tree))) return st;
-    return vt_reactions_unique(m, d);
+    if (m->any_limit) vt_limits_found(d, nlimit);
+    return vt_reactions_unique_rows(m, d);
 }
 
 /* the inward pass after q̈ is known; without base bodies it also forms the total wrenches, W̄_i
