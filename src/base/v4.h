@@ -14,7 +14,8 @@
  * fourth one overwritten). The arrays they touch carry a fourth element or one spare double at
  * their end (data.c, model.c), and a pass that stores four lanes writes each array in increasing
  * order, each element's own value after the spare lane of the one before; vt_v4_store3 writes
- * three. */
+ * three, and vt_v4_store3_down three with the one before them, for a pass that writes an array
+ * in decreasing order (the element before is its own later). */
 #ifndef VT_BASE_V4_H
 #define VT_BASE_V4_H
 
@@ -78,6 +79,8 @@ static inline vt_v4 vt_v4_load(const double *p)
     return r;
 }
 static inline void vt_v4_store(double *p, vt_v4 a) { memcpy(p, &a, sizeof a); }
+/* lanes 0-2 into p[0..2], p[-1] overwritten: for arrays written in decreasing order */
+static inline void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store(p - 1, VT_V4_PERM(a, 3, 0, 1, 2)); }
 static inline void vt_v4_store3(double *p, vt_v4 a)
 {
     const vt_v4_pair lo = {a[0], a[1]};
@@ -128,6 +131,7 @@ static inline vt_v4 vt_v4_load(const double *p)
 }
 static inline void vt_v4_store(double *p, vt_v4 a) { memcpy(p, a.v, sizeof a.v); }
 static inline void vt_v4_store3(double *p, vt_v4 a) { memcpy(p, a.v, 3 * sizeof(double)); }
+static inline void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store3(p, a); }
 #endif
 
 /* a 3-vector from an array of three (lane 3 a copy of lane 2: no zeroing instruction) */

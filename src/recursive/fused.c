@@ -449,10 +449,10 @@ static inline int fused_inward(const vt_model *m, vt_data *d, double *W, int i, 
     const vt_m3 A = vt_m3_load(Ap), R = vt_m3_transpose(A);
     const vt_v4 mo = vt_v4_load(W + 6 * i), f = vt_v4_load(W + 6 * i + 3), e = vt_v4_load(d->jaxis + 9 * i);
     const vt_v4 fb = vt_m3_mul(R, f), mb = vt_m3_mul(R, mo);
-    vt_v4_store3(d->jnt_force_total + 3 * i, f);
-    vt_v4_store3(d->jnt_moment_total + 3 * i, mo);
-    vt_v4_store3(d->jnt_force_total_body + 3 * i, fb);
-    vt_v4_store3(d->jnt_moment_total_body + 3 * i, mb);
+    vt_v4_store3_down(d->jnt_force_total + 3 * i, f);
+    vt_v4_store3_down(d->jnt_moment_total + 3 * i, mo);
+    vt_v4_store3_down(d->jnt_force_total_body + 3 * i, fb);
+    vt_v4_store3_down(d->jnt_moment_total_body + 3 * i, mb);
     const double qf = vt_rate_load(m, d, c);
     double tau = 0.0;
     if (motion == MOTION_GIVEN || dr >= 0) tau = vt_v4_dot3(e, rev ? mo : f) - qf;
@@ -465,10 +465,10 @@ static inline int fused_inward(const vt_model *m, vt_data *d, double *W, int i, 
     d->qfrc_drive[c] = tau;
     const vt_v4 k = vt_v4_scale(tau + qf, e);
     const vt_v4 fr = rev ? f : vt_v4_sub(f, k), mr = rev ? vt_v4_sub(mo, k) : mo;
-    vt_v4_store3(d->jnt_force + 3 * i, fr);
-    vt_v4_store3(d->jnt_moment + 3 * i, mr);
-    vt_v4_store3(d->jnt_force_body + 3 * i, rev ? fb : vt_m3_mul(R, fr));
-    vt_v4_store3(d->jnt_moment_body + 3 * i, rev ? vt_m3_mul(R, mr) : mb);
+    vt_v4_store3_down(d->jnt_force + 3 * i, fr);
+    vt_v4_store3_down(d->jnt_moment + 3 * i, mr);
+    vt_v4_store3_down(d->jnt_force_body + 3 * i, rev ? fb : vt_m3_mul(R, fr));
+    vt_v4_store3_down(d->jnt_moment_body + 3 * i, rev ? vt_m3_mul(R, mr) : mb);
     if (j > 0) { /* W̄_j += W̄_i moved to P_j: P_i − P_j = s^{ij}_i + t_i − s^{ji}_j */
         vt_v4 r = vt_v4_load(d->jsij + 3 * i);
         if (!rev) /* t_i */
@@ -547,10 +547,10 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         nlimit += fused_inward(m, d, W, i, j, VT_JOINT_REVOLUTE, motion, tree);
     }
     vt_scratch_release(d, mark);
-    memset(d->jnt_force_total, 0, 3 * sizeof(double)); /* the ground's rows (α's: fused_outward) */
-    memset(d->jnt_moment_total, 0, 3 * sizeof(double));
-    memset(d->jnt_force_total_body, 0, 3 * sizeof(double));
-    memset(d->jnt_moment_total_body, 0, 3 * sizeof(double));
+    /* the ground's rows (α's: fused_outward), the last entries of which body 1's stores overwrote */
+    double *ground[8] = {d->jnt_force_total, d->jnt_moment_total, d->jnt_force_total_body, d->jnt_moment_total_body,
+                         d->jnt_force, d->jnt_moment, d->jnt_force_body, d->jnt_moment_body};
+    for (int k = 0; k < 8; k++) memset(ground[k], 0, 3 * sizeof(double));
     if (outputs == OUTPUTS_SCANNED && (st = fused_check(m, d, motion, tree))) return st;
     if (m->any_limit) vt_limits_found(d, nlimit);
     return vt_reactions_unique_rows(m, d);
