@@ -500,6 +500,46 @@ static int joint_limits(const vt_model *m, vt_data *d, int i)
     return n;
 }
 
+/* fused_pass's inward step on a free joint (a floating robot's root): its rates' twists (0, e_k)
+ * and (e_k, 0) about P_i give τ = E^T f − qfrc and E^T n − qfrc, E the triad (its reference
+ * body's axes); it transmits nothing, so its reaction is zero and its total wrench W̄_i itself
+ * (joint_reaction's, without the loop over rates). Not inlined, as fused_slide. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static int fused_free_inward(const vt_model *m, vt_data *d, double *W, int i, const fused_motion motion)
+{
+    const int j = m->body_parent[i], c = m->body_vadr[i];
+    const vt_m3 A = vt_m3_load(d->A + 9 * i), R = vt_m3_transpose(A);
+    const vt_m3 ET = vt_m3_transpose(vt_m3_load(d->A + 9 * j));
+    const vt_v4 mo = vt_v4_load(W + 6 * i), f = vt_v4_load(W + 6 * i + 3);
+    vt_v4_store3(d->jnt_force_total + 3 * i, f);
+    vt_v4_store3(d->jnt_moment_total + 3 * i, mo);
+    vt_v4_store3(d->jnt_force_total_body + 3 * i, vt_m3_mul(R, f));
+    vt_v4_store3(d->jnt_moment_total_body + 3 * i, vt_m3_mul(R, mo));
+    const vt_v4 ft = vt_m3_mul(ET, f), nt = vt_m3_mul(ET, mo);
+    for (int k = 0; k < 6; k++) {
+        const int dr = m->dof_drive[c + k];
+        const double s = k < 3 ? vt_v4_lane(ft, k) : vt_v4_lane(nt, k - 3);
+        const double tau = motion == MOTION_GIVEN || dr >= 0 ? s - vt_rate_load(m, d, c + k) : 0.0;
+        if (motion == MOTION_DRIVEN && dr >= 0) { /* a drive on a free joint's rate */
+            d->lambda[m->drive_row[dr]] = tau;
+            d->drive_effort[dr] = tau;
+            const double *ek = d->jaxis + 9 * i + 3 * (k % 3);
+            for (int r = 0; r < 3; r++) {
+                d->drive_force[3 * dr + r] = k < 3 ? tau * ek[r] : 0.0;
+                d->drive_moment[3 * dr + r] = k < 3 ? 0.0 : tau * ek[r];
+            }
+        }
+        d->qfrc_drive[c + k] = tau;
+    }
+    double *zero[4] = {d->jnt_force, d->jnt_moment, d->jnt_force_body, d->jnt_moment_body};
+    for (int k = 0; k < 4; k++) memset(zero[k] + 3 * i, 0, 3 * sizeof(double));
+    if (j > 0) shift_to_parent(m, d, W, i, j);
+    return m->any_limit ? joint_limits(m, d, i) : 0;
+}
+
+
 /* fused_pass's inward step on a translational joint. Not inlined, as fused_slide. */
 #if defined(__GNUC__)
 __attribute__((noinline))
@@ -534,6 +574,10 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         const int j = m->body_parent[i];
         if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_TRANSLATIONAL) {
             nlimit += fused_slide_inward(m, d, W, i, motion);
+            continue;
+        }
+        if (tree == TREE_MIXED && m->body_joint[i] == VT_JOINT_FREE) {
+            nlimit += fused_free_inward(m, d, W, i, motion);
             continue;
         }
         if (tree == TREE_MIXED && m->body_joint[i] != VT_JOINT_REVOLUTE) {
