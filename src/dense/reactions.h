@@ -43,6 +43,10 @@ static inline double vt_excess(double x, double lo, double hi)
  * returns how many are not 0 */
 static inline int vt_rate_limits(double e[3], const double lim[4], int has_q, double q, double qd, double tau)
 {
+    if ((!has_q || (q >= lim[0] && q <= lim[1])) && fabs(qd) <= lim[2] && fabs(tau) <= lim[3]) { /* within */
+        e[0] = e[1] = e[2] = 0.0;
+        return 0;
+    }
     e[0] = has_q ? vt_excess(q, lim[0], lim[1]) : 0.0;
     e[1] = vt_excess(qd, -lim[2], lim[2]);
     e[2] = vt_excess(tau, -lim[3], lim[3]);
