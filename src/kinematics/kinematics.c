@@ -86,6 +86,9 @@ static inline vt_status check_quaternions(const vt_model *m, vt_data *d)
         const int jt = m->body_joint[i];
         if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE && jt != VT_JOINT_FREE) continue;
         const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_SPHERICAL ? 0 : 3);
+        const double a0 = fabs(p[0]), a1 = fabs(p[1]), a2 = fabs(p[2]), a3 = fabs(p[3]);
+        const double b0 = a0 > a1 ? a0 : a1, b1 = a2 > a3 ? a2 : a3;
+        if ((b0 > b1 ? b0 : b1) > 1e-12) continue; /* |p| ≥ max |p_k| */
         double u[4] = {p[0], p[1], p[2], p[3]}; /* scaled: no underflow */
         if (!(vt_normalize(u, 4) > 1e-12))
             return vt_fail(d->message, VT_ERR_QUATERNION,
