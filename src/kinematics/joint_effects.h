@@ -35,6 +35,20 @@ static inline double vt_rate_load(const vt_model *m, const vt_data *d, int c)
                           : d->qfrc[c];
 }
 
+/* vt_rate_load, its parts armature q̈, damping q̇ and friction s(q̇) stored into the data's
+ * effort_armature, effort_damping and effort_friction as they are formed (the same numbers as
+ * vt_joint_effects_store's): for a pass that has the rate at hand */
+static inline double vt_rate_load_store(const vt_model *m, vt_data *d, int c)
+{
+    if (!m->has_effects) return d->qfrc[c];
+    const double *e = m->dof_effects + 4 * c, qd = d->qd[c];
+    const double arm = e[0] * d->qdd[c], damp = e[1] * qd, fric = e[2] * vt_friction_law(qd, e[3]);
+    d->effort_armature[c] = arm;
+    d->effort_damping[c] = damp;
+    d->effort_friction[c] = fric;
+    return d->qfrc[c] - arm - (damp + fric);
+}
+
 /* each rate's parts of its effort, armature q̈, damping q̇ and friction s(q̇), into the data's
  * effort_armature, effort_damping and effort_friction (left at 0 without effects) */
 void vt_joint_effects_store(const vt_model *m, vt_data *d);

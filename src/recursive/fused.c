@@ -116,7 +116,7 @@ static inline int joint_reaction(const vt_model *m, vt_data *d, const double *Wi
         int ax;
         const int kind = vt_dof_kind(jt, k, &ax), rot = kind == VT_DOF_ROT;
         /* qfrc less the joint's own effects (τ takes them) */
-        const double qf = store == STORE_ADD ? 0.0 : vt_rate_load(m, d, c);
+        const double qf = store == STORE_ADD ? 0.0 : vt_rate_load_store(m, d, c);
         double tau = 0.0;
         if (motion == MOTION_GIVEN || dr >= 0) {
             const double *w = d->twist + 6 * c;
@@ -453,7 +453,7 @@ static inline int fused_inward(const vt_model *m, vt_data *d, double *W, int i, 
     vt_v4_store3_down(d->jnt_moment_total + 3 * i, mo);
     vt_v4_store3_down(d->jnt_force_total_body + 3 * i, fb);
     vt_v4_store3_down(d->jnt_moment_total_body + 3 * i, mb);
-    const double qf = vt_rate_load(m, d, c);
+    const double qf = vt_rate_load_store(m, d, c);
     double tau = 0.0;
     if (motion == MOTION_GIVEN || dr >= 0) tau = vt_v4_dot3(e, rev ? mo : f) - qf;
     if (motion == MOTION_DRIVEN && dr >= 0) {
@@ -521,7 +521,8 @@ static int fused_free_inward(const vt_model *m, vt_data *d, double *W, int i, co
     for (int k = 0; k < 6; k++) {
         const int dr = m->dof_drive[c + k];
         const double s = k < 3 ? vt_v4_lane(ft, k) : vt_v4_lane(nt, k - 3);
-        const double tau = motion == MOTION_GIVEN || dr >= 0 ? s - vt_rate_load(m, d, c + k) : 0.0;
+        const double qf = vt_rate_load_store(m, d, c + k);
+        const double tau = motion == MOTION_GIVEN || dr >= 0 ? s - qf : 0.0;
         if (motion == MOTION_DRIVEN && dr >= 0) { /* a drive on a free joint's rate */
             d->lambda[m->drive_row[dr]] = tau;
             d->drive_effort[dr] = tau;
@@ -704,10 +705,9 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
     vt_solved(m, d, VT_ROUTE_JOINT_DRIVEN, 1.0); /* nothing factorized: one unit row per rate */
     const fused_outputs outputs = fused_bounded(m, smax, smax, vt_array_max(d->qdd, m->nv), smax);
     const fused_angles angles = angles_small(m, d, smax);
-    st = mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles)
-             : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
-    if (!st) vt_joint_effects_store(m, d);
-    return st;
+    /* the joints' effort parts (vt_joint_effects_store's) stored by the inward pass */
+    return mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles)
+               : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
 }
 
 /* the given motion's fused passes: not inlined, and the tree a variable, so that one compact copy
@@ -774,8 +774,8 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     const fused_outputs outputs = fused_bounded(m, smax, smax, amax, smax);
     vt_solved(m, d, VT_ROUTE_MOTION, 1.0); /* nothing factorized */
     const fused_angles angles = angles_small(m, d, smax);
-    st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles); /* α and the totals formed in it */
+    /* α, the totals and the joints' effort parts formed in it */
+    st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles);
     if (st) d->route = VT_ROUTE_NONE; /* as vt_solve_reset left it */
-    else vt_joint_effects_store(m, d);
     return st;
 }
