@@ -82,10 +82,10 @@ __attribute__((always_inline))
 #endif
 static inline vt_status check_quaternions(const vt_model *m, vt_data *d)
 {
+    const int *nq = m->body_nq;
     for (int i = 1; i <= m->nbody; i++) {
-        const int jt = m->body_joint[i];
-        if (jt != VT_JOINT_SPHERICAL && jt != VT_JOINT_BASE && jt != VT_JOINT_FREE) continue;
-        const double *p = d->q + m->body_qadr[i] + (jt == VT_JOINT_SPHERICAL ? 0 : 3);
+        if (nq[i] < 4) continue; /* Euler parameters: a spherical joint's 4 coordinates, a free or base one's 7 */
+        const double *p = d->q + m->body_qadr[i] + (nq[i] == 4 ? 0 : 3);
         const double a0 = fabs(p[0]), a1 = fabs(p[1]), a2 = fabs(p[2]), a3 = fabs(p[3]);
         const double b0 = a0 > a1 ? a0 : a1, b1 = a2 > a3 ? a2 : a3;
         if ((b0 > b1 ? b0 : b1) > 1e-12) continue; /* |p| ≥ max |p_k| */
