@@ -383,6 +383,62 @@ static void test_energy_balance(void **state_)
 }
 #endif
 
+/* The joints' effects in the given motion's overflow bound (recursive/fused.c, fused_bounded):
+ * armature q̈ and damping q̇ are loads along the rates, so a model with them skips the output
+ * scans only where they cannot overflow. The double link, both joints with a given q̈ and q̇:
+ * armature or damping near DBL_MAX times rates that push the effort past it is refused as
+ * overflowing (VT_ERR_NONFINITE, the message says so), never returned as Inf with VT_OK; the
+ * same coefficients with small rates give finite efforts whose parts are the products
+ * themselves. */
+static void test_effects_overflow(void **state_)
+{
+    (void)state_;
+    for (int kind = 0; kind < 2; kind++) { /* 0 armature, 1 damping */
+        vt_builder *b;
+        assert_int_equal(vt_builder_create(&b, NULL), VT_OK);
+        for (int i = 1; i <= 2; i++) {
+            vt_body_def body = vt_default_body_def();
+            body.parent = i - 1;
+            body.mass = MASS;
+            body.inertia[0] = 1e-3;
+            body.inertia[4] = body.inertia[8] = MASS * L * L / 12.0;
+            body.joint_child[0] = -0.5 * L;
+            if (i == 2) body.joint_parent[0] = 0.5 * L;
+            if (kind == 0) body.armature[0] = 1e306;
+            else body.damping[0] = 1e306;
+            assert_int_equal(vt_builder_add_body(b, &body), i);
+        }
+        vt_model *m;
+        vt_data *d;
+        assert_int_equal(vt_builder_build(&m, b), VT_OK);
+        vt_builder_free(b);
+        assert_int_equal(vt_data_create(&d, m), VT_OK);
+        for (int big = 0; big < 2; big++) {
+            const double rate = big ? 1e3 : 0.5; /* 1e306 × 1e3 overflows; × 0.5 does not */
+            d->q[0] = 0.3, d->q[1] = -0.2;
+            d->qd[0] = d->qd[1] = kind ? rate : 0.1;
+            d->qdd[0] = d->qdd[1] = kind ? 0.2 : rate;
+            d->message[0] = '\0';
+            const vt_status st = vt_inverse_dynamics_motion(m, d);
+            if (big) {
+                assert_int_equal(st, VT_ERR_NONFINITE);
+                assert_non_null(strstr(d->message, "overflow"));
+            } else {
+                assert_int_equal(st, VT_OK);
+                for (int c = 0; c < 2; c++) {
+                    const double part = kind ? d->effort_damping[c] : d->effort_armature[c];
+                    assert_true(part == 1e306 * rate);
+                    assert_true(isfinite(d->qfrc_drive[c]));
+                    /* the effort is the part plus the rigid bodies' (a few kN·m at these rates) */
+                    assert_true(fabs(d->qfrc_drive[c] - part) <= 1e-12 * part);
+                }
+            }
+        }
+        vt_data_free(d);
+        vt_model_free(m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -392,6 +448,7 @@ int main(void)
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_forward_check), cmocka_unit_test(test_energy_balance),
 #endif
+        cmocka_unit_test(test_effects_overflow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -37,6 +37,7 @@
 #include "base/euler.h"
 #include "base/scan.h"
 #include "base/status.h"
+#include "base/v4.h"
 #include "base/vec3.h"
 #include "model/model.h"
 #include "kinematics/inverse_transform.h"

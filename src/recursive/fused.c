@@ -30,6 +30,7 @@
 #include "base/euler.h"
 #include "base/scan.h"
 #include "base/status.h"
+#include "base/v4.h"
 #include "base/vec3.h"
 #include "model/functions.h"
 #include "model/model.h"
