@@ -21,6 +21,13 @@
 
 #include <string.h>
 
+/* every operation inlined, always: one not inlined would pass its vt_v4 through memory */
+#if defined(__GNUC__)
+#define VT_V4_INLINE static inline __attribute__((always_inline))
+#else
+#define VT_V4_INLINE static inline
+#endif
+
 #if defined(__GNUC__) && !defined(VT_V4_PORTABLE)
 #define VT_V4_VECTOR 1
 #if !defined(__clang__)
@@ -45,108 +52,108 @@ typedef struct {
 #endif
 
 #if VT_V4_VECTOR
-static inline vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){x, y, z, w}; }
-static inline vt_v4 vt_v4_splat(double s) { return (vt_v4){s, s, s, s}; }
-static inline double vt_v4_lane(vt_v4 a, int k) { return a[k]; }
-static inline vt_v4 vt_v4_add(vt_v4 a, vt_v4 b) { return a + b; }
-static inline vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b) { return a - b; }
-static inline vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b) { return a * b; }
+VT_V4_INLINE vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){x, y, z, w}; }
+VT_V4_INLINE vt_v4 vt_v4_splat(double s) { return (vt_v4){s, s, s, s}; }
+VT_V4_INLINE double vt_v4_lane(vt_v4 a, int k) { return a[k]; }
+VT_V4_INLINE vt_v4 vt_v4_add(vt_v4 a, vt_v4 b) { return a + b; }
+VT_V4_INLINE vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b) { return a - b; }
+VT_V4_INLINE vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b) { return a * b; }
 /* lanes turned: (a1, a2, a0, a3), (a1, a2, a3, a0), (a3, a0, a1, a2); lane k in all four */
-static inline vt_v4 vt_v4_yzx(vt_v4 a) { return VT_V4_PERM(a, 1, 2, 0, 3); }
-static inline vt_v4 vt_v4_left(vt_v4 a) { return VT_V4_PERM(a, 1, 2, 3, 0); }
-static inline vt_v4 vt_v4_right(vt_v4 a) { return VT_V4_PERM(a, 3, 0, 1, 2); }
-static inline vt_v4 vt_v4_x(vt_v4 a) { return VT_V4_PERM(a, 0, 0, 0, 0); }
-static inline vt_v4 vt_v4_y(vt_v4 a) { return VT_V4_PERM(a, 1, 1, 1, 1); }
-static inline vt_v4 vt_v4_z(vt_v4 a) { return VT_V4_PERM(a, 2, 2, 2, 2); }
+VT_V4_INLINE vt_v4 vt_v4_yzx(vt_v4 a) { return VT_V4_PERM(a, 1, 2, 0, 3); }
+VT_V4_INLINE vt_v4 vt_v4_left(vt_v4 a) { return VT_V4_PERM(a, 1, 2, 3, 0); }
+VT_V4_INLINE vt_v4 vt_v4_right(vt_v4 a) { return VT_V4_PERM(a, 3, 0, 1, 2); }
+VT_V4_INLINE vt_v4 vt_v4_x(vt_v4 a) { return VT_V4_PERM(a, 0, 0, 0, 0); }
+VT_V4_INLINE vt_v4 vt_v4_y(vt_v4 a) { return VT_V4_PERM(a, 1, 1, 1, 1); }
+VT_V4_INLINE vt_v4 vt_v4_z(vt_v4 a) { return VT_V4_PERM(a, 2, 2, 2, 2); }
 /* a with lane 0 replaced by s */
-static inline vt_v4 vt_v4_with0(vt_v4 a, double s)
+VT_V4_INLINE vt_v4 vt_v4_with0(vt_v4 a, double s)
 {
     a[0] = s;
     return a;
 }
 /* the rows of the 3x3 matrix whose columns are a, b, c (lane 3 of each whatever) */
-static inline void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
+VT_V4_INLINE void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
 {
     const vt_v4 t0 = VT_V4_SHUFFLE(a, b, 0, 4, 2, 6), t1 = VT_V4_SHUFFLE(a, b, 1, 5, 3, 7);
     *r0 = VT_V4_SHUFFLE(t0, c, 0, 1, 4, 7);
     *r1 = VT_V4_SHUFFLE(t1, c, 0, 1, 5, 7);
     *r2 = VT_V4_SHUFFLE(t0, c, 2, 3, 6, 7);
 }
-static inline vt_v4 vt_v4_load(const double *p)
+VT_V4_INLINE vt_v4 vt_v4_load(const double *p)
 {
     vt_v4 r;
     memcpy(&r, p, sizeof r);
     return r;
 }
-static inline void vt_v4_store(double *p, vt_v4 a) { memcpy(p, &a, sizeof a); }
+VT_V4_INLINE void vt_v4_store(double *p, vt_v4 a) { memcpy(p, &a, sizeof a); }
 /* lanes 0-2 into p[0..2], p[-1] overwritten: for arrays written in decreasing order */
-static inline void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store(p - 1, VT_V4_PERM(a, 3, 0, 1, 2)); }
-static inline void vt_v4_store3(double *p, vt_v4 a)
+VT_V4_INLINE void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store(p - 1, VT_V4_PERM(a, 3, 0, 1, 2)); }
+VT_V4_INLINE void vt_v4_store3(double *p, vt_v4 a)
 {
     const vt_v4_pair lo = {a[0], a[1]};
     memcpy(p, &lo, sizeof lo);
     p[2] = a[2];
 }
 #else
-static inline vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){{x, y, z, w}}; }
-static inline vt_v4 vt_v4_splat(double s) { return (vt_v4){{s, s, s, s}}; }
-static inline double vt_v4_lane(vt_v4 a, int k) { return a.v[k]; }
-static inline vt_v4 vt_v4_add(vt_v4 a, vt_v4 b)
+VT_V4_INLINE vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){{x, y, z, w}}; }
+VT_V4_INLINE vt_v4 vt_v4_splat(double s) { return (vt_v4){{s, s, s, s}}; }
+VT_V4_INLINE double vt_v4_lane(vt_v4 a, int k) { return a.v[k]; }
+VT_V4_INLINE vt_v4 vt_v4_add(vt_v4 a, vt_v4 b)
 {
     for (int k = 0; k < 4; k++) a.v[k] += b.v[k];
     return a;
 }
-static inline vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b)
+VT_V4_INLINE vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b)
 {
     for (int k = 0; k < 4; k++) a.v[k] -= b.v[k];
     return a;
 }
-static inline vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b)
+VT_V4_INLINE vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b)
 {
     for (int k = 0; k < 4; k++) a.v[k] *= b.v[k];
     return a;
 }
-static inline vt_v4 vt_v4_yzx(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[0], a.v[3]); }
-static inline vt_v4 vt_v4_left(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[3], a.v[0]); }
-static inline vt_v4 vt_v4_right(vt_v4 a) { return vt_v4_set(a.v[3], a.v[0], a.v[1], a.v[2]); }
-static inline vt_v4 vt_v4_x(vt_v4 a) { return vt_v4_splat(a.v[0]); }
-static inline vt_v4 vt_v4_y(vt_v4 a) { return vt_v4_splat(a.v[1]); }
-static inline vt_v4 vt_v4_z(vt_v4 a) { return vt_v4_splat(a.v[2]); }
-static inline vt_v4 vt_v4_with0(vt_v4 a, double s)
+VT_V4_INLINE vt_v4 vt_v4_yzx(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[0], a.v[3]); }
+VT_V4_INLINE vt_v4 vt_v4_left(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[3], a.v[0]); }
+VT_V4_INLINE vt_v4 vt_v4_right(vt_v4 a) { return vt_v4_set(a.v[3], a.v[0], a.v[1], a.v[2]); }
+VT_V4_INLINE vt_v4 vt_v4_x(vt_v4 a) { return vt_v4_splat(a.v[0]); }
+VT_V4_INLINE vt_v4 vt_v4_y(vt_v4 a) { return vt_v4_splat(a.v[1]); }
+VT_V4_INLINE vt_v4 vt_v4_z(vt_v4 a) { return vt_v4_splat(a.v[2]); }
+VT_V4_INLINE vt_v4 vt_v4_with0(vt_v4 a, double s)
 {
     a.v[0] = s;
     return a;
 }
-static inline void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
+VT_V4_INLINE void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
 {
     *r0 = vt_v4_set(a.v[0], b.v[0], c.v[0], 0.0);
     *r1 = vt_v4_set(a.v[1], b.v[1], c.v[1], 0.0);
     *r2 = vt_v4_set(a.v[2], b.v[2], c.v[2], 0.0);
 }
-static inline vt_v4 vt_v4_load(const double *p)
+VT_V4_INLINE vt_v4 vt_v4_load(const double *p)
 {
     vt_v4 r;
     memcpy(r.v, p, sizeof r.v);
     return r;
 }
-static inline void vt_v4_store(double *p, vt_v4 a) { memcpy(p, a.v, sizeof a.v); }
-static inline void vt_v4_store3(double *p, vt_v4 a) { memcpy(p, a.v, 3 * sizeof(double)); }
-static inline void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store3(p, a); }
+VT_V4_INLINE void vt_v4_store(double *p, vt_v4 a) { memcpy(p, a.v, sizeof a.v); }
+VT_V4_INLINE void vt_v4_store3(double *p, vt_v4 a) { memcpy(p, a.v, 3 * sizeof(double)); }
+VT_V4_INLINE void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store3(p, a); }
 #endif
 
 /* a 3-vector from an array of three (lane 3 a copy of lane 2: no zeroing instruction) */
-static inline vt_v4 vt_v4_load3(const double *p) { return vt_v4_set(p[0], p[1], p[2], p[2]); }
+VT_V4_INLINE vt_v4 vt_v4_load3(const double *p) { return vt_v4_set(p[0], p[1], p[2], p[2]); }
 /* a + s b */
-static inline vt_v4 vt_v4_madd(vt_v4 a, double s, vt_v4 b) { return vt_v4_add(a, vt_v4_mul(vt_v4_splat(s), b)); }
-static inline vt_v4 vt_v4_scale(double s, vt_v4 a) { return vt_v4_mul(vt_v4_splat(s), a); }
+VT_V4_INLINE vt_v4 vt_v4_madd(vt_v4 a, double s, vt_v4 b) { return vt_v4_add(a, vt_v4_mul(vt_v4_splat(s), b)); }
+VT_V4_INLINE vt_v4 vt_v4_scale(double s, vt_v4 a) { return vt_v4_mul(vt_v4_splat(s), a); }
 /* a · b over lanes 0-2, summed in vec3.h's order */
-static inline double vt_v4_dot3(vt_v4 a, vt_v4 b)
+VT_V4_INLINE double vt_v4_dot3(vt_v4 a, vt_v4 b)
 {
     const vt_v4 t = vt_v4_mul(a, b);
     return vt_v4_lane(t, 0) + vt_v4_lane(t, 1) + vt_v4_lane(t, 2);
 }
 /* a × b in lanes 0-2: c = a (b1, b2, b0) − (a1, a2, a0) b holds (r2, r0, r1) */
-static inline vt_v4 vt_v4_cross(vt_v4 a, vt_v4 b)
+VT_V4_INLINE vt_v4 vt_v4_cross(vt_v4 a, vt_v4 b)
 {
     return vt_v4_yzx(vt_v4_sub(vt_v4_mul(a, vt_v4_yzx(b)), vt_v4_mul(vt_v4_yzx(a), b)));
 }
@@ -156,17 +163,17 @@ typedef struct {
 } vt_m3;
 
 /* M a */
-static inline vt_v4 vt_m3_mul(vt_m3 M, vt_v4 a)
+VT_V4_INLINE vt_v4 vt_m3_mul(vt_m3 M, vt_v4 a)
 {
     return vt_v4_add(vt_v4_add(vt_v4_mul(M.c[0], vt_v4_x(a)), vt_v4_mul(M.c[1], vt_v4_y(a))), vt_v4_mul(M.c[2], vt_v4_z(a)));
 }
 /* the columns of a column-major 3x3 array (A[9] read: a spare double after the array) */
-static inline vt_m3 vt_m3_load(const double *A)
+VT_V4_INLINE vt_m3 vt_m3_load(const double *A)
 {
     return (vt_m3){{vt_v4_load(A), vt_v4_load(A + 3), vt_v4_load(A + 6)}};
 }
 /* M^T */
-static inline vt_m3 vt_m3_transpose(vt_m3 M)
+VT_V4_INLINE vt_m3 vt_m3_transpose(vt_m3 M)
 {
     vt_m3 T;
     vt_v4_transpose3(M.c[0], M.c[1], M.c[2], &T.c[0], &T.c[1], &T.c[2]);
@@ -175,14 +182,14 @@ static inline vt_m3 vt_m3_transpose(vt_m3 M)
 
 /* Euler parameters p = (p0, e) in the four lanes (base/euler.h's products, written out the same) */
 /* a ⊗ b = (a0 b0 − a·b, a0 b + b0 a + a × b) */
-static inline vt_v4 vt_v4_quat_mul(vt_v4 a, vt_v4 b)
+VT_V4_INLINE vt_v4 vt_v4_quat_mul(vt_v4 a, vt_v4 b)
 {
     const vt_v4 av = vt_v4_left(a), bv = vt_v4_left(b);
     const vt_v4 r = vt_v4_add(vt_v4_add(vt_v4_mul(vt_v4_x(a), bv), vt_v4_mul(vt_v4_x(b), av)), vt_v4_cross(av, bv));
     return vt_v4_with0(vt_v4_right(r), vt_v4_lane(a, 0) * vt_v4_lane(b, 0) - vt_v4_dot3(av, bv));
 }
 /* ½ E(p)^T w = ½ [0; w] ⊗ p: the rate of p turning at w (vt_quat_rate) */
-static inline vt_v4 vt_v4_quat_rate(vt_v4 p, vt_v4 w)
+VT_V4_INLINE vt_v4 vt_v4_quat_rate(vt_v4 p, vt_v4 w)
 {
     const vt_v4 e = vt_v4_left(p);
     const vt_v4 r = vt_v4_scale(0.5, vt_v4_add(vt_v4_mul(vt_v4_x(p), w), vt_v4_cross(w, e)));
@@ -190,7 +197,7 @@ static inline vt_v4 vt_v4_quat_rate(vt_v4 p, vt_v4 w)
 }
 /* A(p) = (p0² − e·e) 1 + 2 e e^T + 2 p0 ẽ (vt_euler_A_inline), and A^T (the sign of the ẽ term
  * turned) */
-static inline void vt_v4_rotation(vt_v4 p, vt_m3 *A, vt_m3 *R)
+VT_V4_INLINE void vt_v4_rotation(vt_v4 p, vt_m3 *A, vt_m3 *R)
 {
     const double p0 = vt_v4_lane(p, 0), p1 = vt_v4_lane(p, 1), p2 = vt_v4_lane(p, 2), p3 = vt_v4_lane(p, 3);
     const double s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
