@@ -193,8 +193,10 @@ static vt_status inward_pass(const vt_model *m, vt_data *d, const fused_totals t
  * vt_accelerations call them), the subtree wrenches, efforts and reactions in one inward loop (as
  * inward_pass). A revolute and a translational body each have the kernels compiled for their one
  * rate (fused_body: e = A^j u; a revolute's twist (e, (P − o) × e), t = 0, τ = e · the moment
- * about P; a translational one's (0, e), t = q e, τ = e · f); any other joint takes the general
- * code's stages for the body (fused_other). */
+ * about P; a translational one's (0, e), t = q e, τ = e · f), a free joint its six (fused_free:
+ * the triad of its reference body's axes); any other joint takes the general code's stages for
+ * the body (fused_other). Their vectors are base/v4.h's, each output stored four lanes at a time
+ * in the order of its array (outward: increasing; inward: decreasing, vt_v4_store3_down). */
 static const double unit_quat[4] = {1, 0, 0, 0}, zero4[4] = {0, 0, 0, 0};
 
 /* The outward step of body i from its reference body j (kinematics/body.h's kernels): given its
@@ -437,8 +439,10 @@ static inline void shift_to_parent(const vt_model *m, const vt_data *d, double *
     for (int k = 0; k < 6; k++) Wj[k] += Wi[k];
 }
 
-
-/* inward step: joint i (jt revolute or translational, a constant) */
+/* fused_pass's inward step on joint i (jt revolute or translational, a constant): its effort
+ * τ = e · W̄_i − qfrc (the moment for a revolute joint, the force for a translational one), its
+ * reaction W̄_i less the actuation (τ + qfrc) e, both and the total W̄_i in both frames, W̄_i added
+ * to its parent's about P_j, and its rate's limits (the number beyond returned) */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -485,8 +489,8 @@ static inline int fused_inward(const vt_model *m, vt_data *d, double *W, int i, 
         vt_v4_store3(Wj, vt_v4_add(vt_v4_add(vt_v4_load(Wj), vt_v4_cross(r, f)), mo));
         vt_v4_store3(Wj + 3, vt_v4_add(vt_v4_load(Wj + 3), f));
     }
-    return m->any_limit ? vt_rate_limits(d->limit_excess + 3 * c, m->dof_limit + 4 * c, 1, d->q[m->body_qadr[i]], d->qd[c], tau)
-                        : 0;
+    if (!m->any_limit) return 0;
+    return vt_rate_limits(d->limit_excess + 3 * c, m->dof_limit + 4 * c, 1, d->q[m->body_qadr[i]], d->qd[c], tau);
 }
 
 /* the rates of joint i beyond their limits, their efforts known (vt_rate_limits) */
@@ -540,7 +544,6 @@ static int fused_free_inward(const vt_model *m, vt_data *d, double *W, int i, co
     if (j > 0) shift_to_parent(m, d, W, i, j);
     return m->any_limit ? joint_limits(m, d, i) : 0;
 }
-
 
 /* fused_pass's inward step on a translational joint. Not inlined, as fused_slide. */
 #if defined(__GNUC__)
@@ -712,7 +715,7 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
 }
 
 /* the given motion's fused passes: not inlined, and the tree a variable, so that one compact copy
- * serves both kinds of tree (a floating robot's tree is mixed: its free root takes fused_other),
+ * serves both kinds of tree (a floating robot's tree is mixed: its free root takes fused_free),
  * where copies compiled for each kind lengthen the mixed trees' loops */
 #if defined(__GNUC__)
 __attribute__((noinline))
