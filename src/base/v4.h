@@ -10,12 +10,12 @@
  * in the same order (the compiler contracts a * b + c into an FMA where -ffp-contract allows,
  * as it does the scalar code); tests/test_v4.c checks both forms against vec3.h.
  *
- * Loads and stores of four lanes: vt_v4_load reads p[0..3] and vt_v4_store writes p[0..3] (the
- * fourth one overwritten). The arrays they touch carry a fourth element or one spare double at
- * their end (data.c, model.c), and a pass that stores four lanes writes each array in increasing
- * order, each element's own value after the spare lane of the one before; vt_v4_store3 writes
- * three, and vt_v4_store3_down three with the one before them, for a pass that writes an array
- * in decreasing order (the element before is its own later). */
+ * Loads and stores: vt_v4_load reads p[0..3] and vt_v4_store writes p[0..3]; a 3-vector is
+ * written by vt_v4_store3 (p[0..2] alone), vt_v4_store3_up (p[3] overwritten too, in the vector
+ * form: one store) or vt_v4_store3_down (p[-1] too). The arrays read or written so carry a
+ * fourth element or one spare double at their end (data.c, model.c), and a pass that stores a
+ * 3-vector up writes each array in increasing order, each element's own value after the spare
+ * lane of the one before (down: in decreasing order). */
 #ifndef VT_BASE_V4_H
 #define VT_BASE_V4_H
 
@@ -28,7 +28,7 @@
 #define VT_V4_INLINE static inline
 #endif
 
-#if defined(__GNUC__) && !defined(VT_V4_PORTABLE)
+#if defined(__GNUC__) && defined(__AVX__) && !defined(VT_V4_PORTABLE)
 #define VT_V4_VECTOR 1
 #if !defined(__clang__)
 /* a vt_v4 returned by a function when AVX is not enabled: GCC notes the ABI of such calls; every
@@ -47,7 +47,7 @@ typedef long long vt_v4_index __attribute__((vector_size(32)));
 #else
 #define VT_V4_VECTOR 0
 typedef struct {
-    double v[4];
+    double x, y, z, w;
 } vt_v4;
 #endif
 
@@ -65,12 +65,12 @@ VT_V4_INLINE vt_v4 vt_v4_right(vt_v4 a) { return VT_V4_PERM(a, 3, 0, 1, 2); }
 VT_V4_INLINE vt_v4 vt_v4_x(vt_v4 a) { return VT_V4_PERM(a, 0, 0, 0, 0); }
 VT_V4_INLINE vt_v4 vt_v4_y(vt_v4 a) { return VT_V4_PERM(a, 1, 1, 1, 1); }
 VT_V4_INLINE vt_v4 vt_v4_z(vt_v4 a) { return VT_V4_PERM(a, 2, 2, 2, 2); }
-/* a with lane 0 replaced by s */
-VT_V4_INLINE vt_v4 vt_v4_with0(vt_v4 a, double s)
-{
-    a[0] = s;
-    return a;
-}
+VT_V4_INLINE vt_v4 vt_v4_neg(vt_v4 a) { return -a; }
+/* lanes picked from a (0-3) and b (4-7), the indices constants; vt_v4_with0: a with lane 0
+ * replaced by s. Shuffles, not lane stores: without AVX a lane written alone would be a store
+ * to the stack and a wider load of it, which the processor cannot forward */
+#define vt_v4_mix(a, b, i, j, k, l) VT_V4_SHUFFLE(a, b, i, j, k, l)
+VT_V4_INLINE vt_v4 vt_v4_with0(vt_v4 a, double s) { return VT_V4_SHUFFLE(vt_v4_splat(s), a, 0, 5, 6, 7); }
 /* the rows of the 3x3 matrix whose columns are a, b, c (lane 3 of each whatever) */
 VT_V4_INLINE void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
 {
@@ -86,6 +86,8 @@ VT_V4_INLINE vt_v4 vt_v4_load(const double *p)
     return r;
 }
 VT_V4_INLINE void vt_v4_store(double *p, vt_v4 a) { memcpy(p, &a, sizeof a); }
+/* lanes 0-2 into p[0..2], p[3] overwritten: for arrays written in increasing order */
+VT_V4_INLINE void vt_v4_store3_up(double *p, vt_v4 a) { vt_v4_store(p, a); }
 /* lanes 0-2 into p[0..2], p[-1] overwritten: for arrays written in decreasing order */
 VT_V4_INLINE void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store(p - 1, VT_V4_PERM(a, 3, 0, 1, 2)); }
 VT_V4_INLINE void vt_v4_store3(double *p, vt_v4 a)
@@ -95,49 +97,35 @@ VT_V4_INLINE void vt_v4_store3(double *p, vt_v4 a)
     p[2] = a[2];
 }
 #else
-VT_V4_INLINE vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){{x, y, z, w}}; }
-VT_V4_INLINE vt_v4 vt_v4_splat(double s) { return (vt_v4){{s, s, s, s}}; }
-VT_V4_INLINE double vt_v4_lane(vt_v4 a, int k) { return a.v[k]; }
-VT_V4_INLINE vt_v4 vt_v4_add(vt_v4 a, vt_v4 b)
-{
-    for (int k = 0; k < 4; k++) a.v[k] += b.v[k];
-    return a;
-}
-VT_V4_INLINE vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b)
-{
-    for (int k = 0; k < 4; k++) a.v[k] -= b.v[k];
-    return a;
-}
-VT_V4_INLINE vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b)
-{
-    for (int k = 0; k < 4; k++) a.v[k] *= b.v[k];
-    return a;
-}
-VT_V4_INLINE vt_v4 vt_v4_yzx(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[0], a.v[3]); }
-VT_V4_INLINE vt_v4 vt_v4_left(vt_v4 a) { return vt_v4_set(a.v[1], a.v[2], a.v[3], a.v[0]); }
-VT_V4_INLINE vt_v4 vt_v4_right(vt_v4 a) { return vt_v4_set(a.v[3], a.v[0], a.v[1], a.v[2]); }
-VT_V4_INLINE vt_v4 vt_v4_x(vt_v4 a) { return vt_v4_splat(a.v[0]); }
-VT_V4_INLINE vt_v4 vt_v4_y(vt_v4 a) { return vt_v4_splat(a.v[1]); }
-VT_V4_INLINE vt_v4 vt_v4_z(vt_v4 a) { return vt_v4_splat(a.v[2]); }
-VT_V4_INLINE vt_v4 vt_v4_with0(vt_v4 a, double s)
-{
-    a.v[0] = s;
-    return a;
-}
+/* the lanes as four scalars: each operation its scalar expressions, which the compiler keeps in
+ * registers, a lane never used not computed */
+VT_V4_INLINE vt_v4 vt_v4_set(double x, double y, double z, double w) { return (vt_v4){x, y, z, w}; }
+VT_V4_INLINE vt_v4 vt_v4_splat(double s) { return (vt_v4){s, s, s, s}; }
+VT_V4_INLINE double vt_v4_lane(vt_v4 a, int k) { return k == 0 ? a.x : k == 1 ? a.y : k == 2 ? a.z : a.w; }
+VT_V4_INLINE vt_v4 vt_v4_add(vt_v4 a, vt_v4 b) { return (vt_v4){a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
+VT_V4_INLINE vt_v4 vt_v4_sub(vt_v4 a, vt_v4 b) { return (vt_v4){a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w}; }
+VT_V4_INLINE vt_v4 vt_v4_mul(vt_v4 a, vt_v4 b) { return (vt_v4){a.x * b.x, a.y * b.y, a.z * b.z, a.w * b.w}; }
+VT_V4_INLINE vt_v4 vt_v4_neg(vt_v4 a) { return (vt_v4){-a.x, -a.y, -a.z, -a.w}; }
+VT_V4_INLINE vt_v4 vt_v4_yzx(vt_v4 a) { return (vt_v4){a.y, a.z, a.x, a.w}; }
+VT_V4_INLINE vt_v4 vt_v4_left(vt_v4 a) { return (vt_v4){a.y, a.z, a.w, a.x}; }
+VT_V4_INLINE vt_v4 vt_v4_right(vt_v4 a) { return (vt_v4){a.w, a.x, a.y, a.z}; }
+VT_V4_INLINE vt_v4 vt_v4_x(vt_v4 a) { return vt_v4_splat(a.x); }
+VT_V4_INLINE vt_v4 vt_v4_y(vt_v4 a) { return vt_v4_splat(a.y); }
+VT_V4_INLINE vt_v4 vt_v4_z(vt_v4 a) { return vt_v4_splat(a.z); }
+VT_V4_INLINE double vt_v4_lane8(vt_v4 a, vt_v4 b, int k) { return k < 4 ? vt_v4_lane(a, k) : vt_v4_lane(b, k - 4); }
+#define vt_v4_mix(a, b, i, j, k, l) \
+    vt_v4_set(vt_v4_lane8(a, b, i), vt_v4_lane8(a, b, j), vt_v4_lane8(a, b, k), vt_v4_lane8(a, b, l))
+VT_V4_INLINE vt_v4 vt_v4_with0(vt_v4 a, double s) { return (vt_v4){s, a.y, a.z, a.w}; }
 VT_V4_INLINE void vt_v4_transpose3(vt_v4 a, vt_v4 b, vt_v4 c, vt_v4 *r0, vt_v4 *r1, vt_v4 *r2)
 {
-    *r0 = vt_v4_set(a.v[0], b.v[0], c.v[0], 0.0);
-    *r1 = vt_v4_set(a.v[1], b.v[1], c.v[1], 0.0);
-    *r2 = vt_v4_set(a.v[2], b.v[2], c.v[2], 0.0);
+    *r0 = (vt_v4){a.x, b.x, c.x, 0.0};
+    *r1 = (vt_v4){a.y, b.y, c.y, 0.0};
+    *r2 = (vt_v4){a.z, b.z, c.z, 0.0};
 }
-VT_V4_INLINE vt_v4 vt_v4_load(const double *p)
-{
-    vt_v4 r;
-    memcpy(r.v, p, sizeof r.v);
-    return r;
-}
-VT_V4_INLINE void vt_v4_store(double *p, vt_v4 a) { memcpy(p, a.v, sizeof a.v); }
-VT_V4_INLINE void vt_v4_store3(double *p, vt_v4 a) { memcpy(p, a.v, 3 * sizeof(double)); }
+VT_V4_INLINE vt_v4 vt_v4_load(const double *p) { return (vt_v4){p[0], p[1], p[2], p[3]}; }
+VT_V4_INLINE void vt_v4_store(double *p, vt_v4 a) { p[0] = a.x, p[1] = a.y, p[2] = a.z, p[3] = a.w; }
+VT_V4_INLINE void vt_v4_store3(double *p, vt_v4 a) { p[0] = a.x, p[1] = a.y, p[2] = a.z; }
+VT_V4_INLINE void vt_v4_store3_up(double *p, vt_v4 a) { vt_v4_store3(p, a); }
 VT_V4_INLINE void vt_v4_store3_down(double *p, vt_v4 a) { vt_v4_store3(p, a); }
 #endif
 
@@ -200,16 +188,17 @@ VT_V4_INLINE vt_v4 vt_v4_quat_rate(vt_v4 p, vt_v4 w)
 VT_V4_INLINE void vt_v4_rotation(vt_v4 p, vt_m3 *A, vt_m3 *R)
 {
     const double p0 = vt_v4_lane(p, 0), p1 = vt_v4_lane(p, 1), p2 = vt_v4_lane(p, 2), p3 = vt_v4_lane(p, 3);
-    const double s = p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3;
-    const vt_v4 e = vt_v4_left(p), e2 = vt_v4_add(e, e), P = vt_v4_scale(2.0 * p0, e);
-    const double P0 = vt_v4_lane(P, 0), P1 = vt_v4_lane(P, 1), P2 = vt_v4_lane(P, 2);
+    const vt_v4 S = vt_v4_splat(p0 * p0 - p1 * p1 - p2 * p2 - p3 * p3);
+    const vt_v4 e = vt_v4_left(p), e2 = vt_v4_add(e, e), P = vt_v4_scale(2.0 * p0, e), N = vt_v4_neg(P);
     const vt_v4 b0 = vt_v4_mul(e, vt_v4_x(e2)), b1 = vt_v4_mul(e, vt_v4_y(e2)), b2 = vt_v4_mul(e, vt_v4_z(e2));
-    A->c[0] = vt_v4_add(b0, vt_v4_set(s, P2, -P1, 0.0));
-    A->c[1] = vt_v4_add(b1, vt_v4_set(-P2, s, P0, 0.0));
-    A->c[2] = vt_v4_add(b2, vt_v4_set(P1, -P0, s, 0.0));
-    R->c[0] = vt_v4_add(b0, vt_v4_set(s, -P2, P1, 0.0));
-    R->c[1] = vt_v4_add(b1, vt_v4_set(P2, s, -P0, 0.0));
-    R->c[2] = vt_v4_add(b2, vt_v4_set(-P1, P0, s, 0.0));
+    /* P = 2 p0 e, N = −P: A's columns add (s, P2, −P1), (−P2, s, P0), (P1, −P0, s), A^T's the
+     * signs turned; lanes 0-3 of a mix are P's, 4-7 N's */
+    A->c[0] = vt_v4_add(b0, vt_v4_mix(S, vt_v4_mix(P, N, 2, 2, 5, 5), 0, 5, 6, 7));
+    A->c[1] = vt_v4_add(b1, vt_v4_mix(vt_v4_mix(P, N, 6, 6, 0, 0), S, 0, 4, 2, 3));
+    A->c[2] = vt_v4_add(b2, vt_v4_mix(vt_v4_mix(P, N, 1, 4, 4, 4), S, 0, 1, 4, 3));
+    R->c[0] = vt_v4_add(b0, vt_v4_mix(S, vt_v4_mix(P, N, 6, 6, 1, 1), 0, 5, 6, 7));
+    R->c[1] = vt_v4_add(b1, vt_v4_mix(vt_v4_mix(P, N, 2, 2, 4, 4), S, 0, 4, 2, 3));
+    R->c[2] = vt_v4_add(b2, vt_v4_mix(vt_v4_mix(P, N, 5, 0, 0, 0), S, 0, 1, 4, 3));
 }
 
 #endif

@@ -141,7 +141,7 @@ static VT_ALWAYS_INLINE void vt_body_wrench_n(double W[6], const vt_model *m, in
                                               vt_v4 fe, vt_v4 ne, vt_v4 c)
 {
     const vt_v4 f = vt_v4_sub(vt_v4_scale(m->body_mass[i], vt_v4_sub(a, g)), fe);
-    vt_v4_store(W, vt_v4_add(vt_v4_sub(n, ne), vt_v4_cross(c, f)));
+    vt_v4_store3_up(W, vt_v4_add(vt_v4_sub(n, ne), vt_v4_cross(c, f)));
     vt_v4_store3(W + 3, f);
 }
 

@@ -217,8 +217,8 @@ static inline void fused_step(const vt_model *m, vt_data *d, double *restrict al
     if (i == 1) { /* o = P_1 */
         const vt_v4 o1 = jt == VT_JOINT_REVOLUTE ? sij : vt_v4_add(sij, t);
         vt_v4_store3(d->origin, o1);
-        vt_v4_store(d->xrel, vt_v4_sub(vt_v4_splat(0.0), o1));
-        vt_v4_store(d->xrel + 3, vt_v4_sub(vt_v4_splat(0.0), o1));
+        vt_v4_store3_up(d->xrel, vt_v4_sub(vt_v4_splat(0.0), o1));
+        vt_v4_store3_up(d->xrel + 3, vt_v4_sub(vt_v4_splat(0.0), o1));
     }
     const vt_v4 o = vt_v4_load3(d->origin);
     const vt_v4 rj = vt_v4_load(d->xrel + 6 * j), wj = vt_v4_load(d->omega + 3 * j), alj = vt_v4_load(alpha + 3 * j);
@@ -227,32 +227,32 @@ static inline void fused_step(const vt_model *m, vt_data *d, double *restrict al
     vt_body_position(&Pr, &rr, &di, rj, sij, jt == VT_JOINT_REVOLUTE ? NULL : &t, sji);
     {
         double *x = d->x + vt_xoff(i), *ej = d->jaxis + 9 * i, *tw = d->twist + 6 * c, *Ai = d->A + 9 * i;
-        vt_v4_store(x, vt_v4_add(o, rr));
+        vt_v4_store3_up(x, vt_v4_add(o, rr));
         vt_v4_store(x + 3, p);
-        vt_v4_store(d->jpoint + 3 * i, vt_v4_add(o, Pr));
-        vt_v4_store(d->xrel + 6 * i, rr);
-        vt_v4_store(d->xrel + 6 * i + 3, Pr);
-        vt_v4_store(d->jsij + 3 * i, sij);
-        vt_v4_store(d->jd + 3 * i, di);
+        vt_v4_store3_up(d->jpoint + 3 * i, vt_v4_add(o, Pr));
+        vt_v4_store3_up(d->xrel + 6 * i, rr);
+        vt_v4_store3_up(d->xrel + 6 * i + 3, Pr);
+        vt_v4_store3_up(d->jsij + 3 * i, sij);
+        vt_v4_store3_up(d->jd + 3 * i, di);
         for (int k = 0; k < (jt == VT_JOINT_FREE ? 3 : 1); k++) vt_v4_store3(ej + 3 * k, e.c[k]);
         for (int k = 0; k < nv; k++, tw += 6) { /* (e, (P − o) × e) or (0, e) */
             int ax;
             const int rot = vt_dof_kind(jt, k, &ax) == VT_DOF_ROT;
-            vt_v4_store(tw, rot ? e.c[ax] : vt_v4_splat(0.0));
-            vt_v4_store(tw + 3, rot ? vt_v4_cross(Pr, e.c[ax]) : e.c[ax]);
+            vt_v4_store3_up(tw, rot ? e.c[ax] : vt_v4_splat(0.0));
+            vt_v4_store3_up(tw + 3, rot ? vt_v4_cross(Pr, e.c[ax]) : e.c[ax]);
         }
-        for (int k = 0; k < 3; k++) vt_v4_store(Ai + 3 * k, A.c[k]);
+        for (int k = 0; k < 3; k++) vt_v4_store3_up(Ai + 3 * k, A.c[k]);
     }
     vt_v4 w, v, pd, al, a, pdd;
     vt_body_velocity(&w, &v, &pd, wj, vj, sij, di, sji, p, jt, nv, e, qd);
     vt_body_acceleration(&al, &a, &pdd, alj, aj, wj, w, sij, sji, p, jt, nv, e, q, qd, qdd);
     {
         double *xd = d->xd + vt_xoff(i), *xdd = d->xdd + vt_xoff(i);
-        vt_v4_store(d->omega + 3 * i, w);
-        vt_v4_store(xd, v);
+        vt_v4_store3_up(d->omega + 3 * i, w);
+        vt_v4_store3_up(xd, v);
         vt_v4_store(xd + 3, pd);
-        vt_v4_store(alpha + 3 * i, al);
-        vt_v4_store(xdd, a);
+        vt_v4_store3_up(alpha + 3 * i, al);
+        vt_v4_store3_up(xdd, a);
         vt_v4_store(xdd + 3, pdd);
     }
     const double *fe = d->xfrc + 6 * i;
