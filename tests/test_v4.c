@@ -9,8 +9,8 @@
  *   lanes       set, splat, load3, with0, the turns and broadcasts: exact; vt_v4_store3 writes
  *               three doubles and leaves the fourth, vt_v4_store3_up and vt_v4_store3_down the
  *               three and at most the one after or before them.
- * The vector form is the one an AVX target compiles (-march=x86-64-v3 or native); CI builds one
- * (.ci/run). */
+ * The vector form is the one an AVX target compiles (-mavx, -march=x86-64-v3 or native); CI's
+ * sanitizers' build is one (.ci/run). */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
