@@ -31,7 +31,7 @@ static const double arm[2] = {0.7, 0.3}, damp[2] = {2.0, 1.5}, fric[2] = {3.0, 1
 /* the double link; drives: 1 joint 1 by f1, 2 joint 2 by f2 (a mask); effects: 1 with arm, damp
  * and fric (joint 2's stated on the motor's side of a 10:1 gear), 0 without; smooth: the friction
  * velocity (0: the sign) */
-static vt_model *double_link(int drives, int effects, double smooth)
+static vt_builder *double_link_builder(int drives, int effects, double smooth)
 {
     vt_builder *b;
     assert_int_equal(vt_builder_create(&b, NULL), VT_OK);
@@ -60,10 +60,20 @@ static vt_model *double_link(int drives, int effects, double smooth)
         dr.f = k ? vt_function_sine(0.4, 0.8, 1.7, 0.3) : vt_function_sine(-0.5, 0.6, 1.1, 0.0);
         assert_true(vt_builder_add_drive(b, &dr) >= 0);
     }
+    return b;
+}
+
+static vt_model *built(vt_builder *b)
+{
     vt_model *m;
     assert_int_equal(vt_builder_build(&m, b), VT_OK);
     vt_builder_free(b);
     return m;
+}
+
+static vt_model *double_link(int drives, int effects, double smooth)
+{
+    return built(double_link_builder(drives, effects, smooth));
 }
 
 static double sgn(double v)
@@ -394,24 +404,13 @@ static void test_effects_overflow(void **state_)
 {
     (void)state_;
     for (int kind = 0; kind < 2; kind++) { /* 0 armature, 1 damping */
-        vt_builder *b;
-        assert_int_equal(vt_builder_create(&b, NULL), VT_OK);
-        for (int i = 1; i <= 2; i++) {
-            vt_body_def body = vt_default_body_def();
-            body.parent = i - 1;
-            body.mass = MASS;
-            body.inertia[0] = 1e-3;
-            body.inertia[4] = body.inertia[8] = MASS * L * L / 12.0;
-            body.joint_child[0] = -0.5 * L;
-            if (i == 2) body.joint_parent[0] = 0.5 * L;
-            if (kind == 0) body.armature[0] = 1e306;
-            else body.damping[0] = 1e306;
-            assert_int_equal(vt_builder_add_body(b, &body), i);
-        }
-        vt_model *m;
+        vt_builder *b = double_link_builder(0, 0, 0.0);
+        vt_joint_effects_def ef = vt_default_joint_effects_def();
+        if (kind == 0) ef.armature[0] = 1e306;
+        else ef.damping[0] = 1e306;
+        for (int i = 1; i <= 2; i++) assert_int_equal(vt_builder_set_joint_effects(b, i, &ef), VT_OK);
+        vt_model *m = built(b);
         vt_data *d;
-        assert_int_equal(vt_builder_build(&m, b), VT_OK);
-        vt_builder_free(b);
         assert_int_equal(vt_data_create(&d, m), VT_OK);
         for (int big = 0; big < 2; big++) {
             const double rate = big ? 1e3 : 0.5; /* 1e306 × 1e3 overflows; × 0.5 does not */
