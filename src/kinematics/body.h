@@ -32,9 +32,10 @@
  * The spatial inertia of body i about the same point, in 13 numbers (m, h = m c, J_P):
  *   J = A J' A^T,   J_P = J + m (|c|² 1 − c c^T),   I s = (J_P w + h × v, m v + w × h)
  *
- * The kernels take and return their vectors as values (base/v4.h: a 3-vector in four lanes) and
- * read nothing of vt_data: the caller loads the reference body's values, and stores the body's
- * own once they are known (its outputs might alias the inputs as far as the compiler knows).
+ * The kinematics' and the wrench's kernels take and return their vectors as values (base/v4.h:
+ * a 3-vector in four lanes) and read nothing of vt_data: the caller loads the reference body's
+ * values, and stores the body's own once they are known (its outputs might alias the inputs as
+ * far as the compiler knows); vt_body_wrench_global and the inertias read theirs from d.
  */
 #ifndef VT_KINEMATICS_BODY_H
 #define VT_KINEMATICS_BODY_H
