@@ -26,7 +26,8 @@
  * the third argument or in VT_BENCH_ROBOTS (bench/peers/install.sh prints it; without it, or
  * in a build without URDF loading, the rows are skipped with a message). vtdyn_motion is
  * vt_inverse_dynamics_motion on vt_urdf_builder's model (floating roots: a VT_JOINT_FREE joint,
- * options.floating = 1; mimic joints independent, as Pinocchio loads them), efforts and every
+ * options.floating = 1; mimic joints independent, as Pinocchio loads them; the joints'
+ * <dynamics> left out, as rnea and MuJoCo's inverse leave them), efforts and every
  * reaction in both frames, at a random state (q, q̇, q̈); Pinocchio's rnea (free flyer root) and
  * rnea with every reaction mapped to world (pinocchio_rnea_world), and MuJoCo's leanest path
  * (mujoco_post_project) on the same state, each peer loading the file itself. Every peer's
@@ -483,6 +484,7 @@ static void robot_row(const char *dir, const char *scene, const char *rel, int f
     vt_urdf_options opt = vt_default_urdf_options();
     opt.floating = floating;
     opt.mimic = 0; /* as Pinocchio and MuJoCo load the file: a mimic joint moves on its own */
+    opt.dynamics = 0; /* as Pinocchio's rnea and MuJoCo's inverse leave <dynamics> out: like for like */
     char msg[256] = "";
     vt_builder *b;
     vt_model *m;
