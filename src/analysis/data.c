@@ -63,7 +63,9 @@ static size_t layout(const vt_model *m, vt_data *d, char *base, int full)
     const size_t nS = full ? nx * nv : 0, nM = full ? nv * nv : 0;
     /* Φ_q: a joint-driven model's rows are unit rows, which the recursive files never form */
     const int phiq = full || !m->joint_driven;
-    /* every array on a cache line (VT_DATA_ALIGN: the vectorized kernels' 8-double columns) */
+    /* every array on a cache line (VT_DATA_ALIGN: the vectorized kernels' 8-double columns); the
+     * arrays of 3-vectors that the body kernels read and write four lanes at a time (base/v4.h)
+     * one double longer, for the last body's fourth lane */
     vt_block blk = {.base = base, .used = sizeof(vt_data), .align = VT_DATA_ALIGN};
     d->q = vt_block_take(&blk, (size_t)m->nq, sizeof(double));
     d->qd = vt_block_take(&blk, nv, sizeof(double));

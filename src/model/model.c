@@ -304,6 +304,7 @@ static void layout_model(vt_block *b, vt_model *m, int n, int nv, int nq, int nd
     m->body_vadr = vt_block_take(b, nb, sizeof(int));
     m->body_nv = vt_block_take(b, nb, sizeof(int));
     m->body_mass = vt_block_take(b, nb, sizeof(double));
+    /* one double more where the body kernels read four lanes (base/v4.h): the last body's */
     m->body_inertia = vt_block_take(b, 9 * nb + 1, sizeof(double));
     m->body_jpar = vt_block_take(b, 3 * nb + 1, sizeof(double));
     m->body_jchild = vt_block_take(b, 3 * nb + 1, sizeof(double));
