@@ -3,6 +3,7 @@
  * beyond the tolerance), and the parallel axes against a rod's inertia about its end written from
  * the definition (m L² / 3) and against the two-step merge of three point masses (the sum of
  * m_k (|r_k|² 1 − r_k r_kᵀ) about the common centre of mass). */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -65,6 +66,13 @@ static void test_parallel_axes(void **state)
     vt_inertia_add(J, m, Jc, NULL, d);
     assert_true(fabs(J[4] - m * L * L / 3) <= 1e-15 * m * L * L && fabs(J[8] - m * L * L / 3) <= 1e-15 * m * L * L);
     assert_true(J[0] == 0.0 && J[1] == 0.0 && J[3] == 0.0);
+    /* a point mass 1 km out along x, 1 and 2 cm off it: about x, m (0.01² + 0.02²) to the last
+     * digits, not |d|² − d_x², whose 1e6 m² cancel to 5e-4 (1.2e-7 relative lost) */
+    const double dfar[3] = {1e3, 0.01, 0.02}, zero9[9] = {0};
+    double Jf[9] = {0};
+    vt_inertia_add(Jf, m, zero9, NULL, dfar);
+    assert_true(fabs(Jf[0] - m * 5e-4) <= 4.0 * DBL_EPSILON * m * 5e-4);
+    assert_true(fabs(Jf[3] + m * 10.0) <= 4.0 * DBL_EPSILON * m * 10.0);
     /* three point masses merged one by one about their common centre equal Σ m (|r|² 1 − r rᵀ),
      * and a part in turned axes Q: Q Jp Qᵀ */
     const double pm[3] = {1.0, 2.0, 0.5}, pr[3][3] = {{0.3, -0.2, 0.1}, {-0.1, 0.4, 0.2}, {0.2, 0.1, -0.6}};

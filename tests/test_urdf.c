@@ -1046,7 +1046,9 @@ static void test_payload_as_edited_file(void **state)
         vt_model_free(ma);
     }
     print_message("payload through the API against the edited file: largest relative difference %.3g\n", worst_payload);
-    if (!(worst_payload <= 1e-15)) fail_msg("relative difference %.3g > 1e-15", worst_payload);
+    /* two orders of the same sums (the URDF's merge, the payload's): 1e-15 measured without FMA
+     * contraction, 2e-15 with (-march=native) */
+    if (!(worst_payload <= 1e-14)) fail_msg("relative difference %.3g > 1e-14", worst_payload);
 
     /* inertia_tol in the URDF options: romeo_small's 0.18 % off the triangle inequality */
     const char *romeo = "<robot name=\"r\"><link name=\"world\"/><link name=\"a\"><inertial><mass value=\"1\"/>"

@@ -64,7 +64,6 @@ void vt_inertia_symmetric(double J[9])
 
 void vt_inertia_add(double J[9], double m, const double Jp[9], const double Q[9], const double d[3])
 {
-    const double dd = vt_dot3(d, d);
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) {
             double s = 0.0;
@@ -73,7 +72,11 @@ void vt_inertia_add(double J[9], double m, const double Jp[9], const double Q[9]
             else
                 for (int a = 0; a < 3; a++)
                     for (int e = 0; e < 3; e++) s += Q[r + 3 * a] * Jp[a + 3 * e] * Q[c + 3 * e];
-            J[r + 3 * c] += s + m * ((r == c ? dd : 0.0) - d[r] * d[c]);
+            /* m (|d|² δ_rc − d_r d_c): on the diagonal the other two squares, not |d|² − d_r²,
+             * which cancels (and, contracted into one FMA, leaves d_r²'s rounding where the
+             * exact value is 0: a rod's own axis) */
+            const double pa = r == c ? d[(r + 1) % 3] * d[(r + 1) % 3] + d[(r + 2) % 3] * d[(r + 2) % 3] : -(d[r] * d[c]);
+            J[r + 3 * c] += s + m * pa;
         }
 }
 
