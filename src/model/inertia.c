@@ -11,7 +11,6 @@
 #include "model/inertia.h"
 #include "base/lapack.h"
 #include "base/status.h"
-#include "base/vec3.h"
 
 /* Inertia: symmetric, principal moments ≥ 0 and each ≤ the sum of the other two, to the relative
  * tolerance reltol (vt_model_def.inertia_tol, by default VT_INERTIA_TOL) of its largest entry
