@@ -193,6 +193,8 @@ int write_header(run *x, long long nrow)
         }
         return 0;
     }
+    /* the rows' values go to the file as they are, not through a buffer (its first write) */
+    setvbuf(f, NULL, _IONBF, 0);
     char *h;
     size_t len, min = 0;
     const char *const *names = (const char *const *)x->names;

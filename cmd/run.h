@@ -17,8 +17,11 @@
 #define NFREE 19
 extern const char *const free_suffix[NFREE];
 
-/* the rows of a chunk, at most, and the bytes its arrays may take (fewer rows for a large robot) */
-#define CHUNK_ROWS 4096
+/* the rows of a chunk, at most: on one thread few enough that they stay in the core's cache from
+ * their parsing through the solve to their output; on more, eight times as many, since each chunk
+ * costs the threads' wake-ups and waits (bench/bench_command.sh, docs/command.md). And the bytes
+ * a chunk's arrays may take (fewer rows for a large robot). */
+#define CHUNK_ROWS 512
 #define CHUNK_BYTES ((size_t)64 << 20)
 
 /* one moving joint's input columns and output */

@@ -39,7 +39,8 @@ int chunk_arrays(run *x)
     const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + bear * nb4 + (lim + parts) * 3 * nv +
                             nout + 3 * nk) + 4 * nk + 4 + 16 + text + 24 * ncol;
     size_t K = CHUNK_BYTES / row;
-    if (K > CHUNK_ROWS) K = CHUNK_ROWS;
+    const size_t most = x->T > 1 ? 8 * CHUNK_ROWS : CHUNK_ROWS;
+    if (K > most) K = most;
     if (K < 1) K = 1;
     x->K = (int)K;
     x->cells = malloc(K * ncol * sizeof *x->cells);

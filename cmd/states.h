@@ -4,7 +4,7 @@
 
 #include "run.h"
 
-/* the chunk's rows (as many as CHUNK_BYTES holds, CHUNK_ROWS at most) and arrays; 0 or 1 */
+/* the chunk's rows (as many as CHUNK_BYTES holds, CHUNK_ROWS a thread at most) and arrays; 0 or 1 */
 int chunk_arrays(run *x);
 
 /* the batch's inputs and outputs for the chunk's first n rows: the run's arrays */

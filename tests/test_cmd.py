@@ -597,7 +597,8 @@ def write_csv(path, names, rows):
 
 def chunks_threads(vtdyn, urdf, work, check):
     """States read and solved in chunks on threads: the output's bytes the same for -j 1 and -j 3
-    on 9,000 rows (three chunks) and on a floating root's rows, and the same as each row's alone;
+    on 9,000 rows (18 chunks of 512 rows on one thread, three of 4,096 on more) and on a floating
+    root's rows, and the same as each row's alone;
     the first failing row of a chunk named (a cell, a solve), for any -j, with no output left;
     the resident memory flat in the number of rows"""
     big = os.path.join(work, "many.csv")
@@ -611,7 +612,7 @@ def chunks_threads(vtdyn, urdf, work, check):
         outs[j] = open(out, "rb").read() if r.returncode == 0 else b""
     check(outs["1"] == outs["3"] and outs["1"].count(b"\n") == 9001, "-j 1 and -j 3 write the same bytes")
     few = os.path.join(work, "few.csv")
-    write_csv(few, DL_COLS, rows[4090:4100])  # across the first chunk's end
+    write_csv(few, DL_COLS, rows[4090:4100])  # across a chunk's end, on any number of threads
     r = run(vtdyn, "inverse", urdf, few)
     check(r.returncode == 0 and r.stdout.encode().splitlines()[1:] == outs["1"].splitlines()[4091:4101],
           "rows across a chunk's end as alone")
@@ -633,9 +634,9 @@ def chunks_threads(vtdyn, urdf, work, check):
     got = [run(vtdyn, "inverse", "-j", j, urdf_f, fstates) for j in ("1", "3")]
     check(all(g.returncode == 0 for g in got) and got[0].stdout == got[1].stdout and len(got[0].stdout.splitlines()) == 5001,
           "a floating root's rows: -j 1 and -j 3 the same")
-    # the first failing row of a chunk: a cell (row 8200, the third chunk), a state that fails its
+    # the first failing row of a chunk: a cell (row 8200, in the last chunk), a state that fails its
     # solve (row 5000, joint velocities of 1e200) before a bad cell in the same chunk (row 5003),
-    # and a bad cell (4999) before a failing state (5000)
+    # and a bad cell (4999) before a failing state (5000) (one chunk for both, 4608-5119 or 4096-8191)
     def broken(changes):
         lines = [",".join(repr(x) for x in r) for r in rows]
         for k, col, text in changes:
@@ -656,7 +657,7 @@ def chunks_threads(vtdyn, urdf, work, check):
             check(r.returncode == 1 and ("broken.csv:%d:" % line) in r.stderr and what in r.stderr
                   and not os.path.exists(never) and not os.path.exists(never + ".part"),
                   "the first failing row named (line %d, -j %s), no output left: %r" % (line, j, r.stderr))
-    # the resident memory: flat in the rows (chunks of at most 4096 rows), CSV and .npy in
+    # the resident memory: flat in the rows (chunks of at most 4,096 rows), CSV and .npy in
     if "ASAN_OPTIONS" in os.environ or "VALGRIND" in os.environ:
         print("resident memory: not measured under a sanitizer")
         return
