@@ -1,11 +1,111 @@
-// Numbers as text, see number_text.h: std::to_chars and std::from_chars of <charconv>.
+// Numbers as text, see number_text.h: std::to_chars and std::from_chars of <charconv>; with
+// Dragonbox (VT_HAVE_DRAGONBOX) the shortest digits come from its to_decimal and are laid out
+// here as std::to_chars lays them out (tests/test_number_text.cc holds the two equal byte for byte).
 #include "number_text.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <system_error>
+
+#ifdef VT_HAVE_DRAGONBOX
+#include <dragonbox/dragonbox.h>
+
+// "00" ... "99"
+static const char pairs[201] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                               "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                               "8081828384858687888990919293949596979899";
+
+// u < 10^8 as its eight decimal digits (leading zeros kept) at d
+static inline void eight_digits(char *d, std::uint32_t u)
+{
+    const std::uint32_t hi = u / 10000, lo = u % 10000; // two chains of two pairs each
+    std::memcpy(d, pairs + 2 * (hi / 100), 2);
+    std::memcpy(d + 2, pairs + 2 * (hi % 100), 2);
+    std::memcpy(d + 4, pairs + 2 * (lo / 100), 2);
+    std::memcpy(d + 6, pairs + 2 * (lo % 100), 2);
+}
+
+// the decimal digits of u (1 <= u < 10^17: Dragonbox's significand of a double), most
+// significant first: all seventeen written into t (leading zeros kept: no loop whose length
+// depends on u), *n set to how many u has; returns its first
+static const char *decimal_digits(char t[17], std::uint64_t u, int *n)
+{
+    static const std::uint64_t p10[18] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000,
+                                          1000000000, 10000000000, 100000000000, 1000000000000,
+                                          10000000000000, 100000000000000, 1000000000000000,
+                                          10000000000000000, 100000000000000000};
+    // ⌊log10 2^b⌋ for b bits (1233 / 4096 below log10 2), then one comparison
+    const int b = ((64 - __builtin_clzll(u)) * 1233) >> 12;
+    *n = b + (u >= p10[b]);
+    const std::uint64_t hi = u / 100000000; // < 10^9
+    t[0] = static_cast<char>('0' + hi / 100000000);
+    eight_digits(t + 1, static_cast<std::uint32_t>(hi % 100000000));
+    eight_digits(t + 9, static_cast<std::uint32_t>(u % 100000000));
+    return t + 17 - *n;
+}
+
+// v (finite, nonzero) = D 10^E, D the fewest digits that read back as v (Dragonbox): printf's %e
+// with those digits (d.ddde±XX, at least two exponent digits) or its %f (the digits with the point
+// placed, zeros filled in), whichever is shorter, %f on a tie, as C++17 asks of std::to_chars;
+// the characters written, or 0 where %f would print more digits than D's (std::to_chars then)
+static int shortest(char *buf, double v)
+{
+    const auto dec = jkj::dragonbox::to_decimal(v);
+    char all[17];
+    int k;
+    const char *dig = decimal_digits(all, dec.significand, &k);
+    const int E = dec.exponent, X = E + k - 1;
+    const int ax = X < 0 ? -X : X, xdigits = ax >= 100 ? 3 : 2;
+    const int sci = k + (k > 1) + 2 + xdigits;
+    const int fixed = E >= 0 ? k + E : k + E > 0 ? k + 1 : 2 - E;
+    // %f of an integer from 2^53 on prints its exact digits, not the shortest with zeros after
+    if (fixed <= sci && E > 0 && std::fabs(v) >= 9007199254740992.0) return 0;
+    char *p = buf;
+    if (dec.is_negative) *p++ = '-';
+    if (fixed <= sci) {
+        if (E >= 0) { // the digits, then E zeros
+            std::memcpy(p, dig, k);
+            std::memset(p + k, '0', E);
+            p += k + E;
+        } else if (k + E > 0) { // the point among the digits
+            std::memcpy(p, dig, k + E);
+            p[k + E] = '.';
+            std::memcpy(p + k + E + 1, dig + k + E, -E);
+            p += k + 1;
+        } else { // 0.00ddd
+            *p++ = '0', *p++ = '.';
+            std::memset(p, '0', -(k + E));
+            p += -(k + E);
+            std::memcpy(p, dig, k);
+            p += k;
+        }
+    } else {
+        *p++ = dig[0];
+        if (k > 1) {
+            *p++ = '.';
+            std::memcpy(p, dig + 1, k - 1);
+            p += k - 1;
+        }
+        *p++ = 'e';
+        *p++ = X < 0 ? '-' : '+';
+        if (xdigits == 3) *p++ = static_cast<char>('0' + ax / 100);
+        *p++ = static_cast<char>('0' + ax / 10 % 10);
+        *p++ = static_cast<char>('0' + ax % 10);
+    }
+    return static_cast<int>(p - buf);
+}
+#endif
 
 int number_print(char *buf, double v, int precision)
 {
+#ifdef VT_HAVE_DRAGONBOX
+    if (precision == 0 && v != 0.0 && std::isfinite(v)) {
+        const int n = shortest(buf, v);
+        if (n > 0) return n;
+    }
+#endif
     const std::to_chars_result r = precision > 0
         ? std::to_chars(buf, buf + NUMBER_TEXT_MAX, v, std::chars_format::general, precision)
         : std::to_chars(buf, buf + NUMBER_TEXT_MAX, v);
