@@ -23,16 +23,27 @@ static inline int vt_all_finite(const double *a, size_t n)
 /* Several arrays scanned as one: each array's entries ORed into four lanes (the last four
  * entries taken whole, overlapping the ones before: an OR does not mind), tested once at the
  * end. For the fused passes' many short arrays: a vt_all_finite per array paid its set-up,
- * remainder and reduction for a few entries each. */
+ * remainder and reduction for a few entries each. The four lanes are one 256-bit vector where
+ * the target has AVX2, else two of 128 bits: SSE2 (baseline x86-64) keeps a 256-bit generic
+ * vector in memory and splits its compares into scalars. */
 #if defined(__GNUC__)
-typedef uint64_t vt_u64x4 __attribute__((vector_size(32)));
+#if defined(__AVX2__)
+#define VT_SCAN_PARTS 1
+typedef uint64_t vt_scan_u __attribute__((vector_size(32)));
+typedef double vt_scan_f __attribute__((vector_size(32)));
 #else
-typedef struct {
-    uint64_t l[4];
-} vt_u64x4;
+#define VT_SCAN_PARTS 2
+typedef uint64_t vt_scan_u __attribute__((vector_size(16)));
+typedef double vt_scan_f __attribute__((vector_size(16)));
+#endif
+#define VT_SCAN_LANES (4 / VT_SCAN_PARTS)
 #endif
 typedef struct {
-    vt_u64x4 l;
+#if defined(__GNUC__)
+    vt_scan_u l[VT_SCAN_PARTS];
+#else
+    uint64_t l[4];
+#endif
 } vt_finite_scan;
 static inline uint64_t vt_nonfinite_bit(const double *a)
 {
@@ -44,11 +55,13 @@ static inline uint64_t vt_nonfinite_bit(const double *a)
 static inline void vt_finite_add4(vt_finite_scan *s, const double *a)
 {
 #if defined(__GNUC__)
-    vt_u64x4 u;
-    memcpy(&u, a, sizeof u);
-    s->l |= (u & 0x7ff0000000000000u) + 0x0010000000000000u;
+    for (int h = 0; h < VT_SCAN_PARTS; h++) {
+        vt_scan_u u;
+        memcpy(&u, a + VT_SCAN_LANES * h, sizeof u);
+        s->l[h] |= (u & 0x7ff0000000000000u) + 0x0010000000000000u;
+    }
 #else
-    for (int j = 0; j < 4; j++) s->l.l[j] |= vt_nonfinite_bit(a + j);
+    for (int j = 0; j < 4; j++) s->l[j] |= vt_nonfinite_bit(a + j);
 #endif
 }
 static inline void vt_finite_add(vt_finite_scan *s, const double *a, int n)
@@ -62,44 +75,69 @@ static inline void vt_finite_add(vt_finite_scan *s, const double *a, int n)
     for (int k = 0; k < n - 4; k += 4) vt_finite_add4(s, a + k);
     vt_finite_add4(s, a + n - 4);
 }
+/* the four lanes ORed */
+static inline uint64_t vt_finite_bits(const vt_finite_scan *s)
+{
+#if defined(__GNUC__)
+    vt_scan_u u = s->l[0];
+    for (int h = 1; h < VT_SCAN_PARTS; h++) u |= s->l[h];
+    uint64_t any = 0;
+    for (int k = 0; k < VT_SCAN_LANES; k++) any |= u[k];
+    return any;
+#else
+    return (s->l[0] | s->l[1]) | (s->l[2] | s->l[3]);
+#endif
+}
 static inline int vt_finite_ok(const vt_finite_scan *s)
 {
-#if defined(__GNUC__)
-    const uint64_t any = (s->l[0] | s->l[1]) | (s->l[2] | s->l[3]);
-#else
-    const uint64_t any = (s->l.l[0] | s->l.l[1]) | (s->l.l[2] | s->l.l[3]);
-#endif
-    return !(any >> 63);
+    return !(vt_finite_bits(s) >> 63);
 }
 
-/* The largest |a_k| of several arrays, scanned as one (as vt_finite_scan): a double's bits with
- * the sign cleared order as the magnitudes do, and Inf's and NaN's lie above every finite one,
- * so one integer maximum gives both. vt_max_result: the largest magnitude, +Inf if any entry is
- * Inf or NaN. */
-#if defined(__GNUC__)
-typedef int64_t vt_i64x4 __attribute__((vector_size(32)));
+/* The largest |a_k| of several arrays, scanned as one (as vt_finite_scan). A double's bits with
+ * the sign cleared order as the magnitudes do, and Inf's and NaN's lie above every finite one:
+ * with AVX2, one 64-bit integer maximum of the bits gives both. SSE2 has no 64-bit integer
+ * compare (the baseline build spilled every lane to make one), so there the magnitudes are kept
+ * by a floating-point maximum and vt_finite_scan's bits beside them (a NaN compares false and
+ * would be passed over). vt_max_result: the largest magnitude, +Inf if any entry is Inf or NaN. */
+#if defined(__GNUC__) && VT_SCAN_PARTS == 1
+typedef int64_t vt_scan_i __attribute__((vector_size(32)));
+typedef struct {
+    vt_scan_i m[1];
+} vt_max_scan;
 #else
 typedef struct {
-    int64_t l[4];
-} vt_i64x4;
+#if defined(__GNUC__)
+    vt_scan_f m[VT_SCAN_PARTS];
+#else
+    double m[4];
 #endif
-typedef struct {
-    vt_i64x4 l;
+    vt_finite_scan bad;
 } vt_max_scan;
+#endif
 static inline void vt_max_add4(vt_max_scan *s, const double *a)
 {
-#if defined(__GNUC__)
-    vt_i64x4 u;
+#if defined(__GNUC__) && VT_SCAN_PARTS == 1
+    vt_scan_i u;
     memcpy(&u, a, sizeof u);
     u &= 0x7fffffffffffffff;
-    const vt_i64x4 gt = u > s->l;
-    s->l = (u & gt) | (s->l & ~gt);
+    const vt_scan_i gt = u > s->m[0];
+    s->m[0] = (u & gt) | (s->m[0] & ~gt);
+#elif defined(__GNUC__)
+    vt_finite_add4(&s->bad, a);
+    for (int h = 0; h < VT_SCAN_PARTS; h++) {
+        vt_scan_u v;
+        memcpy(&v, a + VT_SCAN_LANES * h, sizeof v);
+        v &= 0x7fffffffffffffffu;
+        vt_scan_f x;
+        memcpy(&x, &v, sizeof x);
+        const vt_scan_u gt = (vt_scan_u)(x > s->m[h]); /* all ones where x is larger: a blend, no branch */
+        s->m[h] = (vt_scan_f)((v & gt) | ((vt_scan_u)s->m[h] & ~gt));
+    }
 #else
+    vt_finite_add4(&s->bad, a);
     for (int j = 0; j < 4; j++) {
-        int64_t u;
-        memcpy(&u, a + j, sizeof u);
-        u &= 0x7fffffffffffffff;
-        if (u > s->l.l[j]) s->l.l[j] = u;
+        const double x = fabs(a[j]);
+        if (x > s->m[j]) s->m[j] = x;
     }
 #endif
 }
@@ -107,13 +145,20 @@ static inline void vt_max_add(vt_max_scan *s, const double *a, int n)
 {
     if (n < 4) { /* one by one into the first lane: a copy to pad four cost more */
         for (int k = 0; k < n; k++) {
+#if defined(__GNUC__) && VT_SCAN_PARTS == 1
             int64_t u;
             memcpy(&u, a + k, sizeof u);
             u &= 0x7fffffffffffffff;
-#if defined(__GNUC__)
-            if (u > s->l[0]) s->l[0] = u;
+            if (u > s->m[0][0]) s->m[0][0] = u;
 #else
-            if (u > s->l.l[0]) s->l.l[0] = u;
+            const double x = fabs(a[k]);
+#if defined(__GNUC__)
+            s->bad.l[0][0] |= vt_nonfinite_bit(a + k);
+            if (x > s->m[0][0]) s->m[0][0] = x;
+#else
+            s->bad.l[0] |= vt_nonfinite_bit(a + k);
+            if (x > s->m[0]) s->m[0] = x;
+#endif
 #endif
         }
         return;
@@ -123,18 +168,24 @@ static inline void vt_max_add(vt_max_scan *s, const double *a, int n)
 }
 static inline double vt_max_result(const vt_max_scan *s)
 {
-#if defined(__GNUC__)
-    const int64_t l0 = s->l[0], l1 = s->l[1], l2 = s->l[2], l3 = s->l[3];
-#else
-    const int64_t l0 = s->l.l[0], l1 = s->l.l[1], l2 = s->l.l[2], l3 = s->l.l[3];
-#endif
-    int64_t mx = l0 > l1 ? l0 : l1;
-    mx = mx > l2 ? mx : l2;
-    mx = mx > l3 ? mx : l3;
+#if defined(__GNUC__) && VT_SCAN_PARTS == 1
+    int64_t mx = 0;
+    for (int k = 0; k < 4; k++) mx = s->m[0][k] > mx ? s->m[0][k] : mx;
     if (mx >= 0x7ff0000000000000) return HUGE_VAL;
     double r;
     memcpy(&r, &mx, sizeof r);
     return r;
+#else
+    if (vt_finite_bits(&s->bad) >> 63) return HUGE_VAL;
+    double mx = 0.0;
+#if defined(__GNUC__)
+    for (int h = 0; h < VT_SCAN_PARTS; h++)
+        for (int k = 0; k < VT_SCAN_LANES; k++) mx = s->m[h][k] > mx ? s->m[h][k] : mx;
+#else
+    for (int k = 0; k < 4; k++) mx = s->m[k] > mx ? s->m[k] : mx;
+#endif
+    return mx;
+#endif
 }
 
 #endif
