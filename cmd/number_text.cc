@@ -46,14 +46,21 @@ static const char *decimal_digits(char t[17], std::uint64_t u, int *n)
     return t + 17 - *n;
 }
 
+// Copies and fills of a constant length (a move or two each, where a length known only at run
+// time costs a call of memcpy or memset): DIGITS bytes from a source that has them, ZEROS '0's.
+// They write past what the number keeps, into the room number_print_room's caller gives; the
+// layout below writes each part after the one before, over what that one wrote beyond its end.
+enum { DIGITS = 17, ZEROS = 24 };
+
 // v (finite, nonzero) = D 10^E, D the fewest digits that read back as v (Dragonbox): printf's %e
 // with those digits (d.ddde±XX, at least two exponent digits) or its %f (the digits with the point
 // placed, zeros filled in), whichever is shorter, %f on a tie, as C++17 asks of std::to_chars;
-// the characters written, or 0 where %f would print more digits than D's (std::to_chars then)
+// the characters kept, or 0 where %f would print more digits than D's (std::to_chars then).
+// Writes up to NUMBER_TEXT_ROOM bytes at buf.
 static int shortest(char *buf, double v)
 {
     const auto dec = jkj::dragonbox::to_decimal(v);
-    char all[17];
+    char all[17 + DIGITS] = {}; // the digits, then room for a constant-length copy from any of them
     int k;
     const char *dig = decimal_digits(all, dec.significand, &k);
     const int E = dec.exponent, X = E + k - 1;
@@ -63,34 +70,34 @@ static int shortest(char *buf, double v)
     // %f of an integer from 2^53 on prints its exact digits, not the shortest with zeros after
     if (fixed <= sci && E > 0 && std::fabs(v) >= 9007199254740992.0) return 0;
     char *p = buf;
-    if (dec.is_negative) *p++ = '-';
+    *p = '-';
+    p += dec.is_negative;
     if (fixed <= sci) {
-        if (E >= 0) { // the digits, then E zeros
-            std::memcpy(p, dig, k);
-            std::memset(p + k, '0', E);
+        if (E >= 0) { // the digits, then E zeros (E < ZEROS: %e is shorter before that)
+            std::memcpy(p, dig, DIGITS);
+            std::memset(p + k, '0', ZEROS);
             p += k + E;
         } else if (k + E > 0) { // the point among the digits
-            std::memcpy(p, dig, k + E);
+            std::memcpy(p, dig, DIGITS);
             p[k + E] = '.';
-            std::memcpy(p + k + E + 1, dig + k + E, -E);
+            std::memcpy(p + k + E + 1, dig + k + E, DIGITS);
             p += k + 1;
-        } else { // 0.00ddd
+        } else { // 0.00ddd (fewer than ZEROS zeros: %e is shorter before that)
             *p++ = '0', *p++ = '.';
-            std::memset(p, '0', -(k + E));
+            std::memset(p, '0', ZEROS);
             p += -(k + E);
-            std::memcpy(p, dig, k);
+            std::memcpy(p, dig, DIGITS);
             p += k;
         }
     } else {
-        *p++ = dig[0];
-        if (k > 1) {
-            *p++ = '.';
-            std::memcpy(p, dig + 1, k - 1);
-            p += k - 1;
-        }
+        p[0] = dig[0];
+        p[1] = '.';
+        std::memcpy(p + 2, dig + 1, DIGITS);
+        p += k > 1 ? k + 1 : 1;
         *p++ = 'e';
         *p++ = X < 0 ? '-' : '+';
-        if (xdigits == 3) *p++ = static_cast<char>('0' + ax / 100);
+        *p = static_cast<char>('0' + ax / 100);
+        p += xdigits == 3;
         *p++ = static_cast<char>('0' + ax / 10 % 10);
         *p++ = static_cast<char>('0' + ax % 10);
     }
@@ -98,7 +105,7 @@ static int shortest(char *buf, double v)
 }
 #endif
 
-int number_print(char *buf, double v, int precision)
+int number_print_room(char *buf, double v, int precision)
 {
 #ifdef VT_HAVE_DRAGONBOX
     if (precision == 0 && v != 0.0 && std::isfinite(v)) {
@@ -110,6 +117,14 @@ int number_print(char *buf, double v, int precision)
         ? std::to_chars(buf, buf + NUMBER_TEXT_MAX, v, std::chars_format::general, precision)
         : std::to_chars(buf, buf + NUMBER_TEXT_MAX, v);
     return r.ec == std::errc() ? static_cast<int>(r.ptr - buf) : 0;
+}
+
+int number_print(char *buf, double v, int precision)
+{
+    char room[NUMBER_TEXT_ROOM];
+    const int n = number_print_room(room, v, precision);
+    std::memcpy(buf, room, static_cast<size_t>(n));
+    return n;
 }
 
 int number_parse(const char *s, size_t len, double *v)

@@ -15,10 +15,17 @@ extern "C" {
 /* the most characters number_print writes: "-2.2250738585072014e-308" */
 #define NUMBER_TEXT_MAX 24
 
+/* the bytes number_print_room may write at buf: its copies are of a constant length, past what
+ * the number keeps */
+#define NUMBER_TEXT_ROOM 64
+
 /* v into buf (no terminating NUL; buf holds NUMBER_TEXT_MAX): with precision 0 the fewest
  * significant digits that read back as v, fixed or exponent, whichever is shorter; with precision
- * 1 to 17 the bytes of printf's "%.{precision}g". Returns the characters written. */
+ * 1 to 17 the bytes of printf's "%.{precision}g". Returns the characters written.
+ * number_print_room: the same characters, buf holding NUMBER_TEXT_ROOM (the bytes after the
+ * number's are overwritten, with anything): for a row's numbers one after the other. */
 int number_print(char *buf, double v, int precision);
+int number_print_room(char *buf, double v, int precision);
 
 /* the len characters at s read as one decimal number (an optional '-', digits with an optional
  * point, an optional exponent; or inf, nan), correctly rounded: 1 when the whole of them is one

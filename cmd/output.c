@@ -139,7 +139,8 @@ static void format_block(void *ctx, int first, int end, int k)
 {
     run *x = ctx;
     block_state *b = &x->blk[k];
-    const size_t need = (size_t)(end - first) * ((NUMBER_TEXT_MAX + 1) * (size_t)x->nout + 1);
+    /* the last number's room beyond (number_print_room) */
+    const size_t need = (size_t)(end - first) * ((NUMBER_TEXT_MAX + 1) * (size_t)x->nout + 1) + NUMBER_TEXT_ROOM;
     const int o = x->oset;
     b->len[o] = 0;
     if (need > b->cap[o]) {
@@ -157,7 +158,7 @@ static void format_block(void *ctx, int first, int end, int k)
     for (int r = first; r < end; r++) {
         gather(x, r, b->v);
         for (int c = 0; c < x->nout; c++) {
-            p += number_print(p, b->v[c], prec);
+            p += number_print_room(p, b->v[c], prec);
             *p++ = c + 1 < x->nout ? ',' : '\n';
         }
     }

@@ -1,8 +1,9 @@
 // cmd/number_text.cc: the command's numbers as text. Against independent references: every
 // printed double reads back as itself (std::from_chars), --precision P prints printf's %.Pg, and
 // the shortest form, laid out here from Dragonbox's digits, is std::to_chars's byte for byte (the
-// layout's reference, libstdc++'s Ryu); cells read as strtod reads them. Built without Dragonbox
-// the shortest form is std::to_chars itself: that comparison is not run (and says so).
+// layout's reference, libstdc++'s Ryu); cells read as strtod reads them; number_print_room writes
+// the same within its room. Built without Dragonbox the shortest form is std::to_chars itself:
+// that comparison is not run (and says so).
 #include <cfloat>
 #include <charconv>
 #include <cmath>
@@ -96,6 +97,25 @@ static void test_precision_as_printf(void **state)
     assert_int_equal(bad, 0);
 }
 
+// number_print_room (a row's numbers written one after the other): number_print's characters,
+// and nothing written past NUMBER_TEXT_ROOM (the bytes after it left as they were)
+static void test_room(void **state)
+{
+    (void)state;
+    long bad = 0;
+    each_double([&](double x) {
+        for (int p : {0, 6}) {
+            char a[NUMBER_TEXT_MAX], r[NUMBER_TEXT_ROOM + 16];
+            std::memset(r, 0x5a, sizeof r);
+            const int n = number_print(a, x, p), m = number_print_room(r, x, p);
+            bool ok = n == m && std::memcmp(a, r, static_cast<size_t>(n)) == 0;
+            for (int k = NUMBER_TEXT_ROOM; k < NUMBER_TEXT_ROOM + 16; k++) ok = ok && r[k] == 0x5a;
+            if (!ok && bad++ < 5) print_error("%.17g (precision %d): '%.*s', room '%.*s'\n", x, p, n, a, m, r);
+        }
+    });
+    assert_int_equal(bad, 0);
+}
+
 static void test_parse_as_strtod(void **state)
 {
     (void)state;
@@ -120,6 +140,7 @@ int main(void)
         cmocka_unit_test(test_shortest_reads_back),
         cmocka_unit_test(test_precision_as_printf),
         cmocka_unit_test(test_parse_as_strtod),
+        cmocka_unit_test(test_room),
     };
     const struct CMUnitTest layout[] = {
         cmocka_unit_test(test_shortest_as_to_chars),
