@@ -7,7 +7,8 @@
 # states (bench/command_lib.c: one vt_batch_inverse_dynamics_motion over every row with the
 # outputs the command writes, the median of ROUNDS calls). Prints the date, the CPU, the load,
 # the commit, then per case: µs per row, the ratio to the library at the same threads, the split
-# of the median run (--times: reading, solving, writing), and -j 2's speed-up over -j 1.
+# of the median run (--times: reading, solving, writing), and -j 2's speed-up over -j 1. Each
+# run starts after a sync (not timed), so that what the runs before wrote is on the disk.
 #
 #   bench/bench_command.sh [BUILD_DIR] [ROWS] [ROUNDS]     (build, 100000, 5)
 #
@@ -71,6 +72,8 @@ bench() {
             : > "$tmp/runs"
             for r in $(seq "$rounds"); do
                 rm -f "$tmp/out_$j.$out"
+                # the runs before written back first: their dirty pages would throttle this one's
+                sync
                 if [ "$out" = null ]; then # the command alone: npy on standard output, to /dev/null
                     t=$({ time "$vtdyn" inverse $flag -j "$j" --times --format npy "$urdf" "$tmp/states.$in" > /dev/null 2> "$tmp/times"; } 2>&1)
                 else
