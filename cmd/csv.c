@@ -1,11 +1,13 @@
 /* The command's tables: the columns' names indexed, a CSV header and rows parsed, and the output
  * written beside its name and renamed when complete, so a failed run leaves no partial file
  * under that name. */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* fallocate */
 #include "csv.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -201,6 +203,21 @@ int output_open(output *o, const char *path, const char *const *inputs, int ninp
         return 1;
     }
     o->tmp = tmp;
+    return 0;
+}
+
+int output_reserve(output *o, unsigned long long bytes)
+{
+#if defined(__linux__)
+    /* Linux's fallocate, not posix_fallocate: where the file system cannot reserve, glibc's
+     * posix_fallocate would write the zeros itself, as many bytes again as the results */
+    if (!o->tmp || bytes == 0 || bytes > (unsigned long long)INT64_MAX || fflush(o->f)) return 0;
+    if (fallocate(fileno(o->f), 0, 0, (off_t)bytes) == 0) return 0;
+    if (errno == ENOSPC || errno == EFBIG)
+        return cmd_fail("%s: no room for the results' %llu bytes: %s", o->tmp, bytes, strerror(errno));
+#else
+    (void)o, (void)bytes;
+#endif
     return 0;
 }
 

@@ -74,6 +74,11 @@ typedef struct {
  * one is left alone and refused); PATH must be new or a regular file that is none of the ninputs
  * files inputs (the same file under another name too); 0, or 1 with the message printed */
 int output_open(output *o, const char *path, const char *const *inputs, int ninputs);
+/* reserves the output file's final size in bytes where the file system can (Linux's fallocate),
+ * so that the writes do not allocate block by block and a full disk is found before any work: 0,
+ * or 1 with a message when the file system has no room for it; nothing for standard output or
+ * where reserving is not supported */
+int output_reserve(output *o, unsigned long long bytes);
 /* ends the output: when complete is nonzero, checks that every write succeeded and renames
  * PATH.part to PATH (or flushes standard output); otherwise, or when that fails, removes
  * PATH.part. 0 when the output is complete under its name, else 1 (a message printed when the

@@ -5,6 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "output.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -206,6 +207,12 @@ int write_header(run *x, long long nrow)
     if (npy_header(&h, &len, names, x->nout, nrow, min)) return cmd_fail("out of memory");
     fwrite(h, 1, len, f);
     free(h);
+    /* the rows known (a .npy input): the file's final size reserved (a size past the largest
+     * number is not asked for: the writes then fail and say so) */
+    const unsigned long long row = 8u * (unsigned long long)x->nout;
+    if (!min && (unsigned long long)nrow <= (ULLONG_MAX - len) / row &&
+        output_reserve(&x->out, len + (unsigned long long)nrow * row))
+        return 1;
     return 0;
 }
 
