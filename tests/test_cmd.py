@@ -701,6 +701,25 @@ def npy_files(vtdyn, urdf, states, work, check):
         if r.returncode == 0:
             _, got, version, hlen = npy_read(out)
             check(version == (1, 0) and len(got) == len(rows), "%s: format 1.0, %d rows" % (what, len(got)))
+    # the rows known, the output's size is reserved first: a file system without room for it
+    # (here the process's file-size limit, SIGXFSZ ignored so that the call fails instead) stops
+    # the run before any row is written, says so, and leaves no file
+    if sys.platform.startswith("linux"):
+        import resource
+        import signal
+
+        def small_files():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (65536, 65536))
+
+        big = os.path.join(work, "rows_1000.npy")
+        npy_write(big, DL_COLS, double_link_rows(1000, 5))
+        full = os.path.join(work, "full.npy")
+        r = subprocess.run([vtdyn, "inverse", urdf, big, "-o", full], capture_output=True, text=True,
+                           preexec_fn=small_files)
+        check(r.returncode == 1 and "full.npy.part: no room for the results' " in r.stderr
+              and not os.path.exists(full) and not os.path.exists(full + ".part"),
+              "no room for a .npy output: refused before its rows, no file left: %r" % r.stderr)
     r = run(vtdyn, "inverse", urdf, snpy)
     check(r.returncode == 0 and r.stdout == ref.stdout, "npy -> csv: the bytes of csv -> csv")
     r = subprocess.run([vtdyn, "inverse", urdf, snpy, "--format", "npy"], capture_output=True)
