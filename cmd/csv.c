@@ -7,7 +7,6 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -211,8 +210,9 @@ int output_reserve(output *o, unsigned long long bytes)
 #if defined(__linux__)
     /* Linux's fallocate, not posix_fallocate: where the file system cannot reserve, glibc's
      * posix_fallocate would write the zeros itself, as many bytes again as the results */
-    if (!o->tmp || bytes == 0 || bytes > (unsigned long long)INT64_MAX || fflush(o->f)) return 0;
-    if (fallocate(fileno(o->f), 0, 0, (off_t)bytes) == 0) return 0;
+    const off_t len = (off_t)bytes;
+    if (!o->tmp || bytes == 0 || len <= 0 || (unsigned long long)len != bytes || fflush(o->f)) return 0;
+    if (fallocate(fileno(o->f), 0, 0, len) == 0) return 0;
     if (errno == ENOSPC || errno == EFBIG)
         return cmd_fail("%s: no room for the results' %llu bytes: %s", o->tmp, bytes, strerror(errno));
 #else

@@ -75,9 +75,9 @@ typedef struct {
  * files inputs (the same file under another name too); 0, or 1 with the message printed */
 int output_open(output *o, const char *path, const char *const *inputs, int ninputs);
 /* reserves the output file's final size in bytes where the file system can (Linux's fallocate),
- * so that the writes do not allocate block by block and a full disk is found before any work: 0,
- * or 1 with a message when the file system has no room for it; nothing for standard output or
- * where reserving is not supported */
+ * so that the writes do not allocate block by block and a full disk is found before the rows are
+ * written: 0, or 1 with a message when the file system has no room for it; nothing for standard
+ * output or where reserving is not supported */
 int output_reserve(output *o, unsigned long long bytes);
 /* ends the output: when complete is nonzero, checks that every write succeeded and renames
  * PATH.part to PATH (or flushes standard output); otherwise, or when that fails, removes
