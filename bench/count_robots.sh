@@ -26,10 +26,10 @@ for row in "ur5 6" "panda 9" "solo12 13" "talos 33"; do
         --callgrind-out-file="$tmp/cg" "$exe" "$tmp" 1 "$dir" >/dev/null 2>&1) || { echo "$1: failed"; continue; }
     callgrind_annotate --inclusive=yes "$tmp/cg" >"$tmp/cg.txt" 2>/dev/null
     get() { grep -E "$1" "$tmp/cg.txt" | head -1 | awk '{gsub(",", "", $1); print $1 + 0}'; }
-    mot=$(get '[?]:run_motion ')
+    mot=$(get ':run_motion ') # ???:run_motion, or bench_inverse.c:run_motion with debug information
     rnea=$(get 'pinocchio::rnea<')
     prun=$(get 'anonymous namespace[)]::robot_run')
-    mrun=$(get '[?]:robot_run ')
+    mrun=$(get '[^:]:robot_run ') # MuJoCo's (C): not Pinocchio's namespace::robot_run
     awk -v r="$1" -v b="$2" -v c="$calls" -v mot="$mot" -v rnea="$rnea" -v prun="$prun" -v mrun="$mrun" 'BEGIN {
         m = mot / c; p = rnea / (2 * c); w = p + (prun - rnea) / c; j = mrun / c
         printf "%-8s %6d %7.0f [%4.0f] %7.0f [%4.0f] %7.0f [%4.0f] %7.0f [%4.0f]\n", r, b, m, m / b, p, p / b, w, w / b, j, j / b
