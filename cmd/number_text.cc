@@ -1,8 +1,10 @@
 // Numbers as text, see number_text.h: std::to_chars and std::from_chars of <charconv>; with
 // Dragonbox (VT_HAVE_DRAGONBOX) the shortest digits come from its to_decimal and are laid out
-// here as std::to_chars lays them out (tests/test_number_text.cc holds the two equal byte for byte).
+// here as std::to_chars lays them out, and --precision up to 15 rounds them (rounded, below)
+// as printf's %.Pg rounds the double (tests/test_number_text.cc holds them equal byte for byte).
 #include "number_text.h"
 
+#include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -27,18 +29,25 @@ static inline void eight_digits(char *d, std::uint32_t u)
     std::memcpy(d + 6, pairs + 2 * (lo % 100), 2);
 }
 
+static const std::uint64_t p10[18] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000,
+                                      1000000000, 10000000000, 100000000000, 1000000000000,
+                                      10000000000000, 100000000000000, 1000000000000000,
+                                      10000000000000000, 100000000000000000};
+
+// how many decimal digits u has (1 <= u < 10^17): ⌊log10 2^b⌋ for its b bits (1233 / 4096 below
+// log10 2), then one comparison
+static inline int digit_count(std::uint64_t u)
+{
+    const int b = ((64 - __builtin_clzll(u)) * 1233) >> 12;
+    return b + (u >= p10[b]);
+}
+
 // the decimal digits of u (1 <= u < 10^17: Dragonbox's significand of a double), most
 // significant first: all seventeen written into t (leading zeros kept: no loop whose length
 // depends on u), *n set to how many u has; returns its first
 static const char *decimal_digits(char t[17], std::uint64_t u, int *n)
 {
-    static const std::uint64_t p10[18] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000,
-                                          1000000000, 10000000000, 100000000000, 1000000000000,
-                                          10000000000000, 100000000000000, 1000000000000000,
-                                          10000000000000000, 100000000000000000};
-    // ⌊log10 2^b⌋ for b bits (1233 / 4096 below log10 2), then one comparison
-    const int b = ((64 - __builtin_clzll(u)) * 1233) >> 12;
-    *n = b + (u >= p10[b]);
+    *n = digit_count(u);
     const std::uint64_t hi = u / 100000000; // < 10^9
     t[0] = static_cast<char>('0' + hi / 100000000);
     eight_digits(t + 1, static_cast<std::uint32_t>(hi % 100000000));
@@ -103,6 +112,74 @@ static int shortest(char *buf, double v)
     }
     return static_cast<int>(p - buf);
 }
+
+// The precisions whose %.Pg digits come from Dragonbox's shortest ones: P <= 15. A normal double's
+// shortest digits D 10^E are within half its ulp, 2^-53 |v| < 1.2e-16 · 10^(X+1) (X its decimal
+// exponent), of v, and v's P-digit rounding grid has half a step 0.5 · 10^(X-P+1), larger from
+// P <= 15 on. So
+//  - D of at most P digits is a point of that grid within half a step of v: the rounding itself;
+//  - D of more digits rounds as v does: a midpoint of the grid (P + 1 digits) strictly between
+//    v and D would read back as v with no more digits than D and nearer to v, and Dragonbox's D
+//    is the shortest, the nearest to v among those. The one case left is D's own digits ending
+//    on that midpoint (P + 1 digits, the last a 5): v's side of it decides, which these digits
+//    do not tell; std::to_chars prints it (and every P of 16 or 17, and the subnormals, whose
+//    ulp is no longer small beside v).
+enum { ROUNDED_MAX = 15 };
+
+// v (normal, finite, nonzero) as printf's "%.Pg" (1 <= P <= ROUNDED_MAX): the P-digit rounding
+// of v, its trailing zeros dropped, as %e (d.ddde±XX, at least two exponent digits) where its
+// decimal exponent X is below -4 or at least P, else as %f; the characters kept, or 0 for the
+// case above (std::to_chars then). Writes up to NUMBER_TEXT_ROOM bytes at buf.
+static int rounded(char *buf, double v, int P)
+{
+    const auto dec = jkj::dragonbox::to_decimal(v);
+    std::uint64_t u = dec.significand;
+    int k = digit_count(u);
+    int X = dec.exponent + k - 1;
+    if (k > P) {
+        const std::uint64_t step = p10[k - P], r = u % step, half = step / 2;
+        if (r == half) return 0; // D ends on a midpoint (then k = P + 1: D has no trailing zero)
+        u = u / step + (r > half);
+        k = P;
+        if (u == p10[P]) u = p10[P - 1], X++; // 9.99… rounded up to 10.0…
+        while (u % 10 == 0) u /= 10, k--;     // %g drops the trailing zeros
+    }
+    char all[17 + DIGITS] = {};
+    const char *dig = decimal_digits(all, u, &k);
+    char *p = buf;
+    *p = '-';
+    p += dec.is_negative;
+    if (X < -4 || X >= P) {
+        const int ax = X < 0 ? -X : X;
+        p[0] = dig[0];
+        p[1] = '.';
+        std::memcpy(p + 2, dig + 1, DIGITS);
+        p += k > 1 ? k + 1 : 1;
+        *p++ = 'e';
+        *p++ = X < 0 ? '-' : '+';
+        *p = static_cast<char>('0' + ax / 100);
+        p += ax >= 100;
+        *p++ = static_cast<char>('0' + ax / 10 % 10);
+        *p++ = static_cast<char>('0' + ax % 10);
+    } else if (X >= 0) { // X + 1 digits before the point (zeros where D has fewer), the rest after
+        std::memcpy(p, dig, DIGITS);
+        if (k <= X + 1) {
+            std::memset(p + k, '0', ZEROS);
+            p += X + 1;
+        } else {
+            p[X + 1] = '.';
+            std::memcpy(p + X + 2, dig + X + 1, DIGITS);
+            p += k + 1;
+        }
+    } else { // 0.000ddd: -X - 1 zeros after the point (at most three)
+        *p++ = '0', *p++ = '.';
+        std::memset(p, '0', 4);
+        p += -X - 1;
+        std::memcpy(p, dig, DIGITS);
+        p += k;
+    }
+    return static_cast<int>(p - buf);
+}
 #endif
 
 int number_print_room(char *buf, double v, int precision)
@@ -110,6 +187,9 @@ int number_print_room(char *buf, double v, int precision)
 #ifdef VT_HAVE_DRAGONBOX
     if (precision == 0 && v != 0.0 && std::isfinite(v)) {
         const int n = shortest(buf, v);
+        if (n > 0) return n;
+    } else if (precision <= ROUNDED_MAX && std::fabs(v) >= DBL_MIN && std::isfinite(v)) {
+        const int n = rounded(buf, v, precision);
         if (n > 0) return n;
     }
 #endif

@@ -1,7 +1,8 @@
 /* Numbers as text for the command's CSV: C++17's <charconv> (the compiler's own library, GCC's
  * libstdc++), which prints the shortest decimal that reads back as the same double (Ryu) and
  * reads decimals correctly rounded (fast_float), several times faster than printf("%.17g") and
- * strtod; where the build has Dragonbox, the shortest digits are its, faster, in the same bytes.
+ * strtod; where the build has Dragonbox, the shortest digits (and the %.Pg ones up to P = 15) are
+ * its, faster, in the same bytes.
  * Locale-independent, like the "C" locale the command runs in. */
 #ifndef VTDYN_CMD_NUMBER_TEXT_H
 #define VTDYN_CMD_NUMBER_TEXT_H

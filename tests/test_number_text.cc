@@ -1,5 +1,6 @@
 // cmd/number_text.cc: the command's numbers as text. Against independent references: every
-// printed double reads back as itself (std::from_chars), --precision P prints printf's %.Pg, and
+// printed double reads back as itself (std::from_chars), --precision P prints printf's %.Pg (on
+// the same doubles, and on the midpoints of its rounding and their neighbours), and
 // the shortest form, laid out here from Dragonbox's digits, is std::to_chars's byte for byte (the
 // layout's reference, libstdc++'s Ryu); cells read as strtod reads them; number_print_room writes
 // the same within its room. Built without Dragonbox the shortest form is std::to_chars itself:
@@ -46,6 +47,14 @@ template <class F> static void each_double(F f)
     const double edges[] = {0.0, -0.0, DBL_MAX, -DBL_MAX, DBL_MIN, DBL_TRUE_MIN, -DBL_TRUE_MIN, 1.0, 0.1, 1e15, 1e16,
                             1e17, 1e21, 1e22, 1e23, 123456789012345680000.0, 0.0001, 1e-5, 9.5, 0.5, 100.0};
     for (double x : edges) f(x);
+}
+
+// 10^k, 0 <= k <= 17
+static std::uint64_t p10_of(int k)
+{
+    std::uint64_t r = 1;
+    while (k-- > 0) r *= 10;
+    return r;
 }
 
 static void test_shortest_as_to_chars(void **state)
@@ -97,6 +106,35 @@ static void test_precision_as_printf(void **state)
     assert_int_equal(bad, 0);
 }
 
+// --precision P's own edges, each at its P (1 to 17) and beside it: the doubles nearest to P + 1
+// digits ending in 5 (the midpoints of the P-digit grid, whose side the shortest digits do not
+// tell), those of P nines then a 5 (rounded up, a digit more: 9.95 → 10), over exponents from
+// the subnormals to DBL_MAX
+static void test_precision_midpoints(void **state)
+{
+    (void)state;
+    std::mt19937_64 g(20261208);
+    long bad = 0;
+    for (int p = 1; p <= 17; p++)
+        for (int i = 0; i < 4000; i++) {
+            std::uint64_t m = p10_of(p - 1) + g() % (9 * p10_of(p - 1)); // p digits
+            if (i % 8 == 0) m = 10 * p10_of(p - 1) - 1;                  // p nines
+            const int e = static_cast<int>(g() % 640) - 330;
+            char text[64];
+            std::snprintf(text, sizeof text, "%llu5e%d", static_cast<unsigned long long>(m), e);
+            const double x0 = std::strtod(text, nullptr);
+            for (double x : {x0, std::nextafter(x0, 0.0), std::nextafter(x0, INFINITY), -x0}) {
+                if (!std::isfinite(x) || x == 0.0) continue;
+                char a[NUMBER_TEXT_MAX + 1], b[64];
+                const int n = number_print(a, x, p);
+                const int w = std::snprintf(b, sizeof b, "%.*g", p, x);
+                if ((n != w || std::memcmp(a, b, static_cast<size_t>(n)) != 0) && bad++ < 5)
+                    print_error("%.17g at %d: '%.*s', printf '%s'\n", x, p, n, a, b);
+            }
+        }
+    assert_int_equal(bad, 0);
+}
+
 // number_print_room (a row's numbers written one after the other): number_print's characters,
 // and nothing written past NUMBER_TEXT_ROOM (the bytes after it left as they were)
 static void test_room(void **state)
@@ -139,6 +177,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shortest_reads_back),
         cmocka_unit_test(test_precision_as_printf),
+        cmocka_unit_test(test_precision_midpoints),
         cmocka_unit_test(test_parse_as_strtod),
         cmocka_unit_test(test_room),
     };
