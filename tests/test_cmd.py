@@ -658,8 +658,8 @@ def chunks_threads(vtdyn, urdf, work, check):
                   and not os.path.exists(never) and not os.path.exists(never + ".part"),
                   "the first failing row named (line %d, -j %s), no output left: %r" % (line, j, r.stderr))
     # the resident memory: flat in the rows (chunks of at most 4,096 rows), CSV and .npy in
-    if "ASAN_OPTIONS" in os.environ or "VALGRIND" in os.environ:
-        print("resident memory: not measured under a sanitizer")
+    if "ASAN_OPTIONS" in os.environ or "TSAN_OPTIONS" in os.environ or "VALGRIND" in os.environ:
+        print("resident memory: not measured under a sanitizer (its shadow memory grows with what is touched)")
         return
     rss = {}
     for n in (4000, 60000):
