@@ -863,7 +863,7 @@ static void stages(const vt_model *m, vt_data *d, bytes *b)
         double Fc[7];
         const int i = 1 + (int)(pick % (unsigned)m->nbody);
         unsigned nulls = byte(b) % 4;
-        if (excluded("vt_cartesian_force(NULL)")) nulls = 0; /* #19's NULL moment: set aside */
+        if (excluded("vt_cartesian_force(NULL)")) nulls = 0; /* the NULL moment's finding: set aside */
         const vt_status cst = vt_cartesian_force(Fc, d->x + 7 * (i - 1) + 3, pt, nulls & 1 ? NULL : f, nulls & 2 ? NULL : n);
         if (cst == VT_OK) finite(Fc, 7, "vt_cartesian_force", "F");
         if (nulls && cst != VT_ERR_NULL) fail("vt_cartesian_force with a NULL argument returned %s", vt_status_string(cst));
@@ -1171,7 +1171,7 @@ static void trajectory_finite(const vt_model *m, const vt_trajectory *tr, const 
     finite(tr->cut_moment, 3 * m->ncut * r, call, "trajectory cut_moment");
 }
 
-/* The motion given at overflow's edge (issue 38, item 7): the instants above give the motion call
+/* The motion given at overflow's edge (fuzz/corpus/motion-euler-rates-overflow): the instants above give the motion call
  * the dense q̈, which a modest input keeps far from DBL_MAX, so the call met q̈ and q̇ near
  * overflow only rarely. Here the last bytes (after every other piece: older inputs end before
  * them and read 0, which skips this step) pick them: a selector byte, q̇'s mode in its bits 0–1

@@ -398,7 +398,7 @@ static void test_load_at_fixed_point(void **state)
  * The mechanism's rates, rows and joints are decoupled from the pendulum's (M* and Φ_q block
  * diagonal, no shared body): its q̈, λ, efforts and reactions must be those of the same mechanism
  * alone at the origin (there o is its own first joint point), on both paths and with the motion
- * given (the trees: vt_inverse_dynamics_motion's fused passes), to issue 18's 1e-13
+ * given (the trees: vt_inverse_dynamics_motion's fused passes), to 1e-13
  * at 1 km and 1e-10 at 1e6 m of each array's largest entry. Both paths form their lever arms
  * from the joints' own vectors (S, Φ_q, ẍ, the subtrees' wrenches about each joint point, the
  * reactions' arms): scenes 0-2 come out bitwise the same, the robot to 5e-14 at either distance.
@@ -578,7 +578,7 @@ static vt_model *roundoff_model(int which)
     arm.joint_parent[0] = 30.0, arm.joint_parent[1] = 20.0, arm.joint_parent[2] = -10.0;
     /* 3 near the origin: M* about O, 36 m away, carries round-off of 1e-12 of its size in the free
      * spin's direction (no single rate's: not judged per rate), and the general route's estimate
-     * stays just above rcond_min there: that is translation invariance's part (#18 item 2) */
+     * stays just above rcond_min there: that is translation invariance's part */
     if (which == 3) arm.joint_parent[0] = 0.3, arm.joint_parent[1] = 0.2, arm.joint_parent[2] = -0.1;
     arm.joint_child[0] = -0.4, arm.joint_child[1] = 0.1;
     arm.axis1[0] = 0.3, arm.axis1[1] = 0.5, arm.axis1[2] = 0.8;

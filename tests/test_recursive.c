@@ -843,7 +843,7 @@ static void test_motion_refused(void **state)
     vt_model_free(m);
 }
 
-/* Issue 38, item 7 (the fuzzer's finding, fuzz/corpus/motion-euler-rates-overflow): one body on
+/* The fuzzer's finding fuzz/corpus/motion-euler-rates-overflow: one body on
  * a spherical joint, inertia DBL_MIN, q̈ = 1.5e308 on every rate, p = (½, ½, ½, ½) (A a cyclic
  * permutation: α = (1.5e308, 1.5e308, 1.5e308) in body axes stays finite, and so does every
  * wrench of a body this light). The Euler parameters' p̈ = ½ E^T α − ¼ |ω|² p sums p_1 α_1 + p_2 α_2 +

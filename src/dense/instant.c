@@ -16,7 +16,7 @@
  *
  * Both scan ẍ when the stages are done (accelerations_scanned): vt_reactions forms it from q̈ and
  * checks α and the loads, but the Euler parameters' p̈ enters no load, and q̈ near DBL_MAX (given,
- * or solved for a body of DBL_MIN inertia) overflows it alone (issue 38, item 7).
+ * or solved for a body of DBL_MIN inertia) overflows it alone (fuzz/corpus/motion-euler-rates-overflow).
  */
 #include <stddef.h>
 #include <string.h>

@@ -377,7 +377,7 @@ static void fused_outward_any(const vt_model *m, vt_data *d, double *restrict al
  * than checks joint by joint in the inward loop): ẍ (the Euler parameters' p̈ among them), α, the
  * efforts, the reactions and the total wrenches, the same for the driven and the given motion.
  * An overflow of p̈ shows nowhere else: ½ E^T α sums p_k α_k, which overflows where |α| is near
- * DBL_MAX while α, and a light body's wrench, stay finite (issue 38, item 7). Copies are not
+ * DBL_MAX while α, and a light body's wrench, stay finite (fuzz/corpus/motion-euler-rates-overflow). Copies are not
  * scanned twice: λ and drive_effort hold qfrc_drive's τ, a revolute joint's drive force is zero
  * and its total force is its reaction's (f, stored twice); q̈ is the drives' f'' (checked by
  * vt_function_eval_valid) or the given one (checked on entry). A failure names the first joint
