@@ -89,19 +89,24 @@ static void test_shortest_reads_back(void **state)
     assert_int_equal(bad, 0);
 }
 
+// number_print at precision p against printf's "%.*g": *bad counts the differences (the first
+// five printed)
+static void as_printf(double x, int p, long *bad)
+{
+    char a[NUMBER_TEXT_MAX + 1], b[64];
+    const int n = number_print(a, x, p);
+    const int m = std::snprintf(b, sizeof b, "%.*g", p, x);
+    if ((n != m || std::memcmp(a, b, static_cast<size_t>(n)) != 0) && (*bad)++ < 5)
+        print_error("%.17g at %d: '%.*s', printf '%s'\n", x, p, n, a, b);
+}
+
 static void test_precision_as_printf(void **state)
 {
     (void)state;
     long bad = 0, k = 0;
     each_double([&](double x) {
         if (k++ % 16) return; // a sixteenth of them, each at every precision
-        for (int p = 1; p <= 17; p++) {
-            char a[NUMBER_TEXT_MAX + 1], b[64];
-            const int n = number_print(a, x, p);
-            const int m = std::snprintf(b, sizeof b, "%.*g", p, x);
-            if ((n != m || std::memcmp(a, b, static_cast<size_t>(n)) != 0) && bad++ < 5)
-                print_error("%.17g at %d: '%.*s', printf '%s'\n", x, p, n, a, b);
-        }
+        for (int p = 1; p <= 17; p++) as_printf(x, p, &bad);
     });
     assert_int_equal(bad, 0);
 }
@@ -123,14 +128,8 @@ static void test_precision_midpoints(void **state)
             char text[64];
             std::snprintf(text, sizeof text, "%llu5e%d", static_cast<unsigned long long>(m), e);
             const double x0 = std::strtod(text, nullptr);
-            for (double x : {x0, std::nextafter(x0, 0.0), std::nextafter(x0, INFINITY), -x0}) {
-                if (!std::isfinite(x) || x == 0.0) continue;
-                char a[NUMBER_TEXT_MAX + 1], b[64];
-                const int n = number_print(a, x, p);
-                const int w = std::snprintf(b, sizeof b, "%.*g", p, x);
-                if ((n != w || std::memcmp(a, b, static_cast<size_t>(n)) != 0) && bad++ < 5)
-                    print_error("%.17g at %d: '%.*s', printf '%s'\n", x, p, n, a, b);
-            }
+            for (double x : {x0, std::nextafter(x0, 0.0), std::nextafter(x0, INFINITY), -x0})
+                if (std::isfinite(x) && x != 0.0) as_printf(x, p, &bad);
         }
     assert_int_equal(bad, 0);
 }
