@@ -24,13 +24,16 @@
  *                   the independent ones).
  *   infeasible      contradictory inequalities, a pyramid that cannot carry a required
  *                   tangential force, inconsistent dependent equalities: VT_QP_INFEASIBLE with
- *                   the culprit, x and lambda untouched.
+ *                   the culprit, x and lambda untouched; the contacts' problem of
+ *                   tests/qp_rotated_infeasible.txt (ill-conditioned, a row dependent on the
+ *                   active ones beyond J's round-off), with its Farkas certificate checked.
  *   errors          NaN/Inf inputs, finite data whose minimum overflows, an indefinite and a
  *                   singular G, invalid sizes: their results, x untouched.
  *   scratch         work of exactly vt_qp_scratch_bytes (at an odd address too) works; a byte
  *                   less, or none, is VT_QP_NO_SCRATCH. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -738,6 +741,71 @@ static void test_infeasible(void **state)
 
 /* ---- errors and scratch ---- */
 
+/* tests/qp_rotated_infeasible.txt (its opening lines say what it holds): the numbers after its
+ * comment lines into v, at most cap of them; the count */
+static int read_numbers(const char *path, double *v, int cap)
+{
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[256];
+    int k = 0;
+    while (fgets(line, sizeof line, f))
+        for (char *t = line, *end; *t && *t != '#' && k < cap; t = end) {
+            const double x = strtod(t, &end);
+            if (end == t) break;
+            v[k++] = x;
+        }
+    fclose(f);
+    return k;
+}
+
+/* A distribution problem of the contacts the fuzzer found (fuzz/corpus_contact/
+ * qp-optimal-violated-refused-by-certificate), its six equalities rotated by an SVD as the
+ * contacts' independent rows are; G of condition 2.8e5. After a score of steps a row dependent on
+ * the active ones kept ‖J₂ᵀa‖ at twice its round-off bound (J's rotations add to it), its full step
+ * of 1e25 threw x to 3e18, and the method answered VT_QP_OPTIMAL with constraints violated by as
+ * much. It is infeasible: the file's Farkas certificate, y and z ≥ 0 with r = A_eqᵀy + A_inᵀz and
+ * γ = b_eqᵀy + b_inᵀz, gives for a feasible x 0 ≤ zᵀ(A_in x − b_in) = rᵀx − γ, so ‖x‖₁ ≥ γ/‖r‖_∞,
+ * checked here to exceed 1e12 (quadprog and HiGHS call it infeasible too) */
+static void test_infeasible_rotated_contacts(void **state)
+{
+    (void)state;
+    enum { CAP = 1024 };
+    double *v = calloc(CAP, sizeof(double));
+    assert_non_null(v);
+    const int k = read_numbers(VT_TEST_QP_CASE, v, CAP);
+    assert_true(k >= 3);
+    const int n = (int)v[0], meq = (int)v[1], min = (int)v[2], m = meq + min;
+    assert_int_equal(k, 3 + n * n + n + m * n + m + m);
+    problem p = prob(n, meq, min);
+    const double *G = v + 3, *c = G + n * n, *Aeq = c + n, *beq = Aeq + meq * n, *Ain = beq + meq,
+                 *bin = Ain + min * n, *y = bin + min, *z = y + meq;
+    memcpy(p.G, G, (size_t)(n * n) * sizeof(double));
+    memcpy(p.c, c, (size_t)n * sizeof(double));
+    for (int j = 0; j < n; j++) {
+        for (int i = 0; i < meq; i++) *arow(&p, i, j) = Aeq[i + j * meq];
+        for (int i = 0; i < min; i++) *arow(&p, meq + i, j) = Ain[i + j * min];
+    }
+    memcpy(p.b, beq, (size_t)meq * sizeof(double));
+    memcpy(p.b + meq, bin, (size_t)min * sizeof(double));
+    double gamma = 0.0, rmax = 0.0;
+    for (int i = 0; i < meq; i++) gamma += beq[i] * y[i];
+    for (int i = 0; i < min; i++) {
+        assert_true(z[i] >= 0.0);
+        gamma += bin[i] * z[i];
+    }
+    for (int j = 0; j < n; j++) {
+        double r = 0.0;
+        for (int i = 0; i < meq; i++) r += Aeq[i + j * meq] * y[i];
+        for (int i = 0; i < min; i++) r += Ain[i + j * min] * z[i];
+        rmax = fmax(rmax, fabs(r));
+    }
+    assert_true(gamma > 0.5 && gamma > 1e12 * rmax);
+    expect_infeasible(&p, -1);
+    prob_free(&p);
+    free(v);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -851,6 +919,7 @@ int main(void)
         cmocka_unit_test(test_cone),
         cmocka_unit_test(test_apex),         cmocka_unit_test(test_duplicated),
         cmocka_unit_test(test_dependent_equalities), cmocka_unit_test(test_infeasible),
+        cmocka_unit_test(test_infeasible_rotated_contacts),
         cmocka_unit_test(test_errors),       cmocka_unit_test(test_scratch),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

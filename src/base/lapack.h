@@ -56,12 +56,13 @@ static inline void vt_dsyrk(char uplo, char trans, int n, int k, double alpha, c
 
 
 /* the Goldfarb–Idnani QP (numeric/qp.c): G's Cholesky factor, the Givens rotations that update
- * the active constraints' QR factors, and the norms and dot products of its steps */
+ * the active constraints' QR factors, and the norms, dot products and sums of its steps */
 void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t l);
 void drot_(const int *n, double *x, const int *incx, double *y, const int *incy, const double *c, const double *s);
 void dlartg_(const double *f, const double *g, double *c, double *s, double *r);
 double dnrm2_(const int *n, const double *x, const int *incx);
 double ddot_(const int *n, const double *x, const int *incx, const double *y, const int *incy);
+void daxpy_(const int *n, const double *alpha, const double *x, const int *incx, double *y, const int *incy);
 
 void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
             double *w, double *work, const int *lwork, int *info, size_t ljobz, size_t luplo);

@@ -77,6 +77,8 @@
  *               move x along J₂, orthogonal to it) or left out;
  *   dependent:  ‖d₂‖₂ ≤ τ ‖J‖_F ‖a‖₂, the round-off of d = Jᵀa (‖J‖₂ = ‖L⁻¹‖₂, unchanged by the
  *               rotations), so a dependence is decided relative to the problem's scale and G's;
+ *               or ‖a − N r‖₂ ≤ τ (‖a‖ + Σ |r_i| ‖n_i‖), a = N r to its round-off in the data
+ *               (qp_in_span: d₂ also carries what J's rotations have added up);
  *   r_j > 0:    r_j ‖n_j‖ > τ (‖a‖ + Σ |r_i| ‖n_i‖), the round-off of a = N r: a round-off r_j of
  *               1e-16 would make t₁ = u_j / r_j enormous and the step a blow-up (nearly
  *               collinear contact points make r of 1e3);
@@ -271,6 +273,27 @@ static vt_qp_result qp_dependent(qp_ws *w, int p, int *culprit)
     return VT_QP_INFEASIBLE;
 }
 
+/* 1 when a = N r holds to the round-off of its terms, τ (‖a‖ + Σ |r_j| ‖n_j‖) = τ rmag, read from
+ * the data (the active rows themselves, r from the factors). d₂ = J₂ᵀa, whose size decides
+ * dependence first, carries the round-off of every rotation J has had: after a score of adds
+ * and drops on a G of condition 1e5 a dependent row's ‖d₂‖ stood at twice its bound (2.4e-10),
+ * and its full step of 1e25 threw x to 1e18 (an infeasible contact problem answered as optimal,
+ * fuzz/corpus_contact/qp-optimal-violated-refused-by-certificate's). a − N r = L Q₂ d₂ is the
+ * same part of a measured in the data's units, where the round-off bound holds. */
+static int qp_in_span(const qp_ws *w, const double *a, int inc, double rmag)
+{
+    if (w->q == 0) return 0;
+    const int one = 1;
+    double *v = w->z; /* free here: the step's z is formed after */
+    for (int i = 0; i < w->n; i++) v[i] = a[(size_t)i * (size_t)inc];
+    for (int j = 0; j < w->q; j++) {
+        int ij;
+        const double *nj = qp_row(w, w->act[j], &ij), mr = -w->r[j];
+        daxpy_(&w->n, &mr, nj, &ij, v, &one);
+    }
+    return dnrm2_(&w->n, v, &one) <= w->tau * rmag;
+}
+
 /* Adds constraint p: the steps of the method until p joins A (full step), is left out (a
  * consistent dependent equality) or is found infeasible */
 static vt_qp_result qp_add(qp_ws *w, int p, int *it, int limit, int *culprit)
@@ -285,13 +308,13 @@ static vt_qp_result qp_add(qp_ws *w, int p, int *it, int limit, int *culprit)
         const int q = w->q, nfree = n - q;
         vt_dgemv('T', n, n, 1.0, w->J, n, a, inc, 0.0, w->d, 1);
         const double dn = nfree > 0 ? dnrm2_(&nfree, w->d + q, &one) : 0.0;
-        const int dependent = !(dn > w->tau * w->jnorm * w->norm[p]);
         const double s = qp_slack(w, p);
         memcpy(w->r, w->d, (size_t)q * sizeof(double));
         if (q > 0) vt_dtrsv('U', 'N', 'N', q, w->R, n, w->r, 1);
         /* r_j counts as positive above the round-off of a = N r (the opening comment) */
         double rmag = w->norm[p];
         for (int j = 0; j < q; j++) rmag += fabs(w->r[j]) * w->norm[w->act[j]];
+        const int dependent = !(dn > w->tau * w->jnorm * w->norm[p]) || qp_in_span(w, a, inc, rmag);
         double t1 = HUGE_VAL;
         int k = -1;
         for (int j = 0; j < q; j++)
