@@ -115,8 +115,8 @@ static int shortest(char *buf, double v)
 
 // The precisions whose %.Pg digits come from Dragonbox's shortest ones: P <= 15. A normal double's
 // shortest digits D 10^E are within half its ulp, 2^-53 |v| < 1.2e-16 · 10^(X+1) (X its decimal
-// exponent), of v, and v's P-digit rounding grid has half a step 0.5 · 10^(X-P+1), larger from
-// P <= 15 on. So
+// exponent), of v, and v's P-digit rounding grid has half a step 0.5 · 10^(X-P+1), larger for
+// every P up to 15. So
 //  - D of at most P digits is a point of that grid within half a step of v: the rounding itself;
 //  - D of more digits rounds as v does: a midpoint of the grid (P + 1 digits) strictly between
 //    v and D would read back as v with no more digits than D and nearer to v, and Dragonbox's D

@@ -276,10 +276,9 @@ static vt_qp_result qp_dependent(qp_ws *w, int p, int *culprit)
 /* 1 when a = N r holds to the round-off of its terms, τ (‖a‖ + Σ |r_j| ‖n_j‖) = τ rmag, read from
  * the data (the active rows themselves, r from the factors). d₂ = J₂ᵀa, whose size decides
  * dependence first, carries the round-off of every rotation J has had: after a score of adds
- * and drops on a G of condition 1e5 a dependent row's ‖d₂‖ stood at twice its bound (2.4e-10),
- * and its full step of 1e25 threw x to 1e18 (an infeasible contact problem answered as optimal,
- * fuzz/corpus_contact/qp-optimal-violated-refused-by-certificate's). a − N r = L Q₂ d₂ is the
- * same part of a measured in the data's units, where the round-off bound holds. */
+ * and drops on a G of condition 1e5 a dependent row's ‖d₂‖ can stand at twice its bound, and
+ * its full step (1e25 in tests/qp_rotated_infeasible.txt) throw x beyond any answer. a − N r =
+ * L Q₂ d₂ is the same part of a, measured in the data's units, where the round-off bound holds. */
 static int qp_in_span(const qp_ws *w, const double *a, int inc, double rmag)
 {
     if (w->q == 0) return 0;
