@@ -23,6 +23,7 @@
 #include "base/scan.h"
 #include "base/status.h"
 #include "model/model.h"
+#include "kinematics/kinematics.h"
 #include "numeric/rank.h"
 #include "numeric/roundoff.h"
 #include "numeric/route.h"
@@ -263,12 +264,7 @@ static int square_factor(const vt_model *m, vt_data *d, vt_square *sq, const dou
     double *restrict ck = gk + n, *restrict rg = gk + 2 * n, *restrict dc = gk + 3 * n;
     /* Φ̂ = G Φ_q C's scalings and its 1-norm, the largest column sum */
     const double rho = vt_rows_length(m, d, NULL);
-    for (int a = 0; a < n; a++) {
-        const int i = m->dof_body[a];
-        int ax = 0;
-        const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
-        ck[a] = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
-    }
+    for (int a = 0; a < n; a++) ck[a] = vt_dof_turns(m, a) ? 1.0 / rho : 1.0;
     for (int r = 0; r < n; r++) gk[r] = vt_length_row(m, d, r) ? 1.0 : rho;
     double anorm = 0.0;
     for (int c = 0; c < n; c++) {

@@ -75,11 +75,9 @@ int vt_rows_grip(const vt_model *m, vt_data *d, double *grip)
         double num = 0.0, den = 0.0;
         const int np = vt_body_path(m, b, path);
         for (int k = 0; k < np; k++) {
-            const int a = path[k], i = m->dof_body[a];
+            const int a = path[k];
             const double *tw = d->twist + 6 * a;
-            int ax = 0;
-            const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
-            const double ca = kind == VT_DOF_ROT || kind == VT_DOF_BASE_P ? 1.0 / rho : 1.0;
+            const double ca = vt_dof_turns(m, a) ? 1.0 / rho : 1.0;
             double V[3];
             vt_copy3(V, tw + 3);
             vt_addcross3(V, tw, P);
@@ -127,15 +125,6 @@ int vt_length_row(const vt_model *m, const vt_data *d, int r)
         while (c < m->nv - 1 && d->Phiq[r + (size_t)c * (size_t)m->nc] == 0.0) c++;
     const int i = m->dof_body[c];
     return vt_dof_kind(m->body_joint[i], c - m->body_vadr[i], &axis) == VT_DOF_TRANS;
-}
-
-/* 1 when rate a turns (a rotation, an Euler parameter), 0 when it translates */
-static int turning_rate(const vt_model *m, int a)
-{
-    const int i = m->dof_body[a];
-    int ax = 0;
-    const int kind = vt_dof_kind(m->body_joint[i], a - m->body_vadr[i], &ax);
-    return kind == VT_DOF_ROT || kind == VT_DOF_BASE_P;
 }
 
 /* ℓ, the rows' lever arm: the largest, over the point and line rows and the rates that turn, of
@@ -195,7 +184,7 @@ double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag)
         /* each side's path, walked down by dof_parent (the largest |W| in any order) */
         for (int s = 0; s < 2; s++) {
             for (int a = vt_last_rate(m, s ? bb : ba); a >= 0; a = m->dof_parent[a]) {
-                if (!turning_rate(m, a)) continue;
+                if (!vt_dof_turns(m, a)) continue;
                 const int both = m->dof_body[a] <= common;
                 if (both && (s == 0 || kind == VT_ROW_LINE)) continue; /* once, from side b; a line's: 0 */
                 const double *w = d->twist + 6 * a;
@@ -217,7 +206,7 @@ double vt_rows_length(const vt_model *m, const vt_data *d, const int *flag)
     const double arm = sqrt(arm2);
     if (arm == 0.0)
         for (int a = 0; a < nv; a++) {
-            if (turning_rate(m, a)) continue;
+            if (vt_dof_turns(m, a)) continue;
             double n2 = 0.0;
             for (int r = 0; r < nc; r++)
                 if (!(flag && flag[r]) && m->con_kind[r] == VT_ROW_COUPLING && !vt_length_row(m, d, r)) {
@@ -291,7 +280,7 @@ int vt_rows_decide(const vt_model *m, vt_data *d, double band, vt_rows_svd *o)
     double *g = o->g, *s = o->c;
     vt_scaling_diag(m, d->Mstar, nv + 1, o->s);
     const double len = vt_rows_length(m, d, flag);
-    for (int a = 0; a < nv; a++) s[a] = turning_rate(m, a) ? 1.0 / len : 1.0;
+    for (int a = 0; a < nv; a++) s[a] = vt_dof_turns(m, a) ? 1.0 / len : 1.0;
     {
         double *B = VT_SCRATCH(d, double, nv, "terms of a row");
         if (!B) return vt_scratch_fail(d, mark);
