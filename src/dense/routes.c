@@ -431,6 +431,45 @@ vt_status vt_square_solve(const vt_model *m, vt_data *d, double *b, double *rcon
  * VT_SCHUR_BELOW_WARN (solved): in the last two vt_solve_band tries the augmented route too.
  * Returns VT_OK or a negative vt_status. */
 #define SCHUR_FEW 3 /* rows up to which S and its right side are formed by loops */
+
+/* S = Y^T Y (its lower triangle, no x no) and rhs −= Y^T z, Y nf x no: with a few rows (a point
+ * drive: 1 to 3) a few dot products of nf terms, cheaper as loops than as BLAS calls (whose
+ * argument checks cost more than the products); one row makes S a positive number, its
+ * Cholesky factor a square root, and S's condition exactly 1 */
+static void schur_gram(const double *Y, int nf, int no, const double *z, double *rhs, double *S)
+{
+    if (no > SCHUR_FEW) {
+        vt_dsyrk('L', 'T', no, nf, 1.0, Y, nf, 0.0, S, no);
+        vt_dgemv('T', nf, no, -1.0, Y, nf, z, 1, 1.0, rhs, 1);
+        return;
+    }
+    for (int r = 0; r < no; r++) {
+        const double *yr = Y + (size_t)r * (size_t)nf;
+        double t = rhs[r];
+        for (int a = 0; a < nf; a++) t -= yr[a] * z[a];
+        rhs[r] = t;
+        for (int k = r; k < no; k++) {
+            const double *yk = Y + (size_t)k * (size_t)nf;
+            double v = 0.0;
+            for (int a = 0; a < nf; a++) v += yk[a] * yr[a];
+            S[k + (size_t)r * (size_t)no] = v;
+        }
+    }
+}
+
+/* z += Y l (Y nf x no), by loops for a few rows as schur_gram */
+static void schur_add(const double *Y, int nf, int no, const double *l, double *z)
+{
+    if (no > SCHUR_FEW) {
+        vt_dgemv('N', nf, no, 1.0, Y, nf, l, 1, 1.0, z, 1);
+        return;
+    }
+    for (int r = 0; r < no; r++) {
+        const double *yr = Y + (size_t)r * (size_t)nf, lr = l[r];
+        for (int a = 0; a < nf; a++) z[a] += yr[a] * lr;
+    }
+}
+
 vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, double *rcond_out, vt_outcome *out)
 {
     const int nv = m->nv, nc = m->nc;
@@ -491,33 +530,13 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
     }
     if (nf > 0) vt_dtrsm('L', 'L', 'N', 'N', nf, nrhs, 1.0, L, nf, B, nf);
     const double *Y = B;
-    /* S = Y^T Y and its right-hand side R (γ − Φ q̈_D) − Y^T z. With a few rows (a point drive: 1
-     * to 3) these are a few dot products of nf terms, cheaper as loops than as BLAS calls (whose
-     * argument checks cost more than the products); one row makes S a positive number, its
-     * Cholesky factor a square root, and S's condition exactly 1. */
+    /* S = Y^T Y and its right-hand side R (γ − Φ q̈_D) − Y^T z */
     for (int k = 0; k < no; k++) {
         double t = d->gamma[ro[k]];
         for (int j = 0; j < nv - nf; j++) t -= PHI(ro[k], kr[j]) * x[kr[j]]; /* Φ_oD q̈_D */
         lam[k] = g[k] * t;
     }
-    const int few = no <= SCHUR_FEW;
-    if (few) {
-        for (int r = 0; r < no; r++) {
-            const double *yr = Y + (size_t)r * (size_t)nf;
-            double t = lam[r];
-            for (int a = 0; a < nf; a++) t -= yr[a] * z[a];
-            lam[r] = t;
-            for (int k = r; k < no; k++) {
-                const double *yk = Y + (size_t)k * (size_t)nf;
-                double v = 0.0;
-                for (int a = 0; a < nf; a++) v += yk[a] * yr[a];
-                S[k + (size_t)r * (size_t)no] = v;
-            }
-        }
-    } else {
-        vt_dsyrk('L', 'T', no, nf, 1.0, Y, nf, 0.0, S, no);
-        vt_dgemv('T', nf, no, -1.0, Y, nf, z, 1, 1.0, lam, 1);
-    }
+    schur_gram(Y, nf, no, z, lam, S);
     double rcond = 0.0;
     int st = vt_solve_spd(d, S, no, lam, &rcond);
     if (st) return vt_scratch_release(d, mark), (vt_status)st;
@@ -528,14 +547,7 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
     /* below rcond_min: not solved (vt_solve_band tries the augmented route before refusing) */
     if (!(rcond >= m->rcond_min)) return vt_scratch_release(d, mark), *out = VT_SCHUR_BELOW_MIN, VT_OK;
     /* ỹ = L^-T (z + Y λ̃), in place of z */
-    if (few) {
-        for (int r = 0; r < no; r++) {
-            const double *yr = Y + (size_t)r * (size_t)nf, l = lam[r];
-            for (int a = 0; a < nf; a++) z[a] += yr[a] * l;
-        }
-    } else {
-        vt_dgemv('N', nf, no, 1.0, Y, nf, lam, 1, 1.0, z, 1);
-    }
+    schur_add(Y, nf, no, lam, z);
     if (nf > 0) vt_dtrsv('L', 'T', 'N', nf, L, nf, z, 1);
     for (int a = 0; a < nf; a++) x[fr[a]] = z[a] * s[fr[a]];
     for (int k = 0; k < no; k++) lam[k] *= g[k];
@@ -558,23 +570,11 @@ vt_status vt_schur_solve(const vt_model *m, vt_data *d, int known, double *sol, 
             t[k] = g[k] * v;
         }
         if (nf > 0) vt_dtrsv('L', 'N', 'N', nf, L, nf, z, 1);
-        for (int r = 0; r < no; r++) {
-            const double *yr = Y + (size_t)r * (size_t)nf;
-            for (int a = 0; a < nf; a++) t[r] -= yr[a] * z[a];
-            for (int k = r; k < no; k++) {
-                const double *yk = Y + (size_t)k * (size_t)nf;
-                double v = 0.0;
-                for (int a = 0; a < nf; a++) v += yk[a] * yr[a];
-                S[k + (size_t)r * (size_t)no] = v;
-            }
-        }
+        schur_gram(Y, nf, no, z, t, S); /* S again: vt_solve_spd factorized it in place */
         double rc = 0.0;
         const int st2 = vt_solve_spd(d, S, no, t, &rc);
         if (st2) return vt_scratch_release(d, mark), (vt_status)st2;
-        for (int r = 0; r < no; r++) {
-            const double *yr = Y + (size_t)r * (size_t)nf;
-            for (int a = 0; a < nf; a++) z[a] += yr[a] * t[r];
-        }
+        schur_add(Y, nf, no, t, z);
         if (nf > 0) vt_dtrsv('L', 'T', 'N', nf, L, nf, z, 1);
         for (int a = 0; a < nf; a++) x[fr[a]] += z[a] * s[fr[a]];
         for (int k = 0; k < no; k++) lam[k] += g[k] * t[k];
