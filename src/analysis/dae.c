@@ -293,6 +293,15 @@ static vt_status exact_efforts(const vt_dae *p, const vt_model *m, double t)
     return st;
 }
 
+vt_status vt_dae_driven_at(const vt_dae *p, const vt_model *m, double t)
+{
+    vt_dae_hermite(p->src, t, p->src->tmp);
+    memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
+    memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
+    p->dk->time = t;
+    return vt_inverse_dynamics(m, p->dk);
+}
+
 /* At an output time the drives' efforts are row k of the analysis (stored at exactly that time):
  * what vt_apply_drive_loads reads, copied into dk */
 vt_status vt_dae_row_efforts(const vt_dae *p, const vt_model *m, int k)
@@ -356,11 +365,7 @@ int vt_dae_residual(sunrealtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void 
     const vt_model *m = p->dk ? p->dk->model : p->m;
     vt_data *src = p->dk ? p->dk : p->d;
     if (p->src) { /* the driven run's state at t, interpolated, and its efforts */
-        vt_dae_hermite(p->src, t, p->src->tmp);
-        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
-        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
-        p->dk->time = t;
-        if ((st = vt_inverse_dynamics(m, p->dk))) return refused(p, st, p->dk->message, t);
+        if ((st = vt_dae_driven_at(p, m, t))) return refused(p, st, p->dk->message, t);
     } else if (p->dk) {
         if ((st = reference(p, m, t))) return refused(p, st, p->dk->message, t);
         if (p->s.ref) { /* IDA's unknowns are the deviation e from the reference: y = y_ref + e */

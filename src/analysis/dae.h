@@ -81,6 +81,9 @@ int vt_dae_jacobian(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yyp, N_
 int vt_dae_deviation_weights(N_Vector yy, N_Vector ewt, void *user);
 void vt_dae_ida_error(int code, const char *module, const char *function, char *msg, void *user);
 
+/* The driven run's state at t (p->src's Hermite interpolant) into p->dk (model m), and its
+ * instant: the drives' efforts there (a failure: its status, p->dk->message says why) */
+vt_status vt_dae_driven_at(const vt_dae *p, const vt_model *m, double t);
 /* At an output time the drives' efforts are row k of p->s.rows, copied into p->dk; on contacts
  * (p->run) the row's state's efforts and loads formed again in dk (a failure: its status) */
 vt_status vt_dae_row_efforts(const vt_dae *p, const vt_model *m, int k);

@@ -287,11 +287,7 @@ static vt_status store_rows(vt_dae *p, vt_trajectory *tr, int k, double tret, co
     const vt_model *m = p->dk ? p->dk->model : p->m;
     vt_data *src = p->dk ? p->dk : p->d;
     if (p->src) { /* the driven run's interpolated state and its efforts */
-        vt_dae_hermite(p->src, tret, p->src->tmp);
-        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
-        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
-        p->dk->time = tret;
-        if ((st = vt_inverse_dynamics(m, p->dk)))
+        if ((st = vt_dae_driven_at(p, m, tret)))
             return vt_fail(md->message, st, "forward check at t = %g: %s", tret, p->dk->message);
     } else if (p->dk && !p->s.ref) { /* exact efforts: the kinematic row already stored at this time */
         if ((st = vt_dae_row_efforts(p, m, k))) return vt_fail(md->message, st, "%s", p->dk->message);
@@ -441,11 +437,7 @@ static vt_status restart_forward(run_state *rs, int k)
     double *y = N_VGetArrayPointer(r->y) + p->nd, *yp = N_VGetArrayPointer(r->yp) + p->nd;
     vt_status st = VT_OK;
     if (p->src) { /* the efforts of the driven state interpolated at t, as the residual's */
-        vt_dae_hermite(p->src, t, p->src->tmp);
-        memcpy(p->dk->q, p->src->tmp, (size_t)m->nq * sizeof(double));
-        memcpy(p->dk->qd, p->src->tmp + m->nq, (size_t)m->nv * sizeof(double));
-        p->dk->time = t;
-        if ((st = vt_inverse_dynamics(m, p->dk)))
+        if ((st = vt_dae_driven_at(p, m, t)))
             return vt_fail(md->message, st, "forward check: restart at t = %g: %s", t, p->dk->message);
     } else if (p->dk) { /* exact efforts: the row's */
         if ((st = vt_dae_row_efforts(p, m, k))) return vt_fail(md->message, st, "%s", p->dk->message);
