@@ -4,7 +4,9 @@
 # for the given seconds (default 60), then fuzz_urdf (the URDF loader, with libxml2) on
 # fuzz/corpus_urdf with fuzz/urdf.dict for the second argument's seconds (default half the
 # first; 0 skips it), then fuzz_contact (the contacts on the quadruped scene) on
-# fuzz/corpus_contact for as long as fuzz_urdf (FUZZ_CONTACT_SECONDS another time). The third argument is the number of worker processes (default 1: one
+# fuzz/corpus_contact and fuzz_cmd (the command's CSV and .npy readers) on fuzz/corpus_cmd, each
+# for as long as fuzz_urdf (FUZZ_CONTACT_SECONDS, FUZZ_CMD_SECONDS another time). The third
+# argument is the number of worker processes (default 1: one
 # process; more run libFuzzer's -fork mode, which with FUZZ_KEEP_GOING=1 also goes on after a
 # finding and collects every one). Needs clang, libclang-rt-14-dev and libxml2-dev
 # (VT_SETUP_EXTRA="clang libclang-rt-14-dev" tools/setup installs them). Findings are saved in
@@ -12,7 +14,8 @@
 # on a crash, a sanitizer report or a failed comparison.
 # FUZZ_RUNS=N (and FUZZ_URDF_RUNS=N) run a fixed number of inputs from seed FUZZ_SEED (default
 # 1) instead of a time: a deterministic run, the same inputs on every machine (CI's); fuzz_contact
-# then runs FUZZ_CONTACT_RUNS inputs (default FUZZ_RUNS). FUZZ_OUT
+# then runs FUZZ_CONTACT_RUNS inputs (default FUZZ_RUNS), fuzz_cmd FUZZ_CMD_RUNS (default
+# FUZZ_URDF_RUNS). FUZZ_OUT
 # names another output folder than build-fuzz (a second run beside a long one).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,7 +23,7 @@ seconds=${1:-60}
 urdf_seconds=${2:-$((seconds / 2))}
 workers=${3:-1}
 out=${FUZZ_OUT:-build-fuzz}
-mkdir -p "$out/corpus" "$out/corpus_urdf" "$out/corpus_contact" "$out/crashes"
+mkdir -p "$out/corpus" "$out/corpus_urdf" "$out/corpus_contact" "$out/corpus_cmd" "$out/crashes"
 parallel=()
 if [ "$workers" -gt 1 ] || [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then parallel=(-fork="$workers"); fi
 if [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then parallel+=(-ignore_crashes=1); fi
@@ -41,10 +44,22 @@ clang $flags $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') fuzz/fuzz_
 # fuzz_contact: the library as fuzz_model's, and the scenes (the quadruped)
 clang $flags -Iexamples $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') examples/scenes.c fuzz/fuzz_contact.c \
     -o "$out/fuzz_contact" $libs
+# fuzz_cmd: the command's file readers alone (no library), its C++ file by clang++
+cmdflags="-g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Icmd"
+dragonbox=""
+for dbx in /usr/include/dragonbox-*/dragonbox/dragonbox.h; do
+    [ -f "$dbx" ] && dragonbox="-DVT_HAVE_DRAGONBOX=1 -I$(dirname "$(dirname "$dbx")")"
+done
+mkdir -p "$out/cmd_obj"
+for c in csv npy message; do clang $cmdflags -std=c11 -c "cmd/$c.c" -o "$out/cmd_obj/$c.o"; done
+clang $cmdflags -std=c11 -c fuzz/fuzz_cmd.c -o "$out/cmd_obj/fuzz_cmd.o"
+clang++ $cmdflags -std=c++17 $dragonbox -c cmd/number_text.cc -o "$out/cmd_obj/number_text.o"
+clang++ $cmdflags "$out"/cmd_obj/*.o -o "$out/fuzz_cmd"
 # a fresh copy of the seed corpus: new inputs go to build-fuzz/corpus, the repository stays clean
 cp fuzz/corpus/* "$out/corpus/" 2>/dev/null || true
 cp fuzz/corpus_urdf/* "$out/corpus_urdf/" 2>/dev/null || true
 cp fuzz/corpus_contact/* "$out/corpus_contact/" 2>/dev/null || true
+cp fuzz/corpus_cmd/* "$out/corpus_cmd/" 2>/dev/null || true
 # the harness prints its reason ("fuzz_model: ...") before it aborts: shown above the tail
 status=0
 model_len=(-max_total_time="$seconds")
@@ -63,11 +78,21 @@ if [ "$urdf_seconds" -gt 0 ]; then
     status=${PIPESTATUS[0]}
     [ "$status" -eq 0 ] || exit "$status"
 fi
-contact_len=(-max_total_time="${FUZZ_CONTACT_SECONDS:-$urdf_seconds}")
-[ -n "${FUZZ_RUNS:-}" ] && contact_len=(-runs="${FUZZ_CONTACT_RUNS:-$FUZZ_RUNS}" -seed="${FUZZ_SEED:-1}")
-[ -z "${FUZZ_RUNS:-}" ] && [ "${FUZZ_CONTACT_SECONDS:-$urdf_seconds}" -le 0 ] && exit 0
-"$out/fuzz_contact" "${contact_len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -timeout=60 -max_len=512 \
-    -artifact_prefix="$out/crashes/" "${parallel[@]}" "$out/corpus_contact" > "$out/fuzz_contact.log" 2>&1 || status=$?
-grep -a '^fuzz_contact: ' "$out/fuzz_contact.log" | sort | uniq -c | head -20 || true
-tail -12 "$out/fuzz_contact.log"
+# run_harness NAME CORPUS MAX_LEN SECONDS RUNS: NAME on $out/CORPUS for SECONDS (0: not run), or
+# RUNS inputs from FUZZ_SEED under FUZZ_RUNS; its log $out/NAME.log, the reasons it printed
+# counted, its tail shown; a failure's status into status
+run_harness() {
+    local name=$1 corpus=$2 max_len=$3 secs=$4 runs=$5 len
+    len=(-max_total_time="$secs")
+    [ -n "${FUZZ_RUNS:-}" ] && len=(-runs="$runs" -seed="${FUZZ_SEED:-1}")
+    [ -n "${FUZZ_RUNS:-}" ] || [ "$secs" -gt 0 ] || return 0
+    "$out/$name" "${len[@]}" -print_final_stats=1 -rss_limit_mb=4096 -timeout=60 -max_len="$max_len" \
+        -artifact_prefix="$out/crashes/" "${parallel[@]}" "$out/$corpus" > "$out/$name.log" 2>&1 || status=$?
+    grep -a "^$name: " "$out/$name.log" | sort | uniq -c | head -20 || true
+    tail -12 "$out/$name.log"
+}
+run_harness fuzz_contact corpus_contact 512 "${FUZZ_CONTACT_SECONDS:-$urdf_seconds}" "${FUZZ_CONTACT_RUNS:-${FUZZ_RUNS:-0}}"
+[ "$status" -eq 0 ] || exit "$status"
+# fuzz_cmd: the command's CSV and .npy readers (cmd/csv.c, cmd/npy.c) and its numbers
+run_harness fuzz_cmd corpus_cmd 4096 "${FUZZ_CMD_SECONDS:-$urdf_seconds}" "${FUZZ_CMD_RUNS:-${FUZZ_URDF_RUNS:-${FUZZ_RUNS:-0}}}"
 exit "$status"
