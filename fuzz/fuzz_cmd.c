@@ -84,52 +84,47 @@ static void csv_case(char *text)
     table_free(&t);
 }
 
-static void free_names(char **names, int n)
+/* a .npy header read into t as the command reads it (cmd/input.c: npy_read_header, then
+ * table_index, which refuses a field named twice); 0, or 1 with the message in sink */
+static int npy_table(table *t, const void *bytes, size_t size, const char *path, char *sink, size_t cap,
+                     long long *nrow, long long *offset)
 {
-    for (int k = 0; k < n; k++) free(names[k]);
-    free(names);
+    FILE *f = fmemopen((void *)(uintptr_t)bytes, size, "rb");
+    if (!f) broken("fmemopen", NULL);
+    sink[0] = '\0';
+    cmd_message_sink(sink, cap);
+    const int bad = npy_read_header(f, path, &t->name, &t->ncol, nrow, offset) || table_index(t, path, 0);
+    cmd_message_sink(NULL, 0);
+    fclose(f);
+    return bad;
 }
 
 /* one .npy header read, and when read, written again and read back */
 static void npy_case(const uint8_t *data, size_t size)
 {
     if (size == 0) return;
-    FILE *f = fmemopen((void *)(uintptr_t)data, size, "rb");
-    if (!f) return;
-    char **names = NULL, sink[512] = "";
-    int ncol = 0;
-    long long nrow = -1, offset = -1;
-    cmd_message_sink(sink, sizeof sink);
-    const int bad = npy_read_header(f, "fuzz.npy", &names, &ncol, &nrow, &offset);
-    cmd_message_sink(NULL, 0);
-    fclose(f);
-    if (bad) {
+    char sink[512];
+    table t = {0}, t2 = {0};
+    long long nrow = -1, offset = -1, nrow2 = -1, offset2 = -1;
+    if (npy_table(&t, data, size, "fuzz.npy", sink, sizeof sink, &nrow, &offset)) {
         if (!sink[0]) broken("a .npy header refused without a message", NULL);
+        table_free(&t);
         return;
     }
-    if (ncol < 1 || !names || nrow < 0 || offset < 10 || (unsigned long long)offset > size)
+    if (t.ncol < 1 || nrow < 0 || offset < 10 || (unsigned long long)offset > size)
         broken("a .npy header accepted with no field, a negative shape or an offset outside the file", NULL);
     char *hdr = NULL;
     size_t len = 0;
-    if (npy_header(&hdr, &len, (const char *const *)names, ncol, nrow, 0)) broken("out of memory", NULL);
-    f = fmemopen(hdr, len, "rb");
-    if (!f) broken("fmemopen", NULL);
-    char **names2 = NULL;
-    int ncol2 = 0;
-    long long nrow2 = -1, offset2 = -1;
-    sink[0] = '\0';
-    cmd_message_sink(sink, sizeof sink);
-    const int bad2 = npy_read_header(f, "again.npy", &names2, &ncol2, &nrow2, &offset2);
-    cmd_message_sink(NULL, 0);
-    fclose(f);
-    if (bad2) broken("a .npy header written again is refused", sink);
-    if (ncol2 != ncol || nrow2 != nrow || offset2 != (long long)len)
+    if (npy_header(&hdr, &len, (const char *const *)t.name, t.ncol, nrow, 0)) broken("out of memory", NULL);
+    if (npy_table(&t2, hdr, len, "again.npy", sink, sizeof sink, &nrow2, &offset2))
+        broken("a .npy header written again is refused", sink);
+    if (t2.ncol != t.ncol || nrow2 != nrow || offset2 != (long long)len)
         broken("a .npy header written again reads as other fields, rows or offset", NULL);
-    for (int k = 0; k < ncol; k++)
-        if (strcmp(names[k], names2[k]) != 0) broken("a .npy field's name written again reads otherwise", names[k]);
-    free_names(names2, ncol2);
+    for (int k = 0; k < t.ncol; k++)
+        if (strcmp(t.name[k], t2.name[k]) != 0) broken("a .npy field's name written again reads otherwise", t.name[k]);
     free(hdr);
-    free_names(names, ncol);
+    table_free(&t2);
+    table_free(&t);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
