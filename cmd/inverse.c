@@ -109,7 +109,15 @@ static int find_frame(const run *x, const char *name)
 static int map_joints(run *x)
 {
     const vt_model *p = x->probe;
-    x->ct = table_column(&x->in.t, "t");
+    const table *t = &x->in.t;
+    /* a header of one name holding a ';' or a tab: a spreadsheet's export in another separator
+     * (a comma is the decimal mark in many locales), which no robot's columns could be */
+    const char *sep = t->header_line && t->ncol == 1 ? strpbrk(t->name[0], ";\t") : NULL;
+    if (sep)
+        return cmd_fail("%s:%d: the header is one column, its names separated by %s (the first '%.*s'): vtdyn reads "
+                        "comma-separated values, with a '.' for the decimal point",
+                        x->states, t->header_line, *sep == ';' ? "';'" : "tabs", (int)(sep - t->name[0]), t->name[0]);
+    x->ct = table_column(t, "t");
     for (int i = 1; i <= p->nbody; i++) {
         const int jt = p->body_joint[i];
         const char *name = p->joint_name + VT_NAME_MAX * i;

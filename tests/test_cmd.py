@@ -425,7 +425,8 @@ def strict(vtdyn, urdf, states, work, check):
     on a robot loaded fixed, a column twice (in a header of 110,000 names) each stop the run naming
     the file, the header's line and the column; -o naming an input (under its own or another name),
     a directory or a device is refused and leaves it as it was; a quoted header reads as the plain
-    one; --version; a one-link robot loaded fixed says how to float it"""
+    one; a header separated by ';' or tabs says so; --version; a one-link robot loaded fixed says
+    how to float it"""
     lines = open(states).read().splitlines()
     bad = os.path.join(work, "strict.csv")
 
@@ -473,6 +474,14 @@ def strict(vtdyn, urdf, states, work, check):
     write(quoted + ',"open')
     r = run(vtdyn, "inverse", urdf, bad)
     check(r.returncode == 1 and "column 8: a quote not closed" in r.stderr, "an open quote named: %r" % r.stderr)
+    # the same file exported with ';' (a comma-decimal locale's spreadsheet) or tabs between cells
+    for sep, said in ((";", "separated by ';'"), ("\t", "separated by tabs")):
+        write(lines[0].replace(",", sep), [row.replace(",", sep).replace(".", ",") for row in lines[1:3]])
+        r = run(vtdyn, "inverse", urdf, bad, "-o", os.path.join(work, "sep_out.csv"))
+        check(r.returncode == 1 and "strict.csv:1: the header is one column, its names %s (the first '%s')"
+              % (said, lines[0].split(",")[0]) in r.stderr and "comma-separated" in r.stderr
+              and not os.path.exists(os.path.join(work, "sep_out.csv")),
+              "a header separated by %r named as such, no output: %r" % (sep, r.stderr))
     # -o: an input (the states, the URDF, a hard link to the states), a directory, a device
     before = {p: open(p, "rb").read() for p in (states, urdf)}
     link = os.path.join(work, "states_link.csv")
