@@ -32,7 +32,8 @@ typedef enum vt_status {
     VT_OK = 0,                         ///< success
     VT_ERR_NULL = -1,                  ///< a required pointer argument is NULL
     VT_ERR_NO_MEMORY = -2,             ///< an allocation failed
-    VT_ERR_NONFINITE = -3,             ///< NaN or Inf in a definition or state
+    VT_ERR_NONFINITE = -3,             ///< NaN or Inf in a definition or state, or finite inputs whose
+                                       ///< results overflow (past DBL_MAX): the message says which
     VT_ERR_MASS = -4,                  ///< mass negative
     VT_ERR_INERTIA_ASYMMETRIC = -5,    ///< inertia matrix not symmetric (to vt_model_def.inertia_tol)
     VT_ERR_INERTIA_NOT_PSD = -6,       ///< inertia matrix has a negative principal moment (to vt_model_def.inertia_tol)

@@ -12,7 +12,7 @@ const char *vt_status_string(vt_status status)
     case VT_OK: return "ok";
     case VT_ERR_NULL: return "a required pointer is NULL";
     case VT_ERR_NO_MEMORY: return "out of memory";
-    case VT_ERR_NONFINITE: return "NaN or Inf in the input";
+    case VT_ERR_NONFINITE: return "NaN or Inf in the input, or a result past the largest double";
     case VT_ERR_MASS: return "mass must not be negative";
     case VT_ERR_INERTIA_ASYMMETRIC: return "inertia matrix not symmetric";
     case VT_ERR_INERTIA_NOT_PSD: return "inertia matrix not positive semi-definite";
