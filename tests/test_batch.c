@@ -3,7 +3,8 @@
  * (q in a wider table: strides), the RUSR four-bar (a loop: the drive's effort and the solved
  * q̈), failing rows in the middle (reported by index, status and message, their outputs
  * untouched, the others solved; or the call stopped), a quadruped on its contacts (against
- * vt_inverse_dynamics_contacts() alone), the arguments refused before any row, and one batch
+ * vt_inverse_dynamics_contacts() alone), wrenches at frames (against the single call with them
+ * in xfrc), the arguments refused before any row, and one batch
  * called 300 times in turn (its workers asleep between some calls, spinning between others), and
  * vt_batch_run (the caller's own work on the batch's threads: every item once; a call on the
  * batch from inside its work refused), and a batch
@@ -519,6 +520,160 @@ static void test_arguments(void **state)
     vt_model_free(m);
 }
 
+/* wrenches at frames (io->load) on the quadruped's free root and legs: each row against the same
+ * state solved alone with the loads put into xfrc by vt_add_frame_load() before the instant (the
+ * passes then carry them; the batch adds them after, by linearity: equal to round-off), a foot
+ * named twice (the sum); bitwise alike on 1, 2 and 8 threads; a NaN load refuses its row alone;
+ * loads refused before any row on a loop, with contacts, at a frame out of range or on the
+ * ground, NULL, or a stride below 6 nload */
+static void test_frame_loads(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    assert_ok(vt_scene_quadruped(&m));
+    const int nq = m->nq, nv = m->nv, nb6 = 6 * m->nbody, NL = 3;
+    int frame[3];
+    static const char *const at[3] = {"FL_foot", "HR_foot", "FL_foot"};
+    for (int k = 0; k < NL; k++) {
+        frame[k] = -1;
+        for (int f = 0; f < m->nframe; f++)
+            if (strcmp(m->frame_name + (size_t)VT_NAME_MAX * f, at[k]) == 0) frame[k] = f;
+        assert_true(frame[k] >= 0);
+    }
+    double *q = malloc((size_t)NROW * (size_t)nq * sizeof(double)), *qd = malloc((size_t)NROW * (size_t)nv * sizeof(double)),
+           *qdd = malloc((size_t)NROW * (size_t)nv * sizeof(double)), *load = malloc((size_t)NROW * 6 * NL * sizeof(double));
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    uint64_t seed = 23;
+    for (int r = 0; r < NROW; r++) {
+        vt_scene_quadruped_stand(m, d, 0.5 + 0.2 * vt_rand_uniform(&seed, 0, 1));
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        for (int a = 0; a < nv; a++) {
+            qd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -0.5, 0.5);
+            qdd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -1.0, 1.0);
+        }
+        for (int k = 0; k < 6 * NL; k++) load[(size_t)r * 6 * NL + k] = vt_rand_uniform(&seed, -20.0, 20.0);
+    }
+    outputs o[3];
+    const int threads[3] = {1, 2, 8};
+    for (int t = 0; t < 3; t++) {
+        vt_batch *b = batch_of(m, threads[t], 0);
+        outputs_alloc(&o[t], m, NROW);
+        vt_batch_io io = io_of(&o[t], NROW, q, 0, qd, qdd);
+        io.nload = NL;
+        io.load_frame = frame;
+        io.load = load;
+        assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+        vt_batch_free(b);
+    }
+    for (int t = 1; t < 3; t++) /* whatever the threads: the same bits */
+        for (int k = 0; k < NROW * nv; k++) assert_true(same(o[t].effort[k], o[0].effort[k]));
+    for (int t = 1; t < 3; t++)
+        for (int k = 0; k < NROW * nb6; k++)
+            assert_true(same(o[t].reaction[k], o[0].reaction[k]) && same(o[t].total_body[k], o[0].total_body[k]));
+    double worst = 0.0;
+    for (int r = 0; r < NROW; r++) {
+        assert_ok(vt_data_reset(m, d));
+        memcpy(d->q, q + (size_t)r * nq, (size_t)nq * sizeof(double));
+        memcpy(d->qd, qd + (size_t)r * nv, (size_t)nv * sizeof(double));
+        memcpy(d->qdd, qdd + (size_t)r * nv, (size_t)nv * sizeof(double));
+        assert_ok(vt_kinematics(m, d));
+        for (int k = 0; k < NL; k++) {
+            const double *w = load + (size_t)r * 6 * NL + 6 * k;
+            assert_ok(vt_add_frame_load(m, d, frame[k], w, w + 3));
+        }
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        double scale = 1.0;
+        for (int a = 0; a < nv; a++) scale = fmax(scale, fabs(d->qfrc_drive[a]));
+        for (int a = 0; a < nv; a++) worst = fmax(worst, fabs(o[0].effort[(size_t)r * nv + a] - d->qfrc_drive[a]) / scale);
+        for (int i = 1; i <= m->nbody; i++)
+            for (int c = 0; c < 3; c++) {
+                const double *R = o[0].reaction + (size_t)r * nb6 + 6 * (i - 1), *T = o[0].total_body + (size_t)r * nb6 + 6 * (i - 1);
+                worst = fmax(worst, fabs(R[c] - d->jnt_force[3 * i + c]) / scale);
+                worst = fmax(worst, fabs(R[3 + c] - d->jnt_moment[3 * i + c]) / scale);
+                worst = fmax(worst, fabs(T[c] - d->jnt_force_total_body[3 * i + c]) / scale);
+                worst = fmax(worst, fabs(T[3 + c] - d->jnt_moment_total_body[3 * i + c]) / scale);
+            }
+    }
+    printf("frame loads: largest difference from the loads in xfrc %.2e of the row's largest effort\n", worst);
+    assert_true(worst < 1e-13);
+    for (int t = 0; t < 3; t++) outputs_free(&o[t]);
+    /* a NaN load: that row alone refused, named */
+    load[(size_t)7 * 6 * NL + 4] = NAN;
+    vt_batch *b = batch_of(m, 2, 0);
+    outputs_alloc(&o[0], m, NROW);
+    vt_batch_io io = io_of(&o[0], NROW, q, 0, qd, qdd);
+    io.nload = NL;
+    io.load_frame = frame;
+    io.load = load;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
+    assert_int_equal(vt_batch_failed_row(b), 7);
+    assert_non_null(strstr(vt_batch_message(b), "load"));
+    for (int r = 0; r < NROW; r++) assert_int_equal(o[0].status[r], r == 7 ? VT_ERR_NONFINITE : VT_OK);
+    /* refused before any row, nothing written */
+    outputs_fill(&o[0], m, NROW, 7.0);
+    int bad[1] = {m->nframe};
+    io.load_frame = bad;
+    io.nload = 1;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_INDEX);
+    bad[0] = -1;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_INDEX);
+    io.load_frame = frame;
+    io.load = NULL;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NULL);
+    io.load = load;
+    io.load_stride = 5;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_SIZE);
+    assert_non_null(strstr(vt_batch_message(b), "load_stride"));
+    io.load_stride = 0;
+    io.nload = -1;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_SIZE);
+    for (int k = 0; k < NROW * nv; k++) assert_true(same(o[0].effort[k], 7.0));
+    vt_batch_free(b);
+    /* with contacts */
+    vt_contact_def cd = vt_default_contact_def();
+    cd.frame = "HL_foot";
+    vt_batch_def def = vt_default_batch_def();
+    def.contacts = &cd;
+    def.ncontact = 1;
+    assert_ok(vt_batch_create(&b, m, &def));
+    io.nload = NL;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(vt_batch_message(b), "contacts"));
+    vt_batch_free(b);
+    outputs_free(&o[0]);
+    vt_data_free(d);
+    vt_model_free(m);
+    /* on a loop, and at a frame on the ground */
+    assert_ok(vt_scene_fourbar_rusr(&m, vt_function_sine(0.3, 1.0, 2.0, 0.0)));
+    b = batch_of(m, 1, 0);
+    int zero[1] = {0};
+    io = (vt_batch_io){.nrow = 0, .nload = 1, .load_frame = zero, .load = load};
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(vt_batch_message(b), "cut joints"));
+    vt_batch_free(b);
+    vt_model_free(m);
+    vt_builder *bl = NULL;
+    assert_ok(vt_builder_create(&bl, NULL));
+    vt_body_def body = vt_default_body_def();
+    assert_true(vt_builder_add_body(bl, &body) == 1);
+    vt_frame_def fd = vt_default_frame_def();
+    fd.name = "floor";
+    fd.body = 0;
+    assert_int_equal(vt_builder_add_frame(bl, &fd), 0);
+    assert_ok(vt_builder_build(&m, bl));
+    vt_builder_free(bl);
+    b = batch_of(m, 1, 0);
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_INDEX);
+    assert_non_null(strstr(vt_batch_message(b), "on the ground"));
+    vt_batch_free(b);
+    vt_model_free(m);
+    free(q);
+    free(qd);
+    free(qdd);
+    free(load);
+}
+
 /* one batch, call after call (the workers asleep between some, spinning between others): 300
  * calls of 0 to 203 rows, each from another first row of the states (so that every call's inputs
  * and outputs move), one row NaN: each call's efforts and reactions bitwise those of
@@ -769,6 +924,7 @@ int main(void)
         cmocka_unit_test(test_failing_rows),
         cmocka_unit_test(test_contacts_bitwise),
         cmocka_unit_test(test_arguments),
+        cmocka_unit_test(test_frame_loads),
         cmocka_unit_test(test_calls_in_turn),
         cmocka_unit_test(test_run),
         cmocka_unit_test(test_nested_refused),

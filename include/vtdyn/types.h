@@ -881,6 +881,12 @@ typedef struct vt_batch_io {
                                             ///< the stride in ints
     double *contact_force; size_t contact_force_stride; ///< with contacts: 3 ncontact a row, the ground's
                                             ///< force on each contact (global; 0 where inactive)
+    int nload;                              ///< wrenches the environment applies at frames (default 0),
+                                            ///< on a tree without contacts: a tool's measured force
+    const int *load_frame;                  ///< nload frame indices (vt_model.frame_name's order); a
+                                            ///< frame may be named more than once (the sum)
+    const double *load; size_t load_stride; ///< 6 nload a row: at each frame its force (N), then its
+                                            ///< moment about the frame's origin (N·m), global axes
 } vt_batch_io;
 
 /// A batch: one data per thread for many states of one model (vt_batch_create).

@@ -10,6 +10,14 @@
  * solved before it on that data, nor on which thread solved it or how many there are: bitwise
  * those of the single call. A thread takes its blocks in increasing order, so its first failure
  * is its lowest; the call reports the lowest row among the threads'.
+ *
+ * Wrenches at frames (io->load) are added after the row's instant: the given motion of a tree is
+ * linear in its loads, so the row's efforts and reactions with them are the instant's plus the
+ * inward pass of the loads alone (vt_motion_add_loads), which needs each frame's place, known
+ * only once the instant has the poses. A frame F on body b with origin r^b + A_b p_F takes the
+ * force f and the moment n about its origin as xfrc's form, about the centre of mass r^b:
+ *
+ *   xfrc_b += [f; n + (A_b p_F) × f]
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"
@@ -24,7 +32,10 @@
 #include <unistd.h>
 
 #include "base/pool.h"
+#include "base/scan.h"
 #include "base/status.h"
+#include "base/vec3.h"
+#include "recursive/fused.h"
 
 /* the rows a thread takes at a time: enough that the shared counter is touched seldom (a row
  * takes 0.1 µs and more), few enough that the threads end together */
@@ -36,6 +47,7 @@ typedef struct share {
     const vt_batch_io *io;
     vt_data *d;
     vt_contacts *contacts; /* the thread's, or NULL */
+    double *xf;          /* the thread's loads at frames as xfrc (6 (nbody+1)) */
     atomic_llong *next;  /* the next block's first row, shared (64 bits: it passes nrow) */
     atomic_int *stop;    /* set by a failing row when the batch stops on errors */
     int failed;          /* the thread's first failing row, or −1 */
@@ -50,6 +62,7 @@ struct vt_batch {
     vt_data **data;      /* one per thread asked for (ndata; threads may be fewer) */
     int ndata;
     vt_contacts **contacts; /* with contacts: one set per thread (its workspace), else NULL */
+    double *xf;          /* the threads' loads at frames as xfrc, 6 (nbody+1) each */
     int ncontact;        /* 0 without */
     struct share *shares; /* the threads' shares of a call: the caller's 0, worker k's k */
     vt_pool *pool;       /* the workers (NULL on one thread) */
@@ -85,6 +98,7 @@ void vt_batch_free(vt_batch *batch)
         for (int k = 0; k < batch->ndata; k++) vt_contacts_free(batch->contacts[k]);
     free(batch->data);
     free(batch->contacts);
+    free(batch->xf);
     free(batch->shares);
     vt_pool_free(batch->pool);
     free(batch);
@@ -107,7 +121,8 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     atomic_init(&b->busy, 0);
     b->data = calloc((size_t)b->threads, sizeof *b->data);
     b->shares = malloc((size_t)b->threads * sizeof *b->shares);
-    if (!b->data || !b->shares) {
+    b->xf = malloc((size_t)b->threads * 6 * ((size_t)model->nbody + 1) * sizeof *b->xf);
+    if (!b->data || !b->shares || !b->xf) {
         vt_batch_free(b);
         return VT_ERR_NO_MEMORY;
     }
@@ -161,6 +176,24 @@ static inline double *out_row(double *x, size_t s, size_t len, int r)
     return x + (size_t)r * (s ? s : len);
 }
 
+/* row r's wrenches at frames added to the instant's results (above) */
+static vt_status add_frame_loads(const vt_model *m, vt_data *d, double *xf, const vt_batch_io *io, int r)
+{
+    const size_t nl = 6 * (size_t)io->nload;
+    const double *L = in_row(io->load, io->load_stride, nl, r);
+    if (!vt_all_finite(L, nl)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_batch: NaN or Inf in the row's load");
+    memset(xf, 0, 6 * ((size_t)m->nbody + 1) * sizeof *xf);
+    for (int k = 0; k < io->nload; k++) {
+        const int f = io->load_frame[k], b = m->frame_body[f];
+        const double *w = L + 6 * k;
+        double lever[3];
+        vt_mulmat3(lever, d->A + 9 * b, m->frame_point + 3 * f); /* A_b p_F: from r^b to the origin */
+        for (int c = 0; c < 3; c++) xf[6 * b + c] += w[c], xf[6 * b + 3 + c] += w[3 + c];
+        vt_addcross3(xf + 6 * b + 3, lever, w);
+    }
+    return vt_motion_add_loads(m, d, xf);
+}
+
 /* a body's two 3-vectors of each joint (arrays 3 (nbody+1)) as its 6 values (f, n) of the row */
 static void wrenches(double *out, const double *f, const double *n, int nbody)
 {
@@ -171,7 +204,7 @@ static void wrenches(double *out, const double *f, const double *n, int nbody)
 }
 
 /* row r solved on d (with the contacts c, or NULL) and its results written; its status */
-static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, const vt_batch_io *io, int r)
+static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, double *xf, const vt_batch_io *io, int r)
 {
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb = (size_t)m->nbody;
     memcpy(d->q, in_row(io->q, io->q_stride, nq, r), nq * sizeof(double));
@@ -188,6 +221,7 @@ static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, const 
         st = vt_inverse_dynamics_contacts(m, d, c, active, force);
     } else {
         st = vt_inverse_dynamics_motion(m, d);
+        if (!st && io->nload > 0) st = add_frame_loads(m, d, xf, io, r);
     }
     if (st) return st;
     if (io->effort) memcpy(out_row(io->effort, io->effort_stride, nv, r), d->qfrc_drive, nv * sizeof(double));
@@ -237,7 +271,7 @@ static void run_share(void *arg, int k)
         for (int r = (int)first; r < end; r++) {
             vt_status st = VT_ERR_SKIPPED;
             if (!b->stop_on_error || !atomic_load_explicit(s->stop, memory_order_relaxed))
-                st = solve_row(b->model, s->d, s->contacts, s->io, r);
+                st = solve_row(b->model, s->d, s->contacts, s->xf, s->io, r);
             if (st && st != VT_ERR_SKIPPED && s->failed < 0) {
                 s->failed = r;
                 s->status = st;
@@ -278,6 +312,24 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
     if (io->nrow < 0) return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: nrow %d < 0", io->nrow);
     if (io->nrow > 0 && (!io->q || !io->qd || !io->qdd))
         return vt_fail(b->message, VT_ERR_NULL, "vt_batch: q, qd and qdd are required");
+    if (io->nload < 0) return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: nload %d < 0", io->nload);
+    if (io->nload > 0) {
+        if (b->ncontact > 0 || m->ncut > 0 || m->ncoupling > 0)
+            return vt_fail(b->message, VT_ERR_BAD_OPTION,
+                           "vt_batch: loads at frames need a tree's given motion: this %s",
+                           b->ncontact > 0 ? "batch has contacts" : m->ncut > 0 ? "model has cut joints" : "model has couplings");
+        if (!io->load_frame || (io->nrow > 0 && !io->load))
+            return vt_fail(b->message, VT_ERR_NULL, "vt_batch: nload %d with load_frame or load NULL", io->nload);
+        for (int k = 0; k < io->nload; k++) {
+            const int f = io->load_frame[k];
+            if (f < 0 || f >= m->nframe)
+                return vt_fail(b->message, VT_ERR_BAD_INDEX, "vt_batch: load %d at frame %d: the model has %d frames", k, f,
+                               m->nframe);
+            if (m->frame_body[f] == 0) /* as vt_add_frame_load: the ground takes it, the robot feels nothing */
+                return vt_fail(b->message, VT_ERR_BAD_INDEX, "vt_batch: load %d at frame %d '%s': on the ground", k, f,
+                               m->frame_name + (size_t)VT_NAME_MAX * f);
+        }
+    }
     const struct {
         const char *name;
         int given;
@@ -298,7 +350,8 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
              {"bearing", io->bearing != NULL, io->bearing_stride, 4 * (size_t)m->nbody},
              {"limit_excess", io->limit_excess != NULL, io->limit_excess_stride, 3 * nv},
              {"contact_active", io->contact_active != NULL, io->contact_active_stride, (size_t)b->ncontact},
-             {"contact_force", io->contact_force != NULL, io->contact_force_stride, 3 * (size_t)b->ncontact}};
+             {"contact_force", io->contact_force != NULL, io->contact_force_stride, 3 * (size_t)b->ncontact},
+             {"load", io->nload > 0, io->load_stride, 6 * (size_t)(io->nload > 0 ? io->nload : 0)}};
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         if (a[k].given && a[k].stride != 0 && a[k].stride < a[k].len)
             return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: %s_stride %zu below its row's %zu values",
@@ -336,7 +389,8 @@ static vt_status batch_call(vt_batch *batch, const vt_batch_io *io)
     atomic_init(&next, 0);
     for (int k = 0; k < T; k++)
         shares[k] = (share){.batch = batch, .io = io, .d = batch->data[k], .next = &next, .stop = &stop,
-                            .failed = -1, .contacts = batch->contacts ? batch->contacts[k] : NULL};
+                            .failed = -1, .contacts = batch->contacts ? batch->contacts[k] : NULL,
+                            .xf = batch->xf + (size_t)k * 6 * ((size_t)batch->model->nbody + 1)};
     vt_pool_run(batch->pool, T, run_share, shares);
     int low = -1; /* the thread whose first failure is the lowest row */
     for (int k = 0; k < T; k++)
