@@ -223,13 +223,17 @@ class Model:
         outputs: Optional[Sequence[str]] = None,
         out: Optional[Result] = None,
         qfrc: Optional[npt.ArrayLike] = None,
+        loads: Optional[npt.ArrayLike] = None,
+        load_frames: Union[None, str, Sequence[str]] = None,
     ) -> Result:
         """the given motion's efforts and joint reactions on one state (1-D) or N states (N x n);
         with contacts the ground's forces at them carry the free root; active: None (all) or 0/1
         per contact (ncontact, or N x ncontact); outputs: None (every field) or the names of the
         Result fields wanted, the others None and neither computed nor written; out: an earlier
         Result of the same shapes whose arrays are written again; qfrc: applied generalized forces
-        (v's shape), which the efforts then need not give"""
+        (v's shape), which the efforts then need not give; loads (F x 6, or N x F x 6) with
+        load_frames (F frame names): wrenches the environment applies at those frames, the force
+        (N) then the moment about the frame's origin (N m), world axes (a tree without contacts)"""
     def frame_poses(
         self, q: npt.ArrayLike, frames: Union[None, str, Sequence[str]] = None
     ) -> Tuple[_F64, _F64]:

@@ -6,9 +6,9 @@
  * axes, NumPy's R @ v. */
 #include "vtdyn_py.h"
 
-/* frames: None (every frame of the model) or names of its frames; the indices into a new int
- * array (*n of them), or NULL with ValueError naming the argument */
-static int *frame_indices(const vt_model *m, PyObject *o, int *n)
+/* what (an argument's name): None (every frame of the model) or names of its frames; the indices
+ * into a new int array (*n of them, PyMem_Free), or NULL with ValueError naming the argument */
+int *vtpy_frame_indices(const vt_model *m, PyObject *o, int *n, const char *what)
 {
     if (!o || o == Py_None) {
         int *idx = PyMem_Malloc((size_t)(m->nframe > 0 ? m->nframe : 1) * sizeof(int));
@@ -19,9 +19,12 @@ static int *frame_indices(const vt_model *m, PyObject *o, int *n)
     }
     if (PyUnicode_Check(o)) o = Py_BuildValue("(O)", o); /* one name */
     else Py_INCREF(o);
-    PyObject *seq = o ? PySequence_Fast(o, "frames: a frame's name or a sequence of them") : NULL;
+    PyObject *seq = o ? PySequence_Fast(o, "a frame's name or a sequence of them") : NULL;
     Py_XDECREF(o);
-    if (!seq) return NULL;
+    if (!seq) {
+        PyErr_Format(PyExc_ValueError, "%s: a frame's name or a sequence of them", what);
+        return NULL;
+    }
     const Py_ssize_t len = PySequence_Fast_GET_SIZE(seq);
     int *idx = PyMem_Malloc((size_t)(len > 0 ? len : 1) * sizeof(int));
     if (!idx) {
@@ -33,7 +36,7 @@ static int *frame_indices(const vt_model *m, PyObject *o, int *n)
         const char *name = PyUnicode_Check(x) ? PyUnicode_AsUTF8(x) : NULL;
         const int f = name ? vt_find_frame(m, name) : -1;
         if (f < 0) {
-            PyErr_Format(PyExc_ValueError, "frames: %R is not a frame of the model (Model.frame_names)", x);
+            PyErr_Format(PyExc_ValueError, "%s: %R is not a frame of the model (Model.frame_names)", what, x);
             PyMem_Free(idx);
             Py_DECREF(seq);
             return NULL;
@@ -55,7 +58,7 @@ PyObject *vtpy_frame_poses(ModelObject *self, PyObject *args, PyObject *kw)
         return PyErr_Format(PyExc_ValueError, "frame_poses: a model with cut joints or couplings needs the full "
                             "layout (Builder(layout='full'); load_urdf with mimic=True has it)");
     int nf = 0;
-    int *idx = frame_indices(m, of, &nf);
+    int *idx = vtpy_frame_indices(m, of, &nf, "frames");
     if (!idx) return NULL;
     PyArrayObject *q = vtpy_as_rows(oq, "q", m->nq);
     PyObject *pos = NULL, *rot = NULL, *res = NULL;

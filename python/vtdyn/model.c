@@ -454,9 +454,9 @@ static int overlap(PyArrayObject *a, PyArrayObject *b)
 }
 
 /* out= field k: the array of an earlier Result, to be written again: float64, C-contiguous,
- * writeable, of the shape this call gives, apart from the inputs (q, v, a, qfrc or NULL); a new
- * reference, or NULL with ValueError naming it */
-static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[4])
+ * writeable, of the shape this call gives, apart from the inputs (q, v, a, qfrc, loads or NULL); a
+ * new reference, or NULL with ValueError naming it */
+static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[5])
 {
     const char *name = vtpy_result_fields[k].name;
     PyObject *o = PyStructSequence_GetItem(reuse, k);
@@ -469,8 +469,8 @@ static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *
     if (!same)
         return PyErr_Format(PyExc_ValueError, "out.%s: not a writeable C-contiguous float64 array of this call's shape",
                             name);
-    static const char *const input[4] = {"q", "v", "a", "qfrc"};
-    for (int i = 0; i < 4; i++)
+    static const char *const input[5] = {"q", "v", "a", "qfrc", "loads"};
+    for (int i = 0; i < 5; i++)
         if (in[i] && overlap((PyArrayObject *)in[i], x))
             return PyErr_Format(PyExc_ValueError, "out.%s: shares memory with %s", name, input[i]);
     Py_INCREF(o);
@@ -479,13 +479,20 @@ static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *
 
 static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
 {
-    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", "outputs", "out", "qfrc", NULL};
-    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL, *oqf = NULL;
+    static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", "outputs", "out", "qfrc", "loads",
+                             "load_frames", NULL};
+    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL, *oqf = NULL, *old = NULL, *olf = NULL;
     int threads = 0, want[NRESULT];
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
-                                     &oout, &reuse, &oqf))
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
+                                     &oout, &reuse, &oqf, &old, &olf))
         return NULL;
     if (oqf == Py_None) oqf = NULL;
+    if (old == Py_None) old = NULL;
+    if (olf == Py_None) olf = NULL;
+    if (!old != !olf)
+        return PyErr_Format(PyExc_ValueError, "%s given without %s: loads (F x 6 a state: force, then moment about "
+                            "the frame's origin, world axes) and load_frames (F frame names) go together",
+                            old ? "loads" : "load_frames", old ? "load_frames" : "loads");
     if (reuse == Py_None) reuse = NULL;
     if (reuse && !PyObject_TypeCheck(reuse, &vtpy_result_type))
         return PyErr_Format(PyExc_ValueError, "out: a vtdyn.Result of an earlier call, not %s", Py_TYPE(reuse)->tp_name);
@@ -506,6 +513,8 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL, *act = NULL;
     PyArrayObject *qf = a && oqf ? vtpy_as_rows(oqf, "qfrc", m->nv) : NULL;
     PyObject *res = NULL, *out[NRESULT] = {NULL};
+    PyArrayObject *ld = NULL;
+    int *lframe = NULL, nload = 0;
     if (!a || (oqf && !qf)) goto done;
     const int nd = PyArray_NDIM(q);
     if (qf && (PyArray_NDIM(qf) != nd || (nd == 2 && PyArray_DIMS(qf)[0] != PyArray_DIMS(q)[0]))) {
@@ -530,6 +539,23 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         goto done;
     }
     if (cs && read_active(oact, nd, N, ncontact, &act)) goto done;
+    if (old) { /* F frames, and their wrenches as packed rows of 6 F */
+        if (!(lframe = vtpy_frame_indices(m, olf, &nload, "load_frames"))) goto done;
+        PyArray_Descr *dt = PyArray_DescrFromType(NPY_DOUBLE);
+        ld = (PyArrayObject *)PyArray_FromAny(old, dt, 0, 0, NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_NOTSWAPPED,
+                                              NULL);
+        if (!ld) {
+            PyErr_Clear();
+            PyErr_Format(PyExc_ValueError, "loads: not convertible to a float64 array");
+            goto done;
+        }
+        const npy_intp *ldim = PyArray_DIMS(ld);
+        if (PyArray_NDIM(ld) != nd + 1 || ldim[nd] != 6 || ldim[nd - 1] != nload || (nd == 2 && ldim[0] != N)) {
+            PyErr_Format(PyExc_ValueError, "loads: expected %s%d x 6 (a wrench for each of the %d load_frames)",
+                         nd == 2 ? "N x " : "", nload, nload);
+            goto done;
+        }
+    }
     /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate),
      * the effort's parts (3 x nv), the contact forces (3 a contact) */
     npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
@@ -543,7 +569,8 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
             continue;
         }
         out[k] = reuse ? reused_array(reuse, k, nd == 2 ? rank : rank - 1, nd == 2 ? dims : dims + 1, (PyObject *[]){
-                                              (PyObject *)q, (PyObject *)v, (PyObject *)a, (PyObject *)qf})
+                                              (PyObject *)q, (PyObject *)v, (PyObject *)a, (PyObject *)qf,
+                                              (PyObject *)ld})
                        : nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
     }
@@ -554,6 +581,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.qd = PyArray_DATA(v), io.qd_stride = vtpy_row_stride(v);
     io.qdd = PyArray_DATA(a), io.qdd_stride = vtpy_row_stride(a);
     if (qf) io.qfrc = PyArray_DATA(qf), io.qfrc_stride = vtpy_row_stride(qf);
+    if (ld) io.nload = nload, io.load_frame = lframe, io.load = PyArray_DATA(ld); /* packed rows */
 #define OUT(k) (want[k] ? PyArray_DATA((PyArrayObject *)out[k]) : NULL)
     io.effort = OUT(0);
     io.reaction = OUT(1);
@@ -617,6 +645,8 @@ done:
     Py_XDECREF(v);
     Py_XDECREF(a);
     Py_XDECREF(qf);
+    Py_XDECREF(ld);
+    PyMem_Free(lframe);
     Py_XDECREF(act);
     return res;
 }
@@ -654,7 +684,9 @@ static PyMethodDef model_methods[] = {
      "outputs: None (every field) or the Result fields wanted, e.g. ('effort', 'reaction'): the others are\n"
      "None and neither computed nor written; out: an earlier Result of the same shapes whose arrays are\n"
      "written again (no new memory: a log solved chunk by chunk); qfrc: applied generalized forces (as v's\n"
-     "shape), which the efforts then need not give"},
+     "shape), which the efforts then need not give; loads (F x 6, or N x F x 6) and load_frames (F names):\n"
+     "wrenches the environment applies at frames, force (N) then moment about the frame's origin (N m), world\n"
+     "axes, as a tool's force sensor measures them turned into world axes (a tree without contacts)"},
     {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
      "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"
      "forward_check=True (False without SUNDIALS), ...) -> Trajectory: a fully driven model's motion, efforts and\n"

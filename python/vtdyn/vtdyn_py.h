@@ -81,6 +81,9 @@ PyObject *vtpy_model_contacts(ModelObject *self, PyObject *args, PyObject *kw);
 
 /* frames.c */
 PyObject *vtpy_frame_poses(ModelObject *self, PyObject *args, PyObject *kw);
+/* what (an argument's name): None (every frame) or frame names as indices (a new array of *n,
+ * PyMem_Free), or NULL with ValueError naming the argument (frames.c) */
+int *vtpy_frame_indices(const vt_model *m, PyObject *o, int *n, const char *what);
 
 /* analysis.c */
 PyObject *vtpy_kinematic_analysis(ModelObject *self, PyObject *args, PyObject *kw);

@@ -85,46 +85,65 @@ def random_states(model, n, seed):
     return q, v, a
 
 
-def compare_with_pinocchio(name, floating):
+def pinocchio_pair(name, floating):
+    """the robot loaded by vtdyn and by Pinocchio, and vtdyn's bodies matched to Pinocchio's joints
+    by the URDF joint's name ("root_joint": the free flyer): (b, j, qa, nq, va, nv, iq, iv) each"""
     m = vtdyn.load_urdf(urdf(name), floating=floating)
     pm = (pin.buildModelFromUrdf(urdf(name), pin.JointModelFreeFlyer()) if floating
           else pin.buildModelFromUrdf(urdf(name)))
-    pd, kin = pm.createData(), pm.createData()
     assert m.nv == pm.nv and m.nq == pm.nq
-    q, v, a = random_states(m, NSTATES, seed=len(name) + 10 * floating)
-    r = m.inverse(q, v, a)
-    assert r.effort.shape == (NSTATES, m.nv) and r.reaction.shape == (NSTATES, m.nbody, 6)
-    # vtdyn's bodies to Pinocchio's joints, by the URDF joint's name ("root_joint": the free flyer)
     joints = []
     for b, (qa, nq, va, nv) in enumerate(m.body_index):
         jname = "root_joint" if nq == 7 else m.body_joint_names[b]
         j = pm.getJointId(jname)
         assert j < pm.njoints, jname
         joints.append((b, j, qa, nq, va, nv, pm.joints[j].idx_q, pm.joints[j].idx_v))
+    return m, pm, joints
+
+
+def to_pinocchio(pm, joints, q, v, a):
+    """one state in Pinocchio's layout: a free flyer's x y z, x y z w and its rates in the root's
+    axes (its acceleration the spatial one: less ω × v); the root's rotation, its rates' indices"""
+    qp, vp, ap = np.empty(pm.nq), np.empty(pm.nv), np.empty(pm.nv)
+    root_R = None
+    for b, j, qa, nq, va, nv, iq, iv in joints:
+        if nq == 7:
+            w, x, y, z = q[qa + 3:qa + 7]
+            R = quat_to_rot(w, x, y, z)
+            root_R = (R, iv, va)
+            qp[iq:iq + 7] = np.r_[q[qa:qa + 3], x, y, z, w]
+            vl, wl = R.T @ v[va:va + 3], R.T @ v[va + 3:va + 6]
+            vp[iv:iv + 6] = np.r_[vl, wl]
+            ap[iv:iv + 6] = np.r_[R.T @ a[va:va + 3] - np.cross(wl, vl), R.T @ a[va + 3:va + 6]]
+        else:
+            qp[iq], vp[iv], ap[iv] = q[qa], v[va], a[va]
+    return qp, vp, ap, root_R
+
+
+def effort_to_pinocchio(pm, joints, effort, root_R):
+    """vtdyn's efforts of one state in Pinocchio's order, a free root's turned into its axes"""
+    tau = np.empty(pm.nv)
+    for b, j, qa, nq, va, nv, iq, iv in joints:
+        tau[iv:iv + nv] = effort[va:va + nv]
+    if root_R is not None:
+        R, iv, va = root_R
+        tau[iv:iv + 3] = R.T @ effort[va:va + 3]
+        tau[iv + 3:iv + 6] = R.T @ effort[va + 3:va + 6]
+    return tau
+
+
+def compare_with_pinocchio(name, floating):
+    m, pm, joints = pinocchio_pair(name, floating)
+    pd, kin = pm.createData(), pm.createData()
+    q, v, a = random_states(m, NSTATES, seed=len(name) + 10 * floating)
+    r = m.inverse(q, v, a)
+    assert r.effort.shape == (NSTATES, m.nv) and r.reaction.shape == (NSTATES, m.nbody, 6)
     worst = 0.0
     for s in range(NSTATES):
-        qp, vp, ap = np.empty(pm.nq), np.empty(pm.nv), np.empty(pm.nv)
-        root_R = None
-        for b, j, qa, nq, va, nv, iq, iv in joints:
-            if nq == 7:
-                w, x, y, z = q[s, qa + 3:qa + 7]
-                R = quat_to_rot(w, x, y, z)
-                root_R = (R, iv, va)
-                qp[iq:iq + 7] = np.r_[q[s, qa:qa + 3], x, y, z, w]
-                vl, wl = R.T @ v[s, va:va + 3], R.T @ v[s, va + 3:va + 6]
-                vp[iv:iv + 6] = np.r_[vl, wl]
-                ap[iv:iv + 6] = np.r_[R.T @ a[s, va:va + 3] - np.cross(wl, vl), R.T @ a[s, va + 3:va + 6]]
-            else:
-                qp[iq], vp[iv], ap[iv] = q[s, qa], v[s, va], a[s, va]
+        qp, vp, ap, root_R = to_pinocchio(pm, joints, q[s], v[s], a[s])
         tau = pin.rnea(pm, pd, qp, vp, ap) + pm.damping * vp + pm.friction * np.sign(vp)  # <dynamics>, as vtdyn
         pin.forwardKinematics(pm, kin, qp)
-        mine_tau = np.empty(pm.nv)
-        for b, j, qa, nq, va, nv, iq, iv in joints:
-            mine_tau[iv:iv + nv] = r.effort[s, va:va + nv]
-        if root_R is not None:
-            R, iv, va = root_R
-            mine_tau[iv:iv + 3] = R.T @ r.effort[s, va:va + 3]
-            mine_tau[iv + 3:iv + 6] = R.T @ r.effort[s, va + 3:va + 6]
+        mine_tau = effort_to_pinocchio(pm, joints, r.effort[s], root_R)
         ref_w, mine_w = [], []
         for b, j, qa, nq, va, nv, iq, iv in joints:
             S = np.asarray(pd.joints[j].S).reshape(6, nv)
@@ -159,6 +178,54 @@ def compare_with_pinocchio(name, floating):
 def test_against_pinocchio(name, floating):
     worst = compare_with_pinocchio(name, floating)
     print("%s%s: %d states, largest relative difference %.2g" % (name, " floating" if floating else "", NSTATES, worst))
+
+
+@pytest.mark.parametrize("name,floating,frames", [("UR5", False, ["tool0", "wrist_1_link", "tool0"]),
+                                                  ("Solo-12", True, ["FL_FOOT", "HR_FOOT", "base_link"])])
+def test_loads_against_pinocchio(name, floating, frames):
+    """loads at frames (force, then moment about the frame's origin, world axes) against
+    Pinocchio's rnea with fext: each wrench moved to the world origin and into its frame's parent
+    joint's axes (oMi.actInv), a frame named twice summed; 200 random states (1e-12 of the
+    largest effort); one state as its row; shapes and names refused naming the argument"""
+    m, pm, joints = pinocchio_pair(name, floating)
+    pd = pm.createData()
+    n = 200
+    q, v, a = random_states(m, n, seed=31)
+    rng = np.random.default_rng(32)
+    w = rng.uniform(-30, 30, (n, len(frames), 6))
+    r = m.inverse(q, v, a, loads=w, load_frames=frames, threads=2)
+    pos, _ = m.frame_poses(q, frames)
+    fids = [pm.getFrameId(f, pin.FrameType.BODY) for f in frames]
+    worst = 0.0
+    for s in range(n):
+        qp, vp, ap, root_R = to_pinocchio(pm, joints, q[s], v[s], a[s])
+        pin.forwardKinematics(pm, pd, qp)
+        fext = [pin.Force.Zero() for _ in range(pm.njoints)]
+        for k, f in enumerate(fids):
+            j = pm.frames[f].parentJoint
+            at_origin = pin.Force(w[s, k, :3], w[s, k, 3:] + np.cross(pos[s, k], w[s, k, :3]))
+            fext[j] += pd.oMi[j].actInv(at_origin)
+        tau = pin.rnea(pm, pd, qp, vp, ap, fext) + pm.damping * vp + pm.friction * np.sign(vp)
+        mine = effort_to_pinocchio(pm, joints, r.effort[s], root_R)
+        worst = max(worst, np.abs(mine - tau).max() / max(1.0, np.abs(tau).max()))
+    print("%s: loads at %s, largest relative difference %.2g" % (name, frames, worst))
+    assert worst <= TOL, worst
+    none = m.inverse(q, v, a, threads=2)
+    assert np.abs(none.effort - r.effort).max() > 1.0  # the loads change the efforts
+    one = m.inverse(q[5], v[5], a[5], loads=w[5], load_frames=frames)
+    assert np.array_equal(one.effort, r.effort[5]) and np.array_equal(one.reaction, r.reaction[5])
+    with pytest.raises(ValueError, match="loads given without load_frames"):
+        m.inverse(q, v, a, loads=w)
+    with pytest.raises(ValueError, match="load_frames: 'nose' is not a frame"):
+        m.inverse(q, v, a, loads=w[:, :1], load_frames=["nose"])
+    with pytest.raises(ValueError, match="loads: expected N x 3 x 6"):
+        m.inverse(q, v, a, loads=w[:, :, :5], load_frames=frames)
+    with pytest.raises(ValueError, match="loads: expected N x 3 x 6"):
+        m.inverse(q, v, a, loads=w[:7], load_frames=frames)
+    w[9, 1, 2] = np.nan
+    with pytest.raises(vtdyn.Error) as e:
+        m.inverse(q, v, a, loads=w, load_frames=frames)
+    assert e.value.status == "VT_ERR_NONFINITE" and e.value.row == 9
 
 
 @pytest.fixture(scope="module")
