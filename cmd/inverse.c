@@ -51,6 +51,9 @@ static void run_free(run *x)
     free(x->excess);
     free(x->parts);
     free(x->status);
+    free(x->lframe);
+    free(x->lcol);
+    free(x->load);
     free(x->vals[0]);
     free(x->vals[1]);
     if (x->blk)
@@ -265,6 +268,52 @@ static int map_contacts(run *x)
     return 0;
 }
 
+/* --loads F1,F2,...: each frame's wrench columns F_fx F_fy F_fz F_nx F_ny F_nz (the force, then the
+ * moment about the frame's origin, world axes: what the environment applies to the link), on
+ * states without contacts (the batch adds them after each row's instant); the frames' indices
+ * in the probe, those of the model solved set by build_model; 0 or 1 */
+static int map_loads(run *x)
+{
+    static const char *const sfx[6] = {"_fx", "_fy", "_fz", "_nx", "_ny", "_nz"};
+    const char *list = x->o->loads;
+    if (!list) return 0;
+    if (x->ncontact)
+        return cmd_fail("--loads with --contacts: not supported (the ground's forces would share the loads too)");
+    if (x->form == FORM_SAMPLES)
+        return cmd_fail("--loads: %s holds samples (t and positions): loads take states (J, J_vel and J_acc for every "
+                        "joint)",
+                        x->states);
+    int n = 1;
+    for (const char *p = list; *p; p++) n += *p == ',';
+    if (!(x->lframe = malloc((size_t)n * sizeof *x->lframe)) || !(x->lcol = malloc(6 * (size_t)n * sizeof *x->lcol)))
+        return cmd_fail("out of memory");
+    for (const char *p = list;; p++) {
+        const char *e = strchr(p, ',');
+        const size_t len = e ? (size_t)(e - p) : strlen(p);
+        char name[VT_NAME_MAX];
+        if (len == 0 || len >= sizeof name)
+            return cmd_fail("--loads '%s': frame names separated by commas (%s)", list, len ? "one too long" : "one empty");
+        memcpy(name, p, len);
+        name[len] = '\0';
+        const int f = find_frame(x, name);
+        if (f < 0) return cmd_fail("--loads: '%s' is no frame of %s (vtdyn info lists them)", name, x->urdf);
+        if (x->probe->frame_body[f] == 0)
+            return cmd_fail("--loads: frame '%s' is fixed to the world: a load there moves nothing", name);
+        const int k = x->nload++;
+        x->lframe[k] = f;
+        for (int c = 0; c < 6; c++) {
+            char key[VT_NAME_MAX + 8];
+            snprintf(key, sizeof key, "%s%s", name, sfx[c]);
+            if ((x->lcol[6 * k + c] = table_column(&x->in.t, key)) < 0)
+                return cmd_fail("%s: no column '%s' (--loads %s: %s_fx ... %s_nz, world axes)", x->states, key, name,
+                                name, name);
+        }
+        if (!e) break;
+        p = e;
+    }
+    return 0;
+}
+
 /* the model solved (the robot, with the spline drives for samples) and its data; for states the
  * batch on the run's threads; 0 or 1 */
 static int build_model(run *x)
@@ -273,6 +322,8 @@ static int build_model(run *x)
     if (vt_builder_build(&x->m, x->b) || vt_data_create(&x->d, x->m))
         return cmd_fail("%s: %s", x->urdf, vt_builder_message(x->b));
     for (int k = 0; k < x->nj; k++) x->jc[k].qadr = x->m->body_qadr[x->jc[k].body];
+    for (int k = 0; k < x->nload; k++) /* the probe's frames found again in the model solved */
+        x->lframe[k] = vt_find_frame(x->m, x->probe->frame_name + (size_t)VT_NAME_MAX * x->lframe[k]);
     /* the batch (the states' solver) counts the CPUs for -j 0; the samples' threads are as many */
     vt_batch_def def = vt_default_batch_def();
     def.threads = x->o->threads;
@@ -300,7 +351,8 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, const
     if (!cloc) return cmd_fail("out of memory (the C locale)");
     const locale_t oldloc = uselocale(cloc);
     int status = input_open(&x.in, states) || load_robot(&x, o) || map_joints(&x) ||
-                 map_floating_roots(&x) || map_contacts(&x) || check_columns(&x, o->floating) || build_model(&x) ||
+                 map_floating_roots(&x) || map_contacts(&x) || map_loads(&x) || check_columns(&x, o->floating) ||
+                 build_model(&x) ||
                  output_columns(&x) || output_format(&x, outpath) || chunk_arrays(&x);
     if (!status) {
         const char *inputs[2] = {urdf, states};

@@ -34,6 +34,7 @@ typedef struct {
     int ideal;          /* --ideal-joints: the URDF's <dynamics> ignored */
     double inertia_tol; /* --inertia-tol: the inertia checks' tolerance, -1 the library's default */
     const char *contacts; /* --contacts: a CSV file of frame,mu (the feet on the ground) */
+    const char *loads;  /* --loads: the frames F whose wrench columns F_fx ... F_nz the states hold */
 } inverse_options;
 
 /* `vtdyn inverse [options] URDF STATES [-o OUTPATH]`: one output row per input row, to OUTPATH

@@ -105,6 +105,11 @@ typedef struct {
     int *active;               /* the rows' active contacts (K x ncontact) */
     double *cforce;            /* the rows' ground forces (K x 3 ncontact) */
     vt_contacts *contacts;     /* a failing row's message: solved alone on d with these */
+    /* --loads: wrenches at frames */
+    int nload;
+    int *lframe;               /* their frames in the solved model (nload) */
+    int *lcol;                 /* their input columns F_fx ... F_nz (6 nload) */
+    double *load;              /* the rows' wrenches (K x 6 nload) */
     /* the time spent, s */
     double t_read, t_solve, t_write;
 } run;

@@ -36,8 +36,9 @@ int chunk_arrays(run *x)
               lim = (g & COLS_LIMITS) != 0, parts = (g & COLS_PARTS) != 0;
     const size_t nb4 = 4 * (size_t)m->nbody;
     const size_t nk = (size_t)x->ncontact;
+    const size_t nl = 6 * (size_t)x->nload;
     const size_t row = 8 * (ncol + nq + 3 * nv + (size_t)(world + link) * nb6 + bear * nb4 + (lim + parts) * 3 * nv +
-                            nout + 3 * nk) + 4 * nk + 4 + 16 + text + 24 * ncol;
+                            nout + 3 * nk + nl) + 4 * nk + 4 + 16 + text + 24 * ncol;
     size_t K = CHUNK_BYTES / row;
     const size_t most = x->T > 1 ? 8 * CHUNK_ROWS : CHUNK_ROWS;
     if (K > most) K = most;
@@ -59,6 +60,7 @@ int chunk_arrays(run *x)
         x->cforce = calloc(K * 3 * nk, sizeof *x->cforce);
         if (!x->active || !x->cforce) return cmd_fail("out of memory");
     }
+    if (nl && !(x->load = malloc(K * nl * sizeof *x->load))) return cmd_fail("out of memory");
     for (int k = 0; k < 2 && x->ofmt == FMT_NPY; k++) x->vals[k] = malloc(K * nout * sizeof *x->vals[k]);
     x->blk = calloc((size_t)x->tm.nblock, sizeof *x->blk);
     if (!x->cells || !x->q || !x->qd || !x->qdd || !x->effort || (world && !x->reac) || (link && !x->reac_link) ||
@@ -90,6 +92,7 @@ static int fill_state(const run *x, int r, const double *row, char *msg)
         }
         x->active[(size_t)r * (size_t)x->ncontact + (size_t)k] = a != 0.0;
     }
+    for (int k = 0; k < 6 * x->nload; k++) x->load[(size_t)r * 6 * (size_t)x->nload + (size_t)k] = row[x->lcol[k]];
     for (int k = 0; k < x->nj; k++) {
         const joint_cols *j = &x->jc[k];
         if (!j->free) {
@@ -151,6 +154,9 @@ vt_batch_io chunk_io(const run *x, int n)
     io.status = x->status;
     io.contact_active = x->active;
     io.contact_force = x->cforce;
+    io.nload = x->nload;
+    io.load_frame = x->lframe;
+    io.load = x->load;
     return io;
 }
 

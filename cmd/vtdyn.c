@@ -4,7 +4,7 @@
  *   vtdyn inverse [--floating] [-j N] [--columns LIST] [--precision P]
  *                 [--normalize-quaternions TOL] [--format csv|npy] [--times]
  *                 [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]... [--contacts FILE]
- *                 MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]
+ *                 [--loads FRAME[,FRAME...]] MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]
  *   vtdyn --version
  *
  * `inverse` reads one row per instant (a CSV row, or a record of a .npy structured array whose
@@ -55,7 +55,8 @@ static const char usage[] =
     "                     [--normalize-quaternions TOL] [--format csv|npy] [--times]\n"
     "                     [--payload LINK,mass,x,y,z[,Ixx,Iyy,Izz,Ixy,Ixz,Iyz]]...\n"
     "                     [--joint-params FILE] [--ideal-joints] [--inertia-tol TOL]\n"
-    "                     [--contacts FILE] MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
+    "                     [--contacts FILE] [--loads FRAME[,FRAME...]]\n"
+    "                     MODEL.urdf STATES.csv|STATES.npy [-o OUT.csv|OUT.npy]\n"
     "       vtdyn --version | --help\n"
     "\n"
     "--floating  the robot's root link (one no joint attaches to the world) floats: a free joint\n"
@@ -158,7 +159,10 @@ static const char usage_options[] =
     "  --ideal-joints   the URDF's <dynamics damping friction> ignored (read by default)\n"
     "  --inertia-tol TOL\n"
     "                   the inertia checks' relative tolerance (symmetry, positive, triangle\n"
-    "                   inequality), 0 <= TOL < 1; default the library's 1e-6 (also for info)\n"
+    "                   inequality), 0 <= TOL < 1; default the library's 1e-6 (also for info)\n";
+
+/* the options' help, cont'd (one C string holds at most 4095 characters): the loads from outside */
+static const char usage_loads[] =
     "  --contacts FILE  the robot on the ground (docs/contact.md): a CSV file with the header\n"
     "                   frame,mu and a row per contact, a link whose frame's origin touches the\n"
     "                   ground and its Coulomb friction (empty: bilateral); optional columns\n"
@@ -170,7 +174,12 @@ static const char usage_options[] =
     "                   A states column C_active (0 or 1) per contact C says when it is on the\n"
     "                   ground (without it, always); the output adds C_fx C_fy C_fz, the\n"
     "                   ground's force on the link (N, world axes). States, or samples of a\n"
-    "                   floating robot (each row solved as a state; C_active not splined).\n";
+    "                   floating robot (each row solved as a state; C_active not splined).\n"
+    "  --loads FRAME[,FRAME...]\n"
+    "                   wrenches the environment applies at link frames (a tool's measured\n"
+    "                   force): the states columns F_fx F_fy F_fz (N) and F_nx F_ny F_nz (N m,\n"
+    "                   about the frame's origin), world axes, for each frame F named; the\n"
+    "                   efforts and reactions then carry them. States, without --contacts.\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)
@@ -178,6 +187,7 @@ static void print_usage(FILE *f)
     fputs(usage, f);
     fputs(usage_root, f);
     fputs(usage_options, f);
+    fputs(usage_loads, f);
 }
 
 /* `vtdyn info`: the bodies, joints, limits, frames and couplings of the URDF at path */
@@ -265,17 +275,18 @@ static int parse_columns(const char *list, unsigned *groups)
 static int parse_args(int argc, char **argv, inverse_options *o, const char **pos, int *npos, const char **outpath,
                       int info_only)
 {
-    int seen[13] = {0};
+    int seen[14] = {0};
     for (int k = 2; k < argc; k++) {
         const char *a = argv[k];
         const char *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
         const size_t len = eq ? (size_t)(eq - a) : strlen(a);
         static const char *const named[] = {"--floating", "-o", "-j", "--columns", "--precision",
                                             "--normalize-quaternions", "--format", "--times", "--payload",
-                                            "--joint-params", "--ideal-joints", "--inertia-tol", "--contacts"};
+                                            "--joint-params", "--ideal-joints", "--inertia-tol", "--contacts",
+                                            "--loads"};
         const int flag = 1 << 0 | 1 << 7 | 1 << 10; /* no value: --floating, --times, --ideal-joints */
         int which = -1;
-        for (int w = 0; w < 13; w++)
+        for (int w = 0; w < 14; w++)
             if (strlen(named[w]) == len && strncmp(a, named[w], len) == 0) which = w;
         if (which < 0 && strncmp(a, "-j", 2) == 0 && a[2] >= '0' && a[2] <= '9') { /* -j4 */
             which = 2;
@@ -342,6 +353,7 @@ static int parse_args(int argc, char **argv, inverse_options *o, const char **po
         case 9: o->joint_params = v; break;
         case 10: o->ideal = 1; break;
         case 12: o->contacts = v; break;
+        case 13: o->loads = v; break;
         case 11: {
             const double t = strtod(v, &end);
             if (end == v || *end || !(t >= 0.0 && t < 1.0))

@@ -1112,6 +1112,81 @@ def inertia_tolerance(vtdyn, urdf, states, work, check):
     check(r.returncode == 1 and "0 <= TOL < 1" in r.stderr, "--inertia-tol 1.5 refused: %r" % r.stderr)
 
 
+def loads(vtdyn, urdf_dir, states, work, check):
+    """--loads link2,link1 on the double link (planar: hinges about z, gravity along z): random
+    wrenches at link 2's frame (joint 2's point, L along link 1) and link 1's (joint 1's point)
+    against the arm's closed forms: each effort less the z moment of the loads beyond its joint
+    (joint 1: both z moments and link 2's force's moment about the origin, L (c1 f_y - s1 f_x);
+    joint 2: link 2's z moment), the ground's force on link 1 less the loads' forces; the same from
+    .npy; a missing column, a frame of none, a frame fixed to the world, samples and --contacts
+    refused, named"""
+    urdf = os.path.join(urdf_dir, "double_link.urdf")
+    lines = open(states).read().splitlines()
+    rng = random.Random(5)
+    names = [f + s for f in ("link2", "link1") for s in ("_fx", "_fy", "_fz", "_nx", "_ny", "_nz")]
+    path, out = os.path.join(work, "loads.csv"), os.path.join(work, "loads_out.csv")
+    W = []
+    with open(path, "w") as f:
+        f.write(lines[0] + "," + ",".join(names) + "\n")
+        for line in lines[1:]:
+            W.append([rng.uniform(-50, 50) for _ in names])
+            f.write(line + "," + ",".join(repr(x) for x in W[-1]) + "\n")
+    r = run(vtdyn, "inverse", "--loads", "link2,link1", urdf, path, "-o", out)
+    check(r.returncode == 0, "--loads: exit %d: %s" % (r.returncode, r.stderr))
+    if r.returncode != 0:
+        return
+    rows, worst = read(out), 0.0
+    for row, w in zip(rows, W):
+        q1, q2, v1, v2, a1, a2 = motion(row["t"])
+        t1, t2, f = exact(q1, q2, v1, v2, a1, a2)
+        c1, s1 = math.cos(q1), math.sin(q1)
+        t1 -= L * (c1 * w[1] - s1 * w[0]) + w[5] + w[11]
+        t2 -= w[5]
+        scale = 1 + abs(t1) + abs(t2) + max(abs(x) for x in w)
+        worst = max(worst, abs(row["joint1_effort"] - t1) / scale, abs(row["joint2_effort"] - t2) / scale)
+        for k, c in enumerate("xyz"):
+            worst = max(worst, abs(row["joint1_f" + c] - (f[k] - w[k] - w[6 + k])) / scale)
+    check(len(rows) == len(W) and worst < 1e-12, "--loads against the closed forms: %.3g" % worst)
+    print("--loads: %d rows, largest relative difference from the closed forms %.3g" % (len(rows), worst))
+    rows_csv = rows
+    npy_in, npy_out = os.path.join(work, "loads.npy"), os.path.join(work, "loads_out.npy")
+    head, cells = csv_table(open(path).read())
+    npy_write(npy_in, head, [[float(x) for x in row] for row in cells])
+    r = run(vtdyn, "inverse", "--loads", "link2,link1", urdf, npy_in, "-o", npy_out)
+    ok = r.returncode == 0
+    if ok:
+        n, vals, _, _ = npy_read(npy_out)
+        ok = all(v == rc[k] for row, rc in zip(vals, rows_csv) for k, v in zip(n, row))
+    check(ok, "--loads from .npy: the CSV's numbers: %s" % r.stderr)
+    for args, what in ((["--loads", "link2,link3"], "'link3' is no frame"),
+                       (["--loads", "world"], "fixed to the world"),
+                       (["--loads", "link2,,link1"], "one empty"),
+                       (["--loads", "link1", "--loads", "link2"], "given twice")):
+        r = run(vtdyn, "inverse", *args, urdf, path)
+        check(r.returncode == 1 and what in r.stderr, "--loads refused (%s): %r" % (what, r.stderr))
+    with open(path, "w") as f:
+        f.write(lines[0] + "," + ",".join(names[:11]) + "\n")
+        for line, w in zip(lines[1:], W):
+            f.write(line + "," + ",".join(repr(x) for x in w[:11]) + "\n")
+    r = run(vtdyn, "inverse", "--loads", "link2,link1", urdf, path)
+    check(r.returncode == 1 and "no column 'link1_nz'" in r.stderr, "--loads: a missing column named: %r" % r.stderr)
+    r = run(vtdyn, "inverse", urdf, path)
+    check(r.returncode == 1 and "'link2_fx' is none of the robot's" in r.stderr,
+          "load columns without --loads stop the run: %r" % r.stderr)
+    samples = os.path.join(work, "loads_samples.csv")
+    with open(samples, "w") as f:
+        f.write("t,joint1,joint2,link1_fx,link1_fy,link1_fz,link1_nx,link1_ny,link1_nz\n")
+        for k in range(5):
+            f.write("%g,%g,%g,0,0,0,0,0,0\n" % (0.1 * k, 0.1 * k, 0.2 * k))
+    r = run(vtdyn, "inverse", "--loads", "link1", urdf, samples)
+    check(r.returncode == 1 and "loads take states" in r.stderr, "--loads on samples refused: %r" % r.stderr)
+    feet = os.path.join(work, "loads_contacts.csv")
+    with open(feet, "w") as f:
+        f.write("frame,mu\nlink2,0.5\n")
+    r = run(vtdyn, "inverse", "--loads", "link1", "--contacts", feet, urdf, path)
+    check(r.returncode == 1 and "--loads with --contacts" in r.stderr, "--loads with --contacts refused: %r" % r.stderr)
+
+
 def help_is_documented(vtdyn, urdf_dir, check):
     """docs/command.md holds `vtdyn --help`'s text exactly"""
     doc = os.path.join(urdf_dir, "..", "..", "docs", "command.md")
@@ -1547,6 +1622,7 @@ def main():
     inertia_tolerance(vtdyn, urdf, states, work, check)
     bearing_and_limits(vtdyn, urdf, states, times, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
+    loads(vtdyn, urdf_dir, states, work, check)
     contacts(vtdyn, urdf_dir, work, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0
