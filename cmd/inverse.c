@@ -270,15 +270,13 @@ static int map_contacts(run *x)
 
 /* --loads F1,F2,...: each frame's wrench columns F_fx F_fy F_fz F_nx F_ny F_nz (the force, then the
  * moment about the frame's origin, world axes: what the environment applies to the link), on
- * states without contacts (the batch adds them after each row's instant); the frames' indices
- * in the probe, those of the model solved set by build_model; 0 or 1 */
+ * states (the batch adds them to each row's instant, before the contacts' forces are shared);
+ * the frames' indices in the probe, those of the model solved set by build_model; 0 or 1 */
 static int map_loads(run *x)
 {
     static const char *const sfx[6] = {"_fx", "_fy", "_fz", "_nx", "_ny", "_nz"};
     const char *list = x->o->loads;
     if (!list) return 0;
-    if (x->ncontact)
-        return cmd_fail("--loads with --contacts: not supported (the ground's forces would share the loads too)");
     if (x->form == FORM_SAMPLES)
         return cmd_fail("--loads: %s holds samples (t and positions): loads take states (J, J_vel and J_acc for every "
                         "joint)",

@@ -168,10 +168,14 @@ int state_failure(run *x, int r, long long loc)
     memcpy(d->q, x->q + (size_t)r * (size_t)m->nq, (size_t)m->nq * sizeof *d->q);
     memcpy(d->qd, x->qd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qd);
     memcpy(d->qdd, x->qdd + (size_t)r * (size_t)m->nv, (size_t)m->nv * sizeof *d->qdd);
+    input_where(&x->in, loc, where);
+    if (x->nload) { /* the batch's own message, its "row k: " (the chunk's index) left out */
+        const char *msg = vt_batch_message(x->batch), *c = strncmp(msg, "row ", 4) == 0 ? strstr(msg, ": ") : NULL;
+        return cmd_fail("%s: %s (%s)", where, c ? c + 2 : msg, vt_status_string(x->status[r]));
+    }
     const int *active = x->contacts ? x->active + (size_t)r * (size_t)x->ncontact : NULL;
     const vt_status st =
         x->contacts ? vt_inverse_dynamics_contacts(m, d, x->contacts, active, NULL) : vt_inverse_dynamics_motion(m, d);
-    input_where(&x->in, loc, where);
     if (st) return cmd_fail("%s: %s (%s)", where, d->message, vt_status_string(st));
     return cmd_fail("%s: %s (%s)", where, vt_batch_message(x->batch), vt_status_string(x->status[r]));
 }

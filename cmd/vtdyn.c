@@ -179,7 +179,8 @@ static const char usage_loads[] =
     "                   wrenches the environment applies at link frames (a tool's measured\n"
     "                   force): the states columns F_fx F_fy F_fz (N) and F_nx F_ny F_nz (N m,\n"
     "                   about the frame's origin), world axes, for each frame F named; the\n"
-    "                   efforts and reactions then carry them. States, without --contacts.\n";
+    "                   efforts and reactions (and with --contacts the ground's forces) then\n"
+    "                   carry them. States only.\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)

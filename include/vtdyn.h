@@ -542,10 +542,11 @@ VT_API int vt_batch_threads(const vt_batch *batch);
 /// returns VT_ERR_BAD_OPTION at once, the running call's message and failed row left as they are).
 /// Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
-/// whatever the number of threads. With io->nload wrenches at frames (a tree's given motion, no
-/// contacts) they are added after the row's instant, by the inward pass of the loads alone (the
-/// motion is linear in them): the single call with the same loads put into xfrc by
-/// vt_add_frame_load() before it, to round-off, and the same bits whatever the threads.
+/// whatever the number of threads. With io->nload wrenches at frames (a tree's given motion) they
+/// are added to the row's instant by the inward pass of the loads alone (the motion is linear in
+/// them; with contacts, before the ground's forces are shared, which then balance them too): the
+/// single call with the same loads put into xfrc by vt_add_frame_load() before it, to round-off,
+/// and the same bits whatever the threads.
 /// A failing row's outputs are not written; its status goes to
 /// io->status, and the other rows are solved (unless stop_on_error). Returns VT_OK when every row
 /// succeeded, else the status of the failing row of lowest index (vt_batch_failed_row(), its
@@ -553,7 +554,7 @@ VT_API int vt_batch_threads(const vt_batch *batch);
 /// any row: VT_ERR_NULL (batch, io, q, qd or qdd NULL with rows, load_frame or load NULL with
 /// loads), VT_ERR_BAD_SIZE (nrow or nload < 0, a stride below its row's length), VT_ERR_BAD_INDEX
 /// (a load's frame out of range or on the ground), VT_ERR_BAD_OPTION (loads on a model with cut
-/// joints or couplings, or on a batch with contacts), nothing written.
+/// joints or couplings), nothing written.
 VT_API vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *io);
 /// The failing row of lowest index of the last call, or −1 when every row succeeded.
 VT_API int vt_batch_failed_row(const vt_batch *batch);

@@ -524,8 +524,9 @@ static void test_arguments(void **state)
  * state solved alone with the loads put into xfrc by vt_add_frame_load() before the instant (the
  * passes then carry them; the batch adds them after, by linearity: equal to round-off), a foot
  * named twice (the sum); bitwise alike on 1, 2 and 8 threads; a NaN load refuses its row alone;
- * loads refused before any row on a loop, with contacts, at a frame out of range or on the
- * ground, NULL, or a stride below 6 nload */
+ * on three feet with a load at the fourth, against vt_inverse_dynamics_contacts() with the load in
+ * xfrc (efforts and the ground's forces); loads refused before any row on a loop, at a frame out
+ * of range or on the ground, NULL, or a stride below 6 nload */
 static void test_frame_loads(void **state)
 {
     (void)state;
@@ -630,16 +631,54 @@ static void test_frame_loads(void **state)
     assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_SIZE);
     for (int k = 0; k < NROW * nv; k++) assert_true(same(o[0].effort[k], 7.0));
     vt_batch_free(b);
-    /* with contacts */
-    vt_contact_def cd = vt_default_contact_def();
-    cd.frame = "HL_foot";
+    /* on three feet, a load at the fourth (a leg pushing): the ground's forces balance it too; each
+     * row against vt_inverse_dynamics_contacts() with the load put into xfrc before it */
+    load[(size_t)7 * 6 * NL + 4] = 0.0;
+    for (int r = 0; r < NROW; r++)
+        for (int k = 0; k < 6; k++) load[(size_t)r * 6 * NL + k] *= 0.1; /* within what three feet can carry */
+    vt_contact_def cd[3];
+    static const char *const feet[3] = {"FR_foot", "HL_foot", "HR_foot"};
+    for (int k = 0; k < 3; k++) {
+        cd[k] = vt_default_contact_def();
+        cd[k].frame = feet[k];
+    }
     vt_batch_def def = vt_default_batch_def();
-    def.contacts = &cd;
-    def.ncontact = 1;
+    def.contacts = cd;
+    def.ncontact = 3;
+    def.threads = 2;
     assert_ok(vt_batch_create(&b, m, &def));
-    io.nload = NL;
-    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_OPTION);
-    assert_non_null(strstr(vt_batch_message(b), "contacts"));
+    double *force = malloc((size_t)NROW * 9 * sizeof(double));
+    io.nload = 1;
+    io.load_stride = 6 * NL;
+    io.contact_force = force;
+    const vt_status bst = vt_batch_inverse_dynamics_motion(b, &io); /* rows the three feet cannot carry fail */
+    assert_true(bst == VT_OK || bst == VT_ERR_CONTACT);
+    vt_contacts *c = NULL;
+    assert_ok(vt_contacts_create(&c, m, cd, 3, NULL, NULL));
+    double wc = 0.0;
+    int carried = 0;
+    for (int r = 0; r < NROW; r++) {
+        assert_ok(vt_data_reset(m, d));
+        memcpy(d->q, q + (size_t)r * nq, (size_t)nq * sizeof(double));
+        memcpy(d->qd, qd + (size_t)r * nv, (size_t)nv * sizeof(double));
+        memcpy(d->qdd, qdd + (size_t)r * nv, (size_t)nv * sizeof(double));
+        assert_ok(vt_kinematics(m, d));
+        const double *w = load + (size_t)r * 6 * NL;
+        assert_ok(vt_add_frame_load(m, d, frame[0], w, w + 3));
+        double f1[9];
+        const vt_status st1 = vt_inverse_dynamics_contacts(m, d, c, NULL, f1);
+        assert_int_equal(st1, o[0].status[r]); /* carried, or not, alike */
+        if (st1) continue;
+        carried++;
+        double scale = 1.0;
+        for (int a = 0; a < nv; a++) scale = fmax(scale, fabs(d->qfrc_drive[a]));
+        for (int a = 0; a < nv; a++) wc = fmax(wc, fabs(o[0].effort[(size_t)r * nv + a] - d->qfrc_drive[a]) / scale);
+        for (int k = 0; k < 9; k++) wc = fmax(wc, fabs(force[(size_t)r * 9 + k] - f1[k]) / scale);
+    }
+    printf("frame loads on three feet: %d rows carried, largest difference from the loads in xfrc %.2e\n", carried, wc);
+    assert_true(carried >= NROW / 4 && wc < 1e-12);
+    free(force);
+    vt_contacts_free(c);
     vt_batch_free(b);
     outputs_free(&o[0]);
     vt_data_free(d);

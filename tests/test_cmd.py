@@ -1118,8 +1118,8 @@ def loads(vtdyn, urdf_dir, states, work, check):
     against the arm's closed forms: each effort less the z moment of the loads beyond its joint
     (joint 1: both z moments and link 2's force's moment about the origin, L (c1 f_y - s1 f_x);
     joint 2: link 2's z moment), the ground's force on link 1 less the loads' forces; the same from
-    .npy; a missing column, a frame of none, a frame fixed to the world, samples and --contacts
-    refused, named"""
+    .npy; a missing column, a frame of none, a frame fixed to the world and samples refused, named
+    (with --contacts: contacts())"""
     urdf = os.path.join(urdf_dir, "double_link.urdf")
     lines = open(states).read().splitlines()
     rng = random.Random(5)
@@ -1180,11 +1180,6 @@ def loads(vtdyn, urdf_dir, states, work, check):
             f.write("%g,%g,%g,0,0,0,0,0,0\n" % (0.1 * k, 0.1 * k, 0.2 * k))
     r = run(vtdyn, "inverse", "--loads", "link1", urdf, samples)
     check(r.returncode == 1 and "loads take states" in r.stderr, "--loads on samples refused: %r" % r.stderr)
-    feet = os.path.join(work, "loads_contacts.csv")
-    with open(feet, "w") as f:
-        f.write("frame,mu\nlink2,0.5\n")
-    r = run(vtdyn, "inverse", "--loads", "link1", "--contacts", feet, urdf, path)
-    check(r.returncode == 1 and "--loads with --contacts" in r.stderr, "--loads with --contacts refused: %r" % r.stderr)
 
 
 def help_is_documented(vtdyn, urdf_dir, check):
@@ -1295,6 +1290,7 @@ def quad_row(theta, root_acc=(0.0, 0.0, 0.0), rates=0.0, active=None):
 def contacts(vtdyn, urdf_dir, work, check):
     """--contacts on the quadruped of tests/urdf: the symmetric stand (M g / 4 a foot), the forces'
     balance against the root's wrench without contacts (the feet's places known in the stand), a
+    push on the torso (--loads) taken off the feet's forces' sum, a
     lifted foot (the diagonal pair under the centre carries it all), slipping refused and named,
     bad contact files, C_active neither 0 nor 1"""
     urdf = os.path.join(urdf_dir, "quadruped.urdf")
@@ -1344,6 +1340,20 @@ def contacts(vtdyn, urdf_dir, work, check):
             check(worst <= 1e-9 * W, "row %d: the feet's forces give the root's wrench (%.3g)" % (k, worst))
             check(all(row["%s_foot_fz" % leg] >= 0 and abs(row["%s_foot_fx" % leg]) <= 0.5 * math.sqrt(0.5) * row["%s_foot_fz" % leg] + 1e-9 * W
                       for leg in QUAD_FEET), "row %d: the feet push, within friction" % k)
+    # a push on the torso (--loads torso, world axes): the feet's forces sum to those without it
+    # less the push's force (the unactuated root: the ground supplies the whole wrench), the root
+    # still carries nothing
+    push = (40.0, -25.0, -30.0, 3.0, -2.0, 5.0)
+    lrows = [dict(row, **{"torso_" + c: v for c, v in zip(("fx", "fy", "fz", "nx", "ny", "nz"), push)}) for row in rows]
+    r, pushed = run_rows(lrows, "--contacts", cfile, "--loads", "torso")
+    check(r.returncode == 0 and len(pushed) == 2, "--loads with --contacts: %s" % r.stderr)
+    for k in range(len(pushed) if len(out) == 2 else 0):
+        for i, c in enumerate("xyz"):
+            sums = [sum(o[leg + "_foot_f" + c] for leg in QUAD_FEET) for o in (out[k], pushed[k])]
+            check(abs(sums[1] - (sums[0] - push[i])) <= 1e-9 * W,
+                  "row %d: the feet's %s forces less the push's: %.17g, %.17g" % (k, c, sums[1], sums[0] - push[i]))
+        root = max(abs(pushed[k]["torso_effort_" + c]) for c in ("fx", "fy", "fz", "nx", "ny", "nz"))
+        check(root <= 1e-9 * W, "row %d with the push: the floating root carries nothing (%.3g)" % (k, root))
     # the front left foot lifted: FR and HL carry half each, HR nothing
     r, out = run_rows([quad_row(theta, active=(0, 1, 1, 1))], "--contacts", cfile)
     check(r.returncode == 0 and out and out[0]["FL_foot_fz"] == 0.0 and abs(out[0]["FR_foot_fz"] - W / 2) <= 1e-9 * W

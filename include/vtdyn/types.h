@@ -882,7 +882,8 @@ typedef struct vt_batch_io {
     double *contact_force; size_t contact_force_stride; ///< with contacts: 3 ncontact a row, the ground's
                                             ///< force on each contact (global; 0 where inactive)
     int nload;                              ///< wrenches the environment applies at frames (default 0),
-                                            ///< on a tree without contacts: a tool's measured force
+                                            ///< on a tree (with contacts the ground's forces balance
+                                            ///< them too): a tool's measured force, a push
     const int *load_frame;                  ///< nload frame indices (vt_model.frame_name's order); a
                                             ///< frame may be named more than once (the sum)
     const double *load; size_t load_stride; ///< 6 nload a row: at each frame its force (N), then its

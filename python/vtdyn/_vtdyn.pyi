@@ -233,7 +233,8 @@ class Model:
         Result of the same shapes whose arrays are written again; qfrc: applied generalized forces
         (v's shape), which the efforts then need not give; loads (F x 6, or N x F x 6) with
         load_frames (F frame names): wrenches the environment applies at those frames, the force
-        (N) then the moment about the frame's origin (N m), world axes (a tree without contacts)"""
+        (N) then the moment about the frame's origin (N m), world axes (a tree; with contacts the
+        ground's forces balance them too)"""
     def frame_poses(
         self, q: npt.ArrayLike, frames: Union[None, str, Sequence[str]] = None
     ) -> Tuple[_F64, _F64]:

@@ -13,15 +13,14 @@
  *
  * Wrenches at frames (io->load) are added after the row's instant: the given motion of a tree is
  * linear in its loads, so the row's efforts and reactions with them are the instant's plus the
- * inward pass of the loads alone (vt_motion_add_loads), which needs each frame's place, known
- * only once the instant has the poses. A frame F on body b with origin r^b + A_b p_F takes the
- * force f and the moment n about its origin as xfrc's form, about the centre of mass r^b:
- *
- *   xfrc_b += [f; n + (A_b p_F) × f]
+ * inward pass of the loads alone (vt_motion_add_frame_loads), which needs each frame's place,
+ * known only once the instant has the poses; with contacts, before the ground's forces are
+ * shared (vt_contacts_inverse), which then balance the loads too.
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"
 #include "analysis/contact.h"
+#include "analysis/contact_rule.h"
 #include "dense/reactions.h"
 
 #include <sched.h>
@@ -32,9 +31,7 @@
 #include <unistd.h>
 
 #include "base/pool.h"
-#include "base/scan.h"
 #include "base/status.h"
-#include "base/vec3.h"
 #include "recursive/fused.h"
 
 /* the rows a thread takes at a time: enough that the shared counter is touched seldom (a row
@@ -176,24 +173,6 @@ static inline double *out_row(double *x, size_t s, size_t len, int r)
     return x + (size_t)r * (s ? s : len);
 }
 
-/* row r's wrenches at frames added to the instant's results (above) */
-static vt_status add_frame_loads(const vt_model *m, vt_data *d, double *xf, const vt_batch_io *io, int r)
-{
-    const size_t nl = 6 * (size_t)io->nload;
-    const double *L = in_row(io->load, io->load_stride, nl, r);
-    if (!vt_all_finite(L, nl)) return vt_fail(d->message, VT_ERR_NONFINITE, "vt_batch: NaN or Inf in the row's load");
-    memset(xf, 0, 6 * ((size_t)m->nbody + 1) * sizeof *xf);
-    for (int k = 0; k < io->nload; k++) {
-        const int f = io->load_frame[k], b = m->frame_body[f];
-        const double *w = L + 6 * k;
-        double lever[3];
-        vt_mulmat3(lever, d->A + 9 * b, m->frame_point + 3 * f); /* A_b p_F: from r^b to the origin */
-        for (int c = 0; c < 3; c++) xf[6 * b + c] += w[c], xf[6 * b + 3 + c] += w[3 + c];
-        vt_addcross3(xf + 6 * b + 3, lever, w);
-    }
-    return vt_motion_add_loads(m, d, xf);
-}
-
 /* a body's two 3-vectors of each joint (arrays 3 (nbody+1)) as its 6 values (f, n) of the row */
 static void wrenches(double *out, const double *f, const double *n, int nbody)
 {
@@ -213,15 +192,16 @@ static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, double
     if (io->qfrc) memcpy(d->qfrc, in_row(io->qfrc, io->qfrc_stride, nv, r), nv * sizeof(double));
     else memset(d->qfrc, 0, nv * sizeof(double));
     vt_status st;
+    const double *load = io->nload > 0 ? in_row(io->load, io->load_stride, 6 * (size_t)io->nload, r) : NULL;
     if (c) {
         const size_t nc = (size_t)vt_contacts_count(c);
         const size_t as = io->contact_active_stride ? io->contact_active_stride : nc;
         const int *active = io->contact_active ? io->contact_active + (size_t)r * as : NULL;
         double *force = io->contact_force ? out_row(io->contact_force, io->contact_force_stride, 3 * nc, r) : NULL;
-        st = vt_inverse_dynamics_contacts(m, d, c, active, force);
+        st = vt_contacts_inverse(m, d, c, active, force, io->nload, io->load_frame, load, xf);
     } else {
         st = vt_inverse_dynamics_motion(m, d);
-        if (!st && io->nload > 0) st = add_frame_loads(m, d, xf, io, r);
+        if (!st && load) st = vt_motion_add_frame_loads(m, d, io->nload, io->load_frame, load, xf);
     }
     if (st) return st;
     if (io->effort) memcpy(out_row(io->effort, io->effort_stride, nv, r), d->qfrc_drive, nv * sizeof(double));
@@ -314,10 +294,9 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
         return vt_fail(b->message, VT_ERR_NULL, "vt_batch: q, qd and qdd are required");
     if (io->nload < 0) return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: nload %d < 0", io->nload);
     if (io->nload > 0) {
-        if (b->ncontact > 0 || m->ncut > 0 || m->ncoupling > 0)
-            return vt_fail(b->message, VT_ERR_BAD_OPTION,
-                           "vt_batch: loads at frames need a tree's given motion: this %s",
-                           b->ncontact > 0 ? "batch has contacts" : m->ncut > 0 ? "model has cut joints" : "model has couplings");
+        if (m->ncut > 0 || m->ncoupling > 0)
+            return vt_fail(b->message, VT_ERR_BAD_OPTION, "vt_batch: loads at frames need a tree's given motion: this "
+                           "model has %s", m->ncut > 0 ? "cut joints" : "couplings");
         if (!io->load_frame || (io->nrow > 0 && !io->load))
             return vt_fail(b->message, VT_ERR_NULL, "vt_batch: nload %d with load_frame or load NULL", io->nload);
         for (int k = 0; k < io->nload; k++) {

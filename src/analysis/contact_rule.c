@@ -364,6 +364,12 @@ static vt_status by_qp(const vt_model *m, vt_data *d, vt_contacts *c, int n, int
 
 vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force)
 {
+    return vt_contacts_inverse(m, d, c, active, force, 0, NULL, NULL, NULL);
+}
+
+vt_status vt_contacts_inverse(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force, int nload,
+                              const int *frame, const double *load, double *xf)
+{
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_contacts");
     if (st) return st;
     if (!c) return vt_fail(d->message, VT_ERR_NULL, "vt_inverse_dynamics_contacts: contacts is NULL");
@@ -371,6 +377,8 @@ vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contact
         return vt_fail(d->message, VT_ERR_MODEL_MISMATCH,
                        "vt_inverse_dynamics_contacts: contacts made for another model");
     if ((st = vt_inverse_dynamics_motion(m, d))) return st;
+    /* loads at frames: part of what the ground's forces balance (the instant is linear in both) */
+    if (nload > 0 && (st = vt_motion_add_frame_loads(m, d, nload, frame, load, xf))) return st;
     const size_t nv = (size_t)m->nv, nxf = 6 * ((size_t)m->nbody + 1);
     memcpy(c->tau0, d->qfrc_drive, nv * sizeof(double));
     int na = 0;

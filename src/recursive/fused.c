@@ -654,6 +654,27 @@ vt_status vt_motion_add_loads(const vt_model *m, vt_data *d, const double *xf)
     return vt_reactions_unique(m, d); /* the limits flagged again: the efforts changed */
 }
 
+/* Wrenches at frames added the same way: frame F on body b, its origin r^b + A_b p_F, takes the
+ * force f and the moment n about that origin (global axes) as xfrc's form, about r^b,
+ *   xf_b += [f; n + (A_b p_F) × f]
+ * (xf: 6 (nbody+1) of the caller's, overwritten), then vt_motion_add_loads. The poses are the
+ * instant's, so this follows it. */
+vt_status vt_motion_add_frame_loads(const vt_model *m, vt_data *d, int n, const int *frame, const double *w, double *xf)
+{
+    if (!vt_all_finite(w, 6 * (size_t)n))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_motion_add_frame_loads: NaN or Inf in a load");
+    memset(xf, 0, 6 * ((size_t)m->nbody + 1) * sizeof *xf);
+    for (int k = 0; k < n; k++) {
+        const int f = frame[k], b = m->frame_body[f];
+        const double *wk = w + 6 * k;
+        double lever[3];
+        vt_mulmat3(lever, d->A + 9 * b, m->frame_point + 3 * f); /* A_b p_F: from r^b to the origin */
+        for (int c = 0; c < 3; c++) xf[6 * b + c] += wk[c], xf[6 * b + 3 + c] += wk[3 + c];
+        vt_addcross3(xf + 6 * b + 3, lever, wk);
+    }
+    return vt_motion_add_loads(m, d, xf);
+}
+
 /* 1 when every half angle is within vt_sincos_small's 2^14 (fused_outward, not _any): from the
  * state's maximum smax (vt_state_max), q scanned again alone only where that is above 2^15 */
 static inline fused_angles angles_small(const vt_model *m, const vt_data *d, double smax)

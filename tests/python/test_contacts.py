@@ -7,7 +7,8 @@ Pinocchio, closed forms and themselves.
   pin.rnea(q, v, a) - sum_c J_c^T f_c (J_c the foot frame's linear Jacobian, LOCAL_WORLD_ALIGNED,
   f_c vtdyn's contact_force) to 1e-9 of the larger of the row's largest effort and the weight;
   the root's six of that sum and vtdyn's own root efforts zero to the same; every force pushes
-  (n.f >= 0) and lies in its 4-face pyramid, |f_x|, |f_y| <= mu cos(pi/4) f_z.
+  (n.f >= 0) and lies in its 4-face pyramid, |f_x|, |f_y| <= mu cos(pi/4) f_z. Pushed on its base
+  and pulled at a foot (loads=): pin.rnea(q, v, a, fext) - sum_c J_c^T f_c the same way.
 * A box (a URDF written here: 12 kg, its corners links fixed to it) floating on its four bottom
   corners, no motor: at rest each corner carries m g / 4 straight up (closed form); accelerated
   and turning, the forces are the minimum-norm solution of the box's six Newton-Euler equations
@@ -104,6 +105,50 @@ def test_solo_against_pinocchio(solo):
             assert fz >= 0 and abs(fx) <= lim + 1e-9 * weight and abs(fy) <= lim + 1e-9 * weight, (s, f)
     assert worst <= 1e-9, worst
     print("Solo-12 on four feet, 200 states: largest relative difference from Pinocchio %.2g" % worst)
+
+
+def test_solo_pushed_against_pinocchio(solo):
+    """loads with contacts: a push on the base (base_link) and a pull on a foot's frame, world axes,
+    at 100 states on four feet: the twelve joint efforts equal pin.rnea(q, v, a, fext) - sum_c
+    J_c^T f_c (each load moved to the world origin, then into its frame's joint by oMi.actInv),
+    the root's six of that sum zero, to 1e-9 of the weight: the ground's forces balance the
+    loads too"""
+    m, pm, cs = solo
+    pd = pm.createData()
+    weight = sum(pm.inertias[i].mass for i in range(pm.njoints)) * G
+    feet = [pm.getFrameId(f) for f in FEET]
+    frames = ["base_link", "FL_FOOT"]
+    P, (q, v, a) = solo_states(m, pm, 100, seed=3)
+    rng = np.random.default_rng(4)
+    w = np.empty((100, 2, 6))
+    w[:, 0] = np.c_[rng.uniform(-3, 3, (100, 2)), rng.uniform(-6, 0, 100), rng.uniform(-0.3, 0.3, (100, 3))]
+    w[:, 1] = np.c_[rng.uniform(-1, 1, (100, 2)), rng.uniform(-2, 0, 100), np.zeros((100, 3))]
+    r = m.inverse(q, v, a, contacts=cs, loads=w, load_frames=frames)
+    pos, _ = m.frame_poses(q, frames)
+    fids = [pm.getFrameId(f) for f in frames]
+    worst = 0.0
+    for s, (qp, vp, ap) in enumerate(P):
+        pin.forwardKinematics(pm, pd, qp)
+        fext = [pin.Force.Zero() for _ in range(pm.njoints)]
+        for k, f in enumerate(fids):
+            j = pm.frames[f].parentJoint
+            fext[j] += pd.oMi[j].actInv(pin.Force(w[s, k, :3], w[s, k, 3:] + np.cross(pos[s, k], w[s, k, :3])))
+        tau = pin.rnea(pm, pd, qp, vp, ap, fext) + pm.damping * vp + pm.friction * np.sign(vp)
+        pin.computeJointJacobians(pm, pd, qp)
+        pin.updateFramePlacements(pm, pd)
+        for c, fid in enumerate(feet):
+            J = pin.getFrameJacobian(pm, pd, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
+            tau = tau - J.T @ r.contact_force[s, c]
+        mine = np.empty(pm.nv - 6)
+        for b, (qa, nq, va, nv) in enumerate(m.body_index):
+            if nq != 7:
+                mine[pm.joints[pm.getJointId(m.body_joint_names[b])].idx_v - 6] = r.effort[s, va]
+        scale = max(weight, np.abs(tau[6:]).max())
+        worst = max(worst, np.abs(mine - tau[6:]).max() / scale, np.abs(tau[:6]).max() / scale)
+    assert worst <= 1e-9, worst
+    free = m.inverse(q, v, a, contacts=cs)
+    assert np.abs(free.contact_force - r.contact_force).max() > 0.1  # the loads move the feet's forces
+    print("Solo-12 pushed on four feet, 100 states: largest relative difference from Pinocchio %.2g" % worst)
 
 
 def test_solo_rows_and_threads(solo):
