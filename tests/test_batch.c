@@ -373,6 +373,22 @@ static void test_failing_rows(void **state)
  * diagonal pair, none: free fall refused) and motion (some it cannot carry): each
  * row's status, efforts, reactions and forces bitwise those of vt_inverse_dynamics_contacts()
  * alone, on 1, 2 and 8 threads; a refused row's forces untouched */
+/* NROW states of the quadruped near its stand (a random height), q̇ uniform in [−0.5, 0.5] and q̈
+ * in [−1, 1] times root (the root's three translations) or joints (the other rates) */
+static void quadruped_states(const vt_model *m, vt_data *d, uint64_t *seed, double root, double joints, double *q,
+                             double *qd, double *qdd)
+{
+    const int nq = m->nq, nv = m->nv;
+    for (int r = 0; r < NROW; r++) {
+        vt_scene_quadruped_stand(m, d, 0.5 + 0.2 * vt_rand_uniform(seed, 0, 1));
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        for (int a = 0; a < nv; a++) {
+            qd[(size_t)r * nv + a] = vt_rand_uniform(seed, -0.5, 0.5);
+            qdd[(size_t)r * nv + a] = vt_rand_uniform(seed, -1.0, 1.0) * (a < 3 ? root : joints);
+        }
+    }
+}
+
 static void test_contacts_bitwise(void **state)
 {
     (void)state;
@@ -386,19 +402,14 @@ static void test_contacts_bitwise(void **state)
         def[k].frame = feet[k];
         def[k].mu = 0.6;
     }
-    double *q = malloc((size_t)NROW * (size_t)nq * sizeof(double)), *qd = calloc((size_t)NROW * (size_t)nv, sizeof(double)),
-           *qdd = calloc((size_t)NROW * (size_t)nv, sizeof(double));
+    double *q = malloc((size_t)NROW * (size_t)nq * sizeof(double)), *qd = malloc((size_t)NROW * (size_t)nv * sizeof(double)),
+           *qdd = malloc((size_t)NROW * (size_t)nv * sizeof(double));
     int *active = malloc((size_t)NROW * 4 * sizeof(int));
     vt_data *d = NULL;
     assert_ok(vt_data_create(&d, m));
     uint64_t seed = 17;
+    quadruped_states(m, d, &seed, 1.5, 0.5, q, qd, qdd);
     for (int r = 0; r < NROW; r++) {
-        vt_scene_quadruped_stand(m, d, 0.5 + 0.2 * vt_rand_uniform(&seed, 0, 1));
-        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
-        for (int a = 0; a < nv; a++) {
-            qd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -0.5, 0.5);
-            qdd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -1.0, 1.0) * (a < 3 ? 1.5 : 0.5);
-        }
         /* all four feet, one front foot lifted (either), a trot's diagonal pair, none */
         static const int pattern[5][4] = {{1, 1, 1, 1}, {0, 1, 1, 1}, {1, 0, 1, 1}, {0, 1, 1, 0}, {0, 0, 0, 0}};
         for (int k = 0; k < 4; k++) active[4 * r + k] = pattern[r % 5][k];
@@ -520,6 +531,20 @@ static void test_arguments(void **state)
     vt_model_free(m);
 }
 
+/* row r of the states into d, the n loads w (6 each) at frames put into xfrc by vt_add_frame_load()
+ * at its pose: the single call's way to the loads the batch adds after the instant */
+static void loaded_state(const vt_model *m, vt_data *d, const double *q, const double *qd, const double *qdd, int r,
+                         int n, const int *frame, const double *w)
+{
+    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv;
+    assert_ok(vt_data_reset(m, d));
+    memcpy(d->q, q + (size_t)r * nq, nq * sizeof(double));
+    memcpy(d->qd, qd + (size_t)r * nv, nv * sizeof(double));
+    memcpy(d->qdd, qdd + (size_t)r * nv, nv * sizeof(double));
+    assert_ok(vt_kinematics(m, d));
+    for (int k = 0; k < n; k++) assert_ok(vt_add_frame_load(m, d, frame[k], w + 6 * k, w + 6 * k + 3));
+}
+
 /* wrenches at frames (io->load) on the quadruped's free root and legs: each row against the same
  * state solved alone with the loads put into xfrc by vt_add_frame_load() before the instant (the
  * passes then carry them; the batch adds them after, by linearity: equal to round-off), a foot
@@ -546,15 +571,8 @@ static void test_frame_loads(void **state)
     vt_data *d = NULL;
     assert_ok(vt_data_create(&d, m));
     uint64_t seed = 23;
-    for (int r = 0; r < NROW; r++) {
-        vt_scene_quadruped_stand(m, d, 0.5 + 0.2 * vt_rand_uniform(&seed, 0, 1));
-        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
-        for (int a = 0; a < nv; a++) {
-            qd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -0.5, 0.5);
-            qdd[(size_t)r * nv + a] = vt_rand_uniform(&seed, -1.0, 1.0);
-        }
-        for (int k = 0; k < 6 * NL; k++) load[(size_t)r * 6 * NL + k] = vt_rand_uniform(&seed, -20.0, 20.0);
-    }
+    quadruped_states(m, d, &seed, 1.0, 1.0, q, qd, qdd);
+    for (int k = 0; k < NROW * 6 * NL; k++) load[k] = vt_rand_uniform(&seed, -20.0, 20.0);
     outputs o[3];
     const int threads[3] = {1, 2, 8};
     for (int t = 0; t < 3; t++) {
@@ -574,15 +592,7 @@ static void test_frame_loads(void **state)
             assert_true(same(o[t].reaction[k], o[0].reaction[k]) && same(o[t].total_body[k], o[0].total_body[k]));
     double worst = 0.0;
     for (int r = 0; r < NROW; r++) {
-        assert_ok(vt_data_reset(m, d));
-        memcpy(d->q, q + (size_t)r * nq, (size_t)nq * sizeof(double));
-        memcpy(d->qd, qd + (size_t)r * nv, (size_t)nv * sizeof(double));
-        memcpy(d->qdd, qdd + (size_t)r * nv, (size_t)nv * sizeof(double));
-        assert_ok(vt_kinematics(m, d));
-        for (int k = 0; k < NL; k++) {
-            const double *w = load + (size_t)r * 6 * NL + 6 * k;
-            assert_ok(vt_add_frame_load(m, d, frame[k], w, w + 3));
-        }
+        loaded_state(m, d, q, qd, qdd, r, NL, frame, load + (size_t)r * 6 * NL);
         assert_ok(vt_inverse_dynamics_motion(m, d));
         double scale = 1.0;
         for (int a = 0; a < nv; a++) scale = fmax(scale, fabs(d->qfrc_drive[a]));
@@ -658,13 +668,7 @@ static void test_frame_loads(void **state)
     double wc = 0.0;
     int carried = 0;
     for (int r = 0; r < NROW; r++) {
-        assert_ok(vt_data_reset(m, d));
-        memcpy(d->q, q + (size_t)r * nq, (size_t)nq * sizeof(double));
-        memcpy(d->qd, qd + (size_t)r * nv, (size_t)nv * sizeof(double));
-        memcpy(d->qdd, qdd + (size_t)r * nv, (size_t)nv * sizeof(double));
-        assert_ok(vt_kinematics(m, d));
-        const double *w = load + (size_t)r * 6 * NL;
-        assert_ok(vt_add_frame_load(m, d, frame[0], w, w + 3));
+        loaded_state(m, d, q, qd, qdd, r, 1, frame, load + (size_t)r * 6 * NL);
         double f1[9];
         const vt_status st1 = vt_inverse_dynamics_contacts(m, d, c, NULL, f1);
         assert_int_equal(st1, o[0].status[r]); /* carried, or not, alike */

@@ -76,6 +76,25 @@ def solo_states(m, pm, n, seed):
     return P, (qv, vv, av)
 
 
+def feet_difference(m, pm, pd, feet, weight, qp, vp, ap, effort, force, fext=None):
+    """one state's largest difference, relative to the larger of the weight and the largest joint
+    effort, between vtdyn's joint efforts and pin.rnea (with fext) - sum_c J_c^T f_c (J_c the foot
+    frame's linear Jacobian, LOCAL_WORLD_ALIGNED), and of that sum's six root terms from zero"""
+    tau = (pin.rnea(pm, pd, qp, vp, ap) if fext is None else pin.rnea(pm, pd, qp, vp, ap, fext)) + \
+        pm.damping * vp + pm.friction * np.sign(vp)
+    pin.computeJointJacobians(pm, pd, qp)
+    pin.updateFramePlacements(pm, pd)
+    for c, fid in enumerate(feet):
+        J = pin.getFrameJacobian(pm, pd, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
+        tau = tau - J.T @ force[c]
+    mine = np.empty(pm.nv - 6)
+    for b, (qa, nq, va, nv) in enumerate(m.body_index):
+        if nq != 7:
+            mine[pm.joints[pm.getJointId(m.body_joint_names[b])].idx_v - 6] = effort[va]
+    scale = max(weight, np.abs(tau[6:]).max())
+    return max(np.abs(mine - tau[6:]).max() / scale, np.abs(tau[:6]).max() / scale)
+
+
 def test_solo_against_pinocchio(solo):
     m, pm, cs = solo
     pd = pm.createData()
@@ -86,19 +105,8 @@ def test_solo_against_pinocchio(solo):
     assert r.contact_force.shape == (200, 4, 3) and r.effort.shape == (200, 18)
     worst = 0.0
     for s, (qp, vp, ap) in enumerate(P):
-        tau = pin.rnea(pm, pd, qp, vp, ap) + pm.damping * vp + pm.friction * np.sign(vp)
-        pin.computeJointJacobians(pm, pd, qp)
-        pin.updateFramePlacements(pm, pd)
-        for c, fid in enumerate(feet):
-            J = pin.getFrameJacobian(pm, pd, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
-            tau = tau - J.T @ r.contact_force[s, c]
-        mine = np.empty(pm.nv - 6)
-        for b, (qa, nq, va, nv) in enumerate(m.body_index):
-            if nq != 7:
-                mine[pm.joints[pm.getJointId(m.body_joint_names[b])].idx_v - 6] = r.effort[s, va]
-        scale = max(weight, np.abs(tau[6:]).max())
-        worst = max(worst, np.abs(mine - tau[6:]).max() / scale, np.abs(tau[:6]).max() / scale,
-                    np.abs(r.effort[s, :6]).max() / scale)
+        worst = max(worst, feet_difference(m, pm, pd, feet, weight, qp, vp, ap, r.effort[s], r.contact_force[s]),
+                    np.abs(r.effort[s, :6]).max() / weight)
         for c, f in enumerate(FEET):
             fx, fy, fz = r.contact_force[s, c]
             lim = MU[f] * math.cos(math.pi / 4) * fz
@@ -133,18 +141,7 @@ def test_solo_pushed_against_pinocchio(solo):
         for k, f in enumerate(fids):
             j = pm.frames[f].parentJoint
             fext[j] += pd.oMi[j].actInv(pin.Force(w[s, k, :3], w[s, k, 3:] + np.cross(pos[s, k], w[s, k, :3])))
-        tau = pin.rnea(pm, pd, qp, vp, ap, fext) + pm.damping * vp + pm.friction * np.sign(vp)
-        pin.computeJointJacobians(pm, pd, qp)
-        pin.updateFramePlacements(pm, pd)
-        for c, fid in enumerate(feet):
-            J = pin.getFrameJacobian(pm, pd, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
-            tau = tau - J.T @ r.contact_force[s, c]
-        mine = np.empty(pm.nv - 6)
-        for b, (qa, nq, va, nv) in enumerate(m.body_index):
-            if nq != 7:
-                mine[pm.joints[pm.getJointId(m.body_joint_names[b])].idx_v - 6] = r.effort[s, va]
-        scale = max(weight, np.abs(tau[6:]).max())
-        worst = max(worst, np.abs(mine - tau[6:]).max() / scale, np.abs(tau[:6]).max() / scale)
+        worst = max(worst, feet_difference(m, pm, pd, feet, weight, qp, vp, ap, r.effort[s], r.contact_force[s], fext))
     assert worst <= 1e-9, worst
     free = m.inverse(q, v, a, contacts=cs)
     assert np.abs(free.contact_force - r.contact_force).max() > 0.1  # the loads move the feet's forces
