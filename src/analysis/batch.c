@@ -30,6 +30,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/checked.h"
 #include "base/pool.h"
 #include "base/status.h"
 #include "recursive/fused.h"
@@ -118,7 +119,9 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     atomic_init(&b->busy, 0);
     b->data = calloc((size_t)b->threads, sizeof *b->data);
     b->shares = malloc((size_t)b->threads * sizeof *b->shares);
-    b->xf = malloc((size_t)b->threads * 6 * ((size_t)model->nbody + 1) * sizeof *b->xf);
+    size_t xf_bytes = 0; /* the threads' loads at frames, checked: threads and bodies are the caller's */
+    if (vt_size_mul(&xf_bytes, (size_t)b->threads, 6 * ((size_t)model->nbody + 1) * sizeof *b->xf))
+        b->xf = malloc(xf_bytes);
     if (!b->data || !b->shares || !b->xf) {
         vt_batch_free(b);
         return VT_ERR_NO_MEMORY;
