@@ -542,11 +542,10 @@ VT_API int vt_batch_threads(const vt_batch *batch);
 /// returns VT_ERR_BAD_OPTION at once, the running call's message and failed row left as they are).
 /// Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
-/// whatever the number of threads. With io->nload wrenches at frames (a tree's given motion) they
-/// are added to the row's instant by the inward pass of the loads alone (the motion is linear in
-/// them; with contacts, before the ground's forces are shared, which then balance them too): the
-/// single call with the same loads put into xfrc by vt_add_frame_load() before it, to round-off,
-/// and the same bits whatever the threads.
+/// whatever the number of threads. With io->nload wrenches at frames (a tree's given motion) the
+/// row's instant carries them as it carries xfrc (with contacts, before the ground's forces are
+/// shared, which then balance them too): the single call with the same loads put into xfrc by
+/// vt_add_frame_load() before it, to round-off, and the same bits whatever the threads.
 /// A failing row's outputs are not written; its status goes to
 /// io->status, and the other rows are solved (unless stop_on_error). Returns VT_OK when every row
 /// succeeded, else the status of the failing row of lowest index (vt_batch_failed_row(), its

@@ -548,7 +548,8 @@ static void loaded_state(const vt_model *m, vt_data *d, const double *q, const d
 /* wrenches at frames (io->load) on the quadruped's free root and legs: each row against the same
  * state solved alone with the loads put into xfrc by vt_add_frame_load() before the instant (the
  * passes then carry them; the batch adds them after, by linearity: equal to round-off), a foot
- * named twice (the sum); bitwise alike on 1, 2 and 8 threads; a NaN load refuses its row alone;
+ * named twice (the sum); bitwise alike on 1, 2 and 8 threads; a NaN load, and two of 1e308 on
+ * one foot whose sum overflows, refuse their row alone;
  * on three feet with a load at the fourth, against vt_inverse_dynamics_contacts() with the load in
  * xfrc (efforts and the ground's forces); loads refused before any row on a loop, at a frame out
  * of range or on the ground, NULL, or a stride below 6 nload */
@@ -621,6 +622,13 @@ static void test_frame_loads(void **state)
     assert_int_equal(vt_batch_failed_row(b), 7);
     assert_non_null(strstr(vt_batch_message(b), "load"));
     for (int r = 0; r < NROW; r++) assert_int_equal(o[0].status[r], r == 7 ? VT_ERR_NONFINITE : VT_OK);
+    /* finite loads whose sum overflows: refused with their row, never Inf with VT_OK */
+    load[(size_t)7 * 6 * NL + 4] = 0.0;
+    load[(size_t)11 * 6 * NL + 0] = load[(size_t)11 * 6 * NL + 12] = 1e308; /* FL_foot twice: 2e308 */
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
+    assert_int_equal(vt_batch_failed_row(b), 11);
+    for (int r = 0; r < NROW; r++) assert_int_equal(o[0].status[r], r == 11 ? VT_ERR_NONFINITE : VT_OK);
+    load[(size_t)11 * 6 * NL + 0] = load[(size_t)11 * 6 * NL + 12] = 1.0;
     /* refused before any row, nothing written */
     outputs_fill(&o[0], m, NROW, 7.0);
     int bad[1] = {m->nframe};
@@ -643,7 +651,6 @@ static void test_frame_loads(void **state)
     vt_batch_free(b);
     /* on three feet, a load at the fourth (a leg pushing): the ground's forces balance it too; each
      * row against vt_inverse_dynamics_contacts() with the load put into xfrc before it */
-    load[(size_t)7 * 6 * NL + 4] = 0.0;
     for (int r = 0; r < NROW; r++)
         for (int k = 0; k < 6; k++) load[(size_t)r * 6 * NL + k] *= 0.1; /* within what three feet can carry */
     vt_contact_def cd[3];

@@ -11,11 +11,10 @@
  * those of the single call. A thread takes its blocks in increasing order, so its first failure
  * is its lowest; the call reports the lowest row among the threads'.
  *
- * Wrenches at frames (io->load) are added after the row's instant: the given motion of a tree is
- * linear in its loads, so the row's efforts and reactions with them are the instant's plus the
- * inward pass of the loads alone (vt_motion_add_frame_loads), which needs each frame's place,
- * known only once the instant has the poses; with contacts, before the ground's forces are
- * shared (vt_contacts_inverse), which then balance the loads too.
+ * Wrenches at frames (io->load) go into the row's instant as its passes carry xfrc, between the
+ * outward pass (which has the frames' places) and the inward one (vt_motion_loaded); with
+ * contacts, before the ground's forces are shared (vt_contacts_inverse), which then balance the
+ * loads too.
  */
 #define _GNU_SOURCE /* sched_getaffinity: the CPUs the process may run on */
 #include "analysis/batch.h"
@@ -30,7 +29,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "base/checked.h"
 #include "base/pool.h"
 #include "base/status.h"
 #include "recursive/fused.h"
@@ -45,7 +43,6 @@ typedef struct share {
     const vt_batch_io *io;
     vt_data *d;
     vt_contacts *contacts; /* the thread's, or NULL */
-    double *xf;          /* the thread's loads at frames as xfrc (6 (nbody+1)) */
     atomic_llong *next;  /* the next block's first row, shared (64 bits: it passes nrow) */
     atomic_int *stop;    /* set by a failing row when the batch stops on errors */
     int failed;          /* the thread's first failing row, or −1 */
@@ -60,7 +57,6 @@ struct vt_batch {
     vt_data **data;      /* one per thread asked for (ndata; threads may be fewer) */
     int ndata;
     vt_contacts **contacts; /* with contacts: one set per thread (its workspace), else NULL */
-    double *xf;          /* the threads' loads at frames as xfrc, 6 (nbody+1) each */
     int ncontact;        /* 0 without */
     struct share *shares; /* the threads' shares of a call: the caller's 0, worker k's k */
     vt_pool *pool;       /* the workers (NULL on one thread) */
@@ -96,7 +92,6 @@ void vt_batch_free(vt_batch *batch)
         for (int k = 0; k < batch->ndata; k++) vt_contacts_free(batch->contacts[k]);
     free(batch->data);
     free(batch->contacts);
-    free(batch->xf);
     free(batch->shares);
     vt_pool_free(batch->pool);
     free(batch);
@@ -119,10 +114,7 @@ vt_status vt_batch_create(vt_batch **batch, const vt_model *model, const vt_batc
     atomic_init(&b->busy, 0);
     b->data = calloc((size_t)b->threads, sizeof *b->data);
     b->shares = malloc((size_t)b->threads * sizeof *b->shares);
-    size_t xf_bytes = 0; /* the threads' loads at frames, checked: threads and bodies are the caller's */
-    if (vt_size_mul(&xf_bytes, (size_t)b->threads, 6 * ((size_t)model->nbody + 1) * sizeof *b->xf))
-        b->xf = malloc(xf_bytes);
-    if (!b->data || !b->shares || !b->xf) {
+    if (!b->data || !b->shares) {
         vt_batch_free(b);
         return VT_ERR_NO_MEMORY;
     }
@@ -186,7 +178,7 @@ static void wrenches(double *out, const double *f, const double *n, int nbody)
 }
 
 /* row r solved on d (with the contacts c, or NULL) and its results written; its status */
-static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, double *xf, const vt_batch_io *io, int r)
+static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, const vt_batch_io *io, int r)
 {
     const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb = (size_t)m->nbody;
     memcpy(d->q, in_row(io->q, io->q_stride, nq, r), nq * sizeof(double));
@@ -195,16 +187,16 @@ static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, double
     if (io->qfrc) memcpy(d->qfrc, in_row(io->qfrc, io->qfrc_stride, nv, r), nv * sizeof(double));
     else memset(d->qfrc, 0, nv * sizeof(double));
     vt_status st;
-    const double *load = io->nload > 0 ? in_row(io->load, io->load_stride, 6 * (size_t)io->nload, r) : NULL;
+    const vt_frame_loads loads = {io->nload, io->load_frame,
+                                  io->nload > 0 ? in_row(io->load, io->load_stride, 6 * (size_t)io->nload, r) : NULL};
     if (c) {
         const size_t nc = (size_t)vt_contacts_count(c);
         const size_t as = io->contact_active_stride ? io->contact_active_stride : nc;
         const int *active = io->contact_active ? io->contact_active + (size_t)r * as : NULL;
         double *force = io->contact_force ? out_row(io->contact_force, io->contact_force_stride, 3 * nc, r) : NULL;
-        st = vt_contacts_inverse(m, d, c, active, force, io->nload, io->load_frame, load, xf);
+        st = vt_contacts_inverse(m, d, c, active, force, io->nload > 0 ? &loads : NULL);
     } else {
-        st = vt_inverse_dynamics_motion(m, d);
-        if (!st && load) st = vt_motion_add_frame_loads(m, d, io->nload, io->load_frame, load, xf);
+        st = vt_motion_loaded(m, d, io->nload > 0 ? &loads : NULL);
     }
     if (st) return st;
     if (io->effort) memcpy(out_row(io->effort, io->effort_stride, nv, r), d->qfrc_drive, nv * sizeof(double));
@@ -254,7 +246,7 @@ static void run_share(void *arg, int k)
         for (int r = (int)first; r < end; r++) {
             vt_status st = VT_ERR_SKIPPED;
             if (!b->stop_on_error || !atomic_load_explicit(s->stop, memory_order_relaxed))
-                st = solve_row(b->model, s->d, s->contacts, s->xf, s->io, r);
+                st = solve_row(b->model, s->d, s->contacts, s->io, r);
             if (st && st != VT_ERR_SKIPPED && s->failed < 0) {
                 s->failed = r;
                 s->status = st;
@@ -371,8 +363,7 @@ static vt_status batch_call(vt_batch *batch, const vt_batch_io *io)
     atomic_init(&next, 0);
     for (int k = 0; k < T; k++)
         shares[k] = (share){.batch = batch, .io = io, .d = batch->data[k], .next = &next, .stop = &stop,
-                            .failed = -1, .contacts = batch->contacts ? batch->contacts[k] : NULL,
-                            .xf = batch->xf + (size_t)k * 6 * ((size_t)batch->model->nbody + 1)};
+                            .failed = -1, .contacts = batch->contacts ? batch->contacts[k] : NULL};
     vt_pool_run(batch->pool, T, run_share, shares);
     int low = -1; /* the thread whose first failure is the lowest row */
     for (int k = 0; k < T; k++)

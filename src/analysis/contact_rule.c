@@ -364,11 +364,11 @@ static vt_status by_qp(const vt_model *m, vt_data *d, vt_contacts *c, int n, int
 
 vt_status vt_inverse_dynamics_contacts(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force)
 {
-    return vt_contacts_inverse(m, d, c, active, force, 0, NULL, NULL, NULL);
+    return vt_contacts_inverse(m, d, c, active, force, NULL);
 }
 
-vt_status vt_contacts_inverse(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force, int nload,
-                              const int *frame, const double *load, double *xf)
+vt_status vt_contacts_inverse(const vt_model *m, vt_data *d, vt_contacts *c, const int *active, double *force,
+                              const vt_frame_loads *loads)
 {
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_contacts");
     if (st) return st;
@@ -376,9 +376,8 @@ vt_status vt_contacts_inverse(const vt_model *m, vt_data *d, vt_contacts *c, con
     if (c->model != m)
         return vt_fail(d->message, VT_ERR_MODEL_MISMATCH,
                        "vt_inverse_dynamics_contacts: contacts made for another model");
-    if ((st = vt_inverse_dynamics_motion(m, d))) return st;
-    /* loads at frames: part of what the ground's forces balance (the instant is linear in both) */
-    if (nload > 0 && (st = vt_motion_add_frame_loads(m, d, nload, frame, load, xf))) return st;
+    /* loads at frames in the instant: part of what the ground's forces balance */
+    if ((st = vt_motion_loaded(m, d, loads))) return st;
     const size_t nv = (size_t)m->nv, nxf = 6 * ((size_t)m->nbody + 1);
     memcpy(c->tau0, d->qfrc_drive, nv * sizeof(double));
     int na = 0;

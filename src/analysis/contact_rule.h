@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "recursive/fused.h"
 #include "vtdyn.h"
 
 struct vt_contacts {
@@ -52,12 +53,11 @@ struct vt_contacts {
     size_t qp_bytes;
 };
 
-/* vt_inverse_dynamics_contacts() with nload wrenches at frames (6 each in load: the force, then the
- * moment about the frame's origin, global axes) added to the instant before the ground's forces
- * are shared, which then balance them too (vt_motion_add_frame_loads; xf: 6 (nbody+1) of
- * scratch); nload 0 is vt_inverse_dynamics_contacts() itself (the batch's rows with loads) */
+/* vt_inverse_dynamics_contacts() with wrenches at frames in the instant (vt_motion_loaded), before
+ * the ground's forces are shared, which then balance them too; loads NULL is
+ * vt_inverse_dynamics_contacts() itself (the batch's rows with loads) */
 vt_status vt_contacts_inverse(const vt_model *model, vt_data *data, vt_contacts *contacts, const int *active,
-                              double *force, int nload, const int *frame, const double *load, double *xf);
+                              double *force, const vt_frame_loads *loads);
 
 /* The active contacts' J_c (contacts->on[0 .. na − 1]) at data's instant, split by rows: the actuated
  * rates' weighted, √W J_A into contacts->B, the unactuated ones' into contacts->Aeq */

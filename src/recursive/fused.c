@@ -554,6 +554,27 @@ static int fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, c
     return fused_inward(m, d, W, i, m->body_parent[i], VT_JOINT_TRANSLATIONAL, motion, TREE_MIXED);
 }
 
+/* Wrenches at frames (the given motion's loads, vt_motion_loaded) into the bodies' needed wrenches
+ * W about their joint points P_b, between the passes, where the outward one has the poses: frame F
+ * on body b, its origin r^b + A_b p_F, its force f and moment n about that origin (global axes),
+ *   W_b −= (n + (A_b p_F − (P_b − r^b)) × f,  f)
+ * as an xfrc entry [f; n + (A_b p_F) × f] about r^b would take off (vt_body_wrench); the inward
+ * pass then carries them as any load. */
+static void frame_loads_into(const vt_model *m, const vt_data *d, const vt_frame_loads *loads, double *W)
+{
+    for (int k = 0; k < loads->n; k++) {
+        const int f = loads->frame[k], b = m->frame_body[f];
+        const double *w = loads->w + 6 * k;
+        double lever[3], c[3];
+        vt_mulmat3(lever, d->A + 9 * b, m->frame_point + 3 * f);
+        vt_joint_child(c, m, d, b); /* P_b − r^b */
+        for (int h = 0; h < 3; h++) lever[h] -= c[h];
+        double *Wb = W + 6 * b, mo[3];
+        vt_cross3(mo, lever, w);
+        for (int h = 0; h < 3; h++) Wb[h] -= w[3 + h] + mo[h], Wb[3 + h] -= w[h];
+    }
+}
+
 /* the joint-driven (MOTION_DRIVEN) or given (MOTION_GIVEN) instant of a tree without base bodies:
  * inward_pass's outputs, and vt_kinematics_tree's (without Ṡq̇); OUTPUTS_BOUNDED: fused_bounded
  * holds, the outputs need no scan. Inlined: each caller's constants compiled apart */
@@ -561,7 +582,7 @@ static int fused_slide_inward(const vt_model *m, vt_data *d, double *W, int i, c
 __attribute__((always_inline))
 #endif
 static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_motion motion, const fused_tree tree,
-                                   const fused_outputs outputs, const fused_angles angles)
+                                   const fused_outputs outputs, const fused_angles angles, const vt_frame_loads *loads)
 {
     const int n = m->nbody;
     const size_t nb = (size_t)n + 1, mark = vt_scratch_mark(d);
@@ -574,6 +595,7 @@ static inline vt_status fused_pass(const vt_model *m, vt_data *d, const fused_mo
         d->route = VT_ROUTE_NONE;
         return vt_scratch_release(d, mark), st;
     }
+    if (loads) frame_loads_into(m, d, loads, W);
     int nlimit = 0; /* the rates beyond their limits, flagged as each joint's efforts are known */
     for (int i = n; i >= 1; i--) { /* leaf first: W_i is its subtree's when its turn comes */
         const int j = m->body_parent[i];
@@ -654,27 +676,6 @@ vt_status vt_motion_add_loads(const vt_model *m, vt_data *d, const double *xf)
     return vt_reactions_unique(m, d); /* the limits flagged again: the efforts changed */
 }
 
-/* Wrenches at frames added the same way: frame F on body b, its origin r^b + A_b p_F, takes the
- * force f and the moment n about that origin (global axes) as xfrc's form, about r^b,
- *   xf_b += [f; n + (A_b p_F) × f]
- * (xf: 6 (nbody+1) of the caller's, overwritten), then vt_motion_add_loads. The poses are the
- * instant's, so this follows it. */
-vt_status vt_motion_add_frame_loads(const vt_model *m, vt_data *d, int n, const int *frame, const double *w, double *xf)
-{
-    if (!vt_all_finite(w, 6 * (size_t)n))
-        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_motion_add_frame_loads: NaN or Inf in a load");
-    memset(xf, 0, 6 * ((size_t)m->nbody + 1) * sizeof *xf);
-    for (int k = 0; k < n; k++) {
-        const int f = frame[k], b = m->frame_body[f];
-        const double *wk = w + 6 * k;
-        double lever[3];
-        vt_mulmat3(lever, d->A + 9 * b, m->frame_point + 3 * f); /* A_b p_F: from r^b to the origin */
-        for (int c = 0; c < 3; c++) xf[6 * b + c] += wk[c], xf[6 * b + 3 + c] += wk[3 + c];
-        vt_addcross3(xf + 6 * b + 3, lever, wk);
-    }
-    return vt_motion_add_loads(m, d, xf);
-}
-
 /* 1 when every half angle is within vt_sincos_small's 2^14 (fused_outward, not _any): from the
  * state's maximum smax (vt_state_max), q scanned again alone only where that is above 2^15 */
 static inline fused_angles angles_small(const vt_model *m, const vt_data *d, double smax)
@@ -731,8 +732,8 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
     const fused_outputs outputs = fused_bounded(m, smax, smax, vt_array_max(d->qdd, m->nv), smax);
     const fused_angles angles = angles_small(m, d, smax);
     /* the joints' effort parts (vt_joint_effects_store's) stored by the inward pass */
-    return mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles)
-               : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles);
+    return mix ? fused_pass(m, d, MOTION_DRIVEN, TREE_REVOLUTE, outputs, angles, NULL)
+               : fused_pass(m, d, MOTION_DRIVEN, TREE_MIXED, outputs, angles, NULL);
 }
 
 /* the given motion's fused passes: not inlined, and the tree a variable, so that one compact copy
@@ -742,9 +743,9 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d)
 __attribute__((noinline))
 #endif
 static vt_status fused_given(const vt_model *m, vt_data *d, const fused_tree tree, const fused_outputs outputs,
-                             const fused_angles angles)
+                             const fused_angles angles, const vt_frame_loads *loads)
 {
-    return fused_pass(m, d, MOTION_GIVEN, tree, outputs, angles);
+    return fused_pass(m, d, MOTION_GIVEN, tree, outputs, angles, loads);
 }
 
 /* The motion given for every rate of a tree: q̈ is known, and one outward and one inward pass
@@ -756,6 +757,11 @@ static vt_status fused_given(const vt_model *m, vt_data *d, const fused_tree tre
  * six rates are twists, is what a floating robot uses here. */
 vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
 {
+    return vt_motion_loaded(m, d, NULL);
+}
+
+vt_status vt_motion_loaded(const vt_model *m, vt_data *d, const vt_frame_loads *loads)
+{
     vt_status st = vt_check_pair(m, d, "vt_inverse_dynamics_motion");
     if (st) return st;
     vt_diagnostics_reset(d);
@@ -765,6 +771,10 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
             if (!isfinite(d->qdd[c]))
                 return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: qdd[%d] = %g", c, d->qdd[c]);
     }
+    if (loads && loads->n > 0 && !vt_all_finite(loads->w, 6 * (size_t)loads->n))
+        return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in a load at a frame");
+    if (loads && loads->n > 0 && (m->ncut > 0 || m->ncoupling > 0))
+        return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_inverse_dynamics_motion: loads at frames need a tree");
     if (m->ncut > 0 || m->ncoupling > 0) { /* loops or couplings: the joint-driven rates are the given ones */
         int given = 0;
         for (int r = 0; r < m->nc; r++) given += m->con_kind[r] == VT_ROW_JOINT;
@@ -796,11 +806,19 @@ vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
     if (!(smax < HUGE_VAL)) st = vt_kinematics_check_state(m, d);
     else if (mix == 0 && m->has_quaternions) st = vt_kinematics_check_quaternions(m, d); /* q and q̇ finite */
     if (st) return st;
-    const fused_outputs outputs = fused_bounded(m, smax, smax, amax, smax);
+    /* loads at frames bounded as xfrc entries would be: |f|∞ (1 + 2 |p_F|₁) + |n|∞ each bounds every
+     * entry of [f; n + (A p_F) × f] (|(A p) × f|∞ ≤ |p|₂ |f|₂ ≤ 2 |p|₁ |f|∞), summed over them */
+    double lb = 0.0;
+    for (int k = 0; loads && k < loads->n; k++) {
+        const double *w = loads->w + 6 * k, *p = m->frame_point + 3 * loads->frame[k];
+        const double fi = fmax(fabs(w[0]), fmax(fabs(w[1]), fabs(w[2]))), ni = fmax(fabs(w[3]), fmax(fabs(w[4]), fabs(w[5])));
+        lb += fi * (1.0 + 2.0 * (fabs(p[0]) + fabs(p[1]) + fabs(p[2]))) + ni;
+    }
+    const fused_outputs outputs = fused_bounded(m, smax, smax, amax, smax + lb);
     vt_solved(m, d, VT_ROUTE_MOTION, 1.0); /* nothing factorized */
     const fused_angles angles = angles_small(m, d, smax);
     /* α, the totals and the joints' effort parts formed in it */
-    st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles);
+    st = fused_given(m, d, mix ? TREE_REVOLUTE : TREE_MIXED, outputs, angles, loads && loads->n > 0 ? loads : NULL);
     if (st) d->route = VT_ROUTE_NONE; /* as vt_solve_reset left it */
     return st;
 }
