@@ -12,7 +12,9 @@
  *   inactive contact's is zero, a unilateral one pushes and stays in its pyramid, and the free
  *   root's efforts vanish — each to 1e-7 of the instant's scale (its efforts and forces, with
  *   the lever arms of the feet), a test of gross errors (a wrong sign, a wrong Jacobian), not of
- *   round-off.
+ *   round-off;
+ * - the same row in a batch with one or two wrenches at frames (loaded_row): refused with a
+ *   message and nothing written, or finite, the free root's efforts vanishing alike.
  *
  * A broken promise prints which and aborts (libFuzzer keeps the input). Built and run by
  * fuzz/run.sh beside the other harnesses. */
@@ -63,6 +65,57 @@ static void fail(const char *fmt, const char *what, double a, double b)
 }
 
 static vt_model *model;
+
+/* The same state and contacts as a batch's row with one or two wrenches at the robot's frames
+ * (the last bytes; none without them, so older inputs mean what they meant): a refusal has its
+ * message and writes nothing; VT_OK gives finite efforts and forces, the free root's efforts
+ * vanishing to 1e-7 of the row's scale (the loads', with the lever arms of the feet, counted). */
+static void loaded_row(const vt_model *m, vt_data *d, bytes *b, const vt_contact_def *def, int n, const double *weights,
+                       const int *active)
+{
+    const int nl = (int)(byte(b) % 3);
+    if (nl == 0 || m->nframe == 0) return;
+    int frame[2];
+    double w[12], scale = 1.0;
+    for (int k = 0; k < nl; k++) {
+        frame[k] = (int)(byte(b) % (unsigned)m->nframe);
+        for (int e = 0; e < 6; e++) w[6 * k + e] = scaled(b);
+        for (int e = 0; e < 6; e++) scale = fmax(scale, 4.0 * fabs(w[6 * k + e])); /* |f| times a leg's reach */
+    }
+    vt_batch_def bd = vt_default_batch_def();
+    bd.threads = 1;
+    bd.contacts = def;
+    bd.ncontact = n;
+    bd.effort_weight = weights;
+    vt_batch *bt = NULL;
+    if (vt_batch_create(&bt, m, &bd)) fail("%s: contacts accepted alone, refused by a batch (%g %g)", "vt_batch_create", 0, 0);
+    double force[18], effort[18];
+    for (int k = 0; k < 18; k++) force[k] = effort[k] = 42.0;
+    int status = 42;
+    vt_batch_io io = {0};
+    io.nrow = 1;
+    io.q = d->q, io.qd = d->qd, io.qdd = d->qdd;
+    io.contact_active = active, io.contact_force = force, io.effort = effort, io.status = &status;
+    io.nload = nl, io.load_frame = frame, io.load = w;
+    const vt_status st = vt_batch_inverse_dynamics_motion(bt, &io);
+    if (st) {
+        if (!vt_batch_message(bt)[0]) fail("%s failed (%g) with an empty message%g", "the loaded batch", st, 0);
+        for (int k = 0; k < 18; k++)
+            if (force[k] != 42.0 || effort[k] != 42.0) fail("%s failed and wrote its outputs (%g %g)", "the loaded batch", k, 0);
+    } else {
+        for (int a = 0; a < m->nv; a++) {
+            if (!isfinite(effort[a])) fail("%s: effort[%g] = %g", "the loaded batch", a, effort[a]);
+            scale = fmax(scale, fabs(effort[a]));
+        }
+        for (int k = 0; k < 3 * n; k++) {
+            if (!isfinite(force[k])) fail("%s: force[%g] = %g", "the loaded batch", k, force[k]);
+            scale = fmax(scale, fabs(force[k]));
+        }
+        for (int a = 0; a < 6; a++)
+            if (!(fabs(effort[a]) <= 1e-7 * scale)) fail("%s: the free root's effort %g of scale %g", "the loaded batch", effort[a], scale);
+    }
+    vt_batch_free(bt);
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -183,6 +236,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 fail("%s: a contact slips: |f_t| %g beyond mu f_n %g", "contacts", sqrt(fmax(ft2, 0.0)), def[k].mu * fn);
         }
     }
+    loaded_row(m, d, &b, def, n, weights, active);
     vt_contacts_free(c);
     vt_data_free(d);
     return 0;
