@@ -695,3 +695,30 @@ size_t vt_constraints_scratch(const vt_model *m)
     const size_t points = VT_SCRATCH_BYTES(JAC_SLOTS * 3 * mp, sizeof(double)) + VT_SCRATCH_BYTES(JAC_SLOTS * mp, sizeof(int));
     return dense > points ? dense : points;
 }
+
+/* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
+vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
+{
+    /* the arrays in locals: the time function's call would have them all read again per rate */
+    const int nv = m->nv, *dof_drive = m->dof_drive, *drive_row = m->drive_row, *dof_body = m->dof_body;
+    const int *qadr = m->body_qadr, *vadr = m->body_vadr;
+    const vt_drive_def *drive = m->drive;
+    const double t = d->time, *q = d->q;
+    double *Phi = d->Phi, *Phit = d->Phit, *gamma = d->gamma, *qdd = d->qdd;
+    for (int c = 0; c < nv; c++) {
+        const int k = dof_drive[c];
+        if (k < 0) continue;
+        const int row = drive_row[k];
+        double f[3];
+        vt_status st = vt_function_eval_valid(f, &drive[k].f, t);
+        if (st)
+            return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
+                           d->time);
+        const int i = dof_body[c];
+        Phi[row] = q[qadr[i] + c - vadr[i]] - f[0];
+        Phit[row] = -f[1];
+        gamma[row] = f[2];
+        qdd[c] = f[2];
+    }
+    return VT_OK;
+}

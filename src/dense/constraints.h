@@ -18,5 +18,8 @@ vt_status vt_constraints_impl(const vt_model *m, vt_data *d, vt_form form);
 enum { VT_CON_PHIX = 1, VT_CON_PHIQ = 2, VT_CON_GAMMA = 4, VT_CON_ALL = 7 };
 vt_status vt_constraints_parts(const vt_model *m, vt_data *d, vt_form form, int parts, const double *fd);
 vt_status vt_drive_values(const vt_model *m, vt_data *d, double *fd);
+/* the driven rates' prescribed q̈ = f'' and their rows' Φ, Φ_t, γ (the recursive evaluation's joint
+ * drives, without the rows' Jacobian) */
+vt_status vt_drive_accelerations(const vt_model *m, vt_data *d);
 
 #endif

@@ -32,10 +32,10 @@
 #include "base/status.h"
 #include "base/v4.h"
 #include "base/vec3.h"
-#include "model/functions.h"
 #include "model/model.h"
 #include "kinematics/body.h"
 #include "kinematics/kinematics.h"
+#include "dense/constraints.h"
 #include "dense/instant.h"
 #include "dense/reactions.h"
 #include "dense/solve.h"
@@ -52,33 +52,6 @@ typedef enum { OUTPUTS_SCANNED, OUTPUTS_BOUNDED } fused_outputs;
 typedef enum { ANGLES_ANY, ANGLES_SMALL } fused_angles;
 typedef enum { TOTALS_LEFT, TOTALS_FORMED } fused_totals;
 typedef enum { STORE_SET, STORE_ADD } fused_store;
-
-/* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
-vt_status vt_drive_accelerations(const vt_model *m, vt_data *d)
-{
-    /* the arrays in locals: the time function's call would have them all read again per rate */
-    const int nv = m->nv, *dof_drive = m->dof_drive, *drive_row = m->drive_row, *dof_body = m->dof_body;
-    const int *qadr = m->body_qadr, *vadr = m->body_vadr;
-    const vt_drive_def *drive = m->drive;
-    const double t = d->time, *q = d->q;
-    double *Phi = d->Phi, *Phit = d->Phit, *gamma = d->gamma, *qdd = d->qdd;
-    for (int c = 0; c < nv; c++) {
-        const int k = dof_drive[c];
-        if (k < 0) continue;
-        const int row = drive_row[k];
-        double f[3];
-        vt_status st = vt_function_eval_valid(f, &drive[k].f, t);
-        if (st)
-            return vt_fail(d->message, st, "vt_inverse_dynamics_recursive: drive %d: time function failed at t = %g", k,
-                           d->time);
-        const int i = dof_body[c];
-        Phi[row] = q[qadr[i] + c - vadr[i]] - f[0];
-        Phit[row] = -f[1];
-        gamma[row] = f[2];
-        qdd[c] = f[2];
-    }
-    return VT_OK;
-}
 
 /* Joint i's efforts and reaction from its subtree's wrench W̄_i (Wi, about P_i): a turning rate's
  * twist (e, 0) and a sliding one's (0, e) about P_i paired with W̄_i give τ = s · W̄_i − qfrc (a

@@ -48,8 +48,6 @@ static inline vt_status vt_recursive_start(const vt_model *m, vt_data *d, double
     return VT_OK;
 }
 
-/* the driven rates' prescribed q̈ = f'' (and their rows' Φ, Φ_t, γ) */
-vt_status vt_drive_accelerations(const vt_model *m, vt_data *d);
 /* the inward pass after the kinematics and q̈: the joint drives' efforts and every reaction; with
  * totals (no base body) also α and the joints' total wrenches */
 vt_status vt_inward(const vt_model *m, vt_data *d, int totals);
