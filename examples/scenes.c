@@ -544,6 +544,14 @@ static vt_status delta_build(vt_model **model, double period, int drives, vt_del
         pf.inertia[8] = 0.5 * VT_DELTA_MP * VT_DELTA_RP * VT_DELTA_RP;
         id = vt_builder_add_body(b, &pf);
     }
+    if (id >= 0) { /* the gripper's tip */
+        vt_frame_def tool = vt_default_frame_def();
+        tool.name = "tool";
+        tool.body = 10;
+        tool.point[2] = -VT_DELTA_TOOL;
+        const int fr = vt_builder_add_frame(b, &tool);
+        if (fr < 0) id = fr;
+    }
     for (int i = 0; i < 3 && id >= 0; i++)
         for (int k = 0; k < 2 && id >= 0; k++) {
             const double phi = 2.0 * VT_PI * i / 3.0, c = cos(phi), s = sin(phi), h = k ? VT_DELTA_H : -VT_DELTA_H;

@@ -151,7 +151,8 @@ void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
  *                              rod's −z at zero angles
  *   platform (body 10)         a free joint from the ground (q: its centre's global position and
  *                              its Euler parameters), VT_DELTA_MP kg (gripper and load), its
- *                              centre at its centre of mass
+ *                              centre at its centre of mass; frame 0 "tool", the gripper's tip,
+ *                              VT_DELTA_TOOL below that centre (body z)
  * Cut joints 2i, 2i + 1: spherical, rod (i, ∓)'s lower end to the platform at
  * VT_DELTA_RP u_i ∓ VT_DELTA_H t_i. Rates 3 + 12 + 6 = 21, cut rows 6 × 3 = 18: three degrees
  * of freedom (Grübler's count is the mobility: the rods' universal joints leave no spin), the
@@ -177,6 +178,7 @@ void vt_scene_five_link_guess(const vt_model *model, vt_data *data, double t);
 #define VT_DELTA_MA 1.2   /* upper arm, kg */
 #define VT_DELTA_MR 0.2   /* each forearm rod, kg */
 #define VT_DELTA_MP 1.5   /* platform with gripper and load, kg */
+#define VT_DELTA_TOOL 0.06 /* the gripper's tip below the platform's centre, m */
 #define VT_DELTA_RHO 0.15 /* radius of the path's circle, m */
 #define VT_DELTA_Z0 (-0.85) /* height of the circle's centre, m */
 #define VT_DELTA_DZ 0.05  /* the path's rise and fall, m */

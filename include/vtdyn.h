@@ -542,18 +542,18 @@ VT_API int vt_batch_threads(const vt_batch *batch);
 /// returns VT_ERR_BAD_OPTION at once, the running call's message and failed row left as they are).
 /// Each row is solved from its own inputs alone (the data's applied
 /// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
-/// whatever the number of threads. With io->nload wrenches at frames (a tree's given motion) the
-/// row's instant carries them as it carries xfrc (with contacts, before the ground's forces are
-/// shared, which then balance them too): the single call with the same loads put into xfrc by
-/// vt_add_frame_load() before it, to round-off, and the same bits whatever the threads.
+/// whatever the number of threads. With io->nload wrenches at frames the row's instant carries
+/// them as it carries xfrc (with contacts, before the ground's forces are shared, which then
+/// balance them too): the single call with the same loads put into xfrc by vt_add_frame_load()
+/// after vt_kinematics() (bitwise with loops or couplings, to round-off on a tree, whose passes
+/// take them in another order), and the same bits whatever the threads.
 /// A failing row's outputs are not written; its status goes to
 /// io->status, and the other rows are solved (unless stop_on_error). Returns VT_OK when every row
 /// succeeded, else the status of the failing row of lowest index (vt_batch_failed_row(), its
 /// message vt_batch_message()); a NaN or Inf load fails its row with VT_ERR_NONFINITE. Before
 /// any row: VT_ERR_NULL (batch, io, q, qd or qdd NULL with rows, load_frame or load NULL with
 /// loads), VT_ERR_BAD_SIZE (nrow or nload < 0, a stride below its row's length), VT_ERR_BAD_INDEX
-/// (a load's frame out of range or on the ground), VT_ERR_BAD_OPTION (loads on a model with cut
-/// joints or couplings), nothing written.
+/// (a load's frame out of range or on the ground), nothing written.
 VT_API vt_status vt_batch_inverse_dynamics_motion(vt_batch *batch, const vt_batch_io *io);
 /// The failing row of lowest index of the last call, or −1 when every row succeeded.
 VT_API int vt_batch_failed_row(const vt_batch *batch);

@@ -104,8 +104,10 @@ static int same(double a, double b)
     return memcmp(&a, &b, sizeof a) == 0;
 }
 
-/* row r of the batch's outputs against vt_inverse_dynamics_motion on a fresh data: bitwise */
-static void check_row(const vt_model *m, const outputs *o, int r, const double *q, const double *qd, const double *qdd)
+/* row r of the batch's outputs against vt_inverse_dynamics_motion on a fresh data, with nl loads
+ * w (6 each) at frames put into xfrc by vt_add_frame_load() after vt_kinematics(): bitwise */
+static void check_row_loaded(const vt_model *m, const outputs *o, int r, const double *q, const double *qd,
+                             const double *qdd, int nl, const int *frame, const double *w)
 {
     vt_data *d = NULL;
     assert_ok(vt_data_create(&d, m));
@@ -113,6 +115,8 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
     memcpy(d->q, q, (size_t)m->nq * sizeof(double));
     memcpy(d->qd, qd, (size_t)nv * sizeof(double));
     memcpy(d->qdd, qdd, (size_t)nv * sizeof(double));
+    if (nl > 0) assert_ok(vt_kinematics(m, d));
+    for (int k = 0; k < nl; k++) assert_ok(vt_add_frame_load(m, d, frame[k], w + 6 * k, w + 6 * k + 3));
     assert_ok(vt_inverse_dynamics_motion(m, d));
     assert_ok(vt_reactions_joint_frame(m, d));
     assert_int_equal(o->status[r], VT_OK);
@@ -141,6 +145,12 @@ static void check_row(const vt_model *m, const outputs *o, int r, const double *
     for (int k = 0; k < 4 * nb; k++) assert_true(same(o->bearing[(size_t)r * 4 * nb + k], d->jnt_bearing[4 + k]));
     for (int k = 0; k < 3 * nv; k++) assert_true(same(o->excess[(size_t)r * 3 * nv + k], d->limit_excess[k]));
     vt_data_free(d);
+}
+
+/* row r of the batch's outputs against vt_inverse_dynamics_motion on a fresh data: bitwise */
+static void check_row(const vt_model *m, const outputs *o, int r, const double *q, const double *qd, const double *qdd)
+{
+    check_row_loaded(m, o, r, q, qd, qdd, 0, NULL, NULL);
 }
 
 /* a batch of m on that many threads, stopping at a failure or not */
@@ -551,8 +561,8 @@ static void loaded_state(const vt_model *m, vt_data *d, const double *q, const d
  * named twice (the sum); bitwise alike on 1, 2 and 8 threads; a NaN load, and two of 1e308 on
  * one foot whose sum overflows, refuse their row alone;
  * on three feet with a load at the fourth, against vt_inverse_dynamics_contacts() with the load in
- * xfrc (efforts and the ground's forces); loads refused before any row on a loop, at a frame out
- * of range or on the ground, NULL, or a stride below 6 nload */
+ * xfrc (efforts and the ground's forces); loads refused before any row at a frame out of range or
+ * on the ground, NULL, or a stride below 6 nload */
 static void test_frame_loads(void **state)
 {
     (void)state;
@@ -694,15 +704,9 @@ static void test_frame_loads(void **state)
     outputs_free(&o[0]);
     vt_data_free(d);
     vt_model_free(m);
-    /* on a loop, and at a frame on the ground */
-    assert_ok(vt_scene_fourbar_rusr(&m, vt_function_sine(0.3, 1.0, 2.0, 0.0)));
-    b = batch_of(m, 1, 0);
+    /* at a frame on the ground */
     int zero[1] = {0};
     io = (vt_batch_io){.nrow = 0, .nload = 1, .load_frame = zero, .load = load};
-    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_BAD_OPTION);
-    assert_non_null(strstr(vt_batch_message(b), "cut joints"));
-    vt_batch_free(b);
-    vt_model_free(m);
     vt_builder *bl = NULL;
     assert_ok(vt_builder_create(&bl, NULL));
     vt_body_def body = vt_default_body_def();
@@ -722,6 +726,106 @@ static void test_frame_loads(void **state)
     free(qd);
     free(qdd);
     free(load);
+}
+
+/* 3x3 J^T x = b by Cramer's rule (J column-major 3x3); the determinant */
+static double solve3t(const double J[9], const double b[3], double x[3])
+{
+    /* the rows of J^T are J's columns */
+    const double *c0 = J, *c1 = J + 3, *c2 = J + 6;
+    const double det = c0[0] * (c1[1] * c2[2] - c1[2] * c2[1]) - c0[1] * (c1[0] * c2[2] - c1[2] * c2[0]) +
+                       c0[2] * (c1[0] * c2[1] - c1[1] * c2[0]);
+    for (int k = 0; k < 3; k++) {
+        double M[9];
+        memcpy(M, J, sizeof M);
+        M[k] = b[0], M[3 + k] = b[1], M[6 + k] = b[2]; /* column k of J^T: row k of J */
+        const double *m0 = M, *m1 = M + 3, *m2 = M + 6;
+        x[k] = (m0[0] * (m1[1] * m2[2] - m1[2] * m2[1]) - m0[1] * (m1[0] * m2[2] - m1[2] * m2[0]) +
+                m0[2] * (m1[0] * m2[1] - m1[1] * m2[0])) / det;
+    }
+    return det;
+}
+
+/* wrenches at the Delta's gripper tip, a loop's given motion (the motors' q̈, the dense stages):
+ * each row bitwise as the single call with the loads put into xfrc by vt_add_frame_load() after
+ * vt_kinematics(), on 1, 2 and 8 threads; and the motors' torques less the unloaded batch's
+ * against the statics of the Delta's closed-form inverse kinematics: with θ̇ = J ṗ (J = ∂θ/∂p,
+ * vt_scene_delta_motor's θ̇ at unit ṗ) the loads' power f·ṗ is the motors' −Δτ·θ̇ for every ṗ,
+ * Δτ = −J^-T f. The platform only translates, so neither the moment nor the tip's lever arm
+ * below the platform reaches a motor (they load the parallelograms' reactions) */
+static void test_loop_loads(void **state)
+{
+    (void)state;
+    vt_model *m = NULL;
+    vt_data *d = NULL;
+    assert_ok(vt_scene_delta(&m, 2.0, VT_DELTA_MOTORS));
+    assert_ok(vt_data_create(&d, m));
+    assert_true(m->nframe == 1 && strcmp(m->frame_name, "tool") == 0);
+    const int nq = m->nq, nv = m->nv, n = 24, tool[1] = {0};
+    double *q = malloc((size_t)nq * n * sizeof(double)), *qd = calloc((size_t)nv * n, sizeof(double)),
+           *qdd = calloc((size_t)nv * n, sizeof(double)), *load = malloc(6 * (size_t)n * sizeof(double)),
+           *pos = malloc(3 * (size_t)n * sizeof(double));
+    uint64_t seed = 41;
+    for (int r = 0; r < n; r++) {
+        double *p = pos + 3 * r;
+        vt_scene_delta_path(0.09 * r, 2.0, p, NULL, NULL);
+        assert_int_equal(vt_scene_delta_assemble(m, d, p), 0);
+        memcpy(q + (size_t)r * nq, d->q, (size_t)nq * sizeof(double));
+        for (int i = 0; i < 3; i++) qdd[(size_t)r * nv + m->body_vadr[1 + i]] = vt_rand_uniform(&seed, -3.0, 3.0);
+        for (int k = 0; k < 6; k++) load[6 * r + k] = vt_rand_uniform(&seed, -40.0, 40.0);
+    }
+    outputs o[3], bare;
+    const int threads[3] = {1, 2, 8};
+    for (int t = 0; t < 3; t++) {
+        vt_batch *b = batch_of(m, threads[t], 0);
+        outputs_alloc(&o[t], m, n);
+        vt_batch_io io = io_of(&o[t], n, q, 0, qd, qdd);
+        io.nload = 1;
+        io.load_frame = tool;
+        io.load = load;
+        assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+        if (t == 0) {
+            outputs_alloc(&bare, m, n);
+            io = io_of(&bare, n, q, 0, qd, qdd);
+            assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+        }
+        vt_batch_free(b);
+        for (int r = 0; r < n; r++) check_row_loaded(m, &o[t], r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv, 1, tool, load + 6 * r);
+    }
+    double worst = 0.0, moved = 0.0;
+    for (int r = 0; r < n; r++) {
+        double J[9], th[3], e[3] = {0, 0, 0}, zero[3] = {0, 0, 0}, dtau[3];
+        for (int k = 0; k < 3; k++) { /* column k: θ̇ for ṗ = e_k */
+            e[k] = 1.0;
+            for (int i = 0; i < 3; i++) {
+                assert_int_equal(vt_scene_delta_motor(i, pos + 3 * r, e, zero, th), 0);
+                J[3 * k + i] = th[1];
+                if (k == 0) /* the assembly's motor angle is the closed form's */
+                    assert_true(fabs(q[(size_t)r * nq + m->body_qadr[1 + i]] - th[0]) < 1e-12);
+            }
+            e[k] = 0.0;
+        }
+        const double f[3] = {-load[6 * r], -load[6 * r + 1], -load[6 * r + 2]};
+        assert_true(fabs(solve3t(J, f, dtau)) > 1e-3);
+        double scale = 1.0;
+        for (int i = 0; i < 3; i++) scale = fmax(scale, fabs(dtau[i]));
+        for (int i = 0; i < 3; i++) {
+            const size_t at = (size_t)r * nv + m->body_vadr[1 + i];
+            worst = fmax(worst, fabs(o[0].effort[at] - bare.effort[at] - dtau[i]) / scale);
+            moved = fmax(moved, fabs(o[0].effort[at] - bare.effort[at]) / scale);
+        }
+    }
+    printf("Delta, a wrench at the tool: the motors' torques less the unloaded ones against -J^-T f: %.2e\n", worst);
+    assert_true(worst < 1e-12 && moved > 0.1);
+    for (int t = 0; t < 3; t++) outputs_free(&o[t]);
+    outputs_free(&bare);
+    free(q);
+    free(qd);
+    free(qdd);
+    free(load);
+    free(pos);
+    vt_data_free(d);
+    vt_model_free(m);
 }
 
 /* one batch, call after call (the workers asleep between some, spinning between others): 300
@@ -975,6 +1079,7 @@ int main(void)
         cmocka_unit_test(test_contacts_bitwise),
         cmocka_unit_test(test_arguments),
         cmocka_unit_test(test_frame_loads),
+        cmocka_unit_test(test_loop_loads),
         cmocka_unit_test(test_calls_in_turn),
         cmocka_unit_test(test_run),
         cmocka_unit_test(test_nested_refused),

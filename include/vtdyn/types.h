@@ -881,9 +881,9 @@ typedef struct vt_batch_io {
                                             ///< the stride in ints
     double *contact_force; size_t contact_force_stride; ///< with contacts: 3 ncontact a row, the ground's
                                             ///< force on each contact (global; 0 where inactive)
-    int nload;                              ///< wrenches the environment applies at frames (default 0),
-                                            ///< on a tree (with contacts the ground's forces balance
-                                            ///< them too): a tool's measured force, a push
+    int nload;                              ///< wrenches the environment applies at frames (default 0):
+                                            ///< a tool's measured force, a push (with contacts the
+                                            ///< ground's forces balance them too)
     const int *load_frame;                  ///< nload frame indices (vt_model.frame_name's order); a
                                             ///< frame may be named more than once (the sum)
     const double *load; size_t load_stride; ///< 6 nload a row: at each frame its force (N), then its

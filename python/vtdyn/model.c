@@ -686,7 +686,7 @@ static PyMethodDef model_methods[] = {
      "written again (no new memory: a log solved chunk by chunk); qfrc: applied generalized forces (as v's\n"
      "shape), which the efforts then need not give; loads (F x 6, or N x F x 6) and load_frames (F names):\n"
      "wrenches the environment applies at frames, force (N) then moment about the frame's origin (N m), world\n"
-     "axes, as a tool's force sensor measures them turned into world axes (a tree; with contacts the ground's\n"
+     "axes, as a tool's force sensor measures them turned into world axes (with contacts the ground's\n"
      "forces balance them too)"},
     {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
      "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"

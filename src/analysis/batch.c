@@ -12,7 +12,8 @@
  * is its lowest; the call reports the lowest row among the threads'.
  *
  * Wrenches at frames (io->load) go into the row's instant as its passes carry xfrc, between the
- * outward pass (which has the frames' places) and the inward one (vt_motion_loaded); with
+ * outward pass (which has the frames' places) and the inward one (vt_motion_loaded); with loops
+ * or couplings, into xfrc for the dense stages once the poses are known (vt_motion_rows); with
  * contacts, before the ground's forces are shared (vt_contacts_inverse), which then balance the
  * loads too.
  */
@@ -289,9 +290,6 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
         return vt_fail(b->message, VT_ERR_NULL, "vt_batch: q, qd and qdd are required");
     if (io->nload < 0) return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: nload %d < 0", io->nload);
     if (io->nload > 0) {
-        if (m->ncut > 0 || m->ncoupling > 0)
-            return vt_fail(b->message, VT_ERR_BAD_OPTION, "vt_batch: loads at frames need a tree's given motion: this "
-                           "model has %s", m->ncut > 0 ? "cut joints" : "couplings");
         if (!io->load_frame || (io->nrow > 0 && !io->load))
             return vt_fail(b->message, VT_ERR_NULL, "vt_batch: nload %d with load_frame or load NULL", io->nload);
         for (int k = 0; k < io->nload; k++) {

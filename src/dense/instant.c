@@ -13,6 +13,8 @@
  * vt_inverse_dynamics_motion): the same stages, with each joint drive's row Φ̈ = q̈_k − f'' = 0
  * taking its acceleration from the data instead of its time function, γ = q̈_k(given); the cut
  * joints and couplings give the other rates' q̈, and the drives' multipliers are the efforts.
+ * Wrenches at frames (a batch row's loads) join xfrc once the poses are known, for the stages
+ * that read it (vt_forces' F, vt_reactions), and xfrc is put back after.
  *
  * Both scan ẍ when the stages are done (accelerations_scanned): vt_reactions forms it from q̈ and
  * checks α and the loads, but the Euler parameters' p̈ enters no load, and q̈ near DBL_MAX (given,
@@ -23,6 +25,7 @@
 
 #include "dense/instant.h"
 #include "kinematics/joint_effects.h"
+#include "kinematics/state.h"
 #include "base/status.h"
 #include "base/arena.h"
 #include "base/scan.h"
@@ -51,7 +54,7 @@ vt_status vt_inverse_dynamics(const vt_model *m, vt_data *d)
     return accelerations_scanned(m, d, "vt_inverse_dynamics");
 }
 
-vt_status vt_motion_rows(const vt_model *m, vt_data *d)
+vt_status vt_motion_rows(const vt_model *m, vt_data *d, const vt_frame_loads *loads)
 {
     if (!d->Mstar)
         return vt_fail(d->message, VT_ERR_LAYOUT,
@@ -59,20 +62,24 @@ vt_status vt_motion_rows(const vt_model *m, vt_data *d)
                        "data holds no S or M*: its model was built with layout VT_LAYOUT_RECURSIVE (VT_LAYOUT_FULL lays "
                        "them out)");
     /* the given q̈ is an input: kept here and put back when a stage fails, since vt_solve
-     * writes every rate's q̈ into d->qdd */
-    const size_t mark = vt_scratch_mark(d);
+     * writes every rate's q̈ into d->qdd; so is xfrc, which holds the loads while the stages run */
+    const int loaded = loads && loads->n > 0;
+    const size_t mark = vt_scratch_mark(d), nx = 6 * ((size_t)m->nbody + 1);
     double *given = VT_SCRATCH(d, double, m->nv, "the given q̈");
-    if (!given) return vt_scratch_fail(d, mark);
+    double *xfrc = loaded ? VT_SCRATCH(d, double, nx, "xfrc without the loads at frames") : NULL;
+    if (!given || (loaded && !xfrc)) return vt_scratch_fail(d, mark);
     memcpy(given, d->qdd, (size_t)m->nv * sizeof(double));
+    if (loaded) memcpy(xfrc, d->xfrc, nx * sizeof(double));
     vt_status st;
-    if (!(st = vt_kinematics(m, d)) && !(st = vt_mass_matrix(m, d)) && !(st = vt_forces(m, d)) &&
-        !(st = vt_constraints(m, d))) {
+    if (!(st = vt_kinematics(m, d)) && !(st = loaded ? vt_add_frame_loads(m, d, loads) : VT_OK) &&
+        !(st = vt_mass_matrix(m, d)) && !(st = vt_forces(m, d)) && !(st = vt_constraints(m, d))) {
         for (int r = 0; r < m->nc; r++)
             if (m->con_kind[r] == VT_ROW_JOINT) d->gamma[r] = given[m->con_dof[r]];
         if (!(st = vt_solve(m, d)) && !(st = vt_reactions(m, d)))
             st = accelerations_scanned(m, d, "vt_inverse_dynamics_motion");
     }
     if (st) memcpy(d->qdd, given, (size_t)m->nv * sizeof(double));
+    if (loaded) memcpy(d->xfrc, xfrc, nx * sizeof(double));
     vt_scratch_release(d, mark);
     return st;
 }

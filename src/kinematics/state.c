@@ -51,6 +51,14 @@ vt_status vt_add_frame_load(const vt_model *m, vt_data *d, int frame, const doub
     return vt_add_point_load(m, d, m->frame_body[frame], m->frame_point + 3 * frame, f, n);
 }
 
+vt_status vt_add_frame_loads(const vt_model *m, vt_data *d, const vt_frame_loads *loads)
+{
+    vt_status st = VT_OK;
+    for (int k = 0; k < loads->n && !st; k++)
+        st = vt_add_frame_load(m, d, loads->frame[k], loads->w + 6 * k, loads->w + 6 * k + 3);
+    return st;
+}
+
 vt_status vt_frame_pose(const vt_model *m, vt_data *d, int frame, double position[3], double rotation[9])
 {
     vt_status st = vt_check_pair(m, d, "vt_frame_pose");

@@ -746,8 +746,6 @@ vt_status vt_motion_loaded(const vt_model *m, vt_data *d, const vt_frame_loads *
     }
     if (loads && loads->n > 0 && !vt_all_finite(loads->w, 6 * (size_t)loads->n))
         return vt_fail(d->message, VT_ERR_NONFINITE, "vt_inverse_dynamics_motion: NaN or Inf in a load at a frame");
-    if (loads && loads->n > 0 && (m->ncut > 0 || m->ncoupling > 0))
-        return vt_fail(d->message, VT_ERR_BAD_OPTION, "vt_inverse_dynamics_motion: loads at frames need a tree");
     if (m->ncut > 0 || m->ncoupling > 0) { /* loops or couplings: the joint-driven rates are the given ones */
         int given = 0;
         for (int r = 0; r < m->nc; r++) given += m->con_kind[r] == VT_ROW_JOINT;
@@ -762,7 +760,7 @@ vt_status vt_motion_loaded(const vt_model *m, vt_data *d, const vt_frame_loads *
                            "vt_urdf_options.mimic = 0 (as Pinocchio does)", m->ncoupling,
                            m->joint_name + (size_t)VT_NAME_MAX * m->coupling[0].body_a,
                            m->joint_name + (size_t)VT_NAME_MAX * m->coupling[0].body_b);
-        return vt_motion_rows(m, d);
+        return vt_motion_rows(m, d, loads);
     }
     for (int i = 1; m->joint_mix < 0 && i <= m->nbody; i++)
         if (m->body_joint[i] == VT_JOINT_BASE)

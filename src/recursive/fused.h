@@ -9,6 +9,7 @@
 #include "vtdyn.h"
 #include "base/scan.h"
 #include "base/status.h"
+#include "kinematics/state.h"
 
 /* the largest |xfrc| and |qfrc| (one scan), the largest of those and |q|, |q̇| (one scan), of
  * |q̈|: +Inf where one is not finite */
@@ -59,16 +60,10 @@ vt_status vt_fused_driven(const vt_model *m, vt_data *d);
  * reactions and totals with the loads xf (6 (nbody+1), as vt_data.xfrc) added, by the inward
  * pass alone (the instant is linear in the loads); the limits flagged again */
 vt_status vt_motion_add_loads(const vt_model *m, vt_data *d, const double *xf);
-/* wrenches the environment applies at frames: n of them, at frame[k] (on moving bodies), w 6 each
- * (the force, then the moment about the frame's origin, global axes) */
-typedef struct vt_frame_loads {
-    int n;
-    const int *frame;
-    const double *w;
-} vt_frame_loads;
-/* vt_inverse_dynamics_motion() with loads at frames (NULL: none), carried by its passes as xfrc is
- * (a tree's: VT_ERR_BAD_OPTION with loops or couplings; VT_ERR_NONFINITE for a NaN or Inf load,
- * before anything is computed) */
+/* vt_inverse_dynamics_motion() with loads at frames (NULL: none): a tree's passes carry them as
+ * they carry xfrc; with loops or couplings they are added to xfrc for the dense stages and xfrc
+ * is put back after (vt_motion_rows). VT_ERR_NONFINITE for a NaN or Inf load, before anything is
+ * computed */
 vt_status vt_motion_loaded(const vt_model *m, vt_data *d, const vt_frame_loads *loads);
 
 #endif

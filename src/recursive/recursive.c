@@ -338,7 +338,9 @@ size_t vt_recursive_scratch(const vt_model *m)
     /* composite_precision's terms of M*'s diagonal and subtree sums */
     const size_t terms = VT_SCRATCH_BYTES(2 * (size_t)m->nv, D) + VT_SCRATCH_BYTES(4 * nb, D);
     if (terms > n) n = terms;
-    /* vt_motion_rows (instant.c, called from here) holds the given q̈ while the stages run */
-    if (VT_SCRATCH_BYTES(m->nv, D) > n) n = VT_SCRATCH_BYTES(m->nv, D);
+    /* vt_motion_rows (instant.c, called from fused.c) holds the given q̈ and xfrc while the
+     * stages run */
+    const size_t rows = VT_SCRATCH_BYTES(m->nv, D) + VT_SCRATCH_BYTES(6 * nb, D);
+    if (rows > n) n = rows;
     return n;
 }

@@ -15,6 +15,8 @@ with vtdyn.Builder, against closed forms written out here.
 * A parallelogram four-bar closed by a planar pin (add_cut_joint planar=True), its crank driven:
   the crank torque against energy balance, tau = I_eff phi'' + 2 m g a cos phi with
   I_eff = 2 m a^2 / 3 + m a^2 (the coupler translates); the pin's reaction in its plane only.
+  Model.inverse with a wrench at a frame on the coupler (loads=): the same closed form plus the
+  load's power per unit crank rate, at 50 random states (1e-12).
 * Errors: a model not fully driven, bad options and shapes.
 """
 import numpy as np
@@ -101,8 +103,9 @@ def test_double_link_driven():
     assert np.abs(ra.q - rb.q).max() <= 1e-12 and np.abs(ra.drive_effort - rb.drive_effort).max() <= 1e-9 * np.abs(rb.drive_effort).max()
 
 
-def test_four_bar_planar_pin():
-    a, bl, m = 0.5, 1.2, 2.0  # crank and rocker a, coupler and ground bl, each link m
+def parallelogram(a, bl, m):
+    """the four-bar: crank and rocker a, coupler and ground bl, each link m; a frame 'grip' on the
+    coupler off its line"""
     ja = m * a * a / 12
     b = vtdyn.Builder()
     b.add_body(mass=m, inertia=(0, ja, ja), joint_child=(-a / 2, 0, 0), name="crank")
@@ -111,7 +114,13 @@ def test_four_bar_planar_pin():
     b.add_body(parent=2, mass=m, inertia=(0, ja, ja), joint_parent=(bl / 2, 0, 0), joint_child=(-a / 2, 0, 0), name="rocker")
     assert b.add_cut_joint(body_a=0, body_b=3, point_a=(bl, 0, 0), point_b=(a / 2, 0, 0), planar=True, name="pin") == 0
     b.add_drive(body=1, f=vtdyn.Function.sine(1.0, 0.3, 2.0))
-    four = b.build()
+    b.add_frame("grip", body=2, point=(0.2, -0.3, 0.1))
+    return b.build()
+
+
+def test_four_bar_planar_pin():
+    a, bl, m = 0.5, 1.2, 2.0
+    four = parallelogram(a, bl, m)
     phi0 = 1.0
     tr = four.kinematic_analysis(3.0, nout=60, q=[phi0, -phi0, phi0 + np.pi], forward_check=False)
     t = tr.time
@@ -121,6 +130,31 @@ def test_four_bar_planar_pin():
     assert np.abs(tr.drive_effort[:, 0] - tau).max() <= 1e-9 * np.abs(tau).max()
     assert tr.cut_reaction.shape == (61, 1, 6)
     assert np.abs(tr.cut_reaction[:, 0, 2:]).max() <= 1e-12 * np.abs(tr.cut_reaction).max()  # in-plane force only
+
+
+def test_four_bar_loads():
+    """Model.inverse with a wrench at the coupler's frame (a loop: the crank's motion given): the
+    coupler translates with the crank's tip, v = a phi' (-sin phi, cos phi, 0), so the crank's
+    torque less the load's power per unit rate, tau - a (F_x sin phi - F_y cos phi), is the
+    unloaded closed form whatever the frame's offset and the moment (the pin takes those)"""
+    a, bl, m = 0.5, 1.2, 2.0
+    four = parallelogram(a, bl, m)
+    rng = np.random.default_rng(7)
+    n = 50
+    phi, phid, phidd = rng.uniform(-3, 3, n), rng.uniform(-2, 2, n), rng.uniform(-5, 5, n)
+    q = np.stack([phi, -phi, phi + np.pi], axis=1)
+    v = np.stack([phid, -phid, phid], axis=1)
+    acc = np.zeros((n, 3))
+    acc[:, 0] = phidd  # the crank's: the others follow from the loop
+    w = rng.uniform(-30, 30, (n, 1, 6))
+    r = four.inverse(q, v, acc, loads=w, load_frames=["grip"])
+    tau = (2 * m * a * a / 3 + m * a * a) * phidd + 2 * m * G * a * np.cos(phi)
+    tau += a * (w[:, 0, 0] * np.sin(phi) - w[:, 0, 1] * np.cos(phi))
+    scale = np.abs(tau).max()
+    assert np.abs(r.effort[:, 0] - tau).max() <= 1e-12 * scale
+    assert np.abs(r.effort[:, 1:]).max() <= 1e-12 * scale  # the passive joints carry no torque
+    bare = four.inverse(q, v, acc)
+    assert np.abs(r.effort[:, 0] - bare.effort[:, 0]).max() > 1.0  # the loads reached the crank
 
 
 def test_analysis_errors():
