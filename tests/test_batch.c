@@ -752,7 +752,9 @@ static double solve3t(const double J[9], const double b[3], double x[3])
  * against the statics of the Delta's closed-form inverse kinematics: with θ̇ = J ṗ (J = ∂θ/∂p,
  * vt_scene_delta_motor's θ̇ at unit ṗ) the loads' power f·ṗ is the motors' −Δτ·θ̇ for every ṗ,
  * Δτ = −J^-T f. The platform only translates, so neither the moment nor the tip's lever arm
- * below the platform reaches a motor (they load the parallelograms' reactions) */
+ * below the platform reaches a motor (they load the parallelograms' reactions). Two loads whose
+ * sum overflows refuse their row alone, and the rows after it on the same data are the single
+ * call's (xfrc put back) */
 static void test_loop_loads(void **state)
 {
     (void)state;
@@ -817,6 +819,31 @@ static void test_loop_loads(void **state)
     }
     printf("Delta, a wrench at the tool: the motors' torques less the unloaded ones against -J^-T f: %.2e\n", worst);
     assert_true(worst < 1e-12 && moved > 0.1);
+    /* the tool named twice, row 5's two forces 1e308 each: their sum overflows, that row alone is
+     * refused, and the rows after it on the same data (one thread) are the single call's: xfrc
+     * was put back */
+    double *load2 = malloc(12 * (size_t)n * sizeof(double));
+    for (int r = 0; r < n; r++) memcpy(load2 + 12 * r, load + 6 * r, 6 * sizeof(double)), memcpy(load2 + 12 * r + 6, load + 6 * r, 6 * sizeof(double));
+    load2[12 * 5] = load2[12 * 5 + 6] = 1e308;
+    const int tool2[2] = {0, 0};
+    vt_batch *b = batch_of(m, 1, 0);
+    outputs_fill(&o[0], m, n, -7.0);
+    vt_batch_io io = io_of(&o[0], n, q, 0, qd, qdd);
+    io.nload = 2;
+    io.load_frame = tool2;
+    io.load = load2;
+    assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
+    assert_int_equal(vt_batch_failed_row(b), 5);
+    for (int r = 0; r < n; r++) {
+        if (r == 5) {
+            assert_int_equal(o[0].status[r], VT_ERR_NONFINITE);
+            assert_true(o[0].effort[(size_t)r * nv] == -7.0);
+            continue;
+        }
+        check_row_loaded(m, &o[0], r, q + (size_t)r * nq, qd + (size_t)r * nv, qdd + (size_t)r * nv, 2, tool2, load2 + 12 * r);
+    }
+    vt_batch_free(b);
+    free(load2);
     for (int t = 0; t < 3; t++) outputs_free(&o[t]);
     outputs_free(&bare);
     free(q);
