@@ -1,11 +1,11 @@
 /* The command's `inverse`: a URDF robot's efforts and joint reactions, one output row per row of
  * a CSV or .npy file of states (positions, velocities, accelerations: the library's batch on
- * threads) or of samples of a trajectory (positions and t: a spline drive on each joint,
- * vt_kinematic_solve row by row; with a floating root, splines through its position and its
- * quaternion's components give each row's state, solved by the batch as the states are).
+ * threads) or of samples of a trajectory (positions and t: splines through each joint's positions,
+ * and a floating root's position and quaternion components, give each row's state, solved by
+ * the batch as the states are).
  *
  * The jobs in order: the input's header read and its columns mapped to the joints, the model
- * built (with the spline drives for samples, which read every row first), the output opened
+ * built (and for samples the splines, which read every row first), the output opened
  * beside its name, then chunk after chunk of rows: the numbers parsed and the states laid out in
  * row-major arrays (on the threads, in contiguous blocks; cmd/states.c), the chunk solved by one
  * vt_batch_inverse_dynamics_motion (bitwise the single call's whatever the threads), and its
@@ -249,15 +249,10 @@ static int check_columns(const run *x, int floating)
 }
 
 /* --contacts: the file's contacts on the probe's frames, and each one's column C_active (or none:
- * always on the ground); states, or samples of a floating robot (each row solved as a state); 0
- * or 1 */
+ * always on the ground); states or samples (each row solved as a state); 0 or 1 */
 static int map_contacts(run *x)
 {
     if (!x->o->contacts) return 0;
-    if (x->form == FORM_SAMPLES && !x->nfree)
-        return cmd_fail("--contacts: %s holds samples (t and positions) of a robot fixed to the world: contacts take "
-                        "states (J, J_vel and J_acc for every joint), or samples of a floating robot (--floating)",
-                        x->states);
     if (cmd_contacts(x->probe, x->o->contacts, &x->cdef, &x->cname, &x->ncontact)) return 1;
     if (!(x->ccol = malloc((size_t)x->ncontact * sizeof *x->ccol))) return cmd_fail("out of memory");
     for (int k = 0; k < x->ncontact; k++) {
@@ -269,18 +264,15 @@ static int map_contacts(run *x)
 }
 
 /* --loads F1,F2,...: each frame's wrench columns F_fx F_fy F_fz F_nx F_ny F_nz (the force, then the
- * moment about the frame's origin, world axes: what the environment applies to the link), on
- * states (the batch adds them to each row's instant, before the contacts' forces are shared);
+ * moment about the frame's origin, world axes: what the environment applies to the link), each
+ * row's own, of states or samples (the batch adds them to each row's instant, before the
+ * contacts' forces are shared);
  * the frames' indices in the probe, those of the model solved set by build_model; 0 or 1 */
 static int map_loads(run *x)
 {
     static const char *const sfx[6] = {"_fx", "_fy", "_fz", "_nx", "_ny", "_nz"};
     const char *list = x->o->loads;
     if (!list) return 0;
-    if (x->form == FORM_SAMPLES)
-        return cmd_fail("--loads: %s holds samples (t and positions): loads take states (J, J_vel and J_acc for every "
-                        "joint)",
-                        x->states);
     int n = 1;
     for (const char *p = list; *p; p++) n += *p == ',';
     if (!(x->lframe = malloc((size_t)n * sizeof *x->lframe)) || !(x->lcol = malloc(6 * (size_t)n * sizeof *x->lcol)))
@@ -312,17 +304,17 @@ static int map_loads(run *x)
     return 0;
 }
 
-/* the model solved (the robot, with the spline drives for samples) and its data; for states the
- * batch on the run's threads; 0 or 1 */
+/* the model solved (the robot) and its data, for samples the splines, and the batch on the run's
+ * threads; 0 or 1 */
 static int build_model(run *x)
 {
-    if (x->form == FORM_SAMPLES && (x->nfree ? spline_model(x) : add_spline_drives(x))) return 1;
+    if (x->form == FORM_SAMPLES && spline_model(x)) return 1;
     if (vt_builder_build(&x->m, x->b) || vt_data_create(&x->d, x->m))
         return cmd_fail("%s: %s", x->urdf, vt_builder_message(x->b));
     for (int k = 0; k < x->nj; k++) x->jc[k].qadr = x->m->body_qadr[x->jc[k].body];
     for (int k = 0; k < x->nload; k++) /* the probe's frames found again in the model solved */
         x->lframe[k] = vt_find_frame(x->m, x->probe->frame_name + (size_t)VT_NAME_MAX * x->lframe[k]);
-    /* the batch (the states' solver) counts the CPUs for -j 0; the samples' threads are as many */
+    /* the batch counts the CPUs for -j 0 */
     vt_batch_def def = vt_default_batch_def();
     def.threads = x->o->threads;
     if (x->ncontact) {
@@ -341,8 +333,7 @@ static int build_model(run *x)
 
 int cmd_inverse(const char *urdf, const char *states, const char *outpath, const inverse_options *o)
 {
-    /* Newton's tolerance and iteration limit for the samples: the library's defaults (1e-12, 30) */
-    run x = {.urdf = urdf, .states = states, .o = o, .form = FORM_UNKNOWN, .opt = vt_default_run_options()};
+    run x = {.urdf = urdf, .states = states, .o = o, .form = FORM_UNKNOWN};
     /* numbers read and written with a '.' whatever LC_NUMERIC: this thread in the C locale (the
      * threads' blocks set their own) */
     locale_t cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
@@ -359,8 +350,7 @@ int cmd_inverse(const char *urdf, const char *states, const char *outpath, const
             static char obuf[1 << 20];
             setvbuf(x.out.f, obuf, _IOFBF, sizeof obuf);
             const double t0 = run_clock();
-            const int ok = !(x.form == FORM_SAMPLES ? (x.nfree ? run_samples_motion(&x) : run_samples(&x))
-                                                    : run_states(&x)) &&
+            const int ok = !(x.form == FORM_SAMPLES ? run_samples(&x) : run_states(&x)) &&
                            !finish_output(&x);
             status = output_close(&x.out, ok);
             if (o->times && ok) {

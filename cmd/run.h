@@ -69,7 +69,6 @@ typedef struct {
     int ct;                    /* the column t, or -1 */
     form form;
     double *ts;                /* the samples' times (column t), for the splines */
-    vt_run_options opt;        /* Newton's tolerance and iteration limit for the samples */
     /* the output */
     file_format ofmt;
     output out;

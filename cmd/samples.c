@@ -1,8 +1,7 @@
 /* The command's `inverse`, the samples form: t and the joints' positions alone, samples of a
- * trajectory. Without a floating root, a cubic spline drive on each joint and vt_kinematic_solve
- * row by row; with one, splines through its position and its quaternion's components (made
- * sign-continuous, then normalised: ω = 2 E(p) ṗ, α = 2 E(p) p̈) and the joints' give each row's
- * state, solved by the batch as the states are. */
+ * trajectory. Cubic splines through each joint's positions, and with a floating root through its
+ * position and its quaternion's components (made sign-continuous, then normalised: ω = 2 E(p) ṗ,
+ * α = 2 E(p) p̈), give each row's state at its t, solved by the batch as the states are. */
 #define _POSIX_C_SOURCE 200809L
 #include "samples.h"
 
@@ -53,26 +52,6 @@ static int read_samples(run *x)
     if (input_read_all(&x->in)) return 1;
     if (x->in.t.nrow == 0) return no_rows(x);
     return sample_times(x);
-}
-
-int add_spline_drives(run *x)
-{
-    if (read_samples(x)) return 1;
-    double *ys = malloc((size_t)x->in.t.nrow * sizeof *ys);
-    if (!ys) return cmd_fail("out of memory");
-    for (int k = 0; k < x->nj; k++) { /* (no floating root here) */
-        for (int r = 0; r < x->in.t.nrow; r++) ys[r] = table_row(&x->in.t, r)[x->jc[k].col];
-        vt_drive_def dr = vt_default_drive_def();
-        dr.body = x->jc[k].body;
-        dr.f = vt_function_spline(x->in.t.nrow, x->ts, ys);
-        if (vt_builder_add_drive(x->b, &dr) < 0) {
-            cmd_fail("%s: column '%s' as samples: %s", x->states, x->jc[k].name, vt_builder_message(x->b));
-            free(ys);
-            return 1;
-        }
-    }
-    free(ys);
-    return 0;
 }
 
 /* one spline through ys over the samples' times, as the drive of a body of its own in hb (column
@@ -146,58 +125,6 @@ int spline_model(run *x)
     return status;
 }
 
-int run_samples(run *x)
-{
-    double start = 0.0, last = 0.0;
-    const vt_model *m = x->m;
-    vt_data *d = x->d;
-    const table *t = &x->in.t;
-    const size_t nq = (size_t)m->nq, nv = (size_t)m->nv, nb = (size_t)m->nbody;
-    if (write_header(x, t->nrow)) return 1;
-    for (int r0 = 0; r0 < t->nrow; r0 += x->K) {
-        const int n = t->nrow - r0 < x->K ? t->nrow - r0 : x->K;
-        const double t0 = run_clock();
-        for (int r = 0; r < n; r++) {
-            const double *row = table_row(t, r0 + r);
-            for (int k = 0; k < x->nj; k++) d->q[m->body_qadr[x->jc[k].body]] = row[x->jc[k].col];
-            d->time = row[x->ct];
-            const vt_status st = vt_kinematic_solve(m, d, x->opt.newton_tol, x->opt.newton_maxit);
-            if (st) {
-                char where[ROW_WHERE];
-                return cmd_fail("%s: %s (%s)", input_where(&x->in, t->loc[r0 + r], where), d->message,
-                                vt_status_string(st));
-            }
-            double *e = x->effort + r * nv;
-            for (int k = 0; k < x->nj; k++) e[x->jc[k].rate] = d->drive_effort[k];
-            if (x->parts) {
-                double *pr = x->parts + r * 3 * nv;
-                memcpy(pr, d->effort_armature, nv * sizeof(double));
-                memcpy(pr + nv, d->effort_damping, nv * sizeof(double));
-                memcpy(pr + 2 * nv, d->effort_friction, nv * sizeof(double));
-            }
-            memcpy(x->q + r * nq, d->q, nq * sizeof *d->q);
-            if ((x->reac_link || x->bearing) && vt_reactions_joint_frame(m, d)) return cmd_fail("%s", d->message);
-            for (size_t i = 1; i <= nb; i++) {
-                if (x->reac) {
-                    memcpy(x->reac + r * 6 * nb + 6 * (i - 1), d->jnt_force + 3 * i, 3 * sizeof(double));
-                    memcpy(x->reac + r * 6 * nb + 6 * (i - 1) + 3, d->jnt_moment + 3 * i, 3 * sizeof(double));
-                }
-                if (x->reac_link) {
-                    memcpy(x->reac_link + r * 6 * nb + 6 * (i - 1), d->jnt_force_joint + 3 * i, 3 * sizeof(double));
-                    memcpy(x->reac_link + r * 6 * nb + 6 * (i - 1) + 3, d->jnt_moment_joint + 3 * i, 3 * sizeof(double));
-                }
-            }
-            if (x->bearing) memcpy(x->bearing + r * 4 * nb, d->jnt_bearing + 4, 4 * nb * sizeof(double));
-            if (x->excess) memcpy(x->excess + r * 3 * nv, d->limit_excess, 3 * nv * sizeof(double));
-        }
-        x->t_solve += run_clock() - t0;
-        x->incells = table_row(t, r0);
-        if (write_chunk(x, n, &start, &last)) return 1;
-    }
-    progress(x, 1, &start, &last);
-    return 0;
-}
-
 /* spline k of x->splines at time t: out = [f, f', f'']; 0 or 1 */
 static int spline_at(const run *x, int k, double t, double out[3])
 {
@@ -264,7 +191,7 @@ static int fill_sample(const run *x, int r, double t)
     return 0;
 }
 
-int run_samples_motion(run *x)
+int run_samples(run *x)
 {
     double start = 0.0, last = 0.0;
     const table *t = &x->in.t;
@@ -274,8 +201,11 @@ int run_samples_motion(run *x)
         const double t0 = run_clock();
         for (int r = 0; r < n; r++) {
             if (fill_sample(x, r, x->ts[r0 + r])) return 1;
+            const double *row = table_row(t, r0 + r);
+            /* the loads at frames: the sample's own wrenches (measured at its t), not splined */
+            for (int k = 0; k < 6 * x->nload; k++) x->load[(size_t)r * 6 * (size_t)x->nload + (size_t)k] = row[x->lcol[k]];
             for (int k = 0; k < x->ncontact; k++) { /* C_active: the sample's own 0 or 1, not splined */
-                const double a = x->ccol[k] >= 0 ? table_row(t, r0 + r)[x->ccol[k]] : 1.0;
+                const double a = x->ccol[k] >= 0 ? row[x->ccol[k]] : 1.0;
                 if (a != 0.0 && a != 1.0) {
                     char where[ROW_WHERE];
                     return cmd_fail("%s: column '%s_active': %g is neither 0 nor 1",

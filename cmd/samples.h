@@ -4,12 +4,7 @@
 
 #include "run.h"
 
-/* for samples, a joint drive on every joint, following the cubic spline through its column's
- * samples over t (the drives in the joints' order, drive k on joint k): every row read first;
- * 0 or 1 */
-int add_spline_drives(run *x);
-
-/* for samples with a floating root, the splines through the samples: each joint's position,
+/* for samples, the splines through them (every row read first): each joint's position,
  * each root's x, y, z and its quaternion's four components — every quaternion sample unit within
  * --normalize-quaternions (refused, its row named), normalised, and its sign turned where it
  * points away from the sample before (q and −q are one orientation; the spline must not pass
@@ -20,13 +15,9 @@ int add_spline_drives(run *x);
  * model is never solved. 0 or 1 */
 int spline_model(run *x);
 
-/* samples: each row solved in turn (Newton on the spline drives at its t), gathered a chunk at a
- * time and written; 0, or 1 at the first row that fails */
+/* samples: a chunk of rows at a time, each row's state from the splines at its t (its loads at
+ * frames and contacts' C_active its own), solved by the batch as states are, formatted and
+ * written; 0, or 1 at the first row that fails */
 int run_samples(run *x);
-
-/* samples with a floating root: a chunk of rows at a time, each row's state from the splines at
- * its t, solved by the batch as states are, formatted and written; 0, or 1 at the first row that
- * fails */
-int run_samples_motion(run *x);
 
 #endif

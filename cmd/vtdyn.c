@@ -125,8 +125,7 @@ static const char usage_options[] =
     "\n"
     "options of inverse:\n"
     "  -j N             threads: 0 (default) every CPU the process may use, 1 the calling thread\n"
-    "                   alone; the output's bytes are the same for any N (samples without a\n"
-    "                   floating root are solved on one thread)\n"
+    "                   alone; the output's bytes are the same for any N\n"
     "  --columns LIST   the output's groups, comma separated (each joint's in this order whatever\n"
     "                   LIST's): effort (J_effort; a floating root's R_effort_*, both axes),\n"
     "                   world (J_fx ... J_nz), link (J_fx_link ... J_nz_link), bearing\n"
@@ -173,14 +172,14 @@ static const char usage_loads[] =
     "                   shared by the least squared motor efforts.\n"
     "                   A states column C_active (0 or 1) per contact C says when it is on the\n"
     "                   ground (without it, always); the output adds C_fx C_fy C_fz, the\n"
-    "                   ground's force on the link (N, world axes). States, or samples of a\n"
-    "                   floating robot (each row solved as a state; C_active not splined).\n"
+    "                   ground's force on the link (N, world axes). States or samples\n"
+    "                   (C_active read as it is, not splined).\n"
     "  --loads FRAME[,FRAME...]\n"
     "                   wrenches the environment applies at link frames (a tool's measured\n"
     "                   force): the states columns F_fx F_fy F_fz (N) and F_nx F_ny F_nz (N m,\n"
     "                   about the frame's origin), world axes, for each frame F named; the\n"
     "                   efforts and reactions (and with --contacts the ground's forces) then\n"
-    "                   carry them. States only.\n";
+    "                   carry them. States or samples (each sample's own, not splined).\n";
 
 /* the usage, whole, on f */
 static void print_usage(FILE *f)

@@ -18,7 +18,9 @@ flight; a non-unit quaternion refused. The floating body as samples (t and its p
 quaternion alone) against Newton-Euler at the exact motion (1e-5 of the largest effort, second
 order in the spacing), a floating arm's samples against its states, a sign-flipped quaternion
 sequence, and the samples' refusals. --payload against the payload written into the file as a
-fixed link (1e-15).
+fixed link (1e-15). --loads against the closed forms, on states and samples; samples of cubics
+(which the splines reproduce) against the states with the exact rates, with --contacts and
+--loads.
 
     test_cmd.py VTDYN URDF_DIR WORKDIR
 """
@@ -1173,13 +1175,77 @@ def loads(vtdyn, urdf_dir, states, work, check):
     r = run(vtdyn, "inverse", urdf, path)
     check(r.returncode == 1 and "'link2_fx' is none of the robot's" in r.stderr,
           "load columns without --loads stop the run: %r" % r.stderr)
-    samples = os.path.join(work, "loads_samples.csv")
-    with open(samples, "w") as f:
-        f.write("t,joint1,joint2,link1_fx,link1_fy,link1_fz,link1_nx,link1_ny,link1_nz\n")
-        for k in range(5):
-            f.write("%g,%g,%g,0,0,0,0,0,0\n" % (0.1 * k, 0.1 * k, 0.2 * k))
-    r = run(vtdyn, "inverse", "--loads", "link1", urdf, samples)
-    check(r.returncode == 1 and "loads take states" in r.stderr, "--loads on samples refused: %r" % r.stderr)
+    # samples (t and positions) with each sample's own wrenches, not splined: the efforts less
+    # those of the same samples without loads are the loads' closed forms at the sample's q,
+    # exactly (the splines' rates and accelerations are the same in both runs)
+    samples, bare = os.path.join(work, "loads_samples.csv"), os.path.join(work, "loads_bare.csv")
+    ts = [0.1 * k for k in range(len(W))]
+    with open(samples, "w") as f, open(bare, "w") as g:
+        f.write("t,joint1,joint2," + ",".join(names) + "\n")
+        g.write("t,joint1,joint2\n")
+        for t, w in zip(ts, W):
+            q1, q2 = motion(t)[:2]
+            f.write("%r,%r,%r,%s\n" % (t, q1, q2, ",".join(repr(x) for x in w)))
+            g.write("%r,%r,%r\n" % (t, q1, q2))
+    oa, ob = os.path.join(work, "loads_samples_out.csv"), os.path.join(work, "loads_bare_out.csv")
+    a = run(vtdyn, "inverse", "--loads", "link2,link1", "-j", "2", urdf, samples, "-o", oa)
+    b = run(vtdyn, "inverse", urdf, bare, "-o", ob)
+    check(a.returncode == 0 and b.returncode == 0, "--loads on samples: %r %r" % (a.stderr, b.stderr))
+    if a.returncode == 0 and b.returncode == 0:
+        ra, rb, worst = read(oa), read(ob), 0.0
+        for t, w, x, y in zip(ts, W, ra, rb):
+            q1 = motion(t)[0]
+            c1, s1 = math.cos(q1), math.sin(q1)
+            d1, d2 = -(L * (c1 * w[1] - s1 * w[0]) + w[5] + w[11]), -w[5]
+            scale = 1 + abs(x["joint1_effort"]) + max(abs(v) for v in w)
+            worst = max(worst, abs(x["joint1_effort"] - y["joint1_effort"] - d1) / scale,
+                        abs(x["joint2_effort"] - y["joint2_effort"] - d2) / scale)
+        check(len(ra) == len(ts) and worst < 1e-12, "--loads on samples against the closed forms: %.3g" % worst)
+        print("--loads on samples: %d rows, the loads' part against the closed forms %.3g" % (len(ra), worst))
+
+
+def cubic_samples(vtdyn, urdf_dir, work, check):
+    """samples of cubics in t: the not-a-knot spline through them is the cubic itself, so the
+    samples form gives the rows of the states form with the exact rates, to round-off; on the
+    fixed double link with a bilateral contact at link 2's frame (--contacts) and a wrench at
+    link 1's (--loads), each sample's own, on two threads; every output column"""
+    urdf = os.path.join(urdf_dir, "double_link.urdf")
+    c1, c2 = (0.3, -0.8, 0.5, 0.2), (1.1, 0.4, -0.6, -0.1)
+
+    def cubic(c, t):
+        return (c[0] + c[1] * t + c[2] * t * t + c[3] * t ** 3, c[1] + 2 * c[2] * t + 3 * c[3] * t * t,
+                2 * c[2] + 6 * c[3] * t)
+    cfile = os.path.join(work, "tip_contact.csv")
+    with open(cfile, "w") as f:
+        f.write("frame,mu\nlink2,\n")
+    rng = random.Random(11)
+    wnames = ["link1" + s for s in ("_fx", "_fy", "_fz", "_nx", "_ny", "_nz")]
+    ts = [0.07 * k for k in range(30)]
+    W = [[rng.uniform(-20, 20) for _ in wnames] for _ in ts]
+    sp, st = os.path.join(work, "cubic_samples.csv"), os.path.join(work, "cubic_states.csv")
+    with open(sp, "w") as f, open(st, "w") as g:
+        f.write("t,joint1,joint2," + ",".join(wnames) + "\n")
+        g.write("t,joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc," + ",".join(wnames) + "\n")
+        for t, w in zip(ts, W):
+            a, b = cubic(c1, t), cubic(c2, t)
+            lw = ",".join(repr(x) for x in w)
+            f.write("%r,%r,%r,%s\n" % (t, a[0], b[0], lw))
+            g.write("%r,%s,%s,%s\n" % (t, ",".join(repr(x) for x in a), ",".join(repr(x) for x in b), lw))
+    outs = []
+    for path in (sp, st):
+        o = path.replace(".csv", "_out.csv")
+        r = run(vtdyn, "inverse", "--contacts", cfile, "--loads", "link1", "-j", "2", urdf, path, "-o", o)
+        check(r.returncode == 0, "cubic samples and states with --contacts and --loads: %s" % r.stderr)
+        outs.append(read(o) if r.returncode == 0 else [])
+    a, b = outs
+    ok = len(a) == len(b) == len(ts) and a and list(a[0]) == list(b[0])
+    worst = 0.0
+    if ok:
+        big = max(abs(v) for row in b for v in row.values())
+        worst = max(abs(x[k] - y[k]) for x, y in zip(a, b) for k in x) / big
+    check(ok and worst < 1e-11, "cubic samples against the states with exact rates: %.3g" % worst)
+    print("cubic samples with a contact and a load: %d rows against the states, largest difference %.3g of the "
+          "largest value" % (len(a), worst))
 
 
 def help_is_documented(vtdyn, urdf_dir, check):
@@ -1633,6 +1699,7 @@ def main():
     bearing_and_limits(vtdyn, urdf, states, times, work, check)
     help_is_documented(vtdyn, urdf_dir, check)
     loads(vtdyn, urdf_dir, states, work, check)
+    cubic_samples(vtdyn, urdf_dir, work, check)
     contacts(vtdyn, urdf_dir, work, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0
