@@ -9,7 +9,9 @@
  * - differential: the dense vt_inverse_dynamics and vt_inverse_dynamics_recursive on separate
  *   data of the same state; vt_inverse_dynamics_motion given the dense q̈ (a tree: every rate's
  *   M* q̈ − Q against the dense Φ_q^T λ; loops and couplings: the whole instant); the same
- *   definitions with allow_redundant = 1 at a clearly regular pose. Where both succeed, q̈, the
+ *   definitions with allow_redundant = 1 at a clearly regular pose; the state's xfrc given again
+ *   as wrenches at frames (one on each body) to the batch (frame_loads): its efforts and unique
+ *   reactions as the single call's with xfrc. Where both succeed, q̈, the
  *   efforts and every reaction agree within tol (below), and dense and recursive α and the
  *   joints' totals too; their statuses are consistent (below). The bytes also choose the later
  *   pieces: planar revolute cut joints, relative orientation drives' references, three-angle
@@ -906,6 +908,17 @@ static vt_model *build(const definitions *defs, int allow_redundant)
     for (int i = 0; i < defs->nbody; i++) {
         const int id = vt_builder_add_body(builder, &defs->body[i]); /* refusals are fine, with a reason */
         if (id < 0 && vt_builder_message(builder)[0] == '\0') fail("vt_builder_add_body refused with an empty message");
+        if (id < 0) continue;
+        /* a frame on each body, halfway from its centre of mass to its joint (within the body's
+         * own lengths): where frame_loads puts the state's xfrc as loads at frames */
+        char name[16];
+        snprintf(name, sizeof name, "f%d", id);
+        vt_frame_def fd = vt_default_frame_def();
+        fd.name = name;
+        fd.body = id;
+        for (int k = 0; k < 3; k++) fd.point[k] = 0.5 * defs->body[i].joint_child[k];
+        if (vt_builder_add_frame(builder, &fd) < 0 && vt_builder_message(builder)[0] == '\0')
+            fail("vt_builder_add_frame refused with an empty message");
     }
     const int show = getenv("FUZZ_DESCRIBE") != NULL;
     for (int k = 0; k < defs->ndrive; k++)
@@ -1038,6 +1051,69 @@ static int all_joint_drives(const vt_model *m)
     return 1;
 }
 
+/* the state's xfrc as wrenches at the bodies' frames through the batch (vt_batch_io.load, whose
+ * row has xfrc zero): body b's entry [f; n], n about its centre of mass, is the force f at its
+ * frame F with the moment n − s × f about F's origin (s = A_b p_F, dm's poses). The given
+ * motion's efforts and unique reactions again (dm: the single call with xfrc), within the
+ * tolerances of s; a refusal where the single call succeeded is a failure */
+static void frame_loads(const vt_model *m, const vt_data *state, const vt_data *dm, const double *given, const scales *s)
+{
+    const int nl = m->nframe, nb = m->nbody, nv = m->nv;
+    if (nl == 0 || maxabs(state->xfrc, 6 * (nb + 1)) == 0.0) return;
+    int *frame = malloc((size_t)nl * sizeof(int));
+    double *w = malloc(6 * (size_t)nl * sizeof(double)), *effort = malloc(((size_t)nv + 1) * sizeof(double));
+    double *reaction = malloc((6 * (size_t)nb + 1) * sizeof(double));
+    int status = 0;
+    vt_batch *bt = NULL;
+    vt_batch_def def = vt_default_batch_def();
+    def.threads = 1;
+    if (!frame || !w || !effort || !reaction || vt_batch_create(&bt, m, &def)) goto out;
+    if (nl != nb) goto out; /* a frame on each body: each body's xfrc once */
+    for (int k = 0; k < nl; k++) {
+        const int b = m->frame_body[k];
+        const double *x = state->xfrc + 6 * b, *A = dm->A + 9 * b, *p = m->frame_point + 3 * k;
+        double sv[3];
+        for (int r = 0; r < 3; r++) sv[r] = A[r] * p[0] + A[r + 3] * p[1] + A[r + 6] * p[2];
+        frame[k] = k;
+        w[6 * k] = x[0], w[6 * k + 1] = x[1], w[6 * k + 2] = x[2];
+        w[6 * k + 3] = x[3] - (sv[1] * x[2] - sv[2] * x[1]);
+        w[6 * k + 4] = x[4] - (sv[2] * x[0] - sv[0] * x[2]);
+        w[6 * k + 5] = x[5] - (sv[0] * x[1] - sv[1] * x[0]);
+    }
+    if (!(maxabs(w, 6 * nl) < HUGE_VAL)) goto out; /* the moments converted overflow */
+    vt_batch_io io = {0};
+    io.nrow = 1;
+    io.q = state->q;
+    io.qd = state->qd;
+    io.qdd = given;
+    io.qfrc = state->qfrc;
+    io.effort = effort;
+    io.reaction = reaction;
+    io.status = &status;
+    io.nload = nl;
+    io.load_frame = frame;
+    io.load = w;
+    const vt_status st = vt_batch_inverse_dynamics_motion(bt, &io);
+    if (st != VT_OK)
+        fail("the batch with the state's xfrc as loads at frames: %s (%s) where the single call with xfrc succeeded",
+             vt_status_string(st), vt_batch_message(bt));
+    agree("xfrc and loads at frames", "qfrc_drive", dm->qfrc_drive, effort, nv, s->tg, s);
+    for (int i = 1; i <= nb; i++)
+        for (int c = 0; c < 3; c++) {
+            if (dm->jnt_unique[6 * i + c])
+                agree("xfrc and loads at frames", "jnt_force", dm->jnt_force + 3 * i + c, reaction + 6 * (i - 1) + c, 1, s->tf, s);
+            if (dm->jnt_unique[6 * i + 3 + c])
+                agree("xfrc and loads at frames", "jnt_moment", dm->jnt_moment + 3 * i + c, reaction + 6 * (i - 1) + 3 + c, 1,
+                      s->tn, s);
+        }
+out:
+    vt_batch_free(bt);
+    free(frame);
+    free(w);
+    free(effort);
+    free(reaction);
+}
+
 static void differential(const definitions *defs, const vt_model *m, const vt_data *state, int compare)
 {
     vt_data *dd = NULL, *dr = NULL, *dm = NULL;
@@ -1089,10 +1165,10 @@ static void differential(const definitions *defs, const vt_model *m, const vt_da
     if (tree && memcmp(given, dm->qdd, (size_t)m->nv * sizeof(double)) != 0) fail("vt_inverse_dynamics_motion changed the given q̈");
     if (!tree && sm != VT_OK && memcmp(given, dm->qdd, (size_t)m->nv * sizeof(double)) != 0)
         fail("vt_inverse_dynamics_motion failed (%s) and did not put the given q̈ back", vt_status_string(sm));
-    free(given);
     if (sm != VT_ERR_BAD_OPTION && consistent("dense and given-motion", m, sd, dd, sm, dm, in_mag)) {
         /* the motion's rcond is 1 (nothing solved in a tree): the dense one decides */
         const scales s = pair_scales(m, dd, dd, dm, fmin(dd->rcond, dm->rcond));
+        if (sm == VT_OK && isfinite(s.e) && in_mag < EDGE_INPUT && rows_hold(m, dd, s.e)) frame_loads(m, state, dm, given, &s);
         if (!isfinite(s.e) || !rows_hold(m, dd, s.e)) {
         } else if (tree) {
             /* every rate's M* q̈ − Q is Φ_q^T λ of the drives (a tree's only rows); reactions
@@ -1105,6 +1181,7 @@ static void differential(const definitions *defs, const vt_model *m, const vt_da
         }
     }
 
+    free(given);
     /* the same definitions with allow_redundant: at a clearly regular pose (rcond ≥ 1e-8, far
      * above any round-off rank decision) the redundant route must give the unique answer; not at
      * overflow's edge (inputs ≥ EDGE_INPUT: a 1e154 kg body of 6 kg m² has a radius of gyration
