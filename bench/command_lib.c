@@ -7,7 +7,7 @@
  * on THREADS threads. Prints the median over ROUNDS calls of the time per row, µs. With --all,
  * every output Python's Model.inverse writes by default instead (efforts; reactions and totals in
  * world and body axes; the joint frames' reactions, the bearing split, the limits' excess, the
- * effort's parts: bench/bench_python.py's C row for the same work). The output arrays are the
+ * effort's parts, q̈ and the drives' efforts: bench/bench_python.py's C row for the same work). The output arrays are the
  * same every call (the first call's page faults are not in the median).
  *
  *   command_lib URDF STATES.npy THREADS [ROUNDS] [--floating] [--all]
@@ -141,9 +141,9 @@ int main(int argc, char **argv)
     io.status = status;
     if (all) { /* Model.inverse's default: every output */
         const size_t rows = (size_t)nrow;
-        double *more[6];
-        const size_t len[6] = {nb6, nb6, nb6, 4 * (size_t)m->nbody, 3 * nv, 3 * nv};
-        for (int k = 0; k < 6; k++)
+        double *more[8];
+        const size_t len[8] = {nb6, nb6, nb6, 4 * (size_t)m->nbody, 3 * nv, 3 * nv, nv, (size_t)m->ndrive + 1};
+        for (int k = 0; k < 8; k++)
             if (!(more[k] = malloc(rows * len[k] * sizeof(double)))) return fail("out of memory");
         io.reaction_body = more[0];
         io.total = more[1];
@@ -151,6 +151,8 @@ int main(int argc, char **argv)
         io.bearing = more[3];
         io.limit_excess = more[4];
         io.effort_parts = more[5];
+        io.qdd_out = more[6];
+        io.drive_effort = more[7];
     }
     double t[201];
     const int n = rounds < 201 ? rounds : 201;

@@ -557,12 +557,12 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         }
     }
     /* effort, then the 6-a-body arrays, the bearing split (4 a body), the limit excess (3 a rate),
-     * the effort's parts (3 x nv), the contact forces (3 a contact) */
+     * the effort's parts (3 x nv), the contact forces (3 a contact), q̈ (a rate), the drives' efforts */
     npy_intp de[2] = {N, m->nv}, dr[3] = {N, m->nbody, 6}, db[3] = {N, m->nbody, 4}, dl[3] = {N, m->nv, 3};
-    npy_intp dp[3] = {N, 3, m->nv}, dc[3] = {N, ncontact, 3};
+    npy_intp dp[3] = {N, 3, m->nv}, dc[3] = {N, ncontact, 3}, dd[2] = {N, m->ndrive};
     for (int k = 0; k < NRESULT; k++) { /* a field not asked for: None, and nothing computed for it */
-        npy_intp *dims = k == 0 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : k == 9 ? dc : dr;
-        const int rank = k == 0 ? 2 : 3;
+        npy_intp *dims = k == 0 || k == 10 ? de : k == 6 ? db : k == 7 ? dl : k == 8 ? dp : k == 9 ? dc : k == 11 ? dd : dr;
+        const int rank = k == 0 || k >= 10 ? 2 : 3;
         if (!want[k]) {
             Py_INCREF(Py_None);
             out[k] = Py_None;
@@ -592,11 +592,13 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.bearing = OUT(6);
     io.limit_excess = OUT(7);
     io.effort_parts = OUT(8);
+    io.qdd_out = OUT(10);
+    io.drive_effort = OUT(11);
     if (cs) {
         io.contact_force = OUT(9);
-#undef OUT
         io.contact_active = act ? PyArray_DATA(act) : NULL; /* packed rows (stride 0) */
     }
+#undef OUT
     vt_status st = VT_OK;
     int failed = -1, nomem = 0;
     char msg[VT_MESSAGE_SIZE + 32] = "";

@@ -177,6 +177,9 @@ PyStructSequence_Field vtpy_result_fields[] = {
     {"limit_excess", "each rate's excess beyond its position, velocity and effort limits (N x nv x 3), 0 within"},
     {"effort_parts", "the parts of each rate's effort its joint's armature, damping and friction take (N x 3 x nv)"},
     {"contact_force", "with contacts: the ground's force at each contact (N x ncontact x 3), world axes, 0 where inactive"},
+    {"qdd", "every rate's acceleration (N x nv): a's back on a tree; with loops or couplings the driven rates' given "
+            "and the others' solved"},
+    {"drive_effort", "each joint drive's effort (N x ndrive): with loops or couplings, the given rates' actuators"},
     {NULL, NULL},
 };
 

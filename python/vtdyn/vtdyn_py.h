@@ -25,7 +25,7 @@
 #include "vtdyn.h"
 
 #define NCACHE 8   /* batches kept per Model (distinct thread counts and contact sets) */
-#define NRESULT 10 /* Result's arrays (vtpy_result_fields) */
+#define NRESULT 12 /* Result's arrays (vtpy_result_fields) */
 extern PyStructSequence_Field vtpy_result_fields[]; /* Result's field names, in order (module.c) */
 
 typedef struct {

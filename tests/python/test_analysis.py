@@ -16,7 +16,8 @@ with vtdyn.Builder, against closed forms written out here.
   the crank torque against energy balance, tau = I_eff phi'' + 2 m g a cos phi with
   I_eff = 2 m a^2 / 3 + m a^2 (the coupler translates); the pin's reaction in its plane only.
   Model.inverse with a wrench at a frame on the coupler (loads=): the same closed form plus the
-  load's power per unit crank rate, at 50 random states (1e-12).
+  load's power per unit crank rate, at 50 random states (1e-12), in effort and drive_effort; the
+  loop's solved qdd (-phi'' and phi'' for coupler and rocker).
 * Errors: a model not fully driven, bad options and shapes.
 """
 import numpy as np
@@ -155,6 +156,10 @@ def test_four_bar_loads():
     assert np.abs(r.effort[:, 1:]).max() <= 1e-12 * scale  # the passive joints carry no torque
     bare = four.inverse(q, v, acc)
     assert np.abs(r.effort[:, 0] - bare.effort[:, 0]).max() > 1.0  # the loads reached the crank
+    # the loop's q'' solved (coupler and rocker turn as -phi and phi), the crank drive's effort
+    want = np.stack([phidd, -phidd, phidd], axis=1)
+    assert r.qdd.shape == (n, 3) and np.abs(r.qdd - want).max() <= 1e-12 * np.abs(want).max()
+    assert r.drive_effort.shape == (n, 1) and np.abs(r.drive_effort[:, 0] - tau).max() <= 1e-12 * scale
 
 
 def test_analysis_errors():

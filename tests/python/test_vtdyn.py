@@ -263,12 +263,15 @@ def test_outputs_selected(ur5):
     q, v, a = random_states(ur5, 64, seed=11)
     full = ur5.inverse(q, v, a, threads=1)
     some = ur5.inverse(q, v, a, threads=1, outputs=("effort", "reaction", "bearing"))
+    assert vtdyn.Result.n_fields == 12
     for name in ("effort", "reaction", "reaction_body", "total", "total_body", "reaction_joint", "bearing",
-                 "limit_excess", "effort_parts", "contact_force"):
+                 "limit_excess", "effort_parts", "contact_force", "qdd", "drive_effort"):
         if name in ("effort", "reaction", "bearing"):
             assert np.array_equal(getattr(some, name), getattr(full, name)), name
         else:
             assert getattr(some, name) is None, name
+    # a tree: q'' is a's back, bitwise; no drives, no drive efforts
+    assert np.array_equal(full.qdd, a) and full.drive_effort.shape == (64, 0)
     one = ur5.inverse(q[3], v[3], a[3], outputs=["effort"])
     assert np.array_equal(one.effort, full.effort[3]) and one.reaction is None
     assert ur5.inverse(q, v, a, outputs=()).effort is None
