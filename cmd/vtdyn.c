@@ -233,6 +233,7 @@ static int info(const char *path, int floating, double inertia_tol)
     cmd_states_header(m, stdout);
     printf("frames (their names):\n");
     for (int k = 0; k < m->nframe; k++) printf("%s%s", m->frame_name + VT_NAME_MAX * k, k + 1 < m->nframe ? "," : "\n");
+    printf("a wrench at frame F (inverse --loads F): the states columns F_fx,F_fy,F_fz,F_nx,F_ny,F_nz\n");
     vt_model_free(m);
     return 0;
 }

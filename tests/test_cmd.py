@@ -979,7 +979,8 @@ def options(vtdyn, urdf, states, work, check):
     lines = r.stdout.splitlines()
     k = next((i for i, ln in enumerate(lines) if ln.startswith("states columns")), -1)
     check(k >= 0 and lines[k + 1] == "joint1,joint1_vel,joint1_acc,joint2,joint2_vel,joint2_acc"
-          and lines[k + 3] == "world,link1,link2", "info: the states header and the frames: %r" % lines[-4:])
+          and lines[k + 3] == "world,link1,link2" and lines[k + 4].startswith("a wrench at frame F (inverse --loads F)"),
+          "info: the states header, the frames and the loads' columns: %r" % lines[-5:])
     if k >= 0:
         pasted = os.path.join(work, "pasted.csv")
         with open(pasted, "w") as f:
