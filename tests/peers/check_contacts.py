@@ -351,7 +351,9 @@ def main():
     failures = []
     robot = Robot(urdf)
     r = run(vtdyn, "info", "--floating", urdf)
-    frames = r.stdout.strip().splitlines()[-1].split(",") if r.returncode == 0 else []
+    lines = r.stdout.splitlines() if r.returncode == 0 else []
+    k = lines.index("frames (their names):") if "frames (their names):" in lines else -1
+    frames = lines[k + 1].split(",") if 0 <= k < len(lines) - 1 else []
     for f in FEET:  # the feet are frames of vtdyn's model too (URDF links merged by fixed joints)
         if f not in frames:
             failures.append("vtdyn info --floating: no frame %s (%s)" % (f, r.stderr.strip()))
