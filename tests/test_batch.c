@@ -855,6 +855,85 @@ static void test_loop_loads(void **state)
     vt_model_free(m);
 }
 
+/* a planar two-link arm (hinges about z at the origin and at link 1's end, L1 = 0.7 m, L2 = 0.5 m)
+ * whose joint 2 follows joint 1 by a coupling, q2 = r q1 + c (a gear train), joint 1 driven; a
+ * wrench at link 2's tip: each row bitwise the single call with it put into xfrc by
+ * vt_add_frame_load() after vt_kinematics(), and the drive's effort less the unloaded one
+ * against the virtual work of the load along the coupled motion, with the tip's velocity
+ * (∂p/∂q1 + r ∂p/∂q2) q̇1 and link 2's rate (1 + r) q̇1:
+ *   Δτ1 = −((∂p/∂q1 + r ∂p/∂q2) · f + (1 + r) n_z) */
+static void test_coupling_loads(void **state)
+{
+    (void)state;
+    const double L1 = 0.7, L2 = 0.5, r = -0.6, c0 = 0.4;
+    vt_builder *b = NULL;
+    assert_ok(vt_builder_create(&b, NULL));
+    for (int i = 0; i < 2; i++) {
+        vt_body_def bd = vt_default_body_def();
+        const double L = i ? L2 : L1;
+        bd.parent = i;
+        bd.mass = i ? 1.5 : 2.0;
+        bd.inertia[0] = 0.01, bd.inertia[4] = bd.inertia[8] = bd.mass * L * L / 12.0;
+        bd.axis1[0] = bd.axis1[1] = 0.0, bd.axis1[2] = 1.0;
+        if (i) bd.joint_parent[0] = L1 / 2.0;
+        bd.joint_child[0] = -L / 2.0;
+        assert_int_equal(vt_builder_add_body(b, &bd), i + 1);
+    }
+    vt_coupling_def cp = vt_default_coupling_def();
+    cp.ratio = r, cp.offset = c0;
+    assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    vt_frame_def tip = vt_default_frame_def();
+    tip.name = "tip";
+    tip.body = 2;
+    tip.point[0] = L2 / 2.0;
+    assert_int_equal(vt_builder_add_frame(b, &tip), 0);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    const int n = 40, frame[1] = {0};
+    double q[2 * 40], qd[2 * 40], qdd[2 * 40], load[6 * 40];
+    uint64_t seed = 43;
+    for (int k = 0; k < n; k++) {
+        q[2 * k] = vt_rand_uniform(&seed, -3.0, 3.0), q[2 * k + 1] = r * q[2 * k] + c0;
+        qd[2 * k] = vt_rand_uniform(&seed, -2.0, 2.0), qd[2 * k + 1] = r * qd[2 * k];
+        qdd[2 * k] = vt_rand_uniform(&seed, -5.0, 5.0), qdd[2 * k + 1] = r * qdd[2 * k];
+        for (int h = 0; h < 6; h++) load[6 * k + h] = vt_rand_uniform(&seed, -30.0, 30.0);
+    }
+    outputs o, bare;
+    outputs_alloc(&o, m, n);
+    outputs_alloc(&bare, m, n);
+    vt_batch *bt = batch_of(m, 2, 0);
+    vt_batch_io io = io_of(&bare, n, q, 0, qd, qdd);
+    assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
+    io = io_of(&o, n, q, 0, qd, qdd);
+    io.nload = 1;
+    io.load_frame = frame;
+    io.load = load;
+    assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
+    vt_batch_free(bt);
+    double worst = 0.0, moved = 0.0;
+    for (int k = 0; k < n; k++) {
+        check_row_loaded(m, &o, k, q + 2 * k, qd + 2 * k, qdd + 2 * k, 1, frame, load + 6 * k);
+        const double q1 = q[2 * k], q12 = q1 + q[2 * k + 1], *w = load + 6 * k;
+        const double d1[2] = {-L1 * sin(q1) - L2 * sin(q12), L1 * cos(q1) + L2 * cos(q12)};
+        const double d2[2] = {-L2 * sin(q12), L2 * cos(q12)};
+        const double want = -((d1[0] + r * d2[0]) * w[0] + (d1[1] + r * d2[1]) * w[1] + (1.0 + r) * w[5]);
+        const double got = o.drive_effort[k] - bare.drive_effort[k];
+        const double scale = 1.0 + fabs(want);
+        worst = fmax(worst, fabs(got - want) / scale);
+        moved = fmax(moved, fabs(got));
+    }
+    printf("coupled arm, a wrench at the tip: the drive's effort less the unloaded one against virtual work: %.2e\n",
+           worst);
+    assert_true(worst < 1e-12 && moved > 1.0);
+    outputs_free(&o);
+    outputs_free(&bare);
+    vt_model_free(m);
+}
+
 /* one batch, call after call (the workers asleep between some, spinning between others): 300
  * calls of 0 to 203 rows, each from another first row of the states (so that every call's inputs
  * and outputs move), one row NaN: each call's efforts and reactions bitwise those of
@@ -1107,6 +1186,7 @@ int main(void)
         cmocka_unit_test(test_arguments),
         cmocka_unit_test(test_frame_loads),
         cmocka_unit_test(test_loop_loads),
+        cmocka_unit_test(test_coupling_loads),
         cmocka_unit_test(test_calls_in_turn),
         cmocka_unit_test(test_run),
         cmocka_unit_test(test_nested_refused),
