@@ -834,6 +834,7 @@ static void test_loop_loads(void **state)
     io.load = load2;
     assert_int_equal(vt_batch_inverse_dynamics_motion(b, &io), VT_ERR_NONFINITE);
     assert_int_equal(vt_batch_failed_row(b), 5);
+    assert_non_null(strstr(vt_batch_message(b), "load 1 at frame 'tool'"));
     for (int r = 0; r < n; r++) {
         if (r == 5) {
             assert_int_equal(o[0].status[r], VT_ERR_NONFINITE);

@@ -53,10 +53,16 @@ vt_status vt_add_frame_load(const vt_model *m, vt_data *d, int frame, const doub
 
 vt_status vt_add_frame_loads(const vt_model *m, vt_data *d, const vt_frame_loads *loads)
 {
-    vt_status st = VT_OK;
-    for (int k = 0; k < loads->n && !st; k++)
-        st = vt_add_frame_load(m, d, loads->frame[k], loads->w + 6 * k, loads->w + 6 * k + 3);
-    return st;
+    for (int k = 0; k < loads->n; k++) {
+        const int f = loads->frame[k];
+        const vt_status st = vt_add_frame_load(m, d, f, loads->w + 6 * k, loads->w + 6 * k + 3);
+        if (st) /* named as the caller gave it: its index and frame, not xfrc, which it did not set */
+            return vt_fail(d->message, st, "vt_inverse_dynamics_motion: load %d at frame '%.40s': %s on body %d", k,
+                           f >= 0 && f < m->nframe ? m->frame_name + (size_t)VT_NAME_MAX * f : "?",
+                           st == VT_ERR_NONFINITE ? "NaN, Inf or an overflowing sum of the loads" : vt_status_string(st),
+                           f >= 0 && f < m->nframe ? m->frame_body[f] : -1);
+    }
+    return VT_OK;
 }
 
 vt_status vt_frame_pose(const vt_model *m, vt_data *d, int frame, double position[3], double rotation[9])
