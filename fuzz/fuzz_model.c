@@ -1,5 +1,5 @@
-/* libFuzzer harness: bytes become body, joint, drive and cut-joint definitions, a state, time
- * functions and run options; the model is built and checked, and every instant is computed by
+/* libFuzzer harness: bytes become body, joint, drive, cut-joint and coupling definitions, a
+ * state, time functions and run options; the model is built and checked, and every instant is computed by
  * more than one route and compared. Whatever the bytes, the library must answer with a status:
  * no crash, no sanitizer report; and what it answers must hold up:
  *
@@ -70,6 +70,9 @@ static void describe(void)
     if (!m) return;
     fprintf(stderr, "  model: %d bodies, nq %d, nv %d, nc %d, %d drives, %d cut joints, allow_redundant %d, rcond_min %g\n",
             m->nbody, m->nq, m->nv, m->nc, m->ndrive, m->ncut, m->allow_redundant, m->rcond_min);
+    for (int k = 0; k < m->ncoupling; k++)
+        fprintf(stderr, "  coupling %d: q of body %d = %g q of body %d + %g\n", k, m->coupling[k].body_a,
+                m->coupling[k].ratio, m->coupling[k].body_b, m->coupling[k].offset);
     for (int i = 1; i <= m->nbody; i++)
     {
         const double *J = m->body_inertia + 9 * i;
@@ -892,8 +895,9 @@ static const char *const SEQUENCES[8] = {"ZYX", "xyz", "ZXZ", "zyz", "XYZ", "ZZX
 
 typedef struct {
     vt_model_def md;
-    int nbody, ndrive, ncut;
+    int nbody, ndrive, ncut, ncoupling;
     vt_body_def body[MAX_BODY];
+    vt_coupling_def coupling;
     vt_drive_def drive[MAX_DRIVE];
     vt_cut_joint_def cut[MAX_CUT];
     callback_user cb[MAX_DRIVE];
@@ -931,6 +935,10 @@ static vt_model *build(const definitions *defs, int allow_redundant)
             if (vt_builder_message(builder)[0] == '\0') fail("vt_builder_add_cut_joint refused with an empty message");
             if (show) fprintf(stderr, "fuzz_model: cut joint refused: %s\n", vt_builder_message(builder));
         }
+    if (defs->ncoupling && vt_builder_add_coupling(builder, &defs->coupling) < 0) {
+        if (vt_builder_message(builder)[0] == '\0') fail("vt_builder_add_coupling refused with an empty message");
+        if (show) fprintf(stderr, "fuzz_model: coupling refused: %s\n", vt_builder_message(builder));
+    }
     vt_model *m = NULL;
     const vt_status st = vt_builder_build(&m, builder);
     if (st && getenv("FUZZ_DESCRIBE")) fprintf(stderr, "fuzz_model: the builder refused: %s\n", vt_builder_message(builder));
@@ -1006,7 +1014,20 @@ static void read_definitions(bytes *b, definitions *defs)
         }
         defs->drive[k] = d;
     }
-    defs->ncut = (int)(byte(b) % (MAX_CUT + 1));
+    const unsigned cb = byte(b), hc = cb / (MAX_CUT + 1);
+    defs->ncut = (int)(cb % (MAX_CUT + 1));
+    /* a coupling from the same byte's unused high part (older inputs read the same bytes), 1 in 4:
+     * body a's first coordinate follows body b's (a ≠ b unless the bits say so: refused), with a
+     * ratio and an offset of the byte's choosing; a gear train, a URDF mimic joint */
+    defs->ncoupling = hc % 4 == 3;
+    if (defs->ncoupling) {
+        vt_coupling_def c = vt_default_coupling_def();
+        c.body_a = 1 + (int)(hc / 4 % (unsigned)defs->nbody);
+        c.body_b = hc / 4 % 5 == 4 ? c.body_a : 1 + (int)((hc / 4 + 1) % (unsigned)defs->nbody);
+        c.ratio = hc / 8 % 2 ? -0.7 : 1.3;
+        c.offset = hc / 16 % 2 ? 0.25 : 0.0;
+        defs->coupling = c;
+    }
     for (int k = 0; k < defs->ncut; k++) {
         vt_cut_joint_def c = vt_default_cut_joint_def();
         const unsigned kind = byte(b), hi = kind / 7;
