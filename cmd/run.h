@@ -58,12 +58,11 @@ typedef struct {
     input in;                  /* the input: its columns, and its cells for samples */
     vt_builder *b;
     vt_model *probe;           /* the robot as loaded; the joints' names point into it */
-    vt_model *m;               /* the robot solved: with a spline drive per joint for samples
-                                * without a floating root */
-    vt_model *splines;         /* samples with a floating root: the splines, as drives (below) */
+    vt_model *m;               /* the robot solved */
+    vt_model *splines;         /* samples: the splines, as drives (samples.h) */
     int nfree;                 /* the floating roots */
-    vt_data *d;                /* one row's data: samples, and a failing state's message */
-    vt_batch *batch;           /* the states' solver */
+    vt_data *d;                /* one data: the rows' q before they are read, a failing row's message */
+    vt_batch *batch;           /* the rows' solver */
     joint_cols *jc;            /* the moving joints, in the model's order, floating roots last */
     int nj;
     int ct;                    /* the column t, or -1 */

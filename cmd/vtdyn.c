@@ -12,10 +12,9 @@
  * joint J (and `t` optionally) each row is a state: vt_inverse_dynamics_motion() gives every
  * joint's effort, M* q̈ − Q, and every reaction. With `t` and the positions J alone the rows are
  * samples of a trajectory: each joint follows the cubic spline through its samples
- * (vt_function_spline, exact f' and f''), as a joint drive, and vt_kinematic_solve() at each
- * sample time gives q̇ and q̈ from the splines and the drives' efforts (with a floating root,
- * the splines through its position and its quaternion's components, normalised, give each row's
- * state, solved as a state is). Out, per row: `t` when
+ * (vt_function_spline, exact f' and f''), which gives q̇ and q̈ at each sample time (with a
+ * floating root, the splines through its position and its quaternion's components, normalised),
+ * and each row's state is solved as a state is. Out, per row: `t` when
  * given, then per moving joint J the effort `J_effort` (N·m or N), the reaction of the parent
  * link on the child link `J_fx J_fy J_fz J_nx J_ny J_nz` (N, N·m; global axes, the moment about
  * the child link frame's origin, the joint's actuation not included) and the same in the child
