@@ -1108,6 +1108,7 @@ static void frame_loads(const vt_model *m, const vt_data *state, const vt_data *
     io.qd = state->qd;
     io.qdd = given;
     io.qfrc = state->qfrc;
+    io.time = &state->time; /* a loop's or coupling's point and orientation drives read it */
     io.effort = effort;
     io.reaction = reaction;
     io.status = &status;

@@ -540,9 +540,9 @@ VT_API int vt_batch_threads(const vt_batch *batch);
 /// thread). One call at a time on a batch: threads that solve at once each need their own (a
 /// call while another runs on the batch, from another thread or from vt_batch_run's work,
 /// returns VT_ERR_BAD_OPTION at once, the running call's message and failed row left as they are).
-/// Each row is solved from its own inputs alone (the data's applied
-/// loads xfrc zero, qfrc the row's or zero): its results are bitwise those of the single call,
-/// whatever the number of threads. With io->nload wrenches at frames the row's instant carries
+/// Each row is solved from its own inputs alone (the data's applied loads xfrc zero, qfrc and
+/// the time the row's or zero): its results are bitwise those of the single call, whatever the
+/// number of threads. With io->nload wrenches at frames the row's instant carries
 /// them as it carries xfrc (with contacts, before the ground's forces are shared, which then
 /// balance them too): the single call with the same loads put into xfrc by vt_add_frame_load()
 /// after vt_kinematics() (bitwise with loops or couplings, to round-off on a tree, whose passes

@@ -935,6 +935,96 @@ static void test_coupling_loads(void **state)
     vt_model_free(m);
 }
 
+/* the rows' time (io->time): a planar three-link arm (hinges about z, L = 0.7, 0.5, 0.4 m), joint 2
+ * following joint 1 by a coupling (q2 = r q1 + c), joint 1 driven and link 3's end's x following
+ * a point drive x(t) = 0.3 sin 2t: the given motion's q̈3 comes from the point drive's row at the
+ * row's time. Each row bitwise the single call with d->time = t; the end's ẍ from the planar
+ * closed form, ẍ = −Σ_k L_k (cos θ_k θ̇_k² + sin θ_k θ̈_k) with θ_k the summed angles, equal to
+ * x''(t) = −1.2 sin 2t (1e-12); without io->time the rows are those of t = 0 (another q̈3) */
+static void test_batch_time(void **state)
+{
+    (void)state;
+    static const double L[3] = {0.7, 0.5, 0.4};
+    const double r = 1.4, c0 = -0.2;
+    vt_builder *b = NULL;
+    assert_ok(vt_builder_create(&b, NULL));
+    for (int i = 0; i < 3; i++) {
+        vt_body_def bd = vt_default_body_def();
+        bd.parent = i;
+        bd.mass = 1.0 + 0.5 * i;
+        bd.inertia[0] = 0.01, bd.inertia[4] = bd.inertia[8] = bd.mass * L[i] * L[i] / 12.0;
+        bd.axis1[0] = bd.axis1[1] = 0.0, bd.axis1[2] = 1.0;
+        if (i) bd.joint_parent[0] = L[i - 1] / 2.0;
+        bd.joint_child[0] = -L[i] / 2.0;
+        assert_int_equal(vt_builder_add_body(b, &bd), i + 1);
+    }
+    vt_coupling_def cp = vt_default_coupling_def();
+    cp.ratio = r, cp.offset = c0;
+    assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
+    vt_drive_def dr = vt_default_drive_def();
+    dr.body = 1;
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    dr = vt_default_drive_def();
+    dr.type = VT_DRIVE_POINT;
+    dr.body = 3;
+    dr.index = 0;
+    dr.point[0] = L[2] / 2.0;
+    dr.f = vt_function_sine(0.0, 0.3, 2.0, 0.0);
+    assert_true(vt_builder_add_drive(b, &dr) >= 0);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    assert_true(m->nv == 3 && m->nc == 3);
+    enum { N = 30 };
+    double q[3 * N], qd[3 * N], qdd[3 * N], t[N];
+    uint64_t seed = 47;
+    for (int k = 0; k < N; k++) {
+        double *qk = q + 3 * k, *vk = qd + 3 * k, *ak = qdd + 3 * k;
+        t[k] = vt_rand_uniform(&seed, 0.0, 3.0);
+        qk[0] = vt_rand_uniform(&seed, -2.0, 2.0), qk[1] = r * qk[0] + c0, qk[2] = vt_rand_uniform(&seed, -2.0, 2.0);
+        vk[0] = vt_rand_uniform(&seed, -1.0, 1.0), vk[1] = r * vk[0], vk[2] = vt_rand_uniform(&seed, -1.0, 1.0);
+        ak[0] = vt_rand_uniform(&seed, -3.0, 3.0), ak[1] = r * ak[0], ak[2] = 0.0; /* q̈3: the point drive's */
+    }
+    outputs o, zero;
+    outputs_alloc(&o, m, N);
+    outputs_alloc(&zero, m, N);
+    vt_batch *bt = batch_of(m, 2, 0);
+    vt_batch_io io = io_of(&o, N, q, 0, qd, qdd);
+    io.time = t;
+    assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
+    io = io_of(&zero, N, q, 0, qd, qdd);
+    assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
+    vt_batch_free(bt);
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    double worst = 0.0, apart = 0.0;
+    for (int k = 0; k < N; k++) {
+        memcpy(d->q, q + 3 * k, sizeof(double[3]));
+        memcpy(d->qd, qd + 3 * k, sizeof(double[3]));
+        memcpy(d->qdd, qdd + 3 * k, sizeof(double[3]));
+        d->time = t[k];
+        assert_ok(vt_inverse_dynamics_motion(m, d));
+        for (int a = 0; a < 3; a++) {
+            assert_true(same(o.qdd[3 * k + a], d->qdd[a]) && same(o.effort[3 * k + a], d->qfrc_drive[a]));
+            apart = fmax(apart, fabs(o.qdd[3 * k + a] - zero.qdd[3 * k + a]));
+        }
+        for (int h = 0; h < 2; h++) assert_true(same(o.drive_effort[2 * k + h], d->drive_effort[h]));
+        double th = 0.0, w = 0.0, al = 0.0, xdd = 0.0;
+        for (int i = 0; i < 3; i++) {
+            th += q[3 * k + i], w += qd[3 * k + i], al += o.qdd[3 * k + i];
+            xdd -= L[i] * (cos(th) * w * w + sin(th) * al);
+        }
+        worst = fmax(worst, fabs(xdd + 1.2 * sin(2.0 * t[k])));
+    }
+    printf("the rows' time: the end's x'' against the point drive's at t: %.2e m/s^2; q'' at t = 0 apart by %.3g\n",
+           worst, apart);
+    assert_true(worst < 1e-12 && apart > 0.1);
+    vt_data_free(d);
+    outputs_free(&o);
+    outputs_free(&zero);
+    vt_model_free(m);
+}
+
 /* one batch, call after call (the workers asleep between some, spinning between others): 300
  * calls of 0 to 203 rows, each from another first row of the states (so that every call's inputs
  * and outputs move), one row NaN: each call's efforts and reactions bitwise those of
@@ -1188,6 +1278,7 @@ int main(void)
         cmocka_unit_test(test_frame_loads),
         cmocka_unit_test(test_loop_loads),
         cmocka_unit_test(test_coupling_loads),
+        cmocka_unit_test(test_batch_time),
         cmocka_unit_test(test_calls_in_turn),
         cmocka_unit_test(test_run),
         cmocka_unit_test(test_nested_refused),

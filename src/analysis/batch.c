@@ -5,8 +5,8 @@
  * are its threads: the caller's and a pool's workers (base/pool.c), asleep between calls. The
  * threads take the rows in blocks of BATCH_BLOCK, the next block from a shared counter, so that a
  * thread slowed by the machine's other work takes fewer rows, and a worker that wakes after the
- * last block is taken none. A row is solved from its own inputs alone — q, q̇, q̈ and
- * qfrc copied into the thread's data, xfrc zero — so its results do not depend on the rows
+ * last block is taken none. A row is solved from its own inputs alone — q, q̇, q̈, qfrc and the
+ * time copied into the thread's data, xfrc zero — so its results do not depend on the rows
  * solved before it on that data, nor on which thread solved it or how many there are: bitwise
  * those of the single call. A thread takes its blocks in increasing order, so its first failure
  * is its lowest; the call reports the lowest row among the threads'.
@@ -187,6 +187,7 @@ static vt_status solve_row(const vt_model *m, vt_data *d, vt_contacts *c, const 
     memcpy(d->qdd, in_row(io->qdd, io->qdd_stride, nv, r), nv * sizeof(double));
     if (io->qfrc) memcpy(d->qfrc, in_row(io->qfrc, io->qfrc_stride, nv, r), nv * sizeof(double));
     else memset(d->qfrc, 0, nv * sizeof(double));
+    d->time = io->time ? *in_row(io->time, io->time_stride, 1, r) : 0.0;
     vt_status st;
     const vt_frame_loads loads = {io->nload, io->load_frame,
                                   io->nload > 0 ? in_row(io->load, io->load_stride, 6 * (size_t)io->nload, r) : NULL};
@@ -323,7 +324,8 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
              {"limit_excess", io->limit_excess != NULL, io->limit_excess_stride, 3 * nv},
              {"contact_active", io->contact_active != NULL, io->contact_active_stride, (size_t)b->ncontact},
              {"contact_force", io->contact_force != NULL, io->contact_force_stride, 3 * (size_t)b->ncontact},
-             {"load", io->nload > 0, io->load_stride, 6 * (size_t)(io->nload > 0 ? io->nload : 0)}};
+             {"load", io->nload > 0, io->load_stride, 6 * (size_t)(io->nload > 0 ? io->nload : 0)},
+             {"time", io->time != NULL, io->time_stride, 1}};
     for (size_t k = 0; k < sizeof a / sizeof a[0]; k++)
         if (a[k].given && a[k].stride != 0 && a[k].stride < a[k].len)
             return vt_fail(b->message, VT_ERR_BAD_SIZE, "vt_batch: %s_stride %zu below its row's %zu values",
