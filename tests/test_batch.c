@@ -856,28 +856,18 @@ static void test_loop_loads(void **state)
     vt_model_free(m);
 }
 
-/* a planar two-link arm (hinges about z at the origin and at link 1's end, L1 = 0.7 m, L2 = 0.5 m)
- * whose joint 2 follows joint 1 by a coupling, q2 = r q1 + c (a gear train), joint 1 driven; a
- * wrench at link 2's tip: each row bitwise the single call with it put into xfrc by
- * vt_add_frame_load() after vt_kinematics(), and the drive's effort less the unloaded one
- * against the virtual work of the load along the coupled motion, with the tip's velocity
- * (∂p/∂q1 + r ∂p/∂q2) q̇1 and link 2's rate (1 + r) q̇1:
- *   Δτ1 = −((∂p/∂q1 + r ∂p/∂q2) · f + (1 + r) n_z) */
-static void test_coupling_loads(void **state)
+/* a planar arm of n links (hinges about z, link i L[i] long along its body x, 1 + 0.5 i kg) into b,
+ * joint 2 following joint 1 by a coupling q2 = r q1 + c0, joint 1 driven */
+static void coupled_arm(vt_builder *b, int n, const double *L, double r, double c0)
 {
-    (void)state;
-    const double L1 = 0.7, L2 = 0.5, r = -0.6, c0 = 0.4;
-    vt_builder *b = NULL;
-    assert_ok(vt_builder_create(&b, NULL));
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < n; i++) {
         vt_body_def bd = vt_default_body_def();
-        const double L = i ? L2 : L1;
         bd.parent = i;
-        bd.mass = i ? 1.5 : 2.0;
-        bd.inertia[0] = 0.01, bd.inertia[4] = bd.inertia[8] = bd.mass * L * L / 12.0;
+        bd.mass = 1.0 + 0.5 * i;
+        bd.inertia[0] = 0.01, bd.inertia[4] = bd.inertia[8] = bd.mass * L[i] * L[i] / 12.0;
         bd.axis1[0] = bd.axis1[1] = 0.0, bd.axis1[2] = 1.0;
-        if (i) bd.joint_parent[0] = L1 / 2.0;
-        bd.joint_child[0] = -L / 2.0;
+        if (i) bd.joint_parent[0] = L[i - 1] / 2.0;
+        bd.joint_child[0] = -L[i] / 2.0;
         assert_int_equal(vt_builder_add_body(b, &bd), i + 1);
     }
     vt_coupling_def cp = vt_default_coupling_def();
@@ -886,6 +876,22 @@ static void test_coupling_loads(void **state)
     vt_drive_def dr = vt_default_drive_def();
     dr.body = 1;
     assert_true(vt_builder_add_drive(b, &dr) >= 0);
+}
+
+/* a planar two-link arm (coupled_arm: L1 = 0.7 m, L2 = 0.5 m) whose joint 2 follows joint 1 by a
+ * coupling, q2 = r q1 + c (a gear train), joint 1 driven; a
+ * wrench at link 2's tip: each row bitwise the single call with it put into xfrc by
+ * vt_add_frame_load() after vt_kinematics(), and the drive's effort less the unloaded one
+ * against the virtual work of the load along the coupled motion, with the tip's velocity
+ * (∂p/∂q1 + r ∂p/∂q2) q̇1 and link 2's rate (1 + r) q̇1:
+ *   Δτ1 = −((∂p/∂q1 + r ∂p/∂q2) · f + (1 + r) n_z) */
+static void test_coupling_loads(void **state)
+{
+    (void)state;
+    const double L1 = 0.7, L2 = 0.5, r = -0.6, c0 = 0.4, L[2] = {L1, L2};
+    vt_builder *b = NULL;
+    assert_ok(vt_builder_create(&b, NULL));
+    coupled_arm(b, 2, L, r, c0);
     vt_frame_def tip = vt_default_frame_def();
     tip.name = "tip";
     tip.body = 2;
@@ -948,23 +954,8 @@ static void test_batch_time(void **state)
     const double r = 1.4, c0 = -0.2;
     vt_builder *b = NULL;
     assert_ok(vt_builder_create(&b, NULL));
-    for (int i = 0; i < 3; i++) {
-        vt_body_def bd = vt_default_body_def();
-        bd.parent = i;
-        bd.mass = 1.0 + 0.5 * i;
-        bd.inertia[0] = 0.01, bd.inertia[4] = bd.inertia[8] = bd.mass * L[i] * L[i] / 12.0;
-        bd.axis1[0] = bd.axis1[1] = 0.0, bd.axis1[2] = 1.0;
-        if (i) bd.joint_parent[0] = L[i - 1] / 2.0;
-        bd.joint_child[0] = -L[i] / 2.0;
-        assert_int_equal(vt_builder_add_body(b, &bd), i + 1);
-    }
-    vt_coupling_def cp = vt_default_coupling_def();
-    cp.ratio = r, cp.offset = c0;
-    assert_int_equal(vt_builder_add_coupling(b, &cp), 0);
+    coupled_arm(b, 3, L, r, c0);
     vt_drive_def dr = vt_default_drive_def();
-    dr.body = 1;
-    assert_true(vt_builder_add_drive(b, &dr) >= 0);
-    dr = vt_default_drive_def();
     dr.type = VT_DRIVE_POINT;
     dr.body = 3;
     dr.index = 0;
