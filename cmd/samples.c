@@ -200,19 +200,9 @@ int run_samples(run *x)
         const int n = t->nrow - r0 < x->K ? t->nrow - r0 : x->K;
         const double t0 = run_clock();
         for (int r = 0; r < n; r++) {
+            char msg[ROW_MESSAGE];
             if (fill_sample(x, r, x->ts[r0 + r])) return 1;
-            const double *row = table_row(t, r0 + r);
-            /* the loads at frames: the sample's own wrenches (measured at its t), not splined */
-            for (int k = 0; k < 6 * x->nload; k++) x->load[(size_t)r * 6 * (size_t)x->nload + (size_t)k] = row[x->lcol[k]];
-            for (int k = 0; k < x->ncontact; k++) { /* C_active: the sample's own 0 or 1, not splined */
-                const double a = x->ccol[k] >= 0 ? row[x->ccol[k]] : 1.0;
-                if (a != 0.0 && a != 1.0) {
-                    char where[ROW_WHERE];
-                    return cmd_fail("%s: column '%s_active': %g is neither 0 nor 1",
-                                    input_where(&x->in, t->loc[r0 + r], where), x->cname[k], a);
-                }
-                x->active[(size_t)r * (size_t)x->ncontact + (size_t)k] = a != 0.0;
-            }
+            if (row_extras(x, r, table_row(t, r0 + r), t->loc[r0 + r], msg)) return cmd_fail("%s", msg);
         }
         vt_batch_io io = chunk_io(x, n);
         const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);

@@ -73,26 +73,32 @@ int chunk_arrays(run *x)
     return 0;
 }
 
-/* row r's state from its numbers: positions, a floating root's position, quaternion (normalised,
- * refused beyond the tolerance of the unit norm) and six rates, the velocities and accelerations,
- * into the chunk's arrays; 0, or 1 with the message in msg */
-static int fill_state(const run *x, int r, const double *row, char *msg)
+int row_extras(const run *x, int r, const double *row, long long loc, char *msg)
 {
-    const vt_model *m = x->m;
-    double *q = x->q + (size_t)r * (size_t)m->nq, *qd = x->qd + (size_t)r * (size_t)m->nv,
-           *qdd = x->qdd + (size_t)r * (size_t)m->nv;
     for (int k = 0; k < x->ncontact; k++) { /* C_active: 0 or 1, else the row refused */
         const int c = x->ccol[k];
         const double a = c >= 0 ? row[c] : 1.0;
         if (a != 0.0 && a != 1.0) {
             char where[ROW_WHERE];
             snprintf(msg, ROW_MESSAGE, "%s: column '%.100s_active': %g is neither 0 nor 1",
-                     input_where(&x->in, x->chp->loc[r], where), x->cname[k], a);
+                     input_where(&x->in, loc, where), x->cname[k], a);
             return 1;
         }
         x->active[(size_t)r * (size_t)x->ncontact + (size_t)k] = a != 0.0;
     }
     for (int k = 0; k < 6 * x->nload; k++) x->load[(size_t)r * 6 * (size_t)x->nload + (size_t)k] = row[x->lcol[k]];
+    return 0;
+}
+
+/* row r's state from its numbers: positions, a floating root's position, quaternion (normalised,
+ * refused beyond the tolerance of the unit norm) and six rates, the velocities and accelerations,
+ * into the chunk's arrays, and its row_extras; 0, or 1 with the message in msg */
+static int fill_state(const run *x, int r, const double *row, char *msg)
+{
+    const vt_model *m = x->m;
+    double *q = x->q + (size_t)r * (size_t)m->nq, *qd = x->qd + (size_t)r * (size_t)m->nv,
+           *qdd = x->qdd + (size_t)r * (size_t)m->nv;
+    if (row_extras(x, r, row, x->chp->loc[r], msg)) return 1;
     for (int k = 0; k < x->nj; k++) {
         const joint_cols *j = &x->jc[k];
         if (!j->free) {

@@ -7,6 +7,11 @@
 /* the chunk's rows (as many as CHUNK_BYTES holds, CHUNK_ROWS a thread at most) and arrays; 0 or 1 */
 int chunk_arrays(run *x);
 
+/* chunk row r's own inputs beside its state, from its numbers (row, at loc in the input): each
+ * contact's C_active (0 or 1, else refused) and the loads at frames, as read (a sample's are not
+ * splined); 0, or 1 with the message in msg (ROW_MESSAGE) */
+int row_extras(const run *x, int r, const double *row, long long loc, char *msg);
+
 /* the batch's inputs and outputs for the chunk's first n rows: the run's arrays */
 vt_batch_io chunk_io(const run *x, int n);
 
