@@ -225,6 +225,7 @@ class Model:
         qfrc: Optional[npt.ArrayLike] = None,
         loads: Optional[npt.ArrayLike] = None,
         load_frames: Union[None, str, Sequence[str]] = None,
+        t: Optional[npt.ArrayLike] = None,
     ) -> Result:
         """the given motion's efforts and joint reactions on one state (1-D) or N states (N x n);
         with contacts the ground's forces at them carry the free root; active: None (all) or 0/1
@@ -233,8 +234,10 @@ class Model:
         Result of the same shapes whose arrays are written again; qfrc: applied generalized forces
         (v's shape), which the efforts then need not give; loads (F x 6, or N x F x 6) with
         load_frames (F frame names): wrenches the environment applies at those frames, the force
-        (N) then the moment about the frame's origin (N m), world axes (a tree; with contacts the
-        ground's forces balance them too)"""
+        (N) then the moment about the frame's origin (N m), world axes (with contacts the ground's
+        forces balance them too); t: the states' time (s; a number, or one a state), which a
+        loop's or coupling's point and orientation drives read (needed there: without it they are
+        refused; elsewhere it changes nothing)"""
     def frame_poses(
         self, q: npt.ArrayLike, frames: Union[None, str, Sequence[str]] = None
     ) -> Tuple[_F64, _F64]:

@@ -454,9 +454,9 @@ static int overlap(PyArrayObject *a, PyArrayObject *b)
 }
 
 /* out= field k: the array of an earlier Result, to be written again: float64, C-contiguous,
- * writeable, of the shape this call gives, apart from the inputs (q, v, a, qfrc, loads or NULL); a
+ * writeable, of the shape this call gives, apart from the inputs (q, v, a, qfrc, loads, t or NULL); a
  * new reference, or NULL with ValueError naming it */
-static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[5])
+static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *dims, PyObject *const in[6])
 {
     const char *name = vtpy_result_fields[k].name;
     PyObject *o = PyStructSequence_GetItem(reuse, k);
@@ -469,22 +469,77 @@ static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *
     if (!same)
         return PyErr_Format(PyExc_ValueError, "out.%s: not a writeable C-contiguous float64 array of this call's shape",
                             name);
-    static const char *const input[5] = {"q", "v", "a", "qfrc", "loads"};
-    for (int i = 0; i < 5; i++)
+    static const char *const input[6] = {"q", "v", "a", "qfrc", "loads", "t"};
+    for (int i = 0; i < 6; i++)
         if (in[i] && overlap((PyArrayObject *)in[i], x))
             return PyErr_Format(PyExc_ValueError, "out.%s: shares memory with %s", name, input[i]);
     Py_INCREF(o);
     return o;
 }
 
+/* the first drive whose rows read its time function (a point or orientation drive) in a model
+ * whose given motion keeps them (loops or couplings: vt_inverse_dynamics_motion solves the rows,
+ * γ = f''(t)), or -1: a tree's given motion reads no drive, nor does a joint drive's row (its γ
+ * is the given q̈) */
+static int time_drive(const vt_model *m)
+{
+    if (m->ncut == 0 && m->ncoupling == 0) return -1;
+    for (int k = 0; k < m->ndrive; k++)
+        if (m->drive[k].type != VT_DRIVE_JOINT) return k;
+    return -1;
+}
+
+/* t= of inverse: None, a number, or one per state (N) into *t (float64, N or 1 values; a new
+ * reference) and *stride (0: packed, the array's N; a number broadcast over N states is an array
+ * of N); None with a model that reads the time is refused, naming the drive. -1 on error */
+static int read_time(const vt_model *m, PyObject *o, int nd, npy_intp N, PyArrayObject **t)
+{
+    *t = NULL;
+    if (!o || o == Py_None) {
+        const int k = time_drive(m);
+        if (k < 0) return 0;
+        PyErr_Format(PyExc_ValueError,
+                     "t: needed: drive %d (\"%s\") is a %s drive on a model with %s, whose given motion keeps "
+                     "its rows, and they read its function at the state's time (t=: a number, or one a state)",
+                     k, m->drive[k].name, m->drive[k].type == VT_DRIVE_POINT ? "point" : "orientation",
+                     m->ncut ? "cut joints" : "couplings");
+        return -1;
+    }
+    PyArray_Descr *dt = PyArray_DescrFromType(NPY_DOUBLE);
+    PyArrayObject *x = (PyArrayObject *)PyArray_FromAny(o, dt, 0, 1, NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED |
+                                                                         NPY_ARRAY_NOTSWAPPED, NULL);
+    if (!x) {
+        PyErr_Clear();
+        PyErr_Format(PyExc_ValueError, "t: a number%s (s), not convertible to float64", nd == 2 ? " or one a state" : "");
+        return -1;
+    }
+    if (PyArray_NDIM(x) == 1 && (nd == 1 || PyArray_DIMS(x)[0] != N)) {
+        PyErr_Format(PyExc_ValueError, "t: %zd values, expected %s", (Py_ssize_t)PyArray_DIMS(x)[0],
+                     nd == 2 ? "a number or one a state (N)" : "a number (one state)");
+        Py_DECREF(x);
+        return -1;
+    }
+    if (PyArray_NDIM(x) == 0 && nd == 2) { /* one time for every state */
+        const double v = *(const double *)PyArray_DATA(x);
+        Py_DECREF(x);
+        x = (PyArrayObject *)PyArray_SimpleNew(1, &N, NPY_DOUBLE);
+        if (!x) return -1;
+        double *p = PyArray_DATA(x);
+        for (npy_intp i = 0; i < N; i++) p[i] = v;
+    }
+    *t = x;
+    return 0;
+}
+
 static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
 {
     static char *kwlist[] = {"q", "v", "a", "threads", "contacts", "active", "outputs", "out", "qfrc", "loads",
-                             "load_frames", NULL};
-    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL, *oqf = NULL, *old = NULL, *olf = NULL;
+                             "load_frames", "t", NULL};
+    PyObject *oq, *ov, *oa, *ocs = NULL, *oact = NULL, *oout = NULL, *reuse = NULL, *oqf = NULL, *old = NULL, *olf = NULL,
+             *ot = NULL;
     int threads = 0, want[NRESULT];
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
-                                     &oout, &reuse, &oqf, &old, &olf))
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "OOO|iOOOOOOOO:inverse", kwlist, &oq, &ov, &oa, &threads, &ocs, &oact,
+                                     &oout, &reuse, &oqf, &old, &olf, &ot))
         return NULL;
     if (oqf == Py_None) oqf = NULL;
     if (old == Py_None) old = NULL;
@@ -513,7 +568,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     PyArrayObject *a = v ? vtpy_as_rows(oa, "a", m->nv) : NULL, *act = NULL;
     PyArrayObject *qf = a && oqf ? vtpy_as_rows(oqf, "qfrc", m->nv) : NULL;
     PyObject *res = NULL, *out[NRESULT] = {NULL};
-    PyArrayObject *ld = NULL;
+    PyArrayObject *ld = NULL, *tm = NULL;
     int *lframe = NULL, nload = 0;
     if (!a || (oqf && !qf)) goto done;
     const int nd = PyArray_NDIM(q);
@@ -539,6 +594,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         goto done;
     }
     if (cs && read_active(oact, nd, N, ncontact, &act)) goto done;
+    if (read_time(m, ot, nd, N, &tm)) goto done;
     if (old) { /* F frames, and their wrenches as packed rows of 6 F */
         if (!(lframe = vtpy_frame_indices(m, olf, &nload, "load_frames"))) goto done;
         PyArray_Descr *dt = PyArray_DescrFromType(NPY_DOUBLE);
@@ -570,7 +626,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
         }
         out[k] = reuse ? reused_array(reuse, k, nd == 2 ? rank : rank - 1, nd == 2 ? dims : dims + 1, (PyObject *[]){
                                               (PyObject *)q, (PyObject *)v, (PyObject *)a, (PyObject *)qf,
-                                              (PyObject *)ld})
+                                              (PyObject *)ld, (PyObject *)tm})
                        : nd == 2 ? vtpy_new_array(rank, dims) : vtpy_new_array(rank - 1, dims + 1);
         if (!out[k]) goto done;
     }
@@ -582,6 +638,7 @@ static PyObject *model_inverse(ModelObject *self, PyObject *args, PyObject *kw)
     io.qdd = PyArray_DATA(a), io.qdd_stride = vtpy_row_stride(a);
     if (qf) io.qfrc = PyArray_DATA(qf), io.qfrc_stride = vtpy_row_stride(qf);
     if (ld) io.nload = nload, io.load_frame = lframe, io.load = PyArray_DATA(ld); /* packed rows */
+    if (tm) io.time = PyArray_DATA(tm);                                            /* packed: one a row */
 #define OUT(k) (want[k] ? PyArray_DATA((PyArrayObject *)out[k]) : NULL)
     io.effort = OUT(0);
     io.reaction = OUT(1);
@@ -648,6 +705,7 @@ done:
     Py_XDECREF(a);
     Py_XDECREF(qf);
     Py_XDECREF(ld);
+    Py_XDECREF(tm);
     PyMem_Free(lframe);
     Py_XDECREF(act);
     return res;
@@ -689,7 +747,8 @@ static PyMethodDef model_methods[] = {
      "shape), which the efforts then need not give; loads (F x 6, or N x F x 6) and load_frames (F names):\n"
      "wrenches the environment applies at frames, force (N) then moment about the frame's origin (N m), world\n"
      "axes, as a tool's force sensor measures them turned into world axes (with contacts the ground's\n"
-     "forces balance them too)"},
+     "forces balance them too); t: the states' time (s; a number, or N), read by a loop's or coupling's\n"
+     "point and orientation drives (needed there, and without effect elsewhere)"},
     {"kinematic_analysis", (PyCFunction)(void (*)(void))vtpy_kinematic_analysis, METH_VARARGS | METH_KEYWORDS,
      "kinematic_analysis(t1, nout=100, t0=0.0, *, tout=None, q=None, qd=None, newton_tol=1e-12, newton_maxit=30,\n"
      "forward_check=True (False without SUNDIALS), ...) -> Trajectory: a fully driven model's motion, efforts and\n"

@@ -18,6 +18,9 @@ with vtdyn.Builder, against closed forms written out here.
   Model.inverse with a wrench at a frame on the coupler (loads=): the same closed form plus the
   load's power per unit crank rate, at 50 random states (1e-12), in effort and drive_effort; the
   loop's solved qdd (-phi'' and phi'' for coupler and rocker).
+* Model.inverse's t on a coupled planar arm whose end's x is a point drive x(t) = 0.3 sin 2t: the
+  end's x'' from the planar closed form at the solved qdd against x''(t) (1e-12); refused without
+  t; on a tree t changes nothing.
 * Errors: a model not fully driven, bad options and shapes.
 """
 import numpy as np
@@ -160,6 +163,60 @@ def test_four_bar_loads():
     want = np.stack([phidd, -phidd, phidd], axis=1)
     assert r.qdd.shape == (n, 3) and np.abs(r.qdd - want).max() <= 1e-12 * np.abs(want).max()
     assert r.drive_effort.shape == (n, 1) and np.abs(r.drive_effort[:, 0] - tau).max() <= 1e-12 * scale
+
+
+def coupled_arm(lengths, r, c0):
+    """a planar arm of len(lengths) links about z, joint 2 following joint 1 by a coupling
+    q2 = r q1 + c0, joint 1 driven, and the last link's end's x a point drive, 0.3 sin 2t"""
+    b = vtdyn.Builder()
+    for i, li in enumerate(lengths):
+        mass = 1.0 + 0.5 * i
+        b.add_body(parent=i, mass=mass, inertia=(0.01, mass * li * li / 12, mass * li * li / 12), axis1=(0, 0, 1),
+                   joint_parent=(lengths[i - 1] / 2 if i else 0.0, 0, 0), joint_child=(-li / 2, 0, 0))
+    b.add_coupling(body_a=2, body_b=1, ratio=r, offset=c0)
+    b.add_drive(body=1)
+    b.add_drive(body=len(lengths), kind="point", index=0, point=(lengths[-1] / 2, 0, 0),
+                f=vtdyn.Function.sine(0.0, 0.3, 2.0), name="end_x")
+    return b.build()
+
+
+def test_inverse_time():
+    """Model.inverse's t: a coupled arm whose end's x is a point drive, x(t) = 0.3 sin 2t (its
+    rows kept by the given motion, γ = x''(t)): the end's x'' from the planar closed form at the
+    solved qdd equals x''(t) at each state's t; without t the call is refused (naming the drive);
+    a number is every state's time; on a tree t changes nothing"""
+    lengths, r, c0 = (0.7, 0.5, 0.4), -0.6, 0.4
+    arm = coupled_arm(lengths, r, c0)
+    rng = np.random.default_rng(11)
+    n = 30
+    t = rng.uniform(0, 3, n)
+    q1, q3 = rng.uniform(-2, 2, n), rng.uniform(-2, 2, n)
+    v1, v3 = rng.uniform(-1, 1, n), rng.uniform(-1, 1, n)
+    a1 = rng.uniform(-3, 3, n)
+    q = np.stack([q1, r * q1 + c0, q3], axis=1)
+    v = np.stack([v1, r * v1, v3], axis=1)
+    acc = np.stack([a1, r * a1, np.zeros(n)], axis=1)  # q3'': the point drive's
+    res = arm.inverse(q, v, acc, t=t)
+    phi, phid, phidd = np.cumsum(q, axis=1), np.cumsum(v, axis=1), np.cumsum(res.qdd, axis=1)
+    xdd = sum(li * (-np.sin(phi[:, i]) * phidd[:, i] - np.cos(phi[:, i]) * phid[:, i] ** 2)
+              for i, li in enumerate(lengths))
+    want = -1.2 * np.sin(2 * t)
+    assert np.abs(xdd - want).max() <= 1e-12 * (1 + np.abs(want).max())
+    with pytest.raises(ValueError, match='^t: needed: drive 1 \\("end_x"\\) is a point drive'):
+        arm.inverse(q, v, acc)
+    at1 = arm.inverse(q, v, acc, t=1.0)
+    assert np.array_equal(at1.effort, arm.inverse(q, v, acc, t=np.full(n, 1.0)).effort)
+    assert np.array_equal(at1.effort[3], arm.inverse(q[3], v[3], acc[3], t=1.0).effort)
+    assert np.abs(at1.effort - res.effort).max() > 1.0  # the time reached the answer
+    with pytest.raises(ValueError, match="^t: 2 values"):
+        arm.inverse(q, v, acc, t=[0.0, 1.0])
+    with pytest.raises(ValueError, match="^t: 2 values"):
+        arm.inverse(q[0], v[0], acc[0], t=[0.0, 1.0])
+    with pytest.raises(ValueError, match="^t: a number"):
+        arm.inverse(q, v, acc, t="soon")
+    tree = double_link([dict(body=1, f=vtdyn.Function.sine(0.5, 0.8, 2.0, 0.1))])
+    qt, vt, at = rng.uniform(-1, 1, (5, 2)), rng.uniform(-1, 1, (5, 2)), rng.uniform(-1, 1, (5, 2))
+    assert np.array_equal(tree.inverse(qt, vt, at).effort, tree.inverse(qt, vt, at, t=rng.uniform(0, 3, 5)).effort)
 
 
 def test_analysis_errors():
