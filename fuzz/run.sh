@@ -39,7 +39,7 @@ sed -e "s/@VT_VERSION_MAJOR@/$major/" -e "s/@VT_VERSION_MINOR@/$minor/" -e "s/@V
 flags="-g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Iinclude -Isrc -I$out/include"
 libs="-lsundials_ida -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense -llapack -lblas -lm -pthread"
 # fuzz_model: every source but the URDF loader (its input is XML, not this harness's bytes)
-clang $flags $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') fuzz/fuzz_model.c -o "$out/fuzz_model" $libs
+clang $flags $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') fuzz/fuzz_model.c fuzz/harness.c fuzz/compare.c -o "$out/fuzz_model" $libs
 [ "$urdf_seconds" -gt 0 ] && clang $flags -I/usr/include/libxml2 src/*/*.c fuzz/fuzz_urdf.c -o "$out/fuzz_urdf" $libs -lxml2
 # fuzz_contact: the library as fuzz_model's, and the scenes (the quadruped)
 clang $flags -Iexamples $(ls src/*/*.c | grep -v '^src/model/\(urdf\|xml\)\.c$') examples/scenes.c fuzz/fuzz_contact.c \
