@@ -32,6 +32,30 @@ static int add_name(run *x, int *k, const char *joint, const char *suffix)
     return 0;
 }
 
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* every output column's name once (a contact named as a joint would give two `J_fx`): sorted
+ * copies compared in turn; 0, or 1 naming the column */
+static int distinct_names(const run *x)
+{
+    char **s = malloc((size_t)x->nout * sizeof *s);
+    if (!s) return cmd_fail("out of memory");
+    memcpy(s, x->names, (size_t)x->nout * sizeof *s);
+    qsort(s, (size_t)x->nout, sizeof *s, by_name);
+    int bad = 0;
+    for (int k = 1; k < x->nout && !bad; k++)
+        if (strcmp(s[k - 1], s[k]) == 0)
+            bad = cmd_fail("two output columns would be named '%s'%s", s[k],
+                           x->ncontact ? " (a contact named as a joint or another contact's column: --contacts's "
+                                         "column name gives it another)"
+                                       : "");
+    free(s);
+    return bad;
+}
+
 int output_columns(run *x)
 {
     static const char *const effort6[12] = {"_effort_fx", "_effort_fy", "_effort_fz", "_effort_nx", "_effort_ny",
@@ -74,7 +98,7 @@ int output_columns(run *x)
     static const char *const force[3] = {"_fx", "_fy", "_fz"};
     for (int i = 0; i < x->ncontact; i++) /* the contacts' forces last */
         for (int c = 0; c < 3; c++) bad |= add_name(x, &k, x->cname[i], force[c]);
-    return bad ? cmd_fail("out of memory") : 0;
+    return bad ? cmd_fail("out of memory") : distinct_names(x);
 }
 
 /* w (3 forces, 3 moments) turned by the transpose of the column-major rotation R into out */

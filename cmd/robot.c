@@ -180,6 +180,16 @@ static int contact_number(const char *cell, double *x)
     return 0;
 }
 
+/* a contact's name: 1 to VT_NAME_MAX − 1 bytes, none of them a comma, a double quote, a space or
+ * a control character (it names the columns C_active, C_fx, ...); 1 if not */
+static int bad_contact_name(const char *name)
+{
+    if (!name[0] || strlen(name) >= VT_NAME_MAX) return 1;
+    for (const unsigned char *c = (const unsigned char *)name; *c; c++)
+        if (*c <= ' ' || *c == ',' || *c == '"' || *c == 127) return 1;
+    return 0;
+}
+
 int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, char (**names)[VT_NAME_MAX], int *n)
 {
     *defs = NULL;
@@ -187,11 +197,13 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
     *n = 0;
     FILE *f = fopen(file, "r");
     if (!f) return cmd_fail("--contacts %s: %s", file, strerror(errno));
-    enum { LINE = 4096, NCOL = 7 };
+    enum { LINE = 4096, NCOL = 11 };
     /* the columns: frame and mu required, the rest optional (empty cells: the defaults) */
-    static const char *const colname[NCOL] = {"frame", "mu", "faces", "nx", "ny", "nz", "weight"};
+    static const char *const colname[NCOL] = {"frame", "mu", "faces", "nx", "ny", "nz", "weight", "name", "x", "y", "z"};
     char line[LINE], *cell[NCOL + 1];
     int col[NCOL], ncol = 0, lineno = 0, bad = 0;
+    /* each contact's name and frame while the file is read (2 a contact) */
+    char(*nf)[VT_NAME_MAX] = NULL;
     for (int k = 0; k < NCOL; k++) col[k] = -1;
     while (!bad && fgets(line, sizeof line, f)) {
         lineno++;
@@ -207,15 +219,18 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
                 while (j < NCOL && strcmp(cell[k], colname[j]) != 0) j++;
                 if (j == NCOL || col[j] >= 0)
                     bad = cmd_fail("--contacts %s: line %d: column '%s' %s (the header is frame,mu and optionally "
-                                   "faces, nx,ny,nz, weight)", file, lineno, cell[k], j == NCOL ? "unknown" : "twice");
+                                   "faces, nx,ny,nz, weight, name, x,y,z)", file, lineno, cell[k],
+                                   j == NCOL ? "unknown" : "twice");
                 else col[j] = k;
             }
             if (!bad && nc < 0) bad = cmd_fail("--contacts %s: line %d: more than %d columns", file, lineno, NCOL);
             if (!bad && (col[0] < 0 || col[1] < 0))
                 bad = cmd_fail("--contacts %s: line %d: the header is frame,mu (in any order, with optional faces, "
-                               "nx,ny,nz, weight)", file, lineno);
+                               "nx,ny,nz, weight, name, x,y,z)", file, lineno);
             if (!bad && ((col[3] >= 0) != (col[4] >= 0) || (col[3] >= 0) != (col[5] >= 0)))
                 bad = cmd_fail("--contacts %s: line %d: the normal needs all of nx, ny, nz", file, lineno);
+            if (!bad && ((col[8] >= 0) != (col[9] >= 0) || (col[8] >= 0) != (col[10] >= 0)))
+                bad = cmd_fail("--contacts %s: line %d: the point needs all of x, y, z", file, lineno);
             ncol = nc;
             continue;
         }
@@ -224,14 +239,23 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
             break;
         }
         const char *frame = cell[col[0]], *mu = cell[col[1]];
+        const char *name = col[7] >= 0 && cell[col[7]][0] ? cell[col[7]] : frame;
         if (vt_find_frame(m, frame) < 0) {
             bad = cmd_fail("--contacts %s: line %d: '%s' is not a link of the robot (vtdyn info lists its frames)",
                            file, lineno, frame);
             break;
         }
+        if (bad_contact_name(name)) {
+            bad = cmd_fail("--contacts %s: line %d: the name '%s' is not 1 to %d bytes without commas, quotes or "
+                           "spaces", file, lineno, name, VT_NAME_MAX - 1);
+            break;
+        }
         for (int k = 0; k < *n && !bad; k++)
-            if (strcmp((*names)[k], frame) == 0)
-                bad = cmd_fail("--contacts %s: line %d: '%s' twice", file, lineno, frame);
+            if (strcmp(nf[2 * k], name) == 0)
+                bad = cmd_fail(name == frame ? "--contacts %s: line %d: '%s' twice (several points on one link: give "
+                                               "each its name, column name)"
+                                             : "--contacts %s: line %d: the name '%s' twice",
+                               file, lineno, name);
         if (bad) break;
         vt_contact_def d = vt_default_contact_def();
         if (mu[0]) {
@@ -269,22 +293,35 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
                            cell[col[6]], VT_CONTACT_WEIGHT);
             break;
         }
+        for (int e = 0; e < 3 && col[8] >= 0 && !bad; e++) /* the point in the link's frame, m (empty: 0) */
+            if (contact_number(cell[col[8 + e]], &d.point[e]))
+                bad = cmd_fail("--contacts %s: line %d: %s '%s' is not a finite number (m, in the link's frame)", file,
+                               lineno, colname[8 + e], cell[col[8 + e]]);
+        if (bad) break;
         vt_contact_def *gd = realloc(*defs, (size_t)(*n + 1) * sizeof **defs);
         if (gd) *defs = gd;
-        char(*gn)[VT_NAME_MAX] = gd ? realloc(*names, (size_t)(*n + 1) * sizeof **names) : NULL;
+        char(*gn)[VT_NAME_MAX] = gd ? realloc(nf, 2 * (size_t)(*n + 1) * sizeof *nf) : NULL;
         if (!gd || !gn) {
             bad = cmd_fail("out of memory");
             break;
         }
-        *names = gn;
-        snprintf((*names)[*n], VT_NAME_MAX, "%s", frame);
+        nf = gn;
+        snprintf(nf[2 * *n], VT_NAME_MAX, "%s", name);
+        snprintf(nf[2 * *n + 1], VT_NAME_MAX, "%s", frame);
         (*defs)[(*n)++] = d;
     }
     if (!bad && ferror(f)) bad = cmd_fail("--contacts %s: %s", file, strerror(errno));
     if (!bad && ncol == 0) bad = cmd_fail("--contacts %s: no header frame,mu", file);
     if (!bad && *n == 0) bad = cmd_fail("--contacts %s: no contact", file);
     fclose(f);
-    for (int k = 0; !bad && k < *n; k++) /* the names, now that they no longer move */
-        (*defs)[k].name = (*defs)[k].frame = (*names)[k];
+    /* the names first (the caller's columns), then the frames, each definition pointing at both */
+    if (!bad && !(*names = malloc(2 * (size_t)*n * sizeof **names))) bad = cmd_fail("out of memory");
+    for (int k = 0; !bad && k < *n; k++) {
+        memcpy((*names)[k], nf[2 * k], VT_NAME_MAX);
+        memcpy((*names)[*n + k], nf[2 * k + 1], VT_NAME_MAX);
+        (*defs)[k].name = (*names)[k];
+        (*defs)[k].frame = (*names)[*n + k];
+    }
+    free(nf);
     return bad;
 }

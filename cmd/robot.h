@@ -20,10 +20,12 @@ int cmd_joint_params(vt_builder *b, const char *file, const char *path);
  * merged into LINK's body as the loader merges a fixed link; 0, or 1 with the message printed */
 int cmd_add_payload(vt_builder *b, const char *spec, const char *path);
 
-/* --contacts FILE: a CSV file with the header frame,mu (either order) and a row per contact: a
- * frame of the model m (a URDF link's name: the contact point is its origin) and Coulomb's μ ≥ 0,
- * empty for a bilateral contact; into *defs and *names (malloc'd, n of each; the names the
- * contacts' and the defs' frames point into them); 0, or 1 with the message printed */
+/* --contacts FILE: a CSV file with the header frame,mu (any order, optional columns faces,
+ * nx,ny,nz, weight, name, x,y,z) and a row per contact: a frame of the model m (a URDF link's
+ * name), the point in its axes from its origin (x,y,z; default 0: the origin), Coulomb's μ ≥ 0
+ * (empty: bilateral) and the contact's name (default: the frame's); into *defs (n) and *names
+ * (malloc'd: the n names, then the n frames, which the defs' name and frame point into); 0, or 1
+ * with the message printed */
 int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, char (**names)[VT_NAME_MAX], int *n);
 
 /* a joint type's name as `info` prints it ("revolute", "floating", ...; "?" out of range) */

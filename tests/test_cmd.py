@@ -1543,7 +1543,12 @@ def contacts(vtdyn, urdf_dir, work, check):
                        ("mu\nFL_foot\n", "the header is frame,mu"),
                        ("frame,mu\nnose,1\n", "'nose' is not a link"),
                        ("frame,mu\nFL_foot,-1\n", "not a finite number >= 0"),
-                       ("frame,mu\nFL_foot,1\nFL_foot,1\n", "'FL_foot' twice"),
+                       ("frame,mu\nFL_foot,1\nFL_foot,1\n", "'FL_foot' twice (several points on one link"),
+                       ("frame,mu,name\nFL_foot,1,a\nFR_foot,1,a\n", "the name 'a' twice"),
+                       ("frame,mu,name\nFL_foot,1,a b\n", "the name 'a b'"),
+                       ("frame,mu,name\nFL_foot,1,FL_HAA\n", "two output columns would be named 'FL_HAA_fx'"),
+                       ("frame,mu,x,y\nFL_foot,1,0,0\n", "all of x, y, z"),
+                       ("frame,mu,x,y,z\nFL_foot,1,0,zero,0\n", "y 'zero'"),
                        ("frame,mu\n", "no contact")):
         with open(cfile, "w") as f:
             f.write(text)
@@ -1551,6 +1556,89 @@ def contacts(vtdyn, urdf_dir, work, check):
         check(r.returncode == 1 and says in r.stderr, "contacts file %r refused: %r" % (text, r.stderr))
     check(run(vtdyn, "inverse", "--contacts", os.path.join(work, "none.csv"), urdf,
               os.path.join(work, "quad.csv")).returncode == 1, "a missing contacts file refused")
+
+
+def solve(a, b):
+    """a x = b by Gaussian elimination with partial pivoting (a: n lists of n)"""
+    n = len(b)
+    m = [list(row) + [v] for row, v in zip(a, b)]
+    for c in range(n):
+        p = max(range(c, n), key=lambda r: abs(m[r][c]))
+        m[c], m[p] = m[p], m[c]
+        for r in range(c + 1, n):
+            f = m[r][c] / m[c][c]
+            m[r] = [x - f * y for x, y in zip(m[r], m[c])]
+    x = [0.0] * n
+    for r in reversed(range(n)):
+        x[r] = (m[r][n] - sum(m[r][k] * x[k] for k in range(r + 1, n))) / m[r][r]
+    return x
+
+
+def sole_corners(vtdyn, work, check):
+    """--contacts with points on a link's frame (x,y,z) and names: a floating box whose fixed link
+    'sole' is 0.1 m under it, 0.03 m back, turned 40 degrees about z, on the sole's four corners
+    given in the sole's axes (unevenly), at rest: the forces are the minimum-norm statics of the
+    box at the corners o + R_z(40) p written here (1e-9 of the weight; uneven), each contact's
+    columns under its name; HL_active 0 lifts that corner (its force exactly 0, the other three
+    the statics on three points); without x,y,z every contact sits at the sole's origin, off the
+    box's centre of mass: refused"""
+    mass, yaw, o = 8.0, math.radians(40.0), (-0.03, 0.0, -0.1)
+    urdf = os.path.join(work, "box.urdf")
+    with open(urdf, "w") as f:
+        f.write('<robot name="box"><link name="box"><inertial><mass value="%r"/><inertia ixx="0.13" ixy="0" '
+                'ixz="0" iyy="0.27" iyz="0" izz="0.35"/></inertial></link><link name="sole"/>'
+                '<joint name="sole_fixed" type="fixed"><parent link="box"/><child link="sole"/>'
+                '<origin xyz="%r %r %r" rpy="0 0 %r"/></joint></robot>\n' % (mass, *o, yaw))
+    corners = {"FL": (0.12, 0.07), "FR": (0.12, -0.06), "HL": (-0.09, 0.07), "HR": (-0.09, -0.06)}
+    cfile = os.path.join(work, "sole.csv")
+    with open(cfile, "w") as f:
+        f.write("name,frame,mu,x,y,z\n" + "".join("%s,sole,1,%r,%r,0\n" % (k, x, y) for k, (x, y) in corners.items()))
+    names = ["box_" + c for c in ("x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz",
+                                  "ax", "ay", "az", "alx", "aly", "alz")]
+    rest = [0, 0, 0.1, 1, 0, 0, 0] + [0] * 12
+    states = os.path.join(work, "box_states.csv")
+    with open(states, "w") as f:
+        f.write(",".join(names + ["HL_active"]) + "\n" + ",".join(map(repr, rest + [1])) + "\n"
+                + ",".join(map(repr, rest + [0])) + "\n")
+    r = run(vtdyn, "inverse", "--floating", "--contacts", cfile, urdf, states)
+    out = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(r.stdout.splitlines())] \
+        if r.returncode == 0 else []
+    check(r.returncode == 0 and len(out) == 2, "a box on its sole's corners: %r" % r.stderr)
+    W = mass * 9.81
+    c, s_ = math.cos(yaw), math.sin(yaw)
+    at = {k: (o[0] + c * x - s_ * y, o[1] + s_ * x + c * y, o[2]) for k, (x, y) in corners.items()}
+    for row, on in zip(out, (("FL", "FR", "HL", "HR"), ("FL", "FR", "HR"))):
+        # E f = (0, 0, W, 0, 0, 0): the forces' sum and their moments about the centre of mass
+        E = [[0.0] * (3 * len(on)) for _ in range(6)]
+        for k, name in enumerate(on):
+            rx, ry, rz = at[name]
+            for e in range(3):
+                E[e][3 * k + e] = 1.0
+            E[3][3 * k + 2], E[3][3 * k + 1] = ry, -rz
+            E[4][3 * k + 0], E[4][3 * k + 2] = rz, -rx
+            E[5][3 * k + 1], E[5][3 * k + 0] = rx, -ry
+        if len(on) == 3:  # three points: the statics alone (six equations, three of them on fz)
+            E, rhs = [E[2], E[3], E[4]], [W, 0.0, 0.0]
+            Ez = [[E[i][3 * k + 2] for k in range(3)] for i in range(3)]
+            fz = solve(Ez, rhs)
+            want = {name: (0.0, 0.0, fz[k]) for k, name in enumerate(on)}
+        else:
+            EEt = [[sum(E[i][k] * E[j][k] for k in range(12)) for j in range(6)] for i in range(6)]
+            y = solve(EEt, [0.0, 0.0, W, 0.0, 0.0, 0.0])
+            f = [sum(E[i][k] * y[i] for i in range(6)) for k in range(12)]
+            want = {name: tuple(f[3 * k:3 * k + 3]) for k, name in enumerate(on)}
+        worst = max(abs(row["%s_f%s" % (name, e)] - want[name][i]) for name in on for i, e in enumerate("xyz"))
+        check(worst <= 1e-9 * W and min(w[2] for w in want.values()) > 0.1 * W,
+              "the sole's corners carry the box's statics on %s (%.3g; fz %s)"
+              % (",".join(on), worst, [round(w[2], 3) for w in want.values()]))
+        print("sole corners on %s: largest difference from the statics %.3g of the weight" % (",".join(on), worst / W))
+        if len(on) == 3:
+            check(all(row["HL_f" + e] == 0.0 for e in "xyz"), "HL lifted: its force exactly 0")
+    with open(cfile, "w") as f:
+        f.write("name,frame,mu\n" + "".join("%s,sole,1\n" % k for k in corners))
+    r = run(vtdyn, "inverse", "--floating", "--contacts", cfile, urdf, states)
+    check(r.returncode == 1 and "box_states.csv:2" in r.stderr, "four points at the sole's origin cannot carry the "
+          "box: refused, the row named: %r" % r.stderr)
 
 
 def main():
@@ -1702,6 +1790,7 @@ def main():
     loads(vtdyn, urdf_dir, states, work, check)
     cubic_samples(vtdyn, urdf_dir, work, check)
     contacts(vtdyn, urdf_dir, work, check)
+    sole_corners(vtdyn, work, check)
     print("%d checks failed" % len(failures) if failures else "every check held")
     return 1 if failures else 0
 

@@ -5,7 +5,9 @@
  *   flags equal, and every result both call unique has the same value (1e-12), with the torso
  *   moving and the feet held still by the legs' inverse kinematics, on four feet and on three
  *   (the fourth leg swinging: its torques and reactions fixed by its motion alone);
- * - the definitions refused, named, and a model with a loop (contacts take a tree's given motion).
+ * - the definitions refused, named, and a model with a loop (contacts take a tree's given motion);
+ * - points given on a frame, in its axes from its origin (test_frame_points): the same forces as
+ *   the body points written here, and at rest the box's minimum-norm statics.
  */
 #include <math.h>
 #include <stdio.h>
@@ -179,11 +181,98 @@ static void test_refused(void **state)
     vt_model_free(m);
 }
 
+/* Points on a frame: a box (vt_test_contact_box's) with a frame "sole" under it, its origin
+ * o = (−0.03, 0, −0.1) from the centre of mass and its axes turned 40° about z, and four
+ * contacts at the sole's corners given in the sole's axes, (±a, ±b, 0) unevenly. Each corner's
+ * point in the box's axes is o + R_z(40°) p, written here with cos and sin: the contacts at those
+ * body points give the same forces (1e-14 of the weight, at rest and moving); at rest the forces
+ * are the minimum-norm closed form of the box's statics at those points (1e-10; uneven, 11 to
+ * 28 N), and four contacts at the frame's origin alone (every offset dropped), off the centre of
+ * mass's line, are refused: they cannot carry the box */
+static void test_frame_points(void **state)
+{
+    (void)state;
+    const double mass = 8.0, yaw = 40.0 * 3.14159265358979323846 / 180.0, o[3] = {-0.03, 0.0, -0.1};
+    vt_builder *b = NULL;
+    vt_model_def md = vt_default_model_def();
+    md.gravity[0] = md.gravity[1] = 0.0, md.gravity[2] = -G0;
+    assert_ok(vt_builder_create(&b, &md));
+    vt_body_def body = vt_default_body_def();
+    body.joint = VT_JOINT_FREE;
+    body.mass = mass;
+    body.inertia[0] = mass * 0.2 / 12.0, body.inertia[4] = mass * 0.4 / 12.0, body.inertia[8] = mass * 0.52 / 12.0;
+    assert_int_equal(vt_builder_add_body(b, &body), 1);
+    vt_frame_def fr = vt_default_frame_def();
+    fr.name = "sole";
+    memcpy(fr.point, o, sizeof o);
+    fr.orientation[0] = cos(yaw / 2.0), fr.orientation[1] = fr.orientation[2] = 0.0, fr.orientation[3] = sin(yaw / 2.0);
+    assert_int_equal(vt_builder_add_frame(b, &fr), 0);
+    vt_model *m = NULL;
+    assert_ok(vt_builder_build(&m, b));
+    vt_builder_free(b);
+    static const char *const name[4] = {"FL", "FR", "HL", "HR"};
+    const double corner[4][3] = {{0.12, 0.07, 0.0}, {0.12, -0.06, 0.0}, {-0.09, 0.07, 0.0}, {-0.09, -0.06, 0.0}};
+    vt_contact_def on_frame[4], on_body[4], origin[4];
+    for (int k = 0; k < 4; k++) {
+        on_frame[k] = vt_default_contact_def();
+        on_frame[k].name = name[k];
+        on_frame[k].frame = "sole";
+        memcpy(on_frame[k].point, corner[k], sizeof corner[k]);
+        on_body[k] = on_frame[k];
+        on_body[k].frame = NULL;
+        on_body[k].body = 1;
+        on_body[k].point[0] = o[0] + cos(yaw) * corner[k][0] - sin(yaw) * corner[k][1];
+        on_body[k].point[1] = o[1] + sin(yaw) * corner[k][0] + cos(yaw) * corner[k][1];
+        on_body[k].point[2] = o[2] + corner[k][2];
+        origin[k] = on_frame[k];
+        origin[k].point[0] = origin[k].point[1] = origin[k].point[2] = 0.0;
+    }
+    vt_contacts *cf = NULL, *cb = NULL, *co = NULL;
+    char msg[VT_MESSAGE_SIZE];
+    assert_ok(vt_contacts_create(&cf, m, on_frame, 4, NULL, msg));
+    assert_ok(vt_contacts_create(&cb, m, on_body, 4, NULL, msg));
+    assert_ok(vt_contacts_create(&co, m, origin, 4, NULL, msg));
+    vt_data *d = NULL;
+    assert_ok(vt_data_create(&d, m));
+    const double W = mass * G0;
+    for (int t = 0; t < 2; t++) {
+        /* at rest, level, 0.1 m up; then turned, moving and accelerating (within the pyramids) */
+        memcpy(d->q, m->q0, (size_t)m->nq * sizeof(double));
+        memset(d->qd, 0, (size_t)m->nv * sizeof(double));
+        memset(d->qdd, 0, (size_t)m->nv * sizeof(double));
+        d->q[2] = 0.1;
+        if (t == 1) {
+            const double p[4] = {0.98, 0.05, -0.08, 0.17}, n = sqrt(0.98 * 0.98 + 0.05 * 0.05 + 0.08 * 0.08 + 0.17 * 0.17);
+            for (int e = 0; e < 4; e++) d->q[3 + e] = p[e] / n;
+            const double v[6] = {0.1, -0.05, 0.02, 0.2, -0.1, 0.3}, a[6] = {0.4, 0.3, -0.5, 0.3, 0.2, -0.4};
+            memcpy(d->qd, v, sizeof v);
+            memcpy(d->qdd, a, sizeof a);
+        }
+        double ff[12], fb[12], fo[12];
+        assert_ok(vt_inverse_dynamics_contacts(m, d, cf, NULL, ff));
+        assert_ok(vt_inverse_dynamics_contacts(m, d, cb, NULL, fb));
+        for (int k = 0; k < 12; k++) assert_near_rel(ff[k], fb[k], 1e-14, W);
+        if (t == 1) continue;
+        double want[12];
+        const double acc[3] = {0.0, 0.0, 0.0};
+        vt_test_min_norm_forces(on_body, mass, acc, want);
+        for (int k = 0; k < 4; k++) assert_true(want[3 * k + 2] > 0.1 * W && fabs(want[3 * k]) + fabs(want[3 * k + 1]) < 1e-9 * W);
+        for (int k = 0; k < 12; k++) assert_near_rel(ff[k], want[k], 1e-10, W);
+        assert_int_equal(vt_inverse_dynamics_contacts(m, d, co, NULL, fo), VT_ERR_CONTACT);
+    }
+    vt_data_free(d);
+    vt_contacts_free(cf);
+    vt_contacts_free(cb);
+    vt_contacts_free(co);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unique),
         cmocka_unit_test(test_refused),
+        cmocka_unit_test(test_frame_points),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

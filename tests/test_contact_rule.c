@@ -42,36 +42,6 @@
 /* |a − b| within rel times the problem's scale */
 #define assert_near_rel(a, b, rel, scale) assert_near(a, b, (rel) * (scale))
 
-/* the minimum-norm corner forces f (12) of the box at rest in orientation identity with its
- * centre of mass accelerated by acc: E f = w, E's rows Σ f and Σ r × f, f = Eᵀ (E Eᵀ)⁻¹ w */
-static void min_norm_forces(const vt_contact_def def[4], double mass, const double acc[3], double f[12])
-{
-    double E[6 * 12] = {0}, w[6] = {mass * acc[0], mass * acc[1], mass * (acc[2] + G0), 0, 0, 0};
-    for (int k = 0; k < 4; k++) {
-        const double *r = def[k].point;
-        for (int e = 0; e < 3; e++) E[e + 6 * (3 * k + e)] = 1.0;
-        /* (r × f)_x = r_y f_z − r_z f_y, ... */
-        E[3 + 6 * (3 * k + 2)] = r[1], E[3 + 6 * (3 * k + 1)] = -r[2];
-        E[4 + 6 * (3 * k + 0)] = r[2], E[4 + 6 * (3 * k + 2)] = -r[0];
-        E[5 + 6 * (3 * k + 1)] = r[0], E[5 + 6 * (3 * k + 0)] = -r[1];
-    }
-    double EEt[36];
-    for (int i = 0; i < 6; i++)
-        for (int j = 0; j < 6; j++) {
-            double s = 0.0;
-            for (int k = 0; k < 12; k++) s += E[i + 6 * k] * E[j + 6 * k];
-            EEt[i + 6 * j] = s;
-        }
-    int n6 = 6, one = 1, ipiv[6], info = 0;
-    dgesv_(&n6, &one, EEt, &n6, ipiv, w, &n6, &info); /* LAPACK, not the library's QP */
-    assert_int_equal(info, 0);
-    for (int k = 0; k < 12; k++) {
-        double s = 0.0;
-        for (int i = 0; i < 6; i++) s += E[i + 6 * k] * w[i];
-        f[k] = s;
-    }
-}
-
 /* the box's state: at height 0.1, orientation identity, at rest, its centre accelerated by acc */
 static void box_state(const vt_model *m, vt_data *d, const double acc[3])
 {
@@ -106,7 +76,7 @@ static void test_box(void **state)
         assert_int_equal(vt_contacts_count(c), 4);
         box_state(m, d, cases[t].acc);
         double f[12], want[12];
-        min_norm_forces(def, mass, cases[t].acc, want);
+        vt_test_min_norm_forces(def, mass, cases[t].acc, want);
         for (int k = 0; k < 4; k++) { /* the closed form inside the pyramids: it is the rule's answer */
             const double *w = want + 3 * k;
             assert_true(w[2] > 0.0);
@@ -146,7 +116,7 @@ static void test_box(void **state)
         assert_ok(vt_contacts_create(&c, m, def, 4, NULL, NULL));
         box_state(m, d, pull);
         double f[12], want[12];
-        min_norm_forces(def, mass, pull, want);
+        vt_test_min_norm_forces(def, mass, pull, want);
         assert_ok(vt_inverse_dynamics_contacts(m, d, c, NULL, f));
         for (int k = 0; k < 12; k++) assert_near_rel(f[k], want[k], 1e-10, mass * G0);
         assert_true(f[2] < 0.0);

@@ -528,6 +528,36 @@ static inline vt_model *vt_test_contact_box(double mass)
     return m;
 }
 
+/* the minimum-norm corner forces f (12) of the box at rest in orientation identity with its
+ * centre of mass accelerated by acc: E f = w, E's rows Σ f and Σ r × f, f = Eᵀ (E Eᵀ)⁻¹ w */
+static inline void vt_test_min_norm_forces(const vt_contact_def def[4], double mass, const double acc[3], double f[12])
+{
+    double E[6 * 12] = {0}, w[6] = {mass * acc[0], mass * acc[1], mass * (acc[2] + 9.81), 0, 0, 0};
+    for (int k = 0; k < 4; k++) {
+        const double *r = def[k].point;
+        for (int e = 0; e < 3; e++) E[e + 6 * (3 * k + e)] = 1.0;
+        /* (r × f)_x = r_y f_z − r_z f_y, ... */
+        E[3 + 6 * (3 * k + 2)] = r[1], E[3 + 6 * (3 * k + 1)] = -r[2];
+        E[4 + 6 * (3 * k + 0)] = r[2], E[4 + 6 * (3 * k + 2)] = -r[0];
+        E[5 + 6 * (3 * k + 1)] = r[0], E[5 + 6 * (3 * k + 0)] = -r[1];
+    }
+    double EEt[36];
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) {
+            double s = 0.0;
+            for (int k = 0; k < 12; k++) s += E[i + 6 * k] * E[j + 6 * k];
+            EEt[i + 6 * j] = s;
+        }
+    int n6 = 6, one = 1, ipiv[6], info = 0;
+    dgesv_(&n6, &one, EEt, &n6, ipiv, w, &n6, &info); /* LAPACK, not the library's QP */
+    assert_int_equal(info, 0);
+    for (int k = 0; k < 12; k++) {
+        double s = 0.0;
+        for (int i = 0; i < 6; i++) s += E[i + 6 * k] * w[i];
+        f[k] = s;
+    }
+}
+
 static inline void vt_test_box_corners(vt_contact_def def[4], double xf, double xh, double mu)
 {
     static const char *const names[4] = {"FL", "FR", "HL", "HR"};

@@ -976,9 +976,12 @@ typedef enum {
 typedef struct vt_contact_def {
     const char *name;       ///< unique among the contacts (copied); NULL or "" (default): unnamed
     int body;               ///< the body touching, 1..n; default 1; unused with `frame`
-    double point[3];        ///< m, the point: body axes from the centre of mass; default 0
-    const char *frame;      ///< the name of a frame of the model (a URDF link's): the point is its
-                            ///< origin, on its body; NULL (default): body and point
+    double point[3];        ///< m, the point: body axes from the centre of mass, or with `frame` the
+                            ///< frame's axes from its origin (a sole's corner on the foot link's
+                            ///< frame); default 0
+    const char *frame;      ///< the name of a frame of the model (a URDF link's): the point is on its
+                            ///< body, `point` in its axes from its origin (0: the origin itself);
+                            ///< NULL (default): body and point
     double normal[3];       ///< the ground's normal at the point, global, pointing into the body (the
                             ///< direction the ground pushes); normalized; default 0: opposite to
                             ///< the model's gravity (+z without gravity). With `other`, in the

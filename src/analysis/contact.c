@@ -1,7 +1,8 @@
 /* Contacts: the contact set of a robot standing on points of its bodies (docs/contact.md), what
  * the distribution rule (analysis/contact_rule.c) works on at each instant.
  *
- * Each contact is a point p_c of body b (a frame's, or given in b's axes from its centre of mass)
+ * Each contact is a point p_c of body b (given in a frame's axes from its origin, or in b's axes
+ * from its centre of mass)
  * on the ground or on another moving body k (a platform), its unit normal n_c (given, else opposite
  * to gravity) in global axes or k's, the tangents t₁ (the axis least along n_c, less its part along
  * it) and t₂ = n_c × t₁, and a unilateral contact's friction pyramid of k faces inscribed in its
@@ -24,6 +25,7 @@
 
 #include "analysis/contact_rule.h"
 #include "base/block.h"
+#include "base/euler.h"
 #include "base/lapack.h"
 #include "base/scan.h"
 #include "base/status.h"
@@ -155,7 +157,12 @@ static vt_status take_def(vt_contacts *c, const vt_model *m, const vt_contact_de
         const int f = vt_find_frame(m, def->frame);
         if (f < 0) return vt_fail(msg, VT_ERR_NOT_FOUND, "contact %d (%s): no frame \"%.64s\"", k, name, def->frame);
         body = m->frame_body[f];
-        vt_copy3(point, m->frame_point + 3 * f);
+        /* the point in the frame's axes from its origin (a sole's corner on its link's frame):
+         * the origin's offset from the centre of mass plus A(frame) p, as a payload's */
+        double A[9];
+        vt_euler_A(A, m->frame_quat + 4 * f);
+        vt_mulmat3(point, A, def->point);
+        for (int e = 0; e < 3; e++) point[e] += m->frame_point[3 * f + e];
     }
     if (body < 1 || body > m->nbody)
         return vt_fail(msg, VT_ERR_BAD_INDEX, "contact %d (%s): body %d is not a moving body (1..%d)", k, name, body,

@@ -13,7 +13,9 @@ Pinocchio, closed forms and themselves.
   corners, no motor: at rest each corner carries m g / 4 straight up (closed form); accelerated
   and turning, the forces are the minimum-norm solution of the box's six Newton-Euler equations
   (numpy's lstsq: what the rule gives when no motor is left to weigh), to 1e-12 of the weight.
-  Only its centre point active: m g there, exactly 0 at the inactive corners.
+  Only its centre point active: m g there, exactly 0 at the inactive corners. The corners given
+  as points on the bottom centre's frame (Contact(frame=, point=): in its axes from its origin)
+  give the same closed form.
 * A row the contacts cannot carry (falling faster than gravity: a pull; thrown sideways beyond
   friction: a slip) raises vtdyn.Error VT_ERR_CONTACT with that row; one state equals its row
   of a batch bitwise; threads 1 and 2 give bitwise the same arrays; every argument error raises
@@ -213,6 +215,12 @@ def test_box_closed_form(box):
     rhs = np.r_[BOX_MASS * (acc - [0, 0, -G]), inertia @ alpha + np.cross(w, inertia @ w)]
     f = np.linalg.lstsq(A, rhs, rcond=None)[0].reshape(4, 3)
     assert np.abs(r.contact_force - f).max() <= 1e-12 * weight, np.abs(r.contact_force - f).max()
+    # the same corners as points on the bottom centre's frame c4, in its axes from its origin
+    lz = BOX_SIZE[2]
+    on_c4 = m.contacts([vtdyn.Contact(frame="c4", point=(x, y, z + lz / 2), name="k%d" % k)
+                        for k, (x, y, z) in enumerate(CORNERS)])
+    r4 = m.inverse(q, v, a, contacts=on_c4)
+    assert np.abs(r4.contact_force - f).max() <= 1e-12 * weight
     # five points, only the centre one on the ground: it carries the weight, the others nothing
     cs5 = m.contacts([vtdyn.Contact(frame="c%d" % k, name="p%d" % k) for k in range(5)])
     assert cs5.names == ("p0", "p1", "p2", "p3", "p4") and len(cs5) == 5
