@@ -139,27 +139,30 @@ def pyramid(mu):
     return np.array([[0, 0, 1], [-1, 0, m], [1, 0, m], [0, -1, m], [0, 1, m]], dtype=float)
 
 
-def pyramid_rows(idx, n3):
-    """the active feet's pyramid rows (5 a foot) over the stacked forces (n3 = 3 a foot)"""
+def pyramid_rows(idx, n3, mus=None):
+    """the active feet's pyramid rows (5 a foot) over the stacked forces (n3 = 3 a foot); mus:
+    each contact's mu (default Solo-12's feet's)"""
+    mus = mus or [MU[f] for f in FEET]
     G = np.zeros((5 * len(idx), n3))
     for k, c in enumerate(idx):
-        G[5 * k:5 * k + 5, 3 * k:3 * k + 3] = pyramid(MU[FEET[c]])
+        G[5 * k:5 * k + 5, 3 * k:3 * k + 3] = pyramid(mus[c])
     return G
 
 
-def rule_kkt(tau0, J, act, force, weight):
+def rule_kkt(tau0, J, act, force, weight, mus=None):
     """The rule's optimum, certified: minimize 1/2 |tau_j|^2 + 1/2 w |F|^2, tau = tau0 - Jall^T F,
     subject to tau_base = 0 and the pyramids. The faces vtdyn's forces lie on (within 1e-9 of the
     weight) are taken as equalities and the KKT system solved by numpy; returns the forces, the
     smallest multiplier of those faces and the worst violation of the other faces. Convex: if the
-    multipliers are >= 0 and every face holds, these forces are the optimum."""
-    idx = [c for c in range(len(FEET)) if act[c]]
+    multipliers are >= 0 and every face holds, these forces are the optimum. J, act, force: one
+    a contact; mus: each contact's mu (default Solo-12's feet's)."""
+    idx = [c for c in range(len(act)) if act[c]]
     Jall = np.vstack([J[c] for c in idx])  # 3n x 18
     Jb, Jj = Jall[:, :6], Jall[:, 6:]
     n3 = Jall.shape[0]
     H = Jj @ Jj.T + W_CONTACT * np.eye(n3)
     g = Jj @ tau0[6:]
-    G = pyramid_rows(idx, n3)
+    G = pyramid_rows(idx, n3, mus)
     Fv = np.concatenate([force[c] for c in idx])
     on = np.abs(G @ Fv) <= TOL * weight
     GA = G[on]
@@ -174,7 +177,7 @@ def rule_kkt(tau0, J, act, force, weight):
     sol = np.linalg.lstsq(K, rhs, rcond=None)[0]
     F = sol[:n3]
     mult = sol[n3 + 6:]
-    full = np.zeros((len(FEET), 3))
+    full = np.zeros((len(act), 3))
     for k, c in enumerate(idx):
         full[c] = F[3 * k:3 * k + 3]
     viol = max(0.0, -(G[~on] @ F).min()) if (~on).any() else 0.0
