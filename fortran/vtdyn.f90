@@ -214,7 +214,7 @@ module vtdyn
   type, bind(C) :: vt_contact_def
     type(c_ptr)            :: name
     integer(c_int)         :: body
-    real(c_double)         :: point(3)
+    real(c_double)         :: point(3)  ! m: the body's axes from its centre of mass, or with frame its axes from its origin
     type(c_ptr)            :: frame
     real(c_double)         :: normal(3)
     integer(c_int)         :: kind
