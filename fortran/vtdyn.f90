@@ -835,6 +835,12 @@ module vtdyn
       type(c_ptr), value :: model, data
       integer(c_int) :: vt_inverse_dynamics_motion
     end function
+    ! the first drive the given motion evaluates at the data's time, or -1 (vt_batch_io%time then optional)
+    function vt_motion_time_drive(model) bind(C, name='vt_motion_time_drive')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: model
+      integer(c_int) :: vt_motion_time_drive
+    end function
     function vt_drive_cartesian_force(F, model, data, drive) bind(C, name='vt_drive_cartesian_force')
       import :: c_int, c_ptr, c_double
       real(c_double), intent(out) :: F(*)

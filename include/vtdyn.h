@@ -414,6 +414,13 @@ VT_API vt_status vt_inverse_dynamics_recursive(const vt_model *model, vt_data *d
 /// xfrc, qfrc; a reaction overflowed), VT_ERR_QUATERNION, and with loops those of the stages.
 VT_API vt_status vt_inverse_dynamics_motion(const vt_model *model, vt_data *data);
 
+/// The first drive whose rows vt_inverse_dynamics_motion() evaluates at d->time: a point or
+/// orientation drive of a model with cut joints or couplings, whose given motion keeps every row
+/// but the joint drives' (γ = f''(t)); −1 when the given motion does not depend on the time (a
+/// tree, or joint drives alone); VT_ERR_NULL for NULL. A batch of such a model needs each row's
+/// time (vt_batch_io.time).
+VT_API int vt_motion_time_drive(const vt_model *model);
+
 /// The Cartesian force of one drive, Φ_x^T λ (7n): for a joint drive R^T Φ_q^T λ (14), for a
 /// body drive [f_a; 2 E^T s̃ f_a + 2 E^T n_a] (24), into the caller's F (7n entries, body i at
 /// 7(i−1)). Needs vt_solve(). Statuses: VT_ERR_NULL, VT_ERR_BAD_INDEX (drive not in 0..ndrive−1).

@@ -912,6 +912,7 @@ static void test_coupling_loads(void **state)
     outputs o, bare;
     outputs_alloc(&o, m, n);
     outputs_alloc(&bare, m, n);
+    assert_int_equal(vt_motion_time_drive(m), -1); /* a coupling and a joint drive: no time read */
     vt_batch *bt = batch_of(m, 2, 0);
     vt_batch_io io = io_of(&bare, n, q, 0, qd, qdd);
     assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
@@ -946,7 +947,8 @@ static void test_coupling_loads(void **state)
  * a point drive x(t) = 0.3 sin 2t: the given motion's q̈3 comes from the point drive's row at the
  * row's time. Each row bitwise the single call with d->time = t; the end's ẍ from the planar
  * closed form, ẍ = −Σ_k L_k (cos θ_k θ̇_k² + sin θ_k θ̈_k) with θ_k the summed angles, equal to
- * x''(t) = −1.2 sin 2t (1e-12); without io->time the rows are those of t = 0 (another q̈3) */
+ * x''(t) = −1.2 sin 2t (1e-12); without io->time the call is refused, the drive named
+ * (vt_motion_time_drive), and the rows at t = 0 given are others (another q̈3) */
 static void test_batch_time(void **state)
 {
     (void)state;
@@ -984,6 +986,14 @@ static void test_batch_time(void **state)
     io.time = t;
     assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
     io = io_of(&zero, N, q, 0, qd, qdd);
+    /* without the rows' time: refused, the drive named (the rows would be t = 0's) */
+    assert_int_equal(vt_motion_time_drive(m), 1);
+    assert_int_equal(vt_motion_time_drive(NULL), VT_ERR_NULL);
+    assert_int_equal(vt_batch_inverse_dynamics_motion(bt, &io), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(vt_batch_message(bt), "drive 1"));
+    assert_non_null(strstr(vt_batch_message(bt), "io.time"));
+    const double t0[N] = {0.0};
+    io.time = t0;
     assert_ok(vt_batch_inverse_dynamics_motion(bt, &io));
     vt_batch_free(bt);
     vt_data *d = NULL;

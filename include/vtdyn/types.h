@@ -888,11 +888,13 @@ typedef struct vt_batch_io {
                                             ///< frame may be named more than once (the sum)
     const double *load; size_t load_stride; ///< 6 nload a row: at each frame its force (N), then its
                                             ///< moment about the frame's origin (N·m), global axes
-    const double *time; size_t time_stride; ///< 1 a row: the row's time t, s (NULL: 0 for every row),
-                                            ///< vt_data.time: where a loop's or coupling's drives
-                                            ///< other than joint drives (a point or orientation
-                                            ///< drive's function of time) are evaluated; a tree's
-                                            ///< given motion does not depend on it
+    const double *time; size_t time_stride; ///< 1 a row: the row's time t, s, vt_data.time: where a
+                                            ///< loop's or coupling's drives other than joint drives
+                                            ///< (a point or orientation drive's function of time)
+                                            ///< are evaluated; a tree's given motion does not depend
+                                            ///< on it. NULL: 0 for every row, and refused
+                                            ///< (VT_ERR_BAD_OPTION) for a model whose given motion
+                                            ///< reads the time (vt_motion_time_drive() ≥ 0)
 } vt_batch_io;
 
 /// A batch: one data per thread for many states of one model (vt_batch_create).

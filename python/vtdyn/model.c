@@ -477,18 +477,6 @@ static PyObject *reused_array(PyObject *reuse, int k, int rank, const npy_intp *
     return o;
 }
 
-/* the first drive whose rows read its time function (a point or orientation drive) in a model
- * whose given motion keeps them (loops or couplings: vt_inverse_dynamics_motion solves the rows,
- * γ = f''(t)), or -1: a tree's given motion reads no drive, nor does a joint drive's row (its γ
- * is the given q̈) */
-static int time_drive(const vt_model *m)
-{
-    if (m->ncut == 0 && m->ncoupling == 0) return -1;
-    for (int k = 0; k < m->ndrive; k++)
-        if (m->drive[k].type != VT_DRIVE_JOINT) return k;
-    return -1;
-}
-
 /* t= of inverse: None, a number, or one per state (N) into *t (float64, N or 1 values; a new
  * reference) and *stride (0: packed, the array's N; a number broadcast over N states is an array
  * of N); None with a model that reads the time is refused, naming the drive. -1 on error */
@@ -496,7 +484,7 @@ static int read_time(const vt_model *m, PyObject *o, int nd, npy_intp N, PyArray
 {
     *t = NULL;
     if (!o || o == Py_None) {
-        const int k = time_drive(m);
+        const int k = vt_motion_time_drive(m);
         if (k < 0) return 0;
         PyErr_Format(PyExc_ValueError,
                      "t: needed: drive %d (\"%s\") is a %s drive on a model with %s, whose given motion keeps "

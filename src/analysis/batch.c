@@ -303,6 +303,12 @@ static vt_status check_io(vt_batch *b, const vt_batch_io *io)
                                m->frame_name + (size_t)VT_NAME_MAX * f);
         }
     }
+    const int td = io->nrow > 0 && !io->time ? vt_motion_time_drive(m) : -1;
+    if (td >= 0)
+        return vt_fail(b->message, VT_ERR_BAD_OPTION,
+                       "vt_batch: time NULL, and drive %d \"%s\" (a %s drive on a model with %s) is evaluated at "
+                       "each row's time: give io.time", td, m->drive[td].name,
+                       m->drive[td].type == VT_DRIVE_POINT ? "point" : "orientation", m->ncut ? "cut joints" : "couplings");
     const struct {
         const char *name;
         int given;
