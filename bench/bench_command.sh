@@ -2,7 +2,8 @@
 # The command's speed against the library's (not a timed test): ROWS random states of UR5 (its
 # base fixed) and of Solo-12 (a quadruped, floating: --floating) (bench/command_states.py: the same numbers as CSV and as .npy), `vtdyn inverse` timed on
 # csv->csv, npy->npy, npy to /dev/null (the command without the file system's writing), csv->npy
-# and npy->csv with -j 1 and -j 2 (the median of ROUNDS runs, the process's wall time, the
+# and npy->csv with -j 1 and -j 2, and UR5's samples (t and positions) csv->csv and npy->npy (the
+# median of ROUNDS runs, the process's wall time, the
 # output's bytes checked equal for both), beside the library's own time per row on the same
 # states (bench/command_lib.c: one vt_batch_inverse_dynamics_motion over every row with the
 # outputs the command writes, the median of ROUNDS calls). Prints the date, the CPU, the load,
@@ -57,7 +58,6 @@ bench() {
     python3 "$src/bench/command_states.py" "$vtdyn" "$urdf" "$rows" "$tmp/states.csv" "$tmp/states.npy" $flag
     echo
     echo "== $name${flag:+ ($flag)}: $rows states, $(du -h "$tmp/states.csv" | cut -f1) CSV, $(du -h "$tmp/states.npy" | cut -f1) .npy"
-    declare -A lib
     for j in 1 2; do
         lib[$j]=$(for r in $(seq "$rounds"); do "$tmp/command_lib" "$urdf" "$tmp/states.npy" "$j" 3 $flag; done | median)
         printf "library, -j %d: %.3f us/row (vt_batch_inverse_dynamics_motion, effort and reactions)\n" "$j" "${lib[$j]}"
@@ -96,6 +96,39 @@ bench() {
     done
 }
 
+# samples of UR5 (t and the joints' positions: the splines' rates and accelerations, then the
+# states' batch), csv->csv and npy->npy, beside the library's time on states
+samples() {
+    local name=$1 urdf=$2
+    python3 "$src/bench/command_states.py" "$vtdyn" "$urdf" "$rows" "$tmp/samples.csv" "$tmp/samples.npy" --samples
+    echo
+    echo "== $name samples (t and positions, 1 ms apart): $rows rows, $(du -h "$tmp/samples.csv" | cut -f1) CSV"
+    printf "%-14s %3s %10s %9s %s\n" "case" "-j" "us/row" "x library" "split of the median run (--times)"
+    TIMEFORMAT=%3R
+    for case in csv:csv npy:npy; do
+        in=${case%:*} out=${case#*:}
+        declare -A per=()
+        for j in 1 2; do
+            : > "$tmp/runs"
+            for r in $(seq "$rounds"); do
+                rm -f "$tmp/sout_$j.$out"
+                sync
+                t=$({ time "$vtdyn" inverse -j "$j" --times "$urdf" "$tmp/samples.$in" -o "$tmp/sout_$j.$out" 2> "$tmp/times"; } 2>&1)
+                echo "$t $(sed -n 's/.*: read/read/p' "$tmp/times")" >> "$tmp/runs"
+            done
+            mid=$(sort -n "$tmp/runs" | awk -v n="$rounds" 'NR == int((n + 1) / 2)')
+            us=$(awk -v t="${mid%% *}" -v n="$rows" 'BEGIN { printf "%.3f", 1e6 * t / n }')
+            per[$j]=$us
+            printf "%-14s %3d %10s %9.2f %s\n" "$in->$out" "$j" "$us" "$(awk -v a="$us" -v b="${lib[$j]}" 'BEGIN { print a / b }')" \
+                "${mid#* }"
+        done
+        cmp -s "$tmp/sout_1.$out" "$tmp/sout_2.$out" || { echo "bench_command.sh: -j 1 and -j 2 wrote different bytes (samples $case)"; exit 1; }
+        printf "%-14s     -j 2 is %.2f times as fast as -j 1\n" "$in->$out" "$(awk -v a="${per[1]}" -v b="${per[2]}" 'BEGIN { print a / b }')"
+    done
+}
+
+declare -A lib
 bench UR5 "$ur5"
+samples UR5 "$ur5"
 bench Solo-12 "$solo" --floating
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

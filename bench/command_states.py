@@ -4,8 +4,10 @@ numbers (bench/bench_command.sh). The columns are those `vtdyn info` prints for 
 floating root's with --floating); positions in [-pi, pi] (a floating root's origin in [-1, 1] m
 and a unit quaternion), velocities in [-2, 2], accelerations in [-5, 5]; a fixed seed. The .npy
 file is written with struct (no numpy needed): a structured array of '<f8' fields, shape (N,).
+With --samples (a robot fixed to the world): samples instead, t = 0, 1 ms, ... and each joint's
+position a sine, q_j = a_j sin(w_j t + p_j) (a_j in [0.2, 1.5] rad, w_j in [0.5, 3] rad/s).
 
-    command_states.py VTDYN URDF N OUT.csv OUT.npy [--floating]
+    command_states.py VTDYN URDF N OUT.csv OUT.npy [--floating | --samples]
 """
 import math
 import random
@@ -35,6 +37,20 @@ def main():
     floating = "--floating" in sys.argv[6:]
     names = columns(vtdyn, urdf, floating)
     rnd = random.Random(2026)
+    if "--samples" in sys.argv[6:]:
+        joints = [c for c in names if not c.endswith(("_vel", "_acc"))]
+        wave = [(rnd.uniform(0.2, 1.5), rnd.uniform(0.5, 3.0), rnd.uniform(0, 2 * math.pi)) for _ in joints]
+        names = ["t"] + joints
+        row_fmt = struct.Struct("<%dd" % len(names))
+        with open(out_csv, "w") as fc, open(out_npy, "wb") as fn:
+            fc.write(",".join(names) + "\n")
+            fn.write(npy_header(names, n))
+            for k in range(n):
+                t = 1e-3 * k
+                row = [t] + [a * math.sin(w * t + p) for a, w, p in wave]
+                fc.write(",".join(repr(x) for x in row) + "\n")
+                fn.write(row_fmt.pack(*row))
+        return
     quat = [k for k, c in enumerate(names) if c.endswith("_qw")]
     row_fmt = struct.Struct("<%dd" % len(names))
     with open(out_csv, "w") as fc, open(out_npy, "wb") as fn:
