@@ -57,6 +57,7 @@ module vtdyn
   integer(c_int), parameter :: VT_LAYOUT_FULL = 0, VT_LAYOUT_RECURSIVE = 1
   integer(c_int), parameter :: VT_CONTACT_UNILATERAL = 0, VT_CONTACT_BILATERAL = 1
   real(c_double), parameter :: VT_CONTACT_WEIGHT = 1d-4
+  integer(c_int), parameter :: VT_RUN_LOADS_MAX = 64
   integer(c_int), parameter :: VT_NAME_MAX = 64
   integer(c_int), parameter :: VT_MESSAGE_SIZE = 256
   real(c_double), parameter :: VT_INERTIA_TOL = 1.0e-6_c_double
@@ -398,6 +399,10 @@ module vtdyn
     type(c_ptr)            :: contacts  ! a vt_contacts (vt_contacts_create), or c_null_ptr
     type(c_funptr)         :: contact_schedule
     type(c_ptr)            :: contact_user
+    integer(c_int)         :: nload      ! wrenches at frames over a kinematic analysis (0..VT_RUN_LOADS_MAX)
+    type(c_ptr)            :: load_frame ! the address of a TARGET integer(c_int) array of nload frame indices
+    type(c_funptr)         :: loads      ! int loads(double t, double *w, void *user): 6 nload values at t
+    type(c_ptr)            :: load_user
   end type vt_run_options
 
   type, bind(C) :: vt_trajectory

@@ -111,7 +111,9 @@ static const size_t vt_run_options_layout[] = {sizeof(vt_run_options),
     offsetof(vt_run_options, progress), offsetof(vt_run_options, user), offsetof(vt_run_options, tout),
     offsetof(vt_run_options, ntout), offsetof(vt_run_options, redundant_band),
     offsetof(vt_run_options, check_window), offsetof(vt_run_options, contacts),
-    offsetof(vt_run_options, contact_schedule), offsetof(vt_run_options, contact_user), VT_END};
+    offsetof(vt_run_options, contact_schedule), offsetof(vt_run_options, contact_user),
+    offsetof(vt_run_options, nload), offsetof(vt_run_options, load_frame), offsetof(vt_run_options, loads),
+    offsetof(vt_run_options, load_user), VT_END};
 static const size_t vt_trajectory_layout[] = {sizeof(vt_trajectory),
     offsetof(vt_trajectory, model), offsetof(vt_trajectory, nrow), offsetof(vt_trajectory, nfilled),
     offsetof(vt_trajectory, t), offsetof(vt_trajectory, q), offsetof(vt_trajectory, qd),

@@ -122,7 +122,9 @@ program test_fortran_layout
          a(c_loc(x_run_options%progress)), a(c_loc(x_run_options%user)), a(c_loc(x_run_options%tout)), &
          a(c_loc(x_run_options%ntout)), a(c_loc(x_run_options%redundant_band)), &
          a(c_loc(x_run_options%check_window)), a(c_loc(x_run_options%contacts)), &
-         a(c_loc(x_run_options%contact_schedule)), a(c_loc(x_run_options%contact_user))])
+         a(c_loc(x_run_options%contact_schedule)), a(c_loc(x_run_options%contact_user)), &
+         a(c_loc(x_run_options%nload)), a(c_loc(x_run_options%load_frame)), a(c_loc(x_run_options%loads)), &
+         a(c_loc(x_run_options%load_user))])
     call check(8_c_int, 'vt_trajectory', c_sizeof(x_trajectory), a(c_loc(x_trajectory)), [ &
          a(c_loc(x_trajectory%model)), a(c_loc(x_trajectory%nrow)), a(c_loc(x_trajectory%nfilled)), &
          a(c_loc(x_trajectory%t)), a(c_loc(x_trajectory%q)), a(c_loc(x_trajectory%qd)), &

@@ -6,7 +6,9 @@
  * fully driven model with dependent rows, decided by rank; a spherical joint's relative
  * orientation drive through the forward check both ways; each row's instant, which takes
  * Newton's last positions and Φ_q, against a fresh recursive instant at the row's state; the
- * caller's loads (xfrc, qfrc) kept through the forward check. */
+ * caller's loads (xfrc, qfrc) kept through the forward check; wrenches at frames over a run
+ * (the Delta's gripper pressed) against the batch's on each row's state, and through the
+ * forward check. */
 #include <float.h>
 
 #include "vt_test.h"
@@ -825,6 +827,130 @@ static void test_redundant_fully_driven(void **state)
     vt_model_free(rsur);
 }
 
+/* Wrenches at frames over a run (vt_run_options.loads): the Delta driven at its motors by the
+ * path's inverse kinematics (vt_scene_delta_ik), its gripper's tip (frame "tool") pressed by a
+ * force and a moment that change with time. Each row's motor torques equal the batch's on the
+ * row's state with the same wrench (vt_batch_io.load: the dense stages of the motion given,
+ * another route than the rows' recursive one) to 1e-9 of the largest; they differ from the
+ * unloaded run's; the forward check (the drives removed, the loaded torques and the wrenches
+ * applied) follows the path to 1e-10 m. A callback that fails at t = 0.5 ends the run there
+ * with VT_ERR_CALLBACK (the rows before it kept), one that returns NaN with VT_ERR_NONFINITE;
+ * bad frames and counts are refused, and so is a dynamic analysis with loads; xfrc is the
+ * caller's after every run. */
+typedef struct {
+    double t_fail;
+    int nan;
+} tool_press;
+
+static int tool_wrench(double t, double *w, void *user)
+{
+    const tool_press *p = user;
+    if (t >= p->t_fail && !p->nan) return 1;
+    const double s = sin(2.0 * 3.14159265358979323846 * t), c = cos(2.0 * 3.14159265358979323846 * t);
+    w[0] = 5.0 * s, w[1] = -3.0, w[2] = t >= p->t_fail ? NAN : -40.0 - 20.0 * c;
+    w[3] = 0.5 * s, w[4] = -0.2 * s, w[5] = 1.0 * s;
+    return 0;
+}
+
+static void test_loads_at_frames(void **state)
+{
+    (void)state;
+    vt_model *m;
+    vt_data *d;
+    vt_delta_ik ik;
+    assert_ok(vt_scene_delta_ik(&m, &ik, 1.0));
+    assert_ok(vt_data_create(&d, m));
+    const int tool[1] = {vt_find_frame(m, "tool")};
+    assert_true(tool[0] >= 0);
+    vt_run_options opt = vt_default_run_options();
+    opt.nout = 50;
+    opt.rtol = 1e-10;
+    opt.atol = 1e-12;
+    vt_trajectory *bare, *tr;
+    assert_ok(vt_trajectory_create(&bare, m, 51));
+    assert_ok(vt_trajectory_create(&tr, m, 51));
+    double p0[3];
+    vt_scene_delta_path(0.0, 1.0, p0, NULL, NULL);
+    assert_int_equal(vt_scene_delta_assemble(m, d, p0), 0);
+    opt.forward_check = 0;
+    assert_ok(vt_kinematic_analysis(m, d, &opt, bare));
+    tool_press press = {HUGE_VAL, 0};
+    opt.nload = 1, opt.load_frame = tool, opt.loads = tool_wrench, opt.load_user = &press;
+    opt.forward_check = VT_HAVE_SUNDIALS;
+    assert_int_equal(vt_scene_delta_assemble(m, d, p0), 0);
+    assert_ok(vt_kinematic_analysis(m, d, &opt, tr));
+    assert_int_equal(tr->nfilled, 51);
+    for (int k = 0; k < 6 * (m->nbody + 1); k++) assert_true(d->xfrc[k] == 0.0);
+    /* the batch on every row's state, each with the row's wrench */
+    const int n = tr->nfilled;
+    double *w = malloc(6 * (size_t)n * sizeof(double)), *de = malloc(3 * (size_t)n * sizeof(double));
+    int *st = malloc((size_t)n * sizeof(int));
+    assert_non_null(w);
+    assert_non_null(de);
+    assert_non_null(st);
+    for (int k = 0; k < n; k++) assert_int_equal(tool_wrench(tr->t[k], w + 6 * k, &press), 0);
+    vt_batch *b = NULL;
+    vt_batch_def bd = vt_default_batch_def();
+    bd.threads = 1;
+    assert_ok(vt_batch_create(&b, m, &bd));
+    vt_batch_io io = {0};
+    io.nrow = n, io.q = tr->q, io.qd = tr->qd, io.qdd = tr->qdd, io.time = tr->t;
+    io.nload = 1, io.load_frame = tool, io.load = w, io.drive_effort = de, io.status = st;
+    assert_ok(vt_batch_inverse_dynamics_motion(b, &io));
+    vt_batch_free(b);
+    double tau_max = 0.0, diff = 0.0, moved = 0.0;
+    for (int k = 0; k < n * 3; k++) tau_max = fmax(tau_max, fabs(de[k]));
+    for (int k = 0; k < n * 3; k++) {
+        diff = fmax(diff, fabs(tr->drive_effort[k] - de[k]));
+        moved = fmax(moved, fabs(tr->drive_effort[k] - bare->drive_effort[k]));
+    }
+    print_message("delta with a tool force over the run: motor torques against the batch's %.3g of %.4g N m; "
+                  "the force moves them by up to %.3g N m\n", diff, tau_max, moved);
+    assert_true(diff <= 1e-9 * tau_max && moved > 1.0);
+#if VT_HAVE_SUNDIALS
+    const int pq = m->body_qadr[10];
+    double dev = 0.0;
+    for (int k = 0; k < n; k++) {
+        const double *q = tr->q + (size_t)k * (size_t)m->nq, *qf = tr->q_fwd + (size_t)k * (size_t)m->nq;
+        double e = 0.0;
+        for (int c = 0; c < 3; c++) e += (qf[pq + c] - q[pq + c]) * (qf[pq + c] - q[pq + c]);
+        dev = fmax(dev, sqrt(e));
+    }
+    print_message("  forward check under the loaded torques and the tool's wrench: platform %.3g m\n", dev);
+    assert_true(dev <= 1e-10 && dev > 0.0);
+#endif
+    /* a callback that fails, or returns NaN, at t = 0.5: the run ends there */
+    opt.forward_check = 0;
+    for (int nan = 0; nan < 2; nan++) {
+        press.t_fail = 0.5, press.nan = nan;
+        assert_int_equal(vt_scene_delta_assemble(m, d, p0), 0);
+        assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), nan ? VT_ERR_NONFINITE : VT_ERR_CALLBACK);
+        assert_non_null(strstr(d->message, "t = 0.5"));
+        assert_int_equal(tr->nfilled, 25);
+        for (int k = 0; k < 6 * (m->nbody + 1); k++) assert_true(d->xfrc[k] == 0.0);
+    }
+    press.t_fail = HUGE_VAL;
+    const int bad_frame[1] = {m->nframe}, many = VT_RUN_LOADS_MAX + 1;
+    opt.load_frame = bad_frame;
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_BAD_INDEX);
+    opt.load_frame = NULL;
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_NULL);
+    opt.load_frame = tool, opt.nload = many;
+    assert_int_equal(vt_kinematic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+    opt.nload = 1;
+#if VT_HAVE_SUNDIALS
+    assert_int_equal(vt_dynamic_analysis(m, d, &opt, tr), VT_ERR_BAD_OPTION);
+    assert_non_null(strstr(d->message, "loads at frames"));
+#endif
+    free(w);
+    free(de);
+    free(st);
+    vt_trajectory_free(tr);
+    vt_trajectory_free(bare);
+    vt_data_free(d);
+    vt_model_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -846,6 +972,7 @@ int main(void)
         cmocka_unit_test(test_spline_drive_converges),
         cmocka_unit_test(test_redundant_fully_driven),
         cmocka_unit_test(test_planar_pin_over_time),
+        cmocka_unit_test(test_loads_at_frames),
 #if VT_HAVE_SUNDIALS
         cmocka_unit_test(test_given_output_times),
 #endif

@@ -745,6 +745,15 @@ typedef int (*vt_progress_callback)(double t, double t_end, void *user);
 /// success, anything else is an error that the library reports as VT_ERR_CALLBACK.
 typedef int (*vt_contact_schedule)(double t, int *active, void *user);
 
+/// The wrenches the environment applies at a run's frames at time t (vt_run_options.loads): writes
+/// w[6 k .. 6 k + 5] for each of the nload frames, the force (N) then the moment about the frame's
+/// origin (N·m), global axes (a tool pressing a part, a measured process force); returns 0 on
+/// success, anything else is an error that the library reports as VT_ERR_CALLBACK.
+typedef int (*vt_load_callback)(double t, double *w, void *user);
+
+/// The most wrenches at frames a run takes (vt_run_options.nload).
+#define VT_RUN_LOADS_MAX 64
+
 /// How a dynamic analysis hands (5) to IDA (docs/method.md, "Analyses over time").
 typedef enum vt_formulation {
     VT_FORMULATION_INDEX1 = 0,  ///< (5) as it stands: acceleration-level constraints; Φ and Φ̇ drift
@@ -825,6 +834,15 @@ typedef struct vt_run_options {
     vt_contact_schedule contact_schedule; ///< the contacts on the ground at each time; NULL (default):
                              ///< every contact, all the time
     void *contact_user;      ///< passed to contact_schedule
+    int nload;               ///< wrenches at frames over a kinematic analysis (0..VT_RUN_LOADS_MAX;
+                             ///< default 0): at each row, and wherever the forward check asks, the
+                             ///< instant carries them as it carries xfrc (with contacts, before the
+                             ///< ground's forces are shared, which then balance them too).
+                             ///< vt_dynamic_analysis() refuses them (VT_ERR_BAD_OPTION)
+    const int *load_frame;   ///< nload frame indices (vt_model.frame_name's order), each on a moving
+                             ///< body; a frame may be named more than once (the sum)
+    vt_load_callback loads;  ///< the wrenches at time t (6 nload values, global axes)
+    void *load_user;         ///< passed to loads
 } vt_run_options;
 
 /// Default of vt_run_options.check_window, s.

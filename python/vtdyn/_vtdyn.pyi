@@ -273,12 +273,17 @@ class Model:
         check_window: float = 5.0,
         contacts: Optional[ContactSet] = None,
         active: Optional[Callable[[float], Sequence[Any]]] = None,
+        loads: Union[None, npt.ArrayLike, Callable[[float], npt.ArrayLike]] = None,
+        load_frames: Union[None, str, Sequence[str]] = None,
     ) -> Trajectory:
         """a fully driven model's motion, efforts and reactions at each output time
         (vt_kinematic_analysis); forward_check defaults to True where SUNDIALS is built in;
         contacts: the robot on the ground (the forces in Trajectory.contact_force, the free
         root's efforts zero); active(t): one flag a contact, which are on the ground at t
-        (None: all, all the time)"""
+        (None: all, all the time); loads (F x 6, or a function of t giving them) with
+        load_frames (F frame names): wrenches the environment applies at those frames over the
+        run, force (N) then moment about the frame's origin (N m), world axes, in every row and
+        in the forward check"""
     def dynamic_analysis(
         self,
         t1: float,
@@ -305,6 +310,8 @@ class Model:
         check_window: float = 5.0,
         contacts: Optional[ContactSet] = None,
         active: Optional[Callable[[float], Sequence[Any]]] = None,
+        loads: Union[None, npt.ArrayLike, Callable[[float], npt.ArrayLike]] = None,
+        load_frames: Union[None, str, Sequence[str]] = None,
     ) -> Trajectory:
         """the motion the drives leave free, integrated by SUNDIALS IDA (vt_dynamic_analysis) from
         q, qd at t0 (None: the reference configuration, at rest); vtdyn.Error without SUNDIALS"""

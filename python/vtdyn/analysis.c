@@ -3,7 +3,8 @@
  * vt_dynamic_analysis: SUNDIALS IDA on the index-1 form of (5), where the drives fix part of
  * the motion), each with its forward check (the drives removed, their efforts applied). The
  * options are vt_run_options's fields as keyword arguments with the C defaults (contacts: a
- * ContactSet; active: a Python function of t for the contact schedule); the run has its
+ * ContactSet; active: a Python function of t for the contact schedule; loads with load_frames:
+ * wrenches at frames, constant or a Python function of t); the run has its
  * own vt_data and vt_trajectory, made, run and freed with the GIL released (the Model is only
  * read, so runs on one Model proceed in parallel). The trajectory's column-major arrays (one
  * column a row) are copied into row-major NumPy arrays of the rows the run filled: the Trajectory
@@ -180,8 +181,11 @@ static int call_schedule(double t, int *active, void *user)
     int bad = 1;
     PyObject *r = PyObject_CallFunction(s->fn, "d", t);
     PyObject *seq = r ? PySequence_Fast(r, "active: the schedule returns a sequence of one flag a contact") : NULL;
-    if (seq && PySequence_Fast_GET_SIZE(seq) != s->n)
-        PyErr_Format(PyExc_ValueError, "active(%g): %zd flags for %d contacts", t, PySequence_Fast_GET_SIZE(seq), s->n);
+    if (seq && PySequence_Fast_GET_SIZE(seq) != s->n) {
+        char ts[32]; /* PyErr_Format has no %g */
+        snprintf(ts, sizeof ts, "%.17g", t);
+        PyErr_Format(PyExc_ValueError, "active(%s): %zd flags for %d contacts", ts, PySequence_Fast_GET_SIZE(seq), s->n);
+    }
     else if (seq) {
         bad = 0;
         for (int k = 0; k < s->n && !bad; k++) {
@@ -198,22 +202,68 @@ static int call_schedule(double t, int *active, void *user)
     return bad;
 }
 
+/* the run's wrenches at frames (loads=, load_frames=): a constant F x 6 array, or a Python callable
+ * loads(t) -> F x 6 called with the GIL taken, its first exception kept to raise */
+typedef struct {
+    PyObject *fn;      /* the callable, or NULL: w constant */
+    const double *w;   /* 6 n values (constant) */
+    int n;
+    PyObject *type, *value, *tb;
+} run_loads;
+
+static int call_loads(double t, double *w, void *user)
+{
+    run_loads *L = user;
+    if (!L->fn) {
+        memcpy(w, L->w, 6 * (size_t)L->n * sizeof(double));
+        return 0;
+    }
+    const PyGILState_STATE g = PyGILState_Ensure();
+    int bad = 1;
+    PyObject *r = PyObject_CallFunction(L->fn, "d", t);
+    PyArrayObject *x = r ? (PyArrayObject *)PyArray_FromAny(r, PyArray_DescrFromType(NPY_DOUBLE), 1, 2,
+                                                            NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED, NULL)
+                         : NULL;
+    if (x && PyArray_SIZE(x) != 6 * (npy_intp)L->n) {
+        char ts[32]; /* PyErr_Format has no %g */
+        snprintf(ts, sizeof ts, "%.17g", t);
+        PyErr_Format(PyExc_ValueError, "loads(%s): %zd values, expected %d x 6 (a wrench for each of load_frames)", ts,
+                     (Py_ssize_t)PyArray_SIZE(x), L->n);
+    } else if (x) {
+        memcpy(w, PyArray_DATA(x), 6 * (size_t)L->n * sizeof(double));
+        bad = 0;
+    }
+    Py_XDECREF(x);
+    Py_XDECREF(r);
+    if (bad && !L->type) PyErr_Fetch(&L->type, &L->value, &L->tb);
+    PyErr_Clear();
+    PyGILState_Release(g);
+    return bad;
+}
+
 static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynamic)
 {
     static char *kwlist[] = {"t1", "nout", "t0", "tout", "q", "qd", "rtol", "atol", "max_step", "max_steps",
                              "newton_tol", "newton_maxit", "forward_check", "forward_independent", "forward_as_loads",
                              "formulation", "baumgarte_alpha", "baumgarte_beta", "history_steps", "redundant_band",
-                             "check_window", "contacts", "active", NULL};
+                             "check_window", "contacts", "active", "loads", "load_frames", NULL};
     vt_run_options opt = vt_default_run_options();
     PyObject *otout = NULL, *oq = NULL, *oqd = NULL, *oform = NULL, *ocontacts = NULL, *oactive = NULL;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, dynamic ? "d|id$OOOdddldipppOddiddOO:dynamic_analysis"
-                                                       : "d|id$OOOdddldipppOddiddOO:kinematic_analysis",
+    PyObject *oloads = NULL, *olf = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, dynamic ? "d|id$OOOdddldipppOddiddOOOO:dynamic_analysis"
+                                                       : "d|id$OOOdddldipppOddiddOOOO:kinematic_analysis",
                                      kwlist, &opt.t1, &opt.nout, &opt.t0, &otout, &oq, &oqd, &opt.rtol, &opt.atol,
                                      &opt.max_step, &opt.max_steps, &opt.newton_tol, &opt.newton_maxit,
                                      &opt.forward_check, &opt.forward_independent, &opt.forward_as_loads, &oform,
                                      &opt.baumgarte_alpha, &opt.baumgarte_beta, &opt.history_steps,
-                                     &opt.redundant_band, &opt.check_window, &ocontacts, &oactive))
+                                     &opt.redundant_band, &opt.check_window, &ocontacts, &oactive, &oloads, &olf))
         return NULL;
+    if (oloads == Py_None) oloads = NULL;
+    if (olf == Py_None) olf = NULL;
+    if (!oloads != !olf)
+        return PyErr_Format(PyExc_ValueError, "%s given without %s: loads (F x 6, or a function of t giving them: "
+                            "force, then moment about the frame's origin, world axes) and load_frames (F frame "
+                            "names) go together", oloads ? "loads" : "load_frames", oloads ? "load_frames" : "loads");
     ContactSetObject *cs = NULL; /* the contact set (its vt_contacts made with the run) */
     if (ocontacts && ocontacts != Py_None) {
         if (!PyObject_TypeCheck(ocontacts, &vtpy_contacts_type) || ((ContactSetObject *)ocontacts)->model != self)
@@ -243,8 +293,34 @@ static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynami
         opt.formulation = k;
     }
     const vt_model *m = self->m;
-    PyArrayObject *q = NULL, *qd = NULL, *tout = NULL;
+    PyArrayObject *q = NULL, *qd = NULL, *tout = NULL, *lw = NULL;
     PyObject *res = NULL;
+    run_loads lds = {.fn = NULL};
+    int *lframe = NULL;
+    if (oloads) {
+        if (!(lframe = vtpy_frame_indices(m, olf, &lds.n, "load_frames"))) goto done;
+        if (lds.n > VT_RUN_LOADS_MAX) {
+            PyErr_Format(PyExc_ValueError, "load_frames: %d frames, at most %d", lds.n, VT_RUN_LOADS_MAX);
+            goto done;
+        }
+        if (PyCallable_Check(oloads)) {
+            lds.fn = oloads;
+        } else {
+            lw = (PyArrayObject *)PyArray_FromAny(oloads, PyArray_DescrFromType(NPY_DOUBLE), 0, 0,
+                                                  NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_NOTSWAPPED, NULL);
+            if (!lw || PyArray_NDIM(lw) != 2 || PyArray_DIMS(lw)[0] != lds.n || PyArray_DIMS(lw)[1] != 6) {
+                PyErr_Clear();
+                PyErr_Format(PyExc_ValueError, "loads: expected %d x 6 (a wrench for each of the %d load_frames), or "
+                             "a function of t giving them", lds.n, lds.n);
+                goto done;
+            }
+            lds.w = PyArray_DATA(lw);
+        }
+        opt.nload = lds.n;
+        opt.load_frame = lframe;
+        opt.loads = call_loads;
+        opt.load_user = &lds;
+    }
     if (oq && oq != Py_None && !(q = vtpy_as_rows(oq, "q", m->nq))) goto done;
     if (oqd && oqd != Py_None && !(qd = vtpy_as_rows(oqd, "qd", m->nv))) goto done;
     if ((q && PyArray_NDIM(q) != 1) || (qd && PyArray_NDIM(qd) != 1)) {
@@ -289,8 +365,15 @@ static PyObject *run(ModelObject *self, PyObject *args, PyObject *kw, int dynami
         if (st) snprintf(msg, sizeof msg, "%s", d->message);
     }
     Py_END_ALLOW_THREADS
-    if (sch.type) { /* the schedule's own exception, not the run's VT_ERR_CALLBACK */
-        PyErr_Restore(sch.type, sch.value, sch.tb);
+    if (sch.type || lds.type) { /* the schedule's or the loads' own exception, not the run's VT_ERR_CALLBACK */
+        if (sch.type) {
+            PyErr_Restore(sch.type, sch.value, sch.tb);
+            Py_XDECREF(lds.type);
+            Py_XDECREF(lds.value);
+            Py_XDECREF(lds.tb);
+        } else {
+            PyErr_Restore(lds.type, lds.value, lds.tb);
+        }
     } else if (st) {
         char text[VT_MESSAGE_SIZE + 64];
         snprintf(text, sizeof text, "%s: %s", dynamic ? "dynamic_analysis" : "kinematic_analysis",
@@ -306,6 +389,8 @@ done:
     Py_XDECREF(q);
     Py_XDECREF(qd);
     Py_XDECREF(tout);
+    Py_XDECREF(lw);
+    PyMem_Free(lframe);
     return res;
 }
 

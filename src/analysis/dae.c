@@ -289,7 +289,7 @@ static vt_status exact_efforts(const vt_dae *p, const vt_model *m, double t)
         memcpy(dk->qd, tr->qd + (size_t)near * (size_t)m->nv, (size_t)m->nv * sizeof(double));
         st = vt_kinematic_solve_impl(m, dk, p->newton_tol, p->newton_maxit, VT_SOLVE_RECURSIVE_NO_TOTALS | VT_SOLVE_POLISH, NULL, NULL, 0.0);
     }
-    if (!st && p->run) st = vt_contacts_driven(m, dk, p->run, p->base, NULL, NULL, p->as_loads, "forward check");
+    if (!st && p->run) st = vt_run_loads(m, dk, p->run, p->base, NULL, NULL, p->as_loads, "forward check");
     return st;
 }
 
@@ -318,8 +318,9 @@ vt_status vt_dae_row_efforts(const vt_dae *p, const vt_model *m, int k)
     memcpy(dk->drive_force, tr->drive_force + 3 * r * nd, 3 * nd * D);
     memcpy(dk->drive_moment, tr->drive_moment + 3 * r * nd, 3 * nd * D);
     dk->time = tr->t[k];
-    /* on contacts the loads too, which the row keeps as forces: both formed at the row's state */
-    return p->run ? vt_contacts_driven(m, dk, p->run, p->base, NULL, NULL, p->as_loads, "forward check") : VT_OK;
+    /* with loads at frames or on contacts the loads too, which the row keeps as forces: both formed
+     * at the row's state */
+    return p->run ? vt_run_loads(m, dk, p->run, p->base, NULL, NULL, p->as_loads, "forward check") : VT_OK;
 }
 
 /* y_ref, y'_ref of one block at a state in d: [q; v; 0], [T(q) v; q̈; 0] */

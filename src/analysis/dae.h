@@ -37,8 +37,9 @@ typedef struct vt_dae {
     vt_data *msg;               /* where IDA's messages go */
     const double *xfrc0;        /* applied loads of the driven run, kept in the forward one (on
                                    contacts dk's: the caller's and the ground's forces) */
-    const vt_run_options *run;  /* a run on contacts (exact efforts): dk's efforts with the ground's
-                                   forces (analysis/contact_run.c); NULL: none */
+    const vt_run_options *run;  /* a run with loads at frames or on contacts (exact efforts): dk's
+                                   efforts with them and the ground's forces
+                                   (analysis/contact_run.c); NULL: none */
     const double *base;         /* with run: the caller's loads */
     int as_loads;               /* vt_run_options.forward_as_loads */
     double newton_tol;          /* vt_run_options.newton_tol: projections and exact efforts */

@@ -618,9 +618,11 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
     vt_model *mf = NULL;
     vt_data *df = NULL;
     vt_status st = vt_kinematic_solve(dk->model, dk, opt->newton_tol, opt->newton_maxit);
-    /* on contacts the efforts and loads with the ground's forces, which dk->xfrc then holds */
-    if (st == VT_OK && opt->contacts) st = vt_contacts_driven(m, dk, opt, d->xfrc, NULL, NULL, opt->forward_as_loads, "forward check");
-    if (st == VT_OK) st = forward_setup(m, dk, opt->contacts ? dk->xfrc : d->xfrc, opt->forward_as_loads, &mf, &df);
+    /* with loads at frames or on contacts the efforts with them and the ground's forces, which
+     * dk->xfrc then holds */
+    const int loaded = vt_run_has_loads(opt);
+    if (st == VT_OK && loaded) st = vt_run_loads(m, dk, opt, d->xfrc, NULL, NULL, opt->forward_as_loads, "forward check");
+    if (st == VT_OK) st = forward_setup(m, dk, loaded ? dk->xfrc : d->xfrc, opt->forward_as_loads, &mf, &df);
     if (st) {
         vt_fail(d->message, st, "forward check: set-up failed: %s", df ? df->message : dk->message);
     } else {
@@ -630,7 +632,7 @@ vt_status vt_forward_exact(const vt_model *m, vt_data *d, vt_data *dk, const vt_
         p.df = df;
         p.dk = dk;
         p.s.rows = tr;
-        if (opt->contacts) {
+        if (loaded) {
             p.run = opt;
             p.base = d->xfrc;
             p.xfrc0 = dk->xfrc;
@@ -650,6 +652,10 @@ vt_status vt_dynamic_analysis(const vt_model *m, vt_data *d, const vt_run_option
         return vt_fail(d->message, VT_ERR_BAD_OPTION,
                        "vt_dynamic_analysis: contacts are for a kinematic analysis (every rate driven) or the given "
                        "motion; a dynamic analysis would need the ground's forces to find its free rates");
+    if (opt->nload) /* its residual would need them at every trial pose */
+        return vt_fail(d->message, VT_ERR_BAD_OPTION,
+                       "vt_dynamic_analysis: loads at frames (nload %d) are for a kinematic analysis or the given "
+                       "motion (a batch's loads); a dynamic analysis takes xfrc", opt->nload);
     if (!d->Mstar) /* IDA's residual and iteration matrix are M*'s */
         return vt_fail(d->message, VT_ERR_LAYOUT,
                        "vt_dynamic_analysis: integrates (5) with M*, and the data holds none: its model was built with "

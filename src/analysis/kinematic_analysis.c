@@ -56,7 +56,8 @@ static vt_status fully_driven(const vt_model *m, vt_data *d, double t0, int solv
     return VT_OK;
 }
 
-/* rows 0..nrow into tr (base: the caller's loads of a run on contacts, else NULL) */
+/* rows 0..nrow into tr (base: the caller's loads of a run with loads at frames or on contacts,
+ * else NULL) */
 static vt_status rows(const vt_model *m, vt_data *d, const vt_run_options *opt, vt_trajectory *tr, const double *base)
 {
     vt_status st = VT_OK;
@@ -81,10 +82,10 @@ static vt_status rows(const vt_model *m, vt_data *d, const vt_run_options *opt, 
         }
         /* a model that solves dependent rows would also solve a rank-deficient one dynamically */
         if (k == 0 && m->allow_redundant && (st = fully_driven(m, d, opt->t0, 1))) return st;
-        if (base) { /* the ground's forces, and the drives' efforts with them */
+        if (base) { /* the loads at frames and the ground's forces, and the drives' efforts with them */
             const size_t r = (size_t)k * (size_t)tr->ncontact;
-            if ((st = vt_contacts_driven(m, d, opt, base, tr->contact_force + 3 * r, tr->contact_active + r, 1,
-                                         "vt_kinematic_analysis")))
+            if ((st = vt_run_loads(m, d, opt, base, opt->contacts ? tr->contact_force + 3 * r : NULL,
+                                   opt->contacts ? tr->contact_active + r : NULL, 1, "vt_kinematic_analysis")))
                 return st;
         }
         vt_trajectory_store(tr, m, d, k);
@@ -109,12 +110,14 @@ vt_status vt_kinematic_analysis(const vt_model *m, vt_data *d, const vt_run_opti
         return vt_fail(d->message, VT_ERR_NOT_FULLY_DRIVEN,
                        "vt_kinematic_analysis: %d constraint rows for %d rates: not fully driven; a dynamic analysis "
                        "handles partly driven models", m->nc, m->nv);
-    if ((st = vt_contacts_run_check(m, d, opt, tr, "vt_kinematic_analysis"))) return st;
+    if ((st = vt_run_loads_check(m, d, opt, tr, "vt_kinematic_analysis"))) return st;
     if (m->nc > m->nv && !m->allow_redundant && (st = fully_driven(m, d, opt->t0, 0))) return st;
-    /* on contacts: the caller's loads, which each row's instant takes the ground's forces onto */
+    /* with loads at frames or on contacts: the caller's loads, which each row's instant takes
+     * those onto */
     const size_t nxf = 6 * ((size_t)m->nbody + 1);
-    double *base = opt->contacts ? malloc(nxf * sizeof(double)) : NULL;
-    if (opt->contacts && !base) return vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_kinematic_analysis: out of memory");
+    const int loaded = vt_run_has_loads(opt);
+    double *base = loaded ? malloc(nxf * sizeof(double)) : NULL;
+    if (loaded && !base) return vt_fail(d->message, VT_ERR_NO_MEMORY, "vt_kinematic_analysis: out of memory");
     if (base) memcpy(base, d->xfrc, nxf * sizeof(double));
     st = rows(m, d, opt, tr, base);
     if (base) {

@@ -17,7 +17,9 @@ with vtdyn.Builder, against closed forms written out here.
   I_eff = 2 m a^2 / 3 + m a^2 (the coupler translates); the pin's reaction in its plane only.
   Model.inverse with a wrench at a frame on the coupler (loads=): the same closed form plus the
   load's power per unit crank rate, at 50 random states (1e-12), in effort and drive_effort; the
-  loop's solved qdd (-phi'' and phi'' for coupler and rocker).
+  loop's solved qdd (-phi'' and phi'' for coupler and rocker). Model.kinematic_analysis with the
+  wrench over the run (loads=, constant or a function of t): the same closed form at every row,
+  and the forward check.
 * Model.inverse's t on a coupled planar arm whose end's x is a point drive x(t) = 0.3 sin 2t: the
   end's x'' from the planar closed form at the solved qdd against x''(t) (1e-12); refused without
   t; on a tree t changes nothing.
@@ -165,6 +167,47 @@ def test_four_bar_loads():
     assert r.drive_effort.shape == (n, 1) and np.abs(r.drive_effort[:, 0] - tau).max() <= 1e-12 * scale
 
 
+def test_four_bar_loads_over_time():
+    """Model.kinematic_analysis with a wrench at the coupler's frame (loads=, load_frames=): the
+    crank torque at every row is the closed form plus the load's power per unit crank rate,
+    a (F_x sin phi - F_y cos phi) (1e-9 of the largest), for a constant wrench and for one given
+    as a function of t; the forward check under the loaded torque and the wrench follows the
+    motion; a loads function that raises ends the run with its own exception"""
+    a, bl, m = 0.5, 1.2, 2.0
+    four = parallelogram(a, bl, m)
+    phi0 = 1.0
+    start = dict(q=[phi0, -phi0, phi0 + np.pi], forward_check=bool(vtdyn.VT_HAVE_SUNDIALS))
+    const = np.array([[12.0, -30.0, 4.0, 1.0, -2.0, 3.0]])
+
+    def varying(t):
+        return [[10.0 * np.sin(3 * t), -25.0 + 5.0 * np.cos(t), 0.0, 0.0, 0.0, 2.0 * t]]
+
+    for loads in (const, varying):
+        tr = four.kinematic_analysis(3.0, nout=60, loads=loads, load_frames=["grip"], **start)
+        t = tr.time
+        phi, phidd = 1.0 + 0.3 * np.sin(2 * t), -1.2 * np.sin(2 * t)
+        w = np.array([(loads(x) if callable(loads) else loads)[0] for x in t])
+        tau = (2 * m * a * a / 3 + m * a * a) * phidd + 2 * m * G * a * np.cos(phi)
+        tau += a * (w[:, 0] * np.sin(phi) - w[:, 1] * np.cos(phi))
+        assert np.abs(tr.drive_effort[:, 0] - tau).max() <= 1e-9 * np.abs(tau).max()
+        if vtdyn.VT_HAVE_SUNDIALS:
+            assert tr.fwd_err_q <= 1e-8, tr.fwd_err_q
+
+    def broken(t):
+        if t > 1.0:
+            raise RuntimeError("the sensor log ends")
+        return const
+
+    with pytest.raises(RuntimeError, match="the sensor log ends"):
+        four.kinematic_analysis(3.0, nout=60, loads=broken, load_frames=["grip"], **start)
+    with pytest.raises(ValueError, match="^loads given without load_frames"):
+        four.kinematic_analysis(3.0, loads=const, **start)
+    with pytest.raises(ValueError, match="^loads: expected 1 x 6"):
+        four.kinematic_analysis(3.0, loads=np.zeros(6), load_frames=["grip"], **start)
+    with pytest.raises(ValueError, match="^loads\\(0\\): 3 values"):
+        four.kinematic_analysis(3.0, loads=lambda t: [1.0, 2.0, 3.0], load_frames=["grip"], **start)
+
+
 def coupled_arm(lengths, r, c0):
     """a planar arm of len(lengths) links about z, joint 2 following joint 1 by a coupling
     q2 = r q1 + c0, joint 1 driven, and the last link's end's x a point drive, 0.3 sin 2t"""
@@ -289,7 +332,7 @@ def test_kinematic_analysis_on_contacts():
         raise KeyError("no such gait")
     with pytest.raises(KeyError):
         m.kinematic_analysis(1.0, nout=4, q=q0, contacts=cs5, active=broken, forward_check=False)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="^active\\(0\\): 2 flags for 5 contacts"):
         m.kinematic_analysis(1.0, nout=4, q=q0, contacts=cs5, active=lambda t: [1, 1], forward_check=False)
     with pytest.raises(ValueError):
         m.kinematic_analysis(1.0, nout=4, q=q0, active=lambda t: [1], forward_check=False)
