@@ -288,7 +288,8 @@ def test_kinematic_analysis_on_contacts():
     """a box heaving on its four corners, every rate driven: each corner carries m (g + z'') / 4
     (the rule's minimum forces, symmetric), the free root's efforts vanish, and the forward check
     under the ground's forces gives the motion back; a dynamic analysis refuses contacts; a fifth
-    point put on the ground by the schedule takes its fifth of the load"""
+    point put on the ground by the schedule takes its fifth of the load; pressed on its top (loads=)
+    the corners carry the push too"""
     mass, (lx, ly, lz) = 12.0, (0.4, 0.2, 0.1)
     inertia = (mass / 12 * (ly * ly + lz * lz), mass / 12 * (lx * lx + lz * lz), mass / 12 * (lx * lx + ly * ly))
     b = vtdyn.Builder(gravity=(0, 0, -G))
@@ -297,6 +298,7 @@ def test_kinematic_analysis_on_contacts():
     b.add_drive(body=1, index=1, f=0.0)
     b.add_drive(body=1, index=2, f=vtdyn.Function.sine(0.05, 0.02, 2.0))
     b.add_drive(body=1, kind="orientation", f=0.0)
+    b.add_frame("top", body=1, point=(0.0, 0.0, lz / 2))
     m = b.build()
     corners = [(sx * lx / 2, sy * ly / 2, -lz / 2) for sx in (1, -1) for sy in (1, -1)]
     cs = m.contacts([vtdyn.Contact(body=1, point=p) for p in corners])
@@ -314,6 +316,12 @@ def test_kinematic_analysis_on_contacts():
             m.dynamic_analysis(1.0, q=q0, contacts=cs)
         assert e.value.status == "VT_ERR_BAD_OPTION" and "contacts" in str(e.value)
     assert m.kinematic_analysis(1.0, nout=4, q=q0, forward_check=False).contact_force is None
+    # pressed down on its top (loads= at the frame 'top'): the corners carry the push too
+    tr = m.kinematic_analysis(2.0, nout=40, q=q0, contacts=cs, loads=[[0, 0, -50.0, 0, 0, 0]], load_frames="top",
+                              forward_check=bool(vtdyn.VT_HAVE_SUNDIALS))
+    assert np.abs(tr.contact_force[:, :, 2] - ((mass * (G + zdd) + 50.0) / 4)[:, None]).max() <= 1e-10 * weight
+    if bool(vtdyn.VT_HAVE_SUNDIALS):
+        assert tr.fwd_err_q <= 1e-9
     # a fifth point, under the centre, on the ground from t = 1 s on (active(t)): the five then
     # share the load equally (the smallest forces that hold it, the moments balanced by symmetry)
     cs5 = m.contacts([vtdyn.Contact(body=1, point=p) for p in corners + [(0.0, 0.0, -lz / 2)]])
