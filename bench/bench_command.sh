@@ -63,11 +63,20 @@ bench() {
         printf "library, -j %d: %.3f us/row (vt_batch_inverse_dynamics_motion, effort and reactions)\n" "$j" "${lib[$j]}"
     done
 
+    cases "$urdf" states "csv:csv npy:npy npy:null csv:npy npy:csv" $flag
+}
+
+# the command timed on $tmp/<stem>.<in> for each in:out of the list, -j 1 and -j 2 (the median of
+# ROUNDS runs), beside the library's time at the same threads (lib): cases <urdf> <stem> <list> [flag]
+cases() {
+    local urdf=$1 stem=$2 list=$3 flag=${4:-}
     printf "\n%-14s %3s %10s %9s %s\n" "case" "-j" "us/row" "x library" "split of the median run (--times)"
     TIMEFORMAT=%3R
-    for case in csv:csv npy:npy npy:null csv:npy npy:csv; do
+    for case in $list; do
         in=${case%:*} out=${case#*:}
         declare -A per=()
+        label="$in->$out"
+        [ "$out" = null ] && label="npy->/dev/null"
         for j in 1 2; do
             : > "$tmp/runs"
             for r in $(seq "$rounds"); do
@@ -75,22 +84,20 @@ bench() {
                 # the runs before written back first: their dirty pages would throttle this one's
                 sync
                 if [ "$out" = null ]; then # the command alone: npy on standard output, to /dev/null
-                    t=$({ time "$vtdyn" inverse $flag -j "$j" --times --format npy "$urdf" "$tmp/states.$in" > /dev/null 2> "$tmp/times"; } 2>&1)
+                    t=$({ time "$vtdyn" inverse $flag -j "$j" --times --format npy "$urdf" "$tmp/$stem.$in" > /dev/null 2> "$tmp/times"; } 2>&1)
                 else
-                    t=$({ time "$vtdyn" inverse $flag -j "$j" --times "$urdf" "$tmp/states.$in" -o "$tmp/out_$j.$out" 2> "$tmp/times"; } 2>&1)
+                    t=$({ time "$vtdyn" inverse $flag -j "$j" --times "$urdf" "$tmp/$stem.$in" -o "$tmp/out_$j.$out" 2> "$tmp/times"; } 2>&1)
                 fi
                 echo "$t $(sed -n 's/.*: read/read/p' "$tmp/times")" >> "$tmp/runs"
             done
             mid=$(sort -n "$tmp/runs" | awk -v n="$rounds" 'NR == int((n + 1) / 2)')
             us=$(awk -v t="${mid%% *}" -v n="$rows" 'BEGIN { printf "%.3f", 1e6 * t / n }')
             per[$j]=$us
-            label="$in->$out"
-            [ "$out" = null ] && label="npy->/dev/null"
             printf "%-14s %3d %10s %9.2f %s\n" "$label" "$j" "$us" "$(awk -v a="$us" -v b="${lib[$j]}" 'BEGIN { print a / b }')" \
                 "${mid#* }"
         done
         if [ "$out" != null ]; then
-            cmp -s "$tmp/out_1.$out" "$tmp/out_2.$out" || { echo "bench_command.sh: -j 1 and -j 2 wrote different bytes ($case)"; exit 1; }
+            cmp -s "$tmp/out_1.$out" "$tmp/out_2.$out" || { echo "bench_command.sh: -j 1 and -j 2 wrote different bytes ($stem $case)"; exit 1; }
         fi
         printf "%-14s     -j 2 is %.2f times as fast as -j 1\n" "$label" "$(awk -v a="${per[1]}" -v b="${per[2]}" 'BEGIN { print a / b }')"
     done
@@ -103,28 +110,7 @@ samples() {
     python3 "$src/bench/command_states.py" "$vtdyn" "$urdf" "$rows" "$tmp/samples.csv" "$tmp/samples.npy" --samples
     echo
     echo "== $name samples (t and positions, 1 ms apart): $rows rows, $(du -h "$tmp/samples.csv" | cut -f1) CSV"
-    printf "%-14s %3s %10s %9s %s\n" "case" "-j" "us/row" "x library" "split of the median run (--times)"
-    TIMEFORMAT=%3R
-    for case in csv:csv npy:npy; do
-        in=${case%:*} out=${case#*:}
-        declare -A per=()
-        for j in 1 2; do
-            : > "$tmp/runs"
-            for r in $(seq "$rounds"); do
-                rm -f "$tmp/sout_$j.$out"
-                sync
-                t=$({ time "$vtdyn" inverse -j "$j" --times "$urdf" "$tmp/samples.$in" -o "$tmp/sout_$j.$out" 2> "$tmp/times"; } 2>&1)
-                echo "$t $(sed -n 's/.*: read/read/p' "$tmp/times")" >> "$tmp/runs"
-            done
-            mid=$(sort -n "$tmp/runs" | awk -v n="$rounds" 'NR == int((n + 1) / 2)')
-            us=$(awk -v t="${mid%% *}" -v n="$rows" 'BEGIN { printf "%.3f", 1e6 * t / n }')
-            per[$j]=$us
-            printf "%-14s %3d %10s %9.2f %s\n" "$in->$out" "$j" "$us" "$(awk -v a="$us" -v b="${lib[$j]}" 'BEGIN { print a / b }')" \
-                "${mid#* }"
-        done
-        cmp -s "$tmp/sout_1.$out" "$tmp/sout_2.$out" || { echo "bench_command.sh: -j 1 and -j 2 wrote different bytes (samples $case)"; exit 1; }
-        printf "%-14s     -j 2 is %.2f times as fast as -j 1\n" "$in->$out" "$(awk -v a="${per[1]}" -v b="${per[2]}" 'BEGIN { print a / b }')"
-    done
+    cases "$urdf" samples "csv:csv npy:npy"
 }
 
 declare -A lib
