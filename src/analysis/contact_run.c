@@ -2,11 +2,10 @@
  * gripper pressing a part: vt_run_options.loads) and on a robot's contacts, and the forward
  * check that proves it (docs/contact.md, "Over time").
  *
- * At each time t the wrenches at frames join the caller's xfrc at the driven state's poses, each
- * as vt_add_frame_load() adds it (force f at the frame's point p, moment n about it: f, and
- * n + (p − c) × f about the body's centre of mass c), and the instant is taken again with them.
- *
- * At each time t the drives fix q, q̇ and q̈ (the kinematic solve). The ground's forces f_c are the
+ * At each time t the drives fix q, q̇ and q̈ (the kinematic solve). The wrenches at frames join the
+ * caller's xfrc at that state's poses, each as vt_add_frame_load() adds it (force f at the
+ * frame's point p, moment n about it: f, and n + (p − c) × f about the body's centre of mass c),
+ * and the instant is taken again with them. On contacts, the ground's forces f_c are the
  * distribution rule's at that state (vt_inverse_dynamics_contacts, over the contacts the schedule
  * puts on the ground at t), and the drives' efforts are those of the driven instant with the
  * forces applied as loads, the paper's (5) with them in Q:

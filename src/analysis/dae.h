@@ -35,8 +35,9 @@ typedef struct vt_dae {
     vt_data *df;                /* its data */
     vt_data *dk;                /* exact Q_d (fully driven), or the interpolated driven state (src) */
     vt_data *msg;               /* where IDA's messages go */
-    const double *xfrc0;        /* applied loads of the driven run, kept in the forward one (on
-                                   contacts dk's: the caller's and the ground's forces) */
+    const double *xfrc0;        /* applied loads of the driven run, kept in the forward one (with
+                                   loads at frames or on contacts dk's: the caller's, the frames'
+                                   and the ground's forces) */
     const vt_run_options *run;  /* a run with loads at frames or on contacts (exact efforts): dk's
                                    efforts with them and the ground's forces
                                    (analysis/contact_run.c); NULL: none */
