@@ -78,6 +78,7 @@ typedef struct {
     int header_done;           /* the output's header written */
     /* a chunk: K rows at most, row-major arrays */
     int K, T;                  /* rows, threads */
+    int r0;                    /* samples: the chunk's first row (its blocks' work, sample_block) */
     chunk ch[2];               /* rows read, before they are parsed: the chunk solved and the next */
     chunk *chp;                /* the chunk being solved */
     int oset;                  /* the output set being formatted (the other may be being written) */

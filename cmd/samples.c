@@ -1,7 +1,8 @@
 /* The command's `inverse`, the samples form: t and the joints' positions alone, samples of a
  * trajectory. Cubic splines through each joint's positions, and with a floating root through its
  * position and its quaternion's components (made sign-continuous, then normalised: ω = 2 E(p) ṗ,
- * α = 2 E(p) p̈), give each row's state at its t, solved by the batch as the states are. */
+ * α = 2 E(p) p̈), give each row's state at its t (on the batch's threads, a chunk's rows in
+ * blocks), solved by the batch as the states are. */
 #define _POSIX_C_SOURCE 200809L
 #include "samples.h"
 
@@ -13,6 +14,7 @@
 #include "message.h"
 #include "number_text.h"
 #include "output.h"
+#include "parallel.h"
 #include "states.h"
 
 /* v in the fewest significant digits that read back as v, into buf */
@@ -125,11 +127,13 @@ int spline_model(run *x)
     return status;
 }
 
-/* spline k of x->splines at time t: out = [f, f', f'']; 0 or 1 */
-static int spline_at(const run *x, int k, double t, double out[3])
+/* spline k of x->splines at time t: out = [f, f', f'']; 0, or 1 with the message in msg
+ * (ROW_MESSAGE bytes; safe on threads) */
+static int spline_at(const run *x, int k, double t, double out[3], char *msg)
 {
     const vt_status st = vt_function_eval(out, &x->splines->drive[k].f, t);
-    return st ? cmd_fail("%s: spline %d at t = %.17g: %s", x->states, k, t, vt_status_string(st)) : 0;
+    if (st) snprintf(msg, ROW_MESSAGE, "%s: spline %d at t = %.17g: %s", x->states, k, t, vt_status_string(st));
+    return st != VT_OK;
 }
 
 /* chunk row r's state from the splines at time t: each joint's position, velocity and
@@ -139,8 +143,8 @@ static int spline_at(const run *x, int k, double t, double out[3])
  * (the derivatives of s/|s|, with ṅ = p·ṡ and n̈ = ṗ·ṡ + p·s̈), the angular velocity ω = 2 E(p) ṗ
  * and acceleration α = 2 E(p) p̈ in world axes (α = d/dt 2 E(p) ṗ, whose other term 2 E(ṗ) ṗ is 0:
  * E(a) a = 0 for any a). At a sample's time s is the unit sample itself, so n = 1 to round-off.
- * 0 or 1 */
-static int fill_sample(const run *x, int r, double t)
+ * 0, or 1 with the message in msg */
+static int fill_sample(const run *x, int r, double t, char *msg)
 {
     const vt_model *m = x->m;
     double *q = x->q + (size_t)r * (size_t)m->nq, *qd = x->qd + (size_t)r * (size_t)m->nv,
@@ -149,17 +153,17 @@ static int fill_sample(const run *x, int r, double t)
         const joint_cols *j = &x->jc[k];
         double v[3];
         if (!j->free) {
-            if (spline_at(x, j->spl, t, v)) return 1;
+            if (spline_at(x, j->spl, t, v, msg)) return 1;
             q[j->qadr] = v[0], qd[j->rate] = v[1], qdd[j->rate] = v[2];
             continue;
         }
         for (int c = 0; c < 3; c++) {
-            if (spline_at(x, j->spl + c, t, v)) return 1;
+            if (spline_at(x, j->spl + c, t, v, msg)) return 1;
             q[j->qadr + c] = v[0], qd[j->rate + c] = v[1], qdd[j->rate + c] = v[2];
         }
         double s[4], sd[4], sdd[4], nn = 0.0;
         for (int c = 0; c < 4; c++) {
-            if (spline_at(x, j->spl + 3 + c, t, v)) return 1;
+            if (spline_at(x, j->spl + 3 + c, t, v, msg)) return 1;
             s[c] = v[0], sd[c] = v[1], sdd[c] = v[2];
             nn += s[c] * s[c];
         }
@@ -191,6 +195,23 @@ static int fill_sample(const run *x, int r, double t)
     return 0;
 }
 
+/* the chunk whose first row is x->r0's block of rows [first, end): each row's state from the
+ * splines and its extras (contacts' flags, loads), on the team's threads; the block's first
+ * failing row and its message in x->blk[k] */
+static void sample_block(void *ctx, int first, int end, int k)
+{
+    run *x = ctx;
+    block_state *b = &x->blk[k];
+    const table *t = &x->in.t;
+    for (int r = first; r < end; r++) {
+        const int g = x->r0 + r;
+        if (fill_sample(x, r, x->ts[g], b->msg) || row_extras(x, r, table_row(t, g), t->loc[g], b->msg)) {
+            b->failed = r;
+            return;
+        }
+    }
+}
+
 int run_samples(run *x)
 {
     double start = 0.0, last = 0.0;
@@ -199,11 +220,11 @@ int run_samples(run *x)
     for (int r0 = 0; r0 < t->nrow; r0 += x->K) {
         const int n = t->nrow - r0 < x->K ? t->nrow - r0 : x->K;
         const double t0 = run_clock();
-        for (int r = 0; r < n; r++) {
-            char msg[ROW_MESSAGE];
-            if (fill_sample(x, r, x->ts[r0 + r])) return 1;
-            if (row_extras(x, r, table_row(t, r0 + r), t->loc[r0 + r], msg)) return cmd_fail("%s", msg);
-        }
+        x->r0 = r0;
+        for (int k = 0; k < x->tm.nblock; k++) x->blk[k].failed = -1;
+        parallel_blocks(&x->tm, n, sample_block, x);
+        for (int k = 0; k < x->tm.nblock; k++) /* the blocks in order: the first failing row's message */
+            if (x->blk[k].failed >= 0) return cmd_fail("%s", x->blk[k].msg);
         vt_batch_io io = chunk_io(x, n);
         const vt_status st = vt_batch_inverse_dynamics_motion(x->batch, &io);
         x->t_solve += run_clock() - t0;
