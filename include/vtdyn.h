@@ -479,7 +479,10 @@ VT_API vt_status vt_kinematic_solve(const vt_model *model, vt_data *data, double
 /// reactions that instant's (qfrc_drive the motors', zero on a free root), the drives' λ those
 /// of the instant with the forces as loads; the forward check applies the forces as loads too
 /// (docs/contact.md, "Over time"). A row the contacts cannot carry ends the run with
-/// VT_ERR_CONTACT, the time named; d->xfrc is the caller's on return.
+/// VT_ERR_CONTACT, the time named; d->xfrc is the caller's on return. With wrenches at frames
+/// (opt->nload, load_frame, loads) each row's instant and the forward check's efforts carry them
+/// at that state's poses (with contacts, before the ground's forces are shared); a loads callback
+/// that fails ends the run with VT_ERR_CALLBACK, one that returns NaN with VT_ERR_NONFINITE.
 /// d->q, d->qd and d->time are the run's working state: afterwards they hold the last row's.
 /// Rows written before a failure stay in the trajectory (tr->nfilled).
 /// Statuses: VT_ERR_NOT_FULLY_DRIVEN (fewer rows than rates, or of lower rank),
