@@ -23,7 +23,9 @@
  *   vt_integrate_q, vt_cartesian_force, the kinematic solve and the analyses' trajectories);
  * - a failure gives a non-empty message and leaves the inputs (q, q̇, xfrc, qfrc, time) as they
  *   were; an option that is not finite is refused; a time function that fails inside an
- *   analysis ends it at once with VT_ERR_CALLBACK or VT_ERR_NONFINITE;
+ *   analysis ends it at once with VT_ERR_CALLBACK or VT_ERR_NONFINITE; an analysis leaves the
+ *   caller's xfrc as it was, a kinematic analysis with a wrench at a frame over the run (1, 1e3,
+ *   1e300 or NaN times a fixed one) too;
  * - at overflow's edge (motion_edge, the last bytes): the motion given with q̇ and q̈ up to
  *   DBL_MAX, and the two paths at that q̇, each VT_OK with finite outputs or refused as above.
  * A broken promise prints which comparison failed, with the values, and aborts (libFuzzer keeps
@@ -549,6 +551,19 @@ static void reset_callbacks(definitions *defs)
     for (int k = 0; k < MAX_DRIVE; k++) defs->cb[k].after = 0;
 }
 
+/* a wrench at a frame over a run: a fixed one times scale, turning with t */
+typedef struct {
+    double scale;
+} run_press;
+
+static int press_at(double t, double *w, void *user)
+{
+    const run_press *p = user;
+    const double base[6] = {10.0, -5.0, 3.0, 1.0, 0.5, -2.0};
+    for (int k = 0; k < 6; k++) w[k] = p->scale * base[k] * (1.0 + 0.5 * sin(7.0 * t + k));
+    return 0;
+}
+
 static void callbacks_stopped(const definitions *defs, vt_status st, const char *call)
 {
     for (int k = 0; k < defs->ndrive; k++) {
@@ -739,6 +754,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (byte(&b) % 2) {
         vt_trajectory *tr = NULL;
+        run_press press = {0.0};
         vt_run_options o = vt_default_run_options();
         o.t1 = o.t0 + 0.01 + fabs(num(&b)) * 1e-3;
         o.nout = 2;
@@ -746,16 +762,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         o.formulation = (int)(byte(&b) % 6);
         o.forward_check = (int)(byte(&b) % 2);
         o.forward_independent = (int)(byte(&b) % 2);
-        const unsigned which = byte(&b) % 16;
+        const unsigned wb = byte(&b), which = wb % 16;
         if (which == 1) o.rtol = num(&b);
         if (which == 2) o.atol = num(&b);
         if (which == 3) o.newton_tol = num(&b);
         if (vt_trajectory_create(&tr, m, 3) == VT_OK) {
             const int kin = m->nc == m->nv && byte(&b) % 2;
+            /* a kinematic analysis with a wrench at the first frame over the run, from the byte's
+             * high bits (0: none): NaN (1), 1e300 times a fixed one (2: its moments overflow),
+             * else 1 or 1e3 times it, the run going through */
+            if (kin && wb >> 4 && m->nframe > 0) {
+                static const int frame0[1] = {0};
+                const unsigned h = wb >> 4;
+                press.scale = h == 1 ? (double)NAN : h == 2 ? 1e300 : h % 2 ? 1e3 : 1.0;
+                o.nload = 1, o.load_frame = frame0, o.loads = press_at, o.load_user = &press;
+            }
             const char *call = kin ? "vt_kinematic_analysis" : "vt_dynamic_analysis";
             d->message[0] = '\0';
             reset_callbacks(&defs);
+            double *xfrc0 = malloc(6 * ((size_t)m->nbody + 1) * sizeof(double));
+            if (xfrc0) memcpy(xfrc0, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double));
             const vt_status st = kin ? vt_kinematic_analysis(m, d, &o, tr) : vt_dynamic_analysis(m, d, &o, tr);
+            if (xfrc0 && memcmp(xfrc0, d->xfrc, 6 * ((size_t)m->nbody + 1) * sizeof(double)) != 0)
+                fail("%s (%s) left the caller's xfrc changed", call, vt_status_string(st));
+            free(xfrc0);
             if (st == VT_OK) {
                 if (!isfinite(o.newton_tol) || (!kin && (!isfinite(o.rtol) || !isfinite(o.atol))))
                     fail("%s accepted rtol %g, atol %g, newton_tol %g", call, o.rtol, o.atol, o.newton_tol);
