@@ -80,18 +80,37 @@ const char *cmd_empty_hint(vt_status st, int floating)
                : "";
 }
 
-/* a joint-params file's cells of one line, split at its commas (spaces around a cell trimmed;
- * no quotes: joint names and numbers); the count, or -1 past max */
+/* a side file's cells of one line (the joint parameters, the contacts), split at its commas,
+ * spaces around a cell trimmed; a cell in double quotes (RFC 4180, as spreadsheets write headers)
+ * is its text between them, "" a quote, a comma inside kept; the count, -1 past max, -2 at a
+ * quote left open or text after a closing one */
 static int split_cells(char *line, char **cell, int max)
 {
     int n = 0;
     for (char *p = line; p;) {
         if (n == max) return -1;
+        while (*p == ' ' || *p == '\t') p++;
+        char *end; /* the cell's last character + 1, before its comma */
+        if (*p == '"') { /* the quoted text, unescaped in place */
+            char *w = ++p, *r = p;
+            for (;; r++) {
+                if (*r == '\0') return -2;
+                if (*r == '"' && r[1] == '"') *w++ = '"', r++;
+                else if (*r == '"') break;
+                else *w++ = *r;
+            }
+            *w = '\0';
+            end = r + 1; /* after the closing quote: spaces, then a comma or the line's end */
+            while (*end == ' ' || *end == '\t' || *end == '\r' || *end == '\n') end++;
+            if (*end != ',' && *end != '\0') return -2;
+            cell[n++] = p;
+            p = *end == ',' ? end + 1 : NULL;
+            continue;
+        }
         char *comma = strchr(p, ',');
         if (comma) *comma = '\0';
-        while (*p == ' ' || *p == '\t') p++;
-        char *e = p + strlen(p);
-        while (e > p && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
+        end = p + strlen(p);
+        while (end > p && (end[-1] == ' ' || end[-1] == '\t' || end[-1] == '\r' || end[-1] == '\n')) *--end = '\0';
         cell[n++] = p;
         p = comma ? comma + 1 : NULL;
     }
@@ -114,6 +133,11 @@ int cmd_joint_params(vt_builder *b, const char *file, const char *path)
             break;
         }
         const int n = split_cells(line, cell, 8);
+        if (n == -2) {
+            bad = cmd_fail("--joint-params %s: line %d: a double quote left open, or text after a closing one", file,
+                           lineno);
+            break;
+        }
         if (n == 1 && !cell[0][0]) continue; /* a blank line */
         if (col[0] < 0) { /* the header: the four names, in any order, nothing else */
             for (int k = 0; k < n; k++)
@@ -212,6 +236,10 @@ int cmd_contacts(const vt_model *m, const char *file, vt_contact_def **defs, cha
             break;
         }
         const int nc = split_cells(line, cell, NCOL + 1);
+        if (nc == -2) {
+            bad = cmd_fail("--contacts %s: line %d: a double quote left open, or text after a closing one", file, lineno);
+            break;
+        }
         if (nc == 1 && !cell[0][0]) continue; /* a blank line */
         if (ncol == 0) { /* the header: each a known column, once */
             for (int k = 0; k < nc && !bad; k++) {

@@ -1081,14 +1081,19 @@ def joint_effects(vtdyn, urdf, states, work, check):
     r2 = run(vtdyn, "inverse", "--joint-params", only, urdf, states)
     r3 = run(vtdyn, "inverse", "--ideal-joints", dyn, states)
     r4 = run(vtdyn, "inverse", urdf, states)
-    check(r1.returncode == 0 and r1.stdout == r2.stdout and r1.stdout != r4.stdout,
-          "<dynamics> read as --joint-params gives them")
+    quoted = os.path.join(work, "joint1_params_quoted.csv")
+    with open(quoted, "w") as f:
+        f.write('"joint","armature","damping","friction"\n"joint1",0,"2.5",3.0\n')
+    r5 = run(vtdyn, "inverse", "--joint-params", quoted, urdf, states)
+    check(r1.returncode == 0 and r1.stdout == r2.stdout and r1.stdout != r4.stdout and r5.stdout == r2.stdout,
+          "<dynamics> read as --joint-params gives them (the file's cells quoted or not: %r)" % r5.stderr)
     check(r3.returncode == 0 and r3.stdout == r4.stdout, "--ideal-joints ignores <dynamics>")
     for body, what in (("joint,armature,damping\njoint1,0,1\n", "header"),
                        ("joint,armature,damping,friction\njoint9,0,1,1\n", "'joint9' is not a moving joint"),
                        ("joint,armature,damping,friction\njoint1,0,-1,1\n", "not a finite number >= 0"),
                        ("joint,armature,damping,friction\njoint1,0,1,1\njoint1,0,1,1\n", "twice"),
-                       ("joint,armature,damping,friction\njoint1,0,1\n", "cells, not 4")):
+                       ("joint,armature,damping,friction\njoint1,0,1\n", "cells, not 4"),
+                       ('joint,armature,damping,friction\n"joint1,0,1,1\n', "line 2: a double quote left open")):
         bad = os.path.join(work, "bad_params.csv")
         with open(bad, "w") as f:
             f.write(body)
@@ -1460,9 +1465,13 @@ def contacts(vtdyn, urdf_dir, work, check):
     with open(cfile, "w") as f:
         f.write("frame,mu,faces,nx,ny,nz,weight\n" + "".join("%s_foot,0.5,,,,,\n" % leg for leg in QUAD_FEET))
     r_empty, _ = run_rows(rows, "--contacts", cfile)
-    check(r_plain.returncode == 0 and r_full.stdout == r_plain.stdout and r_empty.stdout == r_plain.stdout,
-          "faces, normal and weight at their defaults, written or empty: the same bytes (%r %r)"
-          % (r_full.stderr, r_empty.stderr))
+    with open(cfile, "w") as f:  # quoted, as spreadsheets write them
+        f.write('"frame", "mu"\n' + "".join('"%s_foot","0.5"\n' % leg for leg in QUAD_FEET))
+    r_quoted, _ = run_rows(rows, "--contacts", cfile)
+    check(r_plain.returncode == 0 and r_full.stdout == r_plain.stdout and r_empty.stdout == r_plain.stdout
+          and r_quoted.stdout == r_plain.stdout,
+          "faces, normal and weight at their defaults, written or empty, and the cells quoted: the same bytes "
+          "(%r %r %r)" % (r_full.stderr, r_empty.stderr, r_quoted.stderr))
     # faces: 4 m/s² sideways on mu 0.5 needs |f_t| / f_n = 0.41 on the whole robot: beyond a 4-face
     # pyramid's mu cos(pi/4) = 0.35 along a face's direction (y), within an 8-face one's
     # mu cos(pi/8) = 0.46
@@ -1548,6 +1557,8 @@ def contacts(vtdyn, urdf_dir, work, check):
                        ("frame,mu,name\nFL_foot,1,a b\n", "the name 'a b'"),
                        ("frame,mu,name\nFL_foot,1,FL_HAA\n", "two output columns would be named 'FL_HAA_fx'"),
                        ("frame,mu,x,y\nFL_foot,1,0,0\n", "all of x, y, z"),
+                       ('"frame,mu\nFL_foot,1\n', "line 1: a double quote left open"),
+                       ('"frame"x,mu\nFL_foot,1\n', "line 1: a double quote left open, or text after"),
                        ("frame,mu,x,y,z\nFL_foot,1,0,zero,0\n", "y 'zero'"),
                        ("frame,mu\n", "no contact")):
         with open(cfile, "w") as f:
