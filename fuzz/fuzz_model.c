@@ -578,22 +578,6 @@ static void callbacks_stopped(const definitions *defs, vt_status st, const char 
     }
 }
 
-static void trajectory_finite(const vt_model *m, const vt_trajectory *tr, const char *call)
-{
-    const int r = tr->nfilled;
-    finite(tr->t, r, call, "t");
-    finite(tr->q, m->nq * r, call, "trajectory q");
-    finite(tr->qd, m->nv * r, call, "trajectory qd");
-    finite(tr->qdd, m->nv * r, call, "trajectory qdd");
-    finite(tr->lambda, m->nc * r, call, "trajectory lambda");
-    finite(tr->qfrc_drive, m->nv * r, call, "trajectory qfrc_drive");
-    finite(tr->drive_effort, m->ndrive * r, call, "trajectory drive_effort");
-    finite(tr->jnt_force, 3 * (m->nbody + 1) * r, call, "trajectory jnt_force");
-    finite(tr->jnt_moment, 3 * (m->nbody + 1) * r, call, "trajectory jnt_moment");
-    finite(tr->cut_force, 3 * m->ncut * r, call, "trajectory cut_force");
-    finite(tr->cut_moment, 3 * m->ncut * r, call, "trajectory cut_moment");
-}
-
 /* The motion given at overflow's edge (fuzz/corpus/motion-euler-rates-overflow): the instants above give the motion call
  * the dense q̈, which a modest input keeps far from DBL_MAX, so the call met q̈ and q̇ near
  * overflow only rarely. Here the last bytes (after every other piece: older inputs end before

@@ -308,3 +308,20 @@ void model_check(const vt_model *m)
         unit(m->cut[k].orientation, 4, "cut joint orientation", k);
     }
 }
+
+/* every array of an analysis's filled rows */
+void trajectory_finite(const vt_model *m, const vt_trajectory *tr, const char *call)
+{
+    const int r = tr->nfilled;
+    finite(tr->t, r, call, "t");
+    finite(tr->q, m->nq * r, call, "trajectory q");
+    finite(tr->qd, m->nv * r, call, "trajectory qd");
+    finite(tr->qdd, m->nv * r, call, "trajectory qdd");
+    finite(tr->lambda, m->nc * r, call, "trajectory lambda");
+    finite(tr->qfrc_drive, m->nv * r, call, "trajectory qfrc_drive");
+    finite(tr->drive_effort, m->ndrive * r, call, "trajectory drive_effort");
+    finite(tr->jnt_force, 3 * (m->nbody + 1) * r, call, "trajectory jnt_force");
+    finite(tr->jnt_moment, 3 * (m->nbody + 1) * r, call, "trajectory jnt_moment");
+    finite(tr->cut_force, 3 * m->ncut * r, call, "trajectory cut_force");
+    finite(tr->cut_moment, 3 * m->ncut * r, call, "trajectory cut_moment");
+}

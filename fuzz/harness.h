@@ -50,5 +50,7 @@ void data_finite(const vt_model *m, const vt_data *d, const char *call);
 void unit(const double *a, int n, const char *what, int k);
 /* what the builder accepted satisfies the checks it documents */
 void model_check(const vt_model *m);
+/* every array of an analysis's filled rows finite after `call` returned VT_OK */
+void trajectory_finite(const vt_model *m, const vt_trajectory *tr, const char *call);
 
 #endif
