@@ -27,7 +27,6 @@
 #include "analysis/contact_run.h"
 #include "analysis/contact.h"
 #include "base/status.h"
-#include "kinematics/kinematics.h"
 #include "kinematics/state.h"
 
 vt_status vt_run_loads_check(const vt_model *m, vt_data *d, const vt_run_options *opt, const vt_trajectory *tr,
@@ -57,14 +56,12 @@ vt_status vt_run_loads_check(const vt_model *m, vt_data *d, const vt_run_options
     return VT_OK;
 }
 
-/* the wrenches at frames at d->time added to d->xfrc, at the poses of d's q (formed here: the
- * forward check hands a row's state without them) */
+/* the wrenches at frames at d->time added to d->xfrc, at the poses of d's instant */
 static vt_status frame_loads(const vt_model *m, vt_data *d, const vt_run_options *opt, const char *who)
 {
     if (opt->nload == 0) return VT_OK;
     double w[6 * VT_RUN_LOADS_MAX];
-    vt_status st = vt_kinematics_tree(m, d, 0);
-    if (st) return st;
+    vt_status st;
     if (opt->loads(d->time, w, opt->load_user))
         return vt_fail(d->message, VT_ERR_CALLBACK, "%s: the loads' callback failed at t = %.10g", who, d->time);
     const vt_frame_loads fl = {opt->nload, opt->load_frame, w};

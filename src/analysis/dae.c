@@ -319,8 +319,10 @@ vt_status vt_dae_row_efforts(const vt_dae *p, const vt_model *m, int k)
     memcpy(dk->drive_moment, tr->drive_moment + 3 * r * nd, 3 * nd * D);
     dk->time = tr->t[k];
     /* with loads at frames or on contacts the loads too, which the row keeps as forces: both formed
-     * at the row's state */
-    return p->run ? vt_run_loads(m, dk, p->run, p->base, NULL, NULL, p->as_loads, "forward check") : VT_OK;
+     * at the row's state (the frames' at its poses, formed here: the row keeps none) */
+    if (!p->run) return VT_OK;
+    vt_status st = p->run->nload > 0 ? vt_kinematics_tree(m, dk, 0) : VT_OK;
+    return st ? st : vt_run_loads(m, dk, p->run, p->base, NULL, NULL, p->as_loads, "forward check");
 }
 
 /* y_ref, y'_ref of one block at a state in d: [q; v; 0], [T(q) v; q̈; 0] */

@@ -40,6 +40,17 @@ int vt_drive_rows(const vt_model *m)
     return m->drive_row[last] + vt_drive_nrows(&m->drive[last]);
 }
 
+/* the given motion (vt_inverse_dynamics_motion) reads the time where a loop or coupling keeps a
+ * point or orientation drive's rows */
+int vt_motion_time_drive(const vt_model *m)
+{
+    if (!m) return VT_ERR_NULL;
+    if (m->ncut == 0 && m->ncoupling == 0) return -1; /* a tree's given motion reads no drive */
+    for (int k = 0; k < m->ndrive; k++) /* a joint drive's row takes the given q̈ */
+        if (m->drive[k].type != VT_DRIVE_JOINT) return k;
+    return -1;
+}
+
 int vt_row_owner_kind(const vt_model *m, int row)
 {
     if (row < vt_drive_rows(m)) return VT_OWNER_DRIVE;

@@ -728,15 +728,6 @@ static vt_status fused_given(const vt_model *m, vt_data *d, const fused_tree tre
  * follows from the rows (vt_motion_rows, instant.c). Base bodies of a tree are refused: a base
  * body's ṗ rates carry (4)'s normal part (its multiplier); a free joint (VT_JOINT_FREE), whose
  * six rates are twists, is what a floating robot uses here. */
-int vt_motion_time_drive(const vt_model *m)
-{
-    if (!m) return VT_ERR_NULL;
-    if (m->ncut == 0 && m->ncoupling == 0) return -1; /* a tree's given motion reads no drive */
-    for (int k = 0; k < m->ndrive; k++) /* a joint drive's row takes the given q̈ */
-        if (m->drive[k].type != VT_DRIVE_JOINT) return k;
-    return -1;
-}
-
 vt_status vt_inverse_dynamics_motion(const vt_model *m, vt_data *d)
 {
     return vt_motion_loaded(m, d, NULL);
